@@ -1,0 +1,82 @@
+#pragma once
+// One function per subcommand (one file each in app/). Each returns the process exit code:
+// 0 success, 2 bad input (InputError), 3 numerical failure (NumericalError). main() catches
+// what escapes and maps it to these codes.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "model/scene.hpp"
+
+namespace shpb {
+
+// Options shared by simulate, compare and study (DESIGN.md §2); unset means "as the scene says".
+struct RunOverrides {
+  std::optional<ContactMethod> contact;
+  std::optional<Stepping> stepping;
+  std::optional<double> courant;
+  int threads = 0;  // 0: all cores
+  bool quiet = false;
+};
+
+// Applies --contact/--stepping/--courant to a scene read from file.
+void apply_overrides(const RunOverrides& overrides, Scene& scene);
+
+struct SimulateArgs {
+  std::filesystem::path scene;
+  std::filesystem::path output;
+  RunOverrides overrides;
+  bool full_model = false;  // disable causal economy (METHODS.md §7)
+};
+int run_simulate(const SimulateArgs& args);
+
+struct ProcessArgs {
+  std::filesystem::path scene;
+  std::filesystem::path output;
+  std::optional<std::filesystem::path> signals;  // a gauges.csv written by simulate, or a file
+  bool quiet = false;
+};
+int run_process(const ProcessArgs& args);
+
+struct CompareArgs {
+  std::filesystem::path scene;
+  std::filesystem::path output;
+  RunOverrides overrides;
+  bool dispersion = true;                  // propagate simulated pulses through Pochhammer–Chree
+  std::optional<double> striker_velocity;  // else the scene's, or inferred from the measurement
+};
+int run_compare(const CompareArgs& args);
+
+struct DispersionArgs {
+  double poisson = 0.29;
+  std::vector<double> a_over_lambda;  // explicit list, or
+  double max_a_over_lambda = 1.6;
+  int points = 321;
+  std::optional<double> radius_m;
+  std::optional<double> c0_m_s;
+  std::optional<std::filesystem::path> output;  // CSV file; stdout when absent
+};
+int run_dispersion(const DispersionArgs& args);
+
+struct StudyArgs {
+  std::filesystem::path scene;
+  std::filesystem::path output;
+  std::string sweep = "pareto";  // pareto | stability
+  RunOverrides overrides;
+};
+int run_study(const StudyArgs& args);
+
+struct ValidateArgs {
+  std::filesystem::path scene;
+  bool json = false;
+  RunOverrides overrides;
+};
+int run_validate(const ValidateArgs& args);
+
+struct ReportArgs {
+  std::filesystem::path folder;
+};
+int run_report(const ReportArgs& args);
+
+}  // namespace shpb

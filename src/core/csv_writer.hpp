@@ -1,0 +1,33 @@
+#pragma once
+// Comma-separated output that pandas and spreadsheets read: one header row, units in the column
+// names, '.' decimals, shortest round-trip doubles (DESIGN.md §4).
+#include <cstdio>
+#include <filesystem>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace shpb {
+
+class CsvWriter {
+ public:
+  CsvWriter(const std::filesystem::path& file, const std::vector<std::string>& header);
+  ~CsvWriter();
+  CsvWriter(const CsvWriter&) = delete;
+  CsvWriter& operator=(const CsvWriter&) = delete;
+
+  void row(std::span<const double> values);
+  void row(std::initializer_list<double> values) { row(std::span(values.begin(), values.size())); }
+  std::size_t columns() const { return columns_; }
+
+ private:
+  std::FILE* file_ = nullptr;
+  std::filesystem::path path_;
+  std::size_t columns_ = 0;
+  std::string line_;
+};
+
+// Shortest text that reads back to the same double.
+std::string format_double(double value);
+
+}  // namespace shpb

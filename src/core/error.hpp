@@ -1,0 +1,38 @@
+#pragma once
+// Errors that cross the program's boundary. Every message starts with "error:" when printed by
+// main, and names the file, the place (JSON path or CSV line/column), the value and the constraint
+// (DESIGN.md §2): "scene.json: bars[2].length: -0.005 m: must be > 0".
+#include <stdexcept>
+#include <string>
+
+namespace shpb {
+
+// Bad input or usage: exit code 2, nothing written.
+class InputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// A numerical failure the program detected (instability, NaN): exit code 3.
+class NumericalError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// The run was interrupted (SIGINT/SIGTERM): exit code 130, previous results left intact.
+class Interrupted : public std::runtime_error {
+ public:
+  Interrupted() : std::runtime_error("interrupted") {}
+};
+
+// "<file>: <where>: <value>: <constraint>", the one shape of every input error.
+inline InputError input_error(const std::string& file, const std::string& where,
+                              const std::string& value, const std::string& constraint) {
+  std::string msg = file;
+  if (!where.empty()) msg += ": " + where;
+  if (!value.empty()) msg += ": " + value;
+  msg += ": " + constraint;
+  return InputError(msg);
+}
+
+}  // namespace shpb

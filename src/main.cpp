@@ -1,0 +1,197 @@
+// shpb — a virtual Split-Hopkinson pressure bar laboratory. This file is only the command line:
+// CLI11 subcommands (DESIGN.md §2) that call one function each in app/.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+#include <string>
+
+#include "app/commands.hpp"
+#include "core/error.hpp"
+#include "core/output_folder.hpp"
+#include "core/units.hpp"
+
+namespace {
+
+using namespace shpb;
+
+// --contact/--stepping/--courant/--threads/--quiet for simulate, compare, study and validate.
+void add_run_options(CLI::App* cmd, RunOverrides& o, std::string& contact, std::string& stepping) {
+  cmd->add_option("--contact", contact,
+                  "Contact method at every interface: penalty | bipenalty | localized-bipenalty "
+                  "(default: the scene's, else localized-bipenalty)")
+      ->check(CLI::IsMember({"penalty", "bipenalty", "localized-bipenalty"}));
+  cmd->add_option("--stepping", stepping,
+                  "asynchronous (every bar its own time step) | global (all bars at the smallest "
+                  "step) (default: the scene's, else asynchronous)")
+      ->check(CLI::IsMember({"asynchronous", "global"}));
+  cmd->add_option("--courant", o.courant, "Courant number of every bar, c·Δt/h (default ≈ 0.99)")
+      ->check(CLI::Range(1e-3, 2.0));
+  cmd->add_option("--threads", o.threads, "Worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--quiet,-q", o.quiet, "No progress output on stderr");
+}
+
+void resolve_run_options(RunOverrides& o, const std::string& contact, const std::string& stepping) {
+  if (!contact.empty()) o.contact = contact_method_from_string(contact);
+  if (!stepping.empty()) o.stepping = stepping_from_string(stepping);
+}
+
+double quantity_option(const std::string& option, const std::string& text, Dimension d) {
+  try {
+    return parse_quantity(text, d);
+  } catch (const std::invalid_argument& e) {
+    throw input_error(option, "", "\"" + text + "\"", e.what());
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "shpb — virtual Split-Hopkinson pressure bar laboratory: simulate a Kolsky bar test from one "
+      "JSON scene, record strain gauges, correct Pochhammer–Chree dispersion and reduce gauge "
+      "signals (simulated or measured) to specimen stress–strain curves."};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("shpb ") + SHPB_VERSION);
+  std::string contact, stepping;
+
+  SimulateArgs sim;
+  auto* simulate = app.add_subcommand("simulate", "Run a scene; write gauges.csv, interfaces.csv, "
+                                                  "specimen.csv, energy.csv, field.csv, summary.json");
+  simulate->add_option("scene", sim.scene, "Scene JSON file")->required();
+  simulate->add_option("-o,--output", sim.output, "Output folder (replaced atomically)")->required();
+  simulate->add_flag("--full-model", sim.full_model,
+                     "Update every node of every bar from the start (no causal economy)");
+  add_run_options(simulate, sim.overrides, contact, stepping);
+
+  ProcessArgs proc;
+  std::string signals;
+  auto* process = app.add_subcommand(
+      "process", "Reduce gauge signals (the scene's measurement, or --signals) to aligned pulses "
+                 "and 1/2/3-wave stress–strain curves; write pulses.csv, curve.csv, summary.json");
+  process->add_option("scene", proc.scene, "Scene JSON file (bars, gauges, specimen, measurement)")
+      ->required();
+  process->add_option("-o,--output", proc.output, "Output folder (replaced atomically)")->required();
+  process->add_option("--signals", signals,
+                      "Gauge signals to process instead of the scene's measurement, e.g. a "
+                      "gauges.csv written by `shpb simulate`");
+  process->add_flag("--quiet,-q", proc.quiet, "No progress output on stderr");
+
+  CompareArgs cmp;
+  std::string striker_velocity;
+  bool no_dispersion = false;
+  auto* compare = app.add_subcommand(
+      "compare", "Simulate the scene and compare its gauge signals with the measured ones, pulse "
+                 "by pulse; write comparison.csv and summary.json");
+  compare->add_option("scene", cmp.scene, "Scene JSON file with a measurement")->required();
+  compare->add_option("-o,--output", cmp.output, "Output folder (replaced atomically)")->required();
+  compare->add_flag("--no-dispersion", no_dispersion,
+                    "Do not propagate simulated pulses through Pochhammer–Chree dispersion");
+  compare->add_option("--striker-velocity", striker_velocity,
+                      "Striker velocity, e.g. \"22 m/s\" (default: the scene's, else inferred "
+                      "from the measured incident plateau)");
+  add_run_options(compare, cmp.overrides, contact, stepping);
+
+  DispersionArgs disp;
+  std::string radius, c0;
+  auto* dispersion = app.add_subcommand(
+      "dispersion", "Print or write the first-mode Pochhammer–Chree curve of a solid round bar: "
+                    "a_over_lambda,c_over_c0,cg_over_c0,f_a_over_c0[,frequency_Hz]");
+  dispersion->add_option("--poisson", disp.poisson, "Poisson ratio of the bar, in [0, 0.49]")
+      ->required()
+      ->check(CLI::Range(0.0, 0.49));
+  dispersion->add_option("--a-over-lambda", disp.a_over_lambda,
+                         "Explicit list of radius/wavelength values")
+      ->delimiter(',');
+  dispersion->add_option("--max-a-over-lambda", disp.max_a_over_lambda,
+                         "Largest a/Λ of an evenly spaced table (default 1.6)")
+      ->check(CLI::PositiveNumber);
+  dispersion->add_option("--points", disp.points, "Number of table points (default 321)")
+      ->check(CLI::Range(2, 1000000));
+  dispersion->add_option("--radius", radius, "Bar radius, e.g. \"9.525 mm\" (adds frequency_Hz)");
+  dispersion->add_option("--c0", c0, "Bar wave speed sqrt(E/ρ), e.g. \"4975 m/s\"");
+  dispersion->add_option("-o,--output", disp.output, "CSV file to write (default: stdout)");
+
+  StudyArgs study;
+  auto* study_cmd = app.add_subcommand(
+      "study", "Sweep contact methods, steppings, resolutions and penalty parameters: accuracy "
+               "against cost (pareto.csv) and stability maps (stability.csv)");
+  study_cmd->add_option("scene", study.scene, "Scene JSON file")->required();
+  study_cmd->add_option("-o,--output", study.output, "Output folder (replaced atomically)")->required();
+  study_cmd->add_option("--sweep", study.sweep, "pareto | stability")
+      ->check(CLI::IsMember({"pareto", "stability"}));
+  add_run_options(study_cmd, study.overrides, contact, stepping);
+
+  ValidateArgs val;
+  auto* validate = app.add_subcommand(
+      "validate", "Check a scene and print the resolved set-up (materials, meshes, time steps, "
+                  "Courant numbers, gauges, interfaces) without running it");
+  validate->add_option("scene", val.scene, "Scene JSON file")->required();
+  validate->add_flag("--json", val.json, "Print the resolved set-up as JSON");
+  add_run_options(validate, val.overrides, contact, stepping);
+
+  ReportArgs rep;
+  auto* report = app.add_subcommand(
+      "report", "Turn an output folder of simulate/process/compare/study into PNG figures and one "
+                "self-contained report.html (needs python3 with matplotlib)");
+  report->add_option("folder", rep.folder, "Output folder")->required()->check(CLI::ExistingDirectory);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "error: %s (see shpb --help)\n", e.what());
+    return 2;
+  }
+
+  install_interrupt_handlers();
+  try {
+    if (*simulate) {
+      resolve_run_options(sim.overrides, contact, stepping);
+      return run_simulate(sim);
+    }
+    if (*process) {
+      if (!signals.empty()) proc.signals = signals;
+      return run_process(proc);
+    }
+    if (*compare) {
+      resolve_run_options(cmp.overrides, contact, stepping);
+      cmp.dispersion = !no_dispersion;
+      if (!striker_velocity.empty())
+        cmp.striker_velocity =
+            quantity_option("--striker-velocity", striker_velocity, Dimension::kVelocity);
+      return run_compare(cmp);
+    }
+    if (*dispersion) {
+      if (!radius.empty()) disp.radius_m = quantity_option("--radius", radius, Dimension::kLength);
+      if (!c0.empty()) disp.c0_m_s = quantity_option("--c0", c0, Dimension::kVelocity);
+      return run_dispersion(disp);
+    }
+    if (*study_cmd) {
+      resolve_run_options(study.overrides, contact, stepping);
+      return run_study(study);
+    }
+    if (*validate) {
+      resolve_run_options(val.overrides, contact, stepping);
+      return run_validate(val);
+    }
+    if (*report) return run_report(rep);
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 2;
+  } catch (const NumericalError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 3;
+  } catch (const Interrupted&) {
+    std::fprintf(stderr, "error: interrupted; previous results left intact\n");
+    return 130;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: internal: %s\n", e.what());
+    return 4;
+  }
+  return 2;
+}

@@ -1,0 +1,59 @@
+#pragma once
+// A material as read from a scene or a specimens/*.json file: plain data, SI units, validated by
+// the scene reader. The behaviour (stress update) lives in model/material_law.hpp.
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace shpb {
+
+enum class MaterialModel { kElastic, kBilinear, kJohnsonCook, kViscoelastic };
+
+struct BilinearParams {
+  double yield_stress_Pa = 0;     // initial yield stress σ_y > 0
+  double tangent_modulus_Pa = 0;  // hardening slope of σ–ε after yield, 0 ≤ E_t < E
+};
+
+// σ = (A + B ε_p^n)(1 + C ln(ε̇*/ε̇0))(1 − T*^m), T* = (T − T_room)/(T_melt − T_room);
+// adiabatic heating ΔT = β ∫σ dε_p / (ρ c_p) (Johnson & Cook 1983).
+struct JohnsonCookParams {
+  double A_Pa = 0;
+  double B_Pa = 0;
+  double n = 1;
+  double C = 0;
+  double reference_strain_rate_1_s = 1;
+  double m = 1;
+  double room_temperature_K = 293.15;
+  double melting_temperature_K = 1000;
+  double initial_temperature_K = 293.15;  // test temperature
+  double specific_heat_J_kgK = 900;
+  double taylor_quinney = 0.9;  // β, fraction of plastic work turned into heat
+  bool adiabatic = true;
+};
+
+// Generalized Maxwell (Prony series): E(t) = E_inf + Σ E_k exp(−t/τ_k).
+struct MaxwellArm {
+  double modulus_Pa = 0;
+  double relaxation_time_s = 0;
+};
+struct ViscoelasticParams {
+  double long_term_modulus_Pa = 0;  // E_inf
+  std::vector<MaxwellArm> arms;
+};
+
+struct MaterialSpec {
+  std::string name;    // name in `materials`, the file it came from, or "inline"
+  std::string source;  // citation: paper and table the parameters come from (specimen files)
+  MaterialModel model = MaterialModel::kElastic;
+  double density_kg_m3 = 0;
+  double youngs_modulus_Pa = 0;  // elastic (instantaneous) modulus; for viscoelastic E_inf + ΣE_k
+  double poisson_ratio = 0.3;
+  BilinearParams bilinear;
+  JohnsonCookParams johnson_cook;
+  ViscoelasticParams viscoelastic;
+
+  double wave_speed_m_s() const { return std::sqrt(youngs_modulus_Pa / density_kg_m3); }
+  bool is_elastic() const { return model == MaterialModel::kElastic; }
+};
+
+}  // namespace shpb

@@ -1,0 +1,47 @@
+#pragma once
+// 1D uniaxial-stress material laws used by a bar's elements. One virtual call per bar per step:
+// a law updates all elements of a bar at once over contiguous arrays (no per-element dispatch).
+// Elastic bars do not use this at all: the solver's elastic kernel is σ = E ε.
+#include <memory>
+#include <span>
+
+#include "model/material.hpp"
+
+namespace shpb {
+
+// Per-element state. Strain is engineering strain, tension positive (DESIGN.md §5).
+struct MaterialPointState {
+  static constexpr int kMaxArms = 8;
+  double strain = 0;          // ε at the last update
+  double stress_Pa = 0;       // σ at the last update
+  double plastic_strain = 0;  // equivalent (accumulated) plastic strain
+  double back_strain = 0;     // signed plastic strain ε_p (for return mapping)
+  double temperature_K = 0;   // current temperature (adiabatic heating)
+  double dissipated_J_m3 = 0; // plastic + viscous work per unit volume, cumulative
+  double heat_J_m3 = 0;       // part of it turned into heat (β × plastic work)
+  double arm_stress_Pa[kMaxArms] = {};  // Maxwell arm stresses (viscoelastic)
+};
+
+class MaterialLaw {
+ public:
+  virtual ~MaterialLaw() = default;
+
+  // Sets every state to the unstrained, unstressed state at the initial temperature.
+  virtual void initialize(std::span<MaterialPointState> states) const = 0;
+
+  // Advances every element from its stored strain to strain_next[i] over dt_s (strain rate
+  // (strain_next − strain)/dt), writes σ into stress_out[i] and updates the state.
+  virtual void update(std::span<const double> strain_next, double dt_s,
+                      std::span<MaterialPointState> states, std::span<double> stress_out) const = 0;
+
+  // Largest tangent modulus the law can ever show (the elastic modulus for every law here):
+  // the specimen's stable step is fixed at this elastic bound.
+  virtual double max_tangent_modulus_Pa() const = 0;
+
+  // Recoverable (elastic) strain energy per unit volume held in a state.
+  virtual double stored_energy_J_m3(const MaterialPointState& state) const = 0;
+};
+
+std::unique_ptr<MaterialLaw> make_material_law(const MaterialSpec& spec);
+
+}  // namespace shpb

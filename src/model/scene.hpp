@@ -1,0 +1,142 @@
+#pragma once
+// The scene: one JSON file describing a bar set-up (DESIGN.md §3), read into plain structs with
+// defaults. Validation happens once, in read_scene(); nothing downstream re-checks.
+#include <cmath>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "model/material.hpp"
+
+namespace shpb {
+
+struct GaugeSpec {
+  std::string name;
+  double position_m = 0;  // from the bar's left end
+};
+
+struct BarSpec {
+  std::string name;
+  MaterialSpec material;
+  double length_m = 0;
+  double area_m2 = 0;         // from `area`, or π d²/4 from `diameter`
+  double diameter_m = 0;      // given, or the equivalent circular diameter of `area`
+  double velocity_m_s = 0;    // initial rigid velocity, + to the right
+  int elements = 0;           // 0: chosen automatically (see model/mesh.hpp)
+  double gap_m = 0;           // initial gap to the next bar on the right
+  std::vector<GaugeSpec> gauges;
+
+  double impedance_kg_s() const {
+    return material.density_kg_m3 * material.wave_speed_m_s() * area_m2;
+  }
+};
+
+enum class ContactMethod { kPenalty, kBipenalty, kLocalizedBipenalty };
+enum class Stepping { kAsynchronous, kGlobal };
+
+// Penalty parameters of one interface. Unset values are derived from the neighbouring elements
+// (METHODS.md §2): ε_s as a multiple of the stiffer neighbour's EA/h, R as a fraction of
+// R_crit = (2c/h)² of each neighbour.
+struct PenaltyParams {
+  std::optional<double> stiffness_factor;  // ε_s / (EA/h)
+  std::optional<double> stiffness_N_m;     // ε_s given directly (wins over stiffness_factor)
+  std::optional<double> mass_ratio;        // R / R_crit (bipenalty methods)
+};
+
+struct InterfaceOverride {
+  std::size_t left_bar = 0;  // the interface between bars[left_bar] and bars[left_bar + 1]
+  std::optional<ContactMethod> method;
+  PenaltyParams penalty;
+};
+
+struct ContactSpec {
+  ContactMethod method = ContactMethod::kLocalizedBipenalty;
+  PenaltyParams penalty;
+  std::vector<InterfaceOverride> interfaces;
+};
+
+struct SimulationSpec {
+  std::optional<double> duration_s;  // default: the transmitted pulse has passed the last gauge
+  double sample_rate_Hz = 10e6;
+  Stepping stepping = Stepping::kAsynchronous;
+  std::optional<double> courant;  // default chosen by the solver (close to 1, METHODS.md §1)
+};
+
+// ---- measured signals -------------------------------------------------------------------------
+
+enum class SignalUnit { kVolt, kStrain, kMicrostrain };
+enum class SignalFormat { kAuto, kCsv, kTektronix, kLanlRaw };
+
+// Wheatstone bridge: ε = k·V / (GF · gain · V_ex) with k = 4/arms (quarter 4, half 2, full 1).
+struct BridgeSpec {
+  int arms = 1;
+  double gauge_factor = 2.0;
+  double excitation_V = 10.0;
+  double gain = 1.0;
+};
+
+struct ColumnRef {
+  std::string name;              // column by header name, or
+  std::optional<int> index;      // by 0-based index
+};
+
+struct ChannelSpec {
+  std::string gauge;                 // gauge name in the scene; two channels of one gauge are averaged
+  std::filesystem::path file;        // empty: the measurement's file
+  ColumnRef column;
+  SignalUnit unit = SignalUnit::kStrain;
+  std::optional<BridgeSpec> bridge;  // required for volts
+  bool invert = false;
+};
+
+struct DispersionSpec {
+  bool correction = true;                 // "pochhammer-chree" | "none"
+  bool amplitude_factors = false;         // Tyas–Pope m1, m2
+  std::optional<double> cutoff_Hz;        // default: f·a/c0 = 0.2619 (d/Λ = 0.6), smooth roll-off
+};
+
+struct TimeWindow {
+  double start_s = 0;
+  double end_s = 0;
+};
+struct PulseWindows {  // manual windows on the signals' own clock override detection
+  std::optional<TimeWindow> incident, reflected, transmitted;
+};
+
+struct MeasurementSpec {
+  std::filesystem::path file;  // resolved relative to the scene
+  SignalFormat format = SignalFormat::kAuto;
+  ColumnRef time_column;       // empty name and index: the format's own time base
+  double time_unit_s = 1.0;    // seconds per unit of the time column
+  std::vector<ChannelSpec> channels;
+  DispersionSpec dispersion;
+  PulseWindows windows;
+  std::optional<double> striker_velocity_m_s;  // if known; else inferred
+};
+
+struct Scene {
+  std::string name;
+  std::filesystem::path file;  // where it was read from (for messages and relative paths)
+  std::vector<BarSpec> bars;   // left to right
+  std::optional<std::size_t> specimen;  // index into bars
+  ContactSpec contact;
+  SimulationSpec simulation;
+  std::optional<MeasurementSpec> measurement;
+
+  // Index of the first bar with a gauge left of the specimen / right of it, if any.
+  std::optional<std::size_t> incident_bar() const;
+  std::optional<std::size_t> transmitter_bar() const;
+};
+
+// Reads and validates a scene; throws InputError("<file>: <json path>: <value>: <constraint>").
+Scene read_scene(const std::filesystem::path& file);
+
+std::string_view to_string(ContactMethod m);
+std::string_view to_string(Stepping s);
+std::string_view to_string(MaterialModel m);
+// Parse enums; return std::nullopt for unknown text (callers report the error with context).
+std::optional<ContactMethod> contact_method_from_string(std::string_view s);
+std::optional<Stepping> stepping_from_string(std::string_view s);
+
+}  // namespace shpb
