@@ -1,5 +1,5 @@
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <vector>
 
@@ -16,16 +16,25 @@ constexpr double kEnergyTolerance = 1e-10;
 // Fine reference for the adiabatic ODE: RK4 steps in plastic strain (error ≪ 1e-6 relative).
 constexpr double kReferenceStep = 2e-6;
 
-// Al 6061-T6, Johnson & Cook (1985) Table 1 / Lesuer (2000): the numbers of specimens/al6061-t6.json.
+// Al 6061-T6, Johnson & Cook (1985) Table 1 / Lesuer (2000): the numbers of
+// specimens/al6061-t6.json.
 MaterialSpec al6061(bool adiabatic) {
   MaterialSpec spec;
   spec.model = MaterialModel::kJohnsonCook;
   spec.density_kg_m3 = 2703;
   spec.youngs_modulus_Pa = 69e9;
-  spec.johnson_cook = {.A_Pa = 324e6, .B_Pa = 114e6, .n = 0.42, .C = 0.002,
-                       .reference_strain_rate_1_s = 1, .m = 1.34, .room_temperature_K = 294,
-                       .melting_temperature_K = 925, .initial_temperature_K = 294,
-                       .specific_heat_J_kgK = 885, .taylor_quinney = 0.9, .adiabatic = adiabatic};
+  spec.johnson_cook = {.A_Pa = 324e6,
+                       .B_Pa = 114e6,
+                       .n = 0.42,
+                       .C = 0.002,
+                       .reference_strain_rate_1_s = 1,
+                       .m = 1.34,
+                       .room_temperature_K = 294,
+                       .melting_temperature_K = 925,
+                       .initial_temperature_K = 294,
+                       .specific_heat_J_kgK = 885,
+                       .taylor_quinney = 0.9,
+                       .adiabatic = adiabatic};
   return spec;
 }
 
@@ -35,10 +44,18 @@ MaterialSpec ofhc_copper(bool adiabatic) {
   spec.model = MaterialModel::kJohnsonCook;
   spec.density_kg_m3 = 8960;
   spec.youngs_modulus_Pa = 124e9;
-  spec.johnson_cook = {.A_Pa = 90e6, .B_Pa = 292e6, .n = 0.31, .C = 0.025,
-                       .reference_strain_rate_1_s = 1, .m = 1.09, .room_temperature_K = 294,
-                       .melting_temperature_K = 1356, .initial_temperature_K = 294,
-                       .specific_heat_J_kgK = 383, .taylor_quinney = 0.9, .adiabatic = adiabatic};
+  spec.johnson_cook = {.A_Pa = 90e6,
+                       .B_Pa = 292e6,
+                       .n = 0.31,
+                       .C = 0.025,
+                       .reference_strain_rate_1_s = 1,
+                       .m = 1.09,
+                       .room_temperature_K = 294,
+                       .melting_temperature_K = 1356,
+                       .initial_temperature_K = 294,
+                       .specific_heat_J_kgK = 383,
+                       .taylor_quinney = 0.9,
+                       .adiabatic = adiabatic};
   return spec;
 }
 
@@ -46,8 +63,8 @@ MaterialSpec ofhc_copper(bool adiabatic) {
 // at the reference rate, thermal term 1 below room temperature.
 double reference_flow_stress(const JohnsonCookParams& jc, double p, double rate, double T) {
   const double rate_term = 1 + jc.C * std::log(std::max(rate / jc.reference_strain_rate_1_s, 1.0));
-  const double homologous = std::max(0.0, (T - jc.room_temperature_K) /
-                                              (jc.melting_temperature_K - jc.room_temperature_K));
+  const double homologous = std::max(
+      0.0, (T - jc.room_temperature_K) / (jc.melting_temperature_K - jc.room_temperature_K));
   return (jc.A_Pa + jc.B_Pa * std::pow(p, jc.n)) * rate_term * (1 - std::pow(homologous, jc.m));
 }
 
@@ -60,8 +77,8 @@ struct ReferenceCurve {
 
 ReferenceCurve reference_curve(const MaterialSpec& spec, double rate, double max_plastic) {
   const JohnsonCookParams& jc = spec.johnson_cook;
-  const double heat = jc.adiabatic ? jc.taylor_quinney / (spec.density_kg_m3 * jc.specific_heat_J_kgK)
-                                   : 0.0;
+  const double heat =
+      jc.adiabatic ? jc.taylor_quinney / (spec.density_kg_m3 * jc.specific_heat_J_kgK) : 0.0;
   auto sigma = [&](double p, double T) { return reference_flow_stress(jc, p, rate, T); };
   auto dTdp = [&](double p, double T) { return heat * sigma(p, T); };
   ReferenceCurve c;

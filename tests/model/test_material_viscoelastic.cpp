@@ -53,7 +53,8 @@ TEST_CASE("A viscoelastic point at constant strain rate follows the Prony-series
       const double dt = duration / kSteps;
       for (int i = 1; i <= kSteps; ++i) {
         const double sigma = point.strain_to(-rate * i * dt, dt);
-        REQUIRE(-sigma == Approx(constant_rate_stress(spec, rate, i * dt)).epsilon(kClosedFormTolerance));
+        REQUIRE(-sigma ==
+                Approx(constant_rate_stress(spec, rate, i * dt)).epsilon(kClosedFormTolerance));
       }
     }
   }

@@ -17,8 +17,7 @@ void BilinearLaw::initialize(std::span<MaterialPointState> states) const {
 }
 
 void BilinearLaw::update(std::span<const double> strain_next, double /*dt_s*/,
-                         std::span<MaterialPointState> states,
-                         std::span<double> stress_out) const {
+                         std::span<MaterialPointState> states, std::span<double> stress_out) const {
   const double E = youngs_modulus_Pa_;
   const double H = plastic_modulus_Pa_;
   for (std::size_t i = 0; i < states.size(); ++i) {

@@ -12,8 +12,8 @@ class BilinearLaw final : public MaterialLaw {
   explicit BilinearLaw(const MaterialSpec& spec);
 
   void initialize(std::span<MaterialPointState> states) const override;
-  void update(std::span<const double> strain_next, double dt_s, std::span<MaterialPointState> states,
-              std::span<double> stress_out) const override;
+  void update(std::span<const double> strain_next, double dt_s,
+              std::span<MaterialPointState> states, std::span<double> stress_out) const override;
   double max_tangent_modulus_Pa() const override { return youngs_modulus_Pa_; }
   double stored_energy_J_m3(const MaterialPointState& state) const override;
 

@@ -21,8 +21,8 @@ double johnson_cook_rate_factor(const JohnsonCookParams& jc, double strain_rate_
 double johnson_cook_thermal_factor(const JohnsonCookParams& jc, double temperature_K) {
   if (temperature_K <= jc.room_temperature_K) return 1.0;
   if (temperature_K >= jc.melting_temperature_K) return 0.0;
-  const double homologous = (temperature_K - jc.room_temperature_K) /
-                            (jc.melting_temperature_K - jc.room_temperature_K);
+  const double homologous =
+      (temperature_K - jc.room_temperature_K) / (jc.melting_temperature_K - jc.room_temperature_K);
   return 1 - std::pow(homologous, jc.m);
 }
 
@@ -55,7 +55,10 @@ double JohnsonCookLaw::plastic_increment(double trial_abs, double p, double k) c
   for (int it = 0; it < kReturnMaxIterations; ++it) {
     const double g = residual(dp);
     if (std::abs(g) <= kReturnRelativeTolerance * trial_abs) return dp;
-    if (g > 0) lo = dp; else hi = dp;
+    if (g > 0)
+      lo = dp;
+    else
+      hi = dp;
     const double q = p + dp;
     const double slope = E + (q > 0 ? jc_.B_Pa * jc_.n * std::pow(q, jc_.n - 1) * k : 0);
     const double newton = dp + g / slope;
@@ -72,8 +75,8 @@ void JohnsonCookLaw::update(std::span<const double> strain_next, double dt_s,
     MaterialPointState& s = states[i];
     const double trial = E * (strain_next[i] - s.back_strain);
     const double rate = dt_s > 0 ? (strain_next[i] - s.strain) / dt_s : 0.0;
-    const double k = johnson_cook_rate_factor(jc_, rate) *
-                     johnson_cook_thermal_factor(jc_, s.temperature_K);
+    const double k =
+        johnson_cook_rate_factor(jc_, rate) * johnson_cook_thermal_factor(jc_, s.temperature_K);
     const double yield = (jc_.A_Pa + jc_.B_Pa * std::pow(s.plastic_strain, jc_.n)) * k;
     double stress = trial;
     if (std::abs(trial) > yield) {
