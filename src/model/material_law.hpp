@@ -19,6 +19,12 @@ struct MaterialPointState {
   double temperature_K = 0;   // current temperature (adiabatic heating)
   double dissipated_J_m3 = 0; // plastic + viscous work per unit volume, cumulative
   double heat_J_m3 = 0;       // part of it turned into heat (β × plastic work)
+  // ENERGY CONTRACT (for the solver, "sim"): every law books, step by step,
+  //   ½(σ_n + σ_{n+1})(ε_{n+1} − ε_n) = Δ stored_energy_J_m3(state) + Δ dissipated_J_m3
+  // exactly (to round-off). So a bar's strain_J = Σ stored_energy_J_m3 × element volume and its
+  // dissipated_J = Σ dissipated_J_m3 × element volume close the energy balance with the trapezoidal
+  // internal work. heat_J_m3 ≤ dissipated_J_m3 is the heat part (the rest is stored cold work,
+  // still unrecoverable, hence counted as dissipated).
   double arm_stress_Pa[kMaxArms] = {};  // Maxwell arm stresses (viscoelastic)
 };
 
