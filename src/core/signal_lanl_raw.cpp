@@ -48,6 +48,7 @@ RawSignalColumns read_lanl_raw_columns(const DelimitedText& text, const SignalRe
                         "start time and sample interval differ between signal columns");
   }
   raw.time_from_header = true;
+  raw.header_dt = dt;
   raw.values.resize(indices.size());
   for (std::size_t r = kHeaderRows; r < rows.size(); ++r) {
     for (std::size_t k = 0; k < indices.size(); ++k)

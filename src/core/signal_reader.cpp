@@ -48,7 +48,7 @@ void check_time_base(const std::filesystem::path& file, const RawSignalColumns& 
   const std::size_t n = t.size();
   if (n < 2) throw input_error(file.string(), "", std::to_string(n) + " samples", "expected at least 2");
   if (raw.time_from_header) {
-    out.dt_s = t[1] - t[0];
+    out.dt_s = raw.header_dt;
     return;
   }
   std::size_t repeats = 0;
