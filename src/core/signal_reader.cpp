@@ -1,7 +1,9 @@
 #include "core/signal_reader.hpp"
 
 #include <cmath>
+#include <algorithm>
 #include <cstdio>
+#include <vector>
 
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
@@ -88,15 +90,20 @@ void check_time_base(const std::filesystem::path& file, const RawSignalColumns& 
     out.warnings.push_back(msg);
     return;
   }
-  const double dt = span / static_cast<double>(n - 1);
+  // The median step is the sampling interval; a gap or jump stands out against it.
+  std::vector<double> steps(n - 1);
+  for (std::size_t i = 1; i < n; ++i) steps[i - 1] = t[i] - t[i - 1];
+  std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2), steps.end());
+  const double median_step = steps[steps.size() / 2];
   for (std::size_t i = 1; i < n; ++i) {
+    const double dt = median_step;
     const double step = t[i] - t[i - 1];
     if (std::abs(step - dt) > kUniformStepTolerance * dt)
       throw input_error(file.string(), "line " + std::to_string(raw.lines[i]) + " (time column)",
                         "step " + seconds(step),
                         "expected uniform sampling at " + seconds(dt) + " (gap or jump in the record)");
   }
-  out.dt_s = dt;
+  out.dt_s = span / static_cast<double>(n - 1);
 }
 
 }  // namespace

@@ -116,14 +116,14 @@ DelimitedText read_delimited_text(const std::filesystem::path& file) {
   for (const auto& [n, l] : lines) text.rows.push_back({n, split(l, text.delimiter)});
 
   // Decimal comma: only possible when the comma is not the delimiter; decided on the last
-  // sniffed rows (data, not header).
+  // sniffed rows (data, not header) by numbers with a comma against numbers with a point.
   if (text.delimiter != ',') {
     std::size_t with_comma = 0, numbers = 0;
     const std::size_t from = text.rows.size() > sniff ? text.rows.size() - sniff : 0;
     for (std::size_t i = from; i < text.rows.size(); ++i)
       for (const auto& f : text.rows[i].fields) {
         if (looks_like_decimal_comma_number(f)) ++with_comma;
-        else if (parse_number(f, false)) ++numbers;
+        else if (f.find('.') != std::string::npos && parse_number(f, false)) ++numbers;
       }
     text.decimal_comma = with_comma > numbers;
   }
