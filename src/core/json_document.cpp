@@ -26,12 +26,14 @@ std::string line_column(const std::string& text, std::size_t byte) {
   return "line " + std::to_string(line) + ", column " + std::to_string(column);
 }
 
-// Tracks the JSON path during parsing so a duplicate key can be named where it occurs.
-class DuplicateKeyCheck {
+// The JSON path of the value being parsed, kept up to date from nlohmann's parser callback. It
+// names a duplicate key where it occurs, and a number that overflows a double (nlohmann reports
+// no position for that).
+class ParsePath {
  public:
-  explicit DuplicateKeyCheck(const std::string& display) : display_(display) {}
+  explicit ParsePath(std::string display) : display_(std::move(display)) {}
 
-  bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
+  void on_event(json::parse_event_t event, const json& parsed) {
     switch (event) {
       case json::parse_event_t::object_start:
         frames_.push_back({false, 0, "", {}});
@@ -55,7 +57,17 @@ class DuplicateKeyCheck {
         advance();
         break;
     }
-    return true;
+  }
+
+  std::string path() const {
+    std::string p;
+    for (const auto& f : frames_) {
+      if (f.array)
+        p += "[" + std::to_string(f.index) + "]";
+      else if (!f.key.empty())
+        p += (p.empty() ? "" : ".") + f.key;
+    }
+    return p;
   }
 
  private:
@@ -70,18 +82,7 @@ class DuplicateKeyCheck {
     if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
   }
 
-  std::string path() const {
-    std::string p;
-    for (const auto& f : frames_) {
-      if (f.array)
-        p += "[" + std::to_string(f.index) + "]";
-      else
-        p += (p.empty() ? "" : ".") + f.key;
-    }
-    return p;
-  }
-
-  const std::string& display_;
+  std::string display_;
   std::vector<Frame> frames_;
 };
 
@@ -90,27 +91,31 @@ class DuplicateKeyCheck {
 json parse_json_object(const std::string& text, const std::string& display) {
   if (text.find_first_not_of(" \t\r\n") == std::string::npos)
     throw input_error(display, "", "empty file", "expected a JSON object");
+  ParsePath where(display);
   json j;
   try {
-    j = json::parse(text, DuplicateKeyCheck(display));
+    j = json::parse(text, [&where](int, json::parse_event_t event, json& parsed) {
+      where.on_event(event, parsed);
+      return true;
+    });
   } catch (const json::parse_error& e) {
     // e.what(): "[json.exception.parse_error.101] parse error at line 3, column 5: syntax error
     // while parsing object - unexpected '}'; expected string literal"
     const std::string what = e.what();
-    std::string where = line_column(text, e.byte == 0 ? 0 : e.byte - 1);
+    std::string place = line_column(text, e.byte == 0 ? 0 : e.byte - 1);
     std::string detail = what;
     if (const auto at = what.find("at line "); at != std::string::npos) {
       const auto colon = what.find(": ", at);
       if (colon != std::string::npos) {
-        where = what.substr(at + 3, colon - at - 3);
+        place = what.substr(at + 3, colon - at - 3);
         detail = what.substr(colon + 2);
       }
     }
-    throw input_error(display, where, detail, "expected valid JSON");
+    throw input_error(display, place, detail, "expected valid JSON");
   } catch (const json::out_of_range& e) {  // "number overflow parsing '1e400'"
     std::string what = e.what();
     if (const auto end = what.find("] "); end != std::string::npos) what = what.substr(end + 2);
-    throw input_error(display, "", what, "expected numbers within the range of a double");
+    throw input_error(display, where.path(), what, "expected a number within the range of a double");
   }
   if (!j.is_object()) {
     std::string value = j.dump();

@@ -41,7 +41,10 @@ class MaterialLaw {
                       std::span<MaterialPointState> states, std::span<double> stress_out) const = 0;
 
   // Largest tangent modulus the law can ever show (the elastic modulus for every law here):
-  // the specimen's stable step is fixed at this elastic bound.
+  // the specimen's stable step is fixed at this elastic bound. Why not follow the current
+  // tangent: every law here unloads (or, viscoelastic, responds instantly) with this modulus at
+  // any step, so a step sized on a softer plastic tangent would go unstable the moment an element
+  // unloads; and the specimen is a few dozen elements, so the fixed step costs next to nothing.
   virtual double max_tangent_modulus_Pa() const = 0;
 
   // Recoverable (elastic) strain energy per unit volume held in a state.

@@ -30,8 +30,9 @@ class JohnsonCookLaw final : public MaterialLaw {
   double stored_energy_J_m3(const MaterialPointState& state) const override;
 
  private:
-  // Plastic increment Δp > 0 with |σ_trial| − E Δp = (A + B (p + Δp)^n) k, k = rate × thermal.
-  double plastic_increment(double trial_abs, double p, double k) const;
+  // Plastic increment Δp > 0 with |σ_trial| − E Δp = (A + B (p + Δp)^n) k, k = rate × thermal;
+  // p_n = p^n is passed in (already computed for the yield check).
+  double plastic_increment(double trial_abs, double p, double p_n, double k) const;
 
   JohnsonCookParams jc_;
   double youngs_modulus_Pa_;

@@ -1,0 +1,80 @@
+// `shpb validate --json` prints the resolved set-up: the same mesh and steps as discretize()
+// (what simulate uses), wave speeds and impedances from the materials (METHODS.md notation:
+// c0 = sqrt(E/ρ), Z = ρ c0 A, C = c0 Δt / h) and gauge distances to the specimen faces.
+#include <sys/wait.h>
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "model/discretization.hpp"
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+using namespace shpb;
+
+namespace {
+// Values pass through JSON text as shortest round-trip doubles: agreement to round-off.
+constexpr double kRoundOff = 1e-12;
+
+json validate_json(const fs::path& scene, const std::string& options = "") {
+  const auto out = fs::temp_directory_path() / "shpb_test_validate.json";
+  const int status = std::system((std::string(SHPB_EXE) + " validate --json " + options + " " +
+                                  scene.string() + " >" + out.string())
+                                     .c_str());
+  REQUIRE(WIFEXITED(status));
+  REQUIRE(WEXITSTATUS(status) == 0);
+  std::ifstream in(out);
+  return json::parse(in);
+}
+}  // namespace
+
+TEST_CASE("validate --json reports what discretize() gives simulate", "[app][validate]") {
+  const auto file = fs::path(SHPB_SOURCE_DIR) / "experiments/classic-al6061/scene.json";
+  const json v = validate_json(file);
+  const Scene scene = read_scene(file);
+  const ChainDiscretization d = discretize(scene);
+  REQUIRE(v["bars"].size() == scene.bars.size());
+  for (std::size_t i = 0; i < scene.bars.size(); ++i) {
+    const auto& b = v["bars"][i];
+    INFO(b["name"]);
+    CHECK(b["elements"] == d.bars[i].elements);
+    CHECK(b["time_step_s"].get<double>() == Approx(d.bars[i].time_step_s).epsilon(kRoundOff));
+    CHECK(b["courant"].get<double>() == Approx(d.bars[i].courant).epsilon(kRoundOff));
+    // C = c0 Δt / h, with c0 = sqrt(E/ρ) and Z = ρ c0 A.
+    const double c0 = std::sqrt(b["youngs_modulus_Pa"].get<double>() / b["density_kg_m3"].get<double>());
+    CHECK(b["wave_speed_m_s"].get<double>() == Approx(c0).epsilon(kRoundOff));
+    CHECK(b["impedance_kg_s"].get<double>() ==
+          Approx(b["density_kg_m3"].get<double>() * c0 * b["area_m2"].get<double>()).epsilon(kRoundOff));
+    CHECK(b["courant"].get<double>() ==
+          Approx(c0 * b["time_step_s"].get<double>() / b["element_length_m"].get<double>())
+              .epsilon(kRoundOff));
+    CHECK(b["elements"].get<int>() * b["element_length_m"].get<double>() ==
+          Approx(b["length_m"].get<double>()).epsilon(kRoundOff));
+  }
+  // Maraging steel: c0 = sqrt(200e9 / 8080) = 4975.2 m/s.
+  CHECK(v["bars"][1]["wave_speed_m_s"].get<double>() == Approx(4975.2).epsilon(1e-5));
+  CHECK(v["specimen"] == "specimen");
+  CHECK(v["duration_s"].get<double>() == Approx(800e-6).epsilon(kRoundOff));
+  CHECK(v["sample_rate_Hz"].get<double>() == 10e6);
+  REQUIRE(v["gauges"].size() == 2);
+  CHECK(v["gauges"][0]["distance_to_specimen_m"].get<double>() == Approx(1.0).epsilon(kRoundOff));
+  CHECK(v["gauges"][1]["distance_to_specimen_m"].get<double>() == Approx(1.0).epsilon(kRoundOff));
+  REQUIRE(v["interfaces"].size() == 3);
+  CHECK(v["interfaces"][0]["method"] == "localized-bipenalty");
+}
+
+TEST_CASE("validate applies --contact, --stepping and --courant as simulate would",
+          "[app][validate]") {
+  const auto file = fs::path(SHPB_SOURCE_DIR) / "experiments/striker-on-bar/scene.json";
+  const json v = validate_json(file, "--contact penalty --stepping global --courant 0.5");
+  CHECK(v["stepping"] == "global");
+  CHECK(v["interfaces"][0]["method"] == "penalty");
+  // Global stepping: every bar takes the same (smallest) step.
+  const double dt = v["bars"][0]["time_step_s"].get<double>();
+  for (const auto& b : v["bars"]) CHECK(b["time_step_s"].get<double>() == dt);
+}
