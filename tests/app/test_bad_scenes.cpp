@@ -1,8 +1,6 @@
 // Bad scenes as behaviour of the real executable (DESIGN.md §2): exit code 2, one line
 // "error: <file>: <json path>: <value>: <constraint>" on stderr, and nothing written — neither the
 // output folder nor anything beside it — by every command that takes a scene.
-#include <sys/wait.h>
-
 #include <catch2/catch.hpp>
 #include <cstdlib>
 #include <filesystem>
@@ -14,7 +12,10 @@
 #include <string>
 #include <vector>
 
+#include "run_shpb.hpp"
+
 using nlohmann::json;
+using shpb_test::run_shpb;
 namespace fs = std::filesystem;
 
 namespace {
@@ -230,18 +231,6 @@ const std::vector<BadScene>& cases() {
   return table;
 }
 
-int run(const std::string& command) {
-  const int status = std::system(command.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-std::string read_text(const fs::path& file) {
-  std::ifstream in(file);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 std::set<std::string> listing(const fs::path& dir) {
   std::set<std::string> names;
   for (const auto& e : fs::directory_iterator(dir)) names.insert(e.path().filename().string());
@@ -271,8 +260,7 @@ void check_writes_nothing(const std::string& command) {
     const auto dir = scene_file.parent_path();
     const auto before = listing(dir);
     const auto output = dir / "out";
-    CHECK(run(std::string(SHPB_EXE) + " " + command + " " + scene_file.string() + " -o " +
-              output.string() + " >/dev/null 2>&1") == 2);
+    CHECK(run_shpb({command, scene_file.string(), "-o", output.string()}).code == 2);
     CHECK_FALSE(fs::exists(output));
     CHECK(listing(dir) == before);  // no temporary folder left beside the output either
   }
@@ -287,9 +275,9 @@ TEST_CASE("The valid base scene of the bad-scene table validates", "[app][bad-sc
   fs::create_directories(dir);
   std::ofstream(dir / "scene.json") << base_scene().dump(2);
   std::ofstream(dir / "specimen.json") << base_specimen().dump(2);
-  const std::string cmd = std::string(SHPB_EXE) + " validate " + (dir / "scene.json").string() +
-                          " >" + (dir / "out.txt").string() + " 2>&1";
-  REQUIRE(run(cmd) == 0);
+  const auto r = run_shpb({"validate", (dir / "scene.json").string()});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
 }
 
 TEST_CASE("Every bad scene exits 2 with one line naming the file and the JSON path",
@@ -302,16 +290,14 @@ TEST_CASE("Every bad scene exits 2 with one line naming the file and the JSON pa
     const auto scene_file = prepare(root, i);
     const auto dir = scene_file.parent_path();
     const auto before = listing(dir);
-    const auto out = root / "stdout.txt", err = root / "stderr.txt";
-    const int code = run(std::string(SHPB_EXE) + " validate " + scene_file.string() + " >" +
-                         out.string() + " 2>" + err.string());
-    const std::string message = read_text(err);
+    const auto r = run_shpb({"validate", scene_file.string()});
+    const std::string& message = r.err;
     INFO("stderr: " << message);
-    CHECK(code == 2);
+    CHECK(r.code == 2);
     CHECK(message.rfind("error: " + scene_file.parent_path().string(), 0) == 0);
     CHECK(message.find(c.where) != std::string::npos);
     CHECK(std::count(message.begin(), message.end(), '\n') == 1);  // one line
-    CHECK(read_text(out).empty());
+    CHECK(r.out.empty());
     CHECK(listing(dir) == before);
   }
   fs::remove_all(root);
