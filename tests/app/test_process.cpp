@@ -102,8 +102,10 @@ TEST_CASE("process writes pulses.csv, curve.csv and summary.json with the DESIGN
   std::ifstream curve(d / "out/curve.csv");
   std::string header;
   std::getline(curve, header);
-  CHECK(header.rfind("time_s,strain_rate_1_s,strain,stress_1wave_Pa,stress_2wave_Pa,stress_3wave_Pa,"
-                     "true_strain,true_stress_Pa,equilibrium_ratio", 0) == 0);
+  CHECK(
+      header.rfind("time_s,strain_rate_1_s,strain,stress_1wave_Pa,stress_2wave_Pa,stress_3wave_Pa,"
+                   "true_strain,true_stress_Pa,equilibrium_ratio",
+                   0) == 0);
   std::ifstream pulses(d / "out/pulses.csv");
   std::getline(pulses, header);
   CHECK(header == "time_s,incident,reflected,transmitted");
@@ -156,7 +158,8 @@ TEST_CASE("The LANL copper and PMMA tests process end to end from the scene alon
     const char* experiment;
     double v_lo, v_hi;  // the READMEs estimate the striker at ≈ 22 and ≈ 13.5 m/s
   };
-  for (const auto& e : {Expect{"lanl-cu-ofe-273k", 15, 25}, Expect{"lanl-pmma13-mini-kolsky", 10, 16}}) {
+  for (const auto& e :
+       {Expect{"lanl-cu-ofe-273k", 15, 25}, Expect{"lanl-pmma13-mini-kolsky", 10, 16}}) {
     CAPTURE(e.experiment);
     const fs::path out = temp_dir(e.experiment) / "out";
     const Run r = run("process " + (kExperiments / e.experiment / "scene.json").string() + " -o " +

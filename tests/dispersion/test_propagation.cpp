@@ -27,8 +27,10 @@ std::vector<double> smooth_pulse(std::size_t n, double start_s, double rise_s, d
   for (std::size_t i = 0; i < n; ++i) {
     const double t = static_cast<double>(i) * kDt - start_s;
     double v = 0;
-    if (t > 0 && t < rise_s) v = 0.5 * (1 - std::cos(std::numbers::pi * t / rise_s));
-    else if (t >= rise_s && t <= rise_s + flat_s) v = 1;
+    if (t > 0 && t < rise_s)
+      v = 0.5 * (1 - std::cos(std::numbers::pi * t / rise_s));
+    else if (t >= rise_s && t <= rise_s + flat_s)
+      v = 1;
     else if (t > rise_s + flat_s && t < 2 * rise_s + flat_s)
       v = 0.5 * (1 + std::cos(std::numbers::pi * (t - rise_s - flat_s) / rise_s));
     x[i] = -1e-3 * v;
@@ -56,8 +58,9 @@ TEST_CASE("Moving a pulse forward and back returns it within 0.5 % RMS below the
   CHECK(rms(err) / rms(x) > 5 * kRoundTrip);
 }
 
-TEST_CASE("A tone burst's envelope travels at the group velocity and its carrier at the phase velocity",
-          "[dispersion]") {
+TEST_CASE(
+    "A tone burst's envelope travels at the group velocity and its carrier at the phase velocity",
+    "[dispersion]") {
   const DispersionTable table(kBar.poisson);
   PropagationOptions options;
   options.cutoff_fa_over_c0 = 0.35;  // keep the burst's band (f·a/c0 ≈ 0.16) untouched
@@ -88,7 +91,8 @@ TEST_CASE("A tone burst's envelope travels at the group velocity and its carrier
     const double xm = 0.5 * (xl + xh);
     (xm * phase_velocity(kBar.poisson, xm) < fa ? xl : xh) = xm;
   }
-  const double cg = group_velocity(kBar.poisson, xl, phase_velocity(kBar.poisson, xl)) * kBar.c0_m_s;
+  const double cg =
+      group_velocity(kBar.poisson, xl, phase_velocity(kBar.poisson, xl)) * kBar.c0_m_s;
   const double expected = t0 + dz / cg;
   const double found = static_cast<double>(at) * kDt;
   // The envelope peak is resolved to about one carrier period over 4 (1.5 µs).
