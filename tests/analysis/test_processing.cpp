@@ -115,6 +115,14 @@ TEST_CASE("Processing ideal 1D gauge signals recovers the face pulses, the curve
   // Plateau strain rate (c0/L)(−ε_I + ε_R + ε_T) = (c0/L)·2·0.7 ε0 = 1400 1/s.
   CHECK(r.plateau_strain_rate_1_s == Approx(1400).epsilon(kPlateauTolerance));
   REQUIRE(r.time_to_equilibrium_s);
+
+  SECTION("a manual incident window from the scene overrides detection") {
+    ProcessingOptions manual = o;
+    manual.windows.incident = TimeWindow{50e-6, 170e-6};
+    const ProcessingResult m = process_signals(g, setup(), manual);
+    CHECK_FALSE(m.incident_window.detected);
+    CHECK(m.face_start_s == Approx(50e-6 + kDistanceIncident / kC0).margin(kDt));
+  }
 }
 
 TEST_CASE("Processing dispersed gauge signals with Pochhammer-Chree correction recovers the faces",
