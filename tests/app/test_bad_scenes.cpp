@@ -57,7 +57,7 @@ json base_specimen() {
 struct BadScene {
   std::string what;
   std::function<void(json& scene, json& specimen)> breaks;  // edits the valid pair
-  std::string where;  // the JSON path (or place) the message must name
+  std::string where;           // the JSON path (or place) the message must name
   std::string raw_scene = {};  // when set, the scene file holds this text instead
   std::string raw_specimen = {};
 };
@@ -84,9 +84,11 @@ const std::vector<BadScene>& cases() {
       {"a zero Young's modulus",
        [](json& s, json&) { s["materials"]["steel"]["youngs_modulus"] = "0 GPa"; },
        "materials.steel.youngs_modulus"},
-      {"a Poisson ratio of 0.5", [](json& s, json&) { s["materials"]["steel"]["poisson_ratio"] = 0.5; },
+      {"a Poisson ratio of 0.5",
+       [](json& s, json&) { s["materials"]["steel"]["poisson_ratio"] = 0.5; },
        "materials.steel.poisson_ratio"},
-      {"a Poisson ratio of -1", [](json& s, json&) { s["materials"]["steel"]["poisson_ratio"] = -1; },
+      {"a Poisson ratio of -1",
+       [](json& s, json&) { s["materials"]["steel"]["poisson_ratio"] = -1; },
        "materials.steel.poisson_ratio"},
       {"a gauge beyond its bar's end",
        [](json& s, json&) { s["bars"][1]["gauges"][0]["position"] = "2.5 m"; },
@@ -118,7 +120,8 @@ const std::vector<BadScene>& cases() {
        "simulaton: unknown key: did you mean \"simulation\"?"},
       {"a length in kilograms", [](json& s, json&) { s["bars"][1]["length"] = "2 kg"; },
        "bars[1].length: \"2 kg\": \"kg\" is a mass"},
-      {"a density in gigapascals", [](json& s, json&) { s["materials"]["steel"]["density"] = "8 GPa"; },
+      {"a density in gigapascals",
+       [](json& s, json&) { s["materials"]["steel"]["density"] = "8 GPa"; },
        "materials.steel.density"},
       {"a velocity in metres", [](json& s, json&) { s["bars"][0]["velocity"] = "15 m"; },
        "bars[0].velocity"},
@@ -146,10 +149,11 @@ const std::vector<BadScene>& cases() {
        "bars[1].material: \"stel\": no such material in materials; did you mean \"steel\"?"},
       {"a material file that is not JSON", nullptr, "specimen.json: line 1, column", "",
        "{\"model\": \"johnson-cook\", }"},
-      {"an unknown material model", [](json& s, json&) { s["materials"]["steel"]["model"] = "elastc"; },
+      {"an unknown material model",
+       [](json& s, json&) { s["materials"]["steel"]["model"] = "elastc"; },
        "materials.steel.model: \"elastc\": did you mean \"elastic\"?"},
-      {"a key of another material model",
-       [](json&, json& m) { m["yield_stress"] = "300 MPa"; }, "yield_stress: unknown key"},
+      {"a key of another material model", [](json&, json& m) { m["yield_stress"] = "300 MPa"; },
+       "yield_stress: unknown key"},
       {"a Johnson-Cook n above 1", [](json&, json& m) { m["n"] = 1.5; }, "specimen.json: n: 1.5"},
       {"a negative Johnson-Cook B", [](json&, json& m) { m["B"] = "-1 MPa"; }, "specimen.json: B"},
       {"a zero Johnson-Cook m", [](json&, json& m) { m["m"] = 0; }, "specimen.json: m"},
@@ -222,10 +226,11 @@ const std::vector<BadScene>& cases() {
       {"an unknown signal format", [](json& s, json&) { s["measurement"]["format"] = "tek"; },
        "measurement.format"},
       {"a pulse window ending before it starts",
-       [](json& s, json&) { s["measurement"]["windows"]["incident"] = {"120 us", "20 us"}; },
+       [](json& s, json&) {
+         s["measurement"]["windows"]["incident"] = {"120 us", "20 us"};
+       },
        "measurement.windows.incident"},
-      {"a channel without any file",
-       [](json& s, json&) { s["measurement"].erase("file"); },
+      {"a channel without any file", [](json& s, json&) { s["measurement"].erase("file"); },
        "measurement.channels[0].file: (missing)"},
   };
   return table;

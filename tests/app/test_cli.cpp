@@ -47,7 +47,8 @@ std::vector<std::string> undescribed_entries(const std::string& help) {
     }
     if (!in_list || l.rfind("  ", 0) != 0 || l.size() < 3 || l[2] == ' ') continue;
     const auto gap = l.find("  ", 2);
-    const bool same_line = gap != std::string::npos && l.find_first_not_of(' ', gap) != std::string::npos;
+    const bool same_line =
+        gap != std::string::npos && l.find_first_not_of(' ', gap) != std::string::npos;
     const bool next_line = i + 1 < ls.size() && ls[i + 1].rfind("          ", 0) == 0 &&
                            ls[i + 1].find_first_not_of(' ') != std::string::npos;
     if (!same_line && !next_line) bad.push_back(l);
@@ -55,7 +56,7 @@ std::vector<std::string> undescribed_entries(const std::string& help) {
   return bad;
 }
 
-const std::vector<std::string> kCommands = {"simulate", "process", "compare", "dispersion",
+const std::vector<std::string> kCommands = {"simulate", "process",  "compare", "dispersion",
                                             "study",    "validate", "report"};
 
 }  // namespace

@@ -40,10 +40,12 @@ TEST_CASE("validate --json reports what discretize() gives simulate", "[app][val
     CHECK(b["time_step_s"].get<double>() == Approx(d.bars[i].time_step_s).epsilon(kRoundOff));
     CHECK(b["courant"].get<double>() == Approx(d.bars[i].courant).epsilon(kRoundOff));
     // C = c0 Δt / h, with c0 = sqrt(E/ρ) and Z = ρ c0 A.
-    const double c0 = std::sqrt(b["youngs_modulus_Pa"].get<double>() / b["density_kg_m3"].get<double>());
+    const double c0 =
+        std::sqrt(b["youngs_modulus_Pa"].get<double>() / b["density_kg_m3"].get<double>());
     CHECK(b["wave_speed_m_s"].get<double>() == Approx(c0).epsilon(kRoundOff));
     CHECK(b["impedance_kg_s"].get<double>() ==
-          Approx(b["density_kg_m3"].get<double>() * c0 * b["area_m2"].get<double>()).epsilon(kRoundOff));
+          Approx(b["density_kg_m3"].get<double>() * c0 * b["area_m2"].get<double>())
+              .epsilon(kRoundOff));
     CHECK(b["courant"].get<double>() ==
           Approx(c0 * b["time_step_s"].get<double>() / b["element_length_m"].get<double>())
               .epsilon(kRoundOff));
@@ -65,7 +67,8 @@ TEST_CASE("validate --json reports what discretize() gives simulate", "[app][val
 TEST_CASE("validate applies --contact, --stepping and --courant as simulate would",
           "[app][validate]") {
   const auto file = fs::path(SHPB_SOURCE_DIR) / "experiments/striker-on-bar/scene.json";
-  const json v = validate_json(file, {"--contact", "penalty", "--stepping", "global", "--courant", "0.5"});
+  const json v =
+      validate_json(file, {"--contact", "penalty", "--stepping", "global", "--courant", "0.5"});
   CHECK(v["stepping"] == "global");
   CHECK(v["interfaces"][0]["method"] == "penalty");
   // Global stepping: every bar takes the same (smallest) step.
