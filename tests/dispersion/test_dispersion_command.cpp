@@ -67,7 +67,8 @@ TEST_CASE("shpb dispersion writes the curve and matches the reference within 2e-
 }
 
 TEST_CASE("shpb dispersion rejects a radius without c0 with exit code 2", "[dispersion][app]") {
-  const std::string cmd = std::string(SHPB_EXE) + " dispersion --poisson 0.3 --radius \"5 mm\" 2>/dev/null";
+  const std::string cmd =
+      std::string(SHPB_EXE) + " dispersion --poisson 0.3 --radius \"5 mm\" 2>/dev/null";
   const int status = std::system(cmd.c_str());
   CHECK(WEXITSTATUS(status) == 2);
 }
