@@ -1,3 +1,5 @@
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
 #include <cstdlib>
 #include <filesystem>
@@ -17,17 +19,23 @@ struct Run {
 };
 
 Run run(const std::string& args) {
-  const fs::path err = fs::temp_directory_path() / "shpb_test_process_stderr.txt";
+  // One stderr file per process and call: CTest runs test cases in parallel.
+  static int calls = 0;
+  const fs::path err =
+      fs::temp_directory_path() / ("shpb_test_process_stderr_" + std::to_string(getpid()) + "_" +
+                                   std::to_string(calls++) + ".txt");
   const std::string cmd = std::string(SHPB_EXE) + " " + args + " >/dev/null 2>" + err.string();
   const int status = std::system(cmd.c_str());
   std::ifstream in(err);
   std::stringstream s;
   s << in.rdbuf();
+  fs::remove(err);
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, s.str()};
 }
 
 fs::path temp_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / "shpb_test_process" / name;
+  const fs::path d =
+      fs::temp_directory_path() / ("shpb_test_process_" + std::to_string(getpid())) / name;
   fs::remove_all(d);
   fs::create_directories(d);
   return d;

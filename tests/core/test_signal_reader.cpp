@@ -1,3 +1,5 @@
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
@@ -14,7 +16,8 @@ namespace fs = std::filesystem;
 namespace {
 
 fs::path write_file(const std::string& name, const std::string& bytes) {
-  const fs::path dir = fs::temp_directory_path() / "shpb_test_signal_reader";
+  const fs::path dir =
+      fs::temp_directory_path() / ("shpb_test_signal_reader_" + std::to_string(getpid()));
   fs::create_directories(dir);
   const fs::path p = dir / name;
   std::ofstream(p, std::ios::binary) << bytes;
