@@ -15,7 +15,8 @@ int run_dispersion(const DispersionArgs& args) {
     throw input_error("--poisson", "", format_double(args.poisson), "must be in [0, 0.49]");
   std::vector<double> xs = args.a_over_lambda;
   if (xs.empty()) {
-    if (args.points < 2) throw input_error("--points", "", std::to_string(args.points), "must be >= 2");
+    if (args.points < 2)
+      throw input_error("--points", "", std::to_string(args.points), "must be >= 2");
     for (int i = 0; i < args.points; ++i)
       xs.push_back(args.max_a_over_lambda * i / (args.points - 1));
   }
