@@ -139,6 +139,7 @@ ScheduleOutcome run_schedule(Chain& chain, ChainRecorders& recorders,
     // Rule 3: record and advance.
     for (std::size_t i = 0; i < nb; ++i) {
       if (!stepping[i]) continue;
+      apply_dashpot(chain.bars[i], chain.states[i]);
       recorders.on_bar_instant(chain, i, tau, tau + chain.bars[i].time_step_s);
       chain.states[i].node_updates += advance(chain.bars[i], chain.states[i]);
     }
