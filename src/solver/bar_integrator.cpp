@@ -1,6 +1,7 @@
 #include "solver/bar_integrator.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace shpb {
 
@@ -80,12 +81,12 @@ long advance(const BarModel& bar, BarState& s) {
 }
 
 double end_free_force_at(const BarModel& bar, const BarState& s, int end, double tau_n,
-                         double tau) {
+                         double tau, double end_w) {
   const int last = bar.nodes - 1;
   if (bar.law) return end == 0 ? bar.area_m2 * s.stress_Pa[0] : -bar.area_m2 * s.stress_Pa[last - 1];
   const int other = end == 0 ? 1 : last - 1;
   const double back = tau_n - tau;
-  const double w_end = s.w[end] - back * s.v[end];
+  const double w_end = std::isnan(end_w) ? s.w[end] - back * s.v[end] : end_w;
   const double w_other = s.w[other] - back * s.v[other];
   return bar.stiffness_N_m * (w_other - w_end);
 }

@@ -25,8 +25,10 @@ long advance(const BarModel& bar, BarState& s);
 
 // Free (internal) force on end node `end` (0 or nodes−1) at time τ within the bar's last step,
 // from the interpolated displacements (exact for elastic bars) or the last stress of a
-// material-law bar: the predictor of a neighbour's end load (METHODS.md §3).
-double end_free_force_at(const BarModel& bar, const BarState& s, int end, double tau_n, double tau);
+// material-law bar: the predictor of a neighbour's end load (METHODS.md §3). A finite
+// `end_w` puts the end node there instead (an end tied to an interface frame).
+double end_free_force_at(const BarModel& bar, const BarState& s, int end, double tau_n, double tau,
+                         double end_w);
 
 // Element stress at t_n (tension positive).
 double element_stress(const BarModel& bar, const BarState& s, int e);

@@ -146,6 +146,10 @@ SimulationResult simulate(const Scene& scene, const SimulationOptions& options) 
     result.node_updates_full_model += st.node_updates_full_model;
     result.bars.push_back(st);
   }
+  for (std::size_t k = 0; k < chain.interfaces.size(); ++k)
+    result.interface_statistics.push_back(
+        {chain.interfaces[k].name, std::string(to_string(chain.interfaces[k].method)),
+         chain.interface_states[k].activations, chain.interface_states[k].releases});
   return result;
 }
 
@@ -183,6 +187,11 @@ void write_simulation_outputs(const SimulationResult& result, const Scene& scene
     bars.push_back(o);
   }
   j["bars"] = bars;
+  nlohmann::ordered_json interfaces = nlohmann::json::array();
+  for (const InterfaceStatistics& i : result.interface_statistics)
+    interfaces.push_back({{"name", i.name}, {"method", i.method}, {"activations", i.activations},
+                          {"releases", i.releases}});
+  j["interfaces"] = interfaces;
   j["node_updates"] = result.node_updates;
   j["node_updates_full_model"] = result.node_updates_full_model;
   j["wall_time_s"] = result.wall_time_s;

@@ -50,6 +50,13 @@ struct BarStatistics {
   double final_velocity_m_s = 0;  // momentum / mass at the end of the run
 };
 
+struct InterfaceStatistics {
+  std::string name;  // "<left>-<right>"
+  std::string method;
+  long activations = 0;  // contact closings
+  long releases = 0;     // contact openings
+};
+
 struct SimulationResult {
   ChainDiscretization discretization;
   TimeSeries gauges;      // one strain column per gauge (tension positive), named by the gauge
@@ -58,6 +65,7 @@ struct SimulationResult {
   TimeSeries energy;      // kinetic_J, strain_J, contact_J, dissipated_J, total_J
   FieldGrid field;
   std::vector<BarStatistics> bars;
+  std::vector<InterfaceStatistics> interface_statistics;
   long long node_updates = 0;
   long long node_updates_full_model = 0;
   double wall_time_s = 0;      // the solve alone

@@ -96,8 +96,7 @@ TEST_CASE("validate warns when pulses overlap at a gauge or the duration is too 
       "simulation": {"duration": ")" +
            duration + R"("}})";
   };
-  const auto dir = fs::temp_directory_path() / "shpb_test_validate_warnings";
-  fs::create_directories(dir);
+  const auto dir = shpb_test::scratch_dir("validate_warnings");
   auto warnings = [&](const std::string& text) {
     std::ofstream(dir / "scene.json") << text;
     return validate_json(dir / "scene.json")["warnings"];
