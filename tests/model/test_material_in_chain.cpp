@@ -23,14 +23,8 @@ constexpr double kHereditaryTolerance = 1e-4;
 // Equilibrium: front and back face stresses within 5 % of each other (the usual SHPB criterion).
 constexpr double kEquilibrium = 0.05;
 
-// Global stepping: with asynchronous stepping the scheduler (at the time of writing) does not
-// conserve energy next to material-law bars (energy error 0.68 on the classic experiment, blow-up
-// with the pulse shaper) while every elastic chain is fine; the laws themselves close the balance
-// to round-off. Return to the scene's own stepping when that is fixed.
 Scene read_experiment(const char* name) {
-  Scene scene = read_scene(fs::path(SHPB_SOURCE_DIR) / "experiments" / name / "scene.json");
-  scene.simulation.stepping = Stepping::kGlobal;
-  return scene;
+  return read_scene(fs::path(SHPB_SOURCE_DIR) / "experiments" / name / "scene.json");
 }
 
 SimulationResult run(const Scene& scene) {
