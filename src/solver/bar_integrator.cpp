@@ -62,6 +62,17 @@ void assemble_internal_forces(const BarModel& bar, BarState& s) {
   }
 }
 
+void apply_dashpot(const BarModel& bar, BarState& s) {
+  const int last = bar.nodes - 1;
+  if (!bar.dashpot_right || s.quiet() || s.hi < last) return;
+  const double half = s.step == 0 ? 0.0 : 0.5 * bar.time_step_s;
+  const double Z = bar.impedance_kg_s(), m = bar.mass_kg[last];
+  // v_n = v_{n−1/2} + ½Δt (f − Z v_n)/m, solved for v_n.
+  const double vn = (s.v[last] + half * s.force[last] / m) / (1 + half * Z / m);
+  s.force[last] -= Z * vn;
+  s.dissipated_J += Z * vn * vn * (s.step == 0 ? 0.5 : 1.0) * bar.time_step_s;
+}
+
 long advance(const BarModel& bar, BarState& s) {
   const double dt = bar.time_step_s;
   const double kick = s.step == 0 ? 0.5 * dt : dt;

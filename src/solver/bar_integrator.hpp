@@ -20,6 +20,11 @@ void assemble_internal_forces(const BarModel& bar, BarState& s);
 // Makes node i part of the active range (an interface starts loading it).
 void activate_node(const BarModel& bar, BarState& s, int i);
 
+// Non-reflecting end (a cut bar): the dashpot force −Z v_n on the last node, with the full-step
+// velocity v_n taken implicitly (exact for a 1D wave leaving the bar); the energy it absorbs is
+// added to the bar's dissipation. Call between assemble and advance.
+void apply_dashpot(const BarModel& bar, BarState& s);
+
 // Kick and drift over the active range; counts node updates. Returns the updated node count.
 long advance(const BarModel& bar, BarState& s);
 

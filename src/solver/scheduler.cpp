@@ -127,18 +127,19 @@ ScheduleOutcome run_schedule(Chain& chain, ChainRecorders& recorders,
       const double next_l = stepping[l] ? tau + chain.bars[l].time_step_s : chain.bar_tau(l);
       const double next_r = stepping[r] ? tau + chain.bars[r].time_step_s : chain.bar_tau(r);
       InterfaceState& is = chain.interface_states[k];
-      const ContactResult res =
-          solve_contact(chain.interfaces[k], is, left, right, tau, std::min(next_l, next_r));
+      const double next = std::min(next_l, next_r);
+      const ContactResult res = solve_contact(chain.interfaces[k], is, left, right, tau, next);
       apply_end(chain, l, l_node, tau, stepping[l], res.dv_left, res.force_left_N);
       apply_end(chain, r, 0, tau, stepping[r], res.dv_right, res.force_right_N);
       chain.contact_dissipated_J[k] += res.dissipated_J;
       chain.max_penetration_m = std::max(chain.max_penetration_m, -is.gap_m);
-      recorders.on_interface_solve(chain, k, tau);
+      recorders.on_interface_solve(chain, k, tau, next);
     }
 
     // Rule 3: record and advance.
     for (std::size_t i = 0; i < nb; ++i) {
       if (!stepping[i]) continue;
+      apply_dashpot(chain.bars[i], chain.states[i]);
       recorders.on_bar_instant(chain, i, tau, tau + chain.bars[i].time_step_s);
       chain.states[i].node_updates += advance(chain.bars[i], chain.states[i]);
     }

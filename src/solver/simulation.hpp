@@ -42,6 +42,7 @@ struct FieldGrid {
 struct BarStatistics {
   std::string name;
   int elements = 0;
+  int simulated_elements = 0;  // fewer if the causal economy cut the bar's far end
   double time_step_s = 0;
   long steps = 0;
   double courant = 0;
