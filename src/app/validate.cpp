@@ -1,12 +1,190 @@
+// `shpb validate SCENE.json [--json]`: reads and checks a scene, then prints the resolved set-up —
+// exactly the mesh and time steps `simulate` will use (both call discretize()).
 #include <cstdio>
+#include <nlohmann/json.hpp>
+#include <string>
 
 #include "app/commands.hpp"
+#include "core/csv_writer.hpp"
+#include "model/discretization.hpp"
+#include "model/scene_checks.hpp"
+#include "solver/contact.hpp"
 
 namespace shpb {
+namespace {
 
-int run_validate(const ValidateArgs&) {
-  std::fprintf(stderr, "error: shpb validate: not implemented yet\n");
-  return 2;
+using nlohmann::json;
+
+// Distance along the axis from a gauge to the specimen face on its side (DESIGN.md §3: bars left
+// of the specimen are the incident side, right of it the transmitted side). Gaps are included.
+std::optional<double> distance_to_specimen(const Scene& scene, std::size_t bar, double position) {
+  if (!scene.specimen || bar == *scene.specimen) return std::nullopt;
+  const std::size_t s = *scene.specimen;
+  double d = 0;
+  if (bar < s) {
+    d = scene.bars[bar].length_m - position;
+    for (std::size_t i = bar; i < s; ++i) {
+      if (i > bar) d += scene.bars[i].length_m;
+      d += scene.bars[i].gap_m;
+    }
+  } else {
+    d = position;
+    for (std::size_t i = s + 1; i < bar; ++i) d += scene.bars[i].length_m;
+    for (std::size_t i = s; i < bar; ++i) d += scene.bars[i].gap_m;
+  }
+  return d;
+}
+
+// The interface as simulate builds it: method and penalty parameters from the scene (per-interface
+// overrides win), derived defaults from the neighbouring end elements (METHODS.md §2–3).
+InterfaceModel resolved_interface(const Scene& scene, const ChainDiscretization& d, std::size_t k) {
+  ContactMethod method = scene.contact.method;
+  PenaltyParams p = scene.contact.penalty;
+  for (const auto& o : scene.contact.interfaces) {
+    if (o.left_bar != k) continue;
+    if (o.method) method = *o.method;
+    if (o.penalty.stiffness_factor) p.stiffness_factor = o.penalty.stiffness_factor;
+    if (o.penalty.stiffness_N_m) p.stiffness_N_m = o.penalty.stiffness_N_m;
+    if (o.penalty.mass_ratio) p.mass_ratio = o.penalty.mass_ratio;
+  }
+  auto neighbour = [&](std::size_t i) {
+    const auto& b = scene.bars[i];
+    const double h = d.bars[i].element_length_m;
+    return NeighbourInfo{b.material.youngs_modulus_Pa * b.area_m2 / h, b.material.wave_speed_m_s(),
+                         h};
+  };
+  return make_interface_model(scene.bars[k].name + "-" + scene.bars[k + 1].name, method, p,
+                              scene.bars[k].gap_m, neighbour(k), neighbour(k + 1));
+}
+
+json resolved_setup(const Scene& scene, const ChainDiscretization& d) {
+  json out;
+  out["name"] = scene.name;
+  out["file"] = scene.file.string();
+  out["specimen"] = scene.specimen ? json(scene.bars[*scene.specimen].name) : json(nullptr);
+  for (std::size_t i = 0; i < scene.bars.size(); ++i) {
+    const auto& b = scene.bars[i];
+    const auto& m = b.material;
+    const auto& bd = d.bars[i];
+    out["bars"].push_back({{"name", b.name},
+                           {"material", m.name},
+                           {"model", to_string(m.model)},
+                           {"length_m", b.length_m},
+                           {"diameter_m", b.diameter_m},
+                           {"area_m2", b.area_m2},
+                           {"density_kg_m3", m.density_kg_m3},
+                           {"youngs_modulus_Pa", m.youngs_modulus_Pa},
+                           {"poisson_ratio", m.poisson_ratio},
+                           {"wave_speed_m_s", m.wave_speed_m_s()},
+                           {"impedance_kg_s", b.impedance_kg_s()},
+                           {"velocity_m_s", b.velocity_m_s},
+                           {"gap_m", b.gap_m},
+                           {"elements", bd.elements},
+                           {"element_length_m", bd.element_length_m},
+                           {"critical_step_s", bd.critical_step_s},
+                           {"time_step_s", bd.time_step_s},
+                           {"courant", bd.courant}});
+    for (const auto& g : b.gauges) {
+      json gj = {{"name", g.name}, {"bar", b.name}, {"position_m", g.position_m}};
+      const auto dist = distance_to_specimen(scene, i, g.position_m);
+      gj["distance_to_specimen_m"] = dist ? json(*dist) : json(nullptr);
+      out["gauges"].push_back(gj);
+    }
+  }
+  if (!out.contains("gauges")) out["gauges"] = json::array();
+  for (std::size_t i = 0; i + 1 < scene.bars.size(); ++i) {
+    const InterfaceModel m = resolved_interface(scene, d, i);
+    const int links = m.method == ContactMethod::kLocalizedBipenalty ? 2 : 1;
+    json stiffness = json::array(), mass = json::array();
+    for (int k = 0; k < links; ++k) {
+      stiffness.push_back(m.stiffness_N_m[k]);
+      mass.push_back(m.mass_penalty_kg[k]);
+    }
+    out["interfaces"].push_back({{"left", scene.bars[i].name},
+                                 {"right", scene.bars[i + 1].name},
+                                 {"method", to_string(m.method)},
+                                 {"gap_m", m.gap0_m},
+                                 {"link_stiffness_N_m", stiffness},
+                                 {"link_mass_penalty_kg", mass}});
+  }
+  out["warnings"] = scene_warnings(scene, d.duration_s);
+  out["duration_s"] = d.duration_s;
+  out["sample_rate_Hz"] = d.sample_rate_Hz;
+  out["stepping"] = to_string(d.stepping);
+  out["measurement"] = scene.measurement ? json({{"file", scene.measurement->file.string()},
+                                                 {"channels", scene.measurement->channels.size()}})
+                                         : json(nullptr);
+  return out;
+}
+
+std::string g(double v, int digits = 4) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+  return buf;
+}
+
+// "a" or "a / b" for the links of an interface.
+std::string links(const json& values) {
+  std::string t;
+  for (const auto& v : values) t += (t.empty() ? "" : " / ") + g(v.get<double>());
+  return t;
+}
+
+void print_table(const json& s) {
+  std::printf("scene      %s (%s)\n", s["name"].get<std::string>().c_str(),
+              s["file"].get<std::string>().c_str());
+  std::printf("specimen   %s\n\n",
+              s["specimen"].is_null() ? "(none)" : s["specimen"].get<std::string>().c_str());
+  std::printf("%-12s %-26s %-12s %9s %8s %9s %8s %10s %9s %9s %9s %7s\n", "bar", "material",
+              "model", "length_mm", "diam_mm", "area_mm2", "c0_m/s", "Z_kg/s", "elements", "h_mm",
+              "dt_ns", "courant");
+  for (const auto& b : s["bars"]) {
+    std::printf(
+        "%-12s %-26s %-12s %9s %8s %9s %8s %10s %9d %9s %9s %7s\n",
+        b["name"].get<std::string>().c_str(), b["material"].get<std::string>().c_str(),
+        b["model"].get<std::string>().c_str(), g(b["length_m"].get<double>() * 1e3).c_str(),
+        g(b["diameter_m"].get<double>() * 1e3).c_str(), g(b["area_m2"].get<double>() * 1e6).c_str(),
+        g(b["wave_speed_m_s"].get<double>()).c_str(), g(b["impedance_kg_s"].get<double>()).c_str(),
+        b["elements"].get<int>(), g(b["element_length_m"].get<double>() * 1e3).c_str(),
+        g(b["time_step_s"].get<double>() * 1e9).c_str(), g(b["courant"].get<double>()).c_str());
+  }
+  std::printf("\n%-14s %-12s %12s %22s\n", "gauge", "bar", "position_mm", "to_specimen_face_mm");
+  for (const auto& gj : s["gauges"]) {
+    const auto& d = gj["distance_to_specimen_m"];
+    std::printf("%-14s %-12s %12s %22s\n", gj["name"].get<std::string>().c_str(),
+                gj["bar"].get<std::string>().c_str(),
+                g(gj["position_m"].get<double>() * 1e3).c_str(),
+                d.is_null() ? "-" : g(d.get<double>() * 1e3).c_str());
+  }
+  std::printf("\n%-28s %-20s %8s %24s %24s\n", "interface", "method", "gap_mm",
+              "link_stiffness_N/m", "link_mass_penalty_kg");
+  for (const auto& i : s["interfaces"]) {
+    const std::string name = i["left"].get<std::string>() + " | " + i["right"].get<std::string>();
+    std::printf("%-28s %-20s %8s %24s %24s\n", name.c_str(), i["method"].get<std::string>().c_str(),
+                g(i["gap_m"].get<double>() * 1e3).c_str(), links(i["link_stiffness_N_m"]).c_str(),
+                links(i["link_mass_penalty_kg"]).c_str());
+  }
+  std::printf("\nduration     %s us\n", g(s["duration_s"].get<double>() * 1e6).c_str());
+  std::printf("sample rate  %s MHz\n", g(s["sample_rate_Hz"].get<double>() * 1e-6).c_str());
+  std::printf("stepping     %s\n", s["stepping"].get<std::string>().c_str());
+  if (!s["measurement"].is_null())
+    std::printf("measurement  %s (%zu channels)\n",
+                s["measurement"]["file"].get<std::string>().c_str(),
+                s["measurement"]["channels"].get<std::size_t>());
+  for (const auto& w : s["warnings"]) std::printf("warning: %s\n", w.get<std::string>().c_str());
+}
+
+}  // namespace
+
+int run_validate(const ValidateArgs& args) {
+  Scene scene = read_scene(args.scene);
+  apply_overrides(args.overrides, scene);
+  const json setup = resolved_setup(scene, discretize(scene));
+  if (args.json)
+    std::printf("%s\n", setup.dump(2).c_str());
+  else
+    print_table(setup);
+  return 0;
 }
 
 }  // namespace shpb

@@ -19,6 +19,12 @@ struct MaterialPointState {
   double temperature_K = 0;   // current temperature (adiabatic heating)
   double dissipated_J_m3 = 0; // plastic + viscous work per unit volume, cumulative
   double heat_J_m3 = 0;       // part of it turned into heat (β × plastic work)
+  // ENERGY CONTRACT (for the solver, "sim"): every law books, step by step,
+  //   ½(σ_n + σ_{n+1})(ε_{n+1} − ε_n) = Δ stored_energy_J_m3(state) + Δ dissipated_J_m3
+  // exactly (to round-off). So a bar's strain_J = Σ stored_energy_J_m3 × element volume and its
+  // dissipated_J = Σ dissipated_J_m3 × element volume close the energy balance with the trapezoidal
+  // internal work. heat_J_m3 ≤ dissipated_J_m3 is the heat part (the rest is stored cold work,
+  // still unrecoverable, hence counted as dissipated).
   double arm_stress_Pa[kMaxArms] = {};  // Maxwell arm stresses (viscoelastic)
 };
 
@@ -35,7 +41,10 @@ class MaterialLaw {
                       std::span<MaterialPointState> states, std::span<double> stress_out) const = 0;
 
   // Largest tangent modulus the law can ever show (the elastic modulus for every law here):
-  // the specimen's stable step is fixed at this elastic bound.
+  // the specimen's stable step is fixed at this elastic bound. Why not follow the current
+  // tangent: every law here unloads (or, viscoelastic, responds instantly) with this modulus at
+  // any step, so a step sized on a softer plastic tangent would go unstable the moment an element
+  // unloads; and the specimen is a few dozen elements, so the fixed step costs next to nothing.
   virtual double max_tangent_modulus_Pa() const = 0;
 
   // Recoverable (elastic) strain energy per unit volume held in a state.

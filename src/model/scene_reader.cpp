@@ -1,18 +1,280 @@
+// The scene reader (DESIGN.md §3): JSON → Scene, every check at this boundary, each error naming
+// the file, the JSON path, the value and the constraint (DESIGN.md §2).
+#include <map>
+
+#include "core/closest_match.hpp"
 #include "core/error.hpp"
+#include "core/json_document.hpp"
+#include "core/json_value.hpp"
+#include "model/material_reader.hpp"
+#include "model/measurement_reader.hpp"
 #include "model/scene.hpp"
 
 namespace shpb {
-// STUB: replaced by the foundation work (issue 2).
-Scene read_scene(const std::filesystem::path& file) {
-  throw input_error(file.string(), "", "", "scene reading not implemented yet");
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::vector<std::string> kContactMethods = {"penalty", "bipenalty", "localized-bipenalty"};
+const std::vector<std::string> kSteppings = {"asynchronous", "global"};
+constexpr std::int64_t kMaxElements = 100'000'000;  // far beyond any useful mesh; guards overflow
+
+class SceneReader {
+ public:
+  SceneReader(const fs::path& file) : file_(file), display_(file.string()) {
+    dir_ = file.parent_path();
+  }
+
+  Scene read() {
+    const nlohmann::json j = read_json_object_file(file_, display_);
+    const JsonValue root(j, display_, "");
+    const auto o = root.object(
+        {"name", "notes", "bars", "specimen", "materials", "contact", "simulation", "measurement"});
+    Scene scene;
+    scene.file = file_;
+    scene.name = default_name();
+    if (auto v = o.get("name")) scene.name = v->string();
+    if (auto v = o.get("notes")) v->string();
+    if (auto v = o.get("materials")) read_materials(*v);
+
+    const auto bars = o.require("bars", "the bars from left to right, at least two");
+    const auto items = bars.array();
+    if (items.size() < 2)
+      throw bars.error_with_value(
+          std::to_string(items.size()) + (items.size() == 1 ? " bar" : " bars"),
+          "must list at least two bars (e.g. a striker and a bar)");
+    for (std::size_t i = 0; i < items.size(); ++i)
+      scene.bars.push_back(read_bar(items[i], i + 1 == items.size()));
+    check_names(scene, items);
+
+    if (auto v = o.get("specimen")) scene.specimen = bar_index(scene, *v);
+    if (auto v = o.get("contact")) scene.contact = read_contact(*v, scene);
+    if (auto v = o.get("simulation")) scene.simulation = read_simulation(*v);
+    if (auto v = o.get("measurement")) {
+      std::vector<std::string> gauges;
+      for (const auto& b : scene.bars)
+        for (const auto& g : b.gauges) gauges.push_back(g.name);
+      scene.measurement = read_measurement(*v, dir_, gauges);
+    }
+    return scene;
+  }
+
+ private:
+  // "experiments/classic-al6061/scene.json" is named by its folder, other files by their stem.
+  std::string default_name() const {
+    const auto stem = file_.stem().string();
+    if (stem == "scene" && file_.has_parent_path()) {
+      const auto folder = fs::absolute(file_).parent_path().filename().string();
+      if (!folder.empty()) return folder;
+    }
+    return stem;
+  }
+
+  void read_materials(const JsonValue& v) {
+    if (!v.is_object()) throw v.error("expected an object of named materials { \"steel\": {...} }");
+    for (const auto& [key, value] : v.json().items()) {
+      const JsonValue m(value, display_, json_child_path(v.path(), key));
+      materials_.emplace(key, read_material(m, key));
+    }
+  }
+
+  MaterialSpec material(const JsonValue& v) {
+    if (v.is_object()) return read_material(v, "inline");
+    if (!v.is_string())
+      throw v.error("expected a name from materials, a path to a material .json file or an object");
+    const std::string s = v.string();
+    if (auto it = materials_.find(s); it != materials_.end()) return it->second;
+    const bool looks_like_path =
+        s.find('/') != std::string::npos || (s.size() > 5 && s.substr(s.size() - 5) == ".json");
+    if (!looks_like_path) {
+      std::vector<std::string> names;
+      for (const auto& [name, m] : materials_) names.push_back(name);
+      const auto near = closest_match(s, names);
+      throw v.error(near ? "no such material in materials; did you mean \"" + *near + "\"?"
+                         : "no such material in materials, and not a path to a .json file");
+    }
+    const fs::path path = (dir_ / s).lexically_normal();
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec))
+      throw v.error("no such material file (looked for " + path.string() +
+                    "; paths are relative to the scene)");
+    auto [it, inserted] = files_.try_emplace(path.string());
+    if (inserted) it->second = read_material_file(path, path.string());
+    return it->second;
+  }
+
+  BarSpec read_bar(const JsonValue& v, bool last) {
+    const auto o = v.object({"name", "material", "length", "diameter", "area", "velocity",
+                             "elements", "gap", "gauges", "notes"});
+    BarSpec b;
+    b.name = o.require("name", "a unique name such as \"incident\"").name();
+    b.material = material(o.require("material", "a name from materials, a file or an object"));
+    b.length_m = o.require("length", "e.g. \"2 m\"").positive_quantity(Dimension::kLength);
+    const auto diameter = o.get("diameter");
+    const auto area = o.get("area");
+    if (diameter && area) throw area->error("give either diameter or area, not both");
+    if (area) {
+      b.area_m2 = area->positive_quantity(Dimension::kArea);
+      b.diameter_m = std::sqrt(4 * b.area_m2 / M_PI);  // equivalent circular diameter
+    } else {
+      b.diameter_m = o.require("diameter", "e.g. \"19.05 mm\" (or give area)")
+                         .positive_quantity(Dimension::kLength);
+      b.area_m2 = M_PI * b.diameter_m * b.diameter_m / 4;
+    }
+    if (auto x = o.get("velocity")) b.velocity_m_s = x->quantity(Dimension::kVelocity);
+    if (auto x = o.get("elements")) b.elements = static_cast<int>(x->integer(1, kMaxElements));
+    if (auto x = o.get("gap")) {
+      if (last) throw x->error("the gap is to the next bar on the right; the last bar has none");
+      b.gap_m = x->non_negative_quantity(Dimension::kLength);
+    }
+    if (auto x = o.get("notes")) x->string();
+    if (auto x = o.get("gauges")) {
+      for (const auto& g : x->array()) {
+        const auto go = g.object({"name", "position"});
+        GaugeSpec gauge;
+        gauge.name = go.require("name", "a unique gauge name").name();
+        const auto pos = go.require("position", "distance from the bar's left end, e.g. \"1 m\"");
+        gauge.position_m = pos.quantity(Dimension::kLength);
+        if (!(gauge.position_m >= 0 && gauge.position_m <= b.length_m))
+          throw pos.error_with_value(JsonValue::format(gauge.position_m, Dimension::kLength),
+                                     "must lie on the bar: within [0, " +
+                                         JsonValue::format(b.length_m, Dimension::kLength) +
+                                         "] from its left end");
+        b.gauges.push_back(gauge);
+      }
+    }
+    return b;
+  }
+
+  // Bar names and gauge names are unique (they name CSV columns); "time_s" is taken.
+  void check_names(const Scene& scene, const std::vector<JsonValue>& items) const {
+    std::map<std::string, std::string> bars, gauges;  // name → path of first use
+    for (std::size_t i = 0; i < scene.bars.size(); ++i) {
+      const auto bar = JsonObject(items[i]);
+      const auto name_path = json_child_path(items[i].path(), "name");
+      if (auto [it, ok] = bars.emplace(scene.bars[i].name, name_path); !ok)
+        throw bar.require("name", "").error("duplicate bar name (also at " + it->second + ")");
+      const auto gauge_items = bar.get("gauges");
+      for (std::size_t k = 0; k < scene.bars[i].gauges.size(); ++k) {
+        const auto g = JsonObject(gauge_items->array()[k]).require("name", "");
+        const auto& name = scene.bars[i].gauges[k].name;
+        if (name == "time_s") throw g.error("\"time_s\" is the time column; choose another name");
+        if (auto [it, ok] = gauges.emplace(name, g.path()); !ok)
+          throw g.error("duplicate gauge name (also at " + it->second + ")");
+      }
+    }
+  }
+
+  static std::vector<std::string> bar_names(const Scene& scene) {
+    std::vector<std::string> names;
+    for (const auto& b : scene.bars) names.push_back(b.name);
+    return names;
+  }
+
+  static std::size_t bar_index(const Scene& scene, const JsonValue& v) {
+    const std::string s = v.string();
+    for (std::size_t i = 0; i < scene.bars.size(); ++i)
+      if (scene.bars[i].name == s) return i;
+    throw v.error("no bar of that name; " + suggestion_text(s, bar_names(scene)));
+  }
+
+  static ContactMethod contact_method(const JsonValue& v) {
+    const std::string s = v.string();
+    if (auto m = contact_method_from_string(s)) return *m;
+    throw v.error(suggestion_text(s, kContactMethods));
+  }
+
+  static PenaltyParams read_penalty(const JsonObject& o) {
+    PenaltyParams p;
+    if (auto x = o.get("stiffness_factor"))
+      p.stiffness_factor = x->positive_quantity(Dimension::kDimensionless);
+    if (auto x = o.get("stiffness")) p.stiffness_N_m = x->positive_quantity(Dimension::kStiffness);
+    if (auto x = o.get("mass_ratio"))
+      p.mass_ratio = x->positive_quantity(Dimension::kDimensionless);
+    return p;
+  }
+
+  static ContactSpec read_contact(const JsonValue& v, const Scene& scene) {
+    const auto o =
+        v.object({"method", "stiffness_factor", "stiffness", "mass_ratio", "interfaces"});
+    ContactSpec c;
+    if (auto m = o.get("method")) c.method = contact_method(*m);
+    c.penalty = read_penalty(o);
+    if (auto list = o.get("interfaces")) {
+      for (const auto& item : list->array()) {
+        const auto io =
+            item.object({"between", "method", "stiffness_factor", "stiffness", "mass_ratio"});
+        const auto between =
+            io.require("between", "two neighbouring bars, e.g. [\"striker\", \"incident\"]");
+        const auto pair = between.array();
+        if (pair.size() != 2) throw between.error("expected two bar names");
+        const std::size_t a = bar_index(scene, pair[0]), b = bar_index(scene, pair[1]);
+        if (a + 1 != b && b + 1 != a)
+          throw between.error("the two bars must be neighbours in the chain");
+        InterfaceOverride ov;
+        ov.left_bar = std::min(a, b);
+        for (const auto& other : c.interfaces)
+          if (other.left_bar == ov.left_bar)
+            throw between.error("this interface is already listed");
+        if (auto m = io.get("method")) ov.method = contact_method(*m);
+        ov.penalty = read_penalty(io);
+        c.interfaces.push_back(ov);
+      }
+    }
+    return c;
+  }
+
+  static SimulationSpec read_simulation(const JsonValue& v) {
+    const auto o = v.object({"duration", "sample_rate", "stepping", "courant"});
+    SimulationSpec s;
+    if (auto x = o.get("duration")) s.duration_s = x->positive_quantity(Dimension::kTime);
+    if (auto x = o.get("sample_rate"))
+      s.sample_rate_Hz = x->positive_quantity(Dimension::kFrequency);
+    if (auto x = o.get("stepping")) {
+      const auto m = stepping_from_string(x->string());
+      if (!m) throw x->error(suggestion_text(x->string(), kSteppings));
+      s.stepping = *m;
+    }
+    // Lumped central difference is stable for C <= 1 (METHODS.md §1).
+    if (auto x = o.get("courant"))
+      s.courant = x->quantity_in(Dimension::kDimensionless, 0, 1, true, false);
+    return s;
+  }
+
+  fs::path file_;
+  std::string display_;
+  fs::path dir_;
+  std::map<std::string, MaterialSpec> materials_;
+  std::map<std::string, MaterialSpec> files_;  // material files already read, by path
+};
+
+}  // namespace
+
+Scene read_scene(const std::filesystem::path& file) { return SceneReader(file).read(); }
+
+// The gauged bars nearest to the specimen on either side: the incident and transmitter bars.
+std::optional<std::size_t> Scene::incident_bar() const {
+  if (!specimen) return std::nullopt;
+  for (std::size_t i = *specimen; i-- > 0;)
+    if (!bars[i].gauges.empty()) return i;
+  return std::nullopt;
 }
-std::optional<std::size_t> Scene::incident_bar() const { return std::nullopt; }
-std::optional<std::size_t> Scene::transmitter_bar() const { return std::nullopt; }
+
+std::optional<std::size_t> Scene::transmitter_bar() const {
+  if (!specimen) return std::nullopt;
+  for (std::size_t i = *specimen + 1; i < bars.size(); ++i)
+    if (!bars[i].gauges.empty()) return i;
+  return std::nullopt;
+}
+
 std::string_view to_string(ContactMethod m) {
   switch (m) {
-    case ContactMethod::kPenalty: return "penalty";
-    case ContactMethod::kBipenalty: return "bipenalty";
-    case ContactMethod::kLocalizedBipenalty: return "localized-bipenalty";
+    case ContactMethod::kPenalty:
+      return "penalty";
+    case ContactMethod::kBipenalty:
+      return "bipenalty";
+    case ContactMethod::kLocalizedBipenalty:
+      return "localized-bipenalty";
   }
   return "?";
 }
@@ -21,10 +283,14 @@ std::string_view to_string(Stepping s) {
 }
 std::string_view to_string(MaterialModel m) {
   switch (m) {
-    case MaterialModel::kElastic: return "elastic";
-    case MaterialModel::kBilinear: return "bilinear";
-    case MaterialModel::kJohnsonCook: return "johnson-cook";
-    case MaterialModel::kViscoelastic: return "viscoelastic";
+    case MaterialModel::kElastic:
+      return "elastic";
+    case MaterialModel::kBilinear:
+      return "bilinear";
+    case MaterialModel::kJohnsonCook:
+      return "johnson-cook";
+    case MaterialModel::kViscoelastic:
+      return "viscoelastic";
   }
   return "?";
 }

@@ -1,0 +1,145 @@
+#include "core/json_document.hpp"
+
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <vector>
+
+#include "core/error.hpp"
+
+namespace shpb {
+namespace {
+
+using nlohmann::json;
+
+// Line and column (1-based) of a byte offset, for parse errors.
+std::string line_column(const std::string& text, std::size_t byte) {
+  std::size_t line = 1, column = 1;
+  for (std::size_t i = 0; i < byte && i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+  return "line " + std::to_string(line) + ", column " + std::to_string(column);
+}
+
+// The JSON path of the value being parsed, kept up to date from nlohmann's parser callback. It
+// names a duplicate key where it occurs, and a number that overflows a double (nlohmann reports
+// no position for that).
+class ParsePath {
+ public:
+  explicit ParsePath(std::string display) : display_(std::move(display)) {}
+
+  void on_event(json::parse_event_t event, const json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start:
+        frames_.push_back({false, 0, "", {}});
+        break;
+      case json::parse_event_t::array_start:
+        frames_.push_back({true, 0, "", {}});
+        break;
+      case json::parse_event_t::key: {
+        auto& top = frames_.back();
+        top.key = parsed.get<std::string>();
+        if (!top.keys.insert(top.key).second)
+          throw input_error(display_, path(), "", "duplicate key (each key may appear once)");
+        break;
+      }
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        frames_.pop_back();
+        advance();
+        break;
+      case json::parse_event_t::value:
+        advance();
+        break;
+    }
+  }
+
+  std::string path() const {
+    std::string p;
+    for (const auto& f : frames_) {
+      if (f.array)
+        p += "[" + std::to_string(f.index) + "]";
+      else if (!f.key.empty())
+        p += (p.empty() ? "" : ".") + f.key;
+    }
+    return p;
+  }
+
+ private:
+  struct Frame {
+    bool array;
+    std::size_t index;
+    std::string key;
+    std::set<std::string> keys;
+  };
+
+  void advance() {
+    if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
+  }
+
+  std::string display_;
+  std::vector<Frame> frames_;
+};
+
+}  // namespace
+
+json parse_json_object(const std::string& text, const std::string& display) {
+  if (text.find_first_not_of(" \t\r\n") == std::string::npos)
+    throw input_error(display, "", "empty file", "expected a JSON object");
+  ParsePath where(display);
+  json j;
+  try {
+    j = json::parse(text, [&where](int, json::parse_event_t event, json& parsed) {
+      where.on_event(event, parsed);
+      return true;
+    });
+  } catch (const json::parse_error& e) {
+    // e.what(): "[json.exception.parse_error.101] parse error at line 3, column 5: syntax error
+    // while parsing object - unexpected '}'; expected string literal"
+    const std::string what = e.what();
+    std::string place = line_column(text, e.byte == 0 ? 0 : e.byte - 1);
+    std::string detail = what;
+    if (const auto at = what.find("at line "); at != std::string::npos) {
+      const auto colon = what.find(": ", at);
+      if (colon != std::string::npos) {
+        place = what.substr(at + 3, colon - at - 3);
+        detail = what.substr(colon + 2);
+      }
+    }
+    // The parser quotes what it read last, which may be bytes that are not text.
+    for (auto& c : detail)
+      if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x80) c = '?';
+    throw input_error(display, place, detail, "expected valid JSON");
+  } catch (const json::out_of_range& e) {  // "number overflow parsing '1e400'"
+    std::string what = e.what();
+    if (const auto end = what.find("] "); end != std::string::npos) what = what.substr(end + 2);
+    throw input_error(display, where.path(), what,
+                      "expected a number within the range of a double");
+  }
+  if (!j.is_object()) {
+    std::string value = j.dump();
+    if (value.size() > 40) value = value.substr(0, 37) + "...";
+    throw input_error(display, "(top level)", value, "expected a JSON object { ... }");
+  }
+  return j;
+}
+
+json read_json_object_file(const std::filesystem::path& file, const std::string& display) {
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec))
+    throw input_error(display, "", "no such file", "expected an existing JSON file");
+  if (std::filesystem::is_directory(file, ec))
+    throw input_error(display, "", "a folder", "expected a JSON file");
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw input_error(display, "", "cannot be opened", "expected a readable JSON file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_json_object(text.str(), display);
+}
+
+}  // namespace shpb

@@ -1,0 +1,17 @@
+#pragma once
+// Reading a JSON file for the scene reader: a missing or unreadable file, an empty file, text that
+// is not JSON (with line and column), duplicate keys (JSON allows them, we do not: the second one
+// would silently win) and a top level that is not an object are all InputErrors naming the file.
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace shpb {
+
+// `display` is how the file is named in messages (the path as the user wrote it).
+nlohmann::json read_json_object_file(const std::filesystem::path& file, const std::string& display);
+
+// The same from text already in memory.
+nlohmann::json parse_json_object(const std::string& text, const std::string& display);
+
+}  // namespace shpb

@@ -1,0 +1,146 @@
+#include "core/json_value.hpp"
+
+#include <cctype>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "core/closest_match.hpp"
+#include "core/csv_writer.hpp"
+
+namespace shpb {
+
+std::string json_child_path(const std::string& parent, std::string_view key) {
+  bool plain = !key.empty();
+  for (const char c : key)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-')) plain = false;
+  if (plain) return parent.empty() ? std::string(key) : parent + "." + std::string(key);
+  return parent + "[" + nlohmann::json(std::string(key)).dump() + "]";
+}
+
+std::string json_element_path(const std::string& parent, std::size_t index) {
+  return parent + "[" + std::to_string(index) + "]";
+}
+
+std::string JsonValue::text() const {
+  constexpr std::size_t kMaxShown = 60;  // keep one-line messages readable
+  std::string s = json_->dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  if (s.size() > kMaxShown) s = s.substr(0, kMaxShown - 3) + "...";
+  return s;
+}
+
+InputError JsonValue::error(const std::string& constraint) const {
+  return error_with_value(text(), constraint);
+}
+
+InputError JsonValue::error_with_value(const std::string& value,
+                                       const std::string& constraint) const {
+  return input_error(file_, path_.empty() ? "(top level)" : path_, value, constraint);
+}
+
+std::string JsonValue::format(double si_value, Dimension d) {
+  const std::string unit(si_unit(d));
+  return format_double(si_value) + (unit.empty() ? "" : " " + unit);
+}
+
+double JsonValue::quantity(Dimension d) const {
+  if (json_->is_number()) {
+    const double v = json_->get<double>();
+    if (!std::isfinite(v)) throw error("expected a finite number");
+    return v;
+  }
+  if (json_->is_string()) {
+    try {
+      return parse_quantity(json_->get<std::string>(), d);
+    } catch (const std::invalid_argument& e) {
+      throw error(e.what());
+    }
+  }
+  throw error("expected " + std::string(to_string(d)) + ": a number or a string with a unit");
+}
+
+double JsonValue::positive_quantity(Dimension d) const {
+  const double v = quantity(d);
+  if (!(v > 0)) throw error_with_value(format(v, d), "must be > 0");
+  return v;
+}
+
+double JsonValue::non_negative_quantity(Dimension d) const {
+  const double v = quantity(d);
+  if (!(v >= 0)) throw error_with_value(format(v, d), "must be >= 0");
+  return v;
+}
+
+double JsonValue::quantity_in(Dimension d, double lo, double hi, bool lo_open, bool hi_open) const {
+  const double v = quantity(d);
+  const bool ok = (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
+  if (!ok)
+    throw error_with_value(format(v, d), "must be in " + std::string(lo_open ? "(" : "[") +
+                                             format_double(lo) + ", " + format_double(hi) +
+                                             (hi_open ? ")" : "]"));
+  return v;
+}
+
+std::int64_t JsonValue::integer(std::int64_t lo, std::int64_t hi) const {
+  std::string range("[");  // built piecewise: GCC 12 warns falsely on "[" + std::to_string()
+  range.append(std::to_string(lo)).append(", ").append(std::to_string(hi)).append("]");
+  if (!json_->is_number()) throw error("expected a whole number in " + range);
+  const double v = json_->get<double>();
+  if (!std::isfinite(v) || v != std::floor(v)) throw error("expected a whole number in " + range);
+  if (v < static_cast<double>(lo) || v > static_cast<double>(hi))
+    throw error("must be a whole number in " + range);
+  return static_cast<std::int64_t>(v);
+}
+
+bool JsonValue::boolean() const {
+  if (!json_->is_boolean()) throw error("expected true or false");
+  return json_->get<bool>();
+}
+
+std::string JsonValue::string() const {
+  if (!json_->is_string()) throw error("expected a string");
+  return json_->get<std::string>();
+}
+
+std::string JsonValue::name() const {
+  const std::string s = string();
+  if (s.empty() || s.find_first_not_of(' ') == std::string::npos) throw error("must not be empty");
+  if (s.find_first_of(",\"\r\n") != std::string::npos)
+    throw error("must not contain a comma, quote or line break (names become CSV column names)");
+  return s;
+}
+
+std::vector<JsonValue> JsonValue::array() const {
+  if (!json_->is_array()) throw error("expected an array [ ... ]");
+  std::vector<JsonValue> items;
+  items.reserve(json_->size());
+  for (std::size_t i = 0; i < json_->size(); ++i)
+    items.emplace_back((*json_)[i], file_, json_element_path(path_, i));
+  return items;
+}
+
+JsonObject JsonValue::object(std::vector<std::string> allowed_keys) const {
+  if (!json_->is_object()) throw error("expected an object { ... }");
+  for (const auto& [key, value] : json_->items()) {
+    bool known = false;
+    for (const auto& k : allowed_keys) known = known || k == key;
+    if (!known)
+      throw input_error(file_, json_child_path(path_, key), "unknown key",
+                        suggestion_text(key, allowed_keys));
+  }
+  return JsonObject(*this);
+}
+
+std::optional<JsonValue> JsonObject::get(std::string_view key) const {
+  const auto it = value_.json().find(key);
+  if (it == value_.json().end()) return std::nullopt;
+  return JsonValue(*it, value_.file(), json_child_path(value_.path(), key));
+}
+
+JsonValue JsonObject::require(std::string_view key, const std::string& what) const {
+  if (auto v = get(key)) return *v;
+  throw input_error(value_.file(), json_child_path(value_.path(), key), "(missing)",
+                    "required: " + what);
+}
+
+}  // namespace shpb

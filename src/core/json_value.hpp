@@ -1,0 +1,80 @@
+#pragma once
+// A JSON value together with where it came from (file and JSON path such as `bars[2].length`), so
+// that every check can report "<file>: <path>: <value>: <constraint>" (DESIGN.md §2). Objects are
+// opened with the list of keys they allow: an unknown key is an error at once, with a "did you
+// mean" when it is close to an allowed one.
+#include <cstdint>
+#include <initializer_list>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/error.hpp"
+#include "core/units.hpp"
+
+namespace shpb {
+
+class JsonObject;
+
+class JsonValue {
+ public:
+  JsonValue(const nlohmann::json& json, std::string file, std::string path)
+      : json_(&json), file_(std::move(file)), path_(std::move(path)) {}
+
+  const nlohmann::json& json() const { return *json_; }
+  const std::string& file() const { return file_; }
+  const std::string& path() const { return path_; }
+  std::string text() const;  // the value as written (compact, shortened)
+
+  // "<file>: <path>: <value>: <constraint>"; the value defaults to text().
+  InputError error(const std::string& constraint) const;
+  InputError error_with_value(const std::string& value, const std::string& constraint) const;
+
+  bool is_string() const { return json_->is_string(); }
+  bool is_number() const { return json_->is_number(); }
+  bool is_object() const { return json_->is_object(); }
+
+  // A finite number (SI) or a string "<number> <unit>" of dimension `d`.
+  double quantity(Dimension d) const;
+  // Constrained quantities; messages show the SI value with its unit ("-0.005 m: must be > 0").
+  double positive_quantity(Dimension d) const;
+  double non_negative_quantity(Dimension d) const;
+  double quantity_in(Dimension d, double lo, double hi, bool lo_open, bool hi_open) const;
+
+  std::int64_t integer(std::int64_t lo, std::int64_t hi) const;  // a whole number in [lo, hi]
+  bool boolean() const;
+  std::string string() const;            // any string
+  std::string name() const;              // a non-empty string usable as a CSV column name
+  std::vector<JsonValue> array() const;  // the elements of an array
+  JsonObject object(std::vector<std::string> allowed_keys) const;
+
+  // Formats an SI value of dimension d for messages: "-0.005 m".
+  static std::string format(double si_value, Dimension d);
+
+ private:
+  const nlohmann::json* json_;
+  std::string file_;
+  std::string path_;
+};
+
+class JsonObject {
+ public:
+  explicit JsonObject(JsonValue value) : value_(std::move(value)) {}
+
+  const JsonValue& value() const { return value_; }
+  bool has(std::string_view key) const { return value_.json().contains(key); }
+  std::optional<JsonValue> get(std::string_view key) const;
+  // Throws "<path>.<key>: (missing): required — <what>" when absent.
+  JsonValue require(std::string_view key, const std::string& what) const;
+
+ private:
+  JsonValue value_;
+};
+
+// `parent.key` or `parent["odd key"]`, `parent[3]`.
+std::string json_child_path(const std::string& parent, std::string_view key);
+std::string json_element_path(const std::string& parent, std::size_t index);
+
+}  // namespace shpb

@@ -1,0 +1,110 @@
+#include "model/laws/johnson_cook_law.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+
+namespace shpb {
+
+namespace {
+// Return mapping: once the stress residual is below this fraction of the trial stress, one more
+// Newton step (quadratic convergence) leaves a residual near 1e-12 or below, so it is taken and
+// the iteration stops without another evaluation (one pow per plastic step in the usual case).
+constexpr double kReturnFinalStepResidual = 1e-6;
+constexpr int kReturnMaxIterations = 100;
+}  // namespace
+
+double johnson_cook_rate_factor(const JohnsonCookParams& jc, double strain_rate_1_s) {
+  const double ratio = std::abs(strain_rate_1_s) / jc.reference_strain_rate_1_s;
+  return ratio > 1 ? 1 + jc.C * std::log(ratio) : 1.0;
+}
+
+double johnson_cook_thermal_factor(const JohnsonCookParams& jc, double temperature_K) {
+  if (temperature_K <= jc.room_temperature_K) return 1.0;
+  if (temperature_K >= jc.melting_temperature_K) return 0.0;
+  const double homologous =
+      (temperature_K - jc.room_temperature_K) / (jc.melting_temperature_K - jc.room_temperature_K);
+  return 1 - std::pow(homologous, jc.m);
+}
+
+double johnson_cook_flow_stress(const JohnsonCookParams& jc, double plastic_strain,
+                                double strain_rate_1_s, double temperature_K) {
+  return (jc.A_Pa + jc.B_Pa * std::pow(plastic_strain, jc.n)) *
+         johnson_cook_rate_factor(jc, strain_rate_1_s) *
+         johnson_cook_thermal_factor(jc, temperature_K);
+}
+
+JohnsonCookLaw::JohnsonCookLaw(const MaterialSpec& spec)
+    : jc_(spec.johnson_cook),
+      youngs_modulus_Pa_(spec.youngs_modulus_Pa),
+      heat_capacity_J_m3K_(spec.density_kg_m3 * spec.johnson_cook.specific_heat_J_kgK) {}
+
+void JohnsonCookLaw::initialize(std::span<MaterialPointState> states) const {
+  for (auto& s : states) s = MaterialPointState{.temperature_K = jc_.initial_temperature_K};
+}
+
+double JohnsonCookLaw::plastic_increment(double trial_abs, double p, double p_n, double k) const {
+  const double E = youngs_modulus_Pa_, A = jc_.A_Pa, B = jc_.B_Pa, n = jc_.n;
+  // g(Δp) = |σ_trial| − E Δp − (A + B (p + Δp)^n) k decreases strictly and is convex (n ≤ 1);
+  // g(0) > 0 and g(hi) ≤ 0 because σ_y(p + Δp) ≥ σ_y(p).
+  const double g0 = trial_abs - (A + B * p_n) * k;
+  double lo = 0, hi = g0 / E;
+  if (B == 0 || k == 0) return hi;  // perfectly plastic at this rate and temperature
+  // First guess: the root of the tangent at Δp = 0 (the elastic-linear-hardening step); by
+  // convexity it lies left of the root and Newton then climbs monotonically onto it.
+  double dp = p > 0 ? g0 / (E + n * B * p_n / p * k) : hi;
+  for (int it = 0; it < kReturnMaxIterations; ++it) {
+    const double q = p + dp;
+    const double q_n = std::pow(q, n);
+    const double g = trial_abs - E * dp - (A + B * q_n) * k;
+    if (g > 0)
+      lo = dp;
+    else
+      hi = dp;
+    const double newton = dp + g / (E + n * B * q_n / q * k);
+    const bool inside = newton > lo && newton < hi;
+    if (std::abs(g) <= kReturnFinalStepResidual * trial_abs) return inside ? newton : dp;
+    dp = inside ? newton : 0.5 * (lo + hi);
+  }
+  return dp;
+}
+
+void JohnsonCookLaw::update(std::span<const double> strain_next, double dt_s,
+                            std::span<MaterialPointState> states,
+                            std::span<double> stress_out) const {
+  const double E = youngs_modulus_Pa_;
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    MaterialPointState& s = states[i];
+    const double trial = E * (strain_next[i] - s.back_strain);
+    const double p_n = s.plastic_strain > 0 ? std::pow(s.plastic_strain, jc_.n) : 0.0;
+    const double hardening = jc_.A_Pa + jc_.B_Pa * p_n;
+    const double thermal = johnson_cook_thermal_factor(jc_, s.temperature_K);
+    double stress = trial;
+    // The rate factor is ≥ 1: below hardening × thermal the step is elastic without the log.
+    if (std::abs(trial) > hardening * thermal) {
+      const double rate = dt_s > 0 ? (strain_next[i] - s.strain) / dt_s : 0.0;
+      const double k = johnson_cook_rate_factor(jc_, rate) * thermal;
+      if (std::abs(trial) > hardening * k) {
+        const double dp = plastic_increment(std::abs(trial), s.plastic_strain, p_n, k);
+        const double d_back = std::copysign(dp, trial);
+        stress = trial - E * d_back;
+        // Trapezoidal plastic work: work in = stored + dissipated exactly, step by step.
+        const double work = 0.5 * (s.stress_Pa + stress) * d_back;
+        s.dissipated_J_m3 += work;
+        s.heat_J_m3 += jc_.taylor_quinney * work;
+        if (jc_.adiabatic) s.temperature_K += jc_.taylor_quinney * work / heat_capacity_J_m3K_;
+        s.plastic_strain += dp;
+        s.back_strain += d_back;
+      }
+    }
+    s.strain = strain_next[i];
+    s.stress_Pa = stress;
+    stress_out[i] = stress;
+  }
+}
+
+double JohnsonCookLaw::stored_energy_J_m3(const MaterialPointState& state) const {
+  return 0.5 * state.stress_Pa * state.stress_Pa / youngs_modulus_Pa_;
+}
+
+}  // namespace shpb

@@ -1,0 +1,42 @@
+#pragma once
+// Johnson–Cook viscoplastic law (Johnson & Cook 1983, Proc. 7th Int. Symp. Ballistics, eq. 1),
+// 1D uniaxial stress, isotropic hardening:
+//   σ_y = (A + B p^n) (1 + C ln ε̇*) (1 − T*^m),  ε̇* = max(|ε̇| / ε̇0, 1),
+//   T* = (T − T_room) / (T_melt − T_room), thermal factor 1 below T_room and 0 at or above T_melt.
+// ε̇ is the total strain rate of the step, (ε_{n+1} − ε_n)/Δt; flooring ε̇* at 1 keeps the rate
+// factor ≥ 1 (no softening below the reference rate, no log of zero on unloading).
+// Adiabatic heating dT = β σ dε_p / (ρ c_p) (Taylor–Quinney β); the temperature of a step is the
+// one at its start (explicit in T, error O(Δε_p) per step and negligible at specimen step sizes).
+// Return mapping: backward Euler on p at the step's rate and temperature, safeguarded Newton.
+#include "model/material_law.hpp"
+
+namespace shpb {
+
+// The flow stress σ_y of the law above at plastic strain p, strain rate |ε̇| and temperature T.
+double johnson_cook_flow_stress(const JohnsonCookParams& jc, double plastic_strain,
+                                double strain_rate_1_s, double temperature_K);
+// The rate factor 1 + C ln ε̇* (floored) and the thermal factor 1 − T*^m (clamped to [0, 1]).
+double johnson_cook_rate_factor(const JohnsonCookParams& jc, double strain_rate_1_s);
+double johnson_cook_thermal_factor(const JohnsonCookParams& jc, double temperature_K);
+
+class JohnsonCookLaw final : public MaterialLaw {
+ public:
+  explicit JohnsonCookLaw(const MaterialSpec& spec);
+
+  void initialize(std::span<MaterialPointState> states) const override;
+  void update(std::span<const double> strain_next, double dt_s,
+              std::span<MaterialPointState> states, std::span<double> stress_out) const override;
+  double max_tangent_modulus_Pa() const override { return youngs_modulus_Pa_; }
+  double stored_energy_J_m3(const MaterialPointState& state) const override;
+
+ private:
+  // Plastic increment Δp > 0 with |σ_trial| − E Δp = (A + B (p + Δp)^n) k, k = rate × thermal;
+  // p_n = p^n is passed in (already computed for the yield check).
+  double plastic_increment(double trial_abs, double p, double p_n, double k) const;
+
+  JohnsonCookParams jc_;
+  double youngs_modulus_Pa_;
+  double heat_capacity_J_m3K_;  // ρ c_p
+};
+
+}  // namespace shpb

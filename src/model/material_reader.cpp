@@ -1,0 +1,156 @@
+#include "model/material_reader.hpp"
+
+#include "core/closest_match.hpp"
+#include "core/json_document.hpp"
+#include "model/material_law.hpp"
+#include "model/scene.hpp"
+
+namespace shpb {
+namespace {
+
+std::optional<MaterialModel> model_from_string(const std::string& s) {
+  for (auto m : {MaterialModel::kElastic, MaterialModel::kBilinear, MaterialModel::kJohnsonCook,
+                 MaterialModel::kViscoelastic})
+    if (to_string(m) == s) return m;
+  return std::nullopt;
+}
+
+std::vector<std::string> allowed_keys(MaterialModel model) {
+  std::vector<std::string> keys = {"model", "name", "density", "poisson_ratio", "source", "notes"};
+  switch (model) {
+    case MaterialModel::kElastic:
+      keys.push_back("youngs_modulus");
+      break;
+    case MaterialModel::kBilinear:
+      keys.insert(keys.end(), {"youngs_modulus", "yield_stress", "tangent_modulus"});
+      break;
+    case MaterialModel::kJohnsonCook:
+      keys.insert(keys.end(), {"youngs_modulus", "A", "B", "n", "C", "reference_strain_rate", "m",
+                               "room_temperature", "melting_temperature", "temperature",
+                               "specific_heat", "taylor_quinney", "adiabatic"});
+      break;
+    case MaterialModel::kViscoelastic:
+      keys.insert(keys.end(), {"long_term_modulus", "arms"});
+      break;
+  }
+  return keys;
+}
+
+void read_bilinear(const JsonObject& o, MaterialSpec& m) {
+  auto& p = m.bilinear;
+  p.yield_stress_Pa = o.require("yield_stress", "the initial yield stress, e.g. \"300 MPa\"")
+                          .positive_quantity(Dimension::kPressure);
+  const auto et = o.require("tangent_modulus", "the hardening slope after yield, e.g. \"1 GPa\"");
+  p.tangent_modulus_Pa = et.quantity(Dimension::kPressure);
+  if (!(p.tangent_modulus_Pa >= 0 && p.tangent_modulus_Pa < m.youngs_modulus_Pa))
+    throw et.error_with_value(JsonValue::format(p.tangent_modulus_Pa, Dimension::kPressure),
+                              "must be >= 0 and < youngs_modulus (" +
+                                  JsonValue::format(m.youngs_modulus_Pa, Dimension::kPressure) +
+                                  ")");
+}
+
+void read_johnson_cook(const JsonObject& o, MaterialSpec& m) {
+  auto& p = m.johnson_cook;
+  p.A_Pa = o.require("A", "the yield stress term, e.g. \"324 MPa\"")
+               .non_negative_quantity(Dimension::kPressure);
+  p.B_Pa = o.require("B", "the hardening modulus, e.g. \"114 MPa\"")
+               .non_negative_quantity(Dimension::kPressure);
+  p.n = o.require("n", "the hardening exponent in [0, 1]")
+            .quantity_in(Dimension::kDimensionless, 0, 1, false, false);
+  p.C =
+      o.require("C", "the strain-rate coefficient, e.g. 0.002").quantity(Dimension::kDimensionless);
+  if (auto v = o.get("reference_strain_rate"))
+    p.reference_strain_rate_1_s = v->positive_quantity(Dimension::kStrainRate);
+  p.m = o.require("m", "the thermal softening exponent, e.g. 1.34")
+            .positive_quantity(Dimension::kDimensionless);
+  if (auto v = o.get("room_temperature"))
+    p.room_temperature_K = v->positive_quantity(Dimension::kTemperature);
+  const auto melt = o.require("melting_temperature", "e.g. \"925 K\"");
+  p.melting_temperature_K = melt.quantity(Dimension::kTemperature);
+  if (!(p.melting_temperature_K > p.room_temperature_K))
+    throw melt.error_with_value(
+        JsonValue::format(p.melting_temperature_K, Dimension::kTemperature),
+        "must be > room_temperature (" +
+            JsonValue::format(p.room_temperature_K, Dimension::kTemperature) + ")");
+  p.initial_temperature_K = p.room_temperature_K;
+  if (auto v = o.get("temperature")) {
+    p.initial_temperature_K = v->positive_quantity(Dimension::kTemperature);
+    if (!(p.initial_temperature_K < p.melting_temperature_K))
+      throw v->error_with_value(JsonValue::format(p.initial_temperature_K, Dimension::kTemperature),
+                                "must be below melting_temperature");
+  }
+  if (auto v = o.get("adiabatic")) p.adiabatic = v->boolean();
+  if (auto v = o.get("taylor_quinney"))
+    p.taylor_quinney = v->quantity_in(Dimension::kDimensionless, 0, 1, false, false);
+  if (p.adiabatic || o.has("specific_heat"))
+    p.specific_heat_J_kgK =
+        o.require("specific_heat", "needed for adiabatic heating, e.g. \"885 J/(kg K)\"")
+            .positive_quantity(Dimension::kSpecificHeat);
+}
+
+void read_viscoelastic(const JsonObject& o, MaterialSpec& m) {
+  auto& p = m.viscoelastic;
+  p.long_term_modulus_Pa = o.require("long_term_modulus", "E_inf, e.g. \"2 GPa\"")
+                               .positive_quantity(Dimension::kPressure);
+  const auto arms = o.require("arms", "a list of {\"modulus\", \"relaxation_time\"}");
+  const auto items = arms.array();
+  if (items.size() > static_cast<std::size_t>(MaterialPointState::kMaxArms))
+    throw arms.error_with_value(std::to_string(items.size()) + " arms",
+                                "at most " + std::to_string(MaterialPointState::kMaxArms));
+  m.youngs_modulus_Pa = p.long_term_modulus_Pa;
+  for (const auto& item : items) {
+    const auto a = item.object({"modulus", "relaxation_time"});
+    MaxwellArm arm;
+    arm.modulus_Pa = a.require("modulus", "e.g. \"1 GPa\"").positive_quantity(Dimension::kPressure);
+    arm.relaxation_time_s =
+        a.require("relaxation_time", "e.g. \"10 us\"").positive_quantity(Dimension::kTime);
+    p.arms.push_back(arm);
+    m.youngs_modulus_Pa += arm.modulus_Pa;  // instantaneous modulus E_inf + ΣE_k
+  }
+}
+
+}  // namespace
+
+MaterialSpec read_material(const JsonValue& value, const std::string& name) {
+  if (!value.is_object()) throw value.error("expected a material object { \"model\": ..., ... }");
+  MaterialSpec m;
+  m.name = name;
+  const auto model_value = JsonObject(value).require(
+      "model", "\"elastic\", \"bilinear\", \"johnson-cook\" or \"viscoelastic\"");
+  const std::string model_text = model_value.string();
+  const auto model = model_from_string(model_text);
+  if (!model)
+    throw model_value.error(
+        suggestion_text(model_text, {"elastic", "bilinear", "johnson-cook", "viscoelastic"}));
+  m.model = *model;
+
+  if (m.model == MaterialModel::kViscoelastic)
+    if (auto e = JsonObject(value).get("youngs_modulus"))
+      throw e->error(
+          "not an input of the viscoelastic model: E = long_term_modulus + sum of arm moduli");
+  const JsonObject o = value.object(allowed_keys(m.model));
+  if (auto v = o.get("source")) m.source = v->string();
+  if (auto v = o.get("notes")) v->string();
+  if (auto v = o.get("name")) v->string();
+  m.density_kg_m3 =
+      o.require("density", "e.g. \"7.85 g/cm3\"").positive_quantity(Dimension::kDensity);
+  if (m.model == MaterialModel::kViscoelastic) {
+    read_viscoelastic(o, m);
+  } else {
+    m.youngs_modulus_Pa =
+        o.require("youngs_modulus", "e.g. \"200 GPa\"").positive_quantity(Dimension::kPressure);
+  }
+  const auto nu = o.require("poisson_ratio", "e.g. 0.3");
+  m.poisson_ratio = nu.quantity_in(Dimension::kDimensionless, -1, 0.5, true, true);
+
+  if (m.model == MaterialModel::kBilinear) read_bilinear(o, m);
+  if (m.model == MaterialModel::kJohnsonCook) read_johnson_cook(o, m);
+  return m;
+}
+
+MaterialSpec read_material_file(const std::filesystem::path& file, const std::string& display) {
+  const nlohmann::json j = read_json_object_file(file, display);
+  return read_material(JsonValue(j, display, ""), display);
+}
+
+}  // namespace shpb

@@ -1,0 +1,135 @@
+#include "model/measurement_reader.hpp"
+
+#include "core/closest_match.hpp"
+
+namespace shpb {
+namespace {
+
+template <typename Enum>
+Enum enum_from(const JsonValue& v, const std::vector<std::pair<std::string, Enum>>& table) {
+  const std::string s = v.string();
+  std::vector<std::string> names;
+  for (const auto& [name, e] : table) {
+    if (name == s) return e;
+    names.push_back(name);
+  }
+  throw v.error(suggestion_text(s, names));
+}
+
+ColumnRef read_column(const JsonValue& v) {
+  ColumnRef c;
+  if (v.is_string())
+    c.name = v.name();
+  else if (v.is_number())
+    c.index = static_cast<int>(v.integer(0, 100000));
+  else
+    throw v.error("expected a column name (string) or a 0-based column index (integer)");
+  return c;
+}
+
+BridgeSpec read_bridge(const JsonValue& v) {
+  const auto o = v.object({"arms", "gauge_factor", "excitation", "gain"});
+  BridgeSpec b;
+  const auto arms = o.require("arms", "active arms of the Wheatstone bridge: 1, 2 or 4");
+  b.arms = static_cast<int>(arms.integer(1, 4));
+  if (b.arms == 3) throw arms.error("must be 1 (quarter bridge), 2 (half) or 4 (full)");
+  b.gauge_factor =
+      o.require("gauge_factor", "e.g. 2.06").positive_quantity(Dimension::kDimensionless);
+  b.excitation_V = o.require("excitation", "e.g. \"8 V\"").positive_quantity(Dimension::kVoltage);
+  if (auto g = o.get("gain")) b.gain = g->positive_quantity(Dimension::kDimensionless);
+  return b;
+}
+
+TimeWindow read_window(const JsonValue& v) {
+  const auto items = v.array();
+  if (items.size() != 2) throw v.error("expected [start, end], e.g. [\"20 us\", \"120 us\"]");
+  TimeWindow w{items[0].quantity(Dimension::kTime), items[1].quantity(Dimension::kTime)};
+  if (!(w.end_s > w.start_s)) throw v.error("the end must come after the start");
+  return w;
+}
+
+ChannelSpec read_channel(const JsonValue& v, const std::filesystem::path& scene_dir,
+                         const std::vector<std::string>& gauges) {
+  const auto o = v.object({"gauge", "file", "column", "unit", "bridge", "invert"});
+  ChannelSpec c;
+  const auto gauge = o.require("gauge", "the name of a gauge in bars[].gauges");
+  c.gauge = gauge.string();
+  bool known = false;
+  for (const auto& g : gauges) known = known || g == c.gauge;
+  if (!known)
+    throw gauge.error(gauges.empty() ? "the scene has no gauges"
+                                     : "no such gauge; " + suggestion_text(c.gauge, gauges));
+  if (auto f = o.get("file")) c.file = (scene_dir / f->name()).lexically_normal();
+  if (auto col = o.get("column")) c.column = read_column(*col);
+  const auto unit = o.require("unit", "\"V\", \"strain\" or \"microstrain\"");
+  c.unit = enum_from<SignalUnit>(unit, {{"V", SignalUnit::kVolt},
+                                        {"strain", SignalUnit::kStrain},
+                                        {"microstrain", SignalUnit::kMicrostrain}});
+  if (auto b = o.get("bridge")) {
+    if (c.unit != SignalUnit::kVolt)
+      throw b->error("a bridge converts volts; it applies only to \"unit\": \"V\"");
+    c.bridge = read_bridge(*b);
+  } else if (c.unit == SignalUnit::kVolt) {
+    throw input_error(v.file(), json_child_path(v.path(), "bridge"), "(missing)",
+                      "required for \"unit\": \"V\": {\"arms\", \"gauge_factor\", \"excitation\", "
+                      "\"gain\"}");
+  }
+  if (auto i = o.get("invert")) c.invert = i->boolean();
+  return c;
+}
+
+DispersionSpec read_dispersion(const JsonValue& v) {
+  const auto o = v.object({"correction", "amplitude_factors", "cutoff"});
+  DispersionSpec d;
+  if (auto c = o.get("correction"))
+    d.correction = enum_from<bool>(*c, {{"pochhammer-chree", true}, {"none", false}});
+  if (auto a = o.get("amplitude_factors")) d.amplitude_factors = a->boolean();
+  if (auto c = o.get("cutoff")) d.cutoff_Hz = c->positive_quantity(Dimension::kFrequency);
+  return d;
+}
+
+}  // namespace
+
+MeasurementSpec read_measurement(const JsonValue& value, const std::filesystem::path& scene_dir,
+                                 const std::vector<std::string>& gauges) {
+  const auto o = value.object(
+      {"file", "format", "time", "channels", "dispersion", "windows", "striker_velocity", "notes"});
+  MeasurementSpec m;
+  if (auto f = o.get("file")) m.file = (scene_dir / f->name()).lexically_normal();
+  if (auto f = o.get("format"))
+    m.format = enum_from<SignalFormat>(*f, {{"auto", SignalFormat::kAuto},
+                                            {"csv", SignalFormat::kCsv},
+                                            {"tektronix", SignalFormat::kTektronix},
+                                            {"lanl-raw", SignalFormat::kLanlRaw}});
+  if (auto t = o.get("time")) {
+    const auto to = t->object({"column", "unit"});
+    if (auto c = to.get("column")) m.time_column = read_column(*c);
+    if (auto u = to.get("unit")) {
+      const std::string unit = u->string();
+      try {
+        m.time_unit_s = parse_quantity("1 " + unit, Dimension::kTime);
+      } catch (const std::invalid_argument& e) {
+        throw u->error(e.what());
+      }
+    }
+  }
+  const auto channels = o.require("channels", "a list of {\"gauge\", \"column\", \"unit\", ...}");
+  for (const auto& ch : channels.array()) m.channels.push_back(read_channel(ch, scene_dir, gauges));
+  if (m.channels.empty()) throw channels.error("must list at least one channel");
+  for (std::size_t i = 0; i < m.channels.size(); ++i)
+    if (m.file.empty() && m.channels[i].file.empty())
+      throw input_error(value.file(), json_child_path(channels.array()[i].path(), "file"),
+                        "(missing)", "required: the channel's file, or measurement.file for all");
+  if (auto d = o.get("dispersion")) m.dispersion = read_dispersion(*d);
+  if (auto w = o.get("windows")) {
+    const auto wo = w->object({"incident", "reflected", "transmitted"});
+    if (auto x = wo.get("incident")) m.windows.incident = read_window(*x);
+    if (auto x = wo.get("reflected")) m.windows.reflected = read_window(*x);
+    if (auto x = wo.get("transmitted")) m.windows.transmitted = read_window(*x);
+  }
+  if (auto s = o.get("striker_velocity"))
+    m.striker_velocity_m_s = s->positive_quantity(Dimension::kVelocity);
+  return m;
+}
+
+}  // namespace shpb

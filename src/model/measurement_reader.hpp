@@ -1,0 +1,18 @@
+#pragma once
+// Reads the `measurement` block of a scene (DESIGN.md §3): where measured gauge signals are and how
+// to turn them into strain. Files are resolved relative to the scene but not opened here, so a
+// scene whose data live elsewhere still validates; the signal importers check them when used.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/json_value.hpp"
+#include "model/scene.hpp"
+
+namespace shpb {
+
+// `gauges` are the gauge names of the scene (channels must name one of them).
+MeasurementSpec read_measurement(const JsonValue& value, const std::filesystem::path& scene_dir,
+                                 const std::vector<std::string>& gauges);
+
+}  // namespace shpb

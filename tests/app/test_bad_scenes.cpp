@@ -1,0 +1,326 @@
+// Bad scenes as behaviour of the real executable (DESIGN.md §2): exit code 2, one line
+// "error: <file>: <json path>: <value>: <constraint>" on stderr, and nothing written — neither the
+// output folder nor anything beside it — by every command that takes a scene.
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "run_shpb.hpp"
+
+using nlohmann::json;
+using shpb_test::run_shpb;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A valid four-bar set-up with a measurement; every case breaks one thing in it.
+json base_scene() {
+  return json::parse(R"({
+    "name": "base",
+    "bars": [
+      {"name": "striker", "material": "steel", "length": "300 mm", "diameter": "19.05 mm",
+       "velocity": "15 m/s"},
+      {"name": "incident", "material": "steel", "length": "2 m", "diameter": "19.05 mm",
+       "gauges": [{"name": "incident", "position": "1 m"}]},
+      {"name": "specimen", "material": "specimen.json", "length": "5 mm", "diameter": "10 mm"},
+      {"name": "transmitter", "material": "steel", "length": "2 m", "diameter": "19.05 mm",
+       "gauges": [{"name": "transmitted", "position": "1 m"}]}
+    ],
+    "specimen": "specimen",
+    "materials": {"steel": {"model": "elastic", "density": 8080, "youngs_modulus": "200 GPa",
+                            "poisson_ratio": 0.29}},
+    "contact": {"method": "localized-bipenalty"},
+    "simulation": {"duration": "800 us", "sample_rate": "10 MHz"},
+    "measurement": {"file": "signals.csv", "format": "csv",
+                    "time": {"column": "time_s", "unit": "s"},
+                    "channels": [{"gauge": "incident", "column": 1, "unit": "V",
+                                  "bridge": {"arms": 2, "gauge_factor": 2.1,
+                                             "excitation": "10 V", "gain": 100}},
+                                 {"gauge": "transmitted", "column": "ch2", "unit": "strain"}]}
+  })");
+}
+
+json base_specimen() {
+  return json::parse(R"js({"model": "johnson-cook", "source": "Johnson & Cook 1985",
+    "density": 2703, "youngs_modulus": "69 GPa", "poisson_ratio": 0.33, "A": "324 MPa",
+    "B": "114 MPa", "n": 0.42, "C": 0.002, "m": 1.34, "melting_temperature": "925 K",
+    "specific_heat": "885 J/(kg K)"})js");
+}
+
+struct BadScene {
+  std::string what;
+  std::function<void(json& scene, json& specimen)> breaks;  // edits the valid pair
+  std::string where;           // the JSON path (or place) the message must name
+  std::string raw_scene = {};  // when set, the scene file holds this text instead
+  std::string raw_specimen = {};
+};
+
+const std::vector<BadScene>& cases() {
+  static const std::vector<BadScene> table = {
+      {"a negative length", [](json& s, json&) { s["bars"][1]["length"] = "-5 mm"; },
+       "bars[1].length: -0.005 m: must be > 0"},
+      {"a zero length", [](json& s, json&) { s["bars"][0]["length"] = 0; }, "bars[0].length"},
+      {"a negative diameter", [](json& s, json&) { s["bars"][2]["diameter"] = "-10 mm"; },
+       "bars[2].diameter"},
+      {"a zero area",
+       [](json& s, json&) {
+         s["bars"][3].erase("diameter");
+         s["bars"][3]["area"] = "0 mm2";
+       },
+       "bars[3].area"},
+      {"both diameter and area", [](json& s, json&) { s["bars"][1]["area"] = "285 mm2"; },
+       "bars[1].area"},
+      {"no diameter or area", [](json& s, json&) { s["bars"][1].erase("diameter"); },
+       "bars[1].diameter"},
+      {"a negative density", [](json& s, json&) { s["materials"]["steel"]["density"] = -8080; },
+       "materials.steel.density"},
+      {"a zero Young's modulus",
+       [](json& s, json&) { s["materials"]["steel"]["youngs_modulus"] = "0 GPa"; },
+       "materials.steel.youngs_modulus"},
+      {"a Poisson ratio of 0.5",
+       [](json& s, json&) { s["materials"]["steel"]["poisson_ratio"] = 0.5; },
+       "materials.steel.poisson_ratio"},
+      {"a Poisson ratio of -1",
+       [](json& s, json&) { s["materials"]["steel"]["poisson_ratio"] = -1; },
+       "materials.steel.poisson_ratio"},
+      {"a gauge beyond its bar's end",
+       [](json& s, json&) { s["bars"][1]["gauges"][0]["position"] = "2.5 m"; },
+       "bars[1].gauges[0].position"},
+      {"a gauge before its bar's start",
+       [](json& s, json&) { s["bars"][3]["gauges"][0]["position"] = "-1 mm"; },
+       "bars[3].gauges[0].position"},
+      {"two bars of one name", [](json& s, json&) { s["bars"][3]["name"] = "incident"; },
+       "bars[3].name"},
+      {"two gauges of one name",
+       [](json& s, json&) { s["bars"][3]["gauges"][0]["name"] = "incident"; },
+       "bars[3].gauges[0].name"},
+      {"a gauge named like the time column",
+       [](json& s, json&) { s["bars"][1]["gauges"][0]["name"] = "time_s"; },
+       "bars[1].gauges[0].name"},
+      {"a bar name with a comma", [](json& s, json&) { s["bars"][0]["name"] = "strik,er"; },
+       "bars[0].name"},
+      {"a misspelt bar key",
+       [](json& s, json&) {
+         s["bars"][1]["lenght"] = s["bars"][1]["length"];
+         s["bars"][1].erase("length");
+       },
+       "bars[1].lenght: unknown key: did you mean \"length\"?"},
+      {"a misspelt top-level key",
+       [](json& s, json&) {
+         s["simulaton"] = s["simulation"];
+         s.erase("simulation");
+       },
+       "simulaton: unknown key: did you mean \"simulation\"?"},
+      {"a length in kilograms", [](json& s, json&) { s["bars"][1]["length"] = "2 kg"; },
+       "bars[1].length: \"2 kg\": \"kg\" is a mass"},
+      {"a density in gigapascals",
+       [](json& s, json&) { s["materials"]["steel"]["density"] = "8 GPa"; },
+       "materials.steel.density"},
+      {"a velocity in metres", [](json& s, json&) { s["bars"][0]["velocity"] = "15 m"; },
+       "bars[0].velocity"},
+      {"a length that is not a number", [](json& s, json&) { s["bars"][1]["length"] = true; },
+       "bars[1].length"},
+      {"a specimen naming no bar", [](json& s, json&) { s["specimen"] = "sample"; }, "specimen"},
+      {"a single bar", [](json& s, json&) { s["bars"] = json::array({s["bars"][0]}); }, "bars"},
+      {"no bars at all", [](json& s, json&) { s["bars"] = json::array(); }, "bars"},
+      {"no bars key", [](json& s, json&) { s.erase("bars"); }, "bars: (missing)"},
+      {"a NaN given as text", [](json& s, json&) { s["bars"][0]["velocity"] = "nan m/s"; },
+       "bars[0].velocity"},
+      {"an infinite number", nullptr, "bars[0].velocity: number overflow",
+       R"({"bars": [{"name": "s", "velocity": 1e999}]})"},
+      {"a NaN literal (not JSON)", nullptr, "line 1, column",
+       R"({"bars": [{"name": "s", "velocity": NaN}]})"},
+      {"an empty file", nullptr, "empty file", "\n  \n"},
+      {"text that is not JSON", nullptr, "line 2, column", "{\"bars\": [\n}"},
+      {"a top level that is not an object", nullptr, "(top level)", "[1, 2, 3]"},
+      {"bytes that are not UTF-8", nullptr, "line 1, column", "{\"name\": \"\xff\xfe\"}"},
+      {"a byte-order mark and two documents", nullptr, "line 2, column 1",
+       "\xef\xbb\xbf{\"bars\": []}\n{\"bars\": []}"},
+      {"a duplicate key", nullptr, "bars[0].name: duplicate key",
+       R"({"bars": [{"name": "a", "name": "b"}]})"},
+      {"a missing material file",
+       [](json& s, json&) { s["bars"][2]["material"] = "no-such-specimen.json"; },
+       "bars[2].material"},
+      {"a material naming nothing", [](json& s, json&) { s["bars"][1]["material"] = "stel"; },
+       "bars[1].material: \"stel\": no such material in materials; did you mean \"steel\"?"},
+      {"a material file that is not JSON", nullptr, "specimen.json: line 1, column", "",
+       "{\"model\": \"johnson-cook\", }"},
+      {"an unknown material model",
+       [](json& s, json&) { s["materials"]["steel"]["model"] = "elastc"; },
+       "materials.steel.model: \"elastc\": did you mean \"elastic\"?"},
+      {"a key of another material model", [](json&, json& m) { m["yield_stress"] = "300 MPa"; },
+       "yield_stress: unknown key"},
+      {"a Johnson-Cook n above 1", [](json&, json& m) { m["n"] = 1.5; }, "specimen.json: n: 1.5"},
+      {"a negative Johnson-Cook B", [](json&, json& m) { m["B"] = "-1 MPa"; }, "specimen.json: B"},
+      {"a zero Johnson-Cook m", [](json&, json& m) { m["m"] = 0; }, "specimen.json: m"},
+      {"a melting point below room temperature",
+       [](json&, json& m) { m["melting_temperature"] = "10 degC"; },
+       "specimen.json: melting_temperature"},
+      {"a Taylor-Quinney factor above 1", [](json&, json& m) { m["taylor_quinney"] = 1.2; },
+       "specimen.json: taylor_quinney"},
+      {"a zero specific heat", [](json&, json& m) { m["specific_heat"] = 0; },
+       "specimen.json: specific_heat"},
+      {"a missing Johnson-Cook constant", [](json&, json& m) { m.erase("A"); },
+       "specimen.json: A: (missing)"},
+      {"a bilinear tangent modulus above E",
+       [](json& s, json&) {
+         s["materials"]["steel"]["model"] = "bilinear";
+         s["materials"]["steel"]["yield_stress"] = "1 GPa";
+         s["materials"]["steel"]["tangent_modulus"] = "300 GPa";
+       },
+       "materials.steel.tangent_modulus"},
+      {"a viscoelastic arm with zero relaxation time",
+       [](json&, json& m) {
+         m = {{"model", "viscoelastic"},
+              {"density", 1190},
+              {"poisson_ratio", 0.35},
+              {"long_term_modulus", "2 GPa"},
+              {"arms", {{{"modulus", "1 GPa"}, {"relaxation_time", 0}}}}};
+       },
+       "specimen.json: arms[0].relaxation_time"},
+      {"nine viscoelastic arms",
+       [](json&, json& m) {
+         m = {{"model", "viscoelastic"},
+              {"density", 1190},
+              {"poisson_ratio", 0.35},
+              {"long_term_modulus", "2 GPa"},
+              {"arms", json::array()}};
+         for (int k = 0; k < 9; ++k)
+           m["arms"].push_back({{"modulus", "1 GPa"}, {"relaxation_time", "1 us"}});
+       },
+       "specimen.json: arms: 9 arms: at most 8"},
+      {"an unknown contact method", [](json& s, json&) { s["contact"]["method"] = "bipenalti"; },
+       "contact.method: \"bipenalti\": did you mean \"bipenalty\"?"},
+      {"an interface between bars that do not touch",
+       [](json& s, json&) {
+         s["contact"]["interfaces"] = {{{"between", {"striker", "specimen"}}}};
+       },
+       "contact.interfaces[0].between"},
+      {"a negative penalty stiffness",
+       [](json& s, json&) { s["contact"]["stiffness"] = "-1e9 N/m"; }, "contact.stiffness"},
+      {"a Courant number above 1", [](json& s, json&) { s["simulation"]["courant"] = 1.5; },
+       "simulation.courant: 1.5: must be in (0, 1]"},
+      {"a negative duration", [](json& s, json&) { s["simulation"]["duration"] = "-800 us"; },
+       "simulation.duration"},
+      {"a sample rate in seconds", [](json& s, json&) { s["simulation"]["sample_rate"] = "10 us"; },
+       "simulation.sample_rate"},
+      {"a misspelt stepping", [](json& s, json&) { s["simulation"]["stepping"] = "asynchronus"; },
+       "simulation.stepping: \"asynchronus\": did you mean \"asynchronous\"?"},
+      {"a fractional element count", [](json& s, json&) { s["bars"][1]["elements"] = 2.5; },
+       "bars[1].elements"},
+      {"a gap after the last bar", [](json& s, json&) { s["bars"][3]["gap"] = "1 mm"; },
+       "bars[3].gap"},
+      {"a channel naming no gauge",
+       [](json& s, json&) { s["measurement"]["channels"][0]["gauge"] = "incidnet"; },
+       "measurement.channels[0].gauge: \"incidnet\": no such gauge; did you mean \"incident\"?"},
+      {"volts without a bridge",
+       [](json& s, json&) { s["measurement"]["channels"][0].erase("bridge"); },
+       "measurement.channels[0].bridge: (missing)"},
+      {"a three-arm bridge",
+       [](json& s, json&) { s["measurement"]["channels"][0]["bridge"]["arms"] = 3; },
+       "measurement.channels[0].bridge.arms"},
+      {"an unknown signal format", [](json& s, json&) { s["measurement"]["format"] = "tek"; },
+       "measurement.format"},
+      {"a pulse window ending before it starts",
+       [](json& s, json&) {
+         s["measurement"]["windows"]["incident"] = {"120 us", "20 us"};
+       },
+       "measurement.windows.incident"},
+      {"a channel without any file", [](json& s, json&) { s["measurement"].erase("file"); },
+       "measurement.channels[0].file: (missing)"},
+  };
+  return table;
+}
+
+std::set<std::string> listing(const fs::path& dir) {
+  std::set<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir)) names.insert(e.path().filename().string());
+  return names;
+}
+
+// Writes case `index` into its own folder and returns the scene file.
+fs::path prepare(const fs::path& root, std::size_t index) {
+  const auto& c = cases()[index];
+  const auto dir = root / ("case" + std::to_string(index));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  json scene = base_scene(), specimen = base_specimen();
+  if (c.breaks) c.breaks(scene, specimen);
+  std::ofstream(dir / "scene.json") << (c.raw_scene.empty() ? scene.dump(2) : c.raw_scene);
+  std::ofstream(dir / "specimen.json")
+      << (c.raw_specimen.empty() ? specimen.dump(2) : c.raw_specimen);
+  return dir / "scene.json";
+}
+
+// A command that writes an output folder must refuse a bad scene before creating anything.
+void check_writes_nothing(const std::string& command) {
+  const auto root = shpb_test::scratch_dir("bad_scenes_" + command);
+  for (std::size_t i = 0; i < cases().size(); ++i) {
+    INFO("bad scene: " << cases()[i].what << "; command: " << command);
+    const auto scene_file = prepare(root, i);
+    const auto dir = scene_file.parent_path();
+    const auto before = listing(dir);
+    const auto output = dir / "out";
+    CHECK(run_shpb({command, scene_file.string(), "-o", output.string()}).code == 2);
+    CHECK_FALSE(fs::exists(output));
+    CHECK(listing(dir) == before);  // no temporary folder left beside the output either
+  }
+  fs::remove_all(root);
+}
+
+}  // namespace
+
+TEST_CASE("The valid base scene of the bad-scene table validates", "[app][bad-scenes]") {
+  const auto dir = shpb_test::scratch_dir("bad_scenes_base");
+  std::ofstream(dir / "scene.json") << base_scene().dump(2);
+  std::ofstream(dir / "specimen.json") << base_specimen().dump(2);
+  const auto r = run_shpb({"validate", (dir / "scene.json").string()});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+}
+
+TEST_CASE("Every bad scene exits 2 with one line naming the file and the JSON path",
+          "[app][bad-scenes]") {
+  REQUIRE(cases().size() >= 30);
+  const auto root = shpb_test::scratch_dir("bad_scenes_validate");
+  for (std::size_t i = 0; i < cases().size(); ++i) {
+    const auto& c = cases()[i];
+    INFO("bad scene: " << c.what);
+    const auto scene_file = prepare(root, i);
+    const auto dir = scene_file.parent_path();
+    const auto before = listing(dir);
+    const auto r = run_shpb({"validate", scene_file.string()});
+    const std::string& message = r.err;
+    INFO("stderr: " << message);
+    CHECK(r.code == 2);
+    CHECK(message.rfind("error: " + scene_file.parent_path().string(), 0) == 0);
+    CHECK(message.find(c.where) != std::string::npos);
+    CHECK(std::count(message.begin(), message.end(), '\n') == 1);  // one line
+    CHECK(std::none_of(message.begin(), message.end(),             // printable: no raw bytes echoed
+                       [](char ch) { return static_cast<unsigned char>(ch) >= 0xF8; }));
+    CHECK(r.out.empty());
+    CHECK(listing(dir) == before);
+  }
+  fs::remove_all(root);
+}
+
+TEST_CASE("simulate writes nothing for a bad scene", "[app][bad-scenes]") {
+  check_writes_nothing("simulate");
+}
+TEST_CASE("process writes nothing for a bad scene", "[app][bad-scenes]") {
+  check_writes_nothing("process");
+}
+TEST_CASE("compare writes nothing for a bad scene", "[app][bad-scenes]") {
+  check_writes_nothing("compare");
+}
+TEST_CASE("study writes nothing for a bad scene", "[app][bad-scenes]") {
+  check_writes_nothing("study");
+}

@@ -1,0 +1,124 @@
+// The command line as users meet it (DESIGN.md §2): `shpb --help` and `shpb <command> --help`
+// describe every subcommand and option; usage errors exit 2 with one "error:" line.
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "run_shpb.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using shpb_test::run_shpb;
+
+// Splits a command line at spaces (the tests' arguments contain none inside one argument).
+shpb_test::RunResult shpb(const std::string& args) {
+  std::vector<std::string> v;
+  std::stringstream s(args);
+  for (std::string a; s >> a;) v.push_back(a);
+  return run_shpb(v);
+}
+
+std::vector<std::string> lines(const std::string& text) {
+  std::vector<std::string> v;
+  std::stringstream s(text);
+  for (std::string l; std::getline(s, l);) v.push_back(l);
+  return v;
+}
+
+// Every entry of the "Options:", "Positionals:" and "Subcommands:" lists carries a description,
+// on its own line (after two spaces) or, for long signatures, on the next, indented line.
+std::vector<std::string> undescribed_entries(const std::string& help) {
+  std::vector<std::string> bad;
+  const auto ls = lines(help);
+  bool in_list = false;
+  for (std::size_t i = 0; i < ls.size(); ++i) {
+    const auto& l = ls[i];
+    if (l == "Options:" || l == "Positionals:" || l == "Subcommands:") {
+      in_list = true;
+      continue;
+    }
+    if (l.empty() || l[0] != ' ') {
+      in_list = false;
+      continue;
+    }
+    if (!in_list || l.rfind("  ", 0) != 0 || l.size() < 3 || l[2] == ' ') continue;
+    const auto gap = l.find("  ", 2);
+    const bool same_line =
+        gap != std::string::npos && l.find_first_not_of(' ', gap) != std::string::npos;
+    const bool next_line = i + 1 < ls.size() && ls[i + 1].rfind("          ", 0) == 0 &&
+                           ls[i + 1].find_first_not_of(' ') != std::string::npos;
+    if (!same_line && !next_line) bad.push_back(l);
+  }
+  return bad;
+}
+
+const std::vector<std::string> kCommands = {"simulate", "process",  "compare", "dispersion",
+                                            "study",    "validate", "report"};
+
+}  // namespace
+
+TEST_CASE("shpb --help lists every subcommand with a description", "[app][cli]") {
+  const auto r = shpb("--help");
+  REQUIRE(r.code == 0);
+  for (const auto& c : kCommands) {
+    INFO(c);
+    CHECK(r.out.find("\n  " + c + " ") != std::string::npos);
+  }
+  CHECK(undescribed_entries(r.out).empty());
+}
+
+TEST_CASE("Every subcommand's --help describes every option", "[app][cli]") {
+  for (const auto& c : kCommands) {
+    INFO(c);
+    const auto r = shpb(c + " --help");
+    CHECK(r.code == 0);
+    CHECK(r.out.find("Usage:") != std::string::npos);
+    CHECK(r.out.find("Options:") != std::string::npos);
+    const auto bad = undescribed_entries(r.out);
+    for (const auto& b : bad) INFO("undescribed: " << b);
+    CHECK(bad.empty());
+  }
+}
+
+TEST_CASE("The run options of DESIGN.md are on simulate, compare, study and validate",
+          "[app][cli]") {
+  for (const char* c : {"simulate", "compare", "study", "validate"}) {
+    INFO(c);
+    const auto r = shpb(std::string(c) + " --help");
+    for (const char* option : {"--contact", "--stepping", "--courant", "--threads", "--quiet"}) {
+      INFO(option);
+      CHECK(r.out.find(option) != std::string::npos);
+    }
+  }
+  const auto v = shpb("validate --help");
+  CHECK(v.out.find("--json") != std::string::npos);
+  CHECK(v.out.find("localized-bipenalty") != std::string::npos);
+}
+
+TEST_CASE("Usage errors exit 2 with one error line", "[app][cli]") {
+  for (const char* args : {"", "validate", "validate --bogus scene.json", "frobnicate",
+                           "validate scene.json --contact springs", "simulate scene.json"}) {
+    INFO("shpb " << args);
+    const auto r = shpb(args);
+    CHECK(r.code == 2);
+    CHECK(r.err.rfind("error: ", 0) == 0);
+    CHECK(lines(r.err).size() == 1);
+    CHECK(r.out.empty());
+  }
+}
+
+TEST_CASE("A scene file that does not exist is an input error naming it", "[app][cli]") {
+  const auto r = shpb("validate /nonexistent/scene.json");
+  CHECK(r.code == 2);
+  CHECK(r.err == "error: /nonexistent/scene.json: no such file: expected an existing JSON file\n");
+}
+
+TEST_CASE("shpb --version names the program", "[app][cli]") {
+  const auto r = shpb("--version");
+  CHECK(r.code == 0);
+  CHECK(r.out.rfind("shpb ", 0) == 0);
+}

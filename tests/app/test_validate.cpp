@@ -1,0 +1,151 @@
+// `shpb validate --json` prints the resolved set-up: the same mesh and steps as discretize()
+// (what simulate uses), wave speeds and impedances from the materials (METHODS.md notation:
+// c0 = sqrt(E/ρ), Z = ρ c0 A, C = c0 Δt / h) and gauge distances to the specimen faces.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "model/discretization.hpp"
+#include "run_shpb.hpp"
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+using namespace shpb;
+
+namespace {
+// Values pass through JSON text as shortest round-trip doubles: agreement to round-off.
+constexpr double kRoundOff = 1e-12;
+
+json validate_json(const fs::path& scene, std::vector<std::string> options = {}) {
+  options.insert(options.begin(), {"validate", "--json"});
+  options.push_back(scene.string());
+  const auto r = shpb_test::run_shpb(options);
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  return json::parse(r.out);
+}
+}  // namespace
+
+TEST_CASE("validate --json reports what discretize() gives simulate", "[app][validate]") {
+  const auto file = fs::path(SHPB_SOURCE_DIR) / "experiments/classic-al6061/scene.json";
+  const json v = validate_json(file);
+  const Scene scene = read_scene(file);
+  const ChainDiscretization d = discretize(scene);
+  REQUIRE(v["bars"].size() == scene.bars.size());
+  for (std::size_t i = 0; i < scene.bars.size(); ++i) {
+    const auto& b = v["bars"][i];
+    INFO(b["name"]);
+    CHECK(b["elements"] == d.bars[i].elements);
+    CHECK(b["time_step_s"].get<double>() == Approx(d.bars[i].time_step_s).epsilon(kRoundOff));
+    CHECK(b["courant"].get<double>() == Approx(d.bars[i].courant).epsilon(kRoundOff));
+    // C = c0 Δt / h, with c0 = sqrt(E/ρ) and Z = ρ c0 A.
+    const double c0 =
+        std::sqrt(b["youngs_modulus_Pa"].get<double>() / b["density_kg_m3"].get<double>());
+    CHECK(b["wave_speed_m_s"].get<double>() == Approx(c0).epsilon(kRoundOff));
+    CHECK(b["impedance_kg_s"].get<double>() ==
+          Approx(b["density_kg_m3"].get<double>() * c0 * b["area_m2"].get<double>())
+              .epsilon(kRoundOff));
+    CHECK(b["courant"].get<double>() ==
+          Approx(c0 * b["time_step_s"].get<double>() / b["element_length_m"].get<double>())
+              .epsilon(kRoundOff));
+    CHECK(b["elements"].get<int>() * b["element_length_m"].get<double>() ==
+          Approx(b["length_m"].get<double>()).epsilon(kRoundOff));
+  }
+  // Maraging steel: c0 = sqrt(200e9 / 8080) = 4975.2 m/s.
+  CHECK(v["bars"][1]["wave_speed_m_s"].get<double>() == Approx(4975.2).epsilon(1e-5));
+  CHECK(v["specimen"] == "specimen");
+  CHECK(v["duration_s"].get<double>() == Approx(800e-6).epsilon(kRoundOff));
+  CHECK(v["sample_rate_Hz"].get<double>() == 10e6);
+  REQUIRE(v["gauges"].size() == 2);
+  CHECK(v["gauges"][0]["distance_to_specimen_m"].get<double>() == Approx(1.0).epsilon(kRoundOff));
+  CHECK(v["gauges"][1]["distance_to_specimen_m"].get<double>() == Approx(1.0).epsilon(kRoundOff));
+  REQUIRE(v["interfaces"].size() == 3);
+  CHECK(v["interfaces"][0]["method"] == "localized-bipenalty");
+}
+
+TEST_CASE("validate applies --contact, --stepping and --courant as simulate would",
+          "[app][validate]") {
+  const auto file = fs::path(SHPB_SOURCE_DIR) / "experiments/striker-on-bar/scene.json";
+  const json v =
+      validate_json(file, {"--contact", "penalty", "--stepping", "global", "--courant", "0.5"});
+  CHECK(v["stepping"] == "global");
+  CHECK(v["interfaces"][0]["method"] == "penalty");
+  // Global stepping: every bar takes the same (smallest) step.
+  const double dt = v["bars"][0]["time_step_s"].get<double>();
+  for (const auto& b : v["bars"]) CHECK(b["time_step_s"].get<double>() == dt);
+}
+
+TEST_CASE("validate warns when pulses overlap at a gauge or the duration is too short",
+          "[app][validate]") {
+  // Identical steel bars, 0.3 m striker: the incident pulse is 2 × 0.3 m long, so a gauge closer
+  // than 0.3 m to the specimen sees incident and reflected pulses overlap (METHODS.md §4).
+  auto scene = [](const std::string& gauge_to_face, const std::string& duration) {
+    return R"({"bars": [
+      {"name": "s", "material": "steel", "length": "0.3 m", "diameter": 0.02, "velocity": 10},
+      {"name": "i", "material": "steel", "length": "2 m", "diameter": 0.02,
+       "gauges": [{"name": "g1", "position": ")" +
+           gauge_to_face + R"("}]},
+      {"name": "x", "material": "steel", "length": "5 mm", "diameter": 0.01},
+      {"name": "t", "material": "steel", "length": "2 m", "diameter": 0.02,
+       "gauges": [{"name": "g2", "position": "1 m"}]}],
+      "specimen": "x",
+      "materials": {"steel": {"model": "elastic", "density": 7850, "youngs_modulus": 2e11,
+                              "poisson_ratio": 0.29}},
+      "simulation": {"duration": ")" +
+           duration + R"("}})";
+  };
+  const auto dir = shpb_test::scratch_dir("validate_warnings");
+  auto warnings = [&](const std::string& text) {
+    std::ofstream(dir / "scene.json") << text;
+    return validate_json(dir / "scene.json")["warnings"];
+  };
+  // Gauge 0.35 m from the specimen (position 1.65 m): 0.7 m round trip > 0.6 m pulse.
+  CHECK(warnings(scene("1.65 m", "1 ms")).empty());
+  // Gauge 0.25 m from the specimen: 0.5 m round trip < 0.6 m pulse.
+  const json overlap = warnings(scene("1.75 m", "1 ms"));
+  REQUIRE(overlap.size() == 1);
+  CHECK(overlap[0].get<std::string>().find("gauge g1: incident and reflected pulses overlap") == 0);
+  // The transmitted pulse passes g2 at about (2 + 0.005 + 1) m / c0 + 119 us = 714 us.
+  const json short_run = warnings(scene("1 m", "600 us"));
+  REQUIRE(short_run.size() == 1);
+  CHECK(short_run[0].get<std::string>().find("duration 600.0 us ends before") == 0);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("validate reports penalty links that keep every bar's own time step", "[app][validate]") {
+  // Bipenalty with R = ε_s/ε_m ≤ R_crit = (2 c0/h)² leaves the bar's critical step unchanged
+  // for any ε_s (METHODS.md §2): each link of the localized interfaces must respect its bar's.
+  const json v = validate_json(fs::path(SHPB_SOURCE_DIR) / "experiments/classic-al6061/scene.json");
+  for (std::size_t k = 0; k < v["interfaces"].size(); ++k) {
+    const auto& i = v["interfaces"][k];
+    INFO(i["left"] << " | " << i["right"]);
+    REQUIRE(i["link_stiffness_N_m"].size() == 2);
+    for (std::size_t side = 0; side < 2; ++side) {
+      const auto& bar = v["bars"][k + side];
+      const double r_crit = std::pow(
+          2 * bar["wave_speed_m_s"].get<double>() / bar["element_length_m"].get<double>(), 2);
+      const double r = i["link_stiffness_N_m"][side].get<double>() /
+                       i["link_mass_penalty_kg"][side].get<double>();
+      CHECK(r > 0);
+      CHECK(r <= r_crit * (1 + kRoundOff));
+    }
+  }
+}
+
+TEST_CASE("validate reports a penalty stiffness given per interface as is", "[app][validate]") {
+  const auto dir = shpb_test::scratch_dir("validate_stiffness");
+  std::ofstream(dir / "scene.json") << R"({"bars": [
+      {"name": "s", "material": "steel", "length": 0.3, "diameter": 0.02, "velocity": 10},
+      {"name": "b", "material": "steel", "length": 1.5, "diameter": 0.02}],
+    "materials": {"steel": {"model": "elastic", "density": 7850, "youngs_modulus": 2e11,
+                            "poisson_ratio": 0.29}},
+    "contact": {"method": "penalty",
+                "interfaces": [{"between": ["s", "b"], "stiffness": "3e9 N/m"}]}})";
+  const json v = validate_json(dir / "scene.json");
+  CHECK(v["interfaces"][0]["method"] == "penalty");
+  CHECK(v["interfaces"][0]["link_stiffness_N_m"][0].get<double>() == 3e9);
+  CHECK(v["interfaces"][0]["link_mass_penalty_kg"][0].get<double>() == 0);  // no mass penalty
+  fs::remove_all(dir);
+}

@@ -1,0 +1,223 @@
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "core/error.hpp"
+#include "model/scene.hpp"
+
+using namespace shpb;
+namespace fs = std::filesystem;
+
+namespace {
+// Unit conversions multiply exact decimal factors: equal to a few ulps.
+constexpr double kUlps = 1e-14;
+
+// A fresh folder per test case (and per process: tests run in parallel) for scenes and material
+// files, removed at the end.
+struct Scratch {
+  explicit Scratch(const std::string& name)
+      : dir(fs::temp_directory_path() /
+            ("shpb_test_scene_reader_" + name + "_" + std::to_string(::getpid()))) {
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+  }
+  ~Scratch() { fs::remove_all(dir); }
+  fs::path dir;
+};
+
+void write(const fs::path& file, const std::string& text) {
+  fs::create_directories(file.parent_path());
+  std::ofstream(file) << text;
+}
+
+std::string error_of(const fs::path& file) {
+  try {
+    read_scene(file);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+const char* kSteel = R"("steel": {"model": "elastic", "density": "7.85 g/cm3",
+                                  "youngs_modulus": "200 GPa", "poisson_ratio": 0.29})";
+}  // namespace
+
+TEST_CASE("The classic experiment reads with every value in SI", "[model][scene]") {
+  const Scene s = read_scene(fs::path(SHPB_SOURCE_DIR) / "experiments/classic-al6061/scene.json");
+  REQUIRE(s.bars.size() == 4);
+  CHECK(s.name == "Al 6061-T6 at about 2000/s");
+  CHECK(s.bars[0].name == "striker");
+  CHECK(s.bars[0].velocity_m_s == 15);
+  CHECK(s.bars[0].length_m == Approx(0.3).epsilon(kUlps));
+  CHECK(s.bars[1].diameter_m == Approx(0.01905).epsilon(kUlps));
+  CHECK(s.bars[1].area_m2 == Approx(M_PI * 0.01905 * 0.01905 / 4).epsilon(kUlps));
+  CHECK(s.bars[1].material.youngs_modulus_Pa == 200e9);
+  CHECK(s.bars[1].material.density_kg_m3 == 8080);
+  CHECK(s.bars[1].material.poisson_ratio == 0.29);
+  REQUIRE(s.bars[1].gauges.size() == 1);
+  CHECK(s.bars[1].gauges[0].name == "incident");
+  CHECK(s.bars[1].gauges[0].position_m == 1);
+  REQUIRE(s.specimen == 2u);
+  CHECK(s.incident_bar() == 1u);
+  CHECK(s.transmitter_bar() == 3u);
+
+  // The specimen file: Johnson & Cook 1985 constants for Al 6061-T6 (DESIGN.md §3).
+  const auto& al = s.bars[2].material;
+  CHECK(al.model == MaterialModel::kJohnsonCook);
+  CHECK_FALSE(al.source.empty());
+  CHECK(al.density_kg_m3 == 2703);
+  CHECK(al.johnson_cook.A_Pa == Approx(324e6).epsilon(kUlps));
+  CHECK(al.johnson_cook.B_Pa == Approx(114e6).epsilon(kUlps));
+  CHECK(al.johnson_cook.n == 0.42);
+  CHECK(al.johnson_cook.C == 0.002);
+  CHECK(al.johnson_cook.m == 1.34);
+  CHECK(al.johnson_cook.melting_temperature_K == 925);
+  CHECK(al.johnson_cook.specific_heat_J_kgK == 885);
+  CHECK(al.johnson_cook.initial_temperature_K == al.johnson_cook.room_temperature_K);
+
+  CHECK(s.contact.method == ContactMethod::kLocalizedBipenalty);
+  CHECK(s.simulation.duration_s == Approx(800e-6).epsilon(kUlps));
+  CHECK(s.simulation.sample_rate_Hz == 10e6);
+  CHECK_FALSE(s.measurement);
+}
+
+TEST_CASE("The LANL copper experiment reads its measurement block", "[model][scene]") {
+  const Scene s = read_scene(fs::path(SHPB_SOURCE_DIR) / "experiments/lanl-cu-ofe-273k/scene.json");
+  REQUIRE(s.measurement);
+  const auto& m = *s.measurement;
+  CHECK(m.format == SignalFormat::kLanlRaw);
+  CHECK(m.file.filename() == "20061201_1148HE_CuOFE_273K.raw");
+  REQUIRE(m.channels.size() == 2);
+  CHECK(m.channels[0].gauge == "incident");
+  CHECK(m.channels[0].column.name == "Incident/Reflected Waveform");
+  CHECK(m.channels[0].unit == SignalUnit::kVolt);
+  REQUIRE(m.channels[0].bridge);
+  CHECK(m.channels[0].bridge->arms == 2);
+  CHECK(m.channels[0].bridge->gauge_factor == 2.061);
+  CHECK(m.channels[0].bridge->excitation_V == 8);
+  CHECK(m.channels[0].bridge->gain == 200);
+  CHECK(m.channels[1].bridge->gain == 200);  // the "Transmitted Bar Gain" (see the README)
+  CHECK(m.channels[1].invert);
+  CHECK(m.dispersion.correction);
+  CHECK_FALSE(m.striker_velocity_m_s);  // not measured: processing infers it
+  // Gauges 381 mm from the specimen faces (README of the measured data).
+  const auto& inc = s.bars[1];
+  CHECK(inc.length_m - inc.gauges[0].position_m == Approx(0.381).epsilon(1e-12));
+  CHECK(s.bars[3].gauges[0].position_m == Approx(0.381).epsilon(kUlps));
+  // Test temperature 0 °C given in Celsius.
+  CHECK(s.bars[2].material.johnson_cook.initial_temperature_K == Approx(273.15).epsilon(kUlps));
+}
+
+TEST_CASE("Materials come by name, by file relative to the scene, or inline", "[model][scene]") {
+  const Scratch scratch("materials");
+  const auto& dir = scratch.dir;
+  write(dir / "mats/soft.json",
+        R"({"model": "bilinear", "density": 2700, "youngs_modulus": "70 GPa",
+      "poisson_ratio": 0.33, "yield_stress": "300 MPa", "tangent_modulus": "1 GPa"})");
+  write(dir / "scenes/scene.json", std::string(R"({
+    "bars": [
+      {"name": "a", "material": "steel", "length": 1, "area": "2 cm2", "velocity": "-3 m/s",
+       "gap": "1 mm", "elements": 50},
+      {"name": "b", "material": "../mats/soft.json", "length": "5 mm", "diameter": "10 mm"},
+      {"name": "c", "material": {"model": "viscoelastic", "density": 1190, "poisson_ratio": 0.35,
+                                 "long_term_modulus": "2 GPa",
+                                 "arms": [{"modulus": "1 GPa", "relaxation_time": "10 us"},
+                                          {"modulus": "0.5 GPa", "relaxation_time": "1 ms"}]},
+       "length": 1, "diameter": 0.02}
+    ],
+    "materials": {)") + kSteel + "}}");
+  const Scene s = read_scene(dir / "scenes/scene.json");
+  CHECK(s.name == "scenes");  // scene.json is named by its folder
+  CHECK(s.bars[0].material.name == "steel");
+  CHECK(s.bars[0].area_m2 == Approx(2e-4).epsilon(kUlps));
+  CHECK(s.bars[0].diameter_m == Approx(std::sqrt(4 * 2e-4 / M_PI)).epsilon(kUlps));
+  CHECK(s.bars[0].velocity_m_s == -3);
+  CHECK(s.bars[0].gap_m == Approx(1e-3).epsilon(kUlps));
+  CHECK(s.bars[0].elements == 50);
+  CHECK(s.bars[1].material.model == MaterialModel::kBilinear);
+  CHECK(s.bars[1].material.bilinear.yield_stress_Pa == 300e6);
+  CHECK(s.bars[1].material.bilinear.tangent_modulus_Pa == 1e9);
+  const auto& ve = s.bars[2].material;
+  CHECK(ve.name == "inline");
+  REQUIRE(ve.viscoelastic.arms.size() == 2);
+  CHECK(ve.viscoelastic.arms[0].relaxation_time_s == Approx(10e-6).epsilon(kUlps));
+  // The instantaneous modulus of a generalized Maxwell solid is E_inf + ΣE_k.
+  CHECK(ve.youngs_modulus_Pa == Approx(3.5e9).epsilon(kUlps));
+  CHECK_FALSE(s.specimen);
+  CHECK_FALSE(s.incident_bar());
+}
+
+TEST_CASE("Defaults fill what a scene leaves out", "[model][scene]") {
+  const Scratch scratch("defaults");
+  const auto& dir = scratch.dir;
+  write(dir / "minimal.json", std::string(R"({"bars": [
+      {"name": "s", "material": "steel", "length": 0.3, "diameter": 0.02, "velocity": 10},
+      {"name": "b", "material": "steel", "length": 1.5, "diameter": 0.02}],
+    "materials": {)") + kSteel + "}}");
+  const Scene s = read_scene(dir / "minimal.json");
+  CHECK(s.name == "minimal");
+  CHECK(s.bars[1].elements == 0);  // automatic meshing
+  CHECK(s.bars[1].gap_m == 0);
+  CHECK(s.contact.method == ContactMethod::kLocalizedBipenalty);
+  CHECK_FALSE(s.contact.penalty.stiffness_factor);
+  CHECK_FALSE(s.simulation.duration_s);
+  CHECK(s.simulation.sample_rate_Hz == 10e6);
+  CHECK(s.simulation.stepping == Stepping::kAsynchronous);
+  CHECK_FALSE(s.simulation.courant);
+}
+
+TEST_CASE("Contact settings apply to all interfaces with overrides per interface",
+          "[model][scene]") {
+  const Scratch scratch("contact");
+  const auto& dir = scratch.dir;
+  write(dir / "scene.json", std::string(R"({"bars": [
+      {"name": "s", "material": "steel", "length": 0.3, "diameter": 0.02, "velocity": 10},
+      {"name": "i", "material": "steel", "length": 1.5, "diameter": 0.02},
+      {"name": "t", "material": "steel", "length": 1.5, "diameter": 0.02}],
+    "materials": {)") + kSteel + R"(},
+    "contact": {"method": "bipenalty", "stiffness_factor": 1e4, "mass_ratio": 0.9,
+                "interfaces": [{"between": ["t", "i"], "method": "penalty", "stiffness": "1e9 N/m"}]},
+    "simulation": {"duration": "0.4 ms", "sample_rate": "5 MHz", "stepping": "global",
+                   "courant": 0.98}})");
+  const Scene s = read_scene(dir / "scene.json");
+  CHECK(s.contact.method == ContactMethod::kBipenalty);
+  CHECK(s.contact.penalty.stiffness_factor == 1e4);
+  CHECK(s.contact.penalty.mass_ratio == 0.9);
+  REQUIRE(s.contact.interfaces.size() == 1);
+  CHECK(s.contact.interfaces[0].left_bar == 1);  // order in "between" does not matter
+  CHECK(s.contact.interfaces[0].method == ContactMethod::kPenalty);
+  CHECK(s.contact.interfaces[0].penalty.stiffness_N_m == 1e9);
+  CHECK(s.simulation.duration_s == Approx(4e-4).epsilon(kUlps));
+  CHECK(s.simulation.sample_rate_Hz == 5e6);
+  CHECK(s.simulation.stepping == Stepping::kGlobal);
+  CHECK(s.simulation.courant == 0.98);
+}
+
+TEST_CASE("Errors name the file, the JSON path, the value and the constraint", "[model][scene]") {
+  const Scratch scratch("errors");
+  const auto& dir = scratch.dir;
+  const auto file = dir / "scene.json";
+  write(file, std::string(R"({"bars": [
+      {"name": "s", "material": "steel", "length": "-5 mm", "diameter": 0.02},
+      {"name": "b", "material": "steel", "length": 1.5, "diameter": 0.02}],
+    "materials": {)") +
+                  kSteel + "}}");
+  CHECK(error_of(file) == file.string() + ": bars[0].length: -0.005 m: must be > 0");
+
+  write(file, std::string(R"({"bars": [
+      {"name": "s", "material": "stel", "length": 1, "diameter": 0.02},
+      {"name": "b", "material": "steel", "length": 1.5, "diameter": 0.02}],
+    "materials": {)") +
+                  kSteel + "}}");
+  CHECK(error_of(file) == file.string() +
+                              ": bars[0].material: \"stel\": no such material in materials; did "
+                              "you mean \"steel\"?");
+
+  write(file, R"({"bars": [], "materails": {}})");
+  CHECK(error_of(file) == file.string() + ": materails: unknown key: did you mean \"materials\"?");
+}
