@@ -129,6 +129,10 @@ class Source:
             self._tables[name] = Table(self.files[name])
         return self._tables[name]
 
+    def png(self, base):
+        """Figure file name: `base.png` for DIR itself, `base_<sub-folder>.png` otherwise."""
+        return f"{base}.png" if self.label == "." else f"{base}_{slug(self.label)}.png"
+
     def title(self, text):
         return text if self.label == "." else f"{text} — {self.label}"
 
@@ -194,7 +198,7 @@ def fig_gauges(src, figs):
     ax.set_ylabel("axial strain (µε, tension +)")
     ax.set_title(src.title("Simulated strain-gauge signals"))
     ax.legend(loc="best", fontsize=8)
-    figs.save(fig, f"signals_{slug(src.label)}.png", src.title("Gauge signals"),
+    figs.save(fig, src.png("signals"), src.title("Gauge signals"),
               "Simulated gauge strains as recorded (gauges.csv), tension positive: the incident "
               "gauge shows the incident pulse (compression, negative) and later the reflected "
               "pulse; the transmitter gauge the transmitted pulse.")
@@ -214,7 +218,7 @@ def fig_interfaces(src, figs):
     ax.set_ylabel("contact force (kN, compression +)")
     ax.set_title(src.title("Interface forces"))
     ax.legend(loc="best", fontsize=8)
-    figs.save(fig, f"interfaces_{slug(src.label)}.png", src.title("Interface forces"),
+    figs.save(fig, src.png("interfaces"), src.title("Interface forces"),
               "Contact force at every interface (interfaces.csv), compression positive.")
 
 
@@ -273,7 +277,7 @@ def fig_wave_diagram(src, figs):
     ax.set_xlabel("position along the chain (m)")
     ax.set_ylabel("time since impact (µs)")
     ax.set_title(src.title("x–t wave diagram of the whole chain"))
-    figs.save(fig, f"wave_diagram_{slug(src.label)}.png", src.title("x–t wave diagram"),
+    figs.save(fig, src.png("wave_diagram"), src.title("x–t wave diagram"),
               "Axial stress along the whole chain against time (field.csv): compression (blue) "
               "leaves the striker, travels down the incident bar, partly reflects at the specimen "
               "as tension (red) and partly enters the transmitter bar. Slopes are wave speeds.")
@@ -299,7 +303,7 @@ def fig_energy(src, figs):
         axes[1, 0].plot(time, (total - total[0]) / abs(e0) * 100, color="k", linewidth=1.0)
         axes[1, 0].set_ylabel("(total − initial)\n/ initial (%)")
     axes[1, 0].set_xlabel("time since impact (µs)")
-    figs.save(fig, f"energy_{slug(src.label)}.png", src.title("Energy history"),
+    figs.save(fig, src.png("energy"), src.title("Energy history"),
               "Kinetic, strain, contact and dissipated energy of the whole chain (energy.csv); "
               "the lower panel is the balance error of the total.")
 
@@ -320,7 +324,7 @@ def fig_specimen(src, figs):
     ax.set_ylabel("specimen stress (MPa, compression +)")
     ax.set_title(src.title("Specimen stress–strain: the model's own truth"))
     ax.legend(loc="best", fontsize=8)
-    figs.save(fig, f"specimen_stress_strain_{slug(src.label)}.png",
+    figs.save(fig, src.png("specimen_stress_strain"),
               src.title("Specimen stress–strain (model truth)"),
               "Length-averaged engineering stress against strain of the specimen as the "
               "simulation computed it (specimen.csv), and the true values for constant volume "
@@ -342,7 +346,7 @@ def fig_specimen(src, figs):
         axes[1, 0].legend(loc="upper right", fontsize=8)
     axes[1, 0].set_ylabel("equilibrium ratio\n2|σf − σb| / |σf + σb|")
     axes[1, 0].set_xlabel("time since impact (µs)")
-    figs.save(fig, f"specimen_rate_equilibrium_{slug(src.label)}.png",
+    figs.save(fig, src.png("specimen_rate_equilibrium"),
               src.title("Specimen strain rate and equilibrium (model truth)"),
               "Strain rate of the specimen and the equilibrium ratio of its front and back "
               "face stresses (specimen.csv), shown where the stresses exceed 2 % of their peak.")
@@ -365,7 +369,7 @@ def fig_pulses(src, figs):
     ax.set_ylabel("bar strain (µε, tension +)")
     ax.set_title(src.title("Pulses shifted to the specimen faces"))
     ax.legend(loc="best", fontsize=8)
-    figs.save(fig, f"pulses_{slug(src.label)}.png", src.title("Aligned pulses"),
+    figs.save(fig, src.png("pulses"), src.title("Aligned pulses"),
               "Incident, reflected and transmitted pulses moved to the specimen faces "
               "(pulses.csv). In equilibrium incident + reflected follows the transmitted pulse.")
 
@@ -398,7 +402,7 @@ def fig_curve(src, figs, truth=None):
     ax.set_ylabel("true stress (MPa, compression +)")
     ax.set_title(src.title("True stress–strain"))
     ax.legend(loc="best", fontsize=8)
-    figs.save(fig, f"stress_strain_{slug(src.label)}.png", src.title("Stress–strain curves"),
+    figs.save(fig, src.png("stress_strain"), src.title("Stress–strain curves"),
               "1-, 2- and 3-wave engineering stress against the 3-wave strain, and true stress "
               "against true strain (curve.csv, METHODS.md §6), compression positive"
               + ("; dotted: the simulation's own specimen truth." if truth is not None else "."))
@@ -421,7 +425,7 @@ def fig_curve(src, figs, truth=None):
         axes[1, 0].legend(loc="upper right", fontsize=8)
     axes[1, 0].set_ylabel("equilibrium ratio")
     axes[1, 0].set_xlabel("time at the specimen faces (µs)")
-    figs.save(fig, f"rate_equilibrium_{slug(src.label)}.png",
+    figs.save(fig, src.png("rate_equilibrium"),
               src.title("Strain rate and equilibrium"),
               "3-wave strain rate and the equilibrium ratio R(t) = 2|P1 − P2|/|P1 + P2| of the "
               "front and back face forces (curve.csv); below the dotted 5 % line the specimen "
@@ -467,7 +471,7 @@ def fig_compare_signals(src, figs):
         ax.legend(loc="lower right", fontsize=8)
     axes[0, 0].set_title(src.title("Simulated over measured gauge signals"))
     axes[-1, 0].set_xlabel("time on the measurement's clock (µs)")
-    figs.save(fig, f"signals_{slug(src.label)}.png",
+    figs.save(fig, src.png("signals"),
               src.title("Gauge signals: simulated over measured"),
               "Measured strain (black) and the simulation of the same scene (dashed), on the "
               "measurement's clock; shaded: the pulse windows compared in comparison.csv.")
@@ -533,7 +537,7 @@ def fig_pareto(src, figs):
         reference, str) else ""))
     ax.set_title(src.title("Accuracy against cost"))
     ax.legend(loc="best", fontsize=7)
-    figs.save(fig, f"pareto_{slug(src.label)}.png", src.title("Accuracy against cost"),
+    figs.save(fig, src.png("pareto"), src.title("Accuracy against cost"),
               "Error against wall time for every run of the sweep (pareto.csv): filled markers "
               "asynchronous stepping, open markers global stepping, numbers the mesh resolution "
               "factor; the black staircase is the Pareto front (no run is both faster and more "
@@ -586,7 +590,7 @@ def fig_stability(src, figs):
         for ax in list(axes.flat)[n:]:
             ax.set_visible(False)
         fig.suptitle(src.title(f"Stability map: {method}".rstrip(": ")))
-        figs.save(fig, f"stability_{slug(method or 'all')}_{slug(src.label)}.png",
+        figs.save(fig, src.png(f"stability_{slug(method or 'all')}"),
                   src.title(f"Stability map {method}".strip()),
                   "Stable (green) and unstable (red: energy growth or NaN) runs over penalty "
                   "stiffness and Courant number (stability.csv)"
