@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/csv_writer.hpp"
 #include "model/discretization.hpp"
 
 namespace shpb {
@@ -12,6 +13,11 @@ const std::vector<ContactMethod> kAllMethods = {
     ContactMethod::kPenalty, ContactMethod::kBipenalty, ContactMethod::kLocalizedBipenalty};
 const std::vector<Stepping> kAllSteppings = {Stepping::kAsynchronous, Stepping::kGlobal};
 }  // namespace
+
+std::string format_factor(double factor) {
+  if (factor < 1) return "1/" + format_double(1 / factor);
+  return format_double(factor);
+}
 
 std::vector<ParetoCase> pareto_cases(const std::vector<ContactMethod>& methods,
                                      const std::vector<Stepping>& steppings,

@@ -18,6 +18,9 @@ struct ParetoCase {
 // Mesh resolution factors: 1/4 … 4 of the automatic mesh, in factors of two.
 inline const std::vector<double> kParetoResolutions = {0.25, 0.5, 1, 2, 4};
 
+// "1/4", "1/2", "1", "2", … (factors in summaries and descriptions).
+std::string format_factor(double factor);
+
 // Every method × stepping × resolution, restricted to `methods` / `steppings` when not empty
 // (the --contact / --stepping options of `shpb study`).
 std::vector<ParetoCase> pareto_cases(const std::vector<ContactMethod>& methods,
