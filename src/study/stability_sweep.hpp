@@ -36,7 +36,7 @@ struct StabilityStudy {
 };
 
 // Lower and upper end of the boundary bisection.
-inline constexpr double kBoundaryCourantMin = 1e-3;
+inline constexpr double kBoundaryCourantMin = 3e-4;
 inline constexpr double kBoundaryCourantMax = 1.1;
 
 StabilityStudy run_stability_sweep(const Scene& scene, const std::vector<ContactMethod>& methods,
