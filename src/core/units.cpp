@@ -292,6 +292,8 @@ double parse_quantity(std::string_view text, Dimension expected) {
     throw std::invalid_argument("no number found; " + expected_text(expected));
   const std::string_view unit = trim(t.substr(static_cast<std::size_t>(end - t.data())));
   if (unit.empty()) return number;  // SI
+  if (unit.size() > 1 && unit[0] == ',' && unit[1] >= '0' && unit[1] <= '9')
+    throw std::invalid_argument("use a decimal point, not a comma; " + expected_text(expected));
 
   for (const auto c : kCelsius) {
     if (unit != c) continue;

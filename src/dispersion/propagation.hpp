@@ -60,6 +60,11 @@ class Propagator {
   std::unique_ptr<RealFft> fft_;
 };
 
+// One-off convenience: tabulates the bar's mode (≈ 0.2 s) and plans an FFT for this call. For
+// several pulses of one bar, keep a DispersionTable and a Propagator instead.
+std::vector<double> propagate(std::span<const double> signal, double dt, double distance_m,
+                              const BarWaveguide& bar, const PropagationOptions& options = {});
+
 // Pure delay by distance/c0 with linear interpolation between samples (no ringing); the
 // non-dispersive counterpart used for signals of a 1D model.
 void delay_by_interpolation(std::span<const double> signal, double delay_samples,

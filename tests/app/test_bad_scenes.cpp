@@ -1,6 +1,7 @@
 // Bad scenes as behaviour of the real executable (DESIGN.md §2): exit code 2, one line
 // "error: <file>: <json path>: <value>: <constraint>" on stderr, and nothing written — neither the
 // output folder nor anything beside it — by every command that takes a scene.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cstdlib>
 #include <filesystem>
@@ -140,6 +141,9 @@ const std::vector<BadScene>& cases() {
       {"an empty file", nullptr, "empty file", "\n  \n"},
       {"text that is not JSON", nullptr, "line 2, column", "{\"bars\": [\n}"},
       {"a top level that is not an object", nullptr, "(top level)", "[1, 2, 3]"},
+      {"bytes that are not UTF-8", nullptr, "line 1, column", "{\"name\": \"\xff\xfe\"}"},
+      {"a byte-order mark and two documents", nullptr, "line 2, column 1",
+       "\xef\xbb\xbf{\"bars\": []}\n{\"bars\": []}"},
       {"a duplicate key", nullptr, "bars[0].name: duplicate key",
        R"({"bars": [{"name": "a", "name": "b"}]})"},
       {"a missing material file",
@@ -258,7 +262,7 @@ fs::path prepare(const fs::path& root, std::size_t index) {
 
 // A command that writes an output folder must refuse a bad scene before creating anything.
 void check_writes_nothing(const std::string& command) {
-  const auto root = fs::temp_directory_path() / ("shpb_bad_scenes_" + command);
+  const auto root = shpb_test::scratch_dir("bad_scenes_" + command);
   for (std::size_t i = 0; i < cases().size(); ++i) {
     INFO("bad scene: " << cases()[i].what << "; command: " << command);
     const auto scene_file = prepare(root, i);
@@ -275,9 +279,7 @@ void check_writes_nothing(const std::string& command) {
 }  // namespace
 
 TEST_CASE("The valid base scene of the bad-scene table validates", "[app][bad-scenes]") {
-  const auto dir = fs::temp_directory_path() / "shpb_bad_scenes_base";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const auto dir = shpb_test::scratch_dir("bad_scenes_base");
   std::ofstream(dir / "scene.json") << base_scene().dump(2);
   std::ofstream(dir / "specimen.json") << base_specimen().dump(2);
   const auto r = run_shpb({"validate", (dir / "scene.json").string()});
@@ -288,7 +290,7 @@ TEST_CASE("The valid base scene of the bad-scene table validates", "[app][bad-sc
 TEST_CASE("Every bad scene exits 2 with one line naming the file and the JSON path",
           "[app][bad-scenes]") {
   REQUIRE(cases().size() >= 30);
-  const auto root = fs::temp_directory_path() / "shpb_bad_scenes_validate";
+  const auto root = shpb_test::scratch_dir("bad_scenes_validate");
   for (std::size_t i = 0; i < cases().size(); ++i) {
     const auto& c = cases()[i];
     INFO("bad scene: " << c.what);
@@ -302,6 +304,8 @@ TEST_CASE("Every bad scene exits 2 with one line naming the file and the JSON pa
     CHECK(message.rfind("error: " + scene_file.parent_path().string(), 0) == 0);
     CHECK(message.find(c.where) != std::string::npos);
     CHECK(std::count(message.begin(), message.end(), '\n') == 1);  // one line
+    CHECK(std::none_of(message.begin(), message.end(),             // printable: no raw bytes echoed
+                       [](char ch) { return static_cast<unsigned char>(ch) >= 0xF8; }));
     CHECK(r.out.empty());
     CHECK(listing(dir) == before);
   }

@@ -130,6 +130,7 @@ TEST_CASE("Unknown units, bad numbers and malformed expressions are rejected", "
   CHECK(rejects("inf m", Dimension::kLength, "no number"));
   CHECK(rejects("1e999 m", Dimension::kLength, "out of range"));
   CHECK(rejects("1e300 Tm", Dimension::kLength, "out of range"));
+  CHECK(rejects("1,5 mm", Dimension::kLength, "decimal point, not a comma"));
   CHECK(rejects("20 m m", Dimension::kLength, "an area"));  // space multiplies: m² is no length
 }
 

@@ -46,6 +46,7 @@ TEST_CASE("Moving a pulse forward and back returns it within 0.5 % RMS below the
   Propagator p(table, kBar, {});
   const auto x = smooth_pulse(4000, 60e-6, 8e-6, 40e-6);
   const auto there = p.propagate(x, kDt, 1.0);
+  REQUIRE(propagate(x, kDt, 1.0, kBar) == there);  // the one-off free function is the same
   const auto back = p.propagate(there, kDt, -1.0);
   std::vector<double> err(x.size());
   for (std::size_t i = 0; i < x.size(); ++i) err[i] = back[i] - x[i];
