@@ -95,7 +95,8 @@ void write_pareto(const ParetoStudy& study, const Scene& scene, int threads, dou
     wall.push_back(r.wall_time_s);
     updates.push_back(static_cast<double>(r.node_updates));
   }
-  const std::vector<bool> by_wall = pareto_front(err, wall), by_updates = pareto_front(err, updates);
+  const std::vector<bool> by_wall = pareto_front(err, wall),
+                          by_updates = pareto_front(err, updates);
   Json front_wall = Json::array(), front_updates = Json::array(), unstable = Json::array();
   for (std::size_t i = 0; i < study.rows.size(); ++i) {
     if (by_wall[i]) front_wall.push_back(case_json(study.rows[i].run));
@@ -142,8 +143,8 @@ void write_stability(const StabilityStudy& study, const Scene& scene, int thread
       csv << to_string(b.line.method) << ',' << (b.line.tied ? "tied" : "unilateral") << ','
           << format_double(b.line.stiffness_factor) << ','
           << (b.line.method == ContactMethod::kPenalty ? "" : format_double(b.line.mass_ratio))
-          << ',' << format_double(b.critical_courant) << ','
-          << format_double(b.closed_form_courant) << '\n';
+          << ',' << format_double(b.critical_courant) << ',' << format_double(b.closed_form_courant)
+          << '\n';
   }
   Json j;
   j["version"] = SHPB_VERSION;

@@ -13,8 +13,8 @@ std::vector<bool> pareto_front(const std::vector<double>& error, const std::vect
     if (!std::isfinite(error[i])) continue;
     bool dominated = false;
     for (std::size_t j = 0; j < n && !dominated; ++j)
-      dominated = j != i && std::isfinite(error[j]) && error[j] <= error[i] &&
-                  cost[j] <= cost[i] && (error[j] < error[i] || cost[j] < cost[i]);
+      dominated = j != i && std::isfinite(error[j]) && error[j] <= error[i] && cost[j] <= cost[i] &&
+                  (error[j] < error[i] || cost[j] < cost[i]);
     front[i] = !dominated;
   }
   return front;

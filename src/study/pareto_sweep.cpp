@@ -11,8 +11,7 @@
 
 namespace shpb {
 
-ParetoStudy run_pareto_sweep(const Scene& scene, const std::vector<ParetoCase>& cases,
-                             int threads,
+ParetoStudy run_pareto_sweep(const Scene& scene, const std::vector<ParetoCase>& cases, int threads,
                              const std::function<void(std::size_t, std::size_t)>& progress,
                              const std::function<bool()>& cancel) {
   SimulationOptions options;
@@ -25,9 +24,8 @@ ParetoStudy run_pareto_sweep(const Scene& scene, const std::vector<ParetoCase>& 
   // finest first so that the longest runs do not come last (results go to fixed slots).
   std::vector<std::size_t> order(cases.size());
   std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](auto a, auto b) {
-    return cases[a].resolution > cases[b].resolution;
-  });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](auto a, auto b) { return cases[a].resolution > cases[b].resolution; });
   std::vector<SimulationResult> results(cases.size());
   std::optional<GaugeReference> fine;
   const std::size_t jobs = cases.size() + (need_fine ? 1 : 0);
@@ -56,7 +54,8 @@ ParetoStudy run_pareto_sweep(const Scene& scene, const std::vector<ParetoCase>& 
     row.failure = r.failure;
     row.wall_time_s = r.wall_time_s;
     row.node_updates = r.node_updates;
-    row.error = r.stable ? gauge_error(r.gauges, *reference) : std::numeric_limits<double>::quiet_NaN();
+    row.error =
+        r.stable ? gauge_error(r.gauges, *reference) : std::numeric_limits<double>::quiet_NaN();
     study.rows.push_back(row);
   }
   return study;

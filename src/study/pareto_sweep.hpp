@@ -29,8 +29,7 @@ struct ParetoStudy {
 
 // Runs the cases on `threads` workers (≤ 0: all cores). The rows do not depend on the thread
 // count except for their wall times. `cancel` is polled by every run (throws Interrupted).
-ParetoStudy run_pareto_sweep(const Scene& scene, const std::vector<ParetoCase>& cases,
-                             int threads,
+ParetoStudy run_pareto_sweep(const Scene& scene, const std::vector<ParetoCase>& cases, int threads,
                              const std::function<void(std::size_t, std::size_t)>& progress = {},
                              const std::function<bool()>& cancel = {});
 

@@ -12,7 +12,9 @@ namespace {
 // Same material and area: relative difference of impedance, wave speed and area below this.
 constexpr double kSameBar = 1e-9;
 
-bool same(double a, double b) { return std::abs(a - b) <= kSameBar * std::max(std::abs(a), std::abs(b)); }
+bool same(double a, double b) {
+  return std::abs(a - b) <= kSameBar * std::max(std::abs(a), std::abs(b));
+}
 }  // namespace
 
 std::optional<GaugeReference> exact_reference(const Scene& scene) {
@@ -65,11 +67,12 @@ double gauge_error(const TimeSeries& gauges, const GaugeReference& reference) {
   double diff = 0, norm = 0;
   const std::size_t n = gauges.samples();
   const std::size_t columns = gauges.values.size();
-  if (!reference.exact && (reference.fine.samples() == 0 || reference.fine.values.size() != columns))
+  if (!reference.exact &&
+      (reference.fine.samples() == 0 || reference.fine.values.size() != columns))
     return std::numeric_limits<double>::quiet_NaN();
   std::size_t compared = 0;
-  const std::size_t window = reference.exact ? std::numeric_limits<std::size_t>::max()
-                                             : reference.fine.samples();
+  const std::size_t window =
+      reference.exact ? std::numeric_limits<std::size_t>::max() : reference.fine.samples();
   for (std::size_t k = 0; k < std::min(n, window); ++k) {
     const double t = gauges.time_s[k];
     if (!(t < reference.window_end_s)) break;

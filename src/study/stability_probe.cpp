@@ -15,7 +15,8 @@ constexpr double kProbeSamples = 200;
 Scene stability_probe_scene(const Scene& scene) {
   Scene probe;
   probe.file = scene.file;
-  probe.bars.assign(scene.bars.begin(), scene.bars.begin() + std::min<std::size_t>(2, scene.bars.size()));
+  probe.bars.assign(scene.bars.begin(),
+                    scene.bars.begin() + std::min<std::size_t>(2, scene.bars.size()));
   const double length = probe.bars.front().length_m;
   double slowest = probe.bars.front().material.wave_speed_m_s();
   for (BarSpec& b : probe.bars) {

@@ -39,9 +39,9 @@ struct StabilityStudy {
 inline constexpr double kBoundaryCourantMin = 3e-4;
 inline constexpr double kBoundaryCourantMax = 1.1;
 
-StabilityStudy run_stability_sweep(const Scene& scene, const std::vector<ContactMethod>& methods,
-                                   int threads,
-                                   const std::function<void(std::size_t, std::size_t)>& progress = {},
-                                   const std::function<bool()>& cancel = {});
+StabilityStudy run_stability_sweep(
+    const Scene& scene, const std::vector<ContactMethod>& methods, int threads,
+    const std::function<void(std::size_t, std::size_t)>& progress = {},
+    const std::function<bool()>& cancel = {});
 
 }  // namespace shpb

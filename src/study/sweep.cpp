@@ -9,8 +9,8 @@
 namespace shpb {
 
 namespace {
-const std::vector<ContactMethod> kAllMethods = {
-    ContactMethod::kPenalty, ContactMethod::kBipenalty, ContactMethod::kLocalizedBipenalty};
+const std::vector<ContactMethod> kAllMethods = {ContactMethod::kPenalty, ContactMethod::kBipenalty,
+                                                ContactMethod::kLocalizedBipenalty};
 const std::vector<Stepping> kAllSteppings = {Stepping::kAsynchronous, Stepping::kGlobal};
 }  // namespace
 
@@ -33,8 +33,7 @@ Scene scene_at_resolution(const Scene& scene, double factor) {
   Scene out = scene;
   const ChainDiscretization d = discretize(scene);
   for (std::size_t i = 0; i < out.bars.size(); ++i)
-    out.bars[i].elements =
-        std::max(1, static_cast<int>(std::lround(factor * d.bars[i].elements)));
+    out.bars[i].elements = std::max(1, static_cast<int>(std::lround(factor * d.bars[i].elements)));
   return out;
 }
 

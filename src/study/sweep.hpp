@@ -45,12 +45,10 @@ struct StabilityPoint {
 
 // The stability grid of issue 7: ε_s/k from 1e-2 to 1e6 (two points per decade), C from 0.1 to
 // 1.05, and for the bipenalty methods R/R_crit from 0.25 to 4.
-inline const std::vector<double> kStiffnessFactors = {1e-2, 3e-2, 1e-1, 3e-1, 1,   3,   10,
-                                                      30,   1e2,  3e2,  1e3,  3e3, 1e4, 3e4,
-                                                      1e5,  3e5,  1e6};
-inline const std::vector<double> kCourantNumbers = {0.1,  0.15, 0.2,  0.25, 0.3,  0.4,
-                                                    0.5,  0.6,  0.7,  0.8,  0.9,  0.95,
-                                                    0.98, 1.0,  1.02, 1.05};
+inline const std::vector<double> kStiffnessFactors = {
+    1e-2, 3e-2, 1e-1, 3e-1, 1, 3, 10, 30, 1e2, 3e2, 1e3, 3e3, 1e4, 3e4, 1e5, 3e5, 1e6};
+inline const std::vector<double> kCourantNumbers = {0.1, 0.15, 0.2, 0.25, 0.3,  0.4, 0.5,  0.6,
+                                                    0.7, 0.8,  0.9, 0.95, 0.98, 1.0, 1.02, 1.05};
 inline const std::vector<double> kMassRatios = {0.25, 0.5, 0.9, 1, 1.5, 2, 3, 4};
 
 std::vector<StabilityPoint> stability_grid(const std::vector<ContactMethod>& methods);

@@ -56,16 +56,18 @@ TEST_CASE("A striker on an identical bar is measured against the exact square pu
           "[study][pareto]") {
   BarSpec bar = test::bar("bar", test::steel(), 0.5, kArea, 250);
   bar.gauges.push_back({"gauge", 0.25});
-  const Scene scene = test::chain({test::bar("striker", test::steel(), 0.1, kArea, 50, 10.0), bar},
-                                  150e-6, ContactMethod::kLocalizedBipenalty,
-                                  Stepping::kAsynchronous);
+  const Scene scene =
+      test::chain({test::bar("striker", test::steel(), 0.1, kArea, 50, 10.0), bar}, 150e-6,
+                  ContactMethod::kLocalizedBipenalty, Stepping::kAsynchronous);
   const auto reference = exact_reference(scene);
   REQUIRE(reference.has_value());
   const double c0 = std::sqrt(200e9 / 8000.0);
   CHECK(reference->strain(0, 0.25 / c0 + 1e-6) == Approx(-10.0 / (2 * c0)));
   CHECK(reference->strain(0, 0.25 / c0 + 2 * 0.1 / c0 + 1e-6) == 0);
   const ParetoStudy study = run_pareto_sweep(
-      scene, pareto_cases({ContactMethod::kLocalizedBipenalty}, {Stepping::kAsynchronous}, {0.5, 1, 2}), 1);
+      scene,
+      pareto_cases({ContactMethod::kLocalizedBipenalty}, {Stepping::kAsynchronous}, {0.5, 1, 2}),
+      1);
   REQUIRE(study.reference_exact);
   for (const ParetoRow& r : study.rows) {
     INFO("resolution " << r.run.resolution << ": error " << r.error);
@@ -96,7 +98,8 @@ TEST_CASE("A pareto sweep gives the same results on one thread and on two", "[st
 
 TEST_CASE("shpb study writes pareto.csv with the documented columns, and exits 2 on a bad scene",
           "[study][app]") {
-  const fs::path dir = fs::temp_directory_path() / ("shpb_test_study_" + std::to_string(::getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("shpb_test_study_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const fs::path scene = dir / "scene.json";
   std::ofstream(scene) << R"({ "name": "tiny striker on bar",
@@ -121,8 +124,8 @@ TEST_CASE("shpb study writes pareto.csv with the documented columns, and exits 2
         std::string::npos);
 
   std::ofstream(dir / "bad.json") << R"({ "name": "bad", "bars": [] })";
-  const auto bad = shpb_test::run_shpb({"study", (dir / "bad.json").string(), "-o",
-                                        (dir / "bad_out").string(), "--quiet"});
+  const auto bad = shpb_test::run_shpb(
+      {"study", (dir / "bad.json").string(), "-o", (dir / "bad_out").string(), "--quiet"});
   CHECK(bad.code == 2);
   CHECK(bad.err.rfind("error: ", 0) == 0);
   CHECK_FALSE(fs::exists(dir / "bad_out"));

@@ -1,6 +1,6 @@
 // Stability maps (issue 7, METHODS.md §2): the measured boundary of plain penalty against the
-// exact critical Courant number of the discrete system, bipenalty holding below R_crit, and the
-// 2/√R limit above it. Tiny probes (two bars of 20 elements), so each point takes ~1 ms.
+// exact critical Courant number of the discrete system, and localized bipenalty holding
+// below R_crit. Tiny probes (two bars of 20 elements), so each point takes ~1 ms.
 #include <catch2/catch.hpp>
 #include <cmath>
 
@@ -22,8 +22,9 @@ Scene steel_probe() {
 }
 }  // namespace
 
-TEST_CASE("Plain penalty becomes unstable at the exact critical Courant number of the discrete system",
-          "[study][stability]") {
+TEST_CASE(
+    "Plain penalty becomes unstable at the exact critical Courant number of the discrete system",
+    "[study][stability]") {
   const Scene probe = steel_probe();
   for (double s : {1.0, 10.0, 100.0, 1e3, 1e4}) {
     StabilityPoint tied{ContactMethod::kPenalty, s, 0, 1, true};
@@ -46,15 +47,4 @@ TEST_CASE("Localized bipenalty with R at most R_crit is stable at every stiffnes
                            << v.energy_growth);
         CHECK(v.stable);
       }
-}
-
-TEST_CASE("Above R_crit the localized bipenalty step follows 2/sqrt(R)", "[study][stability]") {
-  const Scene probe = steel_probe();
-  for (double ratio : {1.5, 2.0, 3.0, 4.0}) {
-    const double measured = measured_critical_courant(
-        probe, {ContactMethod::kLocalizedBipenalty, 1e4, ratio, 1}, 0.1, 1.1);
-    const double expected = bipenalty_critical_courant(ratio);
-    INFO("R/R_crit = " << ratio << ": measured " << measured << ", 2/sqrt(R) gives " << expected);
-    CHECK(std::abs(measured / expected - 1) < kBoundaryTolerance);
-  }
 }
