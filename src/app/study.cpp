@@ -143,8 +143,9 @@ void write_stability(const StabilityStudy& study, const Scene& scene, int thread
       csv << to_string(b.line.method) << ',' << (b.line.tied ? "tied" : "unilateral") << ','
           << format_double(b.line.stiffness_factor) << ','
           << (b.line.method == ContactMethod::kPenalty ? "" : format_double(b.line.mass_ratio))
-          << ',' << format_double(b.critical_courant) << ',' << format_double(b.closed_form_courant)
-          << '\n';
+          << ','
+          << (b.critical_courant <= kBoundaryCourantMin ? "" : format_double(b.critical_courant))
+          << ',' << format_double(b.closed_form_courant) << '\n';
   }
   Json j;
   j["version"] = SHPB_VERSION;
@@ -159,6 +160,10 @@ void write_stability(const StabilityStudy& study, const Scene& scene, int thread
       "penalty: sqrt(2/(1+sqrt(1+4 s^2))), exact limit of two lumped bars joined by the penalty "
       "spring; bipenalty: 1 for R <= R_crit, sqrt(R_crit/R) (the 2/sqrt(R) step) above";
   j["boundary_range"] = {kBoundaryCourantMin, kBoundaryCourantMax};
+  j["critical_courant"] =
+      "largest stable Courant number by bisection in boundary_range; empty: unstable at its lower "
+      "end, its upper end: stable throughout; link tied: plain penalty acting in tension too (the "
+      "linear system of the closed form), unilateral: as used";
   j["points"] = study.rows.size();
   j["threads"] = threads;
   j["wall_time_s"] = wall_s;
