@@ -102,11 +102,6 @@ double end_free_force_at(const BarModel& bar, const BarState& s, int end, double
   return bar.stiffness_N_m * (w_other - w_end);
 }
 
-double element_stress(const BarModel& bar, const BarState& s, int e) {
-  if (bar.law) return s.stress_Pa[e];
-  return bar.youngs_modulus_Pa * (s.w[e + 1] - s.w[e]) / bar.element_length_m;
-}
-
 double node_velocity_now(const BarModel& bar, const BarState& s, int i) {
   const double half = s.step == 0 ? 0.0 : 0.5 * bar.time_step_s * s.force[i] * bar.inverse_mass[i];
   const bool active = !s.quiet() && i >= s.lo && i <= s.hi;

@@ -36,7 +36,10 @@ double end_free_force_at(const BarModel& bar, const BarState& s, int end, double
                          double end_w);
 
 // Element stress at t_n (tension positive).
-double element_stress(const BarModel& bar, const BarState& s, int e);
+inline double element_stress(const BarModel& bar, const BarState& s, int e) {
+  if (bar.law) return s.stress_Pa[e];
+  return bar.youngs_modulus_Pa * (s.w[e + 1] - s.w[e]) / bar.element_length_m;
+}
 
 // Energy of the bar at its current instant t_n; call between assemble and advance (the
 // full-step velocity v_n = v_{n−1/2} + ½Δt a_n needs f_n).

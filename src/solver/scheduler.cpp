@@ -81,6 +81,7 @@ ScheduleOutcome run_schedule(Chain& chain, ChainRecorders& recorders,
   long energy_checked = 0;
   long instants = 0;
   int progress_done = -1;
+  double next_progress_tau = 0;
   double dt_min = std::numeric_limits<double>::infinity();
   for (const BarModel& b : chain.bars) dt_min = std::min(dt_min, b.time_step_s);
   const double same = kSameInstant * dt_min;
@@ -144,8 +145,10 @@ ScheduleOutcome run_schedule(Chain& chain, ChainRecorders& recorders,
       chain.states[i].node_updates += advance(chain.bars[i], chain.states[i]);
     }
 
-    // Rule 7: energy check on completed grid points.
-    const long complete = recorders.energy_complete();
+    // Rule 7: energy check on completed grid points (none can complete before τ* passes the
+    // next one).
+    const long complete = tau >= recorders.energy_grid_tau(energy_checked) ? recorders.energy_complete()
+                                                                           : energy_checked;
     for (; energy_checked < complete; ++energy_checked) {
       const double e = recorders.energy_total(energy_checked);
       if (energy_checked == 0) energy0 = e;
@@ -165,12 +168,13 @@ ScheduleOutcome run_schedule(Chain& chain, ChainRecorders& recorders,
 
     ++instants;
     if (cancel && instants % kCancelPollInstants == 0 && cancel()) throw Interrupted();
-    if (progress) {
+    if (progress && tau >= next_progress_tau) {
       const int pct = static_cast<int>(100.0 * std::min(1.0, tau / chain.end_tau_s));
       if (pct != progress_done) {
         progress_done = pct;
         progress(pct / 100.0);
       }
+      next_progress_tau = (pct + 1) * 0.01 * chain.end_tau_s;
     }
   }
   outcome.checked_until_s = chain.end_tau_s + chain.start_time_s;
