@@ -38,7 +38,7 @@ def plot_pareto(folder, out):
     for method in markers:
         for stepping in colors:
             sel = [r for r in rows if r["method"] == method and r["stepping"] == stepping
-                   and r["stable"] == "true" and not math.isnan(num(r["error"]))]
+                   and r["stable"] == "1" and not math.isnan(num(r["error"]))]
             if not sel:
                 continue
             x = [num(r["wall_time_s"]) for r in sel]
@@ -57,7 +57,7 @@ def plot_pareto(folder, out):
     if front:
         ax.step([p[0] for p in front], [p[1] for p in front], where="post", color="k", lw=1,
                 label="Pareto front")
-    unstable = [r for r in rows if r["stable"] != "true"]
+    unstable = [r for r in rows if r["stable"] != "1"]
     if unstable:
         names = sorted({f'{r["method"]}/{r["stepping"]}' for r in unstable})
         ax.text(0.01, 0.99, "unstable (not shown): " + ", ".join(names), transform=ax.transAxes,
@@ -92,12 +92,12 @@ def plot_stability(folder, out):
         for ax, ratio in zip(axes[0], ratios):
             sel = [r for r in mine if (math.isnan(ratio) and r["mass_ratio"] == "")
                    or num(r["mass_ratio"]) == ratio]
-            for stable, style in (("true", dict(marker="o", color="tab:green", s=10)),
-                                  ("false", dict(marker="x", color="tab:red", s=14))):
+            for stable, style in (("1", dict(marker="o", color="tab:green", s=10)),
+                                  ("0", dict(marker="x", color="tab:red", s=14))):
                 pts = [r for r in sel if r["stable"] == stable]
                 ax.scatter([num(r["stiffness_factor"]) for r in pts],
                            [num(r["courant"]) for r in pts],
-                           label="stable" if stable == "true" else "unstable", **style)
+                           label="stable" if stable == "1" else "unstable", **style)
             lines = [b for b in bounds if b["method"] == method and
                      ((math.isnan(ratio) and b["mass_ratio"] == "") or num(b["mass_ratio"]) == ratio)]
             for link, style in (("unilateral", "k-"), ("tied", "b--")):

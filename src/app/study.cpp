@@ -87,7 +87,7 @@ void write_pareto(const ParetoStudy& study, const Scene& scene, int threads, dou
       csv << to_string(r.run.method) << ',' << to_string(r.run.stepping) << ','
           << format_double(r.run.resolution) << ',' << field(r.error) << ','
           << format_double(r.wall_time_s) << ',' << r.node_updates << ','
-          << (r.stable ? "true" : "false") << '\n';
+          << (r.stable ? 1 : 0) << '\n';
   }
   std::vector<double> err, wall, updates;
   for (const ParetoRow& r : study.rows) {
@@ -134,7 +134,7 @@ void write_stability(const StabilityStudy& study, const Scene& scene, int thread
       csv << to_string(r.point.method) << ',' << format_double(r.point.stiffness_factor) << ','
           << (r.point.method == ContactMethod::kPenalty ? "" : format_double(r.point.mass_ratio))
           << ',' << format_double(r.point.courant) << ',' << field(r.verdict.energy_growth) << ','
-          << (r.verdict.stable ? "true" : "false") << '\n';
+          << (r.verdict.stable ? 1 : 0) << '\n';
   }
   {
     std::ofstream csv(dir / "stability_boundary.csv");

@@ -118,7 +118,10 @@ TEST_CASE("shpb study writes pareto.csv with the documented columns, and exits 2
   std::getline(csv, header);
   CHECK(header == "method,stepping,resolution,error,wall_time_s,node_updates,stable");
   int rows = 0;
-  for (std::string line; std::getline(csv, line);) ++rows;
+  for (std::string line; std::getline(csv, line);) {
+    ++rows;
+    CHECK((line.ends_with(",1") || line.ends_with(",0")));  // stable as a number (tools/report.py)
+  }
   CHECK(rows == 3 * 2 * 5);
   CHECK(shpb_test::read_text(dir / "out" / "summary.json").find("\"reference_exact\": true") !=
         std::string::npos);
