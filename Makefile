@@ -17,6 +17,7 @@ run: build
 	@bash tools/run-default.sh $(BUILD)/shpb $(EXPERIMENT) $(RESULTS)
 
 test: build
+	@bash tools/install-deps.sh chromium
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
 bench: deps

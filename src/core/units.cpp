@@ -159,9 +159,11 @@ class UnitParser {
     return (u >= 'a' && u <= 'z') || (u >= 'A' && u <= 'Z') || u >= 0x80;
   }
 
-  // expression := product { '/' product }
+  // expression := [product] { '/' product }
   UnitValue expression() {
-    UnitValue u = product();
+    skip_spaces();
+    // "/s" reads as "1/s".
+    UnitValue u = pos_ < text_.size() && text_[pos_] == '/' ? UnitValue{} : product();
     skip_spaces();
     while (pos_ < text_.size() && text_[pos_] == '/') {
       ++pos_;
