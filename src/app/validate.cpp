@@ -35,6 +35,12 @@ std::optional<double> distance_to_specimen(const Scene& scene, std::size_t bar, 
   return d;
 }
 
+std::string g(double v, int digits = 4) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+  return buf;
+}
+
 // The interface as simulate builds it: method and penalty parameters from the scene (per-interface
 // overrides win), derived defaults from the neighbouring end elements (METHODS.md §2–3).
 InterfaceModel resolved_interface(const Scene& scene, const ChainDiscretization& d, std::size_t k) {
@@ -107,7 +113,12 @@ json resolved_setup(const Scene& scene, const ChainDiscretization& d) {
                                  {"link_stiffness_N_m", stiffness},
                                  {"link_mass_penalty_kg", mass}});
   }
-  out["warnings"] = scene_warnings(scene, d.duration_s);
+  auto warnings = scene_warnings(scene, d.duration_s);
+  for (std::size_t i = 0; i < scene.bars.size(); ++i)  // METHODS.md §1: stable for C <= 1
+    if (d.bars[i].courant > 1)
+      warnings.push_back("bar " + scene.bars[i].name + ": Courant number " + g(d.bars[i].courant) +
+                         " > 1: the explicit step is unstable");
+  out["warnings"] = warnings;
   out["duration_s"] = d.duration_s;
   out["sample_rate_Hz"] = d.sample_rate_Hz;
   out["stepping"] = to_string(d.stepping);
@@ -115,12 +126,6 @@ json resolved_setup(const Scene& scene, const ChainDiscretization& d) {
                                                  {"channels", scene.measurement->channels.size()}})
                                          : json(nullptr);
   return out;
-}
-
-std::string g(double v, int digits = 4) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-  return buf;
 }
 
 // "a" or "a / b" for the links of an interface.

@@ -37,7 +37,7 @@ struct InterfaceModel {
   // links are then the seed paper's finite ones (contact_localized_finite.cpp); false selects
   // the rigid-link limit ε_s, ε_m → ∞ (contact_localized_bipenalty.cpp).
   bool finite_links = false;
-  bool tied = false;  // plain penalty only: bilateral link (PenaltyParams::tied)
+  bool tied = false;  // penalty and node-to-node bipenalty: bilateral link (PenaltyParams::tied)
 };
 
 // Mutable state of one interface.

@@ -75,6 +75,11 @@ TEST_CASE("validate applies --contact, --stepping and --courant as simulate woul
   // Global stepping: every bar takes the same (smallest) step.
   const double dt = v["bars"][0]["time_step_s"].get<double>();
   for (const auto& b : v["bars"]) CHECK(b["time_step_s"].get<double>() == dt);
+  CHECK(v["warnings"].empty());
+  // Lumped central difference is unstable above C = 1 (METHODS.md §1): validate says so.
+  const json unstable = validate_json(file, {"--courant", "1.2"});
+  REQUIRE(unstable["warnings"].size() == 2);
+  CHECK(unstable["warnings"][0].get<std::string>().find("unstable") != std::string::npos);
 }
 
 TEST_CASE("validate warns when pulses overlap at a gauge or the duration is too short",
