@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <unistd.h>
 
 #include "core/csv_writer.hpp"
 
@@ -17,7 +19,8 @@ TEST_CASE("Doubles are written in shortest round-trip form and read back exactly
 }
 
 TEST_CASE("A CSV file has one header row and refuses non-finite values", "[core][csv]") {
-  const auto path = std::filesystem::temp_directory_path() / "shpb_test_csv_writer.csv";
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("shpb_test_csv_writer_" + std::to_string(::getpid()) + ".csv");
   {
     CsvWriter w(path, {"time_s", "strain"});
     w.row({0.0, 1e-3});
