@@ -1,12 +1,58 @@
+// `shpb dispersion`: the first Pochhammer–Chree mode as CSV (DESIGN.md §2, METHODS.md §5).
 #include <cstdio>
+#include <memory>
+#include <vector>
 
 #include "app/commands.hpp"
+#include "core/csv_writer.hpp"
+#include "core/error.hpp"
+#include "dispersion/pochhammer_chree.hpp"
 
 namespace shpb {
 
-int run_dispersion(const DispersionArgs&) {
-  std::fprintf(stderr, "error: shpb dispersion: not implemented yet\n");
-  return 2;
+int run_dispersion(const DispersionArgs& args) {
+  if (!(args.poisson >= 0 && args.poisson <= 0.49))
+    throw input_error("--poisson", "", format_double(args.poisson), "must be in [0, 0.49]");
+  std::vector<double> xs = args.a_over_lambda;
+  if (xs.empty()) {
+    if (args.points < 2) throw input_error("--points", "", std::to_string(args.points), "must be >= 2");
+    for (int i = 0; i < args.points; ++i)
+      xs.push_back(args.max_a_over_lambda * i / (args.points - 1));
+  }
+  for (double x : xs)
+    if (!(x >= 0) || x > 1000)
+      throw input_error("--a-over-lambda", "", format_double(x), "must be in [0, 1000]");
+  const bool with_frequency = args.radius_m && args.c0_m_s;
+  if (args.radius_m.has_value() != args.c0_m_s.has_value())
+    throw input_error(args.radius_m ? "--c0" : "--radius", "", "missing",
+                      "--radius and --c0 go together (frequency_Hz needs both)");
+  if (with_frequency && (!(*args.radius_m > 0) || !(*args.c0_m_s > 0)))
+    throw input_error("--radius/--c0", "", "", "must be > 0");
+
+  std::vector<std::string> header = {"a_over_lambda", "c_over_c0", "cg_over_c0", "f_a_over_c0"};
+  if (with_frequency) header.push_back("frequency_Hz");
+  const std::filesystem::path file = args.output ? *args.output : "/dev/stdout";
+  std::unique_ptr<CsvWriter> csv;
+  try {
+    csv = std::make_unique<CsvWriter>(file, header);
+  } catch (const std::runtime_error& e) {
+    throw input_error(file.string(), "", "", "cannot be written");
+  }
+  // Marching guess only for a small increasing step (the narrow bracket then cannot reach
+  // another mode; see phase_velocity).
+  constexpr double kMarchingStep = 0.01;
+  double previous_x = -1, previous_c = 0;
+  for (double x : xs) {
+    const bool near = x > previous_x && x - previous_x <= kMarchingStep && previous_x >= 0;
+    const double c = phase_velocity(args.poisson, x, near ? previous_c : 0.0);
+    previous_x = x;
+    previous_c = c;
+    const double cg = group_velocity(args.poisson, x, c);
+    std::vector<double> row = {x, c, cg, x * c};
+    if (with_frequency) row.push_back(x * c * *args.c0_m_s / *args.radius_m);
+    csv->row(row);
+  }
+  return 0;
 }
 
 }  // namespace shpb

@@ -1,12 +1,62 @@
+// shpb simulate SCENE.json -o DIR: read and validate the scene (exit 2 before anything is
+// written), run it, write the files of DESIGN.md §4 atomically. An instability is exit 3 with
+// what was computed until then and a summary saying where and when (still written atomically).
+#include <unistd.h>
+
 #include <cstdio>
 
 #include "app/commands.hpp"
+#include "core/error.hpp"
+#include "core/output_folder.hpp"
+#include "solver/simulation.hpp"
 
 namespace shpb {
 
-int run_simulate(const SimulateArgs&) {
-  std::fprintf(stderr, "error: shpb simulate: not implemented yet\n");
-  return 2;
+namespace {
+// Progress on stderr: a bar redrawn in place on a terminal, a plain line every 10 % otherwise.
+std::function<void(double)> progress_printer(bool quiet) {
+  if (quiet) return {};
+  const bool tty = ::isatty(STDERR_FILENO) != 0;
+  return [tty, last = -1](double fraction) mutable {
+    const int pct = static_cast<int>(fraction * 100 + 0.5);
+    if (tty) {
+      if (pct == last) return;
+      last = pct;
+      constexpr int kWidth = 40;
+      const int filled = pct * kWidth / 100;
+      std::fprintf(stderr, "\rsimulating [%.*s%*s] %3d%%", filled,
+                   "########################################", kWidth - filled, "", pct);
+      if (pct >= 100) std::fprintf(stderr, "\n");
+    } else if (pct / 10 != last / 10 || last < 0) {
+      last = pct;
+      std::fprintf(stderr, "simulating: %d%%\n", pct);
+    }
+  };
+}
+}  // namespace
+
+int run_simulate(const SimulateArgs& args) {
+  Scene scene = read_scene(args.scene);  // InputError → exit 2, nothing written
+  apply_overrides(args.overrides, scene);
+  OutputFolder out(args.output);
+  SimulationOptions options;
+  options.full_model = args.full_model;
+  options.progress = progress_printer(args.overrides.quiet);
+  options.cancel = [] { return interrupted(); };
+  const SimulationResult result = simulate(scene, options);
+  write_simulation_outputs(result, scene, out.path());
+  out.commit();
+  if (!result.stable) {
+    std::fprintf(stderr, "error: %s: %s (outputs up to then written to %s)\n",
+                 args.scene.string().c_str(), result.failure.c_str(),
+                 out.final_path().string().c_str());
+    return 3;
+  }
+  if (!args.overrides.quiet)
+    std::fprintf(stderr, "simulated %s in %.3g s (%lld node updates, energy error %.3g); wrote %s\n",
+                 scene.name.c_str(), result.wall_time_s, result.node_updates, result.energy_error,
+                 out.final_path().string().c_str());
+  return 0;
 }
 
 }  // namespace shpb

@@ -8,12 +8,26 @@
 
 namespace shpb {
 
+// Default Courant number c·Δt/h of every bar. Lumped central difference is exact at C = 1 and
+// stable up to it; exactly C = 1 with a bipenalty mass ratio R = R_crit is marginally unstable
+// (METHODS.md §2), and the tied-bar plateau ringing is 0.41 % at 0.999 and 0.86 % at 0.98.
+inline constexpr double kDefaultCourant = 0.995;
+// Automatic meshes: bars at ~1 mm elements (the classic SHPB resolution, METHODS.md §1), the
+// specimen ten times finer and with at least 50 elements across its length, so its ring-up and
+// its own wave transits are resolved.
+inline constexpr double kBarElementLength_m = 1e-3;
+inline constexpr int kMinBarElements = 20;
+inline constexpr double kSpecimenElementLength_m = 1e-4;
+inline constexpr int kMinSpecimenElements = 50;
+
 struct BarDiscretization {
   int elements = 0;
   double element_length_m = 0;  // h
+  double wave_speed_m_s = 0;    // c = sqrt(E_max/ρ), E_max the largest tangent modulus
   double critical_step_s = 0;   // h / c for lumped linear elements (C = 1)
   double time_step_s = 0;       // this bar's own Δt (asynchronous) or the global one
   double courant = 0;           // c Δt / h
+  long steps = 0;               // steps to cover the duration
 };
 
 struct ChainDiscretization {
@@ -24,5 +38,10 @@ struct ChainDiscretization {
 };
 
 ChainDiscretization discretize(const Scene& scene);
+
+// DESIGN.md §3 default duration: the striker's pulse (2 L_s/c_s long) has travelled from the
+// first interface to the last gauge and passed it, plus 10 %. Without gauges: two transits of
+// the longest bar.
+double default_duration_s(const Scene& scene);
 
 }  // namespace shpb

@@ -1,0 +1,105 @@
+#include "analysis/pulse_window.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace shpb {
+namespace {
+
+constexpr double kNoiseSigmas = 5.0;          // band of the baseline, in σ
+constexpr double kBandOfPeak = 0.03;          // … and at least this fraction of the peak
+constexpr double kDetectFractionOfPeak = 0.5; // a pulse is found at half its height
+constexpr double kMadToSigma = 1.4826;        // σ of Gaussian noise from its MAD
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  return *mid;
+}
+
+}  // namespace
+
+Baseline estimate_baseline(std::span<const double> x, double fraction) {
+  const std::size_t n = std::min(x.size(), std::max<std::size_t>(
+      10, static_cast<std::size_t>(fraction * static_cast<double>(x.size()))));
+  std::vector<double> seg(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(n));
+  Baseline b;
+  b.level = median(seg);
+  for (double& v : seg) v = std::abs(v - b.level);
+  b.noise = kMadToSigma * median(seg);
+  return b;
+}
+
+std::optional<PulseWindow> find_first_pulse(std::span<const double> x, const Baseline& b,
+                                            std::size_t from) {
+  double peak = 0;
+  for (std::size_t i = from; i < x.size(); ++i) peak = std::max(peak, std::abs(x[i] - b.level));
+  const double band = std::max(kNoiseSigmas * b.noise, kBandOfPeak * peak);
+  if (!(peak > 2 * band) && !(peak > 0 && b.noise == 0)) return std::nullopt;
+  const double detect = kDetectFractionOfPeak * peak;
+  std::size_t i = from;
+  while (i < x.size() && std::abs(x[i] - b.level) < detect) ++i;
+  if (i == x.size()) return std::nullopt;
+  PulseWindow w;
+  w.sign = x[i] - b.level < 0 ? -1.0 : 1.0;
+  auto level = [&](std::size_t k) { return w.sign * (x[k] - b.level); };
+  std::size_t on = i;
+  while (on > from && level(on - 1) > band) --on;
+  w.onset = on;
+  // Last half-peak sample of this pulse: follow it while it stays above the band.
+  std::size_t last_half = i;
+  std::size_t k = i;
+  while (k < x.size() && level(k) > band) {
+    if (level(k) >= detect) last_half = k;
+    w.peak = std::max(w.peak, level(k));
+    ++k;
+  }
+  // Short dips inside the band (noise on a plateau) do not end the pulse: look ahead for a
+  // return above half height within a tenth of the length so far.
+  while (k < x.size()) {
+    const std::size_t look = std::max<std::size_t>(3, (k - on) / 10);
+    std::size_t j = k;
+    while (j < x.size() && j < k + look && level(j) < detect) ++j;
+    if (j >= x.size() || j >= k + look) break;
+    k = j;
+    while (k < x.size() && level(k) > band) {
+      if (level(k) >= detect) last_half = k;
+      w.peak = std::max(w.peak, level(k));
+      ++k;
+    }
+  }
+  std::size_t end = last_half;
+  while (end < x.size() && level(end) > band) ++end;
+  w.end = end;
+  return w;
+}
+
+std::optional<std::size_t> find_onset(std::span<const double> x, const Baseline& b, double sign,
+                                      std::size_t from, std::size_t to) {
+  to = std::min(to, x.size());
+  double peak = 0;
+  for (std::size_t i = from; i < to; ++i) peak = std::max(peak, sign * (x[i] - b.level));
+  const double band = std::max(kNoiseSigmas * b.noise, kBandOfPeak * peak);
+  if (!(peak > 2 * band)) return std::nullopt;
+  std::size_t i = from;
+  while (i < to && sign * (x[i] - b.level) < kDetectFractionOfPeak * peak) ++i;
+  while (i > from && sign * (x[i - 1] - b.level) > band) --i;
+  return i;
+}
+
+double plateau_level(std::span<const double> x, std::size_t begin, std::size_t end, double sign) {
+  std::vector<double> v;
+  for (std::size_t i = begin; i < end && i < x.size(); ++i) v.push_back(sign * x[i]);
+  if (v.empty()) return 0;
+  std::vector<double> sorted(v);
+  std::sort(sorted.begin(), sorted.end());
+  const double p95 = sorted[static_cast<std::size_t>(0.95 * static_cast<double>(sorted.size() - 1))];
+  std::vector<double> top;
+  for (double y : v)
+    if (y >= 0.5 * p95) top.push_back(y);
+  return median(top);
+}
+
+}  // namespace shpb

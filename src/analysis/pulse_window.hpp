@@ -1,0 +1,40 @@
+#pragma once
+// Finding a pulse in a gauge record: baseline and noise from the quiet start of the record, onset
+// where the signal leaves the noise before its first large excursion, end where it comes back.
+#include <cstddef>
+#include <optional>
+#include <span>
+
+namespace shpb {
+
+struct Baseline {
+  double level = 0;  // median of the quiet segment
+  double noise = 0;  // 1.4826 × median absolute deviation (σ of Gaussian noise)
+};
+
+// Baseline from the first `fraction` of the record (at least 10 samples).
+Baseline estimate_baseline(std::span<const double> x, double fraction = 0.05);
+
+struct PulseWindow {
+  std::size_t onset = 0;  // first sample of the pulse
+  std::size_t end = 0;    // one past its last sample
+  double sign = -1;       // −1 compressive (strain < 0), +1 tensile
+  double peak = 0;        // largest |x − baseline| inside the window
+};
+
+// The first large pulse of either sign in x − baseline.level: it starts at the first sample beyond
+// half the record's largest excursion; the onset is the last sample before that within the
+// noise band (max(5σ, 3 % of the peak)), the end the first sample after the pulse's last
+// half-peak crossing back inside that band. nullopt if nothing rises above the noise.
+std::optional<PulseWindow> find_first_pulse(std::span<const double> x, const Baseline& baseline,
+                                            std::size_t from = 0);
+
+// Onset of a pulse of the given sign after sample `from`, the same way; nullopt if none.
+std::optional<std::size_t> find_onset(std::span<const double> x, const Baseline& baseline,
+                                      double sign, std::size_t from, std::size_t to);
+
+// Median over the samples of x[begin, end) that are at least half of their 95th percentile
+// (times sign): the plateau of a pulse, insensitive to its ramps and to single spikes.
+double plateau_level(std::span<const double> x, std::size_t begin, std::size_t end, double sign);
+
+}  // namespace shpb

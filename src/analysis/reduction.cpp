@@ -1,0 +1,51 @@
+#include "analysis/reduction.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace shpb {
+
+Curve reduce_pulses(std::span<const double> ei, std::span<const double> er,
+                    std::span<const double> et, std::span<const double> fi,
+                    std::span<const double> fr, std::span<const double> ft, double dt,
+                    const BarSide& front, const BarSide& back, const SpecimenGeometry& s) {
+  const std::size_t n = ei.size();
+  if (er.size() != n || et.size() != n || fi.size() != n || fr.size() != n || ft.size() != n)
+    throw std::invalid_argument("reduce_pulses: pulses of different lengths");
+  Curve c;
+  auto resize = [n](std::vector<double>& v) { v.assign(n, 0.0); };
+  for (auto* v : {&c.strain_rate_1_s, &c.strain_rate_1wave_1_s, &c.strain, &c.force_front_N,
+                  &c.force_back_N, &c.stress_1wave_Pa, &c.stress_2wave_Pa, &c.stress_3wave_Pa,
+                  &c.true_strain, &c.true_stress_Pa, &c.equilibrium_ratio})
+    resize(*v);
+  double peak_sum = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    // Tension-positive strains: a right-going wave has particle velocity −c0 ε, a left-going
+    // one +c0 ε. Face velocities (to the right) v1 = −c0 (ε_I − ε_R), v2 = −c0 ε_T.
+    const double v1 = -front.c0_m_s * (ei[i] - er[i]);
+    const double v2 = -back.c0_m_s * et[i];
+    c.strain_rate_1_s[i] = (v1 - v2) / s.length_m;  // shortening rate, compression positive
+    c.strain_rate_1wave_1_s[i] = 2 * front.c0_m_s * er[i] / s.length_m;
+    c.force_front_N[i] = -front.youngs_modulus_Pa * front.area_m2 * (fi[i] + fr[i]);
+    c.force_back_N[i] = -back.youngs_modulus_Pa * back.area_m2 * ft[i];
+    c.stress_1wave_Pa[i] = c.force_back_N[i] / s.area_m2;
+    c.stress_2wave_Pa[i] = c.force_front_N[i] / s.area_m2;
+    c.stress_3wave_Pa[i] = 0.5 * (c.force_front_N[i] + c.force_back_N[i]) / s.area_m2;
+    peak_sum = std::max(peak_sum, std::abs(c.force_front_N[i] + c.force_back_N[i]));
+    if (i > 0)
+      c.strain[i] = c.strain[i - 1] + 0.5 * dt * (c.strain_rate_1_s[i] + c.strain_rate_1_s[i - 1]);
+  }
+  const double floor = std::max(kEquilibriumFloor * peak_sum, 1e-300);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double e = c.strain[i];
+    // Constant volume, compression positive (METHODS.md §6); defined while the specimen has length.
+    c.true_strain[i] = e < 1 ? -std::log1p(-e) : -std::log(1e-12);
+    c.true_stress_Pa[i] = c.stress_3wave_Pa[i] * (1 - e);
+    const double sum = std::abs(c.force_front_N[i] + c.force_back_N[i]);
+    c.equilibrium_ratio[i] = 2 * std::abs(c.force_front_N[i] - c.force_back_N[i]) / std::max(sum, floor);
+  }
+  return c;
+}
+
+}  // namespace shpb

@@ -1,0 +1,142 @@
+// Plain CSV/TSV and Tektronix per-channel CSV (signal_formats.hpp).
+#include <algorithm>
+
+#include "core/error.hpp"
+#include "core/signal_formats.hpp"
+
+namespace shpb {
+namespace {
+
+bool all_numeric(const TextRow& row, bool decimal_comma) {
+  std::size_t numbers = 0;
+  for (const auto& f : row.fields) {
+    if (f.empty()) continue;
+    if (!parse_number(f, decimal_comma)) return false;
+    ++numbers;
+  }
+  return numbers > 0;
+}
+
+std::string describe(const ColumnRef& c) {
+  return c.index ? "column index " + std::to_string(*c.index) : "column \"" + c.name + "\"";
+}
+
+// Column index of a reference: by 0-based index, or by exact (then case-insensitive) header name.
+std::size_t resolve(const DelimitedText& text, const TextRow* header, const ColumnRef& ref,
+                    std::size_t columns_in_data) {
+  if (ref.index) {
+    if (*ref.index < 0 || static_cast<std::size_t>(*ref.index) >= columns_in_data)
+      throw input_error(text.file.string(), "", describe(ref),
+                        "no such column (the data rows have " + std::to_string(columns_in_data) +
+                            " columns, indices from 0)");
+    return static_cast<std::size_t>(*ref.index);
+  }
+  if (header) {
+    const auto& f = header->fields;
+    auto it = std::find(f.begin(), f.end(), ref.name);
+    if (it == f.end()) {
+      auto lower = [](std::string s) {
+        std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+        return s;
+      };
+      it = std::find_if(f.begin(), f.end(), [&](const std::string& h) { return lower(h) == lower(ref.name); });
+    }
+    if (it != f.end()) return static_cast<std::size_t>(it - f.begin());
+    std::string names;
+    for (const auto& h : f) names += (names.empty() ? "" : ", ") + ("\"" + h + "\"");
+    throw input_error(text.file.string(), "line " + std::to_string(header->line), describe(ref),
+                      "no such column; the header has " + names);
+  }
+  throw input_error(text.file.string(), "", describe(ref),
+                    "no such column: the file has no header row (give the column as an index)");
+}
+
+RawSignalColumns read_columns(const DelimitedText& text, std::size_t first_data,
+                              const TextRow* header, std::size_t time_index,
+                              const std::vector<std::size_t>& indices,
+                              const std::vector<std::string>& names) {
+  RawSignalColumns raw;
+  raw.names = names;
+  raw.values.resize(indices.size());
+  const std::size_t n = text.rows.size() - first_data;
+  raw.time.reserve(n);
+  raw.lines.reserve(n);
+  for (auto& v : raw.values) v.reserve(n);
+  auto header_name = [&](std::size_t c) {
+    return header && c < header->fields.size() ? header->fields[c] : std::string();
+  };
+  for (std::size_t r = first_data; r < text.rows.size(); ++r) {
+    const TextRow& row = text.rows[r];
+    raw.time.push_back(number_at(text, row, time_index, header_name(time_index)));
+    for (std::size_t k = 0; k < indices.size(); ++k)
+      raw.values[k].push_back(number_at(text, row, indices[k], header_name(indices[k])));
+    raw.lines.push_back(row.line);
+  }
+  return raw;
+}
+
+}  // namespace
+
+double number_at(const DelimitedText& text, const TextRow& row, std::size_t column,
+                 const std::string& column_name) {
+  const std::string where = text_place(row.line, column) +
+                            (column_name.empty() ? "" : " (\"" + column_name + "\")");
+  if (column >= row.fields.size())
+    throw input_error(text.file.string(), where, "missing value",
+                      "the row has only " + std::to_string(row.fields.size()) +
+                          " fields (truncated line?)");
+  const std::string& f = row.fields[column];
+  if (f.empty()) throw input_error(text.file.string(), where, "empty field", "expected a number");
+  const auto v = parse_number(f, text.decimal_comma);
+  if (!v) {
+    const bool nan = f.find("nan") != std::string::npos || f.find("NaN") != std::string::npos ||
+                     f.find("NAN") != std::string::npos;
+    throw input_error(text.file.string(), where, "\"" + f + "\"",
+                      nan ? "not a number (NaN) where a finite sample was expected"
+                          : "expected a finite number");
+  }
+  return *v;
+}
+
+RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest& request) {
+  // Data start at the first row whose fields are all numbers; the row before is the header.
+  std::size_t first = 0;
+  while (first < text.rows.size() && !all_numeric(text.rows[first], text.decimal_comma)) ++first;
+  if (first == text.rows.size())
+    throw input_error(text.file.string(), "line " + std::to_string(text.rows.back().line),
+                      "no numeric rows", "expected rows of numbers after the header");
+  const TextRow* header = first > 0 ? &text.rows[first - 1] : nullptr;
+  const std::size_t width = text.rows[first].fields.size();
+  ColumnRef time_ref = request.time_column;
+  if (time_ref.name.empty() && !time_ref.index) time_ref.index = 0;
+  const std::size_t time_index = resolve(text, header, time_ref, width);
+  std::vector<std::size_t> indices;
+  std::vector<std::string> names;
+  for (const auto& c : request.columns) {
+    indices.push_back(resolve(text, header, c, width));
+    names.push_back(header && indices.back() < header->fields.size() ? header->fields[indices.back()]
+                                                                     : "column " + std::to_string(indices.back()));
+  }
+  return read_columns(text, first, header, time_index, indices, names);
+}
+
+RawSignalColumns read_tektronix_columns(const DelimitedText& text, const SignalRequest& request) {
+  constexpr std::size_t kTimeColumn = 3, kVoltColumn = 4;
+  std::vector<std::size_t> indices;
+  std::vector<std::string> names;
+  for (const auto& c : request.columns) {
+    if (c.index && (*c.index < 0 || *c.index > static_cast<int>(kVoltColumn)))
+      throw input_error(text.file.string(), "", describe(c),
+                        "a Tektronix channel file has columns 0–4 (time 3, volts 4)");
+    if (!c.index && !c.name.empty())
+      throw input_error(text.file.string(), "", describe(c),
+                        "a Tektronix channel file has no header: give the column as an index (4)");
+    indices.push_back(c.index ? static_cast<std::size_t>(*c.index) : kVoltColumn);
+    names.push_back(text.file.filename().string());
+  }
+  const std::size_t time_index =
+      request.time_column.index ? static_cast<std::size_t>(*request.time_column.index) : kTimeColumn;
+  return read_columns(text, 0, nullptr, time_index, indices, names);
+}
+
+}  // namespace shpb

@@ -1,0 +1,149 @@
+#include "core/signal_gauges.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+#include "core/error.hpp"
+#include "core/signal_reader.hpp"
+
+namespace shpb {
+namespace {
+
+// Two files' time bases count as the same if they agree to this fraction of a sample.
+constexpr double kSameClock = 1e-3;
+
+std::vector<double> resample(const std::vector<double>& t, const std::vector<double>& y,
+                             const std::vector<double>& onto) {
+  std::vector<double> out(onto.size());
+  for (std::size_t i = 0; i < onto.size(); ++i) {
+    const double x = onto[i];
+    if (x <= t.front()) {
+      out[i] = y.front();
+      continue;
+    }
+    if (x >= t.back()) {
+      out[i] = y.back();
+      continue;
+    }
+    const auto j = static_cast<std::size_t>(std::upper_bound(t.begin(), t.end(), x) - t.begin());
+    const double a = (x - t[j - 1]) / (t[j] - t[j - 1]);
+    out[i] = y[j - 1] + a * (y[j] - y[j - 1]);
+  }
+  return out;
+}
+
+double median_abs_peak(const std::vector<double>& x) {
+  // Peak distance from the median (the baseline) of the record.
+  std::vector<double> s(x);
+  std::nth_element(s.begin(), s.begin() + static_cast<std::ptrdiff_t>(s.size() / 2), s.end());
+  const double med = s[s.size() / 2];
+  double peak = 0;
+  for (double v : x) peak = std::max(peak, std::abs(v - med));
+  return peak;
+}
+
+}  // namespace
+
+const std::vector<double>* GaugeSignals::find(std::string_view gauge) const {
+  for (std::size_t i = 0; i < gauges.size(); ++i)
+    if (gauges[i] == gauge) return &strain[i];
+  return nullptr;
+}
+
+double volts_to_strain(const BridgeSpec& b) {
+  return (4.0 / b.arms) / (b.gauge_factor * b.gain * b.excitation_V);
+}
+
+GaugeSignals read_gauge_signals(const MeasurementSpec& m, const std::filesystem::path& base_dir) {
+  auto resolve = [&](const std::filesystem::path& p) {
+    if (p.is_absolute() || base_dir.empty()) return p;
+    return base_dir / p;
+  };
+  // One read per file, with all the columns its channels need.
+  std::map<std::filesystem::path, std::vector<std::size_t>> by_file;
+  for (std::size_t c = 0; c < m.channels.size(); ++c)
+    by_file[resolve(m.channels[c].file.empty() ? m.file : m.channels[c].file)].push_back(c);
+
+  GaugeSignals out;
+  std::vector<std::vector<double>> channel_strain(m.channels.size());
+  bool first_file = true;
+  // Files in channel order, so the first channel's file sets the common clock.
+  std::vector<std::filesystem::path> order;
+  for (const auto& ch : m.channels) {
+    const auto f = resolve(ch.file.empty() ? m.file : ch.file);
+    if (std::find(order.begin(), order.end(), f) == order.end()) order.push_back(f);
+  }
+  for (const auto& file : order) {
+    const auto& channels = by_file[file];
+    SignalRequest req;
+    req.file = file;
+    req.format = m.format;
+    req.time_column = m.time_column;
+    req.time_unit_s = m.time_unit_s;
+    for (std::size_t c : channels) req.columns.push_back(m.channels[c].column);
+    SignalColumns cols = read_signal_columns(req);
+    out.warnings.insert(out.warnings.end(), cols.warnings.begin(), cols.warnings.end());
+    if (first_file) {
+      out.time_s = cols.time_s;
+      out.dt_s = cols.dt_s;
+      first_file = false;
+    }
+    const bool same_clock = cols.time_s.size() == out.time_s.size() &&
+                            std::abs(cols.time_s.front() - out.time_s.front()) < kSameClock * out.dt_s &&
+                            std::abs(cols.dt_s - out.dt_s) * static_cast<double>(out.time_s.size()) <
+                                kSameClock * out.dt_s;
+    if (!same_clock)
+      out.warnings.push_back(file.string() + ": time base differs from " + order.front().string() +
+                             "; its channels were resampled onto the first file's clock (linear)");
+    for (std::size_t k = 0; k < channels.size(); ++k) {
+      const ChannelSpec& ch = m.channels[channels[k]];
+      std::vector<double> v = same_clock ? std::move(cols.values[k])
+                                         : resample(cols.time_s, cols.values[k], out.time_s);
+      double factor = 1.0;
+      switch (ch.unit) {
+        case SignalUnit::kVolt:
+          if (!ch.bridge)
+            throw input_error("measurement", "channels[" + std::to_string(channels[k]) + "].bridge",
+                              "missing", "a channel in volts needs a bridge (arms, gauge_factor, excitation, gain)");
+          factor = volts_to_strain(*ch.bridge);
+          break;
+        case SignalUnit::kMicrostrain: factor = 1e-6; break;
+        case SignalUnit::kStrain: factor = 1.0; break;
+      }
+      if (ch.invert) factor = -factor;
+      for (double& x : v) x *= factor;
+      channel_strain[channels[k]] = std::move(v);
+    }
+  }
+  // Average the channels of each gauge, in order of first appearance.
+  for (std::size_t c = 0; c < m.channels.size(); ++c) {
+    const std::string& g = m.channels[c].gauge;
+    if (out.find(g)) continue;
+    std::vector<double> sum(out.time_s.size(), 0.0);
+    int count = 0;
+    for (std::size_t d = c; d < m.channels.size(); ++d)
+      if (m.channels[d].gauge == g) {
+        for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += channel_strain[d][i];
+        ++count;
+      }
+    for (double& x : sum) x /= count;
+    out.gauges.push_back(g);
+    out.strain.push_back(std::move(sum));
+  }
+  for (std::size_t g = 0; g < out.gauges.size(); ++g) {
+    const double peak = median_abs_peak(out.strain[g]);
+    if (peak < kPlausibleStrainMin || peak > kPlausibleStrainMax) {
+      char msg[300];
+      std::snprintf(msg, sizeof msg,
+                    "gauge \"%s\": implausible strain scale: peak |strain| %.3g is outside "
+                    "[%.0e, %.0e] for a Kolsky bar; check the channel's unit and bridge",
+                    out.gauges[g].c_str(), peak, kPlausibleStrainMin, kPlausibleStrainMax);
+      out.warnings.push_back(msg);
+    }
+  }
+  return out;
+}
+
+}  // namespace shpb

@@ -1,0 +1,37 @@
+#pragma once
+// From a scene's `measurement` block to strain at each gauge (tension positive): read every
+// channel through read_signal_columns, volts → strain through the bridge, polarity, averaging of
+// the channels of one gauge (opposite gauges cancel bending), one common time base.
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "model/scene.hpp"
+
+namespace shpb {
+
+struct GaugeSignals {
+  std::vector<double> time_s;  // uniform
+  double dt_s = 0;
+  std::vector<std::string> gauges;
+  std::vector<std::vector<double>> strain;  // per gauge, tension positive
+  std::vector<std::string> warnings;
+
+  // The strain of `gauge`, or nullptr.
+  const std::vector<double>* find(std::string_view gauge) const;
+};
+
+// ε = (4/arms)·V / (GF · gain · V_ex): quarter bridge arms = 1, half 2, full 4.
+double volts_to_strain(const BridgeSpec& bridge);
+
+// Peak strains outside [1e-5, 5e-2] are not what a Kolsky bar produces: a warning names the
+// gauge and its peak (the unit or the bridge is probably wrong).
+inline constexpr double kPlausibleStrainMin = 1e-5;
+inline constexpr double kPlausibleStrainMax = 5e-2;
+
+// Reads the channels of `m`; relative file names are taken relative to `base_dir` (the scene's
+// folder). Throws InputError for unreadable or broken files.
+GaugeSignals read_gauge_signals(const MeasurementSpec& m, const std::filesystem::path& base_dir);
+
+}  // namespace shpb

@@ -1,0 +1,141 @@
+#include "core/signal_reader.hpp"
+
+#include <cmath>
+#include <algorithm>
+#include <cstdio>
+#include <vector>
+
+#include "core/csv_writer.hpp"
+#include "core/error.hpp"
+#include "core/signal_formats.hpp"
+
+namespace shpb {
+namespace {
+
+// A sampling step may differ from the mean interval by this fraction (time stamps printed with
+// a few digits) before the time base counts as non-uniform.
+constexpr double kUniformStepTolerance = 0.02;
+// A least-squares interval within this fraction of a round value (1, 2, 2.5, 4, 5, 8 × 10^k s)
+// is snapped to it: the stamps were rounded, the clock was not.
+constexpr double kRoundIntervalTolerance = 5e-3;
+
+SignalFormat detect(const DelimitedText& text) {
+  auto ext = text.file.extension().string();
+  for (auto& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  if (ext == ".raw") return SignalFormat::kLanlRaw;
+  if (!text.rows.empty() && !text.rows[0].fields.empty() && text.rows[0].fields[0] == "Record Length")
+    return SignalFormat::kTektronix;
+  return SignalFormat::kCsv;
+}
+
+double round_interval(double dt) {
+  const double decade = std::pow(10.0, std::floor(std::log10(dt)));
+  for (double m : {1.0, 2.0, 2.5, 4.0, 5.0, 8.0, 10.0})
+    if (std::abs(dt / (m * decade) - 1) < kRoundIntervalTolerance) return m * decade;
+  return dt;
+}
+
+std::string seconds(double s) {
+  char b[64];
+  std::snprintf(b, sizeof b, "%.6g s", s);
+  return b;
+}
+
+// Checks the time stamps: increasing and uniform. Repeated stamps (rounded to fewer digits than
+// the sampling needs) are not an error: the base is rebuilt from a least-squares fit of t against
+// the sample index, with a warning.
+void check_time_base(const std::filesystem::path& file, const RawSignalColumns& raw,
+                     SignalColumns& out) {
+  const auto& t = out.time_s;
+  const std::size_t n = t.size();
+  if (n < 2) throw input_error(file.string(), "", std::to_string(n) + " samples", "expected at least 2");
+  if (raw.time_from_header) {
+    out.dt_s = raw.header_dt;
+    return;
+  }
+  std::size_t repeats = 0;
+  for (std::size_t i = 1; i < n; ++i) {
+    if (t[i] < t[i - 1])
+      throw input_error(file.string(), "line " + std::to_string(raw.lines[i]) + " (time column)",
+                        seconds(t[i]),
+                        "time goes backwards (previous sample " + seconds(t[i - 1]) +
+                            "); expected increasing time");
+    repeats += t[i] == t[i - 1];
+  }
+  const double span = t.back() - t.front();
+  if (!(span > 0))
+    throw input_error(file.string(), "line " + std::to_string(raw.lines.back()) + " (time column)",
+                      seconds(t.back()), "time does not advance");
+  if (repeats > 0) {
+    // Least-squares line t ≈ t0 + i·dt.
+    double si = 0, st = 0, sii = 0, sit = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double x = static_cast<double>(i);
+      si += x, st += t[i], sii += x * x, sit += x * t[i];
+    }
+    const double dn = static_cast<double>(n);
+    const double fit = (dn * sit - si * st) / (dn * sii - si * si);
+    const double dt = round_interval(fit);
+    const double t0 = (st - dt * si) / dn;
+    std::size_t distinct = 1;
+    for (std::size_t i = 1; i < n; ++i) distinct += t[i] != t[i - 1];
+    for (std::size_t i = 0; i < n; ++i) out.time_s[i] = t0 + static_cast<double>(i) * dt;
+    out.dt_s = dt;
+    char msg[400];
+    std::snprintf(msg, sizeof msg,
+                  "%s: time stamps repeat (%zu distinct values in %zu rows: the column was rounded); "
+                  "time base rebuilt from the sample interval %.6g s (%.6g MHz, least-squares fit "
+                  "%.6g s) starting at %.6g s",
+                  file.string().c_str(), distinct, n, dt, 1e-6 / dt, fit, t0);
+    out.warnings.push_back(msg);
+    return;
+  }
+  // The median step is the sampling interval; a gap or jump stands out against it.
+  std::vector<double> steps(n - 1);
+  for (std::size_t i = 1; i < n; ++i) steps[i - 1] = t[i] - t[i - 1];
+  std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2), steps.end());
+  const double median_step = steps[steps.size() / 2];
+  for (std::size_t i = 1; i < n; ++i) {
+    const double dt = median_step;
+    const double step = t[i] - t[i - 1];
+    if (std::abs(step - dt) > kUniformStepTolerance * dt)
+      throw input_error(file.string(), "line " + std::to_string(raw.lines[i]) + " (time column)",
+                        "step " + seconds(step),
+                        "expected uniform sampling at " + seconds(dt) + " (gap or jump in the record)");
+  }
+  out.dt_s = span / static_cast<double>(n - 1);
+}
+
+}  // namespace
+
+std::string_view to_string(SignalFormat f) {
+  switch (f) {
+    case SignalFormat::kAuto: return "auto";
+    case SignalFormat::kCsv: return "csv";
+    case SignalFormat::kTektronix: return "tektronix";
+    case SignalFormat::kLanlRaw: return "lanl-raw";
+  }
+  return "?";
+}
+
+SignalColumns read_signal_columns(const SignalRequest& request) {
+  const DelimitedText text = read_delimited_text(request.file);
+  SignalColumns out;
+  out.file = request.file;
+  out.format = request.format == SignalFormat::kAuto ? detect(text) : request.format;
+  RawSignalColumns raw;
+  switch (out.format) {
+    case SignalFormat::kLanlRaw: raw = read_lanl_raw_columns(text, request); break;
+    case SignalFormat::kTektronix: raw = read_tektronix_columns(text, request); break;
+    default: raw = read_csv_columns(text, request); break;
+  }
+  out.time_s = std::move(raw.time);
+  if (!raw.time_from_header)
+    for (double& v : out.time_s) v *= request.time_unit_s;
+  out.names = raw.names;
+  out.values = std::move(raw.values);
+  check_time_base(request.file, raw, out);
+  return out;
+}
+
+}  // namespace shpb

@@ -1,0 +1,36 @@
+#pragma once
+// One interface for every signal file format (plain CSV/TSV, Tektronix per-channel CSV, LANL
+// `.raw`): ask for a time base and some columns, get them back on a checked uniform time base.
+// Problems in the file are InputErrors naming file, line and column; things a person should
+// know but that do not stop the work (a rebuilt time base) are returned as warnings.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "model/scene.hpp"
+
+namespace shpb {
+
+struct SignalRequest {
+  std::filesystem::path file;
+  SignalFormat format = SignalFormat::kAuto;
+  ColumnRef time_column;     // empty: the format's own (CSV: first column; Tektronix: 4th; LANL: header)
+  double time_unit_s = 1.0;  // seconds per unit of the time column
+  std::vector<ColumnRef> columns;
+};
+
+struct SignalColumns {
+  std::filesystem::path file;
+  SignalFormat format = SignalFormat::kCsv;  // as detected
+  std::vector<double> time_s;                // uniform, increasing
+  double dt_s = 0;
+  std::vector<std::string> names;            // resolved name of each requested column
+  std::vector<std::vector<double>> values;   // one per requested column, time_s.size() each
+  std::vector<std::string> warnings;
+};
+
+SignalColumns read_signal_columns(const SignalRequest& request);
+
+std::string_view to_string(SignalFormat f);
+
+}  // namespace shpb

@@ -1,0 +1,48 @@
+#include "dispersion/dispersion_table.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "dispersion/pochhammer_chree.hpp"
+
+namespace shpb {
+
+DispersionTable::DispersionTable(double poisson, double max_x, int points) : poisson_(poisson) {
+  if (points < 2 || !(max_x > 0)) throw std::invalid_argument("DispersionTable: bad grid");
+  fa_.resize(points);
+  c_.resize(points);
+  m1_.resize(points);
+  m1m2_.resize(points);
+  double c = 1.0;
+  double prev_surface = 1.0;
+  for (int i = 0; i < points; ++i) {
+    const double x = max_x * i / (points - 1);
+    c = shpb::phase_velocity(poisson, x, i > 0 ? c : 0.0);
+    fa_[i] = x * c;
+    c_[i] = c;
+    const AmplitudeFactors a = amplitude_factors(poisson, x, c);
+    m1_[i] = a.m1;
+    m1m2_[i] = a.m1_m2;
+    const double surface = surface_over_mean_strain(poisson, x, c);
+    if (m1_pole_fa_ == 0 && i > 0 && (surface > 0) != (prev_surface > 0)) {
+      const double t = prev_surface / (prev_surface - surface);
+      m1_pole_fa_ = fa_[i - 1] + t * (fa_[i] - fa_[i - 1]);
+    }
+    prev_surface = surface;
+  }
+}
+
+double DispersionTable::interpolate(const std::vector<double>& y, double fa) const {
+  if (fa <= 0) return y.front();
+  if (fa >= fa_.back()) return y.back();
+  const auto it = std::upper_bound(fa_.begin(), fa_.end(), fa);
+  const std::size_t j = static_cast<std::size_t>(it - fa_.begin());
+  const double t = (fa - fa_[j - 1]) / (fa_[j] - fa_[j - 1]);
+  return y[j - 1] + t * (y[j] - y[j - 1]);
+}
+
+double DispersionTable::phase_velocity(double fa) const { return interpolate(c_, fa); }
+double DispersionTable::m1(double fa) const { return interpolate(m1_, fa); }
+double DispersionTable::m1_m2(double fa) const { return interpolate(m1m2_, fa); }
+
+}  // namespace shpb

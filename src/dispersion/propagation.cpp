@@ -1,0 +1,103 @@
+#include "dispersion/propagation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+namespace shpb {
+
+Propagator::Propagator(const DispersionTable& table, const BarWaveguide& bar,
+                       const PropagationOptions& options)
+    : table_(&table), bar_(bar), options_(options) {
+  if (!(bar.radius_m > 0) || !(bar.c0_m_s > 0))
+    throw std::invalid_argument("Propagator: bar radius and c0 must be > 0");
+  const double pole = table.m1_pole_normalized_frequency();
+  if (options_.dispersion && options_.amplitude != AmplitudeFactor::kNone && pole > 0 &&
+      options_.cutoff_fa_over_c0 >= pole)
+    throw std::invalid_argument("Propagator: the cut-off must lie below the pole of m1");
+  if (options_.cutoff_fa_over_c0 > table.max_normalized_frequency())
+    throw std::invalid_argument("Propagator: cut-off beyond the dispersion table");
+}
+
+double Propagator::lowpass_gain(double f) const {
+  const double fa = f * bar_.radius_m / bar_.c0_m_s;
+  const double cut = options_.cutoff_fa_over_c0;
+  const double start = (1 - options_.rolloff_fraction) * cut;
+  if (fa <= start) return 1.0;
+  if (fa >= cut) return 0.0;
+  const double s = (fa - start) / (cut - start);
+  return 0.5 * (1 + std::cos(std::numbers::pi * s));
+}
+
+void Propagator::propagate(std::span<const double> signal, double dt, double distance_m,
+                           std::span<double> out) {
+  const std::size_t n = signal.size();
+  if (out.size() != n) throw std::invalid_argument("propagate: output length differs");
+  if (n == 0) return;
+  if (!options_.dispersion) {
+    delay_by_interpolation(signal, distance_m / (bar_.c0_m_s * dt), out);
+    return;
+  }
+  // Padding: room for the largest delay of any passed component (slowest phase velocity below
+  // the cut-off) plus a quarter record, so nothing wraps into the kept samples.
+  const double c_min = table_->phase_velocity(options_.cutoff_fa_over_c0) * bar_.c0_m_s;
+  const auto shift = static_cast<std::size_t>(std::ceil(std::abs(distance_m) / (c_min * dt)));
+  const std::size_t size = fast_fft_size(n + shift + n / 4 + 16);
+  if (!fft_ || fft_->size() != size) fft_ = std::make_unique<RealFft>(size);
+
+  std::span<double> x = fft_->samples();
+  std::copy(signal.begin(), signal.end(), x.begin());
+  std::fill(x.begin() + static_cast<std::ptrdiff_t>(n), x.end(), 0.0);
+  // Cosine taper of both ends: the record need not start or end at zero.
+  const auto taper = static_cast<std::size_t>(options_.taper_fraction * static_cast<double>(n));
+  for (std::size_t i = 0; i < taper; ++i) {
+    const double w = 0.5 * (1 - std::cos(std::numbers::pi * (static_cast<double>(i) + 0.5) /
+                                         static_cast<double>(taper)));
+    x[i] *= w;
+    x[n - 1 - i] *= w;
+  }
+  fft_->forward();
+  std::span<std::complex<double>> spec = fft_->spectrum();
+  const double df = 1.0 / (static_cast<double>(size) * dt);
+  const double fa_per_hz = bar_.radius_m / bar_.c0_m_s;
+  for (std::size_t j = 1; j < spec.size(); ++j) {
+    const double f = static_cast<double>(j) * df;
+    const double gain = lowpass_gain(f);
+    if (gain == 0) {
+      spec[j] = 0;
+      continue;
+    }
+    const double fa = f * fa_per_hz;
+    const double c = table_->phase_velocity(fa) * bar_.c0_m_s;
+    double amplitude = gain;
+    if (options_.amplitude == AmplitudeFactor::kStrain) amplitude *= table_->m1(fa);
+    if (options_.amplitude == AmplitudeFactor::kStress) amplitude *= table_->m1_m2(fa);
+    const double phase = -2 * std::numbers::pi * f * distance_m / c;
+    spec[j] *= std::polar(amplitude, phase);
+  }
+  fft_->inverse();
+  std::copy(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(n), out.begin());
+}
+
+std::vector<double> Propagator::propagate(std::span<const double> signal, double dt,
+                                          double distance_m) {
+  std::vector<double> out(signal.size());
+  propagate(signal, dt, distance_m, out);
+  return out;
+}
+
+void delay_by_interpolation(std::span<const double> signal, double delay, std::span<double> out) {
+  const auto n = static_cast<std::ptrdiff_t>(signal.size());
+  for (std::ptrdiff_t i = 0; i < n; ++i) {
+    const double s = static_cast<double>(i) - delay;  // out(t_i) = in(t_i − delay)
+    const double fl = std::floor(s);
+    const auto j = static_cast<std::ptrdiff_t>(fl);
+    const double t = s - fl;
+    const double a = (j >= 0 && j < n) ? signal[static_cast<std::size_t>(j)] : 0.0;
+    const double b = (j + 1 >= 0 && j + 1 < n) ? signal[static_cast<std::size_t>(j + 1)] : 0.0;
+    out[static_cast<std::size_t>(i)] = (1 - t) * a + t * b;
+  }
+}
+
+}  // namespace shpb

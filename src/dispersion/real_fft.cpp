@@ -1,0 +1,48 @@
+#include "dispersion/real_fft.hpp"
+
+#include <fftw3.h>
+
+#include <new>
+
+namespace shpb {
+
+RealFft::RealFft(std::size_t n) : n_(n) {
+  real_ = static_cast<double*>(fftw_malloc(sizeof(double) * n));
+  spectrum_ = static_cast<std::complex<double>*>(fftw_malloc(sizeof(fftw_complex) * (n / 2 + 1)));
+  if (!real_ || !spectrum_) {
+    fftw_free(real_);
+    fftw_free(spectrum_);
+    throw std::bad_alloc();
+  }
+  auto* c = reinterpret_cast<fftw_complex*>(spectrum_);
+  const int len = static_cast<int>(n);
+  // FFTW_ESTIMATE: planning must not overwrite data nor take seconds for one-off records.
+  forward_plan_ = fftw_plan_dft_r2c_1d(len, real_, c, FFTW_ESTIMATE);
+  inverse_plan_ = fftw_plan_dft_c2r_1d(len, c, real_, FFTW_ESTIMATE);
+}
+
+RealFft::~RealFft() {
+  if (forward_plan_) fftw_destroy_plan(static_cast<fftw_plan>(forward_plan_));
+  if (inverse_plan_) fftw_destroy_plan(static_cast<fftw_plan>(inverse_plan_));
+  fftw_free(real_);
+  fftw_free(spectrum_);
+}
+
+void RealFft::forward() { fftw_execute(static_cast<fftw_plan>(forward_plan_)); }
+
+void RealFft::inverse() {
+  fftw_execute(static_cast<fftw_plan>(inverse_plan_));
+  const double scale = 1.0 / static_cast<double>(n_);
+  for (std::size_t i = 0; i < n_; ++i) real_[i] *= scale;
+}
+
+std::size_t fast_fft_size(std::size_t n) {
+  for (std::size_t m = n < 1 ? 1 : n;; ++m) {
+    std::size_t r = m;
+    for (std::size_t p : {2, 3, 5, 7})
+      while (r % p == 0) r /= p;
+    if (r == 1) return m;
+  }
+}
+
+}  // namespace shpb

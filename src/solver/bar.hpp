@@ -1,0 +1,66 @@
+#pragma once
+// One bar of the chain: its immutable set-up (mesh, masses, material, own time step) and its
+// mutable state. Linear two-node elements with lumped mass (METHODS.md §1).
+//
+// Displacements are stored RELATIVE to the bar's initial rigid motion, u(x,t) = w(x,t) + V0·τ
+// (τ = time since the start of the run): a node no wave has reached has w = 0 and v = 0 exactly,
+// so the causal economy (METHODS.md §7) can skip it and still give bit-identical results.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "model/material_law.hpp"
+
+namespace shpb {
+
+struct BarModel {
+  std::string name;
+  int nodes = 0;               // elements + 1
+  double element_length_m = 0;
+  double area_m2 = 0;
+  double density_kg_m3 = 0;
+  double youngs_modulus_Pa = 0;   // elastic (instantaneous) modulus
+  double wave_speed_m_s = 0;
+  double stiffness_N_m = 0;       // EA/h of one element
+  double time_step_s = 0;         // this bar's own Δt
+  double courant = 0;
+  double initial_velocity_m_s = 0;  // V0 of the rigid reference motion
+  std::vector<double> mass_kg;      // lumped: ρAh/2 at the ends, ρAh inside
+  std::vector<double> inverse_mass;
+  std::unique_ptr<MaterialLaw> law;  // null: elastic, σ = E ε in the solver's own kernel
+
+  int elements() const { return nodes - 1; }
+  double impedance_kg_s() const { return density_kg_m3 * wave_speed_m_s * area_m2; }
+  double total_mass_kg() const { return density_kg_m3 * area_m2 * element_length_m * elements(); }
+};
+
+BarModel make_bar_model(std::string name, const MaterialSpec& material, double length_m,
+                        double area_m2, int elements, double time_step_s, double velocity_m_s);
+
+// State at the bar's current instant t_n = t_start + n·Δt (leapfrog): w at t_n, v at t_{n−1/2}
+// (the velocity that brought the nodes to t_n), the force f at t_n being assembled.
+struct BarState {
+  std::vector<double> w;      // displacement relative to the rigid motion [m]
+  std::vector<double> v;      // relative velocity at t_{n−1/2} [m/s]
+  std::vector<double> force;  // nodal force at t_n [N]
+  std::vector<double> stress_Pa;  // element stress at t_n (material-law bars and recorders)
+  std::vector<double> strain_next;  // scratch for material laws
+  std::vector<MaterialPointState> points;  // material-law bars only
+  long step = 0;               // n
+  int lo = 0, hi = -1;         // nodes that may differ from rest: [lo, hi] (empty if lo > hi)
+  double dissipated_J = 0;     // material dissipation so far
+  long long node_updates = 0;  // nodes advanced so far (causal economy counts only active ones)
+
+  bool quiet() const { return lo > hi; }
+};
+
+BarState make_bar_state(const BarModel& bar, bool full_model);
+
+// Absolute displacement and velocity of node i at time τ since the start, for a bar whose state
+// is at τ_n ≥ τ ≥ τ_{n−1}: the central-difference path is linear within a step, so this
+// interpolation is exact (METHODS.md §3).
+double node_displacement_at(const BarModel& bar, const BarState& s, int i, double tau_n,
+                            double tau);
+double node_velocity(const BarModel& bar, const BarState& s, int i);  // absolute, at t_{n−1/2}
+
+}  // namespace shpb

@@ -1,0 +1,46 @@
+#pragma once
+// The per-bar explicit integrator: central difference in leapfrog form with lumped mass
+// (METHODS.md §1), over contiguous arrays. A step at t_n is split in two so that interfaces can
+// add their forces to the end nodes in between:
+//   1. assemble_internal_forces: f_n = −K u_n (elastic kernel, or the bar's MaterialLaw with one
+//      virtual call per bar per step), over the nodes a wave can have reached;
+//   2. (interfaces add contact forces to f_n[0] and f_n[last], see contact_*.hpp)
+//   3. advance: v_{n+1/2} = v_{n−1/2} + Δt M⁻¹ f_n (half a step at n = 0), u_{n+1} = u_n + Δt v_{n+1/2}.
+// Causal economy (METHODS.md §7): lumped central difference moves information by exactly one
+// node per step, so only the node range [lo, hi] grown by one per step is updated; everything
+// outside is exactly at rest relative to the rigid motion.
+#include "solver/bar.hpp"
+
+namespace shpb {
+
+// Grows the active range by one node on each side and writes f_n over it. A quiet bar does
+// nothing (its forces are zero). Returns the number of nodes in the new range.
+void assemble_internal_forces(const BarModel& bar, BarState& s);
+
+// Makes node i part of the active range (an interface starts loading it).
+void activate_node(const BarModel& bar, BarState& s, int i);
+
+// Kick and drift over the active range; counts node updates. Returns the updated node count.
+long advance(const BarModel& bar, BarState& s);
+
+// Free (internal) force on end node `end` (0 or nodes−1) at time τ within the bar's last step,
+// from the interpolated displacements (exact for elastic bars) or the last stress of a
+// material-law bar: the predictor of a neighbour's end load (METHODS.md §3).
+double end_free_force_at(const BarModel& bar, const BarState& s, int end, double tau_n, double tau);
+
+// Element stress at t_n (tension positive).
+double element_stress(const BarModel& bar, const BarState& s, int e);
+
+// Energy of the bar at its current instant t_n; call between assemble and advance (the
+// full-step velocity v_n = v_{n−1/2} + ½Δt a_n needs f_n).
+struct BarEnergy {
+  double kinetic_J = 0;
+  double strain_J = 0;
+  double dissipated_J = 0;  // material dissipation (plastic, viscous) so far
+};
+BarEnergy bar_energy(const BarModel& bar, const BarState& s);
+
+// Full-step velocity v_n of node i (absolute), valid between assemble and advance.
+double node_velocity_now(const BarModel& bar, const BarState& s, int i);
+
+}  // namespace shpb

@@ -1,0 +1,48 @@
+#include "solver/contact.hpp"
+
+#include <algorithm>
+
+namespace shpb {
+
+InterfaceModel make_interface_model(std::string name, ContactMethod method,
+                                    const PenaltyParams& params, double gap0_m,
+                                    const NeighbourInfo& left, const NeighbourInfo& right) {
+  InterfaceModel m;
+  m.name = std::move(name);
+  m.method = method;
+  m.gap0_m = gap0_m;
+  const double k = std::max(left.stiffness_N_m, right.stiffness_N_m);
+  const double eps_s =
+      params.stiffness_N_m.value_or(params.stiffness_factor.value_or(kDefaultStiffnessFactor) * k);
+  const double ratio = params.mass_ratio.value_or(kDefaultMassRatio);
+  auto r_crit = [](const NeighbourInfo& n) {
+    const double r = 2.0 * n.wave_speed_m_s / n.element_length_m;
+    return r * r;
+  };
+  if (method == ContactMethod::kLocalizedBipenalty) {
+    // Each link keeps its own bar's step: R_i ≤ (2 c_i / h_i)² (METHODS.md §3).
+    m.stiffness_N_m[0] = m.stiffness_N_m[1] = eps_s;
+    m.mass_penalty_kg[0] = eps_s / (ratio * r_crit(left));
+    m.mass_penalty_kg[1] = eps_s / (ratio * r_crit(right));
+  } else {
+    // One node-to-node link: R below the smaller critical ratio of the two bars.
+    m.stiffness_N_m[0] = eps_s;
+    m.mass_penalty_kg[0] =
+        method == ContactMethod::kBipenalty ? eps_s / (ratio * std::min(r_crit(left), r_crit(right))) : 0.0;
+  }
+  return m;
+}
+
+ContactResult solve_contact(const InterfaceModel& model, InterfaceState& state, EndState left,
+                            EndState right, double tau, double frame_next_tau) {
+  state.gap_m = model.gap0_m + right.u - left.u;
+  switch (model.method) {
+    case ContactMethod::kPenalty: return solve_penalty(model, state, left, right);
+    case ContactMethod::kBipenalty: return solve_bipenalty(model, state, left, right);
+    case ContactMethod::kLocalizedBipenalty:
+      return solve_localized_bipenalty(model, state, left, right, tau, frame_next_tau);
+  }
+  return {};
+}
+
+}  // namespace shpb

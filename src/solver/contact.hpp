@@ -1,0 +1,82 @@
+#pragma once
+// Contact interfaces between neighbouring bars: common data and the dispatch to one method per
+// file (contact_penalty.cpp, contact_bipenalty.cpp, contact_localized_bipenalty.cpp).
+//
+// Sign conventions: the gap g = gap0 + u_right − u_left (g < 0 is penetration); forces are the
+// forces the interface applies to each end node; the reported contact force is compression
+// positive (DESIGN.md §4).
+#include "model/scene.hpp"
+
+namespace shpb {
+
+// One side of an interface at the instant τ being solved.
+struct EndState {
+  double u = 0;           // absolute displacement of the end node [m]
+  double v = 0;           // absolute velocity of the end node (half-step) [m/s]
+  double free_force = 0;  // f̃: the bar's own force on the end node [N]
+  double mass = 0;        // lumped end-node mass m_b [kg]
+  bool stepping = false;  // the bar takes a step at τ and uses the force solved now
+};
+
+// Immutable parameters of one interface, derived from the neighbours (METHODS.md §2–3).
+struct InterfaceModel {
+  std::string name;  // "<left>-<right>"
+  ContactMethod method = ContactMethod::kLocalizedBipenalty;
+  double gap0_m = 0;
+  // Link stiffness ε_s,i and mass penalty ε_m,i = ε_s,i / R_i; i = 0 left link, 1 right link.
+  // Node-to-node methods use index 0 for their single link.
+  double stiffness_N_m[2] = {0, 0};
+  double mass_penalty_kg[2] = {0, 0};
+};
+
+// Mutable state of one interface.
+struct InterfaceState {
+  bool active = false;
+  // Localized bipenalty: frame point (absolute displacement of the contact point, measured
+  // like the left bar's end) at τ_frame, its half-step velocity, the last frame step, and the
+  // rest offsets of the two localized gaps fixed at activation.
+  double frame_u = 0, frame_v = 0, frame_tau = 0, frame_dt = 0;
+  double offset[2] = {0, 0};
+  // Results of the last solve.
+  double force_N = 0;     // compression positive
+  double gap_m = 0;       // total gap g
+  double energy_J = 0;    // potential + penalty kinetic energy held by the links
+};
+
+// What a solve returns: forces to add to the stepping end nodes, velocity jumps of a
+// momentum-consistent activation (both ends, absolute), and the energy it dissipated.
+struct ContactResult {
+  double force_left_N = 0, force_right_N = 0;
+  double dv_left = 0, dv_right = 0;  // velocity jumps applied before the forces
+  double dissipated_J = 0;
+};
+
+// Default penalty parameters (METHODS.md §2): ε_s = kDefaultStiffnessFactor × the stiffer
+// neighbour's EA/h; R_i = kDefaultMassRatio × (2 c_i/h_i)², the bar's own critical ratio, so
+// that every link leaves its bar's stable step unchanged.
+inline constexpr double kDefaultStiffnessFactor = 1e4;
+inline constexpr double kDefaultMassRatio = 0.9;
+
+struct NeighbourInfo {
+  double stiffness_N_m;  // EA/h of the end element
+  double wave_speed_m_s;
+  double element_length_m;
+};
+InterfaceModel make_interface_model(std::string name, ContactMethod method,
+                                    const PenaltyParams& params, double gap0_m,
+                                    const NeighbourInfo& left, const NeighbourInfo& right);
+
+// Solves the interface at τ. `frame_next_tau` is the next instant at which either neighbour
+// will need the interface (localized bipenalty advances its frame on the union of instants).
+ContactResult solve_contact(const InterfaceModel& model, InterfaceState& state, EndState left,
+                            EndState right, double tau, double frame_next_tau);
+
+ContactResult solve_penalty(const InterfaceModel& model, InterfaceState& state,
+                            const EndState& left, const EndState& right);
+ContactResult solve_bipenalty(const InterfaceModel& model, InterfaceState& state,
+                              const EndState& left, const EndState& right);
+ContactResult solve_localized_bipenalty(const InterfaceModel& model, InterfaceState& state,
+                                        EndState left, EndState right, double tau,
+                                        double frame_next_tau);
+
+}  // namespace shpb

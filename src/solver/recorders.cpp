@@ -1,0 +1,269 @@
+#include "solver/recorders.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "solver/bar_integrator.hpp"
+
+namespace shpb {
+
+namespace {
+// The energy history has at most this many points (it is checked for instability there, and
+// each point costs one pass over the active nodes of every bar).
+constexpr long kEnergyPoints = 500;
+// A field row needs at least this many points per bar so that short bars (the specimen) show.
+constexpr int kMinFieldPointsPerBar = 5;
+
+long grid_count(double span, double spacing) {
+  return span < 0 ? 0 : static_cast<long>(std::floor(span / spacing + 1e-9)) + 1;
+}
+}  // namespace
+
+GridSampler::GridSampler(double tau0, double spacing, long count, int width)
+    : tau0_(tau0), spacing_(spacing), count_(std::max(0L, count)), width_(width),
+      prev_(width, 0.0), data_(static_cast<std::size_t>(count_) * width, 0.0) {}
+
+void GridSampler::push(double tau, const double* values) {
+  while (filled_ < count_ && next_tau() <= tau) {
+    double* out = &data_[filled_ * width_];
+    const double t = next_tau();
+    if (has_prev_ && tau > prev_tau_) {
+      const double a = (t - prev_tau_) / (tau - prev_tau_);
+      for (int c = 0; c < width_; ++c) out[c] = prev_[c] + a * (values[c] - prev_[c]);
+    } else {
+      for (int c = 0; c < width_; ++c) out[c] = values[c];
+    }
+    ++filled_;
+  }
+  std::copy(values, values + width_, prev_.begin());
+  prev_tau_ = tau;
+  has_prev_ = true;
+}
+
+const std::vector<double>& TimeSeries::column(const std::string& name) const {
+  for (std::size_t c = 0; c < columns.size(); ++c)
+    if (columns[c] == name) return values[c];
+  throw std::out_of_range("no column " + name);
+}
+
+ChainRecorders::ChainRecorders(const Scene& scene, const Chain& chain,
+                               const ChainDiscretization& d, const SimulationOptions& options) {
+  start_time_s_ = chain.start_time_s;
+  sample_spacing_s_ = 1.0 / d.sample_rate_Hz;
+  samples_ = grid_count(d.duration_s, sample_spacing_s_);
+  energy_spacing_ = std::max(sample_spacing_s_, chain.end_tau_s / (kEnergyPoints - 1));
+  energy_samples_ = grid_count(chain.end_tau_s, energy_spacing_);
+  const double tau0 = -start_time_s_;
+  record_field_ = options.record_field && options.field_times > 1 && options.field_points > 0;
+
+  double total_length = 0;
+  for (const BarModel& b : chain.bars) total_length += b.element_length_m * b.elements();
+  double x_left = 0;
+  bars_.resize(chain.bars.size());
+  for (std::size_t i = 0; i < chain.bars.size(); ++i) {
+    const BarModel& bar = chain.bars[i];
+    BarRecorder& r = bars_[i];
+    const double h = bar.element_length_m;
+    const int ne = bar.elements();
+    for (const GaugeSpec& g : scene.bars[i].gauges) {
+      // Element strains are constant per element; a point gauge interpolates between centres.
+      double s = g.position_m / h - 0.5;
+      s = std::clamp(s, 0.0, static_cast<double>(ne - 1));
+      int e = std::min(static_cast<int>(std::floor(s)), std::max(ne - 2, 0));
+      r.gauges.push_back({gauge_names_.size(), e, ne > 1 ? s - e : 0.0});
+      gauge_names_.push_back(g.name);
+    }
+    r.gauge_sampler = GridSampler(tau0, sample_spacing_s_, samples_, static_cast<int>(r.gauges.size()));
+    r.specimen = scene.specimen && *scene.specimen == i;
+    if (r.specimen) r.specimen_sampler = GridSampler(tau0, sample_spacing_s_, samples_, 5);
+    r.energy_sampler = GridSampler(0.0, energy_spacing_, energy_samples_, 3);
+    if (record_field_) {
+      const double length = h * ne;
+      int points = std::max(kMinFieldPointsPerBar,
+                            static_cast<int>(std::lround(options.field_points * length / total_length)));
+      points = std::min(points, ne);
+      r.field_offset = field_x_.size();
+      for (int p = 0; p < points; ++p) {
+        const int e = std::min(ne - 1, static_cast<int>((p + 0.5) * ne / points));
+        r.field_elements.push_back(e);
+        field_x_.push_back(x_left + (e + 0.5) * h);
+      }
+    }
+    x_left += h * ne + (i < chain.interfaces.size() ? chain.interfaces[i].gap0_m : 0.0);
+  }
+  for (const InterfaceModel& m : chain.interfaces) {
+    interface_names_.push_back(m.name);
+    interfaces_.push_back({GridSampler(tau0, sample_spacing_s_, samples_, 2),
+                           GridSampler(0.0, energy_spacing_, energy_samples_, 2)});
+  }
+  if (record_field_) {
+    for (int j = 0; j < options.field_times; ++j)
+      field_tau_.push_back(tau0 + d.duration_s * j / (options.field_times - 1));
+    field_stress_.assign(field_tau_.size() * field_x_.size(), 0.0);
+  }
+}
+
+void ChainRecorders::on_bar_instant(const Chain& chain, std::size_t i, double tau_n,
+                                    double tau_next) {
+  const BarModel& bar = chain.bars[i];
+  const BarState& s = chain.states[i];
+  BarRecorder& r = bars_[i];
+  const double inv_h = 1.0 / bar.element_length_m;
+  if (!r.gauges.empty() && r.gauge_sampler.wants(tau_next)) {
+    double values[64];
+    std::vector<double> many;
+    double* out = values;
+    if (r.gauges.size() > 64) {
+      many.resize(r.gauges.size());
+      out = many.data();
+    }
+    for (std::size_t g = 0; g < r.gauges.size(); ++g) {
+      const GaugeProbe& p = r.gauges[g];
+      const double e0 = (s.w[p.element + 1] - s.w[p.element]) * inv_h;
+      const double e1 = p.weight > 0 ? (s.w[p.element + 2] - s.w[p.element + 1]) * inv_h : e0;
+      out[g] = (1 - p.weight) * e0 + p.weight * e1;
+    }
+    r.gauge_sampler.push(tau_n, out);
+  }
+  if (r.specimen && r.specimen_sampler.wants(tau_next)) {
+    const int last = bar.nodes - 1;
+    const double length = bar.element_length_m * bar.elements();
+    double mean = 0;
+    for (int e = 0; e < bar.elements(); ++e) mean += element_stress(bar, s, e);
+    mean /= bar.elements();
+    // Compression positive (DESIGN.md §4).
+    const double values[5] = {-(s.w[last] - s.w[0]) / length,
+                              -(node_velocity_now(bar, s, last) - node_velocity_now(bar, s, 0)) / length,
+                              -mean, -element_stress(bar, s, 0),
+                              -element_stress(bar, s, bar.elements() - 1)};
+    r.specimen_sampler.push(tau_n, values);
+  }
+  if (r.energy_sampler.wants(tau_next)) {
+    const BarEnergy e = bar_energy(bar, s);
+    const double values[3] = {e.kinetic_J, e.strain_J, e.dissipated_J + s.dissipated_J};
+    r.energy_sampler.push(tau_n, values);
+  }
+  if (record_field_) {
+    while (r.field_next < static_cast<long>(field_tau_.size()) && field_tau_[r.field_next] <= tau_n) {
+      double* row = &field_stress_[r.field_next * field_x_.size() + r.field_offset];
+      for (std::size_t p = 0; p < r.field_elements.size(); ++p)
+        row[p] = element_stress(bar, s, r.field_elements[p]);
+      ++r.field_next;
+    }
+  }
+}
+
+void ChainRecorders::on_interface_solve(const Chain& chain, std::size_t k, double tau) {
+  const InterfaceState& s = chain.interface_states[k];
+  const double values[2] = {s.force_N, s.gap_m};
+  interfaces_[k].sampler.push(tau, values);
+  const double energy[2] = {s.energy_J, chain.contact_dissipated_J[k]};
+  interfaces_[k].energy_sampler.push(tau, energy);
+}
+
+long ChainRecorders::energy_complete() const {
+  long n = energy_samples_;
+  for (const BarRecorder& r : bars_) n = std::min(n, r.energy_sampler.filled());
+  for (const InterfaceRecorder& r : interfaces_) n = std::min(n, r.energy_sampler.filled());
+  return n;
+}
+
+double ChainRecorders::energy_total(long k) const {
+  double total = 0;
+  for (const BarRecorder& r : bars_) total += r.energy_sampler.at(k, 0) + r.energy_sampler.at(k, 1) + r.energy_sampler.at(k, 2);
+  for (const InterfaceRecorder& r : interfaces_) total += r.energy_sampler.at(k, 0) + r.energy_sampler.at(k, 1);
+  return total;
+}
+
+void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& result) const {
+  auto time_count = [&](long filled) {
+    long n = std::min(filled, grid_count(until_s, sample_spacing_s_));
+    return std::max(0L, n);
+  };
+  // Gauges.
+  {
+    TimeSeries& ts = result.gauges;
+    ts.columns = gauge_names_;
+    long n = time_count(samples_);
+    for (const BarRecorder& r : bars_)
+      if (!r.gauges.empty()) n = std::min(n, r.gauge_sampler.filled());
+    ts.values.assign(gauge_names_.size(), std::vector<double>(n));
+    for (long k = 0; k < n; ++k) ts.time_s.push_back(k * sample_spacing_s_);
+    for (const BarRecorder& r : bars_)
+      for (std::size_t g = 0; g < r.gauges.size(); ++g)
+        for (long k = 0; k < n; ++k) ts.values[r.gauges[g].column][k] = r.gauge_sampler.at(k, static_cast<int>(g));
+  }
+  // Interfaces.
+  {
+    TimeSeries& ts = result.interfaces;
+    long n = time_count(samples_);
+    for (const InterfaceRecorder& r : interfaces_) n = std::min(n, r.sampler.filled());
+    for (long k = 0; k < n; ++k) ts.time_s.push_back(k * sample_spacing_s_);
+    for (std::size_t i = 0; i < interfaces_.size(); ++i) {
+      ts.columns.push_back(interface_names_[i] + "_force_N");
+      ts.columns.push_back(interface_names_[i] + "_gap_m");
+      std::vector<double> f(n), g(n);
+      for (long k = 0; k < n; ++k) {
+        f[k] = interfaces_[i].sampler.at(k, 0);
+        g[k] = interfaces_[i].sampler.at(k, 1);
+      }
+      ts.values.push_back(std::move(f));
+      ts.values.push_back(std::move(g));
+    }
+  }
+  // Specimen.
+  for (const BarRecorder& r : bars_) {
+    if (!r.specimen) continue;
+    TimeSeries& ts = result.specimen;
+    ts.columns = {"strain", "strain_rate_1_s", "stress_Pa", "front_stress_Pa", "back_stress_Pa"};
+    const long n = time_count(r.specimen_sampler.filled());
+    ts.values.assign(5, std::vector<double>(n));
+    for (long k = 0; k < n; ++k) {
+      ts.time_s.push_back(k * sample_spacing_s_);
+      for (int c = 0; c < 5; ++c) ts.values[c][k] = r.specimen_sampler.at(k, c);
+    }
+  }
+  // Energy.
+  {
+    TimeSeries& ts = result.energy;
+    ts.columns = {"kinetic_J", "strain_J", "contact_J", "dissipated_J", "total_J"};
+    ts.values.assign(5, {});
+    const long n = energy_complete();
+    for (long k = 0; k < n; ++k) {
+      const double t = energy_grid_tau(k) + start_time_s_;
+      if (t > until_s + 1e-12) break;
+      double kin = 0, strain = 0, contact = 0, diss = 0;
+      for (const BarRecorder& r : bars_) {
+        kin += r.energy_sampler.at(k, 0);
+        strain += r.energy_sampler.at(k, 1);
+        diss += r.energy_sampler.at(k, 2);
+      }
+      for (const InterfaceRecorder& r : interfaces_) {
+        contact += r.energy_sampler.at(k, 0);
+        diss += r.energy_sampler.at(k, 1);
+      }
+      ts.time_s.push_back(t);
+      ts.values[0].push_back(kin);
+      ts.values[1].push_back(strain);
+      ts.values[2].push_back(contact);
+      ts.values[3].push_back(diss);
+      ts.values[4].push_back(kin + strain + contact + diss);
+    }
+  }
+  // Field.
+  if (record_field_) {
+    long rows = static_cast<long>(field_tau_.size());
+    for (const BarRecorder& r : bars_) rows = std::min(rows, r.field_next);
+    FieldGrid& f = result.field;
+    f.x_m = field_x_;
+    for (long j = 0; j < rows; ++j) {
+      const double t = field_tau_[j] + start_time_s_;
+      if (t > until_s + 1e-12) break;
+      f.time_s.push_back(t);
+      f.stress_Pa.insert(f.stress_Pa.end(), field_stress_.begin() + j * field_x_.size(),
+                         field_stress_.begin() + (j + 1) * field_x_.size());
+    }
+  }
+}
+
+}  // namespace shpb

@@ -1,0 +1,154 @@
+#include "solver/scheduler.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "solver/bar_integrator.hpp"
+
+namespace shpb {
+
+namespace {
+
+// The end of bar i that touches interface k: its last node (left side) or node 0 (right side).
+EndState end_state(const Chain& chain, std::size_t bar, int node, double tau, bool stepping) {
+  const BarModel& b = chain.bars[bar];
+  const BarState& s = chain.states[bar];
+  const double tau_n = chain.bar_tau(bar);
+  EndState e;
+  e.mass = b.mass_kg[node];
+  e.stepping = stepping;
+  if (stepping) {
+    e.u = s.w[node] + b.initial_velocity_m_s * tau;
+    e.free_force = s.quiet() || node < s.lo || node > s.hi ? 0.0 : s.force[node];
+  } else {
+    e.u = node_displacement_at(b, s, node, tau_n, tau);
+    e.free_force = end_free_force_at(b, s, node, tau_n, tau);
+  }
+  e.v = node_velocity(b, s, node);
+  return e;
+}
+
+void apply_end(Chain& chain, std::size_t bar, int node, double tau, bool stepping, double dv,
+               double force) {
+  if (dv == 0 && force == 0) return;
+  const BarModel& b = chain.bars[bar];
+  BarState& s = chain.states[bar];
+  activate_node(b, s, node);
+  if (dv != 0) {
+    s.v[node] += dv;
+    if (!stepping) s.w[node] += (chain.bar_tau(bar) - tau) * dv;  // rule 6
+  }
+  if (stepping) s.force[node] += force;
+}
+
+std::string describe_failure(const Chain& chain, double t, double ratio) {
+  std::ostringstream out;
+  out << "unstable: the total energy reached " << ratio << " times its initial value at t = " << t
+      << " s";
+  std::size_t worst = chain.interfaces.size();
+  double largest = 0;
+  for (std::size_t k = 0; k < chain.interfaces.size(); ++k) {
+    const double f = std::abs(chain.interface_states[k].force_N);
+    if (!(f <= largest)) {
+      largest = f;
+      worst = k;
+    }
+  }
+  if (worst < chain.interfaces.size())
+    out << "; largest contact force " << largest << " N at interface " << chain.interfaces[worst].name
+        << " (" << to_string(chain.interfaces[worst].method) << ")";
+  return out.str();
+}
+
+}  // namespace
+
+ScheduleOutcome run_schedule(Chain& chain, ChainRecorders& recorders,
+                             const std::function<void(double)>& progress,
+                             const std::function<bool()>& cancel) {
+  ScheduleOutcome outcome;
+  const std::size_t nb = chain.bars.size();
+  std::vector<char> stepping(nb, 0);
+  double energy0 = std::numeric_limits<double>::quiet_NaN();
+  long energy_checked = 0;
+  long instants = 0;
+  int progress_done = -1;
+  double dt_min = std::numeric_limits<double>::infinity();
+  for (const BarModel& b : chain.bars) dt_min = std::min(dt_min, b.time_step_s);
+  const double same = kSameInstant * dt_min;
+
+  while (true) {
+    // Rule 2: the earliest pending instant among unfinished bars.
+    double tau = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < nb; ++i)
+      if (chain.states[i].step <= chain.final_step[i]) tau = std::min(tau, chain.bar_tau(i));
+    if (!std::isfinite(tau)) break;
+    for (std::size_t i = 0; i < nb; ++i)
+      stepping[i] = chain.states[i].step <= chain.final_step[i] && chain.bar_tau(i) <= tau + same;
+
+    // Rule 3: internal forces of the stepping bars.
+    for (std::size_t i = 0; i < nb; ++i)
+      if (stepping[i]) assemble_internal_forces(chain.bars[i], chain.states[i]);
+
+    // Rules 4–6: interfaces touching a stepping bar, solved once at τ*.
+    for (std::size_t k = 0; k < chain.interfaces.size(); ++k) {
+      const std::size_t l = k, r = k + 1;
+      if (!stepping[l] && !stepping[r]) continue;
+      const int l_node = chain.bars[l].nodes - 1;
+      const EndState left = end_state(chain, l, l_node, tau, stepping[l]);
+      const EndState right = end_state(chain, r, 0, tau, stepping[r]);
+      const double next_l = stepping[l] ? tau + chain.bars[l].time_step_s : chain.bar_tau(l);
+      const double next_r = stepping[r] ? tau + chain.bars[r].time_step_s : chain.bar_tau(r);
+      InterfaceState& is = chain.interface_states[k];
+      const ContactResult res =
+          solve_contact(chain.interfaces[k], is, left, right, tau, std::min(next_l, next_r));
+      apply_end(chain, l, l_node, tau, stepping[l], res.dv_left, res.force_left_N);
+      apply_end(chain, r, 0, tau, stepping[r], res.dv_right, res.force_right_N);
+      chain.contact_dissipated_J[k] += res.dissipated_J;
+      chain.max_penetration_m = std::max(chain.max_penetration_m, -is.gap_m);
+      recorders.on_interface_solve(chain, k, tau);
+    }
+
+    // Rule 3: record and advance.
+    for (std::size_t i = 0; i < nb; ++i) {
+      if (!stepping[i]) continue;
+      recorders.on_bar_instant(chain, i, tau, tau + chain.bars[i].time_step_s);
+      chain.states[i].node_updates += advance(chain.bars[i], chain.states[i]);
+    }
+
+    // Rule 7: energy check on completed grid points.
+    const long complete = recorders.energy_complete();
+    for (; energy_checked < complete; ++energy_checked) {
+      const double e = recorders.energy_total(energy_checked);
+      if (energy_checked == 0) energy0 = e;
+      const double t = recorders.energy_grid_tau(energy_checked) + chain.start_time_s;
+      const bool finite = std::isfinite(e);
+      if (finite && energy0 > 0)
+        outcome.energy_error = std::max(outcome.energy_error, std::abs(e - energy0) / energy0);
+      if (!finite || (energy0 > 0 && e > kEnergyGrowthLimit * energy0)) {
+        outcome.stable = false;
+        outcome.failure = describe_failure(chain, t, finite ? e / energy0 : e);
+        outcome.checked_until_s =
+            energy_checked == 0 ? chain.start_time_s
+                                : recorders.energy_grid_tau(energy_checked - 1) + chain.start_time_s;
+        return outcome;
+      }
+    }
+
+    ++instants;
+    if (cancel && instants % kCancelPollInstants == 0 && cancel()) throw Interrupted();
+    if (progress) {
+      const int pct = static_cast<int>(100.0 * std::min(1.0, tau / chain.end_tau_s));
+      if (pct != progress_done) {
+        progress_done = pct;
+        progress(pct / 100.0);
+      }
+    }
+  }
+  outcome.checked_until_s = chain.end_tau_s + chain.start_time_s;
+  return outcome;
+}
+
+}  // namespace shpb

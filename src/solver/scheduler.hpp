@@ -1,0 +1,58 @@
+#pragma once
+// The asynchronous scheduler: every bar advances with its own time step, interfaces are solved on
+// the union of their neighbours' instants (METHODS.md §3; after Dvořák et al. 2023, CMAME
+// 413:116110). Global stepping is the special case where every bar has the same Δt.
+//
+// Contract (τ is the time since the start of the run; the simulation clock is t = t_start + τ):
+//  1. Bar i owns its step Δt_i and its instants τ_{i,n} = n·Δt_i (a product, never a running
+//     sum). Its state sits at exactly one instant: displacements at τ_{i,n}, velocities over
+//     (τ_{i,n−1}, τ_{i,n}).
+//  2. The scheduler always processes the earliest pending instant τ* = min_i τ_{i,n}. Every bar
+//     whose pending instant equals τ* (to kSameInstant·Δt) steps at τ*, together.
+//  3. A bar stepping at τ* first assembles its internal forces at τ*; then each adjacent
+//     interface is solved at τ* (once, even if both neighbours step); then the bar records its
+//     outputs at τ* and advances one step.
+//  4. A neighbour that does not step at τ* is ahead: τ_{j,m} − Δt_j ≤ τ* < τ_{j,m} (rule 2 picked
+//     the minimum). Its end displacement at τ* is interpolated on its current step, on which the
+//     central-difference path is linear (exact); its free end force is recomputed from the
+//     interpolated displacements (exact for elastic bars; the last stress of a material law).
+//  5. A solved interface force is applied only by the sides stepping at τ*; a side that is ahead
+//     used the force solved at its own instant ("each partition takes its own full step with its
+//     latest multiplier").
+//  6. Velocity jumps of a momentum-consistent contact activation are applied to both ends at τ*:
+//     to a stepping end's v_{n−1/2}; to an ahead end's velocity, moving its displacement at
+//     τ_{j,m} so that its path from τ* on follows the new velocity.
+//  7. Recorders take each bar's instants and each interface solve and interpolate linearly onto
+//     the output grids. An energy grid point is complete when every bar and interface has passed
+//     it; there the total energy is checked: non-finite, or above kEnergyGrowthLimit × E(0), stops
+//     the run as unstable (DESIGN.md §2, exit 3) with what was computed until then.
+//  8. A bar is finished after it has taken its instant at or beyond the end of the recording;
+//     the run ends when every bar is finished.
+//  9. Cancellation is polled every kCancelPollInstants instants (throws Interrupted).
+#include <functional>
+#include <string>
+
+#include "solver/chain.hpp"
+#include "solver/recorders.hpp"
+
+namespace shpb {
+
+// Two instants closer than this fraction of the smaller step are the same instant.
+inline constexpr double kSameInstant = 1e-9;
+// Energy may not grow beyond this factor of its initial value: a stable run stays within
+// ~1e-2 of E(0) (METHODS.md §2 reference); an unstable one grows exponentially past any bound.
+inline constexpr double kEnergyGrowthLimit = 1e3;
+inline constexpr long kCancelPollInstants = 4096;
+
+struct ScheduleOutcome {
+  bool stable = true;
+  std::string failure;
+  double checked_until_s = 0;  // simulation time up to which outputs are valid
+  double energy_error = 0;
+};
+
+ScheduleOutcome run_schedule(Chain& chain, ChainRecorders& recorders,
+                             const std::function<void(double)>& progress,
+                             const std::function<bool()>& cancel);
+
+}  // namespace shpb

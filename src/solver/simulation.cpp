@@ -1,0 +1,197 @@
+#include "solver/simulation.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "core/csv_writer.hpp"
+#include "solver/chain.hpp"
+#include "solver/recorders.hpp"
+#include "solver/scheduler.hpp"
+
+namespace shpb {
+
+namespace {
+
+ContactMethod method_of(const Scene& scene, std::size_t k) {
+  for (const InterfaceOverride& o : scene.contact.interfaces)
+    if (o.left_bar == k && o.method) return *o.method;
+  return scene.contact.method;
+}
+
+PenaltyParams penalty_of(const Scene& scene, std::size_t k) {
+  PenaltyParams p = scene.contact.penalty;
+  for (const InterfaceOverride& o : scene.contact.interfaces) {
+    if (o.left_bar != k) continue;
+    if (o.penalty.stiffness_factor) p.stiffness_factor = o.penalty.stiffness_factor;
+    if (o.penalty.stiffness_N_m) p.stiffness_N_m = o.penalty.stiffness_N_m;
+    if (o.penalty.mass_ratio) p.mass_ratio = o.penalty.mass_ratio;
+  }
+  return p;
+}
+
+// Time zero is the first contact (DESIGN.md §5): with initial gaps, the run starts earlier by
+// the flight time of the first interface to close under the bars' rigid motions.
+double first_contact_delay(const Scene& scene) {
+  double delay = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k + 1 < scene.bars.size(); ++k) {
+    const double closing = scene.bars[k].velocity_m_s - scene.bars[k + 1].velocity_m_s;
+    if (closing > 0) delay = std::min(delay, scene.bars[k].gap_m / closing);
+  }
+  return std::isfinite(delay) ? delay : 0.0;
+}
+
+Chain build_chain(const Scene& scene, const ChainDiscretization& d, bool full_model) {
+  Chain c;
+  for (std::size_t i = 0; i < scene.bars.size(); ++i) {
+    const BarSpec& spec = scene.bars[i];
+    c.bars.push_back(make_bar_model(spec.name, spec.material, spec.length_m, spec.area_m2,
+                                    d.bars[i].elements, d.bars[i].time_step_s, spec.velocity_m_s));
+    c.states.push_back(make_bar_state(c.bars.back(), full_model));
+  }
+  for (std::size_t k = 0; k + 1 < c.bars.size(); ++k) {
+    const BarModel& l = c.bars[k];
+    const BarModel& r = c.bars[k + 1];
+    c.interfaces.push_back(make_interface_model(
+        l.name + "-" + r.name, method_of(scene, k), penalty_of(scene, k), scene.bars[k].gap_m,
+        {l.stiffness_N_m, l.wave_speed_m_s, l.element_length_m},
+        {r.stiffness_N_m, r.wave_speed_m_s, r.element_length_m}));
+    c.interface_states.emplace_back();
+    c.interface_states.back().gap_m = scene.bars[k].gap_m;
+  }
+  c.contact_dissipated_J.assign(c.interfaces.size(), 0.0);
+  c.start_time_s = -first_contact_delay(scene);
+  c.end_tau_s = d.duration_s - c.start_time_s;
+  for (const BarModel& b : c.bars)
+    c.final_step.push_back(static_cast<long>(std::ceil(c.end_tau_s / b.time_step_s - 1e-9)));
+  return c;
+}
+
+// Keeps the rows before the first non-finite value of any column (an unstable run's tail).
+void keep_finite_prefix(TimeSeries& ts) {
+  std::size_t n = ts.time_s.size();
+  for (const auto& col : ts.values)
+    for (std::size_t k = 0; k < std::min(n, col.size()); ++k)
+      if (!std::isfinite(col[k])) {
+        n = k;
+        break;
+      }
+  ts.time_s.resize(n);
+  for (auto& col : ts.values) col.resize(std::min(n, col.size()));
+}
+
+void write_series(const std::filesystem::path& file, const TimeSeries& ts) {
+  std::vector<std::string> header{"time_s"};
+  header.insert(header.end(), ts.columns.begin(), ts.columns.end());
+  CsvWriter csv(file, header);
+  std::vector<double> row(header.size());
+  for (std::size_t k = 0; k < ts.samples(); ++k) {
+    row[0] = ts.time_s[k];
+    for (std::size_t c = 0; c < ts.values.size(); ++c) row[c + 1] = ts.values[c][k];
+    csv.row(row);
+  }
+}
+
+}  // namespace
+
+SimulationResult simulate(const Scene& scene, const SimulationOptions& options) {
+  SimulationResult result;
+  result.discretization = discretize(scene);
+  const ChainDiscretization& d = result.discretization;
+  Chain chain = build_chain(scene, d, options.full_model);
+  ChainRecorders recorders(scene, chain, d, options);
+
+  const auto start = std::chrono::steady_clock::now();
+  const ScheduleOutcome outcome = run_schedule(chain, recorders, options.progress, options.cancel);
+  result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  result.stable = outcome.stable;
+  result.failure = outcome.failure;
+  result.energy_error = outcome.energy_error;
+  result.max_penetration_m = std::max(0.0, chain.max_penetration_m);
+  recorders.finish(chain, outcome.checked_until_s, result);
+  for (TimeSeries* ts : {&result.gauges, &result.interfaces, &result.specimen, &result.energy})
+    keep_finite_prefix(*ts);
+  {
+    // Field rows with a non-finite value are dropped with everything after them.
+    FieldGrid& f = result.field;
+    const std::size_t nx = f.x_m.size();
+    std::size_t rows = f.time_s.size();
+    for (std::size_t j = 0; j < rows && nx > 0; ++j)
+      for (std::size_t x = 0; x < nx; ++x)
+        if (!std::isfinite(f.stress_Pa[j * nx + x])) {
+          rows = j;
+          break;
+        }
+    f.time_s.resize(rows);
+    f.stress_Pa.resize(rows * nx);
+  }
+  for (std::size_t i = 0; i < chain.bars.size(); ++i) {
+    const BarModel& b = chain.bars[i];
+    const BarState& s = chain.states[i];
+    BarStatistics st;
+    st.name = b.name;
+    st.elements = b.elements();
+    st.time_step_s = b.time_step_s;
+    st.steps = s.step;
+    st.courant = b.courant;
+    st.node_updates = s.node_updates;
+    st.node_updates_full_model = static_cast<long long>(s.step) * b.nodes;
+    double momentum = 0;
+    for (int n = 0; n < b.nodes; ++n) momentum += b.mass_kg[n] * (s.v[n] + b.initial_velocity_m_s);
+    st.final_velocity_m_s = momentum / b.total_mass_kg();
+    result.node_updates += st.node_updates;
+    result.node_updates_full_model += st.node_updates_full_model;
+    result.bars.push_back(st);
+  }
+  return result;
+}
+
+void write_simulation_outputs(const SimulationResult& result, const Scene& scene,
+                              const std::filesystem::path& dir) {
+  write_series(dir / "gauges.csv", result.gauges);
+  write_series(dir / "interfaces.csv", result.interfaces);
+  if (scene.specimen) write_series(dir / "specimen.csv", result.specimen);
+  write_series(dir / "energy.csv", result.energy);
+  {
+    CsvWriter csv(dir / "field.csv", {"time_s", "x_m", "stress_Pa"});
+    const FieldGrid& f = result.field;
+    for (std::size_t j = 0; j < f.time_s.size(); ++j)
+      for (std::size_t x = 0; x < f.x_m.size(); ++x)
+        csv.row({f.time_s[j], f.x_m[x], f.stress_Pa[j * f.x_m.size() + x]});
+  }
+  nlohmann::ordered_json j;
+  j["version"] = SHPB_VERSION;
+  j["scene"] = scene.name;
+  j["contact"] = std::string(to_string(scene.contact.method));
+  j["stepping"] = std::string(to_string(result.discretization.stepping));
+  j["duration_s"] = result.discretization.duration_s;
+  j["sample_rate_Hz"] = result.discretization.sample_rate_Hz;
+  nlohmann::ordered_json bars = nlohmann::json::array();
+  for (const BarStatistics& b : result.bars) {
+    nlohmann::ordered_json o;
+    o["name"] = b.name;
+    o["elements"] = b.elements;
+    o["time_step_s"] = b.time_step_s;
+    o["steps"] = b.steps;
+    o["courant"] = b.courant;
+    o["node_updates"] = b.node_updates;
+    o["node_updates_full_model"] = b.node_updates_full_model;
+    o["final_velocity_m_s"] = b.final_velocity_m_s;
+    bars.push_back(o);
+  }
+  j["bars"] = bars;
+  j["node_updates"] = result.node_updates;
+  j["node_updates_full_model"] = result.node_updates_full_model;
+  j["wall_time_s"] = result.wall_time_s;
+  j["energy_error"] = result.energy_error;
+  j["max_penetration_m"] = result.max_penetration_m;
+  j["stable"] = result.stable;
+  if (!result.stable) j["failure"] = result.failure;
+  std::ofstream out(dir / "summary.json");
+  out << j.dump(2) << "\n";
+}
+
+}  // namespace shpb

@@ -1,0 +1,79 @@
+#pragma once
+// The simulator's library API: run a scene in memory, then (optionally) write the files of
+// DESIGN.md §4. `shpb simulate`, `shpb compare`, `shpb study` and the processing tests call these
+// two functions; the signatures are kept stable.
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "model/discretization.hpp"
+#include "model/scene.hpp"
+
+namespace shpb {
+
+struct SimulationOptions {
+  bool full_model = false;                 // update every node from the start (no causal economy)
+  std::function<void(double)> progress;    // fraction of the duration done, called ~100 times
+  std::function<bool()> cancel;            // polled in the main loop; true → throws Interrupted
+  bool record_field = true;                // field.csv grid
+  int field_times = 200;                   // rows of the x–t grid
+  int field_points = 400;                  // columns (element centres along the chain)
+};
+
+// Columns sampled on one time grid; values[c][k] is column c at time_s[k].
+struct TimeSeries {
+  std::vector<std::string> columns;  // CSV names (units in the names), without time_s
+  std::vector<double> time_s;
+  std::vector<std::vector<double>> values;
+
+  std::size_t samples() const { return time_s.size(); }
+  // The column named `name`, or throws std::out_of_range.
+  const std::vector<double>& column(const std::string& name) const;
+};
+
+// Stress along the chain on a coarse x–t grid (the wave diagram): stress_Pa[t * x_m.size() + x].
+struct FieldGrid {
+  std::vector<double> time_s;
+  std::vector<double> x_m;  // chain coordinate of element centres (striker's left end = 0)
+  std::vector<double> stress_Pa;
+};
+
+struct BarStatistics {
+  std::string name;
+  int elements = 0;
+  double time_step_s = 0;
+  long steps = 0;
+  double courant = 0;
+  long long node_updates = 0;
+  long long node_updates_full_model = 0;
+  double final_velocity_m_s = 0;  // momentum / mass at the end of the run
+};
+
+struct SimulationResult {
+  ChainDiscretization discretization;
+  TimeSeries gauges;      // one strain column per gauge (tension positive), named by the gauge
+  TimeSeries interfaces;  // "<left>-<right>_force_N" (compression positive), "<left>-<right>_gap_m"
+  TimeSeries specimen;    // strain, strain_rate_1_s, stress_Pa, front_stress_Pa, back_stress_Pa
+  TimeSeries energy;      // kinetic_J, strain_J, contact_J, dissipated_J, total_J
+  FieldGrid field;
+  std::vector<BarStatistics> bars;
+  long long node_updates = 0;
+  long long node_updates_full_model = 0;
+  double wall_time_s = 0;      // the solve alone
+  double energy_error = 0;     // max |total − initial| / initial
+  double max_penetration_m = 0;
+  bool stable = true;
+  std::string failure;         // where and when, if not stable
+};
+
+// Runs the scene (already validated by read_scene). Never throws on instability: the result
+// says stable = false and holds what was computed up to then. Throws Interrupted if cancelled.
+SimulationResult simulate(const Scene& scene, const SimulationOptions& options = {});
+
+// Writes gauges.csv, interfaces.csv, specimen.csv (if the scene has a specimen), energy.csv,
+// field.csv (long format: time_s,x_m,stress_Pa) and summary.json into `dir`.
+void write_simulation_outputs(const SimulationResult& result, const Scene& scene,
+                              const std::filesystem::path& dir);
+
+}  // namespace shpb

@@ -1,0 +1,191 @@
+#include <catch2/catch.hpp>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+using namespace std::string_literals;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Run {
+  int exit_code;
+  std::string err;
+};
+
+Run run(const std::string& args) {
+  const fs::path err = fs::temp_directory_path() / "shpb_test_process_stderr.txt";
+  const std::string cmd = std::string(SHPB_EXE) + " " + args + " >/dev/null 2>" + err.string();
+  const int status = std::system(cmd.c_str());
+  std::ifstream in(err);
+  std::stringstream s;
+  s << in.rdbuf();
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, s.str()};
+}
+
+fs::path temp_dir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / "shpb_test_process" / name;
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+// A steel Kolsky bar whose measurement is `signals.csv` beside the scene (strain columns by name).
+fs::path write_scene(const fs::path& dir, const std::string& signals) {
+  std::ofstream(dir / "signals.csv") << signals;
+  std::ofstream(dir / "scene.json") << R"({
+  "name": "test bar",
+  "bars": [
+    { "name": "striker", "material": "steel", "length": "200 mm", "diameter": "20 mm", "velocity": "10 m/s" },
+    { "name": "incident", "material": "steel", "length": "2 m", "diameter": "20 mm",
+      "gauges": [ { "name": "incident", "position": "1 m" } ] },
+    { "name": "specimen", "material": "soft", "length": "5 mm", "diameter": "10 mm" },
+    { "name": "transmitter", "material": "steel", "length": "2 m", "diameter": "20 mm",
+      "gauges": [ { "name": "transmitted", "position": "0.5 m" } ] }
+  ],
+  "specimen": "specimen",
+  "materials": {
+    "steel": { "model": "elastic", "density": 8000, "youngs_modulus": "200 GPa", "poisson_ratio": 0.29 },
+    "soft": { "model": "elastic", "density": 2700, "youngs_modulus": "70 GPa", "poisson_ratio": 0.33 }
+  },
+  "measurement": {
+    "file": "signals.csv", "time": { "column": "time_s", "unit": "s" },
+    "channels": [ { "gauge": "incident", "column": "incident", "unit": "strain" },
+                  { "gauge": "transmitted", "column": "transmitted", "unit": "strain" } ],
+    "dispersion": { "correction": "none" }
+  }
+})";
+  return dir / "scene.json";
+}
+
+// A clean record: incident −1e-3 trapezoid at 50 µs, reflected +0.6e-3 at 450 µs, transmitted
+// −0.4e-3 at 305 µs (face clock: the incident reaches the specimen at 250 µs).
+std::string good_signals() {
+  std::string s = "time_s,incident,transmitted\n";
+  auto trap = [](double t, double t0) {
+    const double u = t - t0;
+    if (u <= 0 || u >= 100e-6) return 0.0;
+    if (u < 10e-6) return u / 10e-6;
+    if (u > 90e-6) return (100e-6 - u) / 10e-6;
+    return 1.0;
+  };
+  for (int i = 0; i < 8000; ++i) {
+    const double t = i * 1e-7;
+    std::ostringstream row;
+    row.precision(17);
+    row << t << "," << -1e-3 * trap(t, 50e-6) + 0.6e-3 * trap(t, 450e-6) << ","
+        << -0.4e-3 * trap(t, 350e-6) << "\n";
+    s += row.str();
+  }
+  return s;
+}
+
+const fs::path kExperiments = fs::path(SHPB_SOURCE_DIR) / "experiments";
+const fs::path kData = fs::path(SHPB_SOURCE_DIR) / "../shared/data/measured";
+
+nlohmann::json summary(const fs::path& dir) {
+  std::ifstream in(dir / "summary.json");
+  return nlohmann::json::parse(in);
+}
+
+}  // namespace
+
+TEST_CASE("process writes pulses.csv, curve.csv and summary.json with the DESIGN columns",
+          "[app][process]") {
+  const fs::path d = temp_dir("good");
+  const fs::path scene = write_scene(d, good_signals());
+  const Run r = run("process " + scene.string() + " -o " + (d / "out").string());
+  REQUIRE(r.exit_code == 0);
+  std::ifstream curve(d / "out/curve.csv");
+  std::string header;
+  std::getline(curve, header);
+  CHECK(header.rfind("time_s,strain_rate_1_s,strain,stress_1wave_Pa,stress_2wave_Pa,stress_3wave_Pa,"
+                     "true_strain,true_stress_Pa,equilibrium_ratio", 0) == 0);
+  std::ifstream pulses(d / "out/pulses.csv");
+  std::getline(pulses, header);
+  CHECK(header == "time_s,incident,reflected,transmitted");
+  const auto s = summary(d / "out");
+  // Incident plateau 1e-3 on steel: V = 2 c0 ε = 10 m/s (striker of the bar's material).
+  CHECK(s["striker_velocity_m_s"]["inferred"].get<double>() == Approx(10).epsilon(5e-3));
+  CHECK(s["windows"]["incident"]["start_s"].get<double>() == Approx(50e-6).margin(1e-6));
+  CHECK(s["shifts_s"]["incident"].get<double>() == Approx(1.0 / 5000));
+  // Rate (c0/L)(1e-3 + 0.6e-3 − 0.4e-3) = 1200 1/s on the plateau.
+  CHECK(s["plateau_strain_rate_1_s"].get<double>() == Approx(1200).epsilon(5e-3));
+}
+
+TEST_CASE("Broken signal files exit 2 naming file, line and column, and write nothing",
+          "[app][process]") {
+  const std::string head = "time_s,incident,transmitted\n";
+  const std::string rows = "0,0,0\n1e-7,0,0\n2e-7,0,0\n3e-7,0,0\n";
+  struct Case {
+    const char* name;
+    std::string body;
+    std::string expected;
+  };
+  const Case cases[] = {
+      {"missing column", "time_s,incident,other\n" + rows, "line 1: column \"transmitted\""},
+      {"text in numbers", head + rows + "4e-7,abc,0\n", "line 6, column 2 (\"incident\"): \"abc\""},
+      {"NaN", head + rows + "4e-7,0,nan\n", "line 6, column 3 (\"transmitted\"): \"nan\""},
+      {"non-monotonic time", head + rows + "2.5e-7,0,0\n", "line 6 (time column)"},
+      {"truncated line", head + rows + "4e-7,0", "line 6, column 3"},
+      {"empty", "", "line 1"},
+  };
+  for (const auto& c : cases) {
+    CAPTURE(c.name);
+    const fs::path d = temp_dir("broken");
+    const fs::path scene = write_scene(d, c.body);
+    const Run r = run("process " + scene.string() + " -o " + (d / "out").string());
+    CHECK(r.exit_code == 2);
+    CHECK(r.err.rfind("error: ", 0) == 0);
+    CHECK(r.err.find("signals.csv: " + c.expected) != std::string::npos);
+    CHECK(r.err.find('\n') == r.err.size() - 1);  // one line
+    CHECK_FALSE(fs::exists(d / "out"));
+  }
+}
+
+TEST_CASE("The LANL copper and PMMA tests process end to end from the scene alone",
+          "[app][process][data]") {
+  if (!fs::exists(kData)) {
+    WARN("../shared/data/measured absent: measured end-to-end tests skipped");
+    return;
+  }
+  struct Expect {
+    const char* experiment;
+    double v_lo, v_hi;  // the READMEs estimate the striker at ≈ 22 and ≈ 13.5 m/s
+  };
+  for (const auto& e : {Expect{"lanl-cu-ofe-273k", 15, 25}, Expect{"lanl-pmma13-mini-kolsky", 10, 16}}) {
+    CAPTURE(e.experiment);
+    const fs::path out = temp_dir(e.experiment) / "out";
+    const Run r = run("process " + (kExperiments / e.experiment / "scene.json").string() + " -o " +
+                      out.string() + " --quiet");
+    REQUIRE(r.exit_code == 0);
+    const auto s = summary(out);
+    CHECK(s["windows"]["incident"]["source"] == "detected");
+    const double v = s["striker_velocity_m_s"]["inferred"].get<double>();
+    CHECK(v > e.v_lo);
+    CHECK(v < e.v_hi);
+    CHECK(s["plateau_strain_rate_1_s"].get<double>() > 1000);
+    CHECK(s["dispersion"]["correction"] == "pochhammer-chree");
+    CHECK(fs::file_size(out / "curve.csv") > 1000);
+  }
+}
+
+TEST_CASE("The epoxy file's repeated time stamps and doubtful scale are reported",
+          "[app][process][data]") {
+  if (!fs::exists(kData)) {
+    WARN("../shared/data/measured absent: epoxy test skipped");
+    return;
+  }
+  const fs::path out = temp_dir("epoxy") / "out";
+  const Run r = run("process " + (kExperiments / "epoxy-resin-sample01/scene.json").string() +
+                    " -o " + out.string());
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.err.find("warning: ") != std::string::npos);
+  CHECK(r.err.find("time stamps repeat") != std::string::npos);
+  CHECK(r.err.find("time base rebuilt from the sample interval 8e-08 s") != std::string::npos);
+  CHECK(r.err.find("implausible strain scale") != std::string::npos);
+  CHECK(summary(out)["warnings"].size() == 3);
+}

@@ -1,0 +1,243 @@
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "core/error.hpp"
+#include "core/signal_gauges.hpp"
+#include "core/signal_reader.hpp"
+
+using namespace shpb;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path write_file(const std::string& name, const std::string& bytes) {
+  const fs::path dir = fs::temp_directory_path() / "shpb_test_signal_reader";
+  fs::create_directories(dir);
+  const fs::path p = dir / name;
+  std::ofstream(p, std::ios::binary) << bytes;
+  return p;
+}
+
+ColumnRef by_name(const std::string& n) { return {n, std::nullopt}; }
+ColumnRef by_index(int i) { return {"", i}; }
+
+SignalRequest csv_request(const fs::path& p, std::vector<ColumnRef> cols) {
+  SignalRequest r;
+  r.file = p;
+  r.columns = std::move(cols);
+  return r;
+}
+
+// The message of the InputError thrown by f ("" if none).
+template <class F>
+std::string error_of(F&& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+const fs::path kData = fs::path(SHPB_SOURCE_DIR) / "../shared/data/measured";
+
+}  // namespace
+
+TEST_CASE("A CSV file with metadata lines is read by column name and index", "[core][signal]") {
+  const auto p = write_file("plain.csv",
+                            "Scope export\r\nDate,2024-01-01\r\nTime/s,ch1 (V),ch2 (V)\r\n"
+                            "0,0.5,-1\r\n1e-6,0.25,-2\r\n2e-6,0,-3\r\n");
+  auto r = csv_request(p, {by_name("ch2 (V)"), by_index(1)});
+  r.time_column = by_name("Time/s");
+  const SignalColumns s = read_signal_columns(r);
+  REQUIRE(s.time_s.size() == 3);
+  CHECK(s.dt_s == Approx(1e-6));
+  CHECK(s.values[0] == std::vector<double>{-1, -2, -3});
+  CHECK(s.values[1] == std::vector<double>{0.5, 0.25, 0});
+  CHECK(s.names[0] == "ch2 (V)");
+  CHECK(s.warnings.empty());
+}
+
+TEST_CASE("Semicolon and tab files with decimal commas are detected", "[core][signal]") {
+  SECTION("semicolon") {
+    const auto p = write_file("semi.csv", "t [ms];eps\n0,000;1,5\n0,001;2,5E-03\n0,002;-3,0\n");
+    auto r = csv_request(p, {by_name("eps")});
+    r.time_unit_s = 1e-3;
+    const auto s = read_signal_columns(r);
+    CHECK(s.values[0][1] == Approx(2.5e-3));
+    CHECK(s.dt_s == Approx(1e-6));
+  }
+  SECTION("tab, Latin-1 header") {
+    const auto p = write_file("tab.tsv", "Zeit\tDehnung \xb5\xe9\n0\t1,25\n1\t2,5\n2\t3,75\n");
+    const auto s = read_signal_columns(csv_request(p, {by_index(1)}));
+    CHECK(s.values[0] == std::vector<double>{1.25, 2.5, 3.75});
+  }
+}
+
+TEST_CASE("Broken signal files are rejected naming file, line and column", "[core][signal]") {
+  const std::string head = "time_s,incident,transmitted\n";
+  SECTION("missing column") {
+    const auto p = write_file("missing.csv", head + "0,1,2\n1,1,2\n");
+    const auto msg = error_of([&] { read_signal_columns(csv_request(p, {by_name("reflected")})); });
+    CHECK(msg.find("missing.csv") != std::string::npos);
+    CHECK(msg.find("line 1") != std::string::npos);
+    CHECK(msg.find("\"reflected\"") != std::string::npos);
+    CHECK(msg.find("\"incident\"") != std::string::npos);  // lists what there is
+  }
+  SECTION("text in numbers") {
+    const auto p = write_file("text.csv", head + "0,1,2\n1,1,2\n2,1O,2\n");
+    const auto msg = error_of([&] { read_signal_columns(csv_request(p, {by_name("incident")})); });
+    CHECK(msg.find("text.csv: line 4, column 2 (\"incident\"): \"1O\"") != std::string::npos);
+  }
+  SECTION("NaN") {
+    const auto p = write_file("nan.csv", head + "0,1,2\n1,NaN,2\n2,1,2\n");
+    const auto msg = error_of([&] { read_signal_columns(csv_request(p, {by_name("incident")})); });
+    CHECK(msg.find("line 3, column 2") != std::string::npos);
+    CHECK(msg.find("NaN") != std::string::npos);
+  }
+  SECTION("non-monotonic time") {
+    const auto p = write_file("back.csv", head + "0,1,2\n2,1,2\n1,1,2\n3,1,2\n");
+    const auto msg = error_of([&] { read_signal_columns(csv_request(p, {by_name("incident")})); });
+    CHECK(msg.find("back.csv: line 4") != std::string::npos);
+    CHECK(msg.find("backwards") != std::string::npos);
+  }
+  SECTION("truncated line") {
+    const auto p = write_file("trunc.csv", head + "0,1,2\n1,1,2\n2,1");
+    const auto msg = error_of([&] { read_signal_columns(csv_request(p, {by_name("transmitted")})); });
+    CHECK(msg.find("trunc.csv: line 4, column 3") != std::string::npos);
+    CHECK(msg.find("truncated") != std::string::npos);
+  }
+  SECTION("empty file") {
+    const auto p = write_file("empty.csv", "");
+    const auto msg = error_of([&] { read_signal_columns(csv_request(p, {by_index(1)})); });
+    CHECK(msg.find("empty.csv: line 1") != std::string::npos);
+  }
+  SECTION("header only") {
+    const auto p = write_file("header.csv", head);
+    CHECK(error_of([&] { read_signal_columns(csv_request(p, {by_index(1)})); }).find("header.csv") !=
+          std::string::npos);
+  }
+  SECTION("gap in the time base") {
+    const auto p = write_file("gap.csv", head + "0,1,2\n1,1,2\n2,1,2\n5,1,2\n6,1,2\n");
+    const auto msg = error_of([&] { read_signal_columns(csv_request(p, {by_index(1)})); });
+    CHECK(msg.find("gap.csv: line 5") != std::string::npos);
+  }
+}
+
+TEST_CASE("Repeated time stamps are detected and the time base rebuilt with a warning",
+          "[core][signal]") {
+  // 1 µs stamps rounded from an 80 ns clock, as in the epoxy file.
+  std::string text = "Time/s,a\n";
+  for (int i = 0; i < 2000; ++i) {
+    const double t = -1.98e-4 + i * 8e-8;
+    char line[64];
+    std::snprintf(line, sizeof line, "%.2E,%d\n", t, i);
+    text += line;
+  }
+  const auto p = write_file("rounded.csv", text);
+  const auto s = read_signal_columns(csv_request(p, {by_index(1)}));
+  REQUIRE(s.warnings.size() == 1);
+  CHECK(s.warnings[0].find("repeat") != std::string::npos);
+  CHECK(s.dt_s == Approx(8e-8).epsilon(1e-12));
+  // Rounding to 1 µs leaves the start uncertain by half a stamp.
+  CHECK(std::abs(s.time_s[0] - -1.98e-4) < 1e-6);
+}
+
+TEST_CASE("Tektronix and LANL raw files are read with their own time bases", "[core][signal]") {
+  SECTION("Tektronix") {
+    const auto p = write_file("tek.csv",
+                              "\"Record Length\",4,\"Points\",-8.0e-005,-0.5\r\n"
+                              "\"Sample Interval\",8.0e-009,s,-7.9992e-005,-0.25\r\n"
+                              ",,,-7.9984e-005,0.0\r\n,,,-7.9976e-005,0.25\r\n");
+    SignalRequest r;
+    r.file = p;
+    r.columns = {by_index(4)};
+    const auto s = read_signal_columns(r);
+    CHECK(s.format == SignalFormat::kTektronix);
+    CHECK(s.values[0] == std::vector<double>{-0.5, -0.25, 0, 0.25});
+    CHECK(s.dt_s == Approx(8e-9));
+  }
+  SECTION("LANL raw") {
+    const auto p = write_file("x.raw",
+                              "Test Date\t12/1/2006\tIncident\tTransmitted\r\n"
+                              "Sample Length(mm)\t3.2\t-5.00E-05\t-5.00E-05\r\n"
+                              "Test Temperature(\xb0" "C)\t0\t1.00E-07\t1.00E-07\r\n"
+                              "\t\t0.5\t-0.5\r\n\t\t1.5\t-1.5\r\n\t\t2.5\t-2.5\r\n");
+    SignalRequest r;
+    r.file = p;
+    r.columns = {by_name("Transmitted")};
+    const auto s = read_signal_columns(r);
+    CHECK(s.format == SignalFormat::kLanlRaw);
+    CHECK(s.values[0] == std::vector<double>{-0.5, -1.5, -2.5});
+    CHECK(s.time_s[2] == Approx(-5e-5 + 2e-7));
+    CHECK(s.dt_s == 1e-7);
+  }
+}
+
+TEST_CASE("Volts become strain through the bridge and opposite gauges are averaged",
+          "[core][signal]") {
+  // Half bridge, GF 2, gain 100, 10 V: ε = 2 V / 2000.
+  CHECK(volts_to_strain({2, 2.0, 10.0, 100.0}) == Approx(1e-3));
+  const auto a = write_file("ga.csv", "t,v\n0,0\n1,-1\n2,-2\n3,0\n");
+  const auto b = write_file("gb.csv", "t,v\n0,0\n1,-3\n2,-2\n3,0\n");
+  MeasurementSpec m;
+  for (const auto& f : {a, b}) {
+    ChannelSpec c;
+    c.gauge = "incident";
+    c.file = f;
+    c.column = by_name("v");
+    c.unit = SignalUnit::kVolt;
+    c.bridge = BridgeSpec{2, 2.0, 10.0, 100.0};
+    c.invert = true;
+    m.channels.push_back(c);
+  }
+  const GaugeSignals g = read_gauge_signals(m, {});
+  REQUIRE(g.find("incident"));
+  CHECK((*g.find("incident"))[1] == Approx(2e-3));  // mean of 1 and 3 V, inverted
+  CHECK(g.warnings.empty());                         // peak 2e-3 is a plausible strain
+}
+
+TEST_CASE("The real files import: LANL raw, Tektronix channels, and the messy epoxy file",
+          "[core][signal]") {
+  if (!fs::exists(kData)) {
+    WARN("../shared/data/measured absent: real-file import tests skipped");
+    return;
+  }
+  SECTION("LANL copper raw") {
+    SignalRequest r;
+    r.file = kData / "lanl-cu-ofe-273k/20061201_1148HE_CuOFE_273K.raw";
+    r.columns = {by_name("Incident/Reflected Waveform"), by_name("Transmitted Waveform")};
+    const auto s = read_signal_columns(r);
+    CHECK(s.time_s.size() == 5000);
+    CHECK(s.dt_s == 1e-7);
+    CHECK(s.time_s.front() == -5e-5);
+  }
+  SECTION("PMMA Tektronix") {
+    SignalRequest r;
+    r.file = kData / "lanl-pmma13-mini-kolsky/180303_171828_Ch1.csv";
+    r.columns = {by_index(4)};
+    const auto s = read_signal_columns(r);
+    CHECK(s.time_s.size() == 50000);
+    CHECK(s.dt_s == Approx(8e-9).epsilon(1e-6));
+  }
+  SECTION("epoxy: rebuilt clock and doubtful scale") {
+    MeasurementSpec m;
+    m.file = kData / "epoxy-resin-sample01/raw_strain.csv";
+    m.time_column = by_name("Time/s");
+    for (int i : {1, 2}) {
+      ChannelSpec c;
+      c.gauge = i == 1 ? "incident" : "transmitted";
+      c.column = by_index(i);
+      m.channels.push_back(c);
+    }
+    const GaugeSignals g = read_gauge_signals(m, {});
+    REQUIRE(g.warnings.size() == 3);
+    CHECK(g.warnings[0].find("time stamps repeat") != std::string::npos);
+    CHECK(g.dt_s == Approx(8e-8).epsilon(1e-12));
+    CHECK(g.warnings[1].find("implausible strain scale") != std::string::npos);
+    CHECK(g.warnings[2].find("implausible strain scale") != std::string::npos);
+  }
+}
