@@ -1,9 +1,8 @@
 // `shpb validate SCENE.json [--json]`: reads and checks a scene, then prints the resolved set-up —
 // exactly the mesh and time steps `simulate` will use (both call discretize()).
 #include <cstdio>
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "app/commands.hpp"
 #include "core/csv_writer.hpp"
@@ -34,7 +33,8 @@ std::optional<double> distance_to_specimen(const Scene& scene, std::size_t bar, 
   return d;
 }
 
-const PenaltyParams& merged(const PenaltyParams& own, const PenaltyParams& all, PenaltyParams& out) {
+const PenaltyParams& merged(const PenaltyParams& own, const PenaltyParams& all,
+                            PenaltyParams& out) {
   out.stiffness_factor = own.stiffness_factor ? own.stiffness_factor : all.stiffness_factor;
   out.stiffness_N_m = own.stiffness_N_m ? own.stiffness_N_m : all.stiffness_N_m;
   out.mass_ratio = own.mass_ratio ? own.mass_ratio : all.mass_ratio;
@@ -97,10 +97,9 @@ json resolved_setup(const Scene& scene, const ChainDiscretization& d) {
   out["duration_s"] = d.duration_s;
   out["sample_rate_Hz"] = d.sample_rate_Hz;
   out["stepping"] = to_string(d.stepping);
-  out["measurement"] = scene.measurement
-                           ? json({{"file", scene.measurement->file.string()},
-                                   {"channels", scene.measurement->channels.size()}})
-                           : json(nullptr);
+  out["measurement"] = scene.measurement ? json({{"file", scene.measurement->file.string()},
+                                                 {"channels", scene.measurement->channels.size()}})
+                                         : json(nullptr);
   return out;
 }
 
@@ -120,24 +119,24 @@ void print_table(const json& s) {
   std::printf("specimen   %s\n\n",
               s["specimen"].is_null() ? "(none)" : s["specimen"].get<std::string>().c_str());
   std::printf("%-12s %-26s %-12s %9s %8s %9s %8s %10s %9s %9s %9s %7s\n", "bar", "material",
-              "model", "length_mm", "diam_mm", "area_mm2", "c0_m/s", "Z_kg/s", "elements",
-              "h_mm", "dt_ns", "courant");
+              "model", "length_mm", "diam_mm", "area_mm2", "c0_m/s", "Z_kg/s", "elements", "h_mm",
+              "dt_ns", "courant");
   for (const auto& b : s["bars"]) {
-    std::printf("%-12s %-26s %-12s %9s %8s %9s %8s %10s %9d %9s %9s %7s\n",
-                b["name"].get<std::string>().c_str(), b["material"].get<std::string>().c_str(),
-                b["model"].get<std::string>().c_str(), g(b["length_m"].get<double>() * 1e3).c_str(),
-                g(b["diameter_m"].get<double>() * 1e3).c_str(),
-                g(b["area_m2"].get<double>() * 1e6).c_str(),
-                g(b["wave_speed_m_s"].get<double>()).c_str(),
-                g(b["impedance_kg_s"].get<double>()).c_str(), b["elements"].get<int>(),
-                g(b["element_length_m"].get<double>() * 1e3).c_str(),
-                g(b["time_step_s"].get<double>() * 1e9).c_str(), g(b["courant"].get<double>()).c_str());
+    std::printf(
+        "%-12s %-26s %-12s %9s %8s %9s %8s %10s %9d %9s %9s %7s\n",
+        b["name"].get<std::string>().c_str(), b["material"].get<std::string>().c_str(),
+        b["model"].get<std::string>().c_str(), g(b["length_m"].get<double>() * 1e3).c_str(),
+        g(b["diameter_m"].get<double>() * 1e3).c_str(), g(b["area_m2"].get<double>() * 1e6).c_str(),
+        g(b["wave_speed_m_s"].get<double>()).c_str(), g(b["impedance_kg_s"].get<double>()).c_str(),
+        b["elements"].get<int>(), g(b["element_length_m"].get<double>() * 1e3).c_str(),
+        g(b["time_step_s"].get<double>() * 1e9).c_str(), g(b["courant"].get<double>()).c_str());
   }
   std::printf("\n%-14s %-12s %12s %22s\n", "gauge", "bar", "position_mm", "to_specimen_face_mm");
   for (const auto& gj : s["gauges"]) {
     const auto& d = gj["distance_to_specimen_m"];
     std::printf("%-14s %-12s %12s %22s\n", gj["name"].get<std::string>().c_str(),
-                gj["bar"].get<std::string>().c_str(), g(gj["position_m"].get<double>() * 1e3).c_str(),
+                gj["bar"].get<std::string>().c_str(),
+                g(gj["position_m"].get<double>() * 1e3).c_str(),
                 d.is_null() ? "-" : g(d.get<double>() * 1e3).c_str());
   }
   std::printf("\n%-28s %-20s %8s %16s %14s %10s\n", "interface", "method", "gap_mm",

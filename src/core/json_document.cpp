@@ -115,7 +115,8 @@ json parse_json_object(const std::string& text, const std::string& display) {
   } catch (const json::out_of_range& e) {  // "number overflow parsing '1e400'"
     std::string what = e.what();
     if (const auto end = what.find("] "); end != std::string::npos) what = what.substr(end + 2);
-    throw input_error(display, where.path(), what, "expected a number within the range of a double");
+    throw input_error(display, where.path(), what,
+                      "expected a number within the range of a double");
   }
   if (!j.is_object()) {
     std::string value = j.dump();

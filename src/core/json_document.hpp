@@ -3,9 +3,8 @@
 // is not JSON (with line and column), duplicate keys (JSON allows them, we do not: the second one
 // would silently win) and a top level that is not an object are all InputErrors naming the file.
 #include <filesystem>
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 namespace shpb {
 

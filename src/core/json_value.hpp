@@ -5,12 +5,11 @@
 // mean" when it is close to an allowed one.
 #include <cstdint>
 #include <initializer_list>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
 #include "core/units.hpp"
@@ -46,8 +45,8 @@ class JsonValue {
 
   std::int64_t integer(std::int64_t lo, std::int64_t hi) const;  // a whole number in [lo, hi]
   bool boolean() const;
-  std::string string() const;           // any string
-  std::string name() const;             // a non-empty string usable as a CSV column name
+  std::string string() const;            // any string
+  std::string name() const;              // a non-empty string usable as a CSV column name
   std::vector<JsonValue> array() const;  // the elements of an array
   JsonObject object(std::vector<std::string> allowed_keys) const;
 

@@ -91,7 +91,10 @@ constexpr std::array<Prefix, 12> kPrefixes = {{{"p", 1e-12},
                                                {"G", 1e9},
                                                {"T", 1e12}}};
 
-constexpr std::string_view kCelsius[] = {"degC", "\xC2\xB0" "C", "celsius"};
+constexpr std::string_view kCelsius[] = {"degC",
+                                         "\xC2\xB0"
+                                         "C",
+                                         "celsius"};
 constexpr double kCelsiusOffsetK = 273.15;
 
 struct UnitValue {
@@ -250,7 +253,10 @@ class UnitParser {
         if (sym.prefixable && sym.text == rest) return {p.factor * sym.factor, sym.exponents};
     }
     for (const auto c : kCelsius)
-      if (s == c) throw std::invalid_argument("\xC2\xB0" "C is only valid on its own, as a temperature");
+      if (s == c)
+        throw std::invalid_argument(
+            "\xC2\xB0"
+            "C is only valid on its own, as a temperature");
     throw std::invalid_argument("unknown unit \"" + std::string(s) + "\"");
   }
 

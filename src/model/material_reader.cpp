@@ -45,7 +45,8 @@ void read_bilinear(const JsonObject& o, MaterialSpec& m) {
   if (!(p.tangent_modulus_Pa >= 0 && p.tangent_modulus_Pa < m.youngs_modulus_Pa))
     throw et.error_with_value(JsonValue::format(p.tangent_modulus_Pa, Dimension::kPressure),
                               "must be >= 0 and < youngs_modulus (" +
-                                  JsonValue::format(m.youngs_modulus_Pa, Dimension::kPressure) + ")");
+                                  JsonValue::format(m.youngs_modulus_Pa, Dimension::kPressure) +
+                                  ")");
 }
 
 void read_johnson_cook(const JsonObject& o, MaterialSpec& m) {
@@ -56,7 +57,8 @@ void read_johnson_cook(const JsonObject& o, MaterialSpec& m) {
                .non_negative_quantity(Dimension::kPressure);
   p.n = o.require("n", "the hardening exponent in [0, 1]")
             .quantity_in(Dimension::kDimensionless, 0, 1, false, false);
-  p.C = o.require("C", "the strain-rate coefficient, e.g. 0.002").quantity(Dimension::kDimensionless);
+  p.C =
+      o.require("C", "the strain-rate coefficient, e.g. 0.002").quantity(Dimension::kDimensionless);
   if (auto v = o.get("reference_strain_rate"))
     p.reference_strain_rate_1_s = v->positive_quantity(Dimension::kStrainRate);
   p.m = o.require("m", "the thermal softening exponent, e.g. 1.34")
@@ -81,8 +83,9 @@ void read_johnson_cook(const JsonObject& o, MaterialSpec& m) {
   if (auto v = o.get("taylor_quinney"))
     p.taylor_quinney = v->quantity_in(Dimension::kDimensionless, 0, 1, false, false);
   if (p.adiabatic || o.has("specific_heat"))
-    p.specific_heat_J_kgK = o.require("specific_heat", "needed for adiabatic heating, e.g. \"885 J/(kg K)\"")
-                                .positive_quantity(Dimension::kSpecificHeat);
+    p.specific_heat_J_kgK =
+        o.require("specific_heat", "needed for adiabatic heating, e.g. \"885 J/(kg K)\"")
+            .positive_quantity(Dimension::kSpecificHeat);
 }
 
 void read_viscoelastic(const JsonObject& o, MaterialSpec& m) {
@@ -123,7 +126,8 @@ MaterialSpec read_material(const JsonValue& value, const std::string& name) {
 
   if (m.model == MaterialModel::kViscoelastic)
     if (auto e = JsonObject(value).get("youngs_modulus"))
-      throw e->error("not an input of the viscoelastic model: E = long_term_modulus + sum of arm moduli");
+      throw e->error(
+          "not an input of the viscoelastic model: E = long_term_modulus + sum of arm moduli");
   const JsonObject o = value.object(allowed_keys(m.model));
   if (auto v = o.get("source")) m.source = v->string();
   if (auto v = o.get("notes")) v->string();

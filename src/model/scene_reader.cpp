@@ -28,8 +28,8 @@ class SceneReader {
   Scene read() {
     const nlohmann::json j = read_json_object_file(file_, display_);
     const JsonValue root(j, display_, "");
-    const auto o = root.object({"name", "notes", "bars", "specimen", "materials", "contact",
-                                "simulation", "measurement"});
+    const auto o = root.object(
+        {"name", "notes", "bars", "specimen", "materials", "contact", "simulation", "measurement"});
     Scene scene;
     scene.file = file_;
     scene.name = default_name();
@@ -40,8 +40,9 @@ class SceneReader {
     const auto bars = o.require("bars", "the bars from left to right, at least two");
     const auto items = bars.array();
     if (items.size() < 2)
-      throw bars.error_with_value(std::to_string(items.size()) + (items.size() == 1 ? " bar" : " bars"),
-                                  "must list at least two bars (e.g. a striker and a bar)");
+      throw bars.error_with_value(
+          std::to_string(items.size()) + (items.size() == 1 ? " bar" : " bars"),
+          "must list at least two bars (e.g. a striker and a bar)");
     for (std::size_t i = 0; i < items.size(); ++i)
       scene.bars.push_back(read_bar(items[i], i + 1 == items.size()));
     check_names(scene, items);
@@ -83,8 +84,8 @@ class SceneReader {
       throw v.error("expected a name from materials, a path to a material .json file or an object");
     const std::string s = v.string();
     if (auto it = materials_.find(s); it != materials_.end()) return it->second;
-    const bool looks_like_path = s.find('/') != std::string::npos ||
-                                 (s.size() > 5 && s.substr(s.size() - 5) == ".json");
+    const bool looks_like_path =
+        s.find('/') != std::string::npos || (s.size() > 5 && s.substr(s.size() - 5) == ".json");
     if (!looks_like_path) {
       std::vector<std::string> names;
       for (const auto& [name, m] : materials_) names.push_back(name);
@@ -116,8 +117,8 @@ class SceneReader {
       b.area_m2 = area->positive_quantity(Dimension::kArea);
       b.diameter_m = std::sqrt(4 * b.area_m2 / M_PI);  // equivalent circular diameter
     } else {
-      b.diameter_m =
-          o.require("diameter", "e.g. \"19.05 mm\" (or give area)").positive_quantity(Dimension::kLength);
+      b.diameter_m = o.require("diameter", "e.g. \"19.05 mm\" (or give area)")
+                         .positive_quantity(Dimension::kLength);
       b.area_m2 = M_PI * b.diameter_m * b.diameter_m / 4;
     }
     if (auto x = o.get("velocity")) b.velocity_m_s = x->quantity(Dimension::kVelocity);
@@ -188,12 +189,14 @@ class SceneReader {
     if (auto x = o.get("stiffness_factor"))
       p.stiffness_factor = x->positive_quantity(Dimension::kDimensionless);
     if (auto x = o.get("stiffness")) p.stiffness_N_m = x->positive_quantity(Dimension::kStiffness);
-    if (auto x = o.get("mass_ratio")) p.mass_ratio = x->positive_quantity(Dimension::kDimensionless);
+    if (auto x = o.get("mass_ratio"))
+      p.mass_ratio = x->positive_quantity(Dimension::kDimensionless);
     return p;
   }
 
   static ContactSpec read_contact(const JsonValue& v, const Scene& scene) {
-    const auto o = v.object({"method", "stiffness_factor", "stiffness", "mass_ratio", "interfaces"});
+    const auto o =
+        v.object({"method", "stiffness_factor", "stiffness", "mass_ratio", "interfaces"});
     ContactSpec c;
     if (auto m = o.get("method")) c.method = contact_method(*m);
     c.penalty = read_penalty(o);
@@ -201,7 +204,8 @@ class SceneReader {
       for (const auto& item : list->array()) {
         const auto io =
             item.object({"between", "method", "stiffness_factor", "stiffness", "mass_ratio"});
-        const auto between = io.require("between", "two neighbouring bars, e.g. [\"striker\", \"incident\"]");
+        const auto between =
+            io.require("between", "two neighbouring bars, e.g. [\"striker\", \"incident\"]");
         const auto pair = between.array();
         if (pair.size() != 2) throw between.error("expected two bar names");
         const std::size_t a = bar_index(scene, pair[0]), b = bar_index(scene, pair[1]);
@@ -210,7 +214,8 @@ class SceneReader {
         InterfaceOverride ov;
         ov.left_bar = std::min(a, b);
         for (const auto& other : c.interfaces)
-          if (other.left_bar == ov.left_bar) throw between.error("this interface is already listed");
+          if (other.left_bar == ov.left_bar)
+            throw between.error("this interface is already listed");
         if (auto m = io.get("method")) ov.method = contact_method(*m);
         ov.penalty = read_penalty(io);
         c.interfaces.push_back(ov);
@@ -223,7 +228,8 @@ class SceneReader {
     const auto o = v.object({"duration", "sample_rate", "stepping", "courant"});
     SimulationSpec s;
     if (auto x = o.get("duration")) s.duration_s = x->positive_quantity(Dimension::kTime);
-    if (auto x = o.get("sample_rate")) s.sample_rate_Hz = x->positive_quantity(Dimension::kFrequency);
+    if (auto x = o.get("sample_rate"))
+      s.sample_rate_Hz = x->positive_quantity(Dimension::kFrequency);
     if (auto x = o.get("stepping")) {
       const auto m = stepping_from_string(x->string());
       if (!m) throw x->error(suggestion_text(x->string(), kSteppings));
@@ -263,9 +269,12 @@ std::optional<std::size_t> Scene::transmitter_bar() const {
 
 std::string_view to_string(ContactMethod m) {
   switch (m) {
-    case ContactMethod::kPenalty: return "penalty";
-    case ContactMethod::kBipenalty: return "bipenalty";
-    case ContactMethod::kLocalizedBipenalty: return "localized-bipenalty";
+    case ContactMethod::kPenalty:
+      return "penalty";
+    case ContactMethod::kBipenalty:
+      return "bipenalty";
+    case ContactMethod::kLocalizedBipenalty:
+      return "localized-bipenalty";
   }
   return "?";
 }
@@ -274,10 +283,14 @@ std::string_view to_string(Stepping s) {
 }
 std::string_view to_string(MaterialModel m) {
   switch (m) {
-    case MaterialModel::kElastic: return "elastic";
-    case MaterialModel::kBilinear: return "bilinear";
-    case MaterialModel::kJohnsonCook: return "johnson-cook";
-    case MaterialModel::kViscoelastic: return "viscoelastic";
+    case MaterialModel::kElastic:
+      return "elastic";
+    case MaterialModel::kBilinear:
+      return "bilinear";
+    case MaterialModel::kJohnsonCook:
+      return "johnson-cook";
+    case MaterialModel::kViscoelastic:
+      return "viscoelastic";
   }
   return "?";
 }

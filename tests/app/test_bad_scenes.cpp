@@ -1,8 +1,6 @@
 // Bad scenes as behaviour of the real executable (DESIGN.md §2): exit code 2, one line
 // "error: <file>: <json path>: <value>: <constraint>" on stderr, and nothing written — neither the
 // output folder nor anything beside it — by every command that takes a scene.
-#include <sys/wait.h>
-
 #include <catch2/catch.hpp>
 #include <cstdlib>
 #include <filesystem>
@@ -14,7 +12,10 @@
 #include <string>
 #include <vector>
 
+#include "run_shpb.hpp"
+
 using nlohmann::json;
+using shpb_test::run_shpb;
 namespace fs = std::filesystem;
 
 namespace {
@@ -56,7 +57,7 @@ json base_specimen() {
 struct BadScene {
   std::string what;
   std::function<void(json& scene, json& specimen)> breaks;  // edits the valid pair
-  std::string where;  // the JSON path (or place) the message must name
+  std::string where;           // the JSON path (or place) the message must name
   std::string raw_scene = {};  // when set, the scene file holds this text instead
   std::string raw_specimen = {};
 };
@@ -83,9 +84,11 @@ const std::vector<BadScene>& cases() {
       {"a zero Young's modulus",
        [](json& s, json&) { s["materials"]["steel"]["youngs_modulus"] = "0 GPa"; },
        "materials.steel.youngs_modulus"},
-      {"a Poisson ratio of 0.5", [](json& s, json&) { s["materials"]["steel"]["poisson_ratio"] = 0.5; },
+      {"a Poisson ratio of 0.5",
+       [](json& s, json&) { s["materials"]["steel"]["poisson_ratio"] = 0.5; },
        "materials.steel.poisson_ratio"},
-      {"a Poisson ratio of -1", [](json& s, json&) { s["materials"]["steel"]["poisson_ratio"] = -1; },
+      {"a Poisson ratio of -1",
+       [](json& s, json&) { s["materials"]["steel"]["poisson_ratio"] = -1; },
        "materials.steel.poisson_ratio"},
       {"a gauge beyond its bar's end",
        [](json& s, json&) { s["bars"][1]["gauges"][0]["position"] = "2.5 m"; },
@@ -117,7 +120,8 @@ const std::vector<BadScene>& cases() {
        "simulaton: unknown key: did you mean \"simulation\"?"},
       {"a length in kilograms", [](json& s, json&) { s["bars"][1]["length"] = "2 kg"; },
        "bars[1].length: \"2 kg\": \"kg\" is a mass"},
-      {"a density in gigapascals", [](json& s, json&) { s["materials"]["steel"]["density"] = "8 GPa"; },
+      {"a density in gigapascals",
+       [](json& s, json&) { s["materials"]["steel"]["density"] = "8 GPa"; },
        "materials.steel.density"},
       {"a velocity in metres", [](json& s, json&) { s["bars"][0]["velocity"] = "15 m"; },
        "bars[0].velocity"},
@@ -145,10 +149,11 @@ const std::vector<BadScene>& cases() {
        "bars[1].material: \"stel\": no such material in materials; did you mean \"steel\"?"},
       {"a material file that is not JSON", nullptr, "specimen.json: line 1, column", "",
        "{\"model\": \"johnson-cook\", }"},
-      {"an unknown material model", [](json& s, json&) { s["materials"]["steel"]["model"] = "elastc"; },
+      {"an unknown material model",
+       [](json& s, json&) { s["materials"]["steel"]["model"] = "elastc"; },
        "materials.steel.model: \"elastc\": did you mean \"elastic\"?"},
-      {"a key of another material model",
-       [](json&, json& m) { m["yield_stress"] = "300 MPa"; }, "yield_stress: unknown key"},
+      {"a key of another material model", [](json&, json& m) { m["yield_stress"] = "300 MPa"; },
+       "yield_stress: unknown key"},
       {"a Johnson-Cook n above 1", [](json&, json& m) { m["n"] = 1.5; }, "specimen.json: n: 1.5"},
       {"a negative Johnson-Cook B", [](json&, json& m) { m["B"] = "-1 MPa"; }, "specimen.json: B"},
       {"a zero Johnson-Cook m", [](json&, json& m) { m["m"] = 0; }, "specimen.json: m"},
@@ -221,25 +226,14 @@ const std::vector<BadScene>& cases() {
       {"an unknown signal format", [](json& s, json&) { s["measurement"]["format"] = "tek"; },
        "measurement.format"},
       {"a pulse window ending before it starts",
-       [](json& s, json&) { s["measurement"]["windows"]["incident"] = {"120 us", "20 us"}; },
+       [](json& s, json&) {
+         s["measurement"]["windows"]["incident"] = {"120 us", "20 us"};
+       },
        "measurement.windows.incident"},
-      {"a channel without any file",
-       [](json& s, json&) { s["measurement"].erase("file"); },
+      {"a channel without any file", [](json& s, json&) { s["measurement"].erase("file"); },
        "measurement.channels[0].file: (missing)"},
   };
   return table;
-}
-
-int run(const std::string& command) {
-  const int status = std::system(command.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-std::string read_text(const fs::path& file) {
-  std::ifstream in(file);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 std::set<std::string> listing(const fs::path& dir) {
@@ -271,8 +265,7 @@ void check_writes_nothing(const std::string& command) {
     const auto dir = scene_file.parent_path();
     const auto before = listing(dir);
     const auto output = dir / "out";
-    CHECK(run(std::string(SHPB_EXE) + " " + command + " " + scene_file.string() + " -o " +
-              output.string() + " >/dev/null 2>&1") == 2);
+    CHECK(run_shpb({command, scene_file.string(), "-o", output.string()}).code == 2);
     CHECK_FALSE(fs::exists(output));
     CHECK(listing(dir) == before);  // no temporary folder left beside the output either
   }
@@ -287,9 +280,9 @@ TEST_CASE("The valid base scene of the bad-scene table validates", "[app][bad-sc
   fs::create_directories(dir);
   std::ofstream(dir / "scene.json") << base_scene().dump(2);
   std::ofstream(dir / "specimen.json") << base_specimen().dump(2);
-  const std::string cmd = std::string(SHPB_EXE) + " validate " + (dir / "scene.json").string() +
-                          " >" + (dir / "out.txt").string() + " 2>&1";
-  REQUIRE(run(cmd) == 0);
+  const auto r = run_shpb({"validate", (dir / "scene.json").string()});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
 }
 
 TEST_CASE("Every bad scene exits 2 with one line naming the file and the JSON path",
@@ -302,16 +295,14 @@ TEST_CASE("Every bad scene exits 2 with one line naming the file and the JSON pa
     const auto scene_file = prepare(root, i);
     const auto dir = scene_file.parent_path();
     const auto before = listing(dir);
-    const auto out = root / "stdout.txt", err = root / "stderr.txt";
-    const int code = run(std::string(SHPB_EXE) + " validate " + scene_file.string() + " >" +
-                         out.string() + " 2>" + err.string());
-    const std::string message = read_text(err);
+    const auto r = run_shpb({"validate", scene_file.string()});
+    const std::string& message = r.err;
     INFO("stderr: " << message);
-    CHECK(code == 2);
+    CHECK(r.code == 2);
     CHECK(message.rfind("error: " + scene_file.parent_path().string(), 0) == 0);
     CHECK(message.find(c.where) != std::string::npos);
     CHECK(std::count(message.begin(), message.end(), '\n') == 1);  // one line
-    CHECK(read_text(out).empty());
+    CHECK(r.out.empty());
     CHECK(listing(dir) == before);
   }
   fs::remove_all(root);

@@ -1,38 +1,25 @@
 // The command line as users meet it (DESIGN.md §2): `shpb --help` and `shpb <command> --help`
 // describe every subcommand and option; usage errors exit 2 with one "error:" line.
-#include <sys/wait.h>
-
 #include <catch2/catch.hpp>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "run_shpb.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Run {
-  int code;
-  std::string out;
-  std::string err;
-};
+using shpb_test::run_shpb;
 
-Run shpb(const std::string& args) {
-  const auto dir = fs::temp_directory_path();
-  const auto out = dir / "shpb_test_cli_out.txt", err = dir / "shpb_test_cli_err.txt";
-  const int status = std::system((std::string(SHPB_EXE) + " " + args + " >" + out.string() +
-                                  " 2>" + err.string())
-                                     .c_str());
-  auto slurp = [](const fs::path& f) {
-    std::ifstream in(f);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-  };
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+// Splits a command line at spaces (the tests' arguments contain none inside one argument).
+shpb_test::RunResult shpb(const std::string& args) {
+  std::vector<std::string> v;
+  std::stringstream s(args);
+  for (std::string a; s >> a;) v.push_back(a);
+  return run_shpb(v);
 }
 
 std::vector<std::string> lines(const std::string& text) {
@@ -60,7 +47,8 @@ std::vector<std::string> undescribed_entries(const std::string& help) {
     }
     if (!in_list || l.rfind("  ", 0) != 0 || l.size() < 3 || l[2] == ' ') continue;
     const auto gap = l.find("  ", 2);
-    const bool same_line = gap != std::string::npos && l.find_first_not_of(' ', gap) != std::string::npos;
+    const bool same_line =
+        gap != std::string::npos && l.find_first_not_of(' ', gap) != std::string::npos;
     const bool next_line = i + 1 < ls.size() && ls[i + 1].rfind("          ", 0) == 0 &&
                            ls[i + 1].find_first_not_of(' ') != std::string::npos;
     if (!same_line && !next_line) bad.push_back(l);
@@ -68,13 +56,13 @@ std::vector<std::string> undescribed_entries(const std::string& help) {
   return bad;
 }
 
-const std::vector<std::string> kCommands = {"simulate", "process", "compare", "dispersion",
+const std::vector<std::string> kCommands = {"simulate", "process",  "compare", "dispersion",
                                             "study",    "validate", "report"};
 
 }  // namespace
 
 TEST_CASE("shpb --help lists every subcommand with a description", "[app][cli]") {
-  const Run r = shpb("--help");
+  const auto r = shpb("--help");
   REQUIRE(r.code == 0);
   for (const auto& c : kCommands) {
     INFO(c);
@@ -86,7 +74,7 @@ TEST_CASE("shpb --help lists every subcommand with a description", "[app][cli]")
 TEST_CASE("Every subcommand's --help describes every option", "[app][cli]") {
   for (const auto& c : kCommands) {
     INFO(c);
-    const Run r = shpb(c + " --help");
+    const auto r = shpb(c + " --help");
     CHECK(r.code == 0);
     CHECK(r.out.find("Usage:") != std::string::npos);
     CHECK(r.out.find("Options:") != std::string::npos);
@@ -100,13 +88,13 @@ TEST_CASE("The run options of DESIGN.md are on simulate, compare, study and vali
           "[app][cli]") {
   for (const char* c : {"simulate", "compare", "study", "validate"}) {
     INFO(c);
-    const Run r = shpb(std::string(c) + " --help");
+    const auto r = shpb(std::string(c) + " --help");
     for (const char* option : {"--contact", "--stepping", "--courant", "--threads", "--quiet"}) {
       INFO(option);
       CHECK(r.out.find(option) != std::string::npos);
     }
   }
-  const Run v = shpb("validate --help");
+  const auto v = shpb("validate --help");
   CHECK(v.out.find("--json") != std::string::npos);
   CHECK(v.out.find("localized-bipenalty") != std::string::npos);
 }
@@ -115,7 +103,7 @@ TEST_CASE("Usage errors exit 2 with one error line", "[app][cli]") {
   for (const char* args : {"", "validate", "validate --bogus scene.json", "frobnicate",
                            "validate scene.json --contact springs", "simulate scene.json"}) {
     INFO("shpb " << args);
-    const Run r = shpb(args);
+    const auto r = shpb(args);
     CHECK(r.code == 2);
     CHECK(r.err.rfind("error: ", 0) == 0);
     CHECK(lines(r.err).size() == 1);
@@ -124,13 +112,13 @@ TEST_CASE("Usage errors exit 2 with one error line", "[app][cli]") {
 }
 
 TEST_CASE("A scene file that does not exist is an input error naming it", "[app][cli]") {
-  const Run r = shpb("validate /nonexistent/scene.json");
+  const auto r = shpb("validate /nonexistent/scene.json");
   CHECK(r.code == 2);
   CHECK(r.err == "error: /nonexistent/scene.json: no such file: expected an existing JSON file\n");
 }
 
 TEST_CASE("shpb --version names the program", "[app][cli]") {
-  const Run r = shpb("--version");
+  const auto r = shpb("--version");
   CHECK(r.code == 0);
   CHECK(r.out.rfind("shpb ", 0) == 0);
 }

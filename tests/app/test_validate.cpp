@@ -1,17 +1,13 @@
 // `shpb validate --json` prints the resolved set-up: the same mesh and steps as discretize()
 // (what simulate uses), wave speeds and impedances from the materials (METHODS.md notation:
 // c0 = sqrt(E/ρ), Z = ρ c0 A, C = c0 Δt / h) and gauge distances to the specimen faces.
-#include <sys/wait.h>
-
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "model/discretization.hpp"
+#include "run_shpb.hpp"
 
 using nlohmann::json;
 namespace fs = std::filesystem;
@@ -21,15 +17,13 @@ namespace {
 // Values pass through JSON text as shortest round-trip doubles: agreement to round-off.
 constexpr double kRoundOff = 1e-12;
 
-json validate_json(const fs::path& scene, const std::string& options = "") {
-  const auto out = fs::temp_directory_path() / "shpb_test_validate.json";
-  const int status = std::system((std::string(SHPB_EXE) + " validate --json " + options + " " +
-                                  scene.string() + " >" + out.string())
-                                     .c_str());
-  REQUIRE(WIFEXITED(status));
-  REQUIRE(WEXITSTATUS(status) == 0);
-  std::ifstream in(out);
-  return json::parse(in);
+json validate_json(const fs::path& scene, std::vector<std::string> options = {}) {
+  options.insert(options.begin(), {"validate", "--json"});
+  options.push_back(scene.string());
+  const auto r = shpb_test::run_shpb(options);
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  return json::parse(r.out);
 }
 }  // namespace
 
@@ -46,10 +40,12 @@ TEST_CASE("validate --json reports what discretize() gives simulate", "[app][val
     CHECK(b["time_step_s"].get<double>() == Approx(d.bars[i].time_step_s).epsilon(kRoundOff));
     CHECK(b["courant"].get<double>() == Approx(d.bars[i].courant).epsilon(kRoundOff));
     // C = c0 Δt / h, with c0 = sqrt(E/ρ) and Z = ρ c0 A.
-    const double c0 = std::sqrt(b["youngs_modulus_Pa"].get<double>() / b["density_kg_m3"].get<double>());
+    const double c0 =
+        std::sqrt(b["youngs_modulus_Pa"].get<double>() / b["density_kg_m3"].get<double>());
     CHECK(b["wave_speed_m_s"].get<double>() == Approx(c0).epsilon(kRoundOff));
     CHECK(b["impedance_kg_s"].get<double>() ==
-          Approx(b["density_kg_m3"].get<double>() * c0 * b["area_m2"].get<double>()).epsilon(kRoundOff));
+          Approx(b["density_kg_m3"].get<double>() * c0 * b["area_m2"].get<double>())
+              .epsilon(kRoundOff));
     CHECK(b["courant"].get<double>() ==
           Approx(c0 * b["time_step_s"].get<double>() / b["element_length_m"].get<double>())
               .epsilon(kRoundOff));
@@ -71,7 +67,8 @@ TEST_CASE("validate --json reports what discretize() gives simulate", "[app][val
 TEST_CASE("validate applies --contact, --stepping and --courant as simulate would",
           "[app][validate]") {
   const auto file = fs::path(SHPB_SOURCE_DIR) / "experiments/striker-on-bar/scene.json";
-  const json v = validate_json(file, "--contact penalty --stepping global --courant 0.5");
+  const json v =
+      validate_json(file, {"--contact", "penalty", "--stepping", "global", "--courant", "0.5"});
   CHECK(v["stepping"] == "global");
   CHECK(v["interfaces"][0]["method"] == "penalty");
   // Global stepping: every bar takes the same (smallest) step.

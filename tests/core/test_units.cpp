@@ -98,7 +98,9 @@ TEST_CASE("Every unit of every dimension converts to SI", "[core][units]") {
 
 TEST_CASE("Temperatures accept kelvin and degrees Celsius", "[core][units]") {
   CHECK(q("20 degC", Dimension::kTemperature) == Approx(293.15).epsilon(kRelativeTolerance));
-  CHECK(q("0 \xC2\xB0" "C", Dimension::kTemperature) == Approx(273.15).epsilon(kRelativeTolerance));
+  CHECK(q("0 \xC2\xB0"
+          "C",
+          Dimension::kTemperature) == Approx(273.15).epsilon(kRelativeTolerance));
   CHECK(q("-273.15 degC", Dimension::kTemperature) == Approx(0).margin(1e-12));
   CHECK(q("293 K", Dimension::kTemperature) == 293);
   CHECK(rejects("20 degC", Dimension::kLength, "is a temperature"));
