@@ -18,7 +18,8 @@ int main(int argc, char** argv) {
   std::vector<double> x(n);
   for (std::size_t i = 0; i < n; ++i) {
     const double t = static_cast<double>(i) * dt;
-    x[i] = -1e-3 * (std::fmod(t, 400e-6) < 100e-6) * std::sin(std::numbers::pi * std::fmod(t, 400e-6) / 100e-6);
+    x[i] = -1e-3 * (std::fmod(t, 400e-6) < 100e-6) *
+           std::sin(std::numbers::pi * std::fmod(t, 400e-6) / 100e-6);
   }
   auto seconds = [](clock::time_point a, clock::time_point b) {
     return std::chrono::duration<double>(b - a).count();

@@ -73,7 +73,8 @@ KolskySetup resolve_setup(const Scene& scene, const std::vector<std::string>& av
   k.incident_impedance_kg_s = inc.impedance_kg_s();
   if (s >= 2) {
     k.striker_impedance_kg_s = scene.bars[s - 2].impedance_kg_s();
-    if (scene.bars[s - 2].velocity_m_s != 0) k.striker_velocity_m_s = std::abs(scene.bars[s - 2].velocity_m_s);
+    if (scene.bars[s - 2].velocity_m_s != 0)
+      k.striker_velocity_m_s = std::abs(scene.bars[s - 2].velocity_m_s);
   }
   return k;
 }
@@ -98,7 +99,8 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
       throw input_error(gauge, "", "no pulse", "the gauge signal never rises above its noise");
     if (p->sign > 0) {
       for (double& v : x) v = -v;
-      r.warnings.push_back("gauge \"" + gauge + "\": its first pulse is tensile; a compression "
+      r.warnings.push_back("gauge \"" + gauge +
+                           "\": its first pulse is tensile; a compression "
                            "test's first pulse is compressive, so the signal was inverted (check "
                            "the channel's `invert`)");
     }
@@ -158,7 +160,8 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
   };
   const DispersionTable front_table(k.front_waveguide.poisson);
   std::optional<DispersionTable> back_own;
-  if (k.back_waveguide.poisson != k.front_waveguide.poisson) back_own.emplace(k.back_waveguide.poisson);
+  if (k.back_waveguide.poisson != k.front_waveguide.poisson)
+    back_own.emplace(k.back_waveguide.poisson);
   const DispersionTable& back_table = back_own ? *back_own : front_table;
   auto moved = [&](const std::vector<double>& x, const BarWaveguide& w, const DispersionTable& tab,
                    double distance, double extra, AmplitudeFactor a) {
@@ -166,8 +169,10 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
     o.amplitude = a;
     o.cutoff_fa_over_c0 = cutoff_fa(w);
     if (ds.correction && o.cutoff_fa_over_c0 > tab.max_normalized_frequency())
-      throw input_error("measurement", "dispersion.cutoff", "", "cut-off beyond the tabulated mode");
-    if (ds.correction && a != AmplitudeFactor::kNone && o.cutoff_fa_over_c0 >= tab.m1_pole_normalized_frequency())
+      throw input_error("measurement", "dispersion.cutoff", "",
+                        "cut-off beyond the tabulated mode");
+    if (ds.correction && a != AmplitudeFactor::kNone &&
+        o.cutoff_fa_over_c0 >= tab.m1_pole_normalized_frequency())
       throw input_error("measurement", "dispersion.cutoff", "",
                         "with amplitude factors the cut-off must lie below the m1 pole (f·a/c0 = " +
                             std::to_string(tab.m1_pole_normalized_frequency()) + ")");
@@ -190,7 +195,9 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
     fr = moved(inc, k.front_waveguide, front_table, -d_i, extra_r, AmplitudeFactor::kStress);
     ft = moved(tra, k.back_waveguide, back_table, -d_t, extra_t, AmplitudeFactor::kStress);
   }
-  if (ds.correction) r.cutoff_Hz = cutoff_fa(k.front_waveguide) * k.front_waveguide.c0_m_s / k.front_waveguide.radius_m;
+  if (ds.correction)
+    r.cutoff_Hz =
+        cutoff_fa(k.front_waveguide) * k.front_waveguide.c0_m_s / k.front_waveguide.radius_m;
 
   // Common window at the faces: the incident duration plus a tail, never reaching the next
   // reflection of the incident pulse (2 d_I / c0 later) nor the record's end.
@@ -198,7 +205,8 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
   face_end = std::min({face_end, face_start + 2 * d_i / c_front - dt, t.back()});
   const std::size_t a = index_at(t, face_start), b = std::min(index_at(t, face_end) + 1, n);
   if (!(b > a + 4))
-    throw input_error(k.incident_gauge, "", "", "the pulse window at the specimen faces lies outside the record");
+    throw input_error(k.incident_gauge, "", "",
+                      "the pulse window at the specimen faces lies outside the record");
   r.face_start_s = t[a];
   r.face_end_s = t[b - 1];
   r.transmitted_window = {k.transmitted_gauge, t[a] - r.shift_transmitted_s,
@@ -224,13 +232,15 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
   r.inferred_striker_velocity_m_s = k.front.youngs_modulus_Pa * k.front.area_m2 *
                                     r.incident_plateau_strain * (zs + zb) / (zs * zb);
   r.plateau_strain_rate_1_s = plateau_level(r.curve.strain_rate_1_s, 0, m, 1.0);
-  r.peak_stress_Pa = *std::max_element(r.curve.stress_3wave_Pa.begin(), r.curve.stress_3wave_Pa.end());
+  r.peak_stress_Pa =
+      *std::max_element(r.curve.stress_3wave_Pa.begin(), r.curve.stress_3wave_Pa.end());
   r.max_strain = *std::max_element(r.curve.strain.begin(), r.curve.strain.end());
   double peak_force = 0;
   for (std::size_t i = 0; i < m; ++i)
     peak_force = std::max(peak_force, r.curve.force_front_N[i] + r.curve.force_back_N[i]);
   for (std::size_t i = 0; i < m; ++i)
-    if (r.curve.force_front_N[i] + r.curve.force_back_N[i] >= kMeanForceForEquilibrium * peak_force &&
+    if (r.curve.force_front_N[i] + r.curve.force_back_N[i] >=
+            kMeanForceForEquilibrium * peak_force &&
         r.curve.equilibrium_ratio[i] <= kEquilibriumThreshold) {
       r.time_to_equilibrium_s = r.time_s[i] - r.time_s[0];
       break;

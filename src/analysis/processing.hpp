@@ -39,7 +39,7 @@ struct ProcessingOptions {
 struct WindowReport {
   std::string gauge;
   double start_s = 0, end_s = 0;  // on the gauge's own clock
-  bool detected = false;           // false: from the scene's `windows`
+  bool detected = false;          // false: from the scene's `windows`
 };
 
 struct ProcessingResult {
@@ -50,7 +50,7 @@ struct ProcessingResult {
   double face_start_s = 0, face_end_s = 0;
   double shift_incident_s = 0, shift_reflected_s = 0, shift_transmitted_s = 0;
   std::optional<double> reflected_onset_offset_s;  // detected − expected (alignment check)
-  double incident_plateau_strain = 0;  // compressive strain magnitude at the face
+  double incident_plateau_strain = 0;              // compressive strain magnitude at the face
   double inferred_striker_velocity_m_s = 0;
   double plateau_strain_rate_1_s = 0;
   double peak_stress_Pa = 0;

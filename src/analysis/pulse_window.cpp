@@ -7,10 +7,10 @@
 namespace shpb {
 namespace {
 
-constexpr double kNoiseSigmas = 5.0;          // band of the baseline, in σ
-constexpr double kBandOfPeak = 0.03;          // … and at least this fraction of the peak
-constexpr double kDetectFractionOfPeak = 0.5; // a pulse is found at half its height
-constexpr double kMadToSigma = 1.4826;        // σ of Gaussian noise from its MAD
+constexpr double kNoiseSigmas = 5.0;           // band of the baseline, in σ
+constexpr double kBandOfPeak = 0.03;           // … and at least this fraction of the peak
+constexpr double kDetectFractionOfPeak = 0.5;  // a pulse is found at half its height
+constexpr double kMadToSigma = 1.4826;         // σ of Gaussian noise from its MAD
 
 double median(std::vector<double> v) {
   if (v.empty()) return 0;
@@ -22,8 +22,9 @@ double median(std::vector<double> v) {
 }  // namespace
 
 Baseline estimate_baseline(std::span<const double> x, double fraction) {
-  const std::size_t n = std::min(x.size(), std::max<std::size_t>(
-      10, static_cast<std::size_t>(fraction * static_cast<double>(x.size()))));
+  const std::size_t n = std::min(
+      x.size(), std::max<std::size_t>(
+                    10, static_cast<std::size_t>(fraction * static_cast<double>(x.size()))));
   std::vector<double> seg(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(n));
   Baseline b;
   b.level = median(seg);
@@ -95,7 +96,8 @@ double plateau_level(std::span<const double> x, std::size_t begin, std::size_t e
   if (v.empty()) return 0;
   std::vector<double> sorted(v);
   std::sort(sorted.begin(), sorted.end());
-  const double p95 = sorted[static_cast<std::size_t>(0.95 * static_cast<double>(sorted.size() - 1))];
+  const double p95 =
+      sorted[static_cast<std::size_t>(0.95 * static_cast<double>(sorted.size() - 1))];
   std::vector<double> top;
   for (double y : v)
     if (y >= 0.5 * p95) top.push_back(y);

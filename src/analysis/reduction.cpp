@@ -43,7 +43,8 @@ Curve reduce_pulses(std::span<const double> ei, std::span<const double> er,
     c.true_strain[i] = e < 1 ? -std::log1p(-e) : -std::log(1e-12);
     c.true_stress_Pa[i] = c.stress_3wave_Pa[i] * (1 - e);
     const double sum = std::abs(c.force_front_N[i] + c.force_back_N[i]);
-    c.equilibrium_ratio[i] = 2 * std::abs(c.force_front_N[i] - c.force_back_N[i]) / std::max(sum, floor);
+    c.equilibrium_ratio[i] =
+        2 * std::abs(c.force_front_N[i] - c.force_back_N[i]) / std::max(sum, floor);
   }
   return c;
 }

@@ -1,4 +1,5 @@
 // `shpb dispersion`: the first Pochhammer–Chree mode as CSV (DESIGN.md §2, METHODS.md §5).
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <vector>
@@ -15,7 +16,8 @@ int run_dispersion(const DispersionArgs& args) {
     throw input_error("--poisson", "", format_double(args.poisson), "must be in [0, 0.49]");
   std::vector<double> xs = args.a_over_lambda;
   if (xs.empty()) {
-    if (args.points < 2) throw input_error("--points", "", std::to_string(args.points), "must be >= 2");
+    if (args.points < 2)
+      throw input_error("--points", "", std::to_string(args.points), "must be >= 2");
     for (int i = 0; i < args.points; ++i)
       xs.push_back(args.max_a_over_lambda * i / (args.points - 1));
   }
@@ -31,13 +33,28 @@ int run_dispersion(const DispersionArgs& args) {
 
   std::vector<std::string> header = {"a_over_lambda", "c_over_c0", "cg_over_c0", "f_a_over_c0"};
   if (with_frequency) header.push_back("frequency_Hz");
-  const std::filesystem::path file = args.output ? *args.output : "/dev/stdout";
+  // A file through CsvWriter, or stdout (never reopened: that would truncate a redirect).
   std::unique_ptr<CsvWriter> csv;
-  try {
-    csv = std::make_unique<CsvWriter>(file, header);
-  } catch (const std::runtime_error& e) {
-    throw input_error(file.string(), "", "", "cannot be written");
+  if (args.output) {
+    try {
+      csv = std::make_unique<CsvWriter>(*args.output, header);
+    } catch (const std::runtime_error&) {
+      throw input_error(args.output->string(), "", "", "cannot be written");
+    }
+  } else {
+    for (std::size_t i = 0; i < header.size(); ++i)
+      std::printf("%s%s", i ? "," : "", header[i].c_str());
+    std::printf("\n");
   }
+  auto write = [&](const std::vector<double>& row) {
+    for (double v : row)
+      if (!std::isfinite(v))
+        throw NumericalError("dispersion: non-finite value at a/lambda = " + format_double(row[0]));
+    if (csv) return csv->row(row);
+    for (std::size_t i = 0; i < row.size(); ++i)
+      std::printf("%s%s", i ? "," : "", format_double(row[i]).c_str());
+    std::printf("\n");
+  };
   // Marching guess only for a small increasing step (the narrow bracket then cannot reach
   // another mode; see phase_velocity).
   constexpr double kMarchingStep = 0.01;
@@ -50,7 +67,7 @@ int run_dispersion(const DispersionArgs& args) {
     const double cg = group_velocity(args.poisson, x, c);
     std::vector<double> row = {x, c, cg, x * c};
     if (with_frequency) row.push_back(x * c * *args.c0_m_s / *args.radius_m);
-    csv->row(row);
+    write(row);
   }
   return 0;
 }

@@ -3,8 +3,8 @@
 // output folder is created.
 #include <cmath>
 #include <cstdio>
-#include <nlohmann/json.hpp>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "analysis/processing.hpp"
 #include "app/commands.hpp"
@@ -18,7 +18,9 @@ namespace shpb {
 namespace {
 
 nlohmann::json window_json(const WindowReport& w) {
-  return {{"gauge", w.gauge}, {"start_s", w.start_s}, {"end_s", w.end_s},
+  return {{"gauge", w.gauge},
+          {"start_s", w.start_s},
+          {"end_s", w.end_s},
           {"source", w.detected ? "detected" : "scene"}};
 }
 
@@ -29,12 +31,14 @@ void check_finite(const ProcessingResult& r) {
     return true;
   };
   const Curve& c = r.curve;
-  for (const auto* v : {&r.incident, &r.reflected, &r.transmitted, &c.strain_rate_1_s, &c.strain,
-                        &c.stress_3wave_Pa, &c.true_strain, &c.true_stress_Pa, &c.equilibrium_ratio})
+  for (const auto* v :
+       {&r.incident, &r.reflected, &r.transmitted, &c.strain_rate_1_s, &c.strain,
+        &c.stress_3wave_Pa, &c.true_strain, &c.true_stress_Pa, &c.equilibrium_ratio})
     if (!all(*v)) throw NumericalError("process: the reduction produced a non-finite value");
   if (c.strain.size() && *std::max_element(c.strain.begin(), c.strain.end()) >= 1)
-    throw NumericalError("process: engineering strain reached 1 (the specimen would have no length "
-                         "left): check the bridge factors, the specimen length and the windows");
+    throw NumericalError(
+        "process: engineering strain reached 1 (the specimen would have no length "
+        "left): check the bridge factors, the specimen length and the windows");
 }
 
 }  // namespace
@@ -115,10 +119,12 @@ int run_process(const ProcessArgs& args) {
       "pulses.csv: strains at the specimen faces, tension positive, on the signals' clock; "
       "curve.csv: compression positive, strain and strain rate from the 3-wave reduction, true "
       "values from the 3-wave stress";
-  nlohmann::json disp = {{"correction", options.dispersion.correction ? "pochhammer-chree" : "none"},
-                         {"amplitude_factors", options.dispersion.amplitude_factors}};
+  nlohmann::json disp = {
+      {"correction", options.dispersion.correction ? "pochhammer-chree" : "none"},
+      {"amplitude_factors", options.dispersion.amplitude_factors}};
   if (options.dispersion.correction) disp["cutoff_Hz"] = r.cutoff_Hz;
-  if (simulated) disp["reason"] = "signals of the 1D bar model do not disperse: pure delay by distance/c0";
+  if (simulated)
+    disp["reason"] = "signals of the 1D bar model do not disperse: pure delay by distance/c0";
   s["dispersion"] = disp;
   s["windows"] = {{"incident", window_json(r.incident_window)},
                   {"reflected", window_json(r.reflected_window)},
@@ -132,16 +138,18 @@ int run_process(const ProcessArgs& args) {
   s["alignment"] = {
       {"reflected_onset_minus_expected_s",
        r.reflected_onset_offset_s ? nlohmann::json(*r.reflected_onset_offset_s) : nlohmann::json()},
-      {"how", "incident forward and reflected/transmitted backward by their gauge distances over "
-              "c0 (dispersion-corrected); the detected reflected onset is reported, not applied "
-              "(onset picking on a dispersed front is less accurate than the geometry)"}};
+      {"how",
+       "incident forward and reflected/transmitted backward by their gauge distances over "
+       "c0 (dispersion-corrected); the detected reflected onset is reported, not applied "
+       "(onset picking on a dispersed front is less accurate than the geometry)"}};
   s["incident_plateau_strain"] = r.incident_plateau_strain;
   s["striker_velocity_m_s"] = {
       {"inferred", r.inferred_striker_velocity_m_s},
-      {"scene", setup.striker_velocity_m_s ? nlohmann::json(*setup.striker_velocity_m_s)
-                                           : (scene.measurement && scene.measurement->striker_velocity_m_s
-                                                  ? nlohmann::json(*scene.measurement->striker_velocity_m_s)
-                                                  : nlohmann::json())},
+      {"scene", setup.striker_velocity_m_s
+                    ? nlohmann::json(*setup.striker_velocity_m_s)
+                    : (scene.measurement && scene.measurement->striker_velocity_m_s
+                           ? nlohmann::json(*scene.measurement->striker_velocity_m_s)
+                           : nlohmann::json())},
       {"how", "incident plateau at the front face: V = E A eps (Z_s + Z_b)/(Z_s Z_b)"}};
   s["plateau_strain_rate_1_s"] = r.plateau_strain_rate_1_s;
   s["peak_stress_Pa"] = r.peak_stress_Pa;

@@ -7,6 +7,7 @@
 #include "app/commands.hpp"
 #include "core/csv_writer.hpp"
 #include "model/discretization.hpp"
+#include "model/scene_checks.hpp"
 
 namespace shpb {
 namespace {
@@ -94,6 +95,7 @@ json resolved_setup(const Scene& scene, const ChainDiscretization& d) {
                                  {"stiffness_N_m", opt(p.stiffness_N_m)},
                                  {"mass_ratio", opt(p.mass_ratio)}});
   }
+  out["warnings"] = scene_warnings(scene, d.duration_s);
   out["duration_s"] = d.duration_s;
   out["sample_rate_Hz"] = d.sample_rate_Hz;
   out["stepping"] = to_string(d.stepping);
@@ -155,6 +157,7 @@ void print_table(const json& s) {
     std::printf("measurement  %s (%zu channels)\n",
                 s["measurement"]["file"].get<std::string>().c_str(),
                 s["measurement"]["channels"].get<std::size_t>());
+  for (const auto& w : s["warnings"]) std::printf("warning: %s\n", w.get<std::string>().c_str());
 }
 
 }  // namespace

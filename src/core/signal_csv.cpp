@@ -36,10 +36,12 @@ std::size_t resolve(const DelimitedText& text, const TextRow* header, const Colu
     auto it = std::find(f.begin(), f.end(), ref.name);
     if (it == f.end()) {
       auto lower = [](std::string s) {
-        std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+        std::transform(s.begin(), s.end(), s.begin(),
+                       [](unsigned char c) { return std::tolower(c); });
         return s;
       };
-      it = std::find_if(f.begin(), f.end(), [&](const std::string& h) { return lower(h) == lower(ref.name); });
+      it = std::find_if(f.begin(), f.end(),
+                        [&](const std::string& h) { return lower(h) == lower(ref.name); });
     }
     if (it != f.end()) return static_cast<std::size_t>(it - f.begin());
     std::string names;
@@ -79,21 +81,21 @@ RawSignalColumns read_columns(const DelimitedText& text, std::size_t first_data,
 
 double number_at(const DelimitedText& text, const TextRow& row, std::size_t column,
                  const std::string& column_name) {
-  const std::string where = text_place(row.line, column) +
-                            (column_name.empty() ? "" : " (\"" + column_name + "\")");
+  const std::string where =
+      text_place(row.line, column) + (column_name.empty() ? "" : " (\"" + column_name + "\")");
   if (column >= row.fields.size())
-    throw input_error(text.file.string(), where, "missing value",
-                      "the row has only " + std::to_string(row.fields.size()) +
-                          " fields (truncated line?)");
+    throw input_error(
+        text.file.string(), where, "missing value",
+        "the row has only " + std::to_string(row.fields.size()) + " fields (truncated line?)");
   const std::string& f = row.fields[column];
   if (f.empty()) throw input_error(text.file.string(), where, "empty field", "expected a number");
   const auto v = parse_number(f, text.decimal_comma);
   if (!v) {
     const bool nan = f.find("nan") != std::string::npos || f.find("NaN") != std::string::npos ||
                      f.find("NAN") != std::string::npos;
-    throw input_error(text.file.string(), where, "\"" + f + "\"",
-                      nan ? "not a number (NaN) where a finite sample was expected"
-                          : "expected a finite number");
+    throw input_error(
+        text.file.string(), where, "\"" + f + "\"",
+        nan ? "not a number (NaN) where a finite sample was expected" : "expected a finite number");
   }
   return *v;
 }
@@ -114,8 +116,9 @@ RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest
   std::vector<std::string> names;
   for (const auto& c : request.columns) {
     indices.push_back(resolve(text, header, c, width));
-    names.push_back(header && indices.back() < header->fields.size() ? header->fields[indices.back()]
-                                                                     : "column " + std::to_string(indices.back()));
+    names.push_back(header && indices.back() < header->fields.size()
+                        ? header->fields[indices.back()]
+                        : "column " + std::to_string(indices.back()));
   }
   return read_columns(text, first, header, time_index, indices, names);
 }
@@ -134,8 +137,9 @@ RawSignalColumns read_tektronix_columns(const DelimitedText& text, const SignalR
     indices.push_back(c.index ? static_cast<std::size_t>(*c.index) : kVoltColumn);
     names.push_back(text.file.filename().string());
   }
-  const std::size_t time_index =
-      request.time_column.index ? static_cast<std::size_t>(*request.time_column.index) : kTimeColumn;
+  const std::size_t time_index = request.time_column.index
+                                     ? static_cast<std::size_t>(*request.time_column.index)
+                                     : kTimeColumn;
   return read_columns(text, 0, nullptr, time_index, indices, names);
 }
 

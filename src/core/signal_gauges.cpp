@@ -90,10 +90,11 @@ GaugeSignals read_gauge_signals(const MeasurementSpec& m, const std::filesystem:
       out.dt_s = cols.dt_s;
       first_file = false;
     }
-    const bool same_clock = cols.time_s.size() == out.time_s.size() &&
-                            std::abs(cols.time_s.front() - out.time_s.front()) < kSameClock * out.dt_s &&
-                            std::abs(cols.dt_s - out.dt_s) * static_cast<double>(out.time_s.size()) <
-                                kSameClock * out.dt_s;
+    const bool same_clock =
+        cols.time_s.size() == out.time_s.size() &&
+        std::abs(cols.time_s.front() - out.time_s.front()) < kSameClock * out.dt_s &&
+        std::abs(cols.dt_s - out.dt_s) * static_cast<double>(out.time_s.size()) <
+            kSameClock * out.dt_s;
     if (!same_clock)
       out.warnings.push_back(file.string() + ": time base differs from " + order.front().string() +
                              "; its channels were resampled onto the first file's clock (linear)");
@@ -105,12 +106,17 @@ GaugeSignals read_gauge_signals(const MeasurementSpec& m, const std::filesystem:
       switch (ch.unit) {
         case SignalUnit::kVolt:
           if (!ch.bridge)
-            throw input_error("measurement", "channels[" + std::to_string(channels[k]) + "].bridge",
-                              "missing", "a channel in volts needs a bridge (arms, gauge_factor, excitation, gain)");
+            throw input_error(
+                "measurement", "channels[" + std::to_string(channels[k]) + "].bridge", "missing",
+                "a channel in volts needs a bridge (arms, gauge_factor, excitation, gain)");
           factor = volts_to_strain(*ch.bridge);
           break;
-        case SignalUnit::kMicrostrain: factor = 1e-6; break;
-        case SignalUnit::kStrain: factor = 1.0; break;
+        case SignalUnit::kMicrostrain:
+          factor = 1e-6;
+          break;
+        case SignalUnit::kStrain:
+          factor = 1.0;
+          break;
       }
       if (ch.invert) factor = -factor;
       for (double& x : v) x *= factor;

@@ -9,7 +9,9 @@ RawSignalColumns read_lanl_raw_columns(const DelimitedText& text, const SignalRe
   constexpr std::size_t kFirstSignalColumn = 2, kHeaderRows = 3;
   const auto& rows = text.rows;
   if (rows.size() <= kHeaderRows || rows[0].fields.size() <= kFirstSignalColumn)
-    throw input_error(text.file.string(), "line 1", "", "not a LANL .raw file (expected signal names in columns 3 and on, then start time, sample interval and samples)");
+    throw input_error(text.file.string(), "line 1", "",
+                      "not a LANL .raw file (expected signal names in columns 3 and on, then start "
+                      "time, sample interval and samples)");
   std::vector<std::size_t> indices;
   RawSignalColumns raw;
   for (const auto& c : request.columns) {

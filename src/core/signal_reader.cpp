@@ -1,7 +1,7 @@
 #include "core/signal_reader.hpp"
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <vector>
 
@@ -23,7 +23,8 @@ SignalFormat detect(const DelimitedText& text) {
   auto ext = text.file.extension().string();
   for (auto& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
   if (ext == ".raw") return SignalFormat::kLanlRaw;
-  if (!text.rows.empty() && !text.rows[0].fields.empty() && text.rows[0].fields[0] == "Record Length")
+  if (!text.rows.empty() && !text.rows[0].fields.empty() &&
+      text.rows[0].fields[0] == "Record Length")
     return SignalFormat::kTektronix;
   return SignalFormat::kCsv;
 }
@@ -48,7 +49,8 @@ void check_time_base(const std::filesystem::path& file, const RawSignalColumns& 
                      SignalColumns& out) {
   const auto& t = out.time_s;
   const std::size_t n = t.size();
-  if (n < 2) throw input_error(file.string(), "", std::to_string(n) + " samples", "expected at least 2");
+  if (n < 2)
+    throw input_error(file.string(), "", std::to_string(n) + " samples", "expected at least 2");
   if (raw.time_from_header) {
     out.dt_s = raw.header_dt;
     return;
@@ -82,26 +84,29 @@ void check_time_base(const std::filesystem::path& file, const RawSignalColumns& 
     for (std::size_t i = 0; i < n; ++i) out.time_s[i] = t0 + static_cast<double>(i) * dt;
     out.dt_s = dt;
     char msg[400];
-    std::snprintf(msg, sizeof msg,
-                  "%s: time stamps repeat (%zu distinct values in %zu rows: the column was rounded); "
-                  "time base rebuilt from the sample interval %.6g s (%.6g MHz, least-squares fit "
-                  "%.6g s) starting at %.6g s",
-                  file.string().c_str(), distinct, n, dt, 1e-6 / dt, fit, t0);
+    std::snprintf(
+        msg, sizeof msg,
+        "%s: time stamps repeat (%zu distinct values in %zu rows: the column was rounded); "
+        "time base rebuilt from the sample interval %.6g s (%.6g MHz, least-squares fit "
+        "%.6g s) starting at %.6g s",
+        file.string().c_str(), distinct, n, dt, 1e-6 / dt, fit, t0);
     out.warnings.push_back(msg);
     return;
   }
   // The median step is the sampling interval; a gap or jump stands out against it.
   std::vector<double> steps(n - 1);
   for (std::size_t i = 1; i < n; ++i) steps[i - 1] = t[i] - t[i - 1];
-  std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2), steps.end());
+  std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2),
+                   steps.end());
   const double median_step = steps[steps.size() / 2];
   for (std::size_t i = 1; i < n; ++i) {
     const double dt = median_step;
     const double step = t[i] - t[i - 1];
     if (std::abs(step - dt) > kUniformStepTolerance * dt)
-      throw input_error(file.string(), "line " + std::to_string(raw.lines[i]) + " (time column)",
-                        "step " + seconds(step),
-                        "expected uniform sampling at " + seconds(dt) + " (gap or jump in the record)");
+      throw input_error(
+          file.string(), "line " + std::to_string(raw.lines[i]) + " (time column)",
+          "step " + seconds(step),
+          "expected uniform sampling at " + seconds(dt) + " (gap or jump in the record)");
   }
   out.dt_s = span / static_cast<double>(n - 1);
 }
@@ -110,10 +115,14 @@ void check_time_base(const std::filesystem::path& file, const RawSignalColumns& 
 
 std::string_view to_string(SignalFormat f) {
   switch (f) {
-    case SignalFormat::kAuto: return "auto";
-    case SignalFormat::kCsv: return "csv";
-    case SignalFormat::kTektronix: return "tektronix";
-    case SignalFormat::kLanlRaw: return "lanl-raw";
+    case SignalFormat::kAuto:
+      return "auto";
+    case SignalFormat::kCsv:
+      return "csv";
+    case SignalFormat::kTektronix:
+      return "tektronix";
+    case SignalFormat::kLanlRaw:
+      return "lanl-raw";
   }
   return "?";
 }
@@ -125,9 +134,15 @@ SignalColumns read_signal_columns(const SignalRequest& request) {
   out.format = request.format == SignalFormat::kAuto ? detect(text) : request.format;
   RawSignalColumns raw;
   switch (out.format) {
-    case SignalFormat::kLanlRaw: raw = read_lanl_raw_columns(text, request); break;
-    case SignalFormat::kTektronix: raw = read_tektronix_columns(text, request); break;
-    default: raw = read_csv_columns(text, request); break;
+    case SignalFormat::kLanlRaw:
+      raw = read_lanl_raw_columns(text, request);
+      break;
+    case SignalFormat::kTektronix:
+      raw = read_tektronix_columns(text, request);
+      break;
+    default:
+      raw = read_csv_columns(text, request);
+      break;
   }
   out.time_s = std::move(raw.time);
   if (!raw.time_from_header)

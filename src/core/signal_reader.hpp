@@ -14,7 +14,8 @@ namespace shpb {
 struct SignalRequest {
   std::filesystem::path file;
   SignalFormat format = SignalFormat::kAuto;
-  ColumnRef time_column;     // empty: the format's own (CSV: first column; Tektronix: 4th; LANL: header)
+  ColumnRef
+      time_column;  // empty: the format's own (CSV: first column; Tektronix: 4th; LANL: header)
   double time_unit_s = 1.0;  // seconds per unit of the time column
   std::vector<ColumnRef> columns;
 };
@@ -24,8 +25,8 @@ struct SignalColumns {
   SignalFormat format = SignalFormat::kCsv;  // as detected
   std::vector<double> time_s;                // uniform, increasing
   double dt_s = 0;
-  std::vector<std::string> names;            // resolved name of each requested column
-  std::vector<std::vector<double>> values;   // one per requested column, time_s.size() each
+  std::vector<std::string> names;           // resolved name of each requested column
+  std::vector<std::vector<double>> values;  // one per requested column, time_s.size() each
   std::vector<std::string> warnings;
 };
 

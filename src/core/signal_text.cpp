@@ -19,7 +19,8 @@ std::string trim(std::string_view s) {
   auto e = std::find_if(s.rbegin(), s.rend(), not_blank).base();
   if (b >= e) return {};
   std::string out(b, e);
-  if (out.size() >= 2 && out.front() == '"' && out.back() == '"') out = out.substr(1, out.size() - 2);
+  if (out.size() >= 2 && out.front() == '"' && out.back() == '"')
+    out = out.substr(1, out.size() - 2);
   return out;
 }
 
@@ -105,7 +106,8 @@ DelimitedText read_delimited_text(const std::filesystem::path& file) {
       ++line_no;
     }
   }
-  if (lines.empty()) throw input_error(file.string(), "line 1", "empty file", "expected signal rows");
+  if (lines.empty())
+    throw input_error(file.string(), "line 1", "empty file", "expected signal rows");
 
   DelimitedText text;
   text.file = file;
@@ -118,10 +120,14 @@ DelimitedText read_delimited_text(const std::filesystem::path& file) {
     semis += l.find(';') != std::string_view::npos;
     commas += l.find(',') != std::string_view::npos;
   }
-  if (tabs * 2 > sniff) text.delimiter = '\t';
-  else if (semis * 2 > sniff) text.delimiter = ';';
-  else if (commas * 2 > sniff) text.delimiter = ',';
-  else text.delimiter = ' ';
+  if (tabs * 2 > sniff)
+    text.delimiter = '\t';
+  else if (semis * 2 > sniff)
+    text.delimiter = ';';
+  else if (commas * 2 > sniff)
+    text.delimiter = ',';
+  else
+    text.delimiter = ' ';
 
   text.rows.reserve(lines.size());
   for (const auto& [n, l] : lines) text.rows.push_back({n, split(l, text.delimiter)});
@@ -133,8 +139,10 @@ DelimitedText read_delimited_text(const std::filesystem::path& file) {
     const std::size_t from = text.rows.size() > sniff ? text.rows.size() - sniff : 0;
     for (std::size_t i = from; i < text.rows.size(); ++i)
       for (const auto& f : text.rows[i].fields) {
-        if (looks_like_decimal_comma_number(f)) ++with_comma;
-        else if (f.find('.') != std::string::npos && parse_number(f, false)) ++numbers;
+        if (looks_like_decimal_comma_number(f))
+          ++with_comma;
+        else if (f.find('.') != std::string::npos && parse_number(f, false))
+          ++numbers;
       }
     text.decimal_comma = with_comma > numbers;
   }

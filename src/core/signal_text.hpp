@@ -17,7 +17,7 @@ struct TextRow {
 
 struct DelimitedText {
   std::filesystem::path file;
-  char delimiter = ',';    // '\t', ';', ',' or ' ' (runs of blanks)
+  char delimiter = ',';  // '\t', ';', ',' or ' ' (runs of blanks)
   bool decimal_comma = false;
   std::vector<TextRow> rows;  // non-blank lines only
 };

@@ -9,8 +9,8 @@
 namespace shpb {
 
 struct BesselFactors {
-  double j0 = 1;         // J0(s)        or I0(q)·e^{−q}
-  double s_j1 = 0;       // s·J1(s)      or −q·I1(q)·e^{−q}
+  double j0 = 1;           // J0(s)        or I0(q)·e^{−q}
+  double s_j1 = 0;         // s·J1(s)      or −q·I1(q)·e^{−q}
   double j1_over_s = 0.5;  // J1(s)/s    or I1(q)/q·e^{−q}
 };
 

@@ -26,9 +26,9 @@ class DispersionTable {
   double interpolate(const std::vector<double>& y, double fa_over_c0) const;
 
   double poisson_;
-  std::vector<double> fa_;     // f·a/c0, increasing (group velocity > 0)
-  std::vector<double> c_;      // c/c0
-  std::vector<double> m1_;     // Tyas–Pope m1 (infinite at the pole: clamped, never used there)
+  std::vector<double> fa_;  // f·a/c0, increasing (group velocity > 0)
+  std::vector<double> c_;   // c/c0
+  std::vector<double> m1_;  // Tyas–Pope m1 (infinite at the pole: clamped, never used there)
   std::vector<double> m1m2_;
   double m1_pole_fa_ = 0;
 };

@@ -24,9 +24,7 @@ constexpr double kDerivativeStep = 1e-6;
 struct Elastic {
   double cl2, ct2;  // (c_L/c0)², (c_T/c0)²
 };
-Elastic elastic(double nu) {
-  return {(1 - nu) / ((1 + nu) * (1 - 2 * nu)), 1 / (2 * (1 + nu))};
-}
+Elastic elastic(double nu) { return {(1 - nu) / ((1 + nu) * (1 - 2 * nu)), 1 / (2 * (1 + nu))}; }
 
 // Frequency equation in (k, ω) with a = c0 = 1, divided by β and k⁴ (METHODS.md §5).
 double equation_k_omega(const Elastic& e, double k, double omega) {
@@ -131,8 +129,10 @@ double group_velocity(double nu, double x, double c) {
   const Elastic e = elastic(nu);
   const double k = kTwoPi * x, omega = k * c;
   const double hk = kDerivativeStep * k, hw = kDerivativeStep * omega;
-  const double g_k = (equation_k_omega(e, k + hk, omega) - equation_k_omega(e, k - hk, omega)) / (2 * hk);
-  const double g_w = (equation_k_omega(e, k, omega + hw) - equation_k_omega(e, k, omega - hw)) / (2 * hw);
+  const double g_k =
+      (equation_k_omega(e, k + hk, omega) - equation_k_omega(e, k - hk, omega)) / (2 * hk);
+  const double g_w =
+      (equation_k_omega(e, k, omega + hw) - equation_k_omega(e, k, omega - hw)) / (2 * hw);
   return -g_k / g_w;
 }
 

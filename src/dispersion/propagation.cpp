@@ -87,6 +87,13 @@ std::vector<double> Propagator::propagate(std::span<const double> signal, double
   return out;
 }
 
+std::vector<double> propagate(std::span<const double> signal, double dt, double distance_m,
+                              const BarWaveguide& bar, const PropagationOptions& options) {
+  const DispersionTable table(bar.poisson);
+  Propagator p(table, bar, options);
+  return p.propagate(signal, dt, distance_m);
+}
+
 void delay_by_interpolation(std::span<const double> signal, double delay, std::span<double> out) {
   const auto n = static_cast<std::ptrdiff_t>(signal.size());
   for (std::ptrdiff_t i = 0; i < n; ++i) {

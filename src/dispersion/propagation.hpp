@@ -30,7 +30,7 @@ enum class AmplitudeFactor {
 inline constexpr double kDefaultCutoffFaOverC0 = 0.2619;
 
 struct PropagationOptions {
-  bool dispersion = true;          // false: pure delay Δz/c0 (a 1D, non-dispersive bar)
+  bool dispersion = true;  // false: pure delay Δz/c0 (a 1D, non-dispersive bar)
   AmplitudeFactor amplitude = AmplitudeFactor::kNone;
   double cutoff_fa_over_c0 = kDefaultCutoffFaOverC0;  // low-pass cut-off (dispersion only)
   double rolloff_fraction = 0.25;  // raised cosine from (1 − this)·cut-off to the cut-off
@@ -41,7 +41,8 @@ struct PropagationOptions {
 // padded length). `propagate` is the free-standing operation other commands reuse.
 class Propagator {
  public:
-  Propagator(const DispersionTable& table, const BarWaveguide& bar, const PropagationOptions& options);
+  Propagator(const DispersionTable& table, const BarWaveguide& bar,
+             const PropagationOptions& options);
 
   // Propagates `signal` (uniform step dt) by `distance_m`; out has the signal's length and the
   // same time grid. Reuses the FFT plan while the padded length does not change.
@@ -58,6 +59,11 @@ class Propagator {
   PropagationOptions options_;
   std::unique_ptr<RealFft> fft_;
 };
+
+// One-off convenience: tabulates the bar's mode (≈ 0.2 s) and plans an FFT for this call. For
+// several pulses of one bar, keep a DispersionTable and a Propagator instead.
+std::vector<double> propagate(std::span<const double> signal, double dt, double distance_m,
+                              const BarWaveguide& bar, const PropagationOptions& options = {});
 
 // Pure delay by distance/c0 with linear interpolation between samples (no ringing); the
 // non-dispersive counterpart used for signals of a 1D model.

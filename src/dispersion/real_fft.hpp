@@ -15,7 +15,7 @@ class RealFft {
   RealFft& operator=(const RealFft&) = delete;
 
   std::size_t size() const { return n_; }
-  std::span<double> samples() { return {real_, n_}; }                        // n values
+  std::span<double> samples() { return {real_, n_}; }                             // n values
   std::span<std::complex<double>> spectrum() { return {spectrum_, n_ / 2 + 1}; }  // n/2+1 bins
 
   void forward();  // samples → spectrum (unnormalised)

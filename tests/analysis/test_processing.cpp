@@ -15,7 +15,8 @@ constexpr double kE = 200e9, kRho = 8000, kC0 = 5000;  // steel bars, c0 = sqrt(
 constexpr double kRadius = 9.525e-3;
 constexpr double kDt = 1e-7;
 constexpr double kDistanceIncident = 1.0, kDistanceTransmitted = 0.5;
-constexpr double kStrain0 = 1e-3;  // incident plateau: striker of the bar's material at 2 c0 ε0 = 10 m/s
+constexpr double kStrain0 =
+    1e-3;  // incident plateau: striker of the bar's material at 2 c0 ε0 = 10 m/s
 
 // Smooth trapezoid: 0 → 1 over `rise` (raised cosine) from t0, flat, back to 0 after `flat`.
 double trapezoid(double t, double t0, double rise, double flat) {
@@ -30,7 +31,9 @@ double trapezoid(double t, double t0, double rise, double flat) {
 struct FacePulses {
   double start = 300e-6, rise = 20e-6, flat = 80e-6;
   double incident(double t) const { return -kStrain0 * trapezoid(t, start, rise, flat); }
-  double transmitted(double t) const { return -0.3 * kStrain0 * trapezoid(t, start + 5e-6, rise, flat); }
+  double transmitted(double t) const {
+    return -0.3 * kStrain0 * trapezoid(t, start + 5e-6, rise, flat);
+  }
   double reflected(double t) const { return transmitted(t) - incident(t); }
 };
 
@@ -82,7 +85,8 @@ TEST_CASE("Processing ideal 1D gauge signals recovers the face pulses, the curve
     const double t = static_cast<double>(i) * kDt;
     g.time_s.push_back(t);
     // The incident passes the gauge d/c0 before the face, the reflected d/c0 after it.
-    g.strain[0][i] = face.incident(t + kDistanceIncident / kC0) + face.reflected(t - kDistanceIncident / kC0);
+    g.strain[0][i] =
+        face.incident(t + kDistanceIncident / kC0) + face.reflected(t - kDistanceIncident / kC0);
     g.strain[1][i] = face.transmitted(t - kDistanceTransmitted / kC0);
   }
   ProcessingOptions o;
@@ -111,6 +115,14 @@ TEST_CASE("Processing ideal 1D gauge signals recovers the face pulses, the curve
   // Plateau strain rate (c0/L)(−ε_I + ε_R + ε_T) = (c0/L)·2·0.7 ε0 = 1400 1/s.
   CHECK(r.plateau_strain_rate_1_s == Approx(1400).epsilon(kPlateauTolerance));
   REQUIRE(r.time_to_equilibrium_s);
+
+  SECTION("a manual incident window from the scene overrides detection") {
+    ProcessingOptions manual = o;
+    manual.windows.incident = TimeWindow{50e-6, 170e-6};
+    const ProcessingResult m = process_signals(g, setup(), manual);
+    CHECK_FALSE(m.incident_window.detected);
+    CHECK(m.face_start_s == Approx(50e-6 + kDistanceIncident / kC0).margin(kDt));
+  }
 }
 
 TEST_CASE("Processing dispersed gauge signals with Pochhammer-Chree correction recovers the faces",
@@ -154,6 +166,7 @@ TEST_CASE("Processing dispersed gauge signals with Pochhammer-Chree correction r
   o.dispersion.correction = false;
   const ProcessingResult u = process_signals(g, setup(), o);
   for (std::size_t i = 0; i < u.time_s.size(); ++i)
-    worst_uncorrected = std::max(worst_uncorrected, std::abs(u.incident[i] - face.incident(u.time_s[i])));
+    worst_uncorrected =
+        std::max(worst_uncorrected, std::abs(u.incident[i] - face.incident(u.time_s[i])));
   CHECK(worst_uncorrected > 3 * kRecovered * kStrain0);
 }

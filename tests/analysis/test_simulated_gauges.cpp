@@ -1,5 +1,5 @@
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
 #include <vector>
@@ -80,10 +80,13 @@ Agreement process_simulation(const Scene& scene) {
       continue;
     ++count;
     const double ds = (r.curve.stress_3wave_Pa[i] - interpolate(ts, stress, t)) / peak_stress;
-    const double dr = (r.curve.strain_rate_1_s[i] - interpolate(ts, rate, t)) / r.plateau_strain_rate_1_s;
+    const double dr =
+        (r.curve.strain_rate_1_s[i] - interpolate(ts, rate, t)) / r.plateau_strain_rate_1_s;
     a.stress_rms += ds * ds;
     a.rate_rms += dr * dr;
-    a.strain_max = std::max(a.strain_max, std::abs(r.curve.strain[i] + strain0 - interpolate(ts, strain, t)) / peak_strain);
+    a.strain_max =
+        std::max(a.strain_max,
+                 std::abs(r.curve.strain[i] + strain0 - interpolate(ts, strain, t)) / peak_strain);
   }
   // At least half the window must qualify, or the comparison says little.
   REQUIRE(count > r.time_s.size() / 2);
@@ -97,8 +100,8 @@ Agreement process_simulation(const Scene& scene) {
 TEST_CASE("Processing the simulator's gauges recovers the specimen truth after equilibrium",
           "[analysis][processing][simulation]") {
   SECTION("Johnson-Cook Al 6061-T6 specimen (experiments/classic-al6061)") {
-    const Scene scene =
-        read_scene(std::filesystem::path(SHPB_SOURCE_DIR) / "experiments/classic-al6061/scene.json");
+    const Scene scene = read_scene(std::filesystem::path(SHPB_SOURCE_DIR) /
+                                   "experiments/classic-al6061/scene.json");
     const Agreement a = process_simulation(scene);
     CHECK(a.stress_rms < kAgreement);
     CHECK(a.rate_rms < kAgreement);

@@ -29,6 +29,16 @@ inline std::string read_text(const std::filesystem::path& file) {
   return s.str();
 }
 
+// A fresh folder for one test, unique per process: test cases run in parallel (ctest -j), and
+// other checkouts on the same machine run the same tests at the same time.
+inline std::filesystem::path scratch_dir(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("shpb_test_" + name + "_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
 inline RunResult run_shpb(const std::vector<std::string>& args) {
   const auto dir = std::filesystem::temp_directory_path();
   const std::string tag = std::to_string(::getpid());

@@ -258,7 +258,7 @@ fs::path prepare(const fs::path& root, std::size_t index) {
 
 // A command that writes an output folder must refuse a bad scene before creating anything.
 void check_writes_nothing(const std::string& command) {
-  const auto root = fs::temp_directory_path() / ("shpb_bad_scenes_" + command);
+  const auto root = shpb_test::scratch_dir("bad_scenes_" + command);
   for (std::size_t i = 0; i < cases().size(); ++i) {
     INFO("bad scene: " << cases()[i].what << "; command: " << command);
     const auto scene_file = prepare(root, i);
@@ -275,9 +275,7 @@ void check_writes_nothing(const std::string& command) {
 }  // namespace
 
 TEST_CASE("The valid base scene of the bad-scene table validates", "[app][bad-scenes]") {
-  const auto dir = fs::temp_directory_path() / "shpb_bad_scenes_base";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const auto dir = shpb_test::scratch_dir("bad_scenes_base");
   std::ofstream(dir / "scene.json") << base_scene().dump(2);
   std::ofstream(dir / "specimen.json") << base_specimen().dump(2);
   const auto r = run_shpb({"validate", (dir / "scene.json").string()});
@@ -288,7 +286,7 @@ TEST_CASE("The valid base scene of the bad-scene table validates", "[app][bad-sc
 TEST_CASE("Every bad scene exits 2 with one line naming the file and the JSON path",
           "[app][bad-scenes]") {
   REQUIRE(cases().size() >= 30);
-  const auto root = fs::temp_directory_path() / "shpb_bad_scenes_validate";
+  const auto root = shpb_test::scratch_dir("bad_scenes_validate");
   for (std::size_t i = 0; i < cases().size(); ++i) {
     const auto& c = cases()[i];
     INFO("bad scene: " << c.what);

@@ -1,3 +1,5 @@
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
 #include <cstdlib>
 #include <filesystem>
@@ -17,17 +19,23 @@ struct Run {
 };
 
 Run run(const std::string& args) {
-  const fs::path err = fs::temp_directory_path() / "shpb_test_process_stderr.txt";
+  // One stderr file per process and call: CTest runs test cases in parallel.
+  static int calls = 0;
+  const fs::path err =
+      fs::temp_directory_path() / ("shpb_test_process_stderr_" + std::to_string(getpid()) + "_" +
+                                   std::to_string(calls++) + ".txt");
   const std::string cmd = std::string(SHPB_EXE) + " " + args + " >/dev/null 2>" + err.string();
   const int status = std::system(cmd.c_str());
   std::ifstream in(err);
   std::stringstream s;
   s << in.rdbuf();
+  fs::remove(err);
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, s.str()};
 }
 
 fs::path temp_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / "shpb_test_process" / name;
+  const fs::path d =
+      fs::temp_directory_path() / ("shpb_test_process_" + std::to_string(getpid())) / name;
   fs::remove_all(d);
   fs::create_directories(d);
   return d;
@@ -102,8 +110,10 @@ TEST_CASE("process writes pulses.csv, curve.csv and summary.json with the DESIGN
   std::ifstream curve(d / "out/curve.csv");
   std::string header;
   std::getline(curve, header);
-  CHECK(header.rfind("time_s,strain_rate_1_s,strain,stress_1wave_Pa,stress_2wave_Pa,stress_3wave_Pa,"
-                     "true_strain,true_stress_Pa,equilibrium_ratio", 0) == 0);
+  CHECK(
+      header.rfind("time_s,strain_rate_1_s,strain,stress_1wave_Pa,stress_2wave_Pa,stress_3wave_Pa,"
+                   "true_strain,true_stress_Pa,equilibrium_ratio",
+                   0) == 0);
   std::ifstream pulses(d / "out/pulses.csv");
   std::getline(pulses, header);
   CHECK(header == "time_s,incident,reflected,transmitted");
@@ -156,7 +166,8 @@ TEST_CASE("The LANL copper and PMMA tests process end to end from the scene alon
     const char* experiment;
     double v_lo, v_hi;  // the READMEs estimate the striker at ≈ 22 and ≈ 13.5 m/s
   };
-  for (const auto& e : {Expect{"lanl-cu-ofe-273k", 15, 25}, Expect{"lanl-pmma13-mini-kolsky", 10, 16}}) {
+  for (const auto& e :
+       {Expect{"lanl-cu-ofe-273k", 15, 25}, Expect{"lanl-pmma13-mini-kolsky", 10, 16}}) {
     CAPTURE(e.experiment);
     const fs::path out = temp_dir(e.experiment) / "out";
     const Run r = run("process " + (kExperiments / e.experiment / "scene.json").string() + " -o " +
@@ -188,4 +199,21 @@ TEST_CASE("The epoxy file's repeated time stamps and doubtful scale are reported
   CHECK(r.err.find("time base rebuilt from the sample interval 8e-08 s") != std::string::npos);
   CHECK(r.err.find("implausible strain scale") != std::string::npos);
   CHECK(summary(out)["warnings"].size() == 3);
+}
+
+TEST_CASE("process --signals reduces a gauges.csv written by simulate without dispersion",
+          "[app][process]") {
+  const fs::path d = temp_dir("simulated");
+  const fs::path scene = kExperiments / "classic-al6061/scene.json";
+  REQUIRE(
+      run("simulate " + scene.string() + " -o " + (d / "sim").string() + " --quiet").exit_code ==
+      0);
+  const Run r = run("process " + scene.string() + " --signals " + (d / "sim/gauges.csv").string() +
+                    " -o " + (d / "out").string());
+  REQUIRE(r.exit_code == 0);
+  const auto s = summary(d / "out");
+  CHECK(s["dispersion"]["correction"] == "none");
+  CHECK(s["signals"]["source"] == "simulated (--signals)");
+  // The scene's striker moves at 15 m/s; the incident plateau gives it back.
+  CHECK(s["striker_velocity_m_s"]["inferred"].get<double>() == Approx(15).epsilon(0.01));
 }

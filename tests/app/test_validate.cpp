@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "model/discretization.hpp"
@@ -74,4 +75,41 @@ TEST_CASE("validate applies --contact, --stepping and --courant as simulate woul
   // Global stepping: every bar takes the same (smallest) step.
   const double dt = v["bars"][0]["time_step_s"].get<double>();
   for (const auto& b : v["bars"]) CHECK(b["time_step_s"].get<double>() == dt);
+}
+
+TEST_CASE("validate warns when pulses overlap at a gauge or the duration is too short",
+          "[app][validate]") {
+  // Identical steel bars, 0.3 m striker: the incident pulse is 2 × 0.3 m long, so a gauge closer
+  // than 0.3 m to the specimen sees incident and reflected pulses overlap (METHODS.md §4).
+  auto scene = [](const std::string& gauge_to_face, const std::string& duration) {
+    return R"({"bars": [
+      {"name": "s", "material": "steel", "length": "0.3 m", "diameter": 0.02, "velocity": 10},
+      {"name": "i", "material": "steel", "length": "2 m", "diameter": 0.02,
+       "gauges": [{"name": "g1", "position": ")" +
+           gauge_to_face + R"("}]},
+      {"name": "x", "material": "steel", "length": "5 mm", "diameter": 0.01},
+      {"name": "t", "material": "steel", "length": "2 m", "diameter": 0.02,
+       "gauges": [{"name": "g2", "position": "1 m"}]}],
+      "specimen": "x",
+      "materials": {"steel": {"model": "elastic", "density": 7850, "youngs_modulus": 2e11,
+                              "poisson_ratio": 0.29}},
+      "simulation": {"duration": ")" +
+           duration + R"("}})";
+  };
+  const auto dir = shpb_test::scratch_dir("validate_warnings");
+  auto warnings = [&](const std::string& text) {
+    std::ofstream(dir / "scene.json") << text;
+    return validate_json(dir / "scene.json")["warnings"];
+  };
+  // Gauge 0.35 m from the specimen (position 1.65 m): 0.7 m round trip > 0.6 m pulse.
+  CHECK(warnings(scene("1.65 m", "1 ms")).empty());
+  // Gauge 0.25 m from the specimen: 0.5 m round trip < 0.6 m pulse.
+  const json overlap = warnings(scene("1.75 m", "1 ms"));
+  REQUIRE(overlap.size() == 1);
+  CHECK(overlap[0].get<std::string>().find("gauge g1: incident and reflected pulses overlap") == 0);
+  // The transmitted pulse passes g2 at about (2 + 0.005 + 1) m / c0 + 119 us = 714 us.
+  const json short_run = warnings(scene("1 m", "600 us"));
+  REQUIRE(short_run.size() == 1);
+  CHECK(short_run[0].get<std::string>().find("duration 600.0 us ends before") == 0);
+  fs::remove_all(dir);
 }

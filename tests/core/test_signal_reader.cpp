@@ -1,3 +1,5 @@
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
@@ -14,7 +16,8 @@ namespace fs = std::filesystem;
 namespace {
 
 fs::path write_file(const std::string& name, const std::string& bytes) {
-  const fs::path dir = fs::temp_directory_path() / "shpb_test_signal_reader";
+  const fs::path dir =
+      fs::temp_directory_path() / ("shpb_test_signal_reader_" + std::to_string(getpid()));
   fs::create_directories(dir);
   const fs::path p = dir / name;
   std::ofstream(p, std::ios::binary) << bytes;
@@ -106,7 +109,8 @@ TEST_CASE("Broken signal files are rejected naming file, line and column", "[cor
   }
   SECTION("truncated line") {
     const auto p = write_file("trunc.csv", head + "0,1,2\n1,1,2\n2,1");
-    const auto msg = error_of([&] { read_signal_columns(csv_request(p, {by_name("transmitted")})); });
+    const auto msg =
+        error_of([&] { read_signal_columns(csv_request(p, {by_name("transmitted")})); });
     CHECK(msg.find("trunc.csv: line 4, column 3") != std::string::npos);
     CHECK(msg.find("truncated") != std::string::npos);
   }
@@ -117,8 +121,9 @@ TEST_CASE("Broken signal files are rejected naming file, line and column", "[cor
   }
   SECTION("header only") {
     const auto p = write_file("header.csv", head);
-    CHECK(error_of([&] { read_signal_columns(csv_request(p, {by_index(1)})); }).find("header.csv") !=
-          std::string::npos);
+    CHECK(error_of([&] {
+            read_signal_columns(csv_request(p, {by_index(1)}));
+          }).find("header.csv") != std::string::npos);
   }
   SECTION("gap in the time base") {
     const auto p = write_file("gap.csv", head + "0,1,2\n1,1,2\n2,1,2\n5,1,2\n6,1,2\n");
@@ -164,7 +169,8 @@ TEST_CASE("Tektronix and LANL raw files are read with their own time bases", "[c
     const auto p = write_file("x.raw",
                               "Test Date\t12/1/2006\tIncident\tTransmitted\r\n"
                               "Sample Length(mm)\t3.2\t-5.00E-05\t-5.00E-05\r\n"
-                              "Test Temperature(\xb0" "C)\t0\t1.00E-07\t1.00E-07\r\n"
+                              "Test Temperature(\xb0"
+                              "C)\t0\t1.00E-07\t1.00E-07\r\n"
                               "\t\t0.5\t-0.5\r\n\t\t1.5\t-1.5\r\n\t\t2.5\t-2.5\r\n");
     SignalRequest r;
     r.file = p;
@@ -197,7 +203,7 @@ TEST_CASE("Volts become strain through the bridge and opposite gauges are averag
   const GaugeSignals g = read_gauge_signals(m, {});
   REQUIRE(g.find("incident"));
   CHECK((*g.find("incident"))[1] == Approx(2e-3));  // mean of 1 and 3 V, inverted
-  CHECK(g.warnings.empty());                         // peak 2e-3 is a plausible strain
+  CHECK(g.warnings.empty());                        // peak 2e-3 is a plausible strain
 }
 
 TEST_CASE("The real files import: LANL raw, Tektronix channels, and the messy epoxy file",

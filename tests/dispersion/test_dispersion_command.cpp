@@ -1,3 +1,5 @@
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
 #include <cstdlib>
 #include <filesystem>
@@ -33,7 +35,8 @@ std::map<long, std::vector<double>> read_rows(const fs::path& p, std::string* he
 TEST_CASE("shpb dispersion writes the curve and matches the reference within 2e-5",
           "[dispersion][app]") {
   const fs::path ref_dir = fs::path(SHPB_SOURCE_DIR) / "../shared/data/reference/pochhammer-chree";
-  const fs::path out = fs::temp_directory_path() / "shpb_test_dispersion.csv";
+  const fs::path out =
+      fs::temp_directory_path() / ("shpb_test_dispersion_" + std::to_string(getpid()) + ".csv");
   for (const char* nu : {"0.29", "0.30"}) {
     CAPTURE(nu);
     fs::remove(out);
@@ -67,7 +70,8 @@ TEST_CASE("shpb dispersion writes the curve and matches the reference within 2e-
 }
 
 TEST_CASE("shpb dispersion rejects a radius without c0 with exit code 2", "[dispersion][app]") {
-  const std::string cmd = std::string(SHPB_EXE) + " dispersion --poisson 0.3 --radius \"5 mm\" 2>/dev/null";
+  const std::string cmd =
+      std::string(SHPB_EXE) + " dispersion --poisson 0.3 --radius \"5 mm\" 2>/dev/null";
   const int status = std::system(cmd.c_str());
   CHECK(WEXITSTATUS(status) == 2);
 }

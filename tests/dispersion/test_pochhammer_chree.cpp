@@ -23,9 +23,11 @@ struct ReferenceRow {
   double x, c;
 };
 
-// /work/shared/data/reference/pochhammer-chree/pc_nu<ν>.csv: a_over_Lambda,d_over_Lambda,c_over_c0,…
+// /work/shared/data/reference/pochhammer-chree/pc_nu<ν>.csv:
+// a_over_Lambda,d_over_Lambda,c_over_c0,…
 std::vector<ReferenceRow> read_reference(const std::string& name) {
-  const auto file = std::filesystem::path(SHPB_SOURCE_DIR) / "../shared/data/reference/pochhammer-chree" / name;
+  const auto file =
+      std::filesystem::path(SHPB_SOURCE_DIR) / "../shared/data/reference/pochhammer-chree" / name;
   std::vector<ReferenceRow> rows;
   std::ifstream in(file);
   std::string line;
@@ -45,7 +47,8 @@ std::vector<ReferenceRow> read_reference(const std::string& name) {
 
 TEST_CASE("The first mode matches the reference tables within 2e-5 up to a/Lambda = 1.6",
           "[dispersion]") {
-  for (const auto& [nu, name] : {std::pair{0.29, "pc_nu0.29.csv"}, std::pair{0.30, "pc_nu0.30.csv"}}) {
+  for (const auto& [nu, name] :
+       {std::pair{0.29, "pc_nu0.29.csv"}, std::pair{0.30, "pc_nu0.30.csv"}}) {
     const auto rows = read_reference(name);
     if (rows.empty()) {
       WARN("../shared/data/reference/pochhammer-chree absent: reference comparison skipped");
@@ -67,8 +70,9 @@ TEST_CASE("The first mode matches the reference tables within 2e-5 up to a/Lambd
 
 TEST_CASE("The first mode reproduces the published nu = 0.29 values and tends to Rayleigh",
           "[dispersion]") {
-  const std::vector<std::pair<double, double>> published = {
-      {0.05, 0.99789}, {0.1, 0.99113}, {0.2, 0.95645}, {0.3, 0.87299}, {0.5, 0.68927}, {1.0, 0.58607}};
+  const std::vector<std::pair<double, double>> published = {{0.05, 0.99789}, {0.1, 0.99113},
+                                                            {0.2, 0.95645},  {0.3, 0.87299},
+                                                            {0.5, 0.68927},  {1.0, 0.58607}};
   for (const auto& [x, c] : published) {
     CAPTURE(x);
     CHECK(std::abs(phase_velocity(0.29, x) - c) < kPublishedTolerance);
@@ -80,14 +84,18 @@ TEST_CASE("The first mode reproduces the published nu = 0.29 values and tends to
   CHECK(std::abs(phase_velocity(0.29, 20.0) - 0.57640) < kLargeXApproach);
 }
 
-TEST_CASE("Rayleigh-Love is within 0.1 % of the exact mode up to a/Lambda = 0.1 only", "[dispersion]") {
+TEST_CASE("Rayleigh-Love is within 0.1 % of the exact mode up to a/Lambda = 0.1 only",
+          "[dispersion]") {
   for (double nu : {0.0, 0.25, 0.33, 0.45}) {
-    auto rl = [nu](double x) { return 1 / std::sqrt(1 + 2 * nu * nu * std::numbers::pi * std::numbers::pi * x * x); };
+    auto rl = [nu](double x) {
+      return 1 / std::sqrt(1 + 2 * nu * nu * std::numbers::pi * std::numbers::pi * x * x);
+    };
     CAPTURE(nu);
     for (double x : {0.02, 0.05, 0.1}) CHECK(std::abs(phase_velocity(nu, x) / rl(x) - 1) < 1e-3);
   }
   // ... and clearly not at a/Λ = 0.3 for a metal.
-  CHECK(std::abs(phase_velocity(0.29, 0.3) / (1 / std::sqrt(1 + 2 * 0.29 * 0.29 * 9.8696 * 0.09)) - 1) > 1e-2);
+  CHECK(std::abs(phase_velocity(0.29, 0.3) / (1 / std::sqrt(1 + 2 * 0.29 * 0.29 * 9.8696 * 0.09)) -
+                 1) > 1e-2);
 }
 
 TEST_CASE("The group velocity is consistent with the phase curve", "[dispersion]") {
@@ -115,7 +123,8 @@ TEST_CASE("The amplitude factor m1 is 1 for long waves and has its pole at a/Lam
   auto s = [](double x) { return surface_over_mean_strain(0.29, x, phase_velocity(0.29, x)); };
   double lo = 0.3, hi = 0.45;
   REQUIRE((s(lo) > 0) != (s(hi) > 0));
-  for (int i = 0; i < 40; ++i) ((s(0.5 * (lo + hi)) > 0) == (s(lo) > 0) ? lo : hi) = 0.5 * (lo + hi);
+  for (int i = 0; i < 40; ++i)
+    ((s(0.5 * (lo + hi)) > 0) == (s(lo) > 0) ? lo : hi) = 0.5 * (lo + hi);
   constexpr double kPolePrinted = 5e-6;
   CHECK(std::abs(0.5 * (lo + hi) - 0.37675) < kPolePrinted);
   // The table finds the same pole in f·a/c0.

@@ -18,17 +18,26 @@ namespace fs = std::filesystem;
 namespace {
 // A valid scene whose specimen is the named material "spec" (Johnson-Cook Al 6061-T6).
 nlohmann::json scene_with(const nlohmann::json& specimen_material) {
-  const nlohmann::json steel = {{"model", "elastic"}, {"density", 8080},
-                                {"youngs_modulus", "200 GPa"}, {"poisson_ratio", 0.29}};
+  const nlohmann::json steel = {{"model", "elastic"},
+                                {"density", 8080},
+                                {"youngs_modulus", "200 GPa"},
+                                {"poisson_ratio", 0.29}};
   return {{"name", "material parameter check"},
           {"bars",
-           {{{"name", "striker"}, {"material", "steel"}, {"length", "300 mm"},
-             {"diameter", "19.05 mm"}, {"velocity", "10 m/s"}},
-            {{"name", "incident"}, {"material", "steel"}, {"length", "1 m"},
-             {"diameter", "19.05 mm"}, {"gauges", {{{"name", "incident"}, {"position", "0.5 m"}}}}},
-            {{"name", "specimen"}, {"material", "spec"}, {"length", "5 mm"},
-             {"diameter", "10 mm"}},
-            {{"name", "transmitter"}, {"material", "steel"}, {"length", "1 m"},
+           {{{"name", "striker"},
+             {"material", "steel"},
+             {"length", "300 mm"},
+             {"diameter", "19.05 mm"},
+             {"velocity", "10 m/s"}},
+            {{"name", "incident"},
+             {"material", "steel"},
+             {"length", "1 m"},
+             {"diameter", "19.05 mm"},
+             {"gauges", {{{"name", "incident"}, {"position", "0.5 m"}}}}},
+            {{"name", "specimen"}, {"material", "spec"}, {"length", "5 mm"}, {"diameter", "10 mm"}},
+            {{"name", "transmitter"},
+             {"material", "steel"},
+             {"length", "1 m"},
              {"diameter", "19.05 mm"},
              {"gauges", {{{"name", "transmitted"}, {"position", "0.5 m"}}}}}}},
           {"specimen", "specimen"},
@@ -36,9 +45,16 @@ nlohmann::json scene_with(const nlohmann::json& specimen_material) {
 }
 
 nlohmann::json al6061() {
-  return {{"model", "johnson-cook"}, {"density", 2703}, {"youngs_modulus", "69 GPa"},
-          {"poisson_ratio", 0.33}, {"A", "324 MPa"}, {"B", "114 MPa"}, {"n", 0.42},
-          {"C", 0.002}, {"m", 1.34}, {"melting_temperature", "925 K"},
+  return {{"model", "johnson-cook"},
+          {"density", 2703},
+          {"youngs_modulus", "69 GPa"},
+          {"poisson_ratio", 0.33},
+          {"A", "324 MPa"},
+          {"B", "114 MPa"},
+          {"n", 0.42},
+          {"C", 0.002},
+          {"m", 1.34},
+          {"melting_temperature", "925 K"},
           {"specific_heat", 885}};
 }
 
@@ -66,8 +82,8 @@ Run validate(const nlohmann::json& scene) {
   fs::create_directories(dir);
   const fs::path file = dir / "scene.json", err = dir / "stderr.txt";
   std::ofstream(file) << scene.dump(2);
-  const std::string cmd = std::string(SHPB_EXE) + " validate " + file.string() + " >/dev/null 2>" +
-                          err.string();
+  const std::string cmd =
+      std::string(SHPB_EXE) + " validate " + file.string() + " >/dev/null 2>" + err.string();
   const int status = std::system(cmd.c_str());
   std::stringstream text;
   text << std::ifstream(err).rdbuf();
@@ -89,14 +105,17 @@ TEST_CASE("Bad material parameters exit with code 2 and name the JSON path",
     nlohmann::json value;
     nlohmann::json base;
   };
-  nlohmann::json bilinear = {{"model", "bilinear"}, {"density", 8960}, {"youngs_modulus", "124 GPa"},
-                             {"poisson_ratio", 0.34}, {"yield_stress", "100 MPa"},
-                             {"tangent_modulus", "1 GPa"}};
-  nlohmann::json maxwell = {{"model", "viscoelastic"}, {"density", 1190}, {"poisson_ratio", 0.35},
+  nlohmann::json bilinear = {{"model", "bilinear"},         {"density", 8960},
+                             {"youngs_modulus", "124 GPa"}, {"poisson_ratio", 0.34},
+                             {"yield_stress", "100 MPa"},   {"tangent_modulus", "1 GPa"}};
+  nlohmann::json maxwell = {{"model", "viscoelastic"},
+                            {"density", 1190},
+                            {"poisson_ratio", 0.35},
                             {"long_term_modulus", "3 GPa"},
                             {"arms", {{{"modulus", "1 GPa"}, {"relaxation_time", "10 us"}}}}};
   nlohmann::json nine_arms = nlohmann::json::array();
-  for (int k = 0; k < 9; ++k) nine_arms.push_back({{"modulus", "1 GPa"}, {"relaxation_time", "1 us"}});
+  for (int k = 0; k < 9; ++k)
+    nine_arms.push_back({{"modulus", "1 GPa"}, {"relaxation_time", "1 us"}});
   const Case cases[] = {
       {"negative A", "A", "-10 MPa", al6061()},
       {"negative B", "B", -1e6, al6061()},
@@ -115,7 +134,9 @@ TEST_CASE("Bad material parameters exit with code 2 and name the JSON path",
       {"missing yield stress", "yield_stress", nullptr, bilinear},
       {"tangent modulus above E", "tangent_modulus", "200 GPa", bilinear},
       {"negative yield stress", "yield_stress", "-1 MPa", bilinear},
-      {"negative relaxation time", "arms", {{{"modulus", "1 GPa"}, {"relaxation_time", "-1 us"}}},
+      {"negative relaxation time",
+       "arms",
+       {{{"modulus", "1 GPa"}, {"relaxation_time", "-1 us"}}},
        maxwell},
       {"nine Maxwell arms", "arms", nine_arms, maxwell},
       {"missing long-term modulus", "long_term_modulus", nullptr, maxwell},
@@ -123,7 +144,10 @@ TEST_CASE("Bad material parameters exit with code 2 and name the JSON path",
   for (const Case& c : cases) {
     SECTION(c.what) {
       nlohmann::json material = c.base;
-      if (c.value.is_null()) material.erase(c.key); else material[c.key] = c.value;
+      if (c.value.is_null())
+        material.erase(c.key);
+      else
+        material[c.key] = c.value;
       const Run run = validate(scene_with(material));
       INFO(run.stderr_text);
       REQUIRE(run.exit_code == 2);

@@ -1,3 +1,5 @@
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
@@ -14,13 +16,18 @@ namespace {
 // Unit conversions multiply exact decimal factors: equal to a few ulps.
 constexpr double kUlps = 1e-14;
 
-// A fresh folder per test case for scenes and material files.
-fs::path scratch(const std::string& name) {
-  const auto dir = fs::temp_directory_path() / ("shpb_test_scene_reader_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+// A fresh folder per test case (and per process: tests run in parallel) for scenes and material
+// files, removed at the end.
+struct Scratch {
+  explicit Scratch(const std::string& name)
+      : dir(fs::temp_directory_path() /
+            ("shpb_test_scene_reader_" + name + "_" + std::to_string(::getpid()))) {
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+  }
+  ~Scratch() { fs::remove_all(dir); }
+  fs::path dir;
+};
 
 void write(const fs::path& file, const std::string& text) {
   fs::create_directories(file.parent_path());
@@ -94,7 +101,7 @@ TEST_CASE("The LANL copper experiment reads its measurement block", "[model][sce
   CHECK(m.channels[0].bridge->gauge_factor == 2.061);
   CHECK(m.channels[0].bridge->excitation_V == 8);
   CHECK(m.channels[0].bridge->gain == 200);
-  CHECK(m.channels[1].bridge->gain == 500);  // the transmitted bar's calibrated gain
+  CHECK(m.channels[1].bridge->gain == 200);  // the "Transmitted Bar Gain" (see the README)
   CHECK(m.channels[1].invert);
   CHECK(m.dispersion.correction);
   CHECK_FALSE(m.striker_velocity_m_s);  // not measured: processing infers it
@@ -107,7 +114,8 @@ TEST_CASE("The LANL copper experiment reads its measurement block", "[model][sce
 }
 
 TEST_CASE("Materials come by name, by file relative to the scene, or inline", "[model][scene]") {
-  const auto dir = scratch("materials");
+  const Scratch scratch("materials");
+  const auto& dir = scratch.dir;
   write(dir / "mats/soft.json",
         R"({"model": "bilinear", "density": 2700, "youngs_modulus": "70 GPa",
       "poisson_ratio": 0.33, "yield_stress": "300 MPa", "tangent_modulus": "1 GPa"})");
@@ -145,7 +153,8 @@ TEST_CASE("Materials come by name, by file relative to the scene, or inline", "[
 }
 
 TEST_CASE("Defaults fill what a scene leaves out", "[model][scene]") {
-  const auto dir = scratch("defaults");
+  const Scratch scratch("defaults");
+  const auto& dir = scratch.dir;
   write(dir / "minimal.json", std::string(R"({"bars": [
       {"name": "s", "material": "steel", "length": 0.3, "diameter": 0.02, "velocity": 10},
       {"name": "b", "material": "steel", "length": 1.5, "diameter": 0.02}],
@@ -164,7 +173,8 @@ TEST_CASE("Defaults fill what a scene leaves out", "[model][scene]") {
 
 TEST_CASE("Contact settings apply to all interfaces with overrides per interface",
           "[model][scene]") {
-  const auto dir = scratch("contact");
+  const Scratch scratch("contact");
+  const auto& dir = scratch.dir;
   write(dir / "scene.json", std::string(R"({"bars": [
       {"name": "s", "material": "steel", "length": 0.3, "diameter": 0.02, "velocity": 10},
       {"name": "i", "material": "steel", "length": 1.5, "diameter": 0.02},
@@ -189,7 +199,8 @@ TEST_CASE("Contact settings apply to all interfaces with overrides per interface
 }
 
 TEST_CASE("Errors name the file, the JSON path, the value and the constraint", "[model][scene]") {
-  const auto dir = scratch("errors");
+  const Scratch scratch("errors");
+  const auto& dir = scratch.dir;
   const auto file = dir / "scene.json";
   write(file, std::string(R"({"bars": [
       {"name": "s", "material": "steel", "length": "-5 mm", "diameter": 0.02},
