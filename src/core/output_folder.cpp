@@ -1,8 +1,8 @@
 #include "core/output_folder.hpp"
 
+#include <fcntl.h>  // AT_FDCWD
 #include <signal.h>
 #include <stdio.h>  // renameat2
-#include <fcntl.h>  // AT_FDCWD
 #include <unistd.h>
 
 #include <atomic>
@@ -77,8 +77,9 @@ OutputFolder::OutputFolder(fs::path final_dir) : final_(std::move(final_dir)) {
   if (fs::exists(final_, ec) && !fs::is_directory(final_, ec))
     throw input_error(final_.string(), "", "", "exists and is not a folder");
   if (fs::exists(final_, ec) && !written_by_shpb(final_))
-    throw input_error(final_.string(), "", "",
-                      "exists, is not empty and holds no shpb summary.json; refusing to replace it");
+    throw input_error(
+        final_.string(), "", "",
+        "exists, is not empty and holds no shpb summary.json; refusing to replace it");
   const fs::path parent = final_.parent_path();
   if (!fs::is_directory(parent, ec)) {
     fs::create_directories(parent, ec);

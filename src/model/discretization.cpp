@@ -29,9 +29,9 @@ double automatic_elements(const Scene& scene, std::size_t i) {
 // element the bar state (7 doubles) and one material point (~15 doubles); per recorded sample one
 // double per column (time, gauges, two per interface, specimen and energy columns).
 constexpr double kBytesPerElement = 200;
-constexpr double kMaxMemoryBytes = 4e9;      // beyond a lab workstation's spare memory
+constexpr double kMaxMemoryBytes = 4e9;        // beyond a lab workstation's spare memory
 constexpr double kNodeUpdatesPerSecond = 5e7;  // measured order in Release on one core
-constexpr double kMaxNodeUpdates = 1e12;     // ~6 hours at that rate
+constexpr double kMaxNodeUpdates = 1e12;       // ~6 hours at that rate
 
 std::string gigabytes(double bytes) {
   char b[32];
@@ -41,10 +41,14 @@ std::string gigabytes(double bytes) {
 
 std::string duration_text(double seconds) {
   char b[64];
-  if (seconds < 120) std::snprintf(b, sizeof b, "%.2g s", seconds);
-  else if (seconds < 7200) std::snprintf(b, sizeof b, "%.2g min", seconds / 60);
-  else if (seconds < 2 * 86400 * 365.0) std::snprintf(b, sizeof b, "%.2g h", seconds / 3600);
-  else std::snprintf(b, sizeof b, "%.2g years", seconds / (86400 * 365.0));
+  if (seconds < 120)
+    std::snprintf(b, sizeof b, "%.2g s", seconds);
+  else if (seconds < 7200)
+    std::snprintf(b, sizeof b, "%.2g min", seconds / 60);
+  else if (seconds < 2 * 86400 * 365.0)
+    std::snprintf(b, sizeof b, "%.2g h", seconds / 3600);
+  else
+    std::snprintf(b, sizeof b, "%.2g years", seconds / (86400 * 365.0));
   return b;
 }
 

@@ -23,10 +23,10 @@ namespace shpb_robust {
 namespace fs = std::filesystem;
 
 struct Outcome {
-  int code = -1;          // exit code if the process exited
-  int signal = 0;         // the signal that killed it, if one did
-  bool timed_out = false; // killed by us after the time limit
-  double seconds = 0;     // from start (or from signal()) to exit
+  int code = -1;           // exit code if the process exited
+  int signal = 0;          // the signal that killed it, if one did
+  bool timed_out = false;  // killed by us after the time limit
+  double seconds = 0;      // from start (or from signal()) to exit
   std::string out, err;
 };
 
@@ -114,8 +114,8 @@ class ScratchFolder {
  public:
   explicit ScratchFolder(const std::string& tag) {
     static int counter = 0;
-    path_ = fs::temp_directory_path() /
-            ("shpb-robust-" + tag + "-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+    path_ = fs::temp_directory_path() / ("shpb-robust-" + tag + "-" + std::to_string(::getpid()) +
+                                         "-" + std::to_string(counter++));
     fs::remove_all(path_);
     fs::create_directories(path_);
   }

@@ -101,8 +101,8 @@ std::vector<std::string> simulate() {
   return {"simulate", "{dir}/scene.json", "-o", "{dir}/out", "--quiet"};
 }
 std::vector<std::string> process() {
-  return {"process", "{dir}/scene.json", "--signals", "{dir}/signals.csv", "-o", "{dir}/out",
-          "--quiet"};
+  return {"process", "{dir}/scene.json", "--signals", "{dir}/signals.csv",
+          "-o",      "{dir}/out",        "--quiet"};
 }
 
 // A scene with one edit applied to the text of kScene.
@@ -140,8 +140,7 @@ bool has_non_finite_number(std::string text) {
   };
   for (const std::string token : {"nan", "inf"})
     for (std::size_t p = text.find(token); p != std::string::npos; p = text.find(token, p + 1))
-      if ((p == 0 || !letter(p - 1)) &&
-          (!letter(p + 3) || text.compare(p, 8, "infinity") == 0))
+      if ((p == 0 || !letter(p - 1)) && (!letter(p + 3) || text.compare(p, 8, "infinity") == 0))
         return true;
   return false;
 }
@@ -194,17 +193,23 @@ TEST_CASE("Broken scene files are refused with file and place, or read with what
        Expect::kRefused, "scene.json"},
       {"a UTF-8 byte order mark", scene_bytes(std::string("\xEF\xBB\xBF") + kScene), validate(),
        Expect::kWorks, ""},
-      {"CRLF line ends", scene_bytes(replace_all(kScene, "\n", "\r\n")), validate(),
-       Expect::kWorks, ""},
-      {"a Latin-1 byte in a name", scene_with("\"catalogue\"", "\"Pr\xFC" "fung\""), validate(),
-       Expect::kRefused, "scene.json"},
-      {"UTF-16 text", scene_bytes(utf16le(kScene)), validate(), Expect::kRefused, "scene.json"},
+      {"CRLF line ends", scene_bytes(replace_all(kScene, "\n", "\r\n")), validate(), Expect::kWorks,
+       ""},
+      {"a Latin-1 byte in a name",
+       scene_with("\"catalogue\"",
+                  "\"Pr\xFC"
+                  "fung\""),
+       validate(), Expect::kRefused, "scene.json"},
+      {"UTF-16 text", scene_bytes(utf16le(kScene)), validate(), Expect::kRefused,
+       "scene.json: line 1: UTF-16"},
       {"a decimal comma in a length", scene_with("\"100 mm\"", "\"0,1 m\""), validate(),
        Expect::kRefused, "scene.json: bars[0].length"},
       {"a bare decimal comma (invalid JSON)", scene_with("0.29", "0,29"), validate(),
        Expect::kRefused, "scene.json: line"},
-      {"text in a number", scene_with("\"600 mm\", \"diameter\": \"12 mm\",\n     \"gauges\": [{\"name\": \"incident\"",
-                                      "\"six hundred mm\", \"diameter\": \"12 mm\",\n     \"gauges\": [{\"name\": \"incident\""),
+      {"text in a number",
+       scene_with("\"600 mm\", \"diameter\": \"12 mm\",\n     \"gauges\": [{\"name\": \"incident\"",
+                  "\"six hundred mm\", \"diameter\": \"12 mm\",\n     \"gauges\": [{\"name\": "
+                  "\"incident\""),
        validate(), Expect::kRefused, "scene.json: bars[1].length"},
       {"NaN written as a bare word", scene_with("0.33", "NaN"), validate(), Expect::kRefused,
        "scene.json: line"},
@@ -214,32 +219,36 @@ TEST_CASE("Broken scene files are refused with file and place, or read with what
        "scene.json: bars[0].velocity"},
       {"a number beyond double range", scene_with("\"8 mm\"", "1e999"), validate(),
        Expect::kRefused, "scene.json: bars[2].diameter"},
-      {"a duplicate key", scene_with("\"velocity\": \"10 m/s\"",
-                                     "\"velocity\": \"10 m/s\", \"velocity\": \"12 m/s\""),
+      {"a duplicate key",
+       scene_with("\"velocity\": \"10 m/s\"", "\"velocity\": \"10 m/s\", \"velocity\": \"12 m/s\""),
        validate(), Expect::kRefused, "scene.json"},
       {"truncated JSON", scene_bytes(std::string(kScene).substr(0, 300)), validate(),
        Expect::kRefused, "scene.json: line"},
-      {"a negative duration", scene_with("\"sample_rate\": \"5 MHz\"",
-                                         "\"sample_rate\": \"5 MHz\", \"duration\": \"-400 us\""),
+      {"a negative duration",
+       scene_with("\"sample_rate\": \"5 MHz\"",
+                  "\"sample_rate\": \"5 MHz\", \"duration\": \"-400 us\""),
        validate(), Expect::kRefused, "scene.json: simulation.duration"},
-      {"a gauge beyond its bar", scene_with("\"position\": \"300 mm\"}]}\n  ]",
-                                            "\"position\": \"700 mm\"}]}\n  ]"),
+      {"a gauge beyond its bar",
+       scene_with("\"position\": \"300 mm\"}]}\n  ]", "\"position\": \"700 mm\"}]}\n  ]"),
        validate(), Expect::kRefused, "scene.json: bars[3].gauges[0].position"},
-      {"a gigabyte-sized bar length", scene_with("\"600 mm\", \"diameter\": \"12 mm\",\n     \"gauges\": [{\"name\": \"incident\"",
-                                                 "\"1000 km\", \"diameter\": \"12 mm\",\n     \"gauges\": [{\"name\": \"incident\""),
+      {"a gigabyte-sized bar length",
+       scene_with(
+           "\"600 mm\", \"diameter\": \"12 mm\",\n     \"gauges\": [{\"name\": \"incident\"",
+           "\"1000 km\", \"diameter\": \"12 mm\",\n     \"gauges\": [{\"name\": \"incident\""),
        simulate(), Expect::kRefused, "memory"},
-      {"an absurd element count", scene_with("\"length\": \"4 mm\"",
-                                             "\"length\": \"4 mm\", \"elements\": 100000000"),
+      {"an absurd element count",
+       scene_with("\"length\": \"4 mm\"", "\"length\": \"4 mm\", \"elements\": 100000000"),
        simulate(), Expect::kRefused, "memory"},
-      {"an absurd duration", scene_with("\"sample_rate\": \"5 MHz\"",
-                                        "\"sample_rate\": \"5 MHz\", \"duration\": \"1000 s\""),
+      {"an absurd duration",
+       scene_with("\"sample_rate\": \"5 MHz\"",
+                  "\"sample_rate\": \"5 MHz\", \"duration\": \"1000 s\""),
        validate(), Expect::kRefused, "scene.json: simulation"},
-      {"a missing scene file", [](const fs::path&) {}, validate(), Expect::kRefused,
-       "scene.json"},
-      {"a folder given as the scene", [](const fs::path& dir) { fs::create_directory(dir / "scene.json"); },
-       validate(), Expect::kRefused, "scene.json"},
-      {"a missing material file", scene_with("\"material\": \"aluminium\"",
-                                             "\"material\": \"no-such-specimen.json\""),
+      {"a missing scene file", [](const fs::path&) {}, validate(), Expect::kRefused, "scene.json"},
+      {"a folder given as the scene",
+       [](const fs::path& dir) { fs::create_directory(dir / "scene.json"); }, validate(),
+       Expect::kRefused, "scene.json"},
+      {"a missing material file",
+       scene_with("\"material\": \"aluminium\"", "\"material\": \"no-such-specimen.json\""),
        validate(), Expect::kRefused, "no-such-specimen.json"},
   });
 }
@@ -250,11 +259,13 @@ TEST_CASE("Broken signal files are refused with file, line and column, or read w
   check_all({
       {"the simulated signals as written", signals([](std::string s) { return s; }), process(),
        Expect::kWorks, ""},
-      {"an empty signal file", signals([](std::string) { return ""; }), process(),
-       Expect::kRefused, "signals.csv"},
+      {"an empty signal file", signals([](std::string) { return ""; }), process(), Expect::kRefused,
+       "signals.csv"},
       {"a header only", signals([rows](std::string) { return rows()[0] + "\n"; }), process(),
        Expect::kRefused, "signals.csv"},
-      {"a single sample", signals([rows](std::string) { return join({rows()[0], rows()[1]}); }),
+      {"a single sample", signals([rows](std::string) {
+         return join({rows()[0], rows()[1]});
+       }),
        process(), Expect::kRefused, "signals.csv"},
       {"a UTF-8 byte order mark", signals([](std::string s) { return prepend("\xEF\xBB\xBF", s); }),
        process(), Expect::kWorks, ""},
@@ -262,9 +273,14 @@ TEST_CASE("Broken signal files are refused with file, line and column, or read w
        process(), Expect::kWorks, ""},
       {"old Mac CR line ends", signals([](std::string s) { return replace_all(s, "\n", "\r"); }),
        process(), Expect::kWorks, ""},
-      {"a Latin-1 comment line above the header",
-       signals([](std::string s) { return prepend("# Pr\xFC" "fstand, 20 \xB0" "C\n", s); }), process(),
-       Expect::kWorks, ""},
+      {"a Latin-1 comment line above the header", signals([](std::string s) {
+         return prepend(
+             "# Pr\xFC"
+             "fstand, 20 \xB0"
+             "C\n",
+             s);
+       }),
+       process(), Expect::kWorks, ""},
       {"UTF-16 text", signals([](std::string s) { return utf16le(s); }), process(),
        Expect::kRefused, "signals.csv: line 1: UTF-16"},
       {"semicolons and decimal commas",
@@ -359,12 +375,16 @@ TEST_CASE("An output folder that cannot be written is refused before anything is
           "[robustness]") {
   const auto with_scene = [](const fs::path& dir) { write_bytes(dir / "scene.json", kScene); };
   check_all({
-      {"an output folder inside a file", with_scene,
+      {"an output folder inside a file",
+       with_scene,
        {"simulate", "{dir}/scene.json", "-o", "{dir}/scene.json/out", "--quiet"},
-       Expect::kRefused, "scene.json"},
-      {"an output folder in a read-only file system", with_scene,
+       Expect::kRefused,
+       "scene.json"},
+      {"an output folder in a read-only file system",
+       with_scene,
        {"simulate", "{dir}/scene.json", "-o", "/proc/shpb-robust-out", "--quiet"},
-       Expect::kRefused, "/proc"},
+       Expect::kRefused,
+       "/proc"},
       {"an output path that is a file",
        [](const fs::path& dir) {
          write_bytes(dir / "scene.json", kScene);
@@ -389,14 +409,14 @@ TEST_CASE("Files the program did not write are never deleted or modified", "[rob
   write_bytes(dir / "out" / "thesis.tex", "mine");
   write_bytes(dir / "signals.csv", good_signals());
   const Outcome refused =
-      run({"simulate", (dir / "scene.json").string(), "-o", (dir / "out").string(), "--quiet"},
-          dir, kHangLimit_s);
+      run({"simulate", (dir / "scene.json").string(), "-o", (dir / "out").string(), "--quiet"}, dir,
+          kHangLimit_s);
   CHECK(refused.code == 2);
   CHECK(read_all(dir / "out" / "thesis.tex") == "mine");
-  const Outcome processed = run({"process", (dir / "scene.json").string(), "--signals",
-                                 (dir / "signals.csv").string(), "-o", (dir / "p").string(),
-                                 "--quiet"},
-                                dir, kHangLimit_s);
+  const Outcome processed =
+      run({"process", (dir / "scene.json").string(), "--signals", (dir / "signals.csv").string(),
+           "-o", (dir / "p").string(), "--quiet"},
+          dir, kHangLimit_s);
   CHECK(processed.code == 0);
   CHECK(read_all(dir / "signals.csv") == good_signals());  // the measured file is untouched
 }

@@ -73,13 +73,14 @@ TEST_CASE("An interrupted simulation exits promptly and leaves the previous resu
   child.signal(sig);
   const Outcome stopped = child.wait(kHangLimit_s);
   INFO(stopped.err);
-  CHECK(stopped.signal == 0);                 // it handled the signal, was not killed by it
-  CHECK(stopped.code == 130);                 // "interrupted" (main.cpp)
+  CHECK(stopped.signal == 0);  // it handled the signal, was not killed by it
+  CHECK(stopped.code == 130);  // "interrupted" (main.cpp)
   CHECK(stopped.seconds < kPromptExit_s);
   CHECK(read_all(dir / "out" / "gauges.csv") == previous);
   CHECK(litter(dir).empty());
   std::size_t entries = 0;  // short.json, long.json, out: nothing else appeared
-  for (const auto& e : fs::directory_iterator(dir)) entries += e.path().filename().string()[0] != '.' ? 1 : 0;
+  for (const auto& e : fs::directory_iterator(dir))
+    entries += e.path().filename().string()[0] != '.' ? 1 : 0;
   CHECK(entries == 3);
 
   const Outcome again = run(simulate(dir, "short.json"), dir, kHangLimit_s);
