@@ -24,6 +24,7 @@ run: build
 
 # The suite twice: the Release build, then the same tests under AddressSanitizer + UBSan.
 test: build
+	@bash tools/install-deps.sh chromium
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 	@$(MAKE) --no-print-directory asan
 	@cd $(ASAN_BUILD) && $(SANITIZER_ENV) ctest --output-on-failure -j $(JOBS)
@@ -42,6 +43,9 @@ fuzz:
 	       -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" -DSHPB_FUZZ=ON >/dev/null
 	@cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_targets
 	@bash tests/fuzz/run_fuzzers.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_TARGETS)
+
+bench: deps
+	@bash tools/bench.sh $(BUILD)
 
 format:
 	@clang-format -i $$(git ls-files 'src/*.cpp' 'src/*.hpp' 'tests/*.cpp' 'tests/*.hpp')

@@ -96,7 +96,8 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
     for (std::size_t i = 0; i < raw.size(); ++i) x[i] = raw[i] - b.level;
     const auto p = find_first_pulse(x, {0.0, b.noise});
     if (!p)
-      throw input_error(gauge, "", "no pulse", "the gauge signal never rises above its noise");
+      throw input_error(options.scene_file, "measurement.channels", "gauge \"" + gauge + "\"",
+                        "its signal never rises above its noise: no pulse to process");
     if (p->sign > 0) {
       for (double& v : x) v = -v;
       r.warnings.push_back("gauge \"" + gauge +
@@ -116,7 +117,8 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
     on = index_at(t, options.windows.incident->start_s);
     end = index_at(t, options.windows.incident->end_s);
     if (!(end > on + 2) || end > n)
-      throw input_error("measurement", "windows.incident", "", "window outside the record");
+      throw input_error(options.scene_file, "measurement.windows.incident", "",
+                        "the window lies outside the record or is shorter than 3 samples");
   } else {
     const auto p = find_first_pulse(inc, {0.0, inc_noise});
     on = p->onset;
@@ -169,11 +171,13 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
     o.amplitude = a;
     o.cutoff_fa_over_c0 = cutoff_fa(w);
     if (ds.correction && o.cutoff_fa_over_c0 > tab.max_normalized_frequency())
-      throw input_error("measurement", "dispersion.cutoff", "",
+      throw input_error(options.scene_file, "measurement.dispersion.cutoff",
+                        "f·a/c0 = " + std::to_string(o.cutoff_fa_over_c0),
                         "cut-off beyond the tabulated mode");
     if (ds.correction && a != AmplitudeFactor::kNone &&
         o.cutoff_fa_over_c0 >= tab.m1_pole_normalized_frequency())
-      throw input_error("measurement", "dispersion.cutoff", "",
+      throw input_error(options.scene_file, "measurement.dispersion.cutoff",
+                        "f·a/c0 = " + std::to_string(o.cutoff_fa_over_c0),
                         "with amplitude factors the cut-off must lie below the m1 pole (f·a/c0 = " +
                             std::to_string(tab.m1_pole_normalized_frequency()) + ")");
     Propagator p(tab, w, o);
@@ -205,7 +209,7 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
   face_end = std::min({face_end, face_start + 2 * d_i / c_front - dt, t.back()});
   const std::size_t a = index_at(t, face_start), b = std::min(index_at(t, face_end) + 1, n);
   if (!(b > a + 4))
-    throw input_error(k.incident_gauge, "", "",
+    throw input_error(options.scene_file, "measurement", "gauge \"" + k.incident_gauge + "\"",
                       "the pulse window at the specimen faces lies outside the record");
   r.face_start_s = t[a];
   r.face_end_s = t[b - 1];

@@ -34,6 +34,7 @@ KolskySetup resolve_setup(const Scene& scene, const std::vector<std::string>& av
 struct ProcessingOptions {
   DispersionSpec dispersion;  // correction on/off, amplitude factors, cut-off
   PulseWindows windows;       // manual windows (gauge clocks) override detection
+  std::string scene_file;     // named in error messages
 };
 
 struct WindowReport {

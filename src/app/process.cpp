@@ -76,6 +76,7 @@ int run_process(const ProcessArgs& args) {
     options.dispersion = m.dispersion;
     options.windows = m.windows;
   }
+  options.scene_file = scene.file.string();
   const GaugeSignals signals = read_gauge_signals(m, {});
   const KolskySetup setup = resolve_setup(scene, signals.gauges);
   ProcessingResult r = process_signals(signals, setup, options);

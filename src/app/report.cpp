@@ -1,12 +1,88 @@
+// `shpb report DIR`: figures and a one-page HTML report of an output folder. The plotting lives in
+// tools/report.py (matplotlib, DESIGN.md §1); this file finds the script and a Python that can
+// import matplotlib and numpy, and runs it.
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
 #include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include "app/commands.hpp"
+#include "core/error.hpp"
+
+extern char** environ;
 
 namespace shpb {
+namespace {
 
-int run_report(const ReportArgs&) {
-  std::fprintf(stderr, "error: shpb report: not implemented yet\n");
-  return 2;
+namespace fs = std::filesystem;
+
+// Runs `argv` (argv[0] looked up on PATH) and returns its exit status, or -1 if it could not be
+// started or died from a signal. With `quiet`, its stdout and stderr go to /dev/null.
+int run_program(const std::vector<std::string>& argv, bool quiet) {
+  std::vector<char*> args;
+  for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  if (quiet) {
+    posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_adddup2(&actions, 1, 2);
+  }
+  pid_t pid = 0;
+  const int rc = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0) return -1;
+  int status = 0;
+  if (waitpid(pid, &status, 0) < 0 || !WIFEXITED(status)) return -1;
+  return WEXITSTATUS(status);
+}
+
+// tools/report.py beside the executable's build tree (build/shpb → ../tools), else in the
+// source tree the executable was built from.
+std::optional<fs::path> find_script() {
+  std::vector<fs::path> candidates;
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    candidates.push_back(exe.parent_path() / "tools" / "report.py");
+    candidates.push_back(exe.parent_path().parent_path() / "tools" / "report.py");
+  }
+  candidates.push_back(fs::path(SHPB_SOURCE_DIR) / "tools" / "report.py");
+  for (const auto& c : candidates)
+    if (fs::is_regular_file(c, ec)) return c;
+  return std::nullopt;
+}
+
+// Debian's python3-matplotlib belongs to /usr/bin/python3, which may not be the first python3
+// on PATH (DESIGN.md §1): try it first.
+std::optional<std::string> find_python() {
+  for (const std::string python : {"/usr/bin/python3", "python3"})
+    if (run_program({python, "-c", "import matplotlib, numpy"}, true) == 0) return python;
+  return std::nullopt;
+}
+
+}  // namespace
+
+int run_report(const ReportArgs& args) {
+  const auto script = find_script();
+  if (!script)
+    throw input_error("report", "tools/report.py", SHPB_SOURCE_DIR,
+                      "the report script was not found beside the executable or in the source "
+                      "tree");
+  const auto python = find_python();
+  if (!python)
+    throw input_error("report", "python3", "matplotlib/numpy not importable",
+                      "install python3-matplotlib and python3-numpy (bash tools/install-deps.sh)");
+  const int rc = run_program({*python, script->string(), args.folder.string()}, false);
+  if (rc == 0 || rc == 2) return rc;  // the script printed its own `error:` line for 2
+  std::fprintf(stderr, "error: internal: %s %s exited with status %d\n", python->c_str(),
+               script->c_str(), rc);
+  return 4;
 }
 
 }  // namespace shpb

@@ -8,6 +8,7 @@
 #include "core/csv_writer.hpp"
 #include "model/discretization.hpp"
 #include "model/scene_checks.hpp"
+#include "solver/contact.hpp"
 
 namespace shpb {
 namespace {
@@ -34,12 +35,32 @@ std::optional<double> distance_to_specimen(const Scene& scene, std::size_t bar, 
   return d;
 }
 
-const PenaltyParams& merged(const PenaltyParams& own, const PenaltyParams& all,
-                            PenaltyParams& out) {
-  out.stiffness_factor = own.stiffness_factor ? own.stiffness_factor : all.stiffness_factor;
-  out.stiffness_N_m = own.stiffness_N_m ? own.stiffness_N_m : all.stiffness_N_m;
-  out.mass_ratio = own.mass_ratio ? own.mass_ratio : all.mass_ratio;
-  return out;
+std::string g(double v, int digits = 4) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+  return buf;
+}
+
+// The interface as simulate builds it: method and penalty parameters from the scene (per-interface
+// overrides win), derived defaults from the neighbouring end elements (METHODS.md §2–3).
+InterfaceModel resolved_interface(const Scene& scene, const ChainDiscretization& d, std::size_t k) {
+  ContactMethod method = scene.contact.method;
+  PenaltyParams p = scene.contact.penalty;
+  for (const auto& o : scene.contact.interfaces) {
+    if (o.left_bar != k) continue;
+    if (o.method) method = *o.method;
+    if (o.penalty.stiffness_factor) p.stiffness_factor = o.penalty.stiffness_factor;
+    if (o.penalty.stiffness_N_m) p.stiffness_N_m = o.penalty.stiffness_N_m;
+    if (o.penalty.mass_ratio) p.mass_ratio = o.penalty.mass_ratio;
+  }
+  auto neighbour = [&](std::size_t i) {
+    const auto& b = scene.bars[i];
+    const double h = d.bars[i].element_length_m;
+    return NeighbourInfo{b.material.youngs_modulus_Pa * b.area_m2 / h, b.material.wave_speed_m_s(),
+                         h};
+  };
+  return make_interface_model(scene.bars[k].name + "-" + scene.bars[k + 1].name, method, p,
+                              scene.bars[k].gap_m, neighbour(k), neighbour(k + 1));
 }
 
 json resolved_setup(const Scene& scene, const ChainDiscretization& d) {
@@ -78,24 +99,26 @@ json resolved_setup(const Scene& scene, const ChainDiscretization& d) {
   }
   if (!out.contains("gauges")) out["gauges"] = json::array();
   for (std::size_t i = 0; i + 1 < scene.bars.size(); ++i) {
-    ContactMethod method = scene.contact.method;
-    PenaltyParams p;
-    merged(PenaltyParams{}, scene.contact.penalty, p);
-    for (const auto& o : scene.contact.interfaces)
-      if (o.left_bar == i) {
-        if (o.method) method = *o.method;
-        merged(o.penalty, scene.contact.penalty, p);
-      }
-    auto opt = [](const std::optional<double>& v) { return v ? json(*v) : json("auto"); };
+    const InterfaceModel m = resolved_interface(scene, d, i);
+    const int links = m.method == ContactMethod::kLocalizedBipenalty ? 2 : 1;
+    json stiffness = json::array(), mass = json::array();
+    for (int k = 0; k < links; ++k) {
+      stiffness.push_back(m.stiffness_N_m[k]);
+      mass.push_back(m.mass_penalty_kg[k]);
+    }
     out["interfaces"].push_back({{"left", scene.bars[i].name},
                                  {"right", scene.bars[i + 1].name},
-                                 {"method", to_string(method)},
-                                 {"gap_m", scene.bars[i].gap_m},
-                                 {"stiffness_factor", opt(p.stiffness_factor)},
-                                 {"stiffness_N_m", opt(p.stiffness_N_m)},
-                                 {"mass_ratio", opt(p.mass_ratio)}});
+                                 {"method", to_string(m.method)},
+                                 {"gap_m", m.gap0_m},
+                                 {"link_stiffness_N_m", stiffness},
+                                 {"link_mass_penalty_kg", mass}});
   }
-  out["warnings"] = scene_warnings(scene, d.duration_s);
+  auto warnings = scene_warnings(scene, d.duration_s);
+  for (std::size_t i = 0; i < scene.bars.size(); ++i)  // METHODS.md §1: stable for C <= 1
+    if (d.bars[i].courant > 1)
+      warnings.push_back("bar " + scene.bars[i].name + ": Courant number " + g(d.bars[i].courant) +
+                         " > 1: the explicit step is unstable");
+  out["warnings"] = warnings;
   out["duration_s"] = d.duration_s;
   out["sample_rate_Hz"] = d.sample_rate_Hz;
   out["stepping"] = to_string(d.stepping);
@@ -105,14 +128,11 @@ json resolved_setup(const Scene& scene, const ChainDiscretization& d) {
   return out;
 }
 
-std::string g(double v, int digits = 4) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-  return buf;
-}
-
-std::string auto_or(const json& v, const char* unit = "") {
-  return v.is_string() ? std::string("auto") : g(v.get<double>()) + unit;
+// "a" or "a / b" for the links of an interface.
+std::string links(const json& values) {
+  std::string t;
+  for (const auto& v : values) t += (t.empty() ? "" : " / ") + g(v.get<double>());
+  return t;
 }
 
 void print_table(const json& s) {
@@ -141,14 +161,13 @@ void print_table(const json& s) {
                 g(gj["position_m"].get<double>() * 1e3).c_str(),
                 d.is_null() ? "-" : g(d.get<double>() * 1e3).c_str());
   }
-  std::printf("\n%-28s %-20s %8s %16s %14s %10s\n", "interface", "method", "gap_mm",
-              "stiffness_factor", "stiffness_N/m", "mass_ratio");
+  std::printf("\n%-28s %-20s %8s %24s %24s\n", "interface", "method", "gap_mm",
+              "link_stiffness_N/m", "link_mass_penalty_kg");
   for (const auto& i : s["interfaces"]) {
     const std::string name = i["left"].get<std::string>() + " | " + i["right"].get<std::string>();
-    std::printf("%-28s %-20s %8s %16s %14s %10s\n", name.c_str(),
-                i["method"].get<std::string>().c_str(), g(i["gap_m"].get<double>() * 1e3).c_str(),
-                auto_or(i["stiffness_factor"]).c_str(), auto_or(i["stiffness_N_m"]).c_str(),
-                auto_or(i["mass_ratio"]).c_str());
+    std::printf("%-28s %-20s %8s %24s %24s\n", name.c_str(), i["method"].get<std::string>().c_str(),
+                g(i["gap_m"].get<double>() * 1e3).c_str(), links(i["link_stiffness_N_m"]).c_str(),
+                links(i["link_mass_penalty_kg"]).c_str());
   }
   std::printf("\nduration     %s us\n", g(s["duration_s"].get<double>() * 1e6).c_str());
   std::printf("sample rate  %s MHz\n", g(s["sample_rate_Hz"].get<double>() * 1e-6).c_str());

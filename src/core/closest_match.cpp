@@ -35,8 +35,10 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
 std::optional<std::string> closest_match(std::string_view word,
                                          const std::vector<std::string>& candidates) {
   const std::string w = fold(word);
-  // A typo changes at most about a third of a word (and at least two letters may be off).
-  const std::size_t limit = std::max<std::size_t>(2, w.size() / 3);
+  if (w.empty()) return std::nullopt;
+  // A typo changes at most about a third of a word (one letter in a short one), and never the
+  // whole word ("c" is no typo of "a").
+  const std::size_t limit = std::min(std::max<std::size_t>(1, w.size() / 3), w.size() - 1);
   std::optional<std::string> best;
   std::size_t best_distance = limit + 1;
   for (const auto& c : candidates) {

@@ -111,6 +111,9 @@ json parse_json_object(const std::string& text, const std::string& display) {
         detail = what.substr(colon + 2);
       }
     }
+    // The parser quotes what it read last, which may be bytes that are not text.
+    for (auto& c : detail)
+      if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x80) c = '?';
     throw input_error(display, place, detail, "expected valid JSON");
   } catch (const json::out_of_range& e) {  // "number overflow parsing '1e400'"
     std::string what = e.what();

@@ -159,9 +159,11 @@ class UnitParser {
     return (u >= 'a' && u <= 'z') || (u >= 'A' && u <= 'Z') || u >= 0x80;
   }
 
-  // expression := product { '/' product }
+  // expression := [product] { '/' product }
   UnitValue expression() {
-    UnitValue u = product();
+    skip_spaces();
+    // "/s" reads as "1/s".
+    UnitValue u = pos_ < text_.size() && text_[pos_] == '/' ? UnitValue{} : product();
     skip_spaces();
     while (pos_ < text_.size() && text_[pos_] == '/') {
       ++pos_;
@@ -292,6 +294,8 @@ double parse_quantity(std::string_view text, Dimension expected) {
     throw std::invalid_argument("no number found; " + expected_text(expected));
   const std::string_view unit = trim(t.substr(static_cast<std::size_t>(end - t.data())));
   if (unit.empty()) return number;  // SI
+  if (unit.size() > 1 && unit[0] == ',' && unit[1] >= '0' && unit[1] <= '9')
+    throw std::invalid_argument("use a decimal point, not a comma; " + expected_text(expected));
 
   for (const auto c : kCelsius) {
     if (unit != c) continue;

@@ -21,9 +21,8 @@ constexpr std::int64_t kMaxElements = 100'000'000;  // far beyond any useful mes
 
 class SceneReader {
  public:
-  SceneReader(const fs::path& file) : file_(file), display_(file.string()) {
-    dir_ = file.parent_path();
-  }
+  explicit SceneReader(const fs::path& file)
+      : file_(file), display_(file.string()), dir_(file.parent_path()) {}
 
   Scene read() {
     const nlohmann::json j = read_json_object_file(file_, display_);
@@ -63,7 +62,7 @@ class SceneReader {
   // "experiments/classic-al6061/scene.json" is named by its folder, other files by their stem.
   std::string default_name() const {
     const auto stem = file_.stem().string();
-    if (stem == "scene" && file_.has_parent_path()) {
+    if (stem == "scene") {
       const auto folder = fs::absolute(file_).parent_path().filename().string();
       if (!folder.empty()) return folder;
     }

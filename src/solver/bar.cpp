@@ -7,6 +7,7 @@ BarModel make_bar_model(std::string name, const MaterialSpec& material, double l
   BarModel b;
   b.name = std::move(name);
   b.nodes = elements + 1;
+  b.full_nodes = b.nodes;
   b.element_length_m = length_m / elements;
   b.area_m2 = area_m2;
   b.density_kg_m3 = material.density_kg_m3;

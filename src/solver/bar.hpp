@@ -28,6 +28,10 @@ struct BarModel {
   std::vector<double> mass_kg;      // lumped: ρAh/2 at the ends, ρAh inside
   std::vector<double> inverse_mass;
   std::unique_ptr<MaterialLaw> law;  // null: elastic, σ = E ε in the solver's own kernel
+  // Causal economy (METHODS.md §7): the right end of the last bar may be cut where its
+  // reflections cannot reach anything recorded; the cut end is an exact non-reflecting dashpot.
+  int full_nodes = 0;            // nodes of the uncut mesh
+  bool dashpot_right = false;    // the right end is a cut with a dashpot of impedance ρcA
 
   int elements() const { return nodes - 1; }
   double impedance_kg_s() const { return density_kg_m3 * wave_speed_m_s * area_m2; }

@@ -1,6 +1,7 @@
 #include "solver/bar_integrator.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace shpb {
 
@@ -61,6 +62,17 @@ void assemble_internal_forces(const BarModel& bar, BarState& s) {
   }
 }
 
+void apply_dashpot(const BarModel& bar, BarState& s) {
+  const int last = bar.nodes - 1;
+  if (!bar.dashpot_right || s.quiet() || s.hi < last) return;
+  const double half = s.step == 0 ? 0.0 : 0.5 * bar.time_step_s;
+  const double Z = bar.impedance_kg_s(), m = bar.mass_kg[last];
+  // v_n = v_{n−1/2} + ½Δt (f − Z v_n)/m, solved for v_n.
+  const double vn = (s.v[last] + half * s.force[last] / m) / (1 + half * Z / m);
+  s.force[last] -= Z * vn;
+  s.dissipated_J += Z * vn * vn * (s.step == 0 ? 0.5 : 1.0) * bar.time_step_s;
+}
+
 long advance(const BarModel& bar, BarState& s) {
   const double dt = bar.time_step_s;
   const double kick = s.step == 0 ? 0.5 * dt : dt;
@@ -80,19 +92,14 @@ long advance(const BarModel& bar, BarState& s) {
 }
 
 double end_free_force_at(const BarModel& bar, const BarState& s, int end, double tau_n,
-                         double tau) {
+                         double tau, double end_w) {
   const int last = bar.nodes - 1;
   if (bar.law) return end == 0 ? bar.area_m2 * s.stress_Pa[0] : -bar.area_m2 * s.stress_Pa[last - 1];
   const int other = end == 0 ? 1 : last - 1;
   const double back = tau_n - tau;
-  const double w_end = s.w[end] - back * s.v[end];
+  const double w_end = std::isnan(end_w) ? s.w[end] - back * s.v[end] : end_w;
   const double w_other = s.w[other] - back * s.v[other];
   return bar.stiffness_N_m * (w_other - w_end);
-}
-
-double element_stress(const BarModel& bar, const BarState& s, int e) {
-  if (bar.law) return s.stress_Pa[e];
-  return bar.youngs_modulus_Pa * (s.w[e + 1] - s.w[e]) / bar.element_length_m;
 }
 
 double node_velocity_now(const BarModel& bar, const BarState& s, int i) {

@@ -20,16 +20,26 @@ void assemble_internal_forces(const BarModel& bar, BarState& s);
 // Makes node i part of the active range (an interface starts loading it).
 void activate_node(const BarModel& bar, BarState& s, int i);
 
+// Non-reflecting end (a cut bar): the dashpot force −Z v_n on the last node, with the full-step
+// velocity v_n taken implicitly (exact for a 1D wave leaving the bar); the energy it absorbs is
+// added to the bar's dissipation. Call between assemble and advance.
+void apply_dashpot(const BarModel& bar, BarState& s);
+
 // Kick and drift over the active range; counts node updates. Returns the updated node count.
 long advance(const BarModel& bar, BarState& s);
 
 // Free (internal) force on end node `end` (0 or nodes−1) at time τ within the bar's last step,
 // from the interpolated displacements (exact for elastic bars) or the last stress of a
-// material-law bar: the predictor of a neighbour's end load (METHODS.md §3).
-double end_free_force_at(const BarModel& bar, const BarState& s, int end, double tau_n, double tau);
+// material-law bar: the predictor of a neighbour's end load (METHODS.md §3). A finite
+// `end_w` puts the end node there instead (an end tied to an interface frame).
+double end_free_force_at(const BarModel& bar, const BarState& s, int end, double tau_n, double tau,
+                         double end_w);
 
 // Element stress at t_n (tension positive).
-double element_stress(const BarModel& bar, const BarState& s, int e);
+inline double element_stress(const BarModel& bar, const BarState& s, int e) {
+  if (bar.law) return s.stress_Pa[e];
+  return bar.youngs_modulus_Pa * (s.w[e + 1] - s.w[e]) / bar.element_length_m;
+}
 
 // Energy of the bar at its current instant t_n; call between assemble and advance (the
 // full-step velocity v_n = v_{n−1/2} + ½Δt a_n needs f_n).

@@ -11,6 +11,7 @@ InterfaceModel make_interface_model(std::string name, ContactMethod method,
   m.name = std::move(name);
   m.method = method;
   m.gap0_m = gap0_m;
+  m.tied = params.tied;
   const double k = std::max(left.stiffness_N_m, right.stiffness_N_m);
   const double eps_s =
       params.stiffness_N_m.value_or(params.stiffness_factor.value_or(kDefaultStiffnessFactor) * k);

@@ -16,6 +16,12 @@ struct EndState {
   double free_force = 0;  // f̃: the bar's own force on the end node [N]
   double mass = 0;        // lumped end-node mass m_b [kg]
   bool stepping = false;  // the bar takes a step at τ and uses the force solved now
+  double kick_s = 0;      // the stepping bar's velocity kick length at τ (Δt, or Δt/2 at n = 0)
+  double step_s = 0;      // the bar's Δt
+
+  // Full-step velocity at τ (velocity-Verlet): v_{n−1/2} + (kick − Δt/2) f̃/m for a stepping end
+  // (v_0 itself at n = 0); an end that is ahead moves with its step's velocity.
+  double velocity_now() const { return stepping ? v + (kick_s - 0.5 * step_s) * free_force / mass : v; }
 };
 
 // Immutable parameters of one interface, derived from the neighbours (METHODS.md §2–3).
@@ -27,20 +33,22 @@ struct InterfaceModel {
   // Node-to-node methods use index 0 for their single link.
   double stiffness_N_m[2] = {0, 0};
   double mass_penalty_kg[2] = {0, 0};
+  bool tied = false;  // plain penalty only: bilateral link (PenaltyParams::tied)
 };
 
 // Mutable state of one interface.
 struct InterfaceState {
   bool active = false;
   // Localized bipenalty: frame point (absolute displacement of the contact point, measured
-  // like the left bar's end) at τ_frame, its half-step velocity, the last frame step, and the
-  // rest offsets of the two localized gaps fixed at activation.
-  double frame_u = 0, frame_v = 0, frame_tau = 0, frame_dt = 0;
-  double offset[2] = {0, 0};
+  // like the left bar's end) at τ_frame and its velocity since then; the right end sits at
+  // frame − gap0 + offset.
+  double frame_u = 0, frame_v = 0, frame_tau = 0;
+  double offset = 0;
   // Results of the last solve.
   double force_N = 0;     // compression positive
   double gap_m = 0;       // total gap g
   double energy_J = 0;    // potential + penalty kinetic energy held by the links
+  long activations = 0, releases = 0;
 };
 
 // What a solve returns: forces to add to the stepping end nodes, velocity jumps of a
@@ -65,6 +73,12 @@ struct NeighbourInfo {
 InterfaceModel make_interface_model(std::string name, ContactMethod method,
                                     const PenaltyParams& params, double gap0_m,
                                     const NeighbourInfo& left, const NeighbourInfo& right);
+
+// Localized bipenalty in the tied state: where the end node of side `side` (0 left, 1 right)
+// must be at τ (absolute displacement), or NaN when the interface is open. The scheduler puts a
+// stepping end there before assembling its forces (rule 4 of scheduler.hpp).
+double tied_end_position(const InterfaceModel& model, const InterfaceState& state, int side,
+                         double tau);
 
 // Solves the interface at τ. `frame_next_tau` is the next instant at which either neighbour
 // will need the interface (localized bipenalty advances its frame on the union of instants).

@@ -10,7 +10,7 @@ ContactResult solve_penalty(const InterfaceModel& model, InterfaceState& state,
                             const EndState& left, const EndState& right) {
   ContactResult r;
   const double g = state.gap_m;
-  state.active = g < 0;
+  state.active = g < 0 || model.tied;
   if (!state.active) {
     state.force_N = 0;
     state.energy_J = 0;

@@ -10,7 +10,7 @@ namespace shpb {
 namespace {
 // The energy history has at most this many points (it is checked for instability there, and
 // each point costs one pass over the active nodes of every bar).
-constexpr long kEnergyPoints = 500;
+constexpr long kEnergyPoints = 200;
 // A field row needs at least this many points per bar so that short bars (the specimen) show.
 constexpr int kMinFieldPointsPerBar = 5;
 
@@ -153,12 +153,18 @@ void ChainRecorders::on_bar_instant(const Chain& chain, std::size_t i, double ta
   }
 }
 
-void ChainRecorders::on_interface_solve(const Chain& chain, std::size_t k, double tau) {
+void ChainRecorders::on_interface_solve(const Chain& chain, std::size_t k, double tau,
+                                        double tau_next) {
   const InterfaceState& s = chain.interface_states[k];
-  const double values[2] = {s.force_N, s.gap_m};
-  interfaces_[k].sampler.push(tau, values);
-  const double energy[2] = {s.energy_J, chain.contact_dissipated_J[k]};
-  interfaces_[k].energy_sampler.push(tau, energy);
+  InterfaceRecorder& r = interfaces_[k];
+  if (r.sampler.wants(tau_next)) {
+    const double values[2] = {s.force_N, s.gap_m};
+    r.sampler.push(tau, values);
+  }
+  if (r.energy_sampler.wants(tau_next)) {
+    const double energy[2] = {s.energy_J, chain.contact_dissipated_J[k]};
+    r.energy_sampler.push(tau, energy);
+  }
 }
 
 long ChainRecorders::energy_complete() const {

@@ -42,8 +42,8 @@ class ChainRecorders {
 
   // Bar i is at instant τ_n (forces assembled, contact applied); τ_next = τ_n + Δt_i.
   void on_bar_instant(const Chain& chain, std::size_t i, double tau_n, double tau_next);
-  // Interface k was solved at τ.
-  void on_interface_solve(const Chain& chain, std::size_t k, double tau);
+  // Interface k was solved at τ; it is solved next at τ_next.
+  void on_interface_solve(const Chain& chain, std::size_t k, double tau, double tau_next);
 
   // Energy grid points complete in every recorder, and the total energy at one of them.
   long energy_complete() const;

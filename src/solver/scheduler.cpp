@@ -13,7 +13,8 @@ namespace shpb {
 namespace {
 
 // The end of bar i that touches interface k: its last node (left side) or node 0 (right side).
-EndState end_state(const Chain& chain, std::size_t bar, int node, double tau, bool stepping) {
+EndState end_state(const Chain& chain, std::size_t bar, int node, double tau, bool stepping,
+                   double tied_u) {
   const BarModel& b = chain.bars[bar];
   const BarState& s = chain.states[bar];
   const double tau_n = chain.bar_tau(bar);
@@ -25,9 +26,14 @@ EndState end_state(const Chain& chain, std::size_t bar, int node, double tau, bo
     e.free_force = s.quiet() || node < s.lo || node > s.hi ? 0.0 : s.force[node];
   } else {
     e.u = node_displacement_at(b, s, node, tau_n, tau);
-    e.free_force = end_free_force_at(b, s, node, tau_n, tau);
+    // A tied end is at the frame (rule 4); otherwise on its own linear path.
+    const double w_end = std::isnan(tied_u) ? std::numeric_limits<double>::quiet_NaN()
+                                            : tied_u - b.initial_velocity_m_s * tau;
+    e.free_force = end_free_force_at(b, s, node, tau_n, tau, w_end);
   }
   e.v = node_velocity(b, s, node);
+  e.kick_s = (s.step == 0 ? 0.5 : 1.0) * b.time_step_s;
+  e.step_s = b.time_step_s;
   return e;
 }
 
@@ -75,6 +81,7 @@ ScheduleOutcome run_schedule(Chain& chain, ChainRecorders& recorders,
   long energy_checked = 0;
   long instants = 0;
   int progress_done = -1;
+  double next_progress_tau = 0;
   double dt_min = std::numeric_limits<double>::infinity();
   for (const BarModel& b : chain.bars) dt_min = std::min(dt_min, b.time_step_s);
   const double same = kSameInstant * dt_min;
@@ -88,6 +95,22 @@ ScheduleOutcome run_schedule(Chain& chain, ChainRecorders& recorders,
     for (std::size_t i = 0; i < nb; ++i)
       stepping[i] = chain.states[i].step <= chain.final_step[i] && chain.bar_tau(i) <= tau + same;
 
+    // Rule 4: a stepping end tied to a frame is put where the frame is.
+    for (std::size_t k = 0; k < chain.interfaces.size(); ++k)
+      for (int side = 0; side < 2; ++side) {
+        const std::size_t bar = k + side;
+        if (!stepping[bar]) continue;
+        const double target = tied_end_position(chain.interfaces[k], chain.interface_states[k], side, tau);
+        if (std::isnan(target)) continue;
+        const int node = side == 0 ? chain.bars[bar].nodes - 1 : 0;
+        BarState& s = chain.states[bar];
+        const double w = target - chain.bars[bar].initial_velocity_m_s * tau;
+        if (w != s.w[node]) {
+          s.w[node] = w;
+          activate_node(chain.bars[bar], s, node);
+        }
+      }
+
     // Rule 3: internal forces of the stepping bars.
     for (std::size_t i = 0; i < nb; ++i)
       if (stepping[i]) assemble_internal_forces(chain.bars[i], chain.states[i]);
@@ -97,29 +120,35 @@ ScheduleOutcome run_schedule(Chain& chain, ChainRecorders& recorders,
       const std::size_t l = k, r = k + 1;
       if (!stepping[l] && !stepping[r]) continue;
       const int l_node = chain.bars[l].nodes - 1;
-      const EndState left = end_state(chain, l, l_node, tau, stepping[l]);
-      const EndState right = end_state(chain, r, 0, tau, stepping[r]);
+      const InterfaceModel& im = chain.interfaces[k];
+      const EndState left = end_state(chain, l, l_node, tau, stepping[l],
+                                      tied_end_position(im, chain.interface_states[k], 0, tau));
+      const EndState right = end_state(chain, r, 0, tau, stepping[r],
+                                       tied_end_position(im, chain.interface_states[k], 1, tau));
       const double next_l = stepping[l] ? tau + chain.bars[l].time_step_s : chain.bar_tau(l);
       const double next_r = stepping[r] ? tau + chain.bars[r].time_step_s : chain.bar_tau(r);
       InterfaceState& is = chain.interface_states[k];
-      const ContactResult res =
-          solve_contact(chain.interfaces[k], is, left, right, tau, std::min(next_l, next_r));
+      const double next = std::min(next_l, next_r);
+      const ContactResult res = solve_contact(chain.interfaces[k], is, left, right, tau, next);
       apply_end(chain, l, l_node, tau, stepping[l], res.dv_left, res.force_left_N);
       apply_end(chain, r, 0, tau, stepping[r], res.dv_right, res.force_right_N);
       chain.contact_dissipated_J[k] += res.dissipated_J;
       chain.max_penetration_m = std::max(chain.max_penetration_m, -is.gap_m);
-      recorders.on_interface_solve(chain, k, tau);
+      recorders.on_interface_solve(chain, k, tau, next);
     }
 
     // Rule 3: record and advance.
     for (std::size_t i = 0; i < nb; ++i) {
       if (!stepping[i]) continue;
+      apply_dashpot(chain.bars[i], chain.states[i]);
       recorders.on_bar_instant(chain, i, tau, tau + chain.bars[i].time_step_s);
       chain.states[i].node_updates += advance(chain.bars[i], chain.states[i]);
     }
 
-    // Rule 7: energy check on completed grid points.
-    const long complete = recorders.energy_complete();
+    // Rule 7: energy check on completed grid points (none can complete before τ* passes the
+    // next one).
+    const long complete = tau >= recorders.energy_grid_tau(energy_checked) ? recorders.energy_complete()
+                                                                           : energy_checked;
     for (; energy_checked < complete; ++energy_checked) {
       const double e = recorders.energy_total(energy_checked);
       if (energy_checked == 0) energy0 = e;
@@ -139,12 +168,13 @@ ScheduleOutcome run_schedule(Chain& chain, ChainRecorders& recorders,
 
     ++instants;
     if (cancel && instants % kCancelPollInstants == 0 && cancel()) throw Interrupted();
-    if (progress) {
+    if (progress && tau >= next_progress_tau) {
       const int pct = static_cast<int>(100.0 * std::min(1.0, tau / chain.end_tau_s));
       if (pct != progress_done) {
         progress_done = pct;
         progress(pct / 100.0);
       }
+      next_progress_tau = (pct + 1) * 0.01 * chain.end_tau_s;
     }
   }
   outcome.checked_until_s = chain.end_tau_s + chain.start_time_s;

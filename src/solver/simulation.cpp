@@ -43,6 +43,30 @@ double first_contact_delay(const Scene& scene) {
   return std::isfinite(delay) ? delay : 0.0;
 }
 
+// METHODS.md §7: lumped central difference moves information by exactly one node per step, and
+// every disturbance of the last bar enters at its left end. A node j right of the rightmost node
+// k that is recorded (gauges) or coupled (node 0) is first disturbed at step ≥ s_k + (j − k) and
+// can act back on k at step ≥ s_k + 2(j − k): beyond k + N/2 (N instants in the run) nothing can
+// come back before the end, so the bar is cut there and ended with a dashpot (non-reflecting).
+// Recorded values are unchanged to the last bit.
+void cut_last_bar(Chain& c, const Scene& scene) {
+  BarModel& bar = c.bars.back();
+  const BarSpec& spec = scene.bars.back();
+  int k = 0;
+  for (const GaugeSpec& g : spec.gauges)
+    k = std::max(k, static_cast<int>(std::floor(g.position_m / bar.element_length_m + 0.5)) + 2);
+  const long instants = c.final_step.back() + 1;
+  const long keep = k + instants / 2 + 2;  // nodes kept
+  if (keep >= bar.nodes) return;
+  const int elements = static_cast<int>(keep - 1);
+  const int full_nodes = bar.nodes;
+  bar = make_bar_model(spec.name, spec.material, bar.element_length_m * elements, spec.area_m2,
+                       elements, bar.time_step_s, spec.velocity_m_s);
+  bar.full_nodes = full_nodes;
+  bar.dashpot_right = true;
+  c.states.back() = make_bar_state(bar, false);
+}
+
 Chain build_chain(const Scene& scene, const ChainDiscretization& d, bool full_model) {
   Chain c;
   for (std::size_t i = 0; i < scene.bars.size(); ++i) {
@@ -66,6 +90,7 @@ Chain build_chain(const Scene& scene, const ChainDiscretization& d, bool full_mo
   c.end_tau_s = d.duration_s - c.start_time_s;
   for (const BarModel& b : c.bars)
     c.final_step.push_back(static_cast<long>(std::ceil(c.end_tau_s / b.time_step_s - 1e-9)));
+  if (!full_model && c.bars.size() > 1) cut_last_bar(c, scene);
   return c;
 }
 
@@ -133,12 +158,13 @@ SimulationResult simulate(const Scene& scene, const SimulationOptions& options) 
     const BarState& s = chain.states[i];
     BarStatistics st;
     st.name = b.name;
-    st.elements = b.elements();
+    st.elements = b.full_nodes - 1;
+    st.simulated_elements = b.elements();
     st.time_step_s = b.time_step_s;
     st.steps = s.step;
     st.courant = b.courant;
     st.node_updates = s.node_updates;
-    st.node_updates_full_model = static_cast<long long>(s.step) * b.nodes;
+    st.node_updates_full_model = static_cast<long long>(s.step) * b.full_nodes;
     double momentum = 0;
     for (int n = 0; n < b.nodes; ++n) momentum += b.mass_kg[n] * (s.v[n] + b.initial_velocity_m_s);
     st.final_velocity_m_s = momentum / b.total_mass_kg();
@@ -146,6 +172,10 @@ SimulationResult simulate(const Scene& scene, const SimulationOptions& options) 
     result.node_updates_full_model += st.node_updates_full_model;
     result.bars.push_back(st);
   }
+  for (std::size_t k = 0; k < chain.interfaces.size(); ++k)
+    result.interface_statistics.push_back(
+        {chain.interfaces[k].name, std::string(to_string(chain.interfaces[k].method)),
+         chain.interface_states[k].activations, chain.interface_states[k].releases});
   return result;
 }
 
@@ -174,6 +204,7 @@ void write_simulation_outputs(const SimulationResult& result, const Scene& scene
     nlohmann::ordered_json o;
     o["name"] = b.name;
     o["elements"] = b.elements;
+    o["simulated_elements"] = b.simulated_elements;
     o["time_step_s"] = b.time_step_s;
     o["steps"] = b.steps;
     o["courant"] = b.courant;
@@ -183,6 +214,11 @@ void write_simulation_outputs(const SimulationResult& result, const Scene& scene
     bars.push_back(o);
   }
   j["bars"] = bars;
+  nlohmann::ordered_json interfaces = nlohmann::json::array();
+  for (const InterfaceStatistics& i : result.interface_statistics)
+    interfaces.push_back({{"name", i.name}, {"method", i.method}, {"activations", i.activations},
+                          {"releases", i.releases}});
+  j["interfaces"] = interfaces;
   j["node_updates"] = result.node_updates;
   j["node_updates_full_model"] = result.node_updates_full_model;
   j["wall_time_s"] = result.wall_time_s;

@@ -42,12 +42,20 @@ struct FieldGrid {
 struct BarStatistics {
   std::string name;
   int elements = 0;
+  int simulated_elements = 0;  // fewer if the causal economy cut the bar's far end
   double time_step_s = 0;
   long steps = 0;
   double courant = 0;
   long long node_updates = 0;
   long long node_updates_full_model = 0;
   double final_velocity_m_s = 0;  // momentum / mass at the end of the run
+};
+
+struct InterfaceStatistics {
+  std::string name;  // "<left>-<right>"
+  std::string method;
+  long activations = 0;  // contact closings
+  long releases = 0;     // contact openings
 };
 
 struct SimulationResult {
@@ -58,6 +66,7 @@ struct SimulationResult {
   TimeSeries energy;      // kinetic_J, strain_J, contact_J, dissipated_J, total_J
   FieldGrid field;
   std::vector<BarStatistics> bars;
+  std::vector<InterfaceStatistics> interface_statistics;
   long long node_updates = 0;
   long long node_updates_full_model = 0;
   double wall_time_s = 0;      // the solve alone

@@ -1,6 +1,7 @@
 // Bad scenes as behaviour of the real executable (DESIGN.md §2): exit code 2, one line
 // "error: <file>: <json path>: <value>: <constraint>" on stderr, and nothing written — neither the
 // output folder nor anything beside it — by every command that takes a scene.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cstdlib>
 #include <filesystem>
@@ -140,6 +141,9 @@ const std::vector<BadScene>& cases() {
       {"an empty file", nullptr, "empty file", "\n  \n"},
       {"text that is not JSON", nullptr, "line 2, column", "{\"bars\": [\n}"},
       {"a top level that is not an object", nullptr, "(top level)", "[1, 2, 3]"},
+      {"bytes that are not UTF-8", nullptr, "line 1, column", "{\"name\": \"\xff\xfe\"}"},
+      {"a byte-order mark and two documents", nullptr, "line 2, column 1",
+       "\xef\xbb\xbf{\"bars\": []}\n{\"bars\": []}"},
       {"a duplicate key", nullptr, "bars[0].name: duplicate key",
        R"({"bars": [{"name": "a", "name": "b"}]})"},
       {"a missing material file",
@@ -300,6 +304,8 @@ TEST_CASE("Every bad scene exits 2 with one line naming the file and the JSON pa
     CHECK(message.rfind("error: " + scene_file.parent_path().string(), 0) == 0);
     CHECK(message.find(c.where) != std::string::npos);
     CHECK(std::count(message.begin(), message.end(), '\n') == 1);  // one line
+    CHECK(std::none_of(message.begin(), message.end(),             // printable: no raw bytes echoed
+                       [](char ch) { return static_cast<unsigned char>(ch) >= 0xF8; }));
     CHECK(r.out.empty());
     CHECK(listing(dir) == before);
   }

@@ -75,6 +75,11 @@ TEST_CASE("validate applies --contact, --stepping and --courant as simulate woul
   // Global stepping: every bar takes the same (smallest) step.
   const double dt = v["bars"][0]["time_step_s"].get<double>();
   for (const auto& b : v["bars"]) CHECK(b["time_step_s"].get<double>() == dt);
+  CHECK(v["warnings"].empty());
+  // Lumped central difference is unstable above C = 1 (METHODS.md §1): validate says so.
+  const json unstable = validate_json(file, {"--courant", "1.2"});
+  REQUIRE(unstable["warnings"].size() == 2);
+  CHECK(unstable["warnings"][0].get<std::string>().find("unstable") != std::string::npos);
 }
 
 TEST_CASE("validate warns when pulses overlap at a gauge or the duration is too short",
@@ -111,5 +116,41 @@ TEST_CASE("validate warns when pulses overlap at a gauge or the duration is too 
   const json short_run = warnings(scene("1 m", "600 us"));
   REQUIRE(short_run.size() == 1);
   CHECK(short_run[0].get<std::string>().find("duration 600.0 us ends before") == 0);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("validate reports penalty links that keep every bar's own time step", "[app][validate]") {
+  // Bipenalty with R = ε_s/ε_m ≤ R_crit = (2 c0/h)² leaves the bar's critical step unchanged
+  // for any ε_s (METHODS.md §2): each link of the localized interfaces must respect its bar's.
+  const json v = validate_json(fs::path(SHPB_SOURCE_DIR) / "experiments/classic-al6061/scene.json");
+  for (std::size_t k = 0; k < v["interfaces"].size(); ++k) {
+    const auto& i = v["interfaces"][k];
+    INFO(i["left"] << " | " << i["right"]);
+    REQUIRE(i["link_stiffness_N_m"].size() == 2);
+    for (std::size_t side = 0; side < 2; ++side) {
+      const auto& bar = v["bars"][k + side];
+      const double r_crit = std::pow(
+          2 * bar["wave_speed_m_s"].get<double>() / bar["element_length_m"].get<double>(), 2);
+      const double r = i["link_stiffness_N_m"][side].get<double>() /
+                       i["link_mass_penalty_kg"][side].get<double>();
+      CHECK(r > 0);
+      CHECK(r <= r_crit * (1 + kRoundOff));
+    }
+  }
+}
+
+TEST_CASE("validate reports a penalty stiffness given per interface as is", "[app][validate]") {
+  const auto dir = shpb_test::scratch_dir("validate_stiffness");
+  std::ofstream(dir / "scene.json") << R"({"bars": [
+      {"name": "s", "material": "steel", "length": 0.3, "diameter": 0.02, "velocity": 10},
+      {"name": "b", "material": "steel", "length": 1.5, "diameter": 0.02}],
+    "materials": {"steel": {"model": "elastic", "density": 7850, "youngs_modulus": 2e11,
+                            "poisson_ratio": 0.29}},
+    "contact": {"method": "penalty",
+                "interfaces": [{"between": ["s", "b"], "stiffness": "3e9 N/m"}]}})";
+  const json v = validate_json(dir / "scene.json");
+  CHECK(v["interfaces"][0]["method"] == "penalty");
+  CHECK(v["interfaces"][0]["link_stiffness_N_m"][0].get<double>() == 3e9);
+  CHECK(v["interfaces"][0]["link_mass_penalty_kg"][0].get<double>() == 0);  // no mass penalty
   fs::remove_all(dir);
 }

@@ -87,6 +87,8 @@ TEST_CASE("Every unit of every dimension converts to SI", "[core][units]") {
       {"0.9 J/(g K)", Dimension::kSpecificHeat, 900},
       {"1000 1/s", Dimension::kStrainRate, 1000},
       {"1000 s^-1", Dimension::kStrainRate, 1000},
+      {"1000 /s", Dimension::kStrainRate, 1000},
+      {"2 /ms", Dimension::kStrainRate, 2000},
       {"1e9 N/m", Dimension::kStiffness, 1e9},
       {"1 kN/mm", Dimension::kStiffness, 1e6},
   };
@@ -130,6 +132,7 @@ TEST_CASE("Unknown units, bad numbers and malformed expressions are rejected", "
   CHECK(rejects("inf m", Dimension::kLength, "no number"));
   CHECK(rejects("1e999 m", Dimension::kLength, "out of range"));
   CHECK(rejects("1e300 Tm", Dimension::kLength, "out of range"));
+  CHECK(rejects("1,5 mm", Dimension::kLength, "decimal point, not a comma"));
   CHECK(rejects("20 m m", Dimension::kLength, "an area"));  // space multiplies: m² is no length
 }
 

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "model/laws/johnson_cook_law.hpp"
+#include "model/material_reader.hpp"
 #include "model/scene.hpp"
 #include "solver/simulation.hpp"
 
@@ -16,17 +17,14 @@ namespace {
 constexpr double kLawTolerance = 0.02;
 // Acceptance of issue 4: the energy balance closes within 1 % with dissipation counted.
 constexpr double kEnergyTolerance = 0.01;
+// The hereditary integral is evaluated on the 10 MHz record, the solver on its ~50 MHz steps; the
+// strain between samples is not exactly linear, which leaves ~1e-6 here: 1e-4 is ample.
+constexpr double kHereditaryTolerance = 1e-4;
 // Equilibrium: front and back face stresses within 5 % of each other (the usual SHPB criterion).
 constexpr double kEquilibrium = 0.05;
 
-// Global stepping: with asynchronous stepping the scheduler (at the time of writing) does not
-// conserve energy next to material-law bars (energy error 0.68 on the classic experiment, blow-up
-// with the pulse shaper) while every elastic chain is fine; the laws themselves close the balance
-// to round-off. Return to the scene's own stepping when that is fixed.
 Scene read_experiment(const char* name) {
-  Scene scene = read_scene(fs::path(SHPB_SOURCE_DIR) / "experiments" / name / "scene.json");
-  scene.simulation.stepping = Stepping::kGlobal;
-  return scene;
+  return read_scene(fs::path(SHPB_SOURCE_DIR) / "experiments" / name / "scene.json");
 }
 
 SimulationResult run(const Scene& scene) {
@@ -136,4 +134,43 @@ TEST_CASE("An annealed copper pulse shaper stretches the incident rise time at l
                                 << " us");
   REQUIRE(rise_with >= 3 * rise_without);
   REQUIRE(with.energy_error < kEnergyTolerance);
+}
+
+TEST_CASE("A viscoelastic specimen's stress is the hereditary integral of its own strain history",
+          "[model][material][viscoelastic][chain]") {
+  Scene scene = read_experiment("classic-al6061");
+  BarSpec& bar = scene.bars[*scene.specimen];
+  const fs::path pmma = fs::path(SHPB_SOURCE_DIR) / "specimens" / "pmma.json";
+  bar.material = read_material_file(pmma, pmma.string());
+  const SimulationResult result = run(scene);
+  REQUIRE(result.stable);
+  // Viscous dissipation counted: the balance closes.
+  REQUIRE(result.energy_error < kEnergyTolerance);
+  REQUIRE(result.energy.column("dissipated_J").back() > 0);
+  // The law is linear, so the length-averaged stress and strain obey it too:
+  // σ(t) = E∞ ε(t) + Σ_k ∫ E_k e^{−(t−s)/τ_k} ε̇(s) ds (Boltzmann), with ε linear between samples.
+  const ViscoelasticParams& ve = bar.material.viscoelastic;
+  const auto& t = result.specimen.time_s;
+  const auto& strain = result.specimen.column("strain");
+  const auto& stress = result.specimen.column("stress_Pa");
+  const double peak = *std::max_element(stress.begin(), stress.end());
+  std::vector<double> arm(ve.arms.size(), 0.0);
+  int compared = 0;
+  double worst = 0;
+  for (std::size_t k = 1; k < t.size(); ++k) {
+    const double dt = t[k] - t[k - 1], rate = (strain[k] - strain[k - 1]) / dt;
+    double hereditary = ve.long_term_modulus_Pa * strain[k];
+    for (std::size_t j = 0; j < arm.size(); ++j) {
+      const double tau = ve.arms[j].relaxation_time_s;
+      arm[j] = arm[j] * std::exp(-dt / tau) +
+               ve.arms[j].modulus_Pa * tau * rate * (1 - std::exp(-dt / tau));
+      hereditary += arm[j];
+    }
+    if (stress[k] < 0.2 * peak) continue;  // compare where the specimen carries load
+    worst = std::max(worst, std::abs(stress[k] / hereditary - 1));
+    ++compared;
+  }
+  INFO("samples compared " << compared << ", worst relative deviation " << worst);
+  REQUIRE(compared > 200);
+  REQUIRE(worst < kHereditaryTolerance);
 }

@@ -1,0 +1,42 @@
+#pragma once
+// The reference a pareto run's gauge signals are measured against (issue 7): the exact solution
+// where the scene has one, else a converged fine-mesh run. The error is the relative L2 norm of
+// the difference over every gauge and every sample of the comparison window.
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "model/scene.hpp"
+#include "solver/simulation.hpp"
+
+namespace shpb {
+
+struct GaugeReference {
+  std::string description;  // written to summary.json: which reference, and why
+  bool exact = false;
+  double window_end_s = 0;  // samples at t < window_end_s are compared
+  // Exact: strain of gauge `column` (index in the run's gauge columns) at time t. Fine mesh:
+  // the reference run's gauges on the same sample grid.
+  std::function<double(std::size_t column, double t)> strain;
+  TimeSeries fine;
+  double wall_time_s = 0;  // of the fine-mesh run
+};
+
+// A striker on a bar of the same material and area, both elastic, gauges on the bar only
+// (METHODS.md §4): a square strain pulse −V/(2c0) lasting 2L_s/c0 passes each gauge; compared
+// until the reflection from the bar's far end reaches the first gauge. Else nullopt.
+std::optional<GaugeReference> exact_reference(const Scene& scene);
+
+// Mesh resolution factor of the fine-mesh reference: twice the finest of the sweep.
+inline constexpr double kReferenceResolution = 8;
+
+// Runs the scene with localized bipenalty, asynchronous stepping, at `resolution` × the
+// automatic mesh, and keeps its gauges as the reference over the whole recording.
+GaugeReference fine_mesh_reference(const Scene& scene, double resolution,
+                                   const SimulationOptions& options);
+
+// √(Σ (ε − ε_ref)²) / √(Σ ε_ref²) over the gauges and the samples of the window (callers take
+// it of stable runs only); NaN if the run is shorter than a fine-mesh reference.
+double gauge_error(const TimeSeries& gauges, const GaugeReference& reference);
+
+}  // namespace shpb

@@ -1,0 +1,47 @@
+#pragma once
+// `shpb study --sweep stability` (issue 7, METHODS.md §2): the stability map of each contact
+// method over penalty stiffness, Courant number and (bipenalty methods) mass ratio, run on the
+// scene's stability probe (study/stability_probe.hpp), and the measured stability boundary of
+// every line of the map next to its closed form.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "model/scene.hpp"
+#include "study/stability_probe.hpp"
+#include "study/sweep.hpp"
+
+namespace shpb {
+
+struct StabilityRow {
+  StabilityPoint point;
+  StabilityVerdict verdict;
+};
+
+// The largest stable Courant number of one line of the map (method, ε_s/k, R/R_crit), by
+// bisection, and the closed form it should follow: for plain penalty the exact limit of the
+// discrete system (penalty_critical_courant), measured with the link acting in tension too
+// (`tied`, the linear system) and as used (unilateral); for the bipenalty methods 1 at or below
+// R_crit and 2/√R above (bipenalty_critical_courant).
+struct StabilityBoundary {
+  StabilityPoint line;  // courant unused
+  double critical_courant = 0;
+  double closed_form_courant = 0;
+};
+
+struct StabilityStudy {
+  std::string probe;  // what the probe scene is
+  std::vector<StabilityRow> rows;
+  std::vector<StabilityBoundary> boundaries;
+};
+
+// Lower and upper end of the boundary bisection.
+inline constexpr double kBoundaryCourantMin = 3e-4;
+inline constexpr double kBoundaryCourantMax = 1.1;
+
+StabilityStudy run_stability_sweep(
+    const Scene& scene, const std::vector<ContactMethod>& methods, int threads,
+    const std::function<void(std::size_t, std::size_t)>& progress = {},
+    const std::function<bool()>& cancel = {});
+
+}  // namespace shpb

@@ -1,0 +1,60 @@
+#include "study/sweep.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/csv_writer.hpp"
+#include "model/discretization.hpp"
+
+namespace shpb {
+
+namespace {
+const std::vector<ContactMethod> kAllMethods = {ContactMethod::kPenalty, ContactMethod::kBipenalty,
+                                                ContactMethod::kLocalizedBipenalty};
+const std::vector<Stepping> kAllSteppings = {Stepping::kAsynchronous, Stepping::kGlobal};
+}  // namespace
+
+std::string format_factor(double factor) {
+  if (factor < 1) return "1/" + format_double(1 / factor);
+  return format_double(factor);
+}
+
+std::vector<ParetoCase> pareto_cases(const std::vector<ContactMethod>& methods,
+                                     const std::vector<Stepping>& steppings,
+                                     const std::vector<double>& resolutions) {
+  std::vector<ParetoCase> cases;
+  for (ContactMethod m : methods.empty() ? kAllMethods : methods)
+    for (Stepping s : steppings.empty() ? kAllSteppings : steppings)
+      for (double r : resolutions) cases.push_back({m, s, r});
+  return cases;
+}
+
+Scene scene_at_resolution(const Scene& scene, double factor) {
+  Scene out = scene;
+  const ChainDiscretization d = discretize(scene);
+  for (std::size_t i = 0; i < out.bars.size(); ++i)
+    out.bars[i].elements = std::max(1, static_cast<int>(std::lround(factor * d.bars[i].elements)));
+  return out;
+}
+
+Scene scene_for(const Scene& scene, const ParetoCase& c) {
+  Scene out = scene_at_resolution(scene, c.resolution);
+  out.contact.method = c.method;
+  for (InterfaceOverride& o : out.contact.interfaces) o.method.reset();
+  out.simulation.stepping = c.stepping;
+  return out;
+}
+
+std::vector<StabilityPoint> stability_grid(const std::vector<ContactMethod>& methods) {
+  std::vector<StabilityPoint> grid;
+  for (ContactMethod m : methods.empty() ? kAllMethods : methods) {
+    const std::vector<double> ratios =
+        m == ContactMethod::kPenalty ? std::vector<double>{0.0} : kMassRatios;
+    for (double r : ratios)
+      for (double s : kStiffnessFactors)
+        for (double c : kCourantNumbers) grid.push_back({m, s, r, c});
+  }
+  return grid;
+}
+
+}  // namespace shpb

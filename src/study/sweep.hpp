@@ -1,0 +1,56 @@
+#pragma once
+// What a study sweeps (issue 7): the cases of the accuracy-against-cost sweep and the grid of the
+// stability map, and how one case turns a scene into the scene that is run.
+#include <string>
+#include <vector>
+
+#include "model/scene.hpp"
+
+namespace shpb {
+
+// One run of the accuracy-against-cost sweep.
+struct ParetoCase {
+  ContactMethod method = ContactMethod::kLocalizedBipenalty;
+  Stepping stepping = Stepping::kAsynchronous;
+  double resolution = 1;  // factor on every bar's element count (1: the automatic mesh)
+};
+
+// Mesh resolution factors: 1/4 … 4 of the automatic mesh, in factors of two.
+inline const std::vector<double> kParetoResolutions = {0.25, 0.5, 1, 2, 4};
+
+// "1/4", "1/2", "1", "2", … (factors in summaries and descriptions).
+std::string format_factor(double factor);
+
+// Every method × stepping × resolution, restricted to `methods` / `steppings` when not empty
+// (the --contact / --stepping options of `shpb study`).
+std::vector<ParetoCase> pareto_cases(const std::vector<ContactMethod>& methods,
+                                     const std::vector<Stepping>& steppings,
+                                     const std::vector<double>& resolutions = kParetoResolutions);
+
+// The scene with every bar's element count (given or automatic, model/discretization.hpp)
+// multiplied by `factor` (at least one element).
+Scene scene_at_resolution(const Scene& scene, double factor);
+
+// The scene of one pareto case: method at every interface, stepping, resolution.
+Scene scene_for(const Scene& scene, const ParetoCase& c);
+
+// One point of the stability map.
+struct StabilityPoint {
+  ContactMethod method = ContactMethod::kPenalty;
+  double stiffness_factor = 1;  // ε_s / (EA/h) of the stiffer neighbour
+  double mass_ratio = 0;        // R / R_crit (bipenalty methods; 0 for plain penalty)
+  double courant = 1;           // c·Δt/h of every bar
+  bool tied = false;            // plain penalty acting in tension too (linear limit)
+};
+
+// The stability grid of issue 7: ε_s/k from 1e-2 to 1e6 (two points per decade), C from 0.1 to
+// 1.05, and for the bipenalty methods R/R_crit from 0.25 to 4.
+inline const std::vector<double> kStiffnessFactors = {
+    1e-2, 3e-2, 1e-1, 3e-1, 1, 3, 10, 30, 1e2, 3e2, 1e3, 3e3, 1e4, 3e4, 1e5, 3e5, 1e6};
+inline const std::vector<double> kCourantNumbers = {0.1, 0.15, 0.2, 0.25, 0.3,  0.4, 0.5,  0.6,
+                                                    0.7, 0.8,  0.9, 0.95, 0.98, 1.0, 1.02, 1.05};
+inline const std::vector<double> kMassRatios = {0.25, 0.5, 0.9, 1, 1.5, 2, 3, 4};
+
+std::vector<StabilityPoint> stability_grid(const std::vector<ContactMethod>& methods);
+
+}  // namespace shpb

@@ -1,0 +1,50 @@
+// Stability maps (issue 7, METHODS.md §2): the measured boundary of plain penalty against the
+// exact critical Courant number of the discrete system, and localized bipenalty holding
+// below R_crit. Tiny probes (two bars of 20 elements), so each point takes ~1 ms.
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "../solver/test_scenes.hpp"
+#include "study/stability_probe.hpp"
+
+using namespace shpb;
+
+namespace {
+// Issue 7 acceptance: boundaries within 5 % of the closed forms.
+constexpr double kBoundaryTolerance = 0.05;
+
+Scene steel_probe() {
+  const double area = 2.85e-4;
+  Scene s = test::chain({test::bar("striker", test::steel(), 0.1, area, 20, 10.0),
+                         test::bar("bar", test::steel(), 0.5, area, 100)},
+                        1e-4, ContactMethod::kPenalty, Stepping::kAsynchronous);
+  return stability_probe_scene(s);
+}
+}  // namespace
+
+TEST_CASE(
+    "Plain penalty becomes unstable at the exact critical Courant number of the discrete system",
+    "[study][stability]") {
+  const Scene probe = steel_probe();
+  for (double s : {1.0, 10.0, 100.0, 1e3, 1e4}) {
+    StabilityPoint tied{ContactMethod::kPenalty, s, 0, 1, true};
+    const double measured = measured_critical_courant(probe, tied);
+    const double exact = penalty_critical_courant(s);
+    INFO("eps_s/k = " << s << ": measured " << measured << ", exact " << exact);
+    CHECK(std::abs(measured / exact - 1) < kBoundaryTolerance);
+  }
+}
+
+TEST_CASE("Localized bipenalty with R at most R_crit is stable at every stiffness up to C = 0.98",
+          "[study][stability]") {
+  const Scene probe = steel_probe();
+  for (double ratio : {0.25, 0.5, 1.0})
+    for (double s : {1e-2, 1.0, 1e2, 1e4, 1e6})
+      for (double c : {0.3, 0.9, 0.98}) {
+        const StabilityVerdict v =
+            judge_stability(probe, {ContactMethod::kLocalizedBipenalty, s, ratio, c});
+        INFO("R/R_crit = " << ratio << ", eps_s/k = " << s << ", C = " << c << ": energy growth "
+                           << v.energy_growth);
+        CHECK(v.stable);
+      }
+}
