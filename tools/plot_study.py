@@ -106,8 +106,7 @@ def plot_stability(folder, out):
                 if not bl:
                     continue
                 ax.plot([b[0] for b in bl], [b[1] for b in bl], style, lw=1,
-                        label=f"measured boundary ({link})" if method == "penalty"
-                        else "measured boundary")
+                        label=f"measured boundary ({link})")
             cf = sorted((num(b["stiffness_factor"]), num(b["closed_form_courant"])) for b in lines)
             if cf:
                 ax.plot([b[0] for b in cf], [b[1] for b in cf], color="tab:purple", lw=1,

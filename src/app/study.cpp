@@ -86,8 +86,8 @@ void write_pareto(const ParetoStudy& study, const Scene& scene, int threads, dou
     for (const ParetoRow& r : study.rows)
       csv << to_string(r.run.method) << ',' << to_string(r.run.stepping) << ','
           << format_double(r.run.resolution) << ',' << field(r.error) << ','
-          << format_double(r.wall_time_s) << ',' << r.node_updates << ','
-          << (r.stable ? 1 : 0) << '\n';
+          << format_double(r.wall_time_s) << ',' << r.node_updates << ',' << (r.stable ? 1 : 0)
+          << '\n';
   }
   std::vector<double> err, wall, updates;
   for (const ParetoRow& r : study.rows) {
@@ -162,8 +162,9 @@ void write_stability(const StabilityStudy& study, const Scene& scene, int thread
   j["boundary_range"] = {kBoundaryCourantMin, kBoundaryCourantMax};
   j["critical_courant"] =
       "largest stable Courant number by bisection in boundary_range; empty: unstable at its lower "
-      "end, its upper end: stable throughout; link tied: plain penalty acting in tension too (the "
-      "linear system of the closed form), unilateral: as used";
+      "end, its upper end: stable throughout; link tied: penalty or node-to-node bipenalty acting "
+      "in "
+      "tension too (the linear system of the closed forms), unilateral: as used";
   j["points"] = study.rows.size();
   j["threads"] = threads;
   j["wall_time_s"] = wall_s;

@@ -42,8 +42,9 @@ struct PenaltyParams {
   std::optional<double> stiffness_factor;  // ε_s / (EA/h)
   std::optional<double> stiffness_N_m;     // ε_s given directly (wins over stiffness_factor)
   std::optional<double> mass_ratio;        // R / R_crit (bipenalty methods)
-  // Set in code only (study stability probes, never read from JSON): plain penalty acts in
-  // tension too, so the contact never opens and its linear stability limit can be measured.
+  // Set in code only (study stability probes, never read from JSON): plain and node-to-node
+  // bipenalty links act in tension too, so the contact never opens and its linear stability
+  // limit can be measured.
   bool tied = false;
 };
 

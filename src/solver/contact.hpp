@@ -33,7 +33,7 @@ struct InterfaceModel {
   // Node-to-node methods use index 0 for their single link.
   double stiffness_N_m[2] = {0, 0};
   double mass_penalty_kg[2] = {0, 0};
-  bool tied = false;  // plain penalty only: bilateral link (PenaltyParams::tied)
+  bool tied = false;  // penalty and node-to-node bipenalty: bilateral link (PenaltyParams::tied)
 };
 
 // Mutable state of one interface.

@@ -13,7 +13,7 @@ ContactResult solve_bipenalty(const InterfaceModel& model, InterfaceState& state
                               const EndState& left, const EndState& right) {
   ContactResult r;
   const double g = state.gap_m;
-  if (!state.active && g >= 0) {
+  if (!state.active && g >= 0 && !model.tied) {
     state.force_N = 0;
     state.energy_J = 0;
     return r;
@@ -30,7 +30,7 @@ ContactResult solve_bipenalty(const InterfaceModel& model, InterfaceState& state
   double compression;
   if (left.stepping && right.stepping) compression = 0.5 * (on_right - on_left);
   else compression = left.stepping ? -on_left : on_right;
-  state.active = compression >= 0;
+  state.active = compression >= 0 || model.tied;
   if (!state.active) {
     state.force_N = 0;
     state.energy_J = 0;

@@ -14,7 +14,8 @@ StabilityStudy run_stability_sweep(const Scene& scene, const std::vector<Contact
   study.probe = probe.name;
   const std::vector<StabilityPoint> grid = stability_grid(methods);
 
-  // The lines of the map: one per (method, ε_s/k, R/R_crit); plain penalty twice (tied, as used).
+  // The lines of the map: one per (method, ε_s/k, R/R_crit); plain and node-to-node bipenalty
+  // twice (tied, as used).
   std::vector<StabilityBoundary> lines;
   for (const StabilityPoint& p : grid) {
     if (p.courant != kCourantNumbers.front()) continue;
@@ -24,7 +25,7 @@ StabilityStudy run_stability_sweep(const Scene& scene, const std::vector<Contact
                                 ? penalty_critical_courant(p.stiffness_factor)
                                 : bipenalty_critical_courant(p.mass_ratio);
     lines.push_back(b);
-    if (p.method == ContactMethod::kPenalty) {
+    if (p.method != ContactMethod::kLocalizedBipenalty) {
       b.line.tied = true;
       lines.push_back(b);
     }

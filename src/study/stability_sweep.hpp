@@ -20,9 +20,10 @@ struct StabilityRow {
 
 // The largest stable Courant number of one line of the map (method, ε_s/k, R/R_crit), by
 // bisection, and the closed form it should follow: for plain penalty the exact limit of the
-// discrete system (penalty_critical_courant), measured with the link acting in tension too
-// (`tied`, the linear system) and as used (unilateral); for the bipenalty methods 1 at or below
-// R_crit and 2/√R above (bipenalty_critical_courant).
+// discrete system (penalty_critical_courant), for the bipenalty methods 1 at or below R_crit and
+// 2/√R above (bipenalty_critical_courant). Plain and node-to-node bipenalty are measured twice:
+// with the link acting in tension too (`tied`, the linear system of the closed forms) and as
+// used (unilateral).
 struct StabilityBoundary {
   StabilityPoint line;  // courant unused
   double critical_courant = 0;

@@ -1,6 +1,7 @@
 // Stability maps (issue 7, METHODS.md §2): the measured boundary of plain penalty against the
-// exact critical Courant number of the discrete system, and localized bipenalty holding
-// below R_crit. Tiny probes (two bars of 20 elements), so each point takes ~1 ms.
+// exact critical Courant number of the discrete system, bipenalty holding below
+// R_crit, and the 2/√R limit above it. Tiny probes (two bars of 20 elements), so each point takes
+// ~1 ms.
 #include <catch2/catch.hpp>
 #include <cmath>
 
@@ -35,16 +36,33 @@ TEST_CASE(
   }
 }
 
-TEST_CASE("Localized bipenalty with R at most R_crit is stable at every stiffness up to C = 0.98",
+TEST_CASE("Bipenalty with R at most R_crit is stable at every stiffness up to C = 0.98",
           "[study][stability]") {
   const Scene probe = steel_probe();
-  for (double ratio : {0.25, 0.5, 1.0})
-    for (double s : {1e-2, 1.0, 1e2, 1e4, 1e6})
-      for (double c : {0.3, 0.9, 0.98}) {
-        const StabilityVerdict v =
-            judge_stability(probe, {ContactMethod::kLocalizedBipenalty, s, ratio, c});
-        INFO("R/R_crit = " << ratio << ", eps_s/k = " << s << ", C = " << c << ": energy growth "
-                           << v.energy_growth);
-        CHECK(v.stable);
-      }
+  // Localized bipenalty as used (unilateral); node-to-node bipenalty tied (its textbook
+  // switching injects ½ ε_m ġ² at activation, which is not a step limit).
+  const StabilityPoint methods[] = {{ContactMethod::kLocalizedBipenalty, 1, 1, 1, false},
+                                    {ContactMethod::kBipenalty, 1, 1, 1, true}};
+  for (const StabilityPoint& method : methods)
+    for (double ratio : {0.25, 0.5, 1.0})
+      for (double s : {1e-2, 1.0, 1e2, 1e4, 1e6})
+        for (double c : {0.3, 0.9, 0.98}) {
+          const StabilityVerdict v =
+              judge_stability(probe, {method.method, s, ratio, c, method.tied});
+          INFO(to_string(method.method)
+               << (method.tied ? " (tied)" : "") << ", R/R_crit = " << ratio << ", eps_s/k = " << s
+               << ", C = " << c << ": energy growth " << v.energy_growth);
+          CHECK(v.stable);
+        }
+}
+
+TEST_CASE("Above R_crit the tied bipenalty step follows 2/sqrt(R)", "[study][stability]") {
+  const Scene probe = steel_probe();
+  for (double ratio : {1.5, 2.0, 3.0, 4.0}) {
+    StabilityPoint tied{ContactMethod::kBipenalty, 1e4, ratio, 1, true};
+    const double measured = measured_critical_courant(probe, tied, 0.1, 1.1);
+    const double expected = bipenalty_critical_courant(ratio);
+    INFO("R/R_crit = " << ratio << ": measured " << measured << ", 2/sqrt(R) gives " << expected);
+    CHECK(std::abs(measured / expected - 1) < kBoundaryTolerance);
+  }
 }
