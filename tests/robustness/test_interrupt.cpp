@@ -20,9 +20,9 @@ constexpr double kPromptExit_s = 1.0;
 constexpr double kRunBeforeSignal_s = 0.5;
 constexpr double kHangLimit_s = 60.0;
 
-// Striker on a bar (METHODS.md §4). `duration` makes it short (a normal run) or long: 50 ms is
-// ~3e8 node updates, several seconds even in Release, far more than kRunBeforeSignal_s.
-std::string scene(const std::string& duration) {
+// Striker on a bar (METHODS.md §4). `duration` makes it short (a normal run) or long: 5 s is
+// ~3e10 node updates, far more than kRunBeforeSignal_s even with the simulator's causal economy.
+std::string scene(const std::string& duration, const std::string& sample_rate) {
   return R"({
   "name": "interrupt",
   "bars": [
@@ -34,7 +34,7 @@ std::string scene(const std::string& duration) {
   "materials": {"steel": {"model": "elastic", "density": "7850 kg/m3",
                           "youngs_modulus": "200 GPa", "poisson_ratio": 0.29}},
   "simulation": {"duration": ")" +
-         duration + R"(", "sample_rate": "1 MHz"}
+         duration + R"(", "sample_rate": ")" + sample_rate + R"("}
 })";
 }
 
@@ -50,8 +50,8 @@ TEST_CASE("An interrupted simulation exits promptly and leaves the previous resu
   INFO("signal " << sig);
   ScratchFolder scratch("interrupt");
   const fs::path& dir = scratch.path();
-  write_bytes(dir / "short.json", scene("300 us"));
-  write_bytes(dir / "long.json", scene("50 ms"));
+  write_bytes(dir / "short.json", scene("300 us", "1 MHz"));
+  write_bytes(dir / "long.json", scene("5 s", "100 kHz"));
 
   const Outcome first = run(simulate(dir, "short.json"), dir, kHangLimit_s);
   INFO(first.err);
