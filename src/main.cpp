@@ -87,8 +87,9 @@ int main(int argc, char** argv) {
   compare->add_flag("--no-dispersion", no_dispersion,
                     "Do not propagate simulated pulses through Pochhammer–Chree dispersion");
   compare->add_option("--striker-velocity", striker_velocity,
-                      "Striker velocity, e.g. \"22 m/s\" (default: the scene's, else inferred "
-                      "from the measured incident plateau)");
+                      "Striker velocity, e.g. \"22 m/s\" (default: the scene's "
+                      "measurement.striker_velocity, else inferred from the measured incident "
+                      "plateau; summary.json says which)");
   add_run_options(compare, cmp.overrides, contact, stepping);
 
   DispersionArgs disp;

@@ -26,6 +26,10 @@ struct MaterialPointState {
   // internal work. heat_J_m3 ≤ dissipated_J_m3 is the heat part (the rest is stored cold work,
   // still unrecoverable, hence counted as dissipated).
   double arm_stress_Pa[kMaxArms] = {};  // Maxwell arm stresses (viscoelastic)
+  // Johnson–Cook caches (johnson_cook_law.cpp), each a true pair (x, f(x)) from the start:
+  // jc_p_pow_n = jc_p^n and jc_T_pow_m = T*(jc_T)^m, so a step near the cached point needs no pow.
+  double jc_p = 0, jc_p_pow_n = 0;
+  double jc_T = 0, jc_T_pow_m = 0;
 };
 
 class MaterialLaw {

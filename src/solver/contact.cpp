@@ -25,6 +25,7 @@ InterfaceModel make_interface_model(std::string name, ContactMethod method,
     m.stiffness_N_m[0] = m.stiffness_N_m[1] = eps_s;
     m.mass_penalty_kg[0] = eps_s / (ratio * r_crit(left));
     m.mass_penalty_kg[1] = eps_s / (ratio * r_crit(right));
+    m.finite_links = params.stiffness_N_m || params.stiffness_factor || params.mass_ratio;
   } else {
     // One node-to-node link: R below the smaller critical ratio of the two bars.
     m.stiffness_N_m[0] = eps_s;
@@ -41,6 +42,7 @@ ContactResult solve_contact(const InterfaceModel& model, InterfaceState& state, 
     case ContactMethod::kPenalty: return solve_penalty(model, state, left, right);
     case ContactMethod::kBipenalty: return solve_bipenalty(model, state, left, right);
     case ContactMethod::kLocalizedBipenalty:
+      if (model.finite_links) return solve_localized_finite(model, state, left, right, tau);
       return solve_localized_bipenalty(model, state, left, right, tau, frame_next_tau);
   }
   return {};

@@ -33,6 +33,10 @@ struct InterfaceModel {
   // Node-to-node methods use index 0 for their single link.
   double stiffness_N_m[2] = {0, 0};
   double mass_penalty_kg[2] = {0, 0};
+  // Localized bipenalty only: true when the scene gives a penalty parameter explicitly, and the
+  // links are then the seed paper's finite ones (contact_localized_finite.cpp); false selects
+  // the rigid-link limit ε_s, ε_m → ∞ (contact_localized_bipenalty.cpp).
+  bool finite_links = false;
   bool tied = false;  // penalty and node-to-node bipenalty: bilateral link (PenaltyParams::tied)
 };
 
@@ -44,6 +48,7 @@ struct InterfaceState {
   // frame − gap0 + offset.
   double frame_u = 0, frame_v = 0, frame_tau = 0;
   double offset = 0;
+  // Finite links: frame_v is the frame's half-step velocity v_f,n+1/2.
   // Results of the last solve.
   double force_N = 0;     // compression positive
   double gap_m = 0;       // total gap g
@@ -92,5 +97,7 @@ ContactResult solve_bipenalty(const InterfaceModel& model, InterfaceState& state
 ContactResult solve_localized_bipenalty(const InterfaceModel& model, InterfaceState& state,
                                         EndState left, EndState right, double tau,
                                         double frame_next_tau);
+ContactResult solve_localized_finite(const InterfaceModel& model, InterfaceState& state,
+                                     const EndState& left, const EndState& right, double tau);
 
 }  // namespace shpb

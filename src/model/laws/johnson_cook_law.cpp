@@ -12,7 +12,27 @@ namespace {
 // the iteration stops without another evaluation (one pow per plastic step in the usual case).
 constexpr double kReturnFinalStepResidual = 1e-6;
 constexpr int kReturnMaxIterations = 100;
+// Relative distance |q − base|/base within which q^e comes from the cached base^e by the binomial
+// series to x⁵: the remainder |C(e,6)| x⁶ ≤ 1e-18 for |e| ≤ 2, below round-off. A plastic step
+// moves p by ~1e-3 of itself or less (rate × Δt ≪ p), so pow is left for the first steps only.
+constexpr double kSeriesRange = 1e-3;
 }  // namespace
+
+JohnsonCookLaw::BinomialSeries::BinomialSeries(double e) {
+  for (int k = 1; k <= 5; ++k) c[k - 1] = (e - k + 1) / k;
+}
+
+double JohnsonCookLaw::BinomialSeries::power(double q, double base, double base_pow, double e) const {
+  if (base > 0) {
+    const double x = (q - base) / base;
+    if (std::abs(x) <= kSeriesRange) {
+      double sum = 1 + c[4] * x;
+      for (int k = 3; k >= 0; --k) sum = 1 + c[k] * x * sum;
+      return base_pow * sum;
+    }
+  }
+  return std::pow(q, e);
+}
 
 double johnson_cook_rate_factor(const JohnsonCookParams& jc, double strain_rate_1_s) {
   const double ratio = std::abs(strain_rate_1_s) / jc.reference_strain_rate_1_s;
@@ -37,7 +57,19 @@ double johnson_cook_flow_stress(const JohnsonCookParams& jc, double plastic_stra
 JohnsonCookLaw::JohnsonCookLaw(const MaterialSpec& spec)
     : jc_(spec.johnson_cook),
       youngs_modulus_Pa_(spec.youngs_modulus_Pa),
-      heat_capacity_J_m3K_(spec.density_kg_m3 * spec.johnson_cook.specific_heat_J_kgK) {}
+      heat_capacity_J_m3K_(spec.density_kg_m3 * spec.johnson_cook.specific_heat_J_kgK),
+      hardening_series_(spec.johnson_cook.n),
+      thermal_series_(spec.johnson_cook.m) {}
+
+double JohnsonCookLaw::homologous_power(const MaterialPointState& s) const {
+  const double T = s.temperature_K, room = jc_.room_temperature_K;
+  if (T <= room) return 0.0;
+  if (T >= jc_.melting_temperature_K) return 1.0;
+  if (T == s.jc_T) return s.jc_T_pow_m;
+  const double span = jc_.melting_temperature_K - room;
+  const double cached = s.jc_T > room && s.jc_T < jc_.melting_temperature_K ? (s.jc_T - room) / span : 0.0;
+  return thermal_series_.power((T - room) / span, cached, s.jc_T_pow_m, jc_.m);
+}
 
 void JohnsonCookLaw::initialize(std::span<MaterialPointState> states) const {
   for (auto& s : states) s = MaterialPointState{.temperature_K = jc_.initial_temperature_K};
@@ -55,7 +87,7 @@ double JohnsonCookLaw::plastic_increment(double trial_abs, double p, double p_n,
   double dp = p > 0 ? g0 / (E + n * B * p_n / p * k) : hi;
   for (int it = 0; it < kReturnMaxIterations; ++it) {
     const double q = p + dp;
-    const double q_n = std::pow(q, n);
+    const double q_n = hardening_series_.power(q, p, p_n, n);
     const double g = trial_abs - E * dp - (A + B * q_n) * k;
     if (g > 0)
       lo = dp;
@@ -76,9 +108,17 @@ void JohnsonCookLaw::update(std::span<const double> strain_next, double dt_s,
   for (std::size_t i = 0; i < states.size(); ++i) {
     MaterialPointState& s = states[i];
     const double trial = E * (strain_next[i] - s.back_strain);
-    const double p_n = s.plastic_strain > 0 ? std::pow(s.plastic_strain, jc_.n) : 0.0;
+    // p^n and T*^m from the caches (exact pairs), refreshed whenever p or T moved.
+    if (s.plastic_strain != s.jc_p) {
+      s.jc_p_pow_n = hardening_series_.power(s.plastic_strain, s.jc_p, s.jc_p_pow_n, jc_.n);
+      s.jc_p = s.plastic_strain;
+    }
+    const double p_n = s.jc_p_pow_n;
     const double hardening = jc_.A_Pa + jc_.B_Pa * p_n;
-    const double thermal = johnson_cook_thermal_factor(jc_, s.temperature_K);
+    const double t_m = homologous_power(s);
+    s.jc_T = s.temperature_K;
+    s.jc_T_pow_m = t_m;
+    const double thermal = 1 - t_m;
     double stress = trial;
     // The rate factor is ≥ 1: below hardening × thermal the step is elastic without the log.
     if (std::abs(trial) > hardening * thermal) {

@@ -33,10 +33,24 @@ class JohnsonCookLaw final : public MaterialLaw {
   // Plastic increment Δp > 0 with |σ_trial| − E Δp = (A + B (p + Δp)^n) k, k = rate × thermal;
   // p_n = p^n is passed in (already computed for the yield check).
   double plastic_increment(double trial_abs, double p, double p_n, double k) const;
+  // T*^m (0 below room temperature, 1 at or above melting) from the state's cached pair.
+  double homologous_power(const MaterialPointState& s) const;
+
+  // Coefficients of the binomial series (1 + x)^e = 1 + c1 x (1 + c2 x (1 + … c5 x)),
+  // c_k = (e − k + 1)/k: powers near a cached point without pow (see kSeriesRange in the .cpp).
+  struct BinomialSeries {
+    double c[5];
+    explicit BinomialSeries(double e);
+    // base^e known as base_pow; returns q^e.
+    double power(double q, double base, double base_pow, double e) const;
+  };
+
 
   JohnsonCookParams jc_;
   double youngs_modulus_Pa_;
   double heat_capacity_J_m3K_;  // ρ c_p
+  BinomialSeries hardening_series_;  // exponent n
+  BinomialSeries thermal_series_;    // exponent m
 };
 
 }  // namespace shpb
