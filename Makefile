@@ -3,8 +3,14 @@ BUILD      ?= build
 JOBS       ?= $(shell nproc)
 EXPERIMENT ?= experiments/classic-al6061
 RESULTS    ?= results
+ASAN_BUILD ?= build-asan
+FUZZ_BUILD ?= build-fuzz
+FUZZ_SECONDS ?= 60
+# Sanitizer reports fail the test that triggers them (issue 9); leaks included.
+SANITIZER_ENV = ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1 \
+                UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 
-.PHONY: run test build deps bench fuzz format clean
+.PHONY: run test build asan deps bench fuzz format clean
 
 deps:
 	@bash tools/install-deps.sh
@@ -16,9 +22,27 @@ build: deps
 run: build
 	@bash tools/run-default.sh $(BUILD)/shpb $(EXPERIMENT) $(RESULTS)
 
+# The suite twice: the Release build, then the same tests under AddressSanitizer + UBSan.
 test: build
 	@bash tools/install-deps.sh chromium
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+	@$(MAKE) --no-print-directory asan
+	@cd $(ASAN_BUILD) && $(SANITIZER_ENV) ctest --output-on-failure -j $(JOBS)
+
+# ASan + UBSan build of the executable and the tests (-O1: fast enough to run the whole suite).
+asan: deps
+	@cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" \
+	       -DSHPB_SANITIZE=ON >/dev/null
+	@cmake --build $(ASAN_BUILD) -j $(JOBS) --target shpb shpb_tests
+
+# libFuzzer targets of tests/fuzz (clang), each run FUZZ_SECONDS; not part of `make test`.
+# FUZZ_TARGETS="fuzz_units fuzz_scene" runs a subset.
+fuzz:
+	@bash tools/install-deps.sh clang
+	@cmake -S . -B $(FUZZ_BUILD) -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug \
+	       -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" -DSHPB_FUZZ=ON >/dev/null
+	@cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_targets
+	@bash tests/fuzz/run_fuzzers.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_TARGETS)
 
 bench: deps
 	@bash tools/bench.sh $(BUILD)
@@ -27,4 +51,4 @@ format:
 	@clang-format -i $$(git ls-files 'src/*.cpp' 'src/*.hpp' 'tests/*.cpp' 'tests/*.hpp')
 
 clean:
-	@rm -rf $(BUILD)
+	@rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD)

@@ -84,8 +84,8 @@ int run_process(const ProcessArgs& args) {
 
   std::vector<std::string> warnings = signals.warnings;
   warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
-  if (!args.quiet)
-    for (const auto& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  // What was assumed is said even with --quiet (which silences progress only).
+  for (const auto& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
 
   OutputFolder out(args.output);
   {

@@ -139,7 +139,13 @@ json read_json_object_file(const std::filesystem::path& file, const std::string&
   if (!in) throw input_error(display, "", "cannot be opened", "expected a readable JSON file");
   std::ostringstream text;
   text << in.rdbuf();
-  return parse_json_object(text.str(), display);
+  const std::string bytes = text.str();
+  // UTF-16 (Windows "Unicode" text) is named as such rather than as a syntax error at column 1.
+  if (bytes.rfind("\xFF\xFE", 0) == 0 || bytes.rfind("\xFE\xFF", 0) == 0 ||
+      bytes.find('\0') != std::string::npos)
+    throw input_error(display, "line 1", "UTF-16 or binary data",
+                      "expected JSON text in UTF-8; save the file as UTF-8");
+  return parse_json_object(bytes, display);
 }
 
 }  // namespace shpb

@@ -2,7 +2,9 @@
 // Results are written into a temporary folder beside DIR and renamed into place at the end, so a
 // failed or interrupted run leaves the previous DIR intact and no half-written result
 // (DESIGN.md §5). Files the program did not write are never deleted: an existing DIR is replaced
-// only if it is empty or was written by shpb (it holds a summary.json).
+// only if it is empty or was written by shpb (it holds a summary.json). The replacement is one
+// atomic exchange of the two folders where the file system supports it; temporary folders of
+// runs that were killed outright are removed by the next run into the same DIR.
 #include <filesystem>
 
 namespace shpb {
@@ -20,7 +22,8 @@ class OutputFolder {
   std::filesystem::path file(const std::string& name) const { return temp_ / name; }
   const std::filesystem::path& final_path() const { return final_; }
 
-  // Moves the temporary folder to its final place (replacing a previous shpb result).
+  // Moves the temporary folder to its final place (replacing a previous shpb result); throws
+  // Interrupted instead if SIGINT/SIGTERM arrived, so an interrupted run changes nothing.
   void commit();
 
  private:
@@ -30,7 +33,8 @@ class OutputFolder {
 };
 
 // Interruption (SIGINT, SIGTERM): install once in main; long loops poll interrupted() and throw
-// shpb::Interrupted so that OutputFolder's destructor cleans up.
+// shpb::Interrupted so that OutputFolder's destructor cleans up. A second signal ends the
+// process at once.
 void install_interrupt_handlers();
 bool interrupted();
 

@@ -78,9 +78,20 @@ std::string text_place(std::size_t line, std::size_t column_index) {
 }
 
 DelimitedText read_delimited_text(const std::filesystem::path& file) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec))
+    throw input_error(file.string(), "", "", "is a folder; expected a signal file");
   std::ifstream in(file, std::ios::binary);
   if (!in) throw input_error(file.string(), "", "", "cannot be read");
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw input_error(file.string(), "", "", "cannot be read");
+  // Byte order marks: UTF-8 is dropped (spreadsheets write it); UTF-16 text is refused by name
+  // rather than failing later on the NUL bytes between its characters.
+  if (bytes.rfind("\xEF\xBB\xBF", 0) == 0) bytes.erase(0, 3);
+  if (bytes.rfind("\xFF\xFE", 0) == 0 || bytes.rfind("\xFE\xFF", 0) == 0 ||
+      bytes.find('\0') != std::string::npos)
+    throw input_error(file.string(), "line 1", "UTF-16 or binary data",
+                      "expected text (ASCII, UTF-8 or Latin-1); save the file as UTF-8 or CSV");
 
   // Lines (LF, CRLF or lone CR) with their numbers.
   std::vector<std::pair<std::size_t, std::string_view>> lines;

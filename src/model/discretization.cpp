@@ -2,6 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "core/error.hpp"
+#include "core/json_value.hpp"
 
 namespace shpb {
 
@@ -9,13 +14,84 @@ namespace {
 // Margin on the default duration so the tail of the last pulse is recorded whole.
 constexpr double kDurationMargin = 1.1;
 
-int automatic_elements(const Scene& scene, std::size_t i) {
+// In double: a kilometre-long bar would overflow an int before the resource check sees it.
+double automatic_elements(const Scene& scene, std::size_t i) {
   const BarSpec& bar = scene.bars[i];
   if (bar.elements > 0) return bar.elements;
   const bool specimen = scene.specimen && *scene.specimen == i;
   const double h = specimen ? kSpecimenElementLength_m : kBarElementLength_m;
   const int minimum = specimen ? kMinSpecimenElements : kMinBarElements;
-  return std::max(minimum, static_cast<int>(std::ceil(bar.length_m / h - 1e-9)));
+  return std::max<double>(minimum, std::ceil(bar.length_m / h - 1e-9));
+}
+
+// Refuses a set-up that cannot run here before anything is allocated (issue 9), naming the entry
+// that drives the cost with the estimated memory and time. Estimates, not measurements: per
+// element the bar state (7 doubles) and one material point (~15 doubles); per recorded sample one
+// double per column (time, gauges, two per interface, specimen and energy columns).
+constexpr double kBytesPerElement = 200;
+constexpr double kMaxMemoryBytes = 4e9;        // beyond a lab workstation's spare memory
+constexpr double kNodeUpdatesPerSecond = 5e7;  // measured order in Release on one core
+constexpr double kMaxNodeUpdates = 1e12;       // ~6 hours at that rate
+
+std::string gigabytes(double bytes) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.3g GB", bytes / 1e9);
+  return b;
+}
+
+std::string duration_text(double seconds) {
+  char b[64];
+  if (seconds < 120)
+    std::snprintf(b, sizeof b, "%.2g s", seconds);
+  else if (seconds < 7200)
+    std::snprintf(b, sizeof b, "%.2g min", seconds / 60);
+  else if (seconds < 2 * 86400 * 365.0)
+    std::snprintf(b, sizeof b, "%.2g h", seconds / 3600);
+  else
+    std::snprintf(b, sizeof b, "%.2g years", seconds / (86400 * 365.0));
+  return b;
+}
+
+void refuse_unaffordable(const Scene& scene, const std::vector<double>& elements,
+                         const std::vector<double>& steps, double duration_s) {
+  double mesh_bytes = 0, node_updates = 0, biggest = 0;
+  std::size_t largest = 0, gauges = 0;
+  for (std::size_t i = 0; i < elements.size(); ++i) {
+    mesh_bytes += kBytesPerElement * elements[i];
+    node_updates += (elements[i] + 1) * steps[i];
+    if (elements[i] > biggest) biggest = elements[i], largest = i;
+    gauges += scene.bars[i].gauges.size();
+  }
+  const double columns = 1.0 + gauges + 2.0 * (scene.bars.size() - 1) + 5 + 5;
+  const double record_bytes = 8 * columns * duration_s * scene.simulation.sample_rate_Hz;
+  const double memory = mesh_bytes + record_bytes;
+  if (memory <= kMaxMemoryBytes && node_updates <= kMaxNodeUpdates) return;
+
+  std::string where, value;
+  if (record_bytes > mesh_bytes && memory > kMaxMemoryBytes) {
+    where = scene.simulation.duration_s ? "simulation.duration" : "simulation.sample_rate";
+    value = scene.simulation.duration_s
+                ? JsonValue::format(duration_s, Dimension::kTime)
+                : JsonValue::format(scene.simulation.sample_rate_Hz, Dimension::kFrequency);
+  } else if (memory > kMaxMemoryBytes || !scene.simulation.duration_s) {
+    const BarSpec& bar = scene.bars[largest];
+    where = "bars[" + std::to_string(largest) + (bar.elements > 0 ? "].elements" : "].length");
+    value = bar.elements > 0 ? std::to_string(bar.elements)
+                             : JsonValue::format(bar.length_m, Dimension::kLength);
+  } else {
+    where = "simulation.duration";
+    value = JsonValue::format(duration_s, Dimension::kTime);
+  }
+  char b[400];
+  std::snprintf(b, sizeof b,
+                "the run would need about %s of memory and %.3g node updates (largest bar %.3g "
+                "elements; about %s at %.0e node updates/s); refused before allocating (limits %s, "
+                "%.0e node updates): use fewer elements, shorter bars, a shorter duration or a "
+                "lower sample rate",
+                gigabytes(memory).c_str(), node_updates, biggest,
+                duration_text(node_updates / kNodeUpdatesPerSecond).c_str(), kNodeUpdatesPerSecond,
+                gigabytes(kMaxMemoryBytes).c_str(), kMaxNodeUpdates);
+  throw input_error(scene.file.string(), where, value, b);
 }
 }  // namespace
 
@@ -46,9 +122,23 @@ ChainDiscretization discretize(const Scene& scene) {
   d.stepping = scene.simulation.stepping;
   d.duration_s = scene.simulation.duration_s.value_or(default_duration_s(scene));
   const double courant = scene.simulation.courant.value_or(kDefaultCourant);
+  {  // the cost, estimated in doubles before any count is cast to an integer
+    std::vector<double> elements, steps;
+    double global_dt = 0;
+    for (std::size_t i = 0; i < scene.bars.size(); ++i) {
+      elements.push_back(automatic_elements(scene, i));
+      const double dt = courant * scene.bars[i].length_m / elements.back() /
+                        scene.bars[i].material.wave_speed_m_s();
+      steps.push_back(std::ceil(d.duration_s / dt));
+      global_dt = i == 0 ? dt : std::min(global_dt, dt);
+    }
+    if (d.stepping == Stepping::kGlobal)
+      for (auto& s : steps) s = std::ceil(d.duration_s / global_dt);
+    refuse_unaffordable(scene, elements, steps, d.duration_s);
+  }
   for (std::size_t i = 0; i < scene.bars.size(); ++i) {
     BarDiscretization b;
-    b.elements = automatic_elements(scene, i);
+    b.elements = static_cast<int>(automatic_elements(scene, i));
     b.element_length_m = scene.bars[i].length_m / b.elements;
     // The stable step is fixed at the elastic bound for every material law (material_law.hpp).
     b.wave_speed_m_s = scene.bars[i].material.wave_speed_m_s();

@@ -1,0 +1,52 @@
+#pragma once
+// Shared body of the signal importer fuzzers: the input becomes a file in `format`, and the first
+// byte (removed) picks which columns are asked for. Contract: read_signal_columns returns
+// columns of equal length on an increasing, finite time base with finite samples, or throws
+// InputError.
+#include <cmath>
+#include <cstdlib>
+#include <string>
+
+#include "core/error.hpp"
+#include "core/signal_reader.hpp"
+#include "fuzz_file.hpp"
+
+namespace shpb_fuzz {
+
+inline void require(bool ok) {
+  if (!ok) std::abort();
+}
+
+inline int fuzz_signal(const std::uint8_t* data, std::size_t size, shpb::SignalFormat format,
+                       const std::string& file_name) {
+  if (size == 0) return 0;
+  const std::uint8_t pick = data[0];
+  const auto file = write_input(data + 1, size - 1, file_name);
+  shpb::SignalRequest request;
+  request.file = file;
+  request.format = format;
+  // Columns: by index (low bits), by a name the seeds use (bit 4), the time column named (bit 5),
+  // a time unit of microseconds (bit 6).
+  request.columns.push_back(shpb::ColumnRef{"", pick & 7});
+  if (pick & 16) request.columns.push_back(shpb::ColumnRef{"ch2", std::nullopt});
+  if (pick & 32) request.time_column = shpb::ColumnRef{"time_s", std::nullopt};
+  if (pick & 64) request.time_unit_s = 1e-6;
+  try {
+    const shpb::SignalColumns s = shpb::read_signal_columns(request);
+    require(s.time_s.size() >= 2);
+    require(std::isfinite(s.dt_s) && s.dt_s > 0);
+    for (std::size_t i = 0; i < s.time_s.size(); ++i) {
+      require(std::isfinite(s.time_s[i]));
+      if (i > 0) require(s.time_s[i] > s.time_s[i - 1]);
+    }
+    require(s.values.size() == request.columns.size());
+    for (const auto& column : s.values) {
+      require(column.size() == s.time_s.size());
+      for (double v : column) require(std::isfinite(v));
+    }
+  } catch (const shpb::InputError&) {
+  }
+  return 0;
+}
+
+}  // namespace shpb_fuzz

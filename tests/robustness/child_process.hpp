@@ -1,0 +1,148 @@
+#pragma once
+// Runs the real `shpb` executable (SHPB_EXE) with a time limit, or starts it and lets the test
+// signal it: a robustness test must see a crash (killed by a signal) or a hang (time limit) as a
+// result, not hang or die itself.
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+extern char** environ;
+
+namespace shpb_robust {
+
+namespace fs = std::filesystem;
+
+struct Outcome {
+  int code = -1;           // exit code if the process exited
+  int signal = 0;          // the signal that killed it, if one did
+  bool timed_out = false;  // killed by us after the time limit
+  double seconds = 0;      // from start (or from signal()) to exit
+  std::string out, err;
+};
+
+inline std::string read_all(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class Child {
+ public:
+  // Starts `shpb args...`; stdout and stderr go to files in `scratch`.
+  Child(const std::vector<std::string>& args, const fs::path& scratch)
+      : out_(scratch / ".child.out"), err_(scratch / ".child.err") {
+    std::vector<std::string> text = {SHPB_EXE};
+    text.insert(text.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (auto& a : text) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 1, out_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&actions, 2, err_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (posix_spawn(&pid_, SHPB_EXE, &actions, nullptr, argv.data(), environ) != 0) pid_ = -1;
+    posix_spawn_file_actions_destroy(&actions);
+    start_ = std::chrono::steady_clock::now();
+  }
+  Child(const Child&) = delete;
+  Child& operator=(const Child&) = delete;
+  ~Child() {
+    if (pid_ > 0) {
+      ::kill(pid_, SIGKILL);
+      ::waitpid(pid_, nullptr, 0);
+    }
+  }
+
+  bool started() const { return pid_ > 0; }
+
+  // Sends `sig` and restarts the clock, so wait() measures the time to react.
+  void signal(int sig) {
+    if (pid_ > 0) ::kill(pid_, sig);
+    start_ = std::chrono::steady_clock::now();
+  }
+
+  // Waits at most `limit_s`; a process still running then is killed and reported as timed out.
+  Outcome wait(double limit_s) {
+    Outcome o;
+    if (pid_ <= 0) return o;
+    int status = 0;
+    const auto limit = start_ + std::chrono::duration<double>(limit_s);
+    while (::waitpid(pid_, &status, WNOHANG) == 0) {
+      if (std::chrono::steady_clock::now() > limit) {
+        o.timed_out = true;
+        ::kill(pid_, SIGKILL);
+        ::waitpid(pid_, &status, 0);
+        break;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    o.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    pid_ = -1;
+    if (WIFEXITED(status)) o.code = WEXITSTATUS(status);
+    if (WIFSIGNALED(status)) o.signal = WTERMSIG(status);
+    o.out = read_all(out_);
+    o.err = read_all(err_);
+    fs::remove(out_);
+    fs::remove(err_);
+    return o;
+  }
+
+ private:
+  fs::path out_, err_;
+  pid_t pid_ = -1;
+  std::chrono::steady_clock::time_point start_;
+};
+
+inline Outcome run(const std::vector<std::string>& args, const fs::path& scratch, double limit_s) {
+  Child child(args, scratch);
+  return child.wait(limit_s);
+}
+
+// A fresh empty folder under the system's temporary folder, removed with the object.
+class ScratchFolder {
+ public:
+  explicit ScratchFolder(const std::string& tag) {
+    static int counter = 0;
+    path_ = fs::temp_directory_path() / ("shpb-robust-" + tag + "-" + std::to_string(::getpid()) +
+                                         "-" + std::to_string(counter++));
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~ScratchFolder() {
+    std::error_code ec;
+    fs::permissions(path_, fs::perms::owner_all, fs::perm_options::add, ec);
+    fs::remove_all(path_, ec);
+  }
+  ScratchFolder(const ScratchFolder&) = delete;
+  ScratchFolder& operator=(const ScratchFolder&) = delete;
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+inline void write_bytes(const fs::path& file, const std::string& bytes) {
+  std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
+}
+
+// Entries of `dir` whose names hold ".tmp" (temporary output folders left behind).
+inline std::vector<std::string> litter(const fs::path& dir) {
+  std::vector<std::string> found;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().filename().string().find(".tmp") != std::string::npos)
+      found.push_back(e.path().filename().string());
+  return found;
+}
+
+}  // namespace shpb_robust
