@@ -69,11 +69,67 @@ std::string describe_failure(const Chain& chain, double t, double ratio) {
   return out.str();
 }
 
+// One instant τ* for the stepping bars, all in [first, last] (rules 3–6); the interfaces
+// touching them are solved in chain order.
+void take_instant(Chain& chain, ChainRecorders& recorders, const std::vector<char>& stepping,
+                  std::size_t first, std::size_t last, double tau) {
+  const std::size_t ni = chain.interfaces.size();
+  const std::size_t k0 = first > 0 ? first - 1 : 0, k1 = std::min(last + 1, ni);
+
+  // Rule 4: a stepping end tied to a frame is put where the frame is.
+  for (std::size_t k = k0; k < k1; ++k)
+    for (int side = 0; side < 2; ++side) {
+      const std::size_t bar = k + side;
+      if (!stepping[bar]) continue;
+      const double target = tied_end_position(chain.interfaces[k], chain.interface_states[k], side, tau);
+      if (std::isnan(target)) continue;
+      const int node = side == 0 ? chain.bars[bar].nodes - 1 : 0;
+      BarState& s = chain.states[bar];
+      const double w = target - chain.bars[bar].initial_velocity_m_s * tau;
+      if (w != s.w[node]) {
+        s.w[node] = w;
+        activate_node(chain.bars[bar], s, node);
+      }
+    }
+
+  // Rule 3: internal forces of the stepping bars.
+  for (std::size_t i = first; i <= last; ++i)
+    if (stepping[i]) assemble_internal_forces(chain.bars[i], chain.states[i]);
+
+  // Rules 4–6: interfaces touching a stepping bar, solved once at τ*.
+  for (std::size_t k = k0; k < k1; ++k) {
+    const std::size_t l = k, r = k + 1;
+    if (!stepping[l] && !stepping[r]) continue;
+    const int l_node = chain.bars[l].nodes - 1;
+    const InterfaceModel& im = chain.interfaces[k];
+    InterfaceState& is = chain.interface_states[k];
+    const EndState left = end_state(chain, l, l_node, tau, stepping[l], tied_end_position(im, is, 0, tau));
+    const EndState right = end_state(chain, r, 0, tau, stepping[r], tied_end_position(im, is, 1, tau));
+    const double next_l = stepping[l] ? tau + chain.bars[l].time_step_s : chain.bar_tau(l);
+    const double next_r = stepping[r] ? tau + chain.bars[r].time_step_s : chain.bar_tau(r);
+    const double next = std::min(next_l, next_r);
+    const ContactResult res = solve_contact(im, is, left, right, tau, next);
+    apply_end(chain, l, l_node, tau, stepping[l], res.dv_left, res.force_left_N);
+    apply_end(chain, r, 0, tau, stepping[r], res.dv_right, res.force_right_N);
+    chain.contact_dissipated_J[k] += res.dissipated_J;
+    chain.max_penetration_m = std::max(chain.max_penetration_m, -is.gap_m);
+    recorders.on_interface_solve(chain, k, tau, next);
+  }
+
+  // Rule 3: record and advance.
+  for (std::size_t i = first; i <= last; ++i) {
+    if (!stepping[i]) continue;
+    apply_dashpot(chain.bars[i], chain.states[i]);
+    recorders.on_bar_instant(chain, i, tau, tau + chain.bars[i].time_step_s);
+    chain.states[i].node_updates += advance(chain.bars[i], chain.states[i]);
+  }
+}
+
 }  // namespace
 
 ScheduleOutcome run_schedule(Chain& chain, ChainRecorders& recorders,
                              const std::function<void(double)>& progress,
-                             const std::function<bool()>& cancel) {
+                             const std::function<bool()>& cancel, bool subcycle) {
   ScheduleOutcome outcome;
   const std::size_t nb = chain.bars.size();
   std::vector<char> stepping(nb, 0);
@@ -85,66 +141,10 @@ ScheduleOutcome run_schedule(Chain& chain, ChainRecorders& recorders,
   double dt_min = std::numeric_limits<double>::infinity();
   for (const BarModel& b : chain.bars) dt_min = std::min(dt_min, b.time_step_s);
   const double same = kSameInstant * dt_min;
+  auto unfinished = [&](std::size_t i) { return chain.states[i].step <= chain.final_step[i]; };
 
-  while (true) {
-    // Rule 2: the earliest pending instant among unfinished bars.
-    double tau = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < nb; ++i)
-      if (chain.states[i].step <= chain.final_step[i]) tau = std::min(tau, chain.bar_tau(i));
-    if (!std::isfinite(tau)) break;
-    for (std::size_t i = 0; i < nb; ++i)
-      stepping[i] = chain.states[i].step <= chain.final_step[i] && chain.bar_tau(i) <= tau + same;
-
-    // Rule 4: a stepping end tied to a frame is put where the frame is.
-    for (std::size_t k = 0; k < chain.interfaces.size(); ++k)
-      for (int side = 0; side < 2; ++side) {
-        const std::size_t bar = k + side;
-        if (!stepping[bar]) continue;
-        const double target = tied_end_position(chain.interfaces[k], chain.interface_states[k], side, tau);
-        if (std::isnan(target)) continue;
-        const int node = side == 0 ? chain.bars[bar].nodes - 1 : 0;
-        BarState& s = chain.states[bar];
-        const double w = target - chain.bars[bar].initial_velocity_m_s * tau;
-        if (w != s.w[node]) {
-          s.w[node] = w;
-          activate_node(chain.bars[bar], s, node);
-        }
-      }
-
-    // Rule 3: internal forces of the stepping bars.
-    for (std::size_t i = 0; i < nb; ++i)
-      if (stepping[i]) assemble_internal_forces(chain.bars[i], chain.states[i]);
-
-    // Rules 4–6: interfaces touching a stepping bar, solved once at τ*.
-    for (std::size_t k = 0; k < chain.interfaces.size(); ++k) {
-      const std::size_t l = k, r = k + 1;
-      if (!stepping[l] && !stepping[r]) continue;
-      const int l_node = chain.bars[l].nodes - 1;
-      const InterfaceModel& im = chain.interfaces[k];
-      const EndState left = end_state(chain, l, l_node, tau, stepping[l],
-                                      tied_end_position(im, chain.interface_states[k], 0, tau));
-      const EndState right = end_state(chain, r, 0, tau, stepping[r],
-                                       tied_end_position(im, chain.interface_states[k], 1, tau));
-      const double next_l = stepping[l] ? tau + chain.bars[l].time_step_s : chain.bar_tau(l);
-      const double next_r = stepping[r] ? tau + chain.bars[r].time_step_s : chain.bar_tau(r);
-      InterfaceState& is = chain.interface_states[k];
-      const double next = std::min(next_l, next_r);
-      const ContactResult res = solve_contact(chain.interfaces[k], is, left, right, tau, next);
-      apply_end(chain, l, l_node, tau, stepping[l], res.dv_left, res.force_left_N);
-      apply_end(chain, r, 0, tau, stepping[r], res.dv_right, res.force_right_N);
-      chain.contact_dissipated_J[k] += res.dissipated_J;
-      chain.max_penetration_m = std::max(chain.max_penetration_m, -is.gap_m);
-      recorders.on_interface_solve(chain, k, tau, next);
-    }
-
-    // Rule 3: record and advance.
-    for (std::size_t i = 0; i < nb; ++i) {
-      if (!stepping[i]) continue;
-      apply_dashpot(chain.bars[i], chain.states[i]);
-      recorders.on_bar_instant(chain, i, tau, tau + chain.bars[i].time_step_s);
-      chain.states[i].node_updates += advance(chain.bars[i], chain.states[i]);
-    }
-
+  // Rules 7 and 9 after each instant; false: the run is unstable and `outcome` says so.
+  auto after_instant = [&](double tau) {
     // Rule 7: energy check on completed grid points (none can complete before τ* passes the
     // next one).
     const long complete = tau >= recorders.energy_grid_tau(energy_checked) ? recorders.energy_complete()
@@ -162,10 +162,9 @@ ScheduleOutcome run_schedule(Chain& chain, ChainRecorders& recorders,
         outcome.checked_until_s =
             energy_checked == 0 ? chain.start_time_s
                                 : recorders.energy_grid_tau(energy_checked - 1) + chain.start_time_s;
-        return outcome;
+        return false;
       }
     }
-
     ++instants;
     if (cancel && instants % kCancelPollInstants == 0 && cancel()) throw Interrupted();
     if (progress && tau >= next_progress_tau) {
@@ -175,6 +174,40 @@ ScheduleOutcome run_schedule(Chain& chain, ChainRecorders& recorders,
         progress(pct / 100.0);
       }
       next_progress_tau = (pct + 1) * 0.01 * chain.end_tau_s;
+    }
+    return true;
+  };
+
+  while (true) {
+    // Rule 2: the earliest pending instant among unfinished bars.
+    double tau = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < nb; ++i)
+      if (unfinished(i)) tau = std::min(tau, chain.bar_tau(i));
+    if (!std::isfinite(tau)) break;
+    std::size_t first = nb, last = 0;
+    for (std::size_t i = 0; i < nb; ++i) {
+      stepping[i] = unfinished(i) && chain.bar_tau(i) <= tau + same;
+      if (stepping[i]) {
+        first = std::min(first, i);
+        last = i;
+      }
+    }
+    take_instant(chain, recorders, stepping, first, last, tau);
+    if (!after_instant(tau)) return outcome;
+    if (!subcycle || first != last) continue;
+
+    // Rule 2 for a lone fast bar j: while its next instant comes before every other bar's
+    // pending one (by more than kSameInstant), it is τ* again and steps alone, so its instants
+    // run in a tight loop without the search.
+    const std::size_t j = first;
+    double others = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < nb; ++i)
+      if (i != j && unfinished(i)) others = std::min(others, chain.bar_tau(i));
+    while (unfinished(j)) {
+      const double tau_j = chain.bar_tau(j);
+      if (!(tau_j + same < others)) break;
+      take_instant(chain, recorders, stepping, j, j, tau_j);
+      if (!after_instant(tau_j)) return outcome;
     }
   }
   outcome.checked_until_s = chain.end_tau_s + chain.start_time_s;

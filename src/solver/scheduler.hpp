@@ -8,7 +8,10 @@
 //     sum). Its state sits at exactly one instant: displacements at τ_{i,n}, velocities over
 //     (τ_{i,n−1}, τ_{i,n}).
 //  2. The scheduler always processes the earliest pending instant τ* = min_i τ_{i,n}. Every bar
-//     whose pending instant equals τ* (to kSameInstant·Δt) steps at τ*, together.
+//     whose pending instant equals τ* (to kSameInstant·Δt) steps at τ*, together. A bar that
+//     steps alone keeps stepping alone while its next instant comes before every other bar's
+//     pending one: those instants (the specimen's between two bar instants) run in a tight
+//     loop, each exactly as rules 3–7 say, without repeating the search.
 //  3. A bar stepping at τ* first assembles its internal forces at τ*; then each adjacent
 //     interface is solved at τ* (once, even if both neighbours step); then the bar records its
 //     outputs at τ* and advances one step.
@@ -53,8 +56,9 @@ struct ScheduleOutcome {
   double energy_error = 0;
 };
 
+// `subcycle` false searches rule 2 at every instant (the plain loop; tests compare the two).
 ScheduleOutcome run_schedule(Chain& chain, ChainRecorders& recorders,
                              const std::function<void(double)>& progress,
-                             const std::function<bool()>& cancel);
+                             const std::function<bool()>& cancel, bool subcycle = true);
 
 }  // namespace shpb

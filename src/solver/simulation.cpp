@@ -138,7 +138,8 @@ SimulationResult simulate(const Scene& scene, const SimulationOptions& options) 
   ChainRecorders recorders(scene, chain, d, options);
 
   const auto start = std::chrono::steady_clock::now();
-  const ScheduleOutcome outcome = run_schedule(chain, recorders, options.progress, options.cancel);
+  const ScheduleOutcome outcome = run_schedule(chain, recorders, options.progress, options.cancel,
+                                               options.subcycle);
   result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   result.stable = outcome.stable;

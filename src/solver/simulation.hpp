@@ -19,6 +19,7 @@ struct SimulationOptions {
   bool record_field = true;                // field.csv grid
   int field_times = 200;                   // rows of the x–t grid
   int field_points = 400;                  // columns (element centres along the chain)
+  bool subcycle = true;                    // a lone fast bar steps in a tight loop (scheduler.hpp)
 };
 
 // Columns sampled on one time grid; values[c][k] is column c at time_s[k].
