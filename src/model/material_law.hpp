@@ -27,9 +27,11 @@ struct MaterialPointState {
   // still unrecoverable, hence counted as dissipated).
   double arm_stress_Pa[kMaxArms] = {};  // Maxwell arm stresses (viscoelastic)
   // Johnson–Cook caches (johnson_cook_law.cpp), each a true pair (x, f(x)) from the start:
-  // jc_p_pow_n = jc_p^n and jc_T_pow_m = T*(jc_T)^m, so a step near the cached point needs no pow.
+  // jc_p_pow_n = jc_p^n and jc_T_pow_m = T*(jc_T)^m, so a step near the cached point needs no pow
+  // (nor log, for the rate pair).
   double jc_p = 0, jc_p_pow_n = 0;
   double jc_T = 0, jc_T_pow_m = 0;
+  double jc_rate = 0, jc_log_rate = 0;  // jc_log_rate = ln jc_rate (rate ratio |ε̇|/ε̇0 > 1)
 };
 
 class MaterialLaw {

@@ -31,15 +31,22 @@ class JohnsonCookLaw final : public MaterialLaw {
 
  private:
   // Plastic increment Δp > 0 with |σ_trial| − E Δp = (A + B (p + Δp)^n) k, k = rate × thermal;
-  // p_n = p^n is passed in (already computed for the yield check).
-  double plastic_increment(double trial_abs, double p, double p_n, double k) const;
+  // p_n = p^n is passed in (already computed for the yield check). Also returns the last pair
+  // (q, q^n) it evaluated (q = 0: none), a cache point next to p + Δp.
+  struct Return {
+    double dp, q, q_n;
+  };
+  Return plastic_increment(double trial_abs, double p, double p_n, double k) const;
+  // ln(|ε̇|/ε̇0) for a ratio > 1, from the state's cached pair when the ratio moved little;
+  // refreshes the pair.
+  double log_rate(double ratio, MaterialPointState& s) const;
   // T*^m (0 below room temperature, 1 at or above melting) from the state's cached pair.
   double homologous_power(const MaterialPointState& s) const;
 
-  // Coefficients of the binomial series (1 + x)^e = 1 + c1 x (1 + c2 x (1 + … c5 x)),
+  // Coefficients of the binomial series (1 + x)^e = 1 + c1 x (1 + c2 x (1 + … c10 x)),
   // c_k = (e − k + 1)/k: powers near a cached point without pow (see kSeriesRange in the .cpp).
   struct BinomialSeries {
-    double c[5];
+    double c[10];
     explicit BinomialSeries(double e);
     // base^e known as base_pow; returns q^e.
     double power(double q, double base, double base_pow, double e) const;
