@@ -1,18 +1,23 @@
 // Benchmark (not a test) of the simulator, issue 8: for each scene given, the median wall time of
 // several runs, node updates per second, node updates against the full model (causal economy),
-// and asynchronous against global stepping (time ratio and incident-plateau error of each), plus
-// the raw element-update rate of elastic bars. Build: cmake --build build --target
-// bench_simulator; run: build/bench_simulator [--repeat N] experiments/*/scene.json
+// and asynchronous against global stepping — at the same mesh (time ratio and incident-plateau
+// error of each) and at equal error (gauge error against the study's reference, global refined
+// until it is as accurate) — plus the raw element-update rate of elastic bars. Build: cmake --build build --target
+// bench_simulator; run: build/bench_simulator [--repeat N] [--same-mesh-only] experiments/*/scene.json
 // (tools/bench.sh does both).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "solver/simulation.hpp"
+#include "study/pareto_front.hpp"
+#include "study/reference.hpp"
+#include "study/sweep.hpp"
 
 using namespace shpb;
 
@@ -66,14 +71,60 @@ Timing run(const Scene& scene, const SimulationOptions& options, int repeat) {
   return {median(walls), median(cpus), std::move(r)};
 }
 
+// Global stepping refined (mesh factor 1, 2, 4, 8 of every bar) until its gauge error against the
+// study's reference (exact or fine mesh, study/reference.hpp) is at most the asynchronous run's;
+// the CPU time at that error is interpolated log–log between the two bracketing meshes, as the
+// study's Pareto front does. At the same mesh global stepping is less accurate (its bars run at
+// Courant c·Δt_specimen/h ≪ 1), so the same-mesh ratio compares unequal errors.
+void equal_error(const Scene& scene, const Timing& async, const Timing& global_same_mesh,
+                 const SimulationOptions& options) {
+  const std::clock_t c0 = std::clock();
+  std::optional<GaugeReference> reference = exact_reference(scene);
+  if (!reference) reference = fine_mesh_reference(scene, kReferenceResolution, options);
+  const double reference_cpu_s = double(std::clock() - c0) / CLOCKS_PER_SEC;
+  const double async_error = gauge_error(async.last.gauges, *reference);
+  std::vector<double> errors, costs;
+  std::string runs;
+  for (double factor : {1.0, 2.0, 4.0, 8.0}) {
+    Timing g = global_same_mesh;
+    if (factor > 1) {
+      Scene refined = scene_at_resolution(scene, factor);
+      refined.simulation.stepping = Stepping::kGlobal;
+      g = run(refined, options, 1);
+    }
+    errors.push_back(g.last.stable ? gauge_error(g.last.gauges, *reference) : std::nan(""));
+    costs.push_back(g.cpu_s);
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "%s%gx mesh %.3g in %.3g s", runs.empty() ? "" : ", ", factor,
+                  errors.back(), g.cpu_s);
+    runs += buf;
+    if (errors.back() <= async_error) break;
+  }
+  std::printf("  equal error (gauge L2 error against %s, %.1f s to compute):\n",
+              reference->exact ? "the exact solution" : "a fine-mesh run", reference_cpu_s);
+  std::printf("    asynchronous 1x mesh: error %.3g in %.3g s CPU; global: %s\n", async_error,
+              async.cpu_s, runs.c_str());
+  const std::optional<double> cost =
+      errors.front() <= async_error ? std::optional<double>(costs.front())
+                                    : cost_at_error(errors, costs, async_error);
+  if (cost)
+    std::printf("    global at the asynchronous error: %.3g s CPU: asynchronous is x%.0f faster\n",
+                *cost, *cost / async.cpu_s);
+  else
+    std::printf("    global did not reach the asynchronous error by 8x mesh: asynchronous is more "
+                "than x%.0f faster\n", costs.back() / async.cpu_s);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   int repeat = 5;
+  bool equal_error_comparison = true;
   std::vector<std::string> scenes;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--repeat" && i + 1 < argc) repeat = std::max(1, std::atoi(argv[++i]));
+    else if (a == "--same-mesh-only") equal_error_comparison = false;
     else scenes.push_back(a);
   }
   SimulationOptions economy;
@@ -111,6 +162,7 @@ int main(int argc, char** argv) {
                 double(g.last.node_updates) / double(a.last.node_updates));
     std::printf("  incident plateau error against V/(2c0): asynchronous %.2e, global %.2e\n",
                 incident_error(scene, a.last), incident_error(scene, g.last));
+    if (equal_error_comparison) equal_error(scene, a, g, economy);
   }
 
   // Raw rate of the elastic kernel: a steel striker on a 2 m bar, every node updated.

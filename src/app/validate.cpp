@@ -44,15 +44,8 @@ std::string g(double v, int digits = 4) {
 // The interface as simulate builds it: method and penalty parameters from the scene (per-interface
 // overrides win), derived defaults from the neighbouring end elements (METHODS.md §2–3).
 InterfaceModel resolved_interface(const Scene& scene, const ChainDiscretization& d, std::size_t k) {
-  ContactMethod method = scene.contact.method;
-  PenaltyParams p = scene.contact.penalty;
-  for (const auto& o : scene.contact.interfaces) {
-    if (o.left_bar != k) continue;
-    if (o.method) method = *o.method;
-    if (o.penalty.stiffness_factor) p.stiffness_factor = o.penalty.stiffness_factor;
-    if (o.penalty.stiffness_N_m) p.stiffness_N_m = o.penalty.stiffness_N_m;
-    if (o.penalty.mass_ratio) p.mass_ratio = o.penalty.mass_ratio;
-  }
+  const ContactMethod method = interface_method(scene.contact, k);
+  const PenaltyParams p = interface_penalty(scene.contact, k);
   auto neighbour = [&](std::size_t i) {
     const auto& b = scene.bars[i];
     const double h = d.bars[i].element_length_m;

@@ -40,7 +40,12 @@ enum class Stepping { kAsynchronous, kGlobal };
 // R_crit = (2c/h)² of each neighbour.
 struct PenaltyParams {
   std::optional<double> stiffness_factor;  // ε_s / (EA/h)
-  std::optional<double> stiffness_N_m;     // ε_s given directly (wins over stiffness_factor)
+  std::optional<double> stiffness_N_m;     // ε_s given directly
+  // A compliant contact given by the e-folding rise time τ of the force when two long bars meet:
+  // F(t) = F_∞(1 − e^{−t/τ}) with 1/τ = ε_s (1/Z_l + 1/Z_r), so ε_s = Z_l Z_r / ((Z_l + Z_r) τ).
+  // Models an imperfect impact face (flatness, tilt) that makes a measured front rise slower than
+  // Pochhammer–Chree dispersion alone. At most one of stiffness_factor, stiffness, rise_time.
+  std::optional<double> rise_time_s;
   std::optional<double> mass_ratio;        // R / R_crit (bipenalty methods)
   // Set in code only (study stability probes, never read from JSON): plain and node-to-node
   // bipenalty links act in tension too, so the contact never opens and its linear stability
@@ -59,6 +64,12 @@ struct ContactSpec {
   PenaltyParams penalty;
   std::vector<InterfaceOverride> interfaces;
 };
+
+// Method and penalty parameters of the interface between bars[k] and bars[k + 1]: the scene-wide
+// values with that interface's override applied (a stiffness given in the override, in any of its
+// three forms, replaces the scene-wide one).
+ContactMethod interface_method(const ContactSpec& contact, std::size_t k);
+PenaltyParams interface_penalty(const ContactSpec& contact, std::size_t k);
 
 struct SimulationSpec {
   std::optional<double> duration_s;  // default: the transmitted pulse has passed the last gauge

@@ -188,6 +188,13 @@ class SceneReader {
     if (auto x = o.get("stiffness_factor"))
       p.stiffness_factor = x->positive_quantity(Dimension::kDimensionless);
     if (auto x = o.get("stiffness")) p.stiffness_N_m = x->positive_quantity(Dimension::kStiffness);
+    if (auto x = o.get("rise_time")) {
+      p.rise_time_s = x->positive_quantity(Dimension::kTime);
+      if (p.stiffness_factor || p.stiffness_N_m)
+        throw x->error("give one of stiffness_factor, stiffness and rise_time, not several");
+    }
+    if (p.stiffness_factor && p.stiffness_N_m)
+      throw o.get("stiffness")->error("give one of stiffness_factor, stiffness and rise_time, not several");
     if (auto x = o.get("mass_ratio"))
       p.mass_ratio = x->positive_quantity(Dimension::kDimensionless);
     return p;
@@ -195,14 +202,14 @@ class SceneReader {
 
   static ContactSpec read_contact(const JsonValue& v, const Scene& scene) {
     const auto o =
-        v.object({"method", "stiffness_factor", "stiffness", "mass_ratio", "interfaces"});
+        v.object({"method", "stiffness_factor", "stiffness", "rise_time", "mass_ratio", "interfaces"});
     ContactSpec c;
     if (auto m = o.get("method")) c.method = contact_method(*m);
     c.penalty = read_penalty(o);
     if (auto list = o.get("interfaces")) {
       for (const auto& item : list->array()) {
         const auto io =
-            item.object({"between", "method", "stiffness_factor", "stiffness", "mass_ratio"});
+            item.object({"between", "method", "stiffness_factor", "stiffness", "rise_time", "mass_ratio"});
         const auto between =
             io.require("between", "two neighbouring bars, e.g. [\"striker\", \"incident\"]");
         const auto pair = between.array();

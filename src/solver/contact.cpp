@@ -13,8 +13,16 @@ InterfaceModel make_interface_model(std::string name, ContactMethod method,
   m.gap0_m = gap0_m;
   m.tied = params.tied;
   const double k = std::max(left.stiffness_N_m, right.stiffness_N_m);
-  const double eps_s =
-      params.stiffness_N_m.value_or(params.stiffness_factor.value_or(kDefaultStiffnessFactor) * k);
+  double eps_s = params.stiffness_factor.value_or(kDefaultStiffnessFactor) * k;
+  if (params.stiffness_N_m) eps_s = *params.stiffness_N_m;
+  if (params.rise_time_s) {
+    // Two long bars joined by a spring of stiffness K: dF/dt = K (V − F/Z_l − F/Z_r), so the
+    // force rises with 1/τ = K (1/Z_l + 1/Z_r) (PenaltyParams::rise_time_s). The localized method
+    // puts its two links in series through the frame, each of stiffness 2K.
+    const double zl = left.impedance_kg_s(), zr = right.impedance_kg_s();
+    const double series = zl * zr / ((zl + zr) * *params.rise_time_s);
+    eps_s = method == ContactMethod::kLocalizedBipenalty ? 2 * series : series;
+  }
   const double ratio = params.mass_ratio.value_or(kDefaultMassRatio);
   auto r_crit = [](const NeighbourInfo& n) {
     const double r = 2.0 * n.wave_speed_m_s / n.element_length_m;
@@ -25,7 +33,8 @@ InterfaceModel make_interface_model(std::string name, ContactMethod method,
     m.stiffness_N_m[0] = m.stiffness_N_m[1] = eps_s;
     m.mass_penalty_kg[0] = eps_s / (ratio * r_crit(left));
     m.mass_penalty_kg[1] = eps_s / (ratio * r_crit(right));
-    m.finite_links = params.stiffness_N_m || params.stiffness_factor || params.mass_ratio;
+    m.finite_links =
+        params.stiffness_N_m || params.stiffness_factor || params.rise_time_s || params.mass_ratio;
   } else {
     // One node-to-node link: R below the smaller critical ratio of the two bars.
     m.stiffness_N_m[0] = eps_s;

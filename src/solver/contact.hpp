@@ -74,6 +74,7 @@ struct NeighbourInfo {
   double stiffness_N_m;  // EA/h of the end element
   double wave_speed_m_s;
   double element_length_m;
+  double impedance_kg_s() const { return stiffness_N_m * element_length_m / wave_speed_m_s; }  // EA/c
 };
 InterfaceModel make_interface_model(std::string name, ContactMethod method,
                                     const PenaltyParams& params, double gap0_m,

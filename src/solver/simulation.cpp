@@ -16,23 +16,6 @@ namespace shpb {
 
 namespace {
 
-ContactMethod method_of(const Scene& scene, std::size_t k) {
-  for (const InterfaceOverride& o : scene.contact.interfaces)
-    if (o.left_bar == k && o.method) return *o.method;
-  return scene.contact.method;
-}
-
-PenaltyParams penalty_of(const Scene& scene, std::size_t k) {
-  PenaltyParams p = scene.contact.penalty;
-  for (const InterfaceOverride& o : scene.contact.interfaces) {
-    if (o.left_bar != k) continue;
-    if (o.penalty.stiffness_factor) p.stiffness_factor = o.penalty.stiffness_factor;
-    if (o.penalty.stiffness_N_m) p.stiffness_N_m = o.penalty.stiffness_N_m;
-    if (o.penalty.mass_ratio) p.mass_ratio = o.penalty.mass_ratio;
-  }
-  return p;
-}
-
 // Time zero is the first contact (DESIGN.md §5): with initial gaps, the run starts earlier by
 // the flight time of the first interface to close under the bars' rigid motions.
 double first_contact_delay(const Scene& scene) {
@@ -80,7 +63,8 @@ Chain build_chain(const Scene& scene, const ChainDiscretization& d, bool full_mo
     const BarModel& l = c.bars[k];
     const BarModel& r = c.bars[k + 1];
     c.interfaces.push_back(make_interface_model(
-        l.name + "-" + r.name, method_of(scene, k), penalty_of(scene, k), scene.bars[k].gap_m,
+        l.name + "-" + r.name, interface_method(scene.contact, k),
+        interface_penalty(scene.contact, k), scene.bars[k].gap_m,
         {l.stiffness_N_m, l.wave_speed_m_s, l.element_length_m},
         {r.stiffness_N_m, r.wave_speed_m_s, r.element_length_m}));
     // Finite localized links need both neighbours at one step (contact_localized_finite.cpp).
@@ -89,8 +73,8 @@ Chain build_chain(const Scene& scene, const ChainDiscretization& d, bool full_mo
         std::abs(l.time_step_s - r.time_step_s) > kSameInstant * std::min(l.time_step_s, r.time_step_s))
       throw input_error(scene.file, "contact", im.name,
                         "finite penalties need global stepping at interface " + im.name +
-                            " (its bars have different steps; omit stiffness_factor, stiffness "
-                            "and mass_ratio for the rigid-link limit)");
+                            " (its bars have different steps; omit stiffness_factor, stiffness, "
+                            "rise_time and mass_ratio for the rigid-link limit)");
     c.interface_states.emplace_back();
     c.interface_states.back().gap_m = scene.bars[k].gap_m;
   }

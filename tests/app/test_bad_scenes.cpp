@@ -206,6 +206,15 @@ const std::vector<BadScene>& cases() {
        "contact.interfaces[0].between"},
       {"a negative penalty stiffness",
        [](json& s, json&) { s["contact"]["stiffness"] = "-1e9 N/m"; }, "contact.stiffness"},
+      {"a contact rise time in metres",
+       [](json& s, json&) { s["contact"]["rise_time"] = "1 mm"; }, "contact.rise_time: \"1 mm\""},
+      {"a stiffness and a rise time for the same interface",
+       [](json& s, json&) {
+         s["contact"]["interfaces"] = {
+             {{"between", {"striker", "incident"}}, {"stiffness", "1e9 N/m"}, {"rise_time", "1 us"}}};
+       },
+       "contact.interfaces[0].rise_time: \"1 us\": give one of stiffness_factor, stiffness and "
+       "rise_time"},
       {"a Courant number above 1", [](json& s, json&) { s["simulation"]["courant"] = 1.5; },
        "simulation.courant: 1.5: must be in (0, 1]"},
       {"a negative duration", [](json& s, json&) { s["simulation"]["duration"] = "-800 us"; },

@@ -192,6 +192,14 @@ TEST_CASE("Contact settings apply to all interfaces with overrides per interface
   CHECK(s.contact.interfaces[0].left_bar == 1);  // order in "between" does not matter
   CHECK(s.contact.interfaces[0].method == ContactMethod::kPenalty);
   CHECK(s.contact.interfaces[0].penalty.stiffness_N_m == 1e9);
+  // The override's stiffness replaces the scene-wide factor; the scene-wide mass ratio stays.
+  const PenaltyParams merged = interface_penalty(s.contact, 1);
+  CHECK_FALSE(merged.stiffness_factor);
+  CHECK(merged.stiffness_N_m == 1e9);
+  CHECK(merged.mass_ratio == 0.9);
+  CHECK(interface_method(s.contact, 1) == ContactMethod::kPenalty);
+  CHECK(interface_method(s.contact, 0) == ContactMethod::kBipenalty);
+  CHECK(interface_penalty(s.contact, 0).stiffness_factor == 1e4);
   CHECK(s.simulation.duration_s == Approx(4e-4).epsilon(kUlps));
   CHECK(s.simulation.sample_rate_Hz == 5e6);
   CHECK(s.simulation.stepping == Stepping::kGlobal);

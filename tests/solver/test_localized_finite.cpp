@@ -108,3 +108,39 @@ TEST_CASE("Finite localized links pass the step-ratio-pi joint at global steps a
     }
   }
 }
+
+TEST_CASE("A contact given by its rise time loads the bar with the exponential rise of a spring "
+          "between two long bars",
+          "[solver][contact][localized-finite]") {
+  // Two equal bars of impedance Z joined by a spring ε_s: dF/dt = ε_s (V − 2F/Z), so until the
+  // striker's unloading returns (2L_s/c0) the gauge reads −V/(2c0) (1 − e^{−(t − x/c0)/τ}) with
+  // τ = Z/(2ε_s) — the rise_time the scene gives (PenaltyParams::rise_time_s).
+  constexpr double kTimingTolerance = 0.5;   // steps: the foot of the rise is placed to Δt/2
+  constexpr double kShapeTolerance = 0.002;  // of the plateau past the foot: spring integrated at
+                                             // Δt/τ ≈ 0.04, second order
+  const double c0 = std::sqrt(200e9 / 8000.0), V = 10.0, tau = 5e-6, x = 0.75;
+  Scene s = striker_on_bar(1.0, 0.9, kCourant);
+  s.contact.penalty.stiffness_factor.reset();
+  s.contact.penalty.rise_time_s = tau;
+  const SimulationResult r = simulate(s);
+  REQUIRE(r.stable);
+  const auto& t = r.gauges.time_s;
+  const auto& e = r.gauges.column("incident");
+  const double dt = r.bars[1].time_step_s;
+  double worst_foot = 0, worst_shape = 0;
+  int compared = 0;
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    const double since = t[k] - x / c0;
+    if (since < 0 || since > 100e-6) continue;  // the striker unloads at 2L_s/c0 = 120 µs
+    const double error = std::abs(e[k] / (-V / (2 * c0)) - (1 - std::exp(-since / tau)));
+    double& worst = since < tau ? worst_foot : worst_shape;
+    worst = std::max(worst, error);
+    ++compared;
+  }
+  WARN("rise time 5 us: worst error " << worst_foot << " of the plateau in the first tau, "
+                                       << worst_shape << " after, over " << compared << " samples");
+  CHECK(compared > 900);
+  CHECK(worst_foot < kTimingTolerance * dt / tau + kShapeTolerance);  // slope 1/τ at the foot
+  CHECK(worst_shape < kShapeTolerance);
+  CHECK(r.energy_error < kEnergyTolerance);
+}
