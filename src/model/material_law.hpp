@@ -32,6 +32,7 @@ struct MaterialPointState {
   double jc_p = 0, jc_p_pow_n = 0;
   double jc_T = 0, jc_T_pow_m = 0;
   double jc_rate = 0, jc_log_rate = 0;  // jc_log_rate = ln jc_rate (rate ratio |ε̇|/ε̇0 > 1)
+  double jc_bound = -1;  // (A + B jc_p^n)(1 − T*(jc_T)^m): elastic below it (none yet: −1)
 };
 
 class MaterialLaw {

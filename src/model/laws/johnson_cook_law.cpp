@@ -137,6 +137,14 @@ void JohnsonCookLaw::update(std::span<const double> strain_next, double dt_s,
   for (std::size_t i = 0; i < states.size(); ++i) {
     MaterialPointState& s = states[i];
     const double trial = E * (strain_next[i] - s.back_strain);
+    // Neither p nor T moved since the last update (jc_bound is that update's hardening × thermal
+    // factor): below the bound the step is elastic.
+    if (s.plastic_strain == s.jc_p && s.temperature_K == s.jc_T && std::abs(trial) <= s.jc_bound) {
+      s.strain = strain_next[i];
+      s.stress_Pa = trial;
+      stress_out[i] = trial;
+      continue;
+    }
     // p^n and T*^m from the caches (exact pairs), refreshed whenever p or T moved.
     if (s.plastic_strain != s.jc_p) {
       s.jc_p_pow_n = hardening_series_.power(s.plastic_strain, s.jc_p, s.jc_p_pow_n, jc_.n);
@@ -148,6 +156,7 @@ void JohnsonCookLaw::update(std::span<const double> strain_next, double dt_s,
     s.jc_T = s.temperature_K;
     s.jc_T_pow_m = t_m;
     const double thermal = 1 - t_m;
+    s.jc_bound = hardening * thermal;
     double stress = trial;
     // The rate factor is ≥ 1: below hardening × thermal the step is elastic without the log.
     if (std::abs(trial) > hardening * thermal) {
