@@ -44,13 +44,4 @@ BarState make_bar_state(const BarModel& bar, bool full_model) {
   return s;
 }
 
-double node_displacement_at(const BarModel& bar, const BarState& s, int i, double tau_n,
-                            double tau) {
-  return s.w[i] - (tau_n - tau) * s.v[i] + bar.initial_velocity_m_s * tau;
-}
-
-double node_velocity(const BarModel& bar, const BarState& s, int i) {
-  return s.v[i] + bar.initial_velocity_m_s;
-}
-
 }  // namespace shpb

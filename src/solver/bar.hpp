@@ -63,8 +63,13 @@ BarState make_bar_state(const BarModel& bar, bool full_model);
 // Absolute displacement and velocity of node i at time τ since the start, for a bar whose state
 // is at τ_n ≥ τ ≥ τ_{n−1}: the central-difference path is linear within a step, so this
 // interpolation is exact (METHODS.md §3).
-double node_displacement_at(const BarModel& bar, const BarState& s, int i, double tau_n,
-                            double tau);
-double node_velocity(const BarModel& bar, const BarState& s, int i);  // absolute, at t_{n−1/2}
+inline double node_displacement_at(const BarModel& bar, const BarState& s, int i, double tau_n,
+                                   double tau) {
+  return s.w[i] - (tau_n - tau) * s.v[i] + bar.initial_velocity_m_s * tau;
+}
+// Absolute, at t_{n−1/2}.
+inline double node_velocity(const BarModel& bar, const BarState& s, int i) {
+  return s.v[i] + bar.initial_velocity_m_s;
+}
 
 }  // namespace shpb

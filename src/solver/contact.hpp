@@ -5,6 +5,8 @@
 // Sign conventions: the gap g = gap0 + u_right − u_left (g < 0 is penetration); forces are the
 // forces the interface applies to each end node; the reported contact force is compression
 // positive (DESIGN.md §4).
+#include <limits>
+
 #include "model/scene.hpp"
 
 namespace shpb {
@@ -83,8 +85,13 @@ InterfaceModel make_interface_model(std::string name, ContactMethod method,
 // Localized bipenalty in the tied state: where the end node of side `side` (0 left, 1 right)
 // must be at τ (absolute displacement), or NaN when the interface is open. The scheduler puts a
 // stepping end there before assembling its forces (rule 4 of scheduler.hpp).
-double tied_end_position(const InterfaceModel& model, const InterfaceState& state, int side,
-                         double tau);
+inline double tied_end_position(const InterfaceModel& model, const InterfaceState& state, int side,
+                                double tau) {
+  if (!state.active || model.method != ContactMethod::kLocalizedBipenalty || model.finite_links)
+    return std::numeric_limits<double>::quiet_NaN();
+  const double uf = state.frame_u + (tau - state.frame_tau) * state.frame_v;
+  return side == 0 ? uf : uf - model.gap0_m + state.offset;
+}
 
 // Solves the interface at τ. `frame_next_tau` is the next instant at which either neighbour
 // will need the interface (localized bipenalty advances its frame on the union of instants).

@@ -37,19 +37,10 @@
 // tensile, keeping velocities; the kinetic energy lost at activation, ½ μ ġ² with μ the reduced
 // end-node mass, is contact dissipation (≈ h/(4L_s) of a striker's energy).
 #include <cmath>
-#include <limits>
 
 #include "solver/contact.hpp"
 
 namespace shpb {
-
-double tied_end_position(const InterfaceModel& model, const InterfaceState& s, int side,
-                         double tau) {
-  if (!s.active || model.method != ContactMethod::kLocalizedBipenalty || model.finite_links)
-    return std::numeric_limits<double>::quiet_NaN();
-  const double uf = s.frame_u + (tau - s.frame_tau) * s.frame_v;
-  return side == 0 ? uf : uf - model.gap0_m + s.offset;
-}
 
 ContactResult solve_localized_bipenalty(const InterfaceModel&, InterfaceState& s,
                                         EndState left, EndState right, double tau,
