@@ -27,14 +27,18 @@ CsvWriter::~CsvWriter() {
   if (file_) std::fclose(file_);
 }
 
-void CsvWriter::row(std::span<const double> values) {
-  if (values.size() != columns_)
-    throw std::logic_error(path_.string() + ": row has " + std::to_string(values.size()) +
-                           " values for " + std::to_string(columns_) + " columns");
-  line_.clear();
+void CsvWriter::row(std::span<const double> values) { row({}, 0, values); }
+
+void CsvWriter::row(std::string_view leading, std::size_t leading_columns,
+                    std::span<const double> values) {
+  if (leading_columns + values.size() != columns_)
+    throw std::logic_error(path_.string() + ": row has " +
+                           std::to_string(leading_columns + values.size()) + " values for " +
+                           std::to_string(columns_) + " columns");
+  line_.assign(leading);
   char buffer[32];
   for (std::size_t i = 0; i < values.size(); ++i) {
-    if (i) line_.push_back(',');
+    if (i || leading_columns) line_.push_back(',');
     if (!std::isfinite(values[i]))
       throw std::logic_error(path_.string() + ": refusing to write a non-finite value");
     auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, values[i]);

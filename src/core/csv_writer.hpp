@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace shpb {
@@ -18,6 +19,9 @@ class CsvWriter {
 
   void row(std::span<const double> values);
   void row(std::initializer_list<double> values) { row(std::span(values.begin(), values.size())); }
+  // A row whose first `leading_columns` cells are already text (comma-separated, each from
+  // format_double), then the values: a long-format file repeats its key cells on many rows.
+  void row(std::string_view leading, std::size_t leading_columns, std::span<const double> values);
   std::size_t columns() const { return columns_; }
 
  private:

@@ -182,9 +182,17 @@ void write_simulation_outputs(const SimulationResult& result, const Scene& scene
   {
     CsvWriter csv(dir / "field.csv", {"time_s", "x_m", "stress_Pa"});
     const FieldGrid& f = result.field;
-    for (std::size_t j = 0; j < f.time_s.size(); ++j)
-      for (std::size_t x = 0; x < f.x_m.size(); ++x)
-        csv.row({f.time_s[j], f.x_m[x], f.stress_Pa[j * f.x_m.size() + x]});
+    // Long format: each time and position repeats on many rows, so each is formatted once.
+    std::vector<std::string> x_text;
+    for (double x : f.x_m) x_text.push_back(format_double(x));
+    std::string key;
+    for (std::size_t j = 0; j < f.time_s.size(); ++j) {
+      const std::string t_text = format_double(f.time_s[j]) + ",";
+      for (std::size_t x = 0; x < f.x_m.size(); ++x) {
+        key.assign(t_text).append(x_text[x]);
+        csv.row(key, 2, std::span(&f.stress_Pa[j * f.x_m.size() + x], 1));
+      }
+    }
   }
   nlohmann::ordered_json j;
   j["version"] = SHPB_VERSION;

@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -31,5 +32,32 @@ TEST_CASE("A CSV file has one header row and refuses non-finite values", "[core]
   std::stringstream s;
   s << in.rdbuf();
   REQUIRE(s.str() == "time_s,strain\n0,0.001\n");
+  std::filesystem::remove(path);
+}
+
+TEST_CASE("A row with preformatted leading cells reads as the same row of doubles", "[core][csv]") {
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("shpb_test_csv_leading_" + std::to_string(::getpid()) + ".csv");
+  {
+    CsvWriter w(path, {"time_s", "x_m", "stress_Pa"});
+    const double stress = -2.5e8;
+    w.row({1e-6, 0.3, stress});
+    w.row(format_double(1e-6) + "," + format_double(0.3), 2, std::span(&stress, 1));
+    REQUIRE_THROWS(w.row(format_double(1e-6), 1, std::span(&stress, 1)));  // one column short
+    const double bad = std::nan("");
+    REQUIRE_THROWS(w.row("0,0", 2, std::span(&bad, 1)));
+  }
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  std::string header, plain, leading, extra;
+  std::getline(s, header);
+  std::getline(s, plain);
+  std::getline(s, leading);
+  REQUIRE_FALSE(std::getline(s, extra));
+  REQUIRE(leading == plain);
+  double t = 0, x = 0, sigma = 0;
+  REQUIRE(std::sscanf(leading.c_str(), "%lf,%lf,%lf", &t, &x, &sigma) == 3);
+  REQUIRE((t == 1e-6 && x == 0.3 && sigma == -2.5e8));
   std::filesystem::remove(path);
 }
