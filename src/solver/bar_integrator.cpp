@@ -51,11 +51,12 @@ void law_forces(const BarModel& bar, BarState& s, int lo, int hi, double dt) {
                   std::span<MaterialPointState>(s.points.data() + e0, n),
                   std::span<double>(s.stress_Pa.data() + e0, n));
   const double A = bar.area_m2;
-  for (int i = lo; i <= hi; ++i) {
-    const double right = i < last ? s.stress_Pa[i] : 0.0;
-    const double left = i > 0 ? s.stress_Pa[i - 1] : 0.0;
-    s.force[i] = A * (right - left);
-  }
+  const double* sigma = s.stress_Pa.data();
+  double* f = s.force.data();
+  int a = lo, b = hi;
+  if (a == 0) f[a++] = A * (sigma[0] - 0.0);          // free left end
+  if (b == last && b >= a) f[b--] = A * (0.0 - sigma[last - 1]);  // free right end
+  for (int i = a; i <= b; ++i) f[i] = A * (sigma[i] - sigma[i - 1]);
 }
 }  // namespace
 

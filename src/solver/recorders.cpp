@@ -266,9 +266,9 @@ void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& resu
       const double t = field_tau_[j] + start_time_s_;
       if (t > until_s + 1e-12) break;
       f.time_s.push_back(t);
-      f.stress_Pa.insert(f.stress_Pa.end(), field_stress_.begin() + j * field_x_.size(),
-                         field_stress_.begin() + (j + 1) * field_x_.size());
     }
+    f.stress_Pa.assign(field_stress_.begin(),
+                       field_stress_.begin() + static_cast<long>(f.time_s.size() * field_x_.size()));
   }
 }
 
