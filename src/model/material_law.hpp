@@ -28,10 +28,10 @@ struct MaterialPointState {
   double arm_stress_Pa[kMaxArms] = {};  // Maxwell arm stresses (viscoelastic)
   // Johnson–Cook caches (johnson_cook_law.cpp), each a true pair (x, f(x)) from the start:
   // jc_p_pow_n = jc_p^n and jc_T_pow_m = T*(jc_T)^m, so a step near the cached point needs no pow
-  // (nor log, for the rate pair).
+  // (nor log, for the rate pair); the reciprocals make a step's relative offset a product.
   double jc_p = 0, jc_p_pow_n = 0;
-  double jc_T = 0, jc_T_pow_m = 0;
-  double jc_rate = 0, jc_log_rate = 0;  // jc_log_rate = ln jc_rate (rate ratio |ε̇|/ε̇0 > 1)
+  double jc_T = 0, jc_T_pow_m = 0, jc_T_inv = 0;  // jc_T_inv = 1/(jc_T − T_room) (0: no base)
+  double jc_rate = 0, jc_log_rate = 0, jc_rate_inv = 0;  // ln and 1/ of the rate ratio |ε̇|/ε̇0
   double jc_bound = -1;  // (A + B jc_p^n)(1 − T*(jc_T)^m): elastic below it (none yet: −1)
 };
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 
 namespace shpb {
 
@@ -22,26 +23,30 @@ constexpr double kLongSeriesRange = 0.02;
 // ln r from a cached ln r0 by the series of ln(1 + x), x = (r − r0)/r0, to x⁶ for |x| ≤ this: the
 // remainder x⁷/7 ≤ 2e-22 is below round-off of the rate factor 1 + C ln ε̇*.
 constexpr double kLogSeriesRange = 1e-3;
+// A relative offset that no series accepts: the cached pair has no base (pow or log instead).
+constexpr double kNoBase = std::numeric_limits<double>::infinity();
 }  // namespace
 
 JohnsonCookLaw::BinomialSeries::BinomialSeries(double e) {
-  for (int k = 1; k <= 10; ++k) c[k - 1] = (e - k + 1) / k;
+  a[0] = 1;
+  for (int k = 1; k <= 10; ++k) a[k] = a[k - 1] * (e - k + 1) / k;
 }
 
-double JohnsonCookLaw::BinomialSeries::power(double q, double base, double base_pow, double e) const {
-  if (base > 0) {
-    const double x = (q - base) / base;
-    const double ax = std::abs(x);
-    if (ax <= kSeriesRange) {
-      double sum = 1 + c[4] * x;
-      for (int k = 3; k >= 0; --k) sum = 1 + c[k] * x * sum;
-      return base_pow * sum;
-    }
-    if (ax <= kLongSeriesRange) {
-      double sum = 1 + c[9] * x;
-      for (int k = 8; k >= 0; --k) sum = 1 + c[k] * x * sum;
-      return base_pow * sum;
-    }
+// The polynomials are evaluated in Estrin's form (pairs of terms, then powers x², x⁴, x⁸): a few
+// multiplications deep instead of a chain of ten, the same sum to round-off.
+inline double JohnsonCookLaw::BinomialSeries::power(double q, double x, double base_pow, double e) const {
+  const double ax = std::abs(x);
+  if (ax <= kSeriesRange) {
+    const double x2 = x * x;
+    const double sum = (1 + a[1] * x) + x2 * ((a[2] + a[3] * x) + x2 * (a[4] + a[5] * x));
+    return base_pow * sum;
+  }
+  if (ax <= kLongSeriesRange) {
+    const double x2 = x * x, x4 = x2 * x2;
+    const double low = (1 + a[1] * x) + x2 * (a[2] + a[3] * x);
+    const double mid = (a[4] + a[5] * x) + x2 * (a[6] + a[7] * x);
+    const double high = (a[8] + a[9] * x) + x2 * a[10];
+    return base_pow * (low + x4 * (mid + x4 * high));
   }
   return std::pow(q, e);
 }
@@ -69,18 +74,29 @@ double johnson_cook_flow_stress(const JohnsonCookParams& jc, double plastic_stra
 JohnsonCookLaw::JohnsonCookLaw(const MaterialSpec& spec)
     : jc_(spec.johnson_cook),
       youngs_modulus_Pa_(spec.youngs_modulus_Pa),
-      heat_capacity_J_m3K_(spec.density_kg_m3 * spec.johnson_cook.specific_heat_J_kgK),
+      heat_per_work_(spec.johnson_cook.taylor_quinney /
+                     (spec.density_kg_m3 * spec.johnson_cook.specific_heat_J_kgK)),
+      inverse_span_(1 / (spec.johnson_cook.melting_temperature_K - spec.johnson_cook.room_temperature_K)),
       hardening_series_(spec.johnson_cook.n),
       thermal_series_(spec.johnson_cook.m) {}
 
-double JohnsonCookLaw::homologous_power(const MaterialPointState& s) const {
-  const double T = s.temperature_K, room = jc_.room_temperature_K;
-  if (T <= room) return 0.0;
-  if (T >= jc_.melting_temperature_K) return 1.0;
-  if (T == s.jc_T) return s.jc_T_pow_m;
-  const double span = jc_.melting_temperature_K - room;
-  const double cached = s.jc_T > room && s.jc_T < jc_.melting_temperature_K ? (s.jc_T - room) / span : 0.0;
-  return thermal_series_.power((T - room) / span, cached, s.jc_T_pow_m, jc_.m);
+double JohnsonCookLaw::homologous_power(MaterialPointState& s) const {
+  const double T = s.temperature_K, room = jc_.room_temperature_K, melt = jc_.melting_temperature_K;
+  double t_m;
+  if (T <= room) {
+    t_m = 0.0;
+  } else if (T >= melt) {
+    t_m = 1.0;
+  } else {
+    if (T == s.jc_T) return s.jc_T_pow_m;
+    // x = (T* − T*_0)/T*_0 = (T − T_0)/(T_0 − T_room).
+    const double x = s.jc_T_inv > 0 ? (T - s.jc_T) * s.jc_T_inv : kNoBase;
+    t_m = thermal_series_.power((T - room) * inverse_span_, x, s.jc_T_pow_m, jc_.m);
+  }
+  s.jc_T = T;
+  s.jc_T_pow_m = t_m;
+  s.jc_T_inv = T > room && T < melt ? 1 / (T - room) : 0.0;
+  return t_m;
 }
 
 void JohnsonCookLaw::initialize(std::span<MaterialPointState> states) const {
@@ -89,51 +105,63 @@ void JohnsonCookLaw::initialize(std::span<MaterialPointState> states) const {
 
 double JohnsonCookLaw::log_rate(double ratio, MaterialPointState& s) const {
   double l;
-  const double x = s.jc_rate > 0 ? (ratio - s.jc_rate) / s.jc_rate : 1.0;
-  if (std::abs(x) <= kLogSeriesRange)
-    l = s.jc_log_rate + x * (1 - x * (1.0 / 2 - x * (1.0 / 3 - x * (1.0 / 4 - x * (1.0 / 5 - x * (1.0 / 6))))));
-  else
+  const double x = s.jc_rate > 0 ? (ratio - s.jc_rate) * s.jc_rate_inv : kNoBase;
+  if (std::abs(x) <= kLogSeriesRange) {
+    // ln(1 + x) = x − x²/2 + x³/3 − x⁴/4 + x⁵/5 − x⁶/6, in Estrin's form.
+    const double x2 = x * x;
+    l = s.jc_log_rate + (x * (1 - 0.5 * x) + x2 * x * ((1.0 / 3 - 0.25 * x) + x2 * (0.2 - x * (1.0 / 6))));
+  } else {
     l = std::log(ratio);
+  }
   s.jc_rate = ratio;
+  s.jc_rate_inv = 1 / ratio;
   s.jc_log_rate = l;
   return l;
 }
 
 JohnsonCookLaw::Return JohnsonCookLaw::plastic_increment(double trial_abs, double p, double p_n,
-                                                         double k) const {
+                                                         double inv_p, double k) const {
   const double E = youngs_modulus_Pa_, A = jc_.A_Pa, B = jc_.B_Pa, n = jc_.n;
   // g(Δp) = |σ_trial| − E Δp − (A + B (p + Δp)^n) k decreases strictly and is convex (n ≤ 1);
   // g(0) > 0 and g(hi) ≤ 0 because σ_y(p + Δp) ≥ σ_y(p).
   const double g0 = trial_abs - (A + B * p_n) * k;
   double lo = 0, hi = g0 / E;
-  if (B == 0 || k == 0) return {hi, 0, 0};  // perfectly plastic at this rate and temperature
+  if (B == 0 || k == 0) return {hi, std::numeric_limits<double>::quiet_NaN()};  // perfectly plastic
   // First guess: the root of the tangent at Δp = 0 (the elastic-linear-hardening step); by
   // convexity it lies left of the root and Newton then climbs monotonically onto it.
-  double dp = p > 0 ? g0 / (E + n * B * p_n / p * k) : hi;
+  double dp = p > 0 ? g0 / (E + n * B * p_n * inv_p * k) : hi;
   // Each power comes from the last evaluated pair (Newton's iterates are close to each other).
-  double base = p, base_n = p_n;
+  double base = p, base_n = p_n, inv_base = inv_p;
   for (int it = 0; it < kReturnMaxIterations; ++it) {
     const double q = p + dp;
-    const double q_n = hardening_series_.power(q, base, base_n, n);
+    const double q_n = hardening_series_.power(q, base > 0 ? (q - base) * inv_base : kNoBase, base_n, n);
+    const double inv_q = 1 / q;
     base = q;
     base_n = q_n;
+    inv_base = inv_q;
     const double g = trial_abs - E * dp - (A + B * q_n) * k;
     if (g > 0)
       lo = dp;
     else
       hi = dp;
-    const double newton = dp + g / (E + n * B * q_n / q * k);
+    const double newton = dp + g / (E + n * B * q_n * inv_q * k);
     const bool inside = newton > lo && newton < hi;
-    if (std::abs(g) <= kReturnFinalStepResidual * trial_abs) return {inside ? newton : dp, q, q_n};
+    if (std::abs(g) <= kReturnFinalStepResidual * trial_abs) {
+      dp = inside ? newton : dp;
+      break;
+    }
     dp = inside ? newton : 0.5 * (lo + hi);
   }
-  return {dp, base, base_n};
+  const double p_next = p + dp;
+  return {dp, hardening_series_.power(p_next, (p_next - base) * inv_base, base_n, n)};
 }
 
 void JohnsonCookLaw::update(std::span<const double> strain_next, double dt_s,
                             std::span<MaterialPointState> states,
                             std::span<double> stress_out) const {
   const double E = youngs_modulus_Pa_;
+  // |ε̇|/ε̇0 per unit strain increment (a multiplication in the loop, not two divisions).
+  const double ratio_per_strain = dt_s > 0 ? 1 / (dt_s * jc_.reference_strain_rate_1_s) : 0.0;
   for (std::size_t i = 0; i < states.size(); ++i) {
     MaterialPointState& s = states[i];
     const double trial = E * (strain_next[i] - s.back_strain);
@@ -146,26 +174,25 @@ void JohnsonCookLaw::update(std::span<const double> strain_next, double dt_s,
       continue;
     }
     // p^n and T*^m from the caches (exact pairs), refreshed whenever p or T moved.
-    if (s.plastic_strain != s.jc_p) {
-      s.jc_p_pow_n = hardening_series_.power(s.plastic_strain, s.jc_p, s.jc_p_pow_n, jc_.n);
-      s.jc_p = s.plastic_strain;
+    const double p = s.plastic_strain;
+    if (p != s.jc_p) {
+      s.jc_p_pow_n = hardening_series_.power(p, s.jc_p > 0 ? (p - s.jc_p) / s.jc_p : kNoBase,
+                                             s.jc_p_pow_n, jc_.n);
+      s.jc_p = p;
     }
     const double p_n = s.jc_p_pow_n;
     const double hardening = jc_.A_Pa + jc_.B_Pa * p_n;
-    const double t_m = homologous_power(s);
-    s.jc_T = s.temperature_K;
-    s.jc_T_pow_m = t_m;
-    const double thermal = 1 - t_m;
+    const double thermal = 1 - homologous_power(s);
     s.jc_bound = hardening * thermal;
     double stress = trial;
     // The rate factor is ≥ 1: below hardening × thermal the step is elastic without the log.
     if (std::abs(trial) > hardening * thermal) {
-      const double rate = dt_s > 0 ? (strain_next[i] - s.strain) / dt_s : 0.0;
+      const double inv_p = p > 0 ? 1 / p : 0.0;
       // The rate factor of johnson_cook_rate_factor, its log from the element's cached pair.
-      const double ratio = std::abs(rate) / jc_.reference_strain_rate_1_s;
+      const double ratio = std::abs(strain_next[i] - s.strain) * ratio_per_strain;
       const double k = (ratio > 1 ? 1 + jc_.C * log_rate(ratio, s) : 1.0) * thermal;
       if (std::abs(trial) > hardening * k) {
-        const Return ret = plastic_increment(std::abs(trial), s.plastic_strain, p_n, k);
+        const Return ret = plastic_increment(std::abs(trial), p, p_n, inv_p, k);
         const double dp = ret.dp;
         const double d_back = std::copysign(dp, trial);
         stress = trial - E * d_back;
@@ -173,13 +200,12 @@ void JohnsonCookLaw::update(std::span<const double> strain_next, double dt_s,
         const double work = 0.5 * (s.stress_Pa + stress) * d_back;
         s.dissipated_J_m3 += work;
         s.heat_J_m3 += jc_.taylor_quinney * work;
-        if (jc_.adiabatic) s.temperature_K += jc_.taylor_quinney * work / heat_capacity_J_m3K_;
-        s.plastic_strain += dp;
+        if (jc_.adiabatic) s.temperature_K += work * heat_per_work_;
+        s.plastic_strain = p + dp;
         s.back_strain += d_back;
-        // The last pair Newton evaluated is next to the new p: the next refresh is a short series.
-        if (ret.q > 0) {
-          s.jc_p = ret.q;
-          s.jc_p_pow_n = ret.q_n;
+        if (!std::isnan(ret.p_next_n)) {
+          s.jc_p = s.plastic_strain;
+          s.jc_p_pow_n = ret.p_next_n;
         }
       }
     }

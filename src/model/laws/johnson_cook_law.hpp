@@ -31,31 +31,32 @@ class JohnsonCookLaw final : public MaterialLaw {
 
  private:
   // Plastic increment Δp > 0 with |σ_trial| − E Δp = (A + B (p + Δp)^n) k, k = rate × thermal;
-  // p_n = p^n is passed in (already computed for the yield check). Also returns the last pair
-  // (q, q^n) it evaluated (q = 0: none), a cache point next to p + Δp.
+  // p_n = p^n (already computed for the yield check) and inv_p = 1/p (0 at p = 0) are passed in.
+  // Also returns (p + Δp)^n from the last point Newton evaluated (NaN: none, perfectly plastic).
   struct Return {
-    double dp, q, q_n;
+    double dp, p_next_n;
   };
-  Return plastic_increment(double trial_abs, double p, double p_n, double k) const;
+  Return plastic_increment(double trial_abs, double p, double p_n, double inv_p, double k) const;
   // ln(|ε̇|/ε̇0) for a ratio > 1, from the state's cached pair when the ratio moved little;
   // refreshes the pair.
   double log_rate(double ratio, MaterialPointState& s) const;
-  // T*^m (0 below room temperature, 1 at or above melting) from the state's cached pair.
-  double homologous_power(const MaterialPointState& s) const;
+  // T*^m (0 below room temperature, 1 at or above melting) from the state's cached pair;
+  // refreshes the pair.
+  double homologous_power(MaterialPointState& s) const;
 
-  // Coefficients of the binomial series (1 + x)^e = 1 + c1 x (1 + c2 x (1 + … c10 x)),
-  // c_k = (e − k + 1)/k: powers near a cached point without pow (see kSeriesRange in the .cpp).
+  // Coefficients of the binomial series (1 + x)^e = Σ a_k x^k, a_k = C(e, k) = a_{k−1}(e − k + 1)/k,
+  // to x¹⁰: powers near a cached point without pow (see kSeriesRange in the .cpp).
   struct BinomialSeries {
-    double c[10];
+    double a[11];
     explicit BinomialSeries(double e);
-    // base^e known as base_pow; returns q^e.
-    double power(double q, double base, double base_pow, double e) const;
+    // q^e from base^e = base_pow and x = (q − base)/base (an infinite x: no base, pow).
+    double power(double q, double x, double base_pow, double e) const;
   };
-
 
   JohnsonCookParams jc_;
   double youngs_modulus_Pa_;
-  double heat_capacity_J_m3K_;  // ρ c_p
+  double heat_per_work_;  // β/(ρ c_p): adiabatic temperature rise per unit plastic work
+  double inverse_span_;   // 1/(T_melt − T_room)
   BinomialSeries hardening_series_;  // exponent n
   BinomialSeries thermal_series_;    // exponent m
 };
