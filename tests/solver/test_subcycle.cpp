@@ -81,6 +81,11 @@ TEST_CASE("A specimen sub-cycled between its bars' instants gives the plain sche
       double peak = 0;
       for (double e : tr) peak = std::max(peak, std::abs(e));
       CHECK(peak > 1e-5);
+      if (plastic) {  // the Johnson-Cook section exercises the return mapping: the specimen yields
+        double strain = 0;
+        for (double e : b.specimen.column("strain")) strain = std::max(strain, e);
+        CHECK(strain > 2 * soft.johnson_cook.A_Pa / soft.youngs_modulus_Pa);
+      }
     }
   }
 }
