@@ -23,6 +23,8 @@ constexpr double kLongSeriesRange = 0.02;
 // ln r from a cached ln r0 by the series of ln(1 + x), x = (r − r0)/r0, to x⁶ for |x| ≤ this: the
 // remainder x⁷/7 ≤ 2e-22 is below round-off of the rate factor 1 + C ln ε̇*.
 constexpr double kLogSeriesRange = 1e-3;
+// Elements per block of update(): yield checks, then the block's return mappings.
+constexpr std::size_t kYieldBlock = 64;
 // A relative offset that no series accepts: the cached pair has no base (pow or log instead).
 constexpr double kNoBase = std::numeric_limits<double>::infinity();
 }  // namespace
@@ -162,56 +164,76 @@ void JohnsonCookLaw::update(std::span<const double> strain_next, double dt_s,
   const double E = youngs_modulus_Pa_;
   // |ε̇|/ε̇0 per unit strain increment (a multiplication in the loop, not two divisions).
   const double ratio_per_strain = dt_s > 0 ? 1 / (dt_s * jc_.reference_strain_rate_1_s) : 0.0;
-  for (std::size_t i = 0; i < states.size(); ++i) {
-    MaterialPointState& s = states[i];
-    const double trial = E * (strain_next[i] - s.back_strain);
-    // Neither p nor T moved since the last update (jc_bound is that update's hardening × thermal
-    // factor): below the bound the step is elastic.
-    if (s.plastic_strain == s.jc_p && s.temperature_K == s.jc_T && std::abs(trial) <= s.jc_bound) {
+  // Elements go in blocks: first the yield checks of the block, then the return mappings of its
+  // yielding elements in a loop of their own, where the processor overlaps one element's long
+  // dependency chain (divisions, series) with the next one's.
+  struct Yielding {
+    std::size_t i;
+    double trial, p, p_n, inv_p, k;
+  };
+  Yielding yielding[kYieldBlock];
+  for (std::size_t first = 0; first < states.size(); first += kYieldBlock) {
+    const std::size_t last = std::min(states.size(), first + kYieldBlock);
+    std::size_t count = 0;
+    for (std::size_t i = first; i < last; ++i) {
+      MaterialPointState& s = states[i];
+      const double trial = E * (strain_next[i] - s.back_strain);
+      // Neither p nor T moved since the last update (jc_bound is that update's hardening ×
+      // thermal factor): below the bound the step is elastic.
+      if (s.plastic_strain == s.jc_p && s.temperature_K == s.jc_T && std::abs(trial) <= s.jc_bound) {
+        s.strain = strain_next[i];
+        s.stress_Pa = trial;
+        stress_out[i] = trial;
+        continue;
+      }
+      // p^n and T*^m from the caches (exact pairs), refreshed whenever p or T moved.
+      const double p = s.plastic_strain;
+      if (p != s.jc_p) {
+        s.jc_p_pow_n = hardening_series_.power(p, s.jc_p > 0 ? (p - s.jc_p) / s.jc_p : kNoBase,
+                                               s.jc_p_pow_n, jc_.n);
+        s.jc_p = p;
+      }
+      const double p_n = s.jc_p_pow_n;
+      const double hardening = jc_.A_Pa + jc_.B_Pa * p_n;
+      const double thermal = 1 - homologous_power(s);
+      s.jc_bound = hardening * thermal;
+      // The rate factor is ≥ 1: below hardening × thermal the step is elastic without the log.
+      if (std::abs(trial) > hardening * thermal) {
+        const double inv_p = p > 0 ? 1 / p : 0.0;
+        // The rate factor of johnson_cook_rate_factor, its log from the element's cached pair.
+        const double ratio = std::abs(strain_next[i] - s.strain) * ratio_per_strain;
+        const double k = (ratio > 1 ? 1 + jc_.C * log_rate(ratio, s) : 1.0) * thermal;
+        if (std::abs(trial) > hardening * k) {
+          yielding[count++] = {i, trial, p, p_n, inv_p, k};
+          continue;
+        }
+      }
       s.strain = strain_next[i];
       s.stress_Pa = trial;
       stress_out[i] = trial;
-      continue;
     }
-    // p^n and T*^m from the caches (exact pairs), refreshed whenever p or T moved.
-    const double p = s.plastic_strain;
-    if (p != s.jc_p) {
-      s.jc_p_pow_n = hardening_series_.power(p, s.jc_p > 0 ? (p - s.jc_p) / s.jc_p : kNoBase,
-                                             s.jc_p_pow_n, jc_.n);
-      s.jc_p = p;
-    }
-    const double p_n = s.jc_p_pow_n;
-    const double hardening = jc_.A_Pa + jc_.B_Pa * p_n;
-    const double thermal = 1 - homologous_power(s);
-    s.jc_bound = hardening * thermal;
-    double stress = trial;
-    // The rate factor is ≥ 1: below hardening × thermal the step is elastic without the log.
-    if (std::abs(trial) > hardening * thermal) {
-      const double inv_p = p > 0 ? 1 / p : 0.0;
-      // The rate factor of johnson_cook_rate_factor, its log from the element's cached pair.
-      const double ratio = std::abs(strain_next[i] - s.strain) * ratio_per_strain;
-      const double k = (ratio > 1 ? 1 + jc_.C * log_rate(ratio, s) : 1.0) * thermal;
-      if (std::abs(trial) > hardening * k) {
-        const Return ret = plastic_increment(std::abs(trial), p, p_n, inv_p, k);
-        const double dp = ret.dp;
-        const double d_back = std::copysign(dp, trial);
-        stress = trial - E * d_back;
-        // Trapezoidal plastic work: work in = stored + dissipated exactly, step by step.
-        const double work = 0.5 * (s.stress_Pa + stress) * d_back;
-        s.dissipated_J_m3 += work;
-        s.heat_J_m3 += jc_.taylor_quinney * work;
-        if (jc_.adiabatic) s.temperature_K += work * heat_per_work_;
-        s.plastic_strain = p + dp;
-        s.back_strain += d_back;
-        if (!std::isnan(ret.p_next_n)) {
-          s.jc_p = s.plastic_strain;
-          s.jc_p_pow_n = ret.p_next_n;
-        }
+    for (std::size_t c = 0; c < count; ++c) {
+      const Yielding& y = yielding[c];
+      MaterialPointState& s = states[y.i];
+      const Return ret = plastic_increment(std::abs(y.trial), y.p, y.p_n, y.inv_p, y.k);
+      const double dp = ret.dp;
+      const double d_back = std::copysign(dp, y.trial);
+      const double stress = y.trial - E * d_back;
+      // Trapezoidal plastic work: work in = stored + dissipated exactly, step by step.
+      const double work = 0.5 * (s.stress_Pa + stress) * d_back;
+      s.dissipated_J_m3 += work;
+      s.heat_J_m3 += jc_.taylor_quinney * work;
+      if (jc_.adiabatic) s.temperature_K += work * heat_per_work_;
+      s.plastic_strain = y.p + dp;
+      s.back_strain += d_back;
+      if (!std::isnan(ret.p_next_n)) {
+        s.jc_p = s.plastic_strain;
+        s.jc_p_pow_n = ret.p_next_n;
       }
+      s.strain = strain_next[y.i];
+      s.stress_Pa = stress;
+      stress_out[y.i] = stress;
     }
-    s.strain = strain_next[i];
-    s.stress_Pa = stress;
-    stress_out[i] = stress;
   }
 }
 
