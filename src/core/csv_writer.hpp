@@ -25,6 +25,7 @@ class CsvWriter {
   std::size_t columns() const { return columns_; }
 
  private:
+  std::vector<char> buffer_ = std::vector<char>(1 << 18);  // stdio buffer, outlives file_
   std::FILE* file_ = nullptr;
   std::filesystem::path path_;
   std::size_t columns_ = 0;
