@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
+#include "johnson_cook_tables.hpp"
 #include "material_point.hpp"
 #include "model/laws/johnson_cook_law.hpp"
 
@@ -16,32 +17,11 @@ namespace {
 // (quadratic: ~1e-12); the series are exact to round-off. A wrong cached power or log would be
 // off by far more.
 constexpr double kFlowSurfaceTolerance = 1e-9;
-
-// OFHC copper, Johnson & Cook (1985) Table 1: strong hardening and rate sensitivity (C = 0.025).
-MaterialSpec ofhc_copper() {
-  MaterialSpec spec;
-  spec.model = MaterialModel::kJohnsonCook;
-  spec.density_kg_m3 = 8960;
-  spec.youngs_modulus_Pa = 124e9;
-  spec.johnson_cook = {.A_Pa = 90e6,
-                       .B_Pa = 292e6,
-                       .n = 0.31,
-                       .C = 0.025,
-                       .reference_strain_rate_1_s = 1,
-                       .m = 1.09,
-                       .room_temperature_K = 294,
-                       .melting_temperature_K = 1356,
-                       .initial_temperature_K = 294,
-                       .specific_heat_J_kgK = 383,
-                       .taylor_quinney = 0.9,
-                       .adiabatic = true};
-  return spec;
-}
 }  // namespace
 
 TEST_CASE("A Johnson-Cook point with ringing strain rate stays on the directly evaluated flow surface",
           "[material]") {
-  const MaterialSpec spec = ofhc_copper();
+  const MaterialSpec spec = test::ofhc_copper(true);
   test::MaterialPoint point(spec);
   // A specimen element at ~2000/s and a specimen step of 20 ns, its rate ringing by ±30 % over
   // a few steps and by 0.05 % from step to step (both the series and the log/pow paths).

@@ -3,10 +3,13 @@
 #include <cmath>
 #include <vector>
 
+#include "johnson_cook_tables.hpp"
 #include "material_point.hpp"
 #include "model/laws/johnson_cook_law.hpp"
 
 using namespace shpb;
+using test::al6061;
+using test::ofhc_copper;
 
 namespace {
 // Acceptance of issue 4: the law matches its closed form within 0.1 %.
@@ -15,49 +18,6 @@ constexpr double kClosedFormTolerance = 1e-3;
 constexpr double kEnergyTolerance = 1e-10;
 // Fine reference for the adiabatic ODE: RK4 steps in plastic strain (error ≪ 1e-6 relative).
 constexpr double kReferenceStep = 2e-6;
-
-// Al 6061-T6, Johnson & Cook (1985) Table 1 / Lesuer (2000): the numbers of
-// specimens/al6061-t6.json.
-MaterialSpec al6061(bool adiabatic) {
-  MaterialSpec spec;
-  spec.model = MaterialModel::kJohnsonCook;
-  spec.density_kg_m3 = 2703;
-  spec.youngs_modulus_Pa = 69e9;
-  spec.johnson_cook = {.A_Pa = 324e6,
-                       .B_Pa = 114e6,
-                       .n = 0.42,
-                       .C = 0.002,
-                       .reference_strain_rate_1_s = 1,
-                       .m = 1.34,
-                       .room_temperature_K = 294,
-                       .melting_temperature_K = 925,
-                       .initial_temperature_K = 294,
-                       .specific_heat_J_kgK = 885,
-                       .taylor_quinney = 0.9,
-                       .adiabatic = adiabatic};
-  return spec;
-}
-
-// OFHC copper, Johnson & Cook (1985) Table 1: strong hardening and rate sensitivity.
-MaterialSpec ofhc_copper(bool adiabatic) {
-  MaterialSpec spec;
-  spec.model = MaterialModel::kJohnsonCook;
-  spec.density_kg_m3 = 8960;
-  spec.youngs_modulus_Pa = 124e9;
-  spec.johnson_cook = {.A_Pa = 90e6,
-                       .B_Pa = 292e6,
-                       .n = 0.31,
-                       .C = 0.025,
-                       .reference_strain_rate_1_s = 1,
-                       .m = 1.09,
-                       .room_temperature_K = 294,
-                       .melting_temperature_K = 1356,
-                       .initial_temperature_K = 294,
-                       .specific_heat_J_kgK = 383,
-                       .taylor_quinney = 0.9,
-                       .adiabatic = adiabatic};
-  return spec;
-}
 
 // Johnson & Cook (1983) eq. 1 written out independently of the law under test: rate term floored
 // at the reference rate, thermal term 1 below room temperature.
