@@ -6,7 +6,7 @@ RESULTS    ?= results
 ASAN_BUILD ?= build-asan
 FUZZ_BUILD ?= build-fuzz
 FUZZ_SECONDS ?= 60
-# Sanitizer reports fail the test that triggers them (issue 9); leaks included.
+# Sanitizer reports fail the test that triggers them; leaks included.
 SANITIZER_ENV = ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1 \
                 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 

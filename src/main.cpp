@@ -1,5 +1,5 @@
 // shpb — a virtual Split-Hopkinson pressure bar laboratory. This file is only the command line:
-// CLI11 subcommands (DESIGN.md §2) that call one function each in app/.
+// CLI11 subcommands (docs/commands.md) that call one function each in app/.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>

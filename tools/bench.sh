@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Benchmarks of issue 8 (figures, not assertions): builds release, then prints for every
+# Benchmarks (figures, not assertions): builds release, then prints for every
 # experiments/*/scene.json the simulator's wall time (median of several runs), node updates per
 # second, causal-economy saving, asynchronous against global stepping, and the dispersion
 # correction throughput. Usage: tools/bench.sh [build-dir] [repetitions]

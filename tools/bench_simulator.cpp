@@ -1,4 +1,4 @@
-// Benchmark (not a test) of the simulator, issue 8: for each scene given, the median wall time of
+// Benchmark (not a test) of the simulator: for each scene given, the median wall time of
 // several runs, node updates per second, node updates against the full model (causal economy),
 // and asynchronous against global stepping — at the same mesh (time ratio and incident-plateau
 // error of each) and at equal error (gauge error against the study's reference, global refined

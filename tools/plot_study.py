@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Figures of a `shpb study` output folder (issue 7).
+"""Figures of a `shpb study` output folder.
 
   /usr/bin/python3 tools/plot_study.py DIR [--out OUTDIR]
 

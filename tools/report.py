@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Figures and a one-page HTML report from any shpb output folder (DESIGN.md §4).
+"""Figures and a one-page HTML report from any shpb output folder (docs/outputs.md).
 
 usage: report.py DIR
 
@@ -39,7 +39,7 @@ US = 1e6  # s -> µs
 MICRO = 1e6  # strain -> µε
 MPA = 1e-6  # Pa -> MPa
 
-# Files this script understands, by producer (DESIGN.md §4 and the compare/study outputs).
+# Files this script understands, by producer (docs/outputs.md and the compare/study outputs).
 KNOWN_FILES = ("gauges.csv", "interfaces.csv", "specimen.csv", "energy.csv", "field.csv",
                "pulses.csv", "curve.csv", "signals.csv", "comparison.csv", "pareto.csv",
                "stability.csv", "summary.json")
@@ -328,7 +328,7 @@ def fig_specimen(src, figs):
               src.title("Specimen stress–strain (model truth)"),
               "Length-averaged engineering stress against strain of the specimen as the "
               "simulation computed it (specimen.csv), and the true values for constant volume "
-              "(METHODS.md §6). Compression positive.")
+              "(docs/methods.md §6). Compression positive.")
 
     fig, axes = new_figure(2, 1, height=6.0, sharex=True)
     axes[0, 0].plot(time, t.numeric("strain_rate_1_s"), color="k", linewidth=1.0)
@@ -404,7 +404,7 @@ def fig_curve(src, figs, truth=None):
     ax.legend(loc="best", fontsize=8)
     figs.save(fig, src.png("stress_strain"), src.title("Stress–strain curves"),
               "1-, 2- and 3-wave engineering stress against the 3-wave strain, and true stress "
-              "against true strain (curve.csv, METHODS.md §6), compression positive"
+              "against true strain (curve.csv, docs/methods.md §6), compression positive"
               + ("; dotted: the simulation's own specimen truth." if truth is not None else "."))
 
     time = t.numeric("time_s") * US
@@ -581,7 +581,7 @@ def fig_stability(src, figs):
                 k_ratio = np.logspace(np.log10(max(np.nanmin(x), 1e-12)),
                                       np.log10(np.nanmax(x)), 200)
                 ax.plot(k_ratio, np.minimum(1.0, np.sqrt(2.0 / k_ratio)), color="k",
-                        linestyle="--", linewidth=1.0, label="≈ √(2k/ε_s) (METHODS §2)")
+                        linestyle="--", linewidth=1.0, label="≈ √(2k/ε_s) (docs/methods.md §2)")
             ax.set_xscale("log")
             ax.set_title((f"R/R_crit = {r:g}" if r is not None else method), fontsize=9)
             ax.set_xlabel("penalty stiffness ε_s / (EA/h)")
@@ -703,7 +703,7 @@ def build(folder):
                           "other shpb output: an output folder of simulate, process, compare or "
                           "study was expected")
     # Figures are drawn into a temporary folder and moved into place at the end, so a failure
-    # leaves any previous report intact (DESIGN.md §5).
+    # leaves any previous report intact (docs/outputs.md (conventions)).
     tmp = tempfile.mkdtemp(prefix=".report-", dir=folder)
     os.chmod(tmp, 0o755)
     try:

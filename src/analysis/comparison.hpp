@@ -1,5 +1,5 @@
 #pragma once
-// Simulated against measured, pulse by pulse (issue 6): both signals on one uniform time grid,
+// Simulated against measured, pulse by pulse: both signals on one uniform time grid,
 // compared inside one window of samples. Shifts are simulated minus measured (positive: the
 // simulated pulse comes later); ratios are simulated over measured.
 #include <cstddef>

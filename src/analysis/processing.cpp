@@ -230,7 +230,7 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
   const std::size_t m = r.time_s.size();
   const std::size_t inc_end = std::min(m, index_at(r.time_s, face_start + duration));
   r.incident_plateau_strain = plateau_level(r.incident, 0, inc_end, -1.0);
-  // Striker on the incident bar: F1 = Z_s Z_b V/(Z_s + Z_b) = E A ε (METHODS.md §4).
+  // Striker on the incident bar: F1 = Z_s Z_b V/(Z_s + Z_b) = E A ε (docs/methods.md §4).
   const double zb = k.incident_impedance_kg_s;
   const double zs = k.striker_impedance_kg_s.value_or(zb);
   r.inferred_striker_velocity_m_s = k.front.youngs_modulus_Pa * k.front.area_m2 *

@@ -1,5 +1,5 @@
 #pragma once
-// The whole reduction of one test (DESIGN.md §4 `process`): incident pulse found on the incident
+// The whole reduction of one test (docs/outputs.md `process`): incident pulse found on the incident
 // gauge, the three pulses moved to the specimen faces (Pochhammer–Chree or pure delay), cut to a
 // common window, reduced (reduction.hpp) and summarised. Library function, reused by `compare`.
 #include <optional>

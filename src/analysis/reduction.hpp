@@ -1,6 +1,6 @@
 #pragma once
 // 1-, 2- and 3-wave reduction of the pulses at the specimen faces (Kolsky 1949; Gray 2000;
-// METHODS.md §6). Inputs are strains at the faces on one time grid, tension positive (the
+// docs/methods.md §6). Inputs are strains at the faces on one time grid, tension positive (the
 // solver's and the gauges' sign); outputs are compression positive, as a compression test is
 // reported. Bars may differ (E, A, c0 per side).
 #include <span>

@@ -11,7 +11,7 @@
 
 namespace shpb {
 
-// Options shared by simulate, compare and study (DESIGN.md §2); unset means "as the scene says".
+// Options shared by simulate, compare and study (docs/commands.md); unset means "as the scene says".
 struct RunOverrides {
   std::optional<ContactMethod> contact;
   std::optional<Stepping> stepping;
@@ -27,7 +27,7 @@ struct SimulateArgs {
   std::filesystem::path scene;
   std::filesystem::path output;
   RunOverrides overrides;
-  bool full_model = false;  // disable causal economy (METHODS.md §7)
+  bool full_model = false;  // disable causal economy (docs/methods.md §7)
 };
 int run_simulate(const SimulateArgs& args);
 

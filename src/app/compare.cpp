@@ -1,13 +1,13 @@
-// shpb compare SCENE.json -o DIR (issue 6): simulate the scene and lay it over its measurement,
+// shpb compare SCENE.json -o DIR: simulate the scene and lay it over its measurement,
 // pulse by pulse. Steps:
 //  1. read the measured gauges; find the incident, reflected and transmitted pulses in them;
 //  2. striker velocity: --striker-velocity, else measurement.striker_velocity, else inferred from
-//     the measured incident plateau, v_bar = c0 ε_I and V = v_bar (Z_s + Z_b)/Z_s (METHODS §4);
+//     the measured incident plateau, v_bar = c0 ε_I and V = v_bar (Z_s + Z_b)/Z_s (docs/methods.md §4);
 //  3. simulate; put the simulation (t = 0 at impact) on the measurement's clock by matching the
 //     half-plateau crossings of the incident pulses;
 //  4. a 1D bar does not disperse and a real one does: each simulated pulse is moved through the
 //     Pochhammer–Chree dispersion of the distance it has travelled from the impact face (minus
-//     the non-dispersive delay the 1D model already has), METHODS §5;
+//     the non-dispersive delay the 1D model already has), docs/methods.md §5;
 //  5. compare in windows around the measured pulses (analysis/comparison.hpp).
 // Writes comparison.csv, signals.csv (measured, simulated, simulated without dispersion, on the
 // measured clock), summary.json, and the simulation's own files in simulation/.

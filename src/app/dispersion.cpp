@@ -1,4 +1,4 @@
-// `shpb dispersion`: the first Pochhammer–Chree mode as CSV (DESIGN.md §2, METHODS.md §5).
+// `shpb dispersion`: the first Pochhammer–Chree mode as CSV (docs/commands.md, docs/methods.md §5).
 #include <cmath>
 #include <cstdio>
 #include <memory>

@@ -1,4 +1,4 @@
-// `shpb process SCENE -o DIR [--signals FILE]` (DESIGN.md §2, §4): gauge signals → pulses at the
+// `shpb process SCENE -o DIR [--signals FILE]` (docs/commands.md, docs/outputs.md): gauge signals → pulses at the
 // specimen faces → 1/2/3-wave stress–strain curves. Everything is read and checked before the
 // output folder is created.
 #include <cmath>

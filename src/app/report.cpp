@@ -1,5 +1,5 @@
 // `shpb report DIR`: figures and a one-page HTML report of an output folder. The plotting lives in
-// tools/report.py (matplotlib, DESIGN.md §1); this file finds the script and a Python that can
+// tools/report.py (matplotlib, README.md (Layout)); this file finds the script and a Python that can
 // import matplotlib and numpy, and runs it.
 #include <fcntl.h>
 #include <spawn.h>
@@ -59,7 +59,7 @@ std::optional<fs::path> find_script() {
 }
 
 // Debian's python3-matplotlib belongs to /usr/bin/python3, which may not be the first python3
-// on PATH (DESIGN.md §1): try it first.
+// on PATH (README.md (Layout)): try it first.
 std::optional<std::string> find_python() {
   for (const std::string python : {"/usr/bin/python3", "python3"})
     if (run_program({python, "-c", "import matplotlib, numpy"}, true) == 0) return python;

@@ -1,5 +1,5 @@
 // shpb simulate SCENE.json -o DIR: read and validate the scene (exit 2 before anything is
-// written), run it, write the files of DESIGN.md §4 atomically. An instability is exit 3 with
+// written), run it, write the files of docs/outputs.md atomically. An instability is exit 3 with
 // what was computed until then and a summary saying where and when (still written atomically).
 #include <unistd.h>
 

@@ -1,4 +1,4 @@
-// shpb study SCENE.json -o DIR --sweep pareto|stability (issue 7): accuracy against cost of every
+// shpb study SCENE.json -o DIR --sweep pareto|stability: accuracy against cost of every
 // contact method × stepping × mesh resolution (pareto.csv), or the stability map of the contact
 // methods over penalty stiffness, Courant number and mass ratio (stability.csv,
 // stability_boundary.csv); summary.json says what was compared with what. Written atomically.

@@ -15,7 +15,7 @@ namespace {
 
 using nlohmann::json;
 
-// Distance along the axis from a gauge to the specimen face on its side (DESIGN.md §3: bars left
+// Distance along the axis from a gauge to the specimen face on its side (docs/scene-format.md: bars left
 // of the specimen are the incident side, right of it the transmitted side). Gaps are included.
 std::optional<double> distance_to_specimen(const Scene& scene, std::size_t bar, double position) {
   if (!scene.specimen || bar == *scene.specimen) return std::nullopt;
@@ -42,7 +42,7 @@ std::string g(double v, int digits = 4) {
 }
 
 // The interface as simulate builds it: method and penalty parameters from the scene (per-interface
-// overrides win), derived defaults from the neighbouring end elements (METHODS.md §2–3).
+// overrides win), derived defaults from the neighbouring end elements (docs/methods.md §2–3).
 InterfaceModel resolved_interface(const Scene& scene, const ChainDiscretization& d, std::size_t k) {
   const ContactMethod method = interface_method(scene.contact, k);
   const PenaltyParams p = interface_penalty(scene.contact, k);
@@ -107,7 +107,7 @@ json resolved_setup(const Scene& scene, const ChainDiscretization& d) {
                                  {"link_mass_penalty_kg", mass}});
   }
   auto warnings = scene_warnings(scene, d.duration_s);
-  for (std::size_t i = 0; i < scene.bars.size(); ++i)  // METHODS.md §1: stable for C <= 1
+  for (std::size_t i = 0; i < scene.bars.size(); ++i)  // docs/methods.md §1: stable for C <= 1
     if (d.bars[i].courant > 1)
       warnings.push_back("bar " + scene.bars[i].name + ": Courant number " + g(d.bars[i].courant) +
                          " > 1: the explicit step is unstable");

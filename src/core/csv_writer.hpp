@@ -1,6 +1,6 @@
 #pragma once
 // Comma-separated output that pandas and spreadsheets read: one header row, units in the column
-// names, '.' decimals, shortest round-trip doubles (DESIGN.md §4).
+// names, '.' decimals, shortest round-trip doubles (docs/outputs.md).
 #include <cstdio>
 #include <filesystem>
 #include <span>

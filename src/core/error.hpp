@@ -1,7 +1,7 @@
 #pragma once
 // Errors that cross the program's boundary. Every message starts with "error:" when printed by
 // main, and names the file, the place (JSON path or CSV line/column), the value and the constraint
-// (DESIGN.md §2): "scene.json: bars[2].length: -0.005 m: must be > 0".
+// (docs/commands.md): "scene.json: bars[2].length: -0.005 m: must be > 0".
 #include <stdexcept>
 #include <string>
 

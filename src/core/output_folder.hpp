@@ -1,7 +1,7 @@
 #pragma once
 // Results are written into a temporary folder beside DIR and renamed into place at the end, so a
 // failed or interrupted run leaves the previous DIR intact and no half-written result
-// (DESIGN.md §5). Files the program did not write are never deleted: an existing DIR is replaced
+// (docs/outputs.md (conventions)). Files the program did not write are never deleted: an existing DIR is replaced
 // only if it is empty or was written by shpb (it holds a summary.json). The replacement is one
 // atomic exchange of the two folders where the file system supports it; temporary folders of
 // runs that were killed outright are removed by the next run into the same DIR.

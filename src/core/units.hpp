@@ -1,6 +1,6 @@
 #pragma once
 // Physical quantities given as numbers (SI) or strings with a unit: "20 mm", "200 GPa",
-// "7.85 g/cm3", "600 us" (µ and u both mean micro), "15 m/s", "10 MHz" (DESIGN.md §3).
+// "7.85 g/cm3", "600 us" (µ and u both mean micro), "15 m/s", "10 MHz" (docs/scene-format.md).
 #include <string>
 #include <string_view>
 

@@ -26,7 +26,7 @@ struct Elastic {
 };
 Elastic elastic(double nu) { return {(1 - nu) / ((1 + nu) * (1 - 2 * nu)), 1 / (2 * (1 + nu))}; }
 
-// Frequency equation in (k, ω) with a = c0 = 1, divided by β and k⁴ (METHODS.md §5).
+// Frequency equation in (k, ω) with a = c0 = 1, divided by β and k⁴ (docs/methods.md §5).
 double equation_k_omega(const Elastic& e, double k, double omega) {
   const double k2 = k * k;
   const double alpha2 = omega * omega / e.cl2 - k2;

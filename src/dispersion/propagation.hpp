@@ -1,6 +1,6 @@
 #pragma once
 // Moving a strain-gauge signal along its bar with Pochhammer–Chree dispersion (Follansbee & Frantz
-// 1983; Gong et al. 1990; Tyas & Watson 2001; Tyas & Pope 2005; METHODS.md §5):
+// 1983; Gong et al. 1990; Tyas & Watson 2001; Tyas & Pope 2005; docs/methods.md §5):
 // X(f) → X(f)·H(f)·exp(−i 2π f Δz / c(f)), real-to-complex FFT with zero padding; Δz > 0 moves
 // the pulse forward (later, downstream), Δz < 0 backward. DC is untouched. H is a low-pass with a
 // smooth raised-cosine roll-off that ends at the cut-off, below the pole of m1.
@@ -26,7 +26,7 @@ enum class AmplitudeFactor {
   kStress,  // × m1·m2: mean axial stress / E
 };
 
-// f·a/c0 = 0.2619 (d/Λ ≈ 0.6): a common cut-off below the m1 pole (METHODS.md §5).
+// f·a/c0 = 0.2619 (d/Λ ≈ 0.6): a common cut-off below the m1 pole (docs/methods.md §5).
 inline constexpr double kDefaultCutoffFaOverC0 = 0.2619;
 
 struct PropagationOptions {

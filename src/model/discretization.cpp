@@ -24,7 +24,7 @@ double automatic_elements(const Scene& scene, std::size_t i) {
   return std::max<double>(minimum, std::ceil(bar.length_m / h - 1e-9));
 }
 
-// Refuses a set-up that cannot run here before anything is allocated (issue 9), naming the entry
+// Refuses a set-up that cannot run here before anything is allocated, naming the entry
 // that drives the cost with the estimated memory and time. Estimates, not measurements: per
 // element the bar state (7 doubles) and one material point (~15 doubles); per recorded sample one
 // double per column (time, gauges, two per interface, specimen and energy columns).

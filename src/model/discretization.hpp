@@ -1,5 +1,5 @@
 #pragma once
-// How a scene is cut into elements and time steps (METHODS.md §1, §7): every bar runs with its own
+// How a scene is cut into elements and time steps (docs/methods.md §1, §7): every bar runs with its own
 // time step at a Courant number close to 1; the specimen is meshed finely enough for its transit.
 // `shpb validate` prints exactly what `shpb simulate` will use: both call discretize().
 #include <vector>
@@ -10,9 +10,9 @@ namespace shpb {
 
 // Default Courant number c·Δt/h of every bar. Lumped central difference is exact at C = 1 and
 // stable up to it; exactly C = 1 with a bipenalty mass ratio R = R_crit is marginally unstable
-// (METHODS.md §2), and the tied-bar plateau ringing is 0.41 % at 0.999 and 0.86 % at 0.98.
+// (docs/methods.md §2), and the tied-bar plateau ringing is 0.41 % at 0.999 and 0.86 % at 0.98.
 inline constexpr double kDefaultCourant = 0.995;
-// Automatic meshes: bars at ~1 mm elements (the classic SHPB resolution, METHODS.md §1), the
+// Automatic meshes: bars at ~1 mm elements (the classic SHPB resolution, docs/methods.md §1), the
 // specimen ten times finer and with at least 50 elements across its length, so its ring-up and
 // its own wave transits are resolved.
 inline constexpr double kBarElementLength_m = 1e-3;
@@ -32,14 +32,14 @@ struct BarDiscretization {
 
 struct ChainDiscretization {
   std::vector<BarDiscretization> bars;  // in chain order
-  double duration_s = 0;                // resolved (scene's, or the default of DESIGN.md §3)
+  double duration_s = 0;                // resolved (scene's, or the default of docs/scene-format.md)
   double sample_rate_Hz = 0;
   Stepping stepping = Stepping::kAsynchronous;
 };
 
 ChainDiscretization discretize(const Scene& scene);
 
-// DESIGN.md §3 default duration: the striker's pulse (2 L_s/c_s long) has travelled from the
+// docs/scene-format.md default duration: the striker's pulse (2 L_s/c_s long) has travelled from the
 // first interface to the last gauge and passed it, plus 10 %. Without gauges: two transits of
 // the longest bar.
 double default_duration_s(const Scene& scene);

@@ -1,5 +1,5 @@
 // Per-interface contact settings: the scene-wide contact block with one interface's override
-// applied (DESIGN.md §3 "contact"). Shared by validate and simulate so both resolve alike.
+// applied (docs/scene-format.md "contact"). Shared by validate and simulate so both resolve alike.
 #include "model/scene.hpp"
 
 namespace shpb {

@@ -9,7 +9,7 @@
 
 namespace shpb {
 
-// Per-element state. Strain is engineering strain, tension positive (DESIGN.md §5).
+// Per-element state. Strain is engineering strain, tension positive (docs/outputs.md (conventions)).
 struct MaterialPointState {
   static constexpr int kMaxArms = 8;
   double strain = 0;          // ε at the last update

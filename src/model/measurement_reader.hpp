@@ -1,5 +1,5 @@
 #pragma once
-// Reads the `measurement` block of a scene (DESIGN.md §3): where measured gauge signals are and how
+// Reads the `measurement` block of a scene (docs/scene-format.md): where measured gauge signals are and how
 // to turn them into strain. Files are resolved relative to the scene but not opened here, so a
 // scene whose data live elsewhere still validates; the signal importers check them when used.
 #include <filesystem>

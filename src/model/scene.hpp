@@ -1,5 +1,5 @@
 #pragma once
-// The scene: one JSON file describing a bar set-up (DESIGN.md §3), read into plain structs with
+// The scene: one JSON file describing a bar set-up (docs/scene-format.md), read into plain structs with
 // defaults. Validation happens once, in read_scene(); nothing downstream re-checks.
 #include <cmath>
 #include <filesystem>
@@ -36,7 +36,7 @@ enum class ContactMethod { kPenalty, kBipenalty, kLocalizedBipenalty };
 enum class Stepping { kAsynchronous, kGlobal };
 
 // Penalty parameters of one interface. Unset values are derived from the neighbouring elements
-// (METHODS.md §2): ε_s as a multiple of the stiffer neighbour's EA/h, R as a fraction of
+// (docs/methods.md §2): ε_s as a multiple of the stiffer neighbour's EA/h, R as a fraction of
 // R_crit = (2c/h)² of each neighbour.
 struct PenaltyParams {
   std::optional<double> stiffness_factor;  // ε_s / (EA/h)
@@ -75,7 +75,7 @@ struct SimulationSpec {
   std::optional<double> duration_s;  // default: the transmitted pulse has passed the last gauge
   double sample_rate_Hz = 10e6;
   Stepping stepping = Stepping::kAsynchronous;
-  std::optional<double> courant;  // default chosen by the solver (close to 1, METHODS.md §1)
+  std::optional<double> courant;  // default chosen by the solver (close to 1, docs/methods.md §1)
 };
 
 // ---- measured signals -------------------------------------------------------------------------

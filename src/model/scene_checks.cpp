@@ -34,7 +34,7 @@ std::vector<std::string> scene_warnings(const Scene& s, double duration_s) {
                   " not found (process and compare will need it)");
   }
 
-  // The striker: the first moving bar. Its pulse lasts 2 L/c (METHODS.md §4).
+  // The striker: the first moving bar. Its pulse lasts 2 L/c (docs/methods.md §4).
   std::size_t striker = s.bars.size();
   for (std::size_t i = 0; i < s.bars.size() && striker == s.bars.size(); ++i)
     if (s.bars[i].velocity_m_s != 0) striker = i;
@@ -47,7 +47,7 @@ std::vector<std::string> scene_warnings(const Scene& s, double duration_s) {
   if (striker + 1 >= s.bars.size() || s.bars[striker].velocity_m_s < 0) return w;
   const auto& sb = s.bars[striker];
   const double pulse_s = 2 * sb.length_m / sb.material.wave_speed_m_s();
-  const std::size_t first = striker + 1;  // impact at its left end at t = 0 (DESIGN.md §5)
+  const std::size_t first = striker + 1;  // impact at its left end at t = 0 (docs/outputs.md (conventions))
   const std::size_t last = s.bars.size() - 1;
 
   double needed_s = 0;  // when the last pulse of interest has passed the last gauge

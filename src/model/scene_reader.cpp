@@ -1,5 +1,5 @@
-// The scene reader (DESIGN.md §3): JSON → Scene, every check at this boundary, each error naming
-// the file, the JSON path, the value and the constraint (DESIGN.md §2).
+// The scene reader (docs/scene-format.md): JSON → Scene, every check at this boundary, each error naming
+// the file, the JSON path, the value and the constraint (docs/commands.md).
 #include <map>
 
 #include "core/closest_match.hpp"
@@ -241,7 +241,7 @@ class SceneReader {
       if (!m) throw x->error(suggestion_text(x->string(), kSteppings));
       s.stepping = *m;
     }
-    // Lumped central difference is stable for C <= 1 (METHODS.md §1).
+    // Lumped central difference is stable for C <= 1 (docs/methods.md §1).
     if (auto x = o.get("courant"))
       s.courant = x->quantity_in(Dimension::kDimensionless, 0, 1, true, false);
     return s;

@@ -1,10 +1,10 @@
 #pragma once
 // One bar of the chain: its immutable set-up (mesh, masses, material, own time step) and its
-// mutable state. Linear two-node elements with lumped mass (METHODS.md §1).
+// mutable state. Linear two-node elements with lumped mass (docs/methods.md §1).
 //
 // Displacements are stored RELATIVE to the bar's initial rigid motion, u(x,t) = w(x,t) + V0·τ
 // (τ = time since the start of the run): a node no wave has reached has w = 0 and v = 0 exactly,
-// so the causal economy (METHODS.md §7) can skip it and still give bit-identical results.
+// so the causal economy (docs/methods.md §7) can skip it and still give bit-identical results.
 #include <memory>
 #include <string>
 #include <vector>
@@ -28,7 +28,7 @@ struct BarModel {
   std::vector<double> mass_kg;      // lumped: ρAh/2 at the ends, ρAh inside
   std::vector<double> inverse_mass;
   std::unique_ptr<MaterialLaw> law;  // null: elastic, σ = E ε in the solver's own kernel
-  // Causal economy (METHODS.md §7): the right end of the last bar may be cut where its
+  // Causal economy (docs/methods.md §7): the right end of the last bar may be cut where its
   // reflections cannot reach anything recorded; the cut end is an exact non-reflecting dashpot.
   int full_nodes = 0;            // nodes of the uncut mesh
   bool dashpot_right = false;    // the right end is a cut with a dashpot of impedance ρcA
@@ -62,7 +62,7 @@ BarState make_bar_state(const BarModel& bar, bool full_model);
 
 // Absolute displacement and velocity of node i at time τ since the start, for a bar whose state
 // is at τ_n ≥ τ ≥ τ_{n−1}: the central-difference path is linear within a step, so this
-// interpolation is exact (METHODS.md §3).
+// interpolation is exact (docs/methods.md §3).
 inline double node_displacement_at(const BarModel& bar, const BarState& s, int i, double tau_n,
                                    double tau) {
   return s.w[i] - (tau_n - tau) * s.v[i] + bar.initial_velocity_m_s * tau;

@@ -1,12 +1,12 @@
 #pragma once
 // The per-bar explicit integrator: central difference in leapfrog form with lumped mass
-// (METHODS.md §1), over contiguous arrays. A step at t_n is split in two so that interfaces can
+// (docs/methods.md §1), over contiguous arrays. A step at t_n is split in two so that interfaces can
 // add their forces to the end nodes in between:
 //   1. assemble_internal_forces: f_n = −K u_n (elastic kernel, or the bar's MaterialLaw with one
 //      virtual call per bar per step), over the nodes a wave can have reached;
 //   2. (interfaces add contact forces to f_n[0] and f_n[last], see contact_*.hpp)
 //   3. advance: v_{n+1/2} = v_{n−1/2} + Δt M⁻¹ f_n (half a step at n = 0), u_{n+1} = u_n + Δt v_{n+1/2}.
-// Causal economy (METHODS.md §7): lumped central difference moves information by exactly one
+// Causal economy (docs/methods.md §7): lumped central difference moves information by exactly one
 // node per step, so only the node range [lo, hi] grown by one per step is updated; everything
 // outside is exactly at rest relative to the rigid motion.
 #include "solver/bar.hpp"
@@ -30,7 +30,7 @@ long advance(const BarModel& bar, BarState& s);
 
 // Free (internal) force on end node `end` (0 or nodes−1) at time τ within the bar's last step,
 // from the interpolated displacements (exact for elastic bars) or the last stress of a
-// material-law bar: the predictor of a neighbour's end load (METHODS.md §3). A finite
+// material-law bar: the predictor of a neighbour's end load (docs/methods.md §3). A finite
 // `end_w` puts the end node there instead (an end tied to an interface frame).
 double end_free_force_at(const BarModel& bar, const BarState& s, int end, double tau_n, double tau,
                          double end_w);

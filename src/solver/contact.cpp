@@ -29,7 +29,7 @@ InterfaceModel make_interface_model(std::string name, ContactMethod method,
     return r * r;
   };
   if (method == ContactMethod::kLocalizedBipenalty) {
-    // Each link keeps its own bar's step: R_i ≤ (2 c_i / h_i)² (METHODS.md §3).
+    // Each link keeps its own bar's step: R_i ≤ (2 c_i / h_i)² (docs/methods.md §3).
     m.stiffness_N_m[0] = m.stiffness_N_m[1] = eps_s;
     m.mass_penalty_kg[0] = eps_s / (ratio * r_crit(left));
     m.mass_penalty_kg[1] = eps_s / (ratio * r_crit(right));

@@ -4,7 +4,7 @@
 //
 // Sign conventions: the gap g = gap0 + u_right − u_left (g < 0 is penetration); forces are the
 // forces the interface applies to each end node; the reported contact force is compression
-// positive (DESIGN.md §4).
+// positive (docs/outputs.md).
 #include <limits>
 
 #include "model/scene.hpp"
@@ -26,7 +26,7 @@ struct EndState {
   double velocity_now() const { return stepping ? v + (kick_s - 0.5 * step_s) * free_force / mass : v; }
 };
 
-// Immutable parameters of one interface, derived from the neighbours (METHODS.md §2–3).
+// Immutable parameters of one interface, derived from the neighbours (docs/methods.md §2–3).
 struct InterfaceModel {
   std::string name;  // "<left>-<right>"
   ContactMethod method = ContactMethod::kLocalizedBipenalty;
@@ -66,7 +66,7 @@ struct ContactResult {
   double dissipated_J = 0;
 };
 
-// Default penalty parameters (METHODS.md §2): ε_s = kDefaultStiffnessFactor × the stiffer
+// Default penalty parameters (docs/methods.md §2): ε_s = kDefaultStiffnessFactor × the stiffer
 // neighbour's EA/h; R_i = kDefaultMassRatio × (2 c_i/h_i)², the bar's own critical ratio, so
 // that every link leaves its bar's stable step unchanged.
 inline constexpr double kDefaultStiffnessFactor = 1e4;

@@ -1,10 +1,10 @@
-// Node-to-node bipenalty contact (METHODS.md §2), the baseline with naive switching: while the
+// Node-to-node bipenalty contact (docs/methods.md §2), the baseline with naive switching: while the
 // gap is negative the potential ½ ε_s g² and the kinetic term ½ ε_m ġ² are added, so the two end
 // nodes solve the 2×2 system
 //   [m1 + ε_m, −ε_m; −ε_m, m2 + ε_m] [ü1; ü2] = [f̃1 + ε_s g; f̃2 − ε_s g].
 // Switching is the textbook one, with no velocity or position correction: the contact switches
 // on when g < 0 whatever ġ is, and off when the link force turns tensile. This is the
-// formulation whose force chatters between ~0 and 2Zv from step to step (METHODS.md §2).
+// formulation whose force chatters between ~0 and 2Zv from step to step (docs/methods.md §2).
 #include "solver/contact.hpp"
 
 namespace shpb {

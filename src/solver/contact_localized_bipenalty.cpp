@@ -3,7 +3,7 @@
 // the finite links). Why the limit is the default: measured plateau std 0.05 % at C = 0.995 with
 // any stepping, asynchronous included, where finite links need a common step.
 //
-// The seed paper's formulation (METHODS.md §3) in 1D: a frame point
+// The seed paper's formulation (docs/methods.md §3) in 1D: a frame point
 // u_f per interface, a localized gap per bar g1 = u_f − u_b1, g2 = gap0 + u_b2 − u_f, each link
 // with its own (ε_s,i, ε_m,i = ε_s,i/R_i). With one boundary node per bar, (B_iᵀ M_i⁻¹ B_i)⁻¹ = m_bi
 // and the explicit interface solution (seed eqs. 10–17) is, in scalars,
@@ -15,7 +15,7 @@
 // Why a plain bipenalty interface rings, and what we do instead (our addition): the mass penalty
 // ε_m ≈ 2500 ρAh dwarfs the end-node masses, so the gap mode has frequency ≈ √R ≈ 2/Δt and enormous
 // inertia: started by a relative velocity or a penetration at switch-on, it rings at the Nyquist
-// rate for ever (the 10 % plateau noise of METHODS.md §2). A mass matrix change must conserve
+// rate for ever (the 10 % plateau noise of docs/methods.md §2). A mass matrix change must conserve
 // momentum, p = M_old v_old = M_new v_new: for ε_m ≫ m_b that is the inelastic node-to-node impact,
 // both ends take their momentum-weighted velocity (V/2 for equal bars: the exact continuum
 // interface velocity), the frame is placed at the contact point with both localized gaps and link

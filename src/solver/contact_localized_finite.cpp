@@ -1,4 +1,4 @@
-// Localized bipenalty with FINITE links (the seed paper's explicit interface solution, METHODS.md
+// Localized bipenalty with FINITE links (the seed paper's explicit interface solution, docs/methods.md
 // §3 steps 1–4), used when the scene gives a penalty parameter explicitly (stiffness_factor,
 // stiffness or mass_ratio); without one the rigid-link limit of contact_localized_bipenalty.cpp
 // is used. DOFs (u_b1, u_b2, u_f): bar ends and the frame point; localized gaps

@@ -1,6 +1,6 @@
 // Plain penalty contact (stiffness only), the textbook baseline: while the gap is negative the
 // ends are pushed apart by ε_s·(−g). Naive on/off switching. Stable only if ε_s is small
-// against the bars' stiffness or the step is shrunk by ≈ sqrt(2k/ε_s) (METHODS.md §2); at the
+// against the bars' stiffness or the step is shrunk by ≈ sqrt(2k/ε_s) (docs/methods.md §2); at the
 // bars' own steps with ε_s = 10⁴ EA/h it is unstable, and the run says so (exit 3).
 #include "solver/contact.hpp"
 

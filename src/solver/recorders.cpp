@@ -131,7 +131,7 @@ void ChainRecorders::on_bar_instant(const Chain& chain, std::size_t i, double ta
     double mean = 0;
     for (int e = 0; e < bar.elements(); ++e) mean += element_stress(bar, s, e);
     mean /= bar.elements();
-    // Compression positive (DESIGN.md §4).
+    // Compression positive (docs/outputs.md).
     const double values[5] = {-(s.w[last] - s.w[0]) / length,
                               -(node_velocity_now(bar, s, last) - node_velocity_now(bar, s, 0)) / length,
                               -mean, -element_stress(bar, s, 0),

@@ -1,7 +1,7 @@
 #pragma once
 // Recorders: gauges, specimen truth, interface force/gap, energy and the x–t field, each sampled
 // from its bar's (or interface's) own instants and interpolated linearly in time onto the output
-// grid (DESIGN.md §4). Bars call on_bar_instant between force assembly and advance (the
+// grid (docs/outputs.md). Bars call on_bar_instant between force assembly and advance (the
 // full-step velocity is known there); interfaces call on_interface_solve after each solve.
 #include <string>
 #include <vector>

@@ -1,6 +1,6 @@
 #pragma once
 // The asynchronous scheduler: every bar advances with its own time step, interfaces are solved on
-// the union of their neighbours' instants (METHODS.md §3; after Dvořák et al. 2023, CMAME
+// the union of their neighbours' instants (docs/methods.md §3; after Dvořák et al. 2023, CMAME
 // 413:116110). Global stepping is the special case where every bar has the same Δt.
 //
 // Contract (τ is the time since the start of the run; the simulation clock is t = t_start + τ):
@@ -30,7 +30,7 @@
 //  7. Recorders take each bar's instants and each interface solve and interpolate linearly onto
 //     the output grids. An energy grid point is complete when every bar and interface has passed
 //     it; there the total energy is checked: non-finite, or above kEnergyGrowthLimit × E(0), stops
-//     the run as unstable (DESIGN.md §2, exit 3) with what was computed until then.
+//     the run as unstable (docs/commands.md, exit 3) with what was computed until then.
 //  8. A bar is finished after it has taken its instant at or beyond the end of the recording;
 //     the run ends when every bar is finished.
 //  9. Cancellation is polled every kCancelPollInstants instants (throws Interrupted).
@@ -45,7 +45,7 @@ namespace shpb {
 // Two instants closer than this fraction of the smaller step are the same instant.
 inline constexpr double kSameInstant = 1e-9;
 // Energy may not grow beyond this factor of its initial value: a stable run stays within
-// ~1e-2 of E(0) (METHODS.md §2 reference); an unstable one grows exponentially past any bound.
+// ~1e-2 of E(0) (docs/methods.md §2 reference); an unstable one grows exponentially past any bound.
 inline constexpr double kEnergyGrowthLimit = 1e3;
 inline constexpr long kCancelPollInstants = 4096;
 

@@ -16,7 +16,7 @@ namespace shpb {
 
 namespace {
 
-// Time zero is the first contact (DESIGN.md §5): with initial gaps, the run starts earlier by
+// Time zero is the first contact (docs/outputs.md (conventions)): with initial gaps, the run starts earlier by
 // the flight time of the first interface to close under the bars' rigid motions.
 double first_contact_delay(const Scene& scene) {
   double delay = std::numeric_limits<double>::infinity();
@@ -27,7 +27,7 @@ double first_contact_delay(const Scene& scene) {
   return std::isfinite(delay) ? delay : 0.0;
 }
 
-// METHODS.md §7: lumped central difference moves information by exactly one node per step, and
+// docs/methods.md §7: lumped central difference moves information by exactly one node per step, and
 // every disturbance of the last bar enters at its left end. A node j right of the rightmost node
 // k that is recorded (gauges) or coupled (node 0) is first disturbed at step ≥ s_k + (j − k) and
 // can act back on k at step ≥ s_k + 2(j − k): beyond k + N/2 (N instants in the run) nothing can

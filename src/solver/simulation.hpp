@@ -1,6 +1,6 @@
 #pragma once
 // The simulator's library API: run a scene in memory, then (optionally) write the files of
-// DESIGN.md §4. `shpb simulate`, `shpb compare`, `shpb study` and the processing tests call these
+// docs/outputs.md. `shpb simulate`, `shpb compare`, `shpb study` and the processing tests call these
 // two functions; the signatures are kept stable.
 #include <filesystem>
 #include <functional>

@@ -1,5 +1,5 @@
 #pragma once
-// `shpb study --sweep pareto` (issue 7): every contact method × stepping × mesh resolution run on
+// `shpb study --sweep pareto`: every contact method × stepping × mesh resolution run on
 // the scene, each measured against one reference (exact or fine mesh, study/reference.hpp) and
 // by its cost (wall time of the solve, node updates).
 #include <functional>

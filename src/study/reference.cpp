@@ -37,10 +37,10 @@ std::optional<GaugeReference> exact_reference(const Scene& scene) {
   GaugeReference r;
   r.exact = true;
   r.description =
-      "exact: striker on a bar of the same impedance (METHODS.md section 4), square strain pulse "
+      "exact: striker on a bar of the same impedance (docs/methods.md §4), square strain pulse "
       "-V/(2 c0) lasting 2 L_s/c0 at each gauge, compared until the far-end reflection arrives";
   r.window_end_s = first_reflection;
-  // Time zero is first contact (DESIGN.md §5); the pulse front reaches a gauge at x/c0.
+  // Time zero is first contact (docs/outputs.md (conventions)); the pulse front reaches a gauge at x/c0.
   r.strain = [positions, c0, V, duration](std::size_t column, double t) {
     const double arrival = positions[column] / c0;
     return t >= arrival && t < arrival + duration ? -V / (2 * c0) : 0.0;

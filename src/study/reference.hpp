@@ -1,5 +1,5 @@
 #pragma once
-// The reference a pareto run's gauge signals are measured against (issue 7): the exact solution
+// The reference a pareto run's gauge signals are measured against: the exact solution
 // where the scene has one, else a converged fine-mesh run. The error is the relative L2 norm of
 // the difference over every gauge and every sample of the comparison window.
 #include <functional>
@@ -23,7 +23,7 @@ struct GaugeReference {
 };
 
 // A striker on a bar of the same material and area, both elastic, gauges on the bar only
-// (METHODS.md §4): a square strain pulse −V/(2c0) lasting 2L_s/c0 passes each gauge; compared
+// (docs/methods.md §4): a square strain pulse −V/(2c0) lasting 2L_s/c0 passes each gauge; compared
 // until the reflection from the bar's far end reaches the first gauge. Else nullopt.
 std::optional<GaugeReference> exact_reference(const Scene& scene);
 

@@ -49,7 +49,7 @@ StabilityVerdict judge_stability(const Scene& probe, const StabilityPoint& point
   if (point.method != ContactMethod::kPenalty) s.contact.penalty.mass_ratio = point.mass_ratio;
   s.contact.penalty.tied = point.tied;
   // A tied link started at ġ = −V would hold ½ ε_m V² from nothing (the switching energy of
-  // METHODS.md §2), far above the bars' energy for a large mass penalty: the tied probe moves
+  // docs/methods.md §2), far above the bars' energy for a large mass penalty: the tied probe moves
   // both bars, the striker only kTiedRelativeVelocity faster, so the contact mode starts small.
   if (point.tied)
     s.bars.back().velocity_m_s = s.bars.front().velocity_m_s * (1 - kTiedRelativeVelocity);

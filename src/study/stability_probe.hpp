@@ -1,5 +1,5 @@
 #pragma once
-// The stability map's probe (issue 7, METHODS.md §2): the scene's first contact — its striker on
+// The stability map's probe (docs/methods.md §2): the scene's first contact — its striker on
 // the bar it hits — cut down to two short bars of equal element length, run long enough for the
 // contact to close, hold for 2 L/c and open again. A point is unstable when the total energy
 // grows beyond kUnstableEnergyGrowth × its initial value, or the run stops on a non-finite value.
@@ -8,8 +8,8 @@
 
 namespace shpb {
 
-// Issue 7: "energy growth beyond 10× or NaN = unstable". A stable run stays within ~1e-2 of E(0)
-// (METHODS.md §2 reference); an unstable one grows exponentially, so the verdict does not hang
+// Criterion: energy growth beyond 10× E(0), or a non-finite value, is unstable. A stable run stays within ~1e-2 of E(0)
+// (docs/methods.md §2 reference); an unstable one grows exponentially, so the verdict does not hang
 // on the exact factor.
 inline constexpr double kUnstableEnergyGrowth = 10;
 // Elements per probe bar: short enough to run a point in about a millisecond, long enough that
@@ -34,11 +34,11 @@ StabilityVerdict judge_stability(const Scene& probe, const StabilityPoint& point
 // side, antisymmetric across the contact; the end-node equation gives 1/q − q = 4s and the
 // interior ones m ω² = k (2 + q + 1/q), so ω² = (2k/m)(1 + sqrt(1 + 4s²)) and
 //   C_crit = 2/(ω h/c) = sqrt(2 / (1 + sqrt(1 + 4 s²))),
-// → sqrt(k/ε_s) for ε_s ≫ k (the bar-on-rigid-wall law of METHODS.md §2 is the same with
+// → sqrt(k/ε_s) for ε_s ≫ k (the bar-on-rigid-wall law of docs/methods.md §2 is the same with
 // 4s² → s², hence sqrt(2k/ε_s) there: one end mass on the spring instead of two).
 double penalty_critical_courant(double stiffness_factor);
 
-// Bipenalty above R_crit: the step tends to 2/√R (METHODS.md §2), i.e. with R_crit = (2c/h)²
+// Bipenalty above R_crit: the step tends to 2/√R (docs/methods.md §2), i.e. with R_crit = (2c/h)²
 // C_crit → sqrt(R_crit / R); at or below R_crit the bar's own limit C = 1 stays.
 double bipenalty_critical_courant(double mass_ratio);
 

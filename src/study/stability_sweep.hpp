@@ -1,5 +1,5 @@
 #pragma once
-// `shpb study --sweep stability` (issue 7, METHODS.md §2): the stability map of each contact
+// `shpb study --sweep stability` (docs/methods.md §2): the stability map of each contact
 // method over penalty stiffness, Courant number and (bipenalty methods) mass ratio, run on the
 // scene's stability probe (study/stability_probe.hpp), and the measured stability boundary of
 // every line of the map next to its closed form.

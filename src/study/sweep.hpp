@@ -1,5 +1,5 @@
 #pragma once
-// What a study sweeps (issue 7): the cases of the accuracy-against-cost sweep and the grid of the
+// What a study sweeps: the cases of the accuracy-against-cost sweep and the grid of the
 // stability map, and how one case turns a scene into the scene that is run.
 #include <string>
 #include <vector>
@@ -43,7 +43,7 @@ struct StabilityPoint {
   bool tied = false;            // plain penalty acting in tension too (linear limit)
 };
 
-// The stability grid of issue 7: ε_s/k from 1e-2 to 1e6 (two points per decade), C from 0.1 to
+// The stability grid: ε_s/k from 1e-2 to 1e6 (two points per decade), C from 0.1 to
 // 1.05, and for the bipenalty methods R/R_crit from 0.25 to 4.
 inline const std::vector<double> kStiffnessFactors = {
     1e-2, 3e-2, 1e-1, 3e-1, 1, 3, 10, 30, 1e2, 3e2, 1e3, 3e3, 1e4, 3e4, 1e5, 3e5, 1e6};

@@ -11,7 +11,7 @@ using namespace shpb;
 
 namespace {
 
-// Acceptance of issue 5: on the loaded plateau after equilibrium, the reduction of the
+// On the loaded plateau after equilibrium, the reduction of the
 // simulator's gauges matches the model's own specimen truth (specimen.csv) within 2 % — RMS for
 // stress and strain rate (relative to the peak stress / the plateau rate), maximum for strain.
 // The truth is averaged over one specimen wave transit L_s/c_s: the length-averaged specimen rate

@@ -1,4 +1,4 @@
-// Bad scenes as behaviour of the real executable (DESIGN.md §2): exit code 2, one line
+// Bad scenes as behaviour of the real executable (docs/commands.md): exit code 2, one line
 // "error: <file>: <json path>: <value>: <constraint>" on stderr, and nothing written — neither the
 // output folder nor anything beside it — by every command that takes a scene.
 #include <algorithm>

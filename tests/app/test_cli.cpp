@@ -1,4 +1,4 @@
-// The command line as users meet it (DESIGN.md §2): `shpb --help` and `shpb <command> --help`
+// The command line as users meet it (docs/commands.md): `shpb --help` and `shpb <command> --help`
 // describe every subcommand and option; usage errors exit 2 with one "error:" line.
 #include <catch2/catch.hpp>
 #include <filesystem>
@@ -84,7 +84,7 @@ TEST_CASE("Every subcommand's --help describes every option", "[app][cli]") {
   }
 }
 
-TEST_CASE("The run options of DESIGN.md are on simulate, compare, study and validate",
+TEST_CASE("The documented run options are on simulate, compare, study and validate",
           "[app][cli]") {
   for (const char* c : {"simulate", "compare", "study", "validate"}) {
     INFO(c);

@@ -101,7 +101,7 @@ nlohmann::json summary(const fs::path& dir) {
 
 }  // namespace
 
-TEST_CASE("process writes pulses.csv, curve.csv and summary.json with the DESIGN columns",
+TEST_CASE("process writes pulses.csv, curve.csv and summary.json with the documented columns",
           "[app][process]") {
   const fs::path d = temp_dir("good");
   const fs::path scene = write_scene(d, good_signals());

@@ -1,4 +1,4 @@
-// `shpb report DIR` (issue 6): every figure of an output folder is a non-empty PNG referenced by
+// `shpb report DIR`: every figure of an output folder is a non-empty PNG referenced by
 // report.html, and a real browser renders the page to something that is not blank.
 #include <catch2/catch.hpp>
 #include <cstdlib>
@@ -36,7 +36,7 @@ void check_figure(const fs::path& dir, const std::string& html, const std::strin
   CHECK(html.find("figures/" + name) != std::string::npos);
 }
 
-// A study folder as `shpb study` writes it (columns of issue 7): a made-up sweep whose error
+// A study folder as `shpb study` writes it (its documented columns): a made-up sweep whose error
 // falls as resolution², enough to draw the Pareto chart and a stability map.
 fs::path write_study_folder(const fs::path& dir) {
   fs::create_directories(dir);

@@ -1,4 +1,4 @@
-// `shpb simulate` as a user sees it (DESIGN.md §2, §4): the files of a run, exit 2 with nothing
+// `shpb simulate` as a user sees it (docs/commands.md, docs/outputs.md): the files of a run, exit 2 with nothing
 // written for bad input, exit 3 with the outputs up to the failure for a detected instability.
 #include <catch2/catch.hpp>
 #include <filesystem>
@@ -54,7 +54,7 @@ TEST_CASE("Simulating a scene that cannot be read exits with 2 and writes nothin
 
 TEST_CASE("A detected instability exits with 3 and still writes what was computed",
           "[app][simulate]") {
-  // Plain penalty at 1e4 EA/h with the bars' own steps is unstable (METHODS.md §2).
+  // Plain penalty at 1e4 EA/h with the bars' own steps is unstable (docs/methods.md §2).
   const fs::path dir = scratch_dir("simulate_unstable") / "out";
   const auto r = run_shpb({"simulate", kStrikerOnBar.string(), "-o", dir.string(), "--contact",
                            "penalty", "--quiet"});

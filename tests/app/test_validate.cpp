@@ -1,5 +1,5 @@
 // `shpb validate --json` prints the resolved set-up: the same mesh and steps as discretize()
-// (what simulate uses), wave speeds and impedances from the materials (METHODS.md notation:
+// (what simulate uses), wave speeds and impedances from the materials (docs/methods.md notation:
 // c0 = sqrt(E/ρ), Z = ρ c0 A, C = c0 Δt / h) and gauge distances to the specimen faces.
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -76,7 +76,7 @@ TEST_CASE("validate applies --contact, --stepping and --courant as simulate woul
   const double dt = v["bars"][0]["time_step_s"].get<double>();
   for (const auto& b : v["bars"]) CHECK(b["time_step_s"].get<double>() == dt);
   CHECK(v["warnings"].empty());
-  // Lumped central difference is unstable above C = 1 (METHODS.md §1): validate says so.
+  // Lumped central difference is unstable above C = 1 (docs/methods.md §1): validate says so.
   const json unstable = validate_json(file, {"--courant", "1.2"});
   REQUIRE(unstable["warnings"].size() == 2);
   CHECK(unstable["warnings"][0].get<std::string>().find("unstable") != std::string::npos);
@@ -85,7 +85,7 @@ TEST_CASE("validate applies --contact, --stepping and --courant as simulate woul
 TEST_CASE("validate warns when pulses overlap at a gauge or the duration is too short",
           "[app][validate]") {
   // Identical steel bars, 0.3 m striker: the incident pulse is 2 × 0.3 m long, so a gauge closer
-  // than 0.3 m to the specimen sees incident and reflected pulses overlap (METHODS.md §4).
+  // than 0.3 m to the specimen sees incident and reflected pulses overlap (docs/methods.md §4).
   auto scene = [](const std::string& gauge_to_face, const std::string& duration) {
     return R"({"bars": [
       {"name": "s", "material": "steel", "length": "0.3 m", "diameter": 0.02, "velocity": 10},
@@ -121,7 +121,7 @@ TEST_CASE("validate warns when pulses overlap at a gauge or the duration is too 
 
 TEST_CASE("validate reports penalty links that keep every bar's own time step", "[app][validate]") {
   // Bipenalty with R = ε_s/ε_m ≤ R_crit = (2 c0/h)² leaves the bar's critical step unchanged
-  // for any ε_s (METHODS.md §2): each link of the localized interfaces must respect its bar's.
+  // for any ε_s (docs/methods.md §2): each link of the localized interfaces must respect its bar's.
   const json v = validate_json(fs::path(SHPB_SOURCE_DIR) / "experiments/classic-al6061/scene.json");
   for (std::size_t k = 0; k < v["interfaces"].size(); ++k) {
     const auto& i = v["interfaces"][k];

@@ -55,7 +55,7 @@ TEST_CASE("shpb dispersion writes the curve and matches the reference within 2e-
       WARN("../shared/data/reference/pochhammer-chree absent: comparison skipped");
       continue;
     }
-    constexpr double kReferenceTolerance = 2e-5;  // acceptance of issue 5
+    constexpr double kReferenceTolerance = 2e-5;  // the reference table is printed to five decimals
     double worst = 0;
     std::size_t matched = 0;
     for (const auto& [key, r] : read_rows(ref)) {

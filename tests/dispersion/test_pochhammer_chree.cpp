@@ -14,9 +14,9 @@ using namespace shpb;
 
 namespace {
 
-// Acceptance of issue 5: c/c0 within 2e-5 of the reference table over 0 ≤ a/Λ ≤ 1.6.
+// c/c0 within 2e-5 (the reference's five printed decimals) of the reference table over 0 ≤ a/Λ ≤ 1.6.
 constexpr double kReferenceTolerance = 2e-5;
-// The published ν = 0.29 values (METHODS.md §5) are printed to five decimals.
+// The published ν = 0.29 values (docs/methods.md §5) are printed to five decimals.
 constexpr double kPublishedTolerance = 1e-5;
 
 struct ReferenceRow {
@@ -77,7 +77,7 @@ TEST_CASE("The first mode reproduces the published nu = 0.29 values and tends to
     CAPTURE(x);
     CHECK(std::abs(phase_velocity(0.29, x) - c) < kPublishedTolerance);
   }
-  // c_R/c0 = 0.57640 for ν = 0.29 (METHODS.md §5); the mode approaches it within 1e-3 by a/Λ = 20.
+  // c_R/c0 = 0.57640 for ν = 0.29 (docs/methods.md §5); the mode approaches it within 1e-3 by a/Λ = 20.
   constexpr double kRayleighPrinted = 5e-6;
   CHECK(std::abs(wave_speeds(0.29).rayleigh - 0.57640) < kRayleighPrinted);
   constexpr double kLargeXApproach = 1e-3;
@@ -119,7 +119,7 @@ TEST_CASE("The amplitude factor m1 is 1 for long waves and has its pole at a/Lam
   const double c_small = phase_velocity(0.29, 0.01);
   CHECK(std::abs(amplitude_factors(0.29, 0.01, c_small).m1 - 1) < kLongWaveTolerance);
   CHECK(std::abs(amplitude_factors(0.29, 0.01, c_small).m1_m2 - 1) < kLongWaveTolerance);
-  // Bisection of the surface strain's zero; METHODS.md §5 quotes 0.37675.
+  // Bisection of the surface strain's zero; docs/methods.md §5 quotes 0.37675.
   auto s = [](double x) { return surface_over_mean_strain(0.29, x, phase_velocity(0.29, x)); };
   double lo = 0.3, hi = 0.45;
   REQUIRE((s(lo) > 0) != (s(hi) > 0));

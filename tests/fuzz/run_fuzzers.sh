@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs each libFuzzer target for SECONDS (issue 9): `make fuzz` calls this after building.
+# Runs each libFuzzer target for SECONDS: `make fuzz` calls this after building.
 # Usage: run_fuzzers.sh BUILD_DIR SECONDS [target ...]   (default: every fuzz_* in BUILD_DIR)
 # The seeds of tests/fuzz/corpus/<target> are copied into BUILD_DIR/corpus/<target>, which grows;
 # crashes, leaks and timeouts land in BUILD_DIR/artifacts/<target>/ and fail the run.

@@ -6,7 +6,7 @@
 using namespace shpb;
 
 namespace {
-// Acceptance of issue 4: the law matches its closed form within 0.1 %.
+// The law matches its closed form within 0.1 %.
 constexpr double kClosedFormTolerance = 1e-3;
 // Energy bookkeeping is exact algebra (trapezoidal work = stored + dissipated), up to round-off.
 constexpr double kEnergyTolerance = 1e-10;

@@ -13,9 +13,9 @@ using namespace shpb;
 namespace fs = std::filesystem;
 
 namespace {
-// Acceptance of issue 4: the specimen's truth after equilibrium within 2 % of the law.
+// The specimen's truth after equilibrium within 2 % of the law.
 constexpr double kLawTolerance = 0.02;
-// Acceptance of issue 4: the energy balance closes within 1 % with dissipation counted.
+// The energy balance closes within 1 % with dissipation counted.
 constexpr double kEnergyTolerance = 0.01;
 // The hereditary integral is evaluated on the 10 MHz record, the solver on its ~50 MHz steps; the
 // strain between samples is not exactly linear, which leaves ~1e-6 here: 1e-4 is ample.

@@ -66,7 +66,7 @@ TEST_CASE("The classic experiment reads with every value in SI", "[model][scene]
   CHECK(s.incident_bar() == 1u);
   CHECK(s.transmitter_bar() == 3u);
 
-  // The specimen file: Johnson & Cook 1985 constants for Al 6061-T6 (DESIGN.md §3).
+  // The specimen file: Johnson & Cook 1985 constants for Al 6061-T6 (docs/scene-format.md).
   const auto& al = s.bars[2].material;
   CHECK(al.model == MaterialModel::kJohnsonCook);
   CHECK_FALSE(al.source.empty());

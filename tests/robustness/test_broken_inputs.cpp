@@ -1,4 +1,4 @@
-// The catalogue of broken inputs (issue 9): scenes and signal files as people and instruments
+// The catalogue of broken inputs: scenes and signal files as people and instruments
 // really produce them. Each runs the real executable with a time limit and either works (exit 0,
 // with a warning saying what was assumed where something was) or is refused (exit 2, one
 // "error:" line naming the file and the place). None may crash, hang, print NaN, write half an

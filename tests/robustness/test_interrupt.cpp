@@ -1,4 +1,4 @@
-// Interrupting a long `shpb simulate` (issue 9, DESIGN.md §5): SIGINT or SIGTERM ends it promptly,
+// Interrupting a long `shpb simulate` (docs/outputs.md (conventions)): SIGINT or SIGTERM ends it promptly,
 // the previous results in the output folder stay as they were, no temporary folder is left
 // beside it, and the next run completes normally.
 #include <signal.h>
@@ -14,13 +14,13 @@ namespace {
 
 using namespace shpb_robust;
 
-// "Promptly" (issue 9): the simulator polls for cancellation inside its time loop.
+// "Promptly": the simulator polls for cancellation inside its time loop.
 constexpr double kPromptExit_s = 1.0;
 // Least time the long run gets before it is interrupted.
 constexpr double kRunBeforeSignal_s = 0.5;
 constexpr double kHangLimit_s = 60.0;
 
-// Striker on a bar (METHODS.md §4). `duration` makes it short (a normal run) or long: 5 s is
+// Striker on a bar (docs/methods.md §4). `duration` makes it short (a normal run) or long: 5 s is
 // ~3e10 node updates, far more than kRunBeforeSignal_s even with the simulator's causal economy.
 std::string scene(const std::string& duration, const std::string& sample_rate) {
   return R"({

@@ -1,7 +1,7 @@
 #pragma once
 // Figures of a square pulse recorded by a gauge: arrival and duration (half-level crossings,
 // interpolated between samples), plateau mean and standard deviation over 15–85 % of the
-// duration (the measure of METHODS.md §2).
+// duration (the measure of docs/methods.md §2).
 #include <cmath>
 #include <vector>
 

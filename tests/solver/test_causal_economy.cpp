@@ -1,4 +1,4 @@
-// Causal economy (METHODS.md §7, issue 8): the far end of the last bar, whose reflections cannot
+// Causal economy (docs/methods.md §7): the far end of the last bar, whose reflections cannot
 // reach a gauge before the end of the recording, is cut and ended with a dashpot of impedance
 // ρcA; recorded values stay identical to the full model and the dashpot's absorbed energy closes
 // the balance.
@@ -11,8 +11,8 @@
 using namespace shpb;
 
 namespace {
-constexpr double kSameOutput = 1e-12;       // issue 8: identical to the full model
-constexpr double kEnergyTolerance = 0.005;  // issue 3: elastic chain energy within 0.5 %
+constexpr double kSameOutput = 1e-12;       // skipped nodes are exactly at rest: identical to round-off
+constexpr double kEnergyTolerance = 0.005;  // elastic chain: lumped CD conserves energy to O(C·h²)
 }
 
 TEST_CASE("Cutting a long bar's far end with a dashpot changes no gauge value",

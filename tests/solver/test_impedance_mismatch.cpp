@@ -1,4 +1,4 @@
-// Striker and bar of different impedance (METHODS.md §4): a heavier striker loads the bar in a
+// Striker and bar of different impedance (docs/methods.md §4): a heavier striker loads the bar in a
 // staircase F_j = F1 q^(j−1), q = (Z_s − Z_b)/(Z_s + Z_b), steps 2L_s/c_s long; a lighter one
 // separates after 2L_s/c_s and rebounds at V (Z_s − Z_b)/(Z_s + Z_b).
 #include <catch2/catch.hpp>
@@ -11,8 +11,8 @@
 using namespace shpb;
 
 namespace {
-constexpr double kStepTolerance = 0.01;     // issue 3: first three steps within 1 %
-constexpr double kReboundTolerance = 0.01;  // issue 3: rebound velocity within 1 %
+constexpr double kStepTolerance = 0.01;     // one element of front smearing on each step
+constexpr double kReboundTolerance = 0.01;  // one element of front smearing
 constexpr double kBarArea = 2.85e-4;
 
 Scene striker_of_area(double striker_area, Stepping stepping) {

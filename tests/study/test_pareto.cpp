@@ -1,4 +1,4 @@
-// Accuracy against cost (issue 7): the Pareto front, equal-error interpolation, the exact
+// Accuracy against cost: the Pareto front, equal-error interpolation, the exact
 // reference of a striker on a bar, and a sweep whose results do not depend on the thread count.
 #include <unistd.h>
 
@@ -18,7 +18,7 @@ namespace fs = std::filesystem;
 
 namespace {
 // The exact square pulse is met to a few per cent in L2 at C ≈ 1: the residual is the
-// smeared front and the contact's own ringing (METHODS.md §2), and it shrinks with h.
+// smeared front and the contact's own ringing (docs/methods.md §2), and it shrinks with h.
 constexpr double kExactPulseError = 0.2;
 
 const double kArea = 2.85e-4;
