@@ -1,0 +1,70 @@
+#include "model/campaign.hpp"
+
+#include <set>
+
+#include "core/error.hpp"
+#include "core/json_document.hpp"
+#include "core/json_value.hpp"
+
+namespace shpb {
+namespace fs = std::filesystem;
+
+const std::vector<std::string>& campaign_keys() {
+  static const std::vector<std::string> keys = {"name", "notes",    "tests", "material",
+                                                "free", "nuisance", "stages"};
+  return keys;
+}
+
+namespace {
+// "experiments/x/scene.json" is named by its folder, other files by their stem (as scenes are).
+std::string name_of_scene(const fs::path& scene) {
+  if (scene.stem() == "scene") {
+    const auto folder = fs::absolute(scene).parent_path().filename().string();
+    if (!folder.empty()) return folder;
+  }
+  return scene.stem().string();
+}
+}  // namespace
+
+Campaign read_campaign(const fs::path& file) {
+  Campaign c;
+  c.file = file;
+  c.display = file.string();
+  c.document = read_json_object_file(file, c.display);
+  const JsonValue root(c.document, c.display, "");
+  const auto o = root.object(campaign_keys());
+  c.name = file.stem().string();
+  if (auto v = o.get("name")) c.name = v->name();
+  if (auto v = o.get("notes")) v->string();
+
+  const auto tests = o.require("tests", "the campaign's tests: [{\"scene\": FILE, \"name\": ...}]");
+  const auto items = tests.array();
+  if (items.empty()) throw tests.error("must list at least one test");
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const auto t = items[i].object({"scene", "name", "weight"});
+    CampaignTest test;
+    test.json_path = items[i].path();
+    const auto scene = t.require("scene", "the test's scene file, relative to the campaign file");
+    const fs::path written = scene.string();
+    if (written.empty()) throw scene.error("expected a scene file name");
+    test.scene = written.is_absolute() ? written : file.parent_path() / written;
+    std::error_code ec;
+    if (!fs::exists(test.scene, ec))
+      throw scene.error_with_value("\"" + written.string() + "\"",
+                                   "no such file (" + test.scene.string() + ")");
+    if (!fs::is_regular_file(test.scene, ec))
+      throw scene.error_with_value("\"" + written.string() + "\"", "is not a regular file");
+    test.name = name_of_scene(test.scene);
+    if (auto v = t.get("name")) test.name = v->name();
+    if (!names.insert(test.name).second)
+      throw(t.get("name") ? *t.get("name") : scene)
+          .error_with_value("\"" + test.name + "\"",
+                            "test names must be unique (they name output folders and rows)");
+    if (auto v = t.get("weight")) test.weight = v->positive_quantity(Dimension::kDimensionless);
+    c.tests.push_back(std::move(test));
+  }
+  return c;
+}
+
+}  // namespace shpb

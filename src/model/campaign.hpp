@@ -1,0 +1,41 @@
+#pragma once
+// A campaign file: several tests of one material, each a scene with its measurement. The same
+// file drives `shpb process` over many tests and `shpb fit` (which reads its own keys, `material`,
+// `free`, `nuisance`, `stages`, from `document` with the same file and JSON paths in messages).
+//
+//   { "name": "...", "notes": "...",
+//     "tests": [ { "scene": "a/scene.json", "name": "1000/s", "weight": 1 }, ... ],
+//     "material": ..., "free": {...}, "nuisance": [...], "stages": [...] }
+//
+// Scenes are relative to the campaign file; test names are unique (they name output folders and
+// CSV rows) and default to the scene's own name; weights are > 0 (default 1).
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace shpb {
+
+struct CampaignTest {
+  std::string name;
+  std::filesystem::path scene;  // resolved against the campaign file's folder
+  double weight = 1;
+  std::string json_path;  // "tests[2]": where the test is written, for messages
+};
+
+struct Campaign {
+  std::filesystem::path file;
+  std::string display;  // the file as the user named it
+  std::string name;
+  std::vector<CampaignTest> tests;
+  nlohmann::json document;  // the whole file, for the readers of command-specific keys
+};
+
+// Every top-level key a campaign may hold (the fit's keys included, so one file serves both).
+const std::vector<std::string>& campaign_keys();
+
+// Reads and checks the file: exit-2 InputErrors name the file and JSON path. Scenes must exist
+// as regular files; they are read by the command that uses them.
+Campaign read_campaign(const std::filesystem::path& file);
+
+}  // namespace shpb

@@ -1,0 +1,75 @@
+// Campaign files (src/model/campaign.hpp): the list of tests shared by `process` and `fit`, read
+// with the same one-line errors as scenes.
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "core/error.hpp"
+#include "model/campaign.hpp"
+
+using namespace shpb;
+namespace fs = std::filesystem;
+
+namespace {
+struct Scratch {
+  Scratch()
+      : dir(fs::temp_directory_path() / ("shpb_test_campaign_" + std::to_string(::getpid()))) {
+    fs::remove_all(dir);
+    fs::create_directories(dir / "a");
+    fs::create_directories(dir / "b");
+    std::ofstream(dir / "a" / "scene.json") << "{}";
+    std::ofstream(dir / "b" / "fast.json") << "{}";
+  }
+  ~Scratch() { fs::remove_all(dir); }
+  fs::path write(const std::string& text) const {
+    const fs::path f = dir / "campaign.json";
+    std::ofstream(f) << text;
+    return f;
+  }
+  fs::path dir;
+};
+
+std::string error_of(const fs::path& file) {
+  try {
+    read_campaign(file);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+}  // namespace
+
+TEST_CASE("A campaign lists its tests relative to the campaign file", "[campaign]") {
+  Scratch s;
+  const auto c = read_campaign(s.write(R"({"name": "cu", "tests": [
+      {"scene": "a/scene.json"}, {"scene": "b/fast.json", "name": "4000/s", "weight": "2"}],
+      "free": {"A": [1, 2]}})"));
+  REQUIRE(c.name == "cu");
+  REQUIRE(c.tests.size() == 2);
+  CHECK(c.tests[0].name == "a");  // a scene.json is named by its folder, as scenes are
+  CHECK(c.tests[0].weight == 1.0);
+  CHECK(fs::equivalent(c.tests[0].scene, s.dir / "a" / "scene.json"));
+  CHECK(c.tests[1].name == "4000/s");
+  CHECK(c.tests[1].weight == 2.0);
+  CHECK(c.document.contains("free"));  // the fit's keys are kept for its own reader
+}
+
+TEST_CASE("Bad campaigns name the file, the JSON path and what was expected", "[campaign]") {
+  Scratch s;
+  CHECK_THAT(error_of(s.write(R"({"tests": [{"scene": "a/scene.json"}], "tets": 1})")),
+             Catch::Contains("tets") && Catch::Contains("did you mean"));
+  CHECK_THAT(error_of(s.write(R"({"tests": []})")),
+             Catch::Contains("tests") && Catch::Contains("at least one"));
+  CHECK_THAT(error_of(s.write(R"({"tests": [{"scene": "missing.json"}]})")),
+             Catch::Contains("tests[0].scene") && Catch::Contains("no such file"));
+  CHECK_THAT(error_of(s.write(R"({"tests": [{"scene": "a"}]})")),
+             Catch::Contains("tests[0].scene") && Catch::Contains("not a regular file"));
+  CHECK_THAT(error_of(s.write(R"({"tests": [{"scene": "a/scene.json", "name": "x"},
+                                            {"scene": "b/fast.json", "name": "x"}]})")),
+             Catch::Contains("tests[1].name") && Catch::Contains("unique"));
+  CHECK_THAT(error_of(s.write(R"({"tests": [{"scene": "a/scene.json", "weight": 0}]})")),
+             Catch::Contains("tests[0].weight") && Catch::Contains("> 0"));
+}
