@@ -10,7 +10,7 @@ FUZZ_SECONDS ?= 60
 SANITIZER_ENV = ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1 \
                 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 
-.PHONY: run test build asan deps bench fuzz format clean
+.PHONY: run test check build asan deps bench fuzz format format-check clean
 
 deps:
 	@bash tools/install-deps.sh
@@ -22,17 +22,21 @@ build: deps
 run: build
 	@bash tools/run-default.sh $(BUILD)/shpb $(EXPERIMENT) $(RESULTS)
 
-# The suite twice: the Release build, then the same tests under AddressSanitizer + UBSan.
-test: build
-	@bash tools/install-deps.sh chromium
-	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+# The suite twice: the Release build, then the same tests under AddressSanitizer + UBSan
+# (warnings are errors there). Formatting is checked first.
+test: check
 	@$(MAKE) --no-print-directory asan
 	@cd $(ASAN_BUILD) && $(SANITIZER_ENV) ctest --output-on-failure -j $(JOBS)
+
+# The Release suite alone (what a developer runs while working; about a minute on 2 cores).
+check: build
+	@bash tools/install-deps.sh chromium
+	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
 # ASan + UBSan build of the executable and the tests (-O1: fast enough to run the whole suite).
 asan: deps
 	@cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" \
-	       -DSHPB_SANITIZE=ON >/dev/null
+	       -DSHPB_SANITIZE=ON -DSHPB_WERROR=ON -DSHPB_BENCHMARKS=OFF >/dev/null
 	@cmake --build $(ASAN_BUILD) -j $(JOBS) --target shpb shpb_tests
 
 # libFuzzer targets of tests/fuzz (clang), each run FUZZ_SECONDS; not part of `make test`.
@@ -47,8 +51,14 @@ fuzz:
 bench: deps
 	@bash tools/bench.sh $(BUILD)
 
+FORMATTED = $$(git ls-files 'src/*.cpp' 'src/*.hpp' 'tests/*.cpp' 'tests/*.hpp' 'tools/*.cpp')
 format:
-	@clang-format -i $$(git ls-files 'src/*.cpp' 'src/*.hpp' 'tests/*.cpp' 'tests/*.hpp')
+	@clang-format -i $(FORMATTED)
+
+# clang-format clean (the repository's .clang-format), checked by `make test`.
+format-check:
+	@command -v clang-format >/dev/null || bash tools/install-deps.sh clang-format
+	@clang-format --dry-run -Werror $(FORMATTED)
 
 clean:
 	@rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD)

@@ -9,6 +9,7 @@
 #include "core/error.hpp"
 #include "core/output_folder.hpp"
 #include "core/units.hpp"
+#include "version.hpp"
 
 namespace {
 
@@ -51,7 +52,7 @@ int main(int argc, char** argv) {
       "JSON scene, record strain gauges, correct Pochhammer–Chree dispersion and reduce gauge "
       "signals (simulated or measured) to specimen stress–strain curves."};
   app.require_subcommand(1);
-  app.set_version_flag("--version", std::string("shpb ") + SHPB_VERSION);
+  app.set_version_flag("--version", std::string("shpb ") + kVersion);
   std::string contact, stepping;
 
   SimulateArgs sim;

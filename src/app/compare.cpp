@@ -32,6 +32,7 @@
 #include "dispersion/dispersion_table.hpp"
 #include "dispersion/propagation.hpp"
 #include "solver/simulation.hpp"
+#include "version.hpp"
 
 namespace shpb {
 namespace {
@@ -268,7 +269,7 @@ int run_compare(const CompareArgs& args) {
                      {"wall_time_s", sim.wall_time_s},
                      {"energy_error", sim.energy_error}};
   s["warnings"] = measured.warnings;
-  s["version"] = SHPB_VERSION;
+  s["version"] = kVersion;
   std::ofstream(out.file("summary.json")) << s.dump(2) << '\n';
   out.commit();
 

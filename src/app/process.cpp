@@ -13,6 +13,7 @@
 #include "core/output_folder.hpp"
 #include "core/signal_gauges.hpp"
 #include "core/signal_reader.hpp"
+#include "version.hpp"
 
 namespace shpb {
 namespace {
@@ -106,7 +107,7 @@ int run_process(const ProcessArgs& args) {
              c.force_back_N[i]});
   }
   nlohmann::json s;
-  s["version"] = SHPB_VERSION;
+  s["version"] = kVersion;
   s["command"] = "process";
   s["scene"] = args.scene.string();
   s["signals"] = {{"source", simulated ? "simulated (--signals)" : "measurement"},

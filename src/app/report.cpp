@@ -42,18 +42,15 @@ int run_program(const std::vector<std::string>& argv, bool quiet) {
   return WEXITSTATUS(status);
 }
 
-// tools/report.py beside the executable's build tree (build/shpb → ../tools), else in the
-// source tree the executable was built from.
+// The report script is found from the executable alone, so an installed shpb works without the
+// source tree: PREFIX/bin/shpb → PREFIX/share/shpb/report.py; build/shpb → build/share/shpb/ (CMake
+// copies it there).
 std::optional<fs::path> find_script() {
-  std::vector<fs::path> candidates;
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    candidates.push_back(exe.parent_path() / "tools" / "report.py");
-    candidates.push_back(exe.parent_path().parent_path() / "tools" / "report.py");
-  }
-  candidates.push_back(fs::path(SHPB_SOURCE_DIR) / "tools" / "report.py");
-  for (const auto& c : candidates)
+  if (ec) return std::nullopt;
+  for (const fs::path& c : {exe.parent_path().parent_path() / "share" / "shpb" / "report.py",
+                            exe.parent_path() / "share" / "shpb" / "report.py"})
     if (fs::is_regular_file(c, ec)) return c;
   return std::nullopt;
 }
@@ -71,9 +68,8 @@ std::optional<std::string> find_python() {
 int run_report(const ReportArgs& args) {
   const auto script = find_script();
   if (!script)
-    throw input_error("report", "tools/report.py", SHPB_SOURCE_DIR,
-                      "the report script was not found beside the executable or in the source "
-                      "tree");
+    throw input_error("report", "share/shpb/report.py", "not found",
+                      "the report script is installed beside the executable (cmake --install)");
   const auto python = find_python();
   if (!python)
     throw input_error("report", "python3", "matplotlib/numpy not importable",

@@ -17,6 +17,7 @@
 #include "study/pareto_front.hpp"
 #include "study/pareto_sweep.hpp"
 #include "study/stability_sweep.hpp"
+#include "version.hpp"
 
 namespace shpb {
 
@@ -108,7 +109,7 @@ void write_pareto(const ParetoStudy& study, const Scene& scene, int threads, dou
     }
   }
   Json j;
-  j["version"] = SHPB_VERSION;
+  j["version"] = kVersion;
   j["scene"] = scene.name;
   j["sweep"] = "pareto";
   j["error"] = "relative L2 norm of the gauge strains against the reference, all gauges";
@@ -148,7 +149,7 @@ void write_stability(const StabilityStudy& study, const Scene& scene, int thread
           << ',' << format_double(b.closed_form_courant) << '\n';
   }
   Json j;
-  j["version"] = SHPB_VERSION;
+  j["version"] = kVersion;
   j["scene"] = scene.name;
   j["sweep"] = "stability";
   j["probe"] = study.probe;

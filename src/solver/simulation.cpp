@@ -11,6 +11,7 @@
 #include "solver/chain.hpp"
 #include "solver/recorders.hpp"
 #include "solver/scheduler.hpp"
+#include "version.hpp"
 
 namespace shpb {
 
@@ -195,7 +196,7 @@ void write_simulation_outputs(const SimulationResult& result, const Scene& scene
     }
   }
   nlohmann::ordered_json j;
-  j["version"] = SHPB_VERSION;
+  j["version"] = kVersion;
   j["scene"] = scene.name;
   j["contact"] = std::string(to_string(scene.contact.method));
   j["stepping"] = std::string(to_string(result.discretization.stepping));

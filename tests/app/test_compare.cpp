@@ -103,7 +103,7 @@ TEST_CASE("LANL copper: the simulated incident pulse meets the measured one with
           "[app][compare][measured]") {
   const fs::path data = fs::path(SHPB_SOURCE_DIR) / "../shared/data/measured/lanl-cu-ofe-273k";
   if (!fs::exists(data)) {
-    WARN("../shared/data absent: LANL copper comparison skipped");
+    WARN("SKIPPED: ../shared/data absent: LANL copper comparison skipped");
     return;
   }
   const fs::path dir = scratch_dir("compare_lanl");

@@ -47,7 +47,7 @@ TEST_CASE("The LANL copper test is in force balance with the scene's bridge sett
           "[app][experiment][data]") {
   const fs::path root(SHPB_SOURCE_DIR);
   if (!fs::exists(root / "../shared/data/measured/lanl-cu-ofe-273k")) {
-    WARN("../shared/data/measured/lanl-cu-ofe-273k absent: test skipped");
+    WARN("SKIPPED: ../shared/data/measured/lanl-cu-ofe-273k absent: test skipped");
     return;
   }
   const auto dir = shpb_test::scratch_dir("lanl_cu");

@@ -159,7 +159,7 @@ TEST_CASE("Broken signal files exit 2 naming file, line and column, and write no
 TEST_CASE("The LANL copper and PMMA tests process end to end from the scene alone",
           "[app][process][data]") {
   if (!fs::exists(kData)) {
-    WARN("../shared/data/measured absent: measured end-to-end tests skipped");
+    WARN("SKIPPED: ../shared/data/measured absent: measured end-to-end tests skipped");
     return;
   }
   struct Expect {
@@ -187,7 +187,7 @@ TEST_CASE("The LANL copper and PMMA tests process end to end from the scene alon
 TEST_CASE("The epoxy file's repeated time stamps and doubtful scale are reported",
           "[app][process][data]") {
   if (!fs::exists(kData)) {
-    WARN("../shared/data/measured absent: epoxy test skipped");
+    WARN("SKIPPED: ../shared/data/measured absent: epoxy test skipped");
     return;
   }
   const fs::path out = temp_dir("epoxy") / "out";

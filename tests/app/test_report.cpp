@@ -61,7 +61,7 @@ fs::path write_study_folder(const fs::path& dir) {
 TEST_CASE("The report of the default experiment holds every figure, each referenced by the page",
           "[app][report]") {
   if (!have_matplotlib()) {
-    WARN("python3 with matplotlib and numpy not installed: report test skipped");
+    WARN("SKIPPED: python3 with matplotlib and numpy not installed: report test skipped");
     return;
   }
   const fs::path dir = scratch_dir("report_default") / "classic";
@@ -85,7 +85,7 @@ TEST_CASE("The report of the default experiment holds every figure, each referen
 TEST_CASE("The report of a study folder shows accuracy against cost and the stability map",
           "[app][report]") {
   if (!have_matplotlib()) {
-    WARN("python3 with matplotlib and numpy not installed: report test skipped");
+    WARN("SKIPPED: python3 with matplotlib and numpy not installed: report test skipped");
     return;
   }
   const fs::path dir = write_study_folder(scratch_dir("report_study") / "study");
@@ -100,7 +100,7 @@ TEST_CASE("The report of a study folder shows accuracy against cost and the stab
 TEST_CASE("A folder without shpb outputs is refused with exit 2 and nothing written",
           "[app][report]") {
   if (!have_matplotlib()) {
-    WARN("python3 with matplotlib and numpy not installed: report test skipped");
+    WARN("SKIPPED: python3 with matplotlib and numpy not installed: report test skipped");
     return;
   }
   const fs::path dir = scratch_dir("report_empty");
@@ -115,11 +115,11 @@ TEST_CASE("A folder without shpb outputs is refused with exit 2 and nothing writ
 TEST_CASE("Headless Chromium renders report.html to a picture that is not blank",
           "[app][report][browser]") {
   if (!have_matplotlib()) {
-    WARN("python3 with matplotlib and numpy not installed: browser test skipped");
+    WARN("SKIPPED: python3 with matplotlib and numpy not installed: browser test skipped");
     return;
   }
   if (std::system("command -v chromium >/dev/null 2>&1") != 0) {
-    WARN("chromium not installed (make test installs it): browser test skipped");
+    WARN("SKIPPED: chromium not installed (make test installs it): browser test skipped");
     return;
   }
   const fs::path root = scratch_dir("report_browser");

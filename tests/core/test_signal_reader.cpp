@@ -209,7 +209,7 @@ TEST_CASE("Volts become strain through the bridge and opposite gauges are averag
 TEST_CASE("The real files import: LANL raw, Tektronix channels, and the messy epoxy file",
           "[core][signal]") {
   if (!fs::exists(kData)) {
-    WARN("../shared/data/measured absent: real-file import tests skipped");
+    WARN("SKIPPED: ../shared/data/measured absent: real-file import tests skipped");
     return;
   }
   SECTION("LANL copper raw") {
