@@ -15,7 +15,7 @@
 // Why a plain bipenalty interface rings, and what we do instead (our addition): the mass penalty
 // ε_m ≈ 2500 ρAh dwarfs the end-node masses, so the gap mode has frequency ≈ √R ≈ 2/Δt and enormous
 // inertia: started by a relative velocity or a penetration at switch-on, it rings at the Nyquist
-// rate for ever (the 10 % plateau noise of docs/methods.md §2). A mass matrix change must conserve
+// rate for ever (the ringing plateau of docs/methods.md §2). A mass matrix change must conserve
 // momentum, p = M_old v_old = M_new v_new: for ε_m ≫ m_b that is the inelastic node-to-node impact,
 // both ends take their momentum-weighted velocity (V/2 for equal bars: the exact continuum
 // interface velocity), the frame is placed at the contact point with both localized gaps and link
