@@ -23,7 +23,7 @@ struct ReferenceRow {
   double x, c;
 };
 
-// /work/shared/data/reference/pochhammer-chree/pc_nu<ν>.csv:
+// The published reference tables (optional data beside the repository), pc_nu<ν>.csv:
 // a_over_Lambda,d_over_Lambda,c_over_c0,…
 std::vector<ReferenceRow> read_reference(const std::string& name) {
   const auto file =
