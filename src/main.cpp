@@ -188,6 +188,9 @@ int main(int argc, char** argv) {
   } catch (const NumericalError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 3;
+  } catch (const WriteError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 3;
   } catch (const Interrupted&) {
     std::fprintf(stderr, "error: interrupted; previous results left intact\n");
     return 130;

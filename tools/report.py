@@ -14,7 +14,13 @@ write them); the wave diagram shows axial stress, tension positive. Times in µs
 for bar signals and in % for the specimen, stresses in MPa.
 
 Exit codes: 0 report written; 2 DIR holds no output file this script knows (or a file is
-malformed: message "error: <file>: <line/column>: <value>: <what was expected>").
+malformed: message "error: <file>: <line/column>: <value>: <what was expected>"), or DIR holds a
+figures/ folder or a report.html this script did not write (they are never replaced); 3 the report
+cannot be written (read-only folder, full disk).
+
+Ownership: figures/ is this script's only if it holds the marker file .shpb-report, report.html
+only if it carries the generator line below; the output folder's own marker (.shpb-output, see
+core/output_folder.hpp) is told about both so that shpb may later replace the folder whole.
 """
 import base64
 import csv
@@ -47,6 +53,61 @@ KNOWN_FILES = ("gauges.csv", "interfaces.csv", "specimen.csv", "energy.csv", "fi
 
 class ReportError(Exception):
     """Bad input: printed as one `error:` line, exit code 2."""
+
+
+FIGURES_MARKER = ".shpb-report"
+FIGURES_SIGNATURE = "figures written by shpb report; replaced only by shpb report\n"
+GENERATOR = "<meta name='generator' content='shpb report'>"
+OUTPUT_MARKER = ".shpb-output"
+OUTPUT_SIGNATURE = "shpb output folder: written by shpb, replaced only by shpb"
+
+
+def read_text(path, limit=1 << 16):
+    try:
+        with open(path, encoding="utf-8", errors="replace") as f:
+            return f.read(limit)
+    except OSError:
+        return ""
+
+
+def check_ownership(folder):
+    """Refuses to replace a figures/ or report.html that this script did not write."""
+    fig_dir = os.path.join(folder, "figures")
+    if os.path.lexists(fig_dir) and (
+            os.path.islink(fig_dir) or not os.path.isdir(fig_dir)
+            or read_text(os.path.join(fig_dir, FIGURES_MARKER)) != FIGURES_SIGNATURE):
+        raise ReportError(f"{fig_dir}: exists and was not written by shpb report: refusing to "
+                          "replace it (move it away, then run the report again)")
+    page = os.path.join(folder, "report.html")
+    if os.path.lexists(page) and (os.path.islink(page) or GENERATOR not in read_text(page)):
+        raise ReportError(f"{page}: exists and was not written by shpb report: refusing to "
+                          "replace it (move it away, then run the report again)")
+
+
+def sync(path):
+    fd = os.open(path, os.O_RDONLY)
+    try:
+        os.fsync(fd)
+    finally:
+        os.close(fd)
+
+
+def tell_output_marker(folder, names):
+    """Lists `names` in the folder's .shpb-output marker (if it is shpb's), atomically."""
+    marker = os.path.join(folder, OUTPUT_MARKER)
+    text = read_text(marker)
+    if not text.startswith(OUTPUT_SIGNATURE + "\n"):
+        return
+    lines = text.splitlines()
+    added = [f"file: {n}" for n in names if f"file: {n}" not in lines]
+    if not added:
+        return
+    tmp = marker + f".tmp-{os.getpid()}"
+    with open(tmp, "w", encoding="utf-8") as f:
+        f.write("\n".join(lines + added) + "\n")
+        f.flush()
+        os.fsync(f.fileno())
+    os.replace(tmp, marker)
 
 
 # ---- reading ---------------------------------------------------------------------------------
@@ -661,7 +722,7 @@ pre{font-size:.8em;background:#f8f8f8;padding:.5em;overflow-x:auto}
 
 
 def write_html(path, folder, sources, figs, fig_dir_name):
-    parts = ["<!DOCTYPE html>", "<html lang='en'><head><meta charset='utf-8'>",
+    parts = ["<!DOCTYPE html>", "<html lang='en'><head><meta charset='utf-8'>", GENERATOR,
              f"<title>shpb report — {html.escape(os.path.basename(os.path.abspath(folder)))}"
              "</title>", f"<style>{CSS}</style></head><body>",
              f"<h1>shpb report: {html.escape(os.path.basename(os.path.abspath(folder)))}</h1>",
@@ -702,11 +763,15 @@ def build(folder):
         raise ReportError(f"{folder}: no gauges.csv, curve.csv, signals.csv, pareto.csv or "
                           "other shpb output: an output folder of simulate, process, compare or "
                           "study was expected")
+    check_ownership(folder)
     # Figures are drawn into a temporary folder and moved into place at the end, so a failure
     # leaves any previous report intact (docs/outputs.md (conventions)).
     tmp = tempfile.mkdtemp(prefix=".report-", dir=folder)
     os.chmod(tmp, 0o755)
+    old = None
     try:
+        with open(os.path.join(tmp, FIGURES_MARKER), "w", encoding="utf-8") as f:
+            f.write(FIGURES_SIGNATURE)
         figs = Figures(tmp)
         truth = next((s.table("specimen.csv") for s in sources if s.has("specimen.csv")), None)
         for src in sources:
@@ -732,17 +797,24 @@ def build(folder):
                 fig_stability(src, figs)
         html_tmp = os.path.join(tmp, "report.html")
         write_html(html_tmp, folder, sources, figs, "figures")
+        for name in os.listdir(tmp):
+            sync(os.path.join(tmp, name))
+        sync(tmp)
         fig_dir = os.path.join(folder, "figures")
         final_html = os.path.join(folder, "report.html")
         os.replace(html_tmp, os.path.join(folder, ".report.html.tmp"))
-        if os.path.isdir(fig_dir):
-            shutil.rmtree(fig_dir)
+        tell_output_marker(folder, ["figures", "report.html"])
+        if os.path.isdir(fig_dir):  # ours (check_ownership): set aside, removed below
+            old = tmp + ".old"
+            os.replace(fig_dir, old)
         os.replace(tmp, fig_dir)
         os.replace(os.path.join(folder, ".report.html.tmp"), final_html)
+        sync(folder)
         return final_html, len(figs.items)
     finally:
-        if os.path.isdir(tmp):
-            shutil.rmtree(tmp)
+        for leftover in (tmp, old):
+            if leftover and os.path.isdir(leftover):
+                shutil.rmtree(leftover, ignore_errors=True)
 
 
 def main(argv):
@@ -758,6 +830,10 @@ def main(argv):
         print(f"error: {argv[1]}: {type(e).__name__}: {e}: a well-formed shpb output folder "
               "was expected", file=sys.stderr)
         return 2
+    except OSError as e:  # read-only folder, full disk: the report cannot be written
+        where = e.filename or argv[1]
+        print(f"error: {where}: cannot be written: {e.strerror or e}", file=sys.stderr)
+        return 3
     print(f"report: {count} figures, {os.path.abspath(path)}")
     return 0
 

@@ -23,6 +23,10 @@ struct RunOverrides {
 // Applies --contact/--stepping/--courant to a scene read from file.
 void apply_overrides(const RunOverrides& overrides, Scene& scene);
 
+// The files a run of `scene` reads (the scene, its measured signal files): an output folder may
+// not be or hold one of them (core/output_folder.hpp).
+std::vector<std::filesystem::path> scene_inputs(const Scene& scene);
+
 struct SimulateArgs {
   std::filesystem::path scene;
   std::filesystem::path output;

@@ -15,7 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
+#include <sstream>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -25,6 +25,7 @@
 #include "analysis/processing.hpp"
 #include "analysis/pulse_window.hpp"
 #include "app/commands.hpp"
+#include "core/checked_write.hpp"
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
 #include "core/output_folder.hpp"
@@ -122,7 +123,7 @@ int run_compare(const CompareArgs& args) {
   const double scene_velocity = scene.bars[striker].velocity_m_s;
   scene.bars[striker].velocity_m_s = velocity;
 
-  OutputFolder out(args.output);  // every input checked: from here on results are written
+  OutputFolder out(args.output, "compare", scene_inputs(scene));  // every input checked: from here on results are written
 
   // 3. Simulate.
   SimulationOptions options;
@@ -217,7 +218,7 @@ int run_compare(const CompareArgs& args) {
   }
 
   {
-    std::ofstream csv(out.file("comparison.csv"));
+    std::ostringstream csv;
     csv << "gauge,pulse,window_start_s,window_end_s,arrival_shift_s,peak_ratio,plateau_ratio,duration_ratio,"
            "rise_time_measured_s,rise_time_simulated_s,nrmse,correlation\n";
     for (const auto& c : results)
@@ -227,6 +228,7 @@ int run_compare(const CompareArgs& args) {
           << format_double(c.rise_time_measured_s) << ','
           << format_double(c.rise_time_simulated_s) << ',' << format_double(c.nrmse) << ','
           << format_double(c.correlation) << '\n';
+    write_text_file(out.file("comparison.csv"), csv.str());
   }
   {
     const std::vector<std::string> g = {setup.incident_gauge, setup.transmitted_gauge};
@@ -237,6 +239,7 @@ int run_compare(const CompareArgs& args) {
     for (std::size_t k = 0; k < n && measured.time_s[k] - offset <= t_sim_end; ++k)
       w.row({measured.time_s[k], m_inc[k], sim_inc[k], raw_inc[k], m_tr[k], sim_tr[k],
              raw_tr[k]});
+    w.close();
   }
   nlohmann::json s;
   s["scene"] = file;
@@ -270,7 +273,7 @@ int run_compare(const CompareArgs& args) {
                      {"energy_error", sim.energy_error}};
   s["warnings"] = measured.warnings;
   s["version"] = kVersion;
-  std::ofstream(out.file("summary.json")) << s.dump(2) << '\n';
+  write_text_file(out.file("summary.json"), s.dump(2) + "\n");
   out.commit();
 
   if (!sim.stable) {

@@ -1,12 +1,15 @@
 // `shpb dispersion`: the first Pochhammer–Chree mode as CSV (docs/commands.md, docs/methods.md §5).
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 #include <vector>
 
 #include "app/commands.hpp"
+#include "core/checked_write.hpp"
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
+#include "core/output_folder.hpp"
 #include "dispersion/pochhammer_chree.hpp"
 
 namespace shpb {
@@ -34,13 +37,12 @@ int run_dispersion(const DispersionArgs& args) {
   std::vector<std::string> header = {"a_over_lambda", "c_over_c0", "cg_over_c0", "f_a_over_c0"};
   if (with_frequency) header.push_back("frequency_Hz");
   // A file through CsvWriter, or stdout (never reopened: that would truncate a redirect).
+  // The file is written atomically: FILE keeps its previous content until the table is complete.
+  std::unique_ptr<OutputFile> file;
   std::unique_ptr<CsvWriter> csv;
   if (args.output) {
-    try {
-      csv = std::make_unique<CsvWriter>(*args.output, header);
-    } catch (const std::runtime_error&) {
-      throw input_error(args.output->string(), "", "", "cannot be written");
-    }
+    file = std::make_unique<OutputFile>(*args.output);
+    csv = std::make_unique<CsvWriter>(file->path(), header);
   } else {
     for (std::size_t i = 0; i < header.size(); ++i)
       std::printf("%s%s", i ? "," : "", header[i].c_str());
@@ -60,6 +62,7 @@ int run_dispersion(const DispersionArgs& args) {
   constexpr double kMarchingStep = 0.01;
   double previous_x = -1, previous_c = 0;
   for (double x : xs) {
+    throw_if_interrupted();
     const bool near = x > previous_x && x - previous_x <= kMarchingStep && previous_x >= 0;
     const double c = phase_velocity(args.poisson, x, near ? previous_c : 0.0);
     previous_x = x;
@@ -68,6 +71,12 @@ int run_dispersion(const DispersionArgs& args) {
     std::vector<double> row = {x, c, cg, x * c};
     if (with_frequency) row.push_back(x * c * *args.c0_m_s / *args.radius_m);
     write(row);
+  }
+  if (csv) {
+    csv->close();
+    file->commit();
+  } else if (std::fflush(stdout) != 0) {
+    throw_write_error("stdout", errno);
   }
   return 0;
 }

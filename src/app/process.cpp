@@ -3,11 +3,11 @@
 // output folder is created.
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "analysis/processing.hpp"
 #include "app/commands.hpp"
+#include "core/checked_write.hpp"
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
 #include "core/output_folder.hpp"
@@ -88,11 +88,15 @@ int run_process(const ProcessArgs& args) {
   // What was assumed is said even with --quiet (which silences progress only).
   for (const auto& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
 
-  OutputFolder out(args.output);
+  std::vector<std::filesystem::path> inputs = scene_inputs(scene);
+  inputs.push_back(m.file);
+  for (const ChannelSpec& c : m.channels) inputs.push_back(c.file);
+  OutputFolder out(args.output, "process", inputs);
   {
     CsvWriter p(out.file("pulses.csv"), {"time_s", "incident", "reflected", "transmitted"});
     for (std::size_t i = 0; i < r.time_s.size(); ++i)
       p.row({r.time_s[i], r.incident[i], r.reflected[i], r.transmitted[i]});
+    p.close();
   }
   {
     const Curve& c = r.curve;
@@ -105,6 +109,7 @@ int run_process(const ProcessArgs& args) {
              c.stress_2wave_Pa[i], c.stress_3wave_Pa[i], c.true_strain[i], c.true_stress_Pa[i],
              c.equilibrium_ratio[i], c.strain_rate_1wave_1_s[i], c.force_front_N[i],
              c.force_back_N[i]});
+    w.close();
   }
   nlohmann::json s;
   s["version"] = kVersion;
@@ -159,11 +164,7 @@ int run_process(const ProcessArgs& args) {
   s["time_to_equilibrium_s"] =
       r.time_to_equilibrium_s ? nlohmann::json(*r.time_to_equilibrium_s) : nlohmann::json();
   s["equilibrium_criterion"] = "R = 2|P1-P2|/|P1+P2| <= 0.05 while (P1+P2)/2 >= 20 % of its peak";
-  {
-    std::ofstream f(out.file("summary.json"));
-    f << s.dump(2) << "\n";
-    if (!f) throw InputError(out.file("summary.json").string() + ": cannot be written");
-  }
+  write_text_file(out.file("summary.json"), s.dump(2) + "\n");
   out.commit();
   if (!args.quiet)
     std::fprintf(stderr,

@@ -75,7 +75,7 @@ int run_report(const ReportArgs& args) {
     throw input_error("report", "python3", "matplotlib/numpy not importable",
                       "install python3-matplotlib and python3-numpy (bash tools/install-deps.sh)");
   const int rc = run_program({*python, script->string(), args.folder.string()}, false);
-  if (rc == 0 || rc == 2) return rc;  // the script printed its own `error:` line for 2
+  if (rc == 0 || rc == 2 || rc == 3) return rc;  // the script printed its own `error:` line
   std::fprintf(stderr, "error: internal: %s %s exited with status %d\n", python->c_str(),
                script->c_str(), rc);
   return 4;

@@ -11,4 +11,13 @@ void apply_overrides(const RunOverrides& overrides, Scene& scene) {
   if (overrides.courant) scene.simulation.courant = overrides.courant;
 }
 
+std::vector<std::filesystem::path> scene_inputs(const Scene& scene) {
+  std::vector<std::filesystem::path> files = {scene.file};
+  if (scene.measurement) {
+    files.push_back(scene.measurement->file);
+    for (const ChannelSpec& c : scene.measurement->channels) files.push_back(c.file);
+  }
+  return files;
+}
+
 }  // namespace shpb

@@ -7,10 +7,11 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
+#include <sstream>
 #include <nlohmann/json.hpp>
 
 #include "app/commands.hpp"
+#include "core/checked_write.hpp"
 #include "core/csv_writer.hpp"
 #include "core/output_folder.hpp"
 #include "study/parallel_runner.hpp"
@@ -82,13 +83,14 @@ Json speed_ratios(const ParetoStudy& study) {
 void write_pareto(const ParetoStudy& study, const Scene& scene, int threads, double wall_s,
                   const std::filesystem::path& dir) {
   {
-    std::ofstream csv(dir / "pareto.csv");
+    std::ostringstream csv;
     csv << "method,stepping,resolution,error,wall_time_s,node_updates,stable\n";
     for (const ParetoRow& r : study.rows)
       csv << to_string(r.run.method) << ',' << to_string(r.run.stepping) << ','
           << format_double(r.run.resolution) << ',' << field(r.error) << ','
           << format_double(r.wall_time_s) << ',' << r.node_updates << ',' << (r.stable ? 1 : 0)
           << '\n';
+    write_text_file(dir / "pareto.csv", csv.str());
   }
   std::vector<double> err, wall, updates;
   for (const ParetoRow& r : study.rows) {
@@ -123,22 +125,23 @@ void write_pareto(const ParetoStudy& study, const Scene& scene, int threads, dou
   j["pareto_front_node_updates"] = front_updates;
   j["localized_bipenalty_asynchronous_against_global"] = speed_ratios(study);
   j["unstable"] = unstable;
-  std::ofstream(dir / "summary.json") << j.dump(2) << "\n";
+  write_text_file(dir / "summary.json", j.dump(2) + "\n");
 }
 
 void write_stability(const StabilityStudy& study, const Scene& scene, int threads, double wall_s,
                      const std::filesystem::path& dir) {
   {
-    std::ofstream csv(dir / "stability.csv");
+    std::ostringstream csv;
     csv << "method,stiffness_factor,mass_ratio,courant,energy_growth,stable\n";
     for (const StabilityRow& r : study.rows)
       csv << to_string(r.point.method) << ',' << format_double(r.point.stiffness_factor) << ','
           << (r.point.method == ContactMethod::kPenalty ? "" : format_double(r.point.mass_ratio))
           << ',' << format_double(r.point.courant) << ',' << field(r.verdict.energy_growth) << ','
           << (r.verdict.stable ? 1 : 0) << '\n';
+    write_text_file(dir / "stability.csv", csv.str());
   }
   {
-    std::ofstream csv(dir / "stability_boundary.csv");
+    std::ostringstream csv;
     csv << "method,link,stiffness_factor,mass_ratio,critical_courant,closed_form_courant\n";
     for (const StabilityBoundary& b : study.boundaries)
       csv << to_string(b.line.method) << ',' << (b.line.tied ? "tied" : "unilateral") << ','
@@ -147,6 +150,7 @@ void write_stability(const StabilityStudy& study, const Scene& scene, int thread
           << ','
           << (b.critical_courant <= kBoundaryCourantMin ? "" : format_double(b.critical_courant))
           << ',' << format_double(b.closed_form_courant) << '\n';
+    write_text_file(dir / "stability_boundary.csv", csv.str());
   }
   Json j;
   j["version"] = kVersion;
@@ -169,7 +173,7 @@ void write_stability(const StabilityStudy& study, const Scene& scene, int thread
   j["points"] = study.rows.size();
   j["threads"] = threads;
   j["wall_time_s"] = wall_s;
-  std::ofstream(dir / "summary.json") << j.dump(2) << "\n";
+  write_text_file(dir / "summary.json", j.dump(2) + "\n");
 }
 
 }  // namespace
@@ -177,7 +181,7 @@ void write_stability(const StabilityStudy& study, const Scene& scene, int thread
 int run_study(const StudyArgs& args) {
   Scene scene = read_scene(args.scene);  // InputError → exit 2, nothing written
   apply_overrides(args.overrides, scene);
-  OutputFolder out(args.output);
+  OutputFolder out(args.output, "study", scene_inputs(scene));
   std::vector<ContactMethod> methods;
   std::vector<Stepping> steppings;
   if (args.overrides.contact) methods.push_back(*args.overrides.contact);

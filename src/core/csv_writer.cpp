@@ -1,8 +1,12 @@
 #include "core/csv_writer.hpp"
 
+#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <stdexcept>
+
+#include "core/checked_write.hpp"
+#include "core/output_folder.hpp"
 
 namespace shpb {
 
@@ -15,18 +19,40 @@ std::string format_double(double value) {
 CsvWriter::CsvWriter(const std::filesystem::path& file, const std::vector<std::string>& header)
     : path_(file), columns_(header.size()) {
   file_ = std::fopen(file.c_str(), "w");
-  if (!file_) throw std::runtime_error(file.string() + ": cannot be written");
+  if (!file_) throw_write_error(file, errno);
   // Output files run to megabytes (field.csv): large writes, few system calls.
   std::setvbuf(file_, buffer_.data(), _IOFBF, buffer_.size());
+  std::string line;
   for (std::size_t i = 0; i < header.size(); ++i) {
-    if (i) std::fputc(',', file_);
-    std::fputs(header[i].c_str(), file_);
+    if (i) line.push_back(',');
+    line += header[i];
   }
-  std::fputc('\n', file_);
+  line.push_back('\n');
+  write(line);
 }
 
 CsvWriter::~CsvWriter() {
   if (file_) std::fclose(file_);
+}
+
+void CsvWriter::write(const std::string& text) {
+  // Files run to millions of rows (field.csv): a SIGINT/SIGTERM stops the write within a second.
+  constexpr unsigned kInterruptPollRows = 1u << 14;
+  if (++rows_ % kInterruptPollRows == 0) throw_if_interrupted();
+  errno = 0;
+  if (std::fwrite(text.data(), 1, text.size(), file_) != text.size())
+    throw_write_error(path_, errno ? errno : EIO);
+}
+
+void CsvWriter::close() {
+  if (!file_) return;
+  errno = 0;
+  const bool flushed = std::fflush(file_) == 0 && !std::ferror(file_);
+  const int flush_errno = errno;
+  const int closed = std::fclose(file_);
+  file_ = nullptr;
+  if (!flushed) throw_write_error(path_, flush_errno ? flush_errno : EIO);
+  if (closed != 0) throw_write_error(path_, errno ? errno : EIO);
 }
 
 void CsvWriter::row(std::span<const double> values) { row({}, 0, values); }
@@ -37,6 +63,7 @@ void CsvWriter::row(std::string_view leading, std::size_t leading_columns,
     throw std::logic_error(path_.string() + ": row has " +
                            std::to_string(leading_columns + values.size()) + " values for " +
                            std::to_string(columns_) + " columns");
+  if (!file_) throw std::logic_error(path_.string() + ": row written after close()");
   line_.assign(leading);
   char buffer[32];
   for (std::size_t i = 0; i < values.size(); ++i) {
@@ -47,7 +74,7 @@ void CsvWriter::row(std::string_view leading, std::size_t leading_columns,
     line_.append(buffer, end);
   }
   line_.push_back('\n');
-  std::fwrite(line_.data(), 1, line_.size(), file_);
+  write(line_);
 }
 
 }  // namespace shpb

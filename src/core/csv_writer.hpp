@@ -1,6 +1,7 @@
 #pragma once
 // Comma-separated output that pandas and spreadsheets read: one header row, units in the column
-// names, '.' decimals, shortest round-trip doubles (docs/outputs.md).
+// names, '.' decimals, shortest round-trip doubles (docs/outputs.md). Every write is checked
+// (core/checked_write.hpp).
 #include <cstdio>
 #include <filesystem>
 #include <span>
@@ -23,13 +24,20 @@ class CsvWriter {
   // format_double), then the values: a long-format file repeats its key cells on many rows.
   void row(std::string_view leading, std::size_t leading_columns, std::span<const double> values);
   std::size_t columns() const { return columns_; }
+  // Flushes and closes the file, checking both: a full disk is a WriteError naming the file and
+  // the reason. Call it when the last row is written; the destructor of an unclosed writer (an
+  // exception on the way) closes without checking.
+  void close();
 
  private:
+  void write(const std::string& text);  // checked fwrite
+
   std::vector<char> buffer_ = std::vector<char>(1 << 18);  // stdio buffer, outlives file_
   std::FILE* file_ = nullptr;
   std::filesystem::path path_;
   std::size_t columns_ = 0;
   std::string line_;
+  unsigned rows_ = 0;
 };
 
 // Shortest text that reads back to the same double.

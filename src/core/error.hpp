@@ -19,6 +19,13 @@ class NumericalError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// An output could not be written (disk full, I/O error, permissions changed during the run):
+// exit code 3, the message names the file and the system's reason; the previous result is kept.
+class WriteError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 // The run was interrupted (SIGINT/SIGTERM): exit code 130, previous results left intact.
 class Interrupted : public std::runtime_error {
  public:

@@ -1,19 +1,30 @@
 #pragma once
 // Results are written into a temporary folder beside DIR and renamed into place at the end, so a
 // failed or interrupted run leaves the previous DIR intact and no half-written result
-// (docs/outputs.md (conventions)). Files the program did not write are never deleted: an existing DIR is replaced
-// only if it is empty or was written by shpb (it holds a summary.json). The replacement is one
-// atomic exchange of the two folders where the file system supports it; temporary folders of
-// runs that were killed outright are removed by the next run into the same DIR.
+// (docs/outputs.md (conventions)). Files the program did not write are never deleted: an existing
+// DIR is replaced only if it is empty or shpb wrote it — it holds the marker file `.shpb-output`
+// (signature line, command, the names shpb wrote) and nothing the marker does not list. A folder
+// that is, or holds, an input of the run is refused. Every file is fsync'ed before the one atomic
+// exchange of the two folders; temporary folders of runs that were killed outright are removed by
+// the next run into the same DIR.
 #include <filesystem>
+#include <string>
+#include <vector>
 
 namespace shpb {
 
+// The marker's first line; a folder is shpb's only if its marker starts with exactly this line.
+inline constexpr const char* kOutputMarker = ".shpb-output";
+inline constexpr const char* kOutputMarkerSignature =
+    "shpb output folder: written by shpb, replaced only by shpb";
+
 class OutputFolder {
  public:
-  // Checks that `final_dir` can be written (throws InputError otherwise) and creates the
-  // temporary folder.
-  explicit OutputFolder(std::filesystem::path final_dir);
+  // Checks that `final_dir` can be written and may be replaced (throws InputError otherwise) and
+  // creates the temporary folder. `command` is recorded in the marker; `inputs` are the files the
+  // run reads (scene, signal files): DIR may be none of them nor a folder holding one.
+  explicit OutputFolder(std::filesystem::path final_dir, std::string command = "",
+                        const std::vector<std::filesystem::path>& inputs = {});
   ~OutputFolder();  // removes the temporary folder unless commit() succeeded
   OutputFolder(const OutputFolder&) = delete;
   OutputFolder& operator=(const OutputFolder&) = delete;
@@ -22,8 +33,29 @@ class OutputFolder {
   std::filesystem::path file(const std::string& name) const { return temp_ / name; }
   const std::filesystem::path& final_path() const { return final_; }
 
-  // Moves the temporary folder to its final place (replacing a previous shpb result); throws
-  // Interrupted instead if SIGINT/SIGTERM arrived, so an interrupted run changes nothing.
+  // Writes the marker, fsyncs every file, then moves the temporary folder to its final place
+  // (replacing a previous shpb result); throws Interrupted instead if SIGINT/SIGTERM arrived, so
+  // an interrupted run changes nothing, and WriteError if a file cannot be made durable.
+  void commit();
+
+ private:
+  std::filesystem::path final_;
+  std::filesystem::path temp_;
+  std::string command_;
+  bool committed_ = false;
+};
+
+// One output file written atomically (e.g. `dispersion -o FILE`): written to a temporary file in
+// the same folder, fsync'ed and renamed over FILE by commit(); FILE keeps its previous content
+// until then, also when the process is killed.
+class OutputFile {
+ public:
+  explicit OutputFile(std::filesystem::path final_file);
+  ~OutputFile();  // removes the temporary file unless commit() succeeded
+  OutputFile(const OutputFile&) = delete;
+  OutputFile& operator=(const OutputFile&) = delete;
+
+  const std::filesystem::path& path() const { return temp_; }  // write here
   void commit();
 
  private:
@@ -37,5 +69,7 @@ class OutputFolder {
 // process at once.
 void install_interrupt_handlers();
 bool interrupted();
+// Throws Interrupted if a signal arrived: the one-line poll of a loop.
+void throw_if_interrupted();
 
 }  // namespace shpb

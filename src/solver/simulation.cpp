@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "core/checked_write.hpp"
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
 #include "solver/chain.hpp"
@@ -111,6 +111,7 @@ void write_series(const std::filesystem::path& file, const TimeSeries& ts) {
     for (std::size_t c = 0; c < ts.values.size(); ++c) row[c + 1] = ts.values[c][k];
     csv.row(row);
   }
+  csv.close();
 }
 
 }  // namespace
@@ -194,6 +195,7 @@ void write_simulation_outputs(const SimulationResult& result, const Scene& scene
         csv.row(key, 2, std::span(&f.stress_Pa[j * f.x_m.size() + x], 1));
       }
     }
+    csv.close();
   }
   nlohmann::ordered_json j;
   j["version"] = kVersion;
@@ -229,8 +231,7 @@ void write_simulation_outputs(const SimulationResult& result, const Scene& scene
   j["max_penetration_m"] = result.max_penetration_m;
   j["stable"] = result.stable;
   if (!result.stable) j["failure"] = result.failure;
-  std::ofstream out(dir / "summary.json");
-  out << j.dump(2) << "\n";
+  write_text_file(dir / "summary.json", j.dump(2) + "\n");
 }
 
 }  // namespace shpb

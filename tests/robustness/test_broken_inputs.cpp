@@ -397,7 +397,7 @@ TEST_CASE("An output folder that cannot be written is refused before anything is
          fs::create_directory(dir / "out");
          write_bytes(dir / "out" / "thesis.tex", "\\documentclass{article}");
        },
-       simulate(), Expect::kRefused, "refusing to replace it"},
+       simulate(), Expect::kRefused, "shpb replaces only folders it wrote"},
   });
 }
 

@@ -45,8 +45,11 @@ TEST_CASE("An output folder that is not committed leaves the previous result unt
           "[robustness][output]") {
   ScratchFolder scratch("folder");
   const fs::path out = scratch.path() / "out";
-  fs::create_directory(out);
-  write_bytes(out / "summary.json", "previous");
+  {
+    shpb::OutputFolder first(out);
+    write_bytes(first.file("summary.json"), "previous");
+    first.commit();
+  }
   {
     shpb::OutputFolder folder(out);
     write_bytes(folder.file("summary.json"), "half");
