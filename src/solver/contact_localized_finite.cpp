@@ -21,17 +21,24 @@
 // the rigid-link limit.
 //
 // Asynchronous steps (our design, after Dvořák et al. 2023, CMAME 413:116110): each side OWNS its
-// link (d_i, ḋ_i, i.e. its end and its half-frame with its penalty mass) and advances it with its
-// own step Δt_i, by the same central difference as its bar: stable by R_i ≤ R_crit,i with the
-// side's own h and c, which is why the penalties are localized. The two half-frames are tied by
-// the rigid frame coupling of the limit: the frame is advanced on the union of both sides'
-// instants by variable-step leapfrog with ü_f above, a side that is ahead giving its end load
-// and its link extension on their linear paths (scheduler.hpp rule 4); a stepping side takes the
-// tie force that makes its half-frame (end + link) leave with the frame's velocity,
+// link and its half-frame (with its penalty mass) and advances them with its own step Δt_i, by
+// the same central difference as its bar; the two half-frames are tied by the rigid frame
+// coupling of the limit: the frame is advanced on the union of both sides' instants by
+// variable-step leapfrog with ü_f above, a side that is ahead giving its end load and its link
+// extension on their linear paths (scheduler.hpp rule 4). A stepping side takes the tie force
+// that makes its half-frame (end + link) leave with the frame's velocity,
 //   Λ_i = μ_i [(v_f − v_bi − ḋ_i)/Δt_i − a_i],
-// which is μ_i (ü_f − a_i) at a common step, and its end is reset to φ − d_i at its next instant.
-// Nothing is applied at an instant a side does not own, so the stiff links are not re-excited
-// there.
+// which is μ_i (ü_f − a_i) at a common step. Which of end and half-frame carries the other is
+// decided by the heavier: with ε_m,i ≥ m_bi (stiff links, e.g. the default ε_s = 10⁴ EA/h) the
+// link (d_i, ḋ_i) is integrated and the end is reset behind the frame at its next instant, as in
+// the limit; with ε_m,i < m_bi (compliant links, rise_time) the end is left to its bar and d_i is
+// measured, frame − end — resetting a heavy end to a light frame made the compliant
+// asynchronous run blow up (energy ×10³ at step ratio 2.19). Nothing is applied at an instant a
+// side does not own, so the links are not re-excited there. Both links take the same
+// R = mass_ratio × min_i R_crit,i (contact.cpp): with compliant links the frame moves on the links
+// alone at ω² = Σ ε_s,i / Σ ε_m,i, which the side with the longer step must resolve. Measured
+// (study --sweep stability, asynchronous, step ratios 1, π, π²): stable up to C ≈ 1 for
+// R ≤ R_crit at every ε_s/k = 10⁻² … 10⁶, and above R_crit the 2/√R step for ε_s ≳ 10 k.
 //
 // Switching (as in the limit, decided on the force Λ the interface puts on the bars): contact is
 // predicted one step ahead (g + ġΔ ≤ 0, Δ to the next union instant) and closes by the impulsive
