@@ -81,6 +81,14 @@ def plot_stability(folder, out):
     bpath = os.path.join(folder, "stability_boundary.csv")
     bounds = read_csv(bpath) if os.path.exists(bpath) else []
     paths = []
+    # Localized bipenalty is mapped at several step ratios (asynchronous): one chart per ratio.
+    def key(r):
+        q = r.get("step_ratio", "") or "1"
+        return r["method"] if num(q) == 1 else f"{r['method']}_step-ratio-{num(q):.3g}"
+    for r in rows:
+        r["method"] = key(r)
+    for b in bounds:
+        b["method"] = key(b)
     for method in sorted({r["method"] for r in rows}):
         mine = [r for r in rows if r["method"] == method]
         ratios = sorted({num(r["mass_ratio"]) for r in mine}, key=lambda v: (math.isnan(v), v))

@@ -132,24 +132,26 @@ void write_stability(const StabilityStudy& study, const Scene& scene, int thread
                      const std::filesystem::path& dir) {
   {
     std::ostringstream csv;
-    csv << "method,stiffness_factor,mass_ratio,courant,energy_growth,stable\n";
+    csv << "method,stiffness_factor,mass_ratio,courant,energy_growth,stable,step_ratio\n";
     for (const StabilityRow& r : study.rows)
       csv << to_string(r.point.method) << ',' << format_double(r.point.stiffness_factor) << ','
           << (r.point.method == ContactMethod::kPenalty ? "" : format_double(r.point.mass_ratio))
           << ',' << format_double(r.point.courant) << ',' << field(r.verdict.energy_growth) << ','
-          << (r.verdict.stable ? 1 : 0) << '\n';
+          << (r.verdict.stable ? 1 : 0) << ',' << format_double(r.point.step_ratio) << '\n';
     write_text_file(dir / "stability.csv", csv.str());
   }
   {
     std::ostringstream csv;
-    csv << "method,link,stiffness_factor,mass_ratio,critical_courant,closed_form_courant\n";
+    csv << "method,link,stiffness_factor,mass_ratio,critical_courant,closed_form_courant,"
+           "step_ratio\n";
     for (const StabilityBoundary& b : study.boundaries)
       csv << to_string(b.line.method) << ',' << (b.line.tied ? "tied" : "unilateral") << ','
           << format_double(b.line.stiffness_factor) << ','
           << (b.line.method == ContactMethod::kPenalty ? "" : format_double(b.line.mass_ratio))
           << ','
           << (b.critical_courant <= kBoundaryCourantMin ? "" : format_double(b.critical_courant))
-          << ',' << format_double(b.closed_form_courant) << '\n';
+          << ',' << format_double(b.closed_form_courant) << ',' << format_double(b.line.step_ratio)
+          << '\n';
     write_text_file(dir / "stability_boundary.csv", csv.str());
   }
   Json j;

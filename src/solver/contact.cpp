@@ -29,10 +29,15 @@ InterfaceModel make_interface_model(std::string name, ContactMethod method,
     return r * r;
   };
   if (method == ContactMethod::kLocalizedBipenalty) {
-    // Each link keeps its own bar's step: R_i ≤ (2 c_i / h_i)² (docs/methods.md §3).
+    // Each link keeps its own bar's step, R_i ≤ (2 c_i / h_i)² (docs/methods.md §3), and both take
+    // the smaller of the two: with compliant links (ε_m,i ≪ m_bi) the frame moves on the links
+    // alone at ω² = Σ ε_s,i / Σ ε_m,i, a mean of the R_i that the side with the longer step must
+    // resolve (contact_localized_finite.cpp).
+    const double r = ratio * std::min(r_crit(left), r_crit(right));
     m.stiffness_N_m[0] = m.stiffness_N_m[1] = eps_s;
-    m.mass_penalty_kg[0] = eps_s / (ratio * r_crit(left));
-    m.mass_penalty_kg[1] = eps_s / (ratio * r_crit(right));
+    m.mass_penalty_kg[0] = m.mass_penalty_kg[1] = eps_s / r;
+    m.end_follows_frame[0] = m.mass_penalty_kg[0] >= left.end_mass_kg();
+    m.end_follows_frame[1] = m.mass_penalty_kg[1] >= right.end_mass_kg();
     m.finite_links =
         params.stiffness_N_m || params.stiffness_factor || params.rise_time_s || params.mass_ratio;
   } else {
@@ -51,7 +56,8 @@ ContactResult solve_contact(const InterfaceModel& model, InterfaceState& state, 
     case ContactMethod::kPenalty: return solve_penalty(model, state, left, right);
     case ContactMethod::kBipenalty: return solve_bipenalty(model, state, left, right);
     case ContactMethod::kLocalizedBipenalty:
-      if (model.finite_links) return solve_localized_finite(model, state, left, right, tau);
+      if (model.finite_links)
+        return solve_localized_finite(model, state, left, right, tau, frame_next_tau);
       return solve_localized_bipenalty(model, state, left, right, tau, frame_next_tau);
   }
   return {};

@@ -20,6 +20,7 @@ struct EndState {
   bool stepping = false;  // the bar takes a step at τ and uses the force solved now
   double kick_s = 0;      // the stepping bar's velocity kick length at τ (Δt, or Δt/2 at n = 0)
   double step_s = 0;      // the bar's Δt
+  double next_tau = 0;    // its next instant: τ + Δt if stepping, its pending one if ahead
 
   // Full-step velocity at τ (velocity-Verlet): v_{n−1/2} + (kick − Δt/2) f̃/m for a stepping end
   // (v_0 itself at n = 0); an end that is ahead moves with its step's velocity.
@@ -39,6 +40,9 @@ struct InterfaceModel {
   // links are then the seed paper's finite ones (contact_localized_finite.cpp); false selects
   // the rigid-link limit ε_s, ε_m → ∞ (contact_localized_bipenalty.cpp).
   bool finite_links = false;
+  // Finite links: side i's end follows its half-frame (ε_m,i ≥ its end-node mass: the stiff
+  // links) or the half-frame follows the end (compliant links); contact_localized_finite.cpp.
+  bool end_follows_frame[2] = {false, false};
   bool tied = false;  // penalty and node-to-node bipenalty: bilateral link (PenaltyParams::tied)
 };
 
@@ -50,7 +54,10 @@ struct InterfaceState {
   // frame − gap0 + offset.
   double frame_u = 0, frame_v = 0, frame_tau = 0;
   double offset = 0;
-  // Finite links: frame_v is the frame's half-step velocity v_f,n+1/2.
+  // Finite links (contact_localized_finite.cpp): link i's extension d_i = u_f − (end i) at
+  // link_tau[i] and its rate over side i's step: its next instant if its end follows the frame
+  // (the link is integrated), its last one if not (d is measured).
+  double link_d[2] = {0, 0}, link_v[2] = {0, 0}, link_tau[2] = {0, 0};
   // Results of the last solve.
   double force_N = 0;     // compression positive
   double gap_m = 0;       // total gap g
@@ -77,6 +84,9 @@ struct NeighbourInfo {
   double wave_speed_m_s;
   double element_length_m;
   double impedance_kg_s() const { return stiffness_N_m * element_length_m / wave_speed_m_s; }  // EA/c
+  double end_mass_kg() const {  // ρAh/2 = (EA/h) h² / (2c²)
+    return 0.5 * stiffness_N_m * element_length_m * element_length_m / (wave_speed_m_s * wave_speed_m_s);
+  }
 };
 InterfaceModel make_interface_model(std::string name, ContactMethod method,
                                     const PenaltyParams& params, double gap0_m,
@@ -84,12 +94,17 @@ InterfaceModel make_interface_model(std::string name, ContactMethod method,
 
 // Localized bipenalty in the tied state: where the end node of side `side` (0 left, 1 right)
 // must be at τ (absolute displacement), or NaN when the interface is open. The scheduler puts a
-// stepping end there before assembling its forces (rule 4 of scheduler.hpp).
+// stepping end there before assembling its forces (rule 4 of scheduler.hpp). With finite links
+// an end that follows its half-frame sits behind it by the link's extension d_i(τ), on its linear
+// path; an end that does not is left to its bar (contact_localized_finite.cpp).
 inline double tied_end_position(const InterfaceModel& model, const InterfaceState& state, int side,
                                 double tau) {
-  if (!state.active || model.method != ContactMethod::kLocalizedBipenalty || model.finite_links)
+  if (!state.active || model.method != ContactMethod::kLocalizedBipenalty ||
+      (model.finite_links && !model.end_follows_frame[side]))
     return std::numeric_limits<double>::quiet_NaN();
-  const double uf = state.frame_u + (tau - state.frame_tau) * state.frame_v;
+  double uf = state.frame_u + (tau - state.frame_tau) * state.frame_v;
+  if (model.finite_links)
+    uf -= state.link_d[side] - (state.link_tau[side] - tau) * state.link_v[side];
   return side == 0 ? uf : uf - model.gap0_m + state.offset;
 }
 
@@ -106,6 +121,7 @@ ContactResult solve_localized_bipenalty(const InterfaceModel& model, InterfaceSt
                                         EndState left, EndState right, double tau,
                                         double frame_next_tau);
 ContactResult solve_localized_finite(const InterfaceModel& model, InterfaceState& state,
-                                     const EndState& left, const EndState& right, double tau);
+                                     EndState left, EndState right, double tau,
+                                     double frame_next_tau);
 
 }  // namespace shpb

@@ -105,13 +105,15 @@ void take_instant(Chain& chain, ChainRecorders& recorders, const std::vector<cha
     InterfaceState& is = chain.interface_states[k];
     // A stepping end is already at the frame (rule 4); an ahead one is put there for its load.
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    const EndState left =
+    EndState left =
         end_state(chain, l, l_node, tau, stepping[l], stepping[l] ? nan : tied_end_position(im, is, 0, tau));
-    const EndState right =
+    EndState right =
         end_state(chain, r, 0, tau, stepping[r], stepping[r] ? nan : tied_end_position(im, is, 1, tau));
     const double next_l = stepping[l] ? tau + chain.bars[l].time_step_s : chain.bar_tau(l);
     const double next_r = stepping[r] ? tau + chain.bars[r].time_step_s : chain.bar_tau(r);
     const double next = std::min(next_l, next_r);
+    left.next_tau = next_l;
+    right.next_tau = next_r;
     const ContactResult res = solve_contact(im, is, left, right, tau, next);
     apply_end(chain, l, l_node, tau, stepping[l], res.dv_left, res.force_left_N);
     apply_end(chain, r, 0, tau, stepping[r], res.dv_right, res.force_right_N);

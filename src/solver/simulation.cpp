@@ -68,14 +68,6 @@ Chain build_chain(const Scene& scene, const ChainDiscretization& d, bool full_mo
         interface_penalty(scene.contact, k), scene.bars[k].gap_m,
         {l.stiffness_N_m, l.wave_speed_m_s, l.element_length_m},
         {r.stiffness_N_m, r.wave_speed_m_s, r.element_length_m}));
-    // Finite localized links need both neighbours at one step (contact_localized_finite.cpp).
-    const InterfaceModel& im = c.interfaces.back();
-    if (im.method == ContactMethod::kLocalizedBipenalty && im.finite_links &&
-        std::abs(l.time_step_s - r.time_step_s) > kSameInstant * std::min(l.time_step_s, r.time_step_s))
-      throw input_error(scene.file, "contact", im.name,
-                        "finite penalties need global stepping at interface " + im.name +
-                            " (its bars have different steps; omit stiffness_factor, stiffness, "
-                            "rise_time and mass_ratio for the rigid-link limit)");
     c.interface_states.emplace_back();
     c.interface_states.back().gap_m = scene.bars[k].gap_m;
   }

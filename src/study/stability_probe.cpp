@@ -54,6 +54,15 @@ StabilityVerdict judge_stability(const Scene& probe, const StabilityPoint& point
   if (point.tied)
     s.bars.back().velocity_m_s = s.bars.front().velocity_m_s * (1 - kTiedRelativeVelocity);
   s.simulation.courant = point.courant;
+  if (point.step_ratio != 1) {
+    // The bar meshed finer by the step ratio (its element count rounded, its length adjusted so
+    // that h_striker / h_bar is the ratio exactly), each bar on its own step.
+    BarSpec& bar = s.bars.back();
+    const double h = s.bars.front().length_m / s.bars.front().elements;
+    bar.elements = static_cast<int>(std::lround(bar.elements * point.step_ratio));
+    bar.length_m = bar.elements * h / point.step_ratio;
+    s.simulation.stepping = Stepping::kAsynchronous;
+  }
   SimulationOptions options;
   options.record_field = false;
   const SimulationResult r = simulate(s, options);

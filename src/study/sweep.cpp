@@ -50,9 +50,12 @@ std::vector<StabilityPoint> stability_grid(const std::vector<ContactMethod>& met
   for (ContactMethod m : methods.empty() ? kAllMethods : methods) {
     const std::vector<double> ratios =
         m == ContactMethod::kPenalty ? std::vector<double>{0.0} : kMassRatios;
-    for (double r : ratios)
-      for (double s : kStiffnessFactors)
-        for (double c : kCourantNumbers) grid.push_back({m, s, r, c});
+    const std::vector<double> steps =
+        m == ContactMethod::kLocalizedBipenalty ? kStepRatios : std::vector<double>{1.0};
+    for (double q : steps)
+      for (double r : ratios)
+        for (double s : kStiffnessFactors)
+          for (double c : kCourantNumbers) grid.push_back({m, s, r, c, false, q});
   }
   return grid;
 }

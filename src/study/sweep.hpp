@@ -41,10 +41,18 @@ struct StabilityPoint {
   double mass_ratio = 0;        // R / R_crit (bipenalty methods; 0 for plain penalty)
   double courant = 1;           // c·Δt/h of every bar
   bool tied = false;            // plain penalty acting in tension too (linear limit)
+  // Δt_striker / Δt_bar of the probe, asynchronous stepping (the bar meshed finer by this
+  // factor); 1: both bars at one step.
+  double step_ratio = 1;
 };
 
+// Step ratios of the localized-bipenalty map: equal steps, π (the non-integer benchmark of
+// docs/methods.md §3) and π² ≈ 9.87 (a bar against a specimen ten times finer).
+inline const std::vector<double> kStepRatios = {1, 3.141592653589793, 9.869604401089358};
+
 // The stability grid: ε_s/k from 1e-2 to 1e6 (two points per decade), C from 0.1 to
-// 1.05, and for the bipenalty methods R/R_crit from 0.25 to 4.
+// 1.05, and for the bipenalty methods R/R_crit from 0.25 to 4; localized bipenalty (finite links)
+// at every step ratio of kStepRatios.
 inline const std::vector<double> kStiffnessFactors = {
     1e-2, 3e-2, 1e-1, 3e-1, 1, 3, 10, 30, 1e2, 3e2, 1e3, 3e3, 1e4, 3e4, 1e5, 3e5, 1e6};
 inline const std::vector<double> kCourantNumbers = {0.1, 0.15, 0.2, 0.25, 0.3,  0.4, 0.5,  0.6,

@@ -7,6 +7,7 @@
 
 #include "../solver/test_scenes.hpp"
 #include "study/stability_probe.hpp"
+#include "study/sweep.hpp"
 
 using namespace shpb;
 
@@ -65,4 +66,21 @@ TEST_CASE("Above R_crit the tied bipenalty step follows 2/sqrt(R)", "[study][sta
     INFO("R/R_crit = " << ratio << ": measured " << measured << ", 2/sqrt(R) gives " << expected);
     CHECK(std::abs(measured / expected - 1) < kBoundaryTolerance);
   }
+}
+
+TEST_CASE("Finite localized links with R at most R_crit are stable at asynchronous steps of "
+          "ratio 1, pi and pi^2 at every stiffness up to C = 0.98",
+          "[study][stability][finite]") {
+  const Scene probe = steel_probe();
+  for (double q : kStepRatios)
+    for (double ratio : {0.25, 0.5, 0.9, 1.0})
+      for (double s : kStiffnessFactors)
+        for (double c : {0.3, 0.9, 0.98}) {
+          StabilityPoint point{ContactMethod::kLocalizedBipenalty, s, ratio, c};
+          point.step_ratio = q;
+          const StabilityVerdict v = judge_stability(probe, point);
+          INFO("step ratio " << q << ", R/R_crit = " << ratio << ", eps_s/k = " << s
+                             << ", C = " << c << ": energy growth " << v.energy_growth);
+          CHECK(v.stable);
+        }
 }
