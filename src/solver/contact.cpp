@@ -53,13 +53,12 @@ InterfaceModel interface_model(const Scene& scene, const ChainDiscretization& d,
   auto neighbour = [&](std::size_t i) {
     const BarSpec& b = scene.bars[i];
     const double h = d.bars[i].element_length_m;
-    return NeighbourInfo{b.material.youngs_modulus_Pa * b.area_m2 / h,
-                         b.material.wave_speed_m_s(), h};
+    return NeighbourInfo{b.material.youngs_modulus_Pa * b.area_m2 / h, b.material.wave_speed_m_s(),
+                         h};
   };
-  return make_interface_model(scene.bars[k].name + "-" + scene.bars[k + 1].name,
-                              interface_method(scene.contact, k),
-                              interface_penalty(scene.contact, k), scene.bars[k].gap_m,
-                              neighbour(k), neighbour(k + 1));
+  return make_interface_model(
+      scene.bars[k].name + "-" + scene.bars[k + 1].name, interface_method(scene.contact, k),
+      interface_penalty(scene.contact, k), scene.bars[k].gap_m, neighbour(k), neighbour(k + 1));
 }
 
 ContactResult solve_contact(const InterfaceModel& model, InterfaceState& state, EndState left,

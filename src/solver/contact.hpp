@@ -86,7 +86,8 @@ struct NeighbourInfo {
   double element_length_m;
   double impedance_kg_s() const { return stiffness_N_m * element_length_m / wave_speed_m_s; }  // EA/c
   double end_mass_kg() const {  // ρAh/2 = (EA/h) h² / (2c²)
-    return 0.5 * stiffness_N_m * element_length_m * element_length_m / (wave_speed_m_s * wave_speed_m_s);
+    return 0.5 * stiffness_N_m * element_length_m * element_length_m /
+           (wave_speed_m_s * wave_speed_m_s);
   }
 };
 InterfaceModel make_interface_model(std::string name, ContactMethod method,
