@@ -25,8 +25,9 @@ void add_run_options(CLI::App* cmd, RunOverrides& o, std::string& contact, std::
                   "asynchronous (every bar its own time step) | global (all bars at the smallest "
                   "step) (default: the scene's, else asynchronous)")
       ->check(CLI::IsMember({"asynchronous", "global"}));
-  cmd->add_option("--courant", o.courant, "Courant number of every bar, c·Δt/h (default ≈ 0.99)")
-      ->check(CLI::Range(1e-3, 2.0));
+  // Its range, (0, 1] as in the scene, is checked with the scene (model/scene_validation.hpp).
+  cmd->add_option("--courant", o.courant,
+                  "Courant number of every bar, c·Δt/h, in (0, 1] (default ≈ 0.99)");
   cmd->add_option("--threads", o.threads, "Worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
   cmd->add_flag("--quiet,-q", o.quiet, "No progress output on stderr");
 }

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "solver/contact.hpp"
 #include "solver/simulation.hpp"
 #include "study/pareto_front.hpp"
 #include "study/reference.hpp"
@@ -157,6 +158,20 @@ int main(int argc, char** argv) {
                 "(%.3g/s of CPU), energy error %.2g%s\n",
                 a.wall_s * 1e3, a.cpu_s * 1e3, repeat, a.last.node_updates,
                 a.last.node_updates / a.cpu_s, a.last.energy_error, a.last.stable ? "" : " UNSTABLE");
+    {
+      // Finite localized links at the default ε_s and R (contact_localized_finite.cpp) against
+      // the scene as given (the rigid-link limit unless it sets penalty values), asynchronous.
+      Scene finite = scene;
+      finite.contact.method = ContactMethod::kLocalizedBipenalty;
+      for (InterfaceOverride& o : finite.contact.interfaces) o.method.reset();
+      finite.contact.penalty.stiffness_factor = kDefaultStiffnessFactor;
+      finite.contact.penalty.mass_ratio = kDefaultMassRatio;
+      const Timing f = run(finite, economy, repeat);
+      std::printf("  finite localized links (eps_s = %g EA/h, R = %g R_crit), asynchronous: %.2f ms "
+                  "wall, %.2f ms CPU, x%.2f the scene's contact in CPU time, energy error %.2g%s\n",
+                  kDefaultStiffnessFactor, kDefaultMassRatio, f.wall_s * 1e3, f.cpu_s * 1e3,
+                  f.cpu_s / a.cpu_s, f.last.energy_error, f.last.stable ? "" : " UNSTABLE");
+    }
     std::printf("  causal economy: %lld of %lld node updates of the full model (saves %.1f %%); "
                 "full model %.2f ms\n",
                 a.last.node_updates, af.last.node_updates,

@@ -32,7 +32,8 @@ def num(text):
 def plot_pareto(folder, out):
     rows = read_csv(os.path.join(folder, "pareto.csv"))
     fig, ax = plt.subplots(figsize=(7, 4.5))
-    markers = {"penalty": "x", "bipenalty": "s", "localized-bipenalty": "o"}
+    markers = {"penalty": "x", "bipenalty": "s", "localized-bipenalty": "o",
+               "localized-bipenalty-finite": "D"}
     colors = {"asynchronous": "tab:blue", "global": "tab:orange"}
     points = []
     for method in markers:

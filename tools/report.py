@@ -615,11 +615,16 @@ def fig_stability(src, figs):
                           "stiffness, the Courant number and `stable` were expected")
     rcol = next((n for n in names if n.lower().startswith("mass_ratio") or n.lower() in
                  ("r_over_rcrit", "r_ratio")), None)
-    methods = list(dict.fromkeys(t["method"])) if "method" in t else [""]
+    keys = np.asarray(t["method"]) if "method" in t else None
+    if keys is not None and "step_ratio" in t:
+        # Localized bipenalty is mapped at several step ratios (asynchronous): one figure each.
+        keys = np.array([m if not (np.isfinite(q) and q != 1) else f"{m} step ratio {q:.3g}"
+                         for m, q in zip(keys, t.numeric("step_ratio"))])
+    methods = list(dict.fromkeys(keys)) if keys is not None else [""]
     stable = t.numeric("stable") > 0.5
     x, y = t.numeric(xcol), t.numeric(ycol)
     for method in methods:
-        sel = (t["method"] == method) if "method" in t else np.ones(len(t), bool)
+        sel = (keys == method) if keys is not None else np.ones(len(t), bool)
         ratios = [None]
         if rcol is not None:
             values = t.numeric(rcol)[sel]

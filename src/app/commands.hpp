@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "model/scene.hpp"
+#include "model/scene_validation.hpp"
 
 namespace shpb {
 
@@ -20,8 +21,10 @@ struct RunOverrides {
   bool quiet = false;
 };
 
-// Applies --contact/--stepping/--courant to a scene read from file.
-void apply_overrides(const RunOverrides& overrides, Scene& scene);
+// Applies --contact/--stepping/--courant to a scene read from file, then checks the result with
+// validate_scene() (model/scene_validation.hpp), the one validation every command shares; returns
+// the discretization the run will use. Throws InputError (exit 2).
+ChainDiscretization apply_overrides(const RunOverrides& overrides, Scene& scene);
 
 // The files a run of `scene` reads (the scene, its measured signal files): an output folder may
 // not be or hold one of them (core/output_folder.hpp).

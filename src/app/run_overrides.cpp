@@ -2,13 +2,16 @@
 
 namespace shpb {
 
-void apply_overrides(const RunOverrides& overrides, Scene& scene) {
+ChainDiscretization apply_overrides(const RunOverrides& overrides, Scene& scene) {
   if (overrides.contact) {
     scene.contact.method = *overrides.contact;
     for (auto& i : scene.contact.interfaces) i.method.reset();
   }
   if (overrides.stepping) scene.simulation.stepping = *overrides.stepping;
   if (overrides.courant) scene.simulation.courant = overrides.courant;
+  RunOptions options;
+  options.courant_from_command_line = overrides.courant.has_value();
+  return validate_scene(scene, options);
 }
 
 std::vector<std::filesystem::path> scene_inputs(const Scene& scene) {

@@ -47,7 +47,7 @@ std::function<void(std::size_t, std::size_t)> progress_printer(bool quiet, std::
 std::string field(double v) { return std::isfinite(v) ? format_double(v) : std::string(); }
 
 Json case_json(const ParetoCase& c) {
-  return Json{{"method", to_string(c.method)},
+  return Json{{"method", method_name(c)},
               {"stepping", to_string(c.stepping)},
               {"resolution", c.resolution}};
 }
@@ -58,14 +58,14 @@ Json speed_ratios(const ParetoStudy& study) {
   std::vector<double> err, wall, updates;
   for (const ParetoRow& r : study.rows)
     if (r.run.method == ContactMethod::kLocalizedBipenalty && r.run.stepping == Stepping::kGlobal &&
-        std::isfinite(r.error)) {
+        !r.run.finite_links && std::isfinite(r.error)) {
       err.push_back(r.error);
       wall.push_back(r.wall_time_s);
       updates.push_back(static_cast<double>(r.node_updates));
     }
   Json out = Json::array();
   for (const ParetoRow& r : study.rows) {
-    if (r.run.method != ContactMethod::kLocalizedBipenalty ||
+    if (r.run.method != ContactMethod::kLocalizedBipenalty || r.run.finite_links ||
         r.run.stepping != Stepping::kAsynchronous || !std::isfinite(r.error))
       continue;
     Json j{{"resolution", r.run.resolution}, {"error", r.error}, {"wall_time_s", r.wall_time_s}};
@@ -86,7 +86,7 @@ void write_pareto(const ParetoStudy& study, const Scene& scene, int threads, dou
     std::ostringstream csv;
     csv << "method,stepping,resolution,error,wall_time_s,node_updates,stable\n";
     for (const ParetoRow& r : study.rows)
-      csv << to_string(r.run.method) << ',' << to_string(r.run.stepping) << ','
+      csv << method_name(r.run) << ',' << to_string(r.run.stepping) << ','
           << format_double(r.run.resolution) << ',' << field(r.error) << ','
           << format_double(r.wall_time_s) << ',' << r.node_updates << ',' << (r.stable ? 1 : 0)
           << '\n';

@@ -1,5 +1,6 @@
-// `shpb validate SCENE.json [--json]`: reads and checks a scene, then prints the resolved set-up —
-// exactly the mesh and time steps `simulate` will use (both call discretize()).
+// `shpb validate SCENE.json [--json]`: reads and checks a scene with the checks every command
+// shares (apply_overrides → validate_scene), then prints the resolved set-up — exactly the mesh,
+// time steps and interface links `simulate` will use (discretize(), interface_model()).
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -41,21 +42,6 @@ std::string g(double v, int digits = 4) {
   return buf;
 }
 
-// The interface as simulate builds it: method and penalty parameters from the scene (per-interface
-// overrides win), derived defaults from the neighbouring end elements (docs/methods.md §2–3).
-InterfaceModel resolved_interface(const Scene& scene, const ChainDiscretization& d, std::size_t k) {
-  const ContactMethod method = interface_method(scene.contact, k);
-  const PenaltyParams p = interface_penalty(scene.contact, k);
-  auto neighbour = [&](std::size_t i) {
-    const auto& b = scene.bars[i];
-    const double h = d.bars[i].element_length_m;
-    return NeighbourInfo{b.material.youngs_modulus_Pa * b.area_m2 / h, b.material.wave_speed_m_s(),
-                         h};
-  };
-  return make_interface_model(scene.bars[k].name + "-" + scene.bars[k + 1].name, method, p,
-                              scene.bars[k].gap_m, neighbour(k), neighbour(k + 1));
-}
-
 json resolved_setup(const Scene& scene, const ChainDiscretization& d) {
   json out;
   out["name"] = scene.name;
@@ -92,25 +78,29 @@ json resolved_setup(const Scene& scene, const ChainDiscretization& d) {
   }
   if (!out.contains("gauges")) out["gauges"] = json::array();
   for (std::size_t i = 0; i + 1 < scene.bars.size(); ++i) {
-    const InterfaceModel m = resolved_interface(scene, d, i);
-    const int links = m.method == ContactMethod::kLocalizedBipenalty ? 2 : 1;
-    json stiffness = json::array(), mass = json::array();
-    for (int k = 0; k < links; ++k) {
-      stiffness.push_back(m.stiffness_N_m[k]);
-      mass.push_back(m.mass_penalty_kg[k]);
+    // What the run uses: the rigid-link limit ignores the penalty values; finite localized
+    // links have one per side; node-to-node methods one link (no mass penalty for penalty).
+    const InterfaceModel m = interface_model(scene, d, i);
+    json links;
+    if (m.method == ContactMethod::kLocalizedBipenalty && !m.finite_links) {
+      links = "rigid-link limit";
+    } else {
+      const int count = m.method == ContactMethod::kLocalizedBipenalty ? 2 : 1;
+      json stiffness = json::array(), mass = json::array();
+      for (int k = 0; k < count; ++k) {
+        stiffness.push_back(m.stiffness_N_m[k]);
+        mass.push_back(m.mass_penalty_kg[k]);
+      }
+      links = {{"stiffness_N_m", stiffness}};
+      if (m.method != ContactMethod::kPenalty) links["mass_penalty_kg"] = mass;
     }
     out["interfaces"].push_back({{"left", scene.bars[i].name},
                                  {"right", scene.bars[i + 1].name},
                                  {"method", to_string(m.method)},
                                  {"gap_m", m.gap0_m},
-                                 {"link_stiffness_N_m", stiffness},
-                                 {"link_mass_penalty_kg", mass}});
+                                 {"links", links}});
   }
-  auto warnings = scene_warnings(scene, d.duration_s);
-  for (std::size_t i = 0; i < scene.bars.size(); ++i)  // docs/methods.md §1: stable for C <= 1
-    if (d.bars[i].courant > 1)
-      warnings.push_back("bar " + scene.bars[i].name + ": Courant number " + g(d.bars[i].courant) +
-                         " > 1: the explicit step is unstable");
+  const auto warnings = scene_warnings(scene, d.duration_s);
   out["warnings"] = warnings;
   out["duration_s"] = d.duration_s;
   out["sample_rate_Hz"] = d.sample_rate_Hz;
@@ -158,9 +148,16 @@ void print_table(const json& s) {
               "link_stiffness_N/m", "link_mass_penalty_kg");
   for (const auto& i : s["interfaces"]) {
     const std::string name = i["left"].get<std::string>() + " | " + i["right"].get<std::string>();
+    const json& l = i["links"];
+    std::string stiffness, mass;
+    if (l.is_string()) {
+      stiffness = l.get<std::string>();
+    } else {
+      stiffness = links(l["stiffness_N_m"]);
+      mass = l.contains("mass_penalty_kg") ? links(l["mass_penalty_kg"]) : "-";
+    }
     std::printf("%-28s %-20s %8s %24s %24s\n", name.c_str(), i["method"].get<std::string>().c_str(),
-                g(i["gap_m"].get<double>() * 1e3).c_str(), links(i["link_stiffness_N_m"]).c_str(),
-                links(i["link_mass_penalty_kg"]).c_str());
+                g(i["gap_m"].get<double>() * 1e3).c_str(), stiffness.c_str(), mass.c_str());
   }
   std::printf("\nduration     %s us\n", g(s["duration_s"].get<double>() * 1e6).c_str());
   std::printf("sample rate  %s MHz\n", g(s["sample_rate_Hz"].get<double>() * 1e-6).c_str());
@@ -176,8 +173,7 @@ void print_table(const json& s) {
 
 int run_validate(const ValidateArgs& args) {
   Scene scene = read_scene(args.scene);
-  apply_overrides(args.overrides, scene);
-  const json setup = resolved_setup(scene, discretize(scene));
+  const json setup = resolved_setup(scene, apply_overrides(args.overrides, scene));
   if (args.json)
     std::printf("%s\n", setup.dump(2).c_str());
   else

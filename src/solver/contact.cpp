@@ -49,6 +49,18 @@ InterfaceModel make_interface_model(std::string name, ContactMethod method,
   return m;
 }
 
+InterfaceModel interface_model(const Scene& scene, const ChainDiscretization& d, std::size_t k) {
+  auto neighbour = [&](std::size_t i) {
+    const BarSpec& b = scene.bars[i];
+    const double h = d.bars[i].element_length_m;
+    return NeighbourInfo{b.material.youngs_modulus_Pa * b.area_m2 / h, b.material.wave_speed_m_s(),
+                         h};
+  };
+  return make_interface_model(
+      scene.bars[k].name + "-" + scene.bars[k + 1].name, interface_method(scene.contact, k),
+      interface_penalty(scene.contact, k), scene.bars[k].gap_m, neighbour(k), neighbour(k + 1));
+}
+
 ContactResult solve_contact(const InterfaceModel& model, InterfaceState& state, EndState left,
                             EndState right, double tau, double frame_next_tau) {
   state.gap_m = model.gap0_m + right.u - left.u;

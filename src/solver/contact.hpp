@@ -7,6 +7,7 @@
 // positive (docs/outputs.md).
 #include <limits>
 
+#include "model/discretization.hpp"
 #include "model/scene.hpp"
 
 namespace shpb {
@@ -85,12 +86,17 @@ struct NeighbourInfo {
   double element_length_m;
   double impedance_kg_s() const { return stiffness_N_m * element_length_m / wave_speed_m_s; }  // EA/c
   double end_mass_kg() const {  // ρAh/2 = (EA/h) h² / (2c²)
-    return 0.5 * stiffness_N_m * element_length_m * element_length_m / (wave_speed_m_s * wave_speed_m_s);
+    return 0.5 * stiffness_N_m * element_length_m * element_length_m /
+           (wave_speed_m_s * wave_speed_m_s);
   }
 };
 InterfaceModel make_interface_model(std::string name, ContactMethod method,
                                     const PenaltyParams& params, double gap0_m,
                                     const NeighbourInfo& left, const NeighbourInfo& right);
+// The interface between bars[k] and bars[k + 1] as every run builds it: method and penalty
+// parameters from the scene (per-interface overrides win), derived values from the end elements
+// of the discretization. `simulate` builds its chain with it and `validate` prints it.
+InterfaceModel interface_model(const Scene& scene, const ChainDiscretization& d, std::size_t k);
 
 // Localized bipenalty in the tied state: where the end node of side `side` (0 left, 1 right)
 // must be at τ (absolute displacement), or NaN when the interface is open. The scheduler puts a

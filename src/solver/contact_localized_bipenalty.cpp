@@ -1,7 +1,8 @@
 // Localized bipenalty contact, the DEFAULT: the rigid-link limit of the seed paper's formulation,
 // used when the scene gives no penalty parameter (with one, contact_localized_finite.cpp solves
 // the finite links). Why the limit is the default: measured plateau std 0.05 % at C = 0.995 with
-// any stepping, asynchronous included, where finite links need a common step.
+// any stepping, asynchronous included, and no penalty value to choose (finite links at the
+// default ε_s = 10⁴ EA/h give the same gauges to 0.1 %).
 //
 // The seed paper's formulation (docs/methods.md §3) in 1D: a frame point
 // u_f per interface, a localized gap per bar g1 = u_f − u_b1, g2 = gap0 + u_b2 − u_f, each link

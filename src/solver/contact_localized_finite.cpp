@@ -41,7 +41,8 @@
 // R ≤ R_crit at every ε_s/k = 10⁻² … 10⁶, and above R_crit the 2/√R step for ε_s ≳ 10 k.
 //
 // Switching (as in the limit, decided on the force Λ the interface puts on the bars): contact is
-// predicted one step ahead (g + ġΔ ≤ 0, Δ to the next union instant) and closes by the impulsive
+// predicted one step ahead (ġ < 0 and g + ġΔ ≤ 0, Δ to the next union instant: ends that
+// separate after a release are not closed again) and closes by the impulsive
 // tie of the half-frames, which conserves momentum (the penalty mass carries none): both take the
 // μ-weighted velocity, end i's velocity jumps by Π_i/m_bi and its link rate by Π_i/ε_m,i; the
 // remaining gap is kept as the links' rest offset, so no penetration and no potential energy is
@@ -78,7 +79,7 @@ ContactResult solve_localized_finite(const InterfaceModel& model, InterfaceState
   if (!s.active) {
     // Contact is predicted one step ahead so that no penetration is ever created.
     const double v1 = left.velocity_now(), v2 = right.velocity_now();
-    if (s.gap_m + (v2 - v1) * step_after > 0) {
+    if (v2 - v1 >= 0 || s.gap_m + (v2 - v1) * step_after > 0) {
       open_links(s);
       return r;
     }

@@ -17,10 +17,12 @@
 //     outputs at τ* and advances one step.
 //  4. Before assembling, a stepping end tied to a closed localized-bipenalty frame is reset to
 //     the frame's displacement at τ* (the frame moves on the union of instants; this stops gap
-//     drift). A neighbour that does not step at τ* is ahead: τ_{j,m} − Δt_j ≤ τ* < τ_{j,m} (rule 2
-//     picked the minimum). Its end displacement at τ* is interpolated on its current step, on
-//     which the central-difference path is linear (exact); its free end force is recomputed from
-//     the interpolated displacements (exact for elastic bars; the last stress of a material law).
+//     drift), behind it by its link's extension for finite links whose end follows the frame
+//     (tied_end_position, contact_localized_finite.cpp). A neighbour that does not step at τ* is
+//     ahead: τ_{j,m} − Δt_j ≤ τ* < τ_{j,m} (rule 2 picked the minimum). Its end displacement at τ*
+//     is interpolated on its current step, on which the central-difference path is linear (exact);
+//     its free end force is recomputed from the interpolated displacements (exact for elastic bars;
+//     the last stress of a material law).
 //  5. A solved interface force is applied only by the sides stepping at τ*; a side that is ahead
 //     used the force solved at its own instant ("each partition takes its own full step with its
 //     latest multiplier").

@@ -61,13 +61,7 @@ Chain build_chain(const Scene& scene, const ChainDiscretization& d, bool full_mo
     c.states.push_back(make_bar_state(c.bars.back(), full_model));
   }
   for (std::size_t k = 0; k + 1 < c.bars.size(); ++k) {
-    const BarModel& l = c.bars[k];
-    const BarModel& r = c.bars[k + 1];
-    c.interfaces.push_back(make_interface_model(
-        l.name + "-" + r.name, interface_method(scene.contact, k),
-        interface_penalty(scene.contact, k), scene.bars[k].gap_m,
-        {l.stiffness_N_m, l.wave_speed_m_s, l.element_length_m},
-        {r.stiffness_N_m, r.wave_speed_m_s, r.element_length_m}));
+    c.interfaces.push_back(interface_model(scene, d, k));
     c.interface_states.emplace_back();
     c.interface_states.back().gap_m = scene.bars[k].gap_m;
   }

@@ -5,6 +5,7 @@
 
 #include "core/csv_writer.hpp"
 #include "model/discretization.hpp"
+#include "solver/contact.hpp"
 
 namespace shpb {
 
@@ -23,10 +24,20 @@ std::vector<ParetoCase> pareto_cases(const std::vector<ContactMethod>& methods,
                                      const std::vector<Stepping>& steppings,
                                      const std::vector<double>& resolutions) {
   std::vector<ParetoCase> cases;
-  for (ContactMethod m : methods.empty() ? kAllMethods : methods)
+  for (ContactMethod m : methods.empty() ? kAllMethods : methods) {
     for (Stepping s : steppings.empty() ? kAllSteppings : steppings)
       for (double r : resolutions) cases.push_back({m, s, r});
+    const bool asynchronous =
+        steppings.empty() ||
+        std::find(steppings.begin(), steppings.end(), Stepping::kAsynchronous) != steppings.end();
+    if (m == ContactMethod::kLocalizedBipenalty && asynchronous)
+      for (double r : resolutions) cases.push_back({m, Stepping::kAsynchronous, r, true});
+  }
   return cases;
+}
+
+std::string method_name(const ParetoCase& c) {
+  return c.finite_links ? "localized-bipenalty-finite" : std::string(to_string(c.method));
 }
 
 Scene scene_at_resolution(const Scene& scene, double factor) {
@@ -42,6 +53,10 @@ Scene scene_for(const Scene& scene, const ParetoCase& c) {
   out.contact.method = c.method;
   for (InterfaceOverride& o : out.contact.interfaces) o.method.reset();
   out.simulation.stepping = c.stepping;
+  if (c.finite_links) {
+    out.contact.penalty.stiffness_factor = kDefaultStiffnessFactor;
+    out.contact.penalty.mass_ratio = kDefaultMassRatio;
+  }
   return out;
 }
 

@@ -13,7 +13,14 @@ struct ParetoCase {
   ContactMethod method = ContactMethod::kLocalizedBipenalty;
   Stepping stepping = Stepping::kAsynchronous;
   double resolution = 1;  // factor on every bar's element count (1: the automatic mesh)
+  // Localized bipenalty with finite links (the default ε_s and R given explicitly,
+  // contact_localized_finite.cpp) instead of the rigid-link limit: a method of its own.
+  bool finite_links = false;
 };
+
+// The case's method as pareto.csv and summary.json name it: "localized-bipenalty-finite" for
+// finite links, else the contact method.
+std::string method_name(const ParetoCase& c);
 
 // Mesh resolution factors: 1/4 … 4 of the automatic mesh, in factors of two.
 inline const std::vector<double> kParetoResolutions = {0.25, 0.5, 1, 2, 4};
@@ -22,7 +29,8 @@ inline const std::vector<double> kParetoResolutions = {0.25, 0.5, 1, 2, 4};
 std::string format_factor(double factor);
 
 // Every method × stepping × resolution, restricted to `methods` / `steppings` when not empty
-// (the --contact / --stepping options of `shpb study`).
+// (the --contact / --stepping options of `shpb study`); localized bipenalty also with finite
+// links, asynchronous.
 std::vector<ParetoCase> pareto_cases(const std::vector<ContactMethod>& methods,
                                      const std::vector<Stepping>& steppings,
                                      const std::vector<double>& resolutions = kParetoResolutions);

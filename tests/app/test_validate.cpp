@@ -76,10 +76,27 @@ TEST_CASE("validate applies --contact, --stepping and --courant as simulate woul
   const double dt = v["bars"][0]["time_step_s"].get<double>();
   for (const auto& b : v["bars"]) CHECK(b["time_step_s"].get<double>() == dt);
   CHECK(v["warnings"].empty());
-  // Lumped central difference is unstable above C = 1 (docs/methods.md §1): validate says so.
-  const json unstable = validate_json(file, {"--courant", "1.2"});
-  REQUIRE(unstable["warnings"].size() == 2);
-  CHECK(unstable["warnings"][0].get<std::string>().find("unstable") != std::string::npos);
+}
+
+TEST_CASE("validate and simulate refuse a --courant outside (0, 1] alike", "[app][validate]") {
+  // Lumped central difference is unstable above C = 1 (docs/methods.md §1); the scene's own
+  // simulation.courant has the same range.
+  const auto file = fs::path(SHPB_SOURCE_DIR) / "experiments/striker-on-bar/scene.json";
+  const auto dir = shpb_test::scratch_dir("validate_courant");
+  for (const char* c : {"1.2", "0"}) {
+    for (const char* command : {"validate", "simulate"}) {
+      std::vector<std::string> args{command, file.string(), "--courant", c};
+      if (std::string(command) == "simulate")
+        args.insert(args.end(), {"-o", (dir / "out").string(), "--quiet"});
+      const auto r = shpb_test::run_shpb(args);
+      INFO(command << " --courant " << c << ": " << r.err);
+      CHECK(r.code == 2);
+      CHECK(r.err == std::string("error: --courant: ") + c +
+                         ": must be in (0, 1]: lumped central difference is stable for C <= 1\n");
+      CHECK_FALSE(fs::exists(dir / "out"));
+    }
+  }
+  fs::remove_all(dir);
 }
 
 TEST_CASE("validate warns when pulses overlap at a gauge or the duration is too short",
@@ -119,24 +136,39 @@ TEST_CASE("validate warns when pulses overlap at a gauge or the duration is too 
   fs::remove_all(dir);
 }
 
-TEST_CASE("validate reports penalty links that keep every bar's own time step", "[app][validate]") {
-  // Bipenalty with R = ε_s/ε_m ≤ R_crit = (2 c0/h)² leaves the bar's critical step unchanged
-  // for any ε_s (docs/methods.md §2): each link of the localized interfaces must respect its bar's.
-  const json v = validate_json(fs::path(SHPB_SOURCE_DIR) / "experiments/classic-al6061/scene.json");
+TEST_CASE(
+    "validate reports the links simulate uses: the rigid-link limit, or finite links that "
+    "keep every bar's own time step",
+    "[app][validate][finite]") {
+  const auto classic = fs::path(SHPB_SOURCE_DIR) / "experiments/classic-al6061/scene.json";
+  // No penalty value given: the rigid-link limit, which ignores them.
+  for (const auto& i : validate_json(classic)["interfaces"])
+    CHECK(i["links"] == "rigid-link limit");
+  // Finite links: bipenalty with R = ε_s/ε_m ≤ R_crit = (2 c0/h)² leaves the bar's critical step
+  // unchanged for any ε_s (docs/methods.md §2): each link must respect its bar's.
+  const auto dir = shpb_test::scratch_dir("validate_finite");
+  json scene = json::parse(std::ifstream(classic));
+  scene["contact"] = {
+      {"method", "localized-bipenalty"}, {"stiffness_factor", 1e4}, {"mass_ratio", 0.9}};
+  scene["bars"][2]["material"] =
+      (classic.parent_path() / "../../specimens/al6061-t6.json").string();
+  std::ofstream(dir / "scene.json") << scene.dump();
+  const json v = validate_json(dir / "scene.json");
   for (std::size_t k = 0; k < v["interfaces"].size(); ++k) {
-    const auto& i = v["interfaces"][k];
-    INFO(i["left"] << " | " << i["right"]);
-    REQUIRE(i["link_stiffness_N_m"].size() == 2);
+    const auto& links = v["interfaces"][k]["links"];
+    INFO(v["interfaces"][k]["left"] << " | " << v["interfaces"][k]["right"]);
+    REQUIRE(links["stiffness_N_m"].size() == 2);
     for (std::size_t side = 0; side < 2; ++side) {
       const auto& bar = v["bars"][k + side];
       const double r_crit = std::pow(
           2 * bar["wave_speed_m_s"].get<double>() / bar["element_length_m"].get<double>(), 2);
-      const double r = i["link_stiffness_N_m"][side].get<double>() /
-                       i["link_mass_penalty_kg"][side].get<double>();
+      const double r =
+          links["stiffness_N_m"][side].get<double>() / links["mass_penalty_kg"][side].get<double>();
       CHECK(r > 0);
       CHECK(r <= r_crit * (1 + kRoundOff));
     }
   }
+  fs::remove_all(dir);
 }
 
 TEST_CASE("validate reports a penalty stiffness given per interface as is", "[app][validate]") {
@@ -150,7 +182,7 @@ TEST_CASE("validate reports a penalty stiffness given per interface as is", "[ap
                 "interfaces": [{"between": ["s", "b"], "stiffness": "3e9 N/m"}]}})";
   const json v = validate_json(dir / "scene.json");
   CHECK(v["interfaces"][0]["method"] == "penalty");
-  CHECK(v["interfaces"][0]["link_stiffness_N_m"][0].get<double>() == 3e9);
-  CHECK(v["interfaces"][0]["link_mass_penalty_kg"][0].get<double>() == 0);  // no mass penalty
+  CHECK(v["interfaces"][0]["links"]["stiffness_N_m"][0].get<double>() == 3e9);
+  CHECK_FALSE(v["interfaces"][0]["links"].contains("mass_penalty_kg"));  // no mass penalty
   fs::remove_all(dir);
 }

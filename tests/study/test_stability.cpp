@@ -68,9 +68,10 @@ TEST_CASE("Above R_crit the tied bipenalty step follows 2/sqrt(R)", "[study][sta
   }
 }
 
-TEST_CASE("Finite localized links with R at most R_crit are stable at asynchronous steps of "
-          "ratio 1, pi and pi^2 at every stiffness up to C = 0.98",
-          "[study][stability][finite]") {
+TEST_CASE(
+    "Finite localized links with R at most R_crit are stable at asynchronous steps of "
+    "ratio 1, pi and pi^2 at every stiffness up to C = 0.98",
+    "[study][stability][finite]") {
   const Scene probe = steel_probe();
   for (double q : kStepRatios)
     for (double ratio : {0.25, 0.5, 0.9, 1.0})
