@@ -116,10 +116,25 @@ int main(int argc, char** argv) {
   auto* study_cmd = app.add_subcommand(
       "study", "Sweep contact methods, steppings, resolutions and penalty parameters: accuracy "
                "against cost (pareto.csv) and stability maps (stability.csv)");
-  study_cmd->add_option("scene", study.scene, "Scene JSON file")->required();
-  study_cmd->add_option("-o,--output", study.output, "Output folder (replaced atomically)")->required();
+  study_cmd->add_option("scene", study.scene, "Scene JSON file (not with --run/--merge)");
+  study_cmd->add_option("-o,--output", study.output,
+                        "Output folder (replaced atomically); with --merge default DIR/result");
   study_cmd->add_option("--sweep", study.sweep, "pareto | stability")
       ->check(CLI::IsMember({"pareto", "stability"}));
+  study_cmd->add_option("--refine", study.refine,
+                        "Stability map: refine-1 more points between neighbours on the stiffness "
+                        "and Courant axes (2: about 4 x the points; default 1)")
+      ->check(CLI::Range(1, 64));
+  study_cmd->add_option("--plan", study.plan,
+                        "Write the sweep's independent runs into DIR/plan.json instead of running "
+                        "them (then --run DIR --shard K/N, then --merge DIR)");
+  study_cmd->add_option("--run", study.run,
+                        "Run shard --shard K/N of DIR's plan; writes DIR/parts/K-of-N.json "
+                        "atomically (an existing part is skipped)");
+  study_cmd->add_option("--shard", study.shard, "K/N: every N-th run of the plan from K (K from 0)");
+  study_cmd->add_option("--merge", study.merge,
+                        "Check DIR's parts (each run exactly once) and write the outputs of the "
+                        "whole sweep into -o (default DIR/result)");
   add_run_options(study_cmd, study.overrides, contact, stepping);
 
   ValidateArgs val;

@@ -64,6 +64,12 @@ struct StudyArgs {
   std::filesystem::path output;
   std::string sweep = "pareto";  // pareto | stability
   RunOverrides overrides;
+  int refine = 1;  // stability grid refinement (study/sweep.hpp)
+  // Plan, run, merge (docs/commands.md): at most one of the three.
+  std::optional<std::filesystem::path> plan;   // write DIR/plan.json (needs the scene)
+  std::optional<std::filesystem::path> run;    // run shard `shard` of DIR's plan
+  std::optional<std::filesystem::path> merge;  // merge DIR's parts into -o (default DIR/result)
+  std::string shard;                           // "K/N"
 };
 int run_study(const StudyArgs& args);
 
