@@ -24,7 +24,7 @@ run: build
 
 # The suite twice: the Release build, then the same tests under AddressSanitizer + UBSan.
 test: build
-	@bash tools/install-deps.sh chromium
+	@bash tools/install-deps.sh chromium parallel slurm-wlm munge
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 	@$(MAKE) --no-print-directory asan
 	@cd $(ASAN_BUILD) && $(SANITIZER_ENV) ctest --output-on-failure -j $(JOBS)
