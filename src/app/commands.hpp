@@ -39,6 +39,19 @@ struct ProcessArgs {
 };
 int run_process(const ProcessArgs& args);
 
+// `shpb process` over several tests (docs/commands.md): scenes or a campaign file; each test's
+// folder by run_process, plus campaign.csv; --shard K/N and --merge as for `study`.
+struct CampaignArgs {
+  std::vector<std::filesystem::path> scenes;
+  std::optional<std::filesystem::path> campaign;
+  std::filesystem::path output;
+  std::vector<double> flow_strains;  // engineering strains of the flow_stress_Pa_at_<e> columns
+  std::string shard;                 // "K/N"
+  bool merge = false;
+  bool quiet = false;
+};
+int run_process_campaign(const CampaignArgs& args);
+
 struct CompareArgs {
   std::filesystem::path scene;
   std::filesystem::path output;
