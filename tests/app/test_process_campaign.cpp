@@ -2,6 +2,7 @@
 // one-test command writes, campaign.csv holds each test's numbers exactly as processing it alone
 // gives them, and shards merged equal the unsharded campaign byte for byte.
 #include <catch2/catch.hpp>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -71,7 +72,7 @@ struct Campaign3 {
     std::ifstream in(kRoot / "experiments/classic-al6061/scene.json");
     const nlohmann::json classic = nlohmann::json::parse(in);
     nlohmann::json tests = nlohmann::json::array();
-    for (const std::string& v : {"10", "15", "20"}) {
+    for (const std::string v : {"10", "15", "20"}) {
       nlohmann::json scene = classic;
       scene["bars"][0]["velocity"] = v + " m/s";
       scene["bars"][2]["material"] = (kRoot / "specimens/al6061-t6.json").string();
@@ -180,6 +181,15 @@ TEST_CASE("A campaign's rows equal each test processed alone; flow stress on its
     REQUIRE(rows2.size() == 2);
     CHECK(rows2[1].at("test") == "v20");
     CHECK(rows2[1].at("peak_stress_Pa") == rows[2].at("peak_stress_Pa"));
+    // `shpb report` draws every test's curve on one figure.
+    if (std::system("/usr/bin/python3 -c 'import matplotlib, numpy' >/dev/null 2>&1") != 0) {
+      WARN("python3 with matplotlib and numpy absent: report not checked");
+      return;
+    }
+    const auto report = shpb_test::run_shpb({"report", (c.dir / "two").string()});
+    INFO(report.err);
+    CHECK(report.code == 0);
+    CHECK(fs::exists(c.dir / "two/figures/campaign_stress_strain.png"));
   }
 }
 
