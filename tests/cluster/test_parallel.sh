@@ -13,6 +13,7 @@ scene=$root/experiments/striker-on-bar/scene.json
 [ "${SHPB_CLUSTER_ACCEPTANCE:-0}" = 1 ] && scene=$root/experiments/classic-al6061/scene.json
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/shpb_test_parallel.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
+trap 'exit 143' TERM INT
 fail() { echo "FAIL: $*" >&2; exit 1; }
 
 "$shpb" study "$scene" --plan "$tmp/plan" --quiet

@@ -19,6 +19,7 @@ cleanup() {
   rm -rf "$tmp"
 }
 trap cleanup EXIT
+trap "exit 143" TERM INT  # the EXIT trap then stops the cluster
 fail() { echo "FAIL: $*" >&2; exit 1; }
 
 set +e
