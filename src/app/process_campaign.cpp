@@ -134,7 +134,13 @@ void write_campaign(const Campaign& c, const std::vector<fs::path>& folders,
   csv += "\n";
   Json tests = Json::array();
   for (std::size_t i = 0; i < c.tests.size(); ++i) {
-    csv += campaign_row(c.tests[i], folders[i], flow_strains);
+    try {
+      csv += campaign_row(c.tests[i], folders[i], flow_strains);
+    } catch (const nlohmann::json::exception& e) {  // a part's folder changed by hand
+      throw input_error(
+          (folders[i] / "summary.json").string(), "", "",
+          std::string("not as shpb process writes it (") + e.what() + "): process the test again");
+    }
     tests.push_back(Json{{"name", c.tests[i].name},
                          {"scene", c.tests[i].scene.string()},
                          {"folder", c.tests[i].name}});
@@ -234,12 +240,15 @@ int run_process_campaign(const CampaignArgs& args) {
       for (std::size_t i : shard_runs(n, p.shard)) folders[i] = p.path / c.tests[i].name;
     }
     OutputFolder out(args.output / "result");
-    std::vector<fs::path> copies;
     for (std::size_t i = 0; i < n; ++i) {
-      copies.push_back(out.path() / c.tests[i].name);
-      fs::copy(folders[i], copies.back(), fs::copy_options::recursive);
+      std::error_code ec;
+      fs::copy(folders[i], out.path() / c.tests[i].name, fs::copy_options::recursive, ec);
+      if (ec || !fs::exists(folders[i] / "summary.json"))
+        throw input_error(folders[i].string(), "", "",
+                          "the test's folder is missing or incomplete in its part: remove the part "
+                          "and run its shard again");
     }
-    write_campaign(c, copies, args.flow_strains, out.path());
+    write_campaign(c, folders, args.flow_strains, out.path());  // errors name the parts
     out.commit();
     if (!args.quiet)
       std::fprintf(stderr, "process: merged %zu parts (%zu tests) into %s\n", parts.size(), n,
