@@ -1,10 +1,12 @@
 // `shpb process` over a campaign (app/process_campaign.cpp): each test's folder is what the
 // one-test command writes, campaign.csv holds each test's numbers exactly as processing it alone
 // gives them, and shards merged equal the unsharded campaign byte for byte.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 

@@ -4,9 +4,11 @@
 // Slurm) are exercised by tests/cluster.
 #include <unistd.h>
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 
 #include "../app/run_shpb.hpp"
