@@ -13,21 +13,29 @@ set -euo pipefail
 die() { echo "local-slurm: $*" >&2; exit 1; }
 skip() { echo "local-slurm: SKIP: $*" >&2; exit 77; }
 
-# Sends SIGTERM to the pid in a pid file if it is the daemon named (a pid is never signalled after
-# it was reused by another program), and waits up to 10 s for it to end.
-stop_pid_file() {
+# The pid in a pid file if it is the daemon named (a pid reused by another program is never
+# signalled), else nothing.
+daemon_pid() {
   local file=$1 name=$2 pid
   [ -s "$file" ] || return 0
   pid=$(cat "$file")
   [[ $pid =~ ^[0-9]+$ ]] || return 0
-  [ "$(cat "/proc/$pid/comm" 2>/dev/null)" = "$name" ] || return 0
-  kill -TERM "$pid" 2>/dev/null || return 0
-  for _ in $(seq 100); do
-    [ -d "/proc/$pid" ] || return 0
-    sleep 0.1
+  [ "$(cat "/proc/$pid/comm" 2>/dev/null)" = "$name" ] && echo "$pid"
+  return 0
+}
+
+# SIGTERM to the daemons' pids, then waits up to 10 s for them to end (SIGKILL after that).
+stop_pids() {
+  local pid
+  [ $# -gt 0 ] || return 0
+  kill -TERM "$@" 2>/dev/null || true
+  for _ in $(seq 200); do
+    for pid in "$@"; do [ -d "/proc/$pid" ] && break; pid=; done
+    [ -z "$pid" ] && return 0
+    sleep 0.05
   done
-  echo "local-slurm: $name (pid $pid) ignored SIGTERM for 10 s; sending SIGKILL" >&2
-  kill -KILL "$pid" 2>/dev/null || true
+  echo "local-slurm: pids $* ignored SIGTERM for 10 s; sending SIGKILL" >&2
+  kill -KILL "$@" 2>/dev/null || true
 }
 
 free_port() {
@@ -108,9 +116,11 @@ stop() {
       sleep 0.1
     done
   fi
-  stop_pid_file "$dir/slurmd.pid" slurmd
-  stop_pid_file "$dir/slurmctld.pid" slurmctld
-  stop_pid_file "$dir/munged.pid" munged
+  # The Slurm daemons together, munged (which they authenticate through) after them.
+  # shellcheck disable=SC2046
+  stop_pids $(daemon_pid "$dir/slurmd.pid" slurmd) $(daemon_pid "$dir/slurmctld.pid" slurmctld)
+  # shellcheck disable=SC2046
+  stop_pids $(daemon_pid "$dir/munged.pid" munged)
   rm -rf "$dir"
 }
 
