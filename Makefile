@@ -30,7 +30,7 @@ test: check
 
 # The Release suite alone (what a developer runs while working; about a minute on 2 cores).
 check: build
-	@bash tools/install-deps.sh chromium
+	@bash tools/install-deps.sh chromium parallel slurm-wlm munge
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
 # ASan + UBSan build of the executable and the tests (-O1: fast enough to run the whole suite).

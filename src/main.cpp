@@ -70,8 +70,23 @@ int main(int argc, char** argv) {
   auto* process = app.add_subcommand(
       "process", "Reduce gauge signals (the scene's measurement, or --signals) to aligned pulses "
                  "and 1/2/3-wave stress–strain curves; write pulses.csv, curve.csv, summary.json");
-  process->add_option("scene", proc.scene, "Scene JSON file (bars, gauges, specimen, measurement)")
-      ->required();
+  CampaignArgs campaign;
+  std::vector<std::string> process_scenes;
+  std::string campaign_file;
+  process->add_option("scene", process_scenes,
+                      "Scene JSON file (bars, gauges, specimen, measurement); several: a "
+                      "campaign, one folder per test and campaign.csv");
+  process->add_option("--campaign", campaign_file,
+                      "Campaign file (tests[]: {scene, name}) instead of scenes: one folder per "
+                      "test and campaign.csv");
+  process->add_option("--flow-stress-at", campaign.flow_strains,
+                      "Campaigns: engineering strains at which campaign.csv gives the flow "
+                      "stress, e.g. 0.02,0.05")
+      ->delimiter(',');
+  process->add_option("--shard", campaign.shard,
+                      "Campaigns: process every N-th test from K into DIR/parts/K-of-N (K/N)");
+  process->add_flag("--merge", campaign.merge,
+                    "Campaigns: check DIR/parts holds every test once; write DIR/result");
   process->add_option("-o,--output", proc.output, "Output folder (replaced atomically)")->required();
   process->add_option("--signals", signals,
                       "Gauge signals to process instead of the scene's measurement, e.g. a "
@@ -118,10 +133,25 @@ int main(int argc, char** argv) {
   auto* study_cmd = app.add_subcommand(
       "study", "Sweep contact methods, steppings, resolutions and penalty parameters: accuracy "
                "against cost (pareto.csv) and stability maps (stability.csv)");
-  study_cmd->add_option("scene", study.scene, "Scene JSON file")->required();
-  study_cmd->add_option("-o,--output", study.output, "Output folder (replaced atomically)")->required();
+  study_cmd->add_option("scene", study.scene, "Scene JSON file (not with --run/--merge)");
+  study_cmd->add_option("-o,--output", study.output,
+                        "Output folder (replaced atomically); with --merge default DIR/result");
   study_cmd->add_option("--sweep", study.sweep, "pareto | stability")
       ->check(CLI::IsMember({"pareto", "stability"}));
+  study_cmd->add_option("--refine", study.refine,
+                        "Stability map: refine-1 more points between neighbours on the stiffness "
+                        "and Courant axes (2: about 4 x the points; default 1)")
+      ->check(CLI::Range(1, 64));
+  study_cmd->add_option("--plan", study.plan,
+                        "Write the sweep's independent runs into DIR/plan.json instead of running "
+                        "them (then --run DIR --shard K/N, then --merge DIR)");
+  study_cmd->add_option("--run", study.run,
+                        "Run shard --shard K/N of DIR's plan; writes DIR/parts/K-of-N.json "
+                        "atomically (an existing part is skipped)");
+  study_cmd->add_option("--shard", study.shard, "K/N: every N-th run of the plan from K (K from 0)");
+  study_cmd->add_option("--merge", study.merge,
+                        "Check DIR's parts (each run exactly once) and write the outputs of the "
+                        "whole sweep into -o (default DIR/result)");
   add_run_options(study_cmd, study.overrides, contact, stepping);
 
   ValidateArgs val;
@@ -158,6 +188,19 @@ int main(int argc, char** argv) {
       return run_simulate(sim);
     }
     if (*process) {
+      const bool several = process_scenes.size() != 1 || !campaign_file.empty() ||
+                           !campaign.shard.empty() || campaign.merge ||
+                           !campaign.flow_strains.empty();
+      if (several) {
+        if (!signals.empty())
+          throw input_error("--signals", "", "", "processes one scene: not with a campaign");
+        for (const auto& s : process_scenes) campaign.scenes.push_back(s);
+        if (!campaign_file.empty()) campaign.campaign = campaign_file;
+        campaign.output = proc.output;
+        campaign.quiet = proc.quiet;
+        return run_process_campaign(campaign);
+      }
+      proc.scene = process_scenes.front();
       if (!signals.empty()) proc.signals = signals;
       return run_process(proc);
     }

@@ -493,6 +493,26 @@ def fig_curve(src, figs, truth=None):
               "is taken as in equilibrium.")
 
 
+def fig_campaign(folder, sources, figs):
+    """All tests of a campaign (`shpb process` over several scenes) on one stress–strain plot."""
+    tests = [s for s in sources if s.label != "." and s.has("curve.csv")]
+    if not tests:
+        return
+    fig, axes = new_figure(1, 1, height=5.0)
+    ax = axes[0, 0]
+    for i, src in enumerate(tests):
+        t = src.table("curve.csv")
+        ax.plot(t.numeric("strain") * 100, t.numeric("stress_3wave_Pa") * MPA,
+                color=f"C{i % 10}", linewidth=1.2, label=src.label)
+    ax.set_xlabel("engineering strain (%, compression +)")
+    ax.set_ylabel("3-wave engineering stress (MPa, compression +)")
+    ax.set_title(f"Campaign: {len(tests)} tests")
+    ax.legend(loc="best", fontsize=8)
+    figs.save(fig, "campaign_stress_strain.png", "Campaign: stress–strain curves of all tests",
+              "3-wave engineering stress against strain of every test (each test's curve.csv); "
+              "campaign.csv gives their plateau strain rates, peak and flow stresses.")
+
+
 # ---- figures of `compare` --------------------------------------------------------------------
 
 def fig_compare_signals(src, figs):
@@ -800,6 +820,8 @@ def build(folder):
                 fig_pareto(src, figs)
             if src.has("stability.csv"):
                 fig_stability(src, figs)
+        if os.path.isfile(os.path.join(folder, "campaign.csv")):
+            fig_campaign(folder, sources, figs)
         html_tmp = os.path.join(tmp, "report.html")
         write_html(html_tmp, folder, sources, figs, "figures")
         for name in os.listdir(tmp):

@@ -46,6 +46,19 @@ struct ProcessArgs {
 };
 int run_process(const ProcessArgs& args);
 
+// `shpb process` over several tests (docs/commands.md): scenes or a campaign file; each test's
+// folder by run_process, plus campaign.csv; --shard K/N and --merge as for `study`.
+struct CampaignArgs {
+  std::vector<std::filesystem::path> scenes;
+  std::optional<std::filesystem::path> campaign;
+  std::filesystem::path output;
+  std::vector<double> flow_strains;  // engineering strains of the flow_stress_Pa_at_<e> columns
+  std::string shard;                 // "K/N"
+  bool merge = false;
+  bool quiet = false;
+};
+int run_process_campaign(const CampaignArgs& args);
+
 struct CompareArgs {
   std::filesystem::path scene;
   std::filesystem::path output;
@@ -71,6 +84,12 @@ struct StudyArgs {
   std::filesystem::path output;
   std::string sweep = "pareto";  // pareto | stability
   RunOverrides overrides;
+  int refine = 1;  // stability grid refinement (study/sweep.hpp)
+  // Plan, run, merge (docs/commands.md): at most one of the three.
+  std::optional<std::filesystem::path> plan;   // write DIR/plan.json (needs the scene)
+  std::optional<std::filesystem::path> run;    // run shard `shard` of DIR's plan
+  std::optional<std::filesystem::path> merge;  // merge DIR's parts into -o (default DIR/result)
+  std::string shard;                           // "K/N"
 };
 int run_study(const StudyArgs& args);
 

@@ -2,22 +2,30 @@
 // contact method × stepping × mesh resolution (pareto.csv), or the stability map of the contact
 // methods over penalty stiffness, Courant number and mass ratio (stability.csv,
 // stability_boundary.csv); summary.json says what was compared with what. Written atomically.
+// The sweep is a plan of independent runs: run here on threads, or planned into a folder
+// (--plan), run there shard by shard on other machines (--run DIR --shard K/N) and merged
+// (--merge); one code path, so a merged study equals an in-process one apart from wall times.
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "app/commands.hpp"
 #include "core/checked_write.hpp"
 #include "core/csv_writer.hpp"
+#include "core/error.hpp"
 #include "core/output_folder.hpp"
 #include "study/parallel_runner.hpp"
 #include "study/pareto_front.hpp"
 #include "study/pareto_sweep.hpp"
+#include "study/shards.hpp"
 #include "study/stability_sweep.hpp"
+#include "study/study_plan.hpp"
 #include "version.hpp"
 
 namespace shpb {
@@ -128,8 +136,8 @@ void write_pareto(const ParetoStudy& study, const Scene& scene, int threads, dou
   write_text_file(dir / "summary.json", j.dump(2) + "\n");
 }
 
-void write_stability(const StabilityStudy& study, const Scene& scene, int threads, double wall_s,
-                     const std::filesystem::path& dir) {
+void write_stability(const StabilityStudy& study, const Scene& scene, int refine, int threads,
+                     double wall_s, const std::filesystem::path& dir) {
   {
     std::ostringstream csv;
     csv << "method,stiffness_factor,mass_ratio,courant,energy_growth,stable,step_ratio\n";
@@ -172,39 +180,224 @@ void write_stability(const StabilityStudy& study, const Scene& scene, int thread
       "end, its upper end: stable throughout; link tied: penalty or node-to-node bipenalty acting "
       "in "
       "tension too (the linear system of the closed forms), unilateral: as used";
+  if (refine != 1) j["refine"] = refine;
   j["points"] = study.rows.size();
   j["threads"] = threads;
   j["wall_time_s"] = wall_s;
   write_text_file(dir / "summary.json", j.dump(2) + "\n");
 }
 
+std::string read_text(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The plan of the sweep the options ask for (ids and the scene's text filled in by the caller).
+StudyPlan make_plan(const StudyArgs& args, const Scene& scene) {
+  StudyPlan plan;
+  plan.sweep = args.sweep;
+  plan.contact = args.overrides.contact;
+  plan.stepping = args.overrides.stepping;
+  plan.courant = args.overrides.courant;
+  plan.refine = args.refine;
+  std::vector<ContactMethod> methods;
+  std::vector<Stepping> steppings;
+  if (plan.contact) methods.push_back(*plan.contact);
+  if (plan.stepping) steppings.push_back(*plan.stepping);
+  if (plan.sweep == "stability")
+    plan.stability = stability_jobs(stability_grid(methods, plan.refine));
+  else
+    plan.pareto = pareto_jobs(scene, pareto_cases(methods, steppings));
+  return plan;
+}
+
+// The scene of a plan read from its folder: the same file, unchanged, with the same options.
+Scene plan_scene(const StudyPlan& plan, const std::filesystem::path& plan_file) {
+  if (read_text(plan.scene) != plan.scene_text)
+    throw input_error(plan_file.string(), "scene", "\"" + plan.scene.string() + "\"",
+                      "missing or changed since the plan was made: plan again");
+  Scene scene = read_scene(plan.scene);
+  RunOverrides o;
+  o.contact = plan.contact;
+  o.stepping = plan.stepping;
+  o.courant = plan.courant;
+  apply_overrides(o, scene);
+  return scene;
+}
+
+// Runs `runs` of the plan on `threads` workers, each result into its slot.
+void run_plan(const StudyPlan& plan, const Scene& scene, const std::vector<std::size_t>& runs,
+              int threads, bool quiet, StudyResults& results) {
+  const auto cancel = [] { return interrupted(); };
+  results.pareto.resize(plan.pareto.size());
+  results.stability.resize(plan.stability.size());
+  const auto progress = progress_printer(quiet, plan.sweep);
+  if (plan.sweep == "stability") {
+    const Scene probe = stability_probe_scene(scene);
+    run_parallel(
+        runs.size(), threads,
+        [&](std::size_t i) {
+          if (cancel()) throw Interrupted();
+          results.stability[runs[i]] = run_stability_job(probe, plan.stability[runs[i]]);
+        },
+        progress);
+  } else {
+    run_parallel(
+        runs.size(), threads,
+        [&](std::size_t i) {
+          results.pareto[runs[i]] = run_pareto_job(scene, plan.pareto[runs[i]], cancel);
+        },
+        progress);
+  }
+}
+
+// The study's files from every run's result.
+void write_study(const StudyPlan& plan, const Scene& scene, const StudyResults& results,
+                 int threads, double wall_s, const std::filesystem::path& dir) {
+  if (plan.sweep == "stability")
+    write_stability(
+        assemble_stability(stability_probe_scene(scene), plan.stability, results.stability), scene,
+        plan.refine, threads, wall_s, dir);
+  else
+    write_pareto(assemble_pareto(scene, plan.pareto, results.pareto), scene, threads, wall_s, dir);
+}
+
+std::vector<std::size_t> all_runs(std::size_t n) {
+  std::vector<std::size_t> runs(n);
+  for (std::size_t i = 0; i < n; ++i) runs[i] = i;
+  return runs;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// shpb study SCENE --plan DIR: DIR/plan.json, nothing run.
+int plan_study(const StudyArgs& args) {
+  const std::filesystem::path dir = *args.plan;
+  std::error_code ec;
+  if (std::filesystem::exists(dir, ec) && !std::filesystem::is_empty(dir, ec))
+    throw input_error(dir.string(), "", "", "exists and is not empty: plan into a new folder");
+  Scene scene = read_scene(args.scene);
+  apply_overrides(args.overrides, scene);
+  StudyPlan plan = make_plan(args, scene);
+  plan.id = new_plan_id();
+  plan.scene = std::filesystem::absolute(args.scene).lexically_normal();
+  plan.scene_text = read_text(args.scene);
+  OutputFolder out(dir);
+  std::filesystem::create_directory(out.path() / "parts");
+  write_file_atomically(out.file("plan.json"), plan_text(plan));
+  out.commit();
+  if (!args.overrides.quiet)
+    std::fprintf(stderr,
+                 "study %s of %s: %zu runs planned in %s; next: shpb study --run %s --shard K/N, "
+                 "then shpb study --merge %s\n",
+                 plan.sweep.c_str(), scene.name.c_str(), plan.runs(), dir.string().c_str(),
+                 dir.string().c_str(), dir.string().c_str());
+  return 0;
+}
+
+// shpb study --run DIR --shard K/N: DIR/parts/K-of-N.json.
+int run_study_shard(const StudyArgs& args) {
+  const std::filesystem::path dir = *args.run, plan_file = dir / "plan.json";
+  if (args.shard.empty()) throw input_error("--shard", "", "", "K/N is needed with --run DIR");
+  const Shard shard = parse_shard("--shard", args.shard);
+  const StudyPlan plan = read_study_plan(plan_file);
+  const std::filesystem::path part = dir / "parts" / (part_name(shard) + ".json");
+  if (std::filesystem::exists(part)) {
+    if (!args.overrides.quiet)
+      std::fprintf(stderr, "study: %s exists, shard skipped\n", part.string().c_str());
+    return 0;
+  }
+  const Scene scene = plan_scene(plan, plan_file);
+  const int threads = resolve_threads(args.overrides.threads);
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<std::size_t> runs = shard_runs(plan.runs(), shard);
+  StudyResults results;
+  run_plan(plan, scene, runs, threads, args.overrides.quiet, results);
+  if (interrupted()) throw Interrupted();
+  nlohmann::ordered_json j = part_json(plan, results, runs);
+  j["shard"] = args.shard;
+  j["threads"] = threads;
+  j["wall_time_s"] = seconds_since(start);
+  std::filesystem::create_directories(part.parent_path());
+  write_file_atomically(part, j.dump() + "\n");
+  if (!args.overrides.quiet)
+    std::fprintf(stderr, "study %s shard %s: %zu runs in %.3g s on %d threads; wrote %s\n",
+                 plan.sweep.c_str(), args.shard.c_str(), runs.size(), seconds_since(start), threads,
+                 part.string().c_str());
+  return 0;
+}
+
+// shpb study --merge DIR [-o OUT]: the whole study from DIR's parts.
+int merge_study(const StudyArgs& args) {
+  const std::filesystem::path dir = *args.merge, plan_file = dir / "plan.json";
+  const StudyPlan plan = read_study_plan(plan_file);
+  const std::vector<Part> parts = find_parts(dir / "parts", ".json");
+  check_parts_cover(dir / "parts", plan.runs(), parts);
+  const Scene scene = plan_scene(plan, plan_file);
+  StudyResults results;
+  results.pareto.resize(plan.pareto.size());
+  results.stability.resize(plan.stability.size());
+  // Threads and wall time of a merged study: the most threads a shard used, the shards' sum.
+  int threads = 0;
+  double wall = 0;
+  for (const Part& p : parts) {
+    std::ifstream in(p.path);
+    nlohmann::json j;
+    try {
+      j = nlohmann::json::parse(in);
+      threads = std::max(threads, j.at("threads").get<int>());
+      wall += j.at("wall_time_s").get<double>();
+    } catch (const std::exception& e) {
+      throw input_error(p.path.string(), "", "",
+                        std::string("damaged part (") + e.what() +
+                            "): remove it and run its "
+                            "shard again");
+    }
+    read_part(j, p.path, plan, shard_runs(plan.runs(), p.shard), results);
+  }
+  OutputFolder out(args.output.empty() ? dir / "result" : args.output);
+  write_study(plan, scene, results, threads, wall, out.path());
+  out.commit();
+  if (!args.overrides.quiet)
+    std::fprintf(stderr, "study %s of %s: merged %zu parts (%zu runs); wrote %s\n",
+                 plan.sweep.c_str(), scene.name.c_str(), parts.size(), plan.runs(),
+                 out.final_path().string().c_str());
+  return 0;
+}
+
 }  // namespace
 
 int run_study(const StudyArgs& args) {
+  const int modes = (args.plan ? 1 : 0) + (args.run ? 1 : 0) + (args.merge ? 1 : 0);
+  if (modes > 1)
+    throw input_error("study", "", "", "--plan, --run and --merge are separate steps: give one");
+  if (args.refine != 1 && args.sweep != "stability")
+    throw input_error("--refine", "", std::to_string(args.refine), "only with --sweep stability");
+  if (!args.shard.empty() && !args.run)
+    throw input_error("--shard", "", "\"" + args.shard + "\"", "only with --run DIR");
+  if ((args.run || args.merge) && !args.scene.empty())
+    throw input_error(args.scene.string(), "", "",
+                      "--run and --merge take the scene from DIR/plan.json: give no scene");
+  if (args.run) return run_study_shard(args);
+  if (args.merge) return merge_study(args);
+  if (args.scene.empty()) throw input_error("study", "", "", "a scene file is required");
+  if (args.plan) return plan_study(args);
+  if (args.output.empty()) throw input_error("-o", "", "", "an output folder is required");
+
   Scene scene = read_scene(args.scene);  // InputError → exit 2, nothing written
   apply_overrides(args.overrides, scene);
   OutputFolder out(args.output, "study", scene_inputs(scene));
-  std::vector<ContactMethod> methods;
-  std::vector<Stepping> steppings;
-  if (args.overrides.contact) methods.push_back(*args.overrides.contact);
-  if (args.overrides.stepping) steppings.push_back(*args.overrides.stepping);
   const int threads = resolve_threads(args.overrides.threads);
-  const auto cancel = [] { return interrupted(); };
   const auto start = std::chrono::steady_clock::now();
-  auto elapsed = [&] {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  };
-  if (args.sweep == "stability") {
-    const StabilityStudy study = run_stability_sweep(
-        scene, methods, threads, progress_printer(args.overrides.quiet, "stability"), cancel);
-    write_stability(study, scene, threads, elapsed(), out.path());
-  } else {
-    const ParetoStudy study =
-        run_pareto_sweep(scene, pareto_cases(methods, steppings), threads,
-                         progress_printer(args.overrides.quiet, "pareto"), cancel);
-    write_pareto(study, scene, threads, elapsed(), out.path());
-  }
-  const double wall = elapsed();
+  const StudyPlan plan = make_plan(args, scene);
+  StudyResults results;
+  run_plan(plan, scene, all_runs(plan.runs()), threads, args.overrides.quiet, results);
+  write_study(plan, scene, results, threads, seconds_since(start), out.path());
+  const double wall = seconds_since(start);
   out.commit();
   if (!args.overrides.quiet)
     std::fprintf(stderr, "study %s of %s in %.3g s on %d threads; wrote %s\n", args.sweep.c_str(),

@@ -67,4 +67,22 @@ Campaign read_campaign(const fs::path& file) {
   return c;
 }
 
+Campaign campaign_of_scenes(const std::vector<fs::path>& scenes) {
+  Campaign c;
+  c.name = "campaign";
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < scenes.size(); ++i) {
+    CampaignTest test;
+    test.scene = scenes[i];
+    test.name = name_of_scene(scenes[i]);
+    test.json_path = "scene " + std::to_string(i + 1);
+    if (!names.insert(test.name).second)
+      throw input_error(scenes[i].string(), "", "\"" + test.name + "\"",
+                        "two scenes named alike (test names name output folders and rows): "
+                        "use a campaign file with a name per test");
+    c.tests.push_back(std::move(test));
+  }
+  return c;
+}
+
 }  // namespace shpb

@@ -38,4 +38,8 @@ const std::vector<std::string>& campaign_keys();
 // as regular files; they are read by the command that uses them.
 Campaign read_campaign(const std::filesystem::path& file);
 
+// The campaign of scene files named on the command line (`shpb process A.json B.json`): each
+// test named as the scene is (its folder for "…/scene.json"), weight 1; names must be unique.
+Campaign campaign_of_scenes(const std::vector<std::filesystem::path>& scenes);
+
 }  // namespace shpb

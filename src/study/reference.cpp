@@ -40,7 +40,8 @@ std::optional<GaugeReference> exact_reference(const Scene& scene) {
       "exact: striker on a bar of the same impedance (docs/methods.md §4), square strain pulse "
       "-V/(2 c0) lasting 2 L_s/c0 at each gauge, compared until the far-end reflection arrives";
   r.window_end_s = first_reflection;
-  // Time zero is first contact (docs/outputs.md (conventions)); the pulse front reaches a gauge at x/c0.
+  // Time zero is first contact (docs/outputs.md (conventions)); the pulse front reaches a gauge at
+  // x/c0.
   r.strain = [positions, c0, V, duration](std::size_t column, double t) {
     const double arrival = positions[column] / c0;
     return t >= arrival && t < arrival + duration ? -V / (2 * c0) : 0.0;
@@ -48,19 +49,27 @@ std::optional<GaugeReference> exact_reference(const Scene& scene) {
   return r;
 }
 
-GaugeReference fine_mesh_reference(const Scene& scene, double resolution,
-                                   const SimulationOptions& options) {
-  const Scene fine =
-      scene_for(scene, {ContactMethod::kLocalizedBipenalty, Stepping::kAsynchronous, resolution});
-  SimulationResult run = simulate(fine, options);
+ParetoCase fine_reference_case(double resolution) {
+  return {ContactMethod::kLocalizedBipenalty, Stepping::kAsynchronous, resolution};
+}
+
+GaugeReference fine_mesh_reference(double resolution, bool stable, const std::string& failure,
+                                   TimeSeries gauges, double wall_time_s) {
   GaugeReference r;
   r.description = "fine-mesh run: localized-bipenalty, asynchronous, " + format_factor(resolution) +
                   " x the automatic mesh (the scene has no exact solution)";
-  if (!run.stable) r.description += "; WARNING: the reference run was unstable: " + run.failure;
+  if (!stable) r.description += "; WARNING: the reference run was unstable: " + failure;
   r.window_end_s = std::numeric_limits<double>::infinity();
-  r.fine = std::move(run.gauges);
-  r.wall_time_s = run.wall_time_s;
+  r.fine = std::move(gauges);
+  r.wall_time_s = wall_time_s;
   return r;
+}
+
+GaugeReference fine_mesh_reference(const Scene& scene, double resolution,
+                                   const SimulationOptions& options) {
+  SimulationResult run = simulate(scene_for(scene, fine_reference_case(resolution)), options);
+  return fine_mesh_reference(resolution, run.stable, run.failure, std::move(run.gauges),
+                             run.wall_time_s);
 }
 
 double gauge_error(const TimeSeries& gauges, const GaugeReference& reference) {

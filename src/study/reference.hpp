@@ -8,6 +8,7 @@
 
 #include "model/scene.hpp"
 #include "solver/simulation.hpp"
+#include "study/sweep.hpp"
 
 namespace shpb {
 
@@ -30,8 +31,15 @@ std::optional<GaugeReference> exact_reference(const Scene& scene);
 // Mesh resolution factor of the fine-mesh reference: twice the finest of the sweep.
 inline constexpr double kReferenceResolution = 8;
 
-// Runs the scene with localized bipenalty, asynchronous stepping, at `resolution` × the
-// automatic mesh, and keeps its gauges as the reference over the whole recording.
+// The fine-mesh reference run: localized bipenalty, asynchronous stepping, at `resolution` ×
+// the automatic mesh.
+ParetoCase fine_reference_case(double resolution);
+
+// The reference from that run's outcome: its gauges over the whole recording.
+GaugeReference fine_mesh_reference(double resolution, bool stable, const std::string& failure,
+                                   TimeSeries gauges, double wall_time_s);
+
+// Runs the fine-mesh reference case of the scene and keeps its gauges as the reference.
 GaugeReference fine_mesh_reference(const Scene& scene, double resolution,
                                    const SimulationOptions& options);
 

@@ -5,47 +5,69 @@
 
 namespace shpb {
 
+std::vector<StabilityJob> stability_jobs(const std::vector<StabilityPoint>& grid) {
+  // The lines of the map: one per (method, ε_s/k, R/R_crit); plain and node-to-node bipenalty
+  // twice (tied, as used).
+  std::vector<StabilityJob> jobs;
+  for (const StabilityPoint& p : grid) {
+    if (p.courant != kCourantNumbers.front()) continue;
+    jobs.push_back({p, true});
+    if (p.method != ContactMethod::kLocalizedBipenalty) {
+      StabilityPoint tied = p;
+      tied.tied = true;
+      jobs.push_back({tied, true});
+    }
+  }
+  for (const StabilityPoint& p : grid) jobs.push_back({p, false});
+  return jobs;
+}
+
+StabilityJobResult run_stability_job(const Scene& probe, const StabilityJob& job) {
+  StabilityJobResult r;
+  if (job.boundary)
+    r.critical_courant =
+        measured_critical_courant(probe, job.point, kBoundaryCourantMin, kBoundaryCourantMax);
+  else
+    r.verdict = judge_stability(probe, job.point);
+  return r;
+}
+
+StabilityStudy assemble_stability(const Scene& probe, const std::vector<StabilityJob>& jobs,
+                                  const std::vector<StabilityJobResult>& results) {
+  StabilityStudy study;
+  study.probe = probe.name;
+  for (std::size_t j = 0; j < jobs.size(); ++j) {
+    const StabilityPoint& p = jobs[j].point;
+    if (!jobs[j].boundary) {
+      study.rows.push_back({p, results[j].verdict});
+      continue;
+    }
+    StabilityBoundary b;
+    b.line = p;
+    b.critical_courant = results[j].critical_courant;
+    b.closed_form_courant = p.method == ContactMethod::kPenalty
+                                ? penalty_critical_courant(p.stiffness_factor)
+                                : bipenalty_critical_courant(p.mass_ratio);
+    study.boundaries.push_back(b);
+  }
+  return study;
+}
+
 StabilityStudy run_stability_sweep(const Scene& scene, const std::vector<ContactMethod>& methods,
                                    int threads,
                                    const std::function<void(std::size_t, std::size_t)>& progress,
                                    const std::function<bool()>& cancel) {
-  StabilityStudy study;
   const Scene probe = stability_probe_scene(scene);
-  study.probe = probe.name;
-  const std::vector<StabilityPoint> grid = stability_grid(methods);
-
-  // The lines of the map: one per (method, ε_s/k, R/R_crit); plain and node-to-node bipenalty
-  // twice (tied, as used).
-  std::vector<StabilityBoundary> lines;
-  for (const StabilityPoint& p : grid) {
-    if (p.courant != kCourantNumbers.front()) continue;
-    StabilityBoundary b;
-    b.line = p;
-    b.closed_form_courant = p.method == ContactMethod::kPenalty
-                                ? penalty_critical_courant(p.stiffness_factor)
-                                : bipenalty_critical_courant(p.mass_ratio);
-    lines.push_back(b);
-    if (p.method != ContactMethod::kLocalizedBipenalty) {
-      b.line.tied = true;
-      lines.push_back(b);
-    }
-  }
-  study.rows.resize(grid.size());
+  const std::vector<StabilityJob> jobs = stability_jobs(stability_grid(methods));
+  std::vector<StabilityJobResult> results(jobs.size());
   run_parallel(
-      grid.size() + lines.size(), threads,
+      jobs.size(), threads,
       [&](std::size_t j) {
         if (cancel && cancel()) throw Interrupted();
-        if (j < lines.size()) {  // the bisections first: they are the longer jobs
-          lines[j].critical_courant = measured_critical_courant(
-              probe, lines[j].line, kBoundaryCourantMin, kBoundaryCourantMax);
-        } else {
-          const std::size_t i = j - lines.size();
-          study.rows[i] = {grid[i], judge_stability(probe, grid[i])};
-        }
+        results[j] = run_stability_job(probe, jobs[j]);
       },
       progress);
-  study.boundaries = std::move(lines);
-  return study;
+  return assemble_stability(probe, jobs, results);
 }
 
 }  // namespace shpb

@@ -40,6 +40,27 @@ struct StabilityStudy {
 inline constexpr double kBoundaryCourantMin = 3e-4;
 inline constexpr double kBoundaryCourantMax = 1.1;
 
+// One job of the sweep: a point of the map, or the boundary bisection of the line through
+// `point` (its courant unused). Independent of each other (study/shards.hpp).
+struct StabilityJob {
+  StabilityPoint point;
+  bool boundary = false;
+};
+
+struct StabilityJobResult {
+  double critical_courant = 0;  // boundary jobs
+  StabilityVerdict verdict;     // point jobs
+};
+
+// The bisections of every line first (they are the longer jobs), then the grid's points in order.
+std::vector<StabilityJob> stability_jobs(const std::vector<StabilityPoint>& grid);
+
+StabilityJobResult run_stability_job(const Scene& probe, const StabilityJob& job);
+
+// The study from every job's result (results[i] of jobs[i]); `probe` names the probe scene.
+StabilityStudy assemble_stability(const Scene& probe, const std::vector<StabilityJob>& jobs,
+                                  const std::vector<StabilityJobResult>& results);
+
 StabilityStudy run_stability_sweep(
     const Scene& scene, const std::vector<ContactMethod>& methods, int threads,
     const std::function<void(std::size_t, std::size_t)>& progress = {},

@@ -60,7 +60,24 @@ Scene scene_for(const Scene& scene, const ParetoCase& c) {
   return out;
 }
 
-std::vector<StabilityPoint> stability_grid(const std::vector<ContactMethod>& methods) {
+namespace {
+std::vector<double> refined(const std::vector<double>& axis, int refine, bool log) {
+  std::vector<double> out;
+  for (std::size_t i = 0; i + 1 < axis.size(); ++i)
+    for (int k = 0; k < refine; ++k) {
+      const double f = static_cast<double>(k) / refine;
+      out.push_back(k == 0 ? axis[i]
+                    : log  ? axis[i] * std::pow(axis[i + 1] / axis[i], f)
+                           : axis[i] + (axis[i + 1] - axis[i]) * f);
+    }
+  out.push_back(axis.back());
+  return out;
+}
+}  // namespace
+
+std::vector<StabilityPoint> stability_grid(const std::vector<ContactMethod>& methods, int refine) {
+  const std::vector<double> stiffness = refined(kStiffnessFactors, refine, true),
+                            courant = refined(kCourantNumbers, refine, false);
   std::vector<StabilityPoint> grid;
   for (ContactMethod m : methods.empty() ? kAllMethods : methods) {
     const std::vector<double> ratios =
@@ -69,8 +86,8 @@ std::vector<StabilityPoint> stability_grid(const std::vector<ContactMethod>& met
         m == ContactMethod::kLocalizedBipenalty ? kStepRatios : std::vector<double>{1.0};
     for (double q : steps)
       for (double r : ratios)
-        for (double s : kStiffnessFactors)
-          for (double c : kCourantNumbers) grid.push_back({m, s, r, c, false, q});
+        for (double s : stiffness)
+          for (double c : courant) grid.push_back({m, s, r, c, false, q});
   }
   return grid;
 }

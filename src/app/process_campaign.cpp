@@ -1,0 +1,274 @@
+// `shpb process A.json B.json … -o DIR` or `shpb process --campaign FILE -o DIR`
+// (docs/commands.md): every test processed by the one-test `process` (run_process, unchanged) into
+// DIR/<test>/, and one campaign.csv of the figures that compare tests. With --shard K/N every N-th
+// test goes into the part DIR/parts/K-of-N/ (written atomically, skipped if it exists); --merge
+// checks that the parts hold every test once and writes DIR/result/ as the unsharded run writes
+// DIR.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "app/commands.hpp"
+#include "core/csv_writer.hpp"
+#include "core/error.hpp"
+#include "core/output_folder.hpp"
+#include "model/campaign.hpp"
+#include "study/shards.hpp"
+#include "version.hpp"
+
+namespace shpb {
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+
+// A CSV cell of text: quoted when it holds a comma, a quote or a line break (RFC 4180).
+std::string text_cell(const std::string& s) {
+  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+std::string number_cell(const nlohmann::json& j) {
+  return j.is_number() ? format_double(j.get<double>()) : std::string();
+}
+
+// Engineering 3-wave stress where the engineering strain of curve.csv first reaches `strain`
+// (linear between the two samples around it); NaN if it never does.
+double flow_stress(const std::vector<double>& strain, const std::vector<double>& stress,
+                   double at) {
+  for (std::size_t i = 1; i < strain.size(); ++i)
+    if (strain[i - 1] < at && strain[i] >= at) {
+      const double f = (at - strain[i - 1]) / (strain[i] - strain[i - 1]);
+      return stress[i - 1] + f * (stress[i] - stress[i - 1]);
+    }
+  if (!strain.empty() && strain.front() == at) return stress.front();
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+// The columns `names` of a CSV file written by shpb (header, then numbers).
+std::vector<std::vector<double>> read_columns(const fs::path& csv,
+                                              const std::vector<std::string>& names) {
+  std::ifstream in(csv);
+  std::string line;
+  if (!std::getline(in, line))
+    throw input_error(csv.string(), "", "", "empty: a curve.csv written by shpb process expected");
+  std::vector<std::string> header;
+  std::stringstream hs(line);
+  for (std::string h; std::getline(hs, h, ',');) header.push_back(h);
+  std::vector<std::size_t> index;
+  for (const auto& n : names) {
+    const auto it = std::find(header.begin(), header.end(), n);
+    if (it == header.end()) throw input_error(csv.string(), "line 1", n, "column missing");
+    index.push_back(static_cast<std::size_t>(it - header.begin()));
+  }
+  std::vector<std::vector<double>> columns(names.size());
+  std::vector<double> row;
+  while (std::getline(in, line)) {
+    row.clear();
+    const char* p = line.c_str();
+    for (;;) {
+      char* end = nullptr;
+      row.push_back(std::strtod(p, &end));
+      p = end;
+      if (*p != ',') break;
+      ++p;
+    }
+    for (std::size_t k = 0; k < names.size(); ++k)
+      columns[k].push_back(index[k] < row.size() ? row[index[k]]
+                                                 : std::numeric_limits<double>::quiet_NaN());
+  }
+  return columns;
+}
+
+std::string strain_label(double strain) { return format_double(strain); }
+
+std::vector<std::string> campaign_header(const std::vector<double>& flow_strains) {
+  std::vector<std::string> h = {"test", "scene", "plateau_strain_rate_1_s", "peak_stress_Pa"};
+  for (double e : flow_strains) h.push_back("flow_stress_Pa_at_" + strain_label(e));
+  for (const char* c : {"time_to_equilibrium_s", "striker_velocity_m_s",
+                        "striker_velocity_inferred_m_s", "warnings"})
+    h.push_back(c);
+  return h;
+}
+
+// One row of campaign.csv from a test's folder (its summary.json and curve.csv): the numbers
+// exactly as the one-test `process` wrote them.
+std::string campaign_row(const CampaignTest& test, const fs::path& folder,
+                         const std::vector<double>& flow_strains) {
+  std::ifstream in(folder / "summary.json");
+  const nlohmann::json s = nlohmann::json::parse(in);
+  std::vector<std::string> cells = {text_cell(test.name), text_cell(test.scene.string()),
+                                    number_cell(s.at("plateau_strain_rate_1_s")),
+                                    number_cell(s.at("peak_stress_Pa"))};
+  if (!flow_strains.empty()) {
+    const auto c = read_columns(folder / "curve.csv", {"strain", "stress_3wave_Pa"});
+    for (double e : flow_strains) {
+      const double f = flow_stress(c[0], c[1], e);
+      cells.push_back(std::isfinite(f) ? format_double(f) : "");
+    }
+  }
+  cells.push_back(number_cell(s.at("time_to_equilibrium_s")));
+  const auto& v = s.at("striker_velocity_m_s");
+  cells.push_back(number_cell(v.at("scene")));
+  cells.push_back(number_cell(v.at("inferred")));
+  std::string warnings;
+  for (const auto& w : s.at("warnings"))
+    warnings += (warnings.empty() ? "" : " | ") + w.get<std::string>();
+  cells.push_back(text_cell(warnings));
+  std::string line;
+  for (std::size_t i = 0; i < cells.size(); ++i) line += (i ? "," : "") + cells[i];
+  return line + "\n";
+}
+
+// campaign.csv and summary.json of the campaign into `dir`, from the test folders `folders`.
+void write_campaign(const Campaign& c, const std::vector<fs::path>& folders,
+                    const std::vector<double>& flow_strains, const fs::path& dir) {
+  std::string csv;
+  const auto header = campaign_header(flow_strains);
+  for (std::size_t i = 0; i < header.size(); ++i) csv += (i ? "," : "") + header[i];
+  csv += "\n";
+  Json tests = Json::array();
+  for (std::size_t i = 0; i < c.tests.size(); ++i) {
+    try {
+      csv += campaign_row(c.tests[i], folders[i], flow_strains);
+    } catch (const nlohmann::json::exception& e) {  // a part's folder changed by hand
+      throw input_error(
+          (folders[i] / "summary.json").string(), "", "",
+          std::string("not as shpb process writes it (") + e.what() + "): process the test again");
+    }
+    tests.push_back(Json{{"name", c.tests[i].name},
+                         {"scene", c.tests[i].scene.string()},
+                         {"folder", c.tests[i].name}});
+  }
+  std::ofstream(dir / "campaign.csv") << csv;
+  Json s;
+  s["version"] = kVersion;
+  s["command"] = "process";
+  s["campaign"] = c.name;
+  if (!c.display.empty()) s["campaign_file"] = c.display;
+  s["tests"] = tests;
+  s["flow_stress_strains"] = flow_strains;
+  s["campaign_csv"] =
+      "one row per test, from its folder's summary.json (plateau strain rate, peak 3-wave stress, "
+      "time to equilibrium, striker velocity as the scene gives it and as inferred, warnings "
+      "joined by ' | ') and curve.csv (flow_stress_Pa_at_<e>: 3-wave engineering stress where "
+      "the engineering strain first reaches e, linear between samples; empty if it never does)";
+  std::ofstream out(dir / "summary.json");
+  out << s.dump(2) << "\n";
+  if (!out) throw InputError((dir / "summary.json").string() + ": cannot be written");
+}
+
+// Processes one test into `folder` with the one-test command.
+void process_test(const CampaignTest& test, const fs::path& folder, std::size_t i, std::size_t n,
+                  bool quiet) {
+  if (!quiet)
+    std::fprintf(stderr, "process: test %zu/%zu \"%s\" (%s)\n", i + 1, n, test.name.c_str(),
+                 test.scene.string().c_str());
+  ProcessArgs args;
+  args.scene = test.scene;
+  args.output = folder;
+  args.quiet = true;
+  run_process(args);
+}
+
+// The list of tests a part was written for: its check against the merge's own list.
+Json tests_json(const Campaign& c) {
+  Json t = Json::array();
+  for (const auto& test : c.tests)
+    t.push_back(Json{{"name", test.name}, {"scene", fs::absolute(test.scene).lexically_normal()}});
+  return t;
+}
+
+}  // namespace
+
+int run_process_campaign(const CampaignArgs& args) {
+  if (!args.campaign && args.scenes.empty())
+    throw input_error("process", "", "", "a scene, several scenes or --campaign FILE is needed");
+  if (args.campaign && !args.scenes.empty())
+    throw input_error(args.campaign->string(), "", "", "give scenes or --campaign, not both");
+  if (args.merge && !args.shard.empty())
+    throw input_error("--merge", "", "", "the merge comes after the shards: not with --shard");
+  for (double e : args.flow_strains)
+    if (!(e > 0 && e < 1))
+      throw input_error("--flow-stress-at", "", format_double(e),
+                        "engineering strains in (0, 1) expected, e.g. 0.02,0.05");
+  const Campaign c =
+      args.campaign ? read_campaign(*args.campaign) : campaign_of_scenes(args.scenes);
+  const std::size_t n = c.tests.size();
+
+  if (!args.shard.empty()) {
+    const Shard shard = parse_shard("--shard", args.shard);
+    const fs::path part = args.output / "parts" / part_name(shard);
+    if (fs::exists(part)) {
+      if (!args.quiet) std::fprintf(stderr, "process: %s exists, shard skipped\n", part.c_str());
+      return 0;
+    }
+    fs::create_directories(part.parent_path());
+    OutputFolder out(part);
+    const auto runs = shard_runs(n, shard);
+    for (std::size_t i : runs)
+      process_test(c.tests[i], out.path() / c.tests[i].name, i, n, args.quiet);
+    Json j{{"command", "process"}, {"shard", args.shard}, {"tests", tests_json(c)}};
+    std::ofstream(out.file("part.json")) << j.dump(1) << "\n";
+    out.commit();
+    return 0;
+  }
+
+  if (args.merge) {
+    const fs::path parts_dir = args.output / "parts";
+    const std::vector<Part> parts = find_parts(parts_dir, "");
+    check_parts_cover(parts_dir, n, parts);
+    const std::string expected = tests_json(c).dump();
+    std::vector<fs::path> folders(n);
+    for (const Part& p : parts) {
+      std::ifstream in(p.path / "part.json");
+      std::string tests;
+      try {
+        tests = Json::parse(in).at("tests").dump();
+      } catch (const std::exception&) {
+        throw input_error((p.path / "part.json").string(), "", "",
+                          "missing or damaged: remove the part and run its shard again");
+      }
+      if (tests != expected)
+        throw input_error((p.path / "part.json").string(), "tests", "",
+                          "a part of another list of tests: remove it and run its shard again");
+      for (std::size_t i : shard_runs(n, p.shard)) folders[i] = p.path / c.tests[i].name;
+    }
+    OutputFolder out(args.output / "result");
+    for (std::size_t i = 0; i < n; ++i) {
+      std::error_code ec;
+      fs::copy(folders[i], out.path() / c.tests[i].name, fs::copy_options::recursive, ec);
+      if (ec || !fs::exists(folders[i] / "summary.json"))
+        throw input_error(folders[i].string(), "", "",
+                          "the test's folder is missing or incomplete in its part: remove the part "
+                          "and run its shard again");
+    }
+    write_campaign(c, folders, args.flow_strains, out.path());  // errors name the parts
+    out.commit();
+    if (!args.quiet)
+      std::fprintf(stderr, "process: merged %zu parts (%zu tests) into %s\n", parts.size(), n,
+                   out.final_path().c_str());
+    return 0;
+  }
+
+  OutputFolder out(args.output);
+  std::vector<fs::path> folders;
+  for (std::size_t i = 0; i < n; ++i) {
+    folders.push_back(out.path() / c.tests[i].name);
+    process_test(c.tests[i], folders.back(), i, n, args.quiet);
+  }
+  write_campaign(c, folders, args.flow_strains, out.path());
+  out.commit();
+  if (!args.quiet)
+    std::fprintf(stderr, "process: %zu tests; wrote %s/campaign.csv\n", n,
+                 out.final_path().c_str());
+  return 0;
+}
+
+}  // namespace shpb

@@ -1,0 +1,57 @@
+#pragma once
+// A study as a plan of independent runs (docs/commands.md `shpb study --plan/--run/--merge`):
+// plan.json names the scene (its absolute path and a copy of its text, so a changed scene is
+// caught) and every run's parameters; a shard's part holds its runs' results. The in-process
+// `shpb study` goes through the same jobs, results and assembly without the files.
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "model/scene.hpp"
+#include "study/pareto_sweep.hpp"
+#include "study/stability_sweep.hpp"
+
+namespace shpb {
+
+struct StudyPlan {
+  std::string id;               // random; parts carry it so that parts of another plan are refused
+  std::string sweep;            // "pareto" | "stability"
+  std::filesystem::path scene;  // absolute
+  std::string scene_text;       // the scene file as planned
+  // The options of the planning command that change the scene (applied to it again by every run).
+  std::optional<ContactMethod> contact;
+  std::optional<Stepping> stepping;
+  std::optional<double> courant;
+  int refine = 1;                       // of the stability grid (summary.json says it when > 1)
+  std::vector<ParetoJob> pareto;        // sweep "pareto"
+  std::vector<StabilityJob> stability;  // sweep "stability"
+
+  std::size_t runs() const { return sweep == "pareto" ? pareto.size() : stability.size(); }
+};
+
+// Every run's result, by run index (only the runs of one shard filled in a part).
+struct StudyResults {
+  std::vector<ParetoJobResult> pareto;
+  std::vector<StabilityJobResult> stability;
+};
+
+// A fresh random plan id.
+std::string new_plan_id();
+
+// The text of DIR/plan.json, and the plan read back from it. Reading throws InputError naming
+// the file for anything that is not a plan written by shpb.
+std::string plan_text(const StudyPlan& plan);
+StudyPlan read_study_plan(const std::filesystem::path& plan_file);
+
+// The part of one shard: the plan id, the shard's own figures (threads, wall time) and the
+// results of `runs`. Exact round trip of every double.
+nlohmann::ordered_json part_json(const StudyPlan& plan, const StudyResults& results,
+                                 const std::vector<std::size_t>& runs);
+// Reads a part into `results` at its runs (which must be `expected`); throws InputError naming
+// `file` on another plan's part or a damaged one.
+void read_part(const nlohmann::json& part, const std::filesystem::path& file, const StudyPlan& plan,
+               const std::vector<std::size_t>& expected, StudyResults& results);
+
+}  // namespace shpb
