@@ -13,7 +13,7 @@
 #include <cstdio>
 #include <sstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
+#include <fstream>
 
 #include "app/commands.hpp"
 #include "core/checked_write.hpp"

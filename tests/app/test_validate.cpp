@@ -78,7 +78,7 @@ TEST_CASE("validate applies --contact, --stepping and --courant as simulate woul
   CHECK(v["warnings"].empty());
 }
 
-TEST_CASE("validate and simulate refuse a --courant outside (0, 1] alike", "[app][validate]") {
+TEST_CASE("validate and simulate refuse a --courant outside 0 < C <= 1 alike", "[app][validate]") {
   // Lumped central difference is unstable above C = 1 (docs/methods.md §1); the scene's own
   // simulation.courant has the same range.
   const auto file = fs::path(SHPB_SOURCE_DIR) / "experiments/striker-on-bar/scene.json";
