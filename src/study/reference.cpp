@@ -50,12 +50,22 @@ std::optional<GaugeReference> exact_reference(const Scene& scene) {
 
 GaugeReference fine_mesh_reference(const Scene& scene, double resolution,
                                    const SimulationOptions& options) {
-  const Scene fine =
+  Scene fine =
       scene_for(scene, {ContactMethod::kLocalizedBipenalty, Stepping::kAsynchronous, resolution});
+  const bool coarser_specimen = scene.specimen && resolution > kReferenceSpecimenResolution;
+  if (coarser_specimen) {
+    const std::size_t s = *scene.specimen;
+    fine.bars[s].elements =
+        scene_at_resolution(scene, kReferenceSpecimenResolution).bars[s].elements;
+  }
   SimulationResult run = simulate(fine, options);
   GaugeReference r;
-  r.description = "fine-mesh run: localized-bipenalty, asynchronous, " + format_factor(resolution) +
-                  " x the automatic mesh (the scene has no exact solution)";
+  r.description =
+      "fine-mesh run: localized-bipenalty, asynchronous, " + format_factor(resolution) +
+      " x the automatic mesh" +
+      (coarser_specimen ? " (the specimen " + format_factor(kReferenceSpecimenResolution) + " x)"
+                        : std::string()) +
+      " (the scene has no exact solution)";
   if (!run.stable) r.description += "; WARNING: the reference run was unstable: " + run.failure;
   r.window_end_s = std::numeric_limits<double>::infinity();
   r.fine = std::move(run.gauges);
