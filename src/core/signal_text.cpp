@@ -163,37 +163,50 @@ DelimitedText read_delimited_text(const std::filesystem::path& file) {
     throw input_error(file.string(), "line 1", "UTF-16 or binary data",
                       "expected text (ASCII, UTF-8 or Latin-1); save the file as UTF-8 or CSV");
 
-  // Lines (LF, CRLF or lone CR) with their numbers.
-  std::vector<std::pair<std::size_t, std::string_view>> lines;
-  std::size_t line_no = 1, start = 0;
+  // Lines (LF, CRLF or lone CR) with their numbers, one at a time, blank ones skipped.
   const bool has_cr = bytes.find('\r') != std::string::npos;
-  for (std::size_t i = 0; i <= bytes.size(); ++i) {
-    if (!has_cr) {  // LF only: jump to the next line end
-      const void* lf = std::memchr(bytes.data() + i, '\n', bytes.size() - i);
-      i = lf ? static_cast<std::size_t>(static_cast<const char*>(lf) - bytes.data()) : bytes.size();
+  struct Line {
+    std::size_t number = 0;
+    std::string_view text;
+  };
+  struct Cursor {
+    std::size_t start = 0, number = 1;
+  };
+  const auto next_line = [&](Cursor& at, Line& line) {
+    while (at.start <= bytes.size()) {
+      std::size_t i = at.start;
+      if (!has_cr) {  // LF only: jump to the next line end
+        const void* lf = std::memchr(bytes.data() + i, '\n', bytes.size() - i);
+        i = lf ? static_cast<std::size_t>(static_cast<const char*>(lf) - bytes.data())
+               : bytes.size();
+      } else {
+        while (i < bytes.size() && bytes[i] != '\n' && bytes[i] != '\r') ++i;
+      }
+      const std::string_view l(bytes.data() + at.start, i - at.start);
+      const std::size_t number = at.number;
+      if (i < bytes.size() && bytes[i] == '\r' && i + 1 < bytes.size() && bytes[i + 1] == '\n') ++i;
+      at.start = i + 1;
+      ++at.number;
+      if (l.find_first_not_of(" \t") != std::string_view::npos) {
+        line = {number, l};
+        return true;
+      }
     }
-    const bool end = i == bytes.size();
-    if (end || bytes[i] == '\n' || bytes[i] == '\r') {
-      std::string_view l(bytes.data() + start, i - start);
-      if (l.find_first_not_of(" \t") != std::string_view::npos) lines.emplace_back(line_no, l);
-      if (!end && bytes[i] == '\r' && i + 1 < bytes.size() && bytes[i + 1] == '\n') ++i;
-      start = i + 1;
-      ++line_no;
-    }
-  }
-  if (lines.empty())
+    return false;
+  };
+  Line line;
+  if (Cursor c; !next_line(c, line))
     throw input_error(file.string(), "line 1", "empty file", "expected signal rows");
+  const Line first_line = line;
 
   DelimitedText text;
   text.file = file;
   // Delimiter: the one present in most of the first lines (tab beats semicolon beats comma).
-  std::size_t tabs = 0, semis = 0, commas = 0;
-  const std::size_t sniff = std::min(lines.size(), kSniffLines);
-  for (std::size_t i = 0; i < sniff; ++i) {
-    const auto l = lines[i].second;
-    tabs += l.find('\t') != std::string_view::npos;
-    semis += l.find(';') != std::string_view::npos;
-    commas += l.find(',') != std::string_view::npos;
+  std::size_t tabs = 0, semis = 0, commas = 0, sniff = 0;
+  for (Cursor c; sniff < kSniffLines && next_line(c, line); ++sniff) {
+    tabs += line.text.find('\t') != std::string_view::npos;
+    semis += line.text.find(';') != std::string_view::npos;
+    commas += line.text.find(',') != std::string_view::npos;
   }
   if (tabs * 2 > sniff)
     text.delimiter = '\t';
@@ -204,23 +217,27 @@ DelimitedText read_delimited_text(const std::filesystem::path& file) {
   else
     text.delimiter = ' ';
 
+  // Every row's fields, one after the other; the rows' spans are set once they stop moving.
+  const auto line_ends =
+      static_cast<std::size_t>(std::count(bytes.begin(), bytes.end(), has_cr ? '\r' : '\n'));
   auto fields = std::make_shared<std::vector<std::string_view>>();
   std::vector<std::size_t> ends;  // one past each row's last field in `fields`
-  ends.reserve(lines.size());
+  ends.reserve(line_ends + 1);
+  text.rows.reserve(line_ends + 1);
   {
     std::vector<std::string_view> first;
-    split(lines.front().second, text.delimiter, first);
-    fields->reserve(first.size() * lines.size() + first.size());
+    split(first_line.text, text.delimiter, first);
+    fields->reserve(first.size() * (line_ends + 1));
   }
-  for (const auto& line : lines) {
-    split(line.second, text.delimiter, *fields);
+  for (Cursor c; next_line(c, line);) {
+    split(line.text, text.delimiter, *fields);
     ends.push_back(fields->size());
+    text.rows.push_back({line.number, {}});
   }
-  text.rows.resize(lines.size());
-  for (std::size_t i = 0; i < lines.size(); ++i) {
+  for (std::size_t i = 0; i < text.rows.size(); ++i) {
     const std::size_t begin = i > 0 ? ends[i - 1] : 0;
-    text.rows[i] = {lines[i].first,
-                    std::span<const std::string_view>(fields->data() + begin, ends[i] - begin)};
+    text.rows[i].fields =
+        std::span<const std::string_view>(fields->data() + begin, ends[i] - begin);
   }
   text.bytes = std::move(owned);
   text.all_fields = std::move(fields);
