@@ -1,10 +1,11 @@
 // `shpb process SCENE -o DIR [--signals FILE]` (docs/commands.md, docs/outputs.md): gauge signals → pulses at the
 // specimen faces → 1/2/3-wave stress–strain curves. Everything is read and checked before the
 // output folder is created.
+#include <malloc.h>
+
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <malloc.h>
 #include <nlohmann/json.hpp>
 
 #include "analysis/processing.hpp"
