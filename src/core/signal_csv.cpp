@@ -46,7 +46,7 @@ std::size_t resolve(const DelimitedText& text, const TextRow* header, const Colu
     }
     if (it != f.end()) return static_cast<std::size_t>(it - f.begin());
     std::string names;
-    for (const auto& h : f) names += (names.empty() ? "" : ", ") + ("\"" + std::string(h) + "\"");
+    for (const auto& h : f) (names += names.empty() ? "\"" : ", \"").append(h) += '"';
     throw input_error(text.file.string(), "line " + std::to_string(header->line), describe(ref),
                       "no such column; the header has " + names);
   }
