@@ -1,13 +1,54 @@
 #!/usr/bin/env bash
-# Benchmarks (figures, not assertions): builds release, then prints for every
-# experiments/*/scene.json the simulator's wall time (median of several runs), node updates per
-# second, causal-economy saving, asynchronous against global stepping, and the dispersion
-# correction throughput. Usage: tools/bench.sh [build-dir] [repetitions]
+# Benchmarks (figures, not assertions), all in one run: builds release, then prints
+#  1. for every experiments/*/scene.json and the elastic classic scene (the peers' workload,
+#     tools/bench_scenes/elastic-classic.json): the simulator's wall time (median of several
+#     runs), node updates per second, causal-economy saving, asynchronous against global stepping;
+#  2. the dispersion correction (bench_dispersion): the table, a 1 M-sample correction of a
+#     10 MS/s pulse moved 1 m on a 20 mm steel bar, plans shared against planned per correction;
+#  3. `shpb process` of a 1 M-row CSV (time and two gauge columns, correction on) as a whole
+#     process, reading included: wall, CPU and peak memory;
+#  4. the full pareto study of the classic experiment on 2 threads (skipped with BENCH_STUDY=0).
+# Usage: tools/bench.sh [build-dir] [repetitions]
 set -euo pipefail
 BUILD=${1:-build}
 REPEAT=${2:-7}
 cd "$(dirname "$0")/.."
 cmake -S . -B "$BUILD" -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build "$BUILD" -j 2 --target bench_simulator bench_dispersion >/dev/null
-"$BUILD"/bench_simulator --repeat "$REPEAT" experiments/*/scene.json
+cmake --build "$BUILD" -j 2 --target shpb bench_simulator bench_dispersion >/dev/null
+WORK=$(mktemp -d)
+trap 'rm -rf "$WORK"' EXIT
+
+# Wall, user+system CPU and peak resident memory of one command (GNU time when installed).
+timed() {
+  if [ -x /usr/bin/time ]; then
+    /usr/bin/time -f "  wall %e s, CPU %U s user + %S s system, peak memory %M KB" "$@"
+  else
+    local t0=$SECONDS
+    "$@"
+    echo "  wall $((SECONDS - t0)) s"
+  fi
+}
+
+echo "== simulator: experiments and the elastic classic scene"
+"$BUILD"/bench_simulator --repeat "$REPEAT" experiments/*/scene.json \
+  tools/bench_scenes/elastic-classic.json
+
+echo
+echo "== dispersion correction"
 "$BUILD"/bench_dispersion
+
+echo
+echo "== shpb process of a 1 M-row CSV (time + 2 gauges, Pochhammer-Chree correction on)"
+"$BUILD"/bench_dispersion --write-record "$WORK/record"
+ls -l "$WORK/record/record.csv" | awk '{printf "  record.csv: %.1f MB\n", $5 / 1e6}'
+for i in 1 2 3; do
+  timed "$BUILD"/shpb process "$WORK/record/scene.json" -o "$WORK/process-$i" --quiet
+done
+
+if [ "${BENCH_STUDY:-1}" != 0 ]; then
+  echo
+  echo "== full pareto study of the classic experiment, 2 threads"
+  timed "$BUILD"/shpb study experiments/classic-al6061/scene.json -o "$WORK/study" \
+    --threads 2 --quiet
+  grep -m1 '"reference"' "$WORK/study/summary.json" || true
+fi

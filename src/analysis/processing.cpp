@@ -160,44 +160,57 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
   auto cutoff_fa = [&](const BarWaveguide& w) {
     return ds.cutoff_Hz ? *ds.cutoff_Hz * w.radius_m / w.c0_m_s : kDefaultCutoffFaOverC0;
   };
-  const DispersionTable front_table(k.front_waveguide.poisson);
-  std::optional<DispersionTable> back_own;
-  if (k.back_waveguide.poisson != k.front_waveguide.poisson)
-    back_own.emplace(k.back_waveguide.poisson);
-  const DispersionTable& back_table = back_own ? *back_own : front_table;
-  auto moved = [&](const std::vector<double>& x, const BarWaveguide& w, const DispersionTable& tab,
-                   double distance, double extra, AmplitudeFactor a) {
+  // The mode is tabulated only for a correction, and only up to the highest cut-off asked of its
+  // Poisson ratio; the corrections share their FFT plans (one per padded length).
+  std::optional<DispersionTable> front_table, back_own;
+  if (ds.correction) {
+    const bool shared = k.back_waveguide.poisson == k.front_waveguide.poisson;
+    const double fa_front = cutoff_fa(k.front_waveguide), fa_back = cutoff_fa(k.back_waveguide);
+    front_table.emplace(DispersionTable::up_to(k.front_waveguide.poisson,
+                                               shared ? std::max(fa_front, fa_back) : fa_front));
+    if (!shared) back_own.emplace(DispersionTable::up_to(k.back_waveguide.poisson, fa_back));
+  }
+  const DispersionTable* front = front_table ? &*front_table : nullptr;
+  const DispersionTable* back = back_own ? &*back_own : front;
+  FftPlans plans;
+  // A manual window's extra shift is a pure delay after the move.
+  auto delayed = [&](std::vector<double> y, double extra) {
+    if (extra == 0) return y;
+    std::vector<double> z(y.size());
+    delay_by_interpolation(y, -extra / dt, z);
+    return z;
+  };
+  auto moved = [&](const std::vector<double>& x, const BarWaveguide& w,
+                   const DispersionTable* table, double distance, double extra, AmplitudeFactor a) {
     PropagationOptions o = po;
     o.amplitude = a;
     o.cutoff_fa_over_c0 = cutoff_fa(w);
-    if (ds.correction && o.cutoff_fa_over_c0 > tab.max_normalized_frequency())
+    if (!ds.correction) {
+      Propagator p(w, o);
+      return delayed(p.propagate(x, dt, distance), extra);
+    }
+    const DispersionTable& tab = *table;
+    if (o.cutoff_fa_over_c0 > tab.max_normalized_frequency())
       throw input_error(options.scene_file, "measurement.dispersion.cutoff",
                         "f·a/c0 = " + std::to_string(o.cutoff_fa_over_c0),
                         "cut-off beyond the tabulated mode");
-    if (ds.correction && a != AmplitudeFactor::kNone &&
-        o.cutoff_fa_over_c0 >= tab.m1_pole_normalized_frequency())
+    if (a != AmplitudeFactor::kNone && o.cutoff_fa_over_c0 >= tab.m1_pole_normalized_frequency())
       throw input_error(options.scene_file, "measurement.dispersion.cutoff",
                         "f·a/c0 = " + std::to_string(o.cutoff_fa_over_c0),
                         "with amplitude factors the cut-off must lie below the m1 pole (f·a/c0 = " +
                             std::to_string(tab.m1_pole_normalized_frequency()) + ")");
-    Propagator p(tab, w, o);
-    std::vector<double> y = p.propagate(x, dt, distance);
-    if (extra != 0) {
-      std::vector<double> z(y.size());
-      delay_by_interpolation(y, -extra / dt, z);
-      y = std::move(z);
-    }
-    return y;
+    Propagator p(tab, w, o, &plans);
+    return delayed(p.propagate(x, dt, distance), extra);
   };
   const auto kin = ds.amplitude_factors ? AmplitudeFactor::kStrain : AmplitudeFactor::kNone;
-  const auto ei = moved(inc, k.front_waveguide, front_table, d_i, 0, kin);
-  const auto er = moved(inc, k.front_waveguide, front_table, -d_i, extra_r, kin);
-  const auto et = moved(tra, k.back_waveguide, back_table, -d_t, extra_t, kin);
+  const auto ei = moved(inc, k.front_waveguide, front, d_i, 0, kin);
+  const auto er = moved(inc, k.front_waveguide, front, -d_i, extra_r, kin);
+  const auto et = moved(tra, k.back_waveguide, back, -d_t, extra_t, kin);
   std::vector<double> fi = ei, fr = er, ft = et;
   if (ds.amplitude_factors) {
-    fi = moved(inc, k.front_waveguide, front_table, d_i, 0, AmplitudeFactor::kStress);
-    fr = moved(inc, k.front_waveguide, front_table, -d_i, extra_r, AmplitudeFactor::kStress);
-    ft = moved(tra, k.back_waveguide, back_table, -d_t, extra_t, AmplitudeFactor::kStress);
+    fi = moved(inc, k.front_waveguide, front, d_i, 0, AmplitudeFactor::kStress);
+    fr = moved(inc, k.front_waveguide, front, -d_i, extra_r, AmplitudeFactor::kStress);
+    ft = moved(tra, k.back_waveguide, back, -d_t, extra_t, AmplitudeFactor::kStress);
   }
   if (ds.correction)
     r.cutoff_Hz =

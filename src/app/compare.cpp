@@ -181,8 +181,11 @@ int run_compare(const CompareArgs& args) {
   std::vector<double> sim_inc = raw_inc, sim_tr = raw_tr;
   std::optional<DispersionTable> front_table, back_table;
   if (args.dispersion) {
-    front_table.emplace(setup.front_waveguide.poisson);
-    back_table.emplace(setup.back_waveguide.poisson);
+    // Tabulated up to the default cut-off the corrections below use.
+    front_table.emplace(
+        DispersionTable::up_to(setup.front_waveguide.poisson, kDefaultCutoffFaOverC0));
+    back_table.emplace(
+        DispersionTable::up_to(setup.back_waveguide.poisson, kDefaultCutoffFaOverC0));
     // The incident gauge carries two pulses: split its record half-way between them.
     const std::size_t split =
         w_ref ? (w_inc->end + w_ref->onset) / 2 : n;

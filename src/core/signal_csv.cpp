@@ -40,12 +40,13 @@ std::size_t resolve(const DelimitedText& text, const TextRow* header, const Colu
                        [](unsigned char c) { return std::tolower(c); });
         return s;
       };
-      it = std::find_if(f.begin(), f.end(),
-                        [&](const std::string& h) { return lower(h) == lower(ref.name); });
+      it = std::find_if(f.begin(), f.end(), [&](std::string_view h) {
+        return lower(std::string(h)) == lower(ref.name);
+      });
     }
     if (it != f.end()) return static_cast<std::size_t>(it - f.begin());
     std::string names;
-    for (const auto& h : f) names += (names.empty() ? "" : ", ") + ("\"" + h + "\"");
+    for (const auto& h : f) (names += names.empty() ? "\"" : ", \"").append(h) += '"';
     throw input_error(text.file.string(), "line " + std::to_string(header->line), describe(ref),
                       "no such column; the header has " + names);
   }
@@ -65,13 +66,16 @@ RawSignalColumns read_columns(const DelimitedText& text, std::size_t first_data,
   raw.lines.reserve(n);
   for (auto& v : raw.values) v.reserve(n);
   auto header_name = [&](std::size_t c) {
-    return header && c < header->fields.size() ? header->fields[c] : std::string();
+    return header && c < header->fields.size() ? header->fields[c] : std::string_view();
   };
+  const std::string_view time_name = header_name(time_index);
+  std::vector<std::string_view> column_names;
+  for (std::size_t c : indices) column_names.push_back(header_name(c));
   for (std::size_t r = first_data; r < text.rows.size(); ++r) {
     const TextRow& row = text.rows[r];
-    raw.time.push_back(number_at(text, row, time_index, header_name(time_index)));
+    raw.time.push_back(number_at(text, row, time_index, time_name));
     for (std::size_t k = 0; k < indices.size(); ++k)
-      raw.values[k].push_back(number_at(text, row, indices[k], header_name(indices[k])));
+      raw.values[k].push_back(number_at(text, row, indices[k], column_names[k]));
     raw.lines.push_back(row.line);
   }
   return raw;
@@ -80,24 +84,23 @@ RawSignalColumns read_columns(const DelimitedText& text, std::size_t first_data,
 }  // namespace
 
 double number_at(const DelimitedText& text, const TextRow& row, std::size_t column,
-                 const std::string& column_name) {
-  const std::string where =
-      text_place(row.line, column) + (column_name.empty() ? "" : " (\"" + column_name + "\")");
+                 std::string_view column_name) {
+  if (column < row.fields.size())
+    if (const auto v = parse_number(row.fields[column], text.decimal_comma)) return *v;
+  // Not a number: the message (and its place) is only built now.
+  const std::string where = text_place(row.line, column) +
+                            (column_name.empty() ? "" : " (\"" + std::string(column_name) + "\")");
   if (column >= row.fields.size())
     throw input_error(
         text.file.string(), where, "missing value",
         "the row has only " + std::to_string(row.fields.size()) + " fields (truncated line?)");
-  const std::string& f = row.fields[column];
+  const std::string f(row.fields[column]);
   if (f.empty()) throw input_error(text.file.string(), where, "empty field", "expected a number");
-  const auto v = parse_number(f, text.decimal_comma);
-  if (!v) {
-    const bool nan = f.find("nan") != std::string::npos || f.find("NaN") != std::string::npos ||
-                     f.find("NAN") != std::string::npos;
-    throw input_error(
-        text.file.string(), where, "\"" + f + "\"",
-        nan ? "not a number (NaN) where a finite sample was expected" : "expected a finite number");
-  }
-  return *v;
+  const bool nan = f.find("nan") != std::string::npos || f.find("NaN") != std::string::npos ||
+                   f.find("NAN") != std::string::npos;
+  throw input_error(
+      text.file.string(), where, "\"" + f + "\"",
+      nan ? "not a number (NaN) where a finite sample was expected" : "expected a finite number");
 }
 
 RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest& request) {
@@ -117,7 +120,7 @@ RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest
   for (const auto& c : request.columns) {
     indices.push_back(resolve(text, header, c, width));
     names.push_back(header && indices.back() < header->fields.size()
-                        ? header->fields[indices.back()]
+                        ? std::string(header->fields[indices.back()])
                         : "column " + std::to_string(indices.back()));
   }
   return read_columns(text, first, header, time_index, indices, names);

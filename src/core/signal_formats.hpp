@@ -25,6 +25,6 @@ RawSignalColumns read_lanl_raw_columns(const DelimitedText& text, const SignalRe
 
 // Shared: the numeric value of row[column] or an InputError naming file, line and column.
 double number_at(const DelimitedText& text, const TextRow& row, std::size_t column,
-                 const std::string& column_name);
+                 std::string_view column_name);
 
 }  // namespace shpb

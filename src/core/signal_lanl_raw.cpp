@@ -27,14 +27,14 @@ RawSignalColumns read_lanl_raw_columns(const DelimitedText& text, const SignalRe
       std::string names;
       for (std::size_t k = kFirstSignalColumn; k < rows[0].fields.size(); ++k) {
         if (rows[0].fields[k] == c.name) index = k;
-        names += (names.empty() ? "\"" : ", \"") + rows[0].fields[k] + "\"";
+        names += (names.empty() ? "\"" : ", \"") + std::string(rows[0].fields[k]) + "\"";
       }
       if (index == 0)
         throw input_error(text.file.string(), "line 1", "column \"" + c.name + "\"",
                           "no such signal; the file has " + names);
     }
     indices.push_back(index);
-    raw.names.push_back(rows[0].fields[index]);
+    raw.names.emplace_back(rows[0].fields[index]);
   }
   // Every signal column of the file shares one time base: check they agree.
   const std::size_t c0 = indices.empty() ? kFirstSignalColumn : indices.front();
@@ -46,7 +46,8 @@ RawSignalColumns read_lanl_raw_columns(const DelimitedText& text, const SignalRe
   for (std::size_t idx : indices) {
     if (number_at(text, rows[1], idx, rows[0].fields[idx]) != start ||
         number_at(text, rows[2], idx, rows[0].fields[idx]) != dt)
-      throw input_error(text.file.string(), text_place(rows[1].line, idx), rows[0].fields[idx],
+      throw input_error(text.file.string(), text_place(rows[1].line, idx),
+                        std::string(rows[0].fields[idx]),
                         "start time and sample interval differ between signal columns");
   }
   raw.time_from_header = true;

@@ -3,8 +3,9 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <fstream>
-#include <iterator>
 
 #include "core/error.hpp"
 
@@ -13,19 +14,19 @@ namespace {
 
 constexpr std::size_t kSniffLines = 200;  // lines inspected to choose delimiter and decimal mark
 
-std::string trim(std::string_view s) {
-  const auto not_blank = [](char c) { return c != ' ' && c != '\t' && c != '\r' && c != '\n'; };
-  auto b = std::find_if(s.begin(), s.end(), not_blank);
-  auto e = std::find_if(s.rbegin(), s.rend(), not_blank).base();
-  if (b >= e) return {};
-  std::string out(b, e);
+std::string_view trim(std::string_view s) {
+  const auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; };
+  std::size_t b = 0, e = s.size();
+  while (b < e && blank(s[b])) ++b;
+  while (e > b && blank(s[e - 1])) --e;
+  std::string_view out = s.substr(b, e - b);
   if (out.size() >= 2 && out.front() == '"' && out.back() == '"')
     out = out.substr(1, out.size() - 2);
   return out;
 }
 
-std::vector<std::string> split(std::string_view line, char delimiter) {
-  std::vector<std::string> fields;
+// Appends the fields of one line to `fields`.
+void split(std::string_view line, char delimiter, std::vector<std::string_view>& fields) {
   if (delimiter == ' ') {
     std::size_t i = 0;
     while (i < line.size()) {
@@ -36,7 +37,16 @@ std::vector<std::string> split(std::string_view line, char delimiter) {
       fields.push_back(trim(line.substr(i, j - i)));
       i = j;
     }
-    return fields;
+    return;
+  }
+  if (line.find('"') == std::string_view::npos) {  // no quotes: from delimiter to delimiter
+    std::size_t start = 0;
+    for (;;) {
+      const std::size_t d = line.find(delimiter, start);
+      fields.push_back(trim(line.substr(start, d == std::string_view::npos ? d : d - start)));
+      if (d == std::string_view::npos) return;
+      start = d + 1;
+    }
   }
   bool quoted = false;
   std::size_t start = 0;
@@ -47,29 +57,74 @@ std::vector<std::string> split(std::string_view line, char delimiter) {
       start = i + 1;
     }
   }
-  return fields;
+}
+
+// Clinger's fast path: a decimal of at most 19 significant digits whose value is m·10^k with
+// m < 2^53 and |k| ≤ 22 is m and 10^|k| exactly, so one multiplication or division rounds it
+// correctly — the value std::from_chars gives. Anything else (more digits, larger exponents,
+// other syntax) returns nullopt and is left to std::from_chars.
+std::optional<double> exact_short_decimal(const char* p, const char* end) {
+  static constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                      1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                      1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+  constexpr std::uint64_t kExactMantissa = std::uint64_t{1} << 53;
+  constexpr int kMaxDigits = 19;
+  const bool negative = p < end && *p == '-';
+  if (negative) ++p;
+  const auto digit = [](char c) { return static_cast<unsigned>(c - '0') <= 9; };
+  std::uint64_t m = 0;
+  const char* first = p;
+  while (p < end && digit(*p)) m = 10 * m + static_cast<unsigned>(*p++ - '0');
+  std::ptrdiff_t digits = p - first, exponent = 0;
+  if (digits == 0) return std::nullopt;  // no integer digit (".5", "nan", …): from_chars decides
+  if (p < end && *p == '.') {
+    const char* fraction = ++p;
+    while (p < end && digit(*p)) m = 10 * m + static_cast<unsigned>(*p++ - '0');
+    digits += p - fraction;
+    exponent = fraction - p;
+  }
+  if (digits > kMaxDigits) return std::nullopt;
+  if (p < end && (*p == 'e' || *p == 'E')) {
+    ++p;
+    const bool minus = p < end && *p == '-';
+    if (p < end && (*p == '-' || *p == '+')) ++p;
+    int x = 0;
+    const char* exponent_digits = p;
+    for (; p < end && digit(*p) && x < 1000; ++p) x = 10 * x + (*p - '0');
+    if (p == exponent_digits) return std::nullopt;
+    exponent += minus ? -x : x;
+  }
+  if (p != end || m >= kExactMantissa || exponent < -22 || exponent > 22) return std::nullopt;
+  double v = static_cast<double>(m);
+  v = exponent < 0 ? v / kPow10[-exponent] : v * kPow10[exponent];
+  return negative ? -v : v;
 }
 
 bool looks_like_decimal_comma_number(std::string_view f) {
   // 12,5 or -0,0012 or 1,5E-03: digits, one comma, digits, optional exponent; no '.'
   const auto comma = f.find(',');
   if (comma == std::string_view::npos || f.find('.') != std::string_view::npos) return false;
-  return parse_number(std::string(f.substr(0, comma)) + "." + std::string(f.substr(comma + 1)),
-                      false)
-      .has_value();
+  return parse_number(f, true).has_value();
 }
 
 }  // namespace
 
 std::optional<double> parse_number(std::string_view field, bool decimal_comma) {
-  std::string s(field);
-  if (decimal_comma) std::replace(s.begin(), s.end(), ',', '.');
-  if (s.empty()) return std::nullopt;
-  const char* b = s.data();
+  // Numbers are parsed where they lie; only a decimal comma needs a copy with a point.
+  std::string copy;
+  if (decimal_comma && field.find(',') != std::string_view::npos) {
+    copy.assign(field);
+    std::replace(copy.begin(), copy.end(), ',', '.');
+    field = copy;
+  }
+  if (field.empty()) return std::nullopt;
+  const char* b = field.data();
+  const char* e = b + field.size();
   if (*b == '+') ++b;
+  if (const auto v = exact_short_decimal(b, e)) return v;
   double v = 0;
-  const auto [end, ec] = std::from_chars(b, s.data() + s.size(), v);
-  if (ec != std::errc() || end != s.data() + s.size() || !std::isfinite(v)) return std::nullopt;
+  const auto [end, ec] = std::from_chars(b, e, v);
+  if (ec != std::errc() || end != e || !std::isfinite(v)) return std::nullopt;
   return v;
 }
 
@@ -83,7 +138,21 @@ DelimitedText read_delimited_text(const std::filesystem::path& file) {
     throw input_error(file.string(), "", "", "is a folder; expected a signal file");
   std::ifstream in(file, std::ios::binary);
   if (!in) throw input_error(file.string(), "", "", "cannot be read");
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  auto owned = std::make_shared<std::string>();
+  std::string& bytes = *owned;
+  {
+    // In blocks straight into the string (a stream iterator costs a call per byte).
+    constexpr std::size_t kBlock = 1 << 20;
+    std::size_t size = 0;
+    if (const auto s = std::filesystem::file_size(file, ec); !ec) bytes.reserve(s + kBlock);
+    for (;;) {
+      bytes.resize(size + kBlock);
+      in.read(bytes.data() + size, static_cast<std::streamsize>(kBlock));
+      size += static_cast<std::size_t>(in.gcount());
+      if (!in) break;
+    }
+    bytes.resize(size);
+  }
   if (in.bad()) throw input_error(file.string(), "", "", "cannot be read");
   // Byte order marks: UTF-8 is dropped (spreadsheets write it); UTF-16 text is refused by name
   // rather than failing later on the NUL bytes between its characters.
@@ -93,32 +162,50 @@ DelimitedText read_delimited_text(const std::filesystem::path& file) {
     throw input_error(file.string(), "line 1", "UTF-16 or binary data",
                       "expected text (ASCII, UTF-8 or Latin-1); save the file as UTF-8 or CSV");
 
-  // Lines (LF, CRLF or lone CR) with their numbers.
-  std::vector<std::pair<std::size_t, std::string_view>> lines;
-  std::size_t line_no = 1, start = 0;
-  for (std::size_t i = 0; i <= bytes.size(); ++i) {
-    const bool end = i == bytes.size();
-    if (end || bytes[i] == '\n' || bytes[i] == '\r') {
-      std::string_view l(bytes.data() + start, i - start);
-      if (l.find_first_not_of(" \t") != std::string_view::npos) lines.emplace_back(line_no, l);
-      if (!end && bytes[i] == '\r' && i + 1 < bytes.size() && bytes[i + 1] == '\n') ++i;
-      start = i + 1;
-      ++line_no;
+  // Lines (LF, CRLF or lone CR) with their numbers, one at a time, blank ones skipped.
+  const bool has_cr = bytes.find('\r') != std::string::npos;
+  struct Line {
+    std::size_t number = 0;
+    std::string_view text;
+  };
+  struct Cursor {
+    std::size_t start = 0, number = 1;
+  };
+  const auto next_line = [&](Cursor& at, Line& line) {
+    while (at.start <= bytes.size()) {
+      std::size_t i = at.start;
+      if (!has_cr) {  // LF only: jump to the next line end
+        const void* lf = std::memchr(bytes.data() + i, '\n', bytes.size() - i);
+        i = lf ? static_cast<std::size_t>(static_cast<const char*>(lf) - bytes.data())
+               : bytes.size();
+      } else {
+        while (i < bytes.size() && bytes[i] != '\n' && bytes[i] != '\r') ++i;
+      }
+      const std::string_view l(bytes.data() + at.start, i - at.start);
+      const std::size_t number = at.number;
+      if (i < bytes.size() && bytes[i] == '\r' && i + 1 < bytes.size() && bytes[i + 1] == '\n') ++i;
+      at.start = i + 1;
+      ++at.number;
+      if (l.find_first_not_of(" \t") != std::string_view::npos) {
+        line = {number, l};
+        return true;
+      }
     }
-  }
-  if (lines.empty())
+    return false;
+  };
+  Line line;
+  if (Cursor c; !next_line(c, line))
     throw input_error(file.string(), "line 1", "empty file", "expected signal rows");
+  const Line first_line = line;
 
   DelimitedText text;
   text.file = file;
   // Delimiter: the one present in most of the first lines (tab beats semicolon beats comma).
-  std::size_t tabs = 0, semis = 0, commas = 0;
-  const std::size_t sniff = std::min(lines.size(), kSniffLines);
-  for (std::size_t i = 0; i < sniff; ++i) {
-    const auto l = lines[i].second;
-    tabs += l.find('\t') != std::string_view::npos;
-    semis += l.find(';') != std::string_view::npos;
-    commas += l.find(',') != std::string_view::npos;
+  std::size_t tabs = 0, semis = 0, commas = 0, sniff = 0;
+  for (Cursor c; sniff < kSniffLines && next_line(c, line); ++sniff) {
+    tabs += line.text.find('\t') != std::string_view::npos;
+    semis += line.text.find(';') != std::string_view::npos;
+    commas += line.text.find(',') != std::string_view::npos;
   }
   if (tabs * 2 > sniff)
     text.delimiter = '\t';
@@ -129,8 +216,30 @@ DelimitedText read_delimited_text(const std::filesystem::path& file) {
   else
     text.delimiter = ' ';
 
-  text.rows.reserve(lines.size());
-  for (const auto& [n, l] : lines) text.rows.push_back({n, split(l, text.delimiter)});
+  // Every row's fields, one after the other; the rows' spans are set once they stop moving.
+  const auto line_ends =
+      static_cast<std::size_t>(std::count(bytes.begin(), bytes.end(), has_cr ? '\r' : '\n'));
+  auto fields = std::make_shared<std::vector<std::string_view>>();
+  std::vector<std::size_t> ends;  // one past each row's last field in `fields`
+  ends.reserve(line_ends + 1);
+  text.rows.reserve(line_ends + 1);
+  {
+    std::vector<std::string_view> first;
+    split(first_line.text, text.delimiter, first);
+    fields->reserve(first.size() * (line_ends + 1));
+  }
+  for (Cursor c; next_line(c, line);) {
+    split(line.text, text.delimiter, *fields);
+    ends.push_back(fields->size());
+    text.rows.push_back({line.number, {}});
+  }
+  for (std::size_t i = 0; i < text.rows.size(); ++i) {
+    const std::size_t begin = i > 0 ? ends[i - 1] : 0;
+    text.rows[i].fields =
+        std::span<const std::string_view>(fields->data() + begin, ends[i] - begin);
+  }
+  text.bytes = std::move(owned);
+  text.all_fields = std::move(fields);
 
   // Decimal comma: only possible when the comma is not the delimiter; decided on the last
   // sniffed rows (data, not header) by numbers with a comma against numbers with a point.
@@ -141,7 +250,7 @@ DelimitedText read_delimited_text(const std::filesystem::path& file) {
       for (const auto& f : text.rows[i].fields) {
         if (looks_like_decimal_comma_number(f))
           ++with_comma;
-        else if (f.find('.') != std::string::npos && parse_number(f, false))
+        else if (f.find('.') != std::string_view::npos && parse_number(f, false))
           ++numbers;
       }
     text.decimal_comma = with_comma > numbers;

@@ -2,8 +2,11 @@
 // Delimited text as measurement software writes it: any encoding (read as bytes), CRLF/LF/CR,
 // comma, semicolon, tab or blank separated, optional decimal comma, quoted fields, header and
 // metadata lines. Splits into fields and remembers each row's line number for error messages.
+// The fields are views into the file's bytes, kept once by the DelimitedText (no string per cell).
 #include <filesystem>
+#include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -11,8 +14,8 @@
 namespace shpb {
 
 struct TextRow {
-  std::size_t line = 0;             // 1-based line number in the file
-  std::vector<std::string> fields;  // unquoted, trimmed
+  std::size_t line = 0;                      // 1-based line number in the file
+  std::span<const std::string_view> fields;  // unquoted, trimmed (views into the file's bytes)
 };
 
 struct DelimitedText {
@@ -20,6 +23,10 @@ struct DelimitedText {
   char delimiter = ',';  // '\t', ';', ',' or ' ' (runs of blanks)
   bool decimal_comma = false;
   std::vector<TextRow> rows;  // non-blank lines only
+  // What the rows view: the file's bytes and every row's fields, one after the other (shared so
+  // that copies and moves of the text keep the views valid).
+  std::shared_ptr<const std::string> bytes;
+  std::shared_ptr<const std::vector<std::string_view>> all_fields;
 };
 
 // Reads and splits a file; throws InputError if it cannot be read or holds no non-blank line.

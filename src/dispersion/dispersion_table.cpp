@@ -1,34 +1,45 @@
 #include "dispersion/dispersion_table.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 
 #include "dispersion/pochhammer_chree.hpp"
 
 namespace shpb {
 
-DispersionTable::DispersionTable(double poisson, double max_x, int points) : poisson_(poisson) {
+DispersionTable::DispersionTable(double poisson, double max_x, int points)
+    : DispersionTable(poisson, max_x, points, std::numeric_limits<double>::infinity()) {}
+
+DispersionTable DispersionTable::up_to(double poisson, double fa_over_c0) {
+  return DispersionTable(poisson, kMaxAOverLambda, kPoints, fa_over_c0);
+}
+
+DispersionTable::DispersionTable(double poisson, double max_x, int points, double stop_fa)
+    : poisson_(poisson) {
   if (points < 2 || !(max_x > 0)) throw std::invalid_argument("DispersionTable: bad grid");
-  fa_.resize(points);
-  c_.resize(points);
-  m1_.resize(points);
-  m1m2_.resize(points);
-  double c = 1.0;
+  fa_.reserve(points);
+  c_.reserve(points);
+  m1_.reserve(points);
+  m1m2_.reserve(points);
   double prev_surface = 1.0;
   for (int i = 0; i < points; ++i) {
     const double x = max_x * i / (points - 1);
-    c = shpb::phase_velocity(poisson, x, i > 0 ? c : 0.0);
-    fa_[i] = x * c;
-    c_[i] = c;
+    // Marching guess: the root at the previous x, linearly extrapolated once two are known.
+    const double guess = i == 0 ? 0.0 : i == 1 ? c_[0] : 2 * c_[i - 1] - c_[i - 2];
+    const double c = shpb::phase_velocity(poisson, x, guess);
+    fa_.push_back(x * c);
+    c_.push_back(c);
     const AmplitudeFactors a = amplitude_factors(poisson, x, c);
-    m1_[i] = a.m1;
-    m1m2_[i] = a.m1_m2;
-    const double surface = surface_over_mean_strain(poisson, x, c);
+    m1_.push_back(a.m1);
+    m1m2_.push_back(a.m1_m2);
+    const double surface = 1 / a.m1;  // surface over mean strain: changes sign at the m1 pole
     if (m1_pole_fa_ == 0 && i > 0 && (surface > 0) != (prev_surface > 0)) {
       const double t = prev_surface / (prev_surface - surface);
       m1_pole_fa_ = fa_[i - 1] + t * (fa_[i] - fa_[i - 1]);
     }
     prev_surface = surface;
+    if (fa_.back() >= stop_fa && m1_pole_fa_ > 0 && i > 0) break;
   }
 }
 

@@ -8,7 +8,14 @@ namespace shpb {
 class DispersionTable {
  public:
   // Solves the mode at `points` evenly spaced a/Λ in [0, max_a_over_lambda] by marching in k.
-  explicit DispersionTable(double poisson, double max_a_over_lambda = 2.0, int points = 4001);
+  explicit DispersionTable(double poisson, double max_a_over_lambda = kMaxAOverLambda,
+                           int points = kPoints);
+  // The same grid, solved only as far as a correction needs: to the first point at or above the
+  // normalised frequency `fa_over_c0` and past the pole of m1 (or to the grid's end).
+  static DispersionTable up_to(double poisson, double fa_over_c0);
+
+  static constexpr double kMaxAOverLambda = 2.0;
+  static constexpr int kPoints = 4001;  // Δ(a/Λ) = 5e-4
 
   double poisson() const { return poisson_; }
   // Largest tabulated f·a/c0; beyond it the caller must not ask (the correction cuts off below).
@@ -23,6 +30,7 @@ class DispersionTable {
   double m1_m2(double fa_over_c0) const;
 
  private:
+  DispersionTable(double poisson, double max_a_over_lambda, int points, double stop_fa_over_c0);
   double interpolate(const std::vector<double>& y, double fa_over_c0) const;
 
   double poisson_;

@@ -8,8 +8,8 @@
 namespace shpb {
 
 Propagator::Propagator(const DispersionTable& table, const BarWaveguide& bar,
-                       const PropagationOptions& options)
-    : table_(&table), bar_(bar), options_(options) {
+                       const PropagationOptions& options, FftPlans* plans)
+    : table_(&table), bar_(bar), options_(options), shared_plans_(plans) {
   if (!(bar.radius_m > 0) || !(bar.c0_m_s > 0))
     throw std::invalid_argument("Propagator: bar radius and c0 must be > 0");
   const double pole = table.m1_pole_normalized_frequency();
@@ -18,6 +18,14 @@ Propagator::Propagator(const DispersionTable& table, const BarWaveguide& bar,
     throw std::invalid_argument("Propagator: the cut-off must lie below the pole of m1");
   if (options_.cutoff_fa_over_c0 > table.max_normalized_frequency())
     throw std::invalid_argument("Propagator: cut-off beyond the dispersion table");
+}
+
+Propagator::Propagator(const BarWaveguide& bar, const PropagationOptions& options)
+    : table_(nullptr), bar_(bar), options_(options), shared_plans_(nullptr) {
+  if (!(bar.radius_m > 0) || !(bar.c0_m_s > 0))
+    throw std::invalid_argument("Propagator: bar radius and c0 must be > 0");
+  if (options_.dispersion)
+    throw std::invalid_argument("Propagator: a dispersion correction needs the mode's table");
 }
 
 double Propagator::lowpass_gain(double f) const {
@@ -44,9 +52,9 @@ void Propagator::propagate(std::span<const double> signal, double dt, double dis
   const double c_min = table_->phase_velocity(options_.cutoff_fa_over_c0) * bar_.c0_m_s;
   const auto shift = static_cast<std::size_t>(std::ceil(std::abs(distance_m) / (c_min * dt)));
   const std::size_t size = fast_fft_size(n + shift + n / 4 + 16);
-  if (!fft_ || fft_->size() != size) fft_ = std::make_unique<RealFft>(size);
+  RealFft& fft = (shared_plans_ ? *shared_plans_ : own_plans_).of_size(size);
 
-  std::span<double> x = fft_->samples();
+  std::span<double> x = fft.samples();
   std::copy(signal.begin(), signal.end(), x.begin());
   std::fill(x.begin() + static_cast<std::ptrdiff_t>(n), x.end(), 0.0);
   // Cosine taper of both ends: the record need not start or end at zero.
@@ -57,16 +65,16 @@ void Propagator::propagate(std::span<const double> signal, double dt, double dis
     x[i] *= w;
     x[n - 1 - i] *= w;
   }
-  fft_->forward();
-  std::span<std::complex<double>> spec = fft_->spectrum();
+  fft.forward();
+  std::span<std::complex<double>> spec = fft.spectrum();
   const double df = 1.0 / (static_cast<double>(size) * dt);
   const double fa_per_hz = bar_.radius_m / bar_.c0_m_s;
   for (std::size_t j = 1; j < spec.size(); ++j) {
     const double f = static_cast<double>(j) * df;
     const double gain = lowpass_gain(f);
-    if (gain == 0) {
-      spec[j] = 0;
-      continue;
+    if (gain == 0) {  // at the cut-off: this bin and every one above it
+      std::fill(spec.begin() + static_cast<std::ptrdiff_t>(j), spec.end(), 0.0);
+      break;
     }
     const double fa = f * fa_per_hz;
     const double c = table_->phase_velocity(fa) * bar_.c0_m_s;
@@ -76,7 +84,7 @@ void Propagator::propagate(std::span<const double> signal, double dt, double dis
     const double phase = -2 * std::numbers::pi * f * distance_m / c;
     spec[j] *= std::polar(amplitude, phase);
   }
-  fft_->inverse();
+  fft.inverse();
   std::copy(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(n), out.begin());
 }
 

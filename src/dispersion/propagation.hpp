@@ -38,11 +38,14 @@ struct PropagationOptions {
 };
 
 // The correction for one bar: its dispersion table, options and FFT workspace (planned once per
-// padded length). `propagate` is the free-standing operation other commands reuse.
+// padded length; give `plans` to share them with the other corrections of a record).
+// `propagate` is the free-standing operation other commands reuse.
 class Propagator {
  public:
   Propagator(const DispersionTable& table, const BarWaveguide& bar,
-             const PropagationOptions& options);
+             const PropagationOptions& options, FftPlans* plans = nullptr);
+  // Without dispersion (options.dispersion false): the pure delay, no table needed.
+  Propagator(const BarWaveguide& bar, const PropagationOptions& options);
 
   // Propagates `signal` (uniform step dt) by `distance_m`; out has the signal's length and the
   // same time grid. Reuses the FFT plan while the padded length does not change.
@@ -57,10 +60,11 @@ class Propagator {
   const DispersionTable* table_;
   BarWaveguide bar_;
   PropagationOptions options_;
-  std::unique_ptr<RealFft> fft_;
+  FftPlans own_plans_;
+  FftPlans* shared_plans_;  // null: own_plans_
 };
 
-// One-off convenience: tabulates the bar's mode (≈ 0.2 s) and plans an FFT for this call. For
+// One-off convenience: tabulates the bar's mode (≈ 16 ms) and plans an FFT for this call. For
 // several pulses of one bar, keep a DispersionTable and a Propagator instead.
 std::vector<double> propagate(std::span<const double> signal, double dt, double distance_m,
                               const BarWaveguide& bar, const PropagationOptions& options = {});

@@ -36,6 +36,12 @@ void RealFft::inverse() {
   for (std::size_t i = 0; i < n_; ++i) real_[i] *= scale;
 }
 
+RealFft& FftPlans::of_size(std::size_t n) {
+  for (const auto& f : ffts_)
+    if (f->size() == n) return *f;
+  return *ffts_.emplace_back(std::make_unique<RealFft>(n));
+}
+
 std::size_t fast_fft_size(std::size_t n) {
   for (std::size_t m = n < 1 ? 1 : n;; ++m) {
     std::size_t r = m;

@@ -3,7 +3,9 @@
 // once (RAII). Reuse one RealFft for every record of the same length; never plan in a loop.
 #include <complex>
 #include <cstddef>
+#include <memory>
 #include <span>
+#include <vector>
 
 namespace shpb {
 
@@ -27,6 +29,16 @@ class RealFft {
   std::complex<double>* spectrum_ = nullptr;
   void* forward_plan_ = nullptr;
   void* inverse_plan_ = nullptr;
+};
+
+// The transforms of every length asked for, each planned once: the corrections of one record
+// (3–6 of them, of one or two padded lengths) share it instead of planning their own.
+class FftPlans {
+ public:
+  RealFft& of_size(std::size_t n);
+
+ private:
+  std::vector<std::unique_ptr<RealFft>> ffts_;
 };
 
 // Smallest n' ≥ n of the form 2^a 3^b 5^c 7^d (fast FFTW lengths).

@@ -26,7 +26,9 @@ ParetoJobResult run_pareto_job(const Scene& scene, const ParetoJob& job,
   SimulationOptions options;
   options.record_field = false;
   options.cancel = cancel;
-  SimulationResult r = simulate(scene_for(scene, job.run), options);
+  SimulationResult r = simulate(
+      job.reference ? fine_reference_scene(scene, job.run.resolution) : scene_for(scene, job.run),
+      options);
   ParetoJobResult out;
   out.stable = r.stable;
   out.failure = r.failure;
@@ -47,8 +49,8 @@ ParetoStudy assemble_pareto(const Scene& scene, const std::vector<ParetoJob>& jo
       continue;
     }
     const ParetoJobResult& r = results[j];
-    reference =
-        fine_mesh_reference(jobs[j].run.resolution, r.stable, r.failure, r.gauges, r.wall_time_s);
+    reference = fine_mesh_reference(scene, jobs[j].run.resolution, r.stable, r.failure, r.gauges,
+                                    r.wall_time_s);
   }
   ParetoStudy study;
   study.reference = reference->description;

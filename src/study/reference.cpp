@@ -53,11 +53,32 @@ ParetoCase fine_reference_case(double resolution) {
   return {ContactMethod::kLocalizedBipenalty, Stepping::kAsynchronous, resolution};
 }
 
-GaugeReference fine_mesh_reference(double resolution, bool stable, const std::string& failure,
-                                   TimeSeries gauges, double wall_time_s) {
+namespace {
+bool coarser_specimen(const Scene& scene, double resolution) {
+  return scene.specimen && resolution > kReferenceSpecimenResolution;
+}
+}  // namespace
+
+Scene fine_reference_scene(const Scene& scene, double resolution) {
+  Scene fine = scene_for(scene, fine_reference_case(resolution));
+  if (coarser_specimen(scene, resolution)) {
+    const std::size_t s = *scene.specimen;
+    fine.bars[s].elements =
+        scene_at_resolution(scene, kReferenceSpecimenResolution).bars[s].elements;
+  }
+  return fine;
+}
+
+GaugeReference fine_mesh_reference(const Scene& scene, double resolution, bool stable,
+                                   const std::string& failure, TimeSeries gauges,
+                                   double wall_time_s) {
   GaugeReference r;
   r.description = "fine-mesh run: localized-bipenalty, asynchronous, " + format_factor(resolution) +
-                  " x the automatic mesh (the scene has no exact solution)";
+                  " x the automatic mesh" +
+                  (coarser_specimen(scene, resolution)
+                       ? " (the specimen " + format_factor(kReferenceSpecimenResolution) + " x)"
+                       : std::string()) +
+                  " (the scene has no exact solution)";
   if (!stable) r.description += "; WARNING: the reference run was unstable: " + failure;
   r.window_end_s = std::numeric_limits<double>::infinity();
   r.fine = std::move(gauges);
@@ -67,8 +88,8 @@ GaugeReference fine_mesh_reference(double resolution, bool stable, const std::st
 
 GaugeReference fine_mesh_reference(const Scene& scene, double resolution,
                                    const SimulationOptions& options) {
-  SimulationResult run = simulate(scene_for(scene, fine_reference_case(resolution)), options);
-  return fine_mesh_reference(resolution, run.stable, run.failure, std::move(run.gauges),
+  SimulationResult run = simulate(fine_reference_scene(scene, resolution), options);
+  return fine_mesh_reference(scene, resolution, run.stable, run.failure, std::move(run.gauges),
                              run.wall_time_s);
 }
 

@@ -9,6 +9,7 @@
 
 #include "dispersion/dispersion_table.hpp"
 #include "dispersion/pochhammer_chree.hpp"
+#include "dispersion/propagation.hpp"
 
 using namespace shpb;
 
@@ -140,5 +141,22 @@ TEST_CASE("The table interpolates the mode by normalised frequency", "[dispersio
     const double c = phase_velocity(0.3, x);
     CAPTURE(x);
     CHECK(std::abs(table.phase_velocity(x * c) - c) < kInterpolationTolerance);
+  }
+}
+
+TEST_CASE("The table up to a cut-off is the whole table's grid, cut past the cut-off and the pole",
+          "[dispersion]") {
+  const DispersionTable whole(0.29);
+  const DispersionTable needed = DispersionTable::up_to(0.29, kDefaultCutoffFaOverC0);
+  CHECK(needed.max_normalized_frequency() >= kDefaultCutoffFaOverC0);
+  CHECK(needed.max_normalized_frequency() < whole.max_normalized_frequency());
+  // Same grid, same roots: the pole and every value agree to the root tolerance (1e-14 in c/c0).
+  constexpr double kSameRoot = 1e-12;
+  CHECK(std::abs(needed.m1_pole_normalized_frequency() - whole.m1_pole_normalized_frequency()) <
+        kSameRoot);
+  for (double fa = 0.01; fa < kDefaultCutoffFaOverC0; fa += 0.01) {
+    CAPTURE(fa);
+    CHECK(std::abs(needed.phase_velocity(fa) - whole.phase_velocity(fa)) < kSameRoot);
+    CHECK(std::abs(needed.m1(fa) - whole.m1(fa)) < kSameRoot * std::abs(whole.m1(fa)));
   }
 }
