@@ -95,6 +95,11 @@ void refuse_unaffordable(const Scene& scene, const std::vector<double>& elements
 }
 }  // namespace
 
+double stable_step_factor(const Scene& scene, std::size_t bar) {
+  if (!scene.simulation.finite_strain || scene.bars[bar].material.is_elastic()) return 1.0;
+  return 1.0 - scene.simulation.max_strain.value_or(kDefaultMaxStrain);
+}
+
 double default_duration_s(const Scene& scene) {
   if (scene.bars.empty()) return 0;
   // The striker is the first bar; its pulse lasts 2 L/c.
@@ -127,8 +132,8 @@ ChainDiscretization discretize(const Scene& scene) {
     double global_dt = 0;
     for (std::size_t i = 0; i < scene.bars.size(); ++i) {
       elements.push_back(automatic_elements(scene, i));
-      const double dt = courant * scene.bars[i].length_m / elements.back() /
-                        scene.bars[i].material.wave_speed_m_s();
+      const double dt = courant * stable_step_factor(scene, i) * scene.bars[i].length_m /
+                        elements.back() / scene.bars[i].material.wave_speed_m_s();
       steps.push_back(std::ceil(d.duration_s / dt));
       global_dt = i == 0 ? dt : std::min(global_dt, dt);
     }
@@ -140,9 +145,10 @@ ChainDiscretization discretize(const Scene& scene) {
     BarDiscretization b;
     b.elements = static_cast<int>(automatic_elements(scene, i));
     b.element_length_m = scene.bars[i].length_m / b.elements;
-    // The stable step is fixed at the elastic bound for every material law (material_law.hpp).
+    // The stable step is fixed at the elastic bound for every material law (material_law.hpp),
+    // for the shortest element finite strain allows (above).
     b.wave_speed_m_s = scene.bars[i].material.wave_speed_m_s();
-    b.critical_step_s = b.element_length_m / b.wave_speed_m_s;
+    b.critical_step_s = stable_step_factor(scene, i) * b.element_length_m / b.wave_speed_m_s;
     b.time_step_s = courant * b.critical_step_s;
     b.courant = courant;
     d.bars.push_back(b);
