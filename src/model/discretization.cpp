@@ -146,11 +146,12 @@ ChainDiscretization discretize(const Scene& scene) {
     b.elements = static_cast<int>(automatic_elements(scene, i));
     b.element_length_m = scene.bars[i].length_m / b.elements;
     // The stable step is fixed at the elastic bound for every material law (material_law.hpp),
-    // for the shortest element finite strain allows (above).
+    // for the shortest element finite strain allows (above): there the Courant number is the
+    // scene's; the one reported is on the reference length.
     b.wave_speed_m_s = scene.bars[i].material.wave_speed_m_s();
-    b.critical_step_s = stable_step_factor(scene, i) * b.element_length_m / b.wave_speed_m_s;
-    b.time_step_s = courant * b.critical_step_s;
-    b.courant = courant;
+    b.critical_step_s = b.element_length_m / b.wave_speed_m_s;
+    b.time_step_s = courant * stable_step_factor(scene, i) * b.critical_step_s;
+    b.courant = b.time_step_s / b.critical_step_s;  // on the reference length h
     d.bars.push_back(b);
   }
   if (d.stepping == Stepping::kGlobal && !d.bars.empty()) {

@@ -36,7 +36,7 @@ struct BarDiscretization {
   int elements = 0;
   double element_length_m = 0;  // h
   double wave_speed_m_s = 0;    // c = sqrt(E_max/ρ), E_max the largest tangent modulus
-  double critical_step_s = 0;   // h / c for lumped linear elements (C = 1)
+  double critical_step_s = 0;   // h / c for lumped linear elements (C = 1), reference length h
   double time_step_s = 0;       // this bar's own Δt (asynchronous) or the global one
   double courant = 0;           // c Δt / h
   long steps = 0;               // steps to cover the duration
