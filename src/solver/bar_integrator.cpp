@@ -42,7 +42,7 @@ SHPB_NODE_LOOP void kick_drift(double* __restrict w, double* __restrict v, const
 }
 
 // Material-law kernel: element strains → one law update for the range → axial forces N_e →
-// nodal forces f_i = N_i − N_{i−1}. Finite strain and friction as in bar.hpp.
+// nodal forces f_i = N_i − N_{i−1}. Finite strain, friction and radial inertia as in bar.hpp.
 void law_forces(const BarModel& bar, BarState& s, int lo, int hi, double dt) {
   const int last = bar.nodes - 1;
   const int e0 = std::max(lo - 1, 0), e1 = std::min(hi, last - 1);
