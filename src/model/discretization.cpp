@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "core/json_value.hpp"
+#include "model/specimen_response.hpp"
 
 namespace shpb {
 
@@ -96,8 +97,21 @@ void refuse_unaffordable(const Scene& scene, const std::vector<double>& elements
 }  // namespace
 
 double stable_step_factor(const Scene& scene, std::size_t bar) {
-  if (!scene.simulation.finite_strain || scene.bars[bar].material.is_elastic()) return 1.0;
-  return 1.0 - scene.simulation.max_strain.value_or(kDefaultMaxStrain);
+  const BarSpec& b = scene.bars[bar];
+  if (b.material.is_elastic()) return 1.0;
+  const double e_max = scene.simulation.finite_strain
+                           ? scene.simulation.max_strain.value_or(kDefaultMaxStrain)
+                           : 0.0;
+  // Face friction stiffens the bar by φ = 1 + μ d/(3√3 L) (model/specimen_response.hpp), largest
+  // at the shortest, widest (volume-conserving) shape the step is planned for: Δt ∝ 1/√φ.
+  const bool specimen = scene.specimen && *scene.specimen == bar;  // friction acts there only
+  const double left = specimen && bar > 0 ? interface_friction(scene.contact, bar - 1) : 0.0;
+  const double right =
+      specimen && bar + 1 < scene.bars.size() ? interface_friction(scene.contact, bar) : 0.0;
+  const double stretch = 1 - e_max;
+  const double phi = friction_factor(0.5 * (left + right), b.diameter_m / std::sqrt(stretch),
+                                     b.length_m * stretch);
+  return stretch / std::sqrt(phi);
 }
 
 double default_duration_s(const Scene& scene) {

@@ -28,7 +28,8 @@ inline constexpr int kMinSpecimenElements = 50;
 // specimen's step count; `simulation.max_strain` changes it, and a run whose elements shorten
 // past it stops as failed (exit 3) saying so. The geometric stiffening of a stressed element,
 // 1 + |τ|/E, raises the effective Courant number by |τ|/(2E) < 0.5 % for |τ|/E < 1 %, which the
-// default C = 0.995 leaves room for.
+// default C = 0.995 leaves room for. Face friction scales the axial stiffness by its factor φ
+// (largest at e_max): the step is divided by √φ there too, small strain included.
 inline constexpr double kDefaultMaxStrain = 0.5;
 double stable_step_factor(const Scene& scene, std::size_t bar);
 

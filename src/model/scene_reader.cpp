@@ -47,6 +47,13 @@ class SceneReader {
     check_names(scene, items);
 
     if (auto v = o.get("specimen")) scene.specimen = bar_index(scene, *v);
+    // Radial inertia is the closed form of a Kolsky specimen (model/specimen_response.hpp).
+    for (std::size_t i = 0; i < scene.bars.size(); ++i)
+      if (scene.bars[i].inertia && scene.specimen != i)
+        throw JsonObject(items[i])
+            .require("inertia", "")
+            .error(
+                "radial inertia is modelled for the specimen bar only (name it in \"specimen\")");
     if (auto v = o.get("contact")) scene.contact = read_contact(*v, scene);
     if (auto v = o.get("simulation")) scene.simulation = read_simulation(*v);
     if (auto v = o.get("measurement")) {

@@ -43,7 +43,8 @@ struct BarModel {
   bool finite_strain = false;        // material-law bars: logarithmic strain, current area (above)
   double volume_change_per_stress = 0;  // (1 − 2ν)/E of the law's elastic part, for J
   double min_stretch = 0;  // the stable step holds down to this λ (discretization.hpp)
-  // Interface friction (docs/methods.md §8): the axial stress is raised by the factor
+  // Interface friction on the specimen's faces (docs/methods.md §8): the axial stress of an
+  // element that flows (its law dissipates) in compression is raised by the factor
   // φ = 1 + friction_factor_per_aspect · d/L of the whole bar's current diameter and length.
   double friction_factor_per_aspect = 0;  // μ/(3√3), μ the mean of the two faces' coefficients
   double diameter_m = 0;
@@ -77,6 +78,7 @@ struct BarState {
   std::vector<double> axial_force_N;  // element axial force N = A σ at t_n (material-law bars)
   std::vector<double> friction_stress_Pa;  // (φ − 1) τ of the last step (friction work)
   std::vector<double> strain_step;         // scratch: Δε of the step (friction work)
+  std::vector<double> dissipation_before;  // scratch: the law's dissipation before the step
   double smallest_stretch = 1;             // smallest element λ reached so far (finite strain)
   double inertia_rate_1_s = 0;  // whole-bar true strain rate at t_{n−1/2} (compression +)
   double inertia_acceleration_1_s2 = 0;  // its low-passed derivative

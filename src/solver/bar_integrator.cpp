@@ -60,6 +60,7 @@ void law_forces(const BarModel& bar, BarState& s, int lo, int hi, double dt) {
     for (int e = e0; e <= e1; ++e) {
       s.strain_step[e] = s.strain_next[e] - s.points[e].strain;
       s.dissipated_J += 0.5 * V0 * s.friction_stress_Pa[e] * s.strain_step[e];
+      s.dissipation_before[e] = s.points[e].dissipated_J_m3;
     }
   const std::size_t n = static_cast<std::size_t>(e1 - e0 + 1);
   bar.law->update(std::span<const double>(s.strain_next.data() + e0, n), dt,
@@ -100,19 +101,24 @@ void law_forces(const BarModel& bar, BarState& s, int lo, int hi, double dt) {
   const double A0 = bar.area_m2;
   for (int e = e0; e <= e1; ++e) {
     const double tau = s.law_stress[e];
+    // Friction raises the pressure needed for flow (Dharan & Hauser): it acts while the element
+    // flows (its law dissipates) under face pressure (compressive stress), not on elastic
+    // loading or unloading.
+    const bool flows = friction && tau < 0 && s.points[e].dissipated_J_m3 > s.dissipation_before[e];
+    const double excess = flows ? (phi - 1) * tau : 0.0;
     if (friction) {
-      s.friction_stress_Pa[e] = (phi - 1) * tau;
-      s.dissipated_J += 0.5 * V0 * s.friction_stress_Pa[e] * s.strain_step[e];
+      s.friction_stress_Pa[e] = excess;
+      s.dissipated_J += 0.5 * V0 * excess * s.strain_step[e];
     }
     if (bar.finite_strain) {
       const double stretch = 1 + (s.w[e + 1] - s.w[e]) * inv_h;
       const double J = std::exp(bar.volume_change_per_stress * tau);
-      const double axial = phi * tau - inertia * J;  // Kirchhoff: the true inertia stress × J
+      const double axial = tau + excess - inertia * J;  // Kirchhoff: the true inertia stress × J
       s.axial_force_N[e] = axial * A0 / stretch;
       s.stress_Pa[e] = axial / J;
       s.smallest_stretch = std::min(s.smallest_stretch, stretch);
     } else {
-      const double axial = phi * tau - inertia;
+      const double axial = tau + excess - inertia;
       s.axial_force_N[e] = axial * A0;
       s.stress_Pa[e] = axial;
     }

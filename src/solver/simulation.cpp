@@ -35,12 +35,14 @@ constexpr double kInertiaFilterTransits = 0.25;
 void configure_bar(BarModel& bar, const Scene& scene, std::size_t i) {
   if (!bar.law) return;
   bar.finite_strain = scene.simulation.finite_strain;
-  bar.min_stretch = stable_step_factor(scene, i);
-  // A free end has no friction; two faces of different μ act through their mean (first order).
+  bar.min_stretch = 1 - scene.simulation.max_strain.value_or(kDefaultMaxStrain);
+  // Friction on the specimen's faces only (the closed form is a Kolsky specimen's); a free end
+  // has none; two faces of different μ act through their mean (first order).
+  if (!scene.specimen || *scene.specimen != i) return;
   const double left = i > 0 ? interface_friction(scene.contact, i - 1) : 0.0;
   const double right = i + 1 < scene.bars.size() ? interface_friction(scene.contact, i) : 0.0;
   bar.friction_factor_per_aspect = friction_factor_per_aspect(0.5 * (left + right));
-  if (scene.bars[i].inertia) {
+  if (scene.bars[i].inertia) {  // the reader allows it on the specimen only
     bar.radial_inertia_density_kg_m3 = bar.density_kg_m3;
     bar.inertia_filter_s =
         kInertiaFilterTransits * bar.element_length_m * bar.elements() / bar.wave_speed_m_s;
