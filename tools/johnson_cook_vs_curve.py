@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Compare a processed stress-strain curve (curve.csv of `shpb process`) with a Johnson-Cook
-specimen file along the measured path: plastic strain p = e - s/E, strain rate of the 3-wave
-reduction, temperature from adiabatic heating dT = beta s dp / (rho c_p) (Johnson & Cook 1983).
+specimen file along the measured path, in the law's own terms (docs/methods.md §8): true stress s
+against true plastic strain p = e_true - s/E, true strain rate e_rate/(1 - e), temperature from adiabatic heating dT = beta s dp / (rho c_p) (Johnson & Cook 1983).
 
   /usr/bin/python3 tools/johnson_cook_vs_curve.py specimens/ofhc-copper.json DIR/curve.csv \
       [--temperature "0 degC"] [--min-strain 0.1] [--equilibrium 0.05]
@@ -52,8 +52,8 @@ def main():
     T = quantity(a.temperature or jc.get("temperature", t_room))
     p_prev, ratios = 0.0, []
     for row in csv.DictReader(open(a.curve)):
-        strain, stress = float(row["strain"]), float(row["stress_3wave_Pa"])
-        rate = float(row["strain_rate_1_s"])
+        strain, stress = float(row["true_strain"]), float(row["true_stress_Pa"])
+        rate = float(row["strain_rate_1_s"]) / (1 - float(row["strain"]))
         r = float(row["equilibrium_ratio"]) if row["equilibrium_ratio"] not in ("", "nan") else math.inf
         p = max(0.0, strain - stress / E)
         if p > p_prev:  # adiabatic heating along the measured path

@@ -378,9 +378,13 @@ def fig_specimen(src, figs):
     fig, axes = new_figure()
     ax = axes[0, 0]
     ax.plot(strain * 100, stress * MPA, color="k", linewidth=1.4, label="engineering (model)")
-    ok = strain < 1
-    ax.plot(-np.log(1 - strain[ok]) * 100, stress[ok] * (1 - strain[ok]) * MPA, color="C3",
-            linewidth=1.0, linestyle="--", label="true (constant volume)")
+    if "true_strain" in t and "true_stress_Pa" in t:
+        ax.plot(t.numeric("true_strain") * 100, t.numeric("true_stress_Pa") * MPA, color="C3",
+                linewidth=1.0, linestyle="--", label="true (model: force over current area)")
+    else:
+        ok = strain < 1
+        ax.plot(-np.log(1 - strain[ok]) * 100, stress[ok] * (1 - strain[ok]) * MPA, color="C3",
+                linewidth=1.0, linestyle="--", label="true (constant volume)")
     ax.set_xlabel("specimen strain (%, compression +)")
     ax.set_ylabel("specimen stress (MPa, compression +)")
     ax.set_title(src.title("Specimen stress–strain: the model's own truth"))
@@ -388,8 +392,8 @@ def fig_specimen(src, figs):
     figs.save(fig, src.png("specimen_stress_strain"),
               src.title("Specimen stress–strain (model truth)"),
               "Length-averaged engineering stress against strain of the specimen as the "
-              "simulation computed it (specimen.csv), and the true values for constant volume "
-              "(docs/methods.md §6). Compression positive.")
+              "simulation computed it (specimen.csv), and true stress against logarithmic strain "
+              "(docs/methods.md §6, §8). Compression positive.")
 
     fig, axes = new_figure(2, 1, height=6.0, sharex=True)
     axes[0, 0].plot(time, t.numeric("strain_rate_1_s"), color="k", linewidth=1.0)
@@ -459,6 +463,10 @@ def fig_curve(src, figs, truth=None):
                 linewidth=1.4, label="true (3-wave)")
     ax.plot(strain * 100, t.numeric("stress_3wave_Pa") * MPA, color="0.6", linewidth=1.0,
             linestyle="--", label="engineering (3-wave)")
+    if truth is not None and "true_strain" in truth and "true_stress_Pa" in truth:
+        # The law as the specimen followed it: true stress at true strain (specimen.csv).
+        ax.plot(truth.numeric("true_strain") * 100, truth.numeric("true_stress_Pa") * MPA,
+                color="C4", linestyle=":", linewidth=1.4, label="law, model truth (true)")
     ax.set_xlabel("true strain (%, compression +)")
     ax.set_ylabel("true stress (MPa, compression +)")
     ax.set_title(src.title("True stress–strain"))

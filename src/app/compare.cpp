@@ -85,6 +85,8 @@ int run_compare(const CompareArgs& args) {
   const std::string file = scene.file.string();
   if (!scene.measurement)
     throw input_error(file, "measurement", "(missing)", "compare needs measured signals");
+  if (scene.measurement->channels.empty())
+    throw input_error(file, "measurement.channels", "(missing)", "compare needs measured signals");
   if (!scene.specimen || *scene.specimen < 2)
     throw input_error(file, "specimen", "(missing or no striker)",
                       "compare needs a striker, an incident bar and a specimen");

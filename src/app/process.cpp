@@ -3,11 +3,13 @@
 // output folder is created.
 #include <malloc.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
 #include "analysis/processing.hpp"
+#include "analysis/specimen_corrections.hpp"
 #include "app/commands.hpp"
 #include "core/checked_write.hpp"
 #include "core/csv_writer.hpp"
@@ -83,6 +85,10 @@ int run_process(const ProcessArgs& args) {
       throw input_error(scene.file.string(), "measurement", "(missing)",
                         "needed to process measured signals (or give --signals FILE)");
     m = *scene.measurement;
+    if (m.channels.empty())
+      throw input_error(
+          scene.file.string(), "measurement.channels", "(missing)",
+          "a list of {\"gauge\", \"column\", \"unit\", ...} to process measured signals");
     options.dispersion = m.dispersion;
     options.windows = m.windows;
   }
@@ -90,6 +96,17 @@ int run_process(const ProcessArgs& args) {
   const GaugeSignals signals = read_gauge_signals(m, {});
   const KolskySetup setup = resolve_setup(scene, signals.gauges);
   ProcessingResult r = process_signals(signals, setup, options);
+  // Specimen corrections (docs/methods.md §8), also for simulated signals when the scene asks.
+  const CorrectionsSpec corrections =
+      scene.measurement ? scene.measurement->corrections : CorrectionsSpec{};
+  const BarSpec& specimen_bar = scene.bars[*scene.specimen];
+  const CorrectionReport removed = apply_specimen_corrections(
+      r.curve, signals.dt_s,
+      {specimen_bar.length_m, specimen_bar.area_m2, specimen_bar.material.density_kg_m3},
+      {corrections.friction, corrections.inertia});
+  if (corrections.friction || corrections.inertia)
+    r.peak_stress_Pa =
+        *std::max_element(r.curve.stress_3wave_Pa.begin(), r.curve.stress_3wave_Pa.end());
   check_finite(r);
 
   std::vector<std::string> warnings = signals.warnings;
@@ -134,7 +151,7 @@ int run_process(const ProcessArgs& args) {
   s["conventions"] =
       "pulses.csv: strains at the specimen faces, tension positive, on the signals' clock; "
       "curve.csv: compression positive, strain and strain rate from the 3-wave reduction, true "
-      "values from the 3-wave stress";
+      "values from the 3-wave stress (after the corrections listed under corrections)";
   nlohmann::json disp = {
       {"correction", options.dispersion.correction ? "pochhammer-chree" : "none"},
       {"amplitude_factors", options.dispersion.amplitude_factors}};
@@ -172,6 +189,31 @@ int run_process(const ProcessArgs& args) {
   s["max_strain"] = r.max_strain;
   s["time_to_equilibrium_s"] =
       r.time_to_equilibrium_s ? nlohmann::json(*r.time_to_equilibrium_s) : nlohmann::json();
+  {
+    nlohmann::json c = nlohmann::json::object();
+    if (corrections.friction) {
+      c["friction"] = {
+          {"mu", *corrections.friction},
+          {"form",
+           "Dharan & Hauser (1970): measured = flow stress x (1 + mu d/(3 sqrt(3) L)), "
+           "d and L current (volume-conserving)"},
+          {"factor_min", removed.friction_factor_min},
+          {"factor_max", removed.friction_factor_max}};
+    }
+    if (corrections.inertia)
+      c["inertia"] = {{"form",
+                       "3-wave minus flow stress = rho L^2 (eps_dd - eps_d^2)/12 (axial) + rho a^2 "
+                       "(eps_dd/8 + eps_d^2/16) (radial; Davies & Hunter 1963, Gorham 1989, "
+                       "Forrestal et al. 2007), true rates, L and a current"}};
+    nlohmann::json terms = nlohmann::json::object();
+    for (const RemovedTerm& t : removed.terms)
+      terms[t.name] = {{"median_Pa", t.median_Pa}, {"max_abs_Pa", t.max_abs_Pa}};
+    if (!removed.terms.empty()) {
+      c["removed_true_stress"] = terms;
+      c["removed_where"] = "samples with 3-wave stress >= 20 % of its peak, before correction";
+    }
+    s["corrections"] = c;
+  }
   s["equilibrium_criterion"] = "R = 2|P1-P2|/|P1+P2| <= 0.05 while (P1+P2)/2 >= 20 % of its peak";
   write_text_file(out.file("summary.json"), s.dump(2) + "\n");
   out.commit();

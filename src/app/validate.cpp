@@ -105,6 +105,11 @@ json resolved_setup(const Scene& scene, const ChainDiscretization& d) {
   out["duration_s"] = d.duration_s;
   out["sample_rate_Hz"] = d.sample_rate_Hz;
   out["stepping"] = to_string(d.stepping);
+  // Material-law bars: finite strain plans their step for this largest compression.
+  out["kinematics"] = scene.simulation.finite_strain ? "finite" : "small";
+  out["max_strain"] = scene.simulation.finite_strain
+                          ? json(scene.simulation.max_strain.value_or(kDefaultMaxStrain))
+                          : json(nullptr);
   out["measurement"] = scene.measurement ? json({{"file", scene.measurement->file.string()},
                                                  {"channels", scene.measurement->channels.size()}})
                                          : json(nullptr);
@@ -162,6 +167,11 @@ void print_table(const json& s) {
   std::printf("\nduration     %s us\n", g(s["duration_s"].get<double>() * 1e6).c_str());
   std::printf("sample rate  %s MHz\n", g(s["sample_rate_Hz"].get<double>() * 1e-6).c_str());
   std::printf("stepping     %s\n", s["stepping"].get<std::string>().c_str());
+  if (s["kinematics"] == "finite")
+    std::printf("kinematics   finite (material-law bars; steps planned for %s strain)\n",
+                g(s["max_strain"].get<double>()).c_str());
+  else
+    std::printf("kinematics   small\n");
   if (!s["measurement"].is_null())
     std::printf("measurement  %s (%zu channels)\n",
                 s["measurement"]["file"].get<std::string>().c_str(),

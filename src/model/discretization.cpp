@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "core/json_value.hpp"
+#include "model/specimen_response.hpp"
 
 namespace shpb {
 
@@ -95,6 +96,24 @@ void refuse_unaffordable(const Scene& scene, const std::vector<double>& elements
 }
 }  // namespace
 
+double stable_step_factor(const Scene& scene, std::size_t bar) {
+  const BarSpec& b = scene.bars[bar];
+  if (b.material.is_elastic()) return 1.0;
+  const double e_max = scene.simulation.finite_strain
+                           ? scene.simulation.max_strain.value_or(kDefaultMaxStrain)
+                           : 0.0;
+  // Face friction stiffens the bar by φ = 1 + μ d/(3√3 L) (model/specimen_response.hpp), largest
+  // at the shortest, widest (volume-conserving) shape the step is planned for: Δt ∝ 1/√φ.
+  const bool specimen = scene.specimen && *scene.specimen == bar;  // friction acts there only
+  const double left = specimen && bar > 0 ? interface_friction(scene.contact, bar - 1) : 0.0;
+  const double right =
+      specimen && bar + 1 < scene.bars.size() ? interface_friction(scene.contact, bar) : 0.0;
+  const double stretch = 1 - e_max;
+  const double phi = friction_factor(0.5 * (left + right), b.diameter_m / std::sqrt(stretch),
+                                     b.length_m * stretch);
+  return stretch / std::sqrt(phi);
+}
+
 double default_duration_s(const Scene& scene) {
   if (scene.bars.empty()) return 0;
   // The striker is the first bar; its pulse lasts 2 L/c.
@@ -127,8 +146,8 @@ ChainDiscretization discretize(const Scene& scene) {
     double global_dt = 0;
     for (std::size_t i = 0; i < scene.bars.size(); ++i) {
       elements.push_back(automatic_elements(scene, i));
-      const double dt = courant * scene.bars[i].length_m / elements.back() /
-                        scene.bars[i].material.wave_speed_m_s();
+      const double dt = courant * stable_step_factor(scene, i) * scene.bars[i].length_m /
+                        elements.back() / scene.bars[i].material.wave_speed_m_s();
       steps.push_back(std::ceil(d.duration_s / dt));
       global_dt = i == 0 ? dt : std::min(global_dt, dt);
     }
@@ -140,11 +159,13 @@ ChainDiscretization discretize(const Scene& scene) {
     BarDiscretization b;
     b.elements = static_cast<int>(automatic_elements(scene, i));
     b.element_length_m = scene.bars[i].length_m / b.elements;
-    // The stable step is fixed at the elastic bound for every material law (material_law.hpp).
+    // The stable step is fixed at the elastic bound for every material law (material_law.hpp),
+    // for the shortest element finite strain allows (above): there the Courant number is the
+    // scene's; the one reported is on the reference length.
     b.wave_speed_m_s = scene.bars[i].material.wave_speed_m_s();
     b.critical_step_s = b.element_length_m / b.wave_speed_m_s;
-    b.time_step_s = courant * b.critical_step_s;
-    b.courant = courant;
+    b.time_step_s = courant * stable_step_factor(scene, i) * b.critical_step_s;
+    b.courant = b.time_step_s / b.critical_step_s;  // on the reference length h
     d.bars.push_back(b);
   }
   if (d.stepping == Stepping::kGlobal && !d.bars.empty()) {

@@ -20,11 +20,24 @@ inline constexpr int kMinBarElements = 20;
 inline constexpr double kSpecimenElementLength_m = 1e-4;
 inline constexpr int kMinSpecimenElements = 50;
 
+// Finite strain (docs/methods.md §8): a shortening element's critical step h/c shrinks with its
+// length (λ h0; the wave speed follows the elastic modulus, the lumped mass stays ρ A0 h0). The
+// step of a material-law bar is planned once, bounded from the largest compressive engineering
+// strain the run may reach: Δt = C (1 − e_max) h0 / c (the scheduler's steps are fixed per bar).
+// The default e_max = 0.5 covers Kolsky specimens (20–40 %) and most pulse shapers at twice the
+// specimen's step count; `simulation.max_strain` changes it, and a run whose elements shorten
+// past it stops as failed (exit 3) saying so. The geometric stiffening of a stressed element,
+// 1 + |τ|/E, raises the effective Courant number by |τ|/(2E) < 0.5 % for |τ|/E < 1 %, which the
+// default C = 0.995 leaves room for. Face friction scales the axial stiffness by its factor φ
+// (largest at e_max): the step is divided by √φ there too, small strain included.
+inline constexpr double kDefaultMaxStrain = 0.5;
+double stable_step_factor(const Scene& scene, std::size_t bar);
+
 struct BarDiscretization {
   int elements = 0;
   double element_length_m = 0;  // h
   double wave_speed_m_s = 0;    // c = sqrt(E_max/ρ), E_max the largest tangent modulus
-  double critical_step_s = 0;   // h / c for lumped linear elements (C = 1)
+  double critical_step_s = 0;   // h / c for lumped linear elements (C = 1), reference length h
   double time_step_s = 0;       // this bar's own Δt (asynchronous) or the global one
   double courant = 0;           // c Δt / h
   long steps = 0;               // steps to cover the duration

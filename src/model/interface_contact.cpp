@@ -25,4 +25,10 @@ PenaltyParams interface_penalty(const ContactSpec& contact, std::size_t k) {
   return p;
 }
 
+double interface_friction(const ContactSpec& contact, std::size_t k) {
+  for (const InterfaceOverride& o : contact.interfaces)
+    if (o.left_bar == k && o.friction) return *o.friction;
+  return contact.friction;
+}
+
 }  // namespace shpb

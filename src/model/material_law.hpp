@@ -9,7 +9,9 @@
 
 namespace shpb {
 
-// Per-element state. Strain is engineering strain, tension positive (docs/outputs.md (conventions)).
+// Per-element state, tension positive (docs/outputs.md (conventions)). Strain is what the bar feeds
+// the law: logarithmic with finite strain (solver/bar.hpp; the stress is then Kirchhoff), else
+// engineering.
 struct MaterialPointState {
   static constexpr int kMaxArms = 8;
   double strain = 0;          // ε at the last update

@@ -92,9 +92,18 @@ DispersionSpec read_dispersion(const JsonValue& v) {
 
 MeasurementSpec read_measurement(const JsonValue& value, const std::filesystem::path& scene_dir,
                                  const std::vector<std::string>& gauges) {
-  const auto o = value.object(
-      {"file", "format", "time", "channels", "dispersion", "windows", "striker_velocity", "notes"});
+  const auto o = value.object({"file", "format", "time", "channels", "dispersion", "windows",
+                               "striker_velocity", "notes", "corrections"});
   MeasurementSpec m;
+  if (auto c = o.get("corrections")) {
+    const auto co = c->object({"friction", "inertia"});
+    // Coulomb coefficient of the faces, as contact.friction (docs/methods.md §8).
+    if (auto f = co.get("friction"))
+      m.corrections.friction = f->quantity_in(Dimension::kDimensionless, 0, 1, false, true);
+    if (auto i = co.get("inertia")) m.corrections.inertia = i->boolean();
+    // Corrections alone (for `process --signals` of simulated gauges): no signals to read.
+    if (!o.get("channels") && !o.get("file")) return m;
+  }
   if (auto f = o.get("file")) m.file = (scene_dir / f->name()).lexically_normal();
   if (auto f = o.get("format"))
     m.format = enum_from<SignalFormat>(*f, {{"auto", SignalFormat::kAuto},

@@ -26,6 +26,7 @@ struct BarSpec {
   int elements = 0;           // 0: chosen automatically (see model/mesh.hpp)
   double gap_m = 0;           // initial gap to the next bar on the right
   std::vector<GaugeSpec> gauges;
+  bool inertia = false;  // radial inertia of a flowing specimen (material-law bars only)
 
   double impedance_kg_s() const {
     return material.density_kg_m3 * material.wave_speed_m_s() * area_m2;
@@ -57,12 +58,14 @@ struct InterfaceOverride {
   std::size_t left_bar = 0;  // the interface between bars[left_bar] and bars[left_bar + 1]
   std::optional<ContactMethod> method;
   PenaltyParams penalty;
+  std::optional<double> friction;  // Coulomb μ of the faces (docs/methods.md §8)
 };
 
 struct ContactSpec {
   ContactMethod method = ContactMethod::kLocalizedBipenalty;
   PenaltyParams penalty;
   std::vector<InterfaceOverride> interfaces;
+  double friction = 0;  // Coulomb μ on every interface unless overridden
 };
 
 // Method and penalty parameters of the interface between bars[k] and bars[k + 1]: the scene-wide
@@ -70,12 +73,19 @@ struct ContactSpec {
 // three forms, replaces the scene-wide one).
 ContactMethod interface_method(const ContactSpec& contact, std::size_t k);
 PenaltyParams interface_penalty(const ContactSpec& contact, std::size_t k);
+double interface_friction(const ContactSpec& contact, std::size_t k);
 
 struct SimulationSpec {
   std::optional<double> duration_s;  // default: the transmitted pulse has passed the last gauge
   double sample_rate_Hz = 10e6;
   Stepping stepping = Stepping::kAsynchronous;
   std::optional<double> courant;  // default chosen by the solver (close to 1, docs/methods.md §1)
+  // "kinematics": "finite" (default) or "small": finite strain for material-law bars
+  // (solver/bar.hpp); elastic bars are small strain either way.
+  bool finite_strain = true;
+  // Largest compressive engineering strain a material-law bar may reach with finite strain: its
+  // stable step is planned for elements that short (model/discretization.hpp).
+  std::optional<double> max_strain;
 };
 
 // ---- measured signals -------------------------------------------------------------------------
@@ -119,6 +129,12 @@ struct PulseWindows {  // manual windows on the signals' own clock override dete
   std::optional<TimeWindow> incident, reflected, transmitted;
 };
 
+// Corrections `process` applies to the 3-wave curve (analysis/specimen_corrections.hpp).
+struct CorrectionsSpec {
+  std::optional<double> friction;  // Coulomb μ of the specimen faces
+  bool inertia = false;
+};
+
 struct MeasurementSpec {
   std::filesystem::path file;  // resolved relative to the scene
   SignalFormat format = SignalFormat::kAuto;
@@ -128,6 +144,7 @@ struct MeasurementSpec {
   DispersionSpec dispersion;
   PulseWindows windows;
   std::optional<double> striker_velocity_m_s;  // if known; else inferred
+  CorrectionsSpec corrections;
 };
 
 struct Scene {

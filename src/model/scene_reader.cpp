@@ -47,6 +47,13 @@ class SceneReader {
     check_names(scene, items);
 
     if (auto v = o.get("specimen")) scene.specimen = bar_index(scene, *v);
+    // Radial inertia is the closed form of a Kolsky specimen (model/specimen_response.hpp).
+    for (std::size_t i = 0; i < scene.bars.size(); ++i)
+      if (scene.bars[i].inertia && scene.specimen != i)
+        throw JsonObject(items[i])
+            .require("inertia", "")
+            .error(
+                "radial inertia is modelled for the specimen bar only (name it in \"specimen\")");
     if (auto v = o.get("contact")) scene.contact = read_contact(*v, scene);
     if (auto v = o.get("simulation")) scene.simulation = read_simulation(*v);
     if (auto v = o.get("measurement")) {
@@ -104,7 +111,7 @@ class SceneReader {
 
   BarSpec read_bar(const JsonValue& v, bool last) {
     const auto o = v.object({"name", "material", "length", "diameter", "area", "velocity",
-                             "elements", "gap", "gauges", "notes"});
+                             "elements", "gap", "gauges", "notes", "inertia"});
     BarSpec b;
     b.name = o.require("name", "a unique name such as \"incident\"").name();
     b.material = material(o.require("material", "a name from materials, a file or an object"));
@@ -127,6 +134,13 @@ class SceneReader {
       b.gap_m = x->non_negative_quantity(Dimension::kLength);
     }
     if (auto x = o.get("notes")) x->string();
+    if (auto x = o.get("inertia")) {
+      b.inertia = x->boolean();
+      if (b.inertia && b.material.is_elastic())
+        throw x->error(
+            "radial inertia applies to a flowing specimen: give the bar a material law "
+            "(bilinear, johnson-cook or viscoelastic)");
+    }
     if (auto x = o.get("gauges")) {
       for (const auto& g : x->array()) {
         const auto go = g.object({"name", "position"});
@@ -200,16 +214,23 @@ class SceneReader {
     return p;
   }
 
+  // Coulomb coefficient of the specimen faces; the closed forms of docs/methods.md §8 are
+  // first-order in μ, and lubricated to dry metal faces span about 0.02–0.3.
+  static double read_friction(const JsonValue& v) {
+    return v.quantity_in(Dimension::kDimensionless, 0, 1, false, true);
+  }
+
   static ContactSpec read_contact(const JsonValue& v, const Scene& scene) {
-    const auto o =
-        v.object({"method", "stiffness_factor", "stiffness", "rise_time", "mass_ratio", "interfaces"});
+    const auto o = v.object({"method", "stiffness_factor", "stiffness", "rise_time", "mass_ratio",
+                             "interfaces", "friction"});
     ContactSpec c;
     if (auto m = o.get("method")) c.method = contact_method(*m);
+    if (auto f = o.get("friction")) c.friction = read_friction(*f);
     c.penalty = read_penalty(o);
     if (auto list = o.get("interfaces")) {
       for (const auto& item : list->array()) {
-        const auto io =
-            item.object({"between", "method", "stiffness_factor", "stiffness", "rise_time", "mass_ratio"});
+        const auto io = item.object({"between", "method", "stiffness_factor", "stiffness",
+                                     "rise_time", "mass_ratio", "friction"});
         const auto between =
             io.require("between", "two neighbouring bars, e.g. [\"striker\", \"incident\"]");
         const auto pair = between.array();
@@ -224,6 +245,7 @@ class SceneReader {
             throw between.error("this interface is already listed");
         if (auto m = io.get("method")) ov.method = contact_method(*m);
         ov.penalty = read_penalty(io);
+        if (auto f = io.get("friction")) ov.friction = read_friction(*f);
         c.interfaces.push_back(ov);
       }
     }
@@ -231,7 +253,8 @@ class SceneReader {
   }
 
   static SimulationSpec read_simulation(const JsonValue& v) {
-    const auto o = v.object({"duration", "sample_rate", "stepping", "courant"});
+    const auto o =
+        v.object({"duration", "sample_rate", "stepping", "courant", "kinematics", "max_strain"});
     SimulationSpec s;
     if (auto x = o.get("duration")) s.duration_s = x->positive_quantity(Dimension::kTime);
     if (auto x = o.get("sample_rate"))
@@ -244,6 +267,14 @@ class SceneReader {
     // Lumped central difference is stable for C <= 1 (docs/methods.md §1).
     if (auto x = o.get("courant"))
       s.courant = x->quantity_in(Dimension::kDimensionless, 0, 1, true, false);
+    if (auto x = o.get("kinematics")) {
+      const std::string k = x->string();
+      if (k != "finite" && k != "small") throw x->error(suggestion_text(k, {"finite", "small"}));
+      s.finite_strain = k == "finite";
+    }
+    // An engineering strain in (0, 1): the step shrinks with the shortest element.
+    if (auto x = o.get("max_strain"))
+      s.max_strain = x->quantity_in(Dimension::kDimensionless, 0, 0.95, true, false);
     return s;
   }
 

@@ -1,5 +1,7 @@
 #include "solver/bar.hpp"
 
+#include <cmath>
+
 namespace shpb {
 
 BarModel make_bar_model(std::string name, const MaterialSpec& material, double length_m,
@@ -22,7 +24,11 @@ BarModel make_bar_model(std::string name, const MaterialSpec& material, double l
   b.mass_kg.front() = b.mass_kg.back() = 0.5 * m;
   b.inverse_mass.resize(b.nodes);
   for (int i = 0; i < b.nodes; ++i) b.inverse_mass[i] = 1.0 / b.mass_kg[i];
-  if (!material.is_elastic()) b.law = make_material_law(material);
+  b.diameter_m = 2 * std::sqrt(area_m2 / M_PI);
+  if (!material.is_elastic()) {
+    b.law = make_material_law(material);
+    b.volume_change_per_stress = (1 - 2 * material.poisson_ratio) / b.law->max_tangent_modulus_Pa();
+  }
   return b;
 }
 
@@ -34,6 +40,11 @@ BarState make_bar_state(const BarModel& bar, bool full_model) {
   s.stress_Pa.assign(bar.elements(), 0.0);
   if (bar.law) {
     s.strain_next.assign(bar.elements(), 0.0);
+    s.law_stress.assign(bar.elements(), 0.0);
+    s.axial_force_N.assign(bar.elements(), 0.0);
+    s.friction_stress_Pa.assign(bar.elements(), 0.0);
+    s.strain_step.assign(bar.elements(), 0.0);
+    s.dissipation_before.assign(bar.elements(), 0.0);
     s.points.resize(bar.elements());
     bar.law->initialize(s.points);
   }

@@ -2,6 +2,18 @@
 // One bar of the chain: its immutable set-up (mesh, masses, material, own time step) and its
 // mutable state. Linear two-node elements with lumped mass (docs/methods.md §1).
 //
+// Finite strain (docs/methods.md §8; material-law bars unless the scene asks for "kinematics":
+// "small"): element e of reference length h0 and area A0 has the current length L = h0 + Δw and
+// stretch λ = L/h0; the law takes the logarithmic strain ε = ln λ (tension positive) and returns
+// the Kirchhoff stress τ = J σ, the stress work-conjugate to ε per unit reference volume (Simo &
+// Hughes 1998, "Computational Inelasticity", §9.2, logarithmic strains), so the laws' energy
+// contract holds with the reference volume. The plastic (and viscous) part of ε keeps volume; the
+// elastic part ε_e = τ/E changes it by (1 − 2ν) ε_e:
+//   J = V/V0 = exp((1 − 2ν) τ/E),  A = A0 J / λ,  true (Cauchy) stress σ = τ / J,
+//   axial force N = A σ = τ A0 / λ.
+// For metals J − 1 < 0.2 %, so τ and σ differ by less than that. The area is the element's own
+// (a barrel-free, uniform section), and the end elements' N is the force the interfaces see.
+//
 // Displacements are stored RELATIVE to the bar's initial rigid motion, u(x,t) = w(x,t) + V0·τ
 // (τ = time since the start of the run): a node no wave has reached has w = 0 and v = 0 exactly,
 // so the causal economy (docs/methods.md §7) can skip it and still give bit-identical results.
@@ -28,6 +40,21 @@ struct BarModel {
   std::vector<double> mass_kg;      // lumped: ρAh/2 at the ends, ρAh inside
   std::vector<double> inverse_mass;
   std::unique_ptr<MaterialLaw> law;  // null: elastic, σ = E ε in the solver's own kernel
+  bool finite_strain = false;        // material-law bars: logarithmic strain, current area (above)
+  double volume_change_per_stress = 0;  // (1 − 2ν)/E of the law's elastic part, for J
+  double min_stretch = 0;  // the stable step holds down to this λ (discretization.hpp)
+  // Interface friction on the specimen's faces (docs/methods.md §8): the axial stress of an
+  // element that flows (its law dissipates) in compression is raised by the factor
+  // φ = 1 + friction_factor_per_aspect · d/L of the whole bar's current diameter and length.
+  double friction_factor_per_aspect = 0;  // μ/(3√3), μ the mean of the two faces' coefficients
+  double diameter_m = 0;
+  // Radial inertia (docs/methods.md §8, model/specimen_response.hpp): every element's axial
+  // stress gets the closed-form extra ρ a² (ε̈/8 + ε̇²/16) of the whole bar's true strain rate ε̇
+  // and current radius a. ε̈ is differenced from step to step and low-passed over
+  // inertia_filter_s: the bar ends move in the neighbours' (coarser) steps, and the raw difference
+  // of a few specimen steps is their staircase. The radial kinetic energy ρ V a² ε̇²/16 is counted.
+  double radial_inertia_density_kg_m3 = 0;  // ρ; 0: off
+  double inertia_filter_s = 0;
   // Causal economy (docs/methods.md §7): the right end of the last bar may be cut where its
   // reflections cannot reach anything recorded; the cut end is an exact non-reflecting dashpot.
   int full_nodes = 0;            // nodes of the uncut mesh
@@ -47,8 +74,19 @@ struct BarState {
   std::vector<double> w;      // displacement relative to the rigid motion [m]
   std::vector<double> v;      // relative velocity at t_{n−1/2} [m/s]
   std::vector<double> force;  // nodal force at t_n [N]
-  std::vector<double> stress_Pa;  // element stress at t_n (material-law bars and recorders)
-  std::vector<double> strain_next;  // scratch for material laws
+  std::vector<double> stress_Pa;      // element true (Cauchy) stress at t_n (material-law bars)
+  std::vector<double> axial_force_N;  // element axial force N = A σ at t_n (material-law bars)
+  std::vector<double> friction_stress_Pa;  // (φ − 1) τ of the last step (friction work)
+  std::vector<double> strain_step;         // scratch: Δε of the step (friction work)
+  std::vector<double> dissipation_before;  // scratch: the law's dissipation before the step
+  double smallest_stretch = 1;             // smallest element λ reached so far (finite strain)
+  double inertia_rate_1_s = 0;  // whole-bar true strain rate at t_{n−1/2} (compression +)
+  double inertia_acceleration_1_s2 = 0;  // its low-passed derivative
+  double inertia_stress_Pa = 0;          // the radial-inertia stress applied at t_n (compression +)
+  bool inertia_flowing = false;          // the radial-inertia stress is on (bar_integrator.cpp)
+  bool inertia_finished = false;         // the loading is over: off for the rest of the run
+  std::vector<double> strain_next;       // scratch for material laws: ε at t_n
+  std::vector<double> law_stress;        // scratch for material laws: τ at t_n
   std::vector<MaterialPointState> points;  // material-law bars only
   long step = 0;               // n
   int lo = 0, hi = -1;         // nodes that may differ from rest: [lo, hi] (empty if lo > hi)

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "model/specimen_response.hpp"
+
 namespace shpb {
 
 namespace {
@@ -39,24 +41,94 @@ SHPB_NODE_LOOP void kick_drift(double* __restrict w, double* __restrict v, const
   }
 }
 
-// Material-law kernel: element strains → one law update for the range → nodal forces
-// f_i = A (σ_i − σ_{i−1}).
+// Material-law kernel: element strains → one law update for the range → axial forces N_e →
+// nodal forces f_i = N_i − N_{i−1}. Finite strain, friction and radial inertia as in bar.hpp.
 void law_forces(const BarModel& bar, BarState& s, int lo, int hi, double dt) {
   const int last = bar.nodes - 1;
   const int e0 = std::max(lo - 1, 0), e1 = std::min(hi, last - 1);
-  const double inv_h = 1.0 / bar.element_length_m;
-  for (int e = e0; e <= e1; ++e) s.strain_next[e] = (s.w[e + 1] - s.w[e]) * inv_h;
+  const double h0 = bar.element_length_m, inv_h = 1.0 / h0;
+  if (bar.finite_strain) {
+    for (int e = e0; e <= e1; ++e) s.strain_next[e] = std::log1p((s.w[e + 1] - s.w[e]) * inv_h);
+  } else {
+    for (int e = e0; e <= e1; ++e) s.strain_next[e] = (s.w[e + 1] - s.w[e]) * inv_h;
+  }
+  // Friction work ½((φ−1)τ)_n Δε + ½((φ−1)τ)_{n+1} Δε per reference volume, trapezoidal like
+  // the laws' own (material_law.hpp, energy contract): first half here, before the update.
+  const bool friction = bar.friction_factor_per_aspect > 0;
+  const double V0 = bar.area_m2 * h0;
+  if (friction)
+    for (int e = e0; e <= e1; ++e) {
+      s.strain_step[e] = s.strain_next[e] - s.points[e].strain;
+      s.dissipated_J += 0.5 * V0 * s.friction_stress_Pa[e] * s.strain_step[e];
+      s.dissipation_before[e] = s.points[e].dissipated_J_m3;
+    }
   const std::size_t n = static_cast<std::size_t>(e1 - e0 + 1);
   bar.law->update(std::span<const double>(s.strain_next.data() + e0, n), dt,
                   std::span<MaterialPointState>(s.points.data() + e0, n),
-                  std::span<double>(s.stress_Pa.data() + e0, n));
-  const double A = bar.area_m2;
-  const double* sigma = s.stress_Pa.data();
+                  std::span<double>(s.law_stress.data() + e0, n));
+  // Friction factor φ of the whole bar at its current aspect (volume-conserving diameter).
+  double phi = 1;
+  if (friction) {
+    const double length0 = h0 * bar.elements();
+    const double stretch = 1 + (s.w[last] - s.w[0]) / length0;
+    const double d = bar.finite_strain ? bar.diameter_m / std::sqrt(stretch) : bar.diameter_m;
+    phi = 1 + bar.friction_factor_per_aspect * d / (length0 * stretch);
+  }
+  // Radial inertia of the whole bar (bar.hpp), compression positive.
+  double inertia = 0;
+  if (bar.radial_inertia_density_kg_m3 > 0) {
+    const double length0 = h0 * bar.elements();
+    const double stretch = 1 + (s.w[last] - s.w[0]) / length0;
+    const double rate = -(s.v[last] - s.v[0]) / (length0 * stretch);
+    const double raw = s.step > 0 ? (rate - s.inertia_rate_1_s) / dt : 0.0;
+    s.inertia_acceleration_1_s2 +=
+        (raw - s.inertia_acceleration_1_s2) * dt / (dt + bar.inertia_filter_s);
+    s.inertia_rate_1_s = rate;
+    // Only during the loading of the test: from when the bar is squeezed (both end elements
+    // compressive) and shortening until it first stops shortening. The closed form is that of
+    // volume-conserving flow, and once contact opens a free specimen's lumped end masses are far
+    // lighter than the radial mass ρπa⁴/(8L) the explicit term would put between them.
+    if (s.inertia_flowing && rate <= 0) s.inertia_finished = true;
+    const bool flowing =
+        !s.inertia_finished && rate > 0 && s.law_stress[0] < 0 && s.law_stress[last - 1] < 0;
+    const double radius = 0.5 * bar.diameter_m / (bar.finite_strain ? std::sqrt(stretch) : 1.0);
+    if (flowing)
+      inertia = radial_inertia_stress(bar.radial_inertia_density_kg_m3, radius, rate,
+                                      s.inertia_acceleration_1_s2);
+    s.inertia_stress_Pa = inertia;
+    s.inertia_flowing = flowing;
+  }
+  const double A0 = bar.area_m2;
+  for (int e = e0; e <= e1; ++e) {
+    const double tau = s.law_stress[e];
+    // Friction raises the pressure needed for flow (Dharan & Hauser): it acts while the element
+    // flows (its law dissipates) under face pressure (compressive stress), not on elastic
+    // loading or unloading.
+    const bool flows = friction && tau < 0 && s.points[e].dissipated_J_m3 > s.dissipation_before[e];
+    const double excess = flows ? (phi - 1) * tau : 0.0;
+    if (friction) {
+      s.friction_stress_Pa[e] = excess;
+      s.dissipated_J += 0.5 * V0 * excess * s.strain_step[e];
+    }
+    if (bar.finite_strain) {
+      const double stretch = 1 + (s.w[e + 1] - s.w[e]) * inv_h;
+      const double J = std::exp(bar.volume_change_per_stress * tau);
+      const double axial = tau + excess - inertia * J;  // Kirchhoff: the true inertia stress × J
+      s.axial_force_N[e] = axial * A0 / stretch;
+      s.stress_Pa[e] = axial / J;
+      s.smallest_stretch = std::min(s.smallest_stretch, stretch);
+    } else {
+      const double axial = tau + excess - inertia;
+      s.axial_force_N[e] = axial * A0;
+      s.stress_Pa[e] = axial;
+    }
+  }
+  const double* N = s.axial_force_N.data();
   double* f = s.force.data();
   int a = lo, b = hi;
-  if (a == 0) f[a++] = A * (sigma[0] - 0.0);          // free left end
-  if (b == last && b >= a) f[b--] = A * (0.0 - sigma[last - 1]);  // free right end
-  for (int i = a; i <= b; ++i) f[i] = A * (sigma[i] - sigma[i - 1]);
+  if (a == 0) f[a++] = N[0] - 0.0;                      // free left end
+  if (b == last && b >= a) f[b--] = 0.0 - N[last - 1];  // free right end
+  for (int i = a; i <= b; ++i) f[i] = N[i] - N[i - 1];
 }
 }  // namespace
 
@@ -105,7 +177,7 @@ long advance(const BarModel& bar, BarState& s) {
 double end_free_force_at(const BarModel& bar, const BarState& s, int end, double tau_n,
                          double tau, double end_w) {
   const int last = bar.nodes - 1;
-  if (bar.law) return end == 0 ? bar.area_m2 * s.stress_Pa[0] : -bar.area_m2 * s.stress_Pa[last - 1];
+  if (bar.law) return end == 0 ? s.axial_force_N[0] : -s.axial_force_N[last - 1];  // current area
   const int other = end == 0 ? 1 : last - 1;
   const double back = tau_n - tau;
   const double w_end = std::isnan(end_w) ? s.w[end] - back * s.v[end] : end_w;
@@ -136,6 +208,15 @@ BarEnergy bar_energy(const BarModel& bar, const BarState& s) {
       for (int k = 0; k < bar.elements(); ++k) {
         e.strain_J += volume * bar.law->stored_energy_J_m3(s.points[k]);
         e.dissipated_J += volume * s.points[k].dissipated_J_m3;
+      }
+      if (bar.radial_inertia_density_kg_m3 > 0) {
+        // Radial kinetic energy of volume-conserving flow, ρ V a² ε̇²/16 (bar.hpp).
+        const double length0 = bar.element_length_m * bar.elements();
+        const double stretch = bar.finite_strain ? 1 + (s.w.back() - s.w.front()) / length0 : 1.0;
+        const double a2 = 0.25 * bar.diameter_m * bar.diameter_m / stretch;
+        const double rate = s.inertia_flowing ? s.inertia_rate_1_s : 0.0;
+        e.kinetic_J +=
+            bar.radial_inertia_density_kg_m3 * volume * bar.elements() * a2 * rate * rate / 16;
       }
     } else {
       for (int k = e0; k <= e1; ++k) {

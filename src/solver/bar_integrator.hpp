@@ -35,10 +35,16 @@ long advance(const BarModel& bar, BarState& s);
 double end_free_force_at(const BarModel& bar, const BarState& s, int end, double tau_n, double tau,
                          double end_w);
 
-// Element stress at t_n (tension positive).
+// Element stress at t_n (tension positive): true (Cauchy) stress, force over current area.
 inline double element_stress(const BarModel& bar, const BarState& s, int e) {
   if (bar.law) return s.stress_Pa[e];
   return bar.youngs_modulus_Pa * (s.w[e + 1] - s.w[e]) / bar.element_length_m;
+}
+// Engineering stress at t_n: axial force over the initial area (equal to the above in small
+// strain).
+inline double element_engineering_stress(const BarModel& bar, const BarState& s, int e) {
+  if (bar.law) return s.axial_force_N[e] / bar.area_m2;
+  return element_stress(bar, s, e);
 }
 
 // Energy of the bar at its current instant t_n; call between assemble and advance (the

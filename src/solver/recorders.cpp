@@ -13,6 +13,9 @@ namespace {
 constexpr long kEnergyPoints = 200;
 // A field row needs at least this many points per bar so that short bars (the specimen) show.
 constexpr int kMinFieldPointsPerBar = 5;
+// specimen.csv: strain, strain_rate_1_s, stress_Pa, front_stress_Pa, back_stress_Pa, true_strain,
+// true_stress_Pa.
+constexpr int kSpecimenColumns = 7;
 
 long grid_count(double span, double spacing) {
   return span < 0 ? 0 : static_cast<long>(std::floor(span / spacing + 1e-9)) + 1;
@@ -75,7 +78,8 @@ ChainRecorders::ChainRecorders(const Scene& scene, const Chain& chain,
     }
     r.gauge_sampler = GridSampler(tau0, sample_spacing_s_, samples_, static_cast<int>(r.gauges.size()));
     r.specimen = scene.specimen && *scene.specimen == i;
-    if (r.specimen) r.specimen_sampler = GridSampler(tau0, sample_spacing_s_, samples_, 5);
+    if (r.specimen)
+      r.specimen_sampler = GridSampler(tau0, sample_spacing_s_, samples_, kSpecimenColumns);
     r.energy_sampler = GridSampler(0.0, energy_spacing_, energy_samples_, 3);
     if (record_field_) {
       const double length = h * ne;
@@ -128,14 +132,24 @@ void ChainRecorders::on_bar_instant(const Chain& chain, std::size_t i, double ta
   if (r.specimen && r.specimen_sampler.wants(tau_next)) {
     const int last = bar.nodes - 1;
     const double length = bar.element_length_m * bar.elements();
-    double mean = 0;
-    for (int e = 0; e < bar.elements(); ++e) mean += element_stress(bar, s, e);
+    double mean = 0, mean_true = 0;
+    for (int e = 0; e < bar.elements(); ++e) {
+      mean += element_engineering_stress(bar, s, e);
+      mean_true += element_stress(bar, s, e);
+    }
     mean /= bar.elements();
-    // Compression positive (docs/outputs.md).
-    const double values[5] = {-(s.w[last] - s.w[0]) / length,
-                              -(node_velocity_now(bar, s, last) - node_velocity_now(bar, s, 0)) / length,
-                              -mean, -element_stress(bar, s, 0),
-                              -element_stress(bar, s, bar.elements() - 1)};
+    mean_true /= bar.elements();
+    // Compression positive (docs/outputs.md): engineering strain and stress (force over the
+    // initial area), then logarithmic strain and the mean true stress (force over current area).
+    const double strain = -(s.w[last] - s.w[0]) / length;
+    const double values[kSpecimenColumns] = {
+        strain,
+        -(node_velocity_now(bar, s, last) - node_velocity_now(bar, s, 0)) / length,
+        -mean,
+        -element_engineering_stress(bar, s, 0),
+        -element_engineering_stress(bar, s, bar.elements() - 1),
+        -std::log1p(-strain),
+        -mean_true};
     r.specimen_sampler.push(tau_n, values);
   }
   if (r.energy_sampler.wants(tau_next)) {
@@ -221,12 +235,13 @@ void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& resu
   for (const BarRecorder& r : bars_) {
     if (!r.specimen) continue;
     TimeSeries& ts = result.specimen;
-    ts.columns = {"strain", "strain_rate_1_s", "stress_Pa", "front_stress_Pa", "back_stress_Pa"};
+    ts.columns = {"strain",         "strain_rate_1_s", "stress_Pa",     "front_stress_Pa",
+                  "back_stress_Pa", "true_strain",     "true_stress_Pa"};
     const long n = time_count(r.specimen_sampler.filled());
-    ts.values.assign(5, std::vector<double>(n));
+    ts.values.assign(kSpecimenColumns, std::vector<double>(n));
     for (long k = 0; k < n; ++k) {
       ts.time_s.push_back(k * sample_spacing_s_);
-      for (int c = 0; c < 5; ++c) ts.values[c][k] = r.specimen_sampler.at(k, c);
+      for (int c = 0; c < kSpecimenColumns; ++c) ts.values[c][k] = r.specimen_sampler.at(k, c);
     }
   }
   // Energy.

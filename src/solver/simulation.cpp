@@ -8,6 +8,7 @@
 #include "core/checked_write.hpp"
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
+#include "model/specimen_response.hpp"
 #include "solver/chain.hpp"
 #include "solver/recorders.hpp"
 #include "solver/scheduler.hpp"
@@ -26,6 +27,27 @@ double first_contact_delay(const Scene& scene) {
     if (closing > 0) delay = std::min(delay, scene.bars[k].gap_m / closing);
   }
   return std::isfinite(delay) ? delay : 0.0;
+}
+
+// Low-pass time of the radial-inertia ε̈, in elastic transits L/c of the bar (solver/bar.hpp).
+constexpr double kInertiaFilterTransits = 0.25;
+
+// Kinematics, face friction and radial inertia of bar i (solver/bar.hpp; docs/methods.md §8).
+void configure_bar(BarModel& bar, const Scene& scene, std::size_t i) {
+  if (!bar.law) return;
+  bar.finite_strain = scene.simulation.finite_strain;
+  bar.min_stretch = 1 - scene.simulation.max_strain.value_or(kDefaultMaxStrain);
+  // Friction on the specimen's faces only (the closed form is a Kolsky specimen's); a free end
+  // has none; two faces of different μ act through their mean (first order).
+  if (!scene.specimen || *scene.specimen != i) return;
+  const double left = i > 0 ? interface_friction(scene.contact, i - 1) : 0.0;
+  const double right = i + 1 < scene.bars.size() ? interface_friction(scene.contact, i) : 0.0;
+  bar.friction_factor_per_aspect = friction_factor_per_aspect(0.5 * (left + right));
+  if (scene.bars[i].inertia) {  // the reader allows it on the specimen only
+    bar.radial_inertia_density_kg_m3 = bar.density_kg_m3;
+    bar.inertia_filter_s =
+        kInertiaFilterTransits * bar.element_length_m * bar.elements() / bar.wave_speed_m_s;
+  }
 }
 
 // docs/methods.md §7: lumped central difference moves information by exactly one node per step, and
@@ -49,6 +71,7 @@ void cut_last_bar(Chain& c, const Scene& scene) {
                        elements, bar.time_step_s, spec.velocity_m_s);
   bar.full_nodes = full_nodes;
   bar.dashpot_right = true;
+  configure_bar(bar, scene, scene.bars.size() - 1);
   c.states.back() = make_bar_state(bar, false);
 }
 
@@ -58,6 +81,7 @@ Chain build_chain(const Scene& scene, const ChainDiscretization& d, bool full_mo
     const BarSpec& spec = scene.bars[i];
     c.bars.push_back(make_bar_model(spec.name, spec.material, spec.length_m, spec.area_m2,
                                     d.bars[i].elements, d.bars[i].time_step_s, spec.velocity_m_s));
+    configure_bar(c.bars.back(), scene, i);
     c.states.push_back(make_bar_state(c.bars.back(), full_model));
   }
   for (std::size_t k = 0; k + 1 < c.bars.size(); ++k) {
@@ -116,6 +140,18 @@ SimulationResult simulate(const Scene& scene, const SimulationOptions& options) 
 
   result.stable = outcome.stable;
   result.failure = outcome.failure;
+  // Finite strain: elements shorter than the step was planned for (discretization.hpp).
+  for (std::size_t i = 0; i < chain.bars.size(); ++i) {
+    const BarModel& b = chain.bars[i];
+    if (!b.finite_strain || chain.states[i].smallest_stretch >= b.min_stretch) continue;
+    result.stable = false;
+    result.failure = "bar \"" + b.name + "\" was compressed to " +
+                     std::to_string(1 - chain.states[i].smallest_stretch) +
+                     " engineering strain in an element, beyond the " +
+                     std::to_string(1 - b.min_stretch) +
+                     " its stable step was planned for: raise simulation.max_strain";
+    break;
+  }
   result.energy_error = outcome.energy_error;
   result.max_penetration_m = std::max(0.0, chain.max_penetration_m);
   recorders.finish(chain, outcome.checked_until_s, result);
@@ -188,6 +224,8 @@ void write_simulation_outputs(const SimulationResult& result, const Scene& scene
   j["scene"] = scene.name;
   j["contact"] = std::string(to_string(scene.contact.method));
   j["stepping"] = std::string(to_string(result.discretization.stepping));
+  // Material-law bars only; elastic bars are small strain either way (solver/bar.hpp).
+  j["kinematics"] = scene.simulation.finite_strain ? "finite" : "small";
   j["duration_s"] = result.discretization.duration_s;
   j["sample_rate_Hz"] = result.discretization.sample_rate_Hz;
   nlohmann::ordered_json bars = nlohmann::json::array();

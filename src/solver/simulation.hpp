@@ -63,7 +63,9 @@ struct SimulationResult {
   ChainDiscretization discretization;
   TimeSeries gauges;      // one strain column per gauge (tension positive), named by the gauge
   TimeSeries interfaces;  // "<left>-<right>_force_N" (compression positive), "<left>-<right>_gap_m"
-  TimeSeries specimen;    // strain, strain_rate_1_s, stress_Pa, front_stress_Pa, back_stress_Pa
+  // strain, strain_rate_1_s, stress_Pa, front_stress_Pa, back_stress_Pa (engineering: force over
+  // the initial area), true_strain (−ln(1 − strain)), true_stress_Pa (force over current area)
+  TimeSeries specimen;
   TimeSeries energy;      // kinetic_J, strain_J, contact_J, dissipated_J, total_J
   FieldGrid field;
   std::vector<BarStatistics> bars;

@@ -206,8 +206,8 @@ const std::vector<BadScene>& cases() {
        "contact.interfaces[0].between"},
       {"a negative penalty stiffness",
        [](json& s, json&) { s["contact"]["stiffness"] = "-1e9 N/m"; }, "contact.stiffness"},
-      {"a contact rise time in metres",
-       [](json& s, json&) { s["contact"]["rise_time"] = "1 mm"; }, "contact.rise_time: \"1 mm\""},
+      {"a contact rise time in metres", [](json& s, json&) { s["contact"]["rise_time"] = "1 mm"; },
+       "contact.rise_time: \"1 mm\""},
       {"a stiffness and a rise time for the same interface",
        [](json& s, json&) {
          s["contact"]["interfaces"] = {
@@ -217,6 +217,29 @@ const std::vector<BadScene>& cases() {
        "rise_time"},
       {"a Courant number above 1", [](json& s, json&) { s["simulation"]["courant"] = 1.5; },
        "simulation.courant: 1.5: must be in (0, 1]"},
+      {"a misspelt kinematics", [](json& s, json&) { s["simulation"]["kinematics"] = "smal"; },
+       "simulation.kinematics: \"smal\": did you mean \"small\"?"},
+      {"a friction coefficient of 1.5", [](json& s, json&) { s["contact"]["friction"] = 1.5; },
+       "contact.friction: 1.5"},
+      {"a negative interface friction",
+       [](json& s, json&) {
+         s["contact"]["interfaces"] = {{{"between", {"incident", "specimen"}}, {"friction", -0.1}}};
+       },
+       "contact.interfaces[0].friction: -0.1"},
+      {"inertia on a bar that is not the specimen",
+       [](json& s, json& m) {
+         s["bars"][1]["material"] = "specimen.json";
+         s["bars"][1]["inertia"] = true;
+         (void)m;
+       },
+       "bars[1].inertia: true: radial inertia is modelled for the specimen bar only"},
+      {"inertia on an elastic bar", [](json& s, json&) { s["bars"][1]["inertia"] = true; },
+       "bars[1].inertia: true: radial inertia applies to a flowing specimen"},
+      {"a correction friction of 2",
+       [](json& s, json&) {
+         s["measurement"]["corrections"] = {{"friction", 2}};
+       },
+       "measurement.corrections.friction: 2"},
       {"a negative duration", [](json& s, json&) { s["simulation"]["duration"] = "-800 us"; },
        "simulation.duration"},
       {"a sample rate in seconds", [](json& s, json&) { s["simulation"]["sample_rate"] = "10 us"; },
