@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "analysis/pulse_window.hpp"
+#include "core/csv_writer.hpp"  // format_double
 #include "core/error.hpp"
 
 namespace shpb {
@@ -69,6 +70,14 @@ KolskySetup resolve_setup(const Scene& scene, const std::vector<std::string>& av
   k.back = side_of(tra);
   k.front_waveguide = waveguide_of(inc);
   k.back_waveguide = waveguide_of(tra);
+  // Pochhammer–Chree tables are computed for 0 ≤ ν ≤ 0.49 (docs/methods.md §5): bar steels,
+  // aluminium, titanium and PMMA lie well inside; auxetic (ν < 0) bars are not supported.
+  for (const std::size_t b : {s - 1, s + 1})
+    if (const double nu = scene.bars[b].material.poisson_ratio; !(nu >= 0 && nu <= 0.49))
+      throw input_error(file, "bars[" + std::to_string(b) + "].material.poisson_ratio",
+                        format_double(nu),
+                        "must be in [0, 0.49] for a bar whose pulses are processed (dispersion "
+                        "tables cover that range; auxetic bars are not supported)");
   k.specimen = {scene.bars[s].length_m, scene.bars[s].area_m2};
   k.incident_impedance_kg_s = inc.impedance_kg_s();
   if (s >= 2) {

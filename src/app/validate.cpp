@@ -5,6 +5,7 @@
 #include <string>
 
 #include "app/commands.hpp"
+#include "core/output_folder.hpp"
 #include "core/csv_writer.hpp"
 #include "model/discretization.hpp"
 #include "model/scene_checks.hpp"
@@ -178,6 +179,7 @@ int run_validate(const ValidateArgs& args) {
   Scene scene = read_scene(args.scene);
   apply_overrides(args.overrides, scene);
   const json setup = resolved_setup(scene, discretize(scene));
+  throw_if_interrupted();  // a signal during the checks: exit 130, not a report
   if (args.json)
     std::printf("%s\n", setup.dump(2).c_str());
   else

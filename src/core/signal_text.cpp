@@ -7,6 +7,8 @@
 #include <iterator>
 
 #include "core/error.hpp"
+#include "core/input_file.hpp"
+#include "core/output_folder.hpp"
 
 namespace shpb {
 namespace {
@@ -78,13 +80,8 @@ std::string text_place(std::size_t line, std::size_t column_index) {
 }
 
 DelimitedText read_delimited_text(const std::filesystem::path& file) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(file, ec))
-    throw input_error(file.string(), "", "", "is a folder; expected a signal file");
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw input_error(file.string(), "", "", "cannot be read");
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw input_error(file.string(), "", "", "cannot be read");
+  // Type (no FIFO or device) and size checked before reading: 1 GiB is far beyond any record.
+  std::string bytes = read_input_file(file, file.string(), "a signal file", std::uintmax_t{1} << 30);
   // Byte order marks: UTF-8 is dropped (spreadsheets write it); UTF-16 text is refused by name
   // rather than failing later on the NUL bytes between its characters.
   if (bytes.rfind("\xEF\xBB\xBF", 0) == 0) bytes.erase(0, 3);
@@ -99,6 +96,7 @@ DelimitedText read_delimited_text(const std::filesystem::path& file) {
   for (std::size_t i = 0; i <= bytes.size(); ++i) {
     const bool end = i == bytes.size();
     if (end || bytes[i] == '\n' || bytes[i] == '\r') {
+      if (line_no % 65536 == 0) throw_if_interrupted();  // a long record stops within a second
       std::string_view l(bytes.data() + start, i - start);
       if (l.find_first_not_of(" \t") != std::string_view::npos) lines.emplace_back(line_no, l);
       if (!end && bytes[i] == '\r' && i + 1 < bytes.size() && bytes[i + 1] == '\n') ++i;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "core/output_folder.hpp"
 #include "dispersion/pochhammer_chree.hpp"
 
 namespace shpb {
@@ -16,6 +17,7 @@ DispersionTable::DispersionTable(double poisson, double max_x, int points) : poi
   double c = 1.0;
   double prev_surface = 1.0;
   for (int i = 0; i < points; ++i) {
+    throw_if_interrupted();  // root finding: a long table stops within a second of a signal
     const double x = max_x * i / (points - 1);
     c = shpb::phase_velocity(poisson, x, i > 0 ? c : 0.0);
     fa_[i] = x * c;
