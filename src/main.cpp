@@ -27,8 +27,7 @@ void add_run_options(CLI::App* cmd, RunOverrides& o, std::string& contact, std::
       ->check(CLI::IsMember({"asynchronous", "global"}));
   cmd->add_option("--courant", o.courant, "Courant number of every bar, c·Δt/h (default ≈ 0.99)")
       ->check(CLI::Range(1e-3, 2.0));
-  cmd->add_option("--threads", o.threads, "Worker threads (0 = all cores)")
-      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--threads", o.threads, "Worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
   cmd->add_flag("--quiet,-q", o.quiet, "No progress output on stderr");
 }
 
@@ -57,12 +56,10 @@ int main(int argc, char** argv) {
   std::string contact, stepping;
 
   SimulateArgs sim;
-  auto* simulate = app.add_subcommand("simulate",
-                                      "Run a scene; write gauges.csv, interfaces.csv, "
-                                      "specimen.csv, energy.csv, field.csv, summary.json");
+  auto* simulate = app.add_subcommand("simulate", "Run a scene; write gauges.csv, interfaces.csv, "
+                                                  "specimen.csv, energy.csv, field.csv, summary.json");
   simulate->add_option("scene", sim.scene, "Scene JSON file")->required();
-  simulate->add_option("-o,--output", sim.output, "Output folder (replaced atomically)")
-      ->required();
+  simulate->add_option("-o,--output", sim.output, "Output folder (replaced atomically)")->required();
   simulate->add_flag("--full-model", sim.full_model,
                      "Update every node of every bar from the start (no causal economy)");
   add_run_options(simulate, sim.overrides, contact, stepping);
@@ -70,13 +67,11 @@ int main(int argc, char** argv) {
   ProcessArgs proc;
   std::string signals;
   auto* process = app.add_subcommand(
-      "process",
-      "Reduce gauge signals (the scene's measurement, or --signals) to aligned pulses "
-      "and 1/2/3-wave stress–strain curves; write pulses.csv, curve.csv, summary.json");
+      "process", "Reduce gauge signals (the scene's measurement, or --signals) to aligned pulses "
+                 "and 1/2/3-wave stress–strain curves; write pulses.csv, curve.csv, summary.json");
   process->add_option("scene", proc.scene, "Scene JSON file (bars, gauges, specimen, measurement)")
       ->required();
-  process->add_option("-o,--output", proc.output, "Output folder (replaced atomically)")
-      ->required();
+  process->add_option("-o,--output", proc.output, "Output folder (replaced atomically)")->required();
   process->add_option("--signals", signals,
                       "Gauge signals to process instead of the scene's measurement, e.g. a "
                       "gauges.csv written by `shpb simulate`");
@@ -86,9 +81,8 @@ int main(int argc, char** argv) {
   std::string striker_velocity;
   bool no_dispersion = false;
   auto* compare = app.add_subcommand(
-      "compare",
-      "Simulate the scene and compare its gauge signals with the measured ones, pulse "
-      "by pulse; write comparison.csv and summary.json");
+      "compare", "Simulate the scene and compare its gauge signals with the measured ones, pulse "
+                 "by pulse; write comparison.csv and summary.json");
   compare->add_option("scene", cmp.scene, "Scene JSON file with a measurement")->required();
   compare->add_option("-o,--output", cmp.output, "Output folder (replaced atomically)")->required();
   compare->add_flag("--no-dispersion", no_dispersion,
@@ -102,19 +96,16 @@ int main(int argc, char** argv) {
   DispersionArgs disp;
   std::string radius, c0;
   auto* dispersion = app.add_subcommand(
-      "dispersion",
-      "Print or write the first-mode Pochhammer–Chree curve of a solid round bar: "
-      "a_over_lambda,c_over_c0,cg_over_c0,f_a_over_c0[,frequency_Hz]");
+      "dispersion", "Print or write the first-mode Pochhammer–Chree curve of a solid round bar: "
+                    "a_over_lambda,c_over_c0,cg_over_c0,f_a_over_c0[,frequency_Hz]");
   dispersion->add_option("--poisson", disp.poisson, "Poisson ratio of the bar, in [0, 0.49]")
       ->required()
       ->check(CLI::Range(0.0, 0.49));
-  dispersion
-      ->add_option("--a-over-lambda", disp.a_over_lambda,
-                   "Explicit list of radius/wavelength values")
+  dispersion->add_option("--a-over-lambda", disp.a_over_lambda,
+                         "Explicit list of radius/wavelength values")
       ->delimiter(',');
-  dispersion
-      ->add_option("--max-a-over-lambda", disp.max_a_over_lambda,
-                   "Largest a/Λ of an evenly spaced table (default 1.6)")
+  dispersion->add_option("--max-a-over-lambda", disp.max_a_over_lambda,
+                         "Largest a/Λ of an evenly spaced table (default 1.6)")
       ->check(CLI::PositiveNumber);
   dispersion->add_option("--points", disp.points, "Number of table points (default 321)")
       ->check(CLI::Range(2, 1000000));
@@ -124,33 +115,27 @@ int main(int argc, char** argv) {
 
   StudyArgs study;
   auto* study_cmd = app.add_subcommand(
-      "study",
-      "Sweep contact methods, steppings, resolutions and penalty parameters: accuracy "
-      "against cost (pareto.csv) and stability maps (stability.csv)");
+      "study", "Sweep contact methods, steppings, resolutions and penalty parameters: accuracy "
+               "against cost (pareto.csv) and stability maps (stability.csv)");
   study_cmd->add_option("scene", study.scene, "Scene JSON file")->required();
-  study_cmd->add_option("-o,--output", study.output, "Output folder (replaced atomically)")
-      ->required();
+  study_cmd->add_option("-o,--output", study.output, "Output folder (replaced atomically)")->required();
   study_cmd->add_option("--sweep", study.sweep, "pareto | stability")
       ->check(CLI::IsMember({"pareto", "stability"}));
   add_run_options(study_cmd, study.overrides, contact, stepping);
 
   ValidateArgs val;
   auto* validate = app.add_subcommand(
-      "validate",
-      "Check a scene and print the resolved set-up (materials, meshes, time steps, "
-      "Courant numbers, gauges, interfaces) without running it");
+      "validate", "Check a scene and print the resolved set-up (materials, meshes, time steps, "
+                  "Courant numbers, gauges, interfaces) without running it");
   validate->add_option("scene", val.scene, "Scene JSON file")->required();
   validate->add_flag("--json", val.json, "Print the resolved set-up as JSON");
   add_run_options(validate, val.overrides, contact, stepping);
 
   ReportArgs rep;
   auto* report = app.add_subcommand(
-      "report",
-      "Turn an output folder of simulate/process/compare/study into PNG figures and one "
-      "self-contained report.html (needs python3 with matplotlib)");
-  report->add_option("folder", rep.folder, "Output folder")
-      ->required()
-      ->check(CLI::ExistingDirectory);
+      "report", "Turn an output folder of simulate/process/compare/study into PNG figures and one "
+                "self-contained report.html (needs python3 with matplotlib)");
+  report->add_option("folder", rep.folder, "Output folder")->required()->check(CLI::ExistingDirectory);
 
   try {
     app.parse(argc, argv);
