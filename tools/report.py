@@ -671,6 +671,11 @@ def summary_html(src):
         return ""
     scalars = [(k, v) for k, v in s.items() if not isinstance(v, (dict, list))]
     out = []
+    # Plausibility warnings head the results: a run can be stable and still not physical.
+    warnings = s.get("warnings")
+    if isinstance(warnings, list) and warnings:
+        out.append("<div class='warn'><b>Warnings</b><ul>"
+                   + "".join(f"<li>{html.escape(str(w))}</li>" for w in warnings) + "</ul></div>")
     if scalars:
         out.append("<table class='kv'>")
         for k, v in scalars:
@@ -717,6 +722,7 @@ figcaption{font-size:.9em;color:#444;margin-top:.3em}
 table{border-collapse:collapse;font-size:.85em;margin:.5em 0}
 td,th{border:1px solid #ccc;padding:2px 6px;text-align:left}th{background:#f2f2f2}
 .meta{color:#666;font-size:.9em}.cap{font-weight:bold;margin-bottom:0}
+.warn{border:2px solid #c60;background:#fff4e5;padding:.3em .8em;margin:.5em 0}
 pre{font-size:.8em;background:#f8f8f8;padding:.5em;overflow-x:auto}
 """
 

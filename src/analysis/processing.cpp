@@ -88,9 +88,36 @@ KolskySetup resolve_setup(const Scene& scene, const std::vector<std::string>& av
   return k;
 }
 
+std::vector<std::string> signal_warnings(const GaugeSignals& signals) {
+  std::vector<std::string> warnings;
+  if (signals.time_s.size() < kMinRecordSamples)
+    warnings.push_back("the record has only " + std::to_string(signals.time_s.size()) +
+                       " samples: too few to resolve a pulse (check the sample rate)");
+  for (std::size_t g = 0; g < signals.gauges.size(); ++g) {
+    const std::vector<double>& x = signals.strain[g];
+    if (x.empty()) continue;
+    const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
+    for (const double extreme : {*hi, *lo}) {
+      if (extreme == 0) continue;
+      std::size_t run = 0, longest = 0;
+      for (double v : x) longest = std::max(longest, run = v == extreme ? run + 1 : 0);
+      if (longest >= kClippedRun) {
+        warnings.push_back("gauge \"" + signals.gauges[g] + "\": " + std::to_string(longest) +
+                           " consecutive samples at the record's extreme " +
+                           format_double(extreme) +
+                           ": the signal looks clipped (amplifier or digitizer range); pulses and "
+                           "the striker velocity inferred from it are too small");
+        break;
+      }
+    }
+  }
+  return warnings;
+}
+
 ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup& k,
                                  const ProcessingOptions& options) {
   ProcessingResult r;
+  r.warnings = signal_warnings(signals);
   const auto* inc_raw = signals.find(k.incident_gauge);
   const auto* tra_raw = signals.find(k.transmitted_gauge);
   if (!inc_raw || !tra_raw) throw std::logic_error("process_signals: gauge without a signal");
@@ -167,6 +194,7 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
   PropagationOptions po;
   po.dispersion = ds.correction;
   auto cutoff_fa = [&](const BarWaveguide& w) {
+    if (ds.cutoff_fa_c0) return *ds.cutoff_fa_c0;
     return ds.cutoff_Hz ? *ds.cutoff_Hz * w.radius_m / w.c0_m_s : kDefaultCutoffFaOverC0;
   };
   const DispersionTable front_table(k.front_waveguide.poisson);

@@ -46,6 +46,7 @@ int run_simulate(const SimulateArgs& args) {
   const SimulationResult result = simulate(scene, options);
   write_simulation_outputs(result, scene, out.path());
   out.commit();
+  for (const auto& w : result.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   if (!result.stable) {
     std::fprintf(stderr, "error: %s: %s (outputs up to then written to %s)\n",
                  args.scene.string().c_str(), result.failure.c_str(),

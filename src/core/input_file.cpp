@@ -27,7 +27,7 @@ std::string read_input_file(const std::filesystem::path& file, const std::string
   struct stat st {};
   if (::stat(file.c_str(), &st) != 0)
     throw input_error(display, "", errno == ENOENT ? "no such file" : std::strerror(errno),
-                      "expected " + expected);
+                      "expected an existing " + expected.substr(expected.find(' ') + 1));
   if (!S_ISREG(st.st_mode))
     throw input_error(display, "", kind(st.st_mode), "expected " + expected);
   // O_NONBLOCK: should the path have become a FIFO since stat(), open() still returns at once,

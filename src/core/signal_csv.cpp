@@ -33,16 +33,23 @@ std::size_t resolve(const DelimitedText& text, const TextRow* header, const Colu
   }
   if (header) {
     const auto& f = header->fields;
-    auto it = std::find(f.begin(), f.end(), ref.name);
-    if (it == f.end()) {
-      auto lower = [](std::string s) {
-        std::transform(s.begin(), s.end(), s.begin(),
-                       [](unsigned char c) { return std::tolower(c); });
-        return s;
-      };
-      it = std::find_if(f.begin(), f.end(),
-                        [&](const std::string& h) { return lower(h) == lower(ref.name); });
-    }
+    auto lower = [](std::string s) {
+      std::transform(s.begin(), s.end(), s.begin(),
+                     [](unsigned char c) { return std::tolower(c); });
+      return s;
+    };
+    // Exact first; the case-insensitive match only if it is the only one. Two candidates are
+    // refused, never one picked silently.
+    auto exact = [&](const std::string& h) { return h == ref.name; };
+    auto folded = [&](const std::string& h) { return lower(h) == lower(ref.name); };
+    const auto n_exact = std::count_if(f.begin(), f.end(), exact);
+    const auto n_folded = std::count_if(f.begin(), f.end(), folded);
+    if (n_exact > 1 || (n_exact == 0 && n_folded > 1))
+      throw input_error(text.file.string(), "line " + std::to_string(header->line), describe(ref),
+                        "several header columns match this name; rename them so that each is "
+                        "unique");
+    auto it = n_exact ? std::find_if(f.begin(), f.end(), exact)
+                      : std::find_if(f.begin(), f.end(), folded);
     if (it != f.end()) return static_cast<std::size_t>(it - f.begin());
     std::string names;
     for (const auto& h : f) names += (names.empty() ? "" : ", ") + ("\"" + h + "\"");

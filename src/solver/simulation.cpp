@@ -113,6 +113,50 @@ void write_series(const std::filesystem::path& file, const TimeSeries& ts) {
   csv.close();
 }
 
+// A run may be numerically stable and still physically meaningless: flagged here, in the result's
+// warnings (printed, summary.json) or, for a specimen with no length left, as a failed run.
+// Engineering strain beyond this bound is far outside any SHPB test (typically < 0.5).
+constexpr double kPlausibleSpecimenStrain = 0.9;
+// Interfaces interpenetrating by more than this fraction of the smaller neighbouring element:
+// the contact is too soft to stand for the bars' touching faces.
+constexpr double kPlausiblePenetrationElements = 0.5;
+// Fewer recorded samples cannot resolve a pulse (a rise alone takes several).
+constexpr std::size_t kMinRecordSamples = 16;
+
+void check_plausibility(const Scene& scene, const Chain& chain, SimulationResult& result) {
+  if (scene.specimen && !result.specimen.columns.empty()) {
+    double worst = 0;
+    for (double e : result.specimen.column("strain")) worst = std::max(worst, std::abs(e));
+    if (worst >= 1 && result.stable) {
+      result.stable = false;
+      result.failure = "specimen engineering strain reached " + format_double(worst) +
+                       ": the specimen has no length left (the 1D model no longer applies)";
+    } else if (worst > kPlausibleSpecimenStrain) {
+      result.warnings.push_back("specimen engineering strain reached " + format_double(worst) +
+                                " (beyond " + format_double(kPlausibleSpecimenStrain) +
+                                "): the result is not physical");
+    }
+  }
+  double smallest_element = std::numeric_limits<double>::infinity();
+  for (const BarModel& b : chain.bars)
+    smallest_element = std::min(smallest_element, b.element_length_m);
+  if (result.max_penetration_m > kPlausiblePenetrationElements * smallest_element)
+    result.warnings.push_back(
+        "the bars interpenetrated by " + format_double(result.max_penetration_m * 1e3) +
+        " mm, more than " + format_double(kPlausiblePenetrationElements) +
+        " of the smallest element (" + format_double(smallest_element * 1e3) +
+        " mm): the contact is too soft (stiffness, stiffness_factor or rise_time)");
+  const std::size_t samples = result.gauges.samples();
+  if (samples > 0 && samples < kMinRecordSamples)
+    result.warnings.push_back("the record has only " + std::to_string(samples) +
+                              " samples: raise simulation.sample_rate to resolve the pulses");
+  // A bar of one element has no interior node: its waves are not resolved.
+  for (std::size_t i = 0; i < chain.bars.size(); ++i)
+    if (chain.bars[i].full_nodes < 3)
+      result.warnings.push_back("bar " + chain.bars[i].name +
+                                " has a single element: its waves are not resolved");
+}
+
 }  // namespace
 
 SimulationResult simulate(const Scene& scene, const SimulationOptions& options) {
@@ -167,6 +211,7 @@ SimulationResult simulate(const Scene& scene, const SimulationOptions& options) 
     result.node_updates_full_model += st.node_updates_full_model;
     result.bars.push_back(st);
   }
+  check_plausibility(scene, chain, result);
   for (std::size_t k = 0; k < chain.interfaces.size(); ++k)
     result.interface_statistics.push_back(
         {chain.interfaces[k].name, std::string(to_string(chain.interfaces[k].method)),
@@ -230,6 +275,7 @@ void write_simulation_outputs(const SimulationResult& result, const Scene& scene
   j["max_penetration_m"] = result.max_penetration_m;
   j["stable"] = result.stable;
   if (!result.stable) j["failure"] = result.failure;
+  j["warnings"] = result.warnings;
   write_text_file(dir / "summary.json", j.dump(2) + "\n");
 }
 
