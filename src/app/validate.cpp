@@ -62,6 +62,8 @@ json resolved_setup(const Scene& scene, const ChainDiscretization& d) {
   out["name"] = scene.name;
   out["file"] = scene.file.string();
   out["specimen"] = scene.specimen ? json(scene.bars[*scene.specimen].name) : json(nullptr);
+  out["memory_estimate_bytes"] = d.memory_estimate_bytes;
+  out["node_updates_estimate"] = d.node_updates_estimate;
   for (std::size_t i = 0; i < scene.bars.size(); ++i) {
     const auto& b = scene.bars[i];
     const auto& m = b.material;

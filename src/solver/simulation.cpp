@@ -16,17 +16,6 @@ namespace shpb {
 
 namespace {
 
-// Time zero is the first contact (docs/outputs.md (conventions)): with initial gaps, the run starts earlier by
-// the flight time of the first interface to close under the bars' rigid motions.
-double first_contact_delay(const Scene& scene) {
-  double delay = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k + 1 < scene.bars.size(); ++k) {
-    const double closing = scene.bars[k].velocity_m_s - scene.bars[k + 1].velocity_m_s;
-    if (closing > 0) delay = std::min(delay, scene.bars[k].gap_m / closing);
-  }
-  return std::isfinite(delay) ? delay : 0.0;
-}
-
 // docs/methods.md §7: lumped central difference moves information by exactly one node per step, and
 // every disturbance of the last bar enters at its left end. A node j right of the rightmost node
 // k that is recorded (gauges) or coupled (node 0) is first disturbed at step ≥ s_k + (j − k) and
@@ -79,7 +68,7 @@ Chain build_chain(const Scene& scene, const ChainDiscretization& d, bool full_mo
     c.interface_states.back().gap_m = scene.bars[k].gap_m;
   }
   c.contact_dissipated_J.assign(c.interfaces.size(), 0.0);
-  c.start_time_s = -first_contact_delay(scene);
+  c.start_time_s = -first_contact_delay_s(scene);
   c.end_tau_s = d.duration_s - c.start_time_s;
   for (const BarModel& b : c.bars)
     c.final_step.push_back(static_cast<long>(std::ceil(c.end_tau_s / b.time_step_s - 1e-9)));
