@@ -147,7 +147,8 @@ int run_compare(const CompareArgs& args) {
       break;
     }
 
-  OutputFolder out(args.output, "compare", scene_inputs(scene));  // every input checked: from here on results are written
+  OutputFolder out(args.output, "compare",
+                   scene_inputs(scene));  // every input checked: from here on results are written
 
   // 3. Simulate.
   SimulationOptions options;

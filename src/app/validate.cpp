@@ -5,8 +5,8 @@
 #include <string>
 
 #include "app/commands.hpp"
-#include "core/output_folder.hpp"
 #include "core/csv_writer.hpp"
+#include "core/output_folder.hpp"
 #include "model/discretization.hpp"
 #include "model/scene_checks.hpp"
 #include "solver/contact.hpp"

@@ -81,7 +81,8 @@ std::string text_place(std::size_t line, std::size_t column_index) {
 
 DelimitedText read_delimited_text(const std::filesystem::path& file) {
   // Type (no FIFO or device) and size checked before reading: 1 GiB is far beyond any record.
-  std::string bytes = read_input_file(file, file.string(), "a signal file", std::uintmax_t{1} << 30);
+  std::string bytes =
+      read_input_file(file, file.string(), "a signal file", std::uintmax_t{1} << 30);
   // Byte order marks: UTF-8 is dropped (spreadsheets write it); UTF-16 text is refused by name
   // rather than failing later on the NUL bytes between its characters.
   if (bytes.rfind("\xEF\xBB\xBF", 0) == 0) bytes.erase(0, 3);

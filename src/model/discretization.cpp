@@ -73,7 +73,8 @@ void refuse_unaffordable(const Scene& scene, const std::vector<double>& elements
   const double specimen = scene.specimen ? 1 : 0;
   const double columns = static_cast<double>(gauges) + 2 * interfaces + 5 * specimen;
   const double series = (gauges > 0 ? 1 : 0) + (interfaces > 0 ? 1 : 0) + specimen;
-  const double record_bytes = 8 * (2 * columns + series) * recorded_s * scene.simulation.sample_rate_Hz;
+  const double record_bytes =
+      8 * (2 * columns + series) * recorded_s * scene.simulation.sample_rate_Hz;
   const double memory = kProcessBytes + mesh_bytes + record_bytes;
   estimate.memory_estimate_bytes = memory;
   estimate.node_updates_estimate = node_updates;
