@@ -2,6 +2,7 @@
 #include <algorithm>
 
 #include "core/error.hpp"
+#include "core/output_folder.hpp"
 #include "core/signal_formats.hpp"
 
 namespace shpb {
@@ -75,6 +76,7 @@ RawSignalColumns read_columns(const DelimitedText& text, std::size_t first_data,
     return header && c < header->fields.size() ? header->fields[c] : std::string();
   };
   for (std::size_t r = first_data; r < text.rows.size(); ++r) {
+    if (r % 65536 == 0) throw_if_interrupted();  // a long record stops within a second
     const TextRow& row = text.rows[r];
     raw.time.push_back(number_at(text, row, time_index, header_name(time_index)));
     for (std::size_t k = 0; k < indices.size(); ++k)

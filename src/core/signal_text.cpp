@@ -129,7 +129,10 @@ DelimitedText read_delimited_text(const std::filesystem::path& file) {
     text.delimiter = ' ';
 
   text.rows.reserve(lines.size());
-  for (const auto& [n, l] : lines) text.rows.push_back({n, split(l, text.delimiter)});
+  for (const auto& [n, l] : lines) {
+    if (text.rows.size() % 65536 == 0) throw_if_interrupted();
+    text.rows.push_back({n, split(l, text.delimiter)});
+  }
 
   // Decimal comma: only possible when the comma is not the delimiter; decided on the last
   // sniffed rows (data, not header) by numbers with a comma against numbers with a point.

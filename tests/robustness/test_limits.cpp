@@ -8,6 +8,7 @@
 
 #include <catch2/catch.hpp>
 #include <chrono>
+#include <fstream>
 #include <string>
 #include <thread>
 
@@ -149,4 +150,32 @@ TEST_CASE("A bar with a negative Poisson ratio is refused by process, not an int
   INFO(o.err);
   CHECK(o.code == 2);
   CHECK(o.err.find("poisson_ratio") != std::string::npos);
+}
+
+TEST_CASE("SIGTERM stops process reading a long record within a second",
+          "[robustness][limits][interrupt]") {
+  ScratchFolder scratch("limits");
+  const fs::path signals = scratch.path() / "long.csv";
+  {
+    // 3 million rows (~60 MB): reading and parsing take seconds.
+    std::ofstream out(signals);
+    out << "time_s,incident,transmitted\n";
+    for (long k = 0; k < 3000000; ++k)
+      out << k * 1e-8 << ',' << 1e-6 * (k % 13) << ',' << 1e-6 * (k % 11) << '\n';
+  }
+  for (const double after_s : {0.3, 1.0}) {
+    INFO("signal after " << after_s << " s");
+    Child child({"process", kClassic.string(), "--signals", signals.string(), "-o",
+                 (scratch.path() / "out").string(), "-q"},
+                scratch.path());
+    REQUIRE(child.started());
+    std::this_thread::sleep_for(std::chrono::duration<double>(after_s));
+    child.signal(SIGTERM);
+    const Outcome o = child.wait(kLimit_s);
+    INFO(o.err);
+    CHECK(o.signal == 0);
+    CHECK(o.code == 130);
+    CHECK(o.seconds < kPromptExit_s);
+    CHECK_FALSE(fs::exists(scratch.path() / "out"));
+  }
 }
