@@ -122,6 +122,7 @@ TEST_CASE("Running out of memory is a failed run (exit 3) saying so, not an inte
   INFO(message);
   CHECK(WEXITSTATUS(status) == 3);
   CHECK(message.rfind("error: out of memory", 0) == 0);
+  CHECK(message.find("72 MB") != std::string::npos);  // what was requested: the estimate
   CHECK_FALSE(fs::exists(scratch.path() / "out"));
   CHECK(litter(scratch.path()).empty());
 }
