@@ -207,14 +207,14 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
     PropagationOptions o = po;
     o.amplitude = a;
     o.cutoff_fa_over_c0 = cutoff_fa(w);
+    const std::string key =
+        ds.cutoff_fa_c0 ? "measurement.dispersion.cutoff_fa_c0" : "measurement.dispersion.cutoff";
     if (ds.correction && o.cutoff_fa_over_c0 > tab.max_normalized_frequency())
-      throw input_error(options.scene_file, "measurement.dispersion.cutoff",
-                        "f·a/c0 = " + std::to_string(o.cutoff_fa_over_c0),
+      throw input_error(options.scene_file, key, "f·a/c0 = " + format_double(o.cutoff_fa_over_c0),
                         "cut-off beyond the tabulated mode");
     if (ds.correction && a != AmplitudeFactor::kNone &&
         o.cutoff_fa_over_c0 >= tab.m1_pole_normalized_frequency())
-      throw input_error(options.scene_file, "measurement.dispersion.cutoff",
-                        "f·a/c0 = " + std::to_string(o.cutoff_fa_over_c0),
+      throw input_error(options.scene_file, key, "f·a/c0 = " + format_double(o.cutoff_fa_over_c0),
                         "with amplitude factors the cut-off must lie below the m1 pole (f·a/c0 = " +
                             std::to_string(tab.m1_pole_normalized_frequency()) + ")");
     Propagator p(tab, w, o);
