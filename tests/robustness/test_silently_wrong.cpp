@@ -181,9 +181,30 @@ TEST_CASE("Implausible simulations are flagged in warnings and summary.json",
     else
       CHECK(o.code == 3);  // no length left: a failed run
   }
+  SECTION("a specimen squashed past zero length is a failed run") {
+    json s = classic();
+    s["bars"][2]["material"] = {{"model", "elastic"}, {"density", "100 kg/m3"},
+                                {"youngs_modulus", "0.5 MPa"}, {"poisson_ratio", 0.3}};
+    s["bars"][0]["velocity"] = "100 m/s";
+    s["simulation"]["sample_rate"] = "1 MHz";
+    const Outcome o = run_scene(scratch.path(), "simulate", s);
+    INFO(o.err);
+    CHECK(o.code == 3);
+    const json sum = summary(scratch.path(), "simulate");
+    CHECK_FALSE(sum["stable"].get<bool>());
+    CHECK(sum["failure"].get<std::string>().find("no length left") != std::string::npos);
+  }
   SECTION("bars passing through each other (a contact rise time of 1 s)") {
     json s = bar_scene();
     s["contact"] = {{"rise_time", "1 s"}};
+    const Outcome o = run_scene(scratch.path(), "simulate", s);
+    INFO(o.err);
+    CHECK(o.code == 0);
+    CHECK(warns(summary(scratch.path(), "simulate"), "interpenetrated"));
+  }
+  SECTION("bars passing through each other (a stiffness factor of 1e-300)") {
+    json s = bar_scene();
+    s["contact"] = {{"stiffness_factor", 1e-300}};
     const Outcome o = run_scene(scratch.path(), "simulate", s);
     INFO(o.err);
     CHECK(o.code == 0);
