@@ -301,6 +301,8 @@ int run_compare(const CompareArgs& args) {
   s["version"] = SHPB_VERSION;
   write_text_file(out.file("summary.json"), s.dump(2) + "\n");
   out.commit();
+  // What is implausible is said even with --quiet (which silences progress only).
+  for (const auto& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
 
   if (!sim.stable) {
     std::fprintf(stderr, "error: %s: %s (outputs up to then written to %s)\n", file.c_str(),
@@ -308,7 +310,6 @@ int run_compare(const CompareArgs& args) {
     return 3;
   }
   if (!args.overrides.quiet) {
-    for (const auto& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     std::fprintf(stderr, "striker %.4g m/s (%s); dispersion %s\n", velocity,
                  velocity_source.c_str(), args.dispersion ? "applied" : "off");
     for (const auto& c : results)
