@@ -119,8 +119,11 @@ class Table:
         self.path = path
         self.columns = {}
         self.names = []
-        with open(path, newline="", encoding="utf-8", errors="replace") as f:
-            rows = list(csv.reader(f))
+        try:
+            with open(path, newline="", encoding="utf-8", errors="replace") as f:
+                rows = list(csv.reader(f))
+        except csv.Error as e:  # an unclosed quote, a NUL byte: not a CSV this script reads
+            raise ReportError(f"{path}: {e}: comma-separated numbers were expected")
         if not rows:
             raise ReportError(f"{path}: line 1: empty file: a header row was expected")
         self.names = [n.strip() for n in rows[0]]
@@ -179,7 +182,7 @@ class Source:
             try:
                 with open(self.files["summary.json"], encoding="utf-8") as f:
                     self.summary = json.load(f)
-            except (json.JSONDecodeError, UnicodeDecodeError) as e:
+            except (json.JSONDecodeError, UnicodeDecodeError, RecursionError) as e:
                 raise ReportError(f"{self.files['summary.json']}: {e}: valid JSON was expected")
 
     def has(self, name):
