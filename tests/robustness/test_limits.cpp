@@ -6,8 +6,10 @@
 #include <signal.h>
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <chrono>
+#include <cstdlib>
 #include <fstream>
 #include <string>
 #include <thread>
@@ -210,5 +212,31 @@ TEST_CASE("SIGTERM while simulate writes large outputs stops it within a second"
     CHECK(o.seconds < kPromptExit_s);
     CHECK_FALSE(fs::exists(scratch.path() / "out"));
     CHECK(litter(scratch.path()).empty());
+  }
+}
+
+TEST_CASE("report on deeply nested or malformed files is one error line, not a traceback",
+          "[robustness][limits]") {
+  if (std::system("/usr/bin/python3 -c 'import matplotlib, numpy' >/dev/null 2>&1") != 0) {
+    WARN("SKIPPED: python3 with matplotlib and numpy is not installed");
+    return;
+  }
+  ScratchFolder scratch("limits");
+  const fs::path dir = scratch.path() / "result";
+  fs::create_directories(dir);
+  write_bytes(dir / "gauges.csv", "time_s,gauge\n0,0\n1e-6,1e-4\n");
+  for (const auto& [file, text] : std::vector<std::pair<std::string, std::string>>{
+           {"summary.json", std::string(100000, '[') + std::string(100000, ']')},
+           {"gauges.csv", "time_s,gauge\n0,\"unclosed\n" + std::string(200000, 'x') + "\n"}}) {
+    INFO(file);
+    write_bytes(dir / file, text);
+    const Outcome o = run({"report", dir.string()}, scratch.path(), kLimit_s);
+    INFO(o.err);
+    CHECK(o.code == 2);
+    CHECK(o.err.find("Traceback") == std::string::npos);
+    CHECK(o.err.rfind("error: ", 0) == 0);
+    CHECK(std::count(o.err.begin(), o.err.end(), '\n') == 1);
+    fs::remove(dir / file);
+    write_bytes(dir / "gauges.csv", "time_s,gauge\n0,0\n1e-6,1e-4\n");
   }
 }

@@ -183,8 +183,10 @@ TEST_CASE("Implausible simulations are flagged in warnings and summary.json",
   }
   SECTION("a specimen squashed past zero length is a failed run") {
     json s = classic();
-    s["bars"][2]["material"] = {{"model", "elastic"}, {"density", "100 kg/m3"},
-                                {"youngs_modulus", "0.5 MPa"}, {"poisson_ratio", 0.3}};
+    s["bars"][2]["material"] = {{"model", "elastic"},
+                                {"density", "100 kg/m3"},
+                                {"youngs_modulus", "0.5 MPa"},
+                                {"poisson_ratio", 0.3}};
     s["bars"][0]["velocity"] = "100 m/s";
     s["simulation"]["sample_rate"] = "1 MHz";
     const Outcome o = run_scene(scratch.path(), "simulate", s);
