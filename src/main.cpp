@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
+#include <new>
 #include <string>
 
 #include "app/commands.hpp"
@@ -234,6 +235,14 @@ int main(int argc, char** argv) {
     return 3;
   } catch (const WriteError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
+    return 3;
+  } catch (const std::bad_alloc&) {
+    // The estimate (validate) was passed but the machine could not give the memory: a failed
+    // run, not an internal error.
+    std::fprintf(stderr,
+                 "error: out of memory: the run needs more memory than this machine could give; "
+                 "`shpb validate` prints the estimate (coarser mesh, shorter duration or lower "
+                 "sample rate reduce it)\n");
     return 3;
   } catch (const Interrupted&) {
     std::fprintf(stderr, "error: interrupted; previous results left intact\n");

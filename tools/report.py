@@ -119,8 +119,11 @@ class Table:
         self.path = path
         self.columns = {}
         self.names = []
-        with open(path, newline="", encoding="utf-8", errors="replace") as f:
-            rows = list(csv.reader(f))
+        try:
+            with open(path, newline="", encoding="utf-8", errors="replace") as f:
+                rows = list(csv.reader(f))
+        except csv.Error as e:  # an unclosed quote, a NUL byte: not a CSV this script reads
+            raise ReportError(f"{path}: {e}: comma-separated numbers were expected")
         if not rows:
             raise ReportError(f"{path}: line 1: empty file: a header row was expected")
         self.names = [n.strip() for n in rows[0]]
@@ -179,7 +182,7 @@ class Source:
             try:
                 with open(self.files["summary.json"], encoding="utf-8") as f:
                     self.summary = json.load(f)
-            except (json.JSONDecodeError, UnicodeDecodeError) as e:
+            except (json.JSONDecodeError, UnicodeDecodeError, RecursionError) as e:
                 raise ReportError(f"{self.files['summary.json']}: {e}: valid JSON was expected")
 
     def has(self, name):
@@ -704,6 +707,11 @@ def summary_html(src):
         return ""
     scalars = [(k, v) for k, v in s.items() if not isinstance(v, (dict, list))]
     out = []
+    # Plausibility warnings head the results: a run can be stable and still not physical.
+    warnings = s.get("warnings")
+    if isinstance(warnings, list) and warnings:
+        out.append("<div class='warn'><b>Warnings</b><ul>"
+                   + "".join(f"<li>{html.escape(str(w))}</li>" for w in warnings) + "</ul></div>")
     if scalars:
         out.append("<table class='kv'>")
         for k, v in scalars:
@@ -750,6 +758,7 @@ figcaption{font-size:.9em;color:#444;margin-top:.3em}
 table{border-collapse:collapse;font-size:.85em;margin:.5em 0}
 td,th{border:1px solid #ccc;padding:2px 6px;text-align:left}th{background:#f2f2f2}
 .meta{color:#666;font-size:.9em}.cap{font-weight:bold;margin-bottom:0}
+.warn{border:2px solid #c60;background:#fff4e5;padding:.3em .8em;margin:.5em 0}
 pre{font-size:.8em;background:#f8f8f8;padding:.5em;overflow-x:auto}
 """
 

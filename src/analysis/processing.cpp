@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "analysis/pulse_window.hpp"
+#include "core/csv_writer.hpp"  // format_double
 #include "core/error.hpp"
 
 namespace shpb {
@@ -69,6 +70,14 @@ KolskySetup resolve_setup(const Scene& scene, const std::vector<std::string>& av
   k.back = side_of(tra);
   k.front_waveguide = waveguide_of(inc);
   k.back_waveguide = waveguide_of(tra);
+  // Pochhammer–Chree tables are computed for 0 ≤ ν ≤ 0.49 (docs/methods.md §5): bar steels,
+  // aluminium, titanium and PMMA lie well inside; auxetic (ν < 0) bars are not supported.
+  for (const std::size_t b : {s - 1, s + 1})
+    if (const double nu = scene.bars[b].material.poisson_ratio; !(nu >= 0 && nu <= 0.49))
+      throw input_error(file, "bars[" + std::to_string(b) + "].material.poisson_ratio",
+                        format_double(nu),
+                        "must be in [0, 0.49] for a bar whose pulses are processed (dispersion "
+                        "tables cover that range; auxetic bars are not supported)");
   k.specimen = {scene.bars[s].length_m, scene.bars[s].area_m2};
   k.incident_impedance_kg_s = inc.impedance_kg_s();
   if (s >= 2) {
@@ -79,9 +88,36 @@ KolskySetup resolve_setup(const Scene& scene, const std::vector<std::string>& av
   return k;
 }
 
+std::vector<std::string> signal_warnings(const GaugeSignals& signals) {
+  std::vector<std::string> warnings;
+  if (signals.time_s.size() < kMinRecordSamples)
+    warnings.push_back("the record has only " + std::to_string(signals.time_s.size()) +
+                       " samples: too few to resolve a pulse (check the sample rate)");
+  for (std::size_t g = 0; g < signals.gauges.size(); ++g) {
+    const std::vector<double>& x = signals.strain[g];
+    if (x.empty()) continue;
+    const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
+    for (const double extreme : {*hi, *lo}) {
+      if (extreme == 0) continue;
+      std::size_t run = 0, longest = 0;
+      for (double v : x) longest = std::max(longest, run = v == extreme ? run + 1 : 0);
+      if (longest >= kClippedRun) {
+        warnings.push_back("gauge \"" + signals.gauges[g] + "\": " + std::to_string(longest) +
+                           " consecutive samples at the record's extreme " +
+                           format_double(extreme) +
+                           ": the signal looks clipped (amplifier or digitizer range); pulses and "
+                           "the striker velocity inferred from it are too small");
+        break;
+      }
+    }
+  }
+  return warnings;
+}
+
 ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup& k,
                                  const ProcessingOptions& options) {
   ProcessingResult r;
+  r.warnings = signal_warnings(signals);
   const auto* inc_raw = signals.find(k.incident_gauge);
   const auto* tra_raw = signals.find(k.transmitted_gauge);
   if (!inc_raw || !tra_raw) throw std::logic_error("process_signals: gauge without a signal");
@@ -158,6 +194,7 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
   PropagationOptions po;
   po.dispersion = ds.correction;
   auto cutoff_fa = [&](const BarWaveguide& w) {
+    if (ds.cutoff_fa_c0) return *ds.cutoff_fa_c0;
     return ds.cutoff_Hz ? *ds.cutoff_Hz * w.radius_m / w.c0_m_s : kDefaultCutoffFaOverC0;
   };
   // The mode is tabulated only for a correction, and only up to the highest cut-off asked of its
@@ -190,13 +227,13 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
       return delayed(p.propagate(x, dt, distance), extra);
     }
     const DispersionTable& tab = *table;
+    const std::string key =
+        ds.cutoff_fa_c0 ? "measurement.dispersion.cutoff_fa_c0" : "measurement.dispersion.cutoff";
     if (o.cutoff_fa_over_c0 > tab.max_normalized_frequency())
-      throw input_error(options.scene_file, "measurement.dispersion.cutoff",
-                        "f·a/c0 = " + std::to_string(o.cutoff_fa_over_c0),
+      throw input_error(options.scene_file, key, "f·a/c0 = " + format_double(o.cutoff_fa_over_c0),
                         "cut-off beyond the tabulated mode");
     if (a != AmplitudeFactor::kNone && o.cutoff_fa_over_c0 >= tab.m1_pole_normalized_frequency())
-      throw input_error(options.scene_file, "measurement.dispersion.cutoff",
-                        "f·a/c0 = " + std::to_string(o.cutoff_fa_over_c0),
+      throw input_error(options.scene_file, key, "f·a/c0 = " + format_double(o.cutoff_fa_over_c0),
                         "with amplitude factors the cut-off must lie below the m1 pole (f·a/c0 = " +
                             std::to_string(tab.m1_pole_normalized_frequency()) + ")");
     Propagator p(tab, w, o, &plans);

@@ -68,4 +68,12 @@ inline constexpr double kEquilibriumThreshold = 0.05;
 ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup& setup,
                                  const ProcessingOptions& options);
 
+// A record clipped by its amplifier or digitizer has flat tops at its extremes: at least
+// kClippedRun consecutive samples exactly equal to the record's maximum (or minimum). A real
+// pulse's plateau carries noise and ringing, so exact repeats of the extreme are the signature.
+// Also warns of a record too short to hold a pulse (fewer than kMinRecordSamples samples).
+inline constexpr std::size_t kClippedRun = 5;
+inline constexpr std::size_t kMinRecordSamples = 16;
+std::vector<std::string> signal_warnings(const GaugeSignals& signals);
+
 }  // namespace shpb

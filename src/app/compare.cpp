@@ -15,9 +15,9 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <sstream>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -28,6 +28,7 @@
 #include "core/checked_write.hpp"
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
+#include "core/json_value.hpp"
 #include "core/output_folder.hpp"
 #include "core/signal_gauges.hpp"
 #include "dispersion/dispersion_table.hpp"
@@ -41,6 +42,12 @@ namespace {
 // Each compared window reaches this fraction of the measured pulse's length beyond both ends,
 // so that a shifted simulated pulse still lies inside it.
 constexpr double kWindowMargin = 0.2;
+// The striker velocity inferred from the measured plateau and the one used (given or the scene's)
+// differing by more than this fraction: a wrong bridge factor, bar data or clipped signal.
+constexpr double kVelocityMismatch = 0.1;
+// A striker beyond this would yield any bar steel many times over (v_yield = 2 σ_y / (ρ c0) is
+// ~100 m/s for maraging steel): not a split Hopkinson bar test.
+constexpr double kMaxStrikerVelocity_m_s = 1000;
 
 // Linear interpolation of y on the uniform grid t0 + k·dt; 0 before the grid (the bars are at
 // rest before impact), the last value after it.
@@ -107,8 +114,16 @@ int run_compare(const CompareArgs& args) {
   const auto w_tr = find_first_pulse(m_tr, base_tr);
 
   // 2. Striker velocity.
+  if (args.striker_velocity &&
+      !(*args.striker_velocity > 0 && *args.striker_velocity <= kMaxStrikerVelocity_m_s))
+    throw input_error("--striker-velocity", "",
+                      JsonValue::format(*args.striker_velocity, Dimension::kVelocity),
+                      "must be in (0, " + format_double(kMaxStrikerVelocity_m_s) + " m/s]");
   const double plateau =
       std::abs(plateau_level(m_inc, w_inc->onset, w_inc->end, w_inc->sign) - base_inc.level);
+  const double z_s = scene.bars[striker].impedance_kg_s(),
+               z_b = scene.bars[incident_bar].impedance_kg_s();
+  const double inferred_velocity = setup.front.c0_m_s * plateau * (z_s + z_b) / z_s;
   std::string velocity_source;
   double velocity = 0;
   if (args.striker_velocity) {
@@ -117,15 +132,26 @@ int run_compare(const CompareArgs& args) {
     velocity = *scene.measurement->striker_velocity_m_s;
     velocity_source = "scene (measurement.striker_velocity)";
   } else {
-    const double z_s = scene.bars[striker].impedance_kg_s(),
-                 z_b = scene.bars[incident_bar].impedance_kg_s();
-    velocity = setup.front.c0_m_s * plateau * (z_s + z_b) / z_s;
+    velocity = inferred_velocity;
     velocity_source = "inferred from the measured incident plateau";
   }
   const double scene_velocity = scene.bars[striker].velocity_m_s;
   scene.bars[striker].velocity_m_s = velocity;
+  std::vector<std::string> warnings = measured.warnings;
+  for (const auto& w : signal_warnings(measured)) warnings.push_back(w);
+  for (const double other : {velocity, scene_velocity})
+    if (other > 0 && std::abs(inferred_velocity - other) > kVelocityMismatch * other) {
+      warnings.push_back("the striker velocity inferred from the measured incident plateau, " +
+                         format_double(inferred_velocity) + " m/s, differs from the " +
+                         (other == velocity ? "one used" : "scene's") + ", " +
+                         format_double(other) + " m/s, by more than " +
+                         format_double(kVelocityMismatch * 100) +
+                         " %: check the bridge factors, the bar data and the signals (clipping)");
+      break;
+    }
 
-  OutputFolder out(args.output, "compare", scene_inputs(scene));  // every input checked: from here on results are written
+  OutputFolder out(args.output, "compare",
+                   scene_inputs(scene));  // every input checked: from here on results are written
 
   // 3. Simulate.
   SimulationOptions options;
@@ -276,10 +302,13 @@ int run_compare(const CompareArgs& args) {
   s["simulation"] = {{"stable", sim.stable},
                      {"wall_time_s", sim.wall_time_s},
                      {"energy_error", sim.energy_error}};
-  s["warnings"] = measured.warnings;
+  warnings.insert(warnings.end(), sim.warnings.begin(), sim.warnings.end());
+  s["warnings"] = warnings;
   s["version"] = kVersion;
   write_text_file(out.file("summary.json"), s.dump(2) + "\n");
   out.commit();
+  // What is implausible is said even with --quiet (which silences progress only).
+  for (const auto& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
 
   if (!sim.stable) {
     std::fprintf(stderr, "error: %s: %s (outputs up to then written to %s)\n", file.c_str(),
@@ -287,7 +316,6 @@ int run_compare(const CompareArgs& args) {
     return 3;
   }
   if (!args.overrides.quiet) {
-    for (const auto& w : measured.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     std::fprintf(stderr, "striker %.4g m/s (%s); dispersion %s\n", velocity,
                  velocity_source.c_str(), args.dispersion ? "applied" : "off");
     for (const auto& c : results)

@@ -4,10 +4,12 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <new>
 
 #include "app/commands.hpp"
 #include "core/error.hpp"
 #include "core/output_folder.hpp"
+#include "model/discretization.hpp"
 #include "solver/simulation.hpp"
 
 namespace shpb {
@@ -43,9 +45,18 @@ int run_simulate(const SimulateArgs& args) {
   options.full_model = args.full_model;
   options.progress = progress_printer(args.overrides.quiet);
   options.cancel = [] { return interrupted(); };
-  const SimulationResult result = simulate(scene, options);
-  write_simulation_outputs(result, scene, out.path());
+  SimulationResult result;
+  try {
+    result = simulate(scene, options);
+    write_simulation_outputs(result, scene, out.path());
+  } catch (const std::bad_alloc&) {  // the estimate fitted the limits, the machine did not
+    char mb[32];
+    std::snprintf(mb, sizeof mb, "%.3g MB", discretize(scene).memory_estimate_bytes / 1e6);
+    throw NumericalError("out of memory: " + args.scene.string() + ": the run needs about " + mb +
+                         " (estimate) and this machine could not give it");
+  }
   out.commit();
+  for (const auto& w : result.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   if (!result.stable) {
     std::fprintf(stderr, "error: %s: %s (outputs up to then written to %s)\n",
                  args.scene.string().c_str(), result.failure.c_str(),

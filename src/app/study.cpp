@@ -11,9 +11,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <sstream>
 #include <nlohmann/json.hpp>
 #include <fstream>
+#include <sstream>
 
 #include "app/commands.hpp"
 #include "core/checked_write.hpp"

@@ -7,6 +7,7 @@
 
 #include "app/commands.hpp"
 #include "core/csv_writer.hpp"
+#include "core/output_folder.hpp"
 #include "model/discretization.hpp"
 #include "model/scene_checks.hpp"
 #include "solver/contact.hpp"
@@ -47,6 +48,8 @@ json resolved_setup(const Scene& scene, const ChainDiscretization& d) {
   out["name"] = scene.name;
   out["file"] = scene.file.string();
   out["specimen"] = scene.specimen ? json(scene.bars[*scene.specimen].name) : json(nullptr);
+  out["memory_estimate_bytes"] = d.memory_estimate_bytes;
+  out["node_updates_estimate"] = d.node_updates_estimate;
   for (std::size_t i = 0; i < scene.bars.size(); ++i) {
     const auto& b = scene.bars[i];
     const auto& m = b.material;
@@ -184,6 +187,7 @@ void print_table(const json& s) {
 int run_validate(const ValidateArgs& args) {
   Scene scene = read_scene(args.scene);
   const json setup = resolved_setup(scene, apply_overrides(args.overrides, scene));
+  throw_if_interrupted();  // a signal during the checks: exit 130, not a report
   if (args.json)
     std::printf("%s\n", setup.dump(2).c_str());
   else

@@ -1,11 +1,11 @@
 #include "core/json_document.hpp"
 
-#include <fstream>
 #include <set>
-#include <sstream>
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/input_file.hpp"
+#include "core/output_folder.hpp"
 
 namespace shpb {
 namespace {
@@ -86,18 +86,85 @@ class ParsePath {
   std::vector<Frame> frames_;
 };
 
+// Builds the document as nlohmann's own DOM parser does (linear time: unlike its callback
+// parser, which walks the parent object at every closing brace), while keeping the JSON path up
+// to date and refusing nesting beyond kMaxJsonDepth before anything deep exists (nlohmann's
+// dump, used in error messages, is recursive).
+class Sax {
+ public:
+  Sax(json& root, std::string display)
+      : dom_(root), where_(display), display_(std::move(display)) {}
+
+  bool null() { return value(dom_.null()); }
+  bool boolean(bool v) { return value(dom_.boolean(v)); }
+  bool number_integer(json::number_integer_t v) { return value(dom_.number_integer(v)); }
+  bool number_unsigned(json::number_unsigned_t v) { return value(dom_.number_unsigned(v)); }
+  bool number_float(json::number_float_t v, const json::string_t& s) {
+    return value(dom_.number_float(v, s));
+  }
+  bool string(json::string_t& v) { return value(dom_.string(v)); }
+  bool binary(json::binary_t& v) { return value(dom_.binary(v)); }
+  bool start_object(std::size_t n) {
+    enter();
+    where_.on_event(json::parse_event_t::object_start, json());
+    return dom_.start_object(n);
+  }
+  bool key(json::string_t& k) {
+    where_.on_event(json::parse_event_t::key, json(k));
+    return dom_.key(k);
+  }
+  bool end_object() {
+    --depth_;
+    where_.on_event(json::parse_event_t::object_end, json());
+    return dom_.end_object();
+  }
+  bool start_array(std::size_t n) {
+    enter();
+    where_.on_event(json::parse_event_t::array_start, json());
+    return dom_.start_array(n);
+  }
+  bool end_array() {
+    --depth_;
+    where_.on_event(json::parse_event_t::array_end, json());
+    return dom_.end_array();
+  }
+  template <class Exception>
+  bool parse_error(std::size_t position, const std::string& token, const Exception& e) {
+    return dom_.parse_error(position, token, e);  // throws it
+  }
+  std::string path() const { return where_.path(); }
+
+ private:
+  bool value(bool ok) {
+    where_.on_event(json::parse_event_t::value, json());
+    return ok;
+  }
+  void enter() {
+    throw_if_interrupted();  // a huge document stops within a second of a signal
+    if (++depth_ > kMaxJsonDepth)
+      throw input_error(display_, where_.path(),
+                        "nesting deeper than " + std::to_string(kMaxJsonDepth),
+                        "expected a scene-like document (objects and arrays a few levels deep)");
+  }
+
+  nlohmann::detail::json_sax_dom_parser<json> dom_;
+  ParsePath where_;
+  std::string display_;
+  int depth_ = 0;
+};
+
 }  // namespace
 
 json parse_json_object(const std::string& text, const std::string& display) {
   if (text.find_first_not_of(" \t\r\n") == std::string::npos)
     throw input_error(display, "", "empty file", "expected a JSON object");
-  ParsePath where(display);
+  if (text.size() > kMaxJsonBytes)
+    throw input_error(display, "", std::to_string(text.size()) + " bytes",
+                      "expected at most " + std::to_string(kMaxJsonBytes) + " bytes of JSON");
   json j;
+  Sax sax(j, display);
   try {
-    j = json::parse(text, [&where](int, json::parse_event_t event, json& parsed) {
-      where.on_event(event, parsed);
-      return true;
-    });
+    json::sax_parse(text, &sax);
   } catch (const json::parse_error& e) {
     // e.what(): "[json.exception.parse_error.101] parse error at line 3, column 5: syntax error
     // while parsing object - unexpected '}'; expected string literal"
@@ -118,8 +185,7 @@ json parse_json_object(const std::string& text, const std::string& display) {
   } catch (const json::out_of_range& e) {  // "number overflow parsing '1e400'"
     std::string what = e.what();
     if (const auto end = what.find("] "); end != std::string::npos) what = what.substr(end + 2);
-    throw input_error(display, where.path(), what,
-                      "expected a number within the range of a double");
+    throw input_error(display, sax.path(), what, "expected a number within the range of a double");
   }
   if (!j.is_object()) {
     std::string value = j.dump();
@@ -130,16 +196,7 @@ json parse_json_object(const std::string& text, const std::string& display) {
 }
 
 json read_json_object_file(const std::filesystem::path& file, const std::string& display) {
-  std::error_code ec;
-  if (!std::filesystem::exists(file, ec))
-    throw input_error(display, "", "no such file", "expected an existing JSON file");
-  if (std::filesystem::is_directory(file, ec))
-    throw input_error(display, "", "a folder", "expected a JSON file");
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw input_error(display, "", "cannot be opened", "expected a readable JSON file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  const std::string bytes = text.str();
+  const std::string bytes = read_input_file(file, display, "a JSON file", kMaxJsonBytes);
   // UTF-16 (Windows "Unicode" text) is named as such rather than as a syntax error at column 1.
   if (bytes.rfind("\xFF\xFE", 0) == 0 || bytes.rfind("\xFE\xFF", 0) == 0 ||
       bytes.find('\0') != std::string::npos)

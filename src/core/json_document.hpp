@@ -1,12 +1,17 @@
 #pragma once
 // Reading a JSON file for the scene reader: a missing or unreadable file, an empty file, text that
 // is not JSON (with line and column), duplicate keys (JSON allows them, we do not: the second one
-// would silently win) and a top level that is not an object are all InputErrors naming the file.
+// would silently win), nesting deeper than kMaxJsonDepth, files larger than kMaxJsonBytes, FIFOs
+// and devices, and a top level that is not an object are all InputErrors naming the file.
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 
 namespace shpb {
+
+// Limits checked before the document is built: a scene is a few kB and a few levels deep.
+inline constexpr int kMaxJsonDepth = 64;
+inline constexpr std::size_t kMaxJsonBytes = std::size_t{64} << 20;
 
 // `display` is how the file is named in messages (the path as the user wrote it).
 nlohmann::json read_json_object_file(const std::filesystem::path& file, const std::string& display);

@@ -107,6 +107,14 @@ std::string JsonValue::name() const {
   if (s.empty() || s.find_first_not_of(' ') == std::string::npos) throw error("must not be empty");
   if (s.find_first_of(",\"\r\n") != std::string::npos)
     throw error("must not contain a comma, quote or line break (names become CSV column names)");
+  // Names are compared exactly as written: two that differ only in white space or in invisible
+  // characters would be distinct here and the same to a reader that trims.
+  if (std::isspace(static_cast<unsigned char>(s.front())) ||
+      std::isspace(static_cast<unsigned char>(s.back())))
+    throw error("must not begin or end with white space (names are compared exactly)");
+  for (const unsigned char c : s)
+    if (c < 0x20 || c == 0x7f)
+      throw error("must not contain control characters (tab, NUL, escape...)");
   return s;
 }
 

@@ -2,6 +2,7 @@
 #include <algorithm>
 
 #include "core/error.hpp"
+#include "core/output_folder.hpp"
 #include "core/signal_formats.hpp"
 
 namespace shpb {
@@ -33,17 +34,23 @@ std::size_t resolve(const DelimitedText& text, const TextRow* header, const Colu
   }
   if (header) {
     const auto& f = header->fields;
-    auto it = std::find(f.begin(), f.end(), ref.name);
-    if (it == f.end()) {
-      auto lower = [](std::string s) {
-        std::transform(s.begin(), s.end(), s.begin(),
-                       [](unsigned char c) { return std::tolower(c); });
-        return s;
-      };
-      it = std::find_if(f.begin(), f.end(), [&](std::string_view h) {
-        return lower(std::string(h)) == lower(ref.name);
-      });
-    }
+    auto lower = [](std::string s) {
+      std::transform(s.begin(), s.end(), s.begin(),
+                     [](unsigned char c) { return std::tolower(c); });
+      return s;
+    };
+    // Exact first; the case-insensitive match only if it is the only one. Two candidates are
+    // refused, never one picked silently.
+    auto exact = [&](std::string_view h) { return h == ref.name; };
+    auto folded = [&](std::string_view h) { return lower(std::string(h)) == lower(ref.name); };
+    const auto n_exact = std::count_if(f.begin(), f.end(), exact);
+    const auto n_folded = std::count_if(f.begin(), f.end(), folded);
+    if (n_exact > 1 || (n_exact == 0 && n_folded > 1))
+      throw input_error(text.file.string(), "line " + std::to_string(header->line), describe(ref),
+                        "several header columns match this name; rename them so that each is "
+                        "unique");
+    auto it = n_exact ? std::find_if(f.begin(), f.end(), exact)
+                      : std::find_if(f.begin(), f.end(), folded);
     if (it != f.end()) return static_cast<std::size_t>(it - f.begin());
     std::string names;
     for (const auto& h : f) (names += names.empty() ? "\"" : ", \"").append(h) += '"';
@@ -72,6 +79,7 @@ RawSignalColumns read_columns(const DelimitedText& text, std::size_t first_data,
   std::vector<std::string_view> column_names;
   for (std::size_t c : indices) column_names.push_back(header_name(c));
   for (std::size_t r = first_data; r < text.rows.size(); ++r) {
+    if (r % 65536 == 0) throw_if_interrupted();  // a long record stops within a second
     const TextRow& row = text.rows[r];
     raw.time.push_back(number_at(text, row, time_index, time_name));
     for (std::size_t k = 0; k < indices.size(); ++k)

@@ -8,6 +8,8 @@
 #include <fstream>
 
 #include "core/error.hpp"
+#include "core/input_file.hpp"
+#include "core/output_folder.hpp"
 
 namespace shpb {
 namespace {
@@ -133,27 +135,10 @@ std::string text_place(std::size_t line, std::size_t column_index) {
 }
 
 DelimitedText read_delimited_text(const std::filesystem::path& file) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(file, ec))
-    throw input_error(file.string(), "", "", "is a folder; expected a signal file");
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw input_error(file.string(), "", "", "cannot be read");
-  auto owned = std::make_shared<std::string>();
+  // Type (no FIFO or device) and size checked before reading: 1 GiB is far beyond any record.
+  auto owned = std::make_shared<std::string>(
+      read_input_file(file, file.string(), "a signal file", std::uintmax_t{1} << 30));
   std::string& bytes = *owned;
-  {
-    // In blocks straight into the string (a stream iterator costs a call per byte).
-    constexpr std::size_t kBlock = 1 << 20;
-    std::size_t size = 0;
-    if (const auto s = std::filesystem::file_size(file, ec); !ec) bytes.reserve(s + kBlock);
-    for (;;) {
-      bytes.resize(size + kBlock);
-      in.read(bytes.data() + size, static_cast<std::streamsize>(kBlock));
-      size += static_cast<std::size_t>(in.gcount());
-      if (!in) break;
-    }
-    bytes.resize(size);
-  }
-  if (in.bad()) throw input_error(file.string(), "", "", "cannot be read");
   // Byte order marks: UTF-8 is dropped (spreadsheets write it); UTF-16 text is refused by name
   // rather than failing later on the NUL bytes between its characters.
   if (bytes.rfind("\xEF\xBB\xBF", 0) == 0) bytes.erase(0, 3);
@@ -181,6 +166,7 @@ DelimitedText read_delimited_text(const std::filesystem::path& file) {
       } else {
         while (i < bytes.size() && bytes[i] != '\n' && bytes[i] != '\r') ++i;
       }
+      if (at.number % 65536 == 0) throw_if_interrupted();  // a long record stops within a second
       const std::string_view l(bytes.data() + at.start, i - at.start);
       const std::size_t number = at.number;
       if (i < bytes.size() && bytes[i] == '\r' && i + 1 < bytes.size() && bytes[i + 1] == '\n') ++i;

@@ -4,6 +4,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "core/output_folder.hpp"
 #include "dispersion/pochhammer_chree.hpp"
 
 namespace shpb {
@@ -24,6 +25,7 @@ DispersionTable::DispersionTable(double poisson, double max_x, int points, doubl
   m1m2_.reserve(points);
   double prev_surface = 1.0;
   for (int i = 0; i < points; ++i) {
+    throw_if_interrupted();  // root finding: a long table stops within a second of a signal
     const double x = max_x * i / (points - 1);
     // Marching guess: the root at the previous x, linearly extrapolated once two are known.
     const double guess = i == 0 ? 0.0 : i == 1 ? c_[0] : 2 * c_[i - 1] - c_[i - 2];

@@ -5,6 +5,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "core/output_folder.hpp"
+
 namespace shpb {
 
 Propagator::Propagator(const DispersionTable& table, const BarWaveguide& bar,
@@ -65,6 +67,7 @@ void Propagator::propagate(std::span<const double> signal, double dt, double dis
     x[i] *= w;
     x[n - 1 - i] *= w;
   }
+  throw_if_interrupted();  // between transforms of a long record
   fft.forward();
   std::span<std::complex<double>> spec = fft.spectrum();
   const double df = 1.0 / (static_cast<double>(size) * dt);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 
 #include "core/error.hpp"
@@ -26,10 +27,14 @@ double automatic_elements(const Scene& scene, std::size_t i) {
 }
 
 // Refuses a set-up that cannot run here before anything is allocated, naming the entry
-// that drives the cost with the estimated memory and time. Estimates, not measurements: per
-// element the bar state (7 doubles) and one material point (~15 doubles); per recorded sample one
-// double per column (time, gauges, two per interface, specimen and energy columns).
+// that drives the cost with the estimated memory and time. Estimates, checked against the
+// measured peak (tests/robustness/test_estimates.cpp): per element the bar state (7 doubles) and
+// one material point (~15 doubles); per recorded sample every full-rate column twice (the
+// recorder's buffer and the result handed to the writers) and one time column per series
+// (gauges, interfaces, specimen); the field grid and the energy record are small and fixed, in
+// kProcessBytes with the program itself.
 constexpr double kBytesPerElement = 200;
+constexpr double kProcessBytes = 8e6;
 constexpr double kMaxMemoryBytes = 4e9;        // beyond a lab workstation's spare memory
 constexpr double kNodeUpdatesPerSecond = 5e7;  // measured order in Release on one core
 constexpr double kMaxNodeUpdates = 1e12;       // ~6 hours at that rate
@@ -53,8 +58,10 @@ std::string duration_text(double seconds) {
   return b;
 }
 
+// `duration_s` includes the free flight before first contact; `recorded_s` is what is sampled.
 void refuse_unaffordable(const Scene& scene, const std::vector<double>& elements,
-                         const std::vector<double>& steps, double duration_s) {
+                         const std::vector<double>& steps, double duration_s, double recorded_s,
+                         ChainDiscretization& estimate) {
   double mesh_bytes = 0, node_updates = 0, biggest = 0;
   std::size_t largest = 0, gauges = 0;
   for (std::size_t i = 0; i < elements.size(); ++i) {
@@ -63,13 +70,26 @@ void refuse_unaffordable(const Scene& scene, const std::vector<double>& elements
     if (elements[i] > biggest) biggest = elements[i], largest = i;
     gauges += scene.bars[i].gauges.size();
   }
-  const double columns = 1.0 + gauges + 2.0 * (scene.bars.size() - 1) + 5 + 5;
-  const double record_bytes = 8 * columns * duration_s * scene.simulation.sample_rate_Hz;
-  const double memory = mesh_bytes + record_bytes;
+  const double interfaces = static_cast<double>(scene.bars.size()) - 1;
+  const double specimen = scene.specimen ? 1 : 0;
+  const double columns = static_cast<double>(gauges) + 2 * interfaces + 5 * specimen;
+  const double series = (gauges > 0 ? 1 : 0) + (interfaces > 0 ? 1 : 0) + specimen;
+  const double record_bytes =
+      8 * (2 * columns + series) * recorded_s * scene.simulation.sample_rate_Hz;
+  const double memory = kProcessBytes + mesh_bytes + record_bytes;
+  estimate.memory_estimate_bytes = memory;
+  estimate.node_updates_estimate = node_updates;
   if (memory <= kMaxMemoryBytes && node_updates <= kMaxNodeUpdates) return;
 
   std::string where, value;
-  if (record_bytes > mesh_bytes && memory > kMaxMemoryBytes) {
+  const double flight = first_contact_delay_s(scene);
+  if (flight > 0.5 * duration_s && node_updates > kMaxNodeUpdates) {
+    // The striker's free flight across a gap is most of the run.
+    std::size_t k = 0;
+    while (k + 1 < scene.bars.size() && !(scene.bars[k].gap_m > 0)) ++k;
+    where = "bars[" + std::to_string(k) + "].gap";
+    value = JsonValue::format(scene.bars[k].gap_m, Dimension::kLength);
+  } else if (record_bytes > mesh_bytes && memory > kMaxMemoryBytes) {
     where = scene.simulation.duration_s ? "simulation.duration" : "simulation.sample_rate";
     value = scene.simulation.duration_s
                 ? JsonValue::format(duration_s, Dimension::kTime)
@@ -114,6 +134,15 @@ double stable_step_factor(const Scene& scene, std::size_t bar) {
   return stretch / std::sqrt(phi);
 }
 
+double first_contact_delay_s(const Scene& scene) {
+  double delay = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k + 1 < scene.bars.size(); ++k) {
+    const double closing = scene.bars[k].velocity_m_s - scene.bars[k + 1].velocity_m_s;
+    if (closing > 0) delay = std::min(delay, scene.bars[k].gap_m / closing);
+  }
+  return std::isfinite(delay) ? delay : 0.0;
+}
+
 double default_duration_s(const Scene& scene) {
   if (scene.bars.empty()) return 0;
   // The striker is the first bar; its pulse lasts 2 L/c.
@@ -141,6 +170,7 @@ ChainDiscretization discretize(const Scene& scene) {
   d.stepping = scene.simulation.stepping;
   d.duration_s = scene.simulation.duration_s.value_or(default_duration_s(scene));
   const double courant = scene.simulation.courant.value_or(kDefaultCourant);
+  const double run_s = d.duration_s + first_contact_delay_s(scene);  // free flight included
   {  // the cost, estimated in doubles before any count is cast to an integer
     std::vector<double> elements, steps;
     double global_dt = 0;
@@ -148,12 +178,12 @@ ChainDiscretization discretize(const Scene& scene) {
       elements.push_back(automatic_elements(scene, i));
       const double dt = courant * stable_step_factor(scene, i) * scene.bars[i].length_m /
                         elements.back() / scene.bars[i].material.wave_speed_m_s();
-      steps.push_back(std::ceil(d.duration_s / dt));
+      steps.push_back(std::ceil(run_s / dt));
       global_dt = i == 0 ? dt : std::min(global_dt, dt);
     }
     if (d.stepping == Stepping::kGlobal)
-      for (auto& s : steps) s = std::ceil(d.duration_s / global_dt);
-    refuse_unaffordable(scene, elements, steps, d.duration_s);
+      for (auto& s : steps) s = std::ceil(run_s / global_dt);
+    refuse_unaffordable(scene, elements, steps, run_s, d.duration_s, d);
   }
   for (std::size_t i = 0; i < scene.bars.size(); ++i) {
     BarDiscretization b;

@@ -48,6 +48,8 @@ struct ChainDiscretization {
   double duration_s = 0;                // resolved (scene's, or the default of docs/scene-format.md)
   double sample_rate_Hz = 0;
   Stepping stepping = Stepping::kAsynchronous;
+  double memory_estimate_bytes = 0;  // peak memory of the run, outputs included (estimate)
+  double node_updates_estimate = 0;  // free flight across initial gaps included
 };
 
 ChainDiscretization discretize(const Scene& scene);
@@ -56,5 +58,9 @@ ChainDiscretization discretize(const Scene& scene);
 // first interface to the last gauge and passed it, plus 10 %. Without gauges: two transits of
 // the longest bar.
 double default_duration_s(const Scene& scene);
+
+// Time zero is the first contact (docs/outputs.md (conventions)): with initial gaps the run starts
+// earlier by the flight time of the first interface to close under the bars' rigid motions.
+double first_contact_delay_s(const Scene& scene);
 
 }  // namespace shpb

@@ -79,12 +79,24 @@ ChannelSpec read_channel(const JsonValue& v, const std::filesystem::path& scene_
 }
 
 DispersionSpec read_dispersion(const JsonValue& v) {
-  const auto o = v.object({"correction", "amplitude_factors", "cutoff"});
+  const auto o = v.object({"correction", "amplitude_factors", "cutoff", "cutoff_fa_c0"});
   DispersionSpec d;
   if (auto c = o.get("correction"))
     d.correction = enum_from<bool>(*c, {{"pochhammer-chree", true}, {"none", false}});
   if (auto a = o.get("amplitude_factors")) d.amplitude_factors = a->boolean();
-  if (auto c = o.get("cutoff")) d.cutoff_Hz = c->positive_quantity(Dimension::kFrequency);
+  // A frequency with its unit, or the dimensionless f·a/c0 under its own key: a bare number
+  // would have two meanings (0.2619 as f·a/c0 is 0.26 Hz as a frequency).
+  if (auto c = o.get("cutoff")) {
+    if (!c->is_string())
+      throw c->error(
+          "a bare number is ambiguous: give a frequency with its unit (\"250 kHz\") "
+          "or the dimensionless f·a/c0 as cutoff_fa_c0 (e.g. 0.2619)");
+    d.cutoff_Hz = c->positive_quantity(Dimension::kFrequency);
+  }
+  if (auto c = o.get("cutoff_fa_c0")) {
+    if (d.cutoff_Hz) throw c->error("give cutoff (a frequency) or cutoff_fa_c0, not both");
+    d.cutoff_fa_c0 = c->quantity_in(Dimension::kDimensionless, 0, 10, true, false);
+  }
   return d;
 }
 

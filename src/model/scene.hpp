@@ -119,6 +119,7 @@ struct DispersionSpec {
   bool correction = true;                 // "pochhammer-chree" | "none"
   bool amplitude_factors = false;         // Tyas–Pope m1, m2
   std::optional<double> cutoff_Hz;        // default: f·a/c0 = 0.2619 (d/Λ = 0.6), smooth roll-off
+  std::optional<double> cutoff_fa_c0;     // or the cut-off as f·a/c0 (dimensionless)
 };
 
 struct TimeWindow {

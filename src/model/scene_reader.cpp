@@ -176,6 +176,17 @@ class SceneReader {
           throw g.error("duplicate gauge name (also at " + it->second + ")");
       }
     }
+    // Interface columns are "<left>-<right>_...": bars "a-b","c" and "a","b-c" would share them.
+    std::map<std::string, std::size_t> interfaces;  // interface name → left bar index
+    for (std::size_t i = 0; i + 1 < scene.bars.size(); ++i)
+      if (auto [it, ok] = interfaces.emplace(scene.bars[i].name + "-" + scene.bars[i + 1].name, i);
+          !ok)
+        throw JsonObject(items[i + 1])
+            .require("name", "")
+            .error("the interface " + it->first + " (bars " + std::to_string(i) + " and " +
+                   std::to_string(i + 1) + ") has the name of the interface between bars " +
+                   std::to_string(it->second) + " and " + std::to_string(it->second + 1) +
+                   " (interfaces.csv columns would collide); rename a bar");
   }
 
   static std::vector<std::string> bar_names(const Scene& scene) {

@@ -208,6 +208,7 @@ void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& resu
     for (const BarRecorder& r : bars_)
       if (!r.gauges.empty()) n = std::min(n, r.gauge_sampler.filled());
     ts.values.assign(gauge_names_.size(), std::vector<double>(n));
+    ts.time_s.reserve(n);
     for (long k = 0; k < n; ++k) ts.time_s.push_back(k * sample_spacing_s_);
     for (const BarRecorder& r : bars_)
       for (std::size_t g = 0; g < r.gauges.size(); ++g)
@@ -218,6 +219,7 @@ void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& resu
     TimeSeries& ts = result.interfaces;
     long n = time_count(samples_);
     for (const InterfaceRecorder& r : interfaces_) n = std::min(n, r.sampler.filled());
+    ts.time_s.reserve(n);
     for (long k = 0; k < n; ++k) ts.time_s.push_back(k * sample_spacing_s_);
     for (std::size_t i = 0; i < interfaces_.size(); ++i) {
       ts.columns.push_back(interface_names_[i] + "_force_N");
@@ -239,6 +241,7 @@ void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& resu
                   "back_stress_Pa", "true_strain",     "true_stress_Pa"};
     const long n = time_count(r.specimen_sampler.filled());
     ts.values.assign(kSpecimenColumns, std::vector<double>(n));
+    ts.time_s.reserve(n);
     for (long k = 0; k < n; ++k) {
       ts.time_s.push_back(k * sample_spacing_s_);
       for (int c = 0; c < kSpecimenColumns; ++c) ts.values[c][k] = r.specimen_sampler.at(k, c);

@@ -77,6 +77,7 @@ struct SimulationResult {
   double max_penetration_m = 0;
   bool stable = true;
   std::string failure;         // where and when, if not stable
+  std::vector<std::string> warnings;  // physically implausible but computed (plausibility checks)
 };
 
 // Runs the scene (already validated by read_scene). Never throws on instability: the result

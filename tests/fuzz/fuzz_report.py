@@ -1,0 +1,105 @@
+#!/usr/bin/python3
+"""Mutation fuzzer for the readers of tools/report.py (Table: the CSV files; Source: an output
+folder's known files and summary.json), the part of `shpb report` that reads user-reachable files.
+
+usage: fuzz_report.py SECONDS [SEED_FOLDER]
+
+Each round copies the seed folder (default: tests/fuzz/corpus/fuzz_report/), mutates one file
+(bit flips, byte insertions and deletions, duplicated or truncated lines, deep JSON nesting, NUL
+bytes, huge numbers), and reads it as report.py does. Contract: the readers either succeed or raise ReportError (or one of
+the exceptions report.py's main() turns into a one-line exit-2 error); anything else is a crash:
+the input is saved in the current folder as crash-report-<file> and the run fails.
+"""
+import os
+import random
+import shutil
+import sys
+import tempfile
+import time
+import traceback
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "tools"))
+import report  # noqa: E402
+
+HANDLED = (report.ReportError, ValueError, KeyError, IndexError)  # what main() reports as exit 2
+
+
+def mutate(data, rng):
+    data = bytearray(data)
+    for _ in range(rng.randint(1, 8)):
+        op = rng.randrange(7)
+        pos = rng.randrange(len(data) + 1)
+        if op == 0 and data:
+            data[min(pos, len(data) - 1)] ^= 1 << rng.randrange(8)
+        elif op == 1:
+            data[pos:pos] = bytes([rng.randrange(256)])
+        elif op == 2:
+            del data[pos:pos + rng.randint(1, 16)]
+        elif op == 3:
+            data[pos:pos] = rng.choice([b",", b"\n", b"\r", b"\0", b"nan", b"inf", b"1e999",
+                                        b"-", b"\"", b"{", b"[", b"\xff\xfe"])
+        elif op == 4:
+            lines = data.split(b"\n")
+            if lines:
+                i = rng.randrange(len(lines))
+                lines.insert(i, lines[i])
+                data = bytearray(b"\n".join(lines))
+        elif op == 5:
+            data = data[:pos]
+        else:
+            depth = rng.choice([10, 1000, 100000])
+            data[pos:pos] = b"[" * depth + b"]" * depth
+    return bytes(data)
+
+
+def read_folder(folder):
+    src = report.Source(folder, ".")
+    for name in src.files:
+        if name.endswith(".csv"):
+            table = src.table(name)
+            for column in table.names:
+                try:
+                    table.numeric(column)
+                except report.ReportError:
+                    pass
+
+
+def main(argv):
+    seconds = float(argv[1]) if len(argv) > 1 else 60
+    seeds = argv[2] if len(argv) > 2 else os.path.join(HERE, "corpus", "fuzz_report")
+    names = sorted(n for n in os.listdir(seeds) if not n.startswith("."))
+    rng = random.Random(1)
+    work = tempfile.mkdtemp(prefix="shpb-fuzz-report-")
+    runs = 0
+    end = time.monotonic() + seconds
+    try:
+        while time.monotonic() < end:
+            folder = os.path.join(work, "case")
+            shutil.rmtree(folder, ignore_errors=True)
+            shutil.copytree(seeds, folder)
+            victim = rng.choice(names)
+            with open(os.path.join(seeds, victim), "rb") as f:
+                data = mutate(f.read(), rng)
+            with open(os.path.join(folder, victim), "wb") as f:
+                f.write(data)
+            runs += 1
+            try:
+                read_folder(folder)
+            except HANDLED:
+                pass
+            except Exception:  # noqa: BLE001 - any other exception is the finding
+                crash = os.path.abspath(f"crash-report-{victim}")
+                with open(crash, "wb") as f:
+                    f.write(data)
+                traceback.print_exc()
+                print(f"fuzz: fuzz_report: CRASH after {runs} runs; input saved as {crash}")
+                return 1
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+    print(f"fuzz: fuzz_report: {runs} executions in {seconds:g} s, no crash")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
