@@ -24,21 +24,36 @@ nlohmann::json window_json(const WindowReport& w) {
           {"source", w.detected ? "detected" : "scene"}};
 }
 
-void check_finite(const ProcessingResult& r) {
-  auto all = [](const std::vector<double>& v) {
-    for (double x : v)
-      if (!std::isfinite(x)) return false;
-    return true;
-  };
+bool all_finite(const std::vector<double>& v) {
+  for (double x : v)
+    if (!std::isfinite(x)) return false;
+  return true;
+}
+
+// Why the reduction cannot be reported (empty: it can). The pulses are checked separately: they
+// are written even when the reduction fails.
+std::string reduction_failure(const ProcessingResult& r) {
   const Curve& c = r.curve;
-  for (const auto* v :
-       {&r.incident, &r.reflected, &r.transmitted, &c.strain_rate_1_s, &c.strain,
-        &c.stress_3wave_Pa, &c.true_strain, &c.true_stress_Pa, &c.equilibrium_ratio})
-    if (!all(*v)) throw NumericalError("process: the reduction produced a non-finite value");
+  for (const auto* v : {&c.strain_rate_1_s, &c.strain, &c.stress_3wave_Pa, &c.true_strain,
+                        &c.true_stress_Pa, &c.equilibrium_ratio})
+    if (!all_finite(*v)) return "process: the reduction produced a non-finite value";
   if (c.strain.size() && *std::max_element(c.strain.begin(), c.strain.end()) >= 1)
-    throw NumericalError(
-        "process: engineering strain reached 1 (the specimen would have no length "
-        "left): check the bridge factors, the specimen length and the windows");
+    return "process: engineering strain reached 1 (the specimen would have no length "
+           "left): check the channels' units and bridge factors, the specimen length and the "
+           "windows";
+  return "";
+}
+
+void write_pulses(const OutputFolder& out, const ProcessingResult& r) {
+  CsvWriter p(out.file("pulses.csv"), {"time_s", "incident", "reflected", "transmitted"});
+  for (std::size_t i = 0; i < r.time_s.size(); ++i)
+    p.row({r.time_s[i], r.incident[i], r.reflected[i], r.transmitted[i]});
+}
+
+void write_json(const OutputFolder& out, const std::string& name, const nlohmann::json& s) {
+  std::ofstream f(out.file(name));
+  f << s.dump(2) << "\n";
+  if (!f) throw InputError(out.file(name).string() + ": cannot be written");
 }
 
 }  // namespace
@@ -75,23 +90,34 @@ int run_process(const ProcessArgs& args) {
     m = *scene.measurement;
     options.dispersion = m.dispersion;
     options.windows = m.windows;
+    options.load_drop = m.load_drop.value_or(kDefaultLoadDrop);
   }
   options.scene_file = scene.file.string();
+  // What was assumed is said even with --quiet (which silences progress only), and as soon as
+  // it is known: before any later error stops the run.
   const GaugeSignals signals = read_gauge_signals(m, {});
+  for (const auto& w : signals.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   const KolskySetup setup = resolve_setup(scene, signals.gauges);
   ProcessingResult r = process_signals(signals, setup, options);
-  check_finite(r);
-
+  for (const auto& w : r.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   std::vector<std::string> warnings = signals.warnings;
   warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
-  // What was assumed is said even with --quiet (which silences progress only).
-  for (const auto& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  for (const auto* v : {&r.incident, &r.reflected, &r.transmitted})
+    if (!all_finite(*v)) throw NumericalError("process: the pulses hold a non-finite value");
 
   OutputFolder out(args.output);
-  {
-    CsvWriter p(out.file("pulses.csv"), {"time_s", "incident", "reflected", "transmitted"});
-    for (std::size_t i = 0; i < r.time_s.size(); ++i)
-      p.row({r.time_s[i], r.incident[i], r.reflected[i], r.transmitted[i]});
+  write_pulses(out, r);
+  // A failed reduction still leaves the pulses at the faces to look at, and says why.
+  if (const std::string failure = reduction_failure(r); !failure.empty()) {
+    write_json(out, "summary.json",
+               {{"version", SHPB_VERSION},
+                {"command", "process"},
+                {"scene", args.scene.string()},
+                {"error", failure},
+                {"warnings", warnings},
+                {"written", "pulses.csv only: the reduction failed"}});
+    out.commit();
+    throw NumericalError(failure + " (pulses.csv written to " + args.output.string() + ")");
   }
   {
     const Curve& c = r.curve;
@@ -99,7 +125,7 @@ int run_process(const ProcessArgs& args) {
                 {"time_s", "strain_rate_1_s", "strain", "stress_1wave_Pa", "stress_2wave_Pa",
                  "stress_3wave_Pa", "true_strain", "true_stress_Pa", "equilibrium_ratio",
                  "strain_rate_1wave_1_s", "force_front_N", "force_back_N"});
-    for (std::size_t i = 0; i < r.time_s.size(); ++i)
+    for (std::size_t i = 0; i < r.loading_end; ++i)
       w.row({r.time_s[i], c.strain_rate_1_s[i], c.strain[i], c.stress_1wave_Pa[i],
              c.stress_2wave_Pa[i], c.stress_3wave_Pa[i], c.true_strain[i], c.true_stress_Pa[i],
              c.equilibrium_ratio[i], c.strain_rate_1wave_1_s[i], c.force_front_N[i],
@@ -139,6 +165,10 @@ int run_process(const ProcessArgs& args) {
   s["alignment"] = {
       {"reflected_onset_minus_expected_s",
        r.reflected_onset_offset_s ? nlohmann::json(*r.reflected_onset_offset_s) : nlohmann::json()},
+      {"transmitted_onset_minus_expected_s", r.transmitted_onset_offset_s
+                                                 ? nlohmann::json(*r.transmitted_onset_offset_s)
+                                                 : nlohmann::json()},
+      {"suspect", r.alignment_suspect},
       {"how",
        "incident forward and reflected/transmitted backward by their gauge distances over "
        "c0 (dispersion-corrected); the detected reflected onset is reported, not applied "
@@ -152,24 +182,49 @@ int run_process(const ProcessArgs& args) {
                            ? nlohmann::json(*scene.measurement->striker_velocity_m_s)
                            : nlohmann::json())},
       {"how", "incident plateau at the front face: V = E A eps (Z_s + Z_b)/(Z_s Z_b)"}};
-  s["plateau_strain_rate_1_s"] = r.plateau_strain_rate_1_s;
+  s["plateau_strain_rate_1_s"] =
+      r.strain_rate_has_plateau ? nlohmann::json(r.plateau_strain_rate_1_s) : nlohmann::json();
+  s["strain_rate"] = {
+      {"plateau_1_s", s["plateau_strain_rate_1_s"]},
+      {"plateau_fraction_of_loading", r.strain_rate_plateau_fraction},
+      {"mean_over_loading_1_s", r.mean_strain_rate_1_s},
+      {"how",
+       "plateau: the longest run of samples within +-10 % of the rate's plateau level (median of "
+       "the samples above half its 95th percentile) covers at least 30 % of the loading (samples "
+       "with a positive rate); otherwise null and only the mean is quoted"}};
+  s["end_of_loading"] = {{"time_s", r.time_s[r.loading_end - 1]},
+                         {"how", r.loading_end_how},
+                         {"curve_rows", r.loading_end},
+                         {"note", "curve.csv ends here; pulses.csv keeps the whole window"}};
   s["peak_stress_Pa"] = r.peak_stress_Pa;
   s["max_strain"] = r.max_strain;
   s["time_to_equilibrium_s"] =
       r.time_to_equilibrium_s ? nlohmann::json(*r.time_to_equilibrium_s) : nlohmann::json();
-  s["equilibrium_criterion"] = "R = 2|P1-P2|/|P1+P2| <= 0.05 while (P1+P2)/2 >= 20 % of its peak";
+  s["equilibrium_criterion"] =
+      "R = 2|P1-P2|/|P1+P2| <= 0.05 while (P1+P2)/2 >= 20 % of its peak (loaded); reached at the "
+      "start of the interval with R <= 0.05 that lasts until unloading";
   {
-    std::ofstream f(out.file("summary.json"));
-    f << s.dump(2) << "\n";
-    if (!f) throw InputError(out.file("summary.json").string() + ": cannot be written");
+    const Equilibrium& e = r.equilibrium;
+    auto interval = [](const std::optional<std::pair<double, double>>& p) {
+      return p ? nlohmann::json::array({p->first, p->second}) : nlohmann::json();
+    };
+    s["equilibrium"] = {
+        {"fraction_of_loaded_time", e.loaded_s ? nlohmann::json(e.fraction) : nlohmann::json()},
+        {"loaded_s", interval(e.loaded_s)},
+        {"longest_interval_s", interval(e.longest_s)},
+        {"holds_until_unloading_from_s",
+         e.holds_from_s ? nlohmann::json(*e.holds_from_s) : nlohmann::json()}};
   }
+  write_json(out, "summary.json", s);
   out.commit();
   if (!args.quiet)
     std::fprintf(stderr,
-                 "process: window %.6g–%.6g s at the faces; striker ≈ %.4g m/s (inferred); plateau "
+                 "process: window %.6g–%.6g s at the faces; striker ≈ %.4g m/s (inferred); %s "
                  "strain rate %.4g 1/s; peak 3-wave stress %.4g MPa -> %s\n",
                  r.face_start_s, r.face_end_s, r.inferred_striker_velocity_m_s,
-                 r.plateau_strain_rate_1_s, r.peak_stress_Pa / 1e6, args.output.string().c_str());
+                 r.strain_rate_has_plateau ? "plateau" : "no plateau: mean",
+                 r.strain_rate_has_plateau ? r.plateau_strain_rate_1_s : r.mean_strain_rate_1_s,
+                 r.peak_stress_Pa / 1e6, args.output.string().c_str());
   return 0;
 }
 

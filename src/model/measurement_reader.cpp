@@ -92,8 +92,8 @@ DispersionSpec read_dispersion(const JsonValue& v) {
 
 MeasurementSpec read_measurement(const JsonValue& value, const std::filesystem::path& scene_dir,
                                  const std::vector<std::string>& gauges) {
-  const auto o = value.object(
-      {"file", "format", "time", "channels", "dispersion", "windows", "striker_velocity", "notes"});
+  const auto o = value.object({"file", "format", "time", "channels", "dispersion", "windows",
+                               "striker_velocity", "notes", "load_drop"});
   MeasurementSpec m;
   if (auto f = o.get("file")) m.file = (scene_dir / f->name()).lexically_normal();
   if (auto f = o.get("format"))
@@ -108,6 +108,7 @@ MeasurementSpec read_measurement(const JsonValue& value, const std::filesystem::
       const std::string unit = u->string();
       try {
         m.time_unit_s = parse_quantity("1 " + unit, Dimension::kTime);
+        m.time_unit = unit;
       } catch (const std::invalid_argument& e) {
         throw u->error(e.what());
       }
@@ -126,6 +127,15 @@ MeasurementSpec read_measurement(const JsonValue& value, const std::filesystem::
     if (auto x = wo.get("incident")) m.windows.incident = read_window(*x);
     if (auto x = wo.get("reflected")) m.windows.reflected = read_window(*x);
     if (auto x = wo.get("transmitted")) m.windows.transmitted = read_window(*x);
+  }
+  if (auto d = o.get("load_drop")) {
+    if (d->json().is_boolean()) {
+      if (d->boolean())
+        throw d->error("false (cut at the strain maximum only) or a fraction, e.g. 0.5");
+      m.load_drop = 0.0;
+    } else {
+      m.load_drop = d->quantity_in(Dimension::kDimensionless, 0, 1, true, true);
+    }
   }
   if (auto s = o.get("striker_velocity"))
     m.striker_velocity_m_s = s->positive_quantity(Dimension::kVelocity);

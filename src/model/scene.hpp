@@ -14,6 +14,9 @@ namespace shpb {
 struct GaugeSpec {
   std::string name;
   double position_m = 0;  // from the bar's left end
+  // As given (`distance_to_specimen`): to the specimen face the pulse reaches; position_m is
+  // resolved from it once the specimen is known.
+  std::optional<double> distance_to_specimen_m;
 };
 
 struct BarSpec {
@@ -128,6 +131,8 @@ struct MeasurementSpec {
   DispersionSpec dispersion;
   PulseWindows windows;
   std::optional<double> striker_velocity_m_s;  // if known; else inferred
+  std::string time_unit = "s";                 // as written (named in errors)
+  std::optional<double> load_drop;  // curve end at this stress drop (fraction); 0: off; unset: default
 };
 
 struct Scene {

@@ -1,0 +1,363 @@
+// `shpb process` and `compare` on lab records with the traps a new user walks into: gauge
+// positions given as the distance to the specimen, time units that do not match the column,
+// microstrain declared as strain, hand-set windows between samples, equilibrium that comes and
+// goes, fracture, a strain rate without a plateau, simulations shorter than the record. Every
+// case runs the executable on a synthetic record whose pulses are known exactly.
+#include <catch2/catch.hpp>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "run_shpb.hpp"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using shpb_test::read_text;
+using shpb_test::run_shpb;
+using shpb_test::scratch_dir;
+
+namespace {
+
+constexpr double kC0 = 5000;    // steel bars: sqrt(200 GPa / 8000 kg/m3)
+constexpr double kDt = 1e-7;    // 10 MHz record
+constexpr int kSamples = 8000;  // 800 µs
+constexpr double kSpecimenL = 5e-3;
+
+// A trapezoid of unit height starting at t0: `rise` up, flat, `rise` down, `length` long.
+double trap(double t, double t0, double length = 100e-6, double rise = 10e-6) {
+  const double u = t - t0;
+  if (u <= 0 || u >= length) return 0.0;
+  if (u < rise) return u / rise;
+  if (u > length - rise) return (length - u) / rise;
+  return 1.0;
+}
+
+// Gauge strains as functions of time (tension positive).
+struct Record {
+  std::function<double(double)> incident_gauge, transmitted_gauge;
+};
+
+// The clean test of test_process.cpp: incident −1e-3 at 50 µs on a gauge 1 m from the specimen
+// (reflected +0.6e-3 back at 450 µs), transmitted −0.4e-3 at 350 µs on a gauge 0.5 m from it.
+Record clean(double rise = 10e-6) {
+  return {[=](double t) {
+            return -1e-3 * trap(t, 50e-6, 100e-6, rise) + 0.6e-3 * trap(t, 450e-6, 100e-6, rise);
+          },
+          [=](double t) { return -0.4e-3 * trap(t, 350e-6, 100e-6, rise); }};
+}
+
+std::string csv(const Record& r, double scale = 1.0) {
+  std::ostringstream s;
+  s.precision(17);
+  s << "time_s,incident,transmitted\n";
+  for (int i = 0; i < kSamples; ++i) {
+    const double t = i * kDt;
+    s << t << "," << scale * r.incident_gauge(t) << "," << scale * r.transmitted_gauge(t) << "\n";
+  }
+  return s.str();
+}
+
+// Steel Kolsky bars (2 m, 20 mm), a 5 mm specimen; the incident gauge 1 m and the transmitted
+// gauge 0.5 m from the specimen.
+json scene_json() {
+  return json::parse(R"({
+  "bars": [
+    { "name": "striker", "material": "steel", "length": "200 mm", "diameter": "20 mm", "velocity": "10 m/s" },
+    { "name": "incident", "material": "steel", "length": "2 m", "diameter": "20 mm",
+      "gauges": [ { "name": "incident", "position": "1 m" } ] },
+    { "name": "specimen", "material": "soft", "length": "5 mm", "diameter": "10 mm" },
+    { "name": "transmitter", "material": "steel", "length": "2 m", "diameter": "20 mm",
+      "gauges": [ { "name": "transmitted", "position": "0.5 m" } ] }
+  ],
+  "specimen": "specimen",
+  "materials": {
+    "steel": { "model": "elastic", "density": 8000, "youngs_modulus": "200 GPa", "poisson_ratio": 0.29 },
+    "soft": { "model": "elastic", "density": 2700, "youngs_modulus": "70 GPa", "poisson_ratio": 0.33 }
+  },
+  "measurement": {
+    "file": "signals.csv", "time": { "column": "time_s", "unit": "s" },
+    "channels": [ { "gauge": "incident", "column": "incident", "unit": "strain" },
+                  { "gauge": "transmitted", "column": "transmitted", "unit": "strain" } ],
+    "dispersion": { "correction": "none" }
+  }
+})");
+}
+
+fs::path write(const fs::path& dir, const json& scene, const std::string& signals) {
+  std::ofstream(dir / "signals.csv") << signals;
+  std::ofstream(dir / "scene.json") << scene.dump(2);
+  return dir / "scene.json";
+}
+
+json summary(const fs::path& out) { return json::parse(read_text(out / "summary.json")); }
+
+// The columns of a CSV file written by shpb (header + numbers).
+std::vector<std::vector<double>> read_csv(const fs::path& file) {
+  std::istringstream in(read_text(file));
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::vector<double>> cols;
+  while (std::getline(in, line)) {
+    std::istringstream f(line);
+    std::string v;
+    for (std::size_t c = 0; std::getline(f, v, ','); ++c) {
+      if (cols.size() <= c) cols.emplace_back();
+      cols[c].push_back(std::stod(v));
+    }
+  }
+  return cols;
+}
+
+bool has_warning(const json& s, const std::string& text) {
+  for (const auto& w : s["warnings"])
+    if (w.get<std::string>().find(text) != std::string::npos) return true;
+  return false;
+}
+
+}  // namespace
+
+TEST_CASE("A gauge entered by its distance to the specimen is placed from the specimen face",
+          "[app][labdata]") {
+  const fs::path d = scratch_dir("labdata_distance");
+  json scene = scene_json();
+  scene["bars"][1]["gauges"][0] = {{"name", "incident"}, {"distance_to_specimen", "1 m"}};
+  scene["bars"][3]["gauges"][0] = {{"name", "transmitted"}, {"distance_to_specimen", "0.5 m"}};
+  const auto r =
+      run_shpb({"process", write(d, scene, csv(clean())).string(), "-o", (d / "out").string()});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  const json s = summary(d / "out");
+  CHECK(s["gauge_distances_m"]["incident"].get<double>() == Approx(1.0));
+  CHECK(s["gauge_distances_m"]["transmitted"].get<double>() == Approx(0.5));
+  // The record matches the geometry: no alignment warning.
+  CHECK_FALSE(s["alignment"]["suspect"].get<bool>());
+  CHECK(r.err.find("warning") == std::string::npos);
+}
+
+TEST_CASE("A gauge 60 mm off is warned about with the right sign and size", "[app][labdata]") {
+  // The incident gauge really is 1 m from the specimen; the scene says 1.06 m (a data sheet's
+  // distance read as a position from the other end): the reflected pulse comes 2 × 60 mm / c0 =
+  // 24 µs before the geometry's time.
+  const fs::path d = scratch_dir("labdata_gauge_off");
+  json scene = scene_json();
+  scene["bars"][1]["gauges"][0]["position"] = "0.94 m";
+  const auto r =
+      run_shpb({"process", write(d, scene, csv(clean())).string(), "-o", (d / "out").string()});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  const json s = summary(d / "out");
+  // Onset picking on both pulses (same rise) cancels; a sample of jitter remains.
+  constexpr double kOnsetTolerance_s = 2 * kDt;
+  CHECK(s["alignment"]["reflected_onset_minus_expected_s"].get<double>() ==
+        Approx(-2 * 0.06 / kC0).margin(kOnsetTolerance_s));
+  CHECK(s["alignment"]["suspect"].get<bool>());
+  CHECK(r.err.find("warning: gauge \"incident\": the reflected pulse starts 24") !=
+        std::string::npos);
+  // The size said: 60 mm closer, to the half sample (0.25 mm) of onset picking.
+  std::smatch m;
+  const std::string said = s["warnings"][0].get<std::string>();
+  REQUIRE(
+      std::regex_search(said, m, std::regex("incident gauge is likely ([0-9.]+) mm closer to")));
+  constexpr double kTwoSamples_mm = 2 * (0.5 * kC0 * kDt) * 1e3;  // c0·dt/2 per sample of offset
+  CHECK(std::stod(m[1]) == Approx(60).margin(kTwoSamples_mm));
+  CHECK(r.err.find(said) != std::string::npos);  // printed as well
+  // The transmitted gauge alone 60 mm off (scene 0.56 m, really 0.5 m): 12 µs early. The
+  // synthetic record has no specimen transit (~1 µs of the 5 mm specimen), so the size is
+  // right to that transit: 5 mm of bar.
+  scene = scene_json();
+  scene["bars"][3]["gauges"][0]["position"] = "0.56 m";
+  const auto t =
+      run_shpb({"process", write(d, scene, csv(clean())).string(), "-o", (d / "out2").string()});
+  REQUIRE(t.code == 0);
+  const json s2 = summary(d / "out2");
+  CHECK(s2["alignment"]["suspect"].get<bool>());
+  CHECK(has_warning(s2, "the transmitted gauge is likely 6"));
+  CHECK(has_warning(s2, "mm closer to the specimen"));
+}
+
+TEST_CASE("A time unit that does not match the column exits 2 before anything is sized from it",
+          "[app][labdata]") {
+  for (const std::string unit : {"us", "ns"}) {
+    CAPTURE(unit);
+    const fs::path d = scratch_dir("labdata_unit");
+    json scene = scene_json();
+    scene["measurement"]["time"]["unit"] = unit;
+    const auto start = std::chrono::steady_clock::now();
+    const auto r =
+        run_shpb({"process", write(d, scene, csv(clean())).string(), "-o", (d / "out").string()});
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    INFO(r.err);
+    CHECK(r.code == 2);
+    CHECK(r.err.rfind("error: ", 0) == 0);
+    CHECK(r.err.find("column \"time_s\" in \"" + unit + "\"") != std::string::npos);
+    CHECK(r.err.find('\n') == r.err.size() - 1);
+    CHECK_FALSE(fs::exists(d / "out"));
+    INFO("refused in " << seconds << " s");
+  }
+  // Seconds declared on a column in microseconds: a 0.1 s sample interval.
+  const fs::path d = scratch_dir("labdata_unit_s");
+  json scene = scene_json();
+  std::string micro = "time_us,incident,transmitted\n";
+  for (int i = 0; i < kSamples; ++i) micro += std::to_string(i * 0.1) + ",0,0\n";
+  scene["measurement"]["time"]["column"] = "time_us";
+  const auto r = run_shpb({"process", write(d, scene, micro).string(), "-o", (d / "out").string()});
+  CHECK(r.code == 2);
+  CHECK(r.err.find("sample interval 0.1 s") != std::string::npos);
+}
+
+TEST_CASE("Microstrain declared as strain is warned about, then pulses.csv is written and exit 3",
+          "[app][labdata]") {
+  const fs::path d = scratch_dir("labdata_microstrain");
+  const auto r = run_shpb(
+      {"process", write(d, scene_json(), csv(clean(), 1e6)).string(), "-o", (d / "out").string()});
+  INFO(r.err);
+  CHECK(r.code == 3);
+  const auto warning = r.err.find("warning: gauge \"incident\": implausible strain scale");
+  const auto error = r.err.find("error: ");
+  CHECK(warning != std::string::npos);
+  CHECK(r.err.find("look like microstrain") != std::string::npos);
+  CHECK(warning < error);  // said before the failure
+  CHECK(r.err.find("engineering strain reached 1") != std::string::npos);
+  REQUIRE(fs::exists(d / "out/pulses.csv"));
+  CHECK_FALSE(fs::exists(d / "out/curve.csv"));
+  const json s = summary(d / "out");
+  CHECK(s["error"].get<std::string>().find("engineering strain reached 1") != std::string::npos);
+  CHECK(has_warning(s, "implausible strain scale"));
+  // The pulses are there, at the faces, in the file's (wrong) scale: incident plateau 1e-3·1e6.
+  const auto p = read_csv(d / "out/pulses.csv");
+  CHECK(*std::min_element(p[1].begin(), p[1].end()) == Approx(-1e3).epsilon(1e-9));
+}
+
+TEST_CASE("Hand-set windows between samples are put on the nearest sample for all three pulses",
+          "[app][labdata]") {
+  // Fronts of 1 µs (10 samples): a misalignment of one sample is 10 % of the peak on the front.
+  const double rise = 1e-6;
+  for (const double offset : {0.049e-6, -0.049e-6, 0.0}) {
+    CAPTURE(offset);
+    const fs::path d = scratch_dir("labdata_windows");
+    json scene = scene_json();
+    scene["measurement"]["windows"] = {{"incident", {50e-6 + offset, 150e-6 + offset}},
+                                       {"reflected", {450e-6 + offset, 550e-6 + offset}},
+                                       {"transmitted", {350e-6 + offset, 450e-6 + offset}}};
+    const auto r = run_shpb(
+        {"process", write(d, scene, csv(clean(rise))).string(), "-o", (d / "out").string()});
+    INFO(r.err);
+    REQUIRE(r.code == 0);
+    // At the faces all three start at 250 µs (the gauges are 1 m and 0.5 m away, c0 = 5000 m/s).
+    const auto p = read_csv(d / "out/pulses.csv");
+    double worst = 0;
+    for (std::size_t i = 0; i < p[0].size(); ++i) {
+      const double t = p[0][i];
+      worst = std::max({worst, std::abs(p[1][i] + 1e-3 * trap(t, 250e-6, 100e-6, rise)) / 1e-3,
+                        std::abs(p[2][i] - 0.6e-3 * trap(t, 250e-6, 100e-6, rise)) / 0.6e-3,
+                        std::abs(p[3][i] + 0.4e-3 * trap(t, 250e-6, 100e-6, rise)) / 0.4e-3});
+    }
+    // Whole-sample shifts of a sampled trapezoid are exact up to round-off of the time stamps.
+    constexpr double kExactShift = 1e-6;
+    CHECK(worst < kExactShift);
+  }
+}
+
+TEST_CASE(
+    "Equilibrium is the fraction of the loaded time with R <= 5 % and the interval that "
+    "lasts until unloading",
+    "[app][labdata]") {
+  // Front and back forces agree (R = 0) except 10–40 µs into the pulse, where the transmitted
+  // pulse carries an extra 0.1e-3 (R = 2·0.1/0.9 = 0.22): equilibrium is met early, lost, and
+  // holds again from ≈ 41.6 µs (where the bump's 2 µs ramp is down to R = 5 %) until unloading.
+  Record rec = clean();
+  rec.transmitted_gauge = [](double t) {
+    return -0.4e-3 * trap(t, 350e-6) - 0.1e-3 * trap(t, 360e-6, 32e-6, 2e-6);
+  };
+  const fs::path d = scratch_dir("labdata_equilibrium");
+  const auto r =
+      run_shpb({"process", write(d, scene_json(), csv(rec)).string(), "-o", (d / "out").string()});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  const json s = summary(d / "out");
+  // R ≤ 5 % again where the bump h satisfies 2h/(0.8 + h) ≤ 0.05 (h ≤ 0.0205e-3) on its way
+  // down: 41.59 µs after the pulse starts at the face; the window starts at the detected onset
+  // (0.3 µs into the 10 µs front). Tolerance: a sample of onset picking each side.
+  constexpr double kEdge_s = 3 * kDt;
+  CHECK(s["time_to_equilibrium_s"].get<double>() == Approx(41.59e-6 - 0.3e-6).margin(kEdge_s));
+  CHECK(s["equilibrium"]["holds_until_unloading_from_s"].get<double>() ==
+        Approx(250e-6 + 41.59e-6).margin(kEdge_s));
+  // Loaded (mean force ≥ 20 % of its 0.9e-3·EA peak) from 2.25 µs; the curve ends at the load
+  // drop below 50 % of the peak stress (0.8·ramp < 0.45: 94.4 µs). R > 5 % from 10.41 µs
+  // (h ≥ 0.0205e-3 on the way up) to 41.59 µs.
+  const double loaded = 94.375e-6 - 2.25e-6, out_of_equilibrium = 41.59e-6 - 10.41e-6;
+  constexpr double kFractionTolerance = 0.01;  // a few samples at each of four edges
+  CHECK(s["equilibrium"]["fraction_of_loaded_time"].get<double>() ==
+        Approx(1 - out_of_equilibrium / loaded).margin(kFractionTolerance));
+}
+
+TEST_CASE("The curve ends with loading: at a load drop (fracture) or the strain maximum",
+          "[app][labdata]") {
+  // Fracture 50 µs into the pulse: the transmitted pulse stops and the whole incident pulse is
+  // reflected (front force zero) while the faces keep moving apart at 2 c0 ε_I / L.
+  Record rec;
+  rec.incident_gauge = [](double t) {
+    // Reflected: 0.6e-3 until 40 µs, ramping to 1e-3 over 40–50 µs, then the incident's shape.
+    const double u = t - 450e-6;
+    double refl = 0.6e-3 * trap(t, 450e-6);
+    if (u > 40e-6) refl += 0.4e-3 * std::min(1.0, (u - 40e-6) / 10e-6) * trap(t, 450e-6);
+    return -1e-3 * trap(t, 50e-6) + refl;
+  };
+  rec.transmitted_gauge = [](double t) {
+    const double u = t - 350e-6;
+    const double cut = u < 40e-6 ? 1.0 : std::max(0.0, 1 - (u - 40e-6) / 10e-6);
+    return -0.4e-3 * trap(t, 350e-6) * cut;
+  };
+  const fs::path d = scratch_dir("labdata_fracture");
+  json scene = scene_json();
+  const auto r =
+      run_shpb({"process", write(d, scene, csv(rec)).string(), "-o", (d / "out").string()});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  json s = summary(d / "out");
+  CHECK(s["end_of_loading"]["how"].get<std::string>().find("load drop") != std::string::npos);
+  // 3-wave stress ∝ 0.4e-3 until 40 µs, then (0.4 − 0.4 u')·… falls below half at 45 µs.
+  // Strain up to there: rate (c0/L)(1 + ε_R − |ε_T|)/1e3: 1200/s on the plateau, ~0.05.
+  const auto c = read_csv(d / "out/curve.csv");
+  CHECK(c[0].back() - c[0].front() == Approx(45e-6 - 0.3e-6).margin(3 * kDt));
+  const double max_strain = s["max_strain"].get<double>();
+  CHECK(max_strain < 0.06);  // the whole record would give 0.15
+  CHECK(s["plateau_strain_rate_1_s"].get<double>() == Approx(1200).epsilon(0.01));
+  // With the load drop turned off the curve runs to the strain maximum (the end of the pulse).
+  scene["measurement"]["load_drop"] = false;
+  const auto r2 =
+      run_shpb({"process", write(d, scene, csv(rec)).string(), "-o", (d / "out2").string()});
+  REQUIRE(r2.code == 0);
+  s = summary(d / "out2");
+  CHECK(s["end_of_loading"]["how"] == "strain maximum");
+  CHECK(s["max_strain"].get<double>() > 0.12);
+}
+
+TEST_CASE("A strain rate without a plateau quotes no plateau rate", "[app][labdata]") {
+  // A triangular reflected pulse: the rate (c0/L)(|ε_I| + ε_R − |ε_T|) = 600 + 600·triangle
+  // 1/s ramps from 600 to 1200 1/s and back, never flat.
+  Record rec = clean();
+  rec.incident_gauge = [](double t) {
+    const double u = (t - 450e-6) / 100e-6;
+    const double triangle = u > 0 && u < 1 ? 1 - std::abs(2 * u - 1) : 0;
+    return -1e-3 * trap(t, 50e-6) + 0.6e-3 * triangle;
+  };
+  const fs::path d = scratch_dir("labdata_no_plateau");
+  const auto r =
+      run_shpb({"process", write(d, scene_json(), csv(rec)).string(), "-o", (d / "out").string()});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  const json s = summary(d / "out");
+  CHECK(s["plateau_strain_rate_1_s"].is_null());
+  CHECK(s["strain_rate"]["plateau_fraction_of_loading"].get<double>() < 0.3);
+  CHECK(s["strain_rate"]["mean_over_loading_1_s"].get<double>() > 700);
+  CHECK(r.err.find("no plateau") != std::string::npos);
+}
