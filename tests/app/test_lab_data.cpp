@@ -361,3 +361,56 @@ TEST_CASE("A strain rate without a plateau quotes no plateau rate", "[app][labda
   CHECK(s["strain_rate"]["mean_over_loading_1_s"].get<double>() > 700);
   CHECK(r.err.find("no plateau") != std::string::npos);
 }
+
+TEST_CASE("compare covers the measured pulses by default and warns when a set duration cuts them",
+          "[app][labdata][compare]") {
+  // The classic bar with its incident gauge 0.2 m from the striker end: the reflected pulse
+  // passes it 3.8 m of travel after impact, long after the default duration (the transmitted
+  // gauge, 0.1 m into the transmitter bar, sets it). The "measurement" is the scene's own
+  // simulation, long enough to hold every pulse.
+  const fs::path d = scratch_dir("labdata_compare_duration");
+  const fs::path source = SHPB_SOURCE_DIR;
+  json scene = json::parse(read_text(source / "experiments/classic-al6061/scene.json"));
+  scene["bars"][1]["gauges"][0]["position"] = "0.2 m";
+  scene["bars"][3]["gauges"][0]["position"] = "0.1 m";
+  scene["bars"][2]["material"] = (source / "specimens/al6061-t6.json").string();
+  scene["simulation"] = {{"duration", "1100 us"}, {"sample_rate", "10 MHz"}};
+  std::ofstream(d / "sim.json") << scene.dump(2);
+  REQUIRE(run_shpb({"simulate", (d / "sim.json").string(), "-o", (d / "sim").string(), "--quiet"})
+              .code == 0);
+  scene["simulation"].erase("duration");
+  scene["measurement"] = {
+      {"file", (d / "sim/gauges.csv").string()},
+      {"time", {{"column", "time_s"}, {"unit", "s"}}},
+      {"channels",
+       {{{"gauge", "incident"}, {"column", "incident"}, {"unit", "strain"}},
+        {{"gauge", "transmitted"}, {"column", "transmitted"}, {"unit", "strain"}}}}};
+  std::ofstream(d / "compare.json") << scene.dump(2);
+  auto compare = [&](const std::string& out) {
+    return run_shpb({"compare", (d / "compare.json").string(), "-o", (d / out).string(),
+                     "--no-dispersion", "--quiet"});
+  };
+  // Default duration: extended, every pulse compared whole (a simulation against itself).
+  auto r = compare("default");
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  json s = summary(d / "default");
+  CHECK(s["simulation"]["duration_source"] == "extended to cover the measured pulses");
+  CHECK(s["warnings"].empty());
+  REQUIRE(s["pulses"].size() == 3);
+  constexpr double kSelfComparison = 1e-3;  // the same simulation, re-sampled on its own grid
+  for (const auto& p : s["pulses"]) {
+    CAPTURE(p["pulse"]);
+    CHECK(p["duration_ratio"].get<double>() == Approx(1).margin(kSelfComparison));
+    CHECK(p["peak_ratio"].get<double>() == Approx(1).margin(kSelfComparison));
+  }
+  // A duration set too short: the reflected pulse is cut, and that is said.
+  scene["simulation"]["duration"] = "600 us";
+  std::ofstream(d / "compare.json") << scene.dump(2);
+  r = compare("short");
+  REQUIRE(r.code == 0);
+  s = summary(d / "short");
+  CHECK(s["simulation"]["duration_source"] == "scene");
+  CHECK(has_warning(s, "before the reflected pulse has passed gauge \"incident\""));
+  CHECK(r.err.find("warning: the simulation ends") != std::string::npos);
+}
