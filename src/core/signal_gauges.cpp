@@ -124,6 +124,10 @@ GaugeSignals read_gauge_signals(const MeasurementSpec& m, const std::filesystem:
       double factor = 1.0;
       switch (ch.unit) {
         case SignalUnit::kVolt:
+          if (ch.scale) {
+            factor = *ch.scale;
+            break;
+          }
           if (!ch.bridge)
             throw input_error(
                 "measurement", "channels[" + std::to_string(channels[k]) + "].bridge", "missing",

@@ -117,6 +117,12 @@ double default_duration_s(const Scene& scene) {
 }
 
 ChainDiscretization discretize(const Scene& scene) {
+  for (std::size_t i = 0; i < scene.bars.size(); ++i)
+    if (!scene.bars[i].has_material)
+      throw input_error(scene.file.string(), "bars[" + std::to_string(i) + "].material",
+                        "(missing)",
+                        "a simulation needs every bar's material (only `process` works without "
+                        "the specimen's)");
   ChainDiscretization d;
   d.sample_rate_Hz = scene.simulation.sample_rate_Hz;
   d.stepping = scene.simulation.stepping;

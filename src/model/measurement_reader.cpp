@@ -50,7 +50,7 @@ TimeWindow read_window(const JsonValue& v) {
 
 ChannelSpec read_channel(const JsonValue& v, const std::filesystem::path& scene_dir,
                          const std::vector<std::string>& gauges) {
-  const auto o = v.object({"gauge", "file", "column", "unit", "bridge", "invert"});
+  const auto o = v.object({"gauge", "file", "column", "unit", "bridge", "scale", "invert"});
   ChannelSpec c;
   const auto gauge = o.require("gauge", "the name of a gauge in bars[].gauges");
   c.gauge = gauge.string();
@@ -65,14 +65,21 @@ ChannelSpec read_channel(const JsonValue& v, const std::filesystem::path& scene_
   c.unit = enum_from<SignalUnit>(unit, {{"V", SignalUnit::kVolt},
                                         {"strain", SignalUnit::kStrain},
                                         {"microstrain", SignalUnit::kMicrostrain}});
+  if (auto sc = o.get("scale")) {
+    if (c.unit != SignalUnit::kVolt)
+      throw sc->error("a scale (strain per volt) converts volts; it applies only to \"unit\": \"V\"");
+    if (o.get("bridge")) throw sc->error("give either scale (strain per volt) or bridge, not both");
+    c.scale = sc->quantity(Dimension::kDimensionless);
+    if (!(*c.scale != 0)) throw sc->error("expected a non-zero strain per volt, e.g. 1.2e-3");
+  }
   if (auto b = o.get("bridge")) {
     if (c.unit != SignalUnit::kVolt)
       throw b->error("a bridge converts volts; it applies only to \"unit\": \"V\"");
     c.bridge = read_bridge(*b);
-  } else if (c.unit == SignalUnit::kVolt) {
+  } else if (c.unit == SignalUnit::kVolt && !c.scale) {
     throw input_error(v.file(), json_child_path(v.path(), "bridge"), "(missing)",
                       "required for \"unit\": \"V\": {\"arms\", \"gauge_factor\", \"excitation\", "
-                      "\"gain\"}");
+                      "\"gain\"} (or \"scale\": strain per volt)");
   }
   if (auto i = o.get("invert")) c.invert = i->boolean();
   return c;

@@ -29,6 +29,7 @@ struct BarSpec {
   int elements = 0;           // 0: chosen automatically (see model/mesh.hpp)
   double gap_m = 0;           // initial gap to the next bar on the right
   std::vector<GaugeSpec> gauges;
+  bool has_material = true;  // false: the specimen of a scene only processed (no `material`)
 
   double impedance_kg_s() const {
     return material.density_kg_m3 * material.wave_speed_m_s() * area_m2;
@@ -104,7 +105,8 @@ struct ChannelSpec {
   std::filesystem::path file;        // empty: the measurement's file
   ColumnRef column;
   SignalUnit unit = SignalUnit::kStrain;
-  std::optional<BridgeSpec> bridge;  // required for volts
+  std::optional<BridgeSpec> bridge;  // required for volts, or
+  std::optional<double> scale;       // strain per volt (a calibration factor) instead
   bool invert = false;
 };
 

@@ -48,6 +48,11 @@ class SceneReader {
 
     if (auto v = o.get("specimen")) scene.specimen = bar_index(scene, *v);
     resolve_distances_to_specimen(scene, items);
+    for (std::size_t i = 0; i < scene.bars.size(); ++i)
+      if (!scene.bars[i].has_material && scene.specimen != i)
+        throw JsonObject(items[i]).require(
+            "material", "a name from materials, a file or an object (only the specimen may go "
+                        "without one, for `process`)");
     if (auto v = o.get("contact")) scene.contact = read_contact(*v, scene);
     if (auto v = o.get("simulation")) scene.simulation = read_simulation(*v);
     if (auto v = o.get("measurement")) {
@@ -108,7 +113,11 @@ class SceneReader {
                              "elements", "gap", "gauges", "notes"});
     BarSpec b;
     b.name = o.require("name", "a unique name such as \"incident\"").name();
-    b.material = material(o.require("material", "a name from materials, a file or an object"));
+    // `process` needs no specimen material (geometry is enough): checked once the specimen is known.
+    if (auto m = o.get("material"))
+      b.material = material(*m);
+    else
+      b.has_material = false;
     b.length_m = o.require("length", "e.g. \"2 m\"").positive_quantity(Dimension::kLength);
     const auto diameter = o.get("diameter");
     const auto area = o.get("area");
