@@ -79,23 +79,23 @@ int run_bar_check(const ProcessArgs& args, const Scene& scene) {
     for (std::size_t i = 0; i < r.time_s.size(); ++i)
       p.row({r.time_s[i], r.far_measured[i], r.far_dispersion[i], r.far_time_shift[i]});
   }
-  write_json(out, "summary.json",
-             {{"version", SHPB_VERSION},
-              {"command", "process"},
-              {"scene", args.scene.string()},
-              {"check", "bars together (no specimen)"},
-              {"near_gauge", setup.near_gauge},
-              {"far_gauge", setup.far_gauge},
-              {"distance_m", setup.distance_m},
-              {"cutoff_Hz", r.cutoff_Hz},
-              {"rms_of_peak",
-               {{"pochhammer_chree", r.rms_dispersion}, {"time_shift", r.rms_time_shift}}},
-              {"how",
-               "the near gauge's first pulse (the rest of its record zeroed) moved by the distance "
-               "to the far gauge, with Pochhammer-Chree dispersion and by a plain delay "
-               "distance/c0; RMS of the difference from the far record over its pulse (+-20 % of "
-               "its length), as a fraction of its peak"},
-              {"warnings", warnings}});
+  write_json(
+      out, "summary.json",
+      {{"version", SHPB_VERSION},
+       {"command", "process"},
+       {"scene", args.scene.string()},
+       {"check", "bars together (no specimen)"},
+       {"near_gauge", setup.near_gauge},
+       {"far_gauge", setup.far_gauge},
+       {"distance_m", setup.distance_m},
+       {"cutoff_Hz", r.cutoff_Hz},
+       {"rms_of_peak", {{"pochhammer_chree", r.rms_dispersion}, {"time_shift", r.rms_time_shift}}},
+       {"how",
+        "the near gauge's first pulse (the rest of its record zeroed) moved by the distance "
+        "to the far gauge, with Pochhammer-Chree dispersion and by a plain delay "
+        "distance/c0; RMS of the difference from the far record over its pulse (+-20 % of "
+        "its length), as a fraction of its peak"},
+       {"warnings", warnings}});
   out.commit();
   if (!args.quiet)
     std::fprintf(stderr,
@@ -157,6 +157,17 @@ int run_process(const ProcessArgs& args) {
     if (!all_finite(*v)) throw NumericalError("process: the pulses hold a non-finite value");
 
   OutputFolder out(args.output);
+  {  // the signals as read, in strain: what the windows were found on
+    std::vector<std::string> header = {"time_s"};
+    header.insert(header.end(), signals.gauges.begin(), signals.gauges.end());
+    CsvWriter w(out.file("raw_signals.csv"), header);
+    std::vector<double> row(header.size());
+    for (std::size_t i = 0; i < signals.time_s.size(); ++i) {
+      row[0] = signals.time_s[i];
+      for (std::size_t g = 0; g < signals.strain.size(); ++g) row[g + 1] = signals.strain[g][i];
+      w.row(row);
+    }
+  }
   write_pulses(out, r);
   // A failed reduction still leaves the pulses at the faces to look at, and says why.
   if (const std::string failure = reduction_failure(r); !failure.empty()) {

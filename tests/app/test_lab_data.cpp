@@ -497,3 +497,30 @@ TEST_CASE("A bars-together record is checked: Pochhammer-Chree against a plain t
   CHECK(shift > 2 * with);
   CHECK(fs::exists(d / "out/pulses.csv"));
 }
+
+TEST_CASE("The report of a processed test heads with the striker, equilibrium and every warning",
+          "[app][labdata][report]") {
+  if (std::system("/usr/bin/python3 -c 'import matplotlib, numpy' >/dev/null 2>&1") != 0) {
+    WARN("python3 with matplotlib and numpy not installed: report test skipped");
+    return;
+  }
+  const fs::path d = scratch_dir("labdata_report");
+  json scene = scene_json();
+  scene["bars"][1]["gauges"][0]["position"] = "0.94 m";  // 60 mm off: a warning to show
+  REQUIRE(run_shpb({"process", write(d, scene, csv(clean())).string(), "-o", (d / "out").string(),
+                    "--quiet"})
+              .code == 0);
+  const std::string cmd = "/usr/bin/python3 " +
+                          (fs::path(SHPB_SOURCE_DIR) / "tools/report.py").string() + " " +
+                          (d / "out").string() + " >/dev/null 2>&1";
+  REQUIRE(std::system(cmd.c_str()) == 0);
+  const std::string page = read_text(d / "out/report.html");
+  const auto headline = page.find("striker velocity (inferred)</th><td>10 m/s");
+  const auto warning = page.find("likely 60");
+  const auto details = page.find("<details>");
+  CHECK(headline != std::string::npos);
+  CHECK(page.find("equilibrium (R ≤ 5 %)") != std::string::npos);
+  CHECK(warning != std::string::npos);
+  CHECK(warning < details);  // before the full summary
+  CHECK(fs::exists(d / "out/figures/raw_signals.png"));
+}
