@@ -53,7 +53,7 @@ std::size_t nearest_sample(const std::vector<double>& t, double time) {
 }
 
 std::string fmt(const char* format, double a, double b = 0, double c = 0, double d = 0) {
-  char buf[200];
+  char buf[400];
   std::snprintf(buf, sizeof buf, format, a, b, c, d);
   return buf;
 }

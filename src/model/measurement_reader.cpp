@@ -100,7 +100,7 @@ DispersionSpec read_dispersion(const JsonValue& v) {
 MeasurementSpec read_measurement(const JsonValue& value, const std::filesystem::path& scene_dir,
                                  const std::vector<std::string>& gauges) {
   const auto o = value.object({"file", "format", "time", "channels", "dispersion", "windows",
-                               "striker_velocity", "notes", "load_drop"});
+                               "striker_velocity", "notes", "load_drop", "sheet"});
   MeasurementSpec m;
   if (auto f = o.get("file")) m.file = (scene_dir / f->name()).lexically_normal();
   if (auto f = o.get("format"))
@@ -135,6 +135,7 @@ MeasurementSpec read_measurement(const JsonValue& value, const std::filesystem::
     if (auto x = wo.get("reflected")) m.windows.reflected = read_window(*x);
     if (auto x = wo.get("transmitted")) m.windows.transmitted = read_window(*x);
   }
+  if (auto sh = o.get("sheet")) m.sheet = sh->name();
   if (auto d = o.get("load_drop")) {
     if (d->json().is_boolean()) {
       if (d->boolean())

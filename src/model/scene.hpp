@@ -135,6 +135,7 @@ struct MeasurementSpec {
   std::optional<double> striker_velocity_m_s;  // if known; else inferred
   std::string time_unit = "s";                 // as written (named in errors)
   std::optional<double> load_drop;  // curve end at this stress drop (fraction); 0: off; unset: default
+  std::string sheet;                // .xlsx/.xls files: the sheet by name (empty: the first)
 };
 
 struct Scene {

@@ -3,6 +3,8 @@
 // microstrain declared as strain, hand-set windows between samples, equilibrium that comes and
 // goes, fracture, a strain rate without a plateau, simulations shorter than the record. Every
 // case runs the executable on a synthetic record whose pulses are known exactly.
+#include <zip.h>
+
 #include <catch2/catch.hpp>
 #include <chrono>
 #include <cmath>
@@ -54,12 +56,12 @@ Record clean(double rise = 10e-6) {
           [=](double t) { return -0.4e-3 * trap(t, 350e-6, 100e-6, rise); }};
 }
 
-std::string csv(const Record& r, double scale = 1.0) {
+std::string csv(const Record& r, double scale = 1.0, double dt = kDt, int samples = kSamples) {
   std::ostringstream s;
   s.precision(17);
   s << "time_s,incident,transmitted\n";
-  for (int i = 0; i < kSamples; ++i) {
-    const double t = i * kDt;
+  for (int i = 0; i < samples; ++i) {
+    const double t = i * dt;
     s << t << "," << scale * r.incident_gauge(t) << "," << scale * r.transmitted_gauge(t) << "\n";
   }
   return s.str();
@@ -523,4 +525,119 @@ TEST_CASE("The report of a processed test heads with the striker, equilibrium an
   CHECK(warning != std::string::npos);
   CHECK(warning < details);  // before the full summary
   CHECK(fs::exists(d / "out/figures/raw_signals.png"));
+}
+
+namespace {
+
+// A minimal .xlsx: sheets "notes" (text) and "signals" (a header of shared strings, numbers as
+// written with 17 digits), zipped with libzip.
+void write_xlsx(const fs::path& file, const std::string& csv_text) {
+  std::istringstream in(csv_text);
+  std::string line, rows;
+  std::vector<std::string> shared;
+  for (std::size_t r = 1; std::getline(in, line); ++r) {
+    rows += "<row r=\"" + std::to_string(r) + "\">";
+    std::istringstream f(line);
+    std::string v;
+    for (char col = 'A'; std::getline(f, v, ','); ++col) {
+      const std::string ref = std::string(1, col) + std::to_string(r);
+      if (r == 1) {
+        rows += "<c r=\"" + ref + "\" t=\"s\"><v>" + std::to_string(shared.size()) + "</v></c>";
+        shared.push_back(v);
+      } else {
+        rows += "<c r=\"" + ref + "\"><v>" + v + "</v></c>";
+      }
+    }
+    rows += "</row>";
+  }
+  std::string sst =
+      "<?xml version=\"1.0\" encoding=\"UTF-8\"?><sst "
+      "xmlns=\"http://schemas.openxmlformats.org/spreadsheetml/2006/main\">";
+  for (const auto& t : shared) sst += "<si><t>" + t + "</t></si>";
+  sst += "</sst>";
+  const std::string ns = "xmlns=\"http://schemas.openxmlformats.org/spreadsheetml/2006/main\"";
+  const std::string rel =
+      "xmlns:r=\"http://schemas.openxmlformats.org/officeDocument/2006/relationships\"";
+  const std::vector<std::pair<std::string, std::string>> parts = {
+      {"[Content_Types].xml",
+       "<?xml version=\"1.0\" encoding=\"UTF-8\"?><Types "
+       "xmlns=\"http://schemas.openxmlformats.org/package/2006/content-types\">"
+       "<Default Extension=\"xml\" ContentType=\"application/xml\"/></Types>"},
+      {"xl/workbook.xml",
+       "<?xml version=\"1.0\" encoding=\"UTF-8\"?><workbook " + ns + " " + rel +
+           "><sheets><sheet name=\"notes\" sheetId=\"1\" r:id=\"rId1\"/>"
+           "<sheet name=\"signals\" sheetId=\"2\" r:id=\"rId2\"/></sheets></workbook>"},
+      {"xl/_rels/workbook.xml.rels",
+       "<?xml version=\"1.0\" encoding=\"UTF-8\"?><Relationships "
+       "xmlns=\"http://schemas.openxmlformats.org/package/2006/relationships\">"
+       "<Relationship Id=\"rId1\" Target=\"worksheets/sheet1.xml\"/>"
+       "<Relationship Id=\"rId2\" Target=\"worksheets/sheet2.xml\"/></Relationships>"},
+      {"xl/worksheets/sheet1.xml",
+       "<?xml version=\"1.0\" encoding=\"UTF-8\"?><worksheet " + ns +
+           "><sheetData><row r=\"1\"><c r=\"A1\" t=\"inlineStr\"><is><t>a "
+           "synthetic record</t></is></c></row></sheetData></worksheet>"},
+      {"xl/worksheets/sheet2.xml", "<?xml version=\"1.0\" encoding=\"UTF-8\"?><worksheet " + ns +
+                                       "><sheetData>" + rows + "</sheetData></worksheet>"},
+      {"xl/sharedStrings.xml", sst}};
+  int err = 0;
+  zip_t* z = zip_open(file.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &err);
+  REQUIRE(z);
+  for (const auto& [name, text] : parts) {
+    zip_source_t* src = zip_source_buffer(z, text.data(), text.size(), 0);
+    REQUIRE(zip_file_add(z, name.c_str(), src, ZIP_FL_OVERWRITE) >= 0);
+  }
+  REQUIRE(zip_close(z) == 0);  // the buffers are read here, while `parts` is alive
+}
+
+}  // namespace
+
+TEST_CASE("An .xlsx and an .xls file with the same signals as a CSV give identical results",
+          "[app][labdata][excel]") {
+  // The clean record at 1 MHz (800 samples): small enough for the committed .xls, made by
+  // tests/data/make_signals_xls.pl (Perl Spreadsheet::WriteExcel) from the same formula.
+  const double dt = 1e-6;
+  const std::string text = csv(clean(), 1.0, dt, 800);
+  const fs::path d = scratch_dir("labdata_excel");
+  const auto base = run_shpb(
+      {"process", write(d, scene_json(), text).string(), "-o", (d / "csv").string(), "--quiet"});
+  REQUIRE(base.code == 0);
+  const json ref = summary(d / "csv");
+  const auto ref_pulses = read_csv(d / "csv/pulses.csv");
+  write_xlsx(d / "signals.xlsx", text);
+  fs::copy_file(fs::path(SHPB_SOURCE_DIR) / "tests/data/signals.xls", d / "signals.xls",
+                fs::copy_options::overwrite_existing);
+  // Numbers in the .xlsx are the CSV's text; the .xls holds doubles computed by Perl from the
+  // same formula, equal to the last bit or two.
+  for (const auto& [file, tolerance] :
+       {std::pair{"signals.xlsx", 0.0}, std::pair{"signals.xls", 1e-12}}) {
+    CAPTURE(file);
+    json scene = scene_json();
+    scene["measurement"]["file"] = file;
+    scene["measurement"]["sheet"] = "signals";
+    std::ofstream(d / "scene.json") << scene.dump(2);
+    const fs::path out = d / (std::string(file) + "-out");
+    const auto r =
+        run_shpb({"process", (d / "scene.json").string(), "-o", out.string(), "--quiet"});
+    INFO(r.err);
+    REQUIRE(r.code == 0);
+    const json s = summary(out);
+    for (const char* key : {"peak_stress_Pa", "max_strain", "incident_plateau_strain"})
+      CHECK(s[key].get<double>() == Approx(ref[key].get<double>()).epsilon(tolerance));
+    CHECK(s["windows"] == ref["windows"]);
+    const auto p = read_csv(out / "pulses.csv");
+    REQUIRE(p[0].size() == ref_pulses[0].size());
+    double worst = 0;
+    for (std::size_t c = 1; c < 4; ++c)
+      for (std::size_t i = 0; i < p[c].size(); ++i)
+        worst = std::max(worst, std::abs(p[c][i] - ref_pulses[c][i]));
+    CHECK(worst <= tolerance * 1e-3);  // strains of 1e-3
+    // A sheet that is not there is named with the ones that are.
+    scene["measurement"]["sheet"] = "Signals 2";
+    std::ofstream(d / "scene.json") << scene.dump(2);
+    const auto bad = run_shpb({"process", (d / "scene.json").string(), "-o", (d / "bad").string()});
+    CHECK(bad.code == 2);
+    CHECK(bad.err.find(
+              "sheet: \"Signals 2\": no such sheet; the workbook has \"notes\", \"signals\"") !=
+          std::string::npos);
+  }
 }
