@@ -31,6 +31,9 @@ constexpr double kMaxDelaySamples = 1 << 24;
 // about that) for at least 30 % of the loading.
 constexpr double kPlateauBand = 0.10;
 constexpr double kPlateauMinFraction = 0.30;
+// The 1- and 2-wave stresses of a real test differ by tens of percent early in the loading (ring-
+// up); a mean ratio beyond 1.5 is not a specimen out of equilibrium but a wrong set-up.
+constexpr double kOneTwoWaveRatio = 1.5;
 
 BarSide side_of(const BarSpec& b) {
   return {b.material.youngs_modulus_Pa, b.area_m2, b.material.wave_speed_m_s()};
@@ -129,6 +132,32 @@ void judge_strain_rate(const std::vector<double>& rate, std::size_t n, Processin
       positive ? static_cast<double>(longest) / static_cast<double>(positive) : 0;
   r.strain_rate_has_plateau = level > 0 && r.strain_rate_plateau_fraction >= kPlateauMinFraction;
   r.plateau_strain_rate_1_s = level;
+}
+
+// The 1-wave (transmitted) and 2-wave (incident + reflected) stresses of one specimen agree
+// within tens of percent once it is loaded; a larger disagreement means the record is not the
+// test the scene describes (a tensile record processed as compression, bars or gauges swapped).
+void check_one_and_two_wave(const Curve& c, std::size_t n, double peak_force, bool tension,
+                            std::vector<std::string>& warnings) {
+  double one = 0, two = 0;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (c.force_front_N[i] + c.force_back_N[i] >= kMeanForceForEquilibrium * peak_force) {
+      one += c.stress_1wave_Pa[i], two += c.stress_2wave_Pa[i];
+      ++count;
+    }
+  if (count == 0) return;
+  one /= static_cast<double>(count), two /= static_cast<double>(count);
+  const double ratio = two / one;
+  if (ratio > 1 / kOneTwoWaveRatio && ratio < kOneTwoWaveRatio) return;
+  warnings.push_back(
+      fmt("the 1-wave and 2-wave stresses disagree over the loading (means %.4g and %.4g MPa, "
+          "ratio %.3g): ",
+          one * 1e-6, two * 1e-6, ratio) +
+      "the record may not be the test the scene describes (a " +
+      (tension ? "compressive record processed as \"test\": \"tension\""
+               : "tensile record processed as compression: \"test\": \"tension\"") +
+      "?), or gauges, bars or a bridge factor are mixed up");
 }
 
 // Loaded: from the first to the last sample where the mean force is at least 20 % of its peak.
@@ -248,9 +277,13 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
     if (p->sign > 0) {
       for (double& v : x) v = -v;
       r.warnings.push_back("gauge \"" + gauge +
-                           "\": its first pulse is tensile; a compression "
-                           "test's first pulse is compressive, so the signal was inverted (check "
-                           "the channel's `invert`)");
+                           (options.tension
+                                ? "\": its first pulse is compressive; a tension test's first "
+                                  "pulse is tensile, so the signal was inverted (check the "
+                                  "channel's `invert` and the measurement's `test`)"
+                                : "\": its first pulse is tensile; a compression test's first "
+                                  "pulse is compressive, so the signal was inverted (check the "
+                                  "channel's `invert`, or \"test\": \"tension\")"));
     }
     return std::pair{x, b.noise};
   };
@@ -425,6 +458,7 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
   for (std::size_t i = 0; i < loaded; ++i)
     peak_force = std::max(peak_force, c.force_front_N[i] + c.force_back_N[i]);
   r.equilibrium = judge_equilibrium(c, r.time_s, loaded, peak_force);
+  check_one_and_two_wave(c, loaded, peak_force, options.tension, r.warnings);
   if (r.equilibrium.holds_from_s)
     r.time_to_equilibrium_s = *r.equilibrium.holds_from_s - r.time_s[0];
   return r;

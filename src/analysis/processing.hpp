@@ -42,6 +42,9 @@ struct ProcessingOptions {
   PulseWindows windows;                 // manual windows (gauge clocks) override detection
   std::string scene_file;               // named in error messages
   double load_drop = kDefaultLoadDrop;  // the curve ends where σ falls by this fraction; 0: off
+  // A tension test (split Hopkinson tension bar): the signals are given negated, so the
+  // reduction's "compression positive" reads "tension positive"; named in warnings.
+  bool tension = false;
 };
 
 struct WindowReport {

@@ -142,14 +142,30 @@ int run_process(const ProcessArgs& args) {
     options.dispersion = m.dispersion;
     options.windows = m.windows;
     options.load_drop = m.load_drop.value_or(kDefaultLoadDrop);
+    options.tension = m.tension;
   }
   options.scene_file = scene.file.string();
   // What was assumed is said even with --quiet (which silences progress only), and as soon as
   // it is known: before any later error stops the run.
-  const GaugeSignals signals = read_gauge_signals(m, {});
+  GaugeSignals signals = read_gauge_signals(m, {});
   for (const auto& w : signals.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   const KolskySetup setup = resolve_setup(scene, signals.gauges);
+  // Tension: the reduction is linear in the strains, so negated signals reduce as a compression
+  // test whose "compression positive" outputs read tension positive; the pulses are negated back
+  // and the true values follow the tensile formulas.
+  if (options.tension)
+    for (auto& g : signals.strain)
+      for (double& x : g) x = -x;
   ProcessingResult r = process_signals(signals, setup, options);
+  if (options.tension) {
+    for (auto* v : {&r.incident, &r.reflected, &r.transmitted})
+      for (double& x : *v) x = -x;
+    Curve& c = r.curve;
+    for (std::size_t i = 0; i < c.strain.size(); ++i) {
+      c.true_strain[i] = std::log1p(c.strain[i]);  // elongation: ln(1 + e)
+      c.true_stress_Pa[i] = c.stress_3wave_Pa[i] * (1 + c.strain[i]);
+    }
+  }
   for (const auto& w : r.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   std::vector<std::string> warnings = signals.warnings;
   warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
@@ -204,10 +220,13 @@ int run_process(const ProcessArgs& args) {
                   {"incident_gauge", setup.incident_gauge},
                   {"transmitted_gauge", setup.transmitted_gauge}};
   s["warnings"] = warnings;
+  s["test"] = options.tension ? "tension" : "compression";
   s["conventions"] =
-      "pulses.csv: strains at the specimen faces, tension positive, on the signals' clock; "
-      "curve.csv: compression positive, strain and strain rate from the 3-wave reduction, true "
-      "values from the 3-wave stress";
+      std::string("pulses.csv: strains at the specimen faces, tension positive, on the signals' "
+                  "clock; curve.csv: ") +
+      (options.tension ? "tension positive (true strain ln(1+e), true stress s(1+e))"
+                       : "compression positive") +
+      ", strain and strain rate from the 3-wave reduction, true values from the 3-wave stress";
   nlohmann::json disp = {
       {"correction", options.dispersion.correction ? "pochhammer-chree" : "none"},
       {"amplitude_factors", options.dispersion.amplitude_factors}};

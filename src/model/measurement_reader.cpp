@@ -67,7 +67,8 @@ ChannelSpec read_channel(const JsonValue& v, const std::filesystem::path& scene_
                                         {"microstrain", SignalUnit::kMicrostrain}});
   if (auto sc = o.get("scale")) {
     if (c.unit != SignalUnit::kVolt)
-      throw sc->error("a scale (strain per volt) converts volts; it applies only to \"unit\": \"V\"");
+      throw sc->error(
+          "a scale (strain per volt) converts volts; it applies only to \"unit\": \"V\"");
     if (o.get("bridge")) throw sc->error("give either scale (strain per volt) or bridge, not both");
     c.scale = sc->quantity(Dimension::kDimensionless);
     if (!(*c.scale != 0)) throw sc->error("expected a non-zero strain per volt, e.g. 1.2e-3");
@@ -100,7 +101,7 @@ DispersionSpec read_dispersion(const JsonValue& v) {
 MeasurementSpec read_measurement(const JsonValue& value, const std::filesystem::path& scene_dir,
                                  const std::vector<std::string>& gauges) {
   const auto o = value.object({"file", "format", "time", "channels", "dispersion", "windows",
-                               "striker_velocity", "notes", "load_drop", "sheet"});
+                               "striker_velocity", "notes", "load_drop", "sheet", "test"});
   MeasurementSpec m;
   if (auto f = o.get("file")) m.file = (scene_dir / f->name()).lexically_normal();
   if (auto f = o.get("format"))
@@ -136,6 +137,8 @@ MeasurementSpec read_measurement(const JsonValue& value, const std::filesystem::
     if (auto x = wo.get("transmitted")) m.windows.transmitted = read_window(*x);
   }
   if (auto sh = o.get("sheet")) m.sheet = sh->name();
+  if (auto t = o.get("test"))
+    m.tension = enum_from<bool>(*t, {{"compression", false}, {"tension", true}});
   if (auto d = o.get("load_drop")) {
     if (d->json().is_boolean()) {
       if (d->boolean())

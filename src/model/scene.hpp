@@ -136,6 +136,7 @@ struct MeasurementSpec {
   std::string time_unit = "s";                 // as written (named in errors)
   std::optional<double> load_drop;  // curve end at this stress drop (fraction); 0: off; unset: default
   std::string sheet;                // .xlsx/.xls files: the sheet by name (empty: the first)
+  bool tension = false;             // "test": "tension" (split Hopkinson tension bar)
 };
 
 struct Scene {
