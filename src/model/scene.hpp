@@ -36,7 +36,7 @@ struct BarSpec {
   }
 };
 
-enum class ContactMethod { kPenalty, kBipenalty, kLocalizedBipenalty };
+enum class ContactMethod { kPenalty, kBipenalty, kLocalizedBipenalty, kBonded };
 enum class Stepping { kAsynchronous, kGlobal };
 
 // Penalty parameters of one interface. Unset values are derived from the neighbouring elements

@@ -15,7 +15,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::vector<std::string> kContactMethods = {"penalty", "bipenalty", "localized-bipenalty"};
+const std::vector<std::string> kContactMethods = {"penalty", "bipenalty", "localized-bipenalty",
+                                                  "bonded"};
 const std::vector<std::string> kSteppings = {"asynchronous", "global"};
 constexpr std::int64_t kMaxElements = 100'000'000;  // far beyond any useful mesh; guards overflow
 
@@ -318,6 +319,8 @@ std::string_view to_string(ContactMethod m) {
       return "bipenalty";
     case ContactMethod::kLocalizedBipenalty:
       return "localized-bipenalty";
+    case ContactMethod::kBonded:
+      return "bonded";
   }
   return "?";
 }
@@ -341,6 +344,7 @@ std::optional<ContactMethod> contact_method_from_string(std::string_view s) {
   if (s == "penalty") return ContactMethod::kPenalty;
   if (s == "bipenalty") return ContactMethod::kBipenalty;
   if (s == "localized-bipenalty") return ContactMethod::kLocalizedBipenalty;
+  if (s == "bonded") return ContactMethod::kBonded;
   return std::nullopt;
 }
 std::optional<Stepping> stepping_from_string(std::string_view s) {
