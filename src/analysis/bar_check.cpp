@@ -91,6 +91,11 @@ BarCheckResult check_bars_together(const GaugeSignals& signals, const BarCheckSe
   for (std::size_t i = 0; i < n; ++i)
     if (i < keep0 || i >= keep1) near[i] = 0;
 
+  if (s.distance_m / (s.waveguide.c0_m_s * dt) > kMaxDelaySamples)
+    throw input_error(scene_file, "measurement.time.unit",
+                      "delay " + std::to_string(s.distance_m / s.waveguide.c0_m_s) + " s = " +
+                          std::to_string(s.distance_m / (s.waveguide.c0_m_s * dt)) + " samples",
+                      "expected at most 2^24 samples: is the time unit right?");
   PropagationOptions po;
   if (ds.cutoff_Hz)
     po.cutoff_fa_over_c0 = *ds.cutoff_Hz * s.waveguide.radius_m / s.waveguide.c0_m_s;

@@ -24,9 +24,6 @@ constexpr double kAlignmentSamples = 5;
 constexpr double kAlignmentFraction = 0.02;
 // The transmitted pulse rises over a few transits of the specimen (ring-up, Davies & Hunter).
 constexpr double kRingUpTransits = 4;
-// No record holds more samples than this between a gauge and the specimen (16.8 M: 1.7 s at
-// 10 MHz); a larger delay means a wrong time unit and would pad the FFT beyond memory.
-constexpr double kMaxDelaySamples = 1 << 24;
 // A strain-rate plateau: within ±10 % of its level (a constant-rate test is called so within
 // about that) for at least 30 % of the loading.
 constexpr double kPlateauBand = 0.10;
