@@ -48,7 +48,7 @@ MPA = 1e-6  # Pa -> MPa
 # Files this script understands, by producer (docs/outputs.md and the compare/study outputs).
 KNOWN_FILES = ("gauges.csv", "interfaces.csv", "specimen.csv", "energy.csv", "field.csv",
                "pulses.csv", "curve.csv", "signals.csv", "comparison.csv", "pareto.csv",
-               "stability.csv", "summary.json")
+               "stability.csv", "summary.json", "raw_signals.csv")
 
 
 class ReportError(Exception):
@@ -238,6 +238,14 @@ def new_figure(rows=1, cols=1, height=4.2, width=9.0, **kw):
     for ax in axes.flat:
         grid(ax)
     return fig, axes
+
+
+def outside_legend(ax):
+    """A legend above the axes, in one row: it never hides a trace."""
+    handles, labels = ax.get_legend_handles_labels()
+    if handles:
+        ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.0), ncol=min(len(handles), 4),
+                  fontsize=8, frameon=False)
 
 
 def gauge_columns(table):
@@ -435,8 +443,8 @@ def fig_pulses(src, figs):
                 linewidth=0.8, linestyle="--", label="incident + reflected (front face)")
     ax.set_xlabel("time at the specimen faces (µs)")
     ax.set_ylabel("bar strain (µε, tension +)")
-    ax.set_title(src.title("Pulses shifted to the specimen faces"))
-    ax.legend(loc="best", fontsize=8)
+    ax.set_title(src.title("Pulses shifted to the specimen faces"), pad=24)
+    outside_legend(ax)
     figs.save(fig, src.png("pulses"), src.title("Aligned pulses"),
               "Incident, reflected and transmitted pulses moved to the specimen faces "
               "(pulses.csv). In equilibrium incident + reflected follows the transmitted pulse.")
@@ -524,6 +532,48 @@ def fig_campaign(folder, sources, figs):
               "campaign.csv gives their plateau strain rates, peak and flow stresses.")
 
 
+def fig_raw_signals(src, figs):
+    t = src.table("raw_signals.csv")
+    time = t.numeric("time_s") * US
+    gauges = gauge_columns(t)
+    windows = src.summary.get("windows", {}) if isinstance(src.summary, dict) else {}
+    fig, axes = new_figure(len(gauges), 1, height=2.6 * len(gauges) + 0.8, sharex=True)
+    colors = {"incident": "C0", "reflected": "C3", "transmitted": "C2"}
+    for ax, g in zip(axes[:, 0], gauges):
+        ax.plot(time, t.numeric(g) * MICRO, color="k", linewidth=0.9, label=f"{g} (as read)")
+        for pulse, color in colors.items():
+            w = windows.get(pulse)
+            if isinstance(w, dict) and w.get("gauge") == g:
+                ax.axvspan(w["start_s"] * US, w["end_s"] * US, color=color, alpha=0.15,
+                           label=f"{pulse} window ({w.get('source', '')})")
+        ax.set_ylabel(f"{g}\nstrain (µε, tension +)")
+        outside_legend(ax)
+    axes[-1, 0].set_xlabel("time on the signals' clock (µs)")
+    figs.save(fig, src.png("raw_signals"), src.title("Raw signals and the pulse windows"),
+              "The gauge signals as read and converted to strain (raw_signals.csv), with the "
+              "incident, reflected and transmitted windows found on them (summary.json windows; "
+              "source: detected or set in the scene).")
+
+
+def fig_bar_check(src, figs):
+    t = src.table("pulses.csv")
+    time = t.numeric("time_s") * US
+    fig, axes = new_figure()
+    ax = axes[0, 0]
+    ax.plot(time, t.numeric("far_measured") * MICRO, color="k", linewidth=1.4, label="measured")
+    ax.plot(time, t.numeric("far_pochhammer_chree") * MICRO, color="C3", linewidth=1.0,
+            linestyle="--", label="near pulse + Pochhammer–Chree")
+    ax.plot(time, t.numeric("far_time_shift") * MICRO, color="C0", linewidth=0.9,
+            label="near pulse, time shift only")
+    ax.set_xlabel("time on the signals' clock (µs)")
+    ax.set_ylabel("far gauge strain (µε, tension +)")
+    outside_legend(ax)
+    figs.save(fig, src.png("bars_together"), src.title("Bars together: the far gauge"),
+              "The near gauge's pulse moved to the far gauge with Pochhammer–Chree dispersion "
+              "and by a plain time shift, over the measured far pulse (pulses.csv; RMS in "
+              "summary.json).")
+
+
 # ---- figures of `compare` --------------------------------------------------------------------
 
 def fig_compare_signals(src, figs):
@@ -560,7 +610,7 @@ def fig_compare_signals(src, figs):
                 ax.text((t0 + t1) / 2 * US, 0.97, pulse, transform=ax.get_xaxis_transform(),
                         ha="center", va="top", fontsize=8, color="C1")
         ax.set_ylabel(f"{g}\nstrain (µε, tension +)")
-        ax.legend(loc="lower right", fontsize=8)
+        outside_legend(ax)
     axes[0, 0].set_title(src.title("Simulated over measured gauge signals"))
     axes[-1, 0].set_xlabel("time on the measurement's clock (µs)")
     figs.save(fig, src.png("signals"),
@@ -731,6 +781,63 @@ def summary_html(src):
     return "\n".join(out)
 
 
+def headline_html(src):
+    """What a reader of a processed test needs first: striker, rate, stress, equilibrium, and
+    every warning."""
+    s = src.summary
+    if not isinstance(s, dict) or not s:
+        return ""
+    rows = []
+
+    def get(*keys):
+        v = s
+        for k in keys:
+            v = v.get(k) if isinstance(v, dict) else None
+        return v
+
+    if s.get("command") == "process":
+        v = get("striker_velocity_m_s", "inferred")
+        if v is not None:
+            scene_v = get("striker_velocity_m_s", "scene")
+            rows.append(("striker velocity (inferred)", f"{v:.4g} m/s"
+                         + (f" (scene: {scene_v:.4g} m/s)" if scene_v is not None else "")))
+        plateau = s.get("plateau_strain_rate_1_s")
+        mean = get("strain_rate", "mean_over_loading_1_s")
+        if plateau is not None:
+            rows.append(("strain rate (plateau)", f"{plateau:.4g} 1/s"))
+        elif mean is not None:
+            rows.append(("strain rate", f"no plateau; mean over the loading {mean:.4g} 1/s"))
+        if s.get("peak_stress_Pa") is not None:
+            rows.append(("peak 3-wave stress", f"{s['peak_stress_Pa'] * MPA:.4g} MPa"))
+        if s.get("max_strain") is not None:
+            rows.append(("strain at the end of loading", f"{s['max_strain']:.4g} "
+                         f"({get('end_of_loading', 'how') or ''})"))
+        frac = get("equilibrium", "fraction_of_loaded_time")
+        if frac is not None:
+            t_eq = s.get("time_to_equilibrium_s")
+            rows.append(("equilibrium (R ≤ 5 %)", f"{100 * frac:.0f} % of the loaded time; "
+                         + (f"holds from {t_eq * 1e6:.3g} µs until unloading" if t_eq is not None
+                            else "never holds until unloading")))
+        rms = s.get("rms_of_peak")
+        if isinstance(rms, dict):
+            rows.append(("bars together: RMS of peak",
+                         f"{100 * rms.get('pochhammer_chree', float('nan')):.3g} % with "
+                         f"Pochhammer–Chree, {100 * rms.get('time_shift', float('nan')):.3g} % "
+                         "with a time shift"))
+        if s.get("error"):
+            rows.append(("error", s["error"]))
+    warnings = s.get("warnings") or []
+    out = []
+    if rows:
+        out.append("<table class='kv headline'>" + "".join(
+            f"<tr><th>{html.escape(k)}</th><td>{html.escape(str(v))}</td></tr>" for k, v in rows)
+            + "</table>")
+    if warnings:
+        out.append("<div class='warnings'><p><b>Warnings</b></p><ul>" + "".join(
+            f"<li>{html.escape(str(w))}</li>" for w in warnings) + "</ul></div>")
+    return "\n".join(out)
+
+
 def fmt(v):
     if isinstance(v, float):
         return f"{v:.6g}"
@@ -760,6 +867,8 @@ td,th{border:1px solid #ccc;padding:2px 6px;text-align:left}th{background:#f2f2f
 .meta{color:#666;font-size:.9em}.cap{font-weight:bold;margin-bottom:0}
 .warn{border:2px solid #c60;background:#fff4e5;padding:.3em .8em;margin:.5em 0}
 pre{font-size:.8em;background:#f8f8f8;padding:.5em;overflow-x:auto}
+.headline th{background:#e8eef8}.warnings{background:#fff4e0;border:1px solid #e0a040;
+padding:.2em 1em;font-size:.9em}
 """
 
 
@@ -776,6 +885,7 @@ def write_html(path, folder, sources, figs, fig_dir_name):
         name = "this folder" if src.label == "." else src.label
         parts.append(f"<h2>Results: {html.escape(name)}</h2>")
         parts.append(f"<p class='meta'>files: {html.escape(', '.join(sorted(src.files)))}</p>")
+        parts.append(headline_html(src))
         parts.append(summary_html(src))
         if src.has("comparison.csv"):
             parts.append(csv_html(src.table("comparison.csv"),
@@ -823,8 +933,12 @@ def build(folder):
                 fig_gauges(src, figs)
             if src.has("field.csv"):
                 fig_wave_diagram(src, figs)
-            if src.has("pulses.csv"):
+            if src.has("raw_signals.csv"):
+                fig_raw_signals(src, figs)
+            if src.has("pulses.csv") and "incident" in src.table("pulses.csv"):
                 fig_pulses(src, figs)
+            elif src.has("pulses.csv") and "far_measured" in src.table("pulses.csv"):
+                fig_bar_check(src, figs)
             if src.has("curve.csv"):
                 fig_curve(src, figs, truth)
             if src.has("specimen.csv"):

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <tuple>
 
 #include "analysis/pulse_window.hpp"
 #include "core/csv_writer.hpp"  // format_double
@@ -17,6 +18,20 @@ namespace {
 constexpr double kWindowTail = 0.15;
 // Equilibrium is only judged where the mean force is above this fraction of its peak.
 constexpr double kMeanForceForEquilibrium = 0.2;
+// A detected onset may differ from the geometric one by this many samples (onset picking on a
+// sampled, noisy front) or this fraction of the travel time (gauge positions measured to ~1 %,
+// wave speeds known to ~1 %) before a gauge position or wave speed is suspected.
+constexpr double kAlignmentSamples = 5;
+constexpr double kAlignmentFraction = 0.02;
+// The transmitted pulse rises over a few transits of the specimen (ring-up, Davies & Hunter).
+constexpr double kRingUpTransits = 4;
+// A strain-rate plateau: within ±10 % of its level (a constant-rate test is called so within
+// about that) for at least 30 % of the loading.
+constexpr double kPlateauBand = 0.10;
+constexpr double kPlateauMinFraction = 0.30;
+// The 1- and 2-wave stresses of a real test differ by tens of percent early in the loading (ring-
+// up); a mean ratio beyond 1.5 is not a specimen out of equilibrium but a wrong set-up.
+constexpr double kOneTwoWaveRatio = 1.5;
 
 BarSide side_of(const BarSpec& b) {
   return {b.material.youngs_modulus_Pa, b.area_m2, b.material.wave_speed_m_s()};
@@ -28,6 +43,149 @@ BarWaveguide waveguide_of(const BarSpec& b) {
 std::size_t index_at(const std::vector<double>& t, double time) {
   const auto it = std::lower_bound(t.begin(), t.end(), time);
   return static_cast<std::size_t>(it - t.begin());
+}
+
+// The one rule for times set by hand (the scene's windows): the nearest sample.
+std::size_t nearest_sample(const std::vector<double>& t, double time) {
+  const std::size_t i = index_at(t, time);
+  if (i == 0) return 0;
+  if (i == t.size()) return t.size() - 1;
+  return time - t[i - 1] <= t[i] - time ? i - 1 : i;
+}
+
+std::string fmt(const char* format, double a, double b = 0, double c = 0, double d = 0) {
+  char buf[400];
+  std::snprintf(buf, sizeof buf, format, a, b, c, d);
+  return buf;
+}
+
+// A detected onset further from the geometric one than a few samples or 2 % of the travel time
+// means a gauge position or a wave speed in the scene is wrong: the reflected pulse has travelled
+// 2 d_I (so its offset δ_R = 2 e_I/c0), the transmitted one d_I + d_T (δ_T − δ_R/2 = e_T/c0).
+void check_alignment(ProcessingResult& r, const KolskySetup& k, double dt,
+                     std::vector<std::string>& warnings) {
+  const double c_f = k.front.c0_m_s, c_b = k.back.c0_m_s;
+  const double travel_r = 2 * k.incident_distance_m / c_f;
+  if (r.reflected_onset_offset_s) {
+    const double off = *r.reflected_onset_offset_s;
+    const double tol = std::max(kAlignmentSamples * dt, kAlignmentFraction * travel_r);
+    if (std::abs(off) > tol) {
+      const double e = 0.5 * off * c_f;  // gauge farther (+) or closer (−) than the scene says
+      const double speed = travel_r / (travel_r + off) - 1;  // signed: + faster
+      warnings.push_back(
+          "gauge \"" + k.incident_gauge + "\": the reflected pulse starts " +
+          fmt("%.3g us ", std::abs(off) * 1e6) + (off < 0 ? "earlier" : "later") +
+          fmt(" than the geometry predicts (2 x %.4g m / %.5g m/s): the incident gauge is likely "
+              "%.3g mm ",
+              k.incident_distance_m, c_f, std::abs(e) * 1e3) +
+          (e < 0 ? "closer to" : "farther from") +
+          fmt(" the specimen than the scene says (distance to specimen %.4g m, not %.4g m; a "
+              "position measured from the wrong end?), or the incident bar's wave speed is off by "
+              "%.2g %% (%.5g m/s)",
+              k.incident_distance_m + e, k.incident_distance_m, 100 * speed, c_f * (1 + speed)));
+      r.alignment_suspect = true;
+    }
+  }
+  if (r.transmitted_onset_offset_s) {
+    const double off = *r.transmitted_onset_offset_s - 0.5 * r.reflected_onset_offset_s.value_or(0);
+    const double travel_t = k.transmitted_distance_m / c_b;
+    // Later than geometry may also be a soft specimen's slow rise: its onset, picked at a few
+    // percent of the peak, is uncertain by up to the front's rise.
+    const double tol = std::max(kAlignmentSamples * dt, kAlignmentFraction * travel_t) +
+                       kRingUpTransits * k.specimen_transit_s +
+                       (off > 0 ? r.transmitted_rise_s : 0);
+    if (std::abs(off) > tol) {
+      const double e = off * c_b;
+      warnings.push_back(
+          "gauge \"" + k.transmitted_gauge + "\": the transmitted pulse starts " +
+          fmt("%.3g us ", std::abs(off) * 1e6) + (off < 0 ? "earlier" : "later") +
+          fmt(" than the geometry predicts (%.4g m / %.5g m/s after the specimen): ",
+              k.transmitted_distance_m, c_b) +
+          (off > 0 ? "a slowly loaded (soft) specimen, or " : "") +
+          fmt("the transmitted gauge is likely %.3g mm ", std::abs(e) * 1e3) +
+          (e < 0 ? "closer to" : "farther from") +
+          fmt(" the specimen than the scene says (distance to specimen %.4g m, not %.4g m), or the "
+              "transmitter bar's wave speed is off by %+.2g %%",
+              k.transmitted_distance_m + e, k.transmitted_distance_m,
+              100 * (travel_t / (travel_t + off) - 1)));
+      r.alignment_suspect = true;
+    }
+  }
+}
+
+// A plateau of the strain rate: the longest run of samples within ±10 % of the plateau level
+// (plateau_level) spans at least 30 % of the loading (the samples with a positive rate). Without
+// one, no plateau rate is quoted, only the mean over the loading.
+void judge_strain_rate(const std::vector<double>& rate, std::size_t n, ProcessingResult& r) {
+  const double level = plateau_level(rate, 0, n, 1.0);
+  std::size_t positive = 0, run = 0, longest = 0;
+  double sum = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (rate[i] > 0) ++positive, sum += rate[i];
+    run = std::abs(rate[i] - level) <= kPlateauBand * level ? run + 1 : 0;
+    longest = std::max(longest, run);
+  }
+  r.mean_strain_rate_1_s = positive ? sum / static_cast<double>(positive) : 0;
+  r.strain_rate_plateau_fraction =
+      positive ? static_cast<double>(longest) / static_cast<double>(positive) : 0;
+  r.strain_rate_has_plateau = level > 0 && r.strain_rate_plateau_fraction >= kPlateauMinFraction;
+  r.plateau_strain_rate_1_s = level;
+}
+
+// The 1-wave (transmitted) and 2-wave (incident + reflected) stresses of one specimen agree
+// within tens of percent once it is loaded; a larger disagreement means the record is not the
+// test the scene describes (a tensile record processed as compression, bars or gauges swapped).
+void check_one_and_two_wave(const Curve& c, std::size_t n, double peak_force, bool tension,
+                            std::vector<std::string>& warnings) {
+  double one = 0, two = 0;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (c.force_front_N[i] + c.force_back_N[i] >= kMeanForceForEquilibrium * peak_force) {
+      one += c.stress_1wave_Pa[i], two += c.stress_2wave_Pa[i];
+      ++count;
+    }
+  if (count == 0) return;
+  one /= static_cast<double>(count), two /= static_cast<double>(count);
+  const double ratio = two / one;
+  if (ratio > 1 / kOneTwoWaveRatio && ratio < kOneTwoWaveRatio) return;
+  warnings.push_back(
+      fmt("the 1-wave and 2-wave stresses disagree over the loading (means %.4g and %.4g MPa, "
+          "ratio %.3g): ",
+          one * 1e-6, two * 1e-6, ratio) +
+      "the record may not be the test the scene describes (a " +
+      (tension ? "compressive record processed as \"test\": \"tension\""
+               : "tensile record processed as compression: \"test\": \"tension\"") +
+      "?), or gauges, bars or a bridge factor are mixed up");
+}
+
+// Loaded: from the first to the last sample where the mean force is at least 20 % of its peak.
+// Among those, the fraction with R ≤ 5 %, the longest run of them, and the run that reaches the
+// end of loading (equilibrium that holds until unloading).
+Equilibrium judge_equilibrium(const Curve& c, const std::vector<double>& t, std::size_t n,
+                              double peak_force) {
+  Equilibrium e;
+  std::size_t first = n, last = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (c.force_front_N[i] + c.force_back_N[i] >= kMeanForceForEquilibrium * peak_force) {
+      first = std::min(first, i);
+      last = i;
+    }
+  if (first > last) return e;
+  e.loaded_s = {t[first], t[last]};
+  std::size_t held = 0, run_start = first, best_start = first, best_length = 0;
+  for (std::size_t i = first; i <= last; ++i) {
+    const bool ok = c.equilibrium_ratio[i] <= kEquilibriumThreshold;
+    held += ok;
+    if (!ok) {
+      run_start = i + 1;
+      continue;
+    }
+    if (i + 1 - run_start > best_length) best_start = run_start, best_length = i + 1 - run_start;
+  }
+  e.fraction = static_cast<double>(held) / static_cast<double>(last + 1 - first);
+  if (best_length > 0) e.longest_s = {t[best_start], t[best_start + best_length - 1]};
+  if (run_start <= last) e.holds_from_s = t[run_start];
+  return e;
 }
 
 }  // namespace
@@ -79,6 +237,8 @@ KolskySetup resolve_setup(const Scene& scene, const std::vector<std::string>& av
                         "must be in [0, 0.49] for a bar whose pulses are processed (dispersion "
                         "tables cover that range; auxetic bars are not supported)");
   k.specimen = {scene.bars[s].length_m, scene.bars[s].area_m2};
+  if (const double c = scene.bars[s].material.wave_speed_m_s(); c > 0)
+    k.specimen_transit_s = scene.bars[s].length_m / c;
   k.incident_impedance_kg_s = inc.impedance_kg_s();
   if (s >= 2) {
     k.striker_impedance_kg_s = scene.bars[s - 2].impedance_kg_s();
@@ -124,6 +284,19 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
   const double dt = signals.dt_s;
   const auto& t = signals.time_s;
   const std::size_t n = t.size();
+  // The pulses are moved by the gauge distances: refuse a delay of more samples than any record
+  // holds before the propagation pads the signal by it.
+  for (const auto& [distance, c, gauge] :
+       {std::tuple{k.incident_distance_m, k.front.c0_m_s, k.incident_gauge},
+        std::tuple{k.transmitted_distance_m, k.back.c0_m_s, k.transmitted_gauge}})
+    if (distance / (c * dt) > kMaxDelaySamples) {
+      char value[160];
+      std::snprintf(value, sizeof value,
+                    "gauge \"%s\": delay %.3g s to the specimen = %.3g samples of %.3g s",
+                    gauge.c_str(), distance / c, distance / (c * dt), dt);
+      throw input_error(options.scene_file, "measurement.time.unit", value,
+                        "expected at most 2^24 samples: is the time unit right?");
+    }
 
   // Baseline removed; polarity checked (the first large excursion of each gauge is compressive).
   auto prepare = [&](const std::vector<double>& raw, const std::string& gauge) {
@@ -137,21 +310,28 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
     if (p->sign > 0) {
       for (double& v : x) v = -v;
       r.warnings.push_back("gauge \"" + gauge +
-                           "\": its first pulse is tensile; a compression "
-                           "test's first pulse is compressive, so the signal was inverted (check "
-                           "the channel's `invert`)");
+                           (options.tension
+                                ? "\": its first pulse is compressive; a tension test's first "
+                                  "pulse is tensile, so the signal was inverted (check the "
+                                  "channel's `invert` and the measurement's `test`)"
+                                : "\": its first pulse is tensile; a compression test's first "
+                                  "pulse is compressive, so the signal was inverted (check the "
+                                  "channel's `invert`, or \"test\": \"tension\")"));
     }
     return std::pair{x, b.noise};
   };
   auto [inc, inc_noise] = prepare(*inc_raw, k.incident_gauge);
   auto [tra, tra_noise] = prepare(*tra_raw, k.transmitted_gauge);
-  (void)tra_noise;
 
   // Incident window on the gauge clock: detected, or the scene's.
   std::size_t on = 0, end = 0;
   if (options.windows.incident) {
-    on = index_at(t, options.windows.incident->start_s);
-    end = index_at(t, options.windows.incident->end_s);
+    const TimeWindow& w = *options.windows.incident;
+    if (w.start_s < t.front() || w.end_s > t.back())
+      throw input_error(options.scene_file, "measurement.windows.incident", "",
+                        "the window lies outside the record");
+    on = nearest_sample(t, w.start_s);
+    end = nearest_sample(t, w.end_s) + 1;
     if (!(end > on + 2) || end > n)
       throw input_error(options.scene_file, "measurement.windows.incident", "",
                         "the window lies outside the record or is shorter than 3 samples");
@@ -172,20 +352,32 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
   const double face_start = t[on] + d_i / c_front;
   double extra_r = 0, extra_t = 0;
   const double expected_r = t[on] + 2 * d_i / c_front;
-  if (options.windows.reflected) extra_r = options.windows.reflected->start_s - expected_r;
+  if (options.windows.reflected)
+    extra_r = t[nearest_sample(t, options.windows.reflected->start_s)] - expected_r;
   if (options.windows.transmitted)
-    extra_t = options.windows.transmitted->start_s - d_t / c_back - face_start;
+    extra_t =
+        t[nearest_sample(t, options.windows.transmitted->start_s)] - d_t / c_back - face_start;
   r.shift_incident_s = d_i / c_front;
   r.shift_reflected_s = -d_i / c_front - extra_r;
   r.shift_transmitted_s = -d_t / c_back - extra_t;
   r.reflected_window = {k.incident_gauge, expected_r + extra_r, expected_r + extra_r + duration,
                         !options.windows.reflected};
-  // Alignment check: where the reflected pulse really starts against where geometry puts it.
+  // Alignment check: where the reflected and transmitted pulses really start against where
+  // geometry puts them.
   {
     const auto i0 = index_at(t, t[end - 1]);
     const auto i1 = index_at(t, expected_r + duration);
     if (const auto o = find_onset(inc, {0.0, inc_noise}, +1.0, i0, i1))
       r.reflected_onset_offset_s = t[*o] - expected_r;
+    const double expected_t = t[on] + d_i / c_front + k.specimen_transit_s + d_t / c_back;
+    if (const auto p = find_first_pulse(tra, {0.0, tra_noise})) {
+      r.transmitted_onset_offset_s = t[p->onset] - expected_t;
+      std::size_t half = p->onset;  // first half-peak sample: the front's rise
+      while (half + 1 < p->end && p->sign * tra[half] < 0.5 * p->peak) ++half;
+      r.transmitted_rise_s = t[half] - t[p->onset];
+    }
+    if (!options.windows.reflected && !options.windows.transmitted)
+      check_alignment(r, k, dt, r.warnings);
   }
 
   // Propagation (Pochhammer–Chree or pure delay), strains and — with Tyas–Pope factors —
@@ -285,20 +477,37 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
   const double zs = k.striker_impedance_kg_s.value_or(zb);
   r.inferred_striker_velocity_m_s = k.front.youngs_modulus_Pa * k.front.area_m2 *
                                     r.incident_plateau_strain * (zs + zb) / (zs * zb);
-  r.plateau_strain_rate_1_s = plateau_level(r.curve.strain_rate_1_s, 0, m, 1.0);
-  r.peak_stress_Pa =
-      *std::max_element(r.curve.stress_3wave_Pa.begin(), r.curve.stress_3wave_Pa.end());
-  r.max_strain = *std::max_element(r.curve.strain.begin(), r.curve.strain.end());
+  // The curve ends with loading: at the strain maximum or, earlier, where the stress drops.
+  const Curve& c = r.curve;
+  const auto strain_max = static_cast<std::size_t>(
+      std::max_element(c.strain.begin(), c.strain.end()) - c.strain.begin());
+  r.loading_end = strain_max + 1;
+  r.loading_end_how = "strain maximum";
+  if (options.load_drop > 0) {
+    const auto peak = static_cast<std::size_t>(
+        std::max_element(c.stress_3wave_Pa.begin(), c.stress_3wave_Pa.end()) -
+        c.stress_3wave_Pa.begin());
+    for (std::size_t i = peak; i < r.loading_end; ++i)
+      if (c.stress_3wave_Pa[i] < (1 - options.load_drop) * c.stress_3wave_Pa[peak]) {
+        r.loading_end = i;
+        r.loading_end_how = fmt("load drop: the 3-wave stress fell below %.3g %% of its peak",
+                                100 * (1 - options.load_drop));
+        break;
+      }
+  }
+  const std::size_t loaded = r.loading_end;
+  judge_strain_rate(c.strain_rate_1_s, loaded, r);
+  r.peak_stress_Pa = *std::max_element(
+      c.stress_3wave_Pa.begin(), c.stress_3wave_Pa.begin() + static_cast<std::ptrdiff_t>(loaded));
+  r.max_strain =
+      *std::max_element(c.strain.begin(), c.strain.begin() + static_cast<std::ptrdiff_t>(loaded));
   double peak_force = 0;
-  for (std::size_t i = 0; i < m; ++i)
-    peak_force = std::max(peak_force, r.curve.force_front_N[i] + r.curve.force_back_N[i]);
-  for (std::size_t i = 0; i < m; ++i)
-    if (r.curve.force_front_N[i] + r.curve.force_back_N[i] >=
-            kMeanForceForEquilibrium * peak_force &&
-        r.curve.equilibrium_ratio[i] <= kEquilibriumThreshold) {
-      r.time_to_equilibrium_s = r.time_s[i] - r.time_s[0];
-      break;
-    }
+  for (std::size_t i = 0; i < loaded; ++i)
+    peak_force = std::max(peak_force, c.force_front_N[i] + c.force_back_N[i]);
+  r.equilibrium = judge_equilibrium(c, r.time_s, loaded, peak_force);
+  check_one_and_two_wave(c, loaded, peak_force, options.tension, r.warnings);
+  if (r.equilibrium.holds_from_s)
+    r.time_to_equilibrium_s = *r.equilibrium.holds_from_s - r.time_s[0];
   return r;
 }
 

@@ -33,6 +33,7 @@
 #include "core/signal_gauges.hpp"
 #include "dispersion/dispersion_table.hpp"
 #include "dispersion/propagation.hpp"
+#include "model/discretization.hpp"
 #include "solver/simulation.hpp"
 #include "version.hpp"
 
@@ -48,6 +49,9 @@ constexpr double kVelocityMismatch = 0.1;
 // A striker beyond this would yield any bar steel many times over (v_yield = 2 σ_y / (ρ c0) is
 // ~100 m/s for maraging steel): not a split Hopkinson bar test.
 constexpr double kMaxStrikerVelocity_m_s = 1000;
+// An extended simulation runs this fraction longer than the measured pulses need (the clocks are
+// matched on the incident pulse only after the run).
+constexpr double kDurationMargin = 0.1;
 
 // Linear interpolation of y on the uniform grid t0 + k·dt; 0 before the grid (the bars are at
 // rest before impact), the last value after it.
@@ -150,6 +154,26 @@ int run_compare(const CompareArgs& args) {
       break;
     }
 
+  // The simulation must last until the measured pulses have passed their gauges: unless the scene
+  // sets a duration, the default is extended to the end of the last compared window, put on the
+  // simulation's clock by the incident pulse (its gauge is reached (l - d_I)/c0 after impact,
+  // after the striker has closed its gap).
+  std::optional<double> extended_duration;
+  if (!scene.simulation.duration_s) {
+    std::size_t last = w_inc->end;
+    for (const auto& w : {w_inc, w_ref, w_tr})
+      if (w)
+        last = std::max(last, widen(w->end, static_cast<double>(w->end - w->onset) * kWindowMargin,
+                                    false, n - 1));
+    const double arrival =
+        (velocity > 0 ? scene.bars[striker].gap_m / velocity : 0.0) +
+        (scene.bars[incident_bar].length_m - setup.incident_distance_m) / setup.front.c0_m_s;
+    const double needed = (arrival + measured.time_s[last] - measured.time_s[w_inc->onset]) *
+                          (1 + kDurationMargin);
+    if (needed > default_duration_s(scene))
+      scene.simulation.duration_s = extended_duration = needed;
+  }
+
   OutputFolder out(args.output, "compare",
                    scene_inputs(scene));  // every input checked: from here on results are written
 
@@ -183,10 +207,22 @@ int run_compare(const CompareArgs& args) {
     const double len = static_cast<double>(w.end - w.onset) * kWindowMargin;
     Pulse p{gauge, name, widen(w.onset, len, true, n), widen(w.end, len, false, n), distance,
             &guide};
-    // Only where the simulation exists.
+    // Only where the simulation exists; said when that cuts the pulse.
     const auto last = static_cast<std::size_t>(
         std::max(0.0, (t_sim_end + offset - t_meas0) / dt));
-    p.end = std::min(p.end, last);
+    if (p.end > last) {
+      char msg[400];
+      std::snprintf(msg, sizeof msg,
+                    "the simulation ends (%.4g s on the measured clock) before the %s pulse has "
+                    "passed gauge \"%s\" (its window ends at %.4g s): compared on %.0f %% of its "
+                    "window only; set simulation.duration to at least %.3g s",
+                    t_sim_end + offset, name.c_str(), gauge.c_str(), measured.time_s[p.end - 1],
+                    100.0 * static_cast<double>(std::max(last, p.begin) - p.begin) /
+                        static_cast<double>(p.end - p.begin),
+                    measured.time_s[p.end - 1] - offset - t_sim0);
+      warnings.push_back(msg);
+      p.end = last;
+    }
     if (p.begin + 2 < p.end) pulses.push_back(p);
   };
   add(setup.incident_gauge, "incident", *w_inc, l_inc - setup.incident_distance_m,
@@ -302,6 +338,10 @@ int run_compare(const CompareArgs& args) {
   s["simulation"] = {{"stable", sim.stable},
                      {"wall_time_s", sim.wall_time_s},
                      {"energy_error", sim.energy_error}};
+  s["simulation"]["duration_s"] = t_sim_end - t_sim0;
+  s["simulation"]["duration_source"] =
+      extended_duration ? "extended to cover the measured pulses"
+                        : (scene.simulation.duration_s ? "scene" : "default");
   warnings.insert(warnings.end(), sim.warnings.begin(), sim.warnings.end());
   s["warnings"] = warnings;
   s["version"] = kVersion;
@@ -315,6 +355,7 @@ int run_compare(const CompareArgs& args) {
                  sim.failure.c_str(), out.final_path().string().c_str());
     return 3;
   }
+  for (const auto& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   if (!args.overrides.quiet) {
     std::fprintf(stderr, "striker %.4g m/s (%s); dispersion %s\n", velocity,
                  velocity_source.c_str(), args.dispersion ? "applied" : "off");

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "analysis/bar_check.hpp"
 #include "analysis/processing.hpp"
 #include "analysis/specimen_corrections.hpp"
 #include "app/commands.hpp"
@@ -29,21 +30,84 @@ nlohmann::json window_json(const WindowReport& w) {
           {"source", w.detected ? "detected" : "scene"}};
 }
 
-void check_finite(const ProcessingResult& r) {
-  auto all = [](const std::vector<double>& v) {
-    for (double x : v)
-      if (!std::isfinite(x)) return false;
-    return true;
-  };
+bool all_finite(const std::vector<double>& v) {
+  for (double x : v)
+    if (!std::isfinite(x)) return false;
+  return true;
+}
+
+// Why the reduction cannot be reported (empty: it can). The pulses are checked separately: they
+// are written even when the reduction fails.
+std::string reduction_failure(const ProcessingResult& r) {
   const Curve& c = r.curve;
-  for (const auto* v :
-       {&r.incident, &r.reflected, &r.transmitted, &c.strain_rate_1_s, &c.strain,
-        &c.stress_3wave_Pa, &c.true_strain, &c.true_stress_Pa, &c.equilibrium_ratio})
-    if (!all(*v)) throw NumericalError("process: the reduction produced a non-finite value");
+  for (const auto* v : {&c.strain_rate_1_s, &c.strain, &c.stress_3wave_Pa, &c.true_strain,
+                        &c.true_stress_Pa, &c.equilibrium_ratio})
+    if (!all_finite(*v)) return "process: the reduction produced a non-finite value";
   if (c.strain.size() && *std::max_element(c.strain.begin(), c.strain.end()) >= 1)
-    throw NumericalError(
-        "process: engineering strain reached 1 (the specimen would have no length "
-        "left): check the bridge factors, the specimen length and the windows");
+    return "process: engineering strain reached 1 (the specimen would have no length "
+           "left): check the channels' units and bridge factors, the specimen length and the "
+           "windows";
+  return "";
+}
+
+void write_pulses(const OutputFolder& out, const ProcessingResult& r) {
+  CsvWriter p(out.file("pulses.csv"), {"time_s", "incident", "reflected", "transmitted"});
+  for (std::size_t i = 0; i < r.time_s.size(); ++i)
+    p.row({r.time_s[i], r.incident[i], r.reflected[i], r.transmitted[i]});
+  p.close();
+}
+
+void write_json(const OutputFolder& out, const std::string& name, const nlohmann::json& s) {
+  write_text_file(out.file(name), s.dump(2) + "\n");
+}
+
+// A scene without a specimen: the bars-together check of the bars' dispersion (bar_check.hpp).
+int run_bar_check(const ProcessArgs& args, const Scene& scene) {
+  if (args.signals)
+    throw input_error(scene.file.string(), "specimen", "(missing)",
+                      "--signals reduces a simulated test: name the specimen bar");
+  if (!scene.measurement)
+    throw input_error(scene.file.string(), "measurement", "(missing)",
+                      "a bars-together check needs the measured signals of two gauges");
+  const MeasurementSpec& m = *scene.measurement;
+  const GaugeSignals signals = read_gauge_signals(m, {});
+  for (const auto& w : signals.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  const BarCheckSetup setup = resolve_bar_check(scene, signals.gauges);
+  const BarCheckResult r = check_bars_together(signals, setup, m.dispersion, scene.file.string());
+  std::vector<std::string> warnings = signals.warnings;
+  warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
+  OutputFolder out(args.output);
+  {
+    CsvWriter p(out.file("pulses.csv"),
+                {"time_s", "far_measured", "far_pochhammer_chree", "far_time_shift"});
+    for (std::size_t i = 0; i < r.time_s.size(); ++i)
+      p.row({r.time_s[i], r.far_measured[i], r.far_dispersion[i], r.far_time_shift[i]});
+  }
+  write_json(
+      out, "summary.json",
+      {{"version", kVersion},
+       {"command", "process"},
+       {"scene", args.scene.string()},
+       {"check", "bars together (no specimen)"},
+       {"near_gauge", setup.near_gauge},
+       {"far_gauge", setup.far_gauge},
+       {"distance_m", setup.distance_m},
+       {"cutoff_Hz", r.cutoff_Hz},
+       {"rms_of_peak", {{"pochhammer_chree", r.rms_dispersion}, {"time_shift", r.rms_time_shift}}},
+       {"how",
+        "the near gauge's first pulse (the rest of its record zeroed) moved by the distance "
+        "to the far gauge, with Pochhammer-Chree dispersion and by a plain delay "
+        "distance/c0; RMS of the difference from the far record over its pulse (+-20 % of "
+        "its length), as a fraction of its peak"},
+       {"warnings", warnings}});
+  out.commit();
+  if (!args.quiet)
+    std::fprintf(stderr,
+                 "process: bars together, %s -> %s over %.4g m: RMS %.3g %% of peak with "
+                 "Pochhammer-Chree dispersion, %.3g %% with a plain time shift -> %s\n",
+                 setup.near_gauge.c_str(), setup.far_gauge.c_str(), setup.distance_m,
+                 100 * r.rms_dispersion, 100 * r.rms_time_shift, args.output.string().c_str());
+  return 0;
 }
 
 }  // namespace
@@ -57,6 +121,7 @@ int run_process(const ProcessArgs& args) {
   mallopt(M_MMAP_THRESHOLD, kHeapBuffers);
   mallopt(M_TRIM_THRESHOLD, kHeapBuffers);
   const Scene scene = read_scene(args.scene);
+  if (!scene.specimen) return run_bar_check(args, scene);
   std::vector<std::string> gauges;
   for (const auto& b : scene.bars)
     for (const auto& g : b.gauges) gauges.push_back(g.name);
@@ -91,10 +156,21 @@ int run_process(const ProcessArgs& args) {
           "a list of {\"gauge\", \"column\", \"unit\", ...} to process measured signals");
     options.dispersion = m.dispersion;
     options.windows = m.windows;
+    options.load_drop = m.load_drop.value_or(kDefaultLoadDrop);
+    options.tension = m.tension;
   }
   options.scene_file = scene.file.string();
-  const GaugeSignals signals = read_gauge_signals(m, {});
+  // What was assumed is said even with --quiet (which silences progress only), and as soon as
+  // it is known: before any later error stops the run.
+  GaugeSignals signals = read_gauge_signals(m, {});
+  for (const auto& w : signals.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   const KolskySetup setup = resolve_setup(scene, signals.gauges);
+  // Tension: the reduction is linear in the strains, so negated signals reduce as a compression
+  // test whose "compression positive" outputs read tension positive; the pulses are negated back
+  // and the true values follow the tensile formulas.
+  if (options.tension)
+    for (auto& g : signals.strain)
+      for (double& x : g) x = -x;
   ProcessingResult r = process_signals(signals, setup, options);
   // Specimen corrections (docs/methods.md §8), also for simulated signals when the scene asks.
   const CorrectionsSpec corrections =
@@ -107,22 +183,49 @@ int run_process(const ProcessArgs& args) {
   if (corrections.friction || corrections.inertia)
     r.peak_stress_Pa =
         *std::max_element(r.curve.stress_3wave_Pa.begin(), r.curve.stress_3wave_Pa.end());
-  check_finite(r);
-
+  if (options.tension) {
+    for (auto* v : {&r.incident, &r.reflected, &r.transmitted})
+      for (double& x : *v) x = -x;
+    Curve& c = r.curve;
+    for (std::size_t i = 0; i < c.strain.size(); ++i) {
+      c.true_strain[i] = std::log1p(c.strain[i]);  // elongation: ln(1 + e)
+      c.true_stress_Pa[i] = c.stress_3wave_Pa[i] * (1 + c.strain[i]);
+    }
+  }
+  for (const auto& w : r.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   std::vector<std::string> warnings = signals.warnings;
   warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
-  // What was assumed is said even with --quiet (which silences progress only).
-  for (const auto& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  for (const auto* v : {&r.incident, &r.reflected, &r.transmitted})
+    if (!all_finite(*v)) throw NumericalError("process: the pulses hold a non-finite value");
 
   std::vector<std::filesystem::path> inputs = scene_inputs(scene);
   inputs.push_back(m.file);
   for (const ChannelSpec& c : m.channels) inputs.push_back(c.file);
   OutputFolder out(args.output, "process", inputs);
-  {
-    CsvWriter p(out.file("pulses.csv"), {"time_s", "incident", "reflected", "transmitted"});
-    for (std::size_t i = 0; i < r.time_s.size(); ++i)
-      p.row({r.time_s[i], r.incident[i], r.reflected[i], r.transmitted[i]});
-    p.close();
+  {  // the signals as read, in strain: what the windows were found on
+    std::vector<std::string> header = {"time_s"};
+    header.insert(header.end(), signals.gauges.begin(), signals.gauges.end());
+    CsvWriter w(out.file("raw_signals.csv"), header);
+    std::vector<double> row(header.size());
+    for (std::size_t i = 0; i < signals.time_s.size(); ++i) {
+      row[0] = signals.time_s[i];
+      for (std::size_t g = 0; g < signals.strain.size(); ++g) row[g + 1] = signals.strain[g][i];
+      w.row(row);
+    }
+    w.close();
+  }
+  write_pulses(out, r);
+  // A failed reduction still leaves the pulses at the faces to look at, and says why.
+  if (const std::string failure = reduction_failure(r); !failure.empty()) {
+    write_json(out, "summary.json",
+               {{"version", kVersion},
+                {"command", "process"},
+                {"scene", args.scene.string()},
+                {"error", failure},
+                {"warnings", warnings},
+                {"written", "pulses.csv only: the reduction failed"}});
+    out.commit();
+    throw NumericalError(failure + " (pulses.csv written to " + args.output.string() + ")");
   }
   {
     const Curve& c = r.curve;
@@ -130,7 +233,7 @@ int run_process(const ProcessArgs& args) {
                 {"time_s", "strain_rate_1_s", "strain", "stress_1wave_Pa", "stress_2wave_Pa",
                  "stress_3wave_Pa", "true_strain", "true_stress_Pa", "equilibrium_ratio",
                  "strain_rate_1wave_1_s", "force_front_N", "force_back_N"});
-    for (std::size_t i = 0; i < r.time_s.size(); ++i)
+    for (std::size_t i = 0; i < r.loading_end; ++i)
       w.row({r.time_s[i], c.strain_rate_1_s[i], c.strain[i], c.stress_1wave_Pa[i],
              c.stress_2wave_Pa[i], c.stress_3wave_Pa[i], c.true_strain[i], c.true_stress_Pa[i],
              c.equilibrium_ratio[i], c.strain_rate_1wave_1_s[i], c.force_front_N[i],
@@ -148,10 +251,14 @@ int run_process(const ProcessArgs& args) {
                   {"incident_gauge", setup.incident_gauge},
                   {"transmitted_gauge", setup.transmitted_gauge}};
   s["warnings"] = warnings;
+  s["test"] = options.tension ? "tension" : "compression";
   s["conventions"] =
-      "pulses.csv: strains at the specimen faces, tension positive, on the signals' clock; "
-      "curve.csv: compression positive, strain and strain rate from the 3-wave reduction, true "
-      "values from the 3-wave stress (after the corrections listed under corrections)";
+      std::string("pulses.csv: strains at the specimen faces, tension positive, on the signals' "
+                  "clock; curve.csv: ") +
+      (options.tension ? "tension positive (true strain ln(1+e), true stress s(1+e))"
+                       : "compression positive") +
+      ", strain and strain rate from the 3-wave reduction, true values from the 3-wave stress (after "
+      "the corrections listed under corrections)";
   nlohmann::json disp = {
       {"correction", options.dispersion.correction ? "pochhammer-chree" : "none"},
       {"amplitude_factors", options.dispersion.amplitude_factors}};
@@ -171,6 +278,10 @@ int run_process(const ProcessArgs& args) {
   s["alignment"] = {
       {"reflected_onset_minus_expected_s",
        r.reflected_onset_offset_s ? nlohmann::json(*r.reflected_onset_offset_s) : nlohmann::json()},
+      {"transmitted_onset_minus_expected_s", r.transmitted_onset_offset_s
+                                                 ? nlohmann::json(*r.transmitted_onset_offset_s)
+                                                 : nlohmann::json()},
+      {"suspect", r.alignment_suspect},
       {"how",
        "incident forward and reflected/transmitted backward by their gauge distances over "
        "c0 (dispersion-corrected); the detected reflected onset is reported, not applied "
@@ -184,7 +295,20 @@ int run_process(const ProcessArgs& args) {
                            ? nlohmann::json(*scene.measurement->striker_velocity_m_s)
                            : nlohmann::json())},
       {"how", "incident plateau at the front face: V = E A eps (Z_s + Z_b)/(Z_s Z_b)"}};
-  s["plateau_strain_rate_1_s"] = r.plateau_strain_rate_1_s;
+  s["plateau_strain_rate_1_s"] =
+      r.strain_rate_has_plateau ? nlohmann::json(r.plateau_strain_rate_1_s) : nlohmann::json();
+  s["strain_rate"] = {
+      {"plateau_1_s", s["plateau_strain_rate_1_s"]},
+      {"plateau_fraction_of_loading", r.strain_rate_plateau_fraction},
+      {"mean_over_loading_1_s", r.mean_strain_rate_1_s},
+      {"how",
+       "plateau: the longest run of samples within +-10 % of the rate's plateau level (median of "
+       "the samples above half its 95th percentile) covers at least 30 % of the loading (samples "
+       "with a positive rate); otherwise null and only the mean is quoted"}};
+  s["end_of_loading"] = {{"time_s", r.time_s[r.loading_end - 1]},
+                         {"how", r.loading_end_how},
+                         {"curve_rows", r.loading_end},
+                         {"note", "curve.csv ends here; pulses.csv keeps the whole window"}};
   s["peak_stress_Pa"] = r.peak_stress_Pa;
   s["max_strain"] = r.max_strain;
   s["time_to_equilibrium_s"] =
@@ -214,15 +338,31 @@ int run_process(const ProcessArgs& args) {
     }
     s["corrections"] = c;
   }
-  s["equilibrium_criterion"] = "R = 2|P1-P2|/|P1+P2| <= 0.05 while (P1+P2)/2 >= 20 % of its peak";
-  write_text_file(out.file("summary.json"), s.dump(2) + "\n");
+  s["equilibrium_criterion"] =
+      "R = 2|P1-P2|/|P1+P2| <= 0.05 while (P1+P2)/2 >= 20 % of its peak (loaded); reached at the "
+      "start of the interval with R <= 0.05 that lasts until unloading";
+  {
+    const Equilibrium& e = r.equilibrium;
+    auto interval = [](const std::optional<std::pair<double, double>>& p) {
+      return p ? nlohmann::json::array({p->first, p->second}) : nlohmann::json();
+    };
+    s["equilibrium"] = {
+        {"fraction_of_loaded_time", e.loaded_s ? nlohmann::json(e.fraction) : nlohmann::json()},
+        {"loaded_s", interval(e.loaded_s)},
+        {"longest_interval_s", interval(e.longest_s)},
+        {"holds_until_unloading_from_s",
+         e.holds_from_s ? nlohmann::json(*e.holds_from_s) : nlohmann::json()}};
+  }
+  write_json(out, "summary.json", s);
   out.commit();
   if (!args.quiet)
     std::fprintf(stderr,
-                 "process: window %.6g–%.6g s at the faces; striker ≈ %.4g m/s (inferred); plateau "
+                 "process: window %.6g–%.6g s at the faces; striker ≈ %.4g m/s (inferred); %s "
                  "strain rate %.4g 1/s; peak 3-wave stress %.4g MPa -> %s\n",
                  r.face_start_s, r.face_end_s, r.inferred_striker_velocity_m_s,
-                 r.plateau_strain_rate_1_s, r.peak_stress_Pa / 1e6, args.output.string().c_str());
+                 r.strain_rate_has_plateau ? "plateau" : "no plateau: mean",
+                 r.strain_rate_has_plateau ? r.plateau_strain_rate_1_s : r.mean_strain_rate_1_s,
+                 r.peak_stress_Pa / 1e6, args.output.string().c_str());
   return 0;
 }
 

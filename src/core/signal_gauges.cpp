@@ -44,6 +44,24 @@ double median_abs_peak(const std::vector<double>& x) {
   return peak;
 }
 
+// A sample interval outside what any digitizer records (a time unit that does not match the
+// column, e.g. "us" on seconds) is refused before anything is sized from it.
+void check_sample_interval(const SignalColumns& cols, const MeasurementSpec& m) {
+  if (cols.dt_s >= kMinSampleInterval_s && cols.dt_s <= kMaxSampleInterval_s) return;
+  const std::string column = m.time_column.index
+                                 ? "column index " + std::to_string(*m.time_column.index)
+                             : m.time_column.name.empty() ? "the format's time base"
+                                                          : "column \"" + m.time_column.name + "\"";
+  char value[120], expected[300];
+  std::snprintf(value, sizeof value, "time %s in \"%s\": sample interval %.3g s", column.c_str(),
+                m.time_unit.c_str(), cols.dt_s);
+  std::snprintf(expected, sizeof expected,
+                "expected %.0e s to %.0e s (a digitizer's range); is the column in another unit "
+                "than measurement.time.unit says?",
+                kMinSampleInterval_s, kMaxSampleInterval_s);
+  throw input_error(cols.file.string(), "", value, expected);
+}
+
 }  // namespace
 
 const std::vector<double>* GaugeSignals::find(std::string_view gauge) const {
@@ -82,8 +100,10 @@ GaugeSignals read_gauge_signals(const MeasurementSpec& m, const std::filesystem:
     req.format = m.format;
     req.time_column = m.time_column;
     req.time_unit_s = m.time_unit_s;
+    req.sheet = m.sheet;
     for (std::size_t c : channels) req.columns.push_back(m.channels[c].column);
     SignalColumns cols = read_signal_columns(req);
+    check_sample_interval(cols, m);
     out.warnings.insert(out.warnings.end(), cols.warnings.begin(), cols.warnings.end());
     if (first_file) {
       out.time_s = cols.time_s;
@@ -105,6 +125,10 @@ GaugeSignals read_gauge_signals(const MeasurementSpec& m, const std::filesystem:
       double factor = 1.0;
       switch (ch.unit) {
         case SignalUnit::kVolt:
+          if (ch.scale) {
+            factor = *ch.scale;
+            break;
+          }
           if (!ch.bridge)
             throw input_error(
                 "measurement", "channels[" + std::to_string(channels[k]) + "].bridge", "missing",
@@ -141,11 +165,14 @@ GaugeSignals read_gauge_signals(const MeasurementSpec& m, const std::filesystem:
   for (std::size_t g = 0; g < out.gauges.size(); ++g) {
     const double peak = median_abs_peak(out.strain[g]);
     if (peak < kPlausibleStrainMin || peak > kPlausibleStrainMax) {
-      char msg[300];
+      // Microstrain declared as strain is the usual slip: say so when ×1e-6 would be plausible.
+      const bool micro = peak * 1e-6 >= kPlausibleStrainMin && peak * 1e-6 <= kPlausibleStrainMax;
+      char msg[400];
       std::snprintf(msg, sizeof msg,
                     "gauge \"%s\": implausible strain scale: peak |strain| %.3g is outside "
-                    "[%.0e, %.0e] for a Kolsky bar; check the channel's unit and bridge",
-                    out.gauges[g].c_str(), peak, kPlausibleStrainMin, kPlausibleStrainMax);
+                    "[%.0e, %.0e] for a Kolsky bar; check the channel's unit and bridge%s",
+                    out.gauges[g].c_str(), peak, kPlausibleStrainMin, kPlausibleStrainMax,
+                    micro ? " (the values look like microstrain: \"unit\": \"microstrain\")" : "");
       out.warnings.push_back(msg);
     }
   }

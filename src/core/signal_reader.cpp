@@ -8,6 +8,7 @@
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
 #include "core/signal_formats.hpp"
+#include "core/signal_spreadsheet.hpp"
 
 namespace shpb {
 namespace {
@@ -128,7 +129,9 @@ std::string_view to_string(SignalFormat f) {
 }
 
 SignalColumns read_signal_columns(const SignalRequest& request) {
-  const DelimitedText text = read_delimited_text(request.file);
+  const DelimitedText text = is_spreadsheet(request.file)
+                                 ? read_spreadsheet(request.file, request.sheet)
+                                 : read_delimited_text(request.file);
   SignalColumns out;
   out.file = request.file;
   out.format = request.format == SignalFormat::kAuto ? detect(text) : request.format;

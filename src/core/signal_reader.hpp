@@ -18,6 +18,7 @@ struct SignalRequest {
       time_column;  // empty: the format's own (CSV: first column; Tektronix: 4th; LANL: header)
   double time_unit_s = 1.0;  // seconds per unit of the time column
   std::vector<ColumnRef> columns;
+  std::string sheet;  // .xlsx/.xls: the sheet by name (empty: the first)
 };
 
 struct SignalColumns {

@@ -50,7 +50,7 @@ TimeWindow read_window(const JsonValue& v) {
 
 ChannelSpec read_channel(const JsonValue& v, const std::filesystem::path& scene_dir,
                          const std::vector<std::string>& gauges) {
-  const auto o = v.object({"gauge", "file", "column", "unit", "bridge", "invert"});
+  const auto o = v.object({"gauge", "file", "column", "unit", "bridge", "scale", "invert"});
   ChannelSpec c;
   const auto gauge = o.require("gauge", "the name of a gauge in bars[].gauges");
   c.gauge = gauge.string();
@@ -65,14 +65,22 @@ ChannelSpec read_channel(const JsonValue& v, const std::filesystem::path& scene_
   c.unit = enum_from<SignalUnit>(unit, {{"V", SignalUnit::kVolt},
                                         {"strain", SignalUnit::kStrain},
                                         {"microstrain", SignalUnit::kMicrostrain}});
+  if (auto sc = o.get("scale")) {
+    if (c.unit != SignalUnit::kVolt)
+      throw sc->error(
+          "a scale (strain per volt) converts volts; it applies only to \"unit\": \"V\"");
+    if (o.get("bridge")) throw sc->error("give either scale (strain per volt) or bridge, not both");
+    c.scale = sc->quantity(Dimension::kDimensionless);
+    if (!(*c.scale != 0)) throw sc->error("expected a non-zero strain per volt, e.g. 1.2e-3");
+  }
   if (auto b = o.get("bridge")) {
     if (c.unit != SignalUnit::kVolt)
       throw b->error("a bridge converts volts; it applies only to \"unit\": \"V\"");
     c.bridge = read_bridge(*b);
-  } else if (c.unit == SignalUnit::kVolt) {
+  } else if (c.unit == SignalUnit::kVolt && !c.scale) {
     throw input_error(v.file(), json_child_path(v.path(), "bridge"), "(missing)",
                       "required for \"unit\": \"V\": {\"arms\", \"gauge_factor\", \"excitation\", "
-                      "\"gain\"}");
+                      "\"gain\"} (or \"scale\": strain per volt)");
   }
   if (auto i = o.get("invert")) c.invert = i->boolean();
   return c;
@@ -105,7 +113,8 @@ DispersionSpec read_dispersion(const JsonValue& v) {
 MeasurementSpec read_measurement(const JsonValue& value, const std::filesystem::path& scene_dir,
                                  const std::vector<std::string>& gauges) {
   const auto o = value.object({"file", "format", "time", "channels", "dispersion", "windows",
-                               "striker_velocity", "notes", "corrections"});
+                               "striker_velocity", "notes", "load_drop", "sheet", "test",
+                               "corrections"});
   MeasurementSpec m;
   if (auto c = o.get("corrections")) {
     const auto co = c->object({"friction", "inertia"});
@@ -129,6 +138,7 @@ MeasurementSpec read_measurement(const JsonValue& value, const std::filesystem::
       const std::string unit = u->string();
       try {
         m.time_unit_s = parse_quantity("1 " + unit, Dimension::kTime);
+        m.time_unit = unit;
       } catch (const std::invalid_argument& e) {
         throw u->error(e.what());
       }
@@ -147,6 +157,18 @@ MeasurementSpec read_measurement(const JsonValue& value, const std::filesystem::
     if (auto x = wo.get("incident")) m.windows.incident = read_window(*x);
     if (auto x = wo.get("reflected")) m.windows.reflected = read_window(*x);
     if (auto x = wo.get("transmitted")) m.windows.transmitted = read_window(*x);
+  }
+  if (auto sh = o.get("sheet")) m.sheet = sh->name();
+  if (auto t = o.get("test"))
+    m.tension = enum_from<bool>(*t, {{"compression", false}, {"tension", true}});
+  if (auto d = o.get("load_drop")) {
+    if (d->json().is_boolean()) {
+      if (d->boolean())
+        throw d->error("false (cut at the strain maximum only) or a fraction, e.g. 0.5");
+      m.load_drop = 0.0;
+    } else {
+      m.load_drop = d->quantity_in(Dimension::kDimensionless, 0, 1, true, true);
+    }
   }
   if (auto s = o.get("striker_velocity"))
     m.striker_velocity_m_s = s->positive_quantity(Dimension::kVelocity);

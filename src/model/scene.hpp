@@ -14,6 +14,9 @@ namespace shpb {
 struct GaugeSpec {
   std::string name;
   double position_m = 0;  // from the bar's left end
+  // As given (`distance_to_specimen`): to the specimen face the pulse reaches; position_m is
+  // resolved from it once the specimen is known.
+  std::optional<double> distance_to_specimen_m;
 };
 
 struct BarSpec {
@@ -27,13 +30,14 @@ struct BarSpec {
   double gap_m = 0;           // initial gap to the next bar on the right
   std::vector<GaugeSpec> gauges;
   bool inertia = false;  // radial inertia of a flowing specimen (material-law bars only)
+  bool has_material = true;  // false: the specimen of a scene only processed (no `material`)
 
   double impedance_kg_s() const {
     return material.density_kg_m3 * material.wave_speed_m_s() * area_m2;
   }
 };
 
-enum class ContactMethod { kPenalty, kBipenalty, kLocalizedBipenalty };
+enum class ContactMethod { kPenalty, kBipenalty, kLocalizedBipenalty, kBonded };
 enum class Stepping { kAsynchronous, kGlobal };
 
 // Penalty parameters of one interface. Unset values are derived from the neighbouring elements
@@ -111,7 +115,8 @@ struct ChannelSpec {
   std::filesystem::path file;        // empty: the measurement's file
   ColumnRef column;
   SignalUnit unit = SignalUnit::kStrain;
-  std::optional<BridgeSpec> bridge;  // required for volts
+  std::optional<BridgeSpec> bridge;  // required for volts, or
+  std::optional<double> scale;       // strain per volt (a calibration factor) instead
   bool invert = false;
 };
 
@@ -146,6 +151,10 @@ struct MeasurementSpec {
   PulseWindows windows;
   std::optional<double> striker_velocity_m_s;  // if known; else inferred
   CorrectionsSpec corrections;
+  std::string time_unit = "s";                 // as written (named in errors)
+  std::optional<double> load_drop;  // curve end at this stress drop (fraction); 0: off; unset: default
+  std::string sheet;                // .xlsx/.xls files: the sheet by name (empty: the first)
+  bool tension = false;             // "test": "tension" (split Hopkinson tension bar)
 };
 
 struct Scene {

@@ -15,7 +15,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::vector<std::string> kContactMethods = {"penalty", "bipenalty", "localized-bipenalty"};
+const std::vector<std::string> kContactMethods = {"penalty", "bipenalty", "localized-bipenalty",
+                                                  "bonded"};
 const std::vector<std::string> kSteppings = {"asynchronous", "global"};
 constexpr std::int64_t kMaxElements = 100'000'000;  // far beyond any useful mesh; guards overflow
 
@@ -47,6 +48,12 @@ class SceneReader {
     check_names(scene, items);
 
     if (auto v = o.get("specimen")) scene.specimen = bar_index(scene, *v);
+    resolve_distances_to_specimen(scene, items);
+    for (std::size_t i = 0; i < scene.bars.size(); ++i)
+      if (!scene.bars[i].has_material && scene.specimen != i)
+        throw JsonObject(items[i]).require(
+            "material", "a name from materials, a file or an object (only the specimen may go "
+                        "without one, for `process`)");
     // Radial inertia is the closed form of a Kolsky specimen (model/specimen_response.hpp).
     for (std::size_t i = 0; i < scene.bars.size(); ++i)
       if (scene.bars[i].inertia && scene.specimen != i)
@@ -114,7 +121,11 @@ class SceneReader {
                              "elements", "gap", "gauges", "notes", "inertia"});
     BarSpec b;
     b.name = o.require("name", "a unique name such as \"incident\"").name();
-    b.material = material(o.require("material", "a name from materials, a file or an object"));
+    // `process` needs no specimen material (geometry is enough): checked once the specimen is known.
+    if (auto m = o.get("material"))
+      b.material = material(*m);
+    else
+      b.has_material = false;
     b.length_m = o.require("length", "e.g. \"2 m\"").positive_quantity(Dimension::kLength);
     const auto diameter = o.get("diameter");
     const auto area = o.get("area");
@@ -143,20 +154,47 @@ class SceneReader {
     }
     if (auto x = o.get("gauges")) {
       for (const auto& g : x->array()) {
-        const auto go = g.object({"name", "position"});
+        const auto go = g.object({"name", "position", "distance_to_specimen"});
         GaugeSpec gauge;
         gauge.name = go.require("name", "a unique gauge name").name();
-        const auto pos = go.require("position", "distance from the bar's left end, e.g. \"1 m\"");
+        const auto to_specimen = go.get("distance_to_specimen");
+        if (to_specimen && go.get("position"))
+          throw to_specimen->error("give either position or distance_to_specimen, not both");
+        const auto pos = to_specimen ? *to_specimen
+                                     : go.require("position",
+                                                  "distance from the bar's left end, e.g. \"1 m\" "
+                                                  "(or distance_to_specimen)");
         gauge.position_m = pos.quantity(Dimension::kLength);
         if (!(gauge.position_m >= 0 && gauge.position_m <= b.length_m))
           throw pos.error_with_value(JsonValue::format(gauge.position_m, Dimension::kLength),
                                      "must lie on the bar: within [0, " +
                                          JsonValue::format(b.length_m, Dimension::kLength) +
-                                         "] from its left end");
+                                         (to_specimen ? "]" : "] from its left end"));
+        if (to_specimen) gauge.distance_to_specimen_m = gauge.position_m;
         b.gauges.push_back(gauge);
       }
     }
     return b;
+  }
+
+  // `distance_to_specimen` is measured to the specimen face the pulse reaches: the right end of a
+  // bar before the specimen, the left end of a bar after it.
+  static void resolve_distances_to_specimen(Scene& scene, const std::vector<JsonValue>& items) {
+    for (std::size_t i = 0; i < scene.bars.size(); ++i)
+      for (std::size_t k = 0; k < scene.bars[i].gauges.size(); ++k) {
+        GaugeSpec& g = scene.bars[i].gauges[k];
+        if (!g.distance_to_specimen_m) continue;
+        if (!scene.specimen || *scene.specimen == i) {
+          const auto gauge = JsonObject(items[i]).get("gauges")->array()[k];
+          throw JsonObject(gauge).require("distance_to_specimen", "").error(
+              scene.specimen ? "a gauge on the specimen has no distance to it; give position"
+                             : "needs \"specimen\" (the distance is to its face); give position "
+                               "from the bar's left end instead");
+        }
+        g.position_m =
+            i < *scene.specimen ? scene.bars[i].length_m - *g.distance_to_specimen_m
+                                : *g.distance_to_specimen_m;
+      }
   }
 
   // Bar names and gauge names are unique (they name CSV columns); "time_s" is taken.
@@ -323,6 +361,8 @@ std::string_view to_string(ContactMethod m) {
       return "bipenalty";
     case ContactMethod::kLocalizedBipenalty:
       return "localized-bipenalty";
+    case ContactMethod::kBonded:
+      return "bonded";
   }
   return "?";
 }
@@ -346,6 +386,7 @@ std::optional<ContactMethod> contact_method_from_string(std::string_view s) {
   if (s == "penalty") return ContactMethod::kPenalty;
   if (s == "bipenalty") return ContactMethod::kBipenalty;
   if (s == "localized-bipenalty") return ContactMethod::kLocalizedBipenalty;
+  if (s == "bonded") return ContactMethod::kBonded;
   return std::nullopt;
 }
 std::optional<Stepping> stepping_from_string(std::string_view s) {

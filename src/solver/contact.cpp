@@ -11,7 +11,7 @@ InterfaceModel make_interface_model(std::string name, ContactMethod method,
   m.name = std::move(name);
   m.method = method;
   m.gap0_m = gap0_m;
-  m.tied = params.tied;
+  m.tied = params.tied || method == ContactMethod::kBonded;
   const double k = std::max(left.stiffness_N_m, right.stiffness_N_m);
   double eps_s = params.stiffness_factor.value_or(kDefaultStiffnessFactor) * k;
   if (params.stiffness_N_m) eps_s = *params.stiffness_N_m;
@@ -44,7 +44,9 @@ InterfaceModel make_interface_model(std::string name, ContactMethod method,
     // One node-to-node link: R below the smaller critical ratio of the two bars.
     m.stiffness_N_m[0] = eps_s;
     m.mass_penalty_kg[0] =
-        method == ContactMethod::kBipenalty ? eps_s / (ratio * std::min(r_crit(left), r_crit(right))) : 0.0;
+        method == ContactMethod::kBipenalty || method == ContactMethod::kBonded
+            ? eps_s / (ratio * std::min(r_crit(left), r_crit(right)))
+            : 0.0;
   }
   return m;
 }
@@ -67,6 +69,7 @@ ContactResult solve_contact(const InterfaceModel& model, InterfaceState& state, 
   switch (model.method) {
     case ContactMethod::kPenalty: return solve_penalty(model, state, left, right);
     case ContactMethod::kBipenalty: return solve_bipenalty(model, state, left, right);
+    case ContactMethod::kBonded: return solve_bonded(model, state, left, right);
     case ContactMethod::kLocalizedBipenalty:
       if (model.finite_links)
         return solve_localized_finite(model, state, left, right, tau, frame_next_tau);

@@ -121,6 +121,8 @@ ContactResult solve_contact(const InterfaceModel& model, InterfaceState& state, 
 
 ContactResult solve_penalty(const InterfaceModel& model, InterfaceState& state,
                             const EndState& left, const EndState& right);
+ContactResult solve_bonded(const InterfaceModel& model, InterfaceState& state,
+                           const EndState& left, const EndState& right);
 ContactResult solve_bipenalty(const InterfaceModel& model, InterfaceState& state,
                               const EndState& left, const EndState& right);
 ContactResult solve_localized_bipenalty(const InterfaceModel& model, InterfaceState& state,

@@ -178,7 +178,9 @@ TEST_CASE("The LANL copper and PMMA tests process end to end from the scene alon
     const double v = s["striker_velocity_m_s"]["inferred"].get<double>();
     CHECK(v > e.v_lo);
     CHECK(v < e.v_hi);
-    CHECK(s["plateau_strain_rate_1_s"].get<double>() > 1000);
+    // Both rates fall steadily over the loading (no plateau to quote): the mean is reported.
+    CHECK(s["plateau_strain_rate_1_s"].is_null());
+    CHECK(s["strain_rate"]["mean_over_loading_1_s"].get<double>() > 1000);
     CHECK(s["dispersion"]["correction"] == "pochhammer-chree");
     CHECK(fs::file_size(out / "curve.csv") > 1000);
   }
@@ -198,7 +200,10 @@ TEST_CASE("The epoxy file's repeated time stamps and doubtful scale are reported
   CHECK(r.err.find("time stamps repeat") != std::string::npos);
   CHECK(r.err.find("time base rebuilt from the sample interval 8e-08 s") != std::string::npos);
   CHECK(r.err.find("implausible strain scale") != std::string::npos);
-  CHECK(summary(out)["warnings"].size() == 3);
+  // Rebuilt time base, two implausible scales, and the transmitted pulse ~28 µs later than the
+  // geometry puts it (the soft epoxy, or the gauge distance: said, not decided).
+  CHECK(r.err.find("the transmitted pulse starts") != std::string::npos);
+  CHECK(summary(out)["warnings"].size() == 4);
 }
 
 TEST_CASE("process --signals reduces a gauges.csv written by simulate without dispersion",

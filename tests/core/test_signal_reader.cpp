@@ -190,6 +190,7 @@ TEST_CASE("Volts become strain through the bridge and opposite gauges are averag
   const auto a = write_file("ga.csv", "t,v\n0,0\n1,-1\n2,-2\n3,0\n");
   const auto b = write_file("gb.csv", "t,v\n0,0\n1,-3\n2,-2\n3,0\n");
   MeasurementSpec m;
+  m.time_unit_s = 1e-6;  // a 1 MHz record (a 1 s interval is refused as no digitizer's)
   for (const auto& f : {a, b}) {
     ChannelSpec c;
     c.gauge = "incident";
