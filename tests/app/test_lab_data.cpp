@@ -139,9 +139,10 @@ TEST_CASE("A gauge entered by its distance to the specimen is placed from the sp
   const json s = summary(d / "out");
   CHECK(s["gauge_distances_m"]["incident"].get<double>() == Approx(1.0));
   CHECK(s["gauge_distances_m"]["transmitted"].get<double>() == Approx(0.5));
-  // The record matches the geometry: no alignment warning.
+  // The record matches the geometry: no alignment warning (its noise-free flat tops may be
+  // taken for clipping, which is another warning).
   CHECK_FALSE(s["alignment"]["suspect"].get<bool>());
-  CHECK(r.err.find("warning") == std::string::npos);
+  CHECK(r.err.find("likely") == std::string::npos);
 }
 
 TEST_CASE("A gauge 60 mm off is warned about with the right sign and size", "[app][labdata]") {
@@ -165,7 +166,9 @@ TEST_CASE("A gauge 60 mm off is warned about with the right sign and size", "[ap
         std::string::npos);
   // The size said: 60 mm closer, to the half sample (0.25 mm) of onset picking.
   std::smatch m;
-  const std::string said = s["warnings"][0].get<std::string>();
+  std::string said;  // the alignment warning (a noise-free record also reads as clipped)
+  for (const auto& w : s["warnings"])
+    if (w.get<std::string>().find("likely") != std::string::npos) said = w.get<std::string>();
   REQUIRE(
       std::regex_search(said, m, std::regex("incident gauge is likely ([0-9.]+) mm closer to")));
   constexpr double kTwoSamples_mm = 2 * (0.5 * kC0 * kDt) * 1e3;  // c0·dt/2 per sample of offset
@@ -662,7 +665,7 @@ TEST_CASE(
       run_shpb({"process", write(d, scene, csv(tensile)).string(), "-o", (d / "tension").string()});
   INFO(r.err);
   REQUIRE(r.code == 0);
-  CHECK(r.err.find("warning") == std::string::npos);
+  CHECK(r.err.find("disagree") == std::string::npos);  // (noise-free flat tops read as clipped)
   const json t = summary(d / "tension");
   CHECK(t["test"] == "tension");
   constexpr double kRoundOff = 1e-12;
@@ -705,8 +708,9 @@ TEST_CASE("A simulated tension test with bonded specimen interfaces is processed
   r = run_shpb({"process", (d / "scene.json").string(), "-o", (d / "out").string(), "--quiet"});
   REQUIRE(r.code == 0);
   CHECK(summary(d / "out")["test"] == "tension");
-  // The scene's bilinear law: σ = Y + E_t (ε − Y/E) beyond yield (E 70 GPa, Y 300 MPa, E_t 2 GPa),
-  // against the 3-wave stress where the specimen is in equilibrium (R ≤ 5 %) and plastic
+  // The scene's bilinear law: σ = Y + E_t (ε − Y/E) beyond yield (E 70 GPa, Y 300 MPa, E_t 2 GPa)
+  // in true stress and logarithmic strain (the simulator's finite strain), against the processed
+  // true 3-wave stress and true strain where the specimen is in equilibrium (R ≤ 5 %) and plastic
   // (ε > 3 Y/E). The step-fronted pulse rings the specimen up, so single samples scatter more
   // (2.7 % at worst); their RMS is the figure.
   constexpr double kE = 70e9, kY = 300e6, kEt = 2e9;
@@ -715,7 +719,7 @@ TEST_CASE("A simulated tension test with bonded specimen interfaces is processed
   double sum = 0;
   std::size_t n = 0;
   for (std::size_t i = 0; i < c[0].size(); ++i) {
-    const double e = c[2][i], stress = c[5][i], ratio = c[8][i];
+    const double e = c[6][i], stress = c[7][i], ratio = c[8][i];
     if (ratio > 0.05 || e < 3 * kY / kE) continue;
     const double law = kY + kEt * (e - kY / kE);
     sum += (stress - law) * (stress - law) / (law * law);
