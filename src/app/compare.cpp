@@ -17,66 +17,20 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <optional>
 #include <string>
 #include <vector>
 
 #include "analysis/comparison.hpp"
 #include "analysis/processing.hpp"
-#include "analysis/pulse_window.hpp"
+#include "analysis/pulse_overlay.hpp"
 #include "app/commands.hpp"
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
 #include "core/output_folder.hpp"
 #include "core/signal_gauges.hpp"
-#include "dispersion/dispersion_table.hpp"
-#include "dispersion/propagation.hpp"
 #include "solver/simulation.hpp"
 
 namespace shpb {
-namespace {
-
-// Each compared window reaches this fraction of the measured pulse's length beyond both ends,
-// so that a shifted simulated pulse still lies inside it.
-constexpr double kWindowMargin = 0.2;
-
-// Linear interpolation of y on the uniform grid t0 + k·dt; 0 before the grid (the bars are at
-// rest before impact), the last value after it.
-double sample(const std::vector<double>& y, double t0, double dt, double t) {
-  if (y.empty()) return 0;
-  const double k = (t - t0) / dt;
-  if (k <= 0) return k < -1 ? 0.0 : y.front() * (1 + k);
-  const auto i = static_cast<std::size_t>(k);
-  if (i + 1 >= y.size()) return y.back();
-  const double f = k - static_cast<double>(i);
-  return y[i] * (1 - f) + y[i + 1] * f;
-}
-
-struct Pulse {
-  std::string gauge, name;
-  std::size_t begin = 0, end = 0;  // compared window on the measured grid
-  double distance_m = 0;           // travelled from the impact face to the gauge
-  const BarWaveguide* waveguide = nullptr;
-};
-
-// Fractional sample where |x − level| first reaches half of the pulse's plateau.
-double half_plateau_crossing(const std::vector<double>& x, double level, const PulseWindow& w) {
-  const double half = 0.5 * std::abs(plateau_level(x, w.onset, w.end, w.sign) - level);
-  for (std::size_t i = std::max<std::size_t>(w.onset, 1); i < w.end; ++i) {
-    const double a = std::abs(x[i - 1] - level), b = std::abs(x[i] - level);
-    if (b >= half) return static_cast<double>(i - 1) + (b != a ? (half - a) / (b - a) : 1.0);
-  }
-  return static_cast<double>(w.onset);
-}
-
-std::size_t widen(std::size_t i, double by, bool down, std::size_t n) {
-  const auto d = static_cast<std::size_t>(by);
-  if (down) return i > d ? i - d : 0;
-  return std::min(n, i + d);
-}
-
-}  // namespace
-
 int run_compare(const CompareArgs& args) {
   Scene scene = read_scene(args.scene);  // InputError → exit 2, nothing written
   apply_overrides(args.overrides, scene);
@@ -87,24 +41,17 @@ int run_compare(const CompareArgs& args) {
     throw input_error(file, "specimen", "(missing or no striker)",
                       "compare needs a striker, an incident bar and a specimen");
   const GaugeSignals measured = read_gauge_signals(*scene.measurement, {});
-  const KolskySetup setup = resolve_setup(scene, measured.gauges);
-  const std::size_t incident_bar = *scene.specimen - 1, striker = incident_bar - 1;
+  const std::size_t striker = *scene.specimen - 2;
 
   // 1. The measured pulses.
-  const std::vector<double>& m_inc = *measured.find(setup.incident_gauge);
-  const std::vector<double>& m_tr = *measured.find(setup.transmitted_gauge);
+  const MeasuredPulses found = find_measured_pulses(scene, measured);
+  const KolskySetup& setup = found.setup;
+  const std::vector<double>& m_inc = found.incident;
+  const std::vector<double>& m_tr = found.transmitted;
   const std::size_t n = measured.time_s.size();
-  const Baseline base_inc = estimate_baseline(m_inc), base_tr = estimate_baseline(m_tr);
-  const auto w_inc = find_first_pulse(m_inc, base_inc);
-  if (!w_inc)
-    throw input_error(file, "measurement", setup.incident_gauge,
-                      "no incident pulse above the noise in the measured signal");
-  const auto w_ref = find_first_pulse(m_inc, base_inc, w_inc->end);
-  const auto w_tr = find_first_pulse(m_tr, base_tr);
 
   // 2. Striker velocity.
-  const double plateau =
-      std::abs(plateau_level(m_inc, w_inc->onset, w_inc->end, w_inc->sign) - base_inc.level);
+  const double plateau = found.incident_plateau;
   std::string velocity_source;
   double velocity = 0;
   if (args.striker_velocity) {
@@ -113,9 +60,7 @@ int run_compare(const CompareArgs& args) {
     velocity = *scene.measurement->striker_velocity_m_s;
     velocity_source = "scene (measurement.striker_velocity)";
   } else {
-    const double z_s = scene.bars[striker].impedance_kg_s(),
-                 z_b = scene.bars[incident_bar].impedance_kg_s();
-    velocity = setup.front.c0_m_s * plateau * (z_s + z_b) / z_s;
+    velocity = striker_velocity_from_plateau(scene, found);
     velocity_source = "inferred from the measured incident plateau";
   }
   const double scene_velocity = scene.bars[striker].velocity_m_s;
@@ -129,85 +74,19 @@ int run_compare(const CompareArgs& args) {
   const SimulationResult sim = simulate(scene, options);
   std::filesystem::create_directories(out.path() / "simulation");
   write_simulation_outputs(sim, scene, out.path() / "simulation");
-  const double dt_sim = 1.0 / scene.simulation.sample_rate_Hz;
-  const std::vector<double>& s_inc = sim.gauges.column(setup.incident_gauge);
-  const std::vector<double>& s_tr = sim.gauges.column(setup.transmitted_gauge);
-  const double t_sim0 = sim.gauges.time_s.empty() ? 0.0 : sim.gauges.time_s.front();
-  const Baseline base_sim = estimate_baseline(s_inc);
-  const auto w_sim = find_first_pulse(s_inc, base_sim);
-  if (!w_sim)
-    throw NumericalError(file + ": simulation: no incident pulse at gauge " + setup.incident_gauge);
-  const double t_meas0 = measured.time_s.front(), dt = measured.dt_s;
-  // The two clocks meet where each incident pulse first reaches half its plateau: a time that
-  // does not depend on how steep the front is (the trigger time of a measurement is unknown).
-  const double half_meas = half_plateau_crossing(m_inc, base_inc.level, *w_inc);
-  const double half_sim = half_plateau_crossing(s_inc, base_sim.level, *w_sim);
-  const double offset = (t_meas0 + half_meas * dt) - (t_sim0 + half_sim * dt_sim);
-  const double t_sim_end = t_sim0 + static_cast<double>(s_inc.size() - 1) * dt_sim;
-
-  // 4. Pulses and the distance each travelled before reaching its gauge.
-  const double l_inc = scene.bars[incident_bar].length_m;
-  std::vector<Pulse> pulses;
-  auto add = [&](const std::string& gauge, const std::string& name, const PulseWindow& w,
-                 double distance, const BarWaveguide& guide) {
-    const double len = static_cast<double>(w.end - w.onset) * kWindowMargin;
-    Pulse p{gauge, name, widen(w.onset, len, true, n), widen(w.end, len, false, n), distance,
-            &guide};
-    // Only where the simulation exists.
-    const auto last = static_cast<std::size_t>(
-        std::max(0.0, (t_sim_end + offset - t_meas0) / dt));
-    p.end = std::min(p.end, last);
-    if (p.begin + 2 < p.end) pulses.push_back(p);
-  };
-  add(setup.incident_gauge, "incident", *w_inc, l_inc - setup.incident_distance_m,
-      setup.front_waveguide);
-  if (w_ref)
-    add(setup.incident_gauge, "reflected", *w_ref, l_inc + setup.incident_distance_m,
-        setup.front_waveguide);
-  if (w_tr)
-    add(setup.transmitted_gauge, "transmitted", *w_tr, l_inc + setup.transmitted_distance_m,
-        setup.back_waveguide);
-
-  // Simulated signals on the measured clock: raw (1D) and, per pulse, dispersed.
-  auto on_measured_clock = [&](const std::vector<double>& y, double advance_s) {
-    std::vector<double> r(n);
-    for (std::size_t k = 0; k < n; ++k)
-      r[k] = sample(y, t_sim0, dt_sim, measured.time_s[k] - offset + advance_s);
-    return r;
-  };
-  const std::vector<double> raw_inc = on_measured_clock(s_inc, 0), raw_tr = on_measured_clock(s_tr, 0);
-  std::vector<double> sim_inc = raw_inc, sim_tr = raw_tr;
-  std::optional<DispersionTable> front_table, back_table;
-  if (args.dispersion) {
-    front_table.emplace(setup.front_waveguide.poisson);
-    back_table.emplace(setup.back_waveguide.poisson);
-    // The incident gauge carries two pulses: split its record half-way between them.
-    const std::size_t split =
-        w_ref ? (w_inc->end + w_ref->onset) / 2 : n;
-    for (const Pulse& p : pulses) {
-      const bool front = p.waveguide == &setup.front_waveguide;
-      Propagator prop(front ? *front_table : *back_table, *p.waveguide, PropagationOptions{});
-      // Zeros after the record leave room for the delay d/c(f) (the output keeps the input's
-      // length); ×1.25 covers the slowest phase velocity below the cut-off.
-      std::vector<double> src = p.name == "transmitted" ? s_tr : s_inc;
-      src.resize(src.size() + static_cast<std::size_t>(
-                                  1.25 * p.distance_m / p.waveguide->c0_m_s / dt_sim) + 1,
-                 0.0);
-      // Moving by Δz delays by Δz/c(f); the 1D model already delayed by Δz/c0: advance by that.
-      const std::vector<double> moved =
-          on_measured_clock(prop.propagate(src, dt_sim, p.distance_m), p.distance_m / p.waveguide->c0_m_s);
-      std::vector<double>& dst = p.name == "transmitted" ? sim_tr : sim_inc;
-      const std::size_t from = p.name == "reflected" ? split : 0;
-      const std::size_t to = p.name == "incident" ? split : n;
-      std::copy(moved.begin() + static_cast<long>(from), moved.begin() + static_cast<long>(to),
-                dst.begin() + static_cast<long>(from));
-    }
-  }
+  // 4. On the measured clock, each pulse dispersed over the distance it travelled.
+  const PulseOverlay overlay(scene, found, args.dispersion);
+  const Overlay o = overlay.overlay(scene, sim);
+  const double offset = o.offset_s, t_sim_end = o.t_sim_end, dt = measured.dt_s,
+               t_meas0 = measured.time_s.front();
+  const std::vector<OverlaidPulse>& pulses = o.pulses;
+  const std::vector<double>&raw_inc = o.raw_incident, &raw_tr = o.raw_transmitted,
+                        &sim_inc = o.incident, &sim_tr = o.transmitted;
 
   // 5. Compare.
   std::vector<PulseComparison> results;
-  for (const Pulse& p : pulses) {
-    const bool tr = p.gauge == setup.transmitted_gauge && p.name == "transmitted";
+  for (const OverlaidPulse& p : pulses) {
+    const bool tr = p.transmitted;
     PulseComparison c =
         compare_pulse(tr ? m_tr : m_inc, tr ? sim_tr : sim_inc, dt, p.begin, p.end);
     c.gauge = p.gauge, c.pulse = p.name;
