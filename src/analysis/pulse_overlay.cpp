@@ -109,7 +109,7 @@ Overlay PulseOverlay::overlay(const Scene& scene, const SimulationResult& sim,
   auto add = [&](const std::string& gauge, const std::string& name, const PulseWindow& w,
                  double distance, bool transmitted) {
     const double len = static_cast<double>(w.end - w.onset) * kWindowMargin;
-    OverlaidPulse p{gauge, name, widen(w.onset, len, true, n), widen(w.end, len, false, n),
+    OverlaidPulse p{gauge,    name,       widen(w.onset, len, true, n), widen(w.end, len, false, n),
                     distance, transmitted};
     // Only where the simulation exists.
     const auto last =
@@ -147,9 +147,9 @@ Overlay PulseOverlay::overlay(const Scene& scene, const SimulationResult& sim,
     // Zeros after the record leave room for the delay d/c(f) (the output keeps the input's
     // length); ×1.25 covers the slowest phase velocity below the cut-off.
     std::vector<double> src = p.transmitted ? s_tr : s_inc;
-    src.resize(src.size() + static_cast<std::size_t>(1.25 * p.distance_m / guide.c0_m_s / dt_sim) +
-                   1,
-               0.0);
+    src.resize(
+        src.size() + static_cast<std::size_t>(1.25 * p.distance_m / guide.c0_m_s / dt_sim) + 1,
+        0.0);
     // Moving by Δz delays by Δz/c(f); the 1D model already delayed by Δz/c0: advance by that.
     const std::vector<double> moved =
         on_measured_clock(prop.propagate(src, dt_sim, p.distance_m), p.distance_m / guide.c0_m_s);
