@@ -232,6 +232,37 @@ int run_fit(const FitArgs& args) {
         groups.push_back(std::move(g));
       }
     }
+    if (stage == FitStage::kSignals && !after_curve.empty()) {
+      // The curve stage only proposes a start: the signals stage starts from it or from the
+      // material file's values, whichever reproduces the signals better.
+      auto cost_at = [&](const std::vector<double>& v) {
+        std::vector<double> cost(cases.size());
+        const MaterialSpec law = law_with(spec, law_values(v));
+        run_parallel(cases.size(), threads, [&](std::size_t k) {
+          for (double r : cases[k]->residuals(cases[k]->simulate(law, nuisance_of(k, v))))
+            cost[k] += 0.5 * r * r;
+        });
+        double sum = 0;
+        for (double c : cost) sum += c;
+        return sum;
+      };
+      std::vector<double> file_start = current;
+      for (std::size_t i = 0; i < spec.free.size(); ++i) file_start[i] = unknowns[i].start;
+      const double from_curve = cost_at(current), from_file = cost_at(file_start);
+      simulations += 2 * static_cast<long>(cases.size());
+      if (from_file < from_curve) {
+        current = file_start;
+        warnings.push_back(
+            "stage signals started from the material file's values: they fit the "
+            "signals better (cost " +
+            std::to_string(from_file) +
+            ") than the curve "
+            "stage's (" +
+            std::to_string(from_curve) + ")");
+      }
+      say("signals cost at the curve stage's values " + std::to_string(from_curve) +
+          ", at the material file's " + std::to_string(from_file));
+    }
     for (std::size_t i : report.unknowns) {
       const Unknown& u = unknowns[i];
       params.push_back({u.name, current[i], u.lower, u.upper, scale_of(u)});
