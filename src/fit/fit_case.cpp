@@ -96,10 +96,10 @@ FitCase::FitCase(const CampaignTest& test, const Campaign& campaign, const FitSp
                                             scene_.measurement->dispersion.correction);
 }
 
-void FitCase::set_windows(const Overlay& start, bool with_incident) {
+void FitCase::set_windows(const Overlay& start) {
   windows_.clear();
   for (const OverlaidPulse& p : start.pulses)
-    if (p.name != "incident" || with_incident) windows_.push_back(p);
+    if (p.name != "incident") windows_.push_back(p);
 }
 
 Overlay FitCase::simulate(const MaterialSpec& law, const Nuisance& nuisance) const {

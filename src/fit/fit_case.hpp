@@ -45,9 +45,9 @@ class FitCase {
   const std::vector<CurvePoint>& curve() const { return curve_; }
   const std::vector<std::string>& warnings() const { return warnings_; }
 
-  // The windows compared (reflected, transmitted; and incident when `with_incident`), fixed from
-  // the simulation at the start so that every evaluation has the same residuals.
-  void set_windows(const Overlay& start, bool with_incident);
+  // The windows compared (reflected, transmitted), fixed from the simulation at the start so
+  // that every evaluation has the same residuals.
+  void set_windows(const Overlay& start);
   const std::vector<OverlaidPulse>& windows() const { return windows_; }
 
   // One simulation with `law` as the specimen and the nuisance values. NumericalError if unstable.
