@@ -80,8 +80,10 @@ int run_compare(const CompareArgs& args) {
   const double offset = o.offset_s, t_sim_end = o.t_sim_end, dt = measured.dt_s,
                t_meas0 = measured.time_s.front();
   const std::vector<OverlaidPulse>& pulses = o.pulses;
-  const std::vector<double>&raw_inc = o.raw_incident, &raw_tr = o.raw_transmitted,
-                        &sim_inc = o.incident, &sim_tr = o.transmitted;
+  const std::vector<double>& raw_inc = o.raw_incident;
+  const std::vector<double>& raw_tr = o.raw_transmitted;
+  const std::vector<double>& sim_inc = o.incident;
+  const std::vector<double>& sim_tr = o.transmitted;
 
   // 5. Compare.
   std::vector<PulseComparison> results;
