@@ -169,6 +169,24 @@ int main(int argc, char** argv) {
                 "self-contained report.html (needs python3 with matplotlib)");
   report->add_option("folder", rep.folder, "Output folder")->required()->check(CLI::ExistingDirectory);
 
+  FitArgs fit;
+  auto* fit_cmd = app.add_subcommand(
+      "fit", "Calibrate a specimen law from measured tests (a campaign file): fit the processed "
+             "curves, then the simulated gauge signals; write fit.json (a material file), "
+             "summary.json, curves.csv, signals.csv");
+  fit_cmd->add_option("campaign", fit.campaign, "Campaign JSON file (tests, material, free, ...)")
+      ->required();
+  fit_cmd->add_option("-o,--output", fit.output, "Output folder (replaced atomically)")->required();
+  fit_cmd->add_option("--threads", fit.threads, "Simulations in parallel (0 = all cores)")
+      ->check(CLI::NonNegativeNumber);
+  fit_cmd->add_option("--max-iterations", fit.max_iterations, "Solver iterations per stage")
+      ->check(CLI::Range(1, 10000));
+  fit_cmd->add_option("--relative-step", fit.relative_step,
+                      "Central-difference step of the signals stage, relative to each parameter "
+                      "(default 0.05: above the simulator's noise; the curve stage uses 1e-4)")
+      ->check(CLI::Range(1e-8, 0.1));
+  fit_cmd->add_flag("--quiet,-q", fit.quiet, "No progress output on stderr");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -227,6 +245,7 @@ int main(int argc, char** argv) {
       return run_validate(val);
     }
     if (*report) return run_report(rep);
+    if (*fit_cmd) return run_fit(fit);
   } catch (const InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 2;

@@ -996,5 +996,96 @@ def main(argv):
     return 0
 
 
+# ---- figures of `fit` (a folder with fit.json, curves.csv, long-format signals.csv) ----------
+
+def fig_fit(src, figs):
+    """Measured against start and fitted pulses per test, curves with the law, correlations."""
+    s = src.summary if isinstance(src.summary, dict) else {}
+    t = src.table("signals.csv")
+    for name in ("test", "pulse", "time_s", "measured_strain", "start_strain", "fitted_strain"):
+        if name not in t:
+            raise ReportError(f"{t.path}: header: {','.join(t.names)}: a column {name} "
+                              "was expected (shpb fit's signals.csv)")
+    tests = list(dict.fromkeys(t["test"]))
+    pulses = list(dict.fromkeys(t["pulse"]))
+    nrmse = {x.get("name"): x for x in s.get("tests", []) if isinstance(x, dict)}
+    fig, axes = new_figure(len(tests), len(pulses), height=2.8 * len(tests) + 0.6,
+                           width=4.2 * len(pulses) + 1)
+    for i, test in enumerate(tests):
+        for j, pulse in enumerate(pulses):
+            ax = axes[i, j]
+            m = (t["test"] == test) & (t["pulse"] == pulse)
+            time = t.numeric("time_s")[m] * US
+            ax.plot(time, t.numeric("measured_strain")[m] * MICRO, color="k", linewidth=1.1,
+                    label="measured")
+            ax.plot(time, t.numeric("start_strain")[m] * MICRO, color="C0", linewidth=0.8,
+                    alpha=0.7, label="start")
+            ax.plot(time, t.numeric("fitted_strain")[m] * MICRO, color="C3", linewidth=1.0,
+                    linestyle="--", label="fitted")
+            r = nrmse.get(test, {})
+            before, after = r.get(f"nrmse_{pulse}_before"), r.get(f"nrmse_{pulse}_after")
+            title = f"{test}: {pulse}"
+            if before is not None and after is not None:
+                title += f" (NRMSE {before:.3f} → {after:.3f})"
+            ax.set_title(title, fontsize=9)
+            ax.set_xlabel("time (µs)")
+            ax.set_ylabel("strain (µε)")
+            ax.legend(loc="lower right", fontsize=7)
+    figs.save(fig, src.png("fit_signals"), src.title("Fit: measured and simulated pulses"),
+              "Each compared window of each test: measured (black), simulated with the starting "
+              "law (blue) and with the fitted one (dashed); NRMSE as in summary.json.")
+
+    if src.has("curves.csv"):
+        c = src.table("curves.csv")
+        fig, axes = new_figure()
+        ax = axes[0, 0]
+        for k, test in enumerate(dict.fromkeys(c["test"])):
+            m = c["test"] == test
+            ep = c.numeric("true_plastic_strain")[m]
+            ax.plot(ep, c.numeric("stress_measured_Pa")[m] * MPA, color=f"C{k}", linewidth=1.0,
+                    label=f"{test} processed")
+            ax.plot(ep, c.numeric("stress_fitted_Pa")[m] * MPA, color=f"C{k}", linewidth=1.0,
+                    linestyle="--", label=f"{test} fitted law")
+            ax.plot(ep, c.numeric("stress_start_Pa")[m] * MPA, color=f"C{k}", linewidth=0.7,
+                    linestyle=":", alpha=0.8)
+        ax.set_xlabel("true plastic strain")
+        ax.set_ylabel("true stress (MPa)")
+        ax.set_title(src.title("Processed curves after equilibrium and the law"))
+        ax.legend(fontsize=7)
+        figs.save(fig, src.png("fit_curves"), src.title("Fit: curves and the law"),
+                  "Processed true stress after equilibrium (solid), the fitted law at the same "
+                  "plastic strain, rate and temperature (dashed) and the starting law (dotted).")
+
+    corr = s.get("correlation", {})
+    names, matrix = corr.get("parameters", []), corr.get("matrix", [])
+    if names and matrix:
+        a = np.array(matrix, dtype=float)
+        fig, axes = new_figure(height=0.5 * len(names) + 2.5, width=0.6 * len(names) + 3.5)
+        ax = axes[0, 0]
+        im = ax.imshow(a, vmin=-1, vmax=1, cmap="RdBu_r")
+        ax.set_xticks(range(len(names)), names, rotation=45, ha="right", fontsize=8)
+        ax.set_yticks(range(len(names)), names, fontsize=8)
+        for i in range(len(names)):
+            for j in range(len(names)):
+                ax.text(j, i, f"{a[i, j]:.2f}", ha="center", va="center", fontsize=7)
+        fig.colorbar(im, ax=ax)
+        ax.set_title(src.title("Parameter correlations"))
+        figs.save(fig, src.png("fit_correlation"), src.title("Fit: parameter correlations"),
+                  "Correlations of the fitted parameters from the covariance of the last stage; "
+                  "|r| > 0.98 means two parameters are not separately identifiable.")
+
+
+_fig_compare_signals = fig_compare_signals
+
+
+def fig_compare_signals(src, figs):  # noqa: F811 (the fit producer, kept local to this block)
+    if os.path.isfile(os.path.join(src.folder, "fit.json")):
+        src.files.setdefault("curves.csv", os.path.join(src.folder, "curves.csv"))
+        if not os.path.isfile(src.files["curves.csv"]):
+            del src.files["curves.csv"]
+        return fig_fit(src, figs)
+    return _fig_compare_signals(src, figs)
+
+
 if __name__ == "__main__":
     sys.exit(main(sys.argv))

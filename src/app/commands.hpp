@@ -105,4 +105,16 @@ struct ReportArgs {
 };
 int run_report(const ReportArgs& args);
 
+struct FitArgs {
+  std::filesystem::path campaign;
+  std::filesystem::path output;
+  int threads = 0;              // simulations of one Jacobian in parallel; 0: all cores
+  int max_iterations = 40;      // per stage
+  // Central-difference step of the signals stage, relative to each parameter: well above the
+  // simulator's sensitivity noise (docs/methods.md §9; README (shpb fit) gives the measurement).
+  double relative_step = 0.05;
+  bool quiet = false;
+};
+int run_fit(const FitArgs& args);
+
 }  // namespace shpb

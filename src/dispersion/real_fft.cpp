@@ -2,9 +2,18 @@
 
 #include <fftw3.h>
 
+#include <mutex>
 #include <new>
 
 namespace shpb {
+namespace {
+// FFTW's planner is not thread-safe (only fftw_execute is): plans are made and destroyed under
+// one lock, so that threads (the fit's parallel simulations) can each own a RealFft.
+std::mutex& planner_mutex() {
+  static std::mutex m;
+  return m;
+}
+}  // namespace
 
 RealFft::RealFft(std::size_t n) : n_(n) {
   real_ = static_cast<double*>(fftw_malloc(sizeof(double) * n));
@@ -16,12 +25,14 @@ RealFft::RealFft(std::size_t n) : n_(n) {
   }
   auto* c = reinterpret_cast<fftw_complex*>(spectrum_);
   const int len = static_cast<int>(n);
+  const std::lock_guard lock(planner_mutex());
   // FFTW_ESTIMATE: planning must not overwrite data nor take seconds for one-off records.
   forward_plan_ = fftw_plan_dft_r2c_1d(len, real_, c, FFTW_ESTIMATE);
   inverse_plan_ = fftw_plan_dft_c2r_1d(len, c, real_, FFTW_ESTIMATE);
 }
 
 RealFft::~RealFft() {
+  const std::lock_guard lock(planner_mutex());
   if (forward_plan_) fftw_destroy_plan(static_cast<fftw_plan>(forward_plan_));
   if (inverse_plan_) fftw_destroy_plan(static_cast<fftw_plan>(inverse_plan_));
   fftw_free(real_);

@@ -11,7 +11,7 @@ namespace fs = std::filesystem;
 
 const std::vector<std::string>& campaign_keys() {
   static const std::vector<std::string> keys = {"name", "notes",    "tests", "material",
-                                                "free", "nuisance", "stages"};
+                                                "free", "nuisance", "stages", "loss"};
   return keys;
 }
 

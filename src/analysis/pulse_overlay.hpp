@@ -1,0 +1,80 @@
+#pragma once
+// A simulated test laid over its measurement, pulse by pulse (what `shpb compare` shows and what
+// `shpb fit` minimises; docs/methods.md §5, §9):
+//  1. the measured incident, reflected and transmitted pulses are found once;
+//  2. the simulation (t = 0 at impact) is put on the measured clock by matching the half-plateau
+//     crossings of the incident pulses (plus an optional extra shift);
+//  3. a 1D bar does not disperse and a real one does: each simulated pulse is moved through the
+//     Pochhammer–Chree dispersion of the distance it travelled from the impact face (minus the
+//     non-dispersive delay the 1D model already has).
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "analysis/processing.hpp"
+#include "analysis/pulse_window.hpp"
+#include "dispersion/dispersion_table.hpp"
+#include "model/scene.hpp"
+#include "solver/simulation.hpp"
+
+namespace shpb {
+
+// The measured side of a test: the two gauges' strains and where their pulses are.
+struct MeasuredPulses {
+  KolskySetup setup;
+  std::vector<double> time_s;
+  double dt_s = 0;
+  std::vector<double> incident, transmitted;  // strain at the incident and transmitted gauges
+  Baseline incident_baseline, transmitted_baseline;
+  PulseWindow incident_window;
+  std::optional<PulseWindow> reflected_window, transmitted_window;
+  double incident_plateau = 0;  // |plateau − baseline| of the incident pulse, strain
+};
+
+// Finds the pulses in `signals`; InputError (naming the scene) when there is no incident pulse.
+MeasuredPulses find_measured_pulses(const Scene& scene, const GaugeSignals& signals);
+
+// The striker velocity the measured incident plateau implies: v_bar = c0 ε_I and
+// V = v_bar (Z_s + Z_b)/Z_s (docs/methods.md §4). The scene has a striker (bars[specimen − 2]).
+double striker_velocity_from_plateau(const Scene& scene, const MeasuredPulses& measured);
+
+// A compared window, in samples of the measured grid.
+struct OverlaidPulse {
+  std::string gauge, name;  // name: incident | reflected | transmitted
+  std::size_t begin = 0, end = 0;
+  double distance_m = 0;  // travelled from the impact face to the gauge
+  bool transmitted = false;
+};
+
+struct Overlay {
+  double offset_s = 0;   // measured time = simulated time + offset_s
+  double t_sim_end = 0;  // last simulated time, on the simulation's clock
+  // Simulated strains on the measured clock: raw (1D) and with each pulse dispersed.
+  std::vector<double> raw_incident, raw_transmitted, incident, transmitted;
+  std::vector<OverlaidPulse> pulses;  // windows where the simulation exists
+  std::vector<std::string> warnings;  // a pulse the simulation ends before
+};
+
+// The last measured sample a comparison looks at: the end of the latest widened pulse window
+// (what a simulation must cover).
+std::size_t last_compared_sample(const MeasuredPulses& measured);
+
+class PulseOverlay {
+ public:
+  // `dispersion`: move simulated pulses through Pochhammer–Chree dispersion (tables built here).
+  PulseOverlay(const Scene& scene, MeasuredPulses measured, bool dispersion);
+
+  const MeasuredPulses& measured() const { return measured_; }
+  bool dispersion() const { return front_table_.has_value(); }
+
+  // Lays `sim` (of `scene`) over the measurement, later by `shift_s`. Throws NumericalError if the
+  // simulation has no incident pulse. Safe to call from several threads at once.
+  Overlay overlay(const Scene& scene, const SimulationResult& sim, double shift_s = 0) const;
+
+ private:
+  MeasuredPulses measured_;
+  std::optional<DispersionTable> front_table_, back_table_;
+};
+
+}  // namespace shpb

@@ -1,0 +1,169 @@
+#include "fit/fit_case.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "analysis/processing.hpp"
+#include "core/error.hpp"
+#include "core/json_value.hpp"
+#include "core/output_folder.hpp"
+#include "core/signal_gauges.hpp"
+#include "fit/law_parameters.hpp"
+#include "solver/simulation.hpp"
+
+namespace shpb {
+namespace {
+
+// Curve samples past this true plastic strain (the usual 0.2 % offset of a yield point): before
+// it the law's A is all that matters and the elastic compliance of the set-up dominates.
+constexpr double kMinPlasticStrain = 0.002;
+// And only while loading at a steady rate: at least this fraction of the plateau strain rate.
+constexpr double kMinRateFraction = 0.5;
+
+}  // namespace
+
+FitCase::FitCase(const CampaignTest& test, const Campaign& campaign, const FitSpec& spec)
+    : test_(test), scene_(read_scene(test.scene)) {
+  const JsonValue where(campaign.document.at("tests").at(std::stoul(test.json_path.substr(6))),
+                        campaign.display, test.json_path);
+  const JsonValue scene_entry(where.json().at("scene"), campaign.display,
+                              json_child_path(test.json_path, "scene"));
+  if (!scene_.measurement)
+    throw scene_entry.error("the scene has no measurement: a fit needs measured signals");
+  if (!scene_.specimen || *scene_.specimen < 2)
+    throw scene_entry.error("the scene needs a striker, an incident bar and a specimen");
+  const std::size_t s = *scene_.specimen, striker = s - 2;
+
+  // The specimen becomes the law being fitted, at the test's own temperature.
+  BarSpec& specimen = scene_.bars[s];
+  MaterialSpec law = spec.material;
+  temperature_K_ = law.johnson_cook.initial_temperature_K;
+  if (law.model == MaterialModel::kJohnsonCook &&
+      specimen.material.model == MaterialModel::kJohnsonCook)
+    temperature_K_ = law.johnson_cook.initial_temperature_K =
+        specimen.material.johnson_cook.initial_temperature_K;
+  specimen.material = law;
+
+  const GaugeSignals signals = read_gauge_signals(*scene_.measurement, {});
+  for (const auto& w : signals.warnings) warnings_.push_back(test.name + ": " + w);
+  MeasuredPulses found = find_measured_pulses(scene_, signals);
+
+  // Nuisance starts: the striker as compare takes it, the scene's rise time, no shift.
+  if (scene_.measurement->striker_velocity_m_s) {
+    start_.striker_velocity_m_s = *scene_.measurement->striker_velocity_m_s;
+    velocity_source_ = "scene (measurement.striker_velocity)";
+  } else {
+    start_.striker_velocity_m_s = striker_velocity_from_plateau(scene_, found);
+    velocity_source_ = "inferred from the measured incident plateau";
+  }
+  scene_.bars[striker].velocity_m_s = start_.striker_velocity_m_s;
+  start_.rise_time_s = interface_penalty(scene_.contact, striker).rise_time_s.value_or(0.0);
+
+  // The processed curve after equilibrium.
+  ProcessingOptions po;
+  po.dispersion = scene_.measurement->dispersion;
+  po.windows = scene_.measurement->windows;
+  po.scene_file = scene_.file.string();
+  const ProcessingResult pr = process_signals(signals, found.setup, po);
+  for (const auto& w : pr.warnings) warnings_.push_back(test.name + ": " + w);
+  const Curve& c = pr.curve;
+  const JohnsonCookParams& jc = law.johnson_cook;
+  const bool heats = law.model == MaterialModel::kJohnsonCook && jc.adiabatic;
+  double temperature = temperature_K_, previous_ep = 0;
+  std::size_t last_loading = 0;
+  for (std::size_t i = 0; i < c.true_strain.size(); ++i)
+    if (c.true_strain[i] >= c.true_strain[last_loading]) last_loading = i;
+  for (std::size_t i = 0; i < c.true_strain.size(); ++i) {
+    const double stress = c.true_stress_Pa[i];
+    const double ep = std::max(0.0, c.true_strain[i] - stress / law.youngs_modulus_Pa);
+    // Adiabatic heating as the law integrates it: dT = β σ dε_p / (ρ c_p).
+    if (heats && ep > previous_ep)
+      temperature += jc.taylor_quinney * stress * (ep - previous_ep) /
+                     (law.density_kg_m3 * jc.specific_heat_J_kgK);
+    previous_ep = std::max(previous_ep, ep);
+    const double rate = c.strain_rate_1_s[i] / std::max(1e-9, 1 - c.strain[i]);
+    const bool equilibrium = pr.time_to_equilibrium_s &&
+                             pr.time_s[i] - pr.time_s[0] >= *pr.time_to_equilibrium_s &&
+                             c.equilibrium_ratio[i] <= kEquilibriumThreshold;
+    if (equilibrium && i <= last_loading && ep >= kMinPlasticStrain &&
+        c.strain_rate_1_s[i] >= kMinRateFraction * pr.plateau_strain_rate_1_s)
+      curve_.push_back({pr.time_s[i], c.true_strain[i], ep, rate, temperature, stress});
+  }
+  // Bars that disperse (the measurement says so: "pochhammer-chree") carry each simulated pulse
+  // through dispersion; "none" (e.g. signals of a 1D simulation) compares the 1D pulses as they
+  // are.
+  overlay_ = std::make_unique<PulseOverlay>(scene_, std::move(found),
+                                            scene_.measurement->dispersion.correction);
+}
+
+void FitCase::set_windows(const Overlay& start) {
+  windows_.clear();
+  for (const OverlaidPulse& p : start.pulses)
+    if (p.name != "incident") windows_.push_back(p);
+}
+
+Overlay FitCase::simulate(const MaterialSpec& law, const Nuisance& nuisance) const {
+  Scene scene = scene_;
+  const std::size_t s = *scene.specimen, striker = s - 2;
+  const double temperature = scene.bars[s].material.johnson_cook.initial_temperature_K;
+  scene.bars[s].material = law;
+  scene.bars[s].material.johnson_cook.initial_temperature_K = temperature;
+  scene.bars[striker].velocity_m_s = nuisance.striker_velocity_m_s;
+  if (nuisance.rise_time_s > 0 || start_.rise_time_s > 0) {
+    auto it = std::find_if(scene.contact.interfaces.begin(), scene.contact.interfaces.end(),
+                           [&](const InterfaceOverride& o) { return o.left_bar == striker; });
+    if (it == scene.contact.interfaces.end()) {
+      scene.contact.interfaces.push_back({});
+      it = scene.contact.interfaces.end() - 1;
+      it->left_bar = striker;
+    }
+    it->penalty.stiffness_factor.reset();
+    it->penalty.stiffness_N_m.reset();
+    it->penalty.rise_time_s = nuisance.rise_time_s;
+    if (!(nuisance.rise_time_s > 0)) it->penalty.rise_time_s.reset();
+  }
+  SimulationOptions options;
+  options.record_field = false;
+  options.cancel = [] { return interrupted(); };
+  const SimulationResult sim = shpb::simulate(scene, options);
+  if (!sim.stable) throw NumericalError(scene.file.string() + ": " + sim.failure);
+  return overlay_->overlay(scene, sim, nuisance.time_shift_s);
+}
+
+std::vector<double> FitCase::residuals(const Overlay& o) const {
+  const MeasuredPulses& m = measured();
+  std::vector<double> r;
+  for (const OverlaidPulse& p : windows_) {
+    const auto& meas = p.transmitted ? m.transmitted : m.incident;
+    const auto& sim = p.transmitted ? o.transmitted : o.incident;
+    double peak = 0;
+    for (std::size_t i = p.begin; i < p.end; ++i) peak = std::max(peak, std::abs(meas[i]));
+    const double c = std::sqrt(test_.weight / static_cast<double>(p.end - p.begin));
+    for (std::size_t i = p.begin; i < p.end; ++i)
+      r.push_back(peak > 0 ? c * (sim[i] - meas[i]) / peak : 0.0);
+  }
+  return r;
+}
+
+std::vector<double> FitCase::residual_scales() const {
+  std::vector<double> s;
+  for (const OverlaidPulse& p : windows_)
+    s.insert(s.end(), p.end - p.begin,
+             std::sqrt(test_.weight / static_cast<double>(p.end - p.begin)));
+  return s;
+}
+
+std::vector<PulseComparison> FitCase::compare(const Overlay& o) const {
+  const MeasuredPulses& m = measured();
+  std::vector<PulseComparison> out;
+  for (const OverlaidPulse& p : windows_) {
+    PulseComparison c =
+        compare_pulse(p.transmitted ? m.transmitted : m.incident,
+                      p.transmitted ? o.transmitted : o.incident, m.dt_s, p.begin, p.end);
+    c.gauge = p.gauge, c.pulse = p.name;
+    out.push_back(c);
+  }
+  return out;
+}
+
+}  // namespace shpb

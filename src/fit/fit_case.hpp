@@ -1,0 +1,73 @@
+#pragma once
+// One test of a fit campaign, prepared once: its scene with the law being fitted as the specimen
+// (at the test's own temperature), its measured pulses, its processed curve after equilibrium,
+// and the compared windows. Then, for given law and nuisance values: one simulation laid over the
+// measurement as `compare` does (analysis/pulse_overlay.hpp), and its residuals.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "analysis/comparison.hpp"
+#include "analysis/pulse_overlay.hpp"
+#include "fit/fit_spec.hpp"
+#include "model/campaign.hpp"
+#include "model/scene.hpp"
+
+namespace shpb {
+
+// A processed sample after equilibrium: what the law must reproduce in the curve stage.
+struct CurvePoint {
+  double time_s = 0;
+  double true_strain = 0, plastic_strain = 0;  // ε_p = ε − σ/E
+  double strain_rate_1_s = 0;                  // true strain rate
+  double temperature_K = 0;  // test temperature + adiabatic rise (if the law says)
+  double stress_Pa = 0;      // true stress (3-wave)
+};
+
+struct Nuisance {
+  double striker_velocity_m_s = 0;
+  double rise_time_s = 0;
+  double time_shift_s = 0;
+};
+
+class FitCase {
+ public:
+  // Reads the scene and its measurement (InputError names the scene or the campaign entry).
+  FitCase(const CampaignTest& test, const Campaign& campaign, const FitSpec& spec);
+
+  const std::string& name() const { return test_.name; }
+  double weight() const { return test_.weight; }
+  const Scene& scene() const { return scene_; }
+  const MeasuredPulses& measured() const { return overlay_->measured(); }
+  const Nuisance& start() const { return start_; }
+  const std::string& velocity_source() const { return velocity_source_; }
+  double temperature_K() const { return temperature_K_; }
+  const std::vector<CurvePoint>& curve() const { return curve_; }
+  const std::vector<std::string>& warnings() const { return warnings_; }
+
+  // The windows compared (reflected, transmitted), fixed from the simulation at the start so
+  // that every evaluation has the same residuals.
+  void set_windows(const Overlay& start);
+  const std::vector<OverlaidPulse>& windows() const { return windows_; }
+
+  // One simulation with `law` as the specimen and the nuisance values. NumericalError if unstable.
+  Overlay simulate(const MaterialSpec& law, const Nuisance& nuisance) const;
+  // √(w / n_p) (s − m) / max|m| over each window: Σ r² = w Σ_pulses NRMSE².
+  std::vector<double> residuals(const Overlay& o) const;
+  std::vector<double> residual_scales() const;  // √(w / n_p) per residual
+  // compare's figures per window (NRMSE, ratios) for the overlay.
+  std::vector<PulseComparison> compare(const Overlay& o) const;
+
+ private:
+  CampaignTest test_;
+  Scene scene_;
+  std::unique_ptr<PulseOverlay> overlay_;
+  Nuisance start_;
+  std::string velocity_source_;
+  double temperature_K_ = 0;
+  std::vector<CurvePoint> curve_;
+  std::vector<OverlaidPulse> windows_;
+  std::vector<std::string> warnings_;
+};
+
+}  // namespace shpb

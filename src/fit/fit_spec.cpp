@@ -1,0 +1,175 @@
+#include "fit/fit_spec.hpp"
+
+#include <algorithm>
+#include <set>
+
+#include "core/closest_match.hpp"
+#include "core/json_document.hpp"
+#include "core/json_value.hpp"
+#include "fit/law_parameters.hpp"
+#include "model/material_reader.hpp"
+#include "model/scene.hpp"
+
+namespace shpb {
+namespace fs = std::filesystem;
+
+std::string to_string(FitStage s) { return s == FitStage::kCurve ? "curve" : "signals"; }
+std::string to_string(FitLoss l) {
+  return l == FitLoss::kHuber ? "huber" : l == FitLoss::kCauchy ? "cauchy" : "linear";
+}
+
+namespace {
+
+Dimension nuisance_dimension(const std::string& name) {
+  return name == "striker_velocity" ? Dimension::kVelocity : Dimension::kTime;
+}
+
+// [lo, hi] with lo < hi, each a quantity of dimension d.
+std::pair<double, double> read_bounds(const JsonValue& v, Dimension d) {
+  if (!v.json().is_array() || v.json().size() != 2)
+    throw v.error("expected bounds [lower, upper], e.g. [\"50 MPa\", \"150 MPa\"]");
+  const auto items = v.array();
+  const double lo = items[0].quantity(d), hi = items[1].quantity(d);
+  if (!(lo < hi))
+    throw v.error_with_value("[" + JsonValue::format(lo, d) + ", " + JsonValue::format(hi, d) + "]",
+                             "the lower bound must be below the upper bound");
+  return {lo, hi};
+}
+
+// A law with `name` set to `value` must still be a valid material: the material reader says why
+// not.
+void check_law_accepts(const FitSpec& spec, const std::string& name, double value,
+                       const JsonValue& where) {
+  nlohmann::json doc = spec.material_document;
+  if (name.rfind("arms[", 0) == 0) {
+    const auto close = name.find("].");
+    doc["arms"][std::stoul(name.substr(5, close - 5))][name.substr(close + 2)] = value;
+  } else {
+    doc[name] = value;
+  }
+  try {
+    read_material(JsonValue(doc, spec.material_display, ""), spec.material_display);
+  } catch (const InputError& e) {
+    throw where.error_with_value(JsonValue::format(value, law_parameter_dimension(name)),
+                                 std::string("not a valid value of the law (") + e.what() + ")");
+  }
+}
+
+}  // namespace
+
+FitSpec read_fit_spec(const Campaign& c) {
+  FitSpec spec;
+  const JsonValue root(c.document, c.display, "");
+  const JsonObject o(root);
+
+  // The starting law.
+  const auto material = o.require("material", "the starting material file (the law to fit)");
+  if (material.is_string()) {
+    const fs::path written = material.string();
+    const fs::path file = written.is_absolute() ? written : c.file.parent_path() / written;
+    std::error_code ec;
+    if (!fs::is_regular_file(file, ec))
+      throw material.error("no such material file (" + file.string() + ")");
+    spec.material_display = file.string();
+    spec.material_document = read_json_object_file(file, spec.material_display);
+    spec.material = read_material(JsonValue(spec.material_document, spec.material_display, ""),
+                                  spec.material_display);
+  } else if (material.is_object()) {
+    spec.material_display = c.display;
+    spec.material_document = material.json();
+    spec.material = read_material(material, "material");
+  } else {
+    throw material.error("expected a material file name or a material object");
+  }
+
+  // Free parameters.
+  const auto names = law_parameter_names(spec.material);
+  if (auto free = o.get("free")) {
+    if (!free->is_object()) throw free->error("expected {\"A\": [lower, upper], ...}");
+    for (const auto& [key, value] : free->json().items()) {
+      const JsonValue v(value, c.display, json_child_path(free->path(), key));
+      if (std::find(names.begin(), names.end(), key) == names.end())
+        throw v.error_with_value("\"" + key + "\"",
+                                 "not a parameter of the " +
+                                     std::string(to_string(spec.material.model)) + " law" +
+                                     suggestion_text(key, names));
+      FreeParameter p;
+      p.name = key;
+      p.json_path = v.path();
+      std::tie(p.lower, p.upper) = read_bounds(v, law_parameter_dimension(key));
+      p.start = law_parameter(spec.material, key);
+      check_law_accepts(spec, key, p.lower, v.array()[0]);
+      check_law_accepts(spec, key, p.upper, v.array()[1]);
+      if (!(p.start >= p.lower && p.start <= p.upper))
+        throw v.error("the starting value " +
+                      JsonValue::format(p.start, law_parameter_dimension(key)) + " (" +
+                      spec.material_display + ") lies outside the bounds");
+      spec.free.push_back(p);
+    }
+  }
+
+  // Nuisance parameters.
+  if (auto nuisance = o.get("nuisance")) {
+    const auto n = nuisance->object({"striker_velocity", "rise_time", "time_shift"});
+    for (const std::string key : {"striker_velocity", "rise_time", "time_shift"}) {
+      const auto v = n.get(key);
+      if (!v) continue;
+      NuisanceSpec s;
+      s.name = key;
+      s.json_path = v->path();
+      if (v->is_string() && !v->string().empty() && v->string().back() == '%') {
+        std::string text = v->string();
+        text.pop_back();
+        double percent = -1;
+        try {
+          std::size_t used = 0;
+          percent = std::stod(text, &used);
+          if (text.find_first_not_of(" ", used) != std::string::npos) percent = -1;
+        } catch (const std::exception&) {
+        }
+        if (!(percent > 0 && percent < 100))
+          throw v->error("expected \"N %\" with 0 < N < 100 (± N % of each test's start)");
+        if (key == "time_shift")
+          throw v->error("a time shift starts at 0: give absolute bounds [\"-2 us\", \"2 us\"]");
+        s.relative = percent / 100;
+      } else {
+        s.bounds = read_bounds(*v, nuisance_dimension(key));
+        if (key != "time_shift" && s.bounds->first < 0) throw v->array()[0].error("must be >= 0");
+      }
+      spec.nuisance.push_back(s);
+    }
+  }
+
+  // Stages and loss.
+  if (auto stages = o.get("stages")) {
+    spec.stages.clear();
+    const auto items = stages->array();
+    if (items.empty()) throw stages->error("expected [\"curve\", \"signals\"] or one of them");
+    for (const auto& item : items) {
+      const std::string s = item.string();
+      if (s != "curve" && s != "signals")
+        throw item.error(suggestion_text(s, {"curve", "signals"}));
+      const FitStage st = s == "curve" ? FitStage::kCurve : FitStage::kSignals;
+      if (std::find(spec.stages.begin(), spec.stages.end(), st) != spec.stages.end())
+        throw item.error("stage listed twice");
+      spec.stages.push_back(st);
+    }
+  }
+  if (auto loss = o.get("loss")) {
+    const std::string s = loss->string();
+    if (s == "linear")
+      spec.loss = FitLoss::kLinear;
+    else if (s == "huber")
+      spec.loss = FitLoss::kHuber;
+    else if (s == "cauchy")
+      spec.loss = FitLoss::kCauchy;
+    else
+      throw loss->error(suggestion_text(s, {"linear", "huber", "cauchy"}));
+  }
+  if (spec.free.empty() && spec.nuisance.empty())
+    throw input_error(c.display, "free", "(missing)",
+                      "nothing to fit: free at least one parameter of the law");
+  return spec;
+}
+
+}  // namespace shpb

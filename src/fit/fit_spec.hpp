@@ -1,0 +1,52 @@
+#pragma once
+// The fit's keys of a campaign file (model/campaign.hpp reads tests[]): docs/methods.md §9.
+//   "material": FILE | {...}       the starting law; its model is the one fitted
+//   "free": {"A": [lo, hi], ...}   parameters of that law freed within bounds (others stay)
+//   "nuisance": {"striker_velocity": [lo, hi] | "10 %", "rise_time": [lo, hi],
+//                "time_shift": [lo, hi]}   per-test parameters freed in the signals stage
+//   "stages": ["curve", "signals"]  (the default; either alone is allowed)
+//   "loss": "linear" (default) | "huber" | "cauchy"
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "model/campaign.hpp"
+#include "model/material.hpp"
+
+namespace shpb {
+
+struct FreeParameter {
+  std::string name;
+  double start = 0, lower = 0, upper = 0;  // SI
+  std::string json_path;                   // "free.A"
+};
+
+// A per-test parameter: absolute bounds, or ± a fraction of each test's own starting value.
+struct NuisanceSpec {
+  std::string name;  // striker_velocity | rise_time | time_shift
+  std::optional<std::pair<double, double>> bounds;
+  std::optional<double> relative;
+  std::string json_path;
+};
+
+enum class FitStage { kCurve, kSignals };
+enum class FitLoss { kLinear, kHuber, kCauchy };
+std::string to_string(FitStage s);
+std::string to_string(FitLoss l);
+
+struct FitSpec {
+  std::string material_display;  // the material file as written, or "material" (inline)
+  nlohmann::json material_document;
+  MaterialSpec material;
+  std::vector<FreeParameter> free;
+  std::vector<NuisanceSpec> nuisance;
+  std::vector<FitStage> stages = {FitStage::kCurve, FitStage::kSignals};
+  FitLoss loss = FitLoss::kLinear;
+};
+
+// Reads and checks the fit's keys; InputError (exit 2) names the file and JSON path.
+FitSpec read_fit_spec(const Campaign& campaign);
+
+}  // namespace shpb

@@ -1,0 +1,63 @@
+#pragma once
+// Bounded nonlinear least squares with Ceres Solver (Levenberg–Marquardt, box bounds) over a model
+// whose residuals are expensive (a simulation each): docs/methods.md §9.
+//  - Parameters are scaled to x = θ / scale (scale ≈ |start|) so that one relative step and
+//    Ceres' trust region see all parameters alike.
+//  - The Jacobian is by central differences, x ± h with h = relative_step · max(|x|, 1), one-sided
+//    at a bound; all the residual groups and perturbations of one Jacobian are evaluated in
+//    parallel (each group depends on a subset of parameters: a test on the law's parameters and its
+//    own nuisances, so a nuisance column costs two simulations of its test only).
+//  - Each residual is its own Ceres residual block so that a robust loss acts per sample.
+//  - Standard errors and correlations from Ceres' covariance (JᵀJ)⁻¹ times the residual variance
+//    s² = Σr² / (N − P).
+#include <Eigen/Dense>
+#include <atomic>
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fit/fit_spec.hpp"
+
+namespace shpb {
+
+struct LsParameter {
+  std::string name;
+  double start = 0, lower = 0, upper = 0;
+  double scale = 1;  // x = θ / scale
+};
+
+// The residuals of one group (a test), from the full parameter vector θ (physical units).
+struct LsGroup {
+  std::vector<std::size_t> parameters;  // indices into θ the group depends on
+  std::function<std::vector<double>(const std::vector<double>& theta)> residuals;
+  std::vector<double> loss_scale;  // per residual: the residual of a 1·δ error (robust loss)
+};
+
+struct LsOptions {
+  int threads = 0;
+  double relative_step = 1e-4;
+  int max_iterations = 40;
+  FitLoss loss = FitLoss::kLinear;
+  double loss_delta = 0.02;                          // robust loss threshold in units of loss_scale
+  std::function<void(const std::string&)> progress;  // one line per iteration
+};
+
+struct LsResult {
+  std::vector<double> value, std_error;  // std_error empty when the covariance failed
+  Eigen::MatrixXd correlation;
+  double cost_start = 0, cost = 0;  // ½ Σ ρ(r²)
+  std::size_t residuals = 0;
+  int iterations = 0;
+  long evaluations = 0;  // group evaluations (a simulation each in the signals stage)
+  std::string termination;
+  bool converged = false;
+  std::vector<double> step_check;  // per parameter: |J(h) − J(h/2)| / |J(h)| at the solution
+  std::vector<std::string> warnings;
+};
+
+LsResult solve_least_squares(const std::vector<LsParameter>& parameters,
+                             const std::vector<LsGroup>& groups, const LsOptions& options);
+
+}  // namespace shpb
