@@ -64,8 +64,8 @@ std::string describe_failure(const Chain& chain, double t, double ratio) {
     }
   }
   if (worst < chain.interfaces.size())
-    out << "; largest contact force " << largest << " N at interface " << chain.interfaces[worst].name
-        << " (" << to_string(chain.interfaces[worst].method) << ")";
+    out << "; largest contact force " << largest << " N at interface "
+        << chain.interfaces[worst].name << " (" << to_string(chain.interfaces[worst].method) << ")";
   return out.str();
 }
 
@@ -81,7 +81,8 @@ void take_instant(Chain& chain, ChainRecorders& recorders, const std::vector<cha
     for (int side = 0; side < 2; ++side) {
       const std::size_t bar = k + side;
       if (!stepping[bar]) continue;
-      const double target = tied_end_position(chain.interfaces[k], chain.interface_states[k], side, tau);
+      const double target =
+          tied_end_position(chain.interfaces[k], chain.interface_states[k], side, tau);
       if (std::isnan(target)) continue;
       const int node = side == 0 ? chain.bars[bar].nodes - 1 : 0;
       BarState& s = chain.states[bar];
@@ -105,10 +106,10 @@ void take_instant(Chain& chain, ChainRecorders& recorders, const std::vector<cha
     InterfaceState& is = chain.interface_states[k];
     // A stepping end is already at the frame (rule 4); an ahead one is put there for its load.
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    EndState left =
-        end_state(chain, l, l_node, tau, stepping[l], stepping[l] ? nan : tied_end_position(im, is, 0, tau));
-    EndState right =
-        end_state(chain, r, 0, tau, stepping[r], stepping[r] ? nan : tied_end_position(im, is, 1, tau));
+    EndState left = end_state(chain, l, l_node, tau, stepping[l],
+                              stepping[l] ? nan : tied_end_position(im, is, 0, tau));
+    EndState right = end_state(chain, r, 0, tau, stepping[r],
+                               stepping[r] ? nan : tied_end_position(im, is, 1, tau));
     const double next_l = stepping[l] ? tau + chain.bars[l].time_step_s : chain.bar_tau(l);
     const double next_r = stepping[r] ? tau + chain.bars[r].time_step_s : chain.bar_tau(r);
     const double next = std::min(next_l, next_r);
@@ -119,6 +120,9 @@ void take_instant(Chain& chain, ChainRecorders& recorders, const std::vector<cha
     apply_end(chain, r, 0, tau, stepping[r], res.dv_right, res.force_right_N);
     chain.contact_dissipated_J[k] += res.dissipated_J;
     chain.max_penetration_m = std::max(chain.max_penetration_m, -is.gap_m);
+    chain.max_penetration_elements = std::max(
+        chain.max_penetration_elements,
+        -is.gap_m / std::min(chain.bars[l].element_length_m, chain.bars[r].element_length_m));
     recorders.on_interface_solve(chain, k, tau, next);
   }
 
@@ -153,8 +157,9 @@ ScheduleOutcome run_schedule(Chain& chain, ChainRecorders& recorders,
   auto after_instant = [&](double tau) {
     // Rule 7: energy check on completed grid points (none can complete before τ* passes the
     // next one).
-    const long complete = tau >= recorders.energy_grid_tau(energy_checked) ? recorders.energy_complete()
-                                                                           : energy_checked;
+    const long complete = tau >= recorders.energy_grid_tau(energy_checked)
+                              ? recorders.energy_complete()
+                              : energy_checked;
     for (; energy_checked < complete; ++energy_checked) {
       const double e = recorders.energy_total(energy_checked);
       if (energy_checked == 0) energy0 = e;
@@ -166,8 +171,9 @@ ScheduleOutcome run_schedule(Chain& chain, ChainRecorders& recorders,
         outcome.stable = false;
         outcome.failure = describe_failure(chain, t, finite ? e / energy0 : e);
         outcome.checked_until_s =
-            energy_checked == 0 ? chain.start_time_s
-                                : recorders.energy_grid_tau(energy_checked - 1) + chain.start_time_s;
+            energy_checked == 0
+                ? chain.start_time_s
+                : recorders.energy_grid_tau(energy_checked - 1) + chain.start_time_s;
         return false;
       }
     }

@@ -137,15 +137,13 @@ void check_plausibility(const Scene& scene, const Chain& chain, SimulationResult
                                 "): the result is not physical");
     }
   }
-  double smallest_element = std::numeric_limits<double>::infinity();
-  for (const BarModel& b : chain.bars)
-    smallest_element = std::min(smallest_element, b.element_length_m);
-  if (result.max_penetration_m > kPlausiblePenetrationElements * smallest_element)
+  if (chain.max_penetration_elements > kPlausiblePenetrationElements)
     result.warnings.push_back(
-        "the bars interpenetrated by " + format_double(result.max_penetration_m * 1e3) +
-        " mm, more than " + format_double(kPlausiblePenetrationElements) +
-        " of the smallest element (" + format_double(smallest_element * 1e3) +
-        " mm): the contact is too soft (stiffness, stiffness_factor or rise_time)");
+        "the bars interpenetrated by " + format_double(chain.max_penetration_m * 1e3) + " mm, " +
+        format_double(chain.max_penetration_elements) +
+        " of the smaller neighbouring element (more than " +
+        format_double(kPlausiblePenetrationElements) +
+        "): the contact is too soft (stiffness, stiffness_factor or rise_time)");
   const std::size_t samples = result.gauges.samples();
   if (samples > 0 && samples < kMinRecordSamples)
     result.warnings.push_back("the record has only " + std::to_string(samples) +
@@ -167,9 +165,10 @@ SimulationResult simulate(const Scene& scene, const SimulationOptions& options) 
   ChainRecorders recorders(scene, chain, d, options);
 
   const auto start = std::chrono::steady_clock::now();
-  const ScheduleOutcome outcome = run_schedule(chain, recorders, options.progress, options.cancel,
-                                               options.subcycle);
-  result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const ScheduleOutcome outcome =
+      run_schedule(chain, recorders, options.progress, options.cancel, options.subcycle);
+  result.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   result.stable = outcome.stable;
   result.failure = outcome.failure;
@@ -187,6 +186,7 @@ SimulationResult simulate(const Scene& scene, const SimulationOptions& options) 
   }
   result.energy_error = outcome.energy_error;
   result.max_penetration_m = std::max(0.0, chain.max_penetration_m);
+  result.max_penetration_elements = std::max(0.0, chain.max_penetration_elements);
   recorders.finish(chain, outcome.checked_until_s, result);
   for (TimeSeries* ts : {&result.gauges, &result.interfaces, &result.specimen, &result.energy})
     keep_finite_prefix(*ts);
@@ -279,7 +279,9 @@ void write_simulation_outputs(const SimulationResult& result, const Scene& scene
   j["bars"] = bars;
   nlohmann::ordered_json interfaces = nlohmann::json::array();
   for (const InterfaceStatistics& i : result.interface_statistics)
-    interfaces.push_back({{"name", i.name}, {"method", i.method}, {"activations", i.activations},
+    interfaces.push_back({{"name", i.name},
+                          {"method", i.method},
+                          {"activations", i.activations},
                           {"releases", i.releases}});
   j["interfaces"] = interfaces;
   j["node_updates"] = result.node_updates;

@@ -1,7 +1,7 @@
 #pragma once
 // The simulator's library API: run a scene in memory, then (optionally) write the files of
-// docs/outputs.md. `shpb simulate`, `shpb compare`, `shpb study` and the processing tests call these
-// two functions; the signatures are kept stable.
+// docs/outputs.md. `shpb simulate`, `shpb compare`, `shpb study` and the processing tests call
+// these two functions; the signatures are kept stable.
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -13,13 +13,13 @@
 namespace shpb {
 
 struct SimulationOptions {
-  bool full_model = false;                 // update every node from the start (no causal economy)
-  std::function<void(double)> progress;    // fraction of the duration done, called ~100 times
-  std::function<bool()> cancel;            // polled in the main loop; true → throws Interrupted
-  bool record_field = true;                // field.csv grid
-  int field_times = 200;                   // rows of the x–t grid
-  int field_points = 400;                  // columns (element centres along the chain)
-  bool subcycle = true;                    // a lone fast bar steps in a tight loop (scheduler.hpp)
+  bool full_model = false;               // update every node from the start (no causal economy)
+  std::function<void(double)> progress;  // fraction of the duration done, called ~100 times
+  std::function<bool()> cancel;          // polled in the main loop; true → throws Interrupted
+  bool record_field = true;              // field.csv grid
+  int field_times = 200;                 // rows of the x–t grid
+  int field_points = 400;                // columns (element centres along the chain)
+  bool subcycle = true;                  // a lone fast bar steps in a tight loop (scheduler.hpp)
 };
 
 // Columns sampled on one time grid; values[c][k] is column c at time_s[k].
@@ -66,17 +66,18 @@ struct SimulationResult {
   // strain, strain_rate_1_s, stress_Pa, front_stress_Pa, back_stress_Pa (engineering: force over
   // the initial area), true_strain (−ln(1 − strain)), true_stress_Pa (force over current area)
   TimeSeries specimen;
-  TimeSeries energy;      // kinetic_J, strain_J, contact_J, dissipated_J, total_J
+  TimeSeries energy;  // kinetic_J, strain_J, contact_J, dissipated_J, total_J
   FieldGrid field;
   std::vector<BarStatistics> bars;
   std::vector<InterfaceStatistics> interface_statistics;
   long long node_updates = 0;
   long long node_updates_full_model = 0;
-  double wall_time_s = 0;      // the solve alone
-  double energy_error = 0;     // max |total − initial| / initial
+  double wall_time_s = 0;   // the solve alone
+  double energy_error = 0;  // max |total − initial| / initial
   double max_penetration_m = 0;
+  double max_penetration_elements = 0;  // over the smaller neighbouring element of its interface
   bool stable = true;
-  std::string failure;         // where and when, if not stable
+  std::string failure;                // where and when, if not stable
   std::vector<std::string> warnings;  // physically implausible but computed (plausibility checks)
 };
 
