@@ -174,10 +174,6 @@ ChainDiscretization discretize(const Scene& scene) {
   ChainDiscretization d;
   d.sample_rate_Hz = scene.simulation.sample_rate_Hz;
   d.stepping = scene.simulation.stepping;
-  // A bonded (tied) link between bars on different steps is unstable (contact_bonded.cpp): scenes
-  // with one step globally.
-  for (std::size_t k = 0; k + 1 < scene.bars.size(); ++k)
-    if (interface_method(scene.contact, k) == ContactMethod::kBonded) d.stepping = Stepping::kGlobal;
   d.duration_s = scene.simulation.duration_s.value_or(default_duration_s(scene));
   const double courant = scene.simulation.courant.value_or(kDefaultCourant);
   const double run_s = d.duration_s + first_contact_delay_s(scene);  // free flight included

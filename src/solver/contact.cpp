@@ -69,7 +69,8 @@ ContactResult solve_contact(const InterfaceModel& model, InterfaceState& state, 
   switch (model.method) {
     case ContactMethod::kPenalty: return solve_penalty(model, state, left, right);
     case ContactMethod::kBipenalty: return solve_bipenalty(model, state, left, right);
-    case ContactMethod::kBonded: return solve_bonded(model, state, left, right);
+    case ContactMethod::kBonded:  // the rigid link, bilateral
+      return solve_localized_bipenalty(model, state, left, right, tau, frame_next_tau);
     case ContactMethod::kLocalizedBipenalty:
       if (model.finite_links)
         return solve_localized_finite(model, state, left, right, tau, frame_next_tau);

@@ -105,7 +105,9 @@ InterfaceModel interface_model(const Scene& scene, const ChainDiscretization& d,
 // path; an end that does not is left to its bar (contact_localized_finite.cpp).
 inline double tied_end_position(const InterfaceModel& model, const InterfaceState& state, int side,
                                 double tau) {
-  if (!state.active || model.method != ContactMethod::kLocalizedBipenalty ||
+  const bool rigid_frame = model.method == ContactMethod::kLocalizedBipenalty ||
+                           model.method == ContactMethod::kBonded;
+  if (!state.active || !rigid_frame ||
       (model.finite_links && !model.end_follows_frame[side]))
     return std::numeric_limits<double>::quiet_NaN();
   double uf = state.frame_u + (tau - state.frame_tau) * state.frame_v;
@@ -121,8 +123,6 @@ ContactResult solve_contact(const InterfaceModel& model, InterfaceState& state, 
 
 ContactResult solve_penalty(const InterfaceModel& model, InterfaceState& state,
                             const EndState& left, const EndState& right);
-ContactResult solve_bonded(const InterfaceModel& model, InterfaceState& state,
-                           const EndState& left, const EndState& right);
 ContactResult solve_bipenalty(const InterfaceModel& model, InterfaceState& state,
                               const EndState& left, const EndState& right);
 ContactResult solve_localized_bipenalty(const InterfaceModel& model, InterfaceState& state,

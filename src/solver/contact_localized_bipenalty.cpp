@@ -43,9 +43,13 @@
 
 namespace shpb {
 
-ContactResult solve_localized_bipenalty(const InterfaceModel&, InterfaceState& s,
+ContactResult solve_localized_bipenalty(const InterfaceModel& model, InterfaceState& s,
                                         EndState left, EndState right, double tau,
                                         double frame_next_tau) {
+  // A bonded interface (`contact.method: "bonded"`, a specimen glued or threaded into the bars of
+  // a tension bar) is the same rigid link made bilateral: it closes while the faces touch, whatever
+  // their relative velocity, and never releases.
+  const bool bonded = model.method == ContactMethod::kBonded;
   ContactResult r;
   const double m1 = left.mass, m2 = right.mass, mass = m1 + m2;
   const double step_after = frame_next_tau - tau;
@@ -53,7 +57,7 @@ ContactResult solve_localized_bipenalty(const InterfaceModel&, InterfaceState& s
   if (!s.active) {
     // Contact is predicted one step ahead so that no penetration is ever created.
     const double v1 = left.velocity_now(), v2 = right.velocity_now();
-    if (s.gap_m + (v2 - v1) * step_after > 0) {
+    if (s.gap_m + (v2 - v1) * step_after > 0 && !(bonded && s.gap_m <= 0)) {
       s.force_N = 0;
       s.energy_J = 0;
       return r;
@@ -79,7 +83,7 @@ ContactResult solve_localized_bipenalty(const InterfaceModel&, InterfaceState& s
   }
   // Merged-node contact force, compression positive.
   const double compression = (m2 * left.free_force - m1 * right.free_force) / mass;
-  if (compression < 0) {
+  if (compression < 0 && !bonded) {
     // Unilateral release: the interface would pull. Velocities are kept.
     s.active = false;
     ++s.releases;
