@@ -26,9 +26,10 @@ struct RunOverrides {
 // the discretization the run will use. Throws InputError (exit 2).
 ChainDiscretization apply_overrides(const RunOverrides& overrides, Scene& scene);
 
-// The files a run of `scene` reads (the scene, its measured signal files): an output folder may
+// The files a run of `scene` reads (the scene and, unless `measured_files` is false — simulate and
+// study never open them — its measured signal files): an output folder may
 // not be or hold one of them (core/output_folder.hpp).
-std::vector<std::filesystem::path> scene_inputs(const Scene& scene);
+std::vector<std::filesystem::path> scene_inputs(const Scene& scene, bool measured_files = true);
 
 struct SimulateArgs {
   std::filesystem::path scene;

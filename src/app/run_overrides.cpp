@@ -14,9 +14,9 @@ ChainDiscretization apply_overrides(const RunOverrides& overrides, Scene& scene)
   return validate_scene(scene, options);
 }
 
-std::vector<std::filesystem::path> scene_inputs(const Scene& scene) {
+std::vector<std::filesystem::path> scene_inputs(const Scene& scene, bool measured_files) {
   std::vector<std::filesystem::path> files = {scene.file};
-  if (scene.measurement) {
+  if (scene.measurement && measured_files) {
     files.push_back(scene.measurement->file);
     for (const ChannelSpec& c : scene.measurement->channels) files.push_back(c.file);
   }

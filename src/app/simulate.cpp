@@ -40,7 +40,7 @@ std::function<void(double)> progress_printer(bool quiet) {
 int run_simulate(const SimulateArgs& args) {
   Scene scene = read_scene(args.scene);  // InputError → exit 2, nothing written
   apply_overrides(args.overrides, scene);
-  OutputFolder out(args.output, "simulate", scene_inputs(scene));
+  OutputFolder out(args.output, "simulate", scene_inputs(scene, false));  // measured files unread
   SimulationOptions options;
   options.full_model = args.full_model;
   options.progress = progress_printer(args.overrides.quiet);

@@ -390,7 +390,7 @@ int run_study(const StudyArgs& args) {
 
   Scene scene = read_scene(args.scene);  // InputError → exit 2, nothing written
   apply_overrides(args.overrides, scene);
-  OutputFolder out(args.output, "study", scene_inputs(scene));
+  OutputFolder out(args.output, "study", scene_inputs(scene, false));  // measured files unread
   const int threads = resolve_threads(args.overrides.threads);
   const auto start = std::chrono::steady_clock::now();
   const StudyPlan plan = make_plan(args, scene);
