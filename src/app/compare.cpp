@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "analysis/comparison.hpp"
+#include "analysis/gauge_signals.hpp"
 #include "analysis/processing.hpp"
 #include "analysis/pulse_overlay.hpp"
 #include "analysis/pulse_window.hpp"
@@ -31,7 +32,6 @@
 #include "core/error.hpp"
 #include "core/json_value.hpp"
 #include "core/output_folder.hpp"
-#include "core/signal_gauges.hpp"
 #include "model/discretization.hpp"
 #include "solver/simulation.hpp"
 #include "version.hpp"

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/signal_spec.hpp"
 #include "model/material.hpp"
 
 namespace shpb {
@@ -95,7 +96,6 @@ struct SimulationSpec {
 // ---- measured signals -------------------------------------------------------------------------
 
 enum class SignalUnit { kVolt, kStrain, kMicrostrain };
-enum class SignalFormat { kAuto, kCsv, kTektronix, kLanlRaw };
 
 // Wheatstone bridge: ε = k·V / (GF · gain · V_ex) with k = 4/arms (quarter 4, half 2, full 1).
 struct BridgeSpec {
@@ -103,11 +103,6 @@ struct BridgeSpec {
   double gauge_factor = 2.0;
   double excitation_V = 10.0;
   double gain = 1.0;
-};
-
-struct ColumnRef {
-  std::string name;              // column by header name, or
-  std::optional<int> index;      // by 0-based index
 };
 
 struct ChannelSpec {

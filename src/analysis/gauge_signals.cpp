@@ -1,4 +1,4 @@
-#include "core/signal_gauges.hpp"
+#include "analysis/gauge_signals.hpp"
 
 #include <algorithm>
 #include <cmath>
