@@ -6,6 +6,7 @@
 #include <map>
 
 #include "core/error.hpp"
+#include "core/median.hpp"
 #include "core/signal_reader.hpp"
 
 namespace shpb {
@@ -36,9 +37,7 @@ std::vector<double> resample(const std::vector<double>& t, const std::vector<dou
 
 double median_abs_peak(const std::vector<double>& x) {
   // Peak distance from the median (the baseline) of the record.
-  std::vector<double> s(x);
-  std::nth_element(s.begin(), s.begin() + static_cast<std::ptrdiff_t>(s.size() / 2), s.end());
-  const double med = s[s.size() / 2];
+  const double med = median(x);
   double peak = 0;
   for (double v : x) peak = std::max(peak, std::abs(v - med));
   return peak;
