@@ -6,6 +6,7 @@
 #include <map>
 
 #include "core/error.hpp"
+#include "core/interpolation.hpp"
 #include "core/median.hpp"
 #include "core/signal_reader.hpp"
 
@@ -18,20 +19,7 @@ constexpr double kSameClock = 1e-3;
 std::vector<double> resample(const std::vector<double>& t, const std::vector<double>& y,
                              const std::vector<double>& onto) {
   std::vector<double> out(onto.size());
-  for (std::size_t i = 0; i < onto.size(); ++i) {
-    const double x = onto[i];
-    if (x <= t.front()) {
-      out[i] = y.front();
-      continue;
-    }
-    if (x >= t.back()) {
-      out[i] = y.back();
-      continue;
-    }
-    const auto j = static_cast<std::size_t>(std::upper_bound(t.begin(), t.end(), x) - t.begin());
-    const double a = (x - t[j - 1]) / (t[j] - t[j - 1]);
-    out[i] = y[j - 1] + a * (y[j] - y[j - 1]);
-  }
+  for (std::size_t i = 0; i < onto.size(); ++i) out[i] = interpolate(t, y, onto[i]);
   return out;
 }
 
