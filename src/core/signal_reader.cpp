@@ -113,19 +113,7 @@ void check_time_base(const std::filesystem::path& file, const RawSignalColumns& 
 
 }  // namespace
 
-std::string_view to_string(SignalFormat f) {
-  switch (f) {
-    case SignalFormat::kAuto:
-      return "auto";
-    case SignalFormat::kCsv:
-      return "csv";
-    case SignalFormat::kTektronix:
-      return "tektronix";
-    case SignalFormat::kLanlRaw:
-      return "lanl-raw";
-  }
-  return "?";
-}
+std::string_view to_string(SignalFormat f) { return enum_name(kSignalFormatNames, f); }
 
 SignalColumns read_signal_columns(const SignalRequest& request) {
   const DelimitedText text = is_spreadsheet(request.file)

@@ -5,9 +5,16 @@
 #include <optional>
 #include <string>
 
+#include "core/enum_names.hpp"
+
 namespace shpb {
 
 enum class SignalFormat { kAuto, kCsv, kTektronix, kLanlRaw };
+inline constexpr EnumName<SignalFormat> kSignalFormatNames[] = {
+    {"auto", SignalFormat::kAuto},
+    {"csv", SignalFormat::kCsv},
+    {"tektronix", SignalFormat::kTektronix},
+    {"lanl-raw", SignalFormat::kLanlRaw}};
 
 struct ColumnRef {
   std::string name;          // column by header name, or
