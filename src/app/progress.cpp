@@ -12,7 +12,8 @@ ProgressPrinter::ProgressPrinter(std::string label)
 
 void ProgressPrinter::operator()(double fraction, std::string_view detail) {
   const int pct = std::clamp(static_cast<int>(fraction * 100 + 0.5), 0, 100);
-  const std::string suffix = detail.empty() ? "" : " " + std::string(detail);
+  std::string suffix;  // built piecewise: GCC 12 warns falsely on " " + std::string(...)
+  if (!detail.empty()) (suffix = " ") += detail;
   if (tty_) {
     if (pct == last_ && suffix == last_detail_) return;
     constexpr int kWidth = 40;
