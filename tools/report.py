@@ -48,7 +48,7 @@ MPA = 1e-6  # Pa -> MPa
 # Files this script understands, by producer (docs/outputs.md and the compare/study outputs).
 KNOWN_FILES = ("gauges.csv", "interfaces.csv", "specimen.csv", "energy.csv", "field.csv",
                "pulses.csv", "curve.csv", "signals.csv", "comparison.csv", "pareto.csv",
-               "stability.csv", "summary.json", "raw_signals.csv")
+               "stability.csv", "summary.json", "raw_signals.csv", "stability_boundary.csv")
 
 
 class ReportError(Exception):
@@ -704,6 +704,11 @@ def fig_stability(src, figs):
     methods = list(dict.fromkeys(keys)) if keys is not None else [""]
     stable = t.numeric("stable") > 0.5
     x, y = t.numeric(xcol), t.numeric(ycol)
+    # The measured boundary and its closed form (stability_boundary.csv), keyed as the map is.
+    b = src.table("stability_boundary.csv") if src.has("stability_boundary.csv") else None
+    if b is not None and len(b):
+        bkeys = np.array([m if not (np.isfinite(q) and q != 1) else f"{m} step ratio {q:.3g}"
+                          for m, q in zip(b["method"], b.numeric("step_ratio"))])
     for method in methods:
         sel = (keys == method) if keys is not None else np.ones(len(t), bool)
         ratios = [None]
@@ -724,6 +729,22 @@ def fig_stability(src, figs):
                        label="stable")
             ax.scatter(x[s & ~stable], y[s & ~stable], marker="x", s=28, color="C3",
                        label="unstable")
+            if b is not None and len(b):
+                bs = bkeys == method
+                if r is not None:
+                    bs &= b.numeric("mass_ratio") == r
+                bx = b.numeric("stiffness_factor")
+                for link, style in (("unilateral", "k-"), ("tied", "b--")):
+                    m = np.flatnonzero(bs & (b["link"] == link))
+                    m = m[np.argsort(bx[m])]
+                    if m.size:
+                        ax.plot(bx[m], b.numeric("critical_courant")[m], style, linewidth=1.0,
+                                label=f"measured boundary ({link})")
+                m = np.flatnonzero(bs)
+                m = m[np.argsort(bx[m])]
+                if m.size:
+                    ax.plot(bx[m], b.numeric("closed_form_courant")[m], color="C4", linestyle=":",
+                            linewidth=1.0, label="closed form")
             if method == "penalty":
                 k_ratio = np.logspace(np.log10(max(np.nanmin(x), 1e-12)),
                                       np.log10(np.nanmax(x)), 200)

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "core/signal_gauges.hpp"
+#include "analysis/gauge_signals.hpp"
 #include "dispersion/propagation.hpp"
 #include "model/scene.hpp"
 

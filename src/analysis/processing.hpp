@@ -7,8 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include "analysis/gauge_signals.hpp"
 #include "analysis/reduction.hpp"
-#include "core/signal_gauges.hpp"
 #include "dispersion/propagation.hpp"
 #include "model/scene.hpp"
 

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "core/interpolation.hpp"
 #include "dispersion/propagation.hpp"
 
 namespace shpb {
@@ -19,12 +20,7 @@ constexpr double kWindowMargin = 0.2;
 // rest before impact), the last value after it.
 double sample(const std::vector<double>& y, double t0, double dt, double t) {
   if (y.empty()) return 0;
-  const double k = (t - t0) / dt;
-  if (k <= 0) return k < -1 ? 0.0 : y.front() * (1 + k);
-  const auto i = static_cast<std::size_t>(k);
-  if (i + 1 >= y.size()) return y.back();
-  const double f = k - static_cast<double>(i);
-  return y[i] * (1 - f) + y[i + 1] * f;
+  return sample_at(y, (t - t0) / dt, 0.0, y.back());
 }
 
 // Fractional sample where |x − level| first reaches half of the pulse's plateau.

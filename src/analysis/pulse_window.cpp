@@ -4,6 +4,8 @@
 #include <cmath>
 #include <vector>
 
+#include "core/median.hpp"
+
 namespace shpb {
 namespace {
 
@@ -11,13 +13,6 @@ constexpr double kNoiseSigmas = 5.0;           // band of the baseline, in σ
 constexpr double kBandOfPeak = 0.03;           // … and at least this fraction of the peak
 constexpr double kDetectFractionOfPeak = 0.5;  // a pulse is found at half its height
 constexpr double kMadToSigma = 1.4826;         // σ of Gaussian noise from its MAD
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return *mid;
-}
 
 }  // namespace
 

@@ -5,6 +5,7 @@
 #include <limits>
 #include <numbers>
 
+#include "core/median.hpp"
 #include "model/specimen_response.hpp"
 
 namespace shpb {
@@ -21,10 +22,7 @@ RemovedTerm summarise(std::string name, const std::vector<double>& removed,
       v.push_back(removed[i]);
       t.max_abs_Pa = std::max(t.max_abs_Pa, std::abs(removed[i]));
     }
-  if (!v.empty()) {
-    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-    t.median_Pa = v[v.size() / 2];
-  }
+  t.median_Pa = median(std::move(v));
   return t;
 }
 }  // namespace

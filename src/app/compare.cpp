@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "analysis/comparison.hpp"
+#include "analysis/gauge_signals.hpp"
 #include "analysis/processing.hpp"
 #include "analysis/pulse_overlay.hpp"
 #include "analysis/pulse_window.hpp"
@@ -31,8 +32,8 @@
 #include "core/error.hpp"
 #include "core/json_value.hpp"
 #include "core/output_folder.hpp"
-#include "core/signal_gauges.hpp"
 #include "model/discretization.hpp"
+#include "model/wave_travel.hpp"
 #include "solver/simulation.hpp"
 #include "version.hpp"
 
@@ -115,7 +116,8 @@ int run_compare(const CompareArgs& args) {
     const std::size_t last = last_compared_sample(found);
     const double arrival =
         (velocity > 0 ? scene.bars[striker].gap_m / velocity : 0.0) +
-        (scene.bars[incident_bar].length_m - setup.incident_distance_m) / setup.front.c0_m_s;
+        travel_time_s(scene, incident_bar, 0, incident_bar,
+                      scene.bars[incident_bar].length_m - setup.incident_distance_m);
     const double needed = (arrival + measured.time_s[last] - measured.time_s[found.incident_window.onset]) *
                           (1 + kDurationMargin);
     if (needed > default_duration_s(scene))

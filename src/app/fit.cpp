@@ -22,6 +22,7 @@
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
 #include "core/json_value.hpp"
+#include "core/median.hpp"
 #include "core/output_folder.hpp"
 #include "fit/fit_case.hpp"
 #include "fit/fit_spec.hpp"
@@ -339,11 +340,9 @@ int run_fit(const FitArgs& args) {
         if (c->curve().empty()) continue;
         std::vector<double> rates;
         for (const auto& p : c->curve()) rates.push_back(p.strain_rate_1_s);
-        std::nth_element(rates.begin(), rates.begin() + static_cast<long>(rates.size() / 2),
-                         rates.end());
-        const double median = rates[rates.size() / 2];
-        lo = lo == 0 ? median : std::min(lo, median);
-        hi = std::max(hi, median);
+        const double rate = median(std::move(rates));
+        lo = lo == 0 ? rate : std::min(lo, rate);
+        hi = std::max(hi, rate);
       }
       if (!(lo > 0) || hi / lo < kRateRatioForC)
         warnings.push_back(

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "analysis/bar_check.hpp"
+#include "analysis/gauge_signals.hpp"
 #include "analysis/processing.hpp"
 #include "analysis/specimen_corrections.hpp"
 #include "app/commands.hpp"
@@ -16,7 +17,6 @@
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
 #include "core/output_folder.hpp"
-#include "core/signal_gauges.hpp"
 #include "core/signal_reader.hpp"
 #include "version.hpp"
 

@@ -15,6 +15,7 @@
 #include "app/commands.hpp"
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
+#include "core/interpolation.hpp"
 #include "core/output_folder.hpp"
 #include "model/campaign.hpp"
 #include "study/shards.hpp"
@@ -45,7 +46,7 @@ double flow_stress(const std::vector<double>& strain, const std::vector<double>&
   for (std::size_t i = 1; i < strain.size(); ++i)
     if (strain[i - 1] < at && strain[i] >= at) {
       const double f = (at - strain[i - 1]) / (strain[i] - strain[i - 1]);
-      return stress[i - 1] + f * (stress[i] - stress[i - 1]);
+      return lerp(stress[i - 1], stress[i], f);
     }
   if (!strain.empty() && strain.front() == at) return stress.front();
   return std::numeric_limits<double>::quiet_NaN();

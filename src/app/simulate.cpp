@@ -1,12 +1,11 @@
 // shpb simulate SCENE.json -o DIR: read and validate the scene (exit 2 before anything is
 // written), run it, write the files of docs/outputs.md atomically. An instability is exit 3 with
 // what was computed until then and a summary saying where and when (still written atomically).
-#include <unistd.h>
-
 #include <cstdio>
 #include <new>
 
 #include "app/commands.hpp"
+#include "app/progress.hpp"
 #include "core/error.hpp"
 #include "core/output_folder.hpp"
 #include "model/discretization.hpp"
@@ -14,36 +13,13 @@
 
 namespace shpb {
 
-namespace {
-// Progress on stderr: a bar redrawn in place on a terminal, a plain line every 10 % otherwise.
-std::function<void(double)> progress_printer(bool quiet) {
-  if (quiet) return {};
-  const bool tty = ::isatty(STDERR_FILENO) != 0;
-  return [tty, last = -1](double fraction) mutable {
-    const int pct = static_cast<int>(fraction * 100 + 0.5);
-    if (tty) {
-      if (pct == last) return;
-      last = pct;
-      constexpr int kWidth = 40;
-      const int filled = pct * kWidth / 100;
-      std::fprintf(stderr, "\rsimulating [%.*s%*s] %3d%%", filled,
-                   "########################################", kWidth - filled, "", pct);
-      if (pct >= 100) std::fprintf(stderr, "\n");
-    } else if (pct / 10 != last / 10 || last < 0) {
-      last = pct;
-      std::fprintf(stderr, "simulating: %d%%\n", pct);
-    }
-  };
-}
-}  // namespace
-
 int run_simulate(const SimulateArgs& args) {
   Scene scene = read_scene(args.scene);  // InputError → exit 2, nothing written
   apply_overrides(args.overrides, scene);
   OutputFolder out(args.output, "simulate", scene_inputs(scene, false));  // measured files unread
   SimulationOptions options;
   options.full_model = args.full_model;
-  options.progress = progress_printer(args.overrides.quiet);
+  if (!args.overrides.quiet) options.progress = ProgressPrinter("simulating");
   options.cancel = [] { return interrupted(); };
   SimulationResult result;
   try {

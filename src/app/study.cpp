@@ -5,8 +5,6 @@
 // The sweep is a plan of independent runs: run here on threads, or planned into a folder
 // (--plan), run there shard by shard on other machines (--run DIR --shard K/N) and merged
 // (--merge); one code path, so a merged study equals an in-process one apart from wall times.
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -16,6 +14,7 @@
 #include <sstream>
 
 #include "app/commands.hpp"
+#include "app/progress.hpp"
 #include "core/checked_write.hpp"
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
@@ -34,19 +33,12 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-// "done/total runs" on stderr: redrawn in place on a terminal, every 10 % otherwise.
+// "done/total runs" on stderr (app/progress.hpp).
 std::function<void(std::size_t, std::size_t)> progress_printer(bool quiet, std::string what) {
   if (quiet) return {};
-  const bool tty = ::isatty(STDERR_FILENO) != 0;
-  return [tty, what, last = -1](std::size_t done, std::size_t total) mutable {
-    const int pct = static_cast<int>(100.0 * done / total);
-    if (tty) {
-      std::fprintf(stderr, "\rstudy %s: %zu/%zu runs (%d%%)", what.c_str(), done, total, pct);
-      if (done == total) std::fprintf(stderr, "\n");
-    } else if (pct / 10 != last / 10 || done == total) {
-      last = pct;
-      std::fprintf(stderr, "study %s: %zu/%zu runs (%d%%)\n", what.c_str(), done, total, pct);
-    }
+  return [print = ProgressPrinter("study " + what)](std::size_t done, std::size_t total) mutable {
+    print(static_cast<double>(done) / static_cast<double>(total),
+          std::to_string(done) + "/" + std::to_string(total) + " runs");
   };
 }
 

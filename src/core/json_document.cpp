@@ -5,6 +5,7 @@
 
 #include "core/error.hpp"
 #include "core/input_file.hpp"
+#include "core/json_value.hpp"
 #include "core/output_folder.hpp"
 
 namespace shpb {
@@ -36,14 +37,15 @@ class ParsePath {
   void on_event(json::parse_event_t event, const json& parsed) {
     switch (event) {
       case json::parse_event_t::object_start:
-        frames_.push_back({false, 0, "", {}});
+        frames_.push_back({false, 0, false, "", {}});
         break;
       case json::parse_event_t::array_start:
-        frames_.push_back({true, 0, "", {}});
+        frames_.push_back({true, 0, false, "", {}});
         break;
       case json::parse_event_t::key: {
         auto& top = frames_.back();
         top.key = parsed.get<std::string>();
+        top.has_key = true;
         if (!top.keys.insert(top.key).second)
           throw input_error(display_, path(), "", "duplicate key (each key may appear once)");
         break;
@@ -59,13 +61,14 @@ class ParsePath {
     }
   }
 
+  // Spelled as every other message spells a path (json_child_path: odd keys quoted).
   std::string path() const {
     std::string p;
     for (const auto& f : frames_) {
       if (f.array)
-        p += "[" + std::to_string(f.index) + "]";
-      else if (!f.key.empty())
-        p += (p.empty() ? "" : ".") + f.key;
+        p = json_element_path(p, f.index);
+      else if (f.has_key)
+        p = json_child_path(p, f.key);
     }
     return p;
   }
@@ -74,6 +77,7 @@ class ParsePath {
   struct Frame {
     bool array;
     std::size_t index;
+    bool has_key;  // a key was read (the empty string is a key too)
     std::string key;
     std::set<std::string> keys;
   };

@@ -7,6 +7,7 @@
 
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
+#include "core/median.hpp"
 #include "core/signal_formats.hpp"
 #include "core/signal_spreadsheet.hpp"
 
@@ -97,9 +98,7 @@ void check_time_base(const std::filesystem::path& file, const RawSignalColumns& 
   // The median step is the sampling interval; a gap or jump stands out against it.
   std::vector<double> steps(n - 1);
   for (std::size_t i = 1; i < n; ++i) steps[i - 1] = t[i] - t[i - 1];
-  std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2),
-                   steps.end());
-  const double median_step = steps[steps.size() / 2];
+  const double median_step = median(std::move(steps));
   for (std::size_t i = 1; i < n; ++i) {
     const double dt = median_step;
     const double step = t[i] - t[i - 1];
@@ -114,19 +113,7 @@ void check_time_base(const std::filesystem::path& file, const RawSignalColumns& 
 
 }  // namespace
 
-std::string_view to_string(SignalFormat f) {
-  switch (f) {
-    case SignalFormat::kAuto:
-      return "auto";
-    case SignalFormat::kCsv:
-      return "csv";
-    case SignalFormat::kTektronix:
-      return "tektronix";
-    case SignalFormat::kLanlRaw:
-      return "lanl-raw";
-  }
-  return "?";
-}
+std::string_view to_string(SignalFormat f) { return enum_name(kSignalFormatNames, f); }
 
 SignalColumns read_signal_columns(const SignalRequest& request) {
   const DelimitedText text = is_spreadsheet(request.file)

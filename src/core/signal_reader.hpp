@@ -5,9 +5,10 @@
 // know but that do not stop the work (a rebuilt time base) are returned as warnings.
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
-#include "model/scene.hpp"
+#include "core/signal_spec.hpp"
 
 namespace shpb {
 

@@ -4,6 +4,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "core/interpolation.hpp"
 #include "core/output_folder.hpp"
 #include "dispersion/pochhammer_chree.hpp"
 
@@ -38,7 +39,7 @@ DispersionTable::DispersionTable(double poisson, double max_x, int points, doubl
     const double surface = 1 / a.m1;  // surface over mean strain: changes sign at the m1 pole
     if (m1_pole_fa_ == 0 && i > 0 && (surface > 0) != (prev_surface > 0)) {
       const double t = prev_surface / (prev_surface - surface);
-      m1_pole_fa_ = fa_[i - 1] + t * (fa_[i] - fa_[i - 1]);
+      m1_pole_fa_ = lerp(fa_[i - 1], fa_[i], t);
     }
     prev_surface = surface;
     if (fa_.back() >= stop_fa && m1_pole_fa_ > 0 && i > 0) break;
@@ -46,12 +47,7 @@ DispersionTable::DispersionTable(double poisson, double max_x, int points, doubl
 }
 
 double DispersionTable::interpolate(const std::vector<double>& y, double fa) const {
-  if (fa <= 0) return y.front();
-  if (fa >= fa_.back()) return y.back();
-  const auto it = std::upper_bound(fa_.begin(), fa_.end(), fa);
-  const std::size_t j = static_cast<std::size_t>(it - fa_.begin());
-  const double t = (fa - fa_[j - 1]) / (fa_[j] - fa_[j - 1]);
-  return y[j - 1] + t * (y[j] - y[j - 1]);
+  return shpb::interpolate(fa_, y, fa);  // the grid starts at f·a/c0 = 0
 }
 
 double DispersionTable::phase_velocity(double fa) const { return interpolate(c_, fa); }

@@ -5,6 +5,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "core/interpolation.hpp"
 #include "core/output_folder.hpp"
 
 namespace shpb {
@@ -106,16 +107,9 @@ std::vector<double> propagate(std::span<const double> signal, double dt, double 
 }
 
 void delay_by_interpolation(std::span<const double> signal, double delay, std::span<double> out) {
-  const auto n = static_cast<std::ptrdiff_t>(signal.size());
-  for (std::ptrdiff_t i = 0; i < n; ++i) {
-    const double s = static_cast<double>(i) - delay;  // out(t_i) = in(t_i − delay)
-    const double fl = std::floor(s);
-    const auto j = static_cast<std::ptrdiff_t>(fl);
-    const double t = s - fl;
-    const double a = (j >= 0 && j < n) ? signal[static_cast<std::size_t>(j)] : 0.0;
-    const double b = (j + 1 >= 0 && j + 1 < n) ? signal[static_cast<std::size_t>(j + 1)] : 0.0;
-    out[static_cast<std::size_t>(i)] = (1 - t) * a + t * b;
-  }
+  // out(t_i) = in(t_i − delay), zero outside the record.
+  for (std::size_t i = 0; i < signal.size(); ++i)
+    out[i] = sample_at(signal, static_cast<double>(i) - delay, 0.0, 0.0);
 }
 
 }  // namespace shpb

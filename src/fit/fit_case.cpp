@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "analysis/gauge_signals.hpp"
 #include "analysis/processing.hpp"
 #include "core/error.hpp"
 #include "core/json_value.hpp"
 #include "core/output_folder.hpp"
-#include "core/signal_gauges.hpp"
 #include "fit/law_parameters.hpp"
 #include "solver/simulation.hpp"
 

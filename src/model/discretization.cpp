@@ -9,6 +9,7 @@
 #include "core/error.hpp"
 #include "core/json_value.hpp"
 #include "model/specimen_response.hpp"
+#include "model/wave_travel.hpp"
 
 namespace shpb {
 
@@ -145,23 +146,11 @@ double first_contact_delay_s(const Scene& scene) {
 
 double default_duration_s(const Scene& scene) {
   if (scene.bars.empty()) return 0;
-  // The striker is the first bar; its pulse lasts 2 L/c.
-  const double pulse = 2.0 * scene.bars.front().length_m / scene.bars.front().material.wave_speed_m_s();
-  double travel = 0, last_gauge_arrival = -1;
-  for (std::size_t i = 1; i < scene.bars.size(); ++i) {
-    const BarSpec& bar = scene.bars[i];
-    const double c = bar.material.wave_speed_m_s();
-    for (const GaugeSpec& g : bar.gauges)
-      last_gauge_arrival = std::max(last_gauge_arrival, travel + g.position_m / c);
-    travel += bar.length_m / c;
-  }
-  if (last_gauge_arrival < 0) {
-    double longest = 0;
-    for (const BarSpec& bar : scene.bars)
-      longest = std::max(longest, bar.length_m / bar.material.wave_speed_m_s());
-    return 2.0 * longest * kDurationMargin;
-  }
-  return (last_gauge_arrival + pulse) * kDurationMargin;
+  if (const auto passed = pulses_passed_s(scene)) return *passed * kDurationMargin;
+  double longest = 0;
+  for (const BarSpec& bar : scene.bars)
+    longest = std::max(longest, bar.length_m / bar.material.wave_speed_m_s());
+  return 2.0 * longest * kDurationMargin;
 }
 
 ChainDiscretization discretize(const Scene& scene) {

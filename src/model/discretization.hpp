@@ -54,9 +54,9 @@ struct ChainDiscretization {
 
 ChainDiscretization discretize(const Scene& scene);
 
-// docs/scene-format.md default duration: the striker's pulse (2 L_s/c_s long) has travelled from the
-// first interface to the last gauge and passed it, plus 10 %. Without gauges: two transits of
-// the longest bar.
+// docs/scene-format.md default duration: every gauge has seen the pulses of interest pass (the
+// incident pulse, and left of the specimen the reflected one; model/wave_travel.hpp), plus 10 %.
+// Without a striker or gauges: two transits of the longest bar.
 double default_duration_s(const Scene& scene);
 
 // Time zero is the first contact (docs/outputs.md (conventions)): with initial gaps the run starts

@@ -5,9 +5,16 @@
 #include <string>
 #include <vector>
 
+#include "core/enum_names.hpp"
+
 namespace shpb {
 
 enum class MaterialModel { kElastic, kBilinear, kJohnsonCook, kViscoelastic };
+inline constexpr EnumName<MaterialModel> kMaterialModelNames[] = {
+    {"elastic", MaterialModel::kElastic},
+    {"bilinear", MaterialModel::kBilinear},
+    {"johnson-cook", MaterialModel::kJohnsonCook},
+    {"viscoelastic", MaterialModel::kViscoelastic}};
 
 struct BilinearParams {
   double yield_stress_Pa = 0;     // initial yield stress σ_y > 0

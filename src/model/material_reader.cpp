@@ -8,13 +8,6 @@
 namespace shpb {
 namespace {
 
-std::optional<MaterialModel> model_from_string(const std::string& s) {
-  for (auto m : {MaterialModel::kElastic, MaterialModel::kBilinear, MaterialModel::kJohnsonCook,
-                 MaterialModel::kViscoelastic})
-    if (to_string(m) == s) return m;
-  return std::nullopt;
-}
-
 std::vector<std::string> allowed_keys(MaterialModel model) {
   std::vector<std::string> keys = {"model", "name", "density", "poisson_ratio", "source", "notes"};
   switch (model) {
@@ -118,10 +111,8 @@ MaterialSpec read_material(const JsonValue& value, const std::string& name) {
   const auto model_value = JsonObject(value).require(
       "model", "\"elastic\", \"bilinear\", \"johnson-cook\" or \"viscoelastic\"");
   const std::string model_text = model_value.string();
-  const auto model = model_from_string(model_text);
-  if (!model)
-    throw model_value.error(
-        suggestion_text(model_text, {"elastic", "bilinear", "johnson-cook", "viscoelastic"}));
+  const auto model = enum_value(kMaterialModelNames, model_text);
+  if (!model) throw model_value.error(suggestion_text(model_text, enum_names(kMaterialModelNames)));
   m.model = *model;
 
   if (m.model == MaterialModel::kViscoelastic)

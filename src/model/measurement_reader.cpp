@@ -5,15 +5,12 @@
 namespace shpb {
 namespace {
 
-template <typename Enum>
-Enum enum_from(const JsonValue& v, const std::vector<std::pair<std::string, Enum>>& table) {
+// The value a table of names (core/enum_names.hpp) gives the string `v`, or its error.
+template <typename Enum, std::size_t N>
+Enum enum_from(const JsonValue& v, const EnumName<Enum> (&table)[N]) {
   const std::string s = v.string();
-  std::vector<std::string> names;
-  for (const auto& [name, e] : table) {
-    if (name == s) return e;
-    names.push_back(name);
-  }
-  throw v.error(suggestion_text(s, names));
+  if (const auto e = enum_value(table, s)) return *e;
+  throw v.error(suggestion_text(s, enum_names(table)));
 }
 
 ColumnRef read_column(const JsonValue& v) {
@@ -62,9 +59,7 @@ ChannelSpec read_channel(const JsonValue& v, const std::filesystem::path& scene_
   if (auto f = o.get("file")) c.file = (scene_dir / f->name()).lexically_normal();
   if (auto col = o.get("column")) c.column = read_column(*col);
   const auto unit = o.require("unit", "\"V\", \"strain\" or \"microstrain\"");
-  c.unit = enum_from<SignalUnit>(unit, {{"V", SignalUnit::kVolt},
-                                        {"strain", SignalUnit::kStrain},
-                                        {"microstrain", SignalUnit::kMicrostrain}});
+  c.unit = enum_from(unit, kSignalUnitNames);
   if (auto sc = o.get("scale")) {
     if (c.unit != SignalUnit::kVolt)
       throw sc->error(
@@ -126,11 +121,7 @@ MeasurementSpec read_measurement(const JsonValue& value, const std::filesystem::
     if (!o.get("channels") && !o.get("file")) return m;
   }
   if (auto f = o.get("file")) m.file = (scene_dir / f->name()).lexically_normal();
-  if (auto f = o.get("format"))
-    m.format = enum_from<SignalFormat>(*f, {{"auto", SignalFormat::kAuto},
-                                            {"csv", SignalFormat::kCsv},
-                                            {"tektronix", SignalFormat::kTektronix},
-                                            {"lanl-raw", SignalFormat::kLanlRaw}});
+  if (auto f = o.get("format")) m.format = enum_from(*f, kSignalFormatNames);
   if (auto t = o.get("time")) {
     const auto to = t->object({"column", "unit"});
     if (auto c = to.get("column")) m.time_column = read_column(*c);

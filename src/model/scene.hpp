@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "core/enum_names.hpp"
+#include "core/signal_spec.hpp"
 #include "model/material.hpp"
 
 namespace shpb {
@@ -39,6 +41,13 @@ struct BarSpec {
 
 enum class ContactMethod { kPenalty, kBipenalty, kLocalizedBipenalty, kBonded };
 enum class Stepping { kAsynchronous, kGlobal };
+inline constexpr EnumName<ContactMethod> kContactMethodNames[] = {
+    {"penalty", ContactMethod::kPenalty},
+    {"bipenalty", ContactMethod::kBipenalty},
+    {"localized-bipenalty", ContactMethod::kLocalizedBipenalty},
+    {"bonded", ContactMethod::kBonded}};
+inline constexpr EnumName<Stepping> kSteppingNames[] = {{"asynchronous", Stepping::kAsynchronous},
+                                                         {"global", Stepping::kGlobal}};
 
 // Penalty parameters of one interface. Unset values are derived from the neighbouring elements
 // (docs/methods.md §2): ε_s as a multiple of the stiffer neighbour's EA/h, R as a fraction of
@@ -95,7 +104,10 @@ struct SimulationSpec {
 // ---- measured signals -------------------------------------------------------------------------
 
 enum class SignalUnit { kVolt, kStrain, kMicrostrain };
-enum class SignalFormat { kAuto, kCsv, kTektronix, kLanlRaw };
+inline constexpr EnumName<SignalUnit> kSignalUnitNames[] = {
+    {"V", SignalUnit::kVolt},
+    {"strain", SignalUnit::kStrain},
+    {"microstrain", SignalUnit::kMicrostrain}};
 
 // Wheatstone bridge: ε = k·V / (GF · gain · V_ex) with k = 4/arms (quarter 4, half 2, full 1).
 struct BridgeSpec {
@@ -103,11 +115,6 @@ struct BridgeSpec {
   double gauge_factor = 2.0;
   double excitation_V = 10.0;
   double gain = 1.0;
-};
-
-struct ColumnRef {
-  std::string name;              // column by header name, or
-  std::optional<int> index;      // by 0-based index
 };
 
 struct ChannelSpec {

@@ -15,9 +15,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::vector<std::string> kContactMethods = {"penalty", "bipenalty", "localized-bipenalty",
-                                                  "bonded"};
-const std::vector<std::string> kSteppings = {"asynchronous", "global"};
 constexpr std::int64_t kMaxElements = 100'000'000;  // far beyond any useful mesh; guards overflow
 
 class SceneReader {
@@ -243,7 +240,7 @@ class SceneReader {
   static ContactMethod contact_method(const JsonValue& v) {
     const std::string s = v.string();
     if (auto m = contact_method_from_string(s)) return *m;
-    throw v.error(suggestion_text(s, kContactMethods));
+    throw v.error(suggestion_text(s, enum_names(kContactMethodNames)));
   }
 
   static PenaltyParams read_penalty(const JsonObject& o) {
@@ -310,7 +307,7 @@ class SceneReader {
       s.sample_rate_Hz = x->positive_quantity(Dimension::kFrequency);
     if (auto x = o.get("stepping")) {
       const auto m = stepping_from_string(x->string());
-      if (!m) throw x->error(suggestion_text(x->string(), kSteppings));
+      if (!m) throw x->error(suggestion_text(x->string(), enum_names(kSteppingNames)));
       s.stepping = *m;
     }
     // Lumped central difference is stable for C <= 1 (docs/methods.md §1).
@@ -353,45 +350,13 @@ std::optional<std::size_t> Scene::transmitter_bar() const {
   return std::nullopt;
 }
 
-std::string_view to_string(ContactMethod m) {
-  switch (m) {
-    case ContactMethod::kPenalty:
-      return "penalty";
-    case ContactMethod::kBipenalty:
-      return "bipenalty";
-    case ContactMethod::kLocalizedBipenalty:
-      return "localized-bipenalty";
-    case ContactMethod::kBonded:
-      return "bonded";
-  }
-  return "?";
-}
-std::string_view to_string(Stepping s) {
-  return s == Stepping::kAsynchronous ? "asynchronous" : "global";
-}
-std::string_view to_string(MaterialModel m) {
-  switch (m) {
-    case MaterialModel::kElastic:
-      return "elastic";
-    case MaterialModel::kBilinear:
-      return "bilinear";
-    case MaterialModel::kJohnsonCook:
-      return "johnson-cook";
-    case MaterialModel::kViscoelastic:
-      return "viscoelastic";
-  }
-  return "?";
-}
+std::string_view to_string(ContactMethod m) { return enum_name(kContactMethodNames, m); }
+std::string_view to_string(Stepping s) { return enum_name(kSteppingNames, s); }
+std::string_view to_string(MaterialModel m) { return enum_name(kMaterialModelNames, m); }
 std::optional<ContactMethod> contact_method_from_string(std::string_view s) {
-  if (s == "penalty") return ContactMethod::kPenalty;
-  if (s == "bipenalty") return ContactMethod::kBipenalty;
-  if (s == "localized-bipenalty") return ContactMethod::kLocalizedBipenalty;
-  if (s == "bonded") return ContactMethod::kBonded;
-  return std::nullopt;
+  return enum_value(kContactMethodNames, s);
 }
 std::optional<Stepping> stepping_from_string(std::string_view s) {
-  if (s == "asynchronous") return Stepping::kAsynchronous;
-  if (s == "global") return Stepping::kGlobal;
-  return std::nullopt;
+  return enum_value(kSteppingNames, s);
 }
 }  // namespace shpb

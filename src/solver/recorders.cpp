@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/interpolation.hpp"
 #include "solver/bar_integrator.hpp"
 
 namespace shpb {
@@ -32,7 +33,7 @@ void GridSampler::push(double tau, const double* values) {
     const double t = next_tau();
     if (has_prev_ && tau > prev_tau_) {
       const double a = (t - prev_tau_) / (tau - prev_tau_);
-      for (int c = 0; c < width_; ++c) out[c] = prev_[c] + a * (values[c] - prev_[c]);
+      for (int c = 0; c < width_; ++c) out[c] = lerp(prev_[c], values[c], a);
     } else {
       for (int c = 0; c < width_; ++c) out[c] = values[c];
     }

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numeric>
 
+#include "core/interpolation.hpp"
+
 namespace shpb {
 
 std::vector<bool> pareto_front(const std::vector<double>& error, const std::vector<double>& cost) {
@@ -31,7 +33,7 @@ std::optional<double> cost_at_error(std::vector<double> errors, std::vector<doub
     if (error < e0 || error > e1) continue;
     if (e0 == e1) return costs[order[k]];
     const double w = std::log(error / e0) / std::log(e1 / e0);
-    return std::exp((1 - w) * std::log(costs[order[k]]) + w * std::log(costs[order[k + 1]]));
+    return std::exp(lerp(std::log(costs[order[k]]), std::log(costs[order[k + 1]]), w));
   }
   return std::nullopt;
 }

@@ -1,6 +1,6 @@
 #pragma once
 // Runs the real `shpb` executable (SHPB_EXE) as a user would, without a shell in between, and
-// returns its exit code with stdout and stderr.
+// returns its exit code with stdout and stderr. spawn_shpb is the one way every test starts it.
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -39,27 +39,34 @@ inline std::filesystem::path scratch_dir(const std::string& name) {
   return dir;
 }
 
-inline RunResult run_shpb(const std::vector<std::string>& args) {
-  const auto dir = std::filesystem::temp_directory_path();
-  const std::string tag = std::to_string(::getpid());
-  const auto out = dir / ("shpb_test_" + tag + ".out"), err = dir / ("shpb_test_" + tag + ".err");
+// Starts `shpb args...` with stdout and stderr written to the files `out` and `err` (truncated;
+// "/dev/null" discards). Returns the child's pid, or -1 if it could not be started.
+inline pid_t spawn_shpb(const std::vector<std::string>& args, const std::filesystem::path& out,
+                        const std::filesystem::path& err) {
   std::vector<std::string> argv_text = {SHPB_EXE};
   argv_text.insert(argv_text.end(), args.begin(), args.end());
   std::vector<char*> argv;
   for (auto& a : argv_text) argv.push_back(a.data());
   argv.push_back(nullptr);
-
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   pid_t pid = 0;
+  if (posix_spawn(&pid, SHPB_EXE, &actions, nullptr, argv.data(), environ) != 0) pid = -1;
+  posix_spawn_file_actions_destroy(&actions);
+  return pid;
+}
+
+inline RunResult run_shpb(const std::vector<std::string>& args) {
+  const auto dir = std::filesystem::temp_directory_path();
+  const std::string tag = std::to_string(::getpid());
+  const auto out = dir / ("shpb_test_" + tag + ".out"), err = dir / ("shpb_test_" + tag + ".err");
   RunResult r;
-  if (posix_spawn(&pid, SHPB_EXE, &actions, nullptr, argv.data(), environ) == 0) {
+  if (const pid_t pid = spawn_shpb(args, out, err); pid > 0) {
     int status = 0;
     if (waitpid(pid, &status, 0) == pid && WIFEXITED(status)) r.code = WEXITSTATUS(status);
   }
-  posix_spawn_file_actions_destroy(&actions);
   r.out = read_text(out);
   r.err = read_text(err);
   std::filesystem::remove(out);

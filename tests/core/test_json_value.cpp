@@ -56,6 +56,9 @@ TEST_CASE("Documents that are not one JSON object are refused with their place",
   CHECK(message_of("[1]") == "f.json: (top level): [1]: expected a JSON object { ... }");
   CHECK(message_of("{\"a\": 1, \"b\": {\"c\": [1, {\"d\": 1, \"d\": 2}]}}") ==
         "f.json: b.c[1].d: duplicate key (each key may appear once)");
+  // A key that is not a plain name is quoted, as json_child_path spells it for every other message.
+  CHECK(message_of("{\"bar one\": {\"\": {\"x\": 1, \"x\": 2}}}") ==
+        "f.json: [\"bar one\"][\"\"].x: duplicate key (each key may appear once)");
   CHECK(message_of("{\"a\": [1, 2e999]}") ==
         "f.json: a[1]: number overflow parsing '2e999': expected a number within the range of a "
         "double");

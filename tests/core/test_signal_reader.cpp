@@ -6,8 +6,8 @@
 #include <fstream>
 #include <string>
 
+#include "analysis/gauge_signals.hpp"
 #include "core/error.hpp"
-#include "core/signal_gauges.hpp"
 #include "core/signal_reader.hpp"
 
 using namespace shpb;

@@ -2,9 +2,7 @@
 // Runs the real `shpb` executable (SHPB_EXE) with a time limit, or starts it and lets the test
 // signal it: a robustness test must see a crash (killed by a signal) or a hang (time limit) as a
 // result, not hang or die itself.
-#include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -16,7 +14,7 @@
 #include <thread>
 #include <vector>
 
-extern char** environ;
+#include "../app/run_shpb.hpp"
 
 namespace shpb_robust {
 
@@ -42,17 +40,7 @@ class Child {
   // Starts `shpb args...`; stdout and stderr go to files in `scratch`.
   Child(const std::vector<std::string>& args, const fs::path& scratch)
       : out_(scratch / ".child.out"), err_(scratch / ".child.err") {
-    std::vector<std::string> text = {SHPB_EXE};
-    text.insert(text.end(), args.begin(), args.end());
-    std::vector<char*> argv;
-    for (auto& a : text) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 1, out_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_addopen(&actions, 2, err_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (posix_spawn(&pid_, SHPB_EXE, &actions, nullptr, argv.data(), environ) != 0) pid_ = -1;
-    posix_spawn_file_actions_destroy(&actions);
+    pid_ = shpb_test::spawn_shpb(args, out_, err_);
     start_ = std::chrono::steady_clock::now();
   }
   Child(const Child&) = delete;

@@ -2,7 +2,6 @@
 // (model/discretization.cpp) are checked against what a run really uses: the peak resident memory
 // of a `shpb simulate` child (getrusage ru_maxrss via wait4) against `validate --json`'s
 // memory_estimate_bytes, and a striker's free flight across a gap counted in the time estimate.
-#include <spawn.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 
@@ -25,19 +24,8 @@ constexpr double kLimit_s = 120.0;
 
 // Runs `shpb args...` with output to /dev/null and returns its peak resident set in bytes.
 double peak_rss_bytes(const std::vector<std::string>& args, int& code) {
-  std::vector<std::string> text = {SHPB_EXE};
-  text.insert(text.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& a : text) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
-  pid_t pid = 0;
-  const int rc = posix_spawn(&pid, SHPB_EXE, &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  REQUIRE(rc == 0);
+  const pid_t pid = shpb_test::spawn_shpb(args, "/dev/null", "/dev/null");
+  REQUIRE(pid > 0);
   int status = 0;
   struct rusage usage {};
   REQUIRE(::wait4(pid, &status, 0, &usage) == pid);

@@ -1,4 +1,4 @@
-#include "core/signal_gauges.hpp"
+#include "analysis/gauge_signals.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,6 +6,8 @@
 #include <map>
 
 #include "core/error.hpp"
+#include "core/interpolation.hpp"
+#include "core/median.hpp"
 #include "core/signal_reader.hpp"
 
 namespace shpb {
@@ -17,28 +19,13 @@ constexpr double kSameClock = 1e-3;
 std::vector<double> resample(const std::vector<double>& t, const std::vector<double>& y,
                              const std::vector<double>& onto) {
   std::vector<double> out(onto.size());
-  for (std::size_t i = 0; i < onto.size(); ++i) {
-    const double x = onto[i];
-    if (x <= t.front()) {
-      out[i] = y.front();
-      continue;
-    }
-    if (x >= t.back()) {
-      out[i] = y.back();
-      continue;
-    }
-    const auto j = static_cast<std::size_t>(std::upper_bound(t.begin(), t.end(), x) - t.begin());
-    const double a = (x - t[j - 1]) / (t[j] - t[j - 1]);
-    out[i] = y[j - 1] + a * (y[j] - y[j - 1]);
-  }
+  for (std::size_t i = 0; i < onto.size(); ++i) out[i] = interpolate(t, y, onto[i]);
   return out;
 }
 
 double median_abs_peak(const std::vector<double>& x) {
   // Peak distance from the median (the baseline) of the record.
-  std::vector<double> s(x);
-  std::nth_element(s.begin(), s.begin() + static_cast<std::ptrdiff_t>(s.size() / 2), s.end());
-  const double med = s[s.size() / 2];
+  const double med = median(x);
   double peak = 0;
   for (double v : x) peak = std::max(peak, std::abs(v - med));
   return peak;

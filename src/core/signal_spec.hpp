@@ -1,0 +1,24 @@
+#pragma once
+// How a signal file is addressed (docs/scene-format.md `measurement`): its format and a column by
+// header name or index. File-format vocabulary only; the scene's measurement block
+// (model/scene.hpp) is built from these, and the signal readers (signal_reader.hpp) take them.
+#include <optional>
+#include <string>
+
+#include "core/enum_names.hpp"
+
+namespace shpb {
+
+enum class SignalFormat { kAuto, kCsv, kTektronix, kLanlRaw };
+inline constexpr EnumName<SignalFormat> kSignalFormatNames[] = {
+    {"auto", SignalFormat::kAuto},
+    {"csv", SignalFormat::kCsv},
+    {"tektronix", SignalFormat::kTektronix},
+    {"lanl-raw", SignalFormat::kLanlRaw}};
+
+struct ColumnRef {
+  std::string name;          // column by header name, or
+  std::optional<int> index;  // by 0-based index
+};
+
+}  // namespace shpb

@@ -1,0 +1,74 @@
+// The default duration and validate's warnings read one set of 1D travel times
+// (model/wave_travel.hpp), checked against times worked out by hand for a chain of bars.
+#include <catch2/catch.hpp>
+#include <string>
+
+#include "model/discretization.hpp"
+#include "model/scene_checks.hpp"
+#include "model/wave_travel.hpp"
+
+using namespace shpb;
+
+namespace {
+
+// Sums of a few quotients: equal to round-off.
+constexpr double kRoundOff = 1e-12;
+constexpr double kMarginOfDefault = 1.1;  // docs/scene-format.md: the default duration's 10 %
+
+// Bars of one material with c0 = 5000 m/s (E = 200 GPa, ρ = 8000 kg/m³).
+BarSpec bar(const std::string& name, double length_m, double velocity_m_s = 0) {
+  BarSpec b;
+  b.name = name;
+  b.material.density_kg_m3 = 8000;
+  b.material.youngs_modulus_Pa = 200e9;
+  b.length_m = length_m;
+  b.area_m2 = 1e-4;
+  b.diameter_m = 0.0113;
+  b.velocity_m_s = velocity_m_s;
+  return b;
+}
+
+// Striker 0.5 m; incident bar 2 m with its gauge 0.2 m from the impact end (1.8 m from the
+// specimen); specimen 10 mm; transmitter 1 m with its gauge 0.1 m from the specimen. The pulse
+// reflected from the specimen passes the incident gauge after the transmitted pulse has passed
+// the transmitter gauge.
+Scene far_incident_gauge() {
+  Scene s;
+  s.bars = {bar("striker", 0.5, 10), bar("incident", 2.0), bar("specimen", 0.01),
+            bar("transmitter", 1.0)};
+  s.bars[1].gauges = {{"I", 0.2}};
+  s.bars[3].gauges = {{"T", 0.1}};
+  s.specimen = 2;
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("Pulses pass the gauges at the 1D travel times, the reflected one included",
+          "[model][wave-travel]") {
+  const Scene s = far_incident_gauge();
+  const double c = 5000, pulse = 2 * 0.5 / c;
+  CHECK(striker_bar(s) == std::optional<std::size_t>(0));
+  CHECK(travel_time_s(s, 1, 0.2, 3, 0.1) == Approx((1.8 + 0.01 + 0.1) / c).epsilon(kRoundOff));
+  // Incident gauge: arrival 0.2/c, back from the specimen face after 2 × 1.8/c, then the pulse.
+  const double incident = (0.2 + 2 * 1.8) / c + pulse;
+  const double transmitted = (2.0 + 0.01 + 0.1) / c + pulse;
+  REQUIRE(incident > transmitted);
+  CHECK(pulses_passed_s(s, 0, 1, 0.2) == Approx(incident).epsilon(kRoundOff));
+  CHECK(pulses_passed_s(s, 0, 3, 0.1) == Approx(transmitted).epsilon(kRoundOff));
+  CHECK(*pulses_passed_s(s) == Approx(incident).epsilon(kRoundOff));
+}
+
+TEST_CASE("The default duration covers what validate checks, so it is never warned about",
+          "[model][wave-travel]") {
+  const Scene s = far_incident_gauge();
+  const double d = default_duration_s(s);
+  CHECK(d == Approx(kMarginOfDefault * *pulses_passed_s(s)).epsilon(kRoundOff));
+  for (const auto& w : scene_warnings(s, d))
+    CHECK(w.find("ends before the pulses") == std::string::npos);
+  // A duration short of the reflected pulse's passage is warned about.
+  bool warned = false;
+  for (const auto& w : scene_warnings(s, 0.9 * *pulses_passed_s(s)))
+    warned = warned || w.find("ends before the pulses") != std::string::npos;
+  CHECK(warned);
+}
