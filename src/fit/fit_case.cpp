@@ -83,9 +83,10 @@ FitCase::FitCase(const CampaignTest& test, const Campaign& campaign, const FitSp
     previous_ep = std::max(previous_ep, ep);
     const double rate = c.strain_rate_1_s[i] / std::max(1e-9, 1 - c.strain[i]);
     // A sample in equilibrium (R ≤ 5 %) past the time equilibrium is reached, when processing
-    // finds one; processing asks equilibrium to hold down to 20 % of the peak force while
-    // unloading, which noisy or simulated records miss (then every loading sample in equilibrium
-    // counts: the rate and plastic-strain floors below still cut the ringing front).
+    // finds one. Processing reports that time only if equilibrium then holds to the end of the
+    // loading (every sample above 20 % of the peak force), which the synthetic and LANL records
+    // miss; then every loading sample in equilibrium counts (the rate and plastic-strain floors
+    // below still cut the ringing front).
     const bool equilibrium =
         c.equilibrium_ratio[i] <= kEquilibriumThreshold &&
         (!pr.time_to_equilibrium_s || pr.time_s[i] - pr.time_s[0] >= *pr.time_to_equilibrium_s);
