@@ -19,12 +19,16 @@ using shpb_test::run_shpb;
 namespace {
 
 // Acceptance: A, B and n within 3 % of the truth, C (a rate term worth 3.5 % of the stress
-// between 1000 and 4000 /s) within 10 %, each within two standard errors. Checked with
-// CHECK_NOFAIL: not met today. The simulated signals respond to the law's parameters with a
-// non-smooth part (about 1e-6 strain, 0.1 % of the pulses, for a 0.1 % change of A; it vanishes
-// with C = 0: the Johnson–Cook rate term is evaluated at each step's strain rate, which rings in
-// the specimen), so the fit stops in a rough valley some per cent from the truth (README, shpb
-// fit). What is asserted: the fitted pulses reach the noise floor within kFittedNrmse.
+// between 1000 and 4000 /s) within 10 %, each within two standard errors, and the signals stage
+// closer to the truth than the curve stage. Measured with the finite-strain specimen: n and the
+// signals-closer-than-curve check pass and are asserted; A (5 %), B (6 %), C (27 %) and the
+// two-standard-error checks do not and are reported with WARN: the simulated signals respond to
+// the law's parameters with a non-smooth part (about 1e-6 strain, 0.1 % of the pulses, for a
+// 0.1 % change of A; it vanishes with C = 0: the Johnson–Cook rate term is evaluated at each
+// step's strain rate, which rings in the specimen), so the fit stops in a rough valley some per
+// cent from the truth and the covariance (noise only) understates the error (README, shpb fit).
+// Also asserted: every test gives the curve stage samples, and the fitted pulses reach the noise
+// floor within kFittedNrmse.
 constexpr double kShapeTolerance = 0.03;
 constexpr double kRateTolerance = 0.10;
 constexpr double kStandardErrors = 2.0;
@@ -119,20 +123,27 @@ TEST_CASE("fit recovers Johnson-Cook A, B, n, C from three noisy simulated tests
   REQUIRE(r.code == 0);
   const json s = json::parse(std::ifstream(dir / "out/summary.json"));
   const json& p = s["parameters"];
-  INFO(s.dump(1));
   const std::map<std::string, double> truths = {{"A", a}, {"B", b}, {"n", n}, {"C", c}};
   double curve_distance = 0, signals_distance = 0;
   for (const auto& [name, value] : truths) {
-    const double fitted = p[name]["value"], error = p[name]["std_error"];
+    const double fitted = p[name]["value"];
+    REQUIRE(p[name]["std_error"].is_number());
+    REQUIRE(p[name]["after_curve"].is_number());
+    const double error = p[name]["std_error"], after_curve = p[name]["after_curve"];
+    const double off = std::abs(fitted / value - 1);
     INFO(name << " fitted " << fitted << " truth " << value << " std error " << error);
-    CHECK_NOFAIL(std::abs(fitted / value - 1) <= (name == "C" ? kRateTolerance : kShapeTolerance));
-    CHECK_NOFAIL(std::abs(fitted - value) <= kStandardErrors * error);
-    const double after_curve = p[name]["after_curve"];
+    if (name == "n") CHECK(off <= kShapeTolerance);
+    WARN(name << ": " << off << " off the truth (acceptance "
+              << (name == "C" ? kRateTolerance : kShapeTolerance) << "), "
+              << std::abs(fitted - value) / error << " standard errors (acceptance "
+              << kStandardErrors << ")");
     curve_distance += std::pow(after_curve / value - 1, 2);
     signals_distance += std::pow(fitted / value - 1, 2);
   }
-  CHECK_NOFAIL(signals_distance < curve_distance);
+  INFO(s.dump(1));
+  CHECK(signals_distance < curve_distance);
   for (const auto& t : s["tests"]) {
+    CHECK(t["curve_points"].get<long>() > 0);
     for (const char* pulse : {"reflected", "transmitted"}) {
       const double before = t[std::string("nrmse_") + pulse + "_before"];
       const double after = t[std::string("nrmse_") + pulse + "_after"];
