@@ -24,7 +24,7 @@ run: build
 
 # The suite twice: the Release build, then the same tests under AddressSanitizer + UBSan
 # (warnings are errors there). Formatting is checked first.
-test: check
+test: format-check check
 	@$(MAKE) --no-print-directory asan
 	@cd $(ASAN_BUILD) && $(SANITIZER_ENV) ctest --output-on-failure -j $(JOBS)
 

@@ -29,7 +29,8 @@ void add_run_options(CLI::App* cmd, RunOverrides& o, std::string& contact, std::
   // Its range, (0, 1] as in the scene, is checked with the scene (model/scene_validation.hpp).
   cmd->add_option("--courant", o.courant,
                   "Courant number of every bar, c·Δt/h, in (0, 1] (default ≈ 0.99)");
-  cmd->add_option("--threads", o.threads, "Worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--threads", o.threads, "Worker threads (0 = all cores)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--quiet,-q", o.quiet, "No progress output on stderr");
 }
 
@@ -58,10 +59,12 @@ int main(int argc, char** argv) {
   std::string contact, stepping;
 
   SimulateArgs sim;
-  auto* simulate = app.add_subcommand("simulate", "Run a scene; write gauges.csv, interfaces.csv, "
-                                                  "specimen.csv, energy.csv, field.csv, summary.json");
+  auto* simulate = app.add_subcommand("simulate",
+                                      "Run a scene; write gauges.csv, interfaces.csv, "
+                                      "specimen.csv, energy.csv, field.csv, summary.json");
   simulate->add_option("scene", sim.scene, "Scene JSON file")->required();
-  simulate->add_option("-o,--output", sim.output, "Output folder (replaced atomically)")->required();
+  simulate->add_option("-o,--output", sim.output, "Output folder (replaced atomically)")
+      ->required();
   simulate->add_flag("--full-model", sim.full_model,
                      "Update every node of every bar from the start (no causal economy)");
   add_run_options(simulate, sim.overrides, contact, stepping);
@@ -69,8 +72,9 @@ int main(int argc, char** argv) {
   ProcessArgs proc;
   std::string signals;
   auto* process = app.add_subcommand(
-      "process", "Reduce gauge signals (the scene's measurement, or --signals) to aligned pulses "
-                 "and 1/2/3-wave stress–strain curves; write pulses.csv, curve.csv, summary.json");
+      "process",
+      "Reduce gauge signals (the scene's measurement, or --signals) to aligned pulses "
+      "and 1/2/3-wave stress–strain curves; write pulses.csv, curve.csv, summary.json");
   CampaignArgs campaign;
   std::vector<std::string> process_scenes;
   std::string campaign_file;
@@ -80,15 +84,17 @@ int main(int argc, char** argv) {
   process->add_option("--campaign", campaign_file,
                       "Campaign file (tests[]: {scene, name}) instead of scenes: one folder per "
                       "test and campaign.csv");
-  process->add_option("--flow-stress-at", campaign.flow_strains,
-                      "Campaigns: engineering strains at which campaign.csv gives the flow "
-                      "stress, e.g. 0.02,0.05")
+  process
+      ->add_option("--flow-stress-at", campaign.flow_strains,
+                   "Campaigns: engineering strains at which campaign.csv gives the flow "
+                   "stress, e.g. 0.02,0.05")
       ->delimiter(',');
   process->add_option("--shard", campaign.shard,
                       "Campaigns: process every N-th test from K into DIR/parts/K-of-N (K/N)");
   process->add_flag("--merge", campaign.merge,
                     "Campaigns: check DIR/parts holds every test once; write DIR/result");
-  process->add_option("-o,--output", proc.output, "Output folder (replaced atomically)")->required();
+  process->add_option("-o,--output", proc.output, "Output folder (replaced atomically)")
+      ->required();
   process->add_option("--signals", signals,
                       "Gauge signals to process instead of the scene's measurement, e.g. a "
                       "gauges.csv written by `shpb simulate`");
@@ -98,8 +104,9 @@ int main(int argc, char** argv) {
   std::string striker_velocity;
   bool no_dispersion = false;
   auto* compare = app.add_subcommand(
-      "compare", "Simulate the scene and compare its gauge signals with the measured ones, pulse "
-                 "by pulse; write comparison.csv and summary.json");
+      "compare",
+      "Simulate the scene and compare its gauge signals with the measured ones, pulse "
+      "by pulse; write comparison.csv and summary.json");
   compare->add_option("scene", cmp.scene, "Scene JSON file with a measurement")->required();
   compare->add_option("-o,--output", cmp.output, "Output folder (replaced atomically)")->required();
   compare->add_flag("--no-dispersion", no_dispersion,
@@ -113,16 +120,19 @@ int main(int argc, char** argv) {
   DispersionArgs disp;
   std::string radius, c0;
   auto* dispersion = app.add_subcommand(
-      "dispersion", "Print or write the first-mode Pochhammer–Chree curve of a solid round bar: "
-                    "a_over_lambda,c_over_c0,cg_over_c0,f_a_over_c0[,frequency_Hz]");
+      "dispersion",
+      "Print or write the first-mode Pochhammer–Chree curve of a solid round bar: "
+      "a_over_lambda,c_over_c0,cg_over_c0,f_a_over_c0[,frequency_Hz]");
   dispersion->add_option("--poisson", disp.poisson, "Poisson ratio of the bar, in [0, 0.49]")
       ->required()
       ->check(CLI::Range(0.0, 0.49));
-  dispersion->add_option("--a-over-lambda", disp.a_over_lambda,
-                         "Explicit list of radius/wavelength values")
+  dispersion
+      ->add_option("--a-over-lambda", disp.a_over_lambda,
+                   "Explicit list of radius/wavelength values")
       ->delimiter(',');
-  dispersion->add_option("--max-a-over-lambda", disp.max_a_over_lambda,
-                         "Largest a/Λ of an evenly spaced table (default 1.6)")
+  dispersion
+      ->add_option("--max-a-over-lambda", disp.max_a_over_lambda,
+                   "Largest a/Λ of an evenly spaced table (default 1.6)")
       ->check(CLI::PositiveNumber);
   dispersion->add_option("--points", disp.points, "Number of table points (default 321)")
       ->check(CLI::Range(2, 1000000));
@@ -132,16 +142,18 @@ int main(int argc, char** argv) {
 
   StudyArgs study;
   auto* study_cmd = app.add_subcommand(
-      "study", "Sweep contact methods, steppings, resolutions and penalty parameters: accuracy "
-               "against cost (pareto.csv) and stability maps (stability.csv)");
+      "study",
+      "Sweep contact methods, steppings, resolutions and penalty parameters: accuracy "
+      "against cost (pareto.csv) and stability maps (stability.csv)");
   study_cmd->add_option("scene", study.scene, "Scene JSON file (not with --run/--merge)");
   study_cmd->add_option("-o,--output", study.output,
                         "Output folder (replaced atomically); with --merge default DIR/result");
   study_cmd->add_option("--sweep", study.sweep, "pareto | stability")
       ->check(CLI::IsMember({"pareto", "stability"}));
-  study_cmd->add_option("--refine", study.refine,
-                        "Stability map: refine-1 more points between neighbours on the stiffness "
-                        "and Courant axes (2: about 4 x the points; default 1)")
+  study_cmd
+      ->add_option("--refine", study.refine,
+                   "Stability map: refine-1 more points between neighbours on the stiffness "
+                   "and Courant axes (2: about 4 x the points; default 1)")
       ->check(CLI::Range(1, 64));
   study_cmd->add_option("--plan", study.plan,
                         "Write the sweep's independent runs into DIR/plan.json instead of running "
@@ -149,7 +161,8 @@ int main(int argc, char** argv) {
   study_cmd->add_option("--run", study.run,
                         "Run shard --shard K/N of DIR's plan; writes DIR/parts/K-of-N.json "
                         "atomically (an existing part is skipped)");
-  study_cmd->add_option("--shard", study.shard, "K/N: every N-th run of the plan from K (K from 0)");
+  study_cmd->add_option("--shard", study.shard,
+                        "K/N: every N-th run of the plan from K (K from 0)");
   study_cmd->add_option("--merge", study.merge,
                         "Check DIR's parts (each run exactly once) and write the outputs of the "
                         "whole sweep into -o (default DIR/result)");
@@ -157,23 +170,28 @@ int main(int argc, char** argv) {
 
   ValidateArgs val;
   auto* validate = app.add_subcommand(
-      "validate", "Check a scene and print the resolved set-up (materials, meshes, time steps, "
-                  "Courant numbers, gauges, interfaces) without running it");
+      "validate",
+      "Check a scene and print the resolved set-up (materials, meshes, time steps, "
+      "Courant numbers, gauges, interfaces) without running it");
   validate->add_option("scene", val.scene, "Scene JSON file")->required();
   validate->add_flag("--json", val.json, "Print the resolved set-up as JSON");
   add_run_options(validate, val.overrides, contact, stepping);
 
   ReportArgs rep;
   auto* report = app.add_subcommand(
-      "report", "Turn an output folder of simulate/process/compare/study into PNG figures and one "
-                "self-contained report.html (needs python3 with matplotlib)");
-  report->add_option("folder", rep.folder, "Output folder")->required()->check(CLI::ExistingDirectory);
+      "report",
+      "Turn an output folder of simulate/process/compare/study into PNG figures and one "
+      "self-contained report.html (needs python3 with matplotlib)");
+  report->add_option("folder", rep.folder, "Output folder")
+      ->required()
+      ->check(CLI::ExistingDirectory);
 
   FitArgs fit;
   auto* fit_cmd = app.add_subcommand(
-      "fit", "Calibrate a specimen law from measured tests (a campaign file): fit the processed "
-             "curves, then the simulated gauge signals; write fit.json (a material file), "
-             "summary.json, curves.csv, signals.csv");
+      "fit",
+      "Calibrate a specimen law from measured tests (a campaign file): fit the processed "
+      "curves, then the simulated gauge signals; write fit.json (a material file), "
+      "summary.json, curves.csv, signals.csv");
   fit_cmd->add_option("campaign", fit.campaign, "Campaign JSON file (tests, material, free, ...)")
       ->required();
   fit_cmd->add_option("-o,--output", fit.output, "Output folder (replaced atomically)")->required();
@@ -181,9 +199,10 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   fit_cmd->add_option("--max-iterations", fit.max_iterations, "Solver iterations per stage")
       ->check(CLI::Range(1, 10000));
-  fit_cmd->add_option("--relative-step", fit.relative_step,
-                      "Central-difference step of the signals stage, relative to each parameter "
-                      "(default 0.05: above the simulator's noise; the curve stage uses 1e-4)")
+  fit_cmd
+      ->add_option("--relative-step", fit.relative_step,
+                   "Central-difference step of the signals stage, relative to each parameter "
+                   "(default 0.05: above the simulator's noise; the curve stage uses 1e-4)")
       ->check(CLI::Range(1e-8, 0.1));
   fit_cmd->add_flag("--quiet,-q", fit.quiet, "No progress output on stderr");
 

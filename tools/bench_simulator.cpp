@@ -2,9 +2,9 @@
 // several runs, node updates per second, node updates against the full model (causal economy),
 // and asynchronous against global stepping — at the same mesh (time ratio and incident-plateau
 // error of each) and at equal error (gauge error against the study's reference, global refined
-// until it is as accurate) — plus the raw element-update rate of elastic bars. Build: cmake --build build --target
-// bench_simulator; run: build/bench_simulator [--repeat N] [--same-mesh-only] experiments/*/scene.json
-// (tools/bench.sh does both).
+// until it is as accurate) — plus the raw element-update rate of elastic bars. Build: cmake --build
+// build --target bench_simulator; run: build/bench_simulator [--repeat N] [--same-mesh-only]
+// experiments/*/scene.json (tools/bench.sh does both).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -105,15 +105,17 @@ void equal_error(const Scene& scene, const Timing& async, const Timing& global_s
               reference->exact ? "the exact solution" : "a fine-mesh run", reference_cpu_s);
   std::printf("    asynchronous 1x mesh: error %.3g in %.3g s CPU; global: %s\n", async_error,
               async.cpu_s, runs.c_str());
-  const std::optional<double> cost =
-      errors.front() <= async_error ? std::optional<double>(costs.front())
-                                    : cost_at_error(errors, costs, async_error);
+  const std::optional<double> cost = errors.front() <= async_error
+                                         ? std::optional<double>(costs.front())
+                                         : cost_at_error(errors, costs, async_error);
   if (cost)
     std::printf("    global at the asynchronous error: %.3g s CPU: asynchronous is x%.0f faster\n",
                 *cost, *cost / async.cpu_s);
   else
-    std::printf("    global did not reach the asynchronous error by 8x mesh: asynchronous is more "
-                "than x%.0f faster\n", costs.back() / async.cpu_s);
+    std::printf(
+        "    global did not reach the asynchronous error by 8x mesh: asynchronous is more "
+        "than x%.0f faster\n",
+        costs.back() / async.cpu_s);
 }
 
 }  // namespace
@@ -124,9 +126,12 @@ int main(int argc, char** argv) {
   std::vector<std::string> scenes;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--repeat" && i + 1 < argc) repeat = std::max(1, std::atoi(argv[++i]));
-    else if (a == "--same-mesh-only") equal_error_comparison = false;
-    else scenes.push_back(a);
+    if (a == "--repeat" && i + 1 < argc)
+      repeat = std::max(1, std::atoi(argv[++i]));
+    else if (a == "--same-mesh-only")
+      equal_error_comparison = false;
+    else
+      scenes.push_back(a);
   }
   SimulationOptions economy;
   economy.record_field = false;
@@ -143,8 +148,10 @@ int main(int argc, char** argv) {
     }
     if (std::none_of(scene.bars.begin(), scene.bars.end(),
                      [](const BarSpec& bar) { return bar.velocity_m_s != 0; })) {
-      std::printf("%s: skipped (no bar moves: the scene gives no striker velocity; shpb compare "
-                  "infers one from the measurement)\n", file.c_str());
+      std::printf(
+          "%s: skipped (no bar moves: the scene gives no striker velocity; shpb compare "
+          "infers one from the measurement)\n",
+          file.c_str());
       continue;
     }
     scene.simulation.stepping = Stepping::kAsynchronous;
@@ -154,10 +161,11 @@ int main(int argc, char** argv) {
     const Timing g = run(scene, economy, std::max(1, repeat / 2));
     scene.simulation.stepping = Stepping::kAsynchronous;
     std::printf("%s (%s)\n", file.c_str(), scene.name.c_str());
-    std::printf("  asynchronous: %.2f ms wall, %.2f ms CPU (medians of %d), %lld node updates "
-                "(%.3g/s of CPU), energy error %.2g%s\n",
-                a.wall_s * 1e3, a.cpu_s * 1e3, repeat, a.last.node_updates,
-                a.last.node_updates / a.cpu_s, a.last.energy_error, a.last.stable ? "" : " UNSTABLE");
+    std::printf(
+        "  asynchronous: %.2f ms wall, %.2f ms CPU (medians of %d), %lld node updates "
+        "(%.3g/s of CPU), energy error %.2g%s\n",
+        a.wall_s * 1e3, a.cpu_s * 1e3, repeat, a.last.node_updates, a.last.node_updates / a.cpu_s,
+        a.last.energy_error, a.last.stable ? "" : " UNSTABLE");
     {
       // Finite localized links at the default ε_s and R (contact_localized_finite.cpp) against
       // the scene as given (the rigid-link limit unless it sets penalty values), asynchronous.
@@ -167,24 +175,28 @@ int main(int argc, char** argv) {
       finite.contact.penalty.stiffness_factor = kDefaultStiffnessFactor;
       finite.contact.penalty.mass_ratio = kDefaultMassRatio;
       const Timing f = run(finite, economy, repeat);
-      std::printf("  finite localized links (eps_s = %g EA/h, R = %g R_crit), asynchronous: %.2f ms "
-                  "wall, %.2f ms CPU, x%.2f the scene's contact in CPU time, energy error %.2g%s\n",
-                  kDefaultStiffnessFactor, kDefaultMassRatio, f.wall_s * 1e3, f.cpu_s * 1e3,
-                  f.cpu_s / a.cpu_s, f.last.energy_error, f.last.stable ? "" : " UNSTABLE");
+      std::printf(
+          "  finite localized links (eps_s = %g EA/h, R = %g R_crit), asynchronous: %.2f ms "
+          "wall, %.2f ms CPU, x%.2f the scene's contact in CPU time, energy error %.2g%s\n",
+          kDefaultStiffnessFactor, kDefaultMassRatio, f.wall_s * 1e3, f.cpu_s * 1e3,
+          f.cpu_s / a.cpu_s, f.last.energy_error, f.last.stable ? "" : " UNSTABLE");
     }
-    std::printf("  causal economy: %lld of %lld node updates of the full model (saves %.1f %%); "
-                "full model %.2f ms\n",
-                a.last.node_updates, af.last.node_updates,
-                100.0 * (1.0 - double(a.last.node_updates) / double(af.last.node_updates)),
-                af.wall_s * 1e3);
-    std::printf("  global: %.2f ms wall, %.2f ms CPU, %lld node updates; global/asynchronous: "
-                "CPU time x%.1f, updates x%.1f\n",
-                g.wall_s * 1e3, g.cpu_s * 1e3, g.last.node_updates, g.cpu_s / a.cpu_s,
-                double(g.last.node_updates) / double(a.last.node_updates));
+    std::printf(
+        "  causal economy: %lld of %lld node updates of the full model (saves %.1f %%); "
+        "full model %.2f ms\n",
+        a.last.node_updates, af.last.node_updates,
+        100.0 * (1.0 - double(a.last.node_updates) / double(af.last.node_updates)),
+        af.wall_s * 1e3);
+    std::printf(
+        "  global: %.2f ms wall, %.2f ms CPU, %lld node updates; global/asynchronous: "
+        "CPU time x%.1f, updates x%.1f\n",
+        g.wall_s * 1e3, g.cpu_s * 1e3, g.last.node_updates, g.cpu_s / a.cpu_s,
+        double(g.last.node_updates) / double(a.last.node_updates));
     const double plateau_async = incident_error(scene, a.last);
     if (std::isnan(plateau_async))
-      std::printf("  incident plateau error against V/(2c0): not applicable (striker and incident "
-                  "bar differ in impedance or something stands between them)\n");
+      std::printf(
+          "  incident plateau error against V/(2c0): not applicable (striker and incident "
+          "bar differ in impedance or something stands between them)\n");
     else
       std::printf("  incident plateau error against V/(2c0): asynchronous %.2e, global %.2e\n",
                   plateau_async, incident_error(scene, g.last));
@@ -211,8 +223,9 @@ int main(int argc, char** argv) {
   bars.bars = {s, b};
   bars.simulation.duration_s = 800e-6;
   const Timing e = run(bars, full, repeat);
-  std::printf("elastic bars (0.3 m striker on 2 m bar, 1 mm elements, 800 us, full model): "
-              "%.2f ms wall, %.2f ms CPU, %.3g element updates/s of CPU\n",
-              e.wall_s * 1e3, e.cpu_s * 1e3, e.last.node_updates / e.cpu_s);
+  std::printf(
+      "elastic bars (0.3 m striker on 2 m bar, 1 mm elements, 800 us, full model): "
+      "%.2f ms wall, %.2f ms CPU, %.3g element updates/s of CPU\n",
+      e.wall_s * 1e3, e.cpu_s * 1e3, e.last.node_updates / e.cpu_s);
   return 0;
 }

@@ -17,8 +17,8 @@ struct PulseComparison {
   double plateau_ratio = 1;    // plateau level (pulse_window.hpp plateau_level): robust peak
   double duration_ratio = 1;   // full width at half of the peak
   double rise_time_measured_s = 0, rise_time_simulated_s = 0;  // 10 % → 90 % of the peak
-  double nrmse = 0;            // RMS(sim − meas) / max |meas|
-  double correlation = 1;      // Pearson coefficient in the window
+  double nrmse = 0;                                            // RMS(sim − meas) / max |meas|
+  double correlation = 1;                                      // Pearson coefficient in the window
 };
 
 // Compares simulated with measured over samples [begin, end) of a grid of step dt_s. The

@@ -1,9 +1,8 @@
 #include "analysis/pulse_overlay.hpp"
 
-#include <cstdio>
-
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "core/error.hpp"
 #include "core/interpolation.hpp"
@@ -65,11 +64,11 @@ MeasuredPulses find_measured_pulses(const Scene& scene, const GaugeSignals& sign
 std::size_t last_compared_sample(const MeasuredPulses& m) {
   const std::size_t n = m.time_s.size();
   std::size_t last = m.incident_window.end;
-  for (const auto& w : {std::optional<PulseWindow>(m.incident_window), m.reflected_window,
-                        m.transmitted_window})
+  for (const auto& w :
+       {std::optional<PulseWindow>(m.incident_window), m.reflected_window, m.transmitted_window})
     if (w)
-      last = std::max(
-          last, widen(w->end, static_cast<double>(w->end - w->onset) * kWindowMargin, false, n - 1));
+      last = std::max(last, widen(w->end, static_cast<double>(w->end - w->onset) * kWindowMargin,
+                                  false, n - 1));
   return last;
 }
 

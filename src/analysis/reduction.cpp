@@ -39,7 +39,8 @@ Curve reduce_pulses(std::span<const double> ei, std::span<const double> er,
   const double floor = std::max(kEquilibriumFloor * peak_sum, 1e-300);
   for (std::size_t i = 0; i < n; ++i) {
     const double e = c.strain[i];
-    // Constant volume, compression positive (docs/methods.md §6); defined while the specimen has length.
+    // Constant volume, compression positive (docs/methods.md §6); defined while the specimen has
+    // length.
     c.true_strain[i] = e < 1 ? -std::log1p(-e) : -std::log(1e-12);
     c.true_stress_Pa[i] = c.stress_3wave_Pa[i] * (1 - e);
     const double sum = std::abs(c.force_front_N[i] + c.force_back_N[i]);

@@ -12,7 +12,8 @@
 
 namespace shpb {
 
-// Options shared by simulate, compare and study (docs/commands.md); unset means "as the scene says".
+// Options shared by simulate, compare and study (docs/commands.md); unset means "as the scene
+// says".
 struct RunOverrides {
   std::optional<ContactMethod> contact;
   std::optional<Stepping> stepping;
@@ -109,8 +110,8 @@ int run_report(const ReportArgs& args);
 struct FitArgs {
   std::filesystem::path campaign;
   std::filesystem::path output;
-  int threads = 0;              // simulations of one Jacobian in parallel; 0: all cores
-  int max_iterations = 40;      // per stage
+  int threads = 0;          // simulations of one Jacobian in parallel; 0: all cores
+  int max_iterations = 40;  // per stage
   // Central-difference step of the signals stage, relative to each parameter: well above the
   // simulator's sensitivity noise (docs/methods.md §9; README (shpb fit) gives the measurement).
   double relative_step = 0.05;

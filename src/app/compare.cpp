@@ -2,7 +2,8 @@
 // pulse by pulse. Steps:
 //  1. read the measured gauges; find the incident, reflected and transmitted pulses in them;
 //  2. striker velocity: --striker-velocity, else measurement.striker_velocity, else inferred from
-//     the measured incident plateau, v_bar = c0 ε_I and V = v_bar (Z_s + Z_b)/Z_s (docs/methods.md §4);
+//     the measured incident plateau, v_bar = c0 ε_I and V = v_bar (Z_s + Z_b)/Z_s (docs/methods.md
+//     §4);
 //  3. simulate; put the simulation (t = 0 at impact) on the measurement's clock by matching the
 //     half-plateau crossings of the incident pulses;
 //  4. a 1D bar does not disperse and a real one does: each simulated pulse is moved through the
@@ -118,8 +119,9 @@ int run_compare(const CompareArgs& args) {
         (velocity > 0 ? scene.bars[striker].gap_m / velocity : 0.0) +
         travel_time_s(scene, incident_bar, 0, incident_bar,
                       scene.bars[incident_bar].length_m - setup.incident_distance_m);
-    const double needed = (arrival + measured.time_s[last] - measured.time_s[found.incident_window.onset]) *
-                          (1 + kDurationMargin);
+    const double needed =
+        (arrival + measured.time_s[last] - measured.time_s[found.incident_window.onset]) *
+        (1 + kDurationMargin);
     if (needed > default_duration_s(scene))
       scene.simulation.duration_s = extended_duration = needed;
   }
@@ -150,8 +152,7 @@ int run_compare(const CompareArgs& args) {
   std::vector<PulseComparison> results;
   for (const OverlaidPulse& p : pulses) {
     const bool tr = p.transmitted;
-    PulseComparison c =
-        compare_pulse(tr ? m_tr : m_inc, tr ? sim_tr : sim_inc, dt, p.begin, p.end);
+    PulseComparison c = compare_pulse(tr ? m_tr : m_inc, tr ? sim_tr : sim_inc, dt, p.begin, p.end);
     c.gauge = p.gauge, c.pulse = p.name;
     c.window_start_s += t_meas0, c.window_end_s += t_meas0;
     results.push_back(c);
@@ -159,13 +160,14 @@ int run_compare(const CompareArgs& args) {
 
   {
     std::ostringstream csv;
-    csv << "gauge,pulse,window_start_s,window_end_s,arrival_shift_s,peak_ratio,plateau_ratio,duration_ratio,"
+    csv << "gauge,pulse,window_start_s,window_end_s,arrival_shift_s,peak_ratio,plateau_ratio,"
+           "duration_ratio,"
            "rise_time_measured_s,rise_time_simulated_s,nrmse,correlation\n";
     for (const auto& c : results)
       csv << c.gauge << ',' << c.pulse << ',' << format_double(c.window_start_s) << ','
           << format_double(c.window_end_s) << ',' << format_double(c.arrival_shift_s) << ','
-          << format_double(c.peak_ratio) << ',' << format_double(c.plateau_ratio) << ',' << format_double(c.duration_ratio) << ','
-          << format_double(c.rise_time_measured_s) << ','
+          << format_double(c.peak_ratio) << ',' << format_double(c.plateau_ratio) << ','
+          << format_double(c.duration_ratio) << ',' << format_double(c.rise_time_measured_s) << ','
           << format_double(c.rise_time_simulated_s) << ',' << format_double(c.nrmse) << ','
           << format_double(c.correlation) << '\n';
     write_text_file(out.file("comparison.csv"), csv.str());
@@ -177,8 +179,7 @@ int run_compare(const CompareArgs& args) {
                  g[0] + "_simulated_raw_strain", g[1] + "_measured_strain",
                  g[1] + "_simulated_strain", g[1] + "_simulated_raw_strain"});
     for (std::size_t k = 0; k < n && measured.time_s[k] - offset <= t_sim_end; ++k)
-      w.row({measured.time_s[k], m_inc[k], sim_inc[k], raw_inc[k], m_tr[k], sim_tr[k],
-             raw_tr[k]});
+      w.row({measured.time_s[k], m_inc[k], sim_inc[k], raw_inc[k], m_tr[k], sim_tr[k], raw_tr[k]});
     w.close();
   }
   nlohmann::json s;
@@ -193,8 +194,9 @@ int run_compare(const CompareArgs& args) {
                                "dispersion of the distance it travelled from the impact face"
                              : "none (1D signals as simulated)";
   s["clock_offset_s"] = offset;
-  s["clock"] = "measured; simulation placed so that both incident pulses reach half their "
-               "plateau at the same time";
+  s["clock"] =
+      "measured; simulation placed so that both incident pulses reach half their "
+      "plateau at the same time";
   s["pulses"] = nlohmann::json::array();
   for (std::size_t i = 0; i < results.size(); ++i) {
     const auto& c = results[i];
@@ -208,13 +210,12 @@ int run_compare(const CompareArgs& args) {
                            {"nrmse", c.nrmse},
                            {"correlation", c.correlation}});
   }
-  s["simulation"] = {{"stable", sim.stable},
-                     {"wall_time_s", sim.wall_time_s},
-                     {"energy_error", sim.energy_error}};
+  s["simulation"] = {
+      {"stable", sim.stable}, {"wall_time_s", sim.wall_time_s}, {"energy_error", sim.energy_error}};
   s["simulation"]["duration_s"] = t_sim_end - t_sim0;
-  s["simulation"]["duration_source"] =
-      extended_duration ? "extended to cover the measured pulses"
-                        : (scene.simulation.duration_s ? "scene" : "default");
+  s["simulation"]["duration_source"] = extended_duration
+                                           ? "extended to cover the measured pulses"
+                                           : (scene.simulation.duration_s ? "scene" : "default");
   warnings.insert(warnings.end(), sim.warnings.begin(), sim.warnings.end());
   s["warnings"] = warnings;
   s["version"] = kVersion;
@@ -232,11 +233,12 @@ int run_compare(const CompareArgs& args) {
     std::fprintf(stderr, "striker %.4g m/s (%s); dispersion %s\n", velocity,
                  velocity_source.c_str(), args.dispersion ? "applied" : "off");
     for (const auto& c : results)
-      std::fprintf(stderr,
-                   "%-12s %-12s shift %+7.2f us  peak ratio %.3f  plateau ratio %.3f  duration ratio %.3f  "
-                   "NRMSE %.3f  r %.3f\n",
-                   c.gauge.c_str(), c.pulse.c_str(), c.arrival_shift_s * 1e6, c.peak_ratio, c.plateau_ratio,
-                   c.duration_ratio, c.nrmse, c.correlation);
+      std::fprintf(
+          stderr,
+          "%-12s %-12s shift %+7.2f us  peak ratio %.3f  plateau ratio %.3f  duration ratio %.3f  "
+          "NRMSE %.3f  r %.3f\n",
+          c.gauge.c_str(), c.pulse.c_str(), c.arrival_shift_s * 1e6, c.peak_ratio, c.plateau_ratio,
+          c.duration_ratio, c.nrmse, c.correlation);
     std::fprintf(stderr, "wrote %s\n", out.final_path().string().c_str());
   }
   return 0;

@@ -362,9 +362,9 @@ int run_fit(const FitArgs& args) {
   std::string stage_names;
   for (const auto& s : stages)
     stage_names += (stage_names.empty() ? "" : " then ") + to_string(s.stage);
-  material["source"] = "shpb " + std::string(kVersion) + " fit of campaign " +
-                       campaign.display + " (tests: " + tests + "; stages: " + stage_names +
-                       "), started from " + spec.material_display +
+  material["source"] = "shpb " + std::string(kVersion) + " fit of campaign " + campaign.display +
+                       " (tests: " + tests + "; stages: " + stage_names + "), started from " +
+                       spec.material_display +
                        (spec.material.source.empty() ? "" : " (" + spec.material.source + ")");
   if (material.contains("name"))
     material["name"] = material["name"].get<std::string>() + " (fitted)";

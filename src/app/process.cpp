@@ -1,6 +1,6 @@
-// `shpb process SCENE -o DIR [--signals FILE]` (docs/commands.md, docs/outputs.md): gauge signals → pulses at the
-// specimen faces → 1/2/3-wave stress–strain curves. Everything is read and checked before the
-// output folder is created.
+// `shpb process SCENE -o DIR [--signals FILE]` (docs/commands.md, docs/outputs.md): gauge signals →
+// pulses at the specimen faces → 1/2/3-wave stress–strain curves. Everything is read and checked
+// before the output folder is created.
 #include <malloc.h>
 
 #include <algorithm>
@@ -253,11 +253,13 @@ int run_process(const ProcessArgs& args) {
   s["warnings"] = warnings;
   s["test"] = options.tension ? "tension" : "compression";
   s["conventions"] =
-      std::string("pulses.csv: strains at the specimen faces, tension positive, on the signals' "
-                  "clock; curve.csv: ") +
+      std::string(
+          "pulses.csv: strains at the specimen faces, tension positive, on the signals' "
+          "clock; curve.csv: ") +
       (options.tension ? "tension positive (true strain ln(1+e), true stress s(1+e))"
                        : "compression positive") +
-      ", strain and strain rate from the 3-wave reduction, true values from the 3-wave stress (after "
+      ", strain and strain rate from the 3-wave reduction, true values from the 3-wave stress "
+      "(after "
       "the corrections listed under corrections)";
   nlohmann::json disp = {
       {"correction", options.dispersion.correction ? "pochhammer-chree" : "none"},

@@ -1,6 +1,6 @@
 // `shpb report DIR`: figures and a one-page HTML report of an output folder. The plotting lives in
-// tools/report.py (matplotlib, README.md (Layout)); this file finds the script and a Python that can
-// import matplotlib and numpy, and runs it.
+// tools/report.py (matplotlib, README.md (Layout)); this file finds the script and a Python that
+// can import matplotlib and numpy, and runs it.
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>

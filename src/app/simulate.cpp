@@ -40,7 +40,8 @@ int run_simulate(const SimulateArgs& args) {
     return 3;
   }
   if (!args.overrides.quiet)
-    std::fprintf(stderr, "simulated %s in %.3g s (%lld node updates, energy error %.3g); wrote %s\n",
+    std::fprintf(stderr,
+                 "simulated %s in %.3g s (%lld node updates, energy error %.3g); wrote %s\n",
                  scene.name.c_str(), result.wall_time_s, result.node_updates, result.energy_error,
                  out.final_path().string().c_str());
   return 0;

@@ -17,8 +17,8 @@ namespace {
 
 using nlohmann::json;
 
-// Distance along the axis from a gauge to the specimen face on its side (docs/scene-format.md: bars left
-// of the specimen are the incident side, right of it the transmitted side). Gaps are included.
+// Distance along the axis from a gauge to the specimen face on its side (docs/scene-format.md: bars
+// left of the specimen are the incident side, right of it the transmitted side). Gaps are included.
 std::optional<double> distance_to_specimen(const Scene& scene, std::size_t bar, double position) {
   if (!scene.specimen || bar == *scene.specimen) return std::nullopt;
   const std::size_t s = *scene.specimen;

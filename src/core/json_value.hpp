@@ -1,7 +1,7 @@
 #pragma once
 // A JSON value together with where it came from (file and JSON path such as `bars[2].length`), so
-// that every check can report "<file>: <path>: <value>: <constraint>" (docs/commands.md). Objects are
-// opened with the list of keys they allow: an unknown key is an error at once, with a "did you
+// that every check can report "<file>: <path>: <value>: <constraint>" (docs/commands.md). Objects
+// are opened with the list of keys they allow: an unknown key is an error at once, with a "did you
 // mean" when it is close to an allowed one.
 #include <cstdint>
 #include <initializer_list>

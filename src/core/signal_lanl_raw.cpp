@@ -1,5 +1,8 @@
 // LANL `.raw` (HopPyBar "LANLstandard"): tab separated; columns 1–2 a key/value metadata block,
 // each further column a signal: its name, start time, sample interval, then the samples.
+#include <cmath>
+#include <limits>
+
 #include "core/error.hpp"
 #include "core/signal_formats.hpp"
 
@@ -43,6 +46,13 @@ RawSignalColumns read_lanl_raw_columns(const DelimitedText& text, const SignalRe
   if (!(dt > 0))
     throw input_error(text.file.string(), text_place(rows[2].line, c0), std::to_string(dt),
                       "sample interval must be > 0");
+  // The time base start + k·dt must increase at every sample: an interval below the start's
+  // floating-point resolution (|start|·2^-52 per sample) would repeat time stamps.
+  const double last = start + static_cast<double>(rows.size()) * dt;
+  if (!std::isfinite(last) || dt <= 4 * std::numeric_limits<double>::epsilon() * std::abs(last))
+    throw input_error(text.file.string(), text_place(rows[2].line, c0), std::to_string(dt),
+                      "sample interval too small for the start time " + std::to_string(start) +
+                          " s: the time stamps would not increase");
   for (std::size_t idx : indices) {
     if (number_at(text, rows[1], idx, rows[0].fields[idx]) != start ||
         number_at(text, rows[2], idx, rows[0].fields[idx]) != dt)

@@ -8,21 +8,21 @@ namespace shpb {
 
 enum class Dimension {
   kDimensionless,
-  kLength,         // m
-  kArea,           // m^2
-  kTime,           // s
-  kFrequency,      // Hz = 1/s
-  kMass,           // kg
-  kDensity,        // kg/m^3
-  kPressure,       // Pa
-  kVelocity,       // m/s
-  kForce,          // N
-  kEnergy,         // J
-  kVoltage,        // V
-  kTemperature,    // K (°C accepted and converted)
-  kSpecificHeat,   // J/(kg K)
-  kStrainRate,     // 1/s
-  kStiffness,      // N/m
+  kLength,        // m
+  kArea,          // m^2
+  kTime,          // s
+  kFrequency,     // Hz = 1/s
+  kMass,          // kg
+  kDensity,       // kg/m^3
+  kPressure,      // Pa
+  kVelocity,      // m/s
+  kForce,         // N
+  kEnergy,        // J
+  kVoltage,       // V
+  kTemperature,   // K (°C accepted and converted)
+  kSpecificHeat,  // J/(kg K)
+  kStrainRate,    // 1/s
+  kStiffness,     // N/m
 };
 
 std::string_view to_string(Dimension d);

@@ -1,6 +1,6 @@
 #pragma once
-// First longitudinal Pochhammer–Chree mode of a solid circular bar (Bancroft 1941; docs/methods.md §5).
-// Everything is dimensionless: radius a = 1, bar speed c0 = sqrt(E/ρ) = 1, so the mode is a
+// First longitudinal Pochhammer–Chree mode of a solid circular bar (Bancroft 1941; docs/methods.md
+// §5). Everything is dimensionless: radius a = 1, bar speed c0 = sqrt(E/ρ) = 1, so the mode is a
 // function of the Poisson ratio ν and x = a/Λ only; c/c0 and f·a/c0 = x·c/c0 follow.
 
 namespace shpb {

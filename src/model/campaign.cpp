@@ -10,7 +10,7 @@ namespace shpb {
 namespace fs = std::filesystem;
 
 const std::vector<std::string>& campaign_keys() {
-  static const std::vector<std::string> keys = {"name", "notes",    "tests", "material",
+  static const std::vector<std::string> keys = {"name", "notes",    "tests",  "material",
                                                 "free", "nuisance", "stages", "loss"};
   return keys;
 }

@@ -1,7 +1,7 @@
 #pragma once
-// How a scene is cut into elements and time steps (docs/methods.md §1, §7): every bar runs with its own
-// time step at a Courant number close to 1; the specimen is meshed finely enough for its transit.
-// `shpb validate` prints exactly what `shpb simulate` will use: both call discretize().
+// How a scene is cut into elements and time steps (docs/methods.md §1, §7): every bar runs with its
+// own time step at a Courant number close to 1; the specimen is meshed finely enough for its
+// transit. `shpb validate` prints exactly what `shpb simulate` will use: both call discretize().
 #include <vector>
 
 #include "model/scene.hpp"
@@ -45,7 +45,7 @@ struct BarDiscretization {
 
 struct ChainDiscretization {
   std::vector<BarDiscretization> bars;  // in chain order
-  double duration_s = 0;                // resolved (scene's, or the default of docs/scene-format.md)
+  double duration_s = 0;  // resolved (scene's, or the default of docs/scene-format.md)
   double sample_rate_Hz = 0;
   Stepping stepping = Stepping::kAsynchronous;
   double memory_estimate_bytes = 0;  // peak memory of the run, outputs included (estimate)

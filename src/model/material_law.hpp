@@ -14,13 +14,13 @@ namespace shpb {
 // engineering.
 struct MaterialPointState {
   static constexpr int kMaxArms = 8;
-  double strain = 0;          // ε at the last update
-  double stress_Pa = 0;       // σ at the last update
-  double plastic_strain = 0;  // equivalent (accumulated) plastic strain
-  double back_strain = 0;     // signed plastic strain ε_p (for return mapping)
-  double temperature_K = 0;   // current temperature (adiabatic heating)
-  double dissipated_J_m3 = 0; // plastic + viscous work per unit volume, cumulative
-  double heat_J_m3 = 0;       // part of it turned into heat (β × plastic work)
+  double strain = 0;           // ε at the last update
+  double stress_Pa = 0;        // σ at the last update
+  double plastic_strain = 0;   // equivalent (accumulated) plastic strain
+  double back_strain = 0;      // signed plastic strain ε_p (for return mapping)
+  double temperature_K = 0;    // current temperature (adiabatic heating)
+  double dissipated_J_m3 = 0;  // plastic + viscous work per unit volume, cumulative
+  double heat_J_m3 = 0;        // part of it turned into heat (β × plastic work)
   // ENERGY CONTRACT (for the solver, "sim"): every law books, step by step,
   //   ½(σ_n + σ_{n+1})(ε_{n+1} − ε_n) = Δ stored_energy_J_m3(state) + Δ dissipated_J_m3
   // exactly (to round-off). So a bar's strain_J = Σ stored_energy_J_m3 × element volume and its

@@ -1,7 +1,7 @@
 #pragma once
-// Reads one material (docs/scene-format.md `materials`, a specimens/*.json file, or an inline object) into
-// a MaterialSpec and validates what a law needs to be well posed: positive density and moduli,
-// ν in (−1, 0.5), Johnson–Cook A, B ≥ 0, n in [0, 1], m > 0, T_melt > T_room, c_p > 0, β in
+// Reads one material (docs/scene-format.md `materials`, a specimens/*.json file, or an inline
+// object) into a MaterialSpec and validates what a law needs to be well posed: positive density and
+// moduli, ν in (−1, 0.5), Johnson–Cook A, B ≥ 0, n in [0, 1], m > 0, T_melt > T_room, c_p > 0, β in
 // [0, 1]; bilinear σ_y > 0, 0 ≤ E_t < E; viscoelastic τ_k > 0, at most kMaxArms arms.
 #include <filesystem>
 #include <string>

@@ -1,7 +1,7 @@
 #pragma once
-// Reads the `measurement` block of a scene (docs/scene-format.md): where measured gauge signals are and how
-// to turn them into strain. Files are resolved relative to the scene but not opened here, so a
-// scene whose data live elsewhere still validates; the signal importers check them when used.
+// Reads the `measurement` block of a scene (docs/scene-format.md): where measured gauge signals are
+// and how to turn them into strain. Files are resolved relative to the scene but not opened here,
+// so a scene whose data live elsewhere still validates; the signal importers check them when used.
 #include <filesystem>
 #include <string>
 #include <vector>

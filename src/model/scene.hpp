@@ -1,6 +1,6 @@
 #pragma once
-// The scene: one JSON file describing a bar set-up (docs/scene-format.md), read into plain structs with
-// defaults. Validation happens once, in read_scene(); nothing downstream re-checks.
+// The scene: one JSON file describing a bar set-up (docs/scene-format.md), read into plain structs
+// with defaults. Validation happens once, in read_scene(); nothing downstream re-checks.
 #include <cmath>
 #include <filesystem>
 #include <optional>
@@ -25,13 +25,13 @@ struct BarSpec {
   std::string name;
   MaterialSpec material;
   double length_m = 0;
-  double area_m2 = 0;         // from `area`, or π d²/4 from `diameter`
-  double diameter_m = 0;      // given, or the equivalent circular diameter of `area`
-  double velocity_m_s = 0;    // initial rigid velocity, + to the right
-  int elements = 0;           // 0: chosen automatically (see model/mesh.hpp)
-  double gap_m = 0;           // initial gap to the next bar on the right
+  double area_m2 = 0;       // from `area`, or π d²/4 from `diameter`
+  double diameter_m = 0;    // given, or the equivalent circular diameter of `area`
+  double velocity_m_s = 0;  // initial rigid velocity, + to the right
+  int elements = 0;         // 0: chosen automatically (see model/mesh.hpp)
+  double gap_m = 0;         // initial gap to the next bar on the right
   std::vector<GaugeSpec> gauges;
-  bool inertia = false;  // radial inertia of a flowing specimen (material-law bars only)
+  bool inertia = false;      // radial inertia of a flowing specimen (material-law bars only)
   bool has_material = true;  // false: the specimen of a scene only processed (no `material`)
 
   double impedance_kg_s() const {
@@ -47,7 +47,7 @@ inline constexpr EnumName<ContactMethod> kContactMethodNames[] = {
     {"localized-bipenalty", ContactMethod::kLocalizedBipenalty},
     {"bonded", ContactMethod::kBonded}};
 inline constexpr EnumName<Stepping> kSteppingNames[] = {{"asynchronous", Stepping::kAsynchronous},
-                                                         {"global", Stepping::kGlobal}};
+                                                        {"global", Stepping::kGlobal}};
 
 // Penalty parameters of one interface. Unset values are derived from the neighbouring elements
 // (docs/methods.md §2): ε_s as a multiple of the stiffer neighbour's EA/h, R as a fraction of
@@ -60,7 +60,7 @@ struct PenaltyParams {
   // Models an imperfect impact face (flatness, tilt) that makes a measured front rise slower than
   // Pochhammer–Chree dispersion alone. At most one of stiffness_factor, stiffness, rise_time.
   std::optional<double> rise_time_s;
-  std::optional<double> mass_ratio;        // R / R_crit (bipenalty methods)
+  std::optional<double> mass_ratio;  // R / R_crit (bipenalty methods)
   // Set in code only (study stability probes, never read from JSON): plain and node-to-node
   // bipenalty links act in tension too, so the contact never opens and its linear stability
   // limit can be measured.
@@ -118,8 +118,8 @@ struct BridgeSpec {
 };
 
 struct ChannelSpec {
-  std::string gauge;                 // gauge name in the scene; two channels of one gauge are averaged
-  std::filesystem::path file;        // empty: the measurement's file
+  std::string gauge;           // gauge name in the scene; two channels of one gauge are averaged
+  std::filesystem::path file;  // empty: the measurement's file
   ColumnRef column;
   SignalUnit unit = SignalUnit::kStrain;
   std::optional<BridgeSpec> bridge;  // required for volts, or
@@ -128,10 +128,10 @@ struct ChannelSpec {
 };
 
 struct DispersionSpec {
-  bool correction = true;                 // "pochhammer-chree" | "none"
-  bool amplitude_factors = false;         // Tyas–Pope m1, m2
-  std::optional<double> cutoff_Hz;        // default: f·a/c0 = 0.2619 (d/Λ = 0.6), smooth roll-off
-  std::optional<double> cutoff_fa_c0;     // or the cut-off as f·a/c0 (dimensionless)
+  bool correction = true;              // "pochhammer-chree" | "none"
+  bool amplitude_factors = false;      // Tyas–Pope m1, m2
+  std::optional<double> cutoff_Hz;     // default: f·a/c0 = 0.2619 (d/Λ = 0.6), smooth roll-off
+  std::optional<double> cutoff_fa_c0;  // or the cut-off as f·a/c0 (dimensionless)
 };
 
 struct TimeWindow {
@@ -151,23 +151,24 @@ struct CorrectionsSpec {
 struct MeasurementSpec {
   std::filesystem::path file;  // resolved relative to the scene
   SignalFormat format = SignalFormat::kAuto;
-  ColumnRef time_column;       // empty name and index: the format's own time base
-  double time_unit_s = 1.0;    // seconds per unit of the time column
+  ColumnRef time_column;     // empty name and index: the format's own time base
+  double time_unit_s = 1.0;  // seconds per unit of the time column
   std::vector<ChannelSpec> channels;
   DispersionSpec dispersion;
   PulseWindows windows;
   std::optional<double> striker_velocity_m_s;  // if known; else inferred
   CorrectionsSpec corrections;
-  std::string time_unit = "s";                 // as written (named in errors)
-  std::optional<double> load_drop;  // curve end at this stress drop (fraction); 0: off; unset: default
-  std::string sheet;                // .xlsx/.xls files: the sheet by name (empty: the first)
-  bool tension = false;             // "test": "tension" (split Hopkinson tension bar)
+  std::string time_unit = "s";  // as written (named in errors)
+  std::optional<double>
+      load_drop;         // curve end at this stress drop (fraction); 0: off; unset: default
+  std::string sheet;     // .xlsx/.xls files: the sheet by name (empty: the first)
+  bool tension = false;  // "test": "tension" (split Hopkinson tension bar)
 };
 
 struct Scene {
   std::string name;
-  std::filesystem::path file;  // where it was read from (for messages and relative paths)
-  std::vector<BarSpec> bars;   // left to right
+  std::filesystem::path file;           // where it was read from (for messages and relative paths)
+  std::vector<BarSpec> bars;            // left to right
   std::optional<std::size_t> specimen;  // index into bars
   ContactSpec contact;
   SimulationSpec simulation;

@@ -1,8 +1,8 @@
 #pragma once
 // Plausibility checks of a valid scene: things that can be simulated but probably are not what
-// the user wants, found from 1D wave travel times (docs/methods.md §4): pulses overlapping at a gauge,
-// a duration that ends before the pulses have passed the gauges, nothing moving, measured files
-// that are not there. `shpb validate` prints them as warnings; they never stop a run.
+// the user wants, found from 1D wave travel times (docs/methods.md §4): pulses overlapping at a
+// gauge, a duration that ends before the pulses have passed the gauges, nothing moving, measured
+// files that are not there. `shpb validate` prints them as warnings; they never stop a run.
 #include <string>
 #include <vector>
 

@@ -1,5 +1,5 @@
-// The scene reader (docs/scene-format.md): JSON → Scene, every check at this boundary, each error naming
-// the file, the JSON path, the value and the constraint (docs/commands.md).
+// The scene reader (docs/scene-format.md): JSON → Scene, every check at this boundary, each error
+// naming the file, the JSON path, the value and the constraint (docs/commands.md).
 #include <map>
 
 #include "core/closest_match.hpp"
@@ -49,8 +49,9 @@ class SceneReader {
     for (std::size_t i = 0; i < scene.bars.size(); ++i)
       if (!scene.bars[i].has_material && scene.specimen != i)
         throw JsonObject(items[i]).require(
-            "material", "a name from materials, a file or an object (only the specimen may go "
-                        "without one, for `process`)");
+            "material",
+            "a name from materials, a file or an object (only the specimen may go "
+            "without one, for `process`)");
     // Radial inertia is the closed form of a Kolsky specimen (model/specimen_response.hpp).
     for (std::size_t i = 0; i < scene.bars.size(); ++i)
       if (scene.bars[i].inertia && scene.specimen != i)
@@ -118,7 +119,8 @@ class SceneReader {
                              "elements", "gap", "gauges", "notes", "inertia"});
     BarSpec b;
     b.name = o.require("name", "a unique name such as \"incident\"").name();
-    // `process` needs no specimen material (geometry is enough): checked once the specimen is known.
+    // `process` needs no specimen material (geometry is enough): checked once the specimen is
+    // known.
     if (auto m = o.get("material"))
       b.material = material(*m);
     else
@@ -183,14 +185,15 @@ class SceneReader {
         if (!g.distance_to_specimen_m) continue;
         if (!scene.specimen || *scene.specimen == i) {
           const auto gauge = JsonObject(items[i]).get("gauges")->array()[k];
-          throw JsonObject(gauge).require("distance_to_specimen", "").error(
-              scene.specimen ? "a gauge on the specimen has no distance to it; give position"
-                             : "needs \"specimen\" (the distance is to its face); give position "
-                               "from the bar's left end instead");
+          throw JsonObject(gauge)
+              .require("distance_to_specimen", "")
+              .error(scene.specimen
+                         ? "a gauge on the specimen has no distance to it; give position"
+                         : "needs \"specimen\" (the distance is to its face); give position "
+                           "from the bar's left end instead");
         }
-        g.position_m =
-            i < *scene.specimen ? scene.bars[i].length_m - *g.distance_to_specimen_m
-                                : *g.distance_to_specimen_m;
+        g.position_m = i < *scene.specimen ? scene.bars[i].length_m - *g.distance_to_specimen_m
+                                           : *g.distance_to_specimen_m;
       }
   }
 
@@ -254,7 +257,8 @@ class SceneReader {
         throw x->error("give one of stiffness_factor, stiffness and rise_time, not several");
     }
     if (p.stiffness_factor && p.stiffness_N_m)
-      throw o.get("stiffness")->error("give one of stiffness_factor, stiffness and rise_time, not several");
+      throw o.get("stiffness")
+          ->error("give one of stiffness_factor, stiffness and rise_time, not several");
     if (auto x = o.get("mass_ratio"))
       p.mass_ratio = x->positive_quantity(Dimension::kDimensionless);
     return p;

@@ -27,14 +27,14 @@ namespace shpb {
 
 struct BarModel {
   std::string name;
-  int nodes = 0;               // elements + 1
+  int nodes = 0;  // elements + 1
   double element_length_m = 0;
   double area_m2 = 0;
   double density_kg_m3 = 0;
-  double youngs_modulus_Pa = 0;   // elastic (instantaneous) modulus
+  double youngs_modulus_Pa = 0;  // elastic (instantaneous) modulus
   double wave_speed_m_s = 0;
-  double stiffness_N_m = 0;       // EA/h of one element
-  double time_step_s = 0;         // this bar's own Δt
+  double stiffness_N_m = 0;  // EA/h of one element
+  double time_step_s = 0;    // this bar's own Δt
   double courant = 0;
   double initial_velocity_m_s = 0;  // V0 of the rigid reference motion
   std::vector<double> mass_kg;      // lumped: ρAh/2 at the ends, ρAh inside
@@ -57,8 +57,8 @@ struct BarModel {
   double inertia_filter_s = 0;
   // Causal economy (docs/methods.md §7): the right end of the last bar may be cut where its
   // reflections cannot reach anything recorded; the cut end is an exact non-reflecting dashpot.
-  int full_nodes = 0;            // nodes of the uncut mesh
-  bool dashpot_right = false;    // the right end is a cut with a dashpot of impedance ρcA
+  int full_nodes = 0;          // nodes of the uncut mesh
+  bool dashpot_right = false;  // the right end is a cut with a dashpot of impedance ρcA
 
   int elements() const { return nodes - 1; }
   double impedance_kg_s() const { return density_kg_m3 * wave_speed_m_s * area_m2; }
@@ -71,9 +71,9 @@ BarModel make_bar_model(std::string name, const MaterialSpec& material, double l
 // State at the bar's current instant t_n = t_start + n·Δt (leapfrog): w at t_n, v at t_{n−1/2}
 // (the velocity that brought the nodes to t_n), the force f at t_n being assembled.
 struct BarState {
-  std::vector<double> w;      // displacement relative to the rigid motion [m]
-  std::vector<double> v;      // relative velocity at t_{n−1/2} [m/s]
-  std::vector<double> force;  // nodal force at t_n [N]
+  std::vector<double> w;              // displacement relative to the rigid motion [m]
+  std::vector<double> v;              // relative velocity at t_{n−1/2} [m/s]
+  std::vector<double> force;          // nodal force at t_n [N]
   std::vector<double> stress_Pa;      // element true (Cauchy) stress at t_n (material-law bars)
   std::vector<double> axial_force_N;  // element axial force N = A σ at t_n (material-law bars)
   std::vector<double> friction_stress_Pa;  // (φ − 1) τ of the last step (friction work)
@@ -88,7 +88,7 @@ struct BarState {
   std::vector<double> strain_next;       // scratch for material laws: ε at t_n
   std::vector<double> law_stress;        // scratch for material laws: τ at t_n
   std::vector<MaterialPointState> points;  // material-law bars only
-  long step = 0;               // n
+  long step = 0;                           // n
   int lo = 0, hi = -1;         // nodes that may differ from rest: [lo, hi] (empty if lo > hi)
   double dissipated_J = 0;     // material dissipation so far
   long long node_updates = 0;  // nodes advanced so far (causal economy counts only active ones)

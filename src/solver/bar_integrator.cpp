@@ -12,7 +12,8 @@ namespace {
 // loader picks the one the CPU runs (GCC/Clang function multiversioning): twice the doubles per
 // instruction, the same IEEE operations in the same order (no FMA contraction), so bit-identical
 // results on every machine.
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(__SANITIZE_ADDRESS__)
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && \
+    !defined(__SANITIZE_ADDRESS__)
 #define SHPB_NODE_LOOP __attribute__((target_clones("avx2", "default")))
 #else
 #define SHPB_NODE_LOOP
@@ -33,8 +34,9 @@ SHPB_NODE_LOOP void elastic_forces(const double* w, double* f, double k, int lo,
 }
 
 // Leapfrog kick and drift over [lo, hi] (bar_integrator.hpp, step 3).
-SHPB_NODE_LOOP void kick_drift(double* __restrict w, double* __restrict v, const double* __restrict f,
-                               const double* __restrict inv_m, double kick, double dt, int lo, int hi) {
+SHPB_NODE_LOOP void kick_drift(double* __restrict w, double* __restrict v,
+                               const double* __restrict f, const double* __restrict inv_m,
+                               double kick, double dt, int lo, int hi) {
   for (int i = lo; i <= hi; ++i) {
     v[i] += kick * f[i] * inv_m[i];
     w[i] += dt * v[i];
@@ -169,13 +171,15 @@ long advance(const BarModel& bar, BarState& s) {
   const double dt = bar.time_step_s;
   const double kick = s.step == 0 ? 0.5 * dt : dt;
   const long count = s.quiet() ? 0 : s.hi - s.lo + 1;
-  if (count > 0) kick_drift(s.w.data(), s.v.data(), s.force.data(), bar.inverse_mass.data(), kick, dt, s.lo, s.hi);
+  if (count > 0)
+    kick_drift(s.w.data(), s.v.data(), s.force.data(), bar.inverse_mass.data(), kick, dt, s.lo,
+               s.hi);
   ++s.step;
   return count;
 }
 
-double end_free_force_at(const BarModel& bar, const BarState& s, int end, double tau_n,
-                         double tau, double end_w) {
+double end_free_force_at(const BarModel& bar, const BarState& s, int end, double tau_n, double tau,
+                         double end_w) {
   const int last = bar.nodes - 1;
   if (bar.law) return end == 0 ? s.axial_force_N[0] : -s.axial_force_N[last - 1];  // current area
   const int other = end == 0 ? 1 : last - 1;

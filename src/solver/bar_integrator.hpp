@@ -1,11 +1,12 @@
 #pragma once
 // The per-bar explicit integrator: central difference in leapfrog form with lumped mass
-// (docs/methods.md §1), over contiguous arrays. A step at t_n is split in two so that interfaces can
-// add their forces to the end nodes in between:
+// (docs/methods.md §1), over contiguous arrays. A step at t_n is split in two so that interfaces
+// can add their forces to the end nodes in between:
 //   1. assemble_internal_forces: f_n = −K u_n (elastic kernel, or the bar's MaterialLaw with one
 //      virtual call per bar per step), over the nodes a wave can have reached;
 //   2. (interfaces add contact forces to f_n[0] and f_n[last], see contact_*.hpp)
-//   3. advance: v_{n+1/2} = v_{n−1/2} + Δt M⁻¹ f_n (half a step at n = 0), u_{n+1} = u_n + Δt v_{n+1/2}.
+//   3. advance: v_{n+1/2} = v_{n−1/2} + Δt M⁻¹ f_n (half a step at n = 0), u_{n+1} = u_n + Δt
+//   v_{n+1/2}.
 // Causal economy (docs/methods.md §7): lumped central difference moves information by exactly one
 // node per step, so only the node range [lo, hi] grown by one per step is updated; everything
 // outside is exactly at rest relative to the rigid motion.

@@ -43,10 +43,9 @@ InterfaceModel make_interface_model(std::string name, ContactMethod method,
   } else {
     // One node-to-node link: R below the smaller critical ratio of the two bars.
     m.stiffness_N_m[0] = eps_s;
-    m.mass_penalty_kg[0] =
-        method == ContactMethod::kBipenalty || method == ContactMethod::kBonded
-            ? eps_s / (ratio * std::min(r_crit(left), r_crit(right)))
-            : 0.0;
+    m.mass_penalty_kg[0] = method == ContactMethod::kBipenalty || method == ContactMethod::kBonded
+                               ? eps_s / (ratio * std::min(r_crit(left), r_crit(right)))
+                               : 0.0;
   }
   return m;
 }
@@ -67,8 +66,10 @@ ContactResult solve_contact(const InterfaceModel& model, InterfaceState& state, 
                             EndState right, double tau, double frame_next_tau) {
   state.gap_m = model.gap0_m + right.u - left.u;
   switch (model.method) {
-    case ContactMethod::kPenalty: return solve_penalty(model, state, left, right);
-    case ContactMethod::kBipenalty: return solve_bipenalty(model, state, left, right);
+    case ContactMethod::kPenalty:
+      return solve_penalty(model, state, left, right);
+    case ContactMethod::kBipenalty:
+      return solve_bipenalty(model, state, left, right);
     case ContactMethod::kBonded:  // the rigid link, bilateral
       return solve_localized_bipenalty(model, state, left, right, tau, frame_next_tau);
     case ContactMethod::kLocalizedBipenalty:

@@ -25,7 +25,9 @@ struct EndState {
 
   // Full-step velocity at τ (velocity-Verlet): v_{n−1/2} + (kick − Δt/2) f̃/m for a stepping end
   // (v_0 itself at n = 0); an end that is ahead moves with its step's velocity.
-  double velocity_now() const { return stepping ? v + (kick_s - 0.5 * step_s) * free_force / mass : v; }
+  double velocity_now() const {
+    return stepping ? v + (kick_s - 0.5 * step_s) * free_force / mass : v;
+  }
 };
 
 // Immutable parameters of one interface, derived from the neighbours (docs/methods.md §2–3).
@@ -60,9 +62,9 @@ struct InterfaceState {
   // (the link is integrated), its last one if not (d is measured).
   double link_d[2] = {0, 0}, link_v[2] = {0, 0}, link_tau[2] = {0, 0};
   // Results of the last solve.
-  double force_N = 0;     // compression positive
-  double gap_m = 0;       // total gap g
-  double energy_J = 0;    // potential + penalty kinetic energy held by the links
+  double force_N = 0;   // compression positive
+  double gap_m = 0;     // total gap g
+  double energy_J = 0;  // potential + penalty kinetic energy held by the links
   long activations = 0, releases = 0;
 };
 
@@ -84,7 +86,9 @@ struct NeighbourInfo {
   double stiffness_N_m;  // EA/h of the end element
   double wave_speed_m_s;
   double element_length_m;
-  double impedance_kg_s() const { return stiffness_N_m * element_length_m / wave_speed_m_s; }  // EA/c
+  double impedance_kg_s() const {
+    return stiffness_N_m * element_length_m / wave_speed_m_s;
+  }                             // EA/c
   double end_mass_kg() const {  // ρAh/2 = (EA/h) h² / (2c²)
     return 0.5 * stiffness_N_m * element_length_m * element_length_m /
            (wave_speed_m_s * wave_speed_m_s);
@@ -105,10 +109,9 @@ InterfaceModel interface_model(const Scene& scene, const ChainDiscretization& d,
 // path; an end that does not is left to its bar (contact_localized_finite.cpp).
 inline double tied_end_position(const InterfaceModel& model, const InterfaceState& state, int side,
                                 double tau) {
-  const bool rigid_frame = model.method == ContactMethod::kLocalizedBipenalty ||
-                           model.method == ContactMethod::kBonded;
-  if (!state.active || !rigid_frame ||
-      (model.finite_links && !model.end_follows_frame[side]))
+  const bool rigid_frame =
+      model.method == ContactMethod::kLocalizedBipenalty || model.method == ContactMethod::kBonded;
+  if (!state.active || !rigid_frame || (model.finite_links && !model.end_follows_frame[side]))
     return std::numeric_limits<double>::quiet_NaN();
   double uf = state.frame_u + (tau - state.frame_tau) * state.frame_v;
   if (model.finite_links)

@@ -28,8 +28,10 @@ ContactResult solve_bipenalty(const InterfaceModel& model, InterfaceState& state
   const double on_left = m1 * acc1 - left.free_force;
   const double on_right = m2 * acc2 - right.free_force;
   double compression;
-  if (left.stepping && right.stepping) compression = 0.5 * (on_right - on_left);
-  else compression = left.stepping ? -on_left : on_right;
+  if (left.stepping && right.stepping)
+    compression = 0.5 * (on_right - on_left);
+  else
+    compression = left.stepping ? -on_left : on_right;
   state.active = compression >= 0 || model.tied;
   if (!state.active) {
     state.force_N = 0;

@@ -6,8 +6,8 @@
 //
 // The seed paper's formulation (docs/methods.md §3) in 1D: a frame point
 // u_f per interface, a localized gap per bar g1 = u_f − u_b1, g2 = gap0 + u_b2 − u_f, each link
-// with its own (ε_s,i, ε_m,i = ε_s,i/R_i). With one boundary node per bar, (B_iᵀ M_i⁻¹ B_i)⁻¹ = m_bi
-// and the explicit interface solution (seed eqs. 10–17) is, in scalars,
+// with its own (ε_s,i, ε_m,i = ε_s,i/R_i). With one boundary node per bar, (B_iᵀ M_i⁻¹ B_i)⁻¹ =
+// m_bi and the explicit interface solution (seed eqs. 10–17) is, in scalars,
 //   M̂_i = m_bi + ε_m,i,   M^P = Σ ε_m,i m_bi / M̂_i                 (condensed frame mass)
 //   ü_f = (F_f + Σ ε_m,i F_i / M̂_i) / M^P,   ü_bi = (F_i + ε_m,i ü_f) / M̂_i
 //   λ_i = m_bi ü_bi − f̃_i                                            (multiplier: force on bar i)
@@ -21,16 +21,16 @@
 // both ends take their momentum-weighted velocity (V/2 for equal bars: the exact continuum
 // interface velocity), the frame is placed at the contact point with both localized gaps and link
 // rates zero; contact is predicted one step ahead (g + ġΔ ≤ 0) so that no penetration is created,
-// the small remaining gap being kept as the links' rest offset. From that state the links are loaded quasi-statically, g_i = −λ_i/ε_s,i, a fraction
-// ~1/ε_s-factor (10⁻⁴ at the default) of an element's stretch: the equations above then hold in
-// their limit ε_s, ε_m → ∞ at fixed R, M^P → m_b1 + m_b2, ü_bi → ü_f, λ_i = m_bi ü_f − f̃_i, which
-// is what is solved here — the end pair moves as one merged node and a same-Δt striker/bar pair
-// reproduces the tied bar (exact at C = 1).
+// the small remaining gap being kept as the links' rest offset. From that state the links are
+// loaded quasi-statically, g_i = −λ_i/ε_s,i, a fraction ~1/ε_s-factor (10⁻⁴ at the default) of an
+// element's stretch: the equations above then hold in their limit ε_s, ε_m → ∞ at fixed R, M^P →
+// m_b1 + m_b2, ü_bi → ü_f, λ_i = m_bi ü_f − f̃_i, which is what is solved here — the end pair moves
+// as one merged node and a same-Δt striker/bar pair reproduces the tied bar (exact at C = 1).
 //
 // Asynchronous steps (after Dvořák et al. 2023, CMAME 413:116110): the frame carries the
 // condensed mass m_b1 + m_b2 and is advanced on the union of its neighbours' instants by
-// variable-step leapfrog, v_{k+1/2} = v_{k−1/2} + ½(Δ_{k−1} + Δ_k) ü_f, ü_f = (f̃_1 + f̃_2)/(m_b1 + m_b2),
-// both end loads taken at the instant (a neighbour that is ahead gives the load of its end
+// variable-step leapfrog, v_{k+1/2} = v_{k−1/2} + ½(Δ_{k−1} + Δ_k) ü_f, ü_f = (f̃_1 + f̃_2)/(m_b1 +
+// m_b2), both end loads taken at the instant (a neighbour that is ahead gives the load of its end
 // element with its inner node interpolated on its linear path and its end at the frame). A
 // stepping end is reset to the frame's displacement before its forces are assembled and leaves
 // with the frame's velocity: λ_i is the force that makes it so over its own step. Release

@@ -24,8 +24,12 @@ long grid_count(double span, double spacing) {
 }  // namespace
 
 GridSampler::GridSampler(double tau0, double spacing, long count, int width)
-    : tau0_(tau0), spacing_(spacing), count_(std::max(0L, count)), width_(width),
-      prev_(width, 0.0), data_(static_cast<std::size_t>(count_) * width, 0.0) {}
+    : tau0_(tau0),
+      spacing_(spacing),
+      count_(std::max(0L, count)),
+      width_(width),
+      prev_(width, 0.0),
+      data_(static_cast<std::size_t>(count_) * width, 0.0) {}
 
 void GridSampler::push(double tau, const double* values) {
   while (filled_ < count_ && next_tau() <= tau) {
@@ -50,8 +54,8 @@ const std::vector<double>& TimeSeries::column(const std::string& name) const {
   throw std::out_of_range("no column " + name);
 }
 
-ChainRecorders::ChainRecorders(const Scene& scene, const Chain& chain,
-                               const ChainDiscretization& d, const SimulationOptions& options) {
+ChainRecorders::ChainRecorders(const Scene& scene, const Chain& chain, const ChainDiscretization& d,
+                               const SimulationOptions& options) {
   start_time_s_ = chain.start_time_s;
   sample_spacing_s_ = 1.0 / d.sample_rate_Hz;
   samples_ = grid_count(d.duration_s, sample_spacing_s_);
@@ -77,15 +81,17 @@ ChainRecorders::ChainRecorders(const Scene& scene, const Chain& chain,
       r.gauges.push_back({gauge_names_.size(), e, ne > 1 ? s - e : 0.0});
       gauge_names_.push_back(g.name);
     }
-    r.gauge_sampler = GridSampler(tau0, sample_spacing_s_, samples_, static_cast<int>(r.gauges.size()));
+    r.gauge_sampler =
+        GridSampler(tau0, sample_spacing_s_, samples_, static_cast<int>(r.gauges.size()));
     r.specimen = scene.specimen && *scene.specimen == i;
     if (r.specimen)
       r.specimen_sampler = GridSampler(tau0, sample_spacing_s_, samples_, kSpecimenColumns);
     r.energy_sampler = GridSampler(0.0, energy_spacing_, energy_samples_, 3);
     if (record_field_) {
       const double length = h * ne;
-      int points = std::max(kMinFieldPointsPerBar,
-                            static_cast<int>(std::lround(options.field_points * length / total_length)));
+      int points =
+          std::max(kMinFieldPointsPerBar,
+                   static_cast<int>(std::lround(options.field_points * length / total_length)));
       points = std::min(points, ne);
       r.field_offset = field_x_.size();
       for (int p = 0; p < points; ++p) {
@@ -159,7 +165,8 @@ void ChainRecorders::on_bar_instant(const Chain& chain, std::size_t i, double ta
     r.energy_sampler.push(tau_n, values);
   }
   if (record_field_) {
-    while (r.field_next < static_cast<long>(field_tau_.size()) && field_tau_[r.field_next] <= tau_n) {
+    while (r.field_next < static_cast<long>(field_tau_.size()) &&
+           field_tau_[r.field_next] <= tau_n) {
       double* row = &field_stress_[r.field_next * field_x_.size() + r.field_offset];
       for (std::size_t p = 0; p < r.field_elements.size(); ++p)
         row[p] = element_stress(bar, s, r.field_elements[p]);
@@ -191,8 +198,10 @@ long ChainRecorders::energy_complete() const {
 
 double ChainRecorders::energy_total(long k) const {
   double total = 0;
-  for (const BarRecorder& r : bars_) total += r.energy_sampler.at(k, 0) + r.energy_sampler.at(k, 1) + r.energy_sampler.at(k, 2);
-  for (const InterfaceRecorder& r : interfaces_) total += r.energy_sampler.at(k, 0) + r.energy_sampler.at(k, 1);
+  for (const BarRecorder& r : bars_)
+    total += r.energy_sampler.at(k, 0) + r.energy_sampler.at(k, 1) + r.energy_sampler.at(k, 2);
+  for (const InterfaceRecorder& r : interfaces_)
+    total += r.energy_sampler.at(k, 0) + r.energy_sampler.at(k, 1);
   return total;
 }
 
@@ -213,7 +222,8 @@ void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& resu
     for (long k = 0; k < n; ++k) ts.time_s.push_back(k * sample_spacing_s_);
     for (const BarRecorder& r : bars_)
       for (std::size_t g = 0; g < r.gauges.size(); ++g)
-        for (long k = 0; k < n; ++k) ts.values[r.gauges[g].column][k] = r.gauge_sampler.at(k, static_cast<int>(g));
+        for (long k = 0; k < n; ++k)
+          ts.values[r.gauges[g].column][k] = r.gauge_sampler.at(k, static_cast<int>(g));
   }
   // Interfaces.
   {
@@ -286,8 +296,9 @@ void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& resu
       if (t > until_s + 1e-12) break;
       f.time_s.push_back(t);
     }
-    f.stress_Pa.assign(field_stress_.begin(),
-                       field_stress_.begin() + static_cast<long>(f.time_s.size() * field_x_.size()));
+    f.stress_Pa.assign(
+        field_stress_.begin(),
+        field_stress_.begin() + static_cast<long>(f.time_s.size() * field_x_.size()));
   }
 }
 

@@ -56,8 +56,8 @@ class ChainRecorders {
  private:
   struct GaugeProbe {
     std::size_t column;
-    int element;     // left element of the interpolation pair
-    double weight;   // of element + 1
+    int element;    // left element of the interpolation pair
+    double weight;  // of element + 1
   };
   struct BarRecorder {
     std::vector<GaugeProbe> gauges;

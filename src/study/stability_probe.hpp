@@ -8,9 +8,9 @@
 
 namespace shpb {
 
-// Criterion: energy growth beyond 10× E(0), or a non-finite value, is unstable. A stable run stays within ~1e-2 of E(0)
-// (docs/methods.md §2 reference); an unstable one grows exponentially, so the verdict does not hang
-// on the exact factor.
+// Criterion: energy growth beyond 10× E(0), or a non-finite value, is unstable. A stable run stays
+// within ~1e-2 of E(0) (docs/methods.md §2 reference); an unstable one grows exponentially, so the
+// verdict does not hang on the exact factor.
 inline constexpr double kUnstableEnergyGrowth = 10;
 // Elements per probe bar: short enough to run a point in about a millisecond, long enough that
 // the localized contact mode decays into the bar (it spans a few elements for ε_s ≳ k).

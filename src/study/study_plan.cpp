@@ -7,7 +7,6 @@
 #include <sstream>
 
 #include "core/error.hpp"
-
 #include "version.hpp"
 
 namespace shpb {
@@ -142,9 +141,9 @@ StudyPlan read_study_plan(const fs::path& plan_file) {
       } else if (plan.sweep == "stability" && (kind == "boundary" || kind == "point")) {
         StabilityJob s;
         s.boundary = kind == "boundary";
-        s.point = {method_from(r.at("method")), r.at("stiffness_factor").get<double>(),
+        s.point = {method_from(r.at("method")),      r.at("stiffness_factor").get<double>(),
                    r.at("mass_ratio").get<double>(), r.at("courant").get<double>(),
-                   r.at("tied").get<bool>(), r.at("step_ratio").get<double>()};
+                   r.at("tied").get<bool>(),         r.at("step_ratio").get<double>()};
         plan.stability.push_back(s);
       } else {
         throw std::invalid_argument("run of kind \"" + kind + "\" in a " + plan.sweep + " plan");

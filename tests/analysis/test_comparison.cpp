@@ -1,8 +1,8 @@
-#include "analysis/comparison.hpp"
-
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <vector>
+
+#include "analysis/comparison.hpp"
 
 using namespace shpb;
 
@@ -18,9 +18,12 @@ std::vector<double> pulse(std::size_t n, double start, double ramp, double flat,
   for (std::size_t i = 0; i < n; ++i) {
     const double t = static_cast<double>(i) - start;
     double v = 0;
-    if (t > 0 && t < ramp) v = 0.5 * (1 - std::cos(M_PI * t / ramp));
-    else if (t >= ramp && t <= ramp + flat) v = 1;
-    else if (t > ramp + flat && t < 2 * ramp + flat) v = 0.5 * (1 + std::cos(M_PI * (t - ramp - flat) / ramp));
+    if (t > 0 && t < ramp)
+      v = 0.5 * (1 - std::cos(M_PI * t / ramp));
+    else if (t >= ramp && t <= ramp + flat)
+      v = 1;
+    else if (t > ramp + flat && t < 2 * ramp + flat)
+      v = 0.5 * (1 + std::cos(M_PI * (t - ramp - flat) / ramp));
     x[i] = amp * v;
   }
   return x;
@@ -63,8 +66,7 @@ TEST_CASE("A delayed, scaled and stretched pulse gives its delay, scale and stre
   }
 }
 
-TEST_CASE("The rise time of a raised-cosine ramp is its 10-90 % span",
-          "[analysis][comparison]") {
+TEST_CASE("The rise time of a raised-cosine ramp is its 10-90 % span", "[analysis][comparison]") {
   const double ramp = 100;
   const auto x = pulse(800, 100, ramp, 300, 1.0);
   // 0.5 (1 − cos(π t/T)) = p  ⇒  t = T acos(1 − 2p)/π.

@@ -16,7 +16,8 @@ TEST_CASE("Constant pulses in equilibrium give equal 1-, 2- and 3-wave stresses 
   // Tension positive: incident −1e-3, reflected +0.6e-3, transmitted −0.4e-3 (ε_I + ε_R = ε_T).
   const std::vector<double> ei(n, -1e-3), er(n, 0.6e-3), et(n, -0.4e-3);
   const Curve c = reduce_pulses(ei, er, et, ei, er, et, dt, bar, bar, spec);
-  // docs/methods.md §6 in magnitudes: rate (c0/L)(|ε_I| + |ε_R| … ) → (5000/0.005)·1.2e-3 = 1200 1/s.
+  // docs/methods.md §6 in magnitudes: rate (c0/L)(|ε_I| + |ε_R| … ) → (5000/0.005)·1.2e-3 = 1200
+  // 1/s.
   for (std::size_t i = 0; i < n; ++i) {
     REQUIRE(c.strain_rate_1_s[i] == Approx(1200));
     REQUIRE(c.strain_rate_1wave_1_s[i] == Approx(1200));

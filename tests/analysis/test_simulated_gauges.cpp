@@ -99,8 +99,8 @@ Agreement process_simulation(const Scene& scene) {
 
 TEST_CASE("Processing the simulator's gauges recovers the specimen truth after equilibrium",
           "[analysis][processing][simulation]") {
-  Scene scene = read_scene(std::filesystem::path(SHPB_SOURCE_DIR) /
-                           "experiments/classic-al6061/scene.json");
+  Scene scene =
+      read_scene(std::filesystem::path(SHPB_SOURCE_DIR) / "experiments/classic-al6061/scene.json");
   SECTION("Johnson-Cook Al 6061-T6 specimen (experiments/classic-al6061)") {
     const Agreement a = process_simulation(scene);
     CHECK(a.stress_rms < kAgreement);

@@ -210,8 +210,9 @@ const std::vector<BadScene>& cases() {
        "contact.rise_time: \"1 mm\""},
       {"a stiffness and a rise time for the same interface",
        [](json& s, json&) {
-         s["contact"]["interfaces"] = {
-             {{"between", {"striker", "incident"}}, {"stiffness", "1e9 N/m"}, {"rise_time", "1 us"}}};
+         s["contact"]["interfaces"] = {{{"between", {"striker", "incident"}},
+                                        {"stiffness", "1e9 N/m"},
+                                        {"rise_time", "1 us"}}};
        },
        "contact.interfaces[0].rise_time: \"1 us\": give one of stiffness_factor, stiffness and "
        "rise_time"},

@@ -84,8 +84,7 @@ TEST_CASE("Every subcommand's --help describes every option", "[app][cli]") {
   }
 }
 
-TEST_CASE("The documented run options are on simulate, compare, study and validate",
-          "[app][cli]") {
+TEST_CASE("The documented run options are on simulate, compare, study and validate", "[app][cli]") {
   for (const char* c : {"simulate", "compare", "study", "validate"}) {
     INFO(c);
     const auto r = shpb(std::string(c) + " --help");

@@ -70,13 +70,13 @@ TEST_CASE("A simulation compared with itself gives zero shifts, unit ratios and 
       std::getline(fields, v, ',');
       value = std::stod(v);
     }
-    CHECK(std::abs(x[2]) < kShiftTolerance_s);  // arrival shift (s)
-    CHECK(x[3] == Approx(1.0).epsilon(kRoundOff));  // peak ratio
-    CHECK(x[4] == Approx(1.0).epsilon(kRoundOff));  // plateau ratio
-    CHECK(x[5] == Approx(1.0).epsilon(kRoundOff));  // duration ratio
+    CHECK(std::abs(x[2]) < kShiftTolerance_s);       // arrival shift (s)
+    CHECK(x[3] == Approx(1.0).epsilon(kRoundOff));   // peak ratio
+    CHECK(x[4] == Approx(1.0).epsilon(kRoundOff));   // plateau ratio
+    CHECK(x[5] == Approx(1.0).epsilon(kRoundOff));   // duration ratio
     CHECK(x[6] == Approx(x[7]).epsilon(kRoundOff));  // rise times
-    CHECK(x[8] < kRoundOff);                          // NRMSE
-    CHECK(x[9] == Approx(1.0).epsilon(kRoundOff));  // correlation
+    CHECK(x[8] < kRoundOff);                         // NRMSE
+    CHECK(x[9] == Approx(1.0).epsilon(kRoundOff));   // correlation
     ++rows;
   }
   CHECK(rows == 3);  // incident, reflected, transmitted
@@ -89,8 +89,7 @@ TEST_CASE("The striker velocity inferred from the incident plateau is the simula
           "[app][compare]") {
   const fs::path dir = scratch_dir("compare_infer");
   const fs::path scene = self_measured_scene(dir);
-  const auto r =
-      run_shpb({"compare", scene.string(), "-o", (dir / "out").string(), "--quiet"});
+  const auto r = run_shpb({"compare", scene.string(), "-o", (dir / "out").string(), "--quiet"});
   INFO(r.err);
   REQUIRE(r.code == 0);
   const auto summary = nlohmann::json::parse(read_text(dir / "out" / "summary.json"));
@@ -116,7 +115,8 @@ TEST_CASE("LANL copper: the simulated incident pulse meets the measured one with
   CHECK(summary["striker_velocity_source"].get<std::string>().rfind("inferred", 0) == 0);
   const auto& incident = summary["pulses"][0];
   REQUIRE(incident["pulse"] == "incident");
-  // The measured rise is resolved by the fitted contact rise time: peak (the largest sample) and plateau within 5 %, arrival within 2 µs.
+  // The measured rise is resolved by the fitted contact rise time: peak (the largest sample) and
+  // plateau within 5 %, arrival within 2 µs.
   constexpr double kPeakTolerance = 0.05, kArrivalTolerance_s = 2e-6;
   CHECK(incident["peak_ratio"].get<double>() == Approx(1.0).margin(kPeakTolerance));
   CHECK(incident["plateau_ratio"].get<double>() == Approx(1.0).margin(kPeakTolerance));

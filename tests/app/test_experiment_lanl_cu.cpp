@@ -1,7 +1,7 @@
 // The LANL copper experiment's bridge settings against the physics of the test: once the specimen
 // is in force equilibrium, the force it passes to the transmitter bar (1-wave stress) equals the
-// force on its front face (2-wave stress) (docs/methods.md §6). A wrong gain or bridge factor on either
-// channel breaks this balance by that factor.
+// force on its front face (2-wave stress) (docs/methods.md §6). A wrong gain or bridge factor on
+// either channel breaks this balance by that factor.
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <filesystem>

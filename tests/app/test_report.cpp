@@ -75,10 +75,10 @@ TEST_CASE("The report of the default experiment holds every figure, each referen
   REQUIRE(r.code == 0);
   const std::string html = read_text(dir / "report.html");
   REQUIRE(html.find("</html>") != std::string::npos);
-  for (const char* name : {"signals_simulate.png", "wave_diagram_simulate.png",
-                           "stress_strain_process.png", "rate_equilibrium_process.png",
-                           "energy_simulate.png", "pulses_process.png",
-                           "specimen_stress_strain_simulate.png"})
+  for (const char* name :
+       {"signals_simulate.png", "wave_diagram_simulate.png", "stress_strain_process.png",
+        "rate_equilibrium_process.png", "energy_simulate.png", "pulses_process.png",
+        "specimen_stress_strain_simulate.png"})
     check_figure(dir, html, name);
 }
 
@@ -129,7 +129,8 @@ TEST_CASE("Headless Chromium renders report.html to a picture that is not blank"
   const std::string cmd =
       "timeout 60 chromium --headless --no-sandbox --disable-gpu --disable-quic --no-first-run "
       "--disable-background-networking --disable-component-update --disable-sync "
-      "--user-data-dir=" + (root / "profile").string() + " --screenshot=" + shot.string() +
+      "--user-data-dir=" +
+      (root / "profile").string() + " --screenshot=" + shot.string() +
       " --window-size=1200,1600 file://" + (dir / "report.html").string() + " >/dev/null 2>&1";
   REQUIRE(std::system(cmd.c_str()) == 0);
   REQUIRE(fs::exists(shot));
@@ -139,8 +140,8 @@ TEST_CASE("Headless Chromium renders report.html to a picture that is not blank"
   const std::string py =
       "/usr/bin/python3 -c \"import sys, numpy as n, matplotlib.image as m; "
       "a = m.imread(sys.argv[1]); "
-      "print(len(n.unique(a.reshape(-1, a.shape[-1]), axis=0)))\" " + shot.string() + " > " +
-      count.string();
+      "print(len(n.unique(a.reshape(-1, a.shape[-1]), axis=0)))\" " +
+      shot.string() + " > " + count.string();
   REQUIRE(std::system(py.c_str()) == 0);
   const int colours = std::stoi(read_text(count));
   CHECK(colours > 10);

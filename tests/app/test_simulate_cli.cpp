@@ -1,5 +1,6 @@
-// `shpb simulate` as a user sees it (docs/commands.md, docs/outputs.md): the files of a run, exit 2 with nothing
-// written for bad input, exit 3 with the outputs up to the failure for a detected instability.
+// `shpb simulate` as a user sees it (docs/commands.md, docs/outputs.md): the files of a run, exit 2
+// with nothing written for bad input, exit 3 with the outputs up to the failure for a detected
+// instability.
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -29,7 +30,8 @@ TEST_CASE("Simulating a scene writes every output file with its documented heade
   CHECK(r.err.empty());
   CHECK(first_line(dir / "gauges.csv") == "time_s,gauge");
   CHECK(first_line(dir / "interfaces.csv") == "time_s,striker-bar_force_N,striker-bar_gap_m");
-  CHECK(first_line(dir / "energy.csv") == "time_s,kinetic_J,strain_J,contact_J,dissipated_J,total_J");
+  CHECK(first_line(dir / "energy.csv") ==
+        "time_s,kinetic_J,strain_J,contact_J,dissipated_J,total_J");
   CHECK(first_line(dir / "field.csv") == "time_s,x_m,stress_Pa");
   CHECK_FALSE(fs::exists(dir / "specimen.csv"));  // the scene has no specimen
   const auto summary = nlohmann::json::parse(read_text(dir / "summary.json"));
@@ -56,8 +58,8 @@ TEST_CASE("A detected instability exits with 3 and still writes what was compute
           "[app][simulate]") {
   // Plain penalty at 1e4 EA/h with the bars' own steps is unstable (docs/methods.md §2).
   const fs::path dir = scratch_dir("simulate_unstable") / "out";
-  const auto r = run_shpb({"simulate", kStrikerOnBar.string(), "-o", dir.string(), "--contact",
-                           "penalty", "--quiet"});
+  const auto r = run_shpb(
+      {"simulate", kStrikerOnBar.string(), "-o", dir.string(), "--contact", "penalty", "--quiet"});
   CHECK(r.code == 3);
   CHECK(r.err.find("unstable") != std::string::npos);
   const auto summary = nlohmann::json::parse(read_text(dir / "summary.json"));

@@ -15,7 +15,8 @@ using namespace shpb;
 
 namespace {
 
-// c/c0 within 2e-5 (the reference's five printed decimals) of the reference table over 0 ≤ a/Λ ≤ 1.6.
+// c/c0 within 2e-5 (the reference's five printed decimals) of the reference table over 0 ≤ a/Λ
+// ≤ 1.6.
 constexpr double kReferenceTolerance = 2e-5;
 // The published ν = 0.29 values (docs/methods.md §5) are printed to five decimals.
 constexpr double kPublishedTolerance = 1e-5;
@@ -52,7 +53,9 @@ TEST_CASE("The first mode matches the reference tables within 2e-5 up to a/Lambd
        {std::pair{0.29, "pc_nu0.29.csv"}, std::pair{0.30, "pc_nu0.30.csv"}}) {
     const auto rows = read_reference(name);
     if (rows.empty()) {
-      WARN("SKIPPED: ../shared/data/reference/pochhammer-chree absent: reference comparison skipped");
+      WARN(
+          "SKIPPED: ../shared/data/reference/pochhammer-chree absent: reference comparison "
+          "skipped");
       return;
     }
     CAPTURE(nu);
@@ -78,7 +81,8 @@ TEST_CASE("The first mode reproduces the published nu = 0.29 values and tends to
     CAPTURE(x);
     CHECK(std::abs(phase_velocity(0.29, x) - c) < kPublishedTolerance);
   }
-  // c_R/c0 = 0.57640 for ν = 0.29 (docs/methods.md §5); the mode approaches it within 1e-3 by a/Λ = 20.
+  // c_R/c0 = 0.57640 for ν = 0.29 (docs/methods.md §5); the mode approaches it within 1e-3 by a/Λ
+  // = 20.
   constexpr double kRayleighPrinted = 5e-6;
   CHECK(std::abs(wave_speeds(0.29).rayleigh - 0.57640) < kRayleighPrinted);
   constexpr double kLargeXApproach = 1e-3;

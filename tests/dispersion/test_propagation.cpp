@@ -50,7 +50,8 @@ TEST_CASE("Moving a pulse forward and back returns it within 0.5 % RMS below the
   const auto back = p.propagate(there, kDt, -1.0);
   std::vector<double> err(x.size());
   for (std::size_t i = 0; i < x.size(); ++i) err[i] = back[i] - x[i];
-  constexpr double kRoundTrip = 5e-3;  // band-limited: the cut-off removes a little of the pulse's spectrum
+  constexpr double kRoundTrip =
+      5e-3;  // band-limited: the cut-off removes a little of the pulse's spectrum
   CHECK(rms(err) / rms(x) < kRoundTrip);
   // The forward pulse itself is changed by dispersion (and delayed by ~1/c0): the test can fail.
   std::vector<double> moved(x.size());

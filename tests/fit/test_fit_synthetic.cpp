@@ -149,9 +149,8 @@ TEST_CASE("fit recovers Johnson-Cook A, B, n, C from three noisy simulated tests
   // is rough at the noise level (the Johnson–Cook rate term follows the ringing strain rate): it
   // must not end farther from the truth; whether it ends closer varies with round-off (reported).
   CHECK(signals_distance <= curve_distance);
-  WARN("distance to the truth (sum of squared relative errors): curve stage " << curve_distance
-                                                                             << ", signals stage "
-                                                                             << signals_distance);
+  WARN("distance to the truth (sum of squared relative errors): curve stage "
+       << curve_distance << ", signals stage " << signals_distance);
   for (const auto& t : s["tests"]) {
     CHECK(t["curve_points"].get<long>() > 0);
     for (const char* pulse : {"reflected", "transmitted"}) {

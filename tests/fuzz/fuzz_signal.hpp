@@ -4,6 +4,7 @@
 // columns of equal length on an increasing, finite time base with finite samples, or throws
 // InputError.
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <string>
 
@@ -13,9 +14,14 @@
 
 namespace shpb_fuzz {
 
-inline void require(bool ok) {
-  if (!ok) std::abort();
-}
+// A broken contract names itself before aborting (the fuzzer keeps the input).
+#define SHPB_FUZZ_REQUIRE(ok)                                                      \
+  do {                                                                             \
+    if (!(ok)) {                                                                   \
+      std::fprintf(stderr, "fuzz contract broken: %s (line %d)\n", #ok, __LINE__); \
+      std::abort();                                                                \
+    }                                                                              \
+  } while (0)
 
 inline int fuzz_signal(const std::uint8_t* data, std::size_t size, shpb::SignalFormat format,
                        const std::string& file_name) {
@@ -33,16 +39,16 @@ inline int fuzz_signal(const std::uint8_t* data, std::size_t size, shpb::SignalF
   if (pick & 64) request.time_unit_s = 1e-6;
   try {
     const shpb::SignalColumns s = shpb::read_signal_columns(request);
-    require(s.time_s.size() >= 2);
-    require(std::isfinite(s.dt_s) && s.dt_s > 0);
+    SHPB_FUZZ_REQUIRE(s.time_s.size() >= 2);
+    SHPB_FUZZ_REQUIRE(std::isfinite(s.dt_s) && s.dt_s > 0);
     for (std::size_t i = 0; i < s.time_s.size(); ++i) {
-      require(std::isfinite(s.time_s[i]));
-      if (i > 0) require(s.time_s[i] > s.time_s[i - 1]);
+      SHPB_FUZZ_REQUIRE(std::isfinite(s.time_s[i]));
+      if (i > 0) SHPB_FUZZ_REQUIRE(s.time_s[i] > s.time_s[i - 1]);
     }
-    require(s.values.size() == request.columns.size());
+    SHPB_FUZZ_REQUIRE(s.values.size() == request.columns.size());
     for (const auto& column : s.values) {
-      require(column.size() == s.time_s.size());
-      for (double v : column) require(std::isfinite(v));
+      SHPB_FUZZ_REQUIRE(column.size() == s.time_s.size());
+      for (double v : column) SHPB_FUZZ_REQUIRE(std::isfinite(v));
     }
   } catch (const shpb::InputError&) {
   }

@@ -19,8 +19,9 @@ namespace {
 constexpr double kFlowSurfaceTolerance = 1e-9;
 }  // namespace
 
-TEST_CASE("A Johnson-Cook point with ringing strain rate stays on the directly evaluated flow surface",
-          "[material]") {
+TEST_CASE(
+    "A Johnson-Cook point with ringing strain rate stays on the directly evaluated flow surface",
+    "[material]") {
   const MaterialSpec spec = test::ofhc_copper(true);
   test::MaterialPoint point(spec);
   // A specimen element at ~2000/s and a specimen step of 20 ns, its rate ringing by ±30 % over
@@ -38,8 +39,8 @@ TEST_CASE("A Johnson-Cook point with ringing strain rate stays on the directly e
     eps = next;
     if (point.state().plastic_strain == p0) continue;
     ++plastic_steps;
-    const double flow = johnson_cook_flow_stress(spec.johnson_cook, point.state().plastic_strain,
-                                                 rate, T0);
+    const double flow =
+        johnson_cook_flow_stress(spec.johnson_cook, point.state().plastic_strain, rate, T0);
     worst = std::max(worst, std::abs(std::abs(sigma) / flow - 1));
   }
   INFO("plastic steps " << plastic_steps << ", worst relative distance " << worst);

@@ -1,6 +1,6 @@
-// Interrupting a long `shpb simulate` (docs/outputs.md (conventions)): SIGINT or SIGTERM ends it promptly,
-// the previous results in the output folder stay as they were, no temporary folder is left
-// beside it, and the next run completes normally.
+// Interrupting a long `shpb simulate` (docs/outputs.md (conventions)): SIGINT or SIGTERM ends it
+// promptly, the previous results in the output folder stay as they were, no temporary folder is
+// left beside it, and the next run completes normally.
 #include <signal.h>
 
 #include <catch2/catch.hpp>

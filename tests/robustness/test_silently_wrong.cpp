@@ -105,7 +105,7 @@ TEST_CASE("Names differing only by white space or holding control characters are
           "[robustness][silently-wrong]") {
   ScratchFolder scratch("wrong");
   for (const std::string& name : {std::string(" gauge"), std::string("gauge "),
-                                 std::string("ga\tuge"), std::string("ga\0uge", 7)}) {
+                                  std::string("ga\tuge"), std::string("ga\0uge", 7)}) {
     json s = bar_scene();
     s["bars"][1]["gauges"] = {{{"name", "gauge"}, {"position", "400 mm"}},
                               {{"name", name}, {"position", "600 mm"}}};

@@ -11,9 +11,9 @@
 using namespace shpb;
 
 namespace {
-constexpr double kSameOutput = 1e-12;       // skipped nodes are exactly at rest: identical to round-off
+constexpr double kSameOutput = 1e-12;  // skipped nodes are exactly at rest: identical to round-off
 constexpr double kEnergyTolerance = 0.005;  // elastic chain: lumped CD conserves energy to O(C·h²)
-}
+}  // namespace
 
 TEST_CASE("Cutting a long bar's far end with a dashpot changes no gauge value",
           "[solver][economy]") {
@@ -42,6 +42,7 @@ TEST_CASE("Cutting a long bar's far end with a dashpot changes no gauge value",
   }
   CHECK(worst <= kSameOutput * scale);
   // The pulse left through the dashpot: its energy is accounted as dissipated.
-  CHECK(economy.energy.column("dissipated_J").back() > 0.25 * economy.energy.column("total_J").front());
+  CHECK(economy.energy.column("dissipated_J").back() >
+        0.25 * economy.energy.column("total_J").front());
   CHECK(economy.energy_error < kEnergyTolerance);
 }

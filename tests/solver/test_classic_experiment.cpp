@@ -12,13 +12,15 @@
 using namespace shpb;
 
 namespace {
-constexpr double kMinUpdateRatio = 10;     // the bars' step is ~10× the specimen's
-constexpr double kEnergyTolerance = 0.005; // closing losses are booked; what is left is interpolation at unmatched instants
-constexpr double kSameOutput = 1e-12;      // skipped nodes are exactly at rest
-constexpr double kMinEconomy = 0.3;        // a wave front covers ~half the bars on average
+constexpr double kMinUpdateRatio = 10;  // the bars' step is ~10× the specimen's
+constexpr double kEnergyTolerance =
+    0.005;  // closing losses are booked; what is left is interpolation at unmatched instants
+constexpr double kSameOutput = 1e-12;  // skipped nodes are exactly at rest
+constexpr double kMinEconomy = 0.3;    // a wave front covers ~half the bars on average
 
 Scene classic() {
-  return read_scene(std::filesystem::path(SHPB_SOURCE_DIR) / "experiments/classic-al6061/scene.json");
+  return read_scene(std::filesystem::path(SHPB_SOURCE_DIR) /
+                    "experiments/classic-al6061/scene.json");
 }
 
 // Relative error of the incident plateau against V/(2c0) over the middle of the pulse.

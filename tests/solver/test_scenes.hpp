@@ -19,8 +19,8 @@ inline MaterialSpec elastic(double E, double rho, std::string name = "elastic") 
 
 inline MaterialSpec steel() { return elastic(200e9, 8000, "steel"); }
 
-inline BarSpec bar(std::string name, MaterialSpec m, double length_m, double area_m2,
-                   int elements, double velocity = 0) {
+inline BarSpec bar(std::string name, MaterialSpec m, double length_m, double area_m2, int elements,
+                   double velocity = 0) {
   BarSpec b;
   b.name = std::move(name);
   b.material = std::move(m);

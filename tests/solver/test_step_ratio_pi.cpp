@@ -1,5 +1,5 @@
-// The non-integer step-ratio benchmark of docs/methods.md §3: bar L (c = 50 m/s, 300 elements) joined
-// to bar S (c = 157.08 m/s, same h), so Δt_L/Δt_S = π; a square pulse crosses the joint.
+// The non-integer step-ratio benchmark of docs/methods.md §3: bar L (c = 50 m/s, 300 elements)
+// joined to bar S (c = 157.08 m/s, same h), so Δt_L/Δt_S = π; a square pulse crosses the joint.
 // Transmitted and reflected amplitudes 2Z2/(Z1+Z2) and (Z2−Z1)/(Z1+Z2); energy conserved.
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -13,7 +13,8 @@ using namespace shpb;
 
 namespace {
 constexpr double kAmplitudeTolerance = 0.01;  // front smearing at the unmatched step ratio
-constexpr double kEnergyTolerance = 0.005;    // closing losses are booked; what is left is interpolation at unmatched instants
+constexpr double kEnergyTolerance =
+    0.005;  // closing losses are booked; what is left is interpolation at unmatched instants
 }  // namespace
 
 TEST_CASE("A pulse crosses a joint with step ratio pi with exact transmission and reflection",

@@ -1,5 +1,6 @@
-// Striker on a bar of the same material and area (docs/methods.md §4): stress ρc0V/2, strain V/(2c0),
-// duration 2L_s/c0, striker ends at rest; and the plateau must not ring (docs/methods.md §2).
+// Striker on a bar of the same material and area (docs/methods.md §4): stress ρc0V/2, strain
+// V/(2c0), duration 2L_s/c0, striker ends at rest; and the plateau must not ring (docs/methods.md
+// §2).
 #include <catch2/catch.hpp>
 #include <cmath>
 
@@ -13,7 +14,8 @@ namespace {
 constexpr double kPlateauTolerance = 0.005;  // a gauge reading of a 1 %-flat plateau
 constexpr double kDurationTolerance = 0.01;  // one element of front smearing at each end
 constexpr double kRingingLimit = 0.01;       // above the tied-bar floor at C = 0.98 (0.86 %)
-constexpr double kEnergyTolerance = 0.005;   // closing losses are booked; what is left is interpolation at unmatched instants
+constexpr double kEnergyTolerance =
+    0.005;  // closing losses are booked; what is left is interpolation at unmatched instants
 
 // The set-up of docs/methods.md §2: steel striker 0.3 m at 10 m/s on a 1.5 m bar, h = 1 mm, point
 // gauge at 0.75 m.

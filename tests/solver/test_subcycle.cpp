@@ -49,7 +49,8 @@ TEST_CASE("A specimen sub-cycled between its bars' instants gives the plain sche
   const double A = 2.85e-4, Lb = 0.3;
   for (const bool plastic : {false, true}) {
     DYNAMIC_SECTION((plastic ? "Johnson-Cook" : "elastic") << " specimen") {
-      const MaterialSpec soft = plastic ? johnson_cook_aluminium() : test::elastic(70e9, 2700, "al");
+      const MaterialSpec soft =
+          plastic ? johnson_cook_aluminium() : test::elastic(70e9, 2700, "al");
       BarSpec striker = test::bar("striker", test::steel(), 0.1, A, 100, plastic ? 15.0 : 5.0);
       BarSpec incident = test::bar("incident", test::steel(), Lb, A, 300);
       incident.gauges.push_back({"incident", 0.15});

@@ -12,7 +12,8 @@
 using namespace shpb;
 
 namespace {
-// Boundaries within 5 % of the closed forms (derived for a continuum bar end; the grid is discrete).
+// Boundaries within 5 % of the closed forms (derived for a continuum bar end; the grid is
+// discrete).
 constexpr double kBoundaryTolerance = 0.05;
 
 Scene steel_probe() {

@@ -36,7 +36,8 @@ JohnsonCookLaw::BinomialSeries::BinomialSeries(double e) {
 
 // The polynomials are evaluated in Estrin's form (pairs of terms, then powers x², x⁴, x⁸): a few
 // multiplications deep instead of a chain of ten, the same sum to round-off.
-inline double JohnsonCookLaw::BinomialSeries::power(double q, double x, double base_pow, double e) const {
+inline double JohnsonCookLaw::BinomialSeries::power(double q, double x, double base_pow,
+                                                    double e) const {
   const double ax = std::abs(x);
   if (ax <= kSeriesRange) {
     const double x2 = x * x;
@@ -78,7 +79,8 @@ JohnsonCookLaw::JohnsonCookLaw(const MaterialSpec& spec)
       youngs_modulus_Pa_(spec.youngs_modulus_Pa),
       heat_per_work_(spec.johnson_cook.taylor_quinney /
                      (spec.density_kg_m3 * spec.johnson_cook.specific_heat_J_kgK)),
-      inverse_span_(1 / (spec.johnson_cook.melting_temperature_K - spec.johnson_cook.room_temperature_K)),
+      inverse_span_(
+          1 / (spec.johnson_cook.melting_temperature_K - spec.johnson_cook.room_temperature_K)),
       hardening_series_(spec.johnson_cook.n),
       thermal_series_(spec.johnson_cook.m) {}
 
@@ -111,7 +113,8 @@ double JohnsonCookLaw::log_rate(double ratio, MaterialPointState& s) const {
   if (std::abs(x) <= kLogSeriesRange) {
     // ln(1 + x) = x − x²/2 + x³/3 − x⁴/4 + x⁵/5 − x⁶/6, in Estrin's form.
     const double x2 = x * x;
-    l = s.jc_log_rate + (x * (1 - 0.5 * x) + x2 * x * ((1.0 / 3 - 0.25 * x) + x2 * (0.2 - x * (1.0 / 6))));
+    l = s.jc_log_rate +
+        (x * (1 - 0.5 * x) + x2 * x * ((1.0 / 3 - 0.25 * x) + x2 * (0.2 - x * (1.0 / 6))));
   } else {
     l = std::log(ratio);
   }
@@ -136,7 +139,8 @@ JohnsonCookLaw::Return JohnsonCookLaw::plastic_increment(double trial_abs, doubl
   double base = p, base_n = p_n, inv_base = inv_p;
   for (int it = 0; it < kReturnMaxIterations; ++it) {
     const double q = p + dp;
-    const double q_n = hardening_series_.power(q, base > 0 ? (q - base) * inv_base : kNoBase, base_n, n);
+    const double q_n =
+        hardening_series_.power(q, base > 0 ? (q - base) * inv_base : kNoBase, base_n, n);
     const double inv_q = 1 / q;
     base = q;
     base_n = q_n;
@@ -180,7 +184,8 @@ void JohnsonCookLaw::update(std::span<const double> strain_next, double dt_s,
       const double trial = E * (strain_next[i] - s.back_strain);
       // Neither p nor T moved since the last update (jc_bound is that update's hardening ×
       // thermal factor): below the bound the step is elastic.
-      if (s.plastic_strain == s.jc_p && s.temperature_K == s.jc_T && std::abs(trial) <= s.jc_bound) {
+      if (s.plastic_strain == s.jc_p && s.temperature_K == s.jc_T &&
+          std::abs(trial) <= s.jc_bound) {
         s.strain = strain_next[i];
         s.stress_Pa = trial;
         stress_out[i] = trial;

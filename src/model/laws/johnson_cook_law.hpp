@@ -44,8 +44,8 @@ class JohnsonCookLaw final : public MaterialLaw {
   // refreshes the pair.
   double homologous_power(MaterialPointState& s) const;
 
-  // Coefficients of the binomial series (1 + x)^e = Σ a_k x^k, a_k = C(e, k) = a_{k−1}(e − k + 1)/k,
-  // to x¹⁰: powers near a cached point without pow (see kSeriesRange in the .cpp).
+  // Coefficients of the binomial series (1 + x)^e = Σ a_k x^k, a_k = C(e, k) = a_{k−1}(e − k +
+  // 1)/k, to x¹⁰: powers near a cached point without pow (see kSeriesRange in the .cpp).
   struct BinomialSeries {
     double a[11];
     explicit BinomialSeries(double e);
