@@ -51,6 +51,12 @@ std::string record_scene(const std::string& duration) {
 
 TEST_CASE("The memory estimate is within 30 % of the measured peak of a run",
           "[robustness][estimates]") {
+#ifdef SHPB_SANITIZED
+  // AddressSanitizer's shadow memory and redzones roughly double a run's resident memory: the
+  // estimate is of the program, measured in the Release build.
+  WARN("SKIPPED: peak memory is not comparable under AddressSanitizer");
+  return;
+#endif
   ScratchFolder scratch("estimate");
   for (const std::string duration : {"100 ms", "200 ms"}) {  // 1e6 and 2e6 samples
     INFO("duration " << duration);
