@@ -34,6 +34,7 @@ BarModel make_bar_model(std::string name, const MaterialSpec& material, double l
 
 BarState make_bar_state(const BarModel& bar, bool full_model) {
   BarState s;
+  s.dt = bar.time_step_s;
   s.w.assign(bar.nodes, 0.0);
   s.v.assign(bar.nodes, 0.0);
   s.force.assign(bar.nodes, 0.0);

@@ -34,7 +34,7 @@ struct BarModel {
   double youngs_modulus_Pa = 0;  // elastic (instantaneous) modulus
   double wave_speed_m_s = 0;
   double stiffness_N_m = 0;  // EA/h of one element
-  double time_step_s = 0;    // this bar's own Δt
+  double time_step_s = 0;    // this bar's own Δt (adaptive: its floor, at min_stretch)
   double courant = 0;
   double initial_velocity_m_s = 0;  // V0 of the rigid reference motion
   std::vector<double> mass_kg;      // lumped: ρAh/2 at the ends, ρAh inside
@@ -43,6 +43,13 @@ struct BarModel {
   bool finite_strain = false;        // material-law bars: logarithmic strain, current area (above)
   double volume_change_per_stress = 0;  // (1 − 2ν)/E of the law's elastic part, for J
   double min_stretch = 0;  // the stable step holds down to this λ (discretization.hpp)
+  // Adaptive step (finite strain, solver/step_control.hpp): the step is planned from the shortest
+  // element reached, C h0 λ/(c √φ), never below time_step_s; reference_step_s = C h0/c. A bar
+  // with a fixed step has own_step_s (its stable step; time_step_s is the common one in global
+  // stepping).
+  bool adaptive_step = false;
+  double reference_step_s = 0;
+  double own_step_s = 0;
   // Interface friction on the specimen's faces (docs/methods.md §8): the axial stress of an
   // element that flows (its law dissipates) in compression is raised by the factor
   // φ = 1 + friction_factor_per_aspect · d/L of the whole bar's current diameter and length.
@@ -89,6 +96,12 @@ struct BarState {
   std::vector<double> law_stress;        // scratch for material laws: τ at t_n
   std::vector<MaterialPointState> points;  // material-law bars only
   long step = 0;                           // n
+  // Steps (scheduler.hpp rule 1): Δt_n from t_n on, Δt_{n−1} that led to t_n (0 at n = 0); the
+  // current phase of constant step started at instant phase_step, τ = phase_tau.
+  double dt = 0, dt_prev = 0;
+  long phase_step = 0;
+  double phase_tau = 0;
+  double planned_stretch = 1;  // adaptive: the current step holds down to this element stretch
   int lo = 0, hi = -1;         // nodes that may differ from rest: [lo, hi] (empty if lo > hi)
   double dissipated_J = 0;     // material dissipation so far
   long long node_updates = 0;  // nodes advanced so far (causal economy counts only active ones)

@@ -150,7 +150,7 @@ void assemble_internal_forces(const BarModel& bar, BarState& s) {
   s.hi = std::min(s.hi + 1, last);
   if (bar.law) {
     // The law advances from its stored state over the step that led to t_n.
-    law_forces(bar, s, s.lo, s.hi, bar.time_step_s);
+    law_forces(bar, s, s.lo, s.hi, s.step > 0 ? s.dt_prev : s.dt);
   } else {
     elastic_forces(s.w.data(), s.force.data(), bar.stiffness_N_m, s.lo, s.hi, last);
   }
@@ -159,21 +159,22 @@ void assemble_internal_forces(const BarModel& bar, BarState& s) {
 void apply_dashpot(const BarModel& bar, BarState& s) {
   const int last = bar.nodes - 1;
   if (!bar.dashpot_right || s.quiet() || s.hi < last) return;
-  const double half = s.step == 0 ? 0.0 : 0.5 * bar.time_step_s;
+  const double half = 0.5 * s.dt_prev;  // v_n = v_{n−1/2} + ½Δt_{n−1} a_n (0 at n = 0)
   const double Z = bar.impedance_kg_s(), m = bar.mass_kg[last];
   // v_n = v_{n−1/2} + ½Δt (f − Z v_n)/m, solved for v_n.
   const double vn = (s.v[last] + half * s.force[last] / m) / (1 + half * Z / m);
   s.force[last] -= Z * vn;
-  s.dissipated_J += Z * vn * vn * (s.step == 0 ? 0.5 : 1.0) * bar.time_step_s;
+  s.dissipated_J += Z * vn * vn * 0.5 * (s.dt_prev + s.dt);
 }
 
 long advance(const BarModel& bar, BarState& s) {
-  const double dt = bar.time_step_s;
-  const double kick = s.step == 0 ? 0.5 * dt : dt;
+  const double dt = s.dt;
+  const double kick = 0.5 * (s.dt_prev + dt);  // ½(Δt_{n−1} + Δt_n); ½Δt_0 at n = 0
   const long count = s.quiet() ? 0 : s.hi - s.lo + 1;
   if (count > 0)
     kick_drift(s.w.data(), s.v.data(), s.force.data(), bar.inverse_mass.data(), kick, dt, s.lo,
                s.hi);
+  s.dt_prev = dt;
   ++s.step;
   return count;
 }
@@ -190,7 +191,7 @@ double end_free_force_at(const BarModel& bar, const BarState& s, int end, double
 }
 
 double node_velocity_now(const BarModel& bar, const BarState& s, int i) {
-  const double half = s.step == 0 ? 0.0 : 0.5 * bar.time_step_s * s.force[i] * bar.inverse_mass[i];
+  const double half = 0.5 * s.dt_prev * s.force[i] * bar.inverse_mass[i];
   const bool active = !s.quiet() && i >= s.lo && i <= s.hi;
   return bar.initial_velocity_m_s + (active ? s.v[i] + half : 0.0);
 }
@@ -200,14 +201,18 @@ BarEnergy bar_energy(const BarModel& bar, const BarState& s) {
   const double V = bar.initial_velocity_m_s;
   double moving_mass = bar.total_mass_kg();
   if (!s.quiet()) {
-    const double half = s.step == 0 ? 0.0 : 0.5 * bar.time_step_s;
+    const double half = 0.5 * s.dt_prev;
+    const bool same_step = s.step == 0 || s.dt_prev == s.dt;
     for (int i = s.lo; i <= s.hi; ++i) {
       const double vn = V + s.v[i] + half * s.force[i] * bar.inverse_mass[i];
       // The central difference conserves ½ v_{n−1/2}·M v_{n+1/2} + U(u_n) (its discrete energy),
       // not ½ v_n·M v_n + U: the two differ by (½Δt a_n)² per unit mass, one element's strain
-      // energy at a sharp front at C ≈ 1 and all of it for Nyquist ringing.
-      const double dv = 0.5 * bar.time_step_s * s.force[i] * bar.inverse_mass[i];
-      e.kinetic_J += 0.5 * bar.mass_kg[i] * (vn * vn - dv * dv);
+      // energy at a sharp front at C ≈ 1 and all of it for Nyquist ringing. Where the step
+      // changes (step_control.hpp), v_{n±1/2} = v_n ± ½Δt_{n−1/n} a_n.
+      const double a = s.force[i] * bar.inverse_mass[i];
+      const double dv = 0.5 * s.dt * s.force[i] * bar.inverse_mass[i];
+      e.kinetic_J += same_step ? 0.5 * bar.mass_kg[i] * (vn * vn - dv * dv)
+                               : 0.5 * bar.mass_kg[i] * (vn - half * a) * (vn + dv);
       moving_mass -= bar.mass_kg[i];
     }
     const int e0 = std::max(s.lo - 1, 0), e1 = std::min(s.hi, bar.nodes - 2);

@@ -14,16 +14,22 @@ struct Chain {
   std::vector<InterfaceModel> interfaces;
   std::vector<InterfaceState> interface_states;
   std::vector<double> contact_dissipated_J;  // per interface, cumulative
-  std::vector<long> final_step;              // per bar: its last instant is at or beyond the end
-  double start_time_s = 0;  // simulation clock at τ = 0 (≤ 0: first contact at t = 0)
-  double end_tau_s = 0;     // τ of the end of the recording
+  std::vector<long> final_step;  // per bar: its last instant is at or beyond the end (this phase)
+  double start_time_s = 0;       // simulation clock at τ = 0 (≤ 0: first contact at t = 0)
+  double end_tau_s = 0;          // τ of the end of the recording
   double max_penetration_m = 0;
   // The largest interpenetration in elements: over the smaller of the interface's two neighbouring
   // elements (a compliant contact between 1 mm bar elements is judged on 1 mm, not on a
   // specimen's).
   double max_penetration_elements = 0;
 
-  double bar_tau(std::size_t i) const { return states[i].step * bars[i].time_step_s; }
+  bool global_stepping = false;  // every bar takes the same steps (an adaptive one sets them)
+
+  // τ of bar i's pending instant: a product within its phase of constant step (scheduler rule 1).
+  double bar_tau(std::size_t i) const {
+    const BarState& s = states[i];
+    return s.phase_tau + static_cast<double>(s.step - s.phase_step) * s.dt;
+  }
 };
 
 }  // namespace shpb

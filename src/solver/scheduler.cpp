@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "solver/bar_integrator.hpp"
+#include "solver/step_control.hpp"
 
 namespace shpb {
 
@@ -32,8 +33,8 @@ EndState end_state(const Chain& chain, std::size_t bar, int node, double tau, bo
     e.free_force = end_free_force_at(b, s, node, tau_n, tau, w_end);
   }
   e.v = node_velocity(b, s, node);
-  e.kick_s = (s.step == 0 ? 0.5 : 1.0) * b.time_step_s;
-  e.step_s = b.time_step_s;
+  e.kick_s = 0.5 * (s.dt_prev + s.dt);  // ½(Δt_{n−1} + Δt_n), ½Δt_0 at n = 0
+  e.step_s = s.dt;
   return e;
 }
 
@@ -96,6 +97,8 @@ void take_instant(Chain& chain, ChainRecorders& recorders, const std::vector<cha
   // Rule 3: internal forces of the stepping bars.
   for (std::size_t i = first; i <= last; ++i)
     if (stepping[i]) assemble_internal_forces(chain.bars[i], chain.states[i]);
+  // Rule 1: an adaptive bar may start a new phase here (step_control.hpp).
+  replan_steps(chain, stepping, first, last);
 
   // Rules 4–6: interfaces touching a stepping bar, solved once at τ*.
   for (std::size_t k = k0; k < k1; ++k) {
@@ -110,8 +113,8 @@ void take_instant(Chain& chain, ChainRecorders& recorders, const std::vector<cha
                               stepping[l] ? nan : tied_end_position(im, is, 0, tau));
     EndState right = end_state(chain, r, 0, tau, stepping[r],
                                stepping[r] ? nan : tied_end_position(im, is, 1, tau));
-    const double next_l = stepping[l] ? tau + chain.bars[l].time_step_s : chain.bar_tau(l);
-    const double next_r = stepping[r] ? tau + chain.bars[r].time_step_s : chain.bar_tau(r);
+    const double next_l = stepping[l] ? tau + chain.states[l].dt : chain.bar_tau(l);
+    const double next_r = stepping[r] ? tau + chain.states[r].dt : chain.bar_tau(r);
     const double next = std::min(next_l, next_r);
     left.next_tau = next_l;
     right.next_tau = next_r;
@@ -130,7 +133,7 @@ void take_instant(Chain& chain, ChainRecorders& recorders, const std::vector<cha
   for (std::size_t i = first; i <= last; ++i) {
     if (!stepping[i]) continue;
     apply_dashpot(chain.bars[i], chain.states[i]);
-    recorders.on_bar_instant(chain, i, tau, tau + chain.bars[i].time_step_s);
+    recorders.on_bar_instant(chain, i, tau, tau + chain.states[i].dt);
     chain.states[i].node_updates += advance(chain.bars[i], chain.states[i]);
   }
 }

@@ -6,7 +6,9 @@
 // Contract (τ is the time since the start of the run; the simulation clock is t = t_start + τ):
 //  1. Bar i owns its step Δt_i and its instants τ_{i,n} = n·Δt_i (a product, never a running
 //     sum). Its state sits at exactly one instant: displacements at τ_{i,n}, velocities over
-//     (τ_{i,n−1}, τ_{i,n}).
+//     (τ_{i,n−1}, τ_{i,n}). An adaptive bar (step_control.hpp) may start a new phase of constant
+//     step at one of its own instants τ_{i,p}, right after assembling there (rule 3); its
+//     instants are then τ_{i,p} + (n − p)·Δt_i, still a product within the phase.
 //  2. The scheduler always processes the earliest pending instant τ* = min_i τ_{i,n}. Every bar
 //     whose pending instant equals τ* (to kSameInstant·Δt) steps at τ*, together. A bar that
 //     steps alone keeps stepping alone while its next instant comes before every other bar's

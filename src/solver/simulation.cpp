@@ -12,6 +12,7 @@
 #include "solver/chain.hpp"
 #include "solver/recorders.hpp"
 #include "solver/scheduler.hpp"
+#include "solver/step_control.hpp"
 #include "version.hpp"
 
 namespace shpb {
@@ -21,10 +22,16 @@ namespace {
 // Low-pass time of the radial-inertia ε̈, in elastic transits L/c of the bar (solver/bar.hpp).
 constexpr double kInertiaFilterTransits = 0.25;
 
-// Kinematics, face friction and radial inertia of bar i (solver/bar.hpp; docs/methods.md §8).
-void configure_bar(BarModel& bar, const Scene& scene, std::size_t i) {
+// Steps, kinematics, face friction and radial inertia of bar i (solver/bar.hpp; docs/methods.md
+// §8). `adaptive`: a finite-strain bar's step follows its shortest element (step_control.hpp).
+void configure_bar(BarModel& bar, const Scene& scene, std::size_t i, bool adaptive) {
+  const double courant = scene.simulation.courant.value_or(kDefaultCourant);
+  const double critical_step_s = bar.element_length_m / bar.wave_speed_m_s;
+  bar.reference_step_s = courant * critical_step_s;
+  bar.own_step_s = courant * stable_step_factor(scene, i) * critical_step_s;  // discretize()'s
   if (!bar.law) return;
   bar.finite_strain = scene.simulation.finite_strain;
+  bar.adaptive_step = adaptive && bar.finite_strain;
   bar.min_stretch = 1 - scene.simulation.max_strain.value_or(kDefaultMaxStrain);
   // Friction on the specimen's faces only (the closed form is a Kolsky specimen's); a free end
   // has none; two faces of different μ act through their mean (first order).
@@ -45,13 +52,14 @@ void configure_bar(BarModel& bar, const Scene& scene, std::size_t i) {
 // can act back on k at step ≥ s_k + 2(j − k): beyond k + N/2 (N instants in the run) nothing can
 // come back before the end, so the bar is cut there and ended with a dashpot (non-reflecting).
 // Recorded values are unchanged to the last bit.
-void cut_last_bar(Chain& c, const Scene& scene) {
+void cut_last_bar(Chain& c, const Scene& scene, bool adaptive) {
   BarModel& bar = c.bars.back();
   const BarSpec& spec = scene.bars.back();
   int k = 0;
   for (const GaugeSpec& g : spec.gauges)
     k = std::max(k, static_cast<int>(std::floor(g.position_m / bar.element_length_m + 0.5)) + 2);
-  const long instants = c.final_step.back() + 1;
+  // At most this many instants: time_step_s is the smallest step an adaptive chain may take.
+  const long instants = static_cast<long>(std::ceil(c.end_tau_s / bar.time_step_s - 1e-9)) + 1;
   const long keep = k + instants / 2 + 2;  // nodes kept
   if (keep >= bar.nodes) return;
   const int elements = static_cast<int>(keep - 1);
@@ -60,17 +68,18 @@ void cut_last_bar(Chain& c, const Scene& scene) {
                        elements, bar.time_step_s, spec.velocity_m_s);
   bar.full_nodes = full_nodes;
   bar.dashpot_right = true;
-  configure_bar(bar, scene, scene.bars.size() - 1);
+  configure_bar(bar, scene, scene.bars.size() - 1, adaptive);
   c.states.back() = make_bar_state(bar, false);
 }
 
-Chain build_chain(const Scene& scene, const ChainDiscretization& d, bool full_model) {
+Chain build_chain(const Scene& scene, const ChainDiscretization& d, bool full_model,
+                  bool adaptive) {
   Chain c;
   for (std::size_t i = 0; i < scene.bars.size(); ++i) {
     const BarSpec& spec = scene.bars[i];
     c.bars.push_back(make_bar_model(spec.name, spec.material, spec.length_m, spec.area_m2,
                                     d.bars[i].elements, d.bars[i].time_step_s, spec.velocity_m_s));
-    configure_bar(c.bars.back(), scene, i);
+    configure_bar(c.bars.back(), scene, i, adaptive);
     c.states.push_back(make_bar_state(c.bars.back(), full_model));
   }
   for (std::size_t k = 0; k + 1 < c.bars.size(); ++k) {
@@ -83,7 +92,9 @@ Chain build_chain(const Scene& scene, const ChainDiscretization& d, bool full_mo
   c.end_tau_s = d.duration_s - c.start_time_s;
   for (const BarModel& b : c.bars)
     c.final_step.push_back(static_cast<long>(std::ceil(c.end_tau_s / b.time_step_s - 1e-9)));
-  if (!full_model && c.bars.size() > 1) cut_last_bar(c, scene);
+  if (!full_model && c.bars.size() > 1) cut_last_bar(c, scene, adaptive);
+  c.global_stepping = d.stepping == Stepping::kGlobal;
+  plan_first_steps(c);
   return c;
 }
 
@@ -161,7 +172,7 @@ SimulationResult simulate(const Scene& scene, const SimulationOptions& options) 
   SimulationResult result;
   result.discretization = discretize(scene);
   const ChainDiscretization& d = result.discretization;
-  Chain chain = build_chain(scene, d, options.full_model);
+  Chain chain = build_chain(scene, d, options.full_model, options.adaptive_step);
   ChainRecorders recorders(scene, chain, d, options);
 
   const auto start = std::chrono::steady_clock::now();
@@ -211,9 +222,9 @@ SimulationResult simulate(const Scene& scene, const SimulationOptions& options) 
     st.name = b.name;
     st.elements = b.full_nodes - 1;
     st.simulated_elements = b.elements();
-    st.time_step_s = b.time_step_s;
+    st.time_step_s = s.dt;  // the last (adaptive: the smallest) step
     st.steps = s.step;
-    st.courant = b.courant;
+    st.courant = b.wave_speed_m_s * s.dt / b.element_length_m;
     st.node_updates = s.node_updates;
     st.node_updates_full_model = static_cast<long long>(s.step) * b.full_nodes;
     double momentum = 0;

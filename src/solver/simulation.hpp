@@ -20,6 +20,7 @@ struct SimulationOptions {
   int field_times = 200;                 // rows of the x–t grid
   int field_points = 400;                // columns (element centres along the chain)
   bool subcycle = true;                  // a lone fast bar steps in a tight loop (scheduler.hpp)
+  bool adaptive_step = true;  // finite-strain bars step from their shortest element (step_control)
 };
 
 // Columns sampled on one time grid; values[c][k] is column c at time_s[k].

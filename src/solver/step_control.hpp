@@ -1,0 +1,53 @@
+#pragma once
+// The adaptive step of a material-law bar with finite strain (docs/methods.md §8.1, "The stable
+// step"): instead of one step planned for the shortest element the run may ever produce
+// (λ = 1 − e_max, discretization.hpp), the step follows the shortest element reached so far.
+//
+// Rule. At each of its instants, after its forces are assembled (scheduler.hpp rule 3), the bar
+// knows λ_min, the smallest element stretch reached so far (a running minimum: it never grows).
+// While λ_min ≥ λ_p, the stretch the current step was planned for, the step stays. Below it, a new
+// phase of constant step starts at this instant (rule 1) with
+//   λ_p = max(1 − e_max, λ_min − kStepPlanMargin),   Δt = C h0 λ_p / (c √φ(λ_p)),
+// φ the face-friction factor at the volume-conserving shape of stretch λ_p (1 without friction),
+// and never below the fixed plan's step. The first phase is planned for λ_p = 1.
+//
+// Why it is stable. (i) Per instant: the step taken from t_n is planned for a stretch no larger
+// than any element's at t_n, so it is within the critical step h0 λ/c of the state it starts from:
+// the criterion of the fixed plan (which holds it for every λ ≥ 1 − e_max), evaluated where the bar
+// is instead of where it might end; geometric stiffening and friction as there. (ii) Across a
+// change: the variable-step central difference, v_{n+1/2} = v_{n−1/2} + ½(Δt_{n−1} + Δt_n) a_n,
+// u_{n+1} = u_n + Δt_n v_{n+1/2}, is a sequence of velocity-Verlet phases joined at the full-step
+// state (u_n, v_n = v_{n−1/2} + ½Δt_{n−1} a_n), which passes unchanged from one phase to the next.
+// For a linear mode of frequency ω a phase of step Δt conserves exactly
+//   H_Δt = ½ v² + ½ ω² (1 − ω²Δt²/4) u²   (positive for ωΔt < 2).
+// The steps only shrink (λ_min only decreases), so at each change H grows at most by the ratio of
+// the u² weights, and over any number of changes these ratios telescope:
+//   H_last / H_first ≤ (1 − ω²Δt_last²/4) / (1 − ω²Δt_first²/4) ≤ 1/(1 − C²),
+// a bounded factor whatever the number of phases (no exponential growth); a change of a few per
+// cent moves it by far less. The energy check of scheduler rule 7 still watches every run.
+//
+// Global stepping: every bar takes the smallest step any bar needs, and all change together.
+#include "solver/chain.hpp"
+
+namespace shpb {
+
+// Stretch below the shortest element at which a new phase is planned: fewer changes against a
+// step a little below the largest stable one (2 % of stretch: ~10 phases for a 20 % test).
+inline constexpr double kStepPlanMargin = 0.02;
+
+// Step of `bar` planned for element stretch λ (above); own_step_s for a bar with a fixed step.
+double planned_step_s(const BarModel& bar, double stretch);
+
+// Starts a phase of step dt for bar i at its pending instant τ (rule 1) and resets the instant
+// at which it is finished (rule 8).
+void start_phase(Chain& chain, std::size_t i, double dt);
+
+// The first phase of every bar (before the run).
+void plan_first_steps(Chain& chain);
+
+// At τ*, after the stepping bars in [first, last] assembled their forces: re-plans the step of an
+// adaptive bar whose shortest element passed its planned stretch (all bars in global stepping).
+void replan_steps(Chain& chain, const std::vector<char>& stepping, std::size_t first,
+                  std::size_t last);
+
+}  // namespace shpb
