@@ -94,6 +94,9 @@ struct BarState {
   bool inertia_finished = false;         // the loading is over: off for the rest of the run
   std::vector<double> strain_next;       // scratch for material laws: ε at t_n
   std::vector<double> law_stress;        // scratch for material laws: τ at t_n
+  // Finite strain: per element the anchor of its logarithmic strain (bar_integrator.cpp):
+  // d_a = Δw/h0 there, ln(1 + d_a), 1/(1 + d_a).
+  std::vector<double> log_anchor_d, log_anchor_value, log_anchor_inverse;
   std::vector<MaterialPointState> points;  // material-law bars only
   long step = 0;                           // n
   // Steps (scheduler.hpp rule 1): Δt_n from t_n on, Δt_{n−1} that led to t_n (0 at n = 0); the

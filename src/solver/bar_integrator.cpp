@@ -43,6 +43,55 @@ SHPB_NODE_LOOP void kick_drift(double* __restrict w, double* __restrict v,
   }
 }
 
+// Logarithmic strain ε_e = ln(1 + d_e), d_e = Δw_e/h0 (finite strain, bar.hpp), without a log
+// per element and step: each element keeps an anchor (d_a, ln(1 + d_a) from std::log1p, 1/(1 +
+// d_a)) and ln(1 + d) = ln(1 + d_a) + ln(1 + x), x = (d − d_a)/(1 + d_a), by the series of ln(1 +
+// x) to x⁶ while |x| ≤ kLogAnchorRange (remainder x⁷/7 ≤ 2e-22: round-off); an element that moved
+// farther is re-anchored at d exactly. The anchor is an exact pair (never a running sum): no drift.
+// At SHPB rates an element moves ~1e-5 of its length per step, so one log per ~100 steps.
+constexpr double kLogAnchorRange = 1e-3;
+SHPB_NODE_LOOP void log_strains(const double* __restrict w, double* __restrict strain,
+                                const double* __restrict anchor_d,
+                                const double* __restrict anchor_log,
+                                const double* __restrict anchor_inverse, double inv_h, int e0,
+                                int e1, int* far) {
+  int outside = 0;
+  for (int e = e0; e <= e1; ++e) {
+    const double x = ((w[e + 1] - w[e]) * inv_h - anchor_d[e]) * anchor_inverse[e];
+    const double x2 = x * x;
+    // x − x²/2 + x³/3 − x⁴/4 + x⁵/5 − x⁶/6 in Estrin's form (as johnson_cook_law.cpp's log_rate).
+    strain[e] = anchor_log[e] +
+                (x * (1 - 0.5 * x) + x2 * x * ((1.0 / 3 - 0.25 * x) + x2 * (0.2 - x * (1.0 / 6))));
+    outside |= !(std::abs(x) <= kLogAnchorRange);
+  }
+  *far = outside;
+}
+
+void logarithmic_strains(BarState& s, double inv_h, int e0, int e1) {
+  int far = 0;
+  log_strains(s.w.data(), s.strain_next.data(), s.log_anchor_d.data(), s.log_anchor_value.data(),
+              s.log_anchor_inverse.data(), inv_h, e0, e1, &far);
+  if (!far) return;
+  for (int e = e0; e <= e1; ++e) {
+    const double d = (s.w[e + 1] - s.w[e]) * inv_h;
+    if (!(std::abs((d - s.log_anchor_d[e]) * s.log_anchor_inverse[e]) <= kLogAnchorRange)) {
+      s.log_anchor_d[e] = d;
+      s.log_anchor_value[e] = std::log1p(d);
+      s.log_anchor_inverse[e] = 1 / (1 + d);
+      s.strain_next[e] = s.log_anchor_value[e];
+    }
+  }
+}
+
+// J = exp(x) for the elastic volume change x = (1 − 2ν)τ/E, below 1e-2 for any solid: by its
+// series to x⁵ while |x| ≤ kExpSeriesRange (remainder x⁶/720 ≤ 2e-21, round-off), else std::exp.
+constexpr double kExpSeriesRange = 1e-3;
+inline double volume_ratio(double x) {
+  if (!(std::abs(x) <= kExpSeriesRange)) return std::exp(x);
+  const double x2 = x * x;
+  return (1 + x) + x2 * ((0.5 + x * (1.0 / 6)) + x2 * (1.0 / 24 + x * (1.0 / 120)));
+}
+
 // Material-law kernel: element strains → one law update for the range → axial forces N_e →
 // nodal forces f_i = N_i − N_{i−1}. Finite strain, friction and radial inertia as in bar.hpp.
 void law_forces(const BarModel& bar, BarState& s, int lo, int hi, double dt) {
@@ -50,7 +99,7 @@ void law_forces(const BarModel& bar, BarState& s, int lo, int hi, double dt) {
   const int e0 = std::max(lo - 1, 0), e1 = std::min(hi, last - 1);
   const double h0 = bar.element_length_m, inv_h = 1.0 / h0;
   if (bar.finite_strain) {
-    for (int e = e0; e <= e1; ++e) s.strain_next[e] = std::log1p((s.w[e + 1] - s.w[e]) * inv_h);
+    logarithmic_strains(s, inv_h, e0, e1);
   } else {
     for (int e = e0; e <= e1; ++e) s.strain_next[e] = (s.w[e + 1] - s.w[e]) * inv_h;
   }
@@ -114,7 +163,7 @@ void law_forces(const BarModel& bar, BarState& s, int lo, int hi, double dt) {
     }
     if (bar.finite_strain) {
       const double stretch = 1 + (s.w[e + 1] - s.w[e]) * inv_h;
-      const double J = std::exp(bar.volume_change_per_stress * tau);
+      const double J = volume_ratio(bar.volume_change_per_stress * tau);
       const double axial = tau + excess - inertia * J;  // Kirchhoff: the true inertia stress × J
       s.axial_force_N[e] = axial * A0 / stretch;
       s.stress_Pa[e] = axial / J;
