@@ -67,6 +67,8 @@ SHPB_NODE_LOOP void log_strains(const double* __restrict w, double* __restrict s
   *far = outside;
 }
 
+}  // namespace
+
 void logarithmic_strains(BarState& s, double inv_h, int e0, int e1) {
   int far = 0;
   log_strains(s.w.data(), s.strain_next.data(), s.log_anchor_d.data(), s.log_anchor_value.data(),
@@ -86,10 +88,42 @@ void logarithmic_strains(BarState& s, double inv_h, int e0, int e1) {
 // J = exp(x) for the elastic volume change x = (1 − 2ν)τ/E, below 1e-2 for any solid: by its
 // series to x⁵ while |x| ≤ kExpSeriesRange (remainder x⁶/720 ≤ 2e-21, round-off), else std::exp.
 constexpr double kExpSeriesRange = 1e-3;
-inline double volume_ratio(double x) {
+double volume_ratio(double x) {
   if (!(std::abs(x) <= kExpSeriesRange)) return std::exp(x);
   const double x2 = x * x;
   return (1 + x) + x2 * ((0.5 + x * (1.0 / 6)) + x2 * (1.0 / 24 + x * (1.0 / 120)));
+}
+
+namespace {
+// Finite strain without friction (bar.hpp): N_e = (τ − inertia J) A0/λ, σ = N_e λ/(A0 J) with J
+// by volume_ratio's series, and the smallest stretch. False (nothing written) if some element's
+// volume change is beyond the series' range (then the general loop does it with std::exp).
+SHPB_NODE_LOOP bool finite_strain_kernel(const double* __restrict w, const double* __restrict tau,
+                                         double* __restrict axial_force, double* __restrict stress,
+                                         double kappa, double inertia, double A0, double inv_h,
+                                         int e0, int e1, double* smallest) {
+  int outside = 0;
+  for (int e = e0; e <= e1; ++e) outside |= !(std::abs(kappa * tau[e]) <= kExpSeriesRange);
+  if (outside) return false;
+  for (int e = e0; e <= e1; ++e) {
+    const double stretch = 1 + (w[e + 1] - w[e]) * inv_h;
+    const double x = kappa * tau[e], x2 = x * x;
+    const double J = (1 + x) + x2 * ((0.5 + x * (1.0 / 6)) + x2 * (1.0 / 24 + x * (1.0 / 120)));
+    const double axial = tau[e] - inertia * J;  // Kirchhoff: the true inertia stress × J
+    axial_force[e] = axial * A0 / stretch;
+    stress[e] = axial / J;
+  }
+  double m = *smallest;  // a loop of its own: a min reduction keeps the one above scalar
+  for (int e = e0; e <= e1; ++e) m = std::min(m, 1 + (w[e + 1] - w[e]) * inv_h);
+  *smallest = m;
+  return true;
+}
+
+bool finite_strain_forces(BarState& s, double kappa, double inertia, double A0, double inv_h,
+                          int e0, int e1) {
+  return finite_strain_kernel(s.w.data(), s.law_stress.data(), s.axial_force_N.data(),
+                              s.stress_Pa.data(), kappa, inertia, A0, inv_h, e0, e1,
+                              &s.smallest_stretch);
 }
 
 // Material-law kernel: element strains → one law update for the range → axial forces N_e →
@@ -150,7 +184,12 @@ void law_forces(const BarModel& bar, BarState& s, int lo, int hi, double dt) {
     s.inertia_flowing = flowing;
   }
   const double A0 = bar.area_m2;
-  for (int e = e0; e <= e1; ++e) {
+  // Finite strain without friction (the usual specimen): the same operations over contiguous
+  // arrays, in a loop the compiler vectorizes.
+  const bool plain_finite =
+      bar.finite_strain && !friction &&
+      finite_strain_forces(s, bar.volume_change_per_stress, inertia, A0, inv_h, e0, e1);
+  for (int e = e0; e <= e1 && !plain_finite; ++e) {
     const double tau = s.law_stress[e];
     // Friction raises the pressure needed for flow (Dharan & Hauser): it acts while the element
     // flows (its law dissipates) under face pressure (compressive stress), not on elastic

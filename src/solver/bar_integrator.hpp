@@ -18,6 +18,12 @@ namespace shpb {
 // nothing (its forces are zero). Returns the number of nodes in the new range.
 void assemble_internal_forces(const BarModel& bar, BarState& s);
 
+// Finite strain: ε_e = ln(1 + Δw_e/h0) of elements [e0, e1] into s.strain_next, each from its
+// element's exact anchor by a series (bar_integrator.cpp; a test pins it to std::log1p).
+void logarithmic_strains(BarState& s, double inv_h, int e0, int e1);
+// J = exp(x) of the elastic volume change x = (1 − 2ν)τ/E, by its series for small x.
+double volume_ratio(double x);
+
 // Makes node i part of the active range (an interface starts loading it).
 void activate_node(const BarModel& bar, BarState& s, int i);
 

@@ -138,11 +138,45 @@ void take_instant(Chain& chain, ChainRecorders& recorders, const std::vector<cha
   }
 }
 
+// Rule 10: an interface that a solve at rest leaves as it is: a rigid link (the default
+// localized bipenalty, or bonded) either open with a gap (nothing closes it) or tied with its
+// frame at rest where both ends are.
+bool interface_at_rest(const InterfaceModel& m, const InterfaceState& s) {
+  const bool rigid = m.method == ContactMethod::kBonded ||
+                     (m.method == ContactMethod::kLocalizedBipenalty && !m.finite_links);
+  if (!rigid) return false;
+  if (!s.active) return s.gap_m > 0;
+  return s.frame_v == 0 && tied_end_position(m, s, 0, s.frame_tau) == 0 &&
+         tied_end_position(m, s, 1, s.frame_tau) == 0;
+}
+
+// Rule 10: bar j is quiet and nothing around it moves, so its instants until a neighbour steps
+// change nothing. The neighbours do not step meanwhile (they are ahead), so this holds for all of
+// them or none.
+bool at_rest(const Chain& chain, std::size_t j) {
+  const std::size_t nb = chain.bars.size();
+  if (!chain.states[j].quiet()) return false;
+  for (std::size_t i = j > 0 ? j - 1 : 0; i < std::min(j + 2, nb); ++i)
+    if (chain.bars[i].initial_velocity_m_s != 0) return false;
+  if (j > 0) {  // the left neighbour's last two nodes (its end and end element) at rest
+    const BarState& l = chain.states[j - 1];
+    if (!l.quiet() && l.hi >= chain.bars[j - 1].nodes - 2) return false;
+    if (!interface_at_rest(chain.interfaces[j - 1], chain.interface_states[j - 1])) return false;
+  }
+  if (j + 1 < nb) {  // the right neighbour's first two nodes
+    const BarState& r = chain.states[j + 1];
+    if (!r.quiet() && r.lo <= 1) return false;
+    if (!interface_at_rest(chain.interfaces[j], chain.interface_states[j])) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 ScheduleOutcome run_schedule(Chain& chain, ChainRecorders& recorders,
                              const std::function<void(double)>& progress,
-                             const std::function<bool()>& cancel, bool subcycle) {
+                             const std::function<bool()>& cancel, bool subcycle,
+                             bool subcycle_at_rest) {
   ScheduleOutcome outcome;
   const std::size_t nb = chain.bars.size();
   std::vector<char> stepping(nb, 0);
@@ -218,9 +252,25 @@ ScheduleOutcome run_schedule(Chain& chain, ChainRecorders& recorders,
     double others = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < nb; ++i)
       if (i != j && unfinished(i)) others = std::min(others, chain.bar_tau(i));
+    const bool rest = subcycle_at_rest && at_rest(chain, j);
     while (unfinished(j)) {
-      const double tau_j = chain.bar_tau(j);
+      double tau_j = chain.bar_tau(j);
       if (!(tau_j + same < others)) break;
+      if (rest) {
+        // Rule 10: straight to the last instant of the loop; it records the rest values that
+        // the skipped ones would have (linear interpolation between equal values).
+        BarState& s = chain.states[j];
+        const long first_step = s.step;
+        while (s.step < chain.final_step[j]) {
+          ++s.step;
+          if (!(chain.bar_tau(j) + same < others)) {
+            --s.step;
+            break;
+          }
+        }
+        if (s.step != first_step) s.dt_prev = s.dt;
+        tau_j = chain.bar_tau(j);
+      }
       take_instant(chain, recorders, stepping, j, j, tau_j);
       if (!after_instant(tau_j)) return outcome;
     }

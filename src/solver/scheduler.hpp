@@ -38,6 +38,13 @@
 //  8. A bar is finished after it has taken its instant at or beyond the end of the recording;
 //     the run ends when every bar is finished.
 //  9. Cancellation is polled every kCancelPollInstants instants (throws Interrupted).
+// 10. A lone bar at rest skips: when the bar of the tight loop (rule 2) is quiet (every node at
+//     rest, docs/methods.md §7), it and both neighbours have no initial velocity, each neighbour's
+//     end node and end element are at rest, and each interface is a rigid link open with a gap or
+//     tied with its frame at rest, its instants change nothing but its step count (the neighbours
+//     do not step meanwhile); it goes straight to the loop's last instant and takes that one,
+//     whose record at rest stands for the skipped ones. Outputs are bit-identical (a test pins
+//     it): the specimen before the incident pulse reaches it.
 #include <functional>
 #include <string>
 
@@ -60,9 +67,11 @@ struct ScheduleOutcome {
   double energy_error = 0;
 };
 
-// `subcycle` false searches rule 2 at every instant (the plain loop; tests compare the two).
+// `subcycle` false searches rule 2 at every instant (the plain loop; tests compare the two);
+// `subcycle_at_rest` false takes every instant of a bar at rest (rule 10; the same comparison).
 ScheduleOutcome run_schedule(Chain& chain, ChainRecorders& recorders,
                              const std::function<void(double)>& progress,
-                             const std::function<bool()>& cancel, bool subcycle = true);
+                             const std::function<bool()>& cancel, bool subcycle = true,
+                             bool subcycle_at_rest = true);
 
 }  // namespace shpb

@@ -176,8 +176,8 @@ SimulationResult simulate(const Scene& scene, const SimulationOptions& options) 
   ChainRecorders recorders(scene, chain, d, options);
 
   const auto start = std::chrono::steady_clock::now();
-  const ScheduleOutcome outcome =
-      run_schedule(chain, recorders, options.progress, options.cancel, options.subcycle);
+  const ScheduleOutcome outcome = run_schedule(chain, recorders, options.progress, options.cancel,
+                                               options.subcycle, options.skip_at_rest);
   result.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 

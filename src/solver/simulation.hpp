@@ -21,6 +21,7 @@ struct SimulationOptions {
   int field_points = 400;                // columns (element centres along the chain)
   bool subcycle = true;                  // a lone fast bar steps in a tight loop (scheduler.hpp)
   bool adaptive_step = true;  // finite-strain bars step from their shortest element (step_control)
+  bool skip_at_rest = true;   // a lone bar at rest skips its no-op instants (scheduler.hpp rule 10)
 };
 
 // Columns sampled on one time grid; values[c][k] is column c at time_s[k].
