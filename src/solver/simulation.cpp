@@ -23,7 +23,11 @@ namespace {
 constexpr double kInertiaFilterTransits = 0.25;
 
 // Steps, kinematics, face friction and radial inertia of bar i (solver/bar.hpp; docs/methods.md
-// §8). `adaptive`: a finite-strain bar's step follows its shortest element (step_control.hpp).
+// §8). `adaptive`: the specimen's step follows its shortest element (step_control.hpp) when it is
+// finite-strain without face friction or radial inertia. Measured, those two and a pulse shaper
+// depend on the step itself (the fixed plan at e_max 0.25 instead of 0.5 moves the friction test's
+// peak stress by 12 %; a copper shaper at e_max 0.14–0.3 loses 0.7–4.6 % of the energy), so they
+// keep the fixed plan until that is understood.
 void configure_bar(BarModel& bar, const Scene& scene, std::size_t i, bool adaptive) {
   const double courant = scene.simulation.courant.value_or(kDefaultCourant);
   const double critical_step_s = bar.element_length_m / bar.wave_speed_m_s;
@@ -31,7 +35,6 @@ void configure_bar(BarModel& bar, const Scene& scene, std::size_t i, bool adapti
   bar.own_step_s = courant * stable_step_factor(scene, i) * critical_step_s;  // discretize()'s
   if (!bar.law) return;
   bar.finite_strain = scene.simulation.finite_strain;
-  bar.adaptive_step = adaptive && bar.finite_strain;
   bar.min_stretch = 1 - scene.simulation.max_strain.value_or(kDefaultMaxStrain);
   // Friction on the specimen's faces only (the closed form is a Kolsky specimen's); a free end
   // has none; two faces of different μ act through their mean (first order).
@@ -44,6 +47,8 @@ void configure_bar(BarModel& bar, const Scene& scene, std::size_t i, bool adapti
     bar.inertia_filter_s =
         kInertiaFilterTransits * bar.element_length_m * bar.elements() / bar.wave_speed_m_s;
   }
+  bar.adaptive_step = adaptive && bar.finite_strain && bar.friction_factor_per_aspect == 0 &&
+                      bar.radial_inertia_density_kg_m3 == 0;
 }
 
 // docs/methods.md §7: lumped central difference moves information by exactly one node per step, and
