@@ -1,7 +1,8 @@
 #pragma once
 // The adaptive step of a material-law bar with finite strain (docs/methods.md §8.1, "The stable
-// step"): instead of one step planned for the shortest element the run may ever produce
-// (λ = 1 − e_max, discretization.hpp), the step follows the shortest element reached so far.
+// step"; the specimen without face friction or radial inertia, simulation.cpp says why): instead
+// of one step planned for the shortest element the run may ever produce (λ = 1 − e_max,
+// discretization.hpp), the step follows the shortest element reached so far.
 //
 // Rule. At each of its instants, after its forces are assembled (scheduler.hpp rule 3), the bar
 // knows λ_min, the smallest element stretch reached so far (a running minimum: it never grows).
