@@ -181,6 +181,35 @@ int main(int argc, char** argv) {
           kDefaultStiffnessFactor, kDefaultMassRatio, f.wall_s * 1e3, f.cpu_s * 1e3,
           f.cpu_s / a.cpu_s, f.last.energy_error, f.last.stable ? "" : " UNSTABLE");
     }
+    {
+      // The specimen's step plan and the instants of a bar at rest, side by side in one build:
+      // the fixed plan at (1 − e_max) with every instant taken (the path before
+      // solver/step_control.hpp and scheduler rule 10) against the default.
+      SimulationOptions previous = economy;
+      previous.adaptive_step = false;
+      previous.skip_at_rest = false;
+      const Timing p = run(scene, previous, repeat);
+      long steps_a = 0, steps_p = 0;
+      for (std::size_t i = 0; i < a.last.bars.size(); ++i)
+        if (scene.specimen && *scene.specimen == i) {
+          steps_a = a.last.bars[i].steps;
+          steps_p = p.last.bars[i].steps;
+        }
+      double num = 0, den = 0;
+      for (std::size_t c = 0; c < a.last.gauges.values.size(); ++c)
+        for (std::size_t k = 0; k < std::min(a.last.gauges.samples(), p.last.gauges.samples());
+             ++k) {
+          const double d = a.last.gauges.values[c][k] - p.last.gauges.values[c][k];
+          num += d * d;
+          den += p.last.gauges.values[c][k] * p.last.gauges.values[c][k];
+        }
+      std::printf(
+          "  specimen step from its shortest element, instants at rest skipped, against the fixed "
+          "plan and every instant: %.2f against %.2f ms CPU (x%.2f), specimen steps %ld against "
+          "%ld, gauges %.2g apart (L2)\n",
+          a.cpu_s * 1e3, p.cpu_s * 1e3, p.cpu_s / a.cpu_s, steps_a, steps_p,
+          den > 0 ? std::sqrt(num / den) : 0.0);
+    }
     std::printf(
         "  causal economy: %lld of %lld node updates of the full model (saves %.1f %%); "
         "full model %.2f ms\n",
