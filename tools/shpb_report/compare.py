@@ -41,7 +41,7 @@ def fig_compare_signals(src, figs):
                         ha="center", va="top", fontsize=8, color="C1")
         ax.set_ylabel(f"{g}\nstrain (µε, tension +)")
         outside_legend(ax)
-    axes[0, 0].set_title(src.title("Simulated over measured gauge signals"))
+    fig.suptitle(src.title("Simulated over measured gauge signals"))  # above the legends
     axes[-1, 0].set_xlabel("time on the measurement's clock (µs)")
     figs.save(fig, src.png("signals"),
               src.title("Gauge signals: simulated over measured"),

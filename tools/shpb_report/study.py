@@ -1,5 +1,7 @@
 """Figures of `shpb study --sweep pareto` (docs/outputs.md, study): accuracy against cost of
 every run, with the Pareto front of pareto.csv's `pareto_front_wall_time` column."""
+import textwrap
+
 import numpy as np
 
 from .drawing import new_figure
@@ -49,7 +51,8 @@ def fig_pareto(src, figs):
     ax.set_yscale("log")
     ax.set_xlabel("wall time of the solve (s)")
     reference = src.value("reference", kind=str)
-    ax.set_ylabel("error against the reference" + (f"\n({reference})" if reference else ""))
+    ax.set_ylabel("error against the reference"
+                  + (f"\n({textwrap.shorten(reference, 55)})" if reference else ""))
     ax.set_title(src.title("Accuracy against cost"))
     ax.legend(loc="best", fontsize=7)
     figs.save(fig, src.png("pareto"), src.title("Accuracy against cost"),
