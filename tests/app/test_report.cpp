@@ -21,11 +21,6 @@ const fs::path kClassic = fs::path(SHPB_SOURCE_DIR) / "experiments/classic-al606
 // A PNG file starts with these eight bytes (PNG specification, §5.2).
 const std::string kPngSignature = "\x89PNG\r\n\x1a\n";
 
-bool have_matplotlib() {
-  return std::system("/usr/bin/python3 -c 'import matplotlib, numpy' >/dev/null 2>&1") == 0 ||
-         std::system("python3 -c 'import matplotlib, numpy' >/dev/null 2>&1") == 0;
-}
-
 // Checks one expected figure: exists, is a PNG with content, and report.html links it.
 void check_figure(const fs::path& dir, const std::string& html, const std::string& name) {
   INFO("figure " << name);
@@ -65,7 +60,7 @@ fs::path write_study_folder(const fs::path& dir) {
 
 TEST_CASE("The report of the default experiment holds every figure, each referenced by the page",
           "[app][report]") {
-  if (!have_matplotlib()) {
+  if (!shpb_test::have_matplotlib()) {
     WARN("SKIPPED: python3 with matplotlib and numpy not installed: report test skipped");
     return;
   }
@@ -89,7 +84,7 @@ TEST_CASE("The report of the default experiment holds every figure, each referen
 
 TEST_CASE("The report of a study folder shows accuracy against cost and the stability map",
           "[app][report]") {
-  if (!have_matplotlib()) {
+  if (!shpb_test::have_matplotlib()) {
     WARN("SKIPPED: python3 with matplotlib and numpy not installed: report test skipped");
     return;
   }
@@ -104,7 +99,7 @@ TEST_CASE("The report of a study folder shows accuracy against cost and the stab
 
 TEST_CASE("A folder without shpb outputs is refused with exit 2 and nothing written",
           "[app][report]") {
-  if (!have_matplotlib()) {
+  if (!shpb_test::have_matplotlib()) {
     WARN("SKIPPED: python3 with matplotlib and numpy not installed: report test skipped");
     return;
   }
@@ -119,7 +114,7 @@ TEST_CASE("A folder without shpb outputs is refused with exit 2 and nothing writ
 
 TEST_CASE("Headless Chromium renders report.html to a picture that is not blank",
           "[app][report][browser]") {
-  if (!have_matplotlib()) {
+  if (!shpb_test::have_matplotlib()) {
     WARN("SKIPPED: python3 with matplotlib and numpy not installed: browser test skipped");
     return;
   }
