@@ -11,11 +11,13 @@ Ownership: figures/ is this package's only if it holds the marker file .shpb-rep
 only if it carries the page's generator line; the output folder's own marker (.shpb-output, see
 core/output_folder.hpp) is told about both so that shpb may later replace the folder whole.
 """
+import logging
 import os
 import shutil
 import sys
 import tempfile
 import traceback
+import warnings
 
 from . import compare, fit, process, simulate, study, sweeps
 from .drawing import Figures, close_all
@@ -146,6 +148,10 @@ def build(folder):
 
 
 def main(argv):
+    # A figure of an odd but valid file (an all-empty column, nothing to label) is drawn as it is:
+    # no matplotlib or numpy chatter on stderr, where only the one result or error line goes.
+    logging.getLogger("matplotlib").setLevel(logging.ERROR)
+    warnings.simplefilter("ignore", RuntimeWarning)
     if len(argv) != 2 or argv[1] in ("-h", "--help"):
         print(USAGE, file=sys.stderr if len(argv) != 2 else sys.stdout)
         return 0 if len(argv) == 2 else 2
