@@ -82,8 +82,8 @@ def build(folder):
     sources = find_sources(folder)
     if not sources:
         raise ReportError(f"{folder}: no gauges.csv, curve.csv, signals.csv, pareto.csv or "
-                          "other shpb output: an output folder of simulate, process, compare or "
-                          "study was expected")
+                          "other shpb output: an output folder of simulate, process, compare, "
+                          "study or fit was expected")
     check_ownership(folder)
     # Figures are drawn into a temporary folder and moved into place at the end, so a failure
     # leaves any previous report intact (docs/outputs.md (conventions)).
@@ -165,7 +165,10 @@ def main(argv):
         print(f"error: {where}: cannot be written: {e.strerror or e}", file=sys.stderr)
         return 3
     except Exception as e:  # noqa: BLE001 - a bug of this package, not a bad input
-        frame = traceback.extract_tb(e.__traceback__)[-1]
+        frames = traceback.extract_tb(e.__traceback__)
+        here = os.path.dirname(os.path.abspath(__file__))
+        ours = [f for f in frames if os.path.dirname(os.path.abspath(f.filename)) == here]
+        frame = (ours or frames)[-1]  # the line of this package that failed
         print(f"error: internal: shpb report: {type(e).__name__}: {e} (at "
               f"{os.path.basename(frame.filename)}:{frame.lineno}): please report it",
               file=sys.stderr)

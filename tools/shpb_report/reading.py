@@ -50,6 +50,8 @@ class Table:
                 rows = list(csv.reader(f))
         except csv.Error as e:  # an unclosed quote, a NUL byte: not a CSV this package reads
             raise ReportError(f"{path}: {e}: comma-separated numbers were expected")
+        except OSError as e:  # unreadable (permissions): an input error, not a failed write
+            raise ReportError(f"{path}: {e.strerror or e}: a readable file was expected")
         if not rows:
             raise ReportError(f"{path}: line 1: empty file: a header row was expected")
         self.names = [n.strip() for n in rows[0]]
