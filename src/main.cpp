@@ -5,27 +5,44 @@
 #include <exception>
 #include <new>
 #include <string>
+#include <vector>
 
 #include "app/commands.hpp"
+#include "core/enum_names.hpp"
 #include "core/error.hpp"
 #include "core/output_folder.hpp"
 #include "core/units.hpp"
+#include "model/scene.hpp"
 #include "version.hpp"
 
 namespace {
 
 using namespace shpb;
 
-// --contact/--stepping/--courant/--threads/--quiet for simulate, compare, study and validate.
+// "a | b | c" of an option's choices.
+std::string alternatives(const std::vector<std::string>& names) {
+  std::string text;
+  for (const auto& n : names) text += (text.empty() ? "" : " | ") + n;
+  return text;
+}
+
+// --contact/--stepping/--courant/--threads/--quiet for simulate, compare, study and validate. The
+// choices are the enums' own name tables (core/enum_names.hpp); `bonded` is a scene key only.
 void add_run_options(CLI::App* cmd, RunOverrides& o, std::string& contact, std::string& stepping) {
+  std::vector<std::string> methods = enum_names(kContactMethodNames);
+  std::erase(methods, std::string(to_string(ContactMethod::kBonded)));
+  const std::vector<std::string> steppings = enum_names(kSteppingNames);
   cmd->add_option("--contact", contact,
-                  "Contact method at every interface: penalty | bipenalty | localized-bipenalty "
-                  "(default: the scene's, else localized-bipenalty)")
-      ->check(CLI::IsMember({"penalty", "bipenalty", "localized-bipenalty"}));
+                  "Contact method at every interface: " + alternatives(methods) +
+                      " (default: the scene's, else " +
+                      std::string(to_string(ContactSpec{}.method)) + ")")
+      ->check(CLI::IsMember(methods));
   cmd->add_option("--stepping", stepping,
-                  "asynchronous (every bar its own time step) | global (all bars at the smallest "
-                  "step) (default: the scene's, else asynchronous)")
-      ->check(CLI::IsMember({"asynchronous", "global"}));
+                  alternatives(steppings) +
+                      ": every bar its own time step, or all bars at the smallest step (default: "
+                      "the scene's, else " +
+                      std::string(to_string(SimulationSpec{}.stepping)) + ")")
+      ->check(CLI::IsMember(steppings));
   // Its range, (0, 1] as in the scene, is checked with the scene (model/scene_validation.hpp).
   cmd->add_option("--courant", o.courant,
                   "Courant number of every bar, c·Δt/h, in (0, 1] (default ≈ 0.99)");

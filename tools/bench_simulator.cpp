@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "core/median.hpp"
 #include "solver/contact.hpp"
 #include "solver/simulation.hpp"
 #include "study/pareto_front.hpp"
@@ -23,11 +24,6 @@
 using namespace shpb;
 
 namespace {
-
-double median(std::vector<double> x) {
-  std::sort(x.begin(), x.end());
-  return x[x.size() / 2];
-}
 
 // Relative error of the incident plateau (15–85 % of the pulse) against V/(2c0), for a striker
 // and incident bar of equal impedance; NaN when not applicable.

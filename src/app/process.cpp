@@ -262,7 +262,7 @@ int run_process(const ProcessArgs& args) {
       "(after "
       "the corrections listed under corrections)";
   nlohmann::json disp = {
-      {"correction", options.dispersion.correction ? "pochhammer-chree" : "none"},
+      {"correction", std::string(enum_name(kCorrectionNames, options.dispersion.correction))},
       {"amplitude_factors", options.dispersion.amplitude_factors}};
   if (options.dispersion.correction) disp["cutoff_Hz"] = r.cutoff_Hz;
   if (simulated)

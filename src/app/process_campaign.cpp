@@ -13,11 +13,13 @@
 #include <sstream>
 
 #include "app/commands.hpp"
+#include "core/checked_write.hpp"
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
 #include "core/interpolation.hpp"
 #include "core/output_folder.hpp"
 #include "model/campaign.hpp"
+#include "model/scene.hpp"
 #include "study/shards.hpp"
 #include "version.hpp"
 
@@ -147,7 +149,7 @@ void write_campaign(const Campaign& c, const std::vector<fs::path>& folders,
                          {"scene", c.tests[i].scene.string()},
                          {"folder", c.tests[i].name}});
   }
-  std::ofstream(dir / "campaign.csv") << csv;
+  write_text_file(dir / "campaign.csv", csv);
   Json s;
   s["version"] = kVersion;
   s["command"] = "process";
@@ -160,9 +162,7 @@ void write_campaign(const Campaign& c, const std::vector<fs::path>& folders,
       "time to equilibrium, striker velocity as the scene gives it and as inferred, warnings "
       "joined by ' | ') and curve.csv (flow_stress_Pa_at_<e>: 3-wave engineering stress where "
       "the engineering strain first reaches e, linear between samples; empty if it never does)";
-  std::ofstream out(dir / "summary.json");
-  out << s.dump(2) << "\n";
-  if (!out) throw InputError((dir / "summary.json").string() + ": cannot be written");
+  write_text_file(dir / "summary.json", s.dump(2) + "\n");
 }
 
 // Processes one test into `folder` with the one-test command.
@@ -202,6 +202,10 @@ int run_process_campaign(const CampaignArgs& args) {
   const Campaign c =
       args.campaign ? read_campaign(*args.campaign) : campaign_of_scenes(args.scenes);
   const std::size_t n = c.tests.size();
+  // Every scene read and checked before anything is processed or written: a bad scene is refused
+  // as the one-scene command refuses it (exit 2, its one line), not after the tests before it.
+  if (!args.merge)
+    for (const auto& test : c.tests) read_scene(test.scene);
 
   if (!args.shard.empty()) {
     const Shard shard = parse_shard("--shard", args.shard);
@@ -216,7 +220,7 @@ int run_process_campaign(const CampaignArgs& args) {
     for (std::size_t i : runs)
       process_test(c.tests[i], out.path() / c.tests[i].name, i, n, args.quiet);
     Json j{{"command", "process"}, {"shard", args.shard}, {"tests", tests_json(c)}};
-    std::ofstream(out.file("part.json")) << j.dump(1) << "\n";
+    write_text_file(out.file("part.json"), j.dump(1) + "\n");
     out.commit();
     return 0;
   }

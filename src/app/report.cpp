@@ -1,6 +1,6 @@
 // `shpb report DIR`: figures and a one-page HTML report of an output folder. The plotting lives in
-// tools/report.py (matplotlib, README.md (Layout)); this file finds the script and a Python that
-// can import matplotlib and numpy, and runs it.
+// the Python package tools/shpb_report/ (matplotlib) behind the entry script tools/report.py; this
+// file finds the script and a Python that can import matplotlib and numpy, and runs it.
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -43,8 +43,8 @@ int run_program(const std::vector<std::string>& argv, bool quiet) {
 }
 
 // The report script is found from the executable alone, so an installed shpb works without the
-// source tree: PREFIX/bin/shpb → PREFIX/share/shpb/report.py; build/shpb → build/share/shpb/ (CMake
-// copies it there).
+// source tree: PREFIX/bin/shpb → PREFIX/share/shpb/report.py (its package in
+// share/shpb/shpb_report/); build/shpb → build/share/shpb/ (CMake copies both there).
 std::optional<fs::path> find_script() {
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
@@ -75,7 +75,8 @@ int run_report(const ReportArgs& args) {
     throw input_error("report", "python3", "matplotlib/numpy not importable",
                       "install python3-matplotlib and python3-numpy (bash tools/install-deps.sh)");
   const int rc = run_program({*python, script->string(), args.folder.string()}, false);
-  if (rc == 0 || rc == 2 || rc == 3) return rc;  // the script printed its own `error:` line
+  // 2 bad input, 3 not written, 4 a bug of the script: it printed its own `error:` line.
+  if (rc == 0 || rc == 2 || rc == 3 || rc == 4) return rc;
   std::fprintf(stderr, "error: internal: %s %s exited with status %d\n", python->c_str(),
                script->c_str(), rc);
   return 4;

@@ -109,7 +109,7 @@ json resolved_setup(const Scene& scene, const ChainDiscretization& d) {
   out["sample_rate_Hz"] = d.sample_rate_Hz;
   out["stepping"] = to_string(d.stepping);
   // Material-law bars: finite strain plans their step for this largest compression.
-  out["kinematics"] = scene.simulation.finite_strain ? "finite" : "small";
+  out["kinematics"] = std::string(enum_name(kKinematicsNames, scene.simulation.finite_strain));
   out["max_strain"] = scene.simulation.finite_strain
                           ? json(scene.simulation.max_strain.value_or(kDefaultMaxStrain))
                           : json(nullptr);
@@ -170,7 +170,7 @@ void print_table(const json& s) {
   std::printf("\nduration     %s us\n", g(s["duration_s"].get<double>() * 1e6).c_str());
   std::printf("sample rate  %s MHz\n", g(s["sample_rate_Hz"].get<double>() * 1e-6).c_str());
   std::printf("stepping     %s\n", s["stepping"].get<std::string>().c_str());
-  if (s["kinematics"] == "finite")
+  if (!s["max_strain"].is_null())  // finite kinematics: the strain its steps are planned for
     std::printf("kinematics   finite (material-law bars; steps planned for %s strain)\n",
                 g(s["max_strain"].get<double>()).c_str());
   else

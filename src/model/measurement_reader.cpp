@@ -84,8 +84,7 @@ ChannelSpec read_channel(const JsonValue& v, const std::filesystem::path& scene_
 DispersionSpec read_dispersion(const JsonValue& v) {
   const auto o = v.object({"correction", "amplitude_factors", "cutoff", "cutoff_fa_c0"});
   DispersionSpec d;
-  if (auto c = o.get("correction"))
-    d.correction = enum_from<bool>(*c, {{"pochhammer-chree", true}, {"none", false}});
+  if (auto c = o.get("correction")) d.correction = enum_from(*c, kCorrectionNames);
   if (auto a = o.get("amplitude_factors")) d.amplitude_factors = a->boolean();
   // A frequency with its unit, or the dimensionless f·a/c0 under its own key: a bare number
   // would have two meanings (0.2619 as f·a/c0 is 0.26 Hz as a frequency).

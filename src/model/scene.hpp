@@ -48,6 +48,8 @@ inline constexpr EnumName<ContactMethod> kContactMethodNames[] = {
     {"bonded", ContactMethod::kBonded}};
 inline constexpr EnumName<Stepping> kSteppingNames[] = {{"asynchronous", Stepping::kAsynchronous},
                                                         {"global", Stepping::kGlobal}};
+// simulation.kinematics: the names of SimulationSpec::finite_strain.
+inline constexpr EnumName<bool> kKinematicsNames[] = {{"finite", true}, {"small", false}};
 
 // Penalty parameters of one interface. Unset values are derived from the neighbouring elements
 // (docs/methods.md §2): ε_s as a multiple of the stiffer neighbour's EA/h, R as a fraction of
@@ -126,6 +128,9 @@ struct ChannelSpec {
   std::optional<double> scale;       // strain per volt (a calibration factor) instead
   bool invert = false;
 };
+
+// measurement.dispersion.correction: the names of DispersionSpec::correction.
+inline constexpr EnumName<bool> kCorrectionNames[] = {{"pochhammer-chree", true}, {"none", false}};
 
 struct DispersionSpec {
   bool correction = true;              // "pochhammer-chree" | "none"

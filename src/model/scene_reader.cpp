@@ -319,8 +319,9 @@ class SceneReader {
       s.courant = x->quantity_in(Dimension::kDimensionless, 0, 1, true, false);
     if (auto x = o.get("kinematics")) {
       const std::string k = x->string();
-      if (k != "finite" && k != "small") throw x->error(suggestion_text(k, {"finite", "small"}));
-      s.finite_strain = k == "finite";
+      const auto finite = enum_value(kKinematicsNames, k);
+      if (!finite) throw x->error(suggestion_text(k, enum_names(kKinematicsNames)));
+      s.finite_strain = *finite;
     }
     // An engineering strain in (0, 1): the step shrinks with the shortest element.
     if (auto x = o.get("max_strain"))

@@ -275,7 +275,7 @@ void write_simulation_outputs(const SimulationResult& result, const Scene& scene
   j["contact"] = std::string(to_string(scene.contact.method));
   j["stepping"] = std::string(to_string(result.discretization.stepping));
   // Material-law bars only; elastic bars are small strain either way (solver/bar.hpp).
-  j["kinematics"] = scene.simulation.finite_strain ? "finite" : "small";
+  j["kinematics"] = std::string(enum_name(kKinematicsNames, scene.simulation.finite_strain));
   j["duration_s"] = result.discretization.duration_s;
   j["sample_rate_Hz"] = result.discretization.sample_rate_Hz;
   nlohmann::ordered_json bars = nlohmann::json::array();

@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -37,6 +38,13 @@ inline std::filesystem::path scratch_dir(const std::string& name) {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
+}
+
+// True if a Python that `shpb report` would run (/usr/bin/python3 first, then python3 on PATH;
+// src/app/report.cpp) imports matplotlib and numpy. Report tests skip without it.
+inline bool have_matplotlib() {
+  return std::system("/usr/bin/python3 -c 'import matplotlib, numpy' >/dev/null 2>&1") == 0 ||
+         std::system("python3 -c 'import matplotlib, numpy' >/dev/null 2>&1") == 0;
 }
 
 // Starts `shpb args...` with stdout and stderr written to the files `out` and `err` (truncated;

@@ -21,11 +21,6 @@ const fs::path kClassic = fs::path(SHPB_SOURCE_DIR) / "experiments/classic-al606
 // A PNG file starts with these eight bytes (PNG specification, §5.2).
 const std::string kPngSignature = "\x89PNG\r\n\x1a\n";
 
-bool have_matplotlib() {
-  return std::system("/usr/bin/python3 -c 'import matplotlib, numpy' >/dev/null 2>&1") == 0 ||
-         std::system("python3 -c 'import matplotlib, numpy' >/dev/null 2>&1") == 0;
-}
-
 // Checks one expected figure: exists, is a PNG with content, and report.html links it.
 void check_figure(const fs::path& dir, const std::string& html, const std::string& name) {
   INFO("figure " << name);
@@ -37,16 +32,21 @@ void check_figure(const fs::path& dir, const std::string& html, const std::strin
 }
 
 // A study folder as `shpb study` writes it (its documented columns): a made-up sweep whose error
-// falls as resolution², enough to draw the Pareto chart and a stability map.
+// falls as resolution², enough to draw the Pareto chart and a stability map. Global stepping costs
+// 8 × the asynchronous run of the same error, so the front is the asynchronous runs.
 fs::path write_study_folder(const fs::path& dir) {
   fs::create_directories(dir);
   std::ofstream pareto(dir / "pareto.csv");
-  pareto << "method,stepping,resolution,error,wall_time_s,node_updates,stable\n";
+  pareto << "method,stepping,resolution,error,wall_time_s,node_updates,stable,"
+            "pareto_front_wall_time,pareto_front_node_updates\n";
   for (const char* method : {"penalty", "localized-bipenalty"})
     for (const char* stepping : {"asynchronous", "global"})
-      for (double r : {0.5, 1.0, 2.0})
+      for (double r : {0.5, 1.0, 2.0}) {
+        const bool global = stepping[0] == 'g';
         pareto << method << ',' << stepping << ',' << r << ',' << 0.01 / (r * r) << ','
-               << 0.01 * r * r * (stepping[0] == 'g' ? 8 : 1) << ',' << 1e6 * r << ",1\n";
+               << 0.01 * r * r * (global ? 8 : 1) << ',' << 1e6 * r * (global ? 8 : 1) << ",1,"
+               << !global << ',' << !global << "\n";
+      }
   std::ofstream stability(dir / "stability.csv");
   stability << "method,stiffness_factor,courant,mass_ratio,stable\n";
   for (double k : {1e-2, 1.0, 1e2, 1e4})
@@ -60,7 +60,7 @@ fs::path write_study_folder(const fs::path& dir) {
 
 TEST_CASE("The report of the default experiment holds every figure, each referenced by the page",
           "[app][report]") {
-  if (!have_matplotlib()) {
+  if (!shpb_test::have_matplotlib()) {
     WARN("SKIPPED: python3 with matplotlib and numpy not installed: report test skipped");
     return;
   }
@@ -84,7 +84,7 @@ TEST_CASE("The report of the default experiment holds every figure, each referen
 
 TEST_CASE("The report of a study folder shows accuracy against cost and the stability map",
           "[app][report]") {
-  if (!have_matplotlib()) {
+  if (!shpb_test::have_matplotlib()) {
     WARN("SKIPPED: python3 with matplotlib and numpy not installed: report test skipped");
     return;
   }
@@ -99,7 +99,7 @@ TEST_CASE("The report of a study folder shows accuracy against cost and the stab
 
 TEST_CASE("A folder without shpb outputs is refused with exit 2 and nothing written",
           "[app][report]") {
-  if (!have_matplotlib()) {
+  if (!shpb_test::have_matplotlib()) {
     WARN("SKIPPED: python3 with matplotlib and numpy not installed: report test skipped");
     return;
   }
@@ -114,7 +114,7 @@ TEST_CASE("A folder without shpb outputs is refused with exit 2 and nothing writ
 
 TEST_CASE("Headless Chromium renders report.html to a picture that is not blank",
           "[app][report][browser]") {
-  if (!have_matplotlib()) {
+  if (!shpb_test::have_matplotlib()) {
     WARN("SKIPPED: python3 with matplotlib and numpy not installed: browser test skipped");
     return;
   }

@@ -186,3 +186,21 @@ TEST_CASE("validate reports a penalty stiffness given per interface as is", "[ap
   CHECK_FALSE(v["interfaces"][0]["links"].contains("mass_penalty_kg"));  // no mass penalty
   fs::remove_all(dir);
 }
+
+TEST_CASE("--contact and --stepping take every name of their enum's table, bonded excepted",
+          "[app][validate][cli]") {
+  // One spelling (core/enum_names.hpp): a method or stepping added to a table is an option value
+  // at once. `bonded` glues two faces; on every interface it would glue the striker too.
+  const std::string scene =
+      (fs::path(SHPB_SOURCE_DIR) / "experiments/striker-on-bar/scene.json").string();
+  for (const auto& [name, method] : kContactMethodNames) {
+    INFO("--contact " << name);
+    const auto r = shpb_test::run_shpb({"validate", scene, "--contact", std::string(name)});
+    CHECK(r.code == (method == ContactMethod::kBonded ? 2 : 0));
+  }
+  for (const auto& entry : kSteppingNames) {
+    INFO("--stepping " << entry.first);
+    CHECK(shpb_test::run_shpb({"validate", scene, "--stepping", std::string(entry.first)}).code ==
+          0);
+  }
+}

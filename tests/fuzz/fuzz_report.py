@@ -1,14 +1,18 @@
 #!/usr/bin/python3
-"""Mutation fuzzer for the readers of tools/report.py (Table: the CSV files; Source: an output
-folder's known files and summary.json), the part of `shpb report` that reads user-reachable files.
+"""Mutation fuzzer for the readers of `shpb report` (tools/shpb_report/reading.py — Table: the CSV
+files; Source: an output folder's known files and summary.json), the part that reads
+user-reachable files.
 
-usage: fuzz_report.py SECONDS [SEED_FOLDER]
+usage: fuzz_report.py [--whole] SECONDS [SEED_FOLDER]
 
 Each round copies the seed folder (default: tests/fuzz/corpus/fuzz_report/), mutates one file
 (bit flips, byte insertions and deletions, duplicated or truncated lines, deep JSON nesting, NUL
-bytes, huge numbers), and reads it as report.py does. Contract: the readers either succeed or raise ReportError (or one of
-the exceptions report.py's main() turns into a one-line exit-2 error); anything else is a crash:
-the input is saved in the current folder as crash-report-<file> and the run fails.
+bytes, huge numbers), and reads it as the report does. Contract: the readers either succeed or
+raise ReportError (the one-line exit-2 error); anything else would be reported as an internal
+error (exit 4) and is a crash here: the input is saved in the current folder as
+crash-report-<file> and the run fails. With --whole each round runs the whole report (every
+figure and the page, about a second a round) under the same contract: a figure must not fail on a
+file its reader accepted.
 """
 import os
 import random
@@ -19,10 +23,11 @@ import time
 import traceback
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.dont_write_bytecode = True  # leave no __pycache__ in the source tree
 sys.path.insert(0, os.path.join(HERE, "..", "..", "tools"))
-import report  # noqa: E402
+from shpb_report import reading  # noqa: E402
 
-HANDLED = (report.ReportError, ValueError, KeyError, IndexError)  # what main() reports as exit 2
+HANDLED = (reading.ReportError,)  # what the report prints as one line with exit 2
 
 
 def mutate(data, rng):
@@ -54,18 +59,29 @@ def mutate(data, rng):
 
 
 def read_folder(folder):
-    src = report.Source(folder, ".")
+    src = reading.Source(folder, ".")
+    for keys in (("warnings",), ("windows", "incident", "start_s"), ("bars", 0, "name")):
+        src.value(*keys, kind=reading.NUMBER)
+        src.value(*keys)
     for name in src.files:
         if name.endswith(".csv"):
             table = src.table(name)
             for column in table.names:
                 try:
                     table.numeric(column)
-                except report.ReportError:
+                except reading.ReportError:
                     pass
 
 
+def whole_report(folder):
+    from shpb_report import main as report  # matplotlib: only for --whole
+    report.build(folder)
+
+
 def main(argv):
+    whole = "--whole" in argv
+    argv = [a for a in argv if a != "--whole"]
+    run = whole_report if whole else read_folder
     seconds = float(argv[1]) if len(argv) > 1 else 60
     seeds = argv[2] if len(argv) > 2 else os.path.join(HERE, "corpus", "fuzz_report")
     names = sorted(n for n in os.listdir(seeds) if not n.startswith("."))
@@ -85,7 +101,7 @@ def main(argv):
                 f.write(data)
             runs += 1
             try:
-                read_folder(folder)
+                run(folder)
             except HANDLED:
                 pass
             except Exception:  # noqa: BLE001 - any other exception is the finding
@@ -97,7 +113,8 @@ def main(argv):
                 return 1
     finally:
         shutil.rmtree(work, ignore_errors=True)
-    print(f"fuzz: fuzz_report: {runs} executions in {seconds:g} s, no crash")
+    mode = " (whole report)" if whole else ""
+    print(f"fuzz: fuzz_report{mode}: {runs} executions in {seconds:g} s, no crash")
     return 0
 
 

@@ -217,7 +217,7 @@ TEST_CASE("SIGTERM while simulate writes large outputs stops it within a second"
 
 TEST_CASE("report on deeply nested or malformed files is one error line, not a traceback",
           "[robustness][limits]") {
-  if (std::system("/usr/bin/python3 -c 'import matplotlib, numpy' >/dev/null 2>&1") != 0) {
+  if (!shpb_test::have_matplotlib()) {
     WARN("SKIPPED: python3 with matplotlib and numpy is not installed");
     return;
   }

@@ -48,11 +48,6 @@ std::map<std::string, std::string> snapshot(const fs::path& dir) {
   return files;
 }
 
-bool have_matplotlib() {
-  return std::system("/usr/bin/python3 -c 'import matplotlib, numpy' >/dev/null 2>&1") == 0 ||
-         std::system("python3 -c 'import matplotlib, numpy' >/dev/null 2>&1") == 0;
-}
-
 }  // namespace
 
 TEST_CASE("A folder with a foreign summary.json and the user's files is not replaced",
@@ -141,7 +136,7 @@ TEST_CASE("process --signals res/gauges.csv -o res is refused and res is kept",
 
 TEST_CASE("report never replaces a figures/ folder or report.html it did not write",
           "[robustness][lost-data]") {
-  if (!have_matplotlib()) {
+  if (!shpb_test::have_matplotlib()) {
     WARN("SKIPPED: python3 with matplotlib and numpy is not installed");
     return;
   }
@@ -183,7 +178,7 @@ TEST_CASE("report never replaces a figures/ folder or report.html it did not wri
 
 TEST_CASE("report on a read-only folder is one error line, not a traceback",
           "[robustness][lost-data]") {
-  if (!have_matplotlib()) {
+  if (!shpb_test::have_matplotlib()) {
     WARN("SKIPPED: python3 with matplotlib and numpy is not installed");
     return;
   }

@@ -6,6 +6,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include "../app/run_shpb.hpp"
 #include "../solver/test_scenes.hpp"
@@ -116,14 +119,44 @@ TEST_CASE("shpb study writes pareto.csv with the documented columns, and exits 2
   std::ifstream csv(dir / "out" / "pareto.csv");
   std::string header;
   std::getline(csv, header);
-  CHECK(header == "method,stepping,resolution,error,wall_time_s,node_updates,stable");
-  int rows = 0;
+  CHECK(header ==
+        "method,stepping,resolution,error,wall_time_s,node_updates,stable,"
+        "pareto_front_wall_time,pareto_front_node_updates");
+  struct Row {
+    double error, wall, updates;
+    bool front_wall, front_updates;
+  };
+  std::vector<Row> rows;
   for (std::string line; std::getline(csv, line);) {
-    ++rows;
-    CHECK((line.ends_with(",1") || line.ends_with(",0")));  // stable as a number (tools/report.py)
+    std::vector<std::string> c;
+    std::stringstream cells(line);
+    for (std::string x; std::getline(cells, x, ',');) c.push_back(x);
+    REQUIRE(c.size() == 9);
+    for (int k : {6, 7, 8}) CHECK((c[k] == "0" || c[k] == "1"));  // flags as numbers (report)
+    rows.push_back({c[3].empty() ? std::nan("") : std::stod(c[3]), std::stod(c[4]), std::stod(c[5]),
+                    c[7] == "1", c[8] == "1"});
   }
   // 3 methods × 2 steppings × 5 resolutions, and finite localized links asynchronous × 5.
-  CHECK(rows == 3 * 2 * 5 + 5);
+  CHECK(rows.size() == 3 * 2 * 5 + 5);
+  // The front columns mean what docs/outputs.md says: a run is on the front by a cost exactly
+  // when it has an error (an unstable run has none) and no other run is at most as bad in error
+  // and cost and better in one.
+  auto dominated = [&](std::size_t i, double Row::*cost) {
+    for (std::size_t j = 0; j < rows.size(); ++j)
+      if (j != i && rows[j].error <= rows[i].error && rows[j].*cost <= rows[i].*cost &&
+          (rows[j].error < rows[i].error || rows[j].*cost < rows[i].*cost))
+        return true;
+    return false;
+  };
+  int on_front = 0;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    INFO("row " << i + 1);
+    const bool measured = std::isfinite(rows[i].error);
+    CHECK(rows[i].front_wall == (measured && !dominated(i, &Row::wall)));
+    CHECK(rows[i].front_updates == (measured && !dominated(i, &Row::updates)));
+    on_front += rows[i].front_wall;
+  }
+  CHECK(on_front >= 1);
   CHECK(shpb_test::read_text(dir / "out" / "summary.json").find("\"reference_exact\": true") !=
         std::string::npos);
 

@@ -1,0 +1,65 @@
+"""What every figure module shares: units, the figure collector, axes style and legends.
+
+Conventions (docs/outputs.md): times in µs, bar strains in µε, specimen strains in %, stresses
+in MPa; signals tension positive, specimen quantities compression positive.
+"""
+import os
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+DPI = 100
+US = 1e6  # s -> µs
+MICRO = 1e6  # strain -> µε
+MPA = 1e-6  # Pa -> MPa
+
+
+class Figures:
+    """Collects figures: saves each PNG in figures/ and remembers its caption."""
+
+    def __init__(self, out_dir):
+        self.out_dir = out_dir
+        self.items = []  # (file name, title, caption)
+
+    def save(self, fig, name, title, caption):
+        path = os.path.join(self.out_dir, name)
+        fig.savefig(path, dpi=DPI)
+        plt.close(fig)
+        self.items.append((name, title, caption))
+
+
+def close_all():
+    """Closes every figure, also one left open by an error while it was drawn."""
+    plt.close("all")
+
+
+def grid(ax):
+    ax.grid(True, color="0.88", linewidth=0.6)
+    ax.set_axisbelow(True)
+
+
+def new_figure(rows=1, cols=1, height=4.2, width=9.0, **kw):
+    fig, axes = plt.subplots(rows, cols, figsize=(width, height), squeeze=False,
+                             constrained_layout=True, **kw)
+    for ax in axes.flat:
+        grid(ax)
+    return fig, axes
+
+
+def outside_legend(ax):
+    """A legend above the axes, in one row: it never hides a trace."""
+    handles, labels = ax.get_legend_handles_labels()
+    if handles:
+        ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.0), ncol=min(len(handles), 4),
+                  fontsize=8, frameon=False)
+
+
+def gauge_columns(table):
+    return [n for n in table.names if n != "time_s"]
+
+
+def ratio_finite(values):
+    return np.where(np.isfinite(values), values, np.nan)

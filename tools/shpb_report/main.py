@@ -1,0 +1,177 @@
+"""`shpb report DIR`: reads the folder, draws every figure its files allow, writes the page.
+
+Figures are drawn into a temporary folder and moved into place at the end, so a failure leaves
+any previous report intact (docs/outputs.md, conventions). Exit codes: 0 report written; 2 a bad
+input (DIR holds no output file this package knows, a file is malformed — message "error: <file>:
+<line/column>: <value>: <what was expected>" —, or DIR holds a figures/ folder or a report.html
+this package did not write: they are never replaced); 3 the report cannot be written (read-only
+folder, full disk); 4 a bug of this package (one line naming the exception and where).
+
+Ownership: figures/ is this package's only if it holds the marker file .shpb-report, report.html
+only if it carries the page's generator line; the output folder's own marker (.shpb-output, see
+core/output_folder.hpp) is told about both so that shpb may later replace the folder whole.
+"""
+import logging
+import os
+import shutil
+import sys
+import tempfile
+import traceback
+import warnings
+
+from . import compare, fit, process, simulate, study, sweeps
+from .drawing import Figures, close_all
+from .page import GENERATOR, write_html
+from .reading import ReportError, find_sources, read_text
+
+USAGE = """usage: shpb report DIR
+
+DIR is an output folder of `shpb simulate`, `process`, `compare`, `study` or `fit`, or a folder
+whose immediate sub-folders are such outputs (e.g. `make run` writes simulate/ and process/ side by
+side). Writes DIR/figures/*.png and DIR/report.html; nothing else in DIR is touched."""
+
+FIGURES_MARKER = ".shpb-report"
+FIGURES_SIGNATURE = "figures written by shpb report; replaced only by shpb report\n"
+OUTPUT_MARKER = ".shpb-output"
+OUTPUT_SIGNATURE = "shpb output folder: written by shpb, replaced only by shpb"
+
+
+def check_ownership(folder):
+    """Refuses to replace a figures/ or report.html that this script did not write."""
+    fig_dir = os.path.join(folder, "figures")
+    if os.path.lexists(fig_dir) and (
+            os.path.islink(fig_dir) or not os.path.isdir(fig_dir)
+            or read_text(os.path.join(fig_dir, FIGURES_MARKER)) != FIGURES_SIGNATURE):
+        raise ReportError(f"{fig_dir}: exists and was not written by shpb report: refusing to "
+                          "replace it (move it away, then run the report again)")
+    page = os.path.join(folder, "report.html")
+    if os.path.lexists(page) and (os.path.islink(page) or GENERATOR not in read_text(page)):
+        raise ReportError(f"{page}: exists and was not written by shpb report: refusing to "
+                          "replace it (move it away, then run the report again)")
+
+
+def sync(path):
+    fd = os.open(path, os.O_RDONLY)
+    try:
+        os.fsync(fd)
+    finally:
+        os.close(fd)
+
+
+def tell_output_marker(folder, names):
+    """Lists `names` in the folder's .shpb-output marker (if it is shpb's), atomically."""
+    marker = os.path.join(folder, OUTPUT_MARKER)
+    text = read_text(marker)
+    if not text.startswith(OUTPUT_SIGNATURE + "\n"):
+        return
+    lines = text.splitlines()
+    added = [f"file: {n}" for n in names if f"file: {n}" not in lines]
+    if not added:
+        return
+    tmp = marker + f".tmp-{os.getpid()}"
+    with open(tmp, "w", encoding="utf-8") as f:
+        f.write("\n".join(lines + added) + "\n")
+        f.flush()
+        os.fsync(f.fileno())
+    os.replace(tmp, marker)
+
+
+def build(folder):
+    if not os.path.isdir(folder):
+        raise ReportError(f"{folder}: not a folder: an output folder of shpb was expected")
+    sources = find_sources(folder)
+    if not sources:
+        raise ReportError(f"{folder}: no gauges.csv, curve.csv, signals.csv, pareto.csv or "
+                          "other shpb output: an output folder of simulate, process, compare, "
+                          "study or fit was expected")
+    check_ownership(folder)
+    # Figures are drawn into a temporary folder and moved into place at the end, so a failure
+    # leaves any previous report intact (docs/outputs.md (conventions)).
+    tmp = tempfile.mkdtemp(prefix=".report-", dir=folder)
+    os.chmod(tmp, 0o755)
+    old = None
+    try:
+        with open(os.path.join(tmp, FIGURES_MARKER), "w", encoding="utf-8") as f:
+            f.write(FIGURES_SIGNATURE)
+        figs = Figures(tmp)
+        truth = next((s.table("specimen.csv") for s in sources if s.has("specimen.csv")), None)
+        for src in sources:
+            if src.has("fit.json") and src.has("signals.csv"):
+                fit.fig_fit(src, figs)
+            elif src.has("signals.csv"):
+                compare.fig_compare_signals(src, figs)
+            elif src.has("gauges.csv"):
+                simulate.fig_gauges(src, figs)
+            if src.has("field.csv"):
+                simulate.fig_wave_diagram(src, figs)
+            if src.has("raw_signals.csv"):
+                process.fig_raw_signals(src, figs)
+            if src.has("pulses.csv") and "incident" in src.table("pulses.csv"):
+                process.fig_pulses(src, figs)
+            elif src.has("pulses.csv") and "far_measured" in src.table("pulses.csv"):
+                process.fig_bar_check(src, figs)
+            if src.has("curve.csv"):
+                process.fig_curve(src, figs, truth)
+            if src.has("specimen.csv"):
+                simulate.fig_specimen(src, figs)
+            if src.has("interfaces.csv"):
+                simulate.fig_interfaces(src, figs)
+            if src.has("energy.csv"):
+                simulate.fig_energy(src, figs)
+            if src.has("pareto.csv"):
+                study.fig_pareto(src, figs)
+            if src.has("stability.csv"):
+                sweeps.fig_stability(src, figs)
+        if os.path.isfile(os.path.join(folder, "campaign.csv")):
+            process.fig_campaign(folder, sources, figs)
+        html_tmp = os.path.join(tmp, "report.html")
+        write_html(html_tmp, folder, sources, figs, "figures")
+        for name in os.listdir(tmp):
+            sync(os.path.join(tmp, name))
+        sync(tmp)
+        fig_dir = os.path.join(folder, "figures")
+        final_html = os.path.join(folder, "report.html")
+        os.replace(html_tmp, os.path.join(folder, ".report.html.tmp"))
+        tell_output_marker(folder, ["figures", "report.html"])
+        if os.path.isdir(fig_dir):  # ours (check_ownership): set aside, removed below
+            old = tmp + ".old"
+            os.replace(fig_dir, old)
+        os.replace(tmp, fig_dir)
+        os.replace(os.path.join(folder, ".report.html.tmp"), final_html)
+        sync(folder)
+        return final_html, len(figs.items)
+    finally:
+        close_all()
+        for leftover in (tmp, old):
+            if leftover and os.path.isdir(leftover):
+                shutil.rmtree(leftover, ignore_errors=True)
+
+
+def main(argv):
+    # A figure of an odd but valid file (an all-empty column, nothing to label) is drawn as it is:
+    # no matplotlib or numpy chatter on stderr, where only the one result or error line goes.
+    logging.getLogger("matplotlib").setLevel(logging.ERROR)
+    warnings.simplefilter("ignore", RuntimeWarning)
+    if len(argv) != 2 or argv[1] in ("-h", "--help"):
+        print(USAGE, file=sys.stderr if len(argv) != 2 else sys.stdout)
+        return 0 if len(argv) == 2 else 2
+    try:
+        path, count = build(argv[1])
+    except ReportError as e:  # a file of the folder is not what its producer writes
+        print(f"error: {e}", file=sys.stderr)
+        return 2
+    except OSError as e:  # read-only folder, full disk: the report cannot be written
+        where = e.filename or argv[1]
+        print(f"error: {where}: cannot be written: {e.strerror or e}", file=sys.stderr)
+        return 3
+    except Exception as e:  # noqa: BLE001 - a bug of this package, not a bad input
+        frames = traceback.extract_tb(e.__traceback__)
+        here = os.path.dirname(os.path.abspath(__file__))
+        ours = [f for f in frames if os.path.dirname(os.path.abspath(f.filename)) == here]
+        frame = (ours or frames)[-1]  # the line of this package that failed
+        print(f"error: internal: shpb report: {type(e).__name__}: {e} (at "
+              f"{os.path.basename(frame.filename)}:{frame.lineno}): please report it",
+              file=sys.stderr)
+        return 4
+    print(f"report: {count} figures, {os.path.abspath(path)}")
+    return 0

@@ -1,0 +1,150 @@
+"""Figures of `shpb process` (docs/outputs.md, process): raw signals with their pulse windows,
+the pulses at the specimen faces, the stress–strain curves with strain rate and equilibrium, the
+bars-together check, and a campaign's curves on one plot."""
+from .drawing import MICRO, MPA, US, gauge_columns, new_figure, outside_legend, ratio_finite
+from .reading import NUMBER
+
+
+def fig_pulses(src, figs):
+    t = src.table("pulses.csv")
+    time = t.numeric("time_s") * US
+    fig, axes = new_figure()
+    ax = axes[0, 0]
+    for name, color in (("incident", "C0"), ("reflected", "C3"), ("transmitted", "C2")):
+        if name in t:
+            ax.plot(time, t.numeric(name) * MICRO, color=color, linewidth=1.0, label=name)
+    if all(n in t for n in ("incident", "reflected", "transmitted")):
+        ax.plot(time, (t.numeric("incident") + t.numeric("reflected")) * MICRO, color="k",
+                linewidth=0.8, linestyle="--", label="incident + reflected (front face)")
+    ax.set_xlabel("time at the specimen faces (µs)")
+    ax.set_ylabel("bar strain (µε, tension +)")
+    ax.set_title(src.title("Pulses shifted to the specimen faces"), pad=24)
+    outside_legend(ax)
+    figs.save(fig, src.png("pulses"), src.title("Aligned pulses"),
+              "Incident, reflected and transmitted pulses moved to the specimen faces "
+              "(pulses.csv). In equilibrium incident + reflected follows the transmitted pulse.")
+
+
+def fig_curve(src, figs, truth=None):
+    t = src.table("curve.csv")
+    strain = t.numeric("strain")
+    fig, axes = new_figure(1, 2, height=4.6, width=11.0)
+    ax = axes[0, 0]
+    for col, label, color in (("stress_1wave_Pa", "1-wave (transmitted)", "C2"),
+                              ("stress_2wave_Pa", "2-wave (incident + reflected)", "C1"),
+                              ("stress_3wave_Pa", "3-wave (average)", "k")):
+        if col in t:
+            ax.plot(strain * 100, t.numeric(col) * MPA, color=color,
+                    linewidth=1.6 if color == "k" else 1.0, label=label)
+    if truth is not None:
+        ax.plot(truth.numeric("strain") * 100, truth.numeric("stress_Pa") * MPA, color="C4",
+                linestyle=":", linewidth=1.4, label="model truth (specimen.csv)")
+    ax.set_xlabel("engineering strain (%, compression +)")
+    ax.set_ylabel("engineering stress (MPa, compression +)")
+    ax.set_title(src.title("Engineering stress–strain"))
+    ax.legend(loc="best", fontsize=8)
+    ax = axes[0, 1]
+    if "true_strain" in t and "true_stress_Pa" in t:
+        ax.plot(t.numeric("true_strain") * 100, t.numeric("true_stress_Pa") * MPA, color="k",
+                linewidth=1.4, label="true (3-wave)")
+    ax.plot(strain * 100, t.numeric("stress_3wave_Pa") * MPA, color="0.6", linewidth=1.0,
+            linestyle="--", label="engineering (3-wave)")
+    if truth is not None and "true_strain" in truth and "true_stress_Pa" in truth:
+        # The law as the specimen followed it: true stress at true strain (specimen.csv).
+        ax.plot(truth.numeric("true_strain") * 100, truth.numeric("true_stress_Pa") * MPA,
+                color="C4", linestyle=":", linewidth=1.4, label="law, model truth (true)")
+    ax.set_xlabel("true strain (%, compression +)")
+    ax.set_ylabel("true stress (MPa, compression +)")
+    ax.set_title(src.title("True stress–strain"))
+    ax.legend(loc="best", fontsize=8)
+    figs.save(fig, src.png("stress_strain"), src.title("Stress–strain curves"),
+              "1-, 2- and 3-wave engineering stress against the 3-wave strain, and true stress "
+              "against true strain (curve.csv, docs/methods.md §6), compression positive"
+              + ("; dotted: the simulation's own specimen truth." if truth is not None else "."))
+
+    time = t.numeric("time_s") * US
+    fig, axes = new_figure(2, 1, height=6.0, sharex=True)
+    axes[0, 0].plot(time, t.numeric("strain_rate_1_s"), color="k", linewidth=1.0,
+                    label="3-wave")
+    if truth is not None:
+        axes[0, 0].plot(truth.numeric("time_s") * US, truth.numeric("strain_rate_1_s"),
+                        color="C4", linestyle=":", linewidth=1.2, label="model truth")
+        axes[0, 0].legend(loc="best", fontsize=8)
+    axes[0, 0].set_ylabel("strain rate (1/s, compression +)")
+    axes[0, 0].set_title(src.title("Strain rate and equilibrium against time"))
+    if "equilibrium_ratio" in t:
+        axes[1, 0].plot(time, ratio_finite(t.numeric("equilibrium_ratio")), color="C0",
+                        linewidth=1.0, label="2|P1 − P2| / |P1 + P2|")
+        axes[1, 0].axhline(0.05, color="C3", linestyle=":", linewidth=1.0, label="5 %")
+        axes[1, 0].set_ylim(0, 1)
+        axes[1, 0].legend(loc="upper right", fontsize=8)
+    axes[1, 0].set_ylabel("equilibrium ratio")
+    axes[1, 0].set_xlabel("time at the specimen faces (µs)")
+    figs.save(fig, src.png("rate_equilibrium"),
+              src.title("Strain rate and equilibrium"),
+              "3-wave strain rate and the equilibrium ratio R(t) = 2|P1 − P2|/|P1 + P2| of the "
+              "front and back face forces (curve.csv); below the dotted 5 % line the specimen "
+              "is taken as in equilibrium.")
+
+
+def fig_campaign(folder, sources, figs):
+    """All tests of a campaign (`shpb process` over several scenes) on one stress–strain plot."""
+    tests = [s for s in sources if s.label != "." and s.has("curve.csv")]
+    if not tests:
+        return
+    fig, axes = new_figure(1, 1, height=5.0)
+    ax = axes[0, 0]
+    for i, src in enumerate(tests):
+        t = src.table("curve.csv")
+        ax.plot(t.numeric("strain") * 100, t.numeric("stress_3wave_Pa") * MPA,
+                color=f"C{i % 10}", linewidth=1.2, label=src.label)
+    ax.set_xlabel("engineering strain (%, compression +)")
+    ax.set_ylabel("3-wave engineering stress (MPa, compression +)")
+    ax.set_title(f"Campaign: {len(tests)} tests")
+    ax.legend(loc="best", fontsize=8)
+    figs.save(fig, "campaign_stress_strain.png", "Campaign: stress–strain curves of all tests",
+              "3-wave engineering stress against strain of every test (each test's curve.csv); "
+              "campaign.csv gives their plateau strain rates, peak and flow stresses.")
+
+
+def fig_raw_signals(src, figs):
+    t = src.table("raw_signals.csv")
+    time = t.numeric("time_s") * US
+    gauges = gauge_columns(t)
+    fig, axes = new_figure(len(gauges), 1, height=2.6 * len(gauges) + 0.8, sharex=True)
+    colors = {"incident": "C0", "reflected": "C3", "transmitted": "C2"}
+    for ax, g in zip(axes[:, 0], gauges):
+        ax.plot(time, t.numeric(g) * MICRO, color="k", linewidth=0.9, label=f"{g} (as read)")
+        for pulse, color in colors.items():
+            start = src.value("windows", pulse, "start_s", kind=NUMBER)
+            end = src.value("windows", pulse, "end_s", kind=NUMBER)
+            if src.value("windows", pulse, "gauge") == g and start is not None and end is not None:
+                source = src.value("windows", pulse, "source", kind=str) or ""
+                ax.axvspan(start * US, end * US, color=color, alpha=0.15,
+                           label=f"{pulse} window ({source})")
+        ax.set_ylabel(f"{g}\nstrain (µε, tension +)")
+        outside_legend(ax)
+    axes[-1, 0].set_xlabel("time on the signals' clock (µs)")
+    figs.save(fig, src.png("raw_signals"), src.title("Raw signals and the pulse windows"),
+              "The gauge signals as read and converted to strain (raw_signals.csv), with the "
+              "incident, reflected and transmitted windows found on them (summary.json windows; "
+              "source: detected or set in the scene).")
+
+
+def fig_bar_check(src, figs):
+    t = src.table("pulses.csv")
+    time = t.numeric("time_s") * US
+    fig, axes = new_figure()
+    ax = axes[0, 0]
+    ax.plot(time, t.numeric("far_measured") * MICRO, color="k", linewidth=1.4, label="measured")
+    ax.plot(time, t.numeric("far_pochhammer_chree") * MICRO, color="C3", linewidth=1.0,
+            linestyle="--", label="near pulse + Pochhammer–Chree")
+    ax.plot(time, t.numeric("far_time_shift") * MICRO, color="C0", linewidth=0.9,
+            label="near pulse, time shift only")
+    ax.set_xlabel("time on the signals' clock (µs)")
+    ax.set_ylabel("far gauge strain (µε, tension +)")
+    outside_legend(ax)
+    figs.save(fig, src.png("bars_together"), src.title("Bars together: the far gauge"),
+              "The near gauge's pulse moved to the far gauge with Pochhammer–Chree dispersion "
+              "and by a plain time shift, over the measured far pulse (pulses.csv; RMS in "
+              "summary.json).")

@@ -1,0 +1,169 @@
+"""Reading an output folder (docs/outputs.md): the CSV tables and summary.json of each producer.
+
+Everything a user can put in a folder is checked here or through the accessors below, so that a
+malformed file ends as a ReportError (one `error:` line, exit 2) and never as a traceback:
+`Table.numeric` and `Table[...]` name a missing column, `Source.value` gives None for a
+summary.json entry that is absent or of another type.
+"""
+import csv
+import json
+import math
+import os
+import re
+
+import numpy as np
+
+# Files this package understands, by producer (docs/outputs.md).
+KNOWN_FILES = ("gauges.csv", "interfaces.csv", "specimen.csv", "energy.csv", "field.csv",
+               "pulses.csv", "curve.csv", "signals.csv", "comparison.csv", "pareto.csv",
+               "stability.csv", "summary.json", "raw_signals.csv", "stability_boundary.csv",
+               "curves.csv", "fit.json")
+NUMBER = "number"  # Source.value kind: an int or float, not a bool
+
+
+class ReportError(Exception):
+    """Bad input: printed as one `error:` line, exit code 2."""
+
+
+def read_text(path, limit=1 << 16):
+    try:
+        with open(path, encoding="utf-8", errors="replace") as f:
+            return f.read(limit)
+    except OSError:
+        return ""
+
+
+def slug(text):
+    s = re.sub(r"[^A-Za-z0-9]+", "-", text).strip("-").lower()
+    return s or "main"
+
+
+class Table:
+    """A numeric CSV with one header row: columns by name as numpy arrays."""
+
+    def __init__(self, path):
+        self.path = path
+        self.columns = {}
+        self.names = []
+        try:
+            with open(path, newline="", encoding="utf-8", errors="replace") as f:
+                rows = list(csv.reader(f))
+        except csv.Error as e:  # an unclosed quote, a NUL byte: not a CSV this package reads
+            raise ReportError(f"{path}: {e}: comma-separated numbers were expected")
+        except OSError as e:  # unreadable (permissions): an input error, not a failed write
+            raise ReportError(f"{path}: {e.strerror or e}: a readable file was expected")
+        if not rows:
+            raise ReportError(f"{path}: line 1: empty file: a header row was expected")
+        self.names = [n.strip() for n in rows[0]]
+        data = []
+        for i, row in enumerate(rows[1:], start=2):
+            if not row:
+                continue
+            if len(row) != len(self.names):
+                raise ReportError(f"{path}: line {i}: {len(row)} fields: "
+                                  f"{len(self.names)} expected (as in the header)")
+            values = []
+            for j, text in enumerate(row, start=1):
+                try:
+                    x = float(text) if text.strip() else math.nan
+                except ValueError:
+                    values.append(text.strip())
+                    continue
+                # shpb writes no NaN or infinity (an undefined value is an empty field), and no
+                # quantity it writes comes near 1e100: beyond that a figure's axes overflow.
+                if text.strip() and not abs(x) < 1e100:
+                    raise ReportError(f"{path}: line {i}, column {j}: {text.strip()}: a finite "
+                                      "number (below 1e100 in magnitude) or an empty field was "
+                                      "expected")
+                values.append(x)
+            data.append(values)
+        self.rows = data
+        for j, name in enumerate(self.names):
+            col = [r[j] for r in data]
+            if all(isinstance(v, float) for v in col):
+                self.columns[name] = np.array(col, dtype=float)
+            else:
+                self.columns[name] = np.array([str(v) for v in col], dtype=object)
+
+    def __contains__(self, name):
+        return name in self.columns
+
+    def __getitem__(self, name):
+        """A column as read (numbers or text)."""
+        if name not in self.columns:
+            raise ReportError(f"{self.path}: header: {','.join(self.names)}: a column "
+                              f"{name} was expected")
+        return self.columns[name]
+
+    def __len__(self):
+        return len(self.rows)
+
+    def numeric(self, name):
+        col = self[name]
+        if col.dtype == object:
+            raise ReportError(f"{self.path}: column {name}: text: numbers were expected")
+        return col
+
+
+class Source:
+    """One output folder: the known files it holds."""
+
+    def __init__(self, folder, label):
+        self.folder = folder
+        self.label = label
+        self.files = {n: os.path.join(folder, n) for n in KNOWN_FILES
+                      if os.path.isfile(os.path.join(folder, n))}
+        self._tables = {}
+        self.summary = {}
+        if "summary.json" in self.files:
+            path = self.files["summary.json"]
+            try:
+                with open(path, encoding="utf-8") as f:
+                    self.summary = json.load(f)
+            except (ValueError, RecursionError) as e:  # JSON, UTF-8, an over-long integer
+                raise ReportError(f"{path}: {type(e).__name__}: {e}: valid JSON was expected")
+            except OSError as e:
+                raise ReportError(f"{path}: {e.strerror or e}: a readable file was expected")
+
+    def has(self, name):
+        return name in self.files
+
+    def table(self, name):
+        if name not in self._tables:
+            self._tables[name] = Table(self.files[name])
+        return self._tables[name]
+
+    def value(self, *keys, kind=None):
+        """summary.json at keys (object members or list indices), or None when absent or not of
+        `kind` (a type, a tuple of types, or NUMBER)."""
+        v = self.summary
+        for k in keys:
+            if isinstance(k, int) and isinstance(v, list) and -len(v) <= k < len(v):
+                v = v[k]
+            elif isinstance(k, str) and isinstance(v, dict):
+                v = v.get(k)
+            else:
+                return None
+        if kind is None or v is None:
+            return v
+        if kind == NUMBER:
+            ok = isinstance(v, (int, float)) and not isinstance(v, bool)
+            return float(v) if ok else None
+        return v if isinstance(v, kind) else None
+
+    def png(self, base):
+        """Figure file name: `base.png` for DIR itself, `base_<sub-folder>.png` otherwise."""
+        return f"{base}.png" if self.label == "." else f"{base}_{slug(self.label)}.png"
+
+    def title(self, text):
+        return text if self.label == "." else f"{text} — {self.label}"
+
+
+def find_sources(folder):
+    """The folder itself and its immediate sub-folders, those holding a known output file."""
+    candidates = [Source(folder, ".")]
+    for name in sorted(os.listdir(folder)):
+        sub = os.path.join(folder, name)
+        if os.path.isdir(sub) and name != "figures" and not name.startswith("."):
+            candidates.append(Source(sub, name))
+    return [s for s in candidates if any(n != "summary.json" for n in s.files)]

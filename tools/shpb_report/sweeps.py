@@ -1,0 +1,82 @@
+"""Figures of `shpb study --sweep stability` (docs/outputs.md, study): the stability maps of the
+contact methods over penalty stiffness and Courant number, with the measured boundary of
+stability_boundary.csv and its closed form (docs/methods.md §2)."""
+import math
+
+import numpy as np
+
+from .drawing import new_figure
+from .reading import slug
+
+
+def fig_stability(src, figs):
+    t = src.table("stability.csv")
+    xcol, ycol = "stiffness_factor", "courant"
+    rcol = "mass_ratio" if "mass_ratio" in t else None
+    keys = np.array([str(m) for m in t["method"]]) if "method" in t else None
+    if keys is not None and "step_ratio" in t:
+        # Localized bipenalty is mapped at several step ratios (asynchronous): one figure each.
+        keys = np.array([m if not (np.isfinite(q) and q != 1) else f"{m} step ratio {q:.3g}"
+                         for m, q in zip(keys, t.numeric("step_ratio"))])
+    methods = list(dict.fromkeys(keys)) if keys is not None else [""]
+    stable = t.numeric("stable") > 0.5
+    x, y = t.numeric(xcol), t.numeric(ycol)
+    # The measured boundary and its closed form (stability_boundary.csv), keyed as the map is.
+    b = src.table("stability_boundary.csv") if src.has("stability_boundary.csv") else None
+    if b is not None and len(b):
+        bkeys = np.array([m if not (np.isfinite(q) and q != 1) else f"{m} step ratio {q:.3g}"
+                          for m, q in zip(map(str, b["method"]), b.numeric("step_ratio"))])
+    for method in methods:
+        sel = (keys == method) if keys is not None else np.ones(len(t), bool)
+        ratios = [None]
+        if rcol is not None:
+            values = t.numeric(rcol)[sel]
+            ratios = sorted(set(v for v in values if np.isfinite(v))) or [None]
+        n = len(ratios)
+        cols = min(n, 3)
+        rows = math.ceil(n / cols)
+        fig, axes = new_figure(rows, cols, height=3.6 * rows + 0.4, width=4.2 * cols + 1.0,
+                               sharex=True, sharey=True)
+        for k, r in enumerate(ratios):
+            ax = axes.flat[k]
+            s = sel.copy()
+            if r is not None:
+                s &= t.numeric(rcol) == r
+            ax.scatter(x[s & stable], y[s & stable], marker="s", s=28, color="C2",
+                       label="stable")
+            ax.scatter(x[s & ~stable], y[s & ~stable], marker="x", s=28, color="C3",
+                       label="unstable")
+            if b is not None and len(b):
+                bs = bkeys == method
+                if r is not None:
+                    bs &= b.numeric("mass_ratio") == r
+                bx = b.numeric("stiffness_factor")
+                for link, style in (("unilateral", "k-"), ("tied", "b--")):
+                    m = np.flatnonzero(bs & (b["link"] == link))
+                    m = m[np.argsort(bx[m])]
+                    if m.size:
+                        ax.plot(bx[m], b.numeric("critical_courant")[m], style, linewidth=1.0,
+                                label=f"measured boundary ({link})")
+                m = np.flatnonzero(bs)
+                m = m[np.argsort(bx[m])]
+                if m.size:
+                    ax.plot(bx[m], b.numeric("closed_form_courant")[m], color="C4", linestyle=":",
+                            linewidth=1.0, label="closed form")
+            if method == "penalty":
+                k_ratio = np.logspace(np.log10(max(np.nanmin(x), 1e-12)),
+                                      np.log10(np.nanmax(x)), 200)
+                ax.plot(k_ratio, np.minimum(1.0, np.sqrt(2.0 / k_ratio)), color="k",
+                        linestyle="--", linewidth=1.0, label="≈ √(2k/ε_s) (docs/methods.md §2)")
+            ax.set_xscale("log")
+            ax.set_title((f"R/R_crit = {r:g}" if r is not None else method), fontsize=9)
+            ax.set_xlabel("penalty stiffness ε_s / (EA/h)")
+            ax.set_ylabel("Courant number c·Δt/h")
+            ax.legend(loc="lower left", fontsize=7)
+        for ax in list(axes.flat)[n:]:
+            ax.set_visible(False)
+        fig.suptitle(src.title(f"Stability map: {method}".rstrip(": ")))
+        figs.save(fig, src.png(f"stability_{slug(method or 'all')}"),
+                  src.title(f"Stability map {method}".strip()),
+                  "Stable (green) and unstable (red: energy growth or NaN) runs over penalty "
+                  "stiffness and Courant number (stability.csv)"
+                  + (", one panel per mass-penalty ratio R/R_crit." if rcol else "."))
