@@ -272,6 +272,9 @@ int plan_study(const StudyArgs& args) {
   std::error_code ec;
   if (std::filesystem::exists(dir, ec) && !std::filesystem::is_empty(dir, ec))
     throw input_error(dir.string(), "", "", "exists and is not empty: plan into a new folder");
+  if (args.overrides.tolerance)  // the plan re-applies only the scene's own tolerance
+    throw input_error("--tolerance", "", "",
+                      "not with --plan: give simulation.tolerance in the scene");
   Scene scene = read_scene(args.scene);
   apply_overrides(args.overrides, scene);
   StudyPlan plan = make_plan(args, scene);

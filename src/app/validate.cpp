@@ -9,6 +9,7 @@
 #include "core/csv_writer.hpp"
 #include "core/output_folder.hpp"
 #include "model/discretization.hpp"
+#include "model/mesh_error_model.hpp"
 #include "model/scene_checks.hpp"
 #include "solver/contact.hpp"
 
@@ -116,6 +117,14 @@ json resolved_setup(const Scene& scene, const ChainDiscretization& d) {
   out["measurement"] = scene.measurement ? json({{"file", scene.measurement->file.string()},
                                                  {"channels", scene.measurement->channels.size()}})
                                          : json(nullptr);
+  if (const auto t = scene.simulation.tolerance) {  // the meshes above are the model's choice
+    const GaugeErrorPrediction p = predict_gauge_error(scene, d);
+    out["tolerance"] = *t;
+    out["predicted_gauge_error"] = p.total;
+    out["predicted_gauge_error_bars"] = p.bars;
+    out["predicted_gauge_error_specimen"] = p.specimen;
+    if (!(p.total <= *t)) out["warnings"].push_back(tolerance_warning(*t, p.total));
+  }
   return out;
 }
 
@@ -179,6 +188,17 @@ void print_table(const json& s) {
     std::printf("measurement  %s (%zu channels)\n",
                 s["measurement"]["file"].get<std::string>().c_str(),
                 s["measurement"]["channels"].get<std::size_t>());
+  if (s.contains("tolerance"))
+    std::printf(
+        "tolerance    %s %%: meshes above chosen by the gauge-error model (docs/methods.md §1); "
+        "predicted gauge error %s %% (bar fronts %s %%, specimen mesh %s %%); %s node updates, "
+        "%s x the automatic meshes\n",
+        g(100 * s["tolerance"].get<double>()).c_str(),
+        g(100 * s["predicted_gauge_error"].get<double>(), 3).c_str(),
+        g(100 * s["predicted_gauge_error_bars"].get<double>(), 3).c_str(),
+        g(100 * s["predicted_gauge_error_specimen"].get<double>(), 3).c_str(),
+        g(s["node_updates_estimate"].get<double>(), 3).c_str(),
+        g(s["cost_against_automatic"].get<double>(), 3).c_str());
   for (const auto& w : s["warnings"]) std::printf("warning: %s\n", w.get<std::string>().c_str());
 }
 
@@ -186,7 +206,15 @@ void print_table(const json& s) {
 
 int run_validate(const ValidateArgs& args) {
   Scene scene = read_scene(args.scene);
-  const json setup = resolved_setup(scene, apply_overrides(args.overrides, scene));
+  Scene automatic = scene;  // for the cost of the tolerance's meshes against today's
+  json setup = resolved_setup(scene, apply_overrides(args.overrides, scene));
+  if (scene.simulation.tolerance) {
+    RunOverrides o = args.overrides;
+    o.tolerance.reset();
+    automatic.simulation.tolerance.reset();
+    setup["cost_against_automatic"] = setup["node_updates_estimate"].get<double>() /
+                                      apply_overrides(o, automatic).node_updates_estimate;
+  }
   throw_if_interrupted();  // a signal during the checks: exit 130, not a report
   if (args.json)
     std::printf("%s\n", setup.dump(2).c_str());
