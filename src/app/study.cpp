@@ -19,6 +19,7 @@
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
 #include "core/output_folder.hpp"
+#include "model/mesh_error_model.hpp"
 #include "study/parallel_runner.hpp"
 #include "study/pareto_front.hpp"
 #include "study/pareto_sweep.hpp"
@@ -125,6 +126,10 @@ void write_pareto(const ParetoStudy& study, const Scene& scene, int threads, dou
   j["pareto_front_node_updates"] = front_updates;
   j["localized_bipenalty_asynchronous_against_global"] = speed_ratios(study);
   j["unstable"] = unstable;
+  if (const auto t = scene.simulation.tolerance) {  // resolution 1 is the tolerance's meshes
+    j["tolerance"] = *t;
+    j["predicted_gauge_error"] = predict_gauge_error(scene, discretize(scene)).total;
+  }
   write_text_file(dir / "summary.json", j.dump(2) + "\n");
 }
 
