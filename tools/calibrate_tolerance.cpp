@@ -12,8 +12,9 @@
 // meshes chosen for the tolerance (model/scene_validation.hpp resolve_scene): node updates, solve
 // time, the recorded error measured against the study's reference and the predicted one.
 // Build: cmake --build build --target calibrate_tolerance; run (the constants in the code):
-//   build/calibrate_tolerance experiments/{striker-on-bar,classic-al6061,lanl-cu-ofe-273k,\
-//     lanl-pmma13-mini-kolsky}/scene.json --shown-only experiments/pulse-shaper/scene.json
+//   cd experiments && ../build/calibrate_tolerance striker-on-bar/scene.json
+//     classic-al6061/scene.json lanl-cu-ofe-273k/scene.json lanl-pmma13-mini-kolsky/scene.json
+//     --shown-only pulse-shaper/scene.json
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -175,11 +176,14 @@ int main(int argc, char** argv) {
         if (r < best_rms) best_rms = r, best = k;
       }
   std::printf(
-      "\n%zu runs (fitted: bars up to %g x, not --shown-only); constants in the code {%.3g, %.3g, "
+      "\n%zu runs, %td fitted (bars up to %g x, not --shown-only); constants in the code {%.3g, "
+      "%.3g, "
       "%.3g}: measured/predicted within a factor "
       "%.2f (rms of the log %.3f)\nfitted: kMeshErrorConstants = {%.3g, %.3g, %.3g} (front, "
       "specimen, specimen_order): within a factor %.2f (rms of the log %.3f)\n",
-      samples.size(), kFittedResolution, kMeshErrorConstants.front, kMeshErrorConstants.specimen,
+      samples.size(),
+      std::count_if(samples.begin(), samples.end(), [](const Sample& s) { return s.fitted; }),
+      kFittedResolution, kMeshErrorConstants.front, kMeshErrorConstants.specimen,
       kMeshErrorConstants.specimen_order, worst_factor(samples, kMeshErrorConstants),
       rms_log(samples, kMeshErrorConstants), best.front, best.specimen, best.specimen_order,
       worst_factor(samples, best), best_rms);
