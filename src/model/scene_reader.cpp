@@ -328,7 +328,11 @@ class SceneReader {
       s.max_strain = x->quantity_in(Dimension::kDimensionless, 0, 0.95, true, false);
     // A gauge error ("1 %"), checked with the command line's in validate_scene().
     if (auto x = o.get("tolerance")) {
-      s.tolerance = x->quantity(Dimension::kDimensionless);
+      try {
+        s.tolerance = x->quantity(Dimension::kDimensionless);
+      } catch (const InputError&) {
+        throw x->error(tolerance_problem(0));  // "abc", "1 mm": say what is expected
+      }
       if (const std::string what = tolerance_problem(*s.tolerance); !what.empty())
         throw x->error(what);
     }
