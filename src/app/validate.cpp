@@ -123,6 +123,8 @@ json resolved_setup(const Scene& scene, const ChainDiscretization& d) {
     out["predicted_gauge_error"] = p.total;
     out["predicted_gauge_error_bars"] = p.bars;
     out["predicted_gauge_error_specimen"] = p.specimen;
+    out["pulse_rise_time_s"] = p.rise_time_s;  // what the model took: 0 is a step
+    out["pulse_duration_s"] = p.pulse_s;
     if (!(p.total <= *t)) out["warnings"].push_back(tolerance_warning(*t, p.total));
   }
   return out;
@@ -190,10 +192,14 @@ void print_table(const json& s) {
                 s["measurement"]["channels"].get<std::size_t>());
   if (s.contains("tolerance"))
     std::printf(
-        "tolerance    %s %%: meshes above chosen by the gauge-error model (docs/methods.md §1); "
-        "predicted gauge error %s %% (bar fronts %s %%, specimen mesh %s %%); %s node updates, "
-        "%s x the automatic meshes\n",
+        "tolerance    %s %%: meshes above chosen by the gauge-error model (docs/methods.md §1.1) "
+        "for a %s us pulse with %s; predicted gauge error %s %% (bar fronts %s %%, specimen mesh "
+        "%s %%); %s node updates, %s x the automatic meshes\n",
         g(100 * s["tolerance"].get<double>()).c_str(),
+        g(1e6 * s["pulse_duration_s"].get<double>()).c_str(),
+        s["pulse_rise_time_s"].get<double>() > 0
+            ? ("a " + g(1e6 * s["pulse_rise_time_s"].get<double>()) + " us rise").c_str()
+            : "step fronts",
         g(100 * s["predicted_gauge_error"].get<double>(), 3).c_str(),
         g(100 * s["predicted_gauge_error_bars"].get<double>(), 3).c_str(),
         g(100 * s["predicted_gauge_error_specimen"].get<double>(), 3).c_str(),

@@ -97,7 +97,7 @@ std::string tolerance_warning(double tolerance, double predicted) {
   char b[300];
   std::snprintf(b, sizeof b,
                 "simulation.tolerance %.3g %% is not met: the most accurate affordable mesh is "
-                "predicted at %.3g %% gauge error (docs/methods.md §1)",
+                "predicted at %.3g %% gauge error (docs/methods.md §1.1)",
                 100 * tolerance, 100 * predicted);
   return b;
 }

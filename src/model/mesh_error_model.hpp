@@ -1,5 +1,5 @@
 #pragma once
-// The gauge error a mesh will give (docs/methods.md §1, "Gauge error model"): the relative L2
+// The gauge error a mesh will give (docs/methods.md §1.1): the relative L2
 // error of the gauge signals as recorded (study/recorded_error.hpp) against the study's reference
 // (study/reference.hpp), predicted from
 // each bar's element transit h/c, its Courant number and the distance the pulse travels in it,
@@ -14,7 +14,7 @@
 
 namespace shpb {
 
-// The model (docs/methods.md §1). A front of jump A reaching a gauge has crossed bars i over
+// The model (docs/methods.md §1.1). A front of jump A reaching a gauge has crossed bars i over
 // distances x_i; central differences at Courant number C_i carry frequency ω at the wavenumber
 // k_i(ω) = (2/h_i) asin(sin(ω Δt_i/2)/C_i) instead of ω/c_i (none above the mesh's cut-off), so
 // the front reaches the gauge through H(ω) = exp(−i Σ x_i (k_i − ω/c_i)). Seen through the record

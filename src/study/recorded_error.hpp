@@ -1,5 +1,5 @@
 #pragma once
-// The gauge error as a record at the scene's sample rate can show it (docs/methods.md §1, "Gauge
+// The gauge error as a record at the scene's sample rate can show it (docs/methods.md §1.1, "Gauge
 // error model"): the relative L2 norm of the difference to the study's reference
 // (study/reference.hpp) after both are smoothed by a Gaussian of one sample interval. The study's
 // own norm (gauge_error) compares point samples: a step front (a striker's impact) falls between

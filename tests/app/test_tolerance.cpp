@@ -1,4 +1,4 @@
-// `--tolerance` / `simulation.tolerance` (docs/scene-format.md, docs/methods.md §1 "Gauge error
+// `--tolerance` / `simulation.tolerance` (docs/scene-format.md, docs/methods.md §1.1 "Gauge error
 // model"): the meshes the error model chooses for a 1 % gauge error give, measured against the
 // study's reference (study/reference.hpp) as recorded (study/recorded_error.hpp), at most 1 %, and
 // the prediction written to summary.json is within a factor 2 of that measurement; bad values exit
