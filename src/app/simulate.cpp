@@ -9,7 +9,6 @@
 #include "core/error.hpp"
 #include "core/output_folder.hpp"
 #include "model/discretization.hpp"
-#include "model/mesh_error_model.hpp"
 #include "solver/simulation.hpp"
 
 namespace shpb {
@@ -34,11 +33,6 @@ int run_simulate(const SimulateArgs& args) {
   }
   out.commit();
   for (const auto& w : result.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
-  if (const auto t = scene.simulation.tolerance) {
-    const double predicted = predict_gauge_error(scene, result.discretization).total;
-    if (!(predicted <= *t))
-      std::fprintf(stderr, "warning: %s\n", tolerance_warning(*t, predicted).c_str());
-  }
   if (!result.stable) {
     std::fprintf(stderr, "error: %s: %s (outputs up to then written to %s)\n",
                  args.scene.string().c_str(), result.failure.c_str(),

@@ -125,7 +125,6 @@ json resolved_setup(const Scene& scene, const ChainDiscretization& d) {
     out["predicted_gauge_error_specimen"] = p.specimen;
     out["pulse_rise_time_s"] = p.rise_time_s;  // what the model took: 0 is a step
     out["pulse_duration_s"] = p.pulse_s;
-    if (!(p.total <= *t)) out["warnings"].push_back(tolerance_warning(*t, p.total));
   }
   return out;
 }

@@ -2,11 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <optional>
 
-#include "core/csv_writer.hpp"
 #include "core/error.hpp"
 #include "model/wave_travel.hpp"
 
@@ -93,15 +91,6 @@ double front_error_s(const ChainDiscretization& d, const std::vector<double>& x,
 
 }  // namespace
 
-std::string tolerance_warning(double tolerance, double predicted) {
-  char b[300];
-  std::snprintf(b, sizeof b,
-                "simulation.tolerance %.3g %% is not met: the most accurate affordable mesh is "
-                "predicted at %.3g %% gauge error (docs/methods.md §1.1)",
-                100 * tolerance, 100 * predicted);
-  return b;
-}
-
 GaugeErrorPrediction predict_gauge_error(const Scene& scene, const ChainDiscretization& d,
                                          const MeshErrorConstants& k) {
   GaugeErrorPrediction p;
@@ -161,11 +150,7 @@ GaugeErrorPrediction choose_meshes(Scene& scene) {
   std::vector<bool> free(scene.bars.size());
   for (std::size_t i = 0; i < scene.bars.size(); ++i) free[i] = scene.bars[i].elements == 0;
   const auto striker = pulse_source(scene);
-  if (!striker)  // nothing to predict
-    throw input_error(scene.file.string(), "simulation.tolerance",
-                      format_double(100 * asked) + " %",
-                      "needs a striker (a bar with a velocity): the gauge-error model predicts "
-                      "the error of its pulse");
+  if (!striker) return predict_gauge_error(scene, discretize(scene));  // NaN: nothing to predict
 
   // Specimen element counts tried (a geometric ladder), or the user's.
   std::vector<int> specimen_counts = {0};

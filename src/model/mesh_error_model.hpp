@@ -45,17 +45,14 @@ struct GaugeErrorPrediction {
 GaugeErrorPrediction predict_gauge_error(const Scene& scene, const ChainDiscretization& d,
                                          const MeshErrorConstants& k = kMeshErrorConstants);
 
-// "simulation.tolerance 1 % is not met: … predicted at 3 % …" (validate, simulate).
-std::string tolerance_warning(double tolerance, double predicted);
-
 // With scene.simulation.tolerance set: every bar without an `elements` of its own gets the element
 // count of the cheapest mesh (fewest node updates, discretize()) whose predicted error is at most
 // 0.7 × the tolerance (the model's scatter) — the bars at one element transit h/c, the specimen
 // searched on its own — written into the scene's bars; returns the prediction. The Courant number
 // stays the scene's: the default is the largest stable one, and a lower one costs more steps and
 // disperses more. If no affordable mesh meets the tolerance, the most accurate affordable one is
-// kept (validate and simulate then warn, tolerance_warning). Throws InputError for a scene without
-// a striker.
+// kept and its prediction returned (resolve_scene() then refuses the tolerance); a scene without a
+// striker is left as it is, its prediction NaN.
 GaugeErrorPrediction choose_meshes(Scene& scene);
 
 }  // namespace shpb

@@ -30,7 +30,9 @@ ChainDiscretization validate_scene(const Scene& scene, const RunOptions& options
 
 // validate_scene(), then, with a tolerance, every bar without an `elements` of its own meshed as
 // the error model chooses (model/mesh_error_model.hpp: choose_meshes) — written into the scene's
-// bars so that every later discretize() sees it — and the result checked again.
+// bars so that every later discretize() sees it — and the result checked again. A tolerance no
+// affordable mesh is predicted to meet, or a scene without a striker, is refused (InputError
+// naming --tolerance or simulation.tolerance, with the best predicted error).
 ChainDiscretization resolve_scene(Scene& scene, const RunOptions& options = {});
 
 }  // namespace shpb
