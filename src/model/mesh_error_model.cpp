@@ -146,7 +146,6 @@ void mesh_bars(Scene& scene, const std::vector<bool>& free, double delta) {
 
 GaugeErrorPrediction choose_meshes(Scene& scene) {
   const double asked = scene.simulation.tolerance.value_or(0);
-  const double tolerance = kTargetFraction * asked;
   std::vector<bool> free(scene.bars.size());
   for (std::size_t i = 0; i < scene.bars.size(); ++i) free[i] = scene.bars[i].elements == 0;
   const auto striker = pulse_source(scene);
@@ -164,48 +163,55 @@ GaugeErrorPrediction choose_meshes(Scene& scene) {
     longest = std::max(longest, b.length_m / b.material.wave_speed_m_s());
   const double coarsest = longest, finest = longest * 1e-7;
 
-  double best_cost = std::numeric_limits<double>::infinity();
   double closest = std::numeric_limits<double>::infinity();  // when none meets the tolerance
-  Scene best = scene, most_accurate = scene;
-  for (int ns : specimen_counts) {
-    Scene s = scene;
-    if (ns > 0) s.bars[*scene.specimen].elements = ns;
-    ChainDiscretization d;
-    const auto affordable = [&](double delta) {
-      mesh_bars(s, free, delta);
-      return std::isfinite(cost(s, &d));
-    };
-    const auto error_at = [&](double delta) {
-      return affordable(delta) ? predict_gauge_error(s, d).total
-                               : std::numeric_limits<double>::infinity();
-    };
-    // The finest affordable element transit (refusal by discretize() is monotone in δ)…
-    double fine = finest;
-    if (!affordable(fine)) {
-      if (!affordable(coarsest)) continue;
-      double a = finest, b = coarsest;
-      while (b / a > kSearchRatio) {
-        const double mid = std::sqrt(a * b);
-        (affordable(mid) ? b : a) = mid;
+  Scene most_accurate = scene;
+  // The cheapest mesh predicted at most `target` into `best`; false if there is none.
+  const auto cheapest = [&](double target, Scene& best) {
+    double best_cost = std::numeric_limits<double>::infinity();
+    for (int ns : specimen_counts) {
+      Scene s = scene;
+      if (ns > 0) s.bars[*scene.specimen].elements = ns;
+      ChainDiscretization d;
+      const auto affordable = [&](double delta) {
+        mesh_bars(s, free, delta);
+        return std::isfinite(cost(s, &d));
+      };
+      const auto error_at = [&](double delta) {
+        return affordable(delta) ? predict_gauge_error(s, d).total
+                                 : std::numeric_limits<double>::infinity();
+      };
+      // The finest affordable element transit (refusal by discretize() is monotone in δ)…
+      double fine = finest;
+      if (!affordable(fine)) {
+        if (!affordable(coarsest)) continue;
+        double a = finest, b = coarsest;
+        while (b / a > kSearchRatio) {
+          const double mid = std::sqrt(a * b);
+          (affordable(mid) ? b : a) = mid;
+        }
+        fine = b;
       }
-      fine = b;
+      const double e_fine = error_at(fine);
+      if (!(e_fine <= target)) {
+        if (e_fine < closest) closest = e_fine, most_accurate = s;
+        continue;
+      }
+      // … and the coarsest one that meets the target (the error grows with δ).
+      double lo = fine, hi = coarsest;
+      if (error_at(hi) <= target) lo = hi;
+      while (hi / lo > kSearchRatio) {
+        const double mid = std::sqrt(lo * hi);
+        (error_at(mid) <= target ? lo : hi) = mid;
+      }
+      error_at(lo);
+      if (d.node_updates_estimate < best_cost) best_cost = d.node_updates_estimate, best = s;
     }
-    const double e_fine = error_at(fine);
-    if (!(e_fine <= tolerance)) {
-      if (e_fine < closest) closest = e_fine, most_accurate = s;
-      continue;
-    }
-    // … and the coarsest one that meets the tolerance (the error grows with δ).
-    double lo = fine, hi = coarsest;
-    if (error_at(hi) <= tolerance) lo = hi;
-    while (hi / lo > kSearchRatio) {
-      const double mid = std::sqrt(lo * hi);
-      (error_at(mid) <= tolerance ? lo : hi) = mid;
-    }
-    error_at(lo);
-    if (d.node_updates_estimate < best_cost) best_cost = d.node_updates_estimate, best = s;
-  }
-  if (std::isfinite(best_cost))
+    return std::isfinite(best_cost);
+  };
+  // With the margin of the model's scatter if any mesh allows it (the bars the user meshed may
+  // not), else the tolerance itself, else the most accurate mesh (refused by resolve_scene()).
+  Scene best = scene;
+  if (cheapest(kTargetFraction * asked, best) || cheapest(asked, best))
     scene = best;
   else if (std::isfinite(closest))
     scene = most_accurate;

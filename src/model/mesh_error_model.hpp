@@ -47,7 +47,8 @@ GaugeErrorPrediction predict_gauge_error(const Scene& scene, const ChainDiscreti
 
 // With scene.simulation.tolerance set: every bar without an `elements` of its own gets the element
 // count of the cheapest mesh (fewest node updates, discretize()) whose predicted error is at most
-// 0.7 × the tolerance (the model's scatter) — the bars at one element transit h/c, the specimen
+// 0.7 × the tolerance (the model's scatter; the tolerance itself where the bars the user meshed
+// leave no room for the margin) — the bars at one element transit h/c, the specimen
 // searched on its own — written into the scene's bars; returns the prediction. The Courant number
 // stays the scene's: the default is the largest stable one, and a lower one costs more steps and
 // disperses more. If no affordable mesh meets the tolerance, the most accurate affordable one is
