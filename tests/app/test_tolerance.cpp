@@ -94,9 +94,9 @@ TEST_CASE("--tolerance 1% meets 1 % on the LANL copper experiment, as predicted"
 }
 
 // Not asserted on the LANL PMMA mini-Kolsky test: its study reference is not converged to 1 %
-// (the bars at 16 x differ from the 8 x reference by 1.7 %, tools/calibrate_tolerance.cpp), so a
-// 1 % error cannot be measured against it; nor on the striker-on-bar's exact reference, whose
-// sampled step puts 0.7 % between any sharp front and it (docs/methods.md §1).
+// (the bars at 16 x differ from the 8 x reference by 1.7 %, docs/methods.md §1.1), so a 1 % error
+// cannot be measured against it; nor on the striker-on-bar's exact reference, whose sampled step
+// puts 0.7 % between any sharp front and it (docs/methods.md §1.1).
 
 TEST_CASE("Bad tolerances exit 2 with one line naming the option or the JSON path", "[tolerance]") {
   const std::string scene = (kExperiments / "classic-al6061" / "scene.json").string();
