@@ -57,7 +57,7 @@ std::vector<double> path_lengths(const Scene& scene, std::size_t striker, std::s
   return x;
 }
 
-// Points of the frequency integral, up to where the record's Gaussian has fallen to e^{−30}.
+// Points of the frequency integral, up to where the record's Gaussian has fallen to e^{−60}.
 constexpr int kFrequencyPoints = 800;
 constexpr double kFrequencyEnd = 7.75;  // × 1/Δs: e^{−ω²Δs²} = e^{−60} there
 
