@@ -26,9 +26,11 @@ std::string alternatives(const std::vector<std::string>& names) {
   return text;
 }
 
-// --contact/--stepping/--courant/--threads/--quiet for simulate, compare, study and validate. The
-// choices are the enums' own name tables (core/enum_names.hpp); `bonded` is a scene key only.
-void add_run_options(CLI::App* cmd, RunOverrides& o, std::string& contact, std::string& stepping) {
+// --contact/--stepping/--courant/--tolerance/--threads/--quiet for simulate, compare, study and
+// validate. The choices are the enums' own name tables (core/enum_names.hpp); `bonded` is a scene
+// key only.
+void add_run_options(CLI::App* cmd, RunOverrides& o, std::string& contact, std::string& stepping,
+                     std::string& tolerance) {
   std::vector<std::string> methods = enum_names(kContactMethodNames);
   std::erase(methods, std::string(to_string(ContactMethod::kBonded)));
   const std::vector<std::string> steppings = enum_names(kSteppingNames);
@@ -46,14 +48,27 @@ void add_run_options(CLI::App* cmd, RunOverrides& o, std::string& contact, std::
   // Its range, (0, 1] as in the scene, is checked with the scene (model/scene_validation.hpp).
   cmd->add_option("--courant", o.courant,
                   "Courant number of every bar, c·Δt/h, in (0, 1] (default ≈ 0.99)");
+  // Its range, (0 %, 100 %) as in the scene, is checked with the scene
+  // (model/scene_validation.hpp).
+  cmd->add_option("--tolerance", tolerance,
+                  "Gauge error accepted, e.g. \"1 %\": every bar meshed as coarsely as the error "
+                  "model predicts meets it (default: the scene's simulation.tolerance, else the "
+                  "automatic meshes)");
   cmd->add_option("--threads", o.threads, "Worker threads (0 = all cores)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--quiet,-q", o.quiet, "No progress output on stderr");
 }
 
-void resolve_run_options(RunOverrides& o, const std::string& contact, const std::string& stepping) {
+void resolve_run_options(RunOverrides& o, const std::string& contact, const std::string& stepping,
+                         const std::string& tolerance) {
   if (!contact.empty()) o.contact = contact_method_from_string(contact);
   if (!stepping.empty()) o.stepping = stepping_from_string(stepping);
+  if (!tolerance.empty()) try {
+      o.tolerance = parse_quantity(tolerance, Dimension::kDimensionless);
+    } catch (const std::invalid_argument&) {
+      throw input_error("--tolerance", "", "\"" + tolerance + "\"",
+                        "expected a gauge error such as \"1 %\"");
+    }
 }
 
 double quantity_option(const std::string& option, const std::string& text, Dimension d) {
@@ -73,7 +88,7 @@ int main(int argc, char** argv) {
       "signals (simulated or measured) to specimen stress–strain curves."};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("shpb ") + kVersion);
-  std::string contact, stepping;
+  std::string contact, stepping, tolerance;
 
   SimulateArgs sim;
   auto* simulate = app.add_subcommand("simulate",
@@ -84,7 +99,7 @@ int main(int argc, char** argv) {
       ->required();
   simulate->add_flag("--full-model", sim.full_model,
                      "Update every node of every bar from the start (no causal economy)");
-  add_run_options(simulate, sim.overrides, contact, stepping);
+  add_run_options(simulate, sim.overrides, contact, stepping, tolerance);
 
   ProcessArgs proc;
   std::string signals;
@@ -132,7 +147,7 @@ int main(int argc, char** argv) {
                       "Striker velocity, e.g. \"22 m/s\" (default: the scene's "
                       "measurement.striker_velocity, else inferred from the measured incident "
                       "plateau; summary.json says which)");
-  add_run_options(compare, cmp.overrides, contact, stepping);
+  add_run_options(compare, cmp.overrides, contact, stepping, tolerance);
 
   DispersionArgs disp;
   std::string radius, c0;
@@ -183,7 +198,7 @@ int main(int argc, char** argv) {
   study_cmd->add_option("--merge", study.merge,
                         "Check DIR's parts (each run exactly once) and write the outputs of the "
                         "whole sweep into -o (default DIR/result)");
-  add_run_options(study_cmd, study.overrides, contact, stepping);
+  add_run_options(study_cmd, study.overrides, contact, stepping, tolerance);
 
   ValidateArgs val;
   auto* validate = app.add_subcommand(
@@ -192,7 +207,7 @@ int main(int argc, char** argv) {
       "Courant numbers, gauges, interfaces) without running it");
   validate->add_option("scene", val.scene, "Scene JSON file")->required();
   validate->add_flag("--json", val.json, "Print the resolved set-up as JSON");
-  add_run_options(validate, val.overrides, contact, stepping);
+  add_run_options(validate, val.overrides, contact, stepping, tolerance);
 
   ReportArgs rep;
   auto* report = app.add_subcommand(
@@ -239,7 +254,7 @@ int main(int argc, char** argv) {
   install_interrupt_handlers();
   try {
     if (*simulate) {
-      resolve_run_options(sim.overrides, contact, stepping);
+      resolve_run_options(sim.overrides, contact, stepping, tolerance);
       return run_simulate(sim);
     }
     if (*process) {
@@ -260,7 +275,7 @@ int main(int argc, char** argv) {
       return run_process(proc);
     }
     if (*compare) {
-      resolve_run_options(cmp.overrides, contact, stepping);
+      resolve_run_options(cmp.overrides, contact, stepping, tolerance);
       cmp.dispersion = !no_dispersion;
       if (!striker_velocity.empty())
         cmp.striker_velocity =
@@ -273,11 +288,11 @@ int main(int argc, char** argv) {
       return run_dispersion(disp);
     }
     if (*study_cmd) {
-      resolve_run_options(study.overrides, contact, stepping);
+      resolve_run_options(study.overrides, contact, stepping, tolerance);
       return run_study(study);
     }
     if (*validate) {
-      resolve_run_options(val.overrides, contact, stepping);
+      resolve_run_options(val.overrides, contact, stepping, tolerance);
       return run_validate(val);
     }
     if (*report) return run_report(rep);

@@ -52,3 +52,15 @@ if [ "${BENCH_STUDY:-1}" != 0 ]; then
     --threads 2 --quiet
   grep -m1 '"reference"' "$WORK/study/summary.json" || true
 fi
+
+# 5. --tolerance 1%: the automatic meshes against the meshes the gauge-error model chooses
+#    (model/mesh_error_model.hpp): node updates, solve time, recorded error measured against the
+#    study's reference and predicted (skipped with BENCH_TOLERANCE=0).
+if [ "${BENCH_TOLERANCE:-1}" != 0 ]; then
+  echo
+  echo "== --tolerance 1%: cost and error against the automatic meshes"
+  cmake --build "$BUILD" -j 2 --target calibrate_tolerance >/dev/null
+  "$BUILD"/calibrate_tolerance --check 0.01 experiments/classic-al6061/scene.json \
+    experiments/lanl-cu-ofe-273k/scene.json experiments/lanl-pmma13-mini-kolsky/scene.json \
+    experiments/striker-on-bar/scene.json experiments/pulse-shaper/scene.json
+fi

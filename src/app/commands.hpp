@@ -18,13 +18,15 @@ struct RunOverrides {
   std::optional<ContactMethod> contact;
   std::optional<Stepping> stepping;
   std::optional<double> courant;
-  int threads = 0;  // 0: all cores
+  std::optional<double> tolerance;  // --tolerance: the gauge error accepted (a fraction)
+  int threads = 0;                  // 0: all cores
   bool quiet = false;
 };
 
-// Applies --contact/--stepping/--courant to a scene read from file, then checks the result with
-// validate_scene() (model/scene_validation.hpp), the one validation every command shares; returns
-// the discretization the run will use. Throws InputError (exit 2).
+// Applies --contact/--stepping/--courant/--tolerance to a scene read from file, then checks the
+// result with resolve_scene() (model/scene_validation.hpp), the one validation every command
+// shares (with a tolerance it also meshes the scene); returns the discretization the run will use.
+// Throws InputError (exit 2).
 ChainDiscretization apply_overrides(const RunOverrides& overrides, Scene& scene);
 
 // The files a run of `scene` reads (the scene and, unless `measured_files` is false — simulate and

@@ -9,9 +9,11 @@ ChainDiscretization apply_overrides(const RunOverrides& overrides, Scene& scene)
   }
   if (overrides.stepping) scene.simulation.stepping = *overrides.stepping;
   if (overrides.courant) scene.simulation.courant = overrides.courant;
+  if (overrides.tolerance) scene.simulation.tolerance = overrides.tolerance;
   RunOptions options;
   options.courant_from_command_line = overrides.courant.has_value();
-  return validate_scene(scene, options);
+  options.tolerance_from_command_line = overrides.tolerance.has_value();
+  return resolve_scene(scene, options);
 }
 
 std::vector<std::filesystem::path> scene_inputs(const Scene& scene, bool measured_files) {

@@ -19,6 +19,7 @@
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
 #include "core/output_folder.hpp"
+#include "model/mesh_error_model.hpp"
 #include "study/parallel_runner.hpp"
 #include "study/pareto_front.hpp"
 #include "study/pareto_sweep.hpp"
@@ -129,6 +130,10 @@ void write_pareto(const ParetoStudy& study, const Scene& scene, int threads, dou
   j["pareto_front_node_updates"] = front_updates;
   j["localized_bipenalty_asynchronous_against_global"] = speed_ratios(study);
   j["unstable"] = unstable;
+  if (const auto t = scene.simulation.tolerance) {  // resolution 1 is the tolerance's meshes
+    j["tolerance"] = *t;
+    j["predicted_gauge_error"] = predict_gauge_error(scene, discretize(scene)).total;
+  }
   write_text_file(dir / "summary.json", j.dump(2) + "\n");
 }
 
@@ -276,6 +281,9 @@ int plan_study(const StudyArgs& args) {
   std::error_code ec;
   if (std::filesystem::exists(dir, ec) && !std::filesystem::is_empty(dir, ec))
     throw input_error(dir.string(), "", "", "exists and is not empty: plan into a new folder");
+  if (args.overrides.tolerance)  // the plan re-applies only the scene's own tolerance
+    throw input_error("--tolerance", "", "",
+                      "not with --plan: give simulation.tolerance in the scene");
   Scene scene = read_scene(args.scene);
   apply_overrides(args.overrides, scene);
   StudyPlan plan = make_plan(args, scene);

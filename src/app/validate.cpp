@@ -9,6 +9,7 @@
 #include "core/csv_writer.hpp"
 #include "core/output_folder.hpp"
 #include "model/discretization.hpp"
+#include "model/mesh_error_model.hpp"
 #include "model/scene_checks.hpp"
 #include "solver/contact.hpp"
 
@@ -116,6 +117,15 @@ json resolved_setup(const Scene& scene, const ChainDiscretization& d) {
   out["measurement"] = scene.measurement ? json({{"file", scene.measurement->file.string()},
                                                  {"channels", scene.measurement->channels.size()}})
                                          : json(nullptr);
+  if (const auto t = scene.simulation.tolerance) {  // the meshes above are the model's choice
+    const GaugeErrorPrediction p = predict_gauge_error(scene, d);
+    out["tolerance"] = *t;
+    out["predicted_gauge_error"] = p.total;
+    out["predicted_gauge_error_bars"] = p.bars;
+    out["predicted_gauge_error_specimen"] = p.specimen;
+    out["pulse_rise_time_s"] = p.rise_time_s;  // what the model took: 0 is a step
+    out["pulse_duration_s"] = p.pulse_s;
+  }
   return out;
 }
 
@@ -179,6 +189,21 @@ void print_table(const json& s) {
     std::printf("measurement  %s (%zu channels)\n",
                 s["measurement"]["file"].get<std::string>().c_str(),
                 s["measurement"]["channels"].get<std::size_t>());
+  if (s.contains("tolerance"))
+    std::printf(
+        "tolerance    %s %%: meshes above chosen by the gauge-error model (docs/methods.md §1.1) "
+        "for a %s us pulse with %s; predicted gauge error %s %% (bar fronts %s %%, specimen mesh "
+        "%s %%); %s node updates, %s x the automatic meshes\n",
+        g(100 * s["tolerance"].get<double>()).c_str(),
+        g(1e6 * s["pulse_duration_s"].get<double>()).c_str(),
+        s["pulse_rise_time_s"].get<double>() > 0
+            ? ("a " + g(1e6 * s["pulse_rise_time_s"].get<double>()) + " us rise").c_str()
+            : "step fronts",
+        g(100 * s["predicted_gauge_error"].get<double>(), 3).c_str(),
+        g(100 * s["predicted_gauge_error_bars"].get<double>(), 3).c_str(),
+        g(100 * s["predicted_gauge_error_specimen"].get<double>(), 3).c_str(),
+        g(s["node_updates_estimate"].get<double>(), 3).c_str(),
+        g(s["cost_against_automatic"].get<double>(), 3).c_str());
   for (const auto& w : s["warnings"]) std::printf("warning: %s\n", w.get<std::string>().c_str());
 }
 
@@ -186,7 +211,15 @@ void print_table(const json& s) {
 
 int run_validate(const ValidateArgs& args) {
   Scene scene = read_scene(args.scene);
-  const json setup = resolved_setup(scene, apply_overrides(args.overrides, scene));
+  Scene automatic = scene;  // for the cost of the tolerance's meshes against today's
+  json setup = resolved_setup(scene, apply_overrides(args.overrides, scene));
+  if (scene.simulation.tolerance) {
+    RunOverrides o = args.overrides;
+    o.tolerance.reset();
+    automatic.simulation.tolerance.reset();
+    setup["cost_against_automatic"] = setup["node_updates_estimate"].get<double>() /
+                                      apply_overrides(o, automatic).node_updates_estimate;
+  }
   throw_if_interrupted();  // a signal during the checks: exit 130, not a report
   if (args.json)
     std::printf("%s\n", setup.dump(2).c_str());

@@ -297,6 +297,11 @@ double parse_quantity(std::string_view text, Dimension expected) {
   if (unit.size() > 1 && unit[0] == ',' && unit[1] >= '0' && unit[1] <= '9')
     throw std::invalid_argument("use a decimal point, not a comma; " + expected_text(expected));
 
+  if (unit == "%") {  // percent: a plain number given in hundredths ("1 %" is 0.01)
+    if (expected != Dimension::kDimensionless)
+      throw std::invalid_argument("\"%\" is a plain number; " + expected_text(expected));
+    return number / 100;
+  }
   for (const auto c : kCelsius) {
     if (unit != c) continue;
     if (expected != Dimension::kTemperature)

@@ -30,7 +30,8 @@ std::string_view si_unit(Dimension d);
 
 // Parses "<number> <unit>" (or a bare number, taken as SI) into SI. Throws std::invalid_argument
 // with a message saying what was expected ("a length such as \"20 mm\"") on a bad number, an
-// unknown unit, or a unit of another dimension. The caller adds file and JSON path.
+// unknown unit, or a unit of another dimension. The caller adds file and JSON path. A plain
+// number may be given in percent: "1 %" is 0.01.
 double parse_quantity(std::string_view text, Dimension expected);
 
 }  // namespace shpb

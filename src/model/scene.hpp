@@ -101,6 +101,10 @@ struct SimulationSpec {
   // Largest compressive engineering strain a material-law bar may reach with finite strain: its
   // stable step is planned for elements that short (model/discretization.hpp).
   std::optional<double> max_strain;
+  // The gauge error the user accepts (a fraction; "1 %" in the scene, `--tolerance`): the bars
+  // without an `elements` of their own are meshed as coarsely as the error model predicts meets
+  // it (model/mesh_error_model.hpp). Unset: the automatic meshes.
+  std::optional<double> tolerance;
 };
 
 // ---- measured signals -------------------------------------------------------------------------

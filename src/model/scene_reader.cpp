@@ -9,6 +9,7 @@
 #include "model/material_reader.hpp"
 #include "model/measurement_reader.hpp"
 #include "model/scene.hpp"
+#include "model/scene_validation.hpp"
 
 namespace shpb {
 namespace {
@@ -303,8 +304,8 @@ class SceneReader {
   }
 
   static SimulationSpec read_simulation(const JsonValue& v) {
-    const auto o =
-        v.object({"duration", "sample_rate", "stepping", "courant", "kinematics", "max_strain"});
+    const auto o = v.object({"duration", "sample_rate", "stepping", "courant", "kinematics",
+                             "max_strain", "tolerance"});
     SimulationSpec s;
     if (auto x = o.get("duration")) s.duration_s = x->positive_quantity(Dimension::kTime);
     if (auto x = o.get("sample_rate"))
@@ -326,6 +327,16 @@ class SceneReader {
     // An engineering strain in (0, 1): the step shrinks with the shortest element.
     if (auto x = o.get("max_strain"))
       s.max_strain = x->quantity_in(Dimension::kDimensionless, 0, 0.95, true, false);
+    // A gauge error ("1 %"), checked with the command line's in validate_scene().
+    if (auto x = o.get("tolerance")) {
+      try {
+        s.tolerance = x->quantity(Dimension::kDimensionless);
+      } catch (const InputError&) {
+        throw x->error(tolerance_problem(0));  // "abc", "1 mm": say what is expected
+      }
+      if (const std::string what = tolerance_problem(*s.tolerance); !what.empty())
+        throw x->error(what);
+    }
     return s;
   }
 

@@ -1,9 +1,18 @@
 #include "model/scene_validation.hpp"
 
+#include <cmath>
+#include <cstdio>
+
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
+#include "model/mesh_error_model.hpp"
 
 namespace shpb {
+
+std::string tolerance_problem(double fraction) {
+  if (fraction > 0 && fraction < 1) return {};
+  return "expected a gauge error above 0 % and below 100 %, such as \"1 %\"";
+}
 
 ChainDiscretization validate_scene(const Scene& scene, const RunOptions& options) {
   if (const auto c = scene.simulation.courant; c && !(*c > 0 && *c <= 1)) {
@@ -12,7 +21,36 @@ ChainDiscretization validate_scene(const Scene& scene, const RunOptions& options
       throw input_error("--courant", "", format_double(*c), what);
     throw input_error(scene.file.string(), "simulation.courant", format_double(*c), what);
   }
+  if (const auto t = scene.simulation.tolerance) {
+    if (const std::string what = tolerance_problem(*t); !what.empty()) {
+      const std::string value = format_double(*t * 100) + " %";
+      if (options.tolerance_from_command_line) throw input_error("--tolerance", "", value, what);
+      throw input_error(scene.file.string(), "simulation.tolerance", value, what);
+    }
+  }
   return discretize(scene);
+}
+
+ChainDiscretization resolve_scene(Scene& scene, const RunOptions& options) {
+  const ChainDiscretization automatic = validate_scene(scene, options);
+  const auto t = scene.simulation.tolerance;
+  if (!t) return automatic;
+  const GaugeErrorPrediction p = choose_meshes(scene);
+  const ChainDiscretization d = validate_scene(scene, options);
+  if (p.total <= *t) return d;
+  char what[400];
+  if (std::isnan(p.total))
+    std::snprintf(what, sizeof what,
+                  "needs a striker (a bar with a velocity): the gauge-error model predicts the "
+                  "error of its pulse");
+  else
+    std::snprintf(what, sizeof what,
+                  "not reachable: the most accurate mesh this machine affords (%.3g node updates) "
+                  "is predicted at %.3g %% gauge error (docs/methods.md §1.1)",
+                  d.node_updates_estimate, 100 * p.total);
+  const std::string value = format_double(100 * *t) + " %";
+  if (options.tolerance_from_command_line) throw input_error("--tolerance", "", value, what);
+  throw input_error(scene.file.string(), "simulation.tolerance", value, what);
 }
 
 }  // namespace shpb

@@ -1,10 +1,12 @@
 #pragma once
 // The checks of a scene as it will be run, after the command line's overrides (--contact,
-// --stepping, --courant): one function shared by every command that runs or describes a scene
-// (validate, simulate, compare, study), so that `validate` refuses exactly what `simulate`
+// --stepping, --courant, --tolerance): one function shared by every command that runs or describes
+// a scene (validate, simulate, compare, study), so that `validate` refuses exactly what `simulate`
 // refuses. read_scene() checks each JSON value on its own; these are the checks of the settings
 // a run resolves from the scene and the command line together. Finite localized-bipenalty links
 // need no stepping rule any more: they run at any step ratio (contact_localized_finite.cpp).
+#include <string>
+
 #include "model/discretization.hpp"
 #include "model/scene.hpp"
 
@@ -13,11 +15,24 @@ namespace shpb {
 // Where the overridable settings came from, so that an error names the option or the JSON path.
 struct RunOptions {
   bool courant_from_command_line = false;
+  bool tolerance_from_command_line = false;
 };
 
+// Empty if `fraction` is an acceptable gauge-error tolerance (0 < it < 1, i.e. below 100 %),
+// else what is expected (the one rule for the scene's `simulation.tolerance` and --tolerance).
+std::string tolerance_problem(double fraction);
+
 // Throws InputError (exit 2) for what a run would refuse: a Courant number outside (0, 1]
-// (docs/methods.md §1: lumped central difference is stable for C ≤ 1), a run too large for this
-// machine (discretize()). Returns the discretization the run will use.
+// (docs/methods.md §1: lumped central difference is stable for C ≤ 1), a tolerance outside
+// (0 %, 100 %), a run too large for this machine (discretize()). Returns the discretization the
+// run will use.
 ChainDiscretization validate_scene(const Scene& scene, const RunOptions& options = {});
+
+// validate_scene(), then, with a tolerance, every bar without an `elements` of its own meshed as
+// the error model chooses (model/mesh_error_model.hpp: choose_meshes) — written into the scene's
+// bars so that every later discretize() sees it — and the result checked again. A tolerance no
+// affordable mesh is predicted to meet, or a scene without a striker, is refused (InputError
+// naming --tolerance or simulation.tolerance, with the best predicted error).
+ChainDiscretization resolve_scene(Scene& scene, const RunOptions& options = {});
 
 }  // namespace shpb

@@ -8,6 +8,7 @@
 #include "core/checked_write.hpp"
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
+#include "model/mesh_error_model.hpp"
 #include "model/specimen_response.hpp"
 #include "solver/chain.hpp"
 #include "solver/recorders.hpp"
@@ -308,6 +309,11 @@ void write_simulation_outputs(const SimulationResult& result, const Scene& scene
   j["stable"] = result.stable;
   if (!result.stable) j["failure"] = result.failure;
   j["warnings"] = result.warnings;
+  if (const auto t = scene.simulation.tolerance) {  // the meshes chosen for it are in "bars"
+    const double predicted = predict_gauge_error(scene, result.discretization).total;
+    j["tolerance"] = *t;
+    j["predicted_gauge_error"] = predicted;
+  }
   write_text_file(dir / "summary.json", j.dump(2) + "\n");
 }
 

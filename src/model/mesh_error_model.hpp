@@ -1,0 +1,59 @@
+#pragma once
+// The gauge error a mesh will give (docs/methods.md §1.1): the relative L2
+// error of the gauge signals as recorded (study/recorded_error.hpp) against the study's reference
+// (study/reference.hpp), predicted from
+// each bar's element transit h/c, its Courant number and the distance the pulse travels in it,
+// the pulse's rise time (an interface's `rise_time`, else a step), the sample rate and the
+// specimen's elements across its length. With `simulation.tolerance`, choose_meshes() picks the
+// cheapest meshes the model predicts meet it. Constants measured by tools/calibrate_tolerance.cpp.
+#include <string>
+#include <vector>
+
+#include "model/discretization.hpp"
+#include "model/scene.hpp"
+
+namespace shpb {
+
+// The model (docs/methods.md §1.1). A front of jump A reaching a gauge has crossed bars i over
+// distances x_i; central differences at Courant number C_i carry frequency ω at the wavenumber
+// k_i(ω) = (2/h_i) asin(sin(ω Δt_i/2)/C_i) instead of ω/c_i (none above the mesh's cut-off), so
+// the front reaches the gauge through H(ω) = exp(−i Σ x_i (k_i − ω/c_i)). Seen through the record
+// (a Gaussian of one sample interval Δs, study/recorded_error.hpp) and the pulse's own rise (an
+// exponential of time constant τ), the front's squared error is
+//   I = (A²/π) ∫₀^∞ e^{−ω² Δs²} / (1 + ω² τ²) · |H(ω) − 1|² / ω² dω,
+// and a pulse of duration T_p (2 fronts, norm A² T_p) has e_bars² = front · 2 I / (A² T_p),
+// averaged over the gauges. The specimen's mesh adds e_specimen = specimen · (δ_s/Δs)^order,
+// δ_s = h_s/c_s its element transit. The measured constants (tools/calibrate_tolerance.cpp
+// re-measures them and prints these values):
+struct MeshErrorConstants {
+  double front = 1.0;
+  double specimen = 0.0;
+  double specimen_order = 1.0;
+};
+extern const MeshErrorConstants kMeshErrorConstants;
+
+struct GaugeErrorPrediction {
+  double total = 0;        // √(bars² + specimen²), a fraction
+  double bars = 0;         // the fronts' share
+  double specimen = 0;     // the specimen mesh's share
+  double rise_time_s = 0;  // τ (0: a step)
+  double pulse_s = 0;      // T_p
+};
+
+// The prediction for `scene` run on `d` (discretize(scene)). A scene without a striker (no bar
+// with a velocity) has no pulse to predict: total = NaN.
+GaugeErrorPrediction predict_gauge_error(const Scene& scene, const ChainDiscretization& d,
+                                         const MeshErrorConstants& k = kMeshErrorConstants);
+
+// With scene.simulation.tolerance set: every bar without an `elements` of its own gets the element
+// count of the cheapest mesh (fewest node updates, discretize()) whose predicted error is at most
+// 0.7 × the tolerance (the model's scatter; the tolerance itself where the bars the user meshed
+// leave no room for the margin) — the bars at one element transit h/c, the specimen
+// searched on its own — written into the scene's bars; returns the prediction. The Courant number
+// stays the scene's: the default is the largest stable one, and a lower one costs more steps and
+// disperses more. If no affordable mesh meets the tolerance, the most accurate affordable one is
+// kept and its prediction returned (resolve_scene() then refuses the tolerance); a scene without a
+// striker is left as it is, its prediction NaN.
+GaugeErrorPrediction choose_meshes(Scene& scene);
+
+}  // namespace shpb

@@ -1,0 +1,165 @@
+// `--tolerance` / `simulation.tolerance` (docs/scene-format.md, docs/methods.md §1.1 "Gauge error
+// model"): the meshes the error model chooses for a 1 % gauge error give, measured against the
+// study's reference (study/reference.hpp) as recorded (study/recorded_error.hpp), at most 1 %, and
+// the prediction written to summary.json is within a factor 2 of that measurement; bad values exit
+// 2 with one line.
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "model/scene.hpp"
+#include "run_shpb.hpp"
+#include "solver/simulation.hpp"
+#include "study/recorded_error.hpp"
+#include "study/reference.hpp"
+
+namespace fs = std::filesystem;
+using shpb_test::read_text;
+using shpb_test::run_shpb;
+using shpb_test::scratch_dir;
+
+namespace {
+
+const fs::path kExperiments = fs::path(SHPB_SOURCE_DIR) / "experiments";
+
+// The tolerance asked for, and how far the model's prediction may be from the measured error: a
+// factor 2 is the accuracy the mesh choice needs (the error falls at order 1–2 with the element
+// size, so a factor 2 in error is a factor 1.4–2 in elements, well inside the cost it saves).
+constexpr double kTolerance = 0.01;
+constexpr double kPredictionFactor = 2;
+
+// gauges.csv as written by simulate (time_s and one column per gauge).
+shpb::TimeSeries read_gauges(const fs::path& file) {
+  std::ifstream in(file);
+  std::string line;
+  std::getline(in, line);
+  shpb::TimeSeries ts;
+  std::stringstream header(line);
+  std::string name;
+  std::getline(header, name, ',');  // time_s
+  while (std::getline(header, name, ',')) ts.columns.push_back(name);
+  ts.values.resize(ts.columns.size());
+  while (std::getline(in, line)) {
+    std::stringstream row(line);
+    std::string cell;
+    std::getline(row, cell, ',');
+    ts.time_s.push_back(std::stod(cell));
+    for (auto& column : ts.values) {
+      std::getline(row, cell, ',');
+      column.push_back(std::stod(cell));
+    }
+  }
+  return ts;
+}
+
+void check_tolerance_met(const std::string& experiment) {
+  const fs::path scene_file = kExperiments / experiment / "scene.json";
+  const fs::path dir = scratch_dir("tolerance_" + experiment) / "out";
+  const auto r = run_shpb(
+      {"simulate", scene_file.string(), "-o", dir.string(), "--tolerance", "1 %", "--quiet"});
+  REQUIRE(r.code == 0);
+  const auto summary = nlohmann::json::parse(read_text(dir / "summary.json"));
+  REQUIRE(summary.contains("predicted_gauge_error"));
+  CHECK(summary["tolerance"].get<double>() == Approx(kTolerance));
+  const double predicted = summary["predicted_gauge_error"].get<double>();
+
+  // The study's reference of the scene as written (its automatic meshes refined 8 x).
+  shpb::SimulationOptions options;
+  options.record_field = false;
+  const shpb::Scene scene = shpb::read_scene(scene_file);
+  const auto exact = shpb::exact_reference(scene);
+  const shpb::GaugeReference reference =
+      exact ? *exact : shpb::fine_mesh_reference(scene, shpb::kReferenceResolution, options);
+  const double measured = shpb::recorded_gauge_error(read_gauges(dir / "gauges.csv"), reference);
+  INFO(experiment << ": measured " << 100 * measured << " %, predicted " << 100 * predicted
+                  << " %");
+  CHECK(measured <= kTolerance);
+  CHECK(predicted <= kPredictionFactor * measured);
+  CHECK(measured <= kPredictionFactor * predicted);
+  fs::remove_all(dir.parent_path());
+}
+
+}  // namespace
+
+TEST_CASE("--tolerance 1% meets 1 % on the classic experiment, as predicted", "[tolerance]") {
+  check_tolerance_met("classic-al6061");
+}
+
+TEST_CASE("--tolerance 1% meets 1 % on the LANL copper experiment, as predicted", "[tolerance]") {
+  check_tolerance_met("lanl-cu-ofe-273k");
+}
+
+// Not asserted on the LANL PMMA mini-Kolsky test: its study reference is not converged to 1 %
+// (the bars at 16 x differ from the 8 x reference by 1.7 %, docs/methods.md §1.1), so a 1 % error
+// cannot be measured against it; nor on the striker-on-bar's exact reference, whose sampled step
+// puts 0.7 % between any sharp front and it (docs/methods.md §1.1).
+
+TEST_CASE("Bad tolerances exit 2 with one line naming the option or the JSON path", "[tolerance]") {
+  const std::string scene = (kExperiments / "classic-al6061" / "scene.json").string();
+  for (const std::string bad : {"0", "-1 %", "abc", "200 %", "100 %", "1 mm"}) {
+    for (const std::string command : {"validate", "simulate"}) {
+      const fs::path dir = scratch_dir("tolerance_bad") / "out";
+      std::vector<std::string> args = {command, scene, "--tolerance", bad, "--quiet"};
+      if (command == "simulate") args.insert(args.end(), {"-o", dir.string()});
+      const auto r = run_shpb(args);
+      INFO(command << " --tolerance " << bad << ": " << r.err);
+      CHECK(r.code == 2);
+      CHECK(r.err.rfind("error: --tolerance: ", 0) == 0);
+      CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+      CHECK_FALSE(fs::exists(dir));
+    }
+  }
+  // In the scene: the same rule, named by its JSON path (a self-contained scene, copied).
+  const fs::path dir = scratch_dir("tolerance_bad_scene");
+  const std::string original = read_text(kExperiments / "striker-on-bar" / "scene.json");
+  for (const std::string bad : {"0", "\"-1 %\"", "\"abc\"", "\"200 %\""}) {
+    std::string text = original;
+    const std::string key = "\"simulation\": {";
+    REQUIRE(text.find(key) != std::string::npos);
+    text.replace(text.find(key), key.size(), key + " \"tolerance\": " + bad + ",");
+    const fs::path file = dir / "scene.json";
+    std::ofstream(file) << text;
+    const auto r = run_shpb({"validate", file.string()});
+    INFO(bad << ": " << r.err);
+    CHECK(r.code == 2);
+    CHECK(r.err.find("simulation.tolerance") != std::string::npos);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  }
+  fs::remove_all(dir);
+}
+
+TEST_CASE("A tolerance no affordable mesh meets, or a scene without a striker, is refused",
+          "[tolerance]") {
+  // 0.001 % on the classic experiment: the finest mesh within 10^12 node updates is predicted at
+  // 0.002 % (its specimen term); the epoxy scene gives no striker velocity.
+  const auto r = run_shpb({"validate", (kExperiments / "classic-al6061" / "scene.json").string(),
+                           "--tolerance", "0.001 %"});
+  CHECK(r.code == 2);
+  CHECK(r.err.rfind("error: --tolerance: 0.001 %: not reachable", 0) == 0);
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  const auto e =
+      run_shpb({"validate", (kExperiments / "epoxy-resin-sample01" / "scene.json").string(),
+                "--tolerance", "1 %"});
+  CHECK(e.code == 2);
+  CHECK(e.err.find("needs a striker") != std::string::npos);
+  CHECK(std::count(e.err.begin(), e.err.end(), '\n') == 1);
+}
+
+TEST_CASE("validate prints the meshes chosen for a tolerance and their predicted error",
+          "[tolerance]") {
+  const std::string scene = (kExperiments / "classic-al6061" / "scene.json").string();
+  const auto plain = run_shpb({"validate", scene, "--json"});
+  REQUIRE(plain.code == 0);
+  CHECK_FALSE(nlohmann::json::parse(plain.out).contains("tolerance"));  // nothing changes
+  const auto r = run_shpb({"validate", scene, "--json", "--tolerance", "1%"});
+  REQUIRE(r.code == 0);
+  const auto setup = nlohmann::json::parse(r.out);
+  CHECK(setup["predicted_gauge_error"].get<double>() <= kTolerance);
+  CHECK(setup["cost_against_automatic"].get<double>() > 0);
+  const auto table = run_shpb({"validate", scene, "--tolerance", "1%"});
+  CHECK(table.out.find("predicted gauge error") != std::string::npos);
+}
