@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -52,6 +53,9 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
+// Processor time of the whole process (every thread), s: on a shared machine the wall time
+// depends on the others' load, the processor time much less.
+double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
 
 struct Unknown {
   std::string name;     // "A", or "<test>:striker_velocity"
@@ -66,7 +70,7 @@ struct StageReport {
   FitStage stage;
   LsResult result;
   std::vector<std::size_t> unknowns;  // indices into the unknown list
-  double wall_time_s = 0;
+  double wall_time_s = 0, cpu_time_s = 0;
   long simulations = 0;
 };
 
@@ -180,6 +184,7 @@ int run_fit(const FitArgs& args) {
       }};
   for (FitStage stage : spec.stages) {
     const auto ts = Clock::now();
+    const double cpu_start = cpu_seconds();
     StageReport report;
     report.stage = stage;
     std::vector<LsParameter> params;
@@ -284,6 +289,7 @@ int run_fit(const FitArgs& args) {
     for (std::size_t j = 0; j < report.unknowns.size(); ++j)
       current[report.unknowns[j]] = report.result.value[j];
     report.wall_time_s = seconds_since(ts);
+    report.cpu_time_s = cpu_seconds() - cpu_start;
     if (stage == FitStage::kSignals) report.simulations = report.result.evaluations;
     simulations += report.simulations;
     if (stage == FitStage::kCurve) after_curve = law_values(current);
@@ -291,7 +297,8 @@ int run_fit(const FitArgs& args) {
                        std::to_string(report.result.cost_start) + " -> " +
                        std::to_string(report.result.cost) + ", " +
                        std::to_string(report.result.evaluations) + " evaluations, " +
-                       std::to_string(report.wall_time_s) + " s;";
+                       std::to_string(report.wall_time_s) + " s (processor " +
+                       std::to_string(report.cpu_time_s) + " s);";
     for (std::size_t j = 0; j < params.size(); ++j)
       line += " " + params[j].name + " " +
               JsonValue::format(report.result.value[j], unknowns[report.unknowns[j]].dimension);
@@ -408,7 +415,7 @@ int run_fit(const FitArgs& args) {
   }
   s["correlation"] = {{"parameters", order}, {"matrix", corr}};
   nlohmann::json stage_json = nlohmann::json::array();
-  double signals_time = 0;
+  double signals_time = 0, signals_cpu = 0;
   long signal_simulations = 0;
   for (const auto& st : stages) {
     nlohmann::json j = {{"stage", to_string(st.stage)},
@@ -419,6 +426,7 @@ int run_fit(const FitArgs& args) {
                         {"evaluations", st.result.evaluations},
                         {"simulations", st.simulations},
                         {"wall_time_s", st.wall_time_s},
+                        {"cpu_time_s", st.cpu_time_s},
                         {"converged", st.result.converged},
                         {"termination", st.result.termination}};
     nlohmann::json values = nlohmann::json::object(), check = nlohmann::json::object();
@@ -430,8 +438,10 @@ int run_fit(const FitArgs& args) {
     j["values"] = values;
     j["jacobian_step_check"] = check;
     if (st.stage == FitStage::kSignals) {
-      signals_time += st.wall_time_s, signal_simulations += st.simulations;
+      signals_time += st.wall_time_s, signals_cpu += st.cpu_time_s;
+      signal_simulations += st.simulations;
       j["simulations_per_second"] = st.wall_time_s > 0 ? st.simulations / st.wall_time_s : 0.0;
+      j["simulations_per_cpu_second"] = st.cpu_time_s > 0 ? st.simulations / st.cpu_time_s : 0.0;
     }
     stage_json.push_back(j);
   }
@@ -465,7 +475,9 @@ int run_fit(const FitArgs& args) {
   s["evaluations"] = evaluations;
   s["simulations"] = simulations;
   s["simulations_per_second"] = signals_time > 0 ? signal_simulations / signals_time : 0.0;
+  s["simulations_per_cpu_second"] = signals_cpu > 0 ? signal_simulations / signals_cpu : 0.0;
   s["wall_time_s"] = seconds_since(t0);
+  s["cpu_time_s"] = cpu_seconds();
   s["warnings"] = warnings;
   s["version"] = kVersion;
 
@@ -519,8 +531,8 @@ int run_fit(const FitArgs& args) {
         std::fprintf(stderr, "%-16s %-12s NRMSE %.3f -> %.3f\n", cases[k]->name().c_str(),
                      cb[i].pulse.c_str(), cb[i].nrmse, ca[i].nrmse);
     }
-    std::fprintf(stderr, "fit: %ld simulations, %.1f s; wrote %s\n", simulations, seconds_since(t0),
-                 out.final_path().string().c_str());
+    std::fprintf(stderr, "fit: %ld simulations, %.1f s (processor %.1f s); wrote %s\n", simulations,
+                 seconds_since(t0), cpu_seconds(), out.final_path().string().c_str());
   }
   return 0;
 }

@@ -231,6 +231,11 @@ LsResult solve_least_squares(const std::vector<LsParameter>& parameters,
   so.parameter_tolerance = 1e-6;
   so.gradient_tolerance = 1e-12;
   so.logging_type = ceres::SILENT;
+  // With bounds, Ceres follows each trust-region step by a projected line search whose trial
+  // points ask for gradients, i.e. a whole Jacobian (2P simulations per test) each: on the LANL
+  // test a refused step cost 40-53 simulations instead of one. The bounds are kept by projecting
+  // the step onto the box alone.
+  so.max_num_line_search_step_size_iterations = 0;
   Progress progress(model, options);
   so.callbacks.push_back(&progress);
   // The simulator's residuals carry a small non-smooth part (docs/methods.md §9): a Jacobian

@@ -36,6 +36,9 @@ struct JohnsonCookParams {
   double specific_heat_J_kgK = 900;
   double taylor_quinney = 0.9;  // β, fraction of plastic work turned into heat
   bool adiabatic = true;
+  // τ of a first-order low-pass filter on the rate of the rate term (0: off, the step's rate);
+  // see model/laws/johnson_cook_law.hpp.
+  double strain_rate_filter_s = 0;
 };
 
 // Generalized Maxwell (Prony series): E(t) = E_inf + Σ E_k exp(−t/τ_k).

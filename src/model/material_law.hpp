@@ -34,6 +34,7 @@ struct MaterialPointState {
   double jc_p = 0, jc_p_pow_n = 0;
   double jc_T = 0, jc_T_pow_m = 0, jc_T_inv = 0;  // jc_T_inv = 1/(jc_T − T_room) (0: no base)
   double jc_rate = 0, jc_log_rate = 0, jc_rate_inv = 0;  // ln and 1/ of the rate ratio |ε̇|/ε̇0
+  double jc_filtered_rate = 0;  // |ε̇| through the law's strain-rate filter (1/s), when on
   double jc_bound = -1;  // (A + B jc_p^n)(1 − T*(jc_T)^m): elastic below it (none yet: −1)
 };
 

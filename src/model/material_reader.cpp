@@ -18,9 +18,10 @@ std::vector<std::string> allowed_keys(MaterialModel model) {
       keys.insert(keys.end(), {"youngs_modulus", "yield_stress", "tangent_modulus"});
       break;
     case MaterialModel::kJohnsonCook:
-      keys.insert(keys.end(), {"youngs_modulus", "A", "B", "n", "C", "reference_strain_rate", "m",
-                               "room_temperature", "melting_temperature", "temperature",
-                               "specific_heat", "taylor_quinney", "adiabatic"});
+      keys.insert(keys.end(),
+                  {"youngs_modulus", "A", "B", "n", "C", "reference_strain_rate", "m",
+                   "room_temperature", "melting_temperature", "temperature", "specific_heat",
+                   "taylor_quinney", "adiabatic", "strain_rate_filter"});
       break;
     case MaterialModel::kViscoelastic:
       keys.insert(keys.end(), {"long_term_modulus", "arms"});
@@ -79,6 +80,8 @@ void read_johnson_cook(const JsonObject& o, MaterialSpec& m) {
     p.specific_heat_J_kgK =
         o.require("specific_heat", "needed for adiabatic heating, e.g. \"885 J/(kg K)\"")
             .positive_quantity(Dimension::kSpecificHeat);
+  if (auto v = o.get("strain_rate_filter"))
+    p.strain_rate_filter_s = v->non_negative_quantity(Dimension::kTime);
 }
 
 void read_viscoelastic(const JsonObject& o, MaterialSpec& m) {

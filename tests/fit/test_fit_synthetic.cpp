@@ -20,15 +20,11 @@ namespace {
 
 // Acceptance: A, B and n within 3 % of the truth, C (a rate term worth 3.5 % of the stress
 // between 1000 and 4000 /s) within 10 %, each within two standard errors, and the signals stage
-// closer to the truth than the curve stage. Measured with the finite-strain specimen: n and the
-// signals-closer-than-curve check pass and are asserted; A (5 %), B (6 %), C (27 %) and the
-// two-standard-error checks do not and are reported with WARN: the simulated signals respond to
-// the law's parameters with a non-smooth part (about 1e-6 strain, 0.1 % of the pulses, for a
-// 0.1 % change of A; it vanishes with C = 0: the Johnson–Cook rate term is evaluated at each
-// step's strain rate, which rings in the specimen), so the fit stops in a rough valley some per
-// cent from the truth and the covariance (noise only) understates the error (README, shpb fit).
-// Also asserted: every test gives the curve stage samples, and the fitted pulses reach the noise
-// floor within kFittedNrmse.
+// closer to the truth than the curve stage. Also: every test gives the curve stage samples, and
+// the fitted pulses reach the noise floor within kFittedNrmse. Measured over other noise seeds
+// the estimates scatter up to 1.8 times their standard errors (C; mostly the clock alignment on
+// the noisy incident pulse's half-plateau crossing), so the two-standard-error check holds for
+// this seed with C at 1.7, not for every seed (README, shpb fit).
 constexpr double kShapeTolerance = 0.03;
 constexpr double kRateTolerance = 0.10;
 constexpr double kStandardErrors = 2.0;
@@ -39,10 +35,21 @@ constexpr double kNoiseFraction = 0.01;
 constexpr double kFittedNrmse = 0.03;
 
 const fs::path kCopper = fs::path(SHPB_SOURCE_DIR) / "specimens/ofhc-copper.json";
+// The Johnson–Cook rate term through a first-order filter of this time constant, in the truth and
+// in the fit alike (the start below is the truth's file with A, B, n, C moved). Without it the rate
+// term follows each step's strain rate, which rings in the specimen: at 0.1 % steps of A the
+// signals' second differences are as large as the first even with global stepping; with it they
+// are 1e-3 of them (README, shpb fit). 1 µs: about one elastic transit of the specimen (1.1 µs),
+// short against the 10 µs rise of the loading.
+const char* const kRateFilter = "1 us";
 
 // A short, coarse set-up (Ti-6Al-4V bars, 2 mm elements) so each simulation takes milliseconds:
-// 150 mm striker (60 µs pulse), gauges 250 mm from the specimen (pulses do not overlap).
-json scene_at(double velocity_m_s) {
+// 150 mm striker (60 µs pulse), gauges 250 mm from the specimen (pulses do not overlap). Global
+// stepping: with asynchronous stepping the gauge signals respond roughly to small changes of the
+// law (at 0.1 % steps of A their second differences are as large as the first; global stepping:
+// 1e-3 of them), the finite-difference Jacobian is noise and the fit stops several per cent off
+// (README, shpb fit).
+json scene_at(double velocity_m_s, const fs::path& specimen) {
   json s = json::parse(R"({
     "bars": [
       {"name": "striker", "material": "ti", "length": "150 mm", "diameter": "9.47 mm",
@@ -55,9 +62,9 @@ json scene_at(double velocity_m_s) {
     "specimen": "specimen",
     "materials": {"ti": {"model": "elastic", "density": "4416 kg/m3",
                          "youngs_modulus": "109.3 GPa", "poisson_ratio": 0.33}},
-    "simulation": {"duration": "230 us", "sample_rate": "10 MHz"}})");
+    "simulation": {"duration": "230 us", "sample_rate": "10 MHz", "stepping": "global"}})");
   s["bars"][0]["velocity"] = std::to_string(velocity_m_s) + " m/s";
-  s["bars"][2]["material"] = kCopper.string();
+  s["bars"][2]["material"] = specimen.string();
   return s;
 }
 
@@ -66,10 +73,16 @@ json scene_at(double velocity_m_s) {
 TEST_CASE("fit recovers Johnson-Cook A, B, n, C from three noisy simulated tests", "[fit]") {
   const fs::path dir = shpb_test::scratch_dir("fit_synthetic");
   const double velocities[] = {13.5, 18.5, 28.0};  // ≈ 1000, 2000, 4000 /s in this set-up
+  // The truth: the file's law with its rate term read through the strain-rate filter, which the
+  // fit then uses too (the start below is this file with A, B, n, C moved).
+  json truth = json::parse(std::ifstream(kCopper));
+  truth["strain_rate_filter"] = kRateFilter;
+  const fs::path truth_law = dir / "truth-law.json";
+  std::ofstream(truth_law) << truth.dump(1);
   json campaign = {{"name", "synthetic OFHC copper"}, {"tests", json::array()}};
   for (int k = 0; k < 3; ++k) {
     const fs::path truth_file = dir / ("truth" + std::to_string(k) + ".json");
-    std::ofstream(truth_file) << scene_at(velocities[k]).dump(1);
+    std::ofstream(truth_file) << scene_at(velocities[k], truth_law).dump(1);
     const shpb::Scene truth = shpb::read_scene(truth_file);
     const shpb::SimulationResult sim = shpb::simulate(truth);
     REQUIRE(sim.stable);
@@ -91,7 +104,7 @@ TEST_CASE("fit recovers Johnson-Cook A, B, n, C from three noisy simulated tests
       for (std::size_t i = 0; i < sim.gauges.samples(); ++i)
         out << sim.gauges.time_s[i] << ',' << gauges[0][i] << ',' << gauges[1][i] << '\n';
     }
-    json scene = scene_at(velocities[k]);
+    json scene = scene_at(velocities[k], truth_law);
     scene["measurement"] = {
         {"file", csv},
         {"format", "csv"},
@@ -109,7 +122,6 @@ TEST_CASE("fit recovers Johnson-Cook A, B, n, C from three noisy simulated tests
     std::ofstream(dir / name) << scene.dump(1);
     campaign["tests"].push_back({{"scene", name}, {"name", label}});
   }
-  json truth = json::parse(std::ifstream(kCopper));
   const double a = 90e6, b = 292e6, n = 0.31, c = 0.025;  // the file's A, B, n, C
   json start = truth;
   start["A"] = 1.2 * a, start["B"] = 0.8 * b, start["n"] = 1.2 * n, start["C"] = 0.8 * c;
@@ -136,21 +148,15 @@ TEST_CASE("fit recovers Johnson-Cook A, B, n, C from three noisy simulated tests
     const double error = p[name]["std_error"], after_curve = p[name]["after_curve"];
     const double off = std::abs(fitted / value - 1);
     INFO(name << " fitted " << fitted << " truth " << value << " std error " << error);
-    if (name == "n") CHECK(off <= kShapeTolerance);
-    WARN(name << ": " << off << " off the truth (acceptance "
-              << (name == "C" ? kRateTolerance : kShapeTolerance) << "), "
-              << std::abs(fitted - value) / error << " standard errors (acceptance "
-              << kStandardErrors << ")");
+    CHECK(off <= (name == "C" ? kRateTolerance : kShapeTolerance));
+    CHECK(std::abs(fitted - value) <= kStandardErrors * error);
     curve_distance += std::pow(after_curve / value - 1, 2);
     signals_distance += std::pow(fitted / value - 1, 2);
   }
   INFO(s.dump(1));
-  // The signals stage starts from the curve stage's law and minimises the pulses' misfit, which
-  // is rough at the noise level (the Johnson–Cook rate term follows the ringing strain rate): it
-  // must not end farther from the truth; whether it ends closer varies with round-off (reported).
-  CHECK(signals_distance <= curve_distance);
-  WARN("distance to the truth (sum of squared relative errors): curve stage "
-       << curve_distance << ", signals stage " << signals_distance);
+  // The curve stage fits the processed curve, blind to what happens before equilibrium and fed
+  // the processed (ringing) strain rate: the signals stage must end closer to the truth.
+  CHECK(signals_distance < curve_distance);
   for (const auto& t : s["tests"]) {
     CHECK(t["curve_points"].get<long>() > 0);
     for (const char* pulse : {"reflected", "transmitted"}) {
@@ -165,8 +171,7 @@ TEST_CASE("fit recovers Johnson-Cook A, B, n, C from three noisy simulated tests
   CHECK(fs::exists(dir / "out/curves.csv"));
   CHECK(fs::exists(dir / "out/signals.csv"));
   // fit.json is a material file a scene can use.
-  json check = scene_at(18.5);
-  check["bars"][2]["material"] = (dir / "out/fit.json").string();
+  json check = scene_at(18.5, dir / "out/fit.json");
   std::ofstream(dir / "check.json") << check.dump(1);
   CHECK(run_shpb({"validate", (dir / "check.json").string()}).code == 0);
   fs::remove_all(dir);

@@ -121,6 +121,54 @@ TEST_CASE("The Johnson-Cook rate term is floored at the reference rate and grows
   REQUIRE(johnson_cook_thermal_factor(jc, 0.5 * (294 + 1356)) == Approx(1 - std::pow(0.5, 1.09)));
 }
 
+TEST_CASE("The Johnson-Cook strain-rate filter follows the first-order response to a rate step",
+          "[model][material][johnson-cook]") {
+  // Perfectly plastic (B = 0) and isothermal: once yielding, σ = A (1 + C ln(ε̇_f/ε̇0)) exactly,
+  // so the stress shows the filtered rate. Loaded at R1 from rest, then at R2: for a rate held
+  // over each step the filter's exact solution is ε̇_f = R + (ε̇_f(t0) − R) e^{−(t − t0)/τ}.
+  // Round-off only: the law's series for ln are exact to ~1e-16 of the rate factor.
+  constexpr double kRoundOff = 1e-12;
+  MaterialSpec spec = ofhc_copper(false);
+  JohnsonCookParams& jc = spec.johnson_cook;
+  jc.B_Pa = 0;
+  jc.strain_rate_filter_s = 0.2e-6;
+  const double dt = 0.01e-6, r1 = 100, r2 = 5000;
+  const int steps1 = 1000, steps2 = 400;  // 10 µs at R1 (yields at ~8 µs), 20 τ at R2
+  test::MaterialPoint point(spec);
+  double eps = 0, filtered = 0, phase_value = 0;  // ε̇_f now and at the start of the phase
+  int phase_step = 0, plastic_steps = 0;
+  for (int k = 1; k <= steps1 + steps2; ++k) {
+    const double rate = k <= steps1 ? r1 : r2;
+    if (k == steps1 + 1) phase_step = steps1, phase_value = filtered;
+    eps += rate * dt;
+    filtered =
+        rate + (phase_value - rate) * std::exp(-(k - phase_step) * dt / jc.strain_rate_filter_s);
+    const double p_before = point.state().plastic_strain;
+    const double sigma = -point.strain_to(-eps, dt);
+    if (point.state().plastic_strain > p_before) {
+      ++plastic_steps;
+      INFO("step " << k << " filtered rate " << filtered);
+      REQUIRE(sigma ==
+              Approx(jc.A_Pa * (1 + jc.C * std::log(filtered / jc.reference_strain_rate_1_s)))
+                  .epsilon(kRoundOff));
+    }
+  }
+  // Plastic through the step and after it (the flow stress rises slower than the elastic load).
+  REQUIRE(plastic_steps > steps2);
+  // Off by default: the same path without the filter flows at the step's own rate R2 (once the
+  // elastic reloading from R1's flow stress is over), where the filtered point has just caught up.
+  MaterialSpec plain = spec;
+  plain.johnson_cook.strain_rate_filter_s = 0;
+  test::MaterialPoint unfiltered(plain);
+  eps = 0;
+  double sigma = 0;
+  for (int k = 1; k <= steps1 + steps2; ++k) {
+    eps += (k <= steps1 ? r1 : r2) * dt;
+    sigma = -unfiltered.strain_to(-eps, dt);
+  }
+  REQUIRE(sigma == Approx(jc.A_Pa * (1 + jc.C * std::log(r2))).epsilon(kRoundOff));
+}
+
 TEST_CASE("Adiabatic heating of a Johnson-Cook point turns beta of the plastic work into heat",
           "[model][material][johnson-cook][energy]") {
   const MaterialSpec spec = ofhc_copper(true);

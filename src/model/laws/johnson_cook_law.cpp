@@ -168,6 +168,11 @@ void JohnsonCookLaw::update(std::span<const double> strain_next, double dt_s,
   const double E = youngs_modulus_Pa_;
   // |ε̇|/ε̇0 per unit strain increment (a multiplication in the loop, not two divisions).
   const double ratio_per_strain = dt_s > 0 ? 1 / (dt_s * jc_.reference_strain_rate_1_s) : 0.0;
+  // The strain-rate filter's gain per step (header); every element's filter advances every step,
+  // elastic or not.
+  const bool filtered = jc_.strain_rate_filter_s > 0;
+  const double gain = filtered ? -std::expm1(-dt_s / jc_.strain_rate_filter_s) : 0.0;
+  const double rate_per_strain = dt_s > 0 ? 1 / dt_s : 0.0;
   // Elements go in blocks: first the yield checks of the block, then the return mappings of its
   // yielding elements in a loop of their own, where the processor overlaps one element's long
   // dependency chain (divisions, series) with the next one's.
@@ -182,6 +187,9 @@ void JohnsonCookLaw::update(std::span<const double> strain_next, double dt_s,
     for (std::size_t i = first; i < last; ++i) {
       MaterialPointState& s = states[i];
       const double trial = E * (strain_next[i] - s.back_strain);
+      if (filtered)
+        s.jc_filtered_rate +=
+            gain * (std::abs(strain_next[i] - s.strain) * rate_per_strain - s.jc_filtered_rate);
       // Neither p nor T moved since the last update (jc_bound is that update's hardening ×
       // thermal factor): below the bound the step is elastic.
       if (s.plastic_strain == s.jc_p && s.temperature_K == s.jc_T &&
@@ -206,7 +214,8 @@ void JohnsonCookLaw::update(std::span<const double> strain_next, double dt_s,
       if (std::abs(trial) > hardening * thermal) {
         const double inv_p = p > 0 ? 1 / p : 0.0;
         // The rate factor of johnson_cook_rate_factor, its log from the element's cached pair.
-        const double ratio = std::abs(strain_next[i] - s.strain) * ratio_per_strain;
+        const double ratio = filtered ? s.jc_filtered_rate / jc_.reference_strain_rate_1_s
+                                      : std::abs(strain_next[i] - s.strain) * ratio_per_strain;
         const double k = (ratio > 1 ? 1 + jc_.C * log_rate(ratio, s) : 1.0) * thermal;
         if (std::abs(trial) > hardening * k) {
           yielding[count++] = {i, trial, p, p_n, inv_p, k};

@@ -8,6 +8,12 @@
 // Adiabatic heating dT = β σ dε_p / (ρ c_p) (Taylor–Quinney β); the temperature of a step is the
 // one at its start (explicit in T, error O(Δε_p) per step and negligible at specimen step sizes).
 // Return mapping: backward Euler on p at the step's rate and temperature, safeguarded Newton.
+// Optional strain-rate filter (`strain_rate_filter` τ > 0, off by default; explicit codes offer
+// the same, e.g. OpenRadioss /MAT/LAW2's Fsmooth/Fcut): the rate term then sees |ε̇| through a
+// first-order low-pass filter τ dε̇_f/dt = |ε̇| − ε̇_f, integrated exactly for a rate held over
+// the step: ε̇_f ← ε̇_f + (1 − e^{−Δt/τ})(|ε̇| − ε̇_f), from ε̇_f = 0 at rest. It removes the
+// specimen's ringing (periods of a few wave transits, ~1 µs) from the rate term while following
+// the loading's rise (tens of µs): docs/methods.md §9.
 #include "model/material_law.hpp"
 
 namespace shpb {
