@@ -85,11 +85,12 @@ void check_tolerance_met(const std::string& experiment) {
 
 }  // namespace
 
-TEST_CASE("--tolerance 1% meets 1 % on the classic experiment, as predicted", "[tolerance]") {
+TEST_CASE("A tolerance of 1 % meets 1 % on the classic experiment, as predicted", "[tolerance]") {
   check_tolerance_met("classic-al6061");
 }
 
-TEST_CASE("--tolerance 1% meets 1 % on the LANL copper experiment, as predicted", "[tolerance]") {
+TEST_CASE("A tolerance of 1 % meets 1 % on the LANL copper experiment, as predicted",
+          "[tolerance]") {
   check_tolerance_met("lanl-cu-ofe-273k");
 }
 

@@ -187,8 +187,10 @@ TEST_CASE("validate reports a penalty stiffness given per interface as is", "[ap
   fs::remove_all(dir);
 }
 
-TEST_CASE("--contact and --stepping take every name of their enum's table, bonded excepted",
-          "[app][validate][cli]") {
+TEST_CASE(
+    "The CLI options --contact and --stepping take every name of their enum's table, bonded "
+    "excepted",
+    "[app][validate][cli]") {
   // One spelling (core/enum_names.hpp): a method or stepping added to a table is an option value
   // at once. `bonded` glues two faces; on every interface it would glue the striker too.
   const std::string scene =

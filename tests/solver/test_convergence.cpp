@@ -128,6 +128,7 @@ TEST_CASE("At Courant number 1 the lumped central difference is exact at the nod
     r.state.v[i] = (r.state.w[i] - displacement0(i * h)) / dt;
   }
   r.state.step = 1;
+  r.state.dt_prev = dt;  // the step that led to t_1 (the kick is ½(Δt_0 + Δt_1))
   const long steps = std::lround(kTravel / (c0 * dt));
   double worst = 0;
   for (long n = 1; n <= steps; ++n) {
