@@ -23,6 +23,9 @@ namespace {
 // Searches in the element transit stop at this ratio of their bounds (0.5 %: an element count
 // within one element of the boundary for bars of up to 200 elements).
 constexpr double kSearchRatio = 1.005;
+// The scan from the coarsest transit: fine enough to find the first mesh meeting the target (the
+// predicted error changes by a few % per step), coarse enough to take about 200 steps over 10⁷.
+constexpr double kScanRatio = 1.08;
 
 // Meshes are chosen for a predicted error of this fraction of the tolerance: the model's scatter
 // over its calibration runs is a factor 1.4 (rms of the log 0.34, kMeshErrorConstants).
@@ -61,6 +64,37 @@ std::vector<double> path_lengths(const Scene& scene, std::size_t striker, std::s
 constexpr int kFrequencyPoints = 800;
 constexpr double kFrequencyEnd = 7.75;  // × 1/Δs: e^{−ω²Δs²} = e^{−60} there
 
+// The record is a point sample every Δs: what a front carries above the Nyquist frequency π/Δs
+// folds back onto the record's band. Averaged over where the samples fall on the front, the
+// images at ω − 2πm/Δs add in energy, seen through the record's Gaussian:
+//   (1/π) ∫₀^{ω_c} W(ω)/(1 + ω²τ²)/ω² dω,   W(ω) = Σ_{m≠0} e^{−(ω − 2πm/Δs)² Δs²},
+// ω_c the lowest cut-off of the bars on the path (none of a reference recorded through the
+// Gaussian, study/reference.hpp). The images beyond kAliasImages sample frequencies are left out
+// (their share falls as 1/m²).
+constexpr int kAliasImages = 16;
+constexpr double kAliasStep = 0.1;  // × 1/Δs: 7 points per standard deviation of the Gaussian
+
+double aliased_error_s(const ChainDiscretization& d, const std::vector<double>& x, double sample_s,
+                       double rise_s) {
+  double cutoff = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < x.size(); ++i)
+    if (x[i] > 0)
+      cutoff =
+          std::min(cutoff, 2 * std::asin(std::min(d.bars[i].courant, 1.0)) / d.bars[i].time_step_s);
+  const double images = 2 * M_PI / sample_s;
+  const double top = std::min(cutoff, (kAliasImages + 0.5) * images);
+  const double dw = kAliasStep / sample_s;
+  double sum = 0;
+  for (double w = 0.5 * M_PI / sample_s; w < top; w += dw) {
+    const double m = std::max(1.0, std::round(w / images));  // the nearest image dominates
+    double weight = 0;
+    for (double k = std::max(1.0, m - 1); k <= m + 1; ++k)
+      weight += std::exp(-std::pow((w - k * images) * sample_s, 2));
+    sum += weight / (w * w * (1 + w * w * rise_s * rise_s));
+  }
+  return sum * dw / M_PI;
+}
+
 // (1/π) ∫ e^{−ω²Δs²}/(1 + ω²τ²) |H − 1|²/ω² dω for the bars' paths x (the model's I / A²).
 double front_error_s(const ChainDiscretization& d, const std::vector<double>& x, double sample_s,
                      double rise_s) {
@@ -86,7 +120,7 @@ double front_error_s(const ChainDiscretization& d, const std::vector<double>& x,
     const double weight = std::exp(-w * w * sample_s * sample_s) / (1 + w * w * rise_s * rise_s);
     sum += (j == kFrequencyPoints ? 0.5 : 1) * weight * miss / (w * w);
   }
-  return sum * dw / M_PI;
+  return sum * dw / M_PI + aliased_error_s(d, x, sample_s, rise_s);
 }
 
 }  // namespace
@@ -191,14 +225,22 @@ GaugeErrorPrediction choose_meshes(Scene& scene) {
         }
         fine = b;
       }
-      const double e_fine = error_at(fine);
-      if (!(e_fine <= target)) {
-        if (e_fine < closest) closest = e_fine, most_accurate = s;
+      // … then from the coarsest transit down, a step of kScanRatio at a time, to the first that
+      // meets the target, and bisection back to its coarser neighbour: the error is not monotone
+      // in δ (the fronts' dispersion falls with it, their aliasing in the record grows).
+      double lo = coarsest, hi = coarsest, e = error_at(lo);
+      Scene closest_here = s;
+      double closest_e = e;
+      while (!(e <= target) && lo > fine) {
+        hi = lo;
+        lo = std::max(fine, lo / kScanRatio);
+        e = error_at(lo);
+        if (e < closest_e) closest_e = e, closest_here = s;
+      }
+      if (!(e <= target)) {
+        if (closest_e < closest) closest = closest_e, most_accurate = closest_here;
         continue;
       }
-      // … and the coarsest one that meets the target (the error grows with δ).
-      double lo = fine, hi = coarsest;
-      if (error_at(hi) <= target) lo = hi;
       while (hi / lo > kSearchRatio) {
         const double mid = std::sqrt(lo * hi);
         (error_at(mid) <= target ? lo : hi) = mid;
@@ -208,10 +250,12 @@ GaugeErrorPrediction choose_meshes(Scene& scene) {
     }
     return std::isfinite(best_cost);
   };
-  // With the margin of the model's scatter if any mesh allows it (the bars the user meshed may
-  // not), else the tolerance itself, else the most accurate mesh (refused by resolve_scene()).
+  // With the margin of the model's scatter if any mesh allows it; else (the bars the user meshed,
+  // or the record's aliasing of sharp fronts, leave no room for it) halfway between the best
+  // predicted error and the tolerance; else the most accurate mesh (refused by resolve_scene()).
   Scene best = scene;
-  if (cheapest(kTargetFraction * asked, best) || cheapest(asked, best))
+  if (cheapest(kTargetFraction * asked, best) ||
+      (closest <= asked && cheapest(0.5 * (closest + asked), best)))
     scene = best;
   else if (std::isfinite(closest))
     scene = most_accurate;

@@ -47,8 +47,10 @@ GaugeErrorPrediction predict_gauge_error(const Scene& scene, const ChainDiscreti
 
 // With scene.simulation.tolerance set: every bar without an `elements` of its own gets the element
 // count of the cheapest mesh (fewest node updates, discretize()) whose predicted error is at most
-// 0.7 × the tolerance (the model's scatter; the tolerance itself where the bars the user meshed
-// leave no room for the margin) — the bars at one element transit h/c, the specimen
+// 0.7 × the tolerance (the model's scatter; where no mesh is predicted that low — the bars the
+// user meshed, or the record's aliasing of sharp fronts, leave no room for the margin — halfway
+// between the lowest predicted error and the tolerance) — the bars at one element transit h/c,
+// searched from the coarsest down (the error is not monotone in h: aliasing), the specimen
 // searched on its own — written into the scene's bars; returns the prediction. The Courant number
 // stays the scene's: the default is the largest stable one, and a lower one costs more steps and
 // disperses more. If no affordable mesh meets the tolerance, the most accurate affordable one is

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "study/parallel_runner.hpp"
+#include "study/recorded_error.hpp"
 #include "study/reference.hpp"
 
 namespace shpb {
@@ -68,6 +69,8 @@ ParetoStudy assemble_pareto(const Scene& scene, const std::vector<ParetoJob>& jo
     row.node_updates = r.node_updates;
     row.error =
         r.stable ? gauge_error(r.gauges, *reference) : std::numeric_limits<double>::quiet_NaN();
+    row.recorded_error = r.stable ? recorded_gauge_error(r.gauges, *reference)
+                                  : std::numeric_limits<double>::quiet_NaN();
   }
   return study;
 }

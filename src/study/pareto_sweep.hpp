@@ -16,7 +16,8 @@ namespace shpb {
 
 struct ParetoRow {
   ParetoCase run;
-  double error = 0;  // relative L2 gauge error against the reference (NaN if unstable)
+  double error = 0;           // relative L2 gauge error against the reference (NaN if unstable)
+  double recorded_error = 0;  // the same as a record sees it (study/recorded_error.hpp)
   double wall_time_s = 0;
   long long node_updates = 0;
   bool stable = true;

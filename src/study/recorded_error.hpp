@@ -17,6 +17,11 @@ namespace shpb {
 // √(Σ (ε̃ − ε̃_ref)²) / √(Σ ε̃_ref²) over the gauges and the samples of the window, ε̃ the signal
 // smoothed by a Gaussian of standard deviation one sample interval (truncated at 4 σ, normalised
 // by the weights inside the window at its ends). NaN where gauge_error() is NaN.
+// x smoothed by that Gaussian of standard deviation `sigma` samples, kept every `stride`-th sample
+// from the first (a reference recorded at `stride` × the sample rate is smoothed with sigma =
+// stride).
+std::vector<double> record_smoothed(const std::vector<double>& x, int sigma = 1, int stride = 1);
+
 double recorded_gauge_error(const TimeSeries& gauges, const GaugeReference& reference);
 
 }  // namespace shpb

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "study/recorded_error.hpp"
 #include "study/sweep.hpp"
 
 namespace shpb {
@@ -46,6 +47,14 @@ std::optional<GaugeReference> exact_reference(const Scene& scene) {
     const double arrival = positions[column] / c0;
     return t >= arrival && t < arrival + duration ? -V / (2 * c0) : 0.0;
   };
+  // The square pulse convolved with a Gaussian: a difference of two normal distribution functions.
+  r.recorded = [positions, c0, V, duration](std::size_t column, double t, double sigma_s) {
+    const double arrival = positions[column] / c0;
+    const auto phi = [sigma_s](double x) {
+      return 0.5 * std::erfc(-x / (std::sqrt(2.0) * sigma_s));
+    };
+    return -V / (2 * c0) * (phi(t - arrival) - phi(t - arrival - duration));
+  };
   return r;
 }
 
@@ -66,6 +75,7 @@ Scene fine_reference_scene(const Scene& scene, double resolution) {
     fine.bars[s].elements =
         scene_at_resolution(scene, kReferenceSpecimenResolution).bars[s].elements;
   }
+  fine.simulation.sample_rate_Hz *= kReferenceOversampling;
   return fine;
 }
 
@@ -81,7 +91,17 @@ GaugeReference fine_mesh_reference(const Scene& scene, double resolution, bool s
                   " (the scene has no exact solution)";
   if (!stable) r.description += "; WARNING: the reference run was unstable: " + failure;
   r.window_end_s = std::numeric_limits<double>::infinity();
-  r.fine = std::move(gauges);
+  r.fine.columns = r.recorded_fine.columns = gauges.columns;
+  for (std::size_t k = 0; k < gauges.samples(); k += kReferenceOversampling)
+    r.fine.time_s.push_back(gauges.time_s[k]);
+  r.recorded_fine.time_s = r.fine.time_s;
+  for (const std::vector<double>& v : gauges.values) {
+    std::vector<double> points;
+    for (std::size_t k = 0; k < v.size(); k += kReferenceOversampling) points.push_back(v[k]);
+    r.fine.values.push_back(std::move(points));
+    r.recorded_fine.values.push_back(
+        record_smoothed(v, kReferenceOversampling, kReferenceOversampling));
+  }
   r.wall_time_s = wall_time_s;
   return r;
 }

@@ -19,7 +19,13 @@ struct GaugeReference {
   // Exact: strain of gauge `column` (index in the run's gauge columns) at time t. Fine mesh:
   // the reference run's gauges on the same sample grid.
   std::function<double(std::size_t column, double t)> strain;
+  // Exact: the same strain as a record sees it (study/recorded_error.hpp), the exact signal
+  // convolved with a Gaussian of standard deviation sigma_s, fronts at their exact arrival times.
+  std::function<double(std::size_t column, double t, double sigma_s)> recorded;
   TimeSeries fine;
+  // Fine mesh: the reference run's gauges as a record sees them (study/recorded_error.hpp),
+  // smoothed on its oversampled grid (kReferenceOversampling) and kept on the run's sample grid.
+  TimeSeries recorded_fine;
   double wall_time_s = 0;  // of the fine-mesh run
 };
 
@@ -36,12 +42,19 @@ inline constexpr double kReferenceResolution = 8;
 // (measured, README "Accuracy against cost").
 inline constexpr double kReferenceSpecimenResolution = 4;
 
+// The fine-mesh reference run records its gauges at this multiple of the scene's sample rate, so
+// that its fronts, sharper than a sample at 8 ×, are seen through the record's Gaussian at their
+// own times and not where the sample grid falls on them (docs/methods.md §1.1); every
+// kReferenceOversampling-th sample is the study's point-sample reference.
+inline constexpr int kReferenceOversampling = 8;
+
 // The fine-mesh reference run: localized bipenalty, asynchronous stepping, at `resolution` ×
 // the automatic mesh (the specimen at most kReferenceSpecimenResolution ×).
 ParetoCase fine_reference_case(double resolution);
 Scene fine_reference_scene(const Scene& scene, double resolution);
 
-// The reference from that run's outcome: its gauges over the whole recording.
+// The reference from that run's outcome: its gauges over the whole recording (recorded at
+// kReferenceOversampling × the scene's sample rate).
 GaugeReference fine_mesh_reference(const Scene& scene, double resolution, bool stable,
                                    const std::string& failure, TimeSeries gauges,
                                    double wall_time_s);

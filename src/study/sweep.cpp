@@ -52,6 +52,16 @@ Scene scene_for(const Scene& scene, const ParetoCase& c) {
   Scene out = scene_at_resolution(scene, c.resolution);
   out.contact.method = c.method;
   for (InterfaceOverride& o : out.contact.interfaces) o.method.reset();
+  // A bonded interface (glued: it carries tension) is part of the experiment, not a contact to
+  // compare methods on: it stays bonded.
+  for (std::size_t k = 0; k + 1 < scene.bars.size(); ++k) {
+    if (interface_method(scene.contact, k) != ContactMethod::kBonded) continue;
+    auto o = std::find_if(out.contact.interfaces.begin(), out.contact.interfaces.end(),
+                          [k](const InterfaceOverride& i) { return i.left_bar == k; });
+    if (o == out.contact.interfaces.end())
+      o = out.contact.interfaces.insert(out.contact.interfaces.end(), InterfaceOverride{k});
+    o->method = ContactMethod::kBonded;
+  }
   out.simulation.stepping = c.stepping;
   if (c.finite_links) {
     out.contact.penalty.stiffness_factor = kDefaultStiffnessFactor;

@@ -121,7 +121,7 @@ TEST_CASE("shpb study writes pareto.csv with the documented columns, and exits 2
   std::getline(csv, header);
   CHECK(header ==
         "method,stepping,resolution,error,wall_time_s,node_updates,stable,"
-        "pareto_front_wall_time,pareto_front_node_updates");
+        "pareto_front_wall_time,pareto_front_node_updates,recorded_error");
   struct Row {
     double error, wall, updates;
     bool front_wall, front_updates;
@@ -131,8 +131,10 @@ TEST_CASE("shpb study writes pareto.csv with the documented columns, and exits 2
     std::vector<std::string> c;
     std::stringstream cells(line);
     for (std::string x; std::getline(cells, x, ',');) c.push_back(x);
-    REQUIRE(c.size() == 9);
+    if (!line.empty() && line.back() == ',') c.push_back("");  // an empty last field
+    REQUIRE(c.size() == 10);
     for (int k : {6, 7, 8}) CHECK((c[k] == "0" || c[k] == "1"));  // flags as numbers (report)
+    CHECK(c[9].empty() == c[3].empty());  // the recorded error exactly where the error is
     rows.push_back({c[3].empty() ? std::nan("") : std::stod(c[3]), std::stod(c[4]), std::stod(c[5]),
                     c[7] == "1", c[8] == "1"});
   }
