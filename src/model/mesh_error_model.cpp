@@ -97,7 +97,7 @@ double aliased_error_s(const ChainDiscretization& d, const std::vector<double>& 
 
 // (1/π) ∫ e^{−ω²Δs²}/(1 + ω²τ²) |H − 1|²/ω² dω for the bars' paths x (the model's I / A²).
 double front_error_s(const ChainDiscretization& d, const std::vector<double>& x, double sample_s,
-                     double rise_s) {
+                     double rise_s, double aliasing) {
   const double top = kFrequencyEnd / sample_s, dw = top / kFrequencyPoints;
   double sum = 0;
   for (int j = 1; j <= kFrequencyPoints; ++j) {
@@ -120,7 +120,8 @@ double front_error_s(const ChainDiscretization& d, const std::vector<double>& x,
     const double weight = std::exp(-w * w * sample_s * sample_s) / (1 + w * w * rise_s * rise_s);
     sum += (j == kFrequencyPoints ? 0.5 : 1) * weight * miss / (w * w);
   }
-  return sum * dw / M_PI + aliased_error_s(d, x, sample_s, rise_s);
+  return sum * dw / M_PI +
+         (aliasing > 0 ? aliasing * aliased_error_s(d, x, sample_s, rise_s) : 0.0);
 }
 
 }  // namespace
@@ -140,8 +141,8 @@ GaugeErrorPrediction predict_gauge_error(const Scene& scene, const ChainDiscreti
   int gauges = 0;
   for (std::size_t b = *striker + 1; b < scene.bars.size(); ++b)
     for (const GaugeSpec& g : scene.bars[b].gauges) {
-      sum +=
-          front_error_s(d, path_lengths(scene, *striker, b, g.position_m), sample_s, p.rise_time_s);
+      sum += front_error_s(d, path_lengths(scene, *striker, b, g.position_m), sample_s,
+                           p.rise_time_s, k.aliasing);
       ++gauges;
     }
   p.bars = gauges > 0 ? std::sqrt(k.front * 2 * sum / gauges / p.pulse_s) : 0.0;

@@ -29,6 +29,9 @@ struct MeshErrorConstants {
   double front = 1.0;
   double specimen = 0.0;
   double specimen_order = 1.0;
+  // 1: the record is a point sample every Δs (gauges.csv), its aliasing of the fronts counted;
+  // 0: a record seen through the record's Gaussian before sampling, as the references are.
+  double aliasing = 1.0;
 };
 extern const MeshErrorConstants kMeshErrorConstants;
 
