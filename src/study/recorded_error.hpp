@@ -14,14 +14,16 @@
 
 namespace shpb {
 
-// √(Σ (ε̃ − ε̃_ref)²) / √(Σ ε̃_ref²) over the gauges and the samples of the window, ε̃ the signal
-// smoothed by a Gaussian of standard deviation one sample interval (truncated at 4 σ, normalised
-// by the weights inside the window at its ends). NaN where gauge_error() is NaN.
-// x smoothed by that Gaussian of standard deviation `sigma` samples, kept every `stride`-th sample
-// from the first (a reference recorded at `stride` × the sample rate is smoothed with sigma =
-// stride).
+// x smoothed by the record's Gaussian (below) of standard deviation `sigma` samples, kept every
+// `stride`-th sample from the first (a reference recorded at `stride` × the sample rate is smoothed
+// with sigma = stride).
 std::vector<double> record_smoothed(const std::vector<double>& x, int sigma = 1, int stride = 1);
 
+// √(Σ (ε̃ − ε̃_ref)²) / √(Σ ε̃_ref²) over the gauges and the samples of the window, ε̃ the signal
+// smoothed by a Gaussian of standard deviation one sample interval (truncated at 4 σ, normalised
+// by the weights inside the window at its ends); the reference as recorded: an exact one smoothed
+// analytically at its own arrival times, a fine-mesh one on its oversampled grid (reference.hpp).
+// NaN where gauge_error() is NaN.
 double recorded_gauge_error(const TimeSeries& gauges, const GaugeReference& reference);
 
 }  // namespace shpb
