@@ -8,6 +8,8 @@
 // Build: cmake --build build --target smoothness; run:
 //   build/smoothness [--stepping global|asynchronous] [--filter SECONDS] [--parameter A|B|n|C]
 //                    [--no-adaptive] [--no-subcycle] [--no-skip] [--velocity M_S]
+//                    [--until SECONDS] (the record up to that time only)
+//                    [--events] (closings/releases per interface and steps per bar over A ± 1 %)
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -64,7 +66,8 @@ double norm(const std::vector<double>& x) {
 
 int main(int argc, char** argv) {
   std::string stepping = "asynchronous", name = "A";
-  double filter_s = 0, velocity = 18.5;
+  double filter_s = 0, velocity = 18.5, until = 1.0;
+  bool events = false;
   SimulationOptions options;
   options.record_field = false;
   for (int i = 1; i < argc; ++i) {
@@ -77,6 +80,10 @@ int main(int argc, char** argv) {
       name = argv[++i];
     else if (a == "--velocity" && i + 1 < argc)
       velocity = std::atof(argv[++i]);
+    else if (a == "--until" && i + 1 < argc)
+      until = std::atof(argv[++i]);
+    else if (a == "--events")
+      events = true;
     else if (a == "--no-adaptive")
       options.adaptive_step = false;
     else if (a == "--no-subcycle")
@@ -103,7 +110,7 @@ int main(int argc, char** argv) {
     return simulate(s, options);
   };
   const SimulationResult mid = run(1.0);
-  if (std::getenv("SMOOTH_EVENTS"))
+  if (events)
     for (double f : {0.99, 0.997, 0.999, 0.9997, 0.9999, 1.0, 1.0001, 1.0003, 1.001, 1.003, 1.01}) {
       const SimulationResult r = run(f);
       std::printf("%8.4f", f);
@@ -124,9 +131,11 @@ int main(int argc, char** argv) {
     std::printf("%10.0e", h);
     for (const std::string& g : mid.gauges.columns) {
       const std::vector<double>&a = lo.gauges.column(g), &b = mid.gauges.column(g),
-            &c = hi.gauges.column(g);
-      std::vector<double> d1(b.size()), d2(b.size());
+            std::vector<double> d1(b.size()), d2(b.size());
+      const double until =
+          std::getenv("SMOOTH_UNTIL") ? std::atof(std::getenv("SMOOTH_UNTIL")) : 1.0;
       for (std::size_t k = 0; k < b.size(); ++k) {
+        if (mid.gauges.time_s[k] > until) break;
         d1[k] = 0.5 * (c[k] - a[k]);
         d2[k] = c[k] - 2 * b[k] + a[k];
       }
