@@ -131,9 +131,8 @@ int main(int argc, char** argv) {
     std::printf("%10.0e", h);
     for (const std::string& g : mid.gauges.columns) {
       const std::vector<double>&a = lo.gauges.column(g), &b = mid.gauges.column(g),
-            std::vector<double> d1(b.size()), d2(b.size());
-      const double until =
-          std::getenv("SMOOTH_UNTIL") ? std::atof(std::getenv("SMOOTH_UNTIL")) : 1.0;
+            &c = hi.gauges.column(g);
+      std::vector<double> d1(b.size()), d2(b.size());
       for (std::size_t k = 0; k < b.size(); ++k) {
         if (mid.gauges.time_s[k] > until) break;
         d1[k] = 0.5 * (c[k] - a[k]);
