@@ -45,10 +45,10 @@ const char* const kRateFilter = "1 us";
 
 // A short, coarse set-up (Ti-6Al-4V bars, 2 mm elements) so each simulation takes milliseconds:
 // 150 mm striker (60 µs pulse), gauges 250 mm from the specimen (pulses do not overlap). Global
-// stepping: with asynchronous stepping the gauge signals respond roughly to small changes of the
-// law (at 0.1 % steps of A their second differences are as large as the first; global stepping:
-// 1e-3 of them), the finite-difference Jacobian is noise and the fit stops several per cent off
-// (README, shpb fit).
+// stepping: with asynchronous stepping the gauge signals are smooth in the law through the loading
+// but rough in the tail, where the unloaded specimen rattles between the bar ends (impacts whose
+// number and instants jump with the law; docs/methods.md §9), which the compared windows reach: the
+// finite-difference Jacobian is noise there and the fit stops 3–29 % off (README, shpb fit).
 json scene_at(double velocity_m_s, const fs::path& specimen) {
   json s = json::parse(R"({
     "bars": [
