@@ -87,7 +87,7 @@ TEST_CASE("A stability sweep run in shards through parts equals the in-process s
   const StabilityStudy whole = run_stability_sweep(scene, {ContactMethod::kPenalty}, 2);
   StudyPlan plan;
   plan.id = new_plan_id();
-  plan.sweep = "stability";
+  plan.sweep = Sweep::kStability;
   plan.stability = stability_jobs(stability_grid({ContactMethod::kPenalty}));
   const Scene probe = stability_probe_scene(scene);
   StudyResults merged;
