@@ -13,10 +13,8 @@
 namespace shpb {
 namespace fs = std::filesystem;
 
-std::string to_string(FitStage s) { return s == FitStage::kCurve ? "curve" : "signals"; }
-std::string to_string(FitLoss l) {
-  return l == FitLoss::kHuber ? "huber" : l == FitLoss::kCauchy ? "cauchy" : "linear";
-}
+std::string to_string(FitStage s) { return std::string(enum_name(kFitStageNames, s)); }
+std::string to_string(FitLoss l) { return std::string(enum_name(kFitLossNames, l)); }
 
 namespace {
 
@@ -144,28 +142,17 @@ FitSpec read_fit_spec(const Campaign& c) {
   if (auto stages = o.get("stages")) {
     spec.stages.clear();
     const auto items = stages->array();
-    if (items.empty()) throw stages->error("expected [\"curve\", \"signals\"] or one of them");
+    if (items.empty())
+      throw stages->error(
+          "expected a list of the stages to run: " + enum_names_text(kFitStageNames) + " or both");
     for (const auto& item : items) {
-      const std::string s = item.string();
-      if (s != "curve" && s != "signals")
-        throw item.error(suggestion_text(s, {"curve", "signals"}));
-      const FitStage st = s == "curve" ? FitStage::kCurve : FitStage::kSignals;
+      const FitStage st = enum_from(item, kFitStageNames);
       if (std::find(spec.stages.begin(), spec.stages.end(), st) != spec.stages.end())
         throw item.error("stage listed twice");
       spec.stages.push_back(st);
     }
   }
-  if (auto loss = o.get("loss")) {
-    const std::string s = loss->string();
-    if (s == "linear")
-      spec.loss = FitLoss::kLinear;
-    else if (s == "huber")
-      spec.loss = FitLoss::kHuber;
-    else if (s == "cauchy")
-      spec.loss = FitLoss::kCauchy;
-    else
-      throw loss->error(suggestion_text(s, {"linear", "huber", "cauchy"}));
-  }
+  if (auto loss = o.get("loss")) spec.loss = enum_from(*loss, kFitLossNames);
   if (spec.free.empty() && spec.nuisance.empty())
     throw input_error(c.display, "free", "(missing)",
                       "nothing to fit: free at least one parameter of the law");
