@@ -39,12 +39,7 @@ std::pair<double, double> read_bounds(const JsonValue& v, Dimension d) {
 void check_law_accepts(const FitSpec& spec, const std::string& name, double value,
                        const JsonValue& where) {
   nlohmann::json doc = spec.material_document;
-  if (name.rfind("arms[", 0) == 0) {
-    const auto close = name.find("].");
-    doc["arms"][std::stoul(name.substr(5, close - 5))][name.substr(close + 2)] = value;
-  } else {
-    doc[name] = value;
-  }
+  law_parameter_member(doc, name) = value;  // SI, exactly the value tried
   try {
     read_material(JsonValue(doc, spec.material_display, ""), spec.material_display);
   } catch (const InputError& e) {
