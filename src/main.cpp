@@ -8,10 +8,12 @@
 #include <vector>
 
 #include "app/commands.hpp"
+#include "core/csv_writer.hpp"
 #include "core/enum_names.hpp"
 #include "core/error.hpp"
 #include "core/output_folder.hpp"
 #include "core/units.hpp"
+#include "model/discretization.hpp"
 #include "model/scene.hpp"
 #include "version.hpp"
 
@@ -47,7 +49,8 @@ void add_run_options(CLI::App* cmd, RunOverrides& o, std::string& contact, std::
       ->check(CLI::IsMember(steppings));
   // Its range, (0, 1] as in the scene, is checked with the scene (model/scene_validation.hpp).
   cmd->add_option("--courant", o.courant,
-                  "Courant number of every bar, c·Δt/h, in (0, 1] (default ≈ 0.99)");
+                  "Courant number of every bar, c·Δt/h, in (0, 1] (default: the scene's, else " +
+                      format_double(kDefaultCourant) + ")");
   // Its range, (0 %, 100 %) as in the scene, is checked with the scene
   // (model/scene_validation.hpp).
   cmd->add_option("--tolerance", tolerance,
@@ -180,8 +183,12 @@ int main(int argc, char** argv) {
   study_cmd->add_option("scene", study.scene, "Scene JSON file (not with --run/--merge)");
   study_cmd->add_option("-o,--output", study.output,
                         "Output folder (replaced atomically); with --merge default DIR/result");
-  study_cmd->add_option("--sweep", study.sweep, "pareto | stability")
-      ->check(CLI::IsMember({"pareto", "stability"}));
+  std::string sweep;
+  const std::vector<std::string> sweeps = enum_names(kSweepNames);
+  study_cmd
+      ->add_option("--sweep", sweep,
+                   alternatives(sweeps) + " (default " + to_string(StudyArgs{}.sweep) + ")")
+      ->check(CLI::IsMember(sweeps));
   study_cmd
       ->add_option("--refine", study.refine,
                    "Stability map: refine-1 more points between neighbours on the stiffness "
@@ -229,7 +236,10 @@ int main(int argc, char** argv) {
   fit_cmd->add_option("-o,--output", fit.output, "Output folder (replaced atomically)")->required();
   fit_cmd->add_option("--threads", fit.threads, "Simulations in parallel (0 = all cores)")
       ->check(CLI::NonNegativeNumber);
-  fit_cmd->add_option("--max-iterations", fit.max_iterations, "Solver iterations per stage")
+  fit_cmd
+      ->add_option(
+          "--max-iterations", fit.max_iterations,
+          "Solver iterations per stage (default " + std::to_string(FitArgs{}.max_iterations) + ")")
       ->check(CLI::Range(1, 10000));
   fit_cmd
       ->add_option("--relative-step", fit.relative_step,
@@ -289,6 +299,7 @@ int main(int argc, char** argv) {
     }
     if (*study_cmd) {
       resolve_run_options(study.overrides, contact, stepping, tolerance);
+      if (!sweep.empty()) study.sweep = *enum_value(kSweepNames, sweep);
       return run_study(study);
     }
     if (*validate) {

@@ -9,6 +9,7 @@
 
 #include "model/scene.hpp"
 #include "model/scene_validation.hpp"
+#include "study/sweep.hpp"
 
 namespace shpb {
 
@@ -86,7 +87,7 @@ int run_dispersion(const DispersionArgs& args);
 struct StudyArgs {
   std::filesystem::path scene;
   std::filesystem::path output;
-  std::string sweep = "pareto";  // pareto | stability
+  Sweep sweep = Sweep::kPareto;
   RunOverrides overrides;
   int refine = 1;  // stability grid refinement (study/sweep.hpp)
   // Plan, run, merge (docs/commands.md): at most one of the three.

@@ -119,7 +119,7 @@ void write_pareto(const ParetoStudy& study, const Scene& scene, int threads, dou
   Json j;
   j["version"] = kVersion;
   j["scene"] = scene.name;
-  j["sweep"] = "pareto";
+  j["sweep"] = to_string(Sweep::kPareto);
   j["error"] = "relative L2 norm of the gauge strains against the reference, all gauges";
   j["reference"] = study.reference;
   j["reference_exact"] = study.reference_exact;
@@ -167,7 +167,7 @@ void write_stability(const StabilityStudy& study, const Scene& scene, int refine
   Json j;
   j["version"] = kVersion;
   j["scene"] = scene.name;
-  j["sweep"] = "stability";
+  j["sweep"] = to_string(Sweep::kStability);
   j["probe"] = study.probe;
   j["unstable_when"] = "total energy above " + format_double(kUnstableEnergyGrowth) +
                        " x its initial value, or a non-finite value";
@@ -208,7 +208,7 @@ StudyPlan make_plan(const StudyArgs& args, const Scene& scene) {
   std::vector<Stepping> steppings;
   if (plan.contact) methods.push_back(*plan.contact);
   if (plan.stepping) steppings.push_back(*plan.stepping);
-  if (plan.sweep == "stability")
+  if (plan.sweep == Sweep::kStability)
     plan.stability = stability_jobs(stability_grid(methods, plan.refine));
   else
     plan.pareto = pareto_jobs(scene, pareto_cases(methods, steppings));
@@ -235,8 +235,8 @@ void run_plan(const StudyPlan& plan, const Scene& scene, const std::vector<std::
   const auto cancel = [] { return interrupted(); };
   results.pareto.resize(plan.pareto.size());
   results.stability.resize(plan.stability.size());
-  const auto progress = progress_printer(quiet, plan.sweep);
-  if (plan.sweep == "stability") {
+  const auto progress = progress_printer(quiet, to_string(plan.sweep));
+  if (plan.sweep == Sweep::kStability) {
     const Scene probe = stability_probe_scene(scene);
     run_parallel(
         runs.size(), threads,
@@ -258,7 +258,7 @@ void run_plan(const StudyPlan& plan, const Scene& scene, const std::vector<std::
 // The study's files from every run's result.
 void write_study(const StudyPlan& plan, const Scene& scene, const StudyResults& results,
                  int threads, double wall_s, const std::filesystem::path& dir) {
-  if (plan.sweep == "stability")
+  if (plan.sweep == Sweep::kStability)
     write_stability(
         assemble_stability(stability_probe_scene(scene), plan.stability, results.stability), scene,
         plan.refine, threads, wall_s, dir);
@@ -299,8 +299,8 @@ int plan_study(const StudyArgs& args) {
     std::fprintf(stderr,
                  "study %s of %s: %zu runs planned in %s; next: shpb study --run %s --shard K/N, "
                  "then shpb study --merge %s\n",
-                 plan.sweep.c_str(), scene.name.c_str(), plan.runs(), dir.string().c_str(),
-                 dir.string().c_str(), dir.string().c_str());
+                 to_string(plan.sweep).c_str(), scene.name.c_str(), plan.runs(),
+                 dir.string().c_str(), dir.string().c_str(), dir.string().c_str());
   return 0;
 }
 
@@ -331,8 +331,8 @@ int run_study_shard(const StudyArgs& args) {
   write_file_atomically(part, j.dump() + "\n");
   if (!args.overrides.quiet)
     std::fprintf(stderr, "study %s shard %s: %zu runs in %.3g s on %d threads; wrote %s\n",
-                 plan.sweep.c_str(), args.shard.c_str(), runs.size(), seconds_since(start), threads,
-                 part.string().c_str());
+                 to_string(plan.sweep).c_str(), args.shard.c_str(), runs.size(),
+                 seconds_since(start), threads, part.string().c_str());
   return 0;
 }
 
@@ -369,7 +369,7 @@ int merge_study(const StudyArgs& args) {
   out.commit();
   if (!args.overrides.quiet)
     std::fprintf(stderr, "study %s of %s: merged %zu parts (%zu runs); wrote %s\n",
-                 plan.sweep.c_str(), scene.name.c_str(), parts.size(), plan.runs(),
+                 to_string(plan.sweep).c_str(), scene.name.c_str(), parts.size(), plan.runs(),
                  out.final_path().string().c_str());
   return 0;
 }
@@ -380,7 +380,7 @@ int run_study(const StudyArgs& args) {
   const int modes = (args.plan ? 1 : 0) + (args.run ? 1 : 0) + (args.merge ? 1 : 0);
   if (modes > 1)
     throw input_error("study", "", "", "--plan, --run and --merge are separate steps: give one");
-  if (args.refine != 1 && args.sweep != "stability")
+  if (args.refine != 1 && args.sweep != Sweep::kStability)
     throw input_error("--refine", "", std::to_string(args.refine), "only with --sweep stability");
   if (!args.shard.empty() && !args.run)
     throw input_error("--shard", "", "\"" + args.shard + "\"", "only with --run DIR");
@@ -405,8 +405,9 @@ int run_study(const StudyArgs& args) {
   const double wall = seconds_since(start);
   out.commit();
   if (!args.overrides.quiet)
-    std::fprintf(stderr, "study %s of %s in %.3g s on %d threads; wrote %s\n", args.sweep.c_str(),
-                 scene.name.c_str(), wall, threads, out.final_path().string().c_str());
+    std::fprintf(stderr, "study %s of %s in %.3g s on %d threads; wrote %s\n",
+                 to_string(args.sweep).c_str(), scene.name.c_str(), wall, threads,
+                 out.final_path().string().c_str());
   return 0;
 }
 

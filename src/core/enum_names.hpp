@@ -36,4 +36,15 @@ std::vector<std::string> enum_names(const EnumName<Enum> (&table)[N]) {
   return names;
 }
 
+// The names for a message: "\"a\", \"b\" or \"c\"".
+template <typename Enum, std::size_t N>
+std::string enum_names_text(const EnumName<Enum> (&table)[N]) {
+  std::string text;
+  for (std::size_t i = 0; i < N; ++i) {
+    if (i > 0) text += i + 1 == N ? " or " : ", ";
+    text.append("\"").append(table[i].first).append("\"");
+  }
+  return text;
+}
+
 }  // namespace shpb

@@ -11,6 +11,8 @@
 #include <string_view>
 #include <vector>
 
+#include "core/closest_match.hpp"
+#include "core/enum_names.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
 
@@ -72,6 +74,15 @@ class JsonObject {
  private:
   JsonValue value_;
 };
+
+// The value a table of names (core/enum_names.hpp) gives the string `v`; else v's error, offering
+// the closest name.
+template <typename Enum, std::size_t N>
+Enum enum_from(const JsonValue& v, const EnumName<Enum> (&table)[N]) {
+  const std::string s = v.string();
+  if (const auto e = enum_value(table, s)) return *e;
+  throw v.error(suggestion_text(s, enum_names(table)));
+}
 
 // `parent.key` or `parent["odd key"]`, `parent[3]`.
 std::string json_child_path(const std::string& parent, std::string_view key);

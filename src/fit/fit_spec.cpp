@@ -13,10 +13,8 @@
 namespace shpb {
 namespace fs = std::filesystem;
 
-std::string to_string(FitStage s) { return s == FitStage::kCurve ? "curve" : "signals"; }
-std::string to_string(FitLoss l) {
-  return l == FitLoss::kHuber ? "huber" : l == FitLoss::kCauchy ? "cauchy" : "linear";
-}
+std::string to_string(FitStage s) { return std::string(enum_name(kFitStageNames, s)); }
+std::string to_string(FitLoss l) { return std::string(enum_name(kFitLossNames, l)); }
 
 namespace {
 
@@ -41,12 +39,7 @@ std::pair<double, double> read_bounds(const JsonValue& v, Dimension d) {
 void check_law_accepts(const FitSpec& spec, const std::string& name, double value,
                        const JsonValue& where) {
   nlohmann::json doc = spec.material_document;
-  if (name.rfind("arms[", 0) == 0) {
-    const auto close = name.find("].");
-    doc["arms"][std::stoul(name.substr(5, close - 5))][name.substr(close + 2)] = value;
-  } else {
-    doc[name] = value;
-  }
+  law_parameter_member(doc, name) = value;  // SI, exactly the value tried
   try {
     read_material(JsonValue(doc, spec.material_display, ""), spec.material_display);
   } catch (const InputError& e) {
@@ -144,28 +137,17 @@ FitSpec read_fit_spec(const Campaign& c) {
   if (auto stages = o.get("stages")) {
     spec.stages.clear();
     const auto items = stages->array();
-    if (items.empty()) throw stages->error("expected [\"curve\", \"signals\"] or one of them");
+    if (items.empty())
+      throw stages->error(
+          "expected a list of the stages to run: " + enum_names_text(kFitStageNames) + " or both");
     for (const auto& item : items) {
-      const std::string s = item.string();
-      if (s != "curve" && s != "signals")
-        throw item.error(suggestion_text(s, {"curve", "signals"}));
-      const FitStage st = s == "curve" ? FitStage::kCurve : FitStage::kSignals;
+      const FitStage st = enum_from(item, kFitStageNames);
       if (std::find(spec.stages.begin(), spec.stages.end(), st) != spec.stages.end())
         throw item.error("stage listed twice");
       spec.stages.push_back(st);
     }
   }
-  if (auto loss = o.get("loss")) {
-    const std::string s = loss->string();
-    if (s == "linear")
-      spec.loss = FitLoss::kLinear;
-    else if (s == "huber")
-      spec.loss = FitLoss::kHuber;
-    else if (s == "cauchy")
-      spec.loss = FitLoss::kCauchy;
-    else
-      throw loss->error(suggestion_text(s, {"linear", "huber", "cauchy"}));
-  }
+  if (auto loss = o.get("loss")) spec.loss = enum_from(*loss, kFitLossNames);
   if (spec.free.empty() && spec.nuisance.empty())
     throw input_error(c.display, "free", "(missing)",
                       "nothing to fit: free at least one parameter of the law");

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "core/enum_names.hpp"
 #include "model/campaign.hpp"
 #include "model/material.hpp"
 
@@ -33,6 +34,10 @@ struct NuisanceSpec {
 
 enum class FitStage { kCurve, kSignals };
 enum class FitLoss { kLinear, kHuber, kCauchy };
+inline constexpr EnumName<FitStage> kFitStageNames[] = {{"curve", FitStage::kCurve},
+                                                        {"signals", FitStage::kSignals}};
+inline constexpr EnumName<FitLoss> kFitLossNames[] = {
+    {"linear", FitLoss::kLinear}, {"huber", FitLoss::kHuber}, {"cauchy", FitLoss::kCauchy}};
 std::string to_string(FitStage s);
 std::string to_string(FitLoss l);
 

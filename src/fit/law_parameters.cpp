@@ -102,12 +102,13 @@ nlohmann::json law_parameter_json(const std::string& name, double value) {
   }
 }
 
+nlohmann::json& law_parameter_member(nlohmann::json& document, const std::string& name) {
+  if (auto arm = arm_parameter(name)) return document["arms"][arm->first][arm->second];
+  return document[name];
+}
+
 void set_law_parameter(nlohmann::json& document, const std::string& name, double value) {
-  if (auto arm = arm_parameter(name)) {
-    document["arms"][arm->first][arm->second] = law_parameter_json(name, value);
-    return;
-  }
-  document[name] = law_parameter_json(name, value);
+  law_parameter_member(document, name) = law_parameter_json(name, value);
 }
 
 std::optional<double> law_flow_stress(const MaterialSpec& m, double plastic_strain,

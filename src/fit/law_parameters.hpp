@@ -20,6 +20,8 @@ Dimension law_parameter_dimension(const std::string& name);
 double law_parameter(const MaterialSpec& m, const std::string& name);
 // Sets a parameter (and what derives from it: a viscoelastic E = E_inf + ΣE_k).
 void set_law_parameter(MaterialSpec& m, const std::string& name, double value);
+// The member of a material document that holds the parameter `name` (created when absent).
+nlohmann::json& law_parameter_member(nlohmann::json& document, const std::string& name);
 // Writes the value into a material document as its file would say it ("95.2 MPa", 0.31).
 void set_law_parameter(nlohmann::json& document, const std::string& name, double value);
 

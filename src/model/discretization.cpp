@@ -147,10 +147,7 @@ double first_contact_delay_s(const Scene& scene) {
 double default_duration_s(const Scene& scene) {
   if (scene.bars.empty()) return 0;
   if (const auto passed = pulses_passed_s(scene)) return *passed * kDurationMargin;
-  double longest = 0;
-  for (const BarSpec& bar : scene.bars)
-    longest = std::max(longest, bar.length_m / bar.material.wave_speed_m_s());
-  return 2.0 * longest * kDurationMargin;
+  return 2.0 * longest_transit_s(scene) * kDurationMargin;
 }
 
 ChainDiscretization discretize(const Scene& scene) {

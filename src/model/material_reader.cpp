@@ -111,12 +111,8 @@ MaterialSpec read_material(const JsonValue& value, const std::string& name) {
   if (!value.is_object()) throw value.error("expected a material object { \"model\": ..., ... }");
   MaterialSpec m;
   m.name = name;
-  const auto model_value = JsonObject(value).require(
-      "model", "\"elastic\", \"bilinear\", \"johnson-cook\" or \"viscoelastic\"");
-  const std::string model_text = model_value.string();
-  const auto model = enum_value(kMaterialModelNames, model_text);
-  if (!model) throw model_value.error(suggestion_text(model_text, enum_names(kMaterialModelNames)));
-  m.model = *model;
+  const auto model_value = JsonObject(value).require("model", enum_names_text(kMaterialModelNames));
+  m.model = enum_from(model_value, kMaterialModelNames);
 
   if (m.model == MaterialModel::kViscoelastic)
     if (auto e = JsonObject(value).get("youngs_modulus"))

@@ -5,14 +5,6 @@
 namespace shpb {
 namespace {
 
-// The value a table of names (core/enum_names.hpp) gives the string `v`, or its error.
-template <typename Enum, std::size_t N>
-Enum enum_from(const JsonValue& v, const EnumName<Enum> (&table)[N]) {
-  const std::string s = v.string();
-  if (const auto e = enum_value(table, s)) return *e;
-  throw v.error(suggestion_text(s, enum_names(table)));
-}
-
 ColumnRef read_column(const JsonValue& v) {
   ColumnRef c;
   if (v.is_string())

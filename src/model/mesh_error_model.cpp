@@ -193,10 +193,7 @@ GaugeErrorPrediction choose_meshes(Scene& scene) {
     for (double n = 4; n <= 4000; n *= 1.15) specimen_counts.push_back(static_cast<int>(n));
   }
   // Element transits h/c tried for the bars: from one element per bar down to 1e-7 of it.
-  double longest = 0;
-  for (const BarSpec& b : scene.bars)
-    longest = std::max(longest, b.length_m / b.material.wave_speed_m_s());
-  const double coarsest = longest, finest = longest * 1e-7;
+  const double coarsest = longest_transit_s(scene), finest = coarsest * 1e-7;
 
   double closest = std::numeric_limits<double>::infinity();  // when none meets the tolerance
   Scene most_accurate = scene;

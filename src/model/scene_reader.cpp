@@ -242,9 +242,7 @@ class SceneReader {
   }
 
   static ContactMethod contact_method(const JsonValue& v) {
-    const std::string s = v.string();
-    if (auto m = contact_method_from_string(s)) return *m;
-    throw v.error(suggestion_text(s, enum_names(kContactMethodNames)));
+    return enum_from(v, kContactMethodNames);
   }
 
   static PenaltyParams read_penalty(const JsonObject& o) {
@@ -310,20 +308,11 @@ class SceneReader {
     if (auto x = o.get("duration")) s.duration_s = x->positive_quantity(Dimension::kTime);
     if (auto x = o.get("sample_rate"))
       s.sample_rate_Hz = x->positive_quantity(Dimension::kFrequency);
-    if (auto x = o.get("stepping")) {
-      const auto m = stepping_from_string(x->string());
-      if (!m) throw x->error(suggestion_text(x->string(), enum_names(kSteppingNames)));
-      s.stepping = *m;
-    }
+    if (auto x = o.get("stepping")) s.stepping = enum_from(*x, kSteppingNames);
     // Lumped central difference is stable for C <= 1 (docs/methods.md §1).
     if (auto x = o.get("courant"))
       s.courant = x->quantity_in(Dimension::kDimensionless, 0, 1, true, false);
-    if (auto x = o.get("kinematics")) {
-      const std::string k = x->string();
-      const auto finite = enum_value(kKinematicsNames, k);
-      if (!finite) throw x->error(suggestion_text(k, enum_names(kKinematicsNames)));
-      s.finite_strain = *finite;
-    }
+    if (auto x = o.get("kinematics")) s.finite_strain = enum_from(*x, kKinematicsNames);
     // An engineering strain in (0, 1): the step shrinks with the shortest element.
     if (auto x = o.get("max_strain"))
       s.max_strain = x->quantity_in(Dimension::kDimensionless, 0, 0.95, true, false);

@@ -22,6 +22,13 @@ std::optional<std::size_t> striker_bar(const Scene& s) {
   return std::nullopt;
 }
 
+double longest_transit_s(const Scene& s) {
+  double longest = 0;
+  for (const BarSpec& b : s.bars)
+    longest = std::max(longest, b.length_m / b.material.wave_speed_m_s());
+  return longest;
+}
+
 double striker_pulse_s(const Scene& s, std::size_t striker) {
   return 2 * s.bars[striker].length_m / s.bars[striker].material.wave_speed_m_s();
 }

@@ -16,6 +16,9 @@ double travel_time_s(const Scene& scene, std::size_t a, double xa, std::size_t b
 // The striker: the first moving bar, if it moves right into a bar on its right.
 std::optional<std::size_t> striker_bar(const Scene& scene);
 
+// The longest one-way transit L/c0 of any bar of the chain (0 without bars).
+double longest_transit_s(const Scene& scene);
+
 // The striker's pulse length, 2 L/c0.
 double striker_pulse_s(const Scene& scene, std::size_t striker);
 

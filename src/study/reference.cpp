@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "model/wave_travel.hpp"
 #include "study/recorded_error.hpp"
 #include "study/sweep.hpp"
 
@@ -28,7 +29,7 @@ std::optional<GaugeReference> exact_reference(const Scene& scene) {
       !same(s.material.density_kg_m3, b.material.density_kg_m3) || !same(s.area_m2, b.area_m2))
     return std::nullopt;
   const double c0 = s.material.wave_speed_m_s();
-  const double V = s.velocity_m_s, duration = 2 * s.length_m / c0;
+  const double V = s.velocity_m_s, duration = striker_pulse_s(scene, 0);
   std::vector<double> positions;
   double first_reflection = std::numeric_limits<double>::infinity();
   for (const GaugeSpec& g : b.gauges) {

@@ -98,7 +98,7 @@ std::string plan_text(const StudyPlan& plan) {
   j["version"] = kVersion;
   j["command"] = "study";
   j["plan_id"] = plan.id;
-  j["sweep"] = plan.sweep;
+  j["sweep"] = to_string(plan.sweep);
   j["scene"] = plan.scene.string();
   j["scene_text"] = plan.scene_text;
   Json options = Json::object();
@@ -121,7 +121,9 @@ StudyPlan read_study_plan(const fs::path& plan_file) {
     const nlohmann::json j = nlohmann::json::parse(in);
     if (j.at("command") != "study") throw std::invalid_argument("not a study plan");
     plan.id = j.at("plan_id").get<std::string>();
-    plan.sweep = j.at("sweep").get<std::string>();
+    const auto sweep = enum_value(kSweepNames, j.at("sweep").get<std::string>());
+    if (!sweep) throw std::invalid_argument("unknown sweep " + j.at("sweep").dump());
+    plan.sweep = *sweep;
     plan.scene = j.at("scene").get<std::string>();
     plan.scene_text = j.at("scene_text").get<std::string>();
     const auto& o = j.at("options");
@@ -131,14 +133,14 @@ StudyPlan read_study_plan(const fs::path& plan_file) {
     if (o.contains("refine")) plan.refine = o.at("refine").get<int>();
     for (const auto& r : j.at("runs")) {
       const std::string kind = r.at("kind").get<std::string>();
-      if (plan.sweep == "pareto" && (kind == "case" || kind == "reference")) {
+      if (plan.sweep == Sweep::kPareto && (kind == "case" || kind == "reference")) {
         ParetoJob p;
         p.reference = kind == "reference";
         if (!p.reference) p.row = r.at("row").get<std::size_t>();
         p.run = {method_from(r.at("method")), stepping_from(r.at("stepping")),
                  r.at("resolution").get<double>(), r.at("finite_links").get<bool>()};
         plan.pareto.push_back(p);
-      } else if (plan.sweep == "stability" && (kind == "boundary" || kind == "point")) {
+      } else if (plan.sweep == Sweep::kStability && (kind == "boundary" || kind == "point")) {
         StabilityJob s;
         s.boundary = kind == "boundary";
         s.point = {method_from(r.at("method")),      r.at("stiffness_factor").get<double>(),
@@ -146,7 +148,8 @@ StudyPlan read_study_plan(const fs::path& plan_file) {
                    r.at("tied").get<bool>(),         r.at("step_ratio").get<double>()};
         plan.stability.push_back(s);
       } else {
-        throw std::invalid_argument("run of kind \"" + kind + "\" in a " + plan.sweep + " plan");
+        throw std::invalid_argument("run of kind \"" + kind + "\" in a " + to_string(plan.sweep) +
+                                    " plan");
       }
     }
   } catch (const InputError&) {
@@ -162,7 +165,7 @@ nlohmann::ordered_json part_json(const StudyPlan& plan, const StudyResults& resu
   Json out = Json::array();
   for (std::size_t r : runs) {
     Json j{{"run", r}};
-    if (plan.sweep == "pareto") {
+    if (plan.sweep == Sweep::kPareto) {
       const ParetoJobResult& p = results.pareto[r];
       j["stable"] = p.stable;
       j["failure"] = p.failure;
@@ -196,7 +199,7 @@ void read_part(const nlohmann::json& part, const fs::path& file, const StudyPlan
       const auto& j = list[i];
       const std::size_t r = j.at("run").get<std::size_t>();
       if (r != expected[i]) throw std::invalid_argument("unexpected run " + std::to_string(r));
-      if (plan.sweep == "pareto") {
+      if (plan.sweep == Sweep::kPareto) {
         ParetoJobResult& p = results.pareto.at(r);
         p.stable = j.at("stable").get<bool>();
         p.failure = j.at("failure").get<std::string>();

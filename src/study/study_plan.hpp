@@ -17,7 +17,7 @@ namespace shpb {
 
 struct StudyPlan {
   std::string id;               // random; parts carry it so that parts of another plan are refused
-  std::string sweep;            // "pareto" | "stability"
+  Sweep sweep{};                // pareto | stability (kSweepNames, study/sweep.hpp)
   std::filesystem::path scene;  // absolute
   std::string scene_text;       // the scene file as planned
   // The options of the planning command that change the scene (applied to it again by every run).
@@ -28,7 +28,7 @@ struct StudyPlan {
   std::vector<ParetoJob> pareto;        // sweep "pareto"
   std::vector<StabilityJob> stability;  // sweep "stability"
 
-  std::size_t runs() const { return sweep == "pareto" ? pareto.size() : stability.size(); }
+  std::size_t runs() const { return sweep == Sweep::kPareto ? pareto.size() : stability.size(); }
 };
 
 // Every run's result, by run index (only the runs of one shard filled in a part).

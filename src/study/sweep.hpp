@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "core/enum_names.hpp"
 #include "model/scene.hpp"
 
 namespace shpb {
@@ -71,5 +72,12 @@ inline const std::vector<double> kMassRatios = {0.25, 0.5, 0.9, 1, 1.5, 2, 3, 4}
 // log) and the Courant axis (evenly): refine 2 gives 33 × 31 points per line instead of 17 × 16.
 std::vector<StabilityPoint> stability_grid(const std::vector<ContactMethod>& methods,
                                            int refine = 1);
+
+// The two sweeps of `shpb study --sweep`: accuracy against cost (pareto.csv) or the stability map
+// (stability.csv); the names are those of the command line, plan.json and summary.json.
+enum class Sweep { kPareto, kStability };
+inline constexpr EnumName<Sweep> kSweepNames[] = {{"pareto", Sweep::kPareto},
+                                                  {"stability", Sweep::kStability}};
+inline std::string to_string(Sweep s) { return std::string(enum_name(kSweepNames, s)); }
 
 }  // namespace shpb

@@ -8,30 +8,14 @@
 #include <sstream>
 #include <string>
 
+#include "run_shpb.hpp"
+
 using namespace std::string_literals;
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Run {
-  int exit_code;
-  std::string err;
-};
-
-Run run(const std::string& args) {
-  // One stderr file per process and call: CTest runs test cases in parallel.
-  static int calls = 0;
-  const fs::path err =
-      fs::temp_directory_path() / ("shpb_test_process_stderr_" + std::to_string(getpid()) + "_" +
-                                   std::to_string(calls++) + ".txt");
-  const std::string cmd = std::string(SHPB_EXE) + " " + args + " >/dev/null 2>" + err.string();
-  const int status = std::system(cmd.c_str());
-  std::ifstream in(err);
-  std::stringstream s;
-  s << in.rdbuf();
-  fs::remove(err);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, s.str()};
-}
+using shpb_test::run_shpb;
 
 fs::path temp_dir(const std::string& name) {
   const fs::path d =
@@ -105,8 +89,8 @@ TEST_CASE("process writes pulses.csv, curve.csv and summary.json with the docume
           "[app][process]") {
   const fs::path d = temp_dir("good");
   const fs::path scene = write_scene(d, good_signals());
-  const Run r = run("process " + scene.string() + " -o " + (d / "out").string());
-  REQUIRE(r.exit_code == 0);
+  const auto r = run_shpb({"process", scene.string(), "-o", (d / "out").string()});
+  REQUIRE(r.code == 0);
   std::ifstream curve(d / "out/curve.csv");
   std::string header;
   std::getline(curve, header);
@@ -147,8 +131,8 @@ TEST_CASE("Broken signal files exit 2 naming file, line and column, and write no
     CAPTURE(c.name);
     const fs::path d = temp_dir("broken");
     const fs::path scene = write_scene(d, c.body);
-    const Run r = run("process " + scene.string() + " -o " + (d / "out").string());
-    CHECK(r.exit_code == 2);
+    const auto r = run_shpb({"process", scene.string(), "-o", (d / "out").string()});
+    CHECK(r.code == 2);
     CHECK(r.err.rfind("error: ", 0) == 0);
     CHECK(r.err.find("signals.csv: " + c.expected) != std::string::npos);
     CHECK(r.err.find('\n') == r.err.size() - 1);  // one line
@@ -170,9 +154,9 @@ TEST_CASE("The LANL copper and PMMA tests process end to end from the scene alon
        {Expect{"lanl-cu-ofe-273k", 15, 25}, Expect{"lanl-pmma13-mini-kolsky", 10, 16}}) {
     CAPTURE(e.experiment);
     const fs::path out = temp_dir(e.experiment) / "out";
-    const Run r = run("process " + (kExperiments / e.experiment / "scene.json").string() + " -o " +
-                      out.string() + " --quiet");
-    REQUIRE(r.exit_code == 0);
+    const auto r = run_shpb({"process", (kExperiments / e.experiment / "scene.json").string(), "-o",
+                             out.string(), "--quiet"});
+    REQUIRE(r.code == 0);
     const auto s = summary(out);
     CHECK(s["windows"]["incident"]["source"] == "detected");
     const double v = s["striker_velocity_m_s"]["inferred"].get<double>();
@@ -193,9 +177,9 @@ TEST_CASE("The epoxy file's repeated time stamps and doubtful scale are reported
     return;
   }
   const fs::path out = temp_dir("epoxy") / "out";
-  const Run r = run("process " + (kExperiments / "epoxy-resin-sample01/scene.json").string() +
-                    " -o " + out.string());
-  REQUIRE(r.exit_code == 0);
+  const auto r = run_shpb(
+      {"process", (kExperiments / "epoxy-resin-sample01/scene.json").string(), "-o", out.string()});
+  REQUIRE(r.code == 0);
   CHECK(r.err.find("warning: ") != std::string::npos);
   CHECK(r.err.find("time stamps repeat") != std::string::npos);
   CHECK(r.err.find("time base rebuilt from the sample interval 8e-08 s") != std::string::npos);
@@ -210,12 +194,10 @@ TEST_CASE("process --signals reduces a gauges.csv written by simulate without di
           "[app][process]") {
   const fs::path d = temp_dir("simulated");
   const fs::path scene = kExperiments / "classic-al6061/scene.json";
-  REQUIRE(
-      run("simulate " + scene.string() + " -o " + (d / "sim").string() + " --quiet").exit_code ==
-      0);
-  const Run r = run("process " + scene.string() + " --signals " + (d / "sim/gauges.csv").string() +
-                    " -o " + (d / "out").string());
-  REQUIRE(r.exit_code == 0);
+  REQUIRE(run_shpb({"simulate", scene.string(), "-o", (d / "sim").string(), "--quiet"}).code == 0);
+  const auto r = run_shpb({"process", scene.string(), "--signals", (d / "sim/gauges.csv").string(),
+                           "-o", (d / "out").string()});
+  REQUIRE(r.code == 0);
   const auto s = summary(d / "out");
   CHECK(s["dispersion"]["correction"] == "none");
   CHECK(s["signals"]["source"] == "simulated (--signals)");

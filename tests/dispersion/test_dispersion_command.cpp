@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "../app/run_shpb.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -40,9 +42,9 @@ TEST_CASE("shpb dispersion writes the curve and matches the reference within 2e-
   for (const char* nu : {"0.29", "0.30"}) {
     CAPTURE(nu);
     fs::remove(out);
-    const std::string cmd = std::string(SHPB_EXE) + " dispersion --poisson " + nu +
-                            " --radius \"9.525 mm\" --c0 \"5000 m/s\" -o " + out.string();
-    REQUIRE(std::system(cmd.c_str()) == 0);
+    REQUIRE(shpb_test::run_shpb({"dispersion", "--poisson", nu, "--radius", "9.525 mm", "--c0",
+                                 "5000 m/s", "-o", out.string()})
+                .code == 0);
     std::string header;
     const auto got = read_rows(out, &header);
     CHECK(header == "a_over_lambda,c_over_c0,cg_over_c0,f_a_over_c0,frequency_Hz");
@@ -70,8 +72,5 @@ TEST_CASE("shpb dispersion writes the curve and matches the reference within 2e-
 }
 
 TEST_CASE("shpb dispersion rejects a radius without c0 with exit code 2", "[dispersion][app]") {
-  const std::string cmd =
-      std::string(SHPB_EXE) + " dispersion --poisson 0.3 --radius \"5 mm\" 2>/dev/null";
-  const int status = std::system(cmd.c_str());
-  CHECK(WEXITSTATUS(status) == 2);
+  CHECK(shpb_test::run_shpb({"dispersion", "--poisson", "0.3", "--radius", "5 mm"}).code == 2);
 }

@@ -70,6 +70,8 @@ TEST_CASE("Bad fit campaigns: exit 2 naming file and JSON path, nothing written"
       {"{" + tests + "," + material + R"(, "free": {"A": ["50 MPa", "150 MPa"]},
           "stages": ["signal"]})",
        "stages[0]: \"signal\""},
+      {"{" + tests + "," + material + R"(, "free": {"A": ["50 MPa", "150 MPa"]}, "stages": []})",
+       "stages: []: expected a list of the stages to run: \"curve\" or \"signals\""},
       {"{" + tests + "," + material + R"(, "free": {"A": ["50 MPa", "150 MPa"]}, "loss": "l1"})",
        "loss: \"l1\""},
       {"{" + tests + R"(, "free": {"A": ["50 MPa", "150 MPa"]}})", "material: (missing)"},

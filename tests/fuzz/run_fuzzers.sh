@@ -28,9 +28,11 @@ for t in "${targets[@]}"; do
     failed=1
   fi
 done
-# report's readers are Python (tools/shpb_report/reading.py): a mutation fuzzer of its own, run
-# when no target list was given and python3 can import matplotlib and numpy.
+# report is Python (tools/shpb_report): a mutation fuzzer of its own, run when no target list was
+# given and python3 can import matplotlib and numpy; SECONDS of its readers alone (many rounds),
+# then SECONDS of --whole (the whole report each round: every figure and the page).
 if [ $# -eq 0 ] && /usr/bin/python3 -c 'import matplotlib, numpy' 2>/dev/null; then
   (cd "$build" && /usr/bin/python3 "$here/fuzz_report.py" "$seconds") || failed=1
+  (cd "$build" && /usr/bin/python3 "$here/fuzz_report.py" --whole "$seconds") || failed=1
 fi
 exit $failed

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 
+#include "../app/run_shpb.hpp"
 #include "model/material_law.hpp"
 #include "model/scene.hpp"
 
@@ -80,14 +81,10 @@ struct ScratchCleanup {
 Run validate(const nlohmann::json& scene) {
   const fs::path dir = scratch();
   fs::create_directories(dir);
-  const fs::path file = dir / "scene.json", err = dir / "stderr.txt";
+  const fs::path file = dir / "scene.json";
   std::ofstream(file) << scene.dump(2);
-  const std::string cmd =
-      std::string(SHPB_EXE) + " validate " + file.string() + " >/dev/null 2>" + err.string();
-  const int status = std::system(cmd.c_str());
-  std::stringstream text;
-  text << std::ifstream(err).rdbuf();
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
+  const auto r = shpb_test::run_shpb({"validate", file.string()});
+  return {r.code, r.err};
 }
 }  // namespace
 

@@ -28,35 +28,6 @@ constexpr double kEnergyTolerance = 0.01;
 // The anchored series against std::log1p and std::exp: a few roundings of the result's size.
 constexpr double kRoundOff = 8 * std::numeric_limits<double>::epsilon();
 
-MaterialSpec johnson_cook_aluminium() {
-  // Al 6061-T6 (Johnson & Cook 1985, as in specimens/al6061-t6.json).
-  MaterialSpec m = test::elastic(68.9e9, 2700, "al6061");
-  m.model = MaterialModel::kJohnsonCook;
-  m.johnson_cook.A_Pa = 324e6;
-  m.johnson_cook.B_Pa = 114e6;
-  m.johnson_cook.n = 0.42;
-  m.johnson_cook.C = 0.002;
-  m.johnson_cook.m = 1.34;
-  m.johnson_cook.melting_temperature_K = 925;
-  return m;
-}
-
-// A short Kolsky test: steel bars, a 5 mm Johnson–Cook (or elastic) specimen in 23 elements.
-Scene kolsky(bool plastic, Stepping stepping) {
-  const double A = 2.85e-4, Lb = 0.3;
-  const MaterialSpec soft = plastic ? johnson_cook_aluminium() : test::elastic(70e9, 2700, "al");
-  BarSpec striker = test::bar("striker", test::steel(), 0.1, A, 100, plastic ? 15.0 : 5.0);
-  BarSpec incident = test::bar("incident", test::steel(), Lb, A, 300);
-  incident.gauges.push_back({"incident", 0.15});
-  BarSpec specimen = test::bar("specimen", soft, 5e-3, 7.85e-5, 23);
-  BarSpec transmitter = test::bar("transmitter", test::steel(), Lb, A, 300);
-  transmitter.gauges.push_back({"transmitted", 0.15});
-  Scene scene = test::chain({striker, incident, specimen, transmitter}, 200e-6,
-                            ContactMethod::kLocalizedBipenalty, stepping);
-  scene.specimen = 2;
-  return scene;
-}
-
 // √Σ(a − b)² / √Σ b² over every column and sample (the study's gauge error).
 double l2_difference(const TimeSeries& a, const TimeSeries& b) {
   REQUIRE(a.columns == b.columns);
@@ -91,7 +62,7 @@ double largest(const std::vector<double>& x) {
 TEST_CASE("An adaptive specimen step keeps the fixed plan's gauges and energy", "[step_control]") {
   for (const Stepping stepping : {Stepping::kAsynchronous, Stepping::kGlobal}) {
     DYNAMIC_SECTION(to_string(stepping) << " stepping") {
-      const Scene scene = kolsky(true, stepping);
+      const Scene scene = test::short_kolsky(true, stepping);
       SimulationOptions fixed_plan;
       fixed_plan.adaptive_step = false;
       const SimulationResult fixed = simulate(scene, fixed_plan);
@@ -107,7 +78,7 @@ TEST_CASE("An adaptive specimen step keeps the fixed plan's gauges and energy", 
         // Global stepping runs the bars at C = c Δt/h ≪ 1, where the central difference's
         // dispersion error grows as C falls; the adaptive step raises every bar's C, so the gauges
         // come no farther from the asynchronous run (bars at C ≈ 1) than the fixed plan's.
-        const SimulationResult async = simulate(kolsky(true, Stepping::kAsynchronous));
+        const SimulationResult async = simulate(test::short_kolsky(true, Stepping::kAsynchronous));
         const double adaptive_off = l2_difference(adaptive.gauges, async.gauges);
         const double fixed_off = l2_difference(fixed.gauges, async.gauges);
         INFO("global against asynchronous: adaptive " << adaptive_off << ", fixed plan "
@@ -132,7 +103,7 @@ TEST_CASE("An adaptive specimen step keeps the fixed plan's gauges and energy", 
 
 TEST_CASE("A specimen compressed beyond simulation.max_strain still fails with an adaptive step",
           "[step_control]") {
-  Scene scene = kolsky(true, Stepping::kAsynchronous);
+  Scene scene = test::short_kolsky(true, Stepping::kAsynchronous);
   scene.simulation.max_strain = 0.01;  // the specimen reaches several per cent
   const SimulationResult r = simulate(scene);
   CHECK_FALSE(r.stable);
@@ -142,7 +113,7 @@ TEST_CASE("A specimen compressed beyond simulation.max_strain still fails with a
 TEST_CASE("A quiet specimen's skipped instants give bit-identical outputs", "[scheduler]") {
   for (const bool plastic : {false, true}) {
     DYNAMIC_SECTION((plastic ? "Johnson-Cook" : "elastic") << " specimen") {
-      const Scene scene = kolsky(plastic, Stepping::kAsynchronous);
+      const Scene scene = test::short_kolsky(plastic, Stepping::kAsynchronous);
       SimulationOptions every_instant;
       every_instant.skip_at_rest = false;
       const SimulationResult a = simulate(scene, every_instant);
@@ -172,7 +143,7 @@ TEST_CASE("Anchored logarithmic strains equal std::log1p; the volume ratio equal
   // Ten elements of a bar compressed and released along random walks whose steps span the
   // series' range and beyond (re-anchoring), down to 40 % strain.
   const int n = 10;
-  MaterialSpec m = johnson_cook_aluminium();
+  MaterialSpec m = test::johnson_cook_aluminium();
   const BarModel bar = make_bar_model("b", m, 1e-3 * n, 1e-4, n, 1e-9, 0);
   BarState s = make_bar_state(bar, true);
   const double h = bar.element_length_m;

@@ -87,7 +87,7 @@ TEST_CASE("A stability sweep run in shards through parts equals the in-process s
   const StabilityStudy whole = run_stability_sweep(scene, {ContactMethod::kPenalty}, 2);
   StudyPlan plan;
   plan.id = new_plan_id();
-  plan.sweep = "stability";
+  plan.sweep = Sweep::kStability;
   plan.stability = stability_jobs(stability_grid({ContactMethod::kPenalty}));
   const Scene probe = stability_probe_scene(scene);
   StudyResults merged;
@@ -168,6 +168,15 @@ TEST_CASE("shpb study --plan/--run/--merge equals the in-process sweep apart fro
     fs::remove(plan / "parts" / "2-of-3.json");
     fails({"study", "--merge", plan.string(), "-o", (dir / "m").string()}, "missing part 2-of-3");
     CHECK_FALSE(fs::exists(dir / "m"));
+    // Sweeps are the names of kSweepNames, on the command line and in a plan.
+    fails({"study", kScene, "-o", (dir / "m").string(), "--sweep", "stabilty"}, "--sweep");
+    const fs::path odd = dir / "odd";
+    REQUIRE(run({"study", kScene, "--plan", odd.string()}).code == 0);
+    auto j = nlohmann::json::parse(shpb_test::read_text(odd / "plan.json"));
+    j["sweep"] = "stabilty";
+    std::ofstream(odd / "plan.json") << j.dump();
+    fails({"study", "--run", odd.string(), "--shard", "0/1"}, "unknown sweep \"stabilty\"");
+    CHECK_FALSE(fs::exists(odd / "parts" / "0-of-1.json"));
   }
   SECTION("A scene changed after planning is refused") {
     const fs::path scene = dir / "scene.json";
