@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "core/target_clones.hpp"
 #include "model/specimen_response.hpp"
@@ -284,25 +285,78 @@ double node_velocity_now(const BarModel& bar, const BarState& s, int i) {
   return bar.initial_velocity_m_s + (active ? s.v[i] + half : 0.0);
 }
 
+namespace {
+// Kinetic energy of nodes [lo, hi] at t_n and their mass. The central difference conserves
+// ½ v_{n−1/2}·M v_{n+1/2} + U(u_n) (its discrete energy), not ½ v_n·M v_n + U: the two differ by
+// (½Δt a_n)² per unit mass, one element's strain energy at a sharp front at C ≈ 1 and all of it
+// for Nyquist ringing. Where the step changes (step_control.hpp), v_{n±1/2} = v_n ± ½Δt_{n−1/n}
+// a_n. The sums run in four lanes (node lo + 4j + l into lane l, a vector of four doubles; the
+// lanes added at the end): a different order of the same terms, so the sum moves by round-off.
+constexpr int kEnergyLanes = 4;
+// Internal, inlined functions on a 32-byte vector: GCC's note that their ABI differs with and
+// without AVX does not concern them (off to the end of this file: GCC emits it there).
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+typedef double Lanes __attribute__((vector_size(kEnergyLanes * sizeof(double))));
+inline Lanes load_lanes(const double* p) {
+  Lanes x;
+  std::memcpy(&x, p, sizeof x);
+  return x;
+}
+template <typename T>
+inline T kinetic_term(T v, T f, T inv_m, T m, double V, double half, double dt, bool same_step) {
+  const T vn = V + v + half * f * inv_m;
+  const T a = f * inv_m;
+  const T dv = 0.5 * dt * f * inv_m;
+  return same_step ? 0.5 * m * (vn * vn - dv * dv) : 0.5 * m * (vn - half * a) * (vn + dv);
+}
+SHPB_TARGET_CLONES void kinetic_energy(const double* v, const double* f, const double* inv_m,
+                                       const double* m, double V, double half, double dt,
+                                       bool same_step, int lo, int hi, double* kinetic,
+                                       double* mass) {
+  Lanes k = {}, ms = {};
+  int i = lo;
+  for (; i + kEnergyLanes - 1 <= hi; i += kEnergyLanes) {
+    const Lanes mi = load_lanes(m + i);
+    k += kinetic_term(load_lanes(v + i), load_lanes(f + i), load_lanes(inv_m + i), mi, V, half, dt,
+                      same_step);
+    ms += mi;
+  }
+  for (int l = 0; i <= hi; ++i, ++l) {
+    k[l] += kinetic_term(v[i], f[i], inv_m[i], m[i], V, half, dt, same_step);
+    ms[l] += m[i];
+  }
+  *kinetic += (k[0] + k[1]) + (k[2] + k[3]);
+  *mass += (ms[0] + ms[1]) + (ms[2] + ms[3]);
+}
+// Strain energy Σ ½ k (w_{e+1} − w_e)² of an elastic bar's elements [e0, e1], in lanes likewise.
+SHPB_TARGET_CLONES double elastic_strain_energy(const double* w, double k, int e0, int e1) {
+  Lanes sum = {};
+  int e = e0;
+  for (; e + kEnergyLanes - 1 <= e1; e += kEnergyLanes) {
+    const Lanes d = load_lanes(w + e + 1) - load_lanes(w + e);
+    sum += 0.5 * k * d * d;
+  }
+  for (int l = 0; e <= e1; ++e, ++l) {
+    const double d = w[e + 1] - w[e];
+    sum[l] += 0.5 * k * d * d;
+  }
+  return (sum[0] + sum[1]) + (sum[2] + sum[3]);
+}
+}  // namespace
+
 BarEnergy bar_energy(const BarModel& bar, const BarState& s) {
   BarEnergy e;
   const double V = bar.initial_velocity_m_s;
   double moving_mass = bar.total_mass_kg();
   if (!s.quiet()) {
-    const double half = 0.5 * s.dt_prev;
     const bool same_step = s.step == 0 || s.dt_prev == s.dt;
-    for (int i = s.lo; i <= s.hi; ++i) {
-      const double vn = V + s.v[i] + half * s.force[i] * bar.inverse_mass[i];
-      // The central difference conserves ½ v_{n−1/2}·M v_{n+1/2} + U(u_n) (its discrete energy),
-      // not ½ v_n·M v_n + U: the two differ by (½Δt a_n)² per unit mass, one element's strain
-      // energy at a sharp front at C ≈ 1 and all of it for Nyquist ringing. Where the step
-      // changes (step_control.hpp), v_{n±1/2} = v_n ± ½Δt_{n−1/n} a_n.
-      const double a = s.force[i] * bar.inverse_mass[i];
-      const double dv = 0.5 * s.dt * s.force[i] * bar.inverse_mass[i];
-      e.kinetic_J += same_step ? 0.5 * bar.mass_kg[i] * (vn * vn - dv * dv)
-                               : 0.5 * bar.mass_kg[i] * (vn - half * a) * (vn + dv);
-      moving_mass -= bar.mass_kg[i];
-    }
+    double moving = 0;
+    kinetic_energy(s.v.data(), s.force.data(), bar.inverse_mass.data(), bar.mass_kg.data(), V,
+                   0.5 * s.dt_prev, s.dt, same_step, s.lo, s.hi, &e.kinetic_J, &moving);
+    moving_mass -= moving;
     const int e0 = std::max(s.lo - 1, 0), e1 = std::min(s.hi, bar.nodes - 2);
     if (bar.law) {
       const double volume = bar.area_m2 * bar.element_length_m;
@@ -320,10 +374,7 @@ BarEnergy bar_energy(const BarModel& bar, const BarState& s) {
             bar.radial_inertia_density_kg_m3 * volume * bar.elements() * a2 * rate * rate / 16;
       }
     } else {
-      for (int k = e0; k <= e1; ++k) {
-        const double d = s.w[k + 1] - s.w[k];
-        e.strain_J += 0.5 * bar.stiffness_N_m * d * d;
-      }
+      e.strain_J += elastic_strain_energy(s.w.data(), bar.stiffness_N_m, e0, e1);
     }
   }
   e.kinetic_J += 0.5 * moving_mass * V * V;  // nodes outside the range move rigidly
