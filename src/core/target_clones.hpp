@@ -9,4 +9,3 @@
 #else
 #define SHPB_TARGET_CLONES
 #endif
-

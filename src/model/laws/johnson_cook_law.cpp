@@ -71,11 +71,11 @@ struct ReturnConstants {
   double E, A, B, n;
   const double* a;  // hardening series coefficients
 };
-SHPB_TARGET_CLONES void block_return(
-    const ReturnConstants& c, int count, const double* __restrict trial_abs,
-    const double* __restrict p, const double* __restrict p_n, const double* __restrict inv_p,
-    const double* __restrict k, double* __restrict dp_out, double* __restrict p_next_n_out,
-    int* __restrict ok) {
+SHPB_TARGET_CLONES void block_return(const ReturnConstants& c, int count,
+                                     const double* __restrict trial_abs, const double* __restrict p,
+                                     const double* __restrict p_n, const double* __restrict inv_p,
+                                     const double* __restrict k, double* __restrict dp_out,
+                                     double* __restrict p_next_n_out, int* __restrict ok) {
   const double E = c.E, A = c.A, B = c.B, n = c.n;
   for (int j = 0; j < count; ++j) {
     const double g0 = trial_abs[j] - (A + B * p_n[j]) * k[j];
