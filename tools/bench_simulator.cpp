@@ -4,7 +4,8 @@
 // error of each) and at equal error (gauge error against the study's reference, global refined
 // until it is as accurate) — plus the raw element-update rate of elastic bars. Build: cmake --build
 // build --target bench_simulator; run: build/bench_simulator [--repeat N] [--same-mesh-only]
-// experiments/*/scene.json (tools/bench.sh does both).
+// experiments/*/scene.json (tools/bench.sh does both); --asynchronous-only: the asynchronous line
+// alone (e.g. under valgrind --tool=callgrind, for the instructions of one scene's runs).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -119,6 +120,7 @@ void equal_error(const Scene& scene, const Timing& async, const Timing& global_s
 int main(int argc, char** argv) {
   int repeat = 5;
   bool equal_error_comparison = true;
+  bool asynchronous_only = false;
   std::vector<std::string> scenes;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -126,6 +128,8 @@ int main(int argc, char** argv) {
       repeat = std::max(1, std::atoi(argv[++i]));
     else if (a == "--same-mesh-only")
       equal_error_comparison = false;
+    else if (a == "--asynchronous-only")
+      asynchronous_only = true;
     else
       scenes.push_back(a);
   }
@@ -152,6 +156,11 @@ int main(int argc, char** argv) {
     }
     scene.simulation.stepping = Stepping::kAsynchronous;
     const Timing a = run(scene, economy, repeat);
+    if (asynchronous_only) {
+      std::printf("%s: asynchronous %.2f ms wall, %.2f ms CPU (medians of %d), energy error %.2g\n",
+                  file.c_str(), a.wall_s * 1e3, a.cpu_s * 1e3, repeat, a.last.energy_error);
+      continue;
+    }
     const Timing af = run(scene, full, 1);
     scene.simulation.stepping = Stepping::kGlobal;
     const Timing g = run(scene, economy, std::max(1, repeat / 2));
@@ -228,6 +237,7 @@ int main(int argc, char** argv) {
     if (equal_error_comparison) equal_error(scene, a, g, economy);
   }
 
+  if (asynchronous_only) return 0;
   // Raw rate of the elastic kernel: a steel striker on a 2 m bar, every node updated.
   Scene bars;
   bars.name = "elastic bars";

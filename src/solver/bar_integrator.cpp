@@ -2,25 +2,19 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
+#include "core/target_clones.hpp"
 #include "model/specimen_response.hpp"
 
 namespace shpb {
 
 namespace {
-// The two per-node loops below are compiled twice, for AVX2 and for the baseline x86-64, and the
-// loader picks the one the CPU runs (GCC/Clang function multiversioning): twice the doubles per
-// instruction, the same IEEE operations in the same order (no FMA contraction), so bit-identical
-// results on every machine.
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && \
-    !defined(__SANITIZE_ADDRESS__)
-#define SHPB_NODE_LOOP __attribute__((target_clones("avx2", "default")))
-#else
-#define SHPB_NODE_LOOP
-#endif
+// The per-node loops below are multiversioned for AVX2 (core/target_clones.hpp).
 
 // Elastic kernel: f_i = k (w_{i+1} − 2 w_i + w_{i−1}) with one-sided ends (free ends).
-SHPB_NODE_LOOP void elastic_forces(const double* w, double* f, double k, int lo, int hi, int last) {
+SHPB_TARGET_CLONES void elastic_forces(const double* w, double* f, double k, int lo, int hi,
+                                       int last) {
   int a = lo, b = hi;
   if (a == 0) {
     f[0] = last > 0 ? k * (w[1] - w[0]) : 0.0;
@@ -34,9 +28,9 @@ SHPB_NODE_LOOP void elastic_forces(const double* w, double* f, double k, int lo,
 }
 
 // Leapfrog kick and drift over [lo, hi] (bar_integrator.hpp, step 3).
-SHPB_NODE_LOOP void kick_drift(double* __restrict w, double* __restrict v,
-                               const double* __restrict f, const double* __restrict inv_m,
-                               double kick, double dt, int lo, int hi) {
+SHPB_TARGET_CLONES void kick_drift(double* __restrict w, double* __restrict v,
+                                   const double* __restrict f, const double* __restrict inv_m,
+                                   double kick, double dt, int lo, int hi) {
   for (int i = lo; i <= hi; ++i) {
     v[i] += kick * f[i] * inv_m[i];
     w[i] += dt * v[i];
@@ -50,11 +44,11 @@ SHPB_NODE_LOOP void kick_drift(double* __restrict w, double* __restrict v,
 // farther is re-anchored at d exactly. The anchor is an exact pair (never a running sum): no drift.
 // At SHPB rates an element moves ~1e-5 of its length per step, so one log per ~100 steps.
 constexpr double kLogAnchorRange = 1e-3;
-SHPB_NODE_LOOP void log_strains(const double* __restrict w, double* __restrict strain,
-                                const double* __restrict anchor_d,
-                                const double* __restrict anchor_log,
-                                const double* __restrict anchor_inverse, double inv_h, int e0,
-                                int e1, int* far) {
+SHPB_TARGET_CLONES void log_strains(const double* __restrict w, double* __restrict strain,
+                                    const double* __restrict anchor_d,
+                                    const double* __restrict anchor_log,
+                                    const double* __restrict anchor_inverse, double inv_h, int e0,
+                                    int e1, int* far) {
   int outside = 0;
   for (int e = e0; e <= e1; ++e) {
     const double x = ((w[e + 1] - w[e]) * inv_h - anchor_d[e]) * anchor_inverse[e];
@@ -86,29 +80,36 @@ void logarithmic_strains(BarState& s, double inv_h, int e0, int e1) {
 }
 
 // J = exp(x) for the elastic volume change x = (1 − 2ν)τ/E, below 1e-2 for any solid: by its
-// series to x⁵ while |x| ≤ kExpSeriesRange (remainder x⁶/720 ≤ 2e-21, round-off), else std::exp.
-constexpr double kExpSeriesRange = 1e-3;
+// series to x⁸ while |x| ≤ kExpSeriesRange (remainder x⁹/9! ≤ 3e-24, round-off), else std::exp.
+// (A plastically flowing Al 6061 specimen has x ≈ 2e-3: the range covers it.)
+constexpr double kExpSeriesRange = 1e-2;
+inline double exp_series(double x) {
+  const double x2 = x * x, x4 = x2 * x2;
+  return ((1 + x) + x2 * (0.5 + x * (1.0 / 6))) +
+         x4 * ((1.0 / 24 + x * (1.0 / 120)) + x2 * (1.0 / 720 + x * (1.0 / 5040)) +
+               x4 * (1.0 / 40320));
+}
 double volume_ratio(double x) {
   if (!(std::abs(x) <= kExpSeriesRange)) return std::exp(x);
-  const double x2 = x * x;
-  return (1 + x) + x2 * ((0.5 + x * (1.0 / 6)) + x2 * (1.0 / 24 + x * (1.0 / 120)));
+  return exp_series(x);
 }
 
 namespace {
 // Finite strain without friction (bar.hpp): N_e = (τ − inertia J) A0/λ, σ = N_e λ/(A0 J) with J
 // by volume_ratio's series, and the smallest stretch. False (nothing written) if some element's
 // volume change is beyond the series' range (then the general loop does it with std::exp).
-SHPB_NODE_LOOP bool finite_strain_kernel(const double* __restrict w, const double* __restrict tau,
-                                         double* __restrict axial_force, double* __restrict stress,
-                                         double kappa, double inertia, double A0, double inv_h,
-                                         int e0, int e1, double* smallest) {
+SHPB_TARGET_CLONES bool finite_strain_kernel(const double* __restrict w,
+                                             const double* __restrict tau,
+                                             double* __restrict axial_force,
+                                             double* __restrict stress, double kappa,
+                                             double inertia, double A0, double inv_h, int e0,
+                                             int e1, double* smallest) {
   int outside = 0;
   for (int e = e0; e <= e1; ++e) outside |= !(std::abs(kappa * tau[e]) <= kExpSeriesRange);
   if (outside) return false;
   for (int e = e0; e <= e1; ++e) {
     const double stretch = 1 + (w[e + 1] - w[e]) * inv_h;
-    const double x = kappa * tau[e], x2 = x * x;
-    const double J = (1 + x) + x2 * ((0.5 + x * (1.0 / 6)) + x2 * (1.0 / 24 + x * (1.0 / 120)));
+    const double J = exp_series(kappa * tau[e]);
     const double axial = tau[e] - inertia * J;  // Kirchhoff: the true inertia stress × J
     axial_force[e] = axial * A0 / stretch;
     stress[e] = axial / J;
@@ -284,25 +285,78 @@ double node_velocity_now(const BarModel& bar, const BarState& s, int i) {
   return bar.initial_velocity_m_s + (active ? s.v[i] + half : 0.0);
 }
 
+namespace {
+// Kinetic energy of nodes [lo, hi] at t_n and their mass. The central difference conserves
+// ½ v_{n−1/2}·M v_{n+1/2} + U(u_n) (its discrete energy), not ½ v_n·M v_n + U: the two differ by
+// (½Δt a_n)² per unit mass, one element's strain energy at a sharp front at C ≈ 1 and all of it
+// for Nyquist ringing. Where the step changes (step_control.hpp), v_{n±1/2} = v_n ± ½Δt_{n−1/n}
+// a_n. The sums run in four lanes (node lo + 4j + l into lane l, a vector of four doubles; the
+// lanes added at the end): a different order of the same terms, so the sum moves by round-off.
+constexpr int kEnergyLanes = 4;
+// Internal, inlined functions on a 32-byte vector: GCC's note that their ABI differs with and
+// without AVX does not concern them (off to the end of this file: GCC emits it there).
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+typedef double Lanes __attribute__((vector_size(kEnergyLanes * sizeof(double))));
+inline Lanes load_lanes(const double* p) {
+  Lanes x;
+  std::memcpy(&x, p, sizeof x);
+  return x;
+}
+template <typename T>
+inline T kinetic_term(T v, T f, T inv_m, T m, double V, double half, double dt, bool same_step) {
+  const T vn = V + v + half * f * inv_m;
+  const T a = f * inv_m;
+  const T dv = 0.5 * dt * f * inv_m;
+  return same_step ? 0.5 * m * (vn * vn - dv * dv) : 0.5 * m * (vn - half * a) * (vn + dv);
+}
+SHPB_TARGET_CLONES void kinetic_energy(const double* v, const double* f, const double* inv_m,
+                                       const double* m, double V, double half, double dt,
+                                       bool same_step, int lo, int hi, double* kinetic,
+                                       double* mass) {
+  Lanes k = {}, ms = {};
+  int i = lo;
+  for (; i + kEnergyLanes - 1 <= hi; i += kEnergyLanes) {
+    const Lanes mi = load_lanes(m + i);
+    k += kinetic_term(load_lanes(v + i), load_lanes(f + i), load_lanes(inv_m + i), mi, V, half, dt,
+                      same_step);
+    ms += mi;
+  }
+  for (int l = 0; i <= hi; ++i, ++l) {
+    k[l] += kinetic_term(v[i], f[i], inv_m[i], m[i], V, half, dt, same_step);
+    ms[l] += m[i];
+  }
+  *kinetic += (k[0] + k[1]) + (k[2] + k[3]);
+  *mass += (ms[0] + ms[1]) + (ms[2] + ms[3]);
+}
+// Strain energy Σ ½ k (w_{e+1} − w_e)² of an elastic bar's elements [e0, e1], in lanes likewise.
+SHPB_TARGET_CLONES double elastic_strain_energy(const double* w, double k, int e0, int e1) {
+  Lanes sum = {};
+  int e = e0;
+  for (; e + kEnergyLanes - 1 <= e1; e += kEnergyLanes) {
+    const Lanes d = load_lanes(w + e + 1) - load_lanes(w + e);
+    sum += 0.5 * k * d * d;
+  }
+  for (int l = 0; e <= e1; ++e, ++l) {
+    const double d = w[e + 1] - w[e];
+    sum[l] += 0.5 * k * d * d;
+  }
+  return (sum[0] + sum[1]) + (sum[2] + sum[3]);
+}
+}  // namespace
+
 BarEnergy bar_energy(const BarModel& bar, const BarState& s) {
   BarEnergy e;
   const double V = bar.initial_velocity_m_s;
   double moving_mass = bar.total_mass_kg();
   if (!s.quiet()) {
-    const double half = 0.5 * s.dt_prev;
     const bool same_step = s.step == 0 || s.dt_prev == s.dt;
-    for (int i = s.lo; i <= s.hi; ++i) {
-      const double vn = V + s.v[i] + half * s.force[i] * bar.inverse_mass[i];
-      // The central difference conserves ½ v_{n−1/2}·M v_{n+1/2} + U(u_n) (its discrete energy),
-      // not ½ v_n·M v_n + U: the two differ by (½Δt a_n)² per unit mass, one element's strain
-      // energy at a sharp front at C ≈ 1 and all of it for Nyquist ringing. Where the step
-      // changes (step_control.hpp), v_{n±1/2} = v_n ± ½Δt_{n−1/n} a_n.
-      const double a = s.force[i] * bar.inverse_mass[i];
-      const double dv = 0.5 * s.dt * s.force[i] * bar.inverse_mass[i];
-      e.kinetic_J += same_step ? 0.5 * bar.mass_kg[i] * (vn * vn - dv * dv)
-                               : 0.5 * bar.mass_kg[i] * (vn - half * a) * (vn + dv);
-      moving_mass -= bar.mass_kg[i];
-    }
+    double moving = 0;
+    kinetic_energy(s.v.data(), s.force.data(), bar.inverse_mass.data(), bar.mass_kg.data(), V,
+                   0.5 * s.dt_prev, s.dt, same_step, s.lo, s.hi, &e.kinetic_J, &moving);
+    moving_mass -= moving;
     const int e0 = std::max(s.lo - 1, 0), e1 = std::min(s.hi, bar.nodes - 2);
     if (bar.law) {
       const double volume = bar.area_m2 * bar.element_length_m;
@@ -320,10 +374,7 @@ BarEnergy bar_energy(const BarModel& bar, const BarState& s) {
             bar.radial_inertia_density_kg_m3 * volume * bar.elements() * a2 * rate * rate / 16;
       }
     } else {
-      for (int k = e0; k <= e1; ++k) {
-        const double d = s.w[k + 1] - s.w[k];
-        e.strain_J += 0.5 * bar.stiffness_N_m * d * d;
-      }
+      e.strain_J += elastic_strain_energy(s.w.data(), bar.stiffness_N_m, e0, e1);
     }
   }
   e.kinetic_J += 0.5 * moving_mass * V * V;  // nodes outside the range move rigidly

@@ -5,6 +5,8 @@
 #include <cstddef>
 #include <limits>
 
+#include "core/target_clones.hpp"
+
 namespace shpb {
 
 namespace {
@@ -35,24 +37,72 @@ JohnsonCookLaw::BinomialSeries::BinomialSeries(double e) {
 }
 
 // The polynomials are evaluated in Estrin's form (pairs of terms, then powers x², x⁴, x⁸): a few
-// multiplications deep instead of a chain of ten, the same sum to round-off.
+// multiplications deep instead of a chain of ten, the same sum to round-off. (1 + x)^e / base^e
+// to x⁵ and to x¹⁰ from the coefficients a of BinomialSeries.
+inline double short_binomial_sum(const double* a, double x) {
+  const double x2 = x * x;
+  return (1 + a[1] * x) + x2 * ((a[2] + a[3] * x) + x2 * (a[4] + a[5] * x));
+}
+inline double long_binomial_sum(const double* a, double x) {
+  const double x2 = x * x, x4 = x2 * x2;
+  const double low = (1 + a[1] * x) + x2 * (a[2] + a[3] * x);
+  const double mid = (a[4] + a[5] * x) + x2 * (a[6] + a[7] * x);
+  const double high = (a[8] + a[9] * x) + x2 * a[10];
+  return low + x4 * (mid + x4 * high);
+}
+
 inline double JohnsonCookLaw::BinomialSeries::power(double q, double x, double base_pow,
                                                     double e) const {
   const double ax = std::abs(x);
-  if (ax <= kSeriesRange) {
-    const double x2 = x * x;
-    const double sum = (1 + a[1] * x) + x2 * ((a[2] + a[3] * x) + x2 * (a[4] + a[5] * x));
-    return base_pow * sum;
-  }
-  if (ax <= kLongSeriesRange) {
-    const double x2 = x * x, x4 = x2 * x2;
-    const double low = (1 + a[1] * x) + x2 * (a[2] + a[3] * x);
-    const double mid = (a[4] + a[5] * x) + x2 * (a[6] + a[7] * x);
-    const double high = (a[8] + a[9] * x) + x2 * a[10];
-    return base_pow * (low + x4 * (mid + x4 * high));
-  }
+  if (ax <= kSeriesRange) return base_pow * short_binomial_sum(a, x);
+  if (ax <= kLongSeriesRange) return base_pow * long_binomial_sum(a, x);
   return std::pow(q, e);
 }
+
+namespace {
+// The return mapping of a block of yielding elements at once (JohnsonCookLaw::plastic_increment's
+// usual path, element by element in a loop the compiler vectorises): the tangent guess, one
+// evaluation, the final Newton step, each power by the binomial series from the element's cached
+// pair. ok[j] = 0 where plastic_increment would have done anything else (a first plastic step
+// p = 0, a residual above kReturnFinalStepResidual, a Newton step outside the bracket, a series
+// out of range): those elements are redone by plastic_increment. Where ok[j] = 1 the operations
+// are plastic_increment's, in its order, so the results are bit-identical.
+struct ReturnConstants {
+  double E, A, B, n;
+  const double* a;  // hardening series coefficients
+};
+SHPB_TARGET_CLONES void block_return(const ReturnConstants& c, int count,
+                                     const double* __restrict trial_abs, const double* __restrict p,
+                                     const double* __restrict p_n, const double* __restrict inv_p,
+                                     const double* __restrict k, double* __restrict dp_out,
+                                     double* __restrict p_next_n_out, int* __restrict ok) {
+  const double E = c.E, A = c.A, B = c.B, n = c.n;
+  for (int j = 0; j < count; ++j) {
+    const double g0 = trial_abs[j] - (A + B * p_n[j]) * k[j];
+    const double hi0 = g0 / E;
+    const double dp = g0 / (E + n * B * p_n[j] * inv_p[j] * k[j]);
+    const double q = p[j] + dp;
+    const double x = (q - p[j]) * inv_p[j];
+    const double ax = std::abs(x);
+    // Both series, then a select (branch-free: CMakeLists.txt, -fno-trapping-math).
+    const double short_q = short_binomial_sum(c.a, x), long_q = long_binomial_sum(c.a, x);
+    const double q_n = p_n[j] * (ax <= kSeriesRange ? short_q : long_q);
+    const double inv_q = 1 / q;
+    const double g = trial_abs[j] - E * dp - (A + B * q_n) * k[j];
+    const double lo = g > 0 ? dp : 0.0, hi = g > 0 ? hi0 : dp;
+    const double newton = dp + g / (E + n * B * q_n * inv_q * k[j]);
+    const double p_next = p[j] + newton;
+    const double x2 = (p_next - q) * inv_q;
+    const double ax2 = std::abs(x2);
+    dp_out[j] = newton;
+    const double short_next = short_binomial_sum(c.a, x2), long_next = long_binomial_sum(c.a, x2);
+    p_next_n_out[j] = q_n * (ax2 <= kSeriesRange ? short_next : long_next);
+    ok[j] = (p[j] > 0) & (k[j] != 0) & (ax <= kLongSeriesRange) & (ax2 <= kLongSeriesRange) &
+            (std::abs(g) <= kReturnFinalStepResidual * trial_abs[j]) & (newton > lo) &
+            (newton < hi);
+  }
+}
+}  // namespace
 
 double johnson_cook_rate_factor(const JohnsonCookParams& jc, double strain_rate_1_s) {
   const double ratio = std::abs(strain_rate_1_s) / jc.reference_strain_rate_1_s;
@@ -174,13 +224,13 @@ void JohnsonCookLaw::update(std::span<const double> strain_next, double dt_s,
   const double gain = filtered ? -std::expm1(-dt_s / jc_.strain_rate_filter_s) : 0.0;
   const double rate_per_strain = dt_s > 0 ? 1 / dt_s : 0.0;
   // Elements go in blocks: first the yield checks of the block, then the return mappings of its
-  // yielding elements in a loop of their own, where the processor overlaps one element's long
-  // dependency chain (divisions, series) with the next one's.
-  struct Yielding {
-    std::size_t i;
-    double trial, p, p_n, inv_p, k;
-  };
-  Yielding yielding[kYieldBlock];
+  // yielding elements, gathered into arrays, several at once (block_return, vectorised), the
+  // few it leaves to plastic_increment one by one.
+  std::size_t index[kYieldBlock];
+  int ok[kYieldBlock];
+  double trial_of[kYieldBlock], trial_abs[kYieldBlock], p_of[kYieldBlock], p_n_of[kYieldBlock],
+      inv_p_of[kYieldBlock], k_of[kYieldBlock], dp_of[kYieldBlock], p_next_n_of[kYieldBlock];
+  const ReturnConstants constants{E, jc_.A_Pa, jc_.B_Pa, jc_.n, hardening_series_.a};
   for (std::size_t first = 0; first < states.size(); first += kYieldBlock) {
     const std::size_t last = std::min(states.size(), first + kYieldBlock);
     std::size_t count = 0;
@@ -218,7 +268,14 @@ void JohnsonCookLaw::update(std::span<const double> strain_next, double dt_s,
                                       : std::abs(strain_next[i] - s.strain) * ratio_per_strain;
         const double k = (ratio > 1 ? 1 + jc_.C * log_rate(ratio, s) : 1.0) * thermal;
         if (std::abs(trial) > hardening * k) {
-          yielding[count++] = {i, trial, p, p_n, inv_p, k};
+          index[count] = i;
+          trial_of[count] = trial;
+          trial_abs[count] = std::abs(trial);
+          p_of[count] = p;
+          p_n_of[count] = p_n;
+          inv_p_of[count] = inv_p;
+          k_of[count] = k;
+          ++count;
           continue;
         }
       }
@@ -226,27 +283,35 @@ void JohnsonCookLaw::update(std::span<const double> strain_next, double dt_s,
       s.stress_Pa = trial;
       stress_out[i] = trial;
     }
+    const bool block = block_return_ && jc_.B_Pa != 0;
+    if (block)
+      block_return(constants, static_cast<int>(count), trial_abs, p_of, p_n_of, inv_p_of, k_of,
+                   dp_of, p_next_n_of, ok);
     for (std::size_t c = 0; c < count; ++c) {
-      const Yielding& y = yielding[c];
-      MaterialPointState& s = states[y.i];
-      const Return ret = plastic_increment(std::abs(y.trial), y.p, y.p_n, y.inv_p, y.k);
-      const double dp = ret.dp;
-      const double d_back = std::copysign(dp, y.trial);
-      const double stress = y.trial - E * d_back;
+      if (!block || !ok[c]) {
+        const Return ret =
+            plastic_increment(trial_abs[c], p_of[c], p_n_of[c], inv_p_of[c], k_of[c]);
+        dp_of[c] = ret.dp;
+        p_next_n_of[c] = ret.p_next_n;
+      }
+      MaterialPointState& s = states[index[c]];
+      const double dp = dp_of[c], trial = trial_of[c];
+      const double d_back = std::copysign(dp, trial);
+      const double stress = trial - E * d_back;
       // Trapezoidal plastic work: work in = stored + dissipated exactly, step by step.
       const double work = 0.5 * (s.stress_Pa + stress) * d_back;
       s.dissipated_J_m3 += work;
       s.heat_J_m3 += jc_.taylor_quinney * work;
       if (jc_.adiabatic) s.temperature_K += work * heat_per_work_;
-      s.plastic_strain = y.p + dp;
+      s.plastic_strain = p_of[c] + dp;
       s.back_strain += d_back;
-      if (!std::isnan(ret.p_next_n)) {
+      if (!std::isnan(p_next_n_of[c])) {
         s.jc_p = s.plastic_strain;
-        s.jc_p_pow_n = ret.p_next_n;
+        s.jc_p_pow_n = p_next_n_of[c];
       }
-      s.strain = strain_next[y.i];
+      s.strain = strain_next[index[c]];
       s.stress_Pa = stress;
-      stress_out[y.i] = stress;
+      stress_out[index[c]] = stress;
     }
   }
 }

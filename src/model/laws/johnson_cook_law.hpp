@@ -34,6 +34,9 @@ class JohnsonCookLaw final : public MaterialLaw {
               std::span<MaterialPointState> states, std::span<double> stress_out) const override;
   double max_tangent_modulus_Pa() const override { return youngs_modulus_Pa_; }
   double stored_energy_J_m3(const MaterialPointState& state) const override;
+  // Return mappings one element at a time (plastic_increment only) instead of several at once:
+  // the plain path the vectorised one is tested against.
+  void set_block_return(bool on) { block_return_ = on; }
 
  private:
   // Plastic increment Δp > 0 with |σ_trial| − E Δp = (A + B (p + Δp)^n) k, k = rate × thermal;
@@ -65,6 +68,7 @@ class JohnsonCookLaw final : public MaterialLaw {
   double inverse_span_;   // 1/(T_melt − T_room)
   BinomialSeries hardening_series_;  // exponent n
   BinomialSeries thermal_series_;    // exponent m
+  bool block_return_ = true;
 };
 
 }  // namespace shpb
