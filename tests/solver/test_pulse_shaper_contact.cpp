@@ -79,9 +79,24 @@ TEST_CASE("At global steps the gauges converge with the pulse shaper's mesh", "[
   }
 }
 
-// Known to fail (docs/methods.md §3.6): 134 and 94 closings, and the energy drifts by 0.03 %
-// at the shipped 20-element disc and by 32 % at 40 elements.
+// Known to fail (docs/methods.md §3.6): 46 and 42 closings at the shipped 20-element disc
+// (energy 0.03 %), 134 and 151 at 40 elements (0.2 %), thousands at 160 (5 %).
 TEST_CASE("At asynchronous steps the pulse shaper is released once, without chatter",
           "[.][solver][shaper][!mayfail]") {
   check_released_once(simulate(pulse_shaper(Stepping::kAsynchronous)));
+}
+
+// Until the asynchronous coupling of §3.6 is fixed, the chatter must not pass silently: a run whose
+// energy balance is off by more than 1 % says so. A 160-element disc at asynchronous steps drifts
+// by about 5 % (measured); if a fix closes the balance, the warning is simply not due.
+TEST_CASE("A run whose energy balance is off says so", "[solver][shaper]") {
+  Scene scene = pulse_shaper(Stepping::kAsynchronous);
+  REQUIRE(scene.bars[1].name == "shaper");
+  scene.bars[1].elements = 160;
+  const SimulationResult r = simulate(scene);
+  REQUIRE(r.stable);
+  bool warned = false;
+  for (const std::string& w : r.warnings) warned |= w.find("energy balance") != std::string::npos;
+  INFO("energy error " << r.energy_error);
+  CHECK(warned == (std::abs(r.energy_error) > 0.01));
 }
