@@ -21,14 +21,27 @@
 #include "version.hpp"
 
 namespace shpb {
-namespace {
 
-nlohmann::json window_json(const WindowReport& w) {
-  return {{"gauge", w.gauge},
-          {"start_s", w.start_s},
-          {"end_s", w.end_s},
-          {"source", w.detected ? "detected" : "scene"}};
+// summary.json's entries (docs/outputs.md): one pulse window, and the equilibrium's extent.
+void to_json(nlohmann::json& j, const WindowReport& w) {
+  j = {{"gauge", w.gauge},
+       {"start_s", w.start_s},
+       {"end_s", w.end_s},
+       {"source", w.detected ? "detected" : "scene"}};
 }
+
+void to_json(nlohmann::json& j, const Equilibrium& e) {
+  auto interval = [](const std::optional<std::pair<double, double>>& p) {
+    return p ? nlohmann::json::array({p->first, p->second}) : nlohmann::json();
+  };
+  j = {{"fraction_of_loaded_time", e.loaded_s ? nlohmann::json(e.fraction) : nlohmann::json()},
+       {"loaded_s", interval(e.loaded_s)},
+       {"longest_interval_s", interval(e.longest_s)},
+       {"holds_until_unloading_from_s",
+        e.holds_from_s ? nlohmann::json(*e.holds_from_s) : nlohmann::json()}};
+}
+
+namespace {
 
 bool all_finite(const std::vector<double>& v) {
   for (double x : v)
@@ -268,9 +281,9 @@ int run_process(const ProcessArgs& args) {
   if (simulated)
     disp["reason"] = "signals of the 1D bar model do not disperse: pure delay by distance/c0";
   s["dispersion"] = disp;
-  s["windows"] = {{"incident", window_json(r.incident_window)},
-                  {"reflected", window_json(r.reflected_window)},
-                  {"transmitted", window_json(r.transmitted_window)},
+  s["windows"] = {{"incident", r.incident_window},
+                  {"reflected", r.reflected_window},
+                  {"transmitted", r.transmitted_window},
                   {"specimen_faces", {{"start_s", r.face_start_s}, {"end_s", r.face_end_s}}}};
   s["shifts_s"] = {{"incident", r.shift_incident_s},
                    {"reflected", r.shift_reflected_s},
@@ -343,18 +356,7 @@ int run_process(const ProcessArgs& args) {
   s["equilibrium_criterion"] =
       "R = 2|P1-P2|/|P1+P2| <= 0.05 while (P1+P2)/2 >= 20 % of its peak (loaded); reached at the "
       "start of the interval with R <= 0.05 that lasts until unloading";
-  {
-    const Equilibrium& e = r.equilibrium;
-    auto interval = [](const std::optional<std::pair<double, double>>& p) {
-      return p ? nlohmann::json::array({p->first, p->second}) : nlohmann::json();
-    };
-    s["equilibrium"] = {
-        {"fraction_of_loaded_time", e.loaded_s ? nlohmann::json(e.fraction) : nlohmann::json()},
-        {"loaded_s", interval(e.loaded_s)},
-        {"longest_interval_s", interval(e.longest_s)},
-        {"holds_until_unloading_from_s",
-         e.holds_from_s ? nlohmann::json(*e.holds_from_s) : nlohmann::json()}};
-  }
+  s["equilibrium"] = r.equilibrium;
   write_json(out, "summary.json", s);
   out.commit();
   if (!args.quiet)

@@ -30,6 +30,13 @@
 
 namespace shpb {
 
+// One run of a Pareto sweep as summary.json lists it (docs/outputs.md).
+void to_json(nlohmann::ordered_json& j, const ParetoCase& c) {
+  j = {{"method", method_name(c)},
+       {"stepping", to_string(c.stepping)},
+       {"resolution", c.resolution}};
+}
+
 namespace {
 
 using Json = nlohmann::ordered_json;
@@ -46,12 +53,6 @@ std::function<void(std::size_t, std::size_t)> progress_printer(bool quiet, std::
 // A CSV field: shortest round-trip double, empty for a non-finite value (undefined, e.g. the
 // error of an unstable run).
 std::string field(double v) { return std::isfinite(v) ? format_double(v) : std::string(); }
-
-Json case_json(const ParetoCase& c) {
-  return Json{{"method", method_name(c)},
-              {"stepping", to_string(c.stepping)},
-              {"resolution", c.resolution}};
-}
 
 // Speed of localized-bipenalty asynchronous against localized-bipenalty global at equal error:
 // the global runs' wall time (and node updates) interpolated at each asynchronous run's error.
@@ -108,10 +109,10 @@ void write_pareto(const ParetoStudy& study, const Scene& scene, int threads, dou
   }
   Json front_wall = Json::array(), front_updates = Json::array(), unstable = Json::array();
   for (std::size_t i = 0; i < study.rows.size(); ++i) {
-    if (by_wall[i]) front_wall.push_back(case_json(study.rows[i].run));
-    if (by_updates[i]) front_updates.push_back(case_json(study.rows[i].run));
+    if (by_wall[i]) front_wall.push_back(Json(study.rows[i].run));
+    if (by_updates[i]) front_updates.push_back(Json(study.rows[i].run));
     if (!study.rows[i].stable) {
-      Json j = case_json(study.rows[i].run);
+      Json j = study.rows[i].run;
       j["failure"] = study.rows[i].failure;
       unstable.push_back(j);
     }

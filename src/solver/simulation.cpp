@@ -277,6 +277,26 @@ SimulationResult simulate(const Scene& scene, const SimulationOptions& options) 
   return result;
 }
 
+// summary.json's "bars" and "interfaces" entries (docs/outputs.md), keys in this order.
+void to_json(nlohmann::ordered_json& j, const BarStatistics& b) {
+  j = {{"name", b.name},
+       {"elements", b.elements},
+       {"simulated_elements", b.simulated_elements},
+       {"time_step_s", b.time_step_s},
+       {"steps", b.steps},
+       {"courant", b.courant},
+       {"node_updates", b.node_updates},
+       {"node_updates_full_model", b.node_updates_full_model},
+       {"final_velocity_m_s", b.final_velocity_m_s}};
+}
+
+void to_json(nlohmann::ordered_json& j, const InterfaceStatistics& i) {
+  j = {{"name", i.name},
+       {"method", i.method},
+       {"activations", i.activations},
+       {"releases", i.releases}};
+}
+
 void write_simulation_outputs(const SimulationResult& result, const Scene& scene,
                               const std::filesystem::path& dir) {
   write_series(dir / "gauges.csv", result.gauges);
@@ -308,28 +328,8 @@ void write_simulation_outputs(const SimulationResult& result, const Scene& scene
   j["kinematics"] = std::string(enum_name(kKinematicsNames, scene.simulation.finite_strain));
   j["duration_s"] = result.discretization.duration_s;
   j["sample_rate_Hz"] = result.discretization.sample_rate_Hz;
-  nlohmann::ordered_json bars = nlohmann::json::array();
-  for (const BarStatistics& b : result.bars) {
-    nlohmann::ordered_json o;
-    o["name"] = b.name;
-    o["elements"] = b.elements;
-    o["simulated_elements"] = b.simulated_elements;
-    o["time_step_s"] = b.time_step_s;
-    o["steps"] = b.steps;
-    o["courant"] = b.courant;
-    o["node_updates"] = b.node_updates;
-    o["node_updates_full_model"] = b.node_updates_full_model;
-    o["final_velocity_m_s"] = b.final_velocity_m_s;
-    bars.push_back(o);
-  }
-  j["bars"] = bars;
-  nlohmann::ordered_json interfaces = nlohmann::json::array();
-  for (const InterfaceStatistics& i : result.interface_statistics)
-    interfaces.push_back({{"name", i.name},
-                          {"method", i.method},
-                          {"activations", i.activations},
-                          {"releases", i.releases}});
-  j["interfaces"] = interfaces;
+  j["bars"] = result.bars;
+  j["interfaces"] = result.interface_statistics;
   j["node_updates"] = result.node_updates;
   j["node_updates_full_model"] = result.node_updates_full_model;
   j["wall_time_s"] = result.wall_time_s;
