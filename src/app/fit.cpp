@@ -74,6 +74,25 @@ struct StageReport {
   long simulations = 0;
 };
 
+// A stage in summary.json (docs/outputs.md), without its parameter values (named by the writer).
+void to_json(nlohmann::json& j, const StageReport& st) {
+  j = {{"stage", to_string(st.stage)},
+       {"cost_start", st.result.cost_start},
+       {"cost", st.result.cost},
+       {"residuals", st.result.residuals},
+       {"iterations", st.result.iterations},
+       {"evaluations", st.result.evaluations},
+       {"simulations", st.simulations},
+       {"wall_time_s", st.wall_time_s},
+       {"cpu_time_s", st.cpu_time_s},
+       {"converged", st.result.converged},
+       {"termination", st.result.termination}};
+  if (st.stage == FitStage::kSignals) {
+    j["simulations_per_second"] = st.wall_time_s > 0 ? st.simulations / st.wall_time_s : 0.0;
+    j["simulations_per_cpu_second"] = st.cpu_time_s > 0 ? st.simulations / st.cpu_time_s : 0.0;
+  }
+}
+
 MaterialSpec law_with(const FitSpec& spec, const std::vector<double>& law_values) {
   MaterialSpec m = spec.material;
   for (std::size_t i = 0; i < spec.free.size(); ++i)
@@ -418,17 +437,7 @@ int run_fit(const FitArgs& args) {
   double signals_time = 0, signals_cpu = 0;
   long signal_simulations = 0;
   for (const auto& st : stages) {
-    nlohmann::json j = {{"stage", to_string(st.stage)},
-                        {"cost_start", st.result.cost_start},
-                        {"cost", st.result.cost},
-                        {"residuals", st.result.residuals},
-                        {"iterations", st.result.iterations},
-                        {"evaluations", st.result.evaluations},
-                        {"simulations", st.simulations},
-                        {"wall_time_s", st.wall_time_s},
-                        {"cpu_time_s", st.cpu_time_s},
-                        {"converged", st.result.converged},
-                        {"termination", st.result.termination}};
+    nlohmann::json j = st;
     nlohmann::json values = nlohmann::json::object(), check = nlohmann::json::object();
     for (std::size_t a = 0; a < st.unknowns.size(); ++a) {
       values[unknowns[st.unknowns[a]].name] = st.result.value[a];
@@ -440,8 +449,6 @@ int run_fit(const FitArgs& args) {
     if (st.stage == FitStage::kSignals) {
       signals_time += st.wall_time_s, signals_cpu += st.cpu_time_s;
       signal_simulations += st.simulations;
-      j["simulations_per_second"] = st.wall_time_s > 0 ? st.simulations / st.wall_time_s : 0.0;
-      j["simulations_per_cpu_second"] = st.cpu_time_s > 0 ? st.simulations / st.cpu_time_s : 0.0;
     }
     stage_json.push_back(j);
   }
