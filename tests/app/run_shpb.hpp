@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "../scratch.hpp"
+
 extern char** environ;
 
 namespace shpb_test {
@@ -28,16 +30,6 @@ inline std::string read_text(const std::filesystem::path& file) {
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
-}
-
-// A fresh folder for one test, unique per process: test cases run in parallel (ctest -j), and
-// other checkouts on the same machine run the same tests at the same time.
-inline std::filesystem::path scratch_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("shpb_test_" + name + "_" + std::to_string(::getpid()));
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
 }
 
 // True if a Python that `shpb report` would run (/usr/bin/python3 first, then python3 on PATH;
@@ -67,9 +59,8 @@ inline pid_t spawn_shpb(const std::vector<std::string>& args, const std::filesys
 }
 
 inline RunResult run_shpb(const std::vector<std::string>& args) {
-  const auto dir = std::filesystem::temp_directory_path();
-  const std::string tag = std::to_string(::getpid());
-  const auto out = dir / ("shpb_test_" + tag + ".out"), err = dir / ("shpb_test_" + tag + ".err");
+  static const ScratchDir streams("streams");  // the child's stdout and stderr
+  const auto out = streams.path() / "out", err = streams.path() / "err";
   RunResult r;
   if (const pid_t pid = spawn_shpb(args, out, err); pid > 0) {
     int status = 0;

@@ -1,4 +1,3 @@
-#include <unistd.h>
 
 #include <catch2/catch.hpp>
 #include <cstdlib>
@@ -17,13 +16,7 @@ namespace {
 
 using shpb_test::run_shpb;
 
-fs::path temp_dir(const std::string& name) {
-  const fs::path d =
-      fs::temp_directory_path() / ("shpb_test_process_" + std::to_string(getpid())) / name;
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path temp_dir(const std::string& name) { return shpb_test::scratch_dir("process_" + name); }
 
 // A steel Kolsky bar whose measurement is `signals.csv` beside the scene (strain columns by name).
 fs::path write_scene(const fs::path& dir, const std::string& signals) {

@@ -1,5 +1,3 @@
-#include <unistd.h>
-
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
@@ -9,6 +7,7 @@
 #include <sstream>
 #include <string>
 
+#include "../scratch.hpp"
 #include "core/csv_writer.hpp"
 
 using namespace shpb;
@@ -21,8 +20,8 @@ TEST_CASE("Doubles are written in shortest round-trip form and read back exactly
 }
 
 TEST_CASE("A CSV file has one header row and refuses non-finite values", "[core][csv]") {
-  const auto path = std::filesystem::temp_directory_path() /
-                    ("shpb_test_csv_writer_" + std::to_string(::getpid()) + ".csv");
+  const shpb_test::ScratchDir scratch("csv_writer");
+  const auto path = scratch.path() / "table.csv";
   {
     CsvWriter w(path, {"time_s", "strain"});
     w.row({0.0, 1e-3});
@@ -33,12 +32,11 @@ TEST_CASE("A CSV file has one header row and refuses non-finite values", "[core]
   std::stringstream s;
   s << in.rdbuf();
   REQUIRE(s.str() == "time_s,strain\n0,0.001\n");
-  std::filesystem::remove(path);
 }
 
 TEST_CASE("A row with preformatted leading cells reads as the same row of doubles", "[core][csv]") {
-  const auto path = std::filesystem::temp_directory_path() /
-                    ("shpb_test_csv_leading_" + std::to_string(::getpid()) + ".csv");
+  const shpb_test::ScratchDir scratch("csv_leading");
+  const auto path = scratch.path() / "table.csv";
   {
     CsvWriter w(path, {"time_s", "x_m", "stress_Pa"});
     const double stress = -2.5e8;
@@ -60,5 +58,4 @@ TEST_CASE("A row with preformatted leading cells reads as the same row of double
   double t = 0, x = 0, sigma = 0;
   REQUIRE(std::sscanf(leading.c_str(), "%lf,%lf,%lf", &t, &x, &sigma) == 3);
   REQUIRE((t == 1e-6 && x == 0.3 && sigma == -2.5e8));
-  std::filesystem::remove(path);
 }

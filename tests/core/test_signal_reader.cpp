@@ -1,4 +1,3 @@
-#include <unistd.h>
 
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -6,6 +5,7 @@
 #include <fstream>
 #include <string>
 
+#include "../scratch.hpp"
 #include "analysis/gauge_signals.hpp"
 #include "core/error.hpp"
 #include "core/signal_reader.hpp"
@@ -15,11 +15,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// The folder of this test process, removed when the process ends.
+const shpb_test::ScratchDir scratch("signal_reader");
+
 fs::path write_file(const std::string& name, const std::string& bytes) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("shpb_test_signal_reader_" + std::to_string(getpid()));
-  fs::create_directories(dir);
-  const fs::path p = dir / name;
+  const fs::path p = scratch.path() / name;
   std::ofstream(p, std::ios::binary) << bytes;
   return p;
 }

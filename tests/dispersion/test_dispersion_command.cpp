@@ -1,4 +1,3 @@
-#include <unistd.h>
 
 #include <catch2/catch.hpp>
 #include <cstdlib>
@@ -37,8 +36,8 @@ std::map<long, std::vector<double>> read_rows(const fs::path& p, std::string* he
 TEST_CASE("shpb dispersion writes the curve and matches the reference within 2e-5",
           "[dispersion][app]") {
   const fs::path ref_dir = fs::path(SHPB_SOURCE_DIR) / "../shared/data/reference/pochhammer-chree";
-  const fs::path out =
-      fs::temp_directory_path() / ("shpb_test_dispersion_" + std::to_string(getpid()) + ".csv");
+  const shpb_test::ScratchDir scratch("dispersion");
+  const fs::path out = scratch.path() / "dispersion.csv";
   for (const char* nu : {"0.29", "0.30"}) {
     CAPTURE(nu);
     fs::remove(out);

@@ -2,33 +2,29 @@
 // The readers under test take a path, so each input is written to a file in a private temporary
 // folder (one per fuzzing process, removed at exit). The folder also holds `specimen.json` and
 // `signals.csv` so that scenes referring to them reach the code behind the reference.
-#include <unistd.h>
-
 #include <cstddef>
 #include <cstdint>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
+
+#include "../scratch.hpp"
 
 namespace shpb_fuzz {
 
 namespace fs = std::filesystem;
 
 inline const fs::path& scratch_folder() {
-  static const fs::path dir = [] {
-    const fs::path d = fs::temp_directory_path() / ("shpb-fuzz-" + std::to_string(::getpid()));
-    fs::create_directories(d);
-    std::ofstream(d / "specimen.json")
+  static const shpb_test::ScratchDir dir("fuzz");
+  static const bool seeded = [] {
+    std::ofstream(dir.path() / "specimen.json")
         << R"({"model": "elastic", "density": 2700, "youngs_modulus": "70 GPa", "poisson_ratio": 0.33})";
-    std::ofstream(d / "signals.csv") << "time_s,ch1,ch2\n0,0,0\n1e-7,1e-4,2e-4\n2e-7,2e-4,3e-4\n";
-    std::atexit([] {
-      std::error_code ec;
-      fs::remove_all(fs::temp_directory_path() / ("shpb-fuzz-" + std::to_string(::getpid())), ec);
-    });
-    return d;
+    std::ofstream(dir.path() / "signals.csv")
+        << "time_s,ch1,ch2\n0,0,0\n1e-7,1e-4,2e-4\n2e-7,2e-4,3e-4\n";
+    return true;
   }();
-  return dir;
+  (void)seeded;
+  return dir.path();
 }
 
 // Writes the fuzz input to `name` in the scratch folder and returns its path.

@@ -1,12 +1,12 @@
 // Campaign files (src/model/campaign.hpp): the list of tests shared by `process` and `fit`, read
 // with the same one-line errors as scenes.
-#include <unistd.h>
 
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
+#include "../scratch.hpp"
 #include "core/error.hpp"
 #include "model/campaign.hpp"
 
@@ -15,20 +15,18 @@ namespace fs = std::filesystem;
 
 namespace {
 struct Scratch {
-  Scratch()
-      : dir(fs::temp_directory_path() / ("shpb_test_campaign_" + std::to_string(::getpid()))) {
-    fs::remove_all(dir);
+  Scratch() : folder("campaign"), dir(folder.path()) {
     fs::create_directories(dir / "a");
     fs::create_directories(dir / "b");
     std::ofstream(dir / "a" / "scene.json") << "{}";
     std::ofstream(dir / "b" / "fast.json") << "{}";
   }
-  ~Scratch() { fs::remove_all(dir); }
   fs::path write(const std::string& text) const {
     const fs::path f = dir / "campaign.json";
     std::ofstream(f) << text;
     return f;
   }
+  shpb_test::ScratchDir folder;
   fs::path dir;
 };
 

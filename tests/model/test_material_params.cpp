@@ -1,5 +1,4 @@
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <catch2/catch.hpp>
 #include <cstdlib>
@@ -64,24 +63,12 @@ struct Run {
   std::string stderr_text;
 };
 
-// A folder of this test process (CTest runs test cases in parallel processes).
-fs::path scratch() {
-  return fs::temp_directory_path() / ("shpb_test_material_params_" + std::to_string(getpid()));
-}
+// The folder of this test process, removed when the process ends.
+const shpb_test::ScratchDir scratch("material_params");
 
-// Removes the scratch folder when the test process ends.
-struct ScratchCleanup {
-  ~ScratchCleanup() {
-    std::error_code ignored;
-    fs::remove_all(scratch(), ignored);
-  }
-} scratch_cleanup;
-
-// Runs `shpb validate` on the scene written to scratch()/scene.json; returns exit code and stderr.
+// Runs `shpb validate` on the scene written to the scratch folder; returns exit code and stderr.
 Run validate(const nlohmann::json& scene) {
-  const fs::path dir = scratch();
-  fs::create_directories(dir);
-  const fs::path file = dir / "scene.json";
+  const fs::path file = scratch.path() / "scene.json";
   std::ofstream(file) << scene.dump(2);
   const auto r = shpb_test::run_shpb({"validate", file.string()});
   return {r.code, r.err};
@@ -171,7 +158,7 @@ TEST_CASE("Every specimen file validates, cites its source and builds its law",
       std::ifstream in(entry.path());
       const nlohmann::json j = nlohmann::json::parse(in);
       REQUIRE(j.at("source").get<std::string>().size() > 40);  // paper and table, not a stub
-      const Scene parsed = read_scene(scratch() / "scene.json");
+      const Scene parsed = read_scene(scratch.path() / "scene.json");
       const MaterialSpec& spec = parsed.bars[2].material;
       const auto law = make_material_law(spec);
       REQUIRE(law->max_tangent_modulus_Pa() == Approx(spec.youngs_modulus_Pa));

@@ -1,4 +1,3 @@
-#include <unistd.h>
 
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -6,6 +5,7 @@
 #include <fstream>
 #include <string>
 
+#include "../scratch.hpp"
 #include "core/error.hpp"
 #include "model/scene.hpp"
 
@@ -19,13 +19,8 @@ constexpr double kUlps = 1e-14;
 // A fresh folder per test case (and per process: tests run in parallel) for scenes and material
 // files, removed at the end.
 struct Scratch {
-  explicit Scratch(const std::string& name)
-      : dir(fs::temp_directory_path() /
-            ("shpb_test_scene_reader_" + name + "_" + std::to_string(::getpid()))) {
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
-  ~Scratch() { fs::remove_all(dir); }
+  explicit Scratch(const std::string& name) : folder("scene_reader_" + name), dir(folder.path()) {}
+  shpb_test::ScratchDir folder;
   fs::path dir;
 };
 

@@ -97,27 +97,15 @@ inline Outcome run(const std::vector<std::string>& args, const fs::path& scratch
   return child.wait(limit_s);
 }
 
-// A fresh empty folder under the system's temporary folder, removed with the object.
-class ScratchFolder {
+// A fresh empty scratch folder per object (a counter tells apart those of one process), removed
+// with the object.
+class ScratchFolder : public shpb_test::ScratchDir {
  public:
-  explicit ScratchFolder(const std::string& tag) {
-    static int counter = 0;
-    path_ = fs::temp_directory_path() / ("shpb-robust-" + tag + "-" + std::to_string(::getpid()) +
-                                         "-" + std::to_string(counter++));
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~ScratchFolder() {
-    std::error_code ec;
-    fs::permissions(path_, fs::perms::owner_all, fs::perm_options::add, ec);
-    fs::remove_all(path_, ec);
-  }
-  ScratchFolder(const ScratchFolder&) = delete;
-  ScratchFolder& operator=(const ScratchFolder&) = delete;
-  const fs::path& path() const { return path_; }
+  explicit ScratchFolder(const std::string& tag)
+      : ScratchDir("robust_" + tag + "_" + std::to_string(counter_++)) {}
 
  private:
-  fs::path path_;
+  static inline int counter_ = 0;
 };
 
 inline void write_bytes(const fs::path& file, const std::string& bytes) {

@@ -1,6 +1,5 @@
 // Accuracy against cost: the Pareto front, equal-error interpolation, the exact
 // reference of a striker on a bar, and a sweep whose results do not depend on the thread count.
-#include <unistd.h>
 
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -101,9 +100,8 @@ TEST_CASE("A pareto sweep gives the same results on one thread and on two", "[st
 
 TEST_CASE("shpb study writes pareto.csv with the documented columns, and exits 2 on a bad scene",
           "[study][app]") {
-  const fs::path dir =
-      fs::temp_directory_path() / ("shpb_test_study_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const shpb_test::ScratchDir scratch("study");
+  const fs::path& dir = scratch.path();
   const fs::path scene = dir / "scene.json";
   std::ofstream(scene) << R"({ "name": "tiny striker on bar",
     "bars": [ { "name": "striker", "material": "steel", "length": "50 mm", "area": "2.85 cm2",
@@ -168,5 +166,4 @@ TEST_CASE("shpb study writes pareto.csv with the documented columns, and exits 2
   CHECK(bad.code == 2);
   CHECK(bad.err.rfind("error: ", 0) == 0);
   CHECK_FALSE(fs::exists(dir / "bad_out"));
-  fs::remove_all(dir);
 }

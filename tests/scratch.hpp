@@ -1,0 +1,41 @@
+// Scratch folders for tests: the one place that names them. Unique per process, because ctest -j
+// runs test cases in parallel processes and other checkouts on the same machine run the same tests
+// at the same time.
+#pragma once
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <string>
+#include <system_error>
+
+namespace shpb_test {
+
+// <temp>/shpb_test_<name>_<pid>, emptied and created.
+inline std::filesystem::path scratch_dir(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("shpb_test_" + name + "_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+// A scratch_dir(name) removed with the object (also when a test made the folder read-only).
+class ScratchDir {
+ public:
+  explicit ScratchDir(const std::string& name) : path_(scratch_dir(name)) {}
+  ~ScratchDir() {
+    std::error_code ec;
+    std::filesystem::permissions(path_, std::filesystem::perms::owner_all,
+                                 std::filesystem::perm_options::add, ec);
+    std::filesystem::remove_all(path_, ec);
+  }
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+}  // namespace shpb_test
