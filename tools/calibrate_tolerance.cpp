@@ -84,8 +84,6 @@ double worst_factor(const std::vector<Sample>& samples, const MeshErrorConstants
 
 }  // namespace
 
-double recorded_difference(const GaugeReference& a, const GaugeReference& b);
-
 // One line of --check: the scene as meshed, run, measured against `ref`.
 void check_line(const char* label, const Scene& s, const GaugeReference& ref,
                 const SimulationOptions& options) {
@@ -122,7 +120,7 @@ int check(double tolerance, const std::vector<std::string>& files) {
       const GaugeReference seen =
           fine_mesh_reference(chosen, 1, r.stable, r.failure, r.gauges, r.wall_time_s);
       std::printf("  %-10s %12s %9s %9.3f%%  (the tolerance's meshes recorded at %d x the rate)\n",
-                  "oversampled", "", "", 100 * recorded_difference(seen, ref),
+                  "oversampled", "", "", 100 * recorded_reference_difference(seen, ref),
                   kReferenceOversampling);
       // What a record free of aliasing would need: the bars (the specimen as chosen) scaled to
       // the coarsest mesh the model without its aliasing term predicts at 0.7 × the tolerance.
@@ -144,24 +142,12 @@ int check(double tolerance, const std::vector<std::string>& files) {
             "  %-10s %12.4g %9.3f %9.3f%% %9.3f%%  (no aliasing: bars %.2f x the tolerance's, "
             "recorded at %d x the rate)\n",
             "anti-alias", static_cast<double>(r.node_updates), r.wall_time_s,
-            100 * recorded_difference(seen2, ref), 100 * p, f, kReferenceOversampling);
+            100 * recorded_reference_difference(seen2, ref), 100 * p, f, kReferenceOversampling);
         break;
       }
     }
   }
   return 0;
-}
-
-// Relative L2 difference of two references as recorded (both oversampled and smoothed).
-double recorded_difference(const GaugeReference& a, const GaugeReference& b) {
-  double diff = 0, norm = 0;
-  for (std::size_t c = 0; c < b.recorded_fine.values.size(); ++c)
-    for (std::size_t k = 0; k < b.recorded_fine.samples(); ++k) {
-      const double d = a.recorded_fine.values[c][k] - b.recorded_fine.values[c][k];
-      diff += d * d;
-      norm += b.recorded_fine.values[c][k] * b.recorded_fine.values[c][k];
-    }
-  return std::sqrt(diff / norm);
 }
 
 // --references: the study's fine-mesh reference at 2, 4, 8 and 16 × (fine_reference_scene), each
@@ -180,7 +166,7 @@ int references(const std::vector<std::string>& files) {
     for (double r : {2.0, 4.0, 8.0}) {
       const GaugeReference ref = fine_mesh_reference(scene, r, options);
       std::printf("  %6g %9.3f%% %9.3f%% %9.3f%% %9.2f\n", r,
-                  100 * recorded_difference(ref, finest),
+                  100 * recorded_reference_difference(ref, finest),
                   100 * recorded_gauge_error(ref.fine, finest), 100 * gauge_error(ref.fine, finest),
                   ref.wall_time_s);
       std::fflush(stdout);

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "../tests/fit/synthetic_scene.hpp"
 #include "model/scene.hpp"
 #include "solver/simulation.hpp"
 
@@ -26,27 +27,6 @@ using namespace shpb;
 namespace fs = std::filesystem;
 
 namespace {
-
-// The synthetic campaign's set-up (tests/fit/test_fit_synthetic.cpp scene_at).
-nlohmann::json scene_json(double velocity_m_s, const fs::path& specimen, const char* stepping) {
-  nlohmann::json s = nlohmann::json::parse(R"({
-    "bars": [
-      {"name": "striker", "material": "ti", "length": "150 mm", "diameter": "9.47 mm",
-       "elements": 75},
-      {"name": "incident", "material": "ti", "length": "500 mm", "diameter": "9.47 mm",
-       "elements": 250, "gauges": [{"name": "incident", "position": "250 mm"}]},
-      {"name": "specimen", "length": "4 mm", "diameter": "6.34 mm", "elements": 12},
-      {"name": "transmitter", "material": "ti", "length": "500 mm", "diameter": "9.47 mm",
-       "elements": 250, "gauges": [{"name": "transmitted", "position": "250 mm"}]}],
-    "specimen": "specimen",
-    "materials": {"ti": {"model": "elastic", "density": "4416 kg/m3",
-                         "youngs_modulus": "109.3 GPa", "poisson_ratio": 0.33}},
-    "simulation": {"duration": "230 us", "sample_rate": "10 MHz"}})");
-  s["bars"][0]["velocity"] = std::to_string(velocity_m_s) + " m/s";
-  s["bars"][2]["material"] = specimen.string();
-  s["simulation"]["stepping"] = stepping;
-  return s;
-}
 
 double& parameter(Scene& scene, const std::string& name) {
   JohnsonCookParams& jc = scene.bars[*scene.specimen].material.johnson_cook;
@@ -101,7 +81,8 @@ int main(int argc, char** argv) {
       std::ifstream(fs::path(SHPB_SOURCE_DIR) / "specimens/ofhc-copper.json"));
   if (filter_s > 0) law["strain_rate_filter"] = std::to_string(filter_s * 1e6) + " us";
   std::ofstream(dir / "law.json") << law.dump(1);
-  std::ofstream(dir / "scene.json") << scene_json(velocity, dir / "law.json", stepping.c_str());
+  std::ofstream(dir / "scene.json")
+      << shpb_test::synthetic_scene(velocity, dir / "law.json", stepping);
   const Scene base = read_scene(dir / "scene.json");
 
   auto run = [&](double factor) {

@@ -66,4 +66,15 @@ double recorded_gauge_error(const TimeSeries& gauges, const GaugeReference& refe
   return std::sqrt(diff / norm);
 }
 
+double recorded_reference_difference(const GaugeReference& a, const GaugeReference& b) {
+  double diff = 0, norm = 0;
+  for (std::size_t c = 0; c < b.recorded_fine.values.size(); ++c)
+    for (std::size_t k = 0; k < b.recorded_fine.samples(); ++k) {
+      const double d = a.recorded_fine.values[c][k] - b.recorded_fine.values[c][k];
+      diff += d * d;
+      norm += b.recorded_fine.values[c][k] * b.recorded_fine.values[c][k];
+    }
+  return std::sqrt(diff / norm);
+}
+
 }  // namespace shpb

@@ -26,4 +26,8 @@ std::vector<double> record_smoothed(const std::vector<double>& x, int sigma = 1,
 // NaN where gauge_error() is NaN.
 double recorded_gauge_error(const TimeSeries& gauges, const GaugeReference& reference);
 
+// Relative L2 difference of two fine-mesh references as recorded (both oversampled and
+// smoothed), against b: how far a reference itself is from a finer one.
+double recorded_reference_difference(const GaugeReference& a, const GaugeReference& b);
+
 }  // namespace shpb

@@ -11,6 +11,7 @@
 #include "../app/run_shpb.hpp"
 #include "model/scene.hpp"
 #include "solver/simulation.hpp"
+#include "synthetic_scene.hpp"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -43,29 +44,13 @@ const fs::path kCopper = fs::path(SHPB_SOURCE_DIR) / "specimens/ofhc-copper.json
 // short against the 10 µs rise of the loading.
 const char* const kRateFilter = "1 us";
 
-// A short, coarse set-up (Ti-6Al-4V bars, 2 mm elements) so each simulation takes milliseconds:
-// 150 mm striker (60 µs pulse), gauges 250 mm from the specimen (pulses do not overlap). Global
-// stepping: with asynchronous stepping the gauge signals are smooth in the law through the loading
-// but rough in the tail, where the unloaded specimen rattles between the bar ends (impacts whose
-// number and instants jump with the law; docs/methods.md §9), which the compared windows reach: the
-// finite-difference Jacobian is noise there and the fit stops 3–29 % off (README, shpb fit).
+// Global stepping: with asynchronous stepping the gauge signals are smooth in the law through the
+// loading but rough in the tail, where the unloaded specimen rattles between the bar ends (impacts
+// whose number and instants jump with the law; docs/methods.md §9), which the compared windows
+// reach: the finite-difference Jacobian is noise there and the fit stops 3–29 % off (README, shpb
+// fit).
 json scene_at(double velocity_m_s, const fs::path& specimen) {
-  json s = json::parse(R"({
-    "bars": [
-      {"name": "striker", "material": "ti", "length": "150 mm", "diameter": "9.47 mm",
-       "elements": 75},
-      {"name": "incident", "material": "ti", "length": "500 mm", "diameter": "9.47 mm",
-       "elements": 250, "gauges": [{"name": "incident", "position": "250 mm"}]},
-      {"name": "specimen", "length": "4 mm", "diameter": "6.34 mm", "elements": 12},
-      {"name": "transmitter", "material": "ti", "length": "500 mm", "diameter": "9.47 mm",
-       "elements": 250, "gauges": [{"name": "transmitted", "position": "250 mm"}]}],
-    "specimen": "specimen",
-    "materials": {"ti": {"model": "elastic", "density": "4416 kg/m3",
-                         "youngs_modulus": "109.3 GPa", "poisson_ratio": 0.33}},
-    "simulation": {"duration": "230 us", "sample_rate": "10 MHz", "stepping": "global"}})");
-  s["bars"][0]["velocity"] = std::to_string(velocity_m_s) + " m/s";
-  s["bars"][2]["material"] = specimen.string();
-  return s;
+  return shpb_test::synthetic_scene(velocity_m_s, specimen, "global");
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "../app/run_shpb.hpp"
+#include "../fit/synthetic_scene.hpp"
 #include "model/scene.hpp"
 #include "solver/simulation.hpp"
 
@@ -42,21 +43,7 @@ TEST_CASE("Asynchronous gauge signals respond smoothly to the law's A through th
   nlohmann::json law = nlohmann::json::parse(std::ifstream(kCopper));
   law["strain_rate_filter"] = "1 us";
   std::ofstream(dir / "law.json") << law.dump(1);
-  nlohmann::json scene = nlohmann::json::parse(R"({
-    "bars": [
-      {"name": "striker", "material": "ti", "length": "150 mm", "diameter": "9.47 mm",
-       "elements": 75, "velocity": "18.5 m/s"},
-      {"name": "incident", "material": "ti", "length": "500 mm", "diameter": "9.47 mm",
-       "elements": 250, "gauges": [{"name": "incident", "position": "250 mm"}]},
-      {"name": "specimen", "length": "4 mm", "diameter": "6.34 mm", "elements": 12},
-      {"name": "transmitter", "material": "ti", "length": "500 mm", "diameter": "9.47 mm",
-       "elements": 250, "gauges": [{"name": "transmitted", "position": "250 mm"}]}],
-    "specimen": "specimen",
-    "materials": {"ti": {"model": "elastic", "density": "4416 kg/m3",
-                         "youngs_modulus": "109.3 GPa", "poisson_ratio": 0.33}},
-    "simulation": {"duration": "230 us", "sample_rate": "10 MHz",
-                   "stepping": "asynchronous"}})");
-  scene["bars"][2]["material"] = (dir / "law.json").string();
+  nlohmann::json scene = shpb_test::synthetic_scene(18.5, dir / "law.json", "asynchronous");
   std::ofstream(dir / "scene.json") << scene.dump(1);
   const shpb::Scene base = shpb::read_scene(dir / "scene.json");
   shpb::SimulationOptions options;

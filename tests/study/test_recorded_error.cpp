@@ -24,18 +24,6 @@ shpb::SimulationOptions quiet_options() {
   return options;
 }
 
-// Relative L2 difference of two fine-mesh references as recorded (both oversampled, smoothed).
-double recorded_difference(const shpb::GaugeReference& a, const shpb::GaugeReference& b) {
-  double diff = 0, norm = 0;
-  for (std::size_t c = 0; c < b.recorded_fine.values.size(); ++c)
-    for (std::size_t k = 0; k < b.recorded_fine.samples(); ++k) {
-      const double d = a.recorded_fine.values[c][k] - b.recorded_fine.values[c][k];
-      diff += d * d;
-      norm += b.recorded_fine.values[c][k] * b.recorded_fine.values[c][k];
-    }
-  return std::sqrt(diff / norm);
-}
-
 }  // namespace
 
 TEST_CASE("The striker-on-bar's recorded error converges to the exact solution without a floor",
@@ -75,7 +63,8 @@ TEST_CASE("The fine-mesh reference, recorded at a multiple of the sample rate, c
   // Every kReferenceOversampling-th sample is the point-sample reference, on the scene's grid.
   REQUIRE(r16.fine.samples() == r16.recorded_fine.samples());
   CHECK(r16.fine.time_s[1] == Approx(1 / scene.simulation.sample_rate_Hz));
-  const double d4 = recorded_difference(r4, r16), d8 = recorded_difference(r8, r16);
+  const double d4 = shpb::recorded_reference_difference(r4, r16),
+               d8 = shpb::recorded_reference_difference(r8, r16);
   INFO("4 x: " << 100 * d4 << " %, 8 x: " << 100 * d8 << " % from the 16 x reference");
   CHECK(std::log2(d4 / d8) >= kMinimumOrder);
 }
