@@ -90,9 +90,11 @@ void check_line(const char* label, const Scene& s, const GaugeReference& ref,
   const ChainDiscretization d = discretize(s);
   const SimulationResult r = simulate(s, options);
   const double measured = r.stable ? recorded_gauge_error(r.gauges, ref) : NAN;
-  std::printf("  %-10s %12.4g %9.3f %9.3f%% %9.3f%%  elements", label,
+  const double points = r.stable ? gauge_error(r.gauges, ref) : NAN;
+  std::printf("  %-10s %12.4g %9.3f %9.3f%% %9.3f%% %9.3f%%  C %g elements", label,
               static_cast<double>(r.node_updates), r.wall_time_s, 100 * measured,
-              100 * predict_gauge_error(s, d).total);
+              100 * predict_gauge_error(s, d).total, 100 * points,
+              s.simulation.courant.value_or(kDefaultCourant));
   for (const auto& b : d.bars) std::printf(" %d", b.elements);
   std::printf("\n");
   std::fflush(stdout);
@@ -106,8 +108,9 @@ int check(double tolerance, const std::vector<std::string>& files) {
     const auto exact = exact_reference(scene);
     const GaugeReference ref =
         exact ? *exact : fine_mesh_reference(scene, kReferenceResolution, options);
-    std::printf("\n%s (tolerance %g %%)\n  %-10s %12s %9s %10s %10s\n", file.c_str(),
-                100 * tolerance, "meshes", "node_upd", "solve_s", "measured", "predicted");
+    std::printf("\n%s (tolerance %g %%)\n  %-10s %12s %9s %10s %10s %10s\n", file.c_str(),
+                100 * tolerance, "meshes", "node_upd", "solve_s", "measured", "predicted",
+                "points");
     check_line("automatic", scene, ref, options);
     Scene chosen = scene;
     chosen.simulation.tolerance = tolerance;
@@ -204,6 +207,10 @@ int main(int argc, char** argv) {
     for (double c : {0.5, 0.8, 0.95}) cases.push_back({1, 1, c});
     if (scene.specimen)
       for (double s : {0.08, 0.16, 0.5}) cases.push_back({2, s, kDefaultCourant});
+    // Close to C = 1, the Courant number a tolerance may choose (model/mesh_error_model.cpp).
+    for (double r : {0.25, 0.5, 1.0, 2.0}) cases.push_back({r, 1, 0.9999});
+    if (scene.specimen)
+      for (double s : {0.16, 0.5}) cases.push_back({0.5, s, 0.9999});
     for (const Case& c : cases) {
       const Scene s = case_scene(scene, c);
       const ChainDiscretization d = discretize(s);

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <limits>
+#include <numeric>
 #include <optional>
 
 #include "core/error.hpp"
@@ -16,7 +18,7 @@ namespace shpb {
 // 2 x: measured/predicted within a factor 3.5 (rms of the log 0.34; the worst, 0.63 % measured for
 // 0.18 % predicted, is the LANL copper test's floor, reached from 1 x whatever the mesh). The
 // theory alone (front = 1) predicts the striker-on-bar's exact solution within 8 % at 1/4–4 x.
-const MeshErrorConstants kMeshErrorConstants = {0.794, 0.0079, 1.0};
+const MeshErrorConstants kMeshErrorConstants = {1.11, 0.0191, 1.0};
 
 namespace {
 
@@ -27,13 +29,57 @@ constexpr double kSearchRatio = 1.005;
 // predicted error changes by a few % per step), coarse enough to take about 200 steps over 10⁷.
 constexpr double kScanRatio = 1.08;
 
-// Meshes are chosen for a predicted error of this fraction of the tolerance: the model's scatter
-// over its calibration runs is a factor 1.4 (rms of the log 0.34, kMeshErrorConstants).
-constexpr double kTargetFraction = 0.7;
-
 bool is_specimen(const Scene& scene, std::size_t i) {
   return scene.specimen && *scene.specimen == i;
 }
+
+// Courant numbers a tolerance may choose among: the default, and one closer to the exact C = 1
+// (§1: no dispersion), where fronts are carried sharper and a coarser mesh meets the same error.
+// Close to 1 the asynchronous rigid link between two bars whose steps differ by less than the
+// margin 1 − C goes unstable (measured on the LANL PMMA bars, striker and incident steps 0.05–0.12
+// % apart: unstable at C = 0.999 and 0.9999, stable at 0.995 for every ratio tried), so there the
+// bars are meshed to step together (common_transit_s). C = 1 itself is marginal (a double root at
+// the highest mode: energy error 0.75 on the PMMA test at 2 x bars against 1.1e-3 at 0.9999).
+constexpr double kNearExactCourant = 0.9999;
+
+// The finest division of the common transit tried near C = 1 (a 2 m bar with a 100 mm common
+// divisor: 0.1 mm elements).
+constexpr long kMaxCommonDivisions = 1000;
+
+// Lengths are compared in whole micrometres when their common divisor is sought.
+constexpr double kLengthQuantum = 1e-6;
+
+// With every bar but the specimen elastic and meshed by the tolerance, all of one wave speed,
+// and every interface a localized bipenalty link or bonded (the penalty methods' stability
+// depends on C, §2), and no Courant number in the scene: the largest transit T that every bar's
+// L/c is a whole multiple of (the lengths' greatest common divisor over c). Meshed at element
+// transits T/k, those bars step together at any C. None otherwise.
+std::optional<double> common_transit_s(const Scene& scene, const std::vector<bool>& free) {
+  if (scene.simulation.courant) return std::nullopt;
+  for (std::size_t k = 0; k + 1 < scene.bars.size(); ++k) {
+    const ContactMethod m = interface_method(scene.contact, k);
+    if (m != ContactMethod::kLocalizedBipenalty && m != ContactMethod::kBonded) return std::nullopt;
+  }
+  long long divisor = 0;
+  double speed = 0;
+  for (std::size_t i = 0; i < scene.bars.size(); ++i) {
+    if (is_specimen(scene, i)) continue;
+    const BarSpec& b = scene.bars[i];
+    if (!free[i] || !b.material.is_elastic()) return std::nullopt;
+    const double c = b.material.wave_speed_m_s();
+    if (speed > 0 && std::abs(c / speed - 1) > 1e-12) return std::nullopt;
+    speed = c;
+    const double units = b.length_m / kLengthQuantum;
+    if (std::abs(units - std::round(units)) > 1e-6 * units) return std::nullopt;
+    divisor = std::gcd(divisor, static_cast<long long>(std::llround(units)));
+  }
+  if (divisor == 0) return std::nullopt;
+  return static_cast<double>(divisor) * kLengthQuantum / speed;
+}
+
+// Meshes are chosen for a predicted error of this fraction of the tolerance: the model's scatter
+// over its calibration runs is a factor 1.4 (rms of the log 0.34, kMeshErrorConstants).
+constexpr double kTargetFraction = 0.7;
 
 // The bar whose impact makes the pulse: the first moving bar with a bar on its right (it may be
 // pulled away, as in a bonded tension test: the pulse is then tensile, its fronts the same).
@@ -96,16 +142,21 @@ double aliased_error_s(const ChainDiscretization& d, const std::vector<double>& 
 }
 
 // (1/π) ∫ e^{−ω²Δs²}/(1 + ω²τ²) |H − 1|²/ω² dω for the bars' paths x (the model's I / A²).
-double front_error_s(const ChainDiscretization& d, const std::vector<double>& x, double sample_s,
-                     double rise_s, double aliasing) {
+// sin(z)/z, 1 at 0.
+double sinc(double z) { return std::abs(z) < 1e-8 ? 1.0 : std::sin(z) / z; }
+
+double front_error_s(const ChainDiscretization& d, const std::vector<double>& x,
+                     std::size_t gauge_bar, double gauge_w, double sample_s, double rise_s,
+                     double aliasing) {
   const double top = kFrequencyEnd / sample_s, dw = top / kFrequencyPoints;
+  const BarDiscretization& g = d.bars[gauge_bar];
   double sum = 0;
   for (int j = 1; j <= kFrequencyPoints; ++j) {
     const double w = j * dw;
-    double phase = 0;
+    double phase = 0, kg = 0;
     bool carried = true;
     for (std::size_t i = 0; i < x.size() && carried; ++i) {
-      if (!(x[i] > 0)) continue;
+      if (!(x[i] > 0) && i != gauge_bar) continue;
       const BarDiscretization& b = d.bars[i];
       const double half = 0.5 * w * b.time_step_s;
       const double s = half < 0.5 * M_PI ? std::sin(half) / b.courant : 2;
@@ -115,8 +166,20 @@ double front_error_s(const ChainDiscretization& d, const std::vector<double>& x,
       }
       const double k = 2 / b.element_length_m * std::asin(s);
       phase += x[i] * (k - w / b.wave_speed_m_s);
+      if (i == gauge_bar) kg = k;
     }
-    const double miss = carried ? 2 - 2 * std::cos(phase) : 1;
+    // The gauge reads element strains (each the mean over its element: sinc(κh/2)) interpolated
+    // linearly between the centres around it, at fraction w of the pitch: the centres' values
+    // lead and lag the gauge's own by w·h and (1 − w)·h, so
+    //   F = sinc(κh/2) ((1 − w) e^{iκwh} + w e^{−iκ(1−w)h})   (at C = 1 exactly what is left).
+    double miss = 1;
+    if (carried) {
+      const double kh = kg * g.element_length_m;
+      const std::complex<double> f =
+          sinc(0.5 * kh) * ((1 - gauge_w) * std::polar(1.0, kh * gauge_w) +
+                            gauge_w * std::polar(1.0, -kh * (1 - gauge_w)));
+      miss = std::norm(f * std::polar(1.0, phase) - 1.0);
+    }
     const double weight = std::exp(-w * w * sample_s * sample_s) / (1 + w * w * rise_s * rise_s);
     sum += (j == kFrequencyPoints ? 0.5 : 1) * weight * miss / (w * w);
   }
@@ -141,7 +204,10 @@ GaugeErrorPrediction predict_gauge_error(const Scene& scene, const ChainDiscreti
   int gauges = 0;
   for (std::size_t b = *striker + 1; b < scene.bars.size(); ++b)
     for (const GaugeSpec& g : scene.bars[b].gauges) {
-      sum += front_error_s(d, path_lengths(scene, *striker, b, g.position_m), sample_s,
+      // The gauge's place between the element centres around it, a fraction of their pitch.
+      const double pitch = g.position_m / d.bars[b].element_length_m - 0.5;
+      const double w = std::clamp(pitch - std::floor(pitch), 0.0, 1.0);
+      sum += front_error_s(d, path_lengths(scene, *striker, b, g.position_m), b, w, sample_s,
                            p.rise_time_s, k.aliasing);
       ++gauges;
     }
@@ -192,6 +258,8 @@ GaugeErrorPrediction choose_meshes(Scene& scene) {
     specimen_counts.clear();
     for (double n = 4; n <= 4000; n *= 1.15) specimen_counts.push_back(static_cast<int>(n));
   }
+  // Close to C = 1 only where the bars can step together (common_transit_s).
+  const std::optional<double> common = common_transit_s(scene, free);
   // Element transits h/c tried for the bars: from one element per bar down to 1e-7 of it.
   const double coarsest = longest_transit_s(scene), finest = coarsest * 1e-7;
 
@@ -235,16 +303,36 @@ GaugeErrorPrediction choose_meshes(Scene& scene) {
         e = error_at(lo);
         if (e < closest_e) closest_e = e, closest_here = s;
       }
-      if (!(e <= target)) {
-        if (closest_e < closest) closest = closest_e, most_accurate = closest_here;
-        continue;
+      if (!(e <= target) && closest_e < closest) closest = closest_e, most_accurate = closest_here;
+      if (e <= target) {
+        while (hi / lo > kSearchRatio) {
+          const double mid = std::sqrt(lo * hi);
+          (error_at(mid) <= target ? lo : hi) = mid;
+        }
+        error_at(lo);
+        if (d.node_updates_estimate < best_cost) best_cost = d.node_updates_estimate, best = s;
       }
-      while (hi / lo > kSearchRatio) {
-        const double mid = std::sqrt(lo * hi);
-        (error_at(mid) <= target ? lo : hi) = mid;
+      if (common) {
+        // Near C = 1: the bars at transits T/k, k = 1, 2, … up to the first that meets the target
+        // (or the predicted error stops falling).
+        Scene near = s;
+        near.simulation.courant = kNearExactCourant;
+        ChainDiscretization dn;
+        double previous = std::numeric_limits<double>::infinity();
+        for (long k = 1; k <= kMaxCommonDivisions; ++k) {
+          mesh_bars(near, free, *common / k);
+          if (!std::isfinite(cost(near, &dn))) break;
+          if (dn.node_updates_estimate >= best_cost) break;  // finer only costs more
+          const GaugeErrorPrediction p = predict_gauge_error(near, dn);
+          if (!(p.specimen <= target)) break;  // the specimen's share alone is too much
+          if (p.total <= target) {
+            best_cost = dn.node_updates_estimate, best = near;
+            break;
+          }
+          if (p.total >= previous) break;  // past the aliasing floor: finer only adds to it
+          previous = p.total;
+        }
       }
-      error_at(lo);
-      if (d.node_updates_estimate < best_cost) best_cost = d.node_updates_estimate, best = s;
     }
     return std::isfinite(best_cost);
   };
