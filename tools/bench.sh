@@ -7,7 +7,10 @@
 #     10 MS/s pulse moved 1 m on a 20 mm steel bar, plans shared against planned per correction;
 #  3. `shpb process` of a 1 M-row CSV (time and two gauge columns, correction on) as a whole
 #     process, reading included: wall, CPU and peak memory;
-#  4. the full pareto study of the classic experiment on 2 threads (skipped with BENCH_STUDY=0).
+#  4. the full pareto study of the classic experiment on 2 threads (skipped with BENCH_STUDY=0);
+#  5. --tolerance 1 % on the experiments (skipped with BENCH_TOLERANCE=0), and the classic
+#     experiment at --tolerance 3 %, the tolerance whose meshes are as accurate as its automatic
+#     ones, beside them: time and gauge error against the study's reference.
 # Usage: tools/bench.sh [build-dir] [repetitions]
 set -euo pipefail
 BUILD=${1:-build}
@@ -62,5 +65,10 @@ if [ "${BENCH_TOLERANCE:-1}" != 0 ]; then
   cmake --build "$BUILD" -j 2 --target calibrate_tolerance >/dev/null
   "$BUILD"/calibrate_tolerance --check 0.01 experiments/classic-al6061/scene.json \
     experiments/lanl-cu-ofe-273k/scene.json experiments/lanl-pmma13-mini-kolsky/scene.json \
-    experiments/striker-on-bar/scene.json experiments/pulse-shaper/scene.json
+    experiments/striker-on-bar/scene.json experiments/pulse-shaper/scene.json \
+    experiments/tension-bonded/scene.json
+  echo
+  echo "== the classic experiment at --tolerance 3 % against its automatic meshes"
+  "$BUILD"/bench_simulator --repeat "$REPEAT" --asynchronous-only --tolerance 0.03 \
+    experiments/classic-al6061/scene.json
 fi

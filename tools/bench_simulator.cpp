@@ -5,7 +5,11 @@
 // until it is as accurate) — plus the raw element-update rate of elastic bars. Build: cmake --build
 // build --target bench_simulator; run: build/bench_simulator [--repeat N] [--same-mesh-only]
 // experiments/*/scene.json (tools/bench.sh does both); --asynchronous-only: the asynchronous line
-// alone (e.g. under valgrind --tool=callgrind, for the instructions of one scene's runs).
+// alone (e.g. under valgrind --tool=callgrind, for the instructions of one scene's runs);
+// --tolerance TOL (e.g. 0.03): also each scene at the meshes and Courant number that tolerance
+// chooses (model/mesh_error_model.hpp) beside its automatic meshes: CPU time and the gauge error
+// against the study's reference, recorded (study/recorded_error.hpp) and point-sampled (the
+// study's `error` column).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -16,9 +20,11 @@
 #include <vector>
 
 #include "core/median.hpp"
+#include "model/scene_validation.hpp"
 #include "solver/contact.hpp"
 #include "solver/simulation.hpp"
 #include "study/pareto_front.hpp"
+#include "study/recorded_error.hpp"
 #include "study/reference.hpp"
 #include "study/sweep.hpp"
 
@@ -117,10 +123,40 @@ void equal_error(const Scene& scene, const Timing& async, const Timing& global_s
 
 }  // namespace
 
+// The scene at its automatic meshes and at the meshes `tolerance` chooses, side by side.
+void tolerance_against_default(const Scene& scene, double tolerance,
+                               const SimulationOptions& options, const Timing& automatic,
+                               int repeat) {
+  const auto exact = exact_reference(scene);
+  const GaugeReference ref =
+      exact ? *exact : fine_mesh_reference(scene, kReferenceResolution, options);
+  Scene chosen = scene;
+  chosen.simulation.tolerance = tolerance;
+  resolve_scene(chosen);
+  const Timing t = run(chosen, options, repeat);
+  const auto line = [&](const char* label, const Timing& x, bool filtered) {
+    std::printf(
+        "    %-22s %7.2f ms wall, %7.2f ms CPU, %10lld node updates, gauge error %.3f %% recorded, "
+        "%.3f %% point-sampled%s\n",
+        label, x.wall_s * 1e3, x.cpu_s * 1e3, x.last.node_updates,
+        100 * recorded_gauge_error(x.last.gauges, ref, filtered),
+        100 * gauge_error(x.last.gauges, ref), x.last.stable ? "" : " UNSTABLE");
+  };
+  std::printf("  --tolerance %g %% against the automatic meshes (error against %s):\n",
+              100 * tolerance, ref.description.c_str());
+  line("automatic meshes", automatic, false);
+  line("tolerance's meshes", t, true);
+  std::printf("    tolerance's choice: Courant %g, elements",
+              chosen.simulation.courant.value_or(0));
+  for (const BarSpec& b : chosen.bars) std::printf(" %d", b.elements);
+  std::printf("; CPU time x%.2f the automatic meshes'\n", t.cpu_s / automatic.cpu_s);
+}
+
 int main(int argc, char** argv) {
   int repeat = 5;
   bool equal_error_comparison = true;
   bool asynchronous_only = false;
+  double tolerance = 0;
   std::vector<std::string> scenes;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -130,6 +166,8 @@ int main(int argc, char** argv) {
       equal_error_comparison = false;
     else if (a == "--asynchronous-only")
       asynchronous_only = true;
+    else if (a == "--tolerance" && i + 1 < argc)
+      tolerance = std::atof(argv[++i]);
     else
       scenes.push_back(a);
   }
@@ -159,6 +197,7 @@ int main(int argc, char** argv) {
     if (asynchronous_only) {
       std::printf("%s: asynchronous %.2f ms wall, %.2f ms CPU (medians of %d), energy error %.2g\n",
                   file.c_str(), a.wall_s * 1e3, a.cpu_s * 1e3, repeat, a.last.energy_error);
+      if (tolerance > 0) tolerance_against_default(scene, tolerance, economy, a, repeat);
       continue;
     }
     const Timing af = run(scene, full, 1);

@@ -89,7 +89,8 @@ void check_line(const char* label, const Scene& s, const GaugeReference& ref,
                 const SimulationOptions& options) {
   const ChainDiscretization d = discretize(s);
   const SimulationResult r = simulate(s, options);
-  const double measured = r.stable ? recorded_gauge_error(r.gauges, ref) : NAN;
+  const double measured =
+      r.stable ? recorded_gauge_error(r.gauges, ref, gauges_filtered(s.simulation)) : NAN;
   const double points = r.stable ? gauge_error(r.gauges, ref) : NAN;
   std::printf("  %-10s %12.4g %9.3f %9.3f%% %9.3f%% %9.3f%%  C %g elements", label,
               static_cast<double>(r.node_updates), r.wall_time_s, 100 * measured,

@@ -107,6 +107,12 @@ struct SimulationSpec {
   std::optional<double> tolerance;
 };
 
+// Whether a run records its gauges through the record's Gaussian before sampling them (a
+// digitiser's anti-alias filter, core/record_filter.hpp) rather than as point samples: with a
+// tolerance, which is measured through that Gaussian (docs/methods.md §1.1), so a sharp front's
+// aliasing is not counted against it.
+inline bool gauges_filtered(const SimulationSpec& s) { return s.tolerance.has_value(); }
+
 // ---- measured signals -------------------------------------------------------------------------
 
 enum class SignalUnit { kVolt, kStrain, kMicrostrain };

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/interpolation.hpp"
+#include "core/record_filter.hpp"
 #include "solver/bar_integrator.hpp"
 
 namespace shpb {
@@ -14,6 +15,10 @@ namespace {
 constexpr long kEnergyPoints = 200;
 // A field row needs at least this many points per bar so that short bars (the specimen) show.
 constexpr int kMinFieldPointsPerBar = 5;
+// Gauge grid points per sample of a filtered record (gauges_filtered): the record's Gaussian
+// spans ±4 samples, so 8 points per sample resolve it (as the study's references, which are
+// recorded at 8 × the rate and smoothed the same way: study/reference.hpp).
+constexpr int kGaugeOversampling = 8;
 // specimen.csv: strain, strain_rate_1_s, stress_Pa, front_stress_Pa, back_stress_Pa, true_strain,
 // true_stress_Pa.
 constexpr int kSpecimenColumns = 7;
@@ -62,6 +67,7 @@ ChainRecorders::ChainRecorders(const Scene& scene, const Chain& chain, const Cha
   energy_spacing_ = std::max(sample_spacing_s_, chain.end_tau_s / (kEnergyPoints - 1));
   energy_samples_ = grid_count(chain.end_tau_s, energy_spacing_);
   const double tau0 = -start_time_s_;
+  if (gauges_filtered(scene.simulation)) gauge_oversampling_ = kGaugeOversampling;
   record_field_ = options.record_field && options.field_times > 1 && options.field_points > 0;
 
   double total_length = 0;
@@ -82,7 +88,8 @@ ChainRecorders::ChainRecorders(const Scene& scene, const Chain& chain, const Cha
       gauge_names_.push_back(g.name);
     }
     r.gauge_sampler =
-        GridSampler(tau0, sample_spacing_s_, samples_, static_cast<int>(r.gauges.size()));
+        GridSampler(tau0, sample_spacing_s_ / gauge_oversampling_,
+                    (samples_ - 1) * gauge_oversampling_ + 1, static_cast<int>(r.gauges.size()));
     r.specimen = scene.specimen && *scene.specimen == i;
     if (r.specimen)
       r.specimen_sampler = GridSampler(tau0, sample_spacing_s_, samples_, kSpecimenColumns);
@@ -214,16 +221,29 @@ void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& resu
   {
     TimeSeries& ts = result.gauges;
     ts.columns = gauge_names_;
-    long n = time_count(samples_);
+    const int os = gauge_oversampling_;
+    long fine = (time_count(samples_) - 1) * os + 1;
     for (const BarRecorder& r : bars_)
-      if (!r.gauges.empty()) n = std::min(n, r.gauge_sampler.filled());
+      if (!r.gauges.empty()) fine = std::min(fine, r.gauge_sampler.filled());
+    const long n = fine > 0 ? (fine - 1) / os + 1 : 0;
     ts.values.assign(gauge_names_.size(), std::vector<double>(n));
     ts.time_s.reserve(n);
     for (long k = 0; k < n; ++k) ts.time_s.push_back(k * sample_spacing_s_);
     for (const BarRecorder& r : bars_)
-      for (std::size_t g = 0; g < r.gauges.size(); ++g)
-        for (long k = 0; k < n; ++k)
-          ts.values[r.gauges[g].column][k] = r.gauge_sampler.at(k, static_cast<int>(g));
+      for (std::size_t g = 0; g < r.gauges.size(); ++g) {
+        std::vector<double>& out = ts.values[r.gauges[g].column];
+        if (os == 1) {
+          for (long k = 0; k < n; ++k) out[k] = r.gauge_sampler.at(k, static_cast<int>(g));
+          continue;
+        }
+        // Every fine point recorded (the Gaussian reaches past the last kept sample).
+        std::vector<double> x(r.gauge_sampler.filled());
+        for (long k = 0; k < r.gauge_sampler.filled(); ++k)
+          x[k] = r.gauge_sampler.at(k, static_cast<int>(g));
+        const std::vector<double> y = record_smoothed(x, os, os);
+        std::copy(y.begin(), y.begin() + std::min<long>(n, static_cast<long>(y.size())),
+                  out.begin());
+      }
   }
   // Interfaces.
   {

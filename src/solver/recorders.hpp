@@ -3,6 +3,9 @@
 // from its bar's (or interface's) own instants and interpolated linearly in time onto the output
 // grid (docs/outputs.md). Bars call on_bar_instant between force assembly and advance (the
 // full-step velocity is known there); interfaces call on_interface_solve after each solve.
+// With a tolerance (model/scene.hpp gauges_filtered) the gauges are recorded at
+// kGaugeOversampling × the sample rate and seen through the record's Gaussian before they are
+// sampled (core/record_filter.hpp), as a digitiser's anti-alias filter does.
 #include <string>
 #include <vector>
 
@@ -76,6 +79,7 @@ class ChainRecorders {
 
   double start_time_s_ = 0;
   double sample_spacing_s_ = 0;
+  int gauge_oversampling_ = 1;  // gauge grid points per sample
   long samples_ = 0;
   double energy_tau0_ = 0, energy_spacing_ = 0;
   long energy_samples_ = 0;

@@ -4,36 +4,12 @@
 #include <cmath>
 #include <limits>
 
+#include "core/record_filter.hpp"
+
 namespace shpb {
 
-namespace {
-// Half-width of the smoothing kernel in standard deviations (weights below 3e-4 of the peak).
-constexpr int kKernelHalfWidth = 4;
-}  // namespace
-
-std::vector<double> record_smoothed(const std::vector<double>& x, int sigma, int stride) {
-  const int half = kKernelHalfWidth * sigma;
-  std::vector<double> w(2 * half + 1);
-  for (int j = -half; j <= half; ++j)
-    w[j + half] =
-        std::exp(-0.5 * (static_cast<double>(j) / sigma) * (static_cast<double>(j) / sigma));
-  const long n = static_cast<long>(x.size());
-  std::vector<double> y;
-  y.reserve(x.size() / stride + 1);
-  for (long k = 0; k < n; k += stride) {
-    double s = 0, weight = 0;
-    for (int j = -half; j <= half; ++j) {
-      const long i = k + j;
-      if (i < 0 || i >= n) continue;
-      s += w[j + half] * x[i];
-      weight += w[j + half];
-    }
-    y.push_back(s / weight);
-  }
-  return y;
-}
-
-double recorded_gauge_error(const TimeSeries& gauges, const GaugeReference& reference) {
+double recorded_gauge_error(const TimeSeries& gauges, const GaugeReference& reference,
+                            bool filtered) {
   if (!std::isfinite(gauge_error(gauges, reference)))  // the same window and checks
     return std::numeric_limits<double>::quiet_NaN();
   std::size_t n = reference.exact ? gauges.samples() : reference.fine.samples();
@@ -56,7 +32,7 @@ double recorded_gauge_error(const TimeSeries& gauges, const GaugeReference& refe
                : reference.exact ? reference.strain(c, gauges.time_s[k])
                : oversampled     ? reference.recorded_fine.values[c][k]
                                  : reference.fine.values[c][k];
-    run = record_smoothed(run);
+    if (!filtered) run = record_smoothed(run);
     if (!analytic && !oversampled) ref = record_smoothed(ref);
     for (std::size_t k = 0; k < n; ++k) {
       diff += (run[k] - ref[k]) * (run[k] - ref[k]);

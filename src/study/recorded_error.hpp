@@ -14,17 +14,15 @@
 
 namespace shpb {
 
-// x smoothed by the record's Gaussian (below) of standard deviation `sigma` samples, kept every
-// `stride`-th sample from the first (a reference recorded at `stride` × the sample rate is smoothed
-// with sigma = stride).
-std::vector<double> record_smoothed(const std::vector<double>& x, int sigma = 1, int stride = 1);
-
 // √(Σ (ε̃ − ε̃_ref)²) / √(Σ ε̃_ref²) over the gauges and the samples of the window, ε̃ the signal
 // smoothed by a Gaussian of standard deviation one sample interval (truncated at 4 σ, normalised
 // by the weights inside the window at its ends); the reference as recorded: an exact one smoothed
 // analytically at its own arrival times, a fine-mesh one on its oversampled grid (reference.hpp).
+// `filtered`: the run's gauges were recorded through that Gaussian already (a run with a
+// tolerance, model/scene.hpp gauges_filtered), so they are compared as they are.
 // NaN where gauge_error() is NaN.
-double recorded_gauge_error(const TimeSeries& gauges, const GaugeReference& reference);
+double recorded_gauge_error(const TimeSeries& gauges, const GaugeReference& reference,
+                            bool filtered = false);
 
 // Relative L2 difference of two fine-mesh references as recorded (both oversampled and
 // smoothed), against b: how far a reference itself is from a finer one.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/record_filter.hpp"
 #include "model/wave_travel.hpp"
 #include "study/recorded_error.hpp"
 #include "study/sweep.hpp"

@@ -1,0 +1,34 @@
+#include "core/record_filter.hpp"
+
+#include <cmath>
+
+namespace shpb {
+
+namespace {
+// Half-width of the smoothing kernel in standard deviations (weights below 3e-4 of the peak).
+constexpr int kKernelHalfWidth = 4;
+}  // namespace
+
+std::vector<double> record_smoothed(const std::vector<double>& x, int sigma, int stride) {
+  const int half = kKernelHalfWidth * sigma;
+  std::vector<double> w(2 * half + 1);
+  for (int j = -half; j <= half; ++j)
+    w[j + half] =
+        std::exp(-0.5 * (static_cast<double>(j) / sigma) * (static_cast<double>(j) / sigma));
+  const long n = static_cast<long>(x.size());
+  std::vector<double> y;
+  y.reserve(x.size() / stride + 1);
+  for (long k = 0; k < n; k += stride) {
+    double s = 0, weight = 0;
+    for (int j = -half; j <= half; ++j) {
+      const long i = k + j;
+      if (i < 0 || i >= n) continue;
+      s += w[j + half] * x[i];
+      weight += w[j + half];
+    }
+    y.push_back(s / weight);
+  }
+  return y;
+}
+
+}  // namespace shpb
