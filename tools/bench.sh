@@ -9,7 +9,7 @@
 #     process, reading included: wall, CPU and peak memory;
 #  4. the full pareto study of the classic experiment on 2 threads (skipped with BENCH_STUDY=0);
 #  5. --tolerance 1 % on the experiments (skipped with BENCH_TOLERANCE=0), and the classic
-#     experiment at --tolerance 3 %, the tolerance whose meshes are as accurate as its automatic
+#     experiment at --tolerance 3.5 %, the tolerance whose meshes are as accurate as its automatic
 #     ones, beside them: time and gauge error against the study's reference.
 # Usage: tools/bench.sh [build-dir] [repetitions]
 set -euo pipefail
@@ -68,7 +68,7 @@ if [ "${BENCH_TOLERANCE:-1}" != 0 ]; then
     experiments/striker-on-bar/scene.json experiments/pulse-shaper/scene.json \
     experiments/tension-bonded/scene.json
   echo
-  echo "== the classic experiment at --tolerance 3 % against its automatic meshes"
-  "$BUILD"/bench_simulator --repeat "$REPEAT" --asynchronous-only --tolerance 0.03 \
+  echo "== the classic experiment at --tolerance 3.5 % against its automatic meshes"
+  "$BUILD"/bench_simulator --repeat "$REPEAT" --asynchronous-only --tolerance 0.035 \
     experiments/classic-al6061/scene.json
 fi

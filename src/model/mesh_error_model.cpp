@@ -4,6 +4,7 @@
 #include <cmath>
 #include <complex>
 #include <limits>
+#include <map>
 #include <numeric>
 #include <optional>
 
@@ -78,8 +79,8 @@ std::optional<double> common_transit_s(const Scene& scene, const std::vector<boo
 }
 
 // Meshes are chosen for a predicted error of this fraction of the tolerance: the model's scatter
-// over its calibration runs is a factor 1.4 (rms of the log 0.34, kMeshErrorConstants).
-constexpr double kTargetFraction = 0.7;
+// over its calibration runs is a factor 1.5 (rms of the log 0.41, kMeshErrorConstants).
+constexpr double kTargetFraction = 0.65;
 
 // The bar whose impact makes the pulse: the first moving bar with a bar on its right (it may be
 // pulled away, as in a bonded tension test: the pulse is then tensile, its fronts the same).
@@ -189,8 +190,14 @@ double front_error_s(const ChainDiscretization& d, const std::vector<double>& x,
 
 }  // namespace
 
-GaugeErrorPrediction predict_gauge_error(const Scene& scene, const ChainDiscretization& d,
-                                         const MeshErrorConstants& k) {
+namespace {
+
+// The bars' share by bar meshes and steps. The specimen is on no pulse's path in the
+// model, so a search over specimen meshes finds the bars' share here instead of re-integrating it.
+using BarsErrorCache = std::map<std::vector<double>, double>;
+
+GaugeErrorPrediction predict(const Scene& scene, const ChainDiscretization& d,
+                             const MeshErrorConstants& k, BarsErrorCache* cache) {
   GaugeErrorPrediction p;
   const auto striker = pulse_source(scene);
   if (!striker) {
@@ -202,18 +209,28 @@ GaugeErrorPrediction predict_gauge_error(const Scene& scene, const ChainDiscreti
   const double sample_s = 1 / d.sample_rate_Hz;
   // A record filtered before it is sampled has no aliasing (model/scene.hpp gauges_filtered).
   const double aliasing = gauges_filtered(scene.simulation) ? 0.0 : k.aliasing;
-  double sum = 0;
-  int gauges = 0;
-  for (std::size_t b = *striker + 1; b < scene.bars.size(); ++b)
-    for (const GaugeSpec& g : scene.bars[b].gauges) {
-      // The gauge's place between the element centres around it, a fraction of their pitch.
-      const double pitch = g.position_m / d.bars[b].element_length_m - 0.5;
-      const double w = std::clamp(pitch - std::floor(pitch), 0.0, 1.0);
-      sum += front_error_s(d, path_lengths(scene, *striker, b, g.position_m), b, w, sample_s,
-                           p.rise_time_s, aliasing);
-      ++gauges;
-    }
-  p.bars = gauges > 0 ? std::sqrt(k.front * 2 * sum / gauges / p.pulse_s) : 0.0;
+  std::vector<double> key;  // what the bars' share depends on: each bar's mesh and step
+  for (std::size_t i = 0; i < d.bars.size(); ++i)
+    if (!is_specimen(scene, i))
+      key.insert(key.end(), {1.0 * d.bars[i].elements, d.bars[i].time_step_s});
+  if (const auto hit = cache ? cache->find(key) : BarsErrorCache::iterator{};
+      cache && hit != cache->end()) {
+    p.bars = hit->second;
+  } else {
+    double sum = 0;
+    int gauges = 0;
+    for (std::size_t b = *striker + 1; b < scene.bars.size(); ++b)
+      for (const GaugeSpec& g : scene.bars[b].gauges) {
+        // The gauge's place between the element centres around it, a fraction of their pitch.
+        const double pitch = g.position_m / d.bars[b].element_length_m - 0.5;
+        const double w = std::clamp(pitch - std::floor(pitch), 0.0, 1.0);
+        sum += front_error_s(d, path_lengths(scene, *striker, b, g.position_m), b, w, sample_s,
+                             p.rise_time_s, aliasing);
+        ++gauges;
+      }
+    p.bars = gauges > 0 ? std::sqrt(k.front * 2 * sum / gauges / p.pulse_s) : 0.0;
+    if (cache) (*cache)[key] = p.bars;
+  }
   if (scene.specimen) {
     const BarDiscretization& s = d.bars[*scene.specimen];
     p.specimen =
@@ -221,6 +238,13 @@ GaugeErrorPrediction predict_gauge_error(const Scene& scene, const ChainDiscreti
   }
   p.total = std::hypot(p.bars, p.specimen);
   return p;
+}
+
+}  // namespace
+
+GaugeErrorPrediction predict_gauge_error(const Scene& scene, const ChainDiscretization& d,
+                                         const MeshErrorConstants& k) {
+  return predict(scene, d, k, nullptr);
 }
 
 namespace {
@@ -265,6 +289,7 @@ GaugeErrorPrediction choose_meshes(Scene& scene) {
   // Element transits h/c tried for the bars: from one element per bar down to 1e-7 of it.
   const double coarsest = longest_transit_s(scene), finest = coarsest * 1e-7;
 
+  BarsErrorCache cache;
   double closest = std::numeric_limits<double>::infinity();  // when none meets the tolerance
   Scene most_accurate = scene;
   // The cheapest mesh predicted at most `target` into `best`; false if there is none.
@@ -279,7 +304,7 @@ GaugeErrorPrediction choose_meshes(Scene& scene) {
         return std::isfinite(cost(s, &d));
       };
       const auto error_at = [&](double delta) {
-        return affordable(delta) ? predict_gauge_error(s, d).total
+        return affordable(delta) ? predict(s, d, kMeshErrorConstants, &cache).total
                                  : std::numeric_limits<double>::infinity();
       };
       // The finest affordable element transit (refusal by discretize() is monotone in δ)…
@@ -323,7 +348,7 @@ GaugeErrorPrediction choose_meshes(Scene& scene) {
           mesh_bars(near, free, *common / k);
           if (!std::isfinite(cost(near, &dn))) break;
           if (dn.node_updates_estimate >= best_cost) break;  // finer only costs more
-          const GaugeErrorPrediction p = predict_gauge_error(near, dn);
+          const GaugeErrorPrediction p = predict(near, dn, kMeshErrorConstants, &cache);
           if (!(p.specimen <= target)) break;  // the specimen's share alone is too much
           if (p.total <= target) {
             best_cost = dn.node_updates_estimate, best = near;

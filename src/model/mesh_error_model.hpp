@@ -50,7 +50,7 @@ GaugeErrorPrediction predict_gauge_error(const Scene& scene, const ChainDiscreti
 
 // With scene.simulation.tolerance set: every bar without an `elements` of its own gets the element
 // count of the cheapest mesh (fewest node updates, discretize()) whose predicted error is at most
-// 0.7 × the tolerance (the model's scatter; where no mesh is predicted that low — the bars the
+// 0.65 × the tolerance (the model's scatter; where no mesh is predicted that low — the bars the
 // user meshed, or the record's aliasing of sharp fronts, leave no room for the margin — halfway
 // between the lowest predicted error and the tolerance) — the bars at one element transit h/c,
 // searched from the coarsest down (the error is not monotone in h: aliasing), the specimen
