@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <string>
 #include <vector>
 
@@ -180,7 +181,7 @@ int references(const std::vector<std::string>& files) {
   return 0;
 }
 
-int main(int argc, char** argv) {
+int calibrate(int argc, char** argv) {
   if (argc > 1 && std::string(argv[1]) == "--references")
     return references(std::vector<std::string>(argv + 2, argv + argc));
   if (argc > 2 && std::string(argv[1]) == "--check")
@@ -260,4 +261,19 @@ int main(int argc, char** argv) {
       rms_log(samples, kMeshErrorConstants), best.front, best.specimen, best.specimen_order,
       worst_factor(samples, best), best_rms);
   return 0;
+}
+
+int main(int argc, char** argv) {
+  if (argc < 2 || std::string(argv[1]) == "--help") {
+    std::printf(
+        "usage: calibrate_tolerance SCENE... [--shown-only SCENE...] | --check TOL SCENE... | "
+        "--references SCENE...\n(see the comment at the top of tools/calibrate_tolerance.cpp)\n");
+    return argc < 2 ? 2 : 0;
+  }
+  try {
+    return calibrate(argc, argv);
+  } catch (const std::exception& e) {  // a bad scene or number: one line, exit 2
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 2;
+  }
 }
