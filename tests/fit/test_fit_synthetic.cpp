@@ -6,11 +6,8 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <random>
 
 #include "../app/run_shpb.hpp"
-#include "model/scene.hpp"
-#include "solver/simulation.hpp"
 #include "synthetic_scene.hpp"
 
 namespace fs = std::filesystem;
@@ -29,8 +26,6 @@ namespace {
 constexpr double kShapeTolerance = 0.03;
 constexpr double kRateTolerance = 0.10;
 constexpr double kStandardErrors = 2.0;
-// 1 % of the peak: the noise of a good strain-gauge record (and of the specification).
-constexpr double kNoiseFraction = 0.01;
 // The fitted pulses: within three times the noise (1 % of the incident gauge's peak is 1–2 % of
 // the reflected and transmitted peaks, so a perfect fit has an NRMSE of 0.010–0.018).
 constexpr double kFittedNrmse = 0.03;
@@ -49,82 +44,23 @@ const char* const kRateFilter = "1 us";
 // whose number and instants jump with the law; docs/methods.md §9), which the compared windows
 // reach: the finite-difference Jacobian is noise there and the fit stops 3–29 % off (README, shpb
 // fit).
-json scene_at(double velocity_m_s, const fs::path& specimen) {
-  return shpb_test::synthetic_scene(velocity_m_s, specimen, "global");
-}
+const char* const kStepping = "global";
 
 }  // namespace
 
 TEST_CASE("fit recovers Johnson-Cook A, B, n, C from three noisy simulated tests", "[fit]") {
   const fs::path dir = shpb_test::scratch_dir("fit_synthetic");
-  const double velocities[] = {13.5, 18.5, 28.0};  // ≈ 1000, 2000, 4000 /s in this set-up
-  // The truth: the file's law with its rate term read through the strain-rate filter, which the
-  // fit then uses too (the start below is this file with A, B, n, C moved).
-  json truth = json::parse(std::ifstream(kCopper));
-  truth["strain_rate_filter"] = kRateFilter;
-  const fs::path truth_law = dir / "truth-law.json";
-  std::ofstream(truth_law) << truth.dump(1);
-  json campaign = {{"name", "synthetic OFHC copper"}, {"tests", json::array()}};
-  for (int k = 0; k < 3; ++k) {
-    const fs::path truth_file = dir / ("truth" + std::to_string(k) + ".json");
-    std::ofstream(truth_file) << scene_at(velocities[k], truth_law).dump(1);
-    const shpb::Scene truth = shpb::read_scene(truth_file);
-    const shpb::SimulationResult sim = shpb::simulate(truth);
-    REQUIRE(sim.stable);
-    std::mt19937 rng(2024 + k);  // seeded: the test is reproducible
-    std::normal_distribution<double> normal(0.0, 1.0);
-    std::vector<std::vector<double>> gauges;
-    for (const char* g : {"incident", "transmitted"}) {
-      std::vector<double> x = sim.gauges.column(g);
-      double peak = 0;
-      for (double v : x) peak = std::max(peak, std::abs(v));
-      for (double& v : x) v += kNoiseFraction * peak * normal(rng);
-      gauges.push_back(x);
-    }
-    const std::string csv = "measured" + std::to_string(k) + ".csv";
-    {
-      std::ofstream out(dir / csv);
-      out.precision(17);
-      out << "time_s,incident,transmitted\n";
-      for (std::size_t i = 0; i < sim.gauges.samples(); ++i)
-        out << sim.gauges.time_s[i] << ',' << gauges[0][i] << ',' << gauges[1][i] << '\n';
-    }
-    json scene = scene_at(velocities[k], truth_law);
-    scene["measurement"] = {
-        {"file", csv},
-        {"format", "csv"},
-        {"time", {{"column", "time_s"}, {"unit", "s"}}},
-        {"channels",
-         {{{"gauge", "incident"}, {"column", "incident"}, {"unit", "strain"}},
-          {{"gauge", "transmitted"}, {"column", "transmitted"}, {"unit", "strain"}}}},
-        {"dispersion", {{"correction", "none"}}},  // 1D signals: nothing to undo or add
-        {"striker_velocity", std::to_string(velocities[k]) + " m/s"}};
-    // Built by append: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string.
-    std::string name = "scene", label = "v";
-    name += std::to_string(k);
-    name += ".json";
-    label += std::to_string(k);
-    std::ofstream(dir / name) << scene.dump(1);
-    campaign["tests"].push_back({{"scene", name}, {"name", label}});
-  }
-  const double a = 90e6, b = 292e6, n = 0.31, c = 0.025;  // the file's A, B, n, C
-  json start = truth;
-  start["A"] = 1.2 * a, start["B"] = 0.8 * b, start["n"] = 1.2 * n, start["C"] = 0.8 * c;
-  std::ofstream(dir / "start.json") << start.dump(1);
-  campaign["material"] = "start.json";
-  campaign["free"] = {{"A", {"20 MPa", "300 MPa"}},
-                      {"B", {"50 MPa", "800 MPa"}},
-                      {"n", {0.05, 0.95}},
-                      {"C", {0.001, 0.2}}};
-  std::ofstream(dir / "campaign.json") << campaign.dump(1);
-
+  // The truth's rate term is read through the strain-rate filter, which the fit then uses too.
+  shpb_test::write_synthetic_campaign(dir, kCopper, kRateFilter, kStepping, 2024);
+  using shpb_test::kTruthA, shpb_test::kTruthB, shpb_test::kTruthN, shpb_test::kTruthC;
   const auto r = run_shpb({"fit", (dir / "campaign.json").string(), "-o", (dir / "out").string(),
                            "--threads", "2", "-q"});
   INFO(r.err);
   REQUIRE(r.code == 0);
   const json s = json::parse(std::ifstream(dir / "out/summary.json"));
   const json& p = s["parameters"];
-  const std::map<std::string, double> truths = {{"A", a}, {"B", b}, {"n", n}, {"C", c}};
+  const std::map<std::string, double> truths = {
+      {"A", kTruthA}, {"B", kTruthB}, {"n", kTruthN}, {"C", kTruthC}};
   double curve_distance = 0, signals_distance = 0;
   for (const auto& [name, value] : truths) {
     const double fitted = p[name]["value"];
@@ -156,7 +92,7 @@ TEST_CASE("fit recovers Johnson-Cook A, B, n, C from three noisy simulated tests
   CHECK(fs::exists(dir / "out/curves.csv"));
   CHECK(fs::exists(dir / "out/signals.csv"));
   // fit.json is a material file a scene can use.
-  json check = scene_at(18.5, dir / "out/fit.json");
+  json check = shpb_test::synthetic_scene(18.5, dir / "out/fit.json", kStepping);
   std::ofstream(dir / "check.json") << check.dump(1);
   CHECK(run_shpb({"validate", (dir / "check.json").string()}).code == 0);
   fs::remove_all(dir);
