@@ -2,8 +2,9 @@
 // A simulated test laid over its measurement, pulse by pulse (what `shpb compare` shows and what
 // `shpb fit` minimises; docs/methods.md §5, §9):
 //  1. the measured incident, reflected and transmitted pulses are found once;
-//  2. the simulation (t = 0 at impact) is put on the measured clock by matching the half-plateau
-//     crossings of the incident pulses (plus an optional extra shift);
+//  2. the simulation (t = 0 at impact) is put on the measured clock by matching the incident
+//     pulses' front times, the mean time they cross the levels between 40 and 60 % of their
+//     plateaus (plus an optional extra shift);
 //  3. a 1D bar does not disperse and a real one does: each simulated pulse is moved through the
 //     Pochhammer–Chree dispersion of the distance it travelled from the impact face (minus the
 //     non-dispersive delay the 1D model already has).
