@@ -50,7 +50,13 @@ double clipped_segment(double u0, double u1, double a, double b) {
   return sum;
 }
 
-double front_time(const std::vector<double>& x, double level, const PulseWindow& w) {
+struct FrontTime {
+  double sample = 0;   // fractional sample
+  double samples = 0;  // samples between the two levels
+  double plateau = 0;  // |plateau − baseline|
+};
+
+FrontTime front_time(const std::vector<double>& x, double level, const PulseWindow& w) {
   const double plateau = plateau_level(x, w.onset, w.end, w.sign) - w.sign * level;
   const std::size_t end = std::min(w.end, x.size());
   auto u = [&](std::size_t i) { return w.sign * (x[i] - level) / plateau; };
@@ -62,10 +68,12 @@ double front_time(const std::vector<double>& x, double level, const PulseWindow&
   while (ib + 1 < end && u(ib) < kFrontHigh) ++ib;
   const std::size_t rise = ib - ia + 2;
   const std::size_t t0 = ia > rise ? ia - rise : 0, t1 = std::min(end - 1, ib + rise);
-  double area = 0;
-  for (std::size_t i = t0; i < t1; ++i)
+  double area = 0, inside = 0;
+  for (std::size_t i = t0; i < t1; ++i) {
     area += clipped_segment(u(i), u(i + 1), kFrontLow, kFrontHigh) - kFrontLow;
-  return static_cast<double>(t1) - area / (kFrontHigh - kFrontLow);
+    inside += u(i) > kFrontLow && u(i) < kFrontHigh;
+  }
+  return {static_cast<double>(t1) - area / (kFrontHigh - kFrontLow), inside, std::abs(plateau)};
 }
 
 std::size_t widen(std::size_t i, double by, bool down, std::size_t n) {
@@ -94,6 +102,11 @@ MeasuredPulses find_measured_pulses(const Scene& scene, const GaugeSignals& sign
   m.transmitted_window = find_first_pulse(m.transmitted, m.transmitted_baseline);
   m.incident_plateau = std::abs(plateau_level(m.incident, w_inc->onset, w_inc->end, w_inc->sign) -
                                 m.incident_baseline.level);
+  // T moves by −dt/(P (b − a)) per unit of each sample between the levels: with white noise σ,
+  // sd(T) = dt σ √n / (P (b − a)).
+  const FrontTime front = front_time(m.incident, m.incident_baseline.level, m.incident_window);
+  m.incident_front_sd_s = m.dt_s * m.incident_baseline.noise * std::sqrt(front.samples) /
+                          (front.plateau * (kFrontHigh - kFrontLow));
   return m;
 }
 
@@ -146,8 +159,9 @@ Overlay PulseOverlay::overlay(const Scene& scene, const SimulationResult& sim,
   // The two clocks meet at the incident pulses' front times (the trigger time of a measurement is
   // unknown): a time averaged over the whole front, so the record noise moves it little, and that
   // does not depend on how steep the front is.
-  const double front_meas = front_time(m.incident, m.incident_baseline.level, m.incident_window);
-  const double front_sim = front_time(s_inc, base_sim.level, *w_sim);
+  const double front_meas =
+      front_time(m.incident, m.incident_baseline.level, m.incident_window).sample;
+  const double front_sim = front_time(s_inc, base_sim.level, *w_sim).sample;
   o.offset_s = (t_meas0 + front_meas * dt) - (t_sim0 + front_sim * dt_sim) + shift_s;
   o.t_sim_end = t_sim0 + static_cast<double>(s_inc.size() - 1) * dt_sim;
 

@@ -31,6 +31,9 @@ struct MeasuredPulses {
   PulseWindow incident_window;
   std::optional<PulseWindow> reflected_window, transmitted_window;
   double incident_plateau = 0;  // |plateau − baseline| of the incident pulse, strain
+  // Standard deviation of the incident pulse's front time (the clock) from the baseline's noise,
+  // taken as white: what the record noise alone makes of the alignment.
+  double incident_front_sd_s = 0;
 };
 
 // Finds the pulses in `signals`; InputError (naming the scene) when there is no incident pulse.

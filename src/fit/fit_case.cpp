@@ -150,6 +150,25 @@ std::vector<double> FitCase::residuals(const Overlay& o) const {
   return r;
 }
 
+std::vector<double> FitCase::clock_sensitivity(const Overlay& o) const {
+  const MeasuredPulses& m = measured();
+  std::vector<double> d;
+  for (const OverlaidPulse& p : windows_) {
+    const auto& meas = p.transmitted ? m.transmitted : m.incident;
+    const auto& sim = p.transmitted ? o.transmitted : o.incident;
+    double peak = 0;
+    for (std::size_t i = p.begin; i < p.end; ++i) peak = std::max(peak, std::abs(meas[i]));
+    const double c = std::sqrt(test_.weight / static_cast<double>(p.end - p.begin));
+    for (std::size_t i = p.begin; i < p.end; ++i) {
+      // r = c (s(t − offset) − m)/peak: ∂r/∂offset = −c ṡ/peak (central difference on the grid).
+      const std::size_t lo = i > 0 ? i - 1 : i, hi = std::min(i + 1, sim.size() - 1);
+      const double slope = (sim[hi] - sim[lo]) / (static_cast<double>(hi - lo) * m.dt_s);
+      d.push_back(peak > 0 ? -c * slope / peak : 0.0);
+    }
+  }
+  return d;
+}
+
 std::vector<double> FitCase::residual_scales() const {
   std::vector<double> s;
   for (const OverlaidPulse& p : windows_)

@@ -55,6 +55,10 @@ class FitCase {
   // √(w / n_p) (s − m) / max|m| over each window: Σ r² = w Σ_pulses NRMSE².
   std::vector<double> residuals(const Overlay& o) const;
   std::vector<double> residual_scales() const;  // √(w / n_p) per residual
+  // ∂r/∂t of the residuals in the clock offset (the simulation later by t), from the compared
+  // simulated pulses' slopes; and the measured clock's standard deviation from the record noise.
+  std::vector<double> clock_sensitivity(const Overlay& o) const;
+  double clock_sd_s() const { return measured().incident_front_sd_s; }
   // compare's figures per window (NRMSE, ratios) for the overlay.
   std::vector<PulseComparison> compare(const Overlay& o) const;
 
