@@ -39,12 +39,10 @@ const fs::path kCopper = fs::path(SHPB_SOURCE_DIR) / "specimens/ofhc-copper.json
 // short against the 10 µs rise of the loading.
 const char* const kRateFilter = "1 us";
 
-// Global stepping: with asynchronous stepping the gauge signals are smooth in the law through the
-// loading but rough in the tail, where the unloaded specimen rattles between the bar ends (impacts
-// whose number and instants jump with the law; docs/methods.md §9), which the compared windows
-// reach: the finite-difference Jacobian is noise there and the fit stops 3–29 % off (README, shpb
-// fit).
-const char* const kStepping = "global";
+// Asynchronous stepping, the default: its gauge signals are smooth in the law through the loading
+// and rough after it, where the unloaded specimen leaves the bars and rattles between them
+// (docs/methods.md §9); the fitted windows end before that (src/fit/fit_case.cpp).
+const char* const kStepping = "asynchronous";
 
 }  // namespace
 
