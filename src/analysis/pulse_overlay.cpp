@@ -59,6 +59,8 @@ struct FrontTime {
 FrontTime front_time(const std::vector<double>& x, double level, const PulseWindow& w) {
   const double plateau = plateau_level(x, w.onset, w.end, w.sign) - w.sign * level;
   const std::size_t end = std::min(w.end, x.size());
+  // No plateau to take fractions of (a window of noise): its onset, as a crossing would give.
+  if (!(plateau > 0) || w.onset + 1 >= end) return {static_cast<double>(w.onset), 0, 0};
   auto u = [&](std::size_t i) { return w.sign * (x[i] - level) / plateau; };
   // First reaches of a and of b, and a span one rise wider on both sides (clipped to a and b
   // there, so its exact ends do not matter).
@@ -105,8 +107,9 @@ MeasuredPulses find_measured_pulses(const Scene& scene, const GaugeSignals& sign
   // T moves by −dt/(P (b − a)) per unit of each sample between the levels: with white noise σ,
   // sd(T) = dt σ √n / (P (b − a)).
   const FrontTime front = front_time(m.incident, m.incident_baseline.level, m.incident_window);
-  m.incident_front_sd_s = m.dt_s * m.incident_baseline.noise * std::sqrt(front.samples) /
-                          (front.plateau * (kFrontHigh - kFrontLow));
+  if (front.plateau > 0)
+    m.incident_front_sd_s = m.dt_s * m.incident_baseline.noise * std::sqrt(front.samples) /
+                            (front.plateau * (kFrontHigh - kFrontLow));
   return m;
 }
 
