@@ -5,7 +5,7 @@
 // meet the tolerances (A, B, n 3 %, C 10 %), how many have all four within two standard errors and
 // the RMS of each z over the seeds (1 if the standard errors are right).
 // Build: cmake --build build --target fit_noise_seeds shpb; run:
-//   build/fit_noise_seeds [--seeds N] [--first SEED] [--stepping global|asynchronous]
+//   build/fit_noise_seeds [--seeds N] [--first SEED] [--stepping asynchronous|global]
 //                         [--filter DURATION] [--keep DIR]
 #include <cmath>
 #include <cstdio>
@@ -24,7 +24,7 @@ using nlohmann::json;
 int main(int argc, char** argv) {
   int seeds = 8;
   unsigned first = 3000;  // the recovery test draws 2024, 2025, 2026
-  std::string stepping = "global", filter = "1 us";
+  std::string stepping = "asynchronous", filter = "1 us";
   fs::path keep;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i], v = argv[i + 1];
