@@ -22,14 +22,60 @@ double sample(const std::vector<double>& y, double t0, double dt, double t) {
   return sample_at(y, (t - t0) / dt, 0.0, y.back());
 }
 
-// Fractional sample where |x − level| first reaches half of the pulse's plateau.
-double half_plateau_crossing(const std::vector<double>& x, double level, const PulseWindow& w) {
-  const double half = 0.5 * std::abs(plateau_level(x, w.onset, w.end, w.sign) - level);
-  for (std::size_t i = std::max<std::size_t>(w.onset, 1); i < w.end; ++i) {
-    const double a = std::abs(x[i - 1] - level), b = std::abs(x[i] - level);
-    if (b >= half) return static_cast<double>(i - 1) + (b != a ? (half - a) / (b - a) : 1.0);
+// The incident front's time, in fractional samples: the mean, over the levels from kFrontLow to
+// kFrontHigh of the pulse's plateau, of the time the pulse reaches that level. With u the signal as
+// a fraction of the plateau clipped to [a, b] and linear between samples, over a span [t0, t1] that
+// starts below a and ends on the plateau,
+//   T = t1 − ∫ (u − a) dt / (b − a),
+// which is the mean crossing time for a monotone front and, unlike one crossing, averages the
+// record noise over every sample between the two levels (a step at τ gives τ; a front symmetric
+// about its half-plateau crossing that crossing, whatever its steepness). The band is narrow
+// because measured and simulated fronts differ in shape: on the LANL copper record a 20–80 % band
+// moves the clock by 0.2 µs against the half-plateau crossing, 40–60 % by 0.03 µs, while the
+// synthetic fit's estimates scatter as their standard errors say from 40–60 % on (docs/methods.md
+// §9, README "shpb fit").
+constexpr double kFrontLow = 0.4, kFrontHigh = 0.6;
+
+// ∫₀¹ clip(u0 + (u1 − u0) s, a, b) ds, exact: piecewise linear between the crossings of a and b.
+double clipped_segment(double u0, double u1, double a, double b) {
+  // The crossings of a and b inside (0, 1), in order.
+  double sa = u1 != u0 ? (a - u0) / (u1 - u0) : -1, sb = u1 != u0 ? (b - u0) / (u1 - u0) : -1;
+  if (sa > sb) std::swap(sa, sb);
+  const double cuts[4] = {0, std::clamp(sa, 0.0, 1.0), std::clamp(sb, 0.0, 1.0), 1};
+  double sum = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double mid = 0.5 * (cuts[k] + cuts[k + 1]);
+    sum += (cuts[k + 1] - cuts[k]) * std::clamp(u0 + (u1 - u0) * mid, a, b);
   }
-  return static_cast<double>(w.onset);
+  return sum;
+}
+
+struct FrontTime {
+  double sample = 0;   // fractional sample
+  double samples = 0;  // samples between the two levels
+  double plateau = 0;  // |plateau − baseline|
+};
+
+FrontTime front_time(const std::vector<double>& x, double level, const PulseWindow& w) {
+  const double plateau = plateau_level(x, w.onset, w.end, w.sign) - w.sign * level;
+  const std::size_t end = std::min(w.end, x.size());
+  // No plateau to take fractions of (a window of noise): its onset, as a crossing would give.
+  if (!(plateau > 0) || w.onset + 1 >= end) return {static_cast<double>(w.onset), 0, 0};
+  auto u = [&](std::size_t i) { return w.sign * (x[i] - level) / plateau; };
+  // First reaches of a and of b, and a span one rise wider on both sides (clipped to a and b
+  // there, so its exact ends do not matter).
+  std::size_t ia = w.onset;
+  while (ia + 1 < end && u(ia) < kFrontLow) ++ia;
+  std::size_t ib = ia;
+  while (ib + 1 < end && u(ib) < kFrontHigh) ++ib;
+  const std::size_t rise = ib - ia + 2;
+  const std::size_t t0 = ia > rise ? ia - rise : 0, t1 = std::min(end - 1, ib + rise);
+  double area = 0, inside = 0;
+  for (std::size_t i = t0; i < t1; ++i) {
+    area += clipped_segment(u(i), u(i + 1), kFrontLow, kFrontHigh) - kFrontLow;
+    inside += u(i) > kFrontLow && u(i) < kFrontHigh;
+  }
+  return {static_cast<double>(t1) - area / (kFrontHigh - kFrontLow), inside, std::abs(plateau)};
 }
 
 std::size_t widen(std::size_t i, double by, bool down, std::size_t n) {
@@ -58,6 +104,12 @@ MeasuredPulses find_measured_pulses(const Scene& scene, const GaugeSignals& sign
   m.transmitted_window = find_first_pulse(m.transmitted, m.transmitted_baseline);
   m.incident_plateau = std::abs(plateau_level(m.incident, w_inc->onset, w_inc->end, w_inc->sign) -
                                 m.incident_baseline.level);
+  // T moves by −dt/(P (b − a)) per unit of each sample between the levels: with white noise σ,
+  // sd(T) = dt σ √n / (P (b − a)).
+  const FrontTime front = front_time(m.incident, m.incident_baseline.level, m.incident_window);
+  if (front.plateau > 0)
+    m.incident_front_sd_s = m.dt_s * m.incident_baseline.noise * std::sqrt(front.samples) /
+                            (front.plateau * (kFrontHigh - kFrontLow));
   return m;
 }
 
@@ -107,12 +159,13 @@ Overlay PulseOverlay::overlay(const Scene& scene, const SimulationResult& sim,
     throw NumericalError(file + ": simulation: no incident pulse at gauge " + setup.incident_gauge);
   const double t_meas0 = m.time_s.front(), dt = m.dt_s;
   Overlay o;
-  // The two clocks meet where each incident pulse first reaches half its plateau: a time that
-  // does not depend on how steep the front is (the trigger time of a measurement is unknown).
-  const double half_meas =
-      half_plateau_crossing(m.incident, m.incident_baseline.level, m.incident_window);
-  const double half_sim = half_plateau_crossing(s_inc, base_sim.level, *w_sim);
-  o.offset_s = (t_meas0 + half_meas * dt) - (t_sim0 + half_sim * dt_sim) + shift_s;
+  // The two clocks meet at the incident pulses' front times (the trigger time of a measurement is
+  // unknown): a time averaged over the whole front, so the record noise moves it little, and that
+  // does not depend on how steep the front is.
+  const double front_meas =
+      front_time(m.incident, m.incident_baseline.level, m.incident_window).sample;
+  const double front_sim = front_time(s_inc, base_sim.level, *w_sim).sample;
+  o.offset_s = (t_meas0 + front_meas * dt) - (t_sim0 + front_sim * dt_sim) + shift_s;
   o.t_sim_end = t_sim0 + static_cast<double>(s_inc.size() - 1) * dt_sim;
 
   // Pulses and the distance each travelled before reaching its gauge.

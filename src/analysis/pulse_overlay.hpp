@@ -2,8 +2,9 @@
 // A simulated test laid over its measurement, pulse by pulse (what `shpb compare` shows and what
 // `shpb fit` minimises; docs/methods.md §5, §9):
 //  1. the measured incident, reflected and transmitted pulses are found once;
-//  2. the simulation (t = 0 at impact) is put on the measured clock by matching the half-plateau
-//     crossings of the incident pulses (plus an optional extra shift);
+//  2. the simulation (t = 0 at impact) is put on the measured clock by matching the incident
+//     pulses' front times, the mean time they cross the levels between 40 and 60 % of their
+//     plateaus (plus an optional extra shift);
 //  3. a 1D bar does not disperse and a real one does: each simulated pulse is moved through the
 //     Pochhammer–Chree dispersion of the distance it travelled from the impact face (minus the
 //     non-dispersive delay the 1D model already has).
@@ -30,6 +31,9 @@ struct MeasuredPulses {
   PulseWindow incident_window;
   std::optional<PulseWindow> reflected_window, transmitted_window;
   double incident_plateau = 0;  // |plateau − baseline| of the incident pulse, strain
+  // Standard deviation of the incident pulse's front time (the clock) from the baseline's noise,
+  // taken as white: what the record noise alone makes of the alignment.
+  double incident_front_sd_s = 0;
 };
 
 // Finds the pulses in `signals`; InputError (naming the scene) when there is no incident pulse.

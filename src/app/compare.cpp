@@ -5,7 +5,7 @@
 //     the measured incident plateau, v_bar = c0 ε_I and V = v_bar (Z_s + Z_b)/Z_s (docs/methods.md
 //     §4);
 //  3. simulate; put the simulation (t = 0 at impact) on the measurement's clock by matching the
-//     half-plateau crossings of the incident pulses;
+//     incident pulses' front times (analysis/pulse_overlay.hpp);
 //  4. a 1D bar does not disperse and a real one does: each simulated pulse is moved through the
 //     Pochhammer–Chree dispersion of the distance it has travelled from the impact face (minus
 //     the non-dispersive delay the 1D model already has), docs/methods.md §5;
@@ -209,8 +209,8 @@ int run_compare(const CompareArgs& args) {
                              : "none (1D signals as simulated)";
   s["clock_offset_s"] = offset;
   s["clock"] =
-      "measured; simulation placed so that both incident pulses reach half their "
-      "plateau at the same time";
+      "measured; simulation placed so that both incident pulses cross the levels between 40 and "
+      "60 % of their plateaus at the same mean time";
   s["pulses"] = nlohmann::json::array();
   for (std::size_t i = 0; i < results.size(); ++i) {
     nlohmann::json p = results[i];

@@ -256,6 +256,11 @@ int run_fit(const FitArgs& args) {
           if (unknowns[i].test < 0 || unknowns[i].test == static_cast<int>(k))
             g.parameters.push_back(i);
         g.loss_scale = cases[k]->residual_scales();
+        g.clock_sd_s = cases[k]->clock_sd_s();
+        g.clock_sensitivity = [&, k](const std::vector<double>& theta) {
+          return cases[k]->clock_sensitivity(
+              cases[k]->simulate(law_with(spec, law_values(theta)), nuisance_of(k, theta)));
+        };
         g.residuals = [&, k](const std::vector<double>& theta) {
           return cases[k]->residuals(
               cases[k]->simulate(law_with(spec, law_values(theta)), nuisance_of(k, theta)));

@@ -45,16 +45,23 @@ class FitCase {
   const std::vector<CurvePoint>& curve() const { return curve_; }
   const std::vector<std::string>& warnings() const { return warnings_; }
 
-  // The windows compared (reflected, transmitted), fixed from the simulation at the start so
-  // that every evaluation has the same residuals.
+  // The windows compared (reflected, transmitted: compare's, the measured pulse ±20 %), fixed from
+  // the simulation at the start so that every evaluation has the same residuals; the fitted
+  // windows are the same, ending kTailCut of the pulse's length before the measured pulse ends
+  // (docs/methods.md §9, "Smooth residuals").
   void set_windows(const Overlay& start);
   const std::vector<OverlaidPulse>& windows() const { return windows_; }
+  const std::vector<OverlaidPulse>& fitted_windows() const { return fitted_windows_; }
 
   // One simulation with `law` as the specimen and the nuisance values. NumericalError if unstable.
   Overlay simulate(const MaterialSpec& law, const Nuisance& nuisance) const;
-  // √(w / n_p) (s − m) / max|m| over each window: Σ r² = w Σ_pulses NRMSE².
+  // √(w / n_p) (s − m) / max|m| over each fitted window: Σ r² = w Σ_pulses NRMSE².
   std::vector<double> residuals(const Overlay& o) const;
   std::vector<double> residual_scales() const;  // √(w / n_p) per residual
+  // ∂r/∂t of the residuals in the clock offset (the simulation later by t), from the compared
+  // simulated pulses' slopes; and the measured clock's standard deviation from the record noise.
+  std::vector<double> clock_sensitivity(const Overlay& o) const;
+  double clock_sd_s() const { return measured().incident_front_sd_s; }
   // compare's figures per window (NRMSE, ratios) for the overlay.
   std::vector<PulseComparison> compare(const Overlay& o) const;
 
@@ -66,7 +73,7 @@ class FitCase {
   std::string velocity_source_;
   double temperature_K_ = 0;
   std::vector<CurvePoint> curve_;
-  std::vector<OverlaidPulse> windows_;
+  std::vector<OverlaidPulse> windows_, fitted_windows_;
   std::vector<std::string> warnings_;
 };
 

@@ -33,6 +33,7 @@ class Model {
   bool interrupted() const { return interrupted_; }
   const std::vector<double>& residuals() const { return r_; }
   const Eigen::MatrixXd& jacobian() const { return j_; }
+  std::size_t offset(std::size_t group) const { return offsets_[group]; }  // its first residual
 
   std::vector<double> theta(const double* x) const {
     std::vector<double> t(params_.size());
@@ -262,6 +263,7 @@ LsResult solve_least_squares(const std::vector<LsParameter>& parameters,
   if (model.interrupted()) throw Interrupted();
 
   LsResult r;
+  long clock_evaluations = 0;
   r.value = model.theta(x.data());
   r.cost_start = summary.initial_cost;
   r.cost = summary.final_cost;
@@ -286,16 +288,41 @@ LsResult solve_least_squares(const std::vector<LsParameter>& parameters,
       covariance.GetCovarianceBlock(x.data(), x.data(), c.data())) {
     const double dof =
         std::max<double>(1.0, static_cast<double>(r.residuals) - static_cast<double>(p));
-    const double s2 = 2 * r.cost / dof;
+    Eigen::MatrixXd cov = c * (2 * r.cost / dof);
+    // A group's clock error δt moves its residuals by δt ∂r/∂t, and the estimate by
+    // G δt with G = (JᵀJ)⁻¹ Jᵀ ∂r/∂t (Gauss–Newton): its variance adds σ_c² G Gᵀ. A free time shift
+    // of the same group absorbs it (G is then that parameter's unit vector).
+    if (model.ensure(x.data(), true)) {
+      const Eigen::MatrixXd& jac = model.jacobian();
+      for (std::size_t g = 0; g < groups.size(); ++g) {
+        if (!(groups[g].clock_sd_s > 0) || !groups[g].clock_sensitivity) continue;
+        std::vector<double> d;
+        try {
+          ++clock_evaluations;
+          d = groups[g].clock_sensitivity(model.theta(x.data()));
+        } catch (const NumericalError&) {
+        }
+        if (d.size() != groups[g].loss_scale.size()) {
+          r.warnings.push_back(
+              "the standard errors leave out a clock error: its evaluation failed");
+          continue;
+        }
+        Eigen::VectorXd jtd = Eigen::VectorXd::Zero(static_cast<long>(p));
+        for (std::size_t i = 0; i < d.size(); ++i)
+          jtd += d[i] * jac.row(static_cast<long>(model.offset(g) + i)).transpose();
+        const Eigen::VectorXd gain = c * jtd;
+        cov += groups[g].clock_sd_s * groups[g].clock_sd_s * gain * gain.transpose();
+      }
+    }
     r.std_error.resize(p);
     r.correlation = Eigen::MatrixXd::Identity(static_cast<long>(p), static_cast<long>(p));
     for (std::size_t i = 0; i < p; ++i)
-      r.std_error[i] = std::sqrt(std::max(0.0, c(i, i) * s2)) * parameters[i].scale;
+      r.std_error[i] = std::sqrt(std::max(0.0, cov(i, i))) * parameters[i].scale;
     for (std::size_t i = 0; i < p; ++i)
       for (std::size_t j = 0; j < p; ++j)
-        if (c(i, i) > 0 && c(j, j) > 0)
+        if (cov(i, i) > 0 && cov(j, j) > 0)
           r.correlation(static_cast<long>(i), static_cast<long>(j)) =
-              c(i, j) / std::sqrt(c(i, i) * c(j, j));
+              cov(i, j) / std::sqrt(cov(i, i) * cov(j, j));
   } else {
     r.warnings.push_back("no covariance: the Jacobian at the solution is rank-deficient");
   }
@@ -312,7 +339,7 @@ LsResult solve_least_squares(const std::vector<LsParameter>& parameters,
       }
     }
   }
-  r.evaluations = model.evaluations();
+  r.evaluations = model.evaluations() + clock_evaluations;
   return r;
 }
 

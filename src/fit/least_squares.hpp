@@ -9,7 +9,8 @@
 //    own nuisances, so a nuisance column costs two simulations of its test only).
 //  - Each residual is its own Ceres residual block so that a robust loss acts per sample.
 //  - Standard errors and correlations from Ceres' covariance (JᵀJ)⁻¹ times the residual variance
-//    s² = Σr² / (N − P).
+//    s² = Σr² / (N − P), plus each group's clock error carried through the estimator:
+//    σ_c² G Gᵀ with G = (JᵀJ)⁻¹ Jᵀ ∂r/∂t_c.
 #include <Eigen/Dense>
 #include <atomic>
 #include <cstddef>
@@ -33,6 +34,11 @@ struct LsGroup {
   std::vector<std::size_t> parameters;  // indices into θ the group depends on
   std::function<std::vector<double>(const std::vector<double>& theta)> residuals;
   std::vector<double> loss_scale;  // per residual: the residual of a 1·δ error (robust loss)
+  // A timing error of the group's clock that the residuals do not show (the measured reference
+  // time's own noise): its standard deviation, and the residuals' derivative in it at θ (one more
+  // evaluation, at the solution). Counted in the covariance when both are set.
+  double clock_sd_s = 0;
+  std::function<std::vector<double>(const std::vector<double>& theta)> clock_sensitivity;
 };
 
 struct LsOptions {
