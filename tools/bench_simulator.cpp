@@ -144,8 +144,8 @@ void tolerance_against_default(const Scene& scene, double tolerance,
   };
   std::printf("  --tolerance %g %% against the automatic meshes (error against %s):\n",
               100 * tolerance, ref.description.c_str());
-  line("automatic meshes", automatic, false);
-  line("tolerance's meshes", t, true);
+  line("automatic meshes", automatic, gauges_filtered(scene.simulation));
+  line("tolerance's meshes", t, gauges_filtered(chosen.simulation));
   std::printf("    tolerance's choice: Courant %g, elements",
               chosen.simulation.courant.value_or(0));
   for (const BarSpec& b : chosen.bars) std::printf(" %d", b.elements);

@@ -154,37 +154,45 @@ Overlay FitCase::simulate(const MaterialSpec& law, const Nuisance& nuisance) con
   return overlay_->overlay(scene, sim, nuisance.time_shift_s);
 }
 
-std::vector<double> FitCase::residuals(const Overlay& o) const {
-  const MeasuredPulses& m = measured();
-  std::vector<double> r;
-  for (const OverlaidPulse& p : fitted_windows_) {
+namespace {
+
+// Calls f(sim, meas, i, c, peak) for every sample i of each fitted window, c = √(w / n_p), peak =
+// max|m| over that window: the residuals' normalisation, once.
+template <class F>
+void each_fitted_sample(const std::vector<OverlaidPulse>& windows, const MeasuredPulses& m,
+                        const Overlay& o, double weight, F f) {
+  for (const OverlaidPulse& p : windows) {
     const auto& meas = p.transmitted ? m.transmitted : m.incident;
     const auto& sim = p.transmitted ? o.transmitted : o.incident;
     double peak = 0;
     for (std::size_t i = p.begin; i < p.end; ++i) peak = std::max(peak, std::abs(meas[i]));
-    const double c = std::sqrt(test_.weight / static_cast<double>(p.end - p.begin));
-    for (std::size_t i = p.begin; i < p.end; ++i)
-      r.push_back(peak > 0 ? c * (sim[i] - meas[i]) / peak : 0.0);
+    const double c = std::sqrt(weight / static_cast<double>(p.end - p.begin));
+    for (std::size_t i = p.begin; i < p.end; ++i) f(sim, meas, i, c, peak);
   }
+}
+
+}  // namespace
+
+std::vector<double> FitCase::residuals(const Overlay& o) const {
+  std::vector<double> r;
+  each_fitted_sample(fitted_windows_, measured(), o, test_.weight,
+                     [&](const auto& sim, const auto& meas, std::size_t i, double c, double peak) {
+                       r.push_back(peak > 0 ? c * (sim[i] - meas[i]) / peak : 0.0);
+                     });
   return r;
 }
 
 std::vector<double> FitCase::clock_sensitivity(const Overlay& o) const {
-  const MeasuredPulses& m = measured();
+  const double dt = measured().dt_s;
   std::vector<double> d;
-  for (const OverlaidPulse& p : fitted_windows_) {
-    const auto& meas = p.transmitted ? m.transmitted : m.incident;
-    const auto& sim = p.transmitted ? o.transmitted : o.incident;
-    double peak = 0;
-    for (std::size_t i = p.begin; i < p.end; ++i) peak = std::max(peak, std::abs(meas[i]));
-    const double c = std::sqrt(test_.weight / static_cast<double>(p.end - p.begin));
-    for (std::size_t i = p.begin; i < p.end; ++i) {
-      // r = c (s(t − offset) − m)/peak: ∂r/∂offset = −c ṡ/peak (central difference on the grid).
-      const std::size_t lo = i > 0 ? i - 1 : i, hi = std::min(i + 1, sim.size() - 1);
-      const double slope = (sim[hi] - sim[lo]) / (static_cast<double>(hi - lo) * m.dt_s);
-      d.push_back(peak > 0 ? -c * slope / peak : 0.0);
-    }
-  }
+  each_fitted_sample(
+      fitted_windows_, measured(), o, test_.weight,
+      [&](const auto& sim, const auto&, std::size_t i, double c, double peak) {
+        // r = c (s(t − offset) − m)/peak: ∂r/∂offset = −c ṡ/peak (central difference on the grid).
+        const std::size_t lo = i > 0 ? i - 1 : i, hi = std::min(i + 1, sim.size() - 1);
+        const double slope = (sim[hi] - sim[lo]) / (static_cast<double>(hi - lo) * dt);
+        d.push_back(peak > 0 ? -c * slope / peak : 0.0);
+      });
   return d;
 }
 

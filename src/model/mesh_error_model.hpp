@@ -19,8 +19,9 @@ namespace shpb {
 // k_i(ω) = (2/h_i) asin(sin(ω Δt_i/2)/C_i) instead of ω/c_i (none above the mesh's cut-off), so
 // the front reaches the gauge through H(ω) = exp(−i Σ x_i (k_i − ω/c_i)). Seen through the record
 // (a Gaussian of one sample interval Δs, study/recorded_error.hpp) and the pulse's own rise (an
-// exponential of time constant τ), the front's squared error is
-//   I = (A²/π) ∫₀^∞ e^{−ω² Δs²} / (1 + ω² τ²) · |H(ω) − 1|² / ω² dω,
+// exponential of time constant τ), and the gauge's own reading F(ω) (element means interpolated
+// between centres), the front's squared error is
+//   I = (A²/π) ∫₀^∞ e^{−ω² Δs²} / (1 + ω² τ²) · |F(ω) H(ω) − 1|² / ω² dω,
 // and a pulse of duration T_p (2 fronts, norm A² T_p) has e_bars² = front · 2 I / (A² T_p),
 // averaged over the gauges. The specimen's mesh adds e_specimen = specimen · (δ_s/Δs)^order,
 // δ_s = h_s/c_s its element transit. The measured constants (tools/calibrate_tolerance.cpp
@@ -29,7 +30,8 @@ struct MeshErrorConstants {
   double front = 1.0;
   double specimen = 0.0;
   double specimen_order = 1.0;
-  // 1: the record is a point sample every Δs (gauges.csv), its aliasing of the fronts counted;
+  // 1: the record is a point sample every Δs (gauges.csv without a tolerance), its aliasing of the
+  // fronts counted;
   // 0: a record seen through the record's Gaussian before sampling, as the references are.
   double aliasing = 1.0;
 };
@@ -54,11 +56,12 @@ GaugeErrorPrediction predict_gauge_error(const Scene& scene, const ChainDiscreti
 // user meshed, or the record's aliasing of sharp fronts, leave no room for the margin — halfway
 // between the lowest predicted error and the tolerance) — the bars at one element transit h/c,
 // searched from the coarsest down (the error is not monotone in h: aliasing), the specimen
-// searched on its own — written into the scene's bars; returns the prediction. The Courant number
-// stays the scene's: the default is the largest stable one, and a lower one costs more steps and
-// disperses more. If no affordable mesh meets the tolerance, the most accurate affordable one is
-// kept and its prediction returned (resolve_scene() then refuses the tolerance); a scene without a
-// striker is left as it is, its prediction NaN.
+// searched on its own — written into the scene's bars; returns the prediction. Where the scene sets
+// no Courant number and its bars can be meshed to step together, C = 0.9999 at whole divisions of
+// their common transit is tried too, and the cheaper choice written into simulation.courant
+// (docs/methods.md §1.1). If no affordable mesh meets the tolerance, the most accurate affordable
+// one is kept and its prediction returned (resolve_scene() then refuses the tolerance); a scene
+// without a striker is left as it is, its prediction NaN.
 GaugeErrorPrediction choose_meshes(Scene& scene);
 
 }  // namespace shpb

@@ -6,7 +6,6 @@
 
 #include "core/record_filter.hpp"
 #include "model/wave_travel.hpp"
-#include "study/recorded_error.hpp"
 #include "study/sweep.hpp"
 
 namespace shpb {
