@@ -240,6 +240,18 @@ KolskySetup resolve_setup(const Scene& scene, const std::vector<std::string>& av
   if (const double c = scene.bars[s].material.wave_speed_m_s(); c > 0)
     k.specimen_transit_s = scene.bars[s].length_m / c;
   k.incident_impedance_kg_s = inc.impedance_kg_s();
+  if (scene.measurement && scene.measurement->reflected_time_s) {
+    // The model's round trip is 2d/c0; the calibration says how much longer the real bar takes.
+    const double modelled = 2 * k.incident_distance_m / k.front.c0_m_s;
+    const double calibrated = *scene.measurement->reflected_time_s;
+    if (!(std::abs(calibrated - modelled) <= kReflectedTimeRange * modelled))
+      throw input_error(file, "measurement.reflected_time", format_double(calibrated * 1e6) + " us",
+                        "expected within " + format_double(100 * kReflectedTimeRange) +
+                            " % of the modelled round trip 2d/c0 = " +
+                            format_double(modelled * 1e6) + " us (incident gauge " +
+                            format_double(k.incident_distance_m * 1e3) + " mm from the specimen)");
+    k.excess_delay_s_per_m = (calibrated - modelled) / (2 * k.incident_distance_m);
+  }
   if (s >= 2) {
     k.striker_impedance_kg_s = scene.bars[s - 2].impedance_kg_s();
     if (scene.bars[s - 2].velocity_m_s != 0)

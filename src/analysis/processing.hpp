@@ -27,7 +27,14 @@ struct KolskySetup {
   std::optional<double> striker_impedance_kg_s;
   double incident_impedance_kg_s = 0;
   std::optional<double> striker_velocity_m_s;  // as the scene gives it
+  // Travel time per metre of bar beyond 1/c0, from the lab's calibrated reflected time
+  // (measurement.reflected_time; 0 without one): what the real bars add to the 1D model's travel.
+  double excess_delay_s_per_m = 0;
 };
+
+// A calibrated reflected time further than this fraction from 2d/c0 is not the same bar or gauge:
+// a wave speed or a gauge position off by more than 5 % is a wrong scene, not a calibration.
+inline constexpr double kReflectedTimeRange = 0.05;
 
 // Resolves the set-up: the specimen's neighbours are the incident and transmitter bars; their
 // gauges with a signal in `available` are used. Throws InputError naming the scene if impossible.

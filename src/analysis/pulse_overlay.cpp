@@ -142,6 +142,22 @@ PulseOverlay::PulseOverlay(const Scene&, MeasuredPulses measured, bool dispersio
   }
 }
 
+std::vector<double> PulseOverlay::dispersed(const std::vector<double>& y, double dt,
+                                            double distance_m, bool back) const {
+  const BarWaveguide& guide = back ? measured_.setup.back_waveguide : measured_.setup.front_waveguide;
+  Propagator prop(back ? *back_table_ : *front_table_, guide, PropagationOptions{});
+  // Zeros after the record leave room for the delay d/c(f) (the output keeps the input's length);
+  // ×1.25 covers the slowest phase velocity below the cut-off.
+  std::vector<double> src = y;
+  src.resize(src.size() + static_cast<std::size_t>(1.25 * distance_m / guide.c0_m_s / dt) + 1, 0.0);
+  const std::vector<double> moved = prop.propagate(src, dt, distance_m);
+  // Moving by Δz delays by Δz/c(f); the 1D model already delayed by Δz/c0: advance by that.
+  std::vector<double> out(src.size());
+  for (std::size_t k = 0; k < out.size(); ++k)
+    out[k] = sample(moved, 0, dt, static_cast<double>(k) * dt + distance_m / guide.c0_m_s);
+  return out;
+}
+
 Overlay PulseOverlay::overlay(const Scene& scene, const SimulationResult& sim,
                               double shift_s) const {
   const MeasuredPulses& m = measured_;
@@ -164,7 +180,16 @@ Overlay PulseOverlay::overlay(const Scene& scene, const SimulationResult& sim,
   // does not depend on how steep the front is.
   const double front_meas =
       front_time(m.incident, m.incident_baseline.level, m.incident_window).sample;
-  const double front_sim = front_time(s_inc, base_sim.level, *w_sim).sample;
+  // The measured incident pulse has dispersed over the bar from the impact face to the gauge: the
+  // simulated one is compared as it would arrive, dispersed over the same distance (the 1D pulse's
+  // front would otherwise be aligned with a front that dispersion has already delayed).
+  double front_sim = front_time(s_inc, base_sim.level, *w_sim).sample;
+  if (dispersion()) {
+    const double distance = scene.bars[incident_bar].length_m - setup.incident_distance_m;
+    const std::vector<double> moved = dispersed(s_inc, dt_sim, distance, false);
+    const auto w = find_first_pulse(moved, base_sim);
+    if (w) front_sim = front_time(moved, base_sim.level, *w).sample;
+  }
   o.offset_s = (t_meas0 + front_meas * dt) - (t_sim0 + front_sim * dt_sim) + shift_s;
   o.t_sim_end = t_sim0 + static_cast<double>(s_inc.size() - 1) * dt_sim;
 
@@ -213,22 +238,18 @@ Overlay PulseOverlay::overlay(const Scene& scene, const SimulationResult& sim,
   o.raw_transmitted = on_measured_clock(s_tr, 0);
   o.incident = o.raw_incident;
   o.transmitted = o.raw_transmitted;
-  if (!dispersion()) return o;
+  if (!dispersion() && setup.excess_delay_s_per_m == 0) return o;
   // The incident gauge carries two pulses: split its record half-way between them.
   const std::size_t split =
       m.reflected_window ? (m.incident_window.end + m.reflected_window->onset) / 2 : n;
   for (const OverlaidPulse& p : o.pulses) {
-    const BarWaveguide& guide = p.transmitted ? setup.back_waveguide : setup.front_waveguide;
-    Propagator prop(p.transmitted ? *back_table_ : *front_table_, guide, PropagationOptions{});
-    // Zeros after the record leave room for the delay d/c(f) (the output keeps the input's
-    // length); ×1.25 covers the slowest phase velocity below the cut-off.
-    std::vector<double> src = p.transmitted ? s_tr : s_inc;
-    src.resize(
-        src.size() + static_cast<std::size_t>(1.25 * p.distance_m / guide.c0_m_s / dt_sim) + 1,
-        0.0);
-    // Moving by Δz delays by Δz/c(f); the 1D model already delayed by Δz/c0: advance by that.
-    const std::vector<double> moved =
-        on_measured_clock(prop.propagate(src, dt_sim, p.distance_m), p.distance_m / guide.c0_m_s);
+    // What the real bars add to the travel from the incident gauge on (the lab's calibrated
+    // reflected time): 2d for the reflected pulse, d + d' for the transmitted one.
+    const double beyond_incident_m = p.name == "incident" ? 0 : p.distance_m - l_inc + setup.incident_distance_m;
+    const double delay_s = setup.excess_delay_s_per_m * beyond_incident_m;
+    const std::vector<double>& y = p.transmitted ? s_tr : s_inc;
+    const std::vector<double> moved = on_measured_clock(
+        dispersion() ? dispersed(y, dt_sim, p.distance_m, p.transmitted) : y, -delay_s);
     std::vector<double>& dst = p.transmitted ? o.transmitted : o.incident;
     const std::size_t from = p.name == "reflected" ? split : 0;
     const std::size_t to = p.name == "incident" ? split : n;

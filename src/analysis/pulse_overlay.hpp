@@ -77,6 +77,13 @@ class PulseOverlay {
   Overlay overlay(const Scene& scene, const SimulationResult& sim, double shift_s = 0) const;
 
  private:
+  // A simulated gauge signal y (sample interval dt) as it arrives after `distance_m` of the front
+  // (incident) or back (transmitter) bar: moved through Pochhammer–Chree dispersion and advanced by
+  // distance/c0, the delay the 1D model already has; on y's own clock (longer by the room the
+  // slowest components need).
+  std::vector<double> dispersed(const std::vector<double>& y, double dt, double distance_m,
+                                bool back) const;
+
   MeasuredPulses measured_;
   std::optional<DispersionTable> front_table_, back_table_;
 };

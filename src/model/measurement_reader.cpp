@@ -100,7 +100,8 @@ MeasurementSpec read_measurement(const JsonValue& value, const std::filesystem::
                                  const std::vector<std::string>& gauges) {
   const auto o =
       value.object({"file", "format", "time", "channels", "dispersion", "windows",
-                    "striker_velocity", "notes", "load_drop", "sheet", "test", "corrections"});
+                    "striker_velocity", "notes", "load_drop", "sheet", "test", "corrections",
+                    "reflected_time"});
   MeasurementSpec m;
   if (auto c = o.get("corrections")) {
     const auto co = c->object({"friction", "inertia"});
@@ -141,6 +142,7 @@ MeasurementSpec read_measurement(const JsonValue& value, const std::filesystem::
     if (auto x = wo.get("transmitted")) m.windows.transmitted = read_window(*x);
   }
   if (auto sh = o.get("sheet")) m.sheet = sh->name();
+  if (auto r = o.get("reflected_time")) m.reflected_time_s = r->positive_quantity(Dimension::kTime);
   if (auto t = o.get("test"))
     m.tension = enum_from<bool>(*t, {{"compression", false}, {"tension", true}});
   if (auto d = o.get("load_drop")) {

@@ -178,6 +178,9 @@ struct MeasurementSpec {
       load_drop;         // curve end at this stress drop (fraction); 0: off; unset: default
   std::string sheet;     // .xlsx/.xls files: the sheet by name (empty: the first)
   bool tension = false;  // "test": "tension" (split Hopkinson tension bar)
+  // The lab's calibrated reflected time of the incident bar: a pulse's round trip from the incident
+  // gauge to the bar's specimen end and back, timed on the real bar (docs/scene-format.md).
+  std::optional<double> reflected_time_s;
 };
 
 struct Scene {
