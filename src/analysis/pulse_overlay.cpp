@@ -144,7 +144,8 @@ PulseOverlay::PulseOverlay(const Scene&, MeasuredPulses measured, bool dispersio
 
 std::vector<double> PulseOverlay::dispersed(const std::vector<double>& y, double dt,
                                             double distance_m, bool back) const {
-  const BarWaveguide& guide = back ? measured_.setup.back_waveguide : measured_.setup.front_waveguide;
+  const BarWaveguide& guide =
+      back ? measured_.setup.back_waveguide : measured_.setup.front_waveguide;
   Propagator prop(back ? *back_table_ : *front_table_, guide, PropagationOptions{});
   // Zeros after the record leave room for the delay d/c(f) (the output keeps the input's length);
   // ×1.25 covers the slowest phase velocity below the cut-off.
@@ -245,7 +246,8 @@ Overlay PulseOverlay::overlay(const Scene& scene, const SimulationResult& sim,
   for (const OverlaidPulse& p : o.pulses) {
     // What the real bars add to the travel from the incident gauge on (the lab's calibrated
     // reflected time): 2d for the reflected pulse, d + d' for the transmitted one.
-    const double beyond_incident_m = p.name == "incident" ? 0 : p.distance_m - l_inc + setup.incident_distance_m;
+    const double beyond_incident_m =
+        p.name == "incident" ? 0 : p.distance_m - l_inc + setup.incident_distance_m;
     const double delay_s = setup.excess_delay_s_per_m * beyond_incident_m;
     const std::vector<double>& y = p.transmitted ? s_tr : s_inc;
     const std::vector<double> moved = on_measured_clock(

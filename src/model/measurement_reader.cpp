@@ -98,10 +98,9 @@ DispersionSpec read_dispersion(const JsonValue& v) {
 
 MeasurementSpec read_measurement(const JsonValue& value, const std::filesystem::path& scene_dir,
                                  const std::vector<std::string>& gauges) {
-  const auto o =
-      value.object({"file", "format", "time", "channels", "dispersion", "windows",
-                    "striker_velocity", "notes", "load_drop", "sheet", "test", "corrections",
-                    "reflected_time"});
+  const auto o = value.object({"file", "format", "time", "channels", "dispersion", "windows",
+                               "striker_velocity", "notes", "load_drop", "sheet", "test",
+                               "corrections", "reflected_time"});
   MeasurementSpec m;
   if (auto c = o.get("corrections")) {
     const auto co = c->object({"friction", "inertia"});

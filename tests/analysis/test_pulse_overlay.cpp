@@ -85,11 +85,10 @@ shpb::GaugeSignals record_of(const shpb::Scene& scene, const shpb::SimulationRes
 constexpr double kSameClock_s = 5e-9;
 }  // namespace
 
-TEST_CASE("Dispersed bars: the clock aligns the dispersed simulated incident pulse",
-          "[overlay]") {
+TEST_CASE("Dispersed bars: the clock aligns the dispersed simulated incident pulse", "[overlay]") {
   // A record whose incident pulse has dispersed over the bar from the impact face to the gauge, as
-  // a real one has: the simulation, dispersed over the same distance, lies on it on its own clock (the
-  // 1D pulse's front, undispersed, would put it later by the dispersion's delay of the front).
+  // a real one has: the simulation, dispersed over the same distance, lies on it on its own clock
+  // (the 1D pulse's front, undispersed, would put it later by the dispersion's delay of the front).
   const fs::path dir = shpb_test::scratch_dir("overlay_dispersed");
   const fs::path copper = fs::path(SHPB_SOURCE_DIR) / "specimens/ofhc-copper.json";
   const fs::path file = dir / "scene.json";
@@ -113,7 +112,8 @@ TEST_CASE("Dispersed bars: the clock aligns the dispersed simulated incident pul
   const double delay_samples = distance / setup.front_waveguide.c0_m_s / g.dt_s;
   const auto advance = static_cast<std::size_t>(std::lround(delay_samples));
   const double expected = (delay_samples - static_cast<double>(advance)) * g.dt_s;
-  x.assign(moved.begin() + static_cast<long>(advance), moved.begin() + static_cast<long>(advance + n));
+  x.assign(moved.begin() + static_cast<long>(advance),
+           moved.begin() + static_cast<long>(advance + n));
   const shpb::PulseOverlay overlay(scene, shpb::find_measured_pulses(scene, g), true);
   const double offset = overlay.overlay(scene, sim).offset_s;
   INFO("offset " << offset << " s, expected " << expected << " s");
