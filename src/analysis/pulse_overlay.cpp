@@ -183,19 +183,20 @@ Overlay PulseOverlay::overlay(const Scene& scene, const SimulationResult& sim,
       front_time(m.incident, m.incident_baseline.level, m.incident_window).sample;
   // The measured incident pulse has dispersed over the bar from the impact face to the gauge: the
   // simulated one is compared as it would arrive, dispersed over the same distance (the 1D pulse's
-  // front would otherwise be aligned with a front that dispersion has already delayed).
+  // front would otherwise be aligned with a front that dispersion has already delayed). The same
+  // dispersed pulse is laid over the record below.
+  const double l_inc = scene.bars[incident_bar].length_m;
+  std::vector<double> dispersed_incident;
   double front_sim = front_time(s_inc, base_sim.level, *w_sim).sample;
   if (dispersion()) {
-    const double distance = scene.bars[incident_bar].length_m - setup.incident_distance_m;
-    const std::vector<double> moved = dispersed(s_inc, dt_sim, distance, false);
-    const auto w = find_first_pulse(moved, base_sim);
-    if (w) front_sim = front_time(moved, base_sim.level, *w).sample;
+    dispersed_incident = dispersed(s_inc, dt_sim, l_inc - setup.incident_distance_m, false);
+    const auto w = find_first_pulse(dispersed_incident, base_sim);
+    if (w) front_sim = front_time(dispersed_incident, base_sim.level, *w).sample;
   }
   o.offset_s = (t_meas0 + front_meas * dt) - (t_sim0 + front_sim * dt_sim) + shift_s;
   o.t_sim_end = t_sim0 + static_cast<double>(s_inc.size() - 1) * dt_sim;
 
   // Pulses and the distance each travelled before reaching its gauge.
-  const double l_inc = scene.bars[incident_bar].length_m;
   auto add = [&](const std::string& gauge, const std::string& name, const PulseWindow& w,
                  double distance, bool transmitted) {
     const double len = static_cast<double>(w.end - w.onset) * kWindowMargin;
@@ -246,12 +247,19 @@ Overlay PulseOverlay::overlay(const Scene& scene, const SimulationResult& sim,
   for (const OverlaidPulse& p : o.pulses) {
     // What the real bars add to the travel from the incident gauge on (the lab's calibrated
     // reflected time): 2d for the reflected pulse, d + d' for the transmitted one.
-    const double beyond_incident_m =
-        p.name == "incident" ? 0 : p.distance_m - l_inc + setup.incident_distance_m;
+    const double d = setup.incident_distance_m;
+    const double beyond_incident_m = p.transmitted           ? d + setup.transmitted_distance_m
+                                     : p.name == "reflected" ? 2 * d
+                                                             : 0;
     const double delay_s = setup.excess_delay_s_per_m * beyond_incident_m;
-    const std::vector<double>& y = p.transmitted ? s_tr : s_inc;
-    const std::vector<double> moved = on_measured_clock(
-        dispersion() ? dispersed(y, dt_sim, p.distance_m, p.transmitted) : y, -delay_s);
+    const std::vector<double>* arriving = p.transmitted ? &s_tr : &s_inc;
+    std::vector<double> moved_here;
+    if (dispersion()) {
+      if (p.name != "incident")
+        moved_here = dispersed(*arriving, dt_sim, p.distance_m, p.transmitted);
+      arriving = p.name == "incident" ? &dispersed_incident : &moved_here;
+    }
+    const std::vector<double> moved = on_measured_clock(*arriving, -delay_s);
     std::vector<double>& dst = p.transmitted ? o.transmitted : o.incident;
     const std::size_t from = p.name == "reflected" ? split : 0;
     const std::size_t to = p.name == "incident" ? split : n;

@@ -29,46 +29,20 @@ constexpr double kBiasStandardErrors = 4.0;
 // 1 % of the peak: the synthetic campaign's record noise.
 constexpr double kNoise = 0.01;
 
-}  // namespace
-
-TEST_CASE("The clock of a noisy copy of a simulation is its own, to the predicted scatter",
-          "[overlay]") {
-  const fs::path dir = shpb_test::scratch_dir("overlay_clock");
+// The synthetic 2000 /s OFHC copper test (tests/fit), simulated once.
+struct SyntheticRun {
+  shpb::Scene scene;
+  shpb::SimulationResult sim;
+};
+SyntheticRun synthetic_run(const std::string& name) {
+  const fs::path file = shpb_test::scratch_dir(name) / "scene.json";
   const fs::path copper = fs::path(SHPB_SOURCE_DIR) / "specimens/ofhc-copper.json";
-  const fs::path file = dir / "scene.json";
   std::ofstream(file) << shpb_test::synthetic_scene(18.5, copper, "asynchronous").dump(1);
-  const shpb::Scene scene = shpb::read_scene(file);
-  const shpb::SimulationResult sim = shpb::simulate(scene);
-  REQUIRE(sim.stable);
-
-  std::mt19937 rng(7);
-  std::normal_distribution<double> normal(0.0, 1.0);
-  double sum = 0, sum2 = 0, predicted = 0;
-  for (int k = 0; k < kDraws; ++k) {
-    shpb::GaugeSignals g;
-    g.time_s = sim.gauges.time_s;
-    g.dt_s = 1.0 / scene.simulation.sample_rate_Hz;
-    for (const char* name : {"incident", "transmitted"}) {
-      std::vector<double> x = sim.gauges.column(name);
-      double peak = 0;
-      for (double v : x) peak = std::max(peak, std::abs(v));
-      for (double& v : x) v += kNoise * peak * normal(rng);
-      g.gauges.push_back(name);
-      g.strain.push_back(x);
-    }
-    const shpb::PulseOverlay overlay(scene, shpb::find_measured_pulses(scene, g), false);
-    const double offset = overlay.overlay(scene, sim).offset_s;
-    predicted = overlay.measured().incident_front_sd_s;
-    sum += offset, sum2 += offset * offset;
-  }
-  const double mean = sum / kDraws, rms = std::sqrt(sum2 / kDraws);
-  INFO("mean offset " << mean << " s, rms " << rms << " s, predicted sd " << predicted << " s");
-  REQUIRE(predicted > 0);
-  CHECK(std::abs(rms / predicted - 1) <= kSdTolerance);
-  CHECK(std::abs(mean) <= kBiasStandardErrors * predicted / std::sqrt(kDraws));
+  SyntheticRun r{shpb::read_scene(file), {}};
+  r.sim = shpb::simulate(r.scene);
+  REQUIRE(r.sim.stable);
+  return r;
 }
-
-namespace {
 // The simulated test's gauge signals as a record: each gauge's strain on the simulation's grid.
 shpb::GaugeSignals record_of(const shpb::Scene& scene, const shpb::SimulationResult& sim) {
   shpb::GaugeSignals g;
@@ -85,17 +59,37 @@ shpb::GaugeSignals record_of(const shpb::Scene& scene, const shpb::SimulationRes
 constexpr double kSameClock_s = 5e-9;
 }  // namespace
 
+TEST_CASE("The clock of a noisy copy of a simulation is its own, to the predicted scatter",
+          "[overlay]") {
+  const auto [scene, sim] = synthetic_run("overlay_clock");
+
+  std::mt19937 rng(7);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  double sum = 0, sum2 = 0, predicted = 0;
+  for (int k = 0; k < kDraws; ++k) {
+    shpb::GaugeSignals g = record_of(scene, sim);
+    for (std::vector<double>& x : g.strain) {
+      double peak = 0;
+      for (double v : x) peak = std::max(peak, std::abs(v));
+      for (double& v : x) v += kNoise * peak * normal(rng);
+    }
+    const shpb::PulseOverlay overlay(scene, shpb::find_measured_pulses(scene, g), false);
+    const double offset = overlay.overlay(scene, sim).offset_s;
+    predicted = overlay.measured().incident_front_sd_s;
+    sum += offset, sum2 += offset * offset;
+  }
+  const double mean = sum / kDraws, rms = std::sqrt(sum2 / kDraws);
+  INFO("mean offset " << mean << " s, rms " << rms << " s, predicted sd " << predicted << " s");
+  REQUIRE(predicted > 0);
+  CHECK(std::abs(rms / predicted - 1) <= kSdTolerance);
+  CHECK(std::abs(mean) <= kBiasStandardErrors * predicted / std::sqrt(kDraws));
+}
+
 TEST_CASE("Dispersed bars: the clock aligns the dispersed simulated incident pulse", "[overlay]") {
   // A record whose incident pulse has dispersed over the bar from the impact face to the gauge, as
   // a real one has: the simulation, dispersed over the same distance, lies on it on its own clock
   // (the 1D pulse's front, undispersed, would put it later by the dispersion's delay of the front).
-  const fs::path dir = shpb_test::scratch_dir("overlay_dispersed");
-  const fs::path copper = fs::path(SHPB_SOURCE_DIR) / "specimens/ofhc-copper.json";
-  const fs::path file = dir / "scene.json";
-  std::ofstream(file) << shpb_test::synthetic_scene(18.5, copper, "asynchronous").dump(1);
-  const shpb::Scene scene = shpb::read_scene(file);
-  const shpb::SimulationResult sim = shpb::simulate(scene);
-  REQUIRE(sim.stable);
+  const auto [scene, sim] = synthetic_run("overlay_dispersed");
   shpb::GaugeSignals g = record_of(scene, sim);
   const shpb::MeasuredPulses plain = shpb::find_measured_pulses(scene, g);
   const shpb::KolskySetup& setup = plain.setup;
@@ -122,13 +116,7 @@ TEST_CASE("Dispersed bars: the clock aligns the dispersed simulated incident pul
 
 TEST_CASE("A calibrated reflected time delays the reflected and transmitted pulses by its excess",
           "[overlay]") {
-  const fs::path dir = shpb_test::scratch_dir("overlay_reflected_time");
-  const fs::path copper = fs::path(SHPB_SOURCE_DIR) / "specimens/ofhc-copper.json";
-  const fs::path file = dir / "scene.json";
-  std::ofstream(file) << shpb_test::synthetic_scene(18.5, copper, "asynchronous").dump(1);
-  shpb::Scene scene = shpb::read_scene(file);
-  const shpb::SimulationResult sim = shpb::simulate(scene);
-  REQUIRE(sim.stable);
+  auto [scene, sim] = synthetic_run("overlay_reflected_time");
   const shpb::GaugeSignals g = record_of(scene, sim);
   const shpb::KolskySetup setup = shpb::find_measured_pulses(scene, g).setup;
   // The real bar takes 20 samples (2 µs) longer for the round trip than 2d/c0.
