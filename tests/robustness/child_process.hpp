@@ -54,6 +54,25 @@ class Child {
 
   bool started() const { return pid_ > 0; }
 
+  // Waits at most `limit_s` until the process catches SIGINT and SIGTERM (Linux: the SigCgt mask
+  // of /proc/<pid>/status): shpb's main has installed its handlers, so a signal from now on tests
+  // the interruption, however slow the machine (a sanitizer build on a loaded machine can take
+  // longer than 0.1 s to get there). False if it never did.
+  bool wait_until_interruptible(double limit_s) const {
+    const fs::path status = fs::path("/proc") / std::to_string(pid_) / "status";
+    const unsigned long long wanted = (1ull << (SIGINT - 1)) | (1ull << (SIGTERM - 1));
+    const auto limit = std::chrono::steady_clock::now() + std::chrono::duration<double>(limit_s);
+    while (pid_ > 0 && std::chrono::steady_clock::now() < limit) {
+      std::ifstream in(status);
+      for (std::string line; std::getline(in, line);)
+        if (line.rfind("SigCgt:", 0) == 0 &&
+            (std::stoull(line.substr(7), nullptr, 16) & wanted) == wanted)
+          return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    return false;
+  }
+
   // Sends `sig` and restarts the clock, so wait() measures the time to react.
   void signal(int sig) {
     if (pid_ > 0) ::kill(pid_, sig);

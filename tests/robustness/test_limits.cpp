@@ -120,6 +120,7 @@ TEST_CASE("SIGTERM and SIGINT stop validate and dispersion within a second",
       INFO(args[0] << " signal " << sig);
       Child child(args, scratch.path());
       REQUIRE(child.started());
+      REQUIRE(child.wait_until_interruptible(kLimit_s));
       std::this_thread::sleep_for(std::chrono::milliseconds(200));
       child.signal(sig);
       const Outcome o = child.wait(kLimit_s);
@@ -165,12 +166,15 @@ TEST_CASE("SIGTERM stops process reading a long record within a second",
     for (long k = 0; k < 3000000; ++k)
       out << k * 1e-8 << ',' << 1e-6 * (k % 13) << ',' << 1e-6 * (k % 11) << '\n';
   }
-  for (const double after_s : {0.1, 0.4}) {  // well inside the ~1 s the reading takes
+  // Counted from the moment the process can be interrupted (its start-up done): well inside the
+  // ~1 s the reading takes.
+  for (const double after_s : {0.1, 0.4}) {
     INFO("signal after " << after_s << " s");
     Child child({"process", kClassic.string(), "--signals", signals.string(), "-o",
                  (scratch.path() / "out").string(), "-q"},
                 scratch.path());
     REQUIRE(child.started());
+    REQUIRE(child.wait_until_interruptible(kLimit_s));
     std::this_thread::sleep_for(std::chrono::duration<double>(after_s));
     child.signal(SIGTERM);
     const Outcome o = child.wait(kLimit_s);
@@ -202,6 +206,7 @@ TEST_CASE("SIGTERM while simulate writes large outputs stops it within a second"
     INFO("signal after " << after_s << " s");
     Child child(args, scratch.path());
     REQUIRE(child.started());
+    REQUIRE(child.wait_until_interruptible(kLimit_s));
     std::this_thread::sleep_for(std::chrono::duration<double>(after_s));
     child.signal(SIGTERM);
     const Outcome o = child.wait(kLimit_s);

@@ -279,6 +279,7 @@ TEST_CASE("dispersion -o killed or interrupted keeps the previous file",
     INFO("signal " << sig);
     Child child(slow, scratch.path());
     REQUIRE(child.started());
+    REQUIRE(child.wait_until_interruptible(kLimit_s));
     std::this_thread::sleep_for(std::chrono::milliseconds(500));
     child.signal(sig);
     const Outcome o = child.wait(kLimit_s);
