@@ -116,6 +116,16 @@ inline Outcome run(const std::vector<std::string>& args, const fs::path& scratch
   return child.wait(limit_s);
 }
 
+// How long `shpb args...` runs uninterrupted from the moment it can be interrupted to its exit
+// (its start-up excluded): signal times as fractions of it land inside the work on any machine.
+inline double seconds_after_startup(const std::vector<std::string>& args, const fs::path& scratch,
+                                    double limit_s) {
+  Child child(args, scratch);
+  if (!child.started() || !child.wait_until_interruptible(limit_s)) return 0;
+  child.signal(0);  // no signal: restarts the clock
+  return child.wait(limit_s).seconds;
+}
+
 // A fresh empty scratch folder per object (a counter tells apart those of one process), removed
 // with the object.
 class ScratchFolder : public shpb_test::ScratchDir {
