@@ -245,11 +245,11 @@ KolskySetup resolve_setup(const Scene& scene, const std::vector<std::string>& av
     const double modelled = 2 * k.incident_distance_m / k.front.c0_m_s;
     const double calibrated = *scene.measurement->reflected_time_s;
     if (!(std::abs(calibrated - modelled) <= kReflectedTimeRange * modelled))
-      throw input_error(file, "measurement.reflected_time", format_double(calibrated * 1e6) + " us",
-                        "expected within " + format_double(100 * kReflectedTimeRange) +
-                            " % of the modelled round trip 2d/c0 = " +
-                            format_double(modelled * 1e6) + " us (incident gauge " +
-                            format_double(k.incident_distance_m * 1e3) + " mm from the specimen)");
+      throw input_error(
+          file, "measurement.reflected_time", fmt("%.6g us", calibrated * 1e6),
+          fmt("expected within %.3g %% of the modelled round trip 2d/c0 = %.6g us "
+              "(incident gauge %.6g mm from the specimen)",
+              100 * kReflectedTimeRange, modelled * 1e6, k.incident_distance_m * 1e3));
     k.excess_delay_s_per_m = (calibrated - modelled) / (2 * k.incident_distance_m);
   }
   if (s >= 2) {
