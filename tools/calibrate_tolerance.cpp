@@ -143,6 +143,9 @@ int check(double tolerance, const std::vector<std::string>& files) {
         const SimulationResult r = simulate(s, options);
         const GaugeReference seen2 =
             fine_mesh_reference(s, 1, r.stable, r.failure, r.gauges, r.wall_time_s);
+        // Rounded separately, the bars' steps may differ by less than 1 − C at the chosen Courant
+        // number near 1, where the rigid link is unstable (docs/methods.md §1.1): the next mesh.
+        if (!r.stable) continue;
         std::printf(
             "  %-10s %12.4g %9.3f %9.3f%% %9.3f%%  (no aliasing: bars %.2f x the tolerance's, "
             "recorded at %d x the rate)\n",
