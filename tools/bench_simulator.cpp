@@ -210,7 +210,14 @@ int main(int argc, char** argv) {
         "(%.3g/s of CPU), energy error %.2g%s\n",
         a.wall_s * 1e3, a.cpu_s * 1e3, repeat, a.last.node_updates, a.last.node_updates / a.cpu_s,
         a.last.energy_error, a.last.stable ? "" : " UNSTABLE");
-    {
+    bool bonded = false;  // finite links are unilateral: a bonded specimen would come loose
+    for (std::size_t k = 0; k + 1 < scene.bars.size(); ++k)
+      bonded = bonded || interface_method(scene.contact, k) == ContactMethod::kBonded;
+    if (bonded) {
+      std::printf(
+          "  finite localized links: not applicable (bonded interfaces; finite links are "
+          "unilateral)\n");
+    } else {
       // Finite localized links at the default ε_s and R (contact_localized_finite.cpp) against
       // the scene as given (the rigid-link limit unless it sets penalty values), asynchronous.
       Scene finite = scene;
