@@ -66,8 +66,14 @@ struct BarModel {
   // reflections cannot reach anything recorded; the cut end is an exact non-reflecting dashpot.
   int full_nodes = 0;          // nodes of the uncut mesh
   bool dashpot_right = false;  // the right end is a cut with a dashpot of impedance ρcA
+  // End segments (solver/end_segment.hpp, docs/methods.md §3.6): the elements next to end 0
+  // (left) or 1 (right) that step on a tied neighbour's clock. The bar itself integrates nodes
+  // [first_owned_node(), last_owned_node()]; the node where a segment starts (the joint) is its.
+  int segment_elements[2] = {0, 0};
 
   int elements() const { return nodes - 1; }
+  int first_owned_node() const { return segment_elements[0]; }
+  int last_owned_node() const { return nodes - 1 - segment_elements[1]; }
   double impedance_kg_s() const { return density_kg_m3 * wave_speed_m_s * area_m2; }
   double total_mass_kg() const { return density_kg_m3 * area_m2 * element_length_m * elements(); }
 };

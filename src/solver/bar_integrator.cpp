@@ -234,14 +234,17 @@ void activate_node(const BarModel&, BarState& s, int i) {
 
 void assemble_internal_forces(const BarModel& bar, BarState& s) {
   if (s.quiet()) return;
-  const int last = bar.nodes - 1;
-  s.lo = std::max(s.lo - 1, 0);
+  // Nodes of end segments are another clock's (end_segment.hpp): the owned nodes end at the
+  // joints, whose force here is their owned element's alone, as at a free end.
+  const int first = bar.first_owned_node(), last = bar.last_owned_node();
+  s.lo = std::max(s.lo - 1, first);
   s.hi = std::min(s.hi + 1, last);
   if (bar.law) {
     // The law advances from its stored state over the step that led to t_n.
     law_forces(bar, s, s.lo, s.hi, s.step > 0 ? s.dt_prev : s.dt);
   } else {
-    elastic_forces(s.w.data(), s.force.data(), bar.stiffness_N_m, s.lo, s.hi, last);
+    elastic_forces(s.w.data() + first, s.force.data() + first, bar.stiffness_N_m, s.lo - first,
+                   s.hi - first, last - first);
   }
 }
 
@@ -351,13 +354,19 @@ BarEnergy bar_energy(const BarModel& bar, const BarState& s) {
   BarEnergy e;
   const double V = bar.initial_velocity_m_s;
   double moving_mass = bar.total_mass_kg();
+  if (bar.segment_elements[0] || bar.segment_elements[1]) {  // the owned nodes' (end_segment.hpp)
+    moving_mass = 0;
+    for (int i = bar.first_owned_node(); i <= bar.last_owned_node(); ++i)
+      moving_mass += bar.mass_kg[i];
+  }
   if (!s.quiet()) {
     const bool same_step = s.step == 0 || s.dt_prev == s.dt;
     double moving = 0;
     kinetic_energy(s.v.data(), s.force.data(), bar.inverse_mass.data(), bar.mass_kg.data(), V,
                    0.5 * s.dt_prev, s.dt, same_step, s.lo, s.hi, &e.kinetic_J, &moving);
     moving_mass -= moving;
-    const int e0 = std::max(s.lo - 1, 0), e1 = std::min(s.hi, bar.nodes - 2);
+    const int e0 = std::max(s.lo - 1, bar.first_owned_node());
+    const int e1 = std::min(s.hi, bar.last_owned_node() - 1);
     if (bar.law) {
       const double volume = bar.area_m2 * bar.element_length_m;
       for (int k = 0; k < bar.elements(); ++k) {

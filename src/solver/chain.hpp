@@ -8,6 +8,18 @@
 
 namespace shpb {
 
+// The end elements of a slow bar stepping on a light, stiff tied neighbour's clock
+// (solver/end_segment.hpp, docs/methods.md §3.6).
+struct EndSegment {
+  std::size_t bar = 0;        // the slow bar that owns the elements
+  int end = 0;                // its end: 0 left (interface bar − 1), 1 right (interface bar)
+  std::size_t clock_bar = 0;  // the tied neighbour whose instants the segment takes
+  std::size_t interface = 0;  // the tie
+  int elements = 0;
+  // The current instant's joint: its displacement on its path and its segment element's force.
+  double joint_w = 0, joint_force_N = 0;
+};
+
 struct Chain {
   std::vector<BarModel> bars;
   std::vector<BarState> states;
@@ -24,6 +36,13 @@ struct Chain {
   double max_penetration_elements = 0;
 
   bool global_stepping = false;  // every bar takes the same steps (an adaptive one sets them)
+  std::vector<EndSegment> segments;
+  std::vector<int> interface_segment;  // per interface: its index in segments, or −1
+
+  const EndSegment* segment_at(std::size_t interface) const {
+    const int k = interface < interface_segment.size() ? interface_segment[interface] : -1;
+    return k < 0 ? nullptr : &segments[k];
+  }
 
   // τ of bar i's pending instant: a product within its phase of constant step (scheduler rule 1).
   double bar_tau(std::size_t i) const {

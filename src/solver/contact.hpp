@@ -65,6 +65,9 @@ struct InterfaceState {
   double force_N = 0;   // compression positive
   double gap_m = 0;     // total gap g
   double energy_J = 0;  // potential + penalty kinetic energy held by the links
+  // An end segment on this tie's clock (solver/end_segment.hpp): its kinetic and strain energy at
+  // the last solve, recorded with the interface (it steps at the interface's instants).
+  double segment_kinetic_J = 0, segment_strain_J = 0;
   long activations = 0, releases = 0;
 };
 

@@ -112,7 +112,7 @@ ChainRecorders::ChainRecorders(const Scene& scene, const Chain& chain, const Cha
   for (const InterfaceModel& m : chain.interfaces) {
     interface_names_.push_back(m.name);
     interfaces_.push_back({GridSampler(tau0, sample_spacing_s_, samples_, 2),
-                           GridSampler(0.0, energy_spacing_, energy_samples_, 2)});
+                           GridSampler(0.0, energy_spacing_, energy_samples_, 4)});
   }
   if (record_field_) {
     for (int j = 0; j < options.field_times; ++j)
@@ -191,7 +191,8 @@ void ChainRecorders::on_interface_solve(const Chain& chain, std::size_t k, doubl
     r.sampler.push(tau, values);
   }
   if (r.energy_sampler.wants(tau_next)) {
-    const double energy[2] = {s.energy_J, chain.contact_dissipated_J[k]};
+    const double energy[4] = {s.energy_J, chain.contact_dissipated_J[k], s.segment_kinetic_J,
+                              s.segment_strain_J};
     r.energy_sampler.push(tau, energy);
   }
 }
@@ -208,7 +209,8 @@ double ChainRecorders::energy_total(long k) const {
   for (const BarRecorder& r : bars_)
     total += r.energy_sampler.at(k, 0) + r.energy_sampler.at(k, 1) + r.energy_sampler.at(k, 2);
   for (const InterfaceRecorder& r : interfaces_)
-    total += r.energy_sampler.at(k, 0) + r.energy_sampler.at(k, 1);
+    total += r.energy_sampler.at(k, 0) + r.energy_sampler.at(k, 1) + r.energy_sampler.at(k, 2) +
+             r.energy_sampler.at(k, 3);
   return total;
 }
 
@@ -296,6 +298,8 @@ void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& resu
       for (const InterfaceRecorder& r : interfaces_) {
         contact += r.energy_sampler.at(k, 0);
         diss += r.energy_sampler.at(k, 1);
+        kin += r.energy_sampler.at(k, 2);  // an end segment's bar energy (end_segment.hpp)
+        strain += r.energy_sampler.at(k, 3);
       }
       ts.time_s.push_back(t);
       ts.values[0].push_back(kin);

@@ -74,7 +74,7 @@ class ChainRecorders {
   };
   struct InterfaceRecorder {
     GridSampler sampler;         // force, gap
-    GridSampler energy_sampler;  // link energy, contact dissipation
+    GridSampler energy_sampler;  // link energy, contact dissipation, end segment's kinetic, strain
   };
 
   double start_time_s_ = 0;

@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "solver/bar_integrator.hpp"
+#include "solver/end_segment.hpp"
 #include "solver/step_control.hpp"
 
 namespace shpb {
@@ -82,6 +83,8 @@ void take_instant(Chain& chain, ChainRecorders& recorders, const std::vector<cha
     for (int side = 0; side < 2; ++side) {
       const std::size_t bar = k + side;
       if (!stepping[bar]) continue;
+      const EndSegment* seg = chain.segment_at(k);
+      if (seg && seg->bar == bar) continue;  // on its clock bar's instants (end_segment.hpp)
       const double target =
           tied_end_position(chain.interfaces[k], chain.interface_states[k], side, tau);
       if (std::isnan(target)) continue;
@@ -107,6 +110,36 @@ void take_instant(Chain& chain, ChainRecorders& recorders, const std::vector<cha
     const int l_node = chain.bars[l].nodes - 1;
     const InterfaceModel& im = chain.interfaces[k];
     InterfaceState& is = chain.interface_states[k];
+    if (chain.segment_at(k)) {
+      // Rule 11: a tie with an end segment is solved at its clock bar's instants only, both ends
+      // stepping there together (end_segment.hpp).
+      EndSegment& seg = chain.segments[chain.interface_segment[k]];
+      const std::size_t f = seg.clock_bar;
+      if (!stepping[f]) continue;
+      const bool bar_stepping = stepping[seg.bar];
+      prepare_segment(chain, seg, tau, bar_stepping);
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      const int f_node = f == l ? l_node : 0;
+      const EndState seg_end = segment_end_state(chain, seg, tau);
+      const EndState f_end = end_state(chain, f, f_node, tau, true, nan);
+      const double next = tau + chain.states[f].dt;
+      const bool seg_left = seg.bar == l;
+      EndState left = seg_left ? seg_end : f_end, right = seg_left ? f_end : seg_end;
+      left.next_tau = right.next_tau = next;
+      const ContactResult res = solve_contact(im, is, left, right, tau, next);
+      apply_segment_end(chain, seg, seg_left ? res.dv_left : res.dv_right,
+                        seg_left ? res.force_left_N : res.force_right_N);
+      apply_end(chain, f, f_node, tau, true, seg_left ? res.dv_right : res.dv_left,
+                seg_left ? res.force_right_N : res.force_left_N);
+      chain.contact_dissipated_J[k] += res.dissipated_J;
+      chain.max_penetration_m = std::max(chain.max_penetration_m, -is.gap_m);
+      chain.max_penetration_elements = std::max(
+          chain.max_penetration_elements,
+          -is.gap_m / std::min(chain.bars[l].element_length_m, chain.bars[r].element_length_m));
+      chain.states[seg.bar].node_updates += finish_segment(chain, seg, tau, bar_stepping);
+      recorders.on_interface_solve(chain, k, tau, next);
+      continue;
+    }
     // A stepping end is already at the frame (rule 4); an ahead one is put there for its load.
     const double nan = std::numeric_limits<double>::quiet_NaN();
     EndState left = end_state(chain, l, l_node, tau, stepping[l],
@@ -155,7 +188,7 @@ bool interface_at_rest(const InterfaceModel& m, const InterfaceState& s) {
 // them or none.
 bool at_rest(const Chain& chain, std::size_t j) {
   const std::size_t nb = chain.bars.size();
-  if (!chain.states[j].quiet()) return false;
+  if (!chain.states[j].quiet() || !chain.segments.empty()) return false;  // segments: rule 11
   for (std::size_t i = j > 0 ? j - 1 : 0; i < std::min(j + 2, nb); ++i)
     if (chain.bars[i].initial_velocity_m_s != 0) return false;
   if (j > 0) {  // the left neighbour's last two nodes (its end and end element) at rest

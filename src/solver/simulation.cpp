@@ -12,6 +12,7 @@
 #include "model/mesh_error_model.hpp"
 #include "model/specimen_response.hpp"
 #include "solver/chain.hpp"
+#include "solver/end_segment.hpp"
 #include "solver/recorders.hpp"
 #include "solver/scheduler.hpp"
 #include "solver/step_control.hpp"
@@ -101,6 +102,7 @@ Chain build_chain(const Scene& scene, const ChainDiscretization& d, bool full_mo
     c.final_step.push_back(static_cast<long>(std::ceil(c.end_tau_s / b.time_step_s - 1e-9)));
   if (!full_model && c.bars.size() > 1) cut_last_bar(c, scene, adaptive);
   c.global_stepping = d.stepping == Stepping::kGlobal;
+  plan_end_segments(c, scene);
   plan_first_steps(c);
   return c;
 }

@@ -1,0 +1,148 @@
+#include "solver/end_segment.hpp"
+
+#include <cmath>
+
+#include "solver/bar_integrator.hpp"
+#include "solver/scheduler.hpp"
+
+namespace shpb {
+
+namespace {
+// The segment's nodes other than the joint, [first, last], and its end node at the tie.
+struct Span {
+  int joint, first, last, end;
+};
+Span span(const Chain& chain, const EndSegment& seg) {
+  const int n = chain.bars[seg.bar].nodes, k = seg.elements;
+  if (seg.end == 1) return {n - 1 - k, n - k, n - 1, n - 1};
+  return {k, 0, k - 1, 0};
+}
+// The bar's side of the tie: its right end is the interface's left side.
+int interface_side(const EndSegment& seg) { return seg.end == 1 ? 0 : 1; }
+}  // namespace
+
+int segment_joint(const Chain& chain, const EndSegment& seg) { return span(chain, seg).joint; }
+
+void plan_end_segments(Chain& chain, const Scene& scene) {
+  chain.interface_segment.assign(chain.interfaces.size(), -1);
+  if (chain.global_stepping) return;
+  for (std::size_t k = 0; k < chain.interfaces.size(); ++k) {
+    const InterfaceModel& im = chain.interfaces[k];
+    const bool rigid = im.method == ContactMethod::kBonded ||
+                       (im.method == ContactMethod::kLocalizedBipenalty && !im.finite_links);
+    if (!rigid) continue;
+    const double dt_l = chain.bars[k].time_step_s, dt_r = chain.bars[k + 1].time_step_s;
+    if (std::abs(dt_l - dt_r) <= kSameInstant * std::min(dt_l, dt_r)) continue;
+    const std::size_t slow = dt_l > dt_r ? k : k + 1, fast = slow == k ? k + 1 : k;
+    const int end = slow == k ? 1 : 0;
+    BarModel& s = chain.bars[slow];
+    const BarModel& f = chain.bars[fast];
+    if (s.law || s.adaptive_step || f.adaptive_step || (end == 1 && s.dashpot_right)) continue;
+    if (s.elements() < 2 * kSegmentElements + 2 + s.segment_elements[1 - end]) continue;
+    // The merged end node's own frequency, (k1 + k2)/(m1 + m2), above the slow bar's cut-off
+    // (2c/h)² = 2 k1/m1: the slow bar cannot follow it (docs/methods.md §3.6).
+    const double k1 = s.stiffness_N_m, m1 = s.mass_kg[end == 1 ? s.nodes - 1 : 0];
+    const double k2 = f.stiffness_N_m, m2 = f.mass_kg[end == 1 ? 0 : f.nodes - 1];
+    if (!((k1 + k2) / (m1 + m2) > 2 * k1 / m1)) continue;
+    // A gauge reads its element at the bar's instants: none within the segment (and its joint).
+    const double reach = (kSegmentElements + 1) * s.element_length_m;
+    const double length = s.element_length_m * s.elements();
+    bool gauge_inside = false;
+    for (const GaugeSpec& g : scene.bars[slow].gauges)
+      gauge_inside =
+          gauge_inside || (end == 1 ? g.position_m >= length - reach : g.position_m <= reach);
+    if (gauge_inside) continue;
+    s.segment_elements[end] = kSegmentElements;
+    chain.interface_segment[k] = static_cast<int>(chain.segments.size());
+    chain.segments.push_back({slow, end, fast, k, kSegmentElements});
+  }
+}
+
+void prepare_segment(Chain& chain, EndSegment& seg, double tau, bool bar_stepping) {
+  const BarModel& b = chain.bars[seg.bar];
+  BarState& s = chain.states[seg.bar];
+  const Span sp = span(chain, seg);
+  // Rule 4: a tied end is where the frame is (both sides of the tie step now).
+  const double target =
+      tied_end_position(chain.interfaces[seg.interface], chain.interface_states[seg.interface],
+                        interface_side(seg), tau);
+  if (!std::isnan(target)) s.w[sp.end] = target - b.initial_velocity_m_s * tau;
+  // The joint on its straight path at τ (its state is at the bar's pending instant).
+  seg.joint_w =
+      bar_stepping ? s.w[sp.joint] : s.w[sp.joint] - (chain.bar_tau(seg.bar) - tau) * s.v[sp.joint];
+  const auto w = [&](int i) { return i == sp.joint ? seg.joint_w : s.w[i]; };
+  for (int i = sp.first; i <= sp.last; ++i) s.force[i] = 0;
+  seg.joint_force_N = 0;
+  const int e0 = seg.end == 1 ? sp.joint : 0, e1 = e0 + seg.elements - 1;
+  for (int e = e0; e <= e1; ++e) {
+    const double tension = b.stiffness_N_m * (w(e + 1) - w(e));
+    (e == sp.joint ? seg.joint_force_N : s.force[e]) += tension;
+    (e + 1 == sp.joint ? seg.joint_force_N : s.force[e + 1]) -= tension;
+  }
+}
+
+EndState segment_end_state(const Chain& chain, const EndSegment& seg, double tau) {
+  const BarModel& b = chain.bars[seg.bar];
+  const BarState& s = chain.states[seg.bar];
+  const BarState& clock = chain.states[seg.clock_bar];
+  const int end = span(chain, seg).end;
+  EndState e;
+  e.mass = b.mass_kg[end];
+  e.stepping = true;
+  e.u = s.w[end] + b.initial_velocity_m_s * tau;
+  e.v = node_velocity(b, s, end);
+  e.free_force = s.force[end];
+  e.kick_s = 0.5 * (clock.dt_prev + clock.dt);
+  e.step_s = clock.dt;
+  e.next_tau = tau + clock.dt;
+  return e;
+}
+
+void apply_segment_end(Chain& chain, const EndSegment& seg, double dv, double force) {
+  BarState& s = chain.states[seg.bar];
+  const int end = span(chain, seg).end;
+  s.v[end] += dv;
+  s.force[end] += force;
+}
+
+long finish_segment(Chain& chain, const EndSegment& seg, double tau, bool bar_stepping) {
+  const BarModel& b = chain.bars[seg.bar];
+  BarState& s = chain.states[seg.bar];
+  const BarState& clock = chain.states[seg.clock_bar];
+  const Span sp = span(chain, seg);
+  const double kick = 0.5 * (clock.dt_prev + clock.dt), dt = clock.dt;
+  const double V = b.initial_velocity_m_s;
+  // Energy at τ (the central difference's own, ½ m v_{n−1/2} v_{n+1/2}; bar_integrator.hpp).
+  InterfaceState& is = chain.interface_states[seg.interface];
+  const auto w = [&](int i) { return i == sp.joint ? seg.joint_w : s.w[i]; };
+  const int e0 = seg.end == 1 ? sp.joint : 0, e1 = e0 + seg.elements - 1;
+  is.segment_strain_J = 0;
+  for (int e = e0; e <= e1; ++e) {
+    const double d = w(e + 1) - w(e);
+    is.segment_strain_J += 0.5 * b.stiffness_N_m * d * d;
+  }
+  is.segment_kinetic_J = 0;
+  for (int i = sp.first; i <= sp.last; ++i) {
+    const double before = s.v[i] + V, after = before + kick * s.force[i] * b.inverse_mass[i];
+    is.segment_kinetic_J += 0.5 * b.mass_kg[i] * before * after;
+  }
+  for (int i = sp.first; i <= sp.last; ++i) {  // kick and drift on the clock bar's step
+    s.v[i] += kick * s.force[i] * b.inverse_mass[i];
+    s.w[i] += dt * s.v[i];
+  }
+  // The joint's impulse κ N: a force over the bar's own kick if it steps now, else a velocity
+  // jump moving its pending position along its new path (scheduler rule 6).
+  if (seg.joint_force_N != 0) {
+    activate_node(b, s, sp.joint);
+    if (bar_stepping) {
+      s.force[sp.joint] += seg.joint_force_N * kick / (0.5 * (s.dt_prev + s.dt));
+    } else {
+      const double dv = kick * seg.joint_force_N * b.inverse_mass[sp.joint];
+      s.v[sp.joint] += dv;
+      s.w[sp.joint] += (chain.bar_tau(seg.bar) - tau) * dv;
+    }
+  }
+  return sp.last - sp.first + 1;
+}
+
+}  // namespace shpb

@@ -1,0 +1,42 @@
+#pragma once
+// End segments: the cure of the asynchronous rigid link between a light, stiff bar and a heavy,
+// slow one (docs/methods.md §3.6). Where the tied pair's merged end node rings above the slow
+// bar's cut-off frequency 2c/h, that mode cannot be followed at the slow bar's step, and
+// resetting the slow end to the frame (§3.4) creates energy (bonded, it grows without bound).
+// The slow bar's kSegmentElements end elements, with their nodes, then step on the fast bar's
+// clock: the tie always joins two ends stepping together (the global-step merged node, no reset,
+// no interpolated end load), and the change of clock moves to the joint, the slow bar's node where
+// the segment starts. The joint is the slow bar's own node; at every fast instant it takes the
+// impulse κ N of its segment element and moves on a straight line between instants, its pending
+// position shifted by (τ_pending − τ) Δv (scheduler rule 6 applied to it): an asynchronous
+// variational integrator (Lew, Marsden, Ortiz & West 2003), whose element impulses reach both
+// their nodes at one instant (momentum exact) and whose energy error stays bounded. The merged
+// node's mode decays into the slow bar by e^(−κ) per element, cosh(κ/2) = ω_m h/(2c): three
+// elements keep the joint away from it (one is not enough: measured, it resonates).
+#include "model/scene.hpp"
+#include "solver/chain.hpp"
+#include "solver/contact.hpp"
+
+namespace shpb {
+
+inline constexpr int kSegmentElements = 3;
+
+// Gives the slow bar of each asynchronous rigid-link tie whose merged end node rings above its
+// cut-off an end segment on the fast bar's clock, where that is supported: an elastic slow bar
+// with fixed steps, a fast bar with fixed steps, no gauge and no cut end within the segment.
+void plan_end_segments(Chain& chain, const Scene& scene);
+
+int segment_joint(const Chain& chain, const EndSegment& seg);
+
+// At an instant τ of the segment's clock bar (which steps), in take_instant's order: `prepare`
+// puts a tied segment end at the frame (rule 4) and assembles the segment's element forces with
+// the joint on its straight path at τ; `end_state` is the segment end for the tie solve (stepping
+// with the clock bar's kick); `finish` applies the joint's impulse (a force if the slow bar steps
+// at τ too, else rule 6), records the segment's energy in the interface state and advances the
+// segment's nodes. Returns the node updates.
+void prepare_segment(Chain& chain, EndSegment& seg, double tau, bool bar_stepping);
+EndState segment_end_state(const Chain& chain, const EndSegment& seg, double tau);
+void apply_segment_end(Chain& chain, const EndSegment& seg, double dv, double force);
+long finish_segment(Chain& chain, const EndSegment& seg, double tau, bool bar_stepping);
+
+}  // namespace shpb
