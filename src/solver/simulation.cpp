@@ -192,8 +192,8 @@ void check_plausibility(const Scene& scene, const Chain& chain, SimulationResult
               std::to_string(chain.interface_states[most].activations) + " times";
     if (!chain.global_stepping)
       text +=
-          ": a light, stiff bar tied to a heavy, slow one can chatter at asynchronous steps "
-          "(docs/methods.md §3.6); \"stepping\": \"global\" avoids it";
+          ": a tie between bars on different steps that no end segment covers can chatter "
+          "(docs/methods.md §3.6); compare with \"stepping\": \"global\" or finer meshes";
     result.warnings.push_back(text);
   }
   // A bar of one element has no interior node: its waves are not resolved.
@@ -272,10 +272,16 @@ SimulationResult simulate(const Scene& scene, const SimulationOptions& options) 
     result.bars.push_back(st);
   }
   check_plausibility(scene, chain, result);
-  for (std::size_t k = 0; k < chain.interfaces.size(); ++k)
-    result.interface_statistics.push_back(
-        {chain.interfaces[k].name, std::string(to_string(chain.interfaces[k].method)),
-         chain.interface_states[k].activations, chain.interface_states[k].releases});
+  for (std::size_t k = 0; k < chain.interfaces.size(); ++k) {
+    InterfaceStatistics st{
+        chain.interfaces[k].name, std::string(to_string(chain.interfaces[k].method)),
+        chain.interface_states[k].activations, chain.interface_states[k].releases};
+    if (const EndSegment* seg = chain.segment_at(k)) {
+      st.segment_bar = chain.bars[seg->bar].name;
+      st.segment_elements = seg->elements;
+    }
+    result.interface_statistics.push_back(st);
+  }
   return result;
 }
 
@@ -296,7 +302,11 @@ void to_json(nlohmann::ordered_json& j, const InterfaceStatistics& i) {
   j = {{"name", i.name},
        {"method", i.method},
        {"activations", i.activations},
-       {"releases", i.releases}};
+       {"releases", i.releases},
+       {"end_segment",
+        i.segment_elements > 0
+            ? nlohmann::ordered_json{{"bar", i.segment_bar}, {"elements", i.segment_elements}}
+            : nlohmann::ordered_json(nullptr)}};
 }
 
 void write_simulation_outputs(const SimulationResult& result, const Scene& scene,

@@ -59,6 +59,10 @@ struct InterfaceStatistics {
   std::string method;
   long activations = 0;  // contact closings
   long releases = 0;     // contact openings
+  // An end segment at this tie (solver/end_segment.hpp): the bar whose end elements step on the
+  // other bar's clock, and how many; empty and 0 without one.
+  std::string segment_bar;
+  int segment_elements = 0;
 };
 
 struct SimulationResult {
