@@ -231,12 +231,19 @@ GaugeErrorPrediction predict(const Scene& scene, const ChainDiscretization& d,
     p.bars = gauges > 0 ? std::sqrt(k.front * 2 * sum / gauges / p.pulse_s) : 0.0;
     if (cache) (*cache)[key] = p.bars;
   }
-  if (scene.specimen) {
-    const BarDiscretization& s = d.bars[*scene.specimen];
-    p.specimen =
-        k.specimen * std::pow(s.element_length_m / s.wave_speed_m_s / sample_s, k.specimen_order);
-  }
-  p.total = std::hypot(p.bars, p.specimen);
+  const auto resolution = [&](std::size_t i) {
+    const BarDiscretization& b = d.bars[i];
+    return k.specimen *
+           std::pow(b.element_length_m / b.wave_speed_m_s / sample_s, k.specimen_order);
+  };
+  if (scene.specimen) p.specimen = resolution(*scene.specimen);
+  double others = 0;
+  for (std::size_t i = 0; i < scene.bars.size(); ++i)
+    if (!is_specimen(scene, i) && !scene.bars[i].material.is_elastic())
+      others += resolution(i) * resolution(i);
+  p.other_laws = std::sqrt(others);
+  p.total = others > 0 ? std::sqrt(p.bars * p.bars + p.specimen * p.specimen + others)
+                       : std::hypot(p.bars, p.specimen);
   return p;
 }
 

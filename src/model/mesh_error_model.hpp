@@ -24,8 +24,9 @@ namespace shpb {
 //   I = (A²/π) ∫₀^∞ e^{−ω² Δs²} / (1 + ω² τ²) · |F(ω) H(ω) − 1|² / ω² dω,
 // and a pulse of duration T_p (2 fronts, norm A² T_p) has e_bars² = front · 2 I / (A² T_p),
 // averaged over the gauges. The specimen's mesh adds e_specimen = specimen · (δ_s/Δs)^order,
-// δ_s = h_s/c_s its element transit. The measured constants (tools/calibrate_tolerance.cpp
-// re-measures them and prints these values):
+// δ_s = h_s/c_s its element transit, and so does every other bar with a material law (a pulse
+// shaper, whose plastic front shapes the pulse: first order in its element like the specimen's).
+// The measured constants (tools/calibrate_tolerance.cpp re-measures them and prints these values):
 struct MeshErrorConstants {
   double front = 1.0;
   double specimen = 0.0;
@@ -38,9 +39,10 @@ struct MeshErrorConstants {
 extern const MeshErrorConstants kMeshErrorConstants;
 
 struct GaugeErrorPrediction {
-  double total = 0;        // √(bars² + specimen²), a fraction
+  double total = 0;        // √(bars² + specimen² + other_laws²), a fraction
   double bars = 0;         // the fronts' share
   double specimen = 0;     // the specimen mesh's share
+  double other_laws = 0;   // the other material-law bars' (pulse shapers), the specimen's term each
   double rise_time_s = 0;  // τ (0: a step)
   double pulse_s = 0;      // T_p
 };

@@ -37,13 +37,17 @@ void plan_end_segments(Chain& chain, const Scene& scene) {
     const int end = slow == k ? 1 : 0;
     BarModel& s = chain.bars[slow];
     const BarModel& f = chain.bars[fast];
-    if (s.law || s.adaptive_step || f.adaptive_step || (end == 1 && s.dashpot_right)) continue;
+    // Not at the specimen's faces: its own step (adaptive or the fixed plan, §8.1) and its
+    // closed forms (radial inertia) are validated with the coupling of §3.4.
+    const bool specimen = scene.specimen && (*scene.specimen == slow || *scene.specimen == fast);
+    if (specimen || s.law || s.adaptive_step || f.adaptive_step || (end == 1 && s.dashpot_right))
+      continue;
     if (s.elements() < 2 * kSegmentElements + 2 + s.segment_elements[1 - end]) continue;
-    // The merged end node's own frequency, (k1 + k2)/(m1 + m2), above the slow bar's cut-off
-    // (2c/h)² = 2 k1/m1: the slow bar cannot follow it (docs/methods.md §3.6).
+    // A light, stiff fast end: the tied pair's (k1 + k2)/(m1 + m2) well above the slow end's own
+    // k1/m1 (docs/methods.md §3.6).
     const double k1 = s.stiffness_N_m, m1 = s.mass_kg[end == 1 ? s.nodes - 1 : 0];
     const double k2 = f.stiffness_N_m, m2 = f.mass_kg[end == 1 ? 0 : f.nodes - 1];
-    if (!((k1 + k2) / (m1 + m2) > 2 * k1 / m1)) continue;
+    if (!((k1 + k2) / (m1 + m2) > kLightStiffEnd * k1 / m1)) continue;
     // A gauge reads its element at the bar's instants: none within the segment (and its joint).
     const double reach = (kSegmentElements + 1) * s.element_length_m;
     const double length = s.element_length_m * s.elements();

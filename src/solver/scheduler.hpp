@@ -44,7 +44,10 @@
 //     tied with its frame at rest, its instants change nothing but its step count (the neighbours
 //     do not step meanwhile); it goes straight to the loop's last instant and takes that one,
 //     whose record at rest stands for the skipped ones. Outputs are bit-identical (a test pins
-//     it): the specimen before the incident pulse reaches it.
+//     it): the specimen before the incident pulse reaches it. Not in a chain with end segments.
+// 11. A tie with an end segment (end_segment.hpp) is solved at its clock bar's instants only,
+//     both ends stepping there; the slow bar's rule 4 and its own instants leave the segment
+//     alone; the joint takes its impulse as a force if its bar steps, else by rule 6.
 #include <functional>
 #include <string>
 
