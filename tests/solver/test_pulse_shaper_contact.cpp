@@ -33,6 +33,16 @@ Scene pulse_shaper(Stepping stepping) {
   return scene;
 }
 
+// The gauges of the pulse shaper with its disc at `elements` elements.
+TimeSeries shaper_gauges(Stepping stepping, int elements) {
+  Scene scene = pulse_shaper(stepping);
+  REQUIRE(scene.bars[1].name == "shaper");
+  scene.bars[1].elements = elements;
+  const SimulationResult r = simulate(scene);
+  REQUIRE(r.stable);
+  return r.gauges;
+}
+
 void check_released_once(const SimulationResult& result) {
   REQUIRE(result.stable);
   CHECK(result.energy_error < kEnergyTolerance);
@@ -76,15 +86,7 @@ TEST_CASE("At global steps the pulse shaper is released once, without chatter",
 }
 
 TEST_CASE("At global steps the gauges converge with the pulse shaper's mesh", "[solver][shaper]") {
-  Scene scene = pulse_shaper(Stepping::kGlobal);
-  BarSpec& disc = scene.bars[1];
-  REQUIRE(disc.name == "shaper");
-  auto gauges = [&](int elements) {
-    disc.elements = elements;
-    const SimulationResult r = simulate(scene);
-    REQUIRE(r.stable);
-    return r.gauges;
-  };
+  auto gauges = [](int elements) { return shaper_gauges(Stepping::kGlobal, elements); };
   const TimeSeries reference = gauges(160);
   for (const char* gauge : {"incident", "transmitted"}) {
     double previous = 0;
@@ -123,15 +125,7 @@ TEST_CASE("At asynchronous steps the pulse shaper is released once, without chat
 // the incident gauge, its 160-element run chattering).
 TEST_CASE("At asynchronous steps the gauges converge with the pulse shaper's mesh",
           "[solver][shaper]") {
-  Scene scene = pulse_shaper(Stepping::kAsynchronous);
-  BarSpec& disc = scene.bars[1];
-  REQUIRE(disc.name == "shaper");
-  auto gauges = [&](int elements) {
-    disc.elements = elements;
-    const SimulationResult r = simulate(scene);
-    REQUIRE(r.stable);
-    return r.gauges;
-  };
+  auto gauges = [](int elements) { return shaper_gauges(Stepping::kAsynchronous, elements); };
   const TimeSeries reference = gauges(160), coarse = gauges(20), fine = gauges(80);
   for (const char* gauge : {"incident", "transmitted"}) {
     const double e20 = relative_rms(coarse.column(gauge), reference.column(gauge));
