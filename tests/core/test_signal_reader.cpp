@@ -132,6 +132,33 @@ TEST_CASE("Broken signal files are rejected naming file, line and column", "[cor
   }
 }
 
+TEST_CASE("A long record is read whole and its first bad field named, whichever half it is in",
+          "[core][signal]") {
+  // 300 000 rows: parsed in two halves at once (signal_csv.cpp); the values land in order.
+  constexpr int kRows = 300000;
+  const auto record = [&](int bad_a, int bad_b) {
+    std::string text = "time_s,incident\n";
+    for (int i = 0; i < kRows; ++i)
+      text += std::to_string(i) + "e-7," +
+              (i == bad_a || i == bad_b ? std::string("x") : std::to_string(i % 97)) + "\n";
+    return text;
+  };
+  const auto p = write_file("long.csv", record(-1, -1));
+  const auto s = read_signal_columns(csv_request(p, {by_name("incident")}));
+  REQUIRE(s.values[0].size() == static_cast<std::size_t>(kRows));
+  bool in_order = true;
+  for (int i = 0; i < kRows; ++i) in_order = in_order && s.values[0][i] == i % 97;
+  CHECK(in_order);
+  // Bad fields in both halves: the first one (data row 1000 is line 1002) is named.
+  const auto both = write_file("long_bad.csv", record(1000, 250000));
+  const auto msg = error_of([&] { read_signal_columns(csv_request(both, {by_name("incident")})); });
+  CHECK(msg.find("line 1002") != std::string::npos);
+  const auto late = write_file("long_late.csv", record(-1, 250000));
+  const auto msg2 =
+      error_of([&] { read_signal_columns(csv_request(late, {by_name("incident")})); });
+  CHECK(msg2.find("line 250002") != std::string::npos);
+}
+
 TEST_CASE("Repeated time stamps are detected and the time base rebuilt with a warning",
           "[core][signal]") {
   // 1 µs stamps rounded from an 80 ns clock, as in the epoxy file.
