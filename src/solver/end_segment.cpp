@@ -21,8 +21,6 @@ Span span(const Chain& chain, const EndSegment& seg) {
 int interface_side(const EndSegment& seg) { return seg.end == 1 ? 0 : 1; }
 }  // namespace
 
-int segment_joint(const Chain& chain, const EndSegment& seg) { return span(chain, seg).joint; }
-
 void plan_end_segments(Chain& chain, const Scene& scene) {
   chain.interface_segment.assign(chain.interfaces.size(), -1);
   if (chain.global_stepping) return;

@@ -33,8 +33,6 @@ inline constexpr double kLightStiffEnd = 1.2;
 // neither the specimen, no gauge and no cut end within the segment.
 void plan_end_segments(Chain& chain, const Scene& scene);
 
-int segment_joint(const Chain& chain, const EndSegment& seg);
-
 // At an instant τ of the segment's clock bar (which steps), in take_instant's order: `prepare`
 // puts a tied segment end at the frame (rule 4) and assembles the segment's element forces with
 // the joint on its straight path at τ; `end_state` is the segment end for the tie solve (stepping
