@@ -237,11 +237,12 @@ GaugeErrorPrediction predict(const Scene& scene, const ChainDiscretization& d,
            std::pow(b.element_length_m / b.wave_speed_m_s / sample_s, k.specimen_order);
   };
   if (scene.specimen) p.specimen = resolution(*scene.specimen);
-  double others = 0;
+  double others = 0;  // Σ e_law² of the other material-law bars (pulse shapers)
   for (std::size_t i = 0; i < scene.bars.size(); ++i)
-    if (!is_specimen(scene, i) && !scene.bars[i].material.is_elastic())
-      others += resolution(i) * resolution(i);
-  p.other_laws = std::sqrt(others);
+    if (!is_specimen(scene, i) && !scene.bars[i].material.is_elastic()) {
+      const double e = resolution(i);
+      others += e * e;
+    }
   p.total = others > 0 ? std::sqrt(p.bars * p.bars + p.specimen * p.specimen + others)
                        : std::hypot(p.bars, p.specimen);
   return p;

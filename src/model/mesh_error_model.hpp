@@ -39,10 +39,9 @@ struct MeshErrorConstants {
 extern const MeshErrorConstants kMeshErrorConstants;
 
 struct GaugeErrorPrediction {
-  double total = 0;        // √(bars² + specimen² + other_laws²), a fraction
+  double total = 0;        // √(bars² + specimen² + Σ other material-law bars²), a fraction
   double bars = 0;         // the fronts' share
   double specimen = 0;     // the specimen mesh's share
-  double other_laws = 0;   // the other material-law bars' (pulse shapers), the specimen's term each
   double rise_time_s = 0;  // τ (0: a step)
   double pulse_s = 0;      // T_p
 };

@@ -8,14 +8,15 @@
 namespace shpb {
 
 namespace {
-// The segment's nodes other than the joint, [first, last], and its end node at the tie.
+// The segment's nodes other than the joint, [first, last], its end node at the tie and its first
+// element (the elements are [element, element + seg.elements)).
 struct Span {
-  int joint, first, last, end;
+  int joint, first, last, end, element;
 };
 Span span(const Chain& chain, const EndSegment& seg) {
   const int n = chain.bars[seg.bar].nodes, k = seg.elements;
-  if (seg.end == 1) return {n - 1 - k, n - k, n - 1, n - 1};
-  return {k, 0, k - 1, 0};
+  if (seg.end == 1) return {n - 1 - k, n - k, n - 1, n - 1, n - 1 - k};
+  return {k, 0, k - 1, 0, 0};
 }
 // The bar's side of the tie: its right end is the interface's left side.
 int interface_side(const EndSegment& seg) { return seg.end == 1 ? 0 : 1; }
@@ -75,11 +76,14 @@ void prepare_segment(Chain& chain, EndSegment& seg, double tau, bool bar_steppin
   const auto w = [&](int i) { return i == sp.joint ? seg.joint_w : s.w[i]; };
   for (int i = sp.first; i <= sp.last; ++i) s.force[i] = 0;
   seg.joint_force_N = 0;
-  const int e0 = seg.end == 1 ? sp.joint : 0, e1 = e0 + seg.elements - 1;
-  for (int e = e0; e <= e1; ++e) {
-    const double tension = b.stiffness_N_m * (w(e + 1) - w(e));
+  // Element forces, and the segment's strain energy at τ recorded with the tie (finish_segment).
+  InterfaceState& is = chain.interface_states[seg.interface];
+  is.segment_strain_J = 0;
+  for (int e = sp.element; e < sp.element + seg.elements; ++e) {
+    const double stretch = w(e + 1) - w(e), tension = b.stiffness_N_m * stretch;
     (e == sp.joint ? seg.joint_force_N : s.force[e]) += tension;
     (e + 1 == sp.joint ? seg.joint_force_N : s.force[e + 1]) -= tension;
+    is.segment_strain_J += 0.5 * b.stiffness_N_m * stretch * stretch;
   }
 }
 
@@ -114,15 +118,9 @@ long finish_segment(Chain& chain, const EndSegment& seg, double tau, bool bar_st
   const Span sp = span(chain, seg);
   const double kick = 0.5 * (clock.dt_prev + clock.dt), dt = clock.dt;
   const double V = b.initial_velocity_m_s;
-  // Energy at τ (the central difference's own, ½ m v_{n−1/2} v_{n+1/2}; bar_integrator.hpp).
+  // Kinetic energy at τ (the central difference's own, ½ m v_{n−1/2} v_{n+1/2};
+  // bar_integrator.hpp); the strain energy was taken with the forces (prepare_segment).
   InterfaceState& is = chain.interface_states[seg.interface];
-  const auto w = [&](int i) { return i == sp.joint ? seg.joint_w : s.w[i]; };
-  const int e0 = seg.end == 1 ? sp.joint : 0, e1 = e0 + seg.elements - 1;
-  is.segment_strain_J = 0;
-  for (int e = e0; e <= e1; ++e) {
-    const double d = w(e + 1) - w(e);
-    is.segment_strain_J += 0.5 * b.stiffness_N_m * d * d;
-  }
   is.segment_kinetic_J = 0;
   for (int i = sp.first; i <= sp.last; ++i) {
     const double before = s.v[i] + V, after = before + kick * s.force[i] * b.inverse_mass[i];

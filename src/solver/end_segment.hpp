@@ -37,8 +37,8 @@ void plan_end_segments(Chain& chain, const Scene& scene);
 // puts a tied segment end at the frame (rule 4) and assembles the segment's element forces with
 // the joint on its straight path at τ; `end_state` is the segment end for the tie solve (stepping
 // with the clock bar's kick); `finish` applies the joint's impulse (a force if the slow bar steps
-// at τ too, else rule 6), records the segment's energy in the interface state and advances the
-// segment's nodes. Returns the node updates.
+// at τ too, else rule 6) and advances the segment's nodes; the segment's energy at τ goes into
+// the interface state (strain in `prepare`, kinetic in `finish`). Returns the node updates.
 void prepare_segment(Chain& chain, EndSegment& seg, double tau, bool bar_stepping);
 EndState segment_end_state(const Chain& chain, const EndSegment& seg, double tau);
 void apply_segment_end(Chain& chain, const EndSegment& seg, double dv, double force);

@@ -71,6 +71,17 @@ std::string describe_failure(const Chain& chain, double t, double ratio) {
   return out.str();
 }
 
+// What every solve of interface k leaves in the chain: its closing losses and the largest
+// interpenetration, also in elements of the smaller neighbouring one.
+void book_solve(Chain& chain, std::size_t k, const ContactResult& res) {
+  const double gap = chain.interface_states[k].gap_m;
+  chain.contact_dissipated_J[k] += res.dissipated_J;
+  chain.max_penetration_m = std::max(chain.max_penetration_m, -gap);
+  chain.max_penetration_elements =
+      std::max(chain.max_penetration_elements,
+               -gap / std::min(chain.bars[k].element_length_m, chain.bars[k + 1].element_length_m));
+}
+
 // One instant τ* for the stepping bars, all in [first, last] (rules 3–6); the interfaces
 // touching them are solved in chain order.
 void take_instant(Chain& chain, ChainRecorders& recorders, const std::vector<char>& stepping,
@@ -131,11 +142,7 @@ void take_instant(Chain& chain, ChainRecorders& recorders, const std::vector<cha
                         seg_left ? res.force_left_N : res.force_right_N);
       apply_end(chain, f, f_node, tau, true, seg_left ? res.dv_right : res.dv_left,
                 seg_left ? res.force_right_N : res.force_left_N);
-      chain.contact_dissipated_J[k] += res.dissipated_J;
-      chain.max_penetration_m = std::max(chain.max_penetration_m, -is.gap_m);
-      chain.max_penetration_elements = std::max(
-          chain.max_penetration_elements,
-          -is.gap_m / std::min(chain.bars[l].element_length_m, chain.bars[r].element_length_m));
+      book_solve(chain, k, res);
       chain.states[seg.bar].node_updates += finish_segment(chain, seg, tau, bar_stepping);
       recorders.on_interface_solve(chain, k, tau, next);
       continue;
@@ -154,11 +161,7 @@ void take_instant(Chain& chain, ChainRecorders& recorders, const std::vector<cha
     const ContactResult res = solve_contact(im, is, left, right, tau, next);
     apply_end(chain, l, l_node, tau, stepping[l], res.dv_left, res.force_left_N);
     apply_end(chain, r, 0, tau, stepping[r], res.dv_right, res.force_right_N);
-    chain.contact_dissipated_J[k] += res.dissipated_J;
-    chain.max_penetration_m = std::max(chain.max_penetration_m, -is.gap_m);
-    chain.max_penetration_elements = std::max(
-        chain.max_penetration_elements,
-        -is.gap_m / std::min(chain.bars[l].element_length_m, chain.bars[r].element_length_m));
+    book_solve(chain, k, res);
     recorders.on_interface_solve(chain, k, tau, next);
   }
 
