@@ -46,10 +46,6 @@ std::vector<std::vector<double>> read_columns(const fs::path& csv,
 TEST_CASE("The LANL copper test is in force balance with the scene's bridge settings",
           "[app][experiment][data]") {
   const fs::path root(SHPB_SOURCE_DIR);
-  if (!fs::exists(root / "../shared/data/measured/lanl-cu-ofe-273k")) {
-    WARN("SKIPPED: ../shared/data/measured/lanl-cu-ofe-273k absent: test skipped");
-    return;
-  }
   const auto dir = shpb_test::scratch_dir("lanl_cu");
   const auto r =
       shpb_test::run_shpb({"process", (root / "experiments/lanl-cu-ofe-273k/scene.json").string(),

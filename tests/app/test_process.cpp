@@ -69,7 +69,6 @@ std::string good_signals() {
 }
 
 const fs::path kExperiments = fs::path(SHPB_SOURCE_DIR) / "experiments";
-const fs::path kData = fs::path(SHPB_SOURCE_DIR) / "../shared/data/measured";
 
 nlohmann::json summary(const fs::path& dir) {
   std::ifstream in(dir / "summary.json");
@@ -135,10 +134,6 @@ TEST_CASE("Broken signal files exit 2 naming file, line and column, and write no
 
 TEST_CASE("The LANL copper and PMMA tests process end to end from the scene alone",
           "[app][process][data]") {
-  if (!fs::exists(kData)) {
-    WARN("SKIPPED: ../shared/data/measured absent: measured end-to-end tests skipped");
-    return;
-  }
   struct Expect {
     const char* experiment;
     double v_lo, v_hi;  // the READMEs estimate the striker at ≈ 22 and ≈ 13.5 m/s
@@ -165,10 +160,6 @@ TEST_CASE("The LANL copper and PMMA tests process end to end from the scene alon
 
 TEST_CASE("The epoxy file's repeated time stamps and doubtful scale are reported",
           "[app][process][data]") {
-  if (!fs::exists(kData)) {
-    WARN("SKIPPED: ../shared/data/measured absent: epoxy test skipped");
-    return;
-  }
   const fs::path out = temp_dir("epoxy") / "out";
   const auto r = run_shpb(
       {"process", (kExperiments / "epoxy-resin-sample01/scene.json").string(), "-o", out.string()});

@@ -199,10 +199,6 @@ TEST_CASE("A campaign's rows equal each test processed alone; flow stress on its
 }
 
 TEST_CASE("The three measured experiments as one campaign", "[app][process][campaign][data]") {
-  if (!fs::exists(kRoot / "../shared/data/measured")) {
-    WARN("../shared/data/measured absent: test skipped");
-    return;
-  }
   const fs::path dir = shpb_test::scratch_dir("measured_campaign");
   const fs::path campaign = kRoot / "experiments/measured-campaign.json";
   const auto r = shpb_test::run_shpb({"process", "--campaign", campaign.string(), "-o",

@@ -45,7 +45,8 @@ std::string error_of(F&& f) {
   return "";
 }
 
-const fs::path kData = fs::path(SHPB_SOURCE_DIR) / "../shared/data/measured";
+// The measured records ship with their experiments (experiments/<name>/data, each with its LICENSE).
+const fs::path kExperiments = fs::path(SHPB_SOURCE_DIR) / "experiments";
 
 }  // namespace
 
@@ -236,13 +237,9 @@ TEST_CASE("Volts become strain through the bridge and opposite gauges are averag
 
 TEST_CASE("The real files import: LANL raw, Tektronix channels, and the messy epoxy file",
           "[core][signal]") {
-  if (!fs::exists(kData)) {
-    WARN("SKIPPED: ../shared/data/measured absent: real-file import tests skipped");
-    return;
-  }
   SECTION("LANL copper raw") {
     SignalRequest r;
-    r.file = kData / "lanl-cu-ofe-273k/20061201_1148HE_CuOFE_273K.raw";
+    r.file = kExperiments / "lanl-cu-ofe-273k/data/20061201_1148HE_CuOFE_273K.raw";
     r.columns = {by_name("Incident/Reflected Waveform"), by_name("Transmitted Waveform")};
     const auto s = read_signal_columns(r);
     CHECK(s.time_s.size() == 5000);
@@ -251,7 +248,7 @@ TEST_CASE("The real files import: LANL raw, Tektronix channels, and the messy ep
   }
   SECTION("PMMA Tektronix") {
     SignalRequest r;
-    r.file = kData / "lanl-pmma13-mini-kolsky/180303_171828_Ch1.csv";
+    r.file = kExperiments / "lanl-pmma13-mini-kolsky/data/180303_171828_Ch1.csv";
     r.columns = {by_index(4)};
     const auto s = read_signal_columns(r);
     CHECK(s.time_s.size() == 50000);
@@ -259,7 +256,7 @@ TEST_CASE("The real files import: LANL raw, Tektronix channels, and the messy ep
   }
   SECTION("epoxy: rebuilt clock and doubtful scale") {
     MeasurementSpec m;
-    m.file = kData / "epoxy-resin-sample01/raw_strain.csv";
+    m.file = kExperiments / "epoxy-resin-sample01/data/raw_strain.csv";
     m.time_column = by_name("Time/s");
     for (int i : {1, 2}) {
       ChannelSpec c;

@@ -25,11 +25,11 @@ struct ReferenceRow {
   double x, c;
 };
 
-// The published reference tables (optional data beside the repository), pc_nu<ν>.csv:
+// The reference tables shipped in tests/data/pochhammer-chree (README there), pc_nu<ν>.csv:
 // a_over_Lambda,d_over_Lambda,c_over_c0,…
 std::vector<ReferenceRow> read_reference(const std::string& name) {
   const auto file =
-      std::filesystem::path(SHPB_SOURCE_DIR) / "../shared/data/reference/pochhammer-chree" / name;
+      std::filesystem::path(SHPB_SOURCE_DIR) / "tests/data/pochhammer-chree" / name;
   std::vector<ReferenceRow> rows;
   std::ifstream in(file);
   std::string line;
@@ -52,12 +52,7 @@ TEST_CASE("The first mode matches the reference tables within 2e-5 up to a/Lambd
   for (const auto& [nu, name] :
        {std::pair{0.29, "pc_nu0.29.csv"}, std::pair{0.30, "pc_nu0.30.csv"}}) {
     const auto rows = read_reference(name);
-    if (rows.empty()) {
-      WARN(
-          "SKIPPED: ../shared/data/reference/pochhammer-chree absent: reference comparison "
-          "skipped");
-      return;
-    }
+    REQUIRE(rows.size() > 10);  // the table ships with the repository (tests/data/pochhammer-chree)
     CAPTURE(nu);
     double worst = 0, previous_x = -1, previous_c = 0;
     for (const auto& r : rows) {

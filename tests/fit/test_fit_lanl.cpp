@@ -22,10 +22,6 @@ constexpr double kFittedNrmse = 0.06;
 TEST_CASE("fit brings the LANL copper pulses within NRMSE 0.06 and says C is not identifiable",
           "[fit][experiment][data]") {
   const fs::path root(SHPB_SOURCE_DIR);
-  if (!fs::exists(root / "../shared/data/measured/lanl-cu-ofe-273k")) {
-    WARN("SKIPPED: ../shared/data/measured/lanl-cu-ofe-273k absent: test skipped");
-    return;
-  }
   const fs::path experiment = root / "experiments/lanl-cu-ofe-273k";
   const fs::path dir = shpb_test::scratch_dir("fit_lanl");
   const auto r = run_shpb({"fit", (experiment / "campaign.json").string(), "-o",

@@ -86,10 +86,6 @@ TEST_CASE("Finite links on the classic experiment run asynchronously like the ri
 TEST_CASE("The LANL copper compliant impact runs asynchronously like its global-stepping run",
           "[solver][contact][finite][data]") {
   const std::filesystem::path root(SHPB_SOURCE_DIR);
-  if (!std::filesystem::exists(root / "../shared/data/measured/lanl-cu-ofe-273k")) {
-    WARN("../shared/data/measured/lanl-cu-ofe-273k absent: test skipped");
-    return;
-  }
   Scene scene = experiment("lanl-cu-ofe-273k");
   const SimulationResult async = simulate(scene);
   scene.simulation.stepping = Stepping::kGlobal;
