@@ -33,7 +33,7 @@ double sample(const std::vector<double>& y, double t0, double dt, double t) {
 // because measured and simulated fronts differ in shape: on the LANL copper record a 20–80 % band
 // moves the clock by 0.2 µs against the half-plateau crossing, 40–60 % by 0.03 µs, while the
 // synthetic fit's estimates scatter as their standard errors say from 40–60 % on (docs/methods.md
-// §9, README "shpb fit").
+// §9, docs/validation.md "shpb fit").
 constexpr double kFrontLow = 0.4, kFrontHigh = 0.6;
 
 // ∫₀¹ clip(u0 + (u1 − u0) s, a, b) ds, exact: piecewise linear between the crossings of a and b.

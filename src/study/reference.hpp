@@ -39,7 +39,7 @@ inline constexpr double kReferenceResolution = 8;
 // … except the specimen's, kept at the sweep's finest: the runs' gauge error is mostly the bars'.
 // Classic experiment, bars at 8 ×: the specimen at 1/4, 1, 4 × differs from 8 × by 0.5, 0.15,
 // 0.06 % of the gauge norm, where the sweep's runs are 2–6 % off; 4 × costs 40 % of the 8 × run
-// (measured, README "Accuracy against cost").
+// (measured, docs/validation.md "Accuracy against cost").
 inline constexpr double kReferenceSpecimenResolution = 4;
 
 // The fine-mesh reference run records its gauges at this multiple of the scene's sample rate, so

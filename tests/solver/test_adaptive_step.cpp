@@ -20,7 +20,7 @@ constexpr double kIdentical = 0;
 // time discretization of the same mesh. Measured on the classic experiment, the run is sensitive
 // to round-off at 0.2 % (a 1e-15 relative change of the strains moves its gauges by 0.19 % L2, as
 // the step change does); 1 % stays far below the 2–6 % gauge error of the default meshes against
-// the study's reference (README, "Accuracy against cost").
+// the study's reference (docs/validation.md, "Accuracy against cost").
 constexpr double kSameGauges = 0.01;
 // A stable run keeps its total energy within ~1e-2 of E(0) (scheduler.hpp, kEnergyGrowthLimit's
 // comment); the adaptive step must not spend more of it than the fixed plan by more than that.
