@@ -10,7 +10,7 @@ FUZZ_SECONDS ?= 60
 SANITIZER_ENV = ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1 \
                 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 
-.PHONY: run test check build asan deps bench fuzz format format-check clean
+.PHONY: run test check build asan deps bench fuzz docs format format-check clean
 
 deps:
 	@bash tools/install-deps.sh
@@ -47,6 +47,11 @@ fuzz:
 	       -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" -DSHPB_FUZZ=ON >/dev/null
 	@cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_targets
 	@bash tests/fuzz/run_fuzzers.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_TARGETS)
+
+# The printed output shown in the experiment READMEs and docs/commands.md, run again and rewritten
+# (ctest docs.outputs fails when it is stale).
+docs: build
+	@python3 tools/doc_outputs.py --update $(BUILD)/shpb experiments/*/README.md docs/commands.md
 
 bench: deps
 	@bash tools/bench.sh $(BUILD)

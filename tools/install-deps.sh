@@ -2,7 +2,7 @@
 # Installs the Debian packages shpb needs, only those that are missing. Idempotent, no prompts.
 set -euo pipefail
 packages=(g++ cmake make pkg-config libeigen3-dev nlohmann-json3-dev libfftw3-dev libcli11-dev catch2
-          python3-matplotlib python3-numpy libzip-dev libexpat1-dev libfreexl-dev
+          python3-matplotlib python3-numpy python3-pytest libzip-dev libexpat1-dev libfreexl-dev
           libceres-dev)
 packages+=("$@")
 missing=()

@@ -18,11 +18,12 @@ import sys
 import tempfile
 import traceback
 import warnings
+from typing import Callable, Optional
 
 from . import compare, fit, process, simulate, study, sweeps
 from .drawing import Figures, close_all
 from .page import GENERATOR, write_html
-from .reading import ReportError, find_sources, read_text
+from .reading import ReportError, Source, find_sources, read_text
 
 USAGE = """usage: shpb report DIR
 
@@ -36,7 +37,7 @@ OUTPUT_MARKER = ".shpb-output"
 OUTPUT_SIGNATURE = "shpb output folder: written by shpb, replaced only by shpb"
 
 
-def check_ownership(folder):
+def check_ownership(folder: str) -> None:
     """Refuses to replace a figures/ or report.html that this script did not write."""
     fig_dir = os.path.join(folder, "figures")
     if os.path.lexists(fig_dir) and (
@@ -50,7 +51,7 @@ def check_ownership(folder):
                           "replace it (move it away, then run the report again)")
 
 
-def sync(path):
+def sync(path: str) -> None:
     fd = os.open(path, os.O_RDONLY)
     try:
         os.fsync(fd)
@@ -58,7 +59,7 @@ def sync(path):
         os.close(fd)
 
 
-def tell_output_marker(folder, names):
+def tell_output_marker(folder: str, names: list[str]) -> None:
     """Lists `names` in the folder's .shpb-output marker (if it is shpb's), atomically."""
     marker = os.path.join(folder, OUTPUT_MARKER)
     text = read_text(marker)
@@ -76,7 +77,41 @@ def tell_output_marker(folder, names):
     os.replace(tmp, marker)
 
 
-def build(folder):
+def _pulses_with(column: str) -> Callable[[Source], bool]:
+    return lambda src: src.has("pulses.csv") and column in src.table("pulses.csv")
+
+
+# The figures of one output folder: (what the folder must hold, the figure). In each group the
+# first figure whose condition holds is drawn (a fit's signals.csv is not a compare's).
+FigureDrawer = Callable[[Source, Figures, Optional[dict]], None]
+FIGURE_TABLE: list[list[tuple[Callable[[Source], bool], FigureDrawer]]] = [
+    [(lambda s: s.has("fit.json") and s.has("signals.csv"), lambda s, f, t: fit.fig_fit(s, f)),
+     (lambda s: s.has("signals.csv"), lambda s, f, t: compare.fig_compare_signals(s, f)),
+     (lambda s: s.has("gauges.csv"), lambda s, f, t: simulate.fig_gauges(s, f))],
+    [(lambda s: s.has("field.csv"), lambda s, f, t: simulate.fig_wave_diagram(s, f))],
+    [(lambda s: s.has("raw_signals.csv"), lambda s, f, t: process.fig_raw_signals(s, f))],
+    [(_pulses_with("incident"), lambda s, f, t: process.fig_pulses(s, f)),
+     (_pulses_with("far_measured"), lambda s, f, t: process.fig_bar_check(s, f))],
+    [(lambda s: s.has("curve.csv"), process.fig_curve)],
+    [(lambda s: s.has("specimen.csv"), lambda s, f, t: simulate.fig_specimen(s, f))],
+    [(lambda s: s.has("interfaces.csv"), lambda s, f, t: simulate.fig_interfaces(s, f))],
+    [(lambda s: s.has("energy.csv"), lambda s, f, t: simulate.fig_energy(s, f))],
+    [(lambda s: s.has("pareto.csv"), lambda s, f, t: study.fig_pareto(s, f))],
+    [(lambda s: s.has("stability.csv"), lambda s, f, t: sweeps.fig_stability(s, f))],
+]
+
+
+def figures_of(src: Source) -> list[FigureDrawer]:
+    """The figures an output folder's files allow, in the page's order."""
+    drawers = []
+    for group in FIGURE_TABLE:
+        drawer = next((draw for holds, draw in group if holds(src)), None)
+        if drawer is not None:
+            drawers.append(drawer)
+    return drawers
+
+
+def build(folder: str) -> tuple[str, int]:
     if not os.path.isdir(folder):
         raise ReportError(f"{folder}: not a folder: an output folder of shpb was expected")
     sources = find_sources(folder)
@@ -96,32 +131,8 @@ def build(folder):
         figs = Figures(tmp)
         truth = next((s.table("specimen.csv") for s in sources if s.has("specimen.csv")), None)
         for src in sources:
-            if src.has("fit.json") and src.has("signals.csv"):
-                fit.fig_fit(src, figs)
-            elif src.has("signals.csv"):
-                compare.fig_compare_signals(src, figs)
-            elif src.has("gauges.csv"):
-                simulate.fig_gauges(src, figs)
-            if src.has("field.csv"):
-                simulate.fig_wave_diagram(src, figs)
-            if src.has("raw_signals.csv"):
-                process.fig_raw_signals(src, figs)
-            if src.has("pulses.csv") and "incident" in src.table("pulses.csv"):
-                process.fig_pulses(src, figs)
-            elif src.has("pulses.csv") and "far_measured" in src.table("pulses.csv"):
-                process.fig_bar_check(src, figs)
-            if src.has("curve.csv"):
-                process.fig_curve(src, figs, truth)
-            if src.has("specimen.csv"):
-                simulate.fig_specimen(src, figs)
-            if src.has("interfaces.csv"):
-                simulate.fig_interfaces(src, figs)
-            if src.has("energy.csv"):
-                simulate.fig_energy(src, figs)
-            if src.has("pareto.csv"):
-                study.fig_pareto(src, figs)
-            if src.has("stability.csv"):
-                sweeps.fig_stability(src, figs)
+            for draw in figures_of(src):
+                draw(src, figs, truth)
         if os.path.isfile(os.path.join(folder, "campaign.csv")):
             process.fig_campaign(folder, sources, figs)
         html_tmp = os.path.join(tmp, "report.html")
@@ -147,7 +158,7 @@ def build(folder):
                 shutil.rmtree(leftover, ignore_errors=True)
 
 
-def main(argv):
+def main(argv: list[str]) -> int:
     # A figure of an odd but valid file (an all-empty column, nothing to label) is drawn as it is:
     # no matplotlib or numpy chatter on stderr, where only the one result or error line goes.
     logging.getLogger("matplotlib").setLevel(logging.ERROR)

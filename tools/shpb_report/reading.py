@@ -10,6 +10,7 @@ import json
 import math
 import os
 import re
+from typing import Any
 
 import numpy as np
 
@@ -25,7 +26,7 @@ class ReportError(Exception):
     """Bad input: printed as one `error:` line, exit code 2."""
 
 
-def read_text(path, limit=1 << 16):
+def read_text(path: str, limit: int = 1 << 16) -> str:
     try:
         with open(path, encoding="utf-8", errors="replace") as f:
             return f.read(limit)
@@ -33,7 +34,7 @@ def read_text(path, limit=1 << 16):
         return ""
 
 
-def slug(text):
+def slug(text: str) -> str:
     s = re.sub(r"[^A-Za-z0-9]+", "-", text).strip("-").lower()
     return s or "main"
 
@@ -41,7 +42,7 @@ def slug(text):
 class Table:
     """A numeric CSV with one header row: columns by name as numpy arrays."""
 
-    def __init__(self, path):
+    def __init__(self, path: str) -> None:
         self.path = path
         self.columns = {}
         self.names = []
@@ -85,20 +86,20 @@ class Table:
             else:
                 self.columns[name] = np.array([str(v) for v in col], dtype=object)
 
-    def __contains__(self, name):
+    def __contains__(self, name: str) -> bool:
         return name in self.columns
 
-    def __getitem__(self, name):
+    def __getitem__(self, name: str) -> np.ndarray:
         """A column as read (numbers or text)."""
         if name not in self.columns:
             raise ReportError(f"{self.path}: header: {','.join(self.names)}: a column "
                               f"{name} was expected")
         return self.columns[name]
 
-    def __len__(self):
+    def __len__(self) -> int:
         return len(self.rows)
 
-    def numeric(self, name):
+    def numeric(self, name: str) -> np.ndarray:
         col = self[name]
         if col.dtype == object:
             raise ReportError(f"{self.path}: column {name}: text: numbers were expected")
@@ -108,7 +109,7 @@ class Table:
 class Source:
     """One output folder: the known files it holds."""
 
-    def __init__(self, folder, label):
+    def __init__(self, folder: str, label: str) -> None:
         self.folder = folder
         self.label = label
         self.files = {n: os.path.join(folder, n) for n in KNOWN_FILES
@@ -125,15 +126,15 @@ class Source:
             except OSError as e:
                 raise ReportError(f"{path}: {e.strerror or e}: a readable file was expected")
 
-    def has(self, name):
+    def has(self, name: str) -> bool:
         return name in self.files
 
-    def table(self, name):
+    def table(self, name: str) -> Table:
         if name not in self._tables:
             self._tables[name] = Table(self.files[name])
         return self._tables[name]
 
-    def value(self, *keys, kind=None):
+    def value(self, *keys: Any, kind: Any = None) -> Any:
         """summary.json at keys (object members or list indices), or None when absent or not of
         `kind` (a type, a tuple of types, or NUMBER)."""
         v = self.summary
@@ -151,15 +152,15 @@ class Source:
             return float(v) if ok else None
         return v if isinstance(v, kind) else None
 
-    def png(self, base):
+    def png(self, base: str) -> str:
         """Figure file name: `base.png` for DIR itself, `base_<sub-folder>.png` otherwise."""
         return f"{base}.png" if self.label == "." else f"{base}_{slug(self.label)}.png"
 
-    def title(self, text):
+    def title(self, text: str) -> str:
         return text if self.label == "." else f"{text} — {self.label}"
 
 
-def find_sources(folder):
+def find_sources(folder: str) -> list["Source"]:
     """The folder itself and its immediate sub-folders, those holding a known output file."""
     candidates = [Source(folder, ".")]
     for name in sorted(os.listdir(folder)):

@@ -1,0 +1,98 @@
+"""Unit tests of the report package (tools/shpb_report), run by pytest from Debian (ctest
+report.package). The end-to-end exit codes are tests/app/report_exit_codes.py."""
+import os
+import sys
+from pathlib import Path
+
+import pytest
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools"))
+
+from shpb_report import main as report_main  # noqa: E402
+from shpb_report.reading import ReportError, Source, Table  # noqa: E402
+
+
+def write(folder: Path, name: str, text: str) -> None:
+    (folder / name).write_text(text, encoding="utf-8")
+
+
+def drawn(folder: Path) -> list:
+    return report_main.figures_of(Source(str(folder), "."))
+
+
+def test_a_fit_folder_draws_the_fit_not_a_comparison(tmp_path):
+    # fit and compare both write signals.csv: the fit's figure takes precedence, never both.
+    write(tmp_path, "signals.csv", "time_s,x\n0,1\n")
+    write(tmp_path, "fit.json", "{}")
+    drawers = drawn(tmp_path)
+    assert len(drawers) == 1
+    compare_only = tmp_path / "compare"
+    compare_only.mkdir()
+    write(compare_only, "signals.csv", "time_s,x\n0,1\n")
+    assert len(drawn(compare_only)) == 1
+    assert drawn(compare_only)[0] is not drawers[0]
+
+
+def test_pulses_choose_between_a_test_and_a_bars_together_check(tmp_path):
+    test = tmp_path / "test"
+    check = tmp_path / "check"
+    test.mkdir()
+    check.mkdir()
+    write(test, "pulses.csv", "time_s,incident,reflected,transmitted\n0,0,0,0\n")
+    write(check, "pulses.csv", "time_s,near,far_measured\n0,0,0\n")
+    assert len(drawn(test)) == 1 and len(drawn(check)) == 1
+    assert drawn(test)[0] is not drawn(check)[0]
+
+
+def test_a_simulation_folder_gets_one_figure_per_file(tmp_path):
+    for name in ("gauges.csv", "field.csv", "specimen.csv", "interfaces.csv", "energy.csv"):
+        write(tmp_path, name, "time_s\n0\n")
+    assert len(drawn(tmp_path)) == 5
+
+
+def test_a_row_with_a_missing_field_names_its_line(tmp_path):
+    write(tmp_path, "curve.csv", "strain,stress\n0,1\n0.1\n")
+    with pytest.raises(ReportError, match=r"line 3: 1 fields: 2 expected"):
+        Table(str(tmp_path / "curve.csv"))
+
+
+def test_an_overflowing_number_is_refused_with_its_place(tmp_path):
+    write(tmp_path, "curve.csv", "strain,stress\n0,1e300\n")
+    with pytest.raises(ReportError, match=r"line 2, column 2: 1e300"):
+        Table(str(tmp_path / "curve.csv"))
+
+
+def test_a_missing_column_is_named(tmp_path):
+    write(tmp_path, "curve.csv", "strain\n0\n")
+    with pytest.raises(ReportError, match=r"a column stress_3wave_Pa was expected"):
+        Table(str(tmp_path / "curve.csv"))["stress_3wave_Pa"]
+
+
+def test_summary_values_of_the_wrong_kind_read_as_absent(tmp_path):
+    write(tmp_path, "summary.json", '{"peak": true, "rate": 2000, "w": ["a"]}')
+    src = Source(str(tmp_path), ".")
+    assert src.value("peak", kind="number") is None  # a bool is not a number
+    assert src.value("rate", kind="number") == 2000.0
+    assert src.value("w", 0) == "a"
+    assert src.value("w", 5) is None
+
+
+def test_a_foreign_figures_folder_is_never_replaced(tmp_path):
+    (tmp_path / "figures").mkdir()
+    write(tmp_path / "figures", "thesis.png", "mine")
+    with pytest.raises(ReportError, match="was not written by shpb report"):
+        report_main.check_ownership(str(tmp_path))
+
+
+def test_the_output_marker_learns_the_report_files_only_if_it_is_shpbs(tmp_path):
+    marker = tmp_path / ".shpb-output"
+    marker.write_text(report_main.OUTPUT_SIGNATURE + "\nfile: gauges.csv\n", encoding="utf-8")
+    report_main.tell_output_marker(str(tmp_path), ["figures", "report.html"])
+    lines = marker.read_text(encoding="utf-8").splitlines()
+    assert "file: figures" in lines and "file: report.html" in lines
+    foreign = tmp_path / "other"
+    foreign.mkdir()
+    (foreign / ".shpb-output").write_text("not ours\n", encoding="utf-8")
+    report_main.tell_output_marker(str(foreign), ["figures"])
+    assert (foreign / ".shpb-output").read_text(encoding="utf-8") == "not ours\n"
+    assert not [n for n in os.listdir(foreign) if n.startswith(".shpb-output.tmp")]

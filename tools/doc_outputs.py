@@ -1,0 +1,114 @@
+#!/usr/bin/env python3
+"""Printed output in the documentation, checked against the executable.
+
+A Markdown file marks a block of real output with one or more comment lines, each a command run
+from the project root, followed by a fenced code block:
+
+    <!-- shpb-output: validate experiments/classic-al6061/scene.json -->
+    ```text
+    ...what the command prints (stdout, then stderr)...
+    ```
+
+With several marker lines the commands run in order and the block shows each as `$ shpb ARGS`
+followed by what it printed. Outputs go under results/ (ignored by git). `--check` exits 1 and
+prints a diff when a block differs from what the executable prints now; `--update` rewrites the
+blocks (`make docs`). Figures that change from run to run (wall and CPU times) are masked.
+
+Usage: doc_outputs.py (--check | --update) SHPB_EXE FILE.md...
+"""
+from __future__ import annotations
+
+import difflib
+import re
+import shlex
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+MARKER = re.compile(r"^<!-- shpb-output: (.+?) -->$")
+# Times of a run (solve, wall, CPU): the only figures a deterministic run does not repeat.
+VOLATILE = [
+    (re.compile(r"\b(\d+(?:\.\d+)?) ?(s|ms) (wall|CPU|processor)\b"), r"<time> \3"),
+    (re.compile(r"\b(solve|wall time|in) (\d+(?:\.\d+)?(?:e-?\d+)?) ?(s|ms)\b"), r"\1 <time>"),
+]
+
+
+def mask(text: str) -> str:
+    for pattern, replacement in VOLATILE:
+        text = pattern.sub(replacement, text)
+    return text
+
+
+def run(exe: str, commands: list[str]) -> str:
+    shown = []
+    for command in commands:
+        result = subprocess.run([exe, *shlex.split(command)], cwd=ROOT, capture_output=True,
+                                text=True, timeout=600, check=False)
+        printed = (result.stdout + result.stderr).rstrip("\n")
+        if len(commands) > 1:
+            shown.append(f"$ shpb {command}")
+        if printed:
+            shown.append(printed)
+        if result.returncode not in (0,):
+            shown.append(f"(exit {result.returncode})")
+    return "\n".join(shown)
+
+
+def blocks(lines: list[str]):
+    """(first marker line, commands, fence start, fence end) of every marked block."""
+    i = 0
+    while i < len(lines):
+        commands = []
+        start = i
+        while i < len(lines) and MARKER.match(lines[i]):
+            commands.append(MARKER.match(lines[i]).group(1))
+            i += 1
+        if commands:
+            if i >= len(lines) or not lines[i].startswith("```"):
+                raise SystemExit(f"{start + 1}: a shpb-output marker must be followed by a fenced block")
+            end = i + 1
+            while end < len(lines) and lines[end] != "```":
+                end += 1
+            if end >= len(lines):
+                raise SystemExit(f"{i + 1}: fenced block not closed")
+            yield start, commands, i, end
+            i = end + 1
+        else:
+            i += 1
+
+
+def main(argv: list[str]) -> int:
+    if len(argv) < 4 or argv[1] not in ("--check", "--update"):
+        print(__doc__.strip().splitlines()[-1], file=sys.stderr)
+        return 2
+    update, exe, files = argv[1] == "--update", argv[2], argv[3:]
+    stale = 0
+    for name in files:
+        path = Path(name)
+        lines = path.read_text(encoding="utf-8").split("\n")
+        out = list(lines)
+        # Replace from the last block up so earlier line numbers stay valid.
+        for start, commands, fence, end in reversed(list(blocks(lines))):
+            documented = mask("\n".join(lines[fence + 1:end]))
+            printed = run(exe, commands)
+            if mask(printed) != documented:
+                stale += 1
+                where = f"{name}:{start + 1}"
+                if not update:
+                    diff = difflib.unified_diff(documented.split("\n"), mask(printed).split("\n"),
+                                                f"{where} (documented)", "printed now", lineterm="")
+                    print("\n".join(diff))
+                out[fence + 1:end] = printed.split("\n") if printed else []
+        if update and out != lines:
+            path.write_text("\n".join(out), encoding="utf-8")
+            print(f"updated {name}")
+    if stale and not update:
+        print(f"{stale} documented output(s) differ from what shpb prints now: run `make docs`",
+              file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
