@@ -25,11 +25,11 @@
 #include "core/json_value.hpp"
 #include "core/median.hpp"
 #include "core/output_folder.hpp"
+#include "core/parallel_runner.hpp"
 #include "fit/fit_case.hpp"
 #include "fit/fit_spec.hpp"
 #include "fit/law_parameters.hpp"
 #include "fit/least_squares.hpp"
-#include "study/parallel_runner.hpp"
 #include "version.hpp"
 
 namespace shpb {

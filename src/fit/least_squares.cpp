@@ -11,7 +11,7 @@
 #include <mutex>
 
 #include "core/error.hpp"
-#include "study/parallel_runner.hpp"
+#include "core/parallel_runner.hpp"
 
 namespace shpb {
 namespace {

@@ -5,7 +5,7 @@
 #include <numeric>
 #include <optional>
 
-#include "study/parallel_runner.hpp"
+#include "core/parallel_runner.hpp"
 #include "study/recorded_error.hpp"
 #include "study/reference.hpp"
 

@@ -1,7 +1,7 @@
 #include "study/stability_sweep.hpp"
 
 #include "core/error.hpp"
-#include "study/parallel_runner.hpp"
+#include "core/parallel_runner.hpp"
 
 namespace shpb {
 

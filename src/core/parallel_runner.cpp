@@ -1,4 +1,4 @@
-#include "study/parallel_runner.hpp"
+#include "core/parallel_runner.hpp"
 
 #include <algorithm>
 #include <atomic>
