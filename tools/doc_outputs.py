@@ -45,7 +45,9 @@ def run(exe: str, commands: list[str]) -> str:
     for command in commands:
         result = subprocess.run([exe, *shlex.split(command)], cwd=ROOT, capture_output=True,
                                 text=True, timeout=600, check=False)
-        printed = (result.stdout + result.stderr).rstrip("\n")
+        # Paths as a reader at the project root sees them, wherever the clone lies.
+        printed = (result.stdout + result.stderr).rstrip("\n").replace(f"{ROOT}/", "")
+        printed = "\n".join(line.rstrip() for line in printed.split("\n"))
         if len(commands) > 1:
             shown.append(f"$ shpb {command}")
         if printed:

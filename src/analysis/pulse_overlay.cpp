@@ -159,7 +159,7 @@ std::vector<double> PulseOverlay::dispersed(const std::vector<double>& y, double
   return out;
 }
 
-Overlay PulseOverlay::overlay(const Scene& scene, const SimulationResult& sim,
+Overlay PulseOverlay::overlay(const Scene& scene, const TimeSeries& simulated_gauges,
                               double shift_s) const {
   const MeasuredPulses& m = measured_;
   const KolskySetup& setup = m.setup;
@@ -167,9 +167,9 @@ Overlay PulseOverlay::overlay(const Scene& scene, const SimulationResult& sim,
   const std::size_t incident_bar = *scene.specimen - 1;
   const std::size_t n = m.time_s.size();
   const double dt_sim = 1.0 / scene.simulation.sample_rate_Hz;
-  const std::vector<double>& s_inc = sim.gauges.column(setup.incident_gauge);
-  const std::vector<double>& s_tr = sim.gauges.column(setup.transmitted_gauge);
-  const double t_sim0 = sim.gauges.time_s.empty() ? 0.0 : sim.gauges.time_s.front();
+  const std::vector<double>& s_inc = simulated_gauges.column(setup.incident_gauge);
+  const std::vector<double>& s_tr = simulated_gauges.column(setup.transmitted_gauge);
+  const double t_sim0 = simulated_gauges.time_s.empty() ? 0.0 : simulated_gauges.time_s.front();
   const Baseline base_sim = estimate_baseline(s_inc);
   const auto w_sim = find_first_pulse(s_inc, base_sim);
   if (!w_sim)

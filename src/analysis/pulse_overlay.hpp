@@ -15,9 +15,9 @@
 
 #include "analysis/processing.hpp"
 #include "analysis/pulse_window.hpp"
+#include "core/time_series.hpp"
 #include "dispersion/dispersion_table.hpp"
 #include "model/scene.hpp"
-#include "solver/simulation.hpp"
 
 namespace shpb {
 
@@ -72,9 +72,10 @@ class PulseOverlay {
   const MeasuredPulses& measured() const { return measured_; }
   bool dispersion() const { return front_table_.has_value(); }
 
-  // Lays `sim` (of `scene`) over the measurement, later by `shift_s`. Throws NumericalError if the
-  // simulation has no incident pulse. Safe to call from several threads at once.
-  Overlay overlay(const Scene& scene, const SimulationResult& sim, double shift_s = 0) const;
+  // Lays the simulated gauges (of `scene`) over the measurement, later by `shift_s`. Throws
+  // NumericalError if the simulation has no incident pulse. Safe to call from several threads at
+  // once.
+  Overlay overlay(const Scene& scene, const TimeSeries& simulated_gauges, double shift_s = 0) const;
 
  private:
   // A simulated gauge signal y (sample interval dt) as it arrives after `distance_m` of the front

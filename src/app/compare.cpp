@@ -151,7 +151,7 @@ int run_compare(const CompareArgs& args) {
   write_simulation_outputs(sim, scene, out.path() / "simulation");
   // 4. On the measured clock, each pulse dispersed over the distance it travelled.
   const PulseOverlay overlay(scene, found, args.dispersion);
-  const Overlay o = overlay.overlay(scene, sim);
+  const Overlay o = overlay.overlay(scene, sim.gauges);
   const double offset = o.offset_s, t_sim_end = o.t_sim_end, dt = measured.dt_s,
                t_meas0 = measured.time_s.front();
   const double t_sim0 = sim.gauges.time_s.empty() ? 0.0 : sim.gauges.time_s.front();

@@ -151,7 +151,7 @@ Overlay FitCase::simulate(const MaterialSpec& law, const Nuisance& nuisance) con
   options.cancel = [] { return interrupted(); };
   const SimulationResult sim = shpb::simulate(scene, options);
   if (!sim.stable) throw NumericalError(scene.file.string() + ": " + sim.failure);
-  return overlay_->overlay(scene, sim, nuisance.time_shift_s);
+  return overlay_->overlay(scene, sim.gauges, nuisance.time_shift_s);
 }
 
 namespace {

@@ -53,12 +53,6 @@ void GridSampler::push(double tau, const double* values) {
   has_prev_ = true;
 }
 
-const std::vector<double>& TimeSeries::column(const std::string& name) const {
-  for (std::size_t c = 0; c < columns.size(); ++c)
-    if (columns[c] == name) return values[c];
-  throw std::out_of_range("no column " + name);
-}
-
 ChainRecorders::ChainRecorders(const Scene& scene, const Chain& chain, const ChainDiscretization& d,
                                const SimulationOptions& options) {
   start_time_s_ = chain.start_time_s;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/time_series.hpp"
 #include "model/discretization.hpp"
 #include "model/scene.hpp"
 
@@ -22,17 +23,6 @@ struct SimulationOptions {
   bool subcycle = true;                  // a lone fast bar steps in a tight loop (scheduler.hpp)
   bool adaptive_step = true;  // finite-strain bars step from their shortest element (step_control)
   bool skip_at_rest = true;   // a lone bar at rest skips its no-op instants (scheduler.hpp rule 10)
-};
-
-// Columns sampled on one time grid; values[c][k] is column c at time_s[k].
-struct TimeSeries {
-  std::vector<std::string> columns;  // CSV names (units in the names), without time_s
-  std::vector<double> time_s;
-  std::vector<std::vector<double>> values;
-
-  std::size_t samples() const { return time_s.size(); }
-  // The column named `name`, or throws std::out_of_range.
-  const std::vector<double>& column(const std::string& name) const;
 };
 
 // Stress along the chain on a coarse x–t grid (the wave diagram): stress_Pa[t * x_m.size() + x].

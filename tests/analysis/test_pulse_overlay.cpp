@@ -74,7 +74,7 @@ TEST_CASE("The clock of a noisy copy of a simulation is its own, to the predicte
       for (double& v : x) v += kNoise * peak * normal(rng);
     }
     const shpb::PulseOverlay overlay(scene, shpb::find_measured_pulses(scene, g), false);
-    const double offset = overlay.overlay(scene, sim).offset_s;
+    const double offset = overlay.overlay(scene, sim.gauges).offset_s;
     predicted = overlay.measured().incident_front_sd_s;
     sum += offset, sum2 += offset * offset;
   }
@@ -109,7 +109,7 @@ TEST_CASE("Dispersed bars: the clock aligns the dispersed simulated incident pul
   x.assign(moved.begin() + static_cast<long>(advance),
            moved.begin() + static_cast<long>(advance + n));
   const shpb::PulseOverlay overlay(scene, shpb::find_measured_pulses(scene, g), true);
-  const double offset = overlay.overlay(scene, sim).offset_s;
+  const double offset = overlay.overlay(scene, sim.gauges).offset_s;
   INFO("offset " << offset << " s, expected " << expected << " s");
   CHECK(std::abs(offset - expected) <= kSameClock_s);
 }
@@ -125,7 +125,7 @@ TEST_CASE("A calibrated reflected time delays the reflected and transmitted puls
   if (!scene.measurement) scene.measurement.emplace();
   scene.measurement->reflected_time_s = 2 * d / setup.front.c0_m_s + excess;
   const shpb::MeasuredPulses m = shpb::find_measured_pulses(scene, g);
-  const shpb::Overlay o = shpb::PulseOverlay(scene, m, false).overlay(scene, sim);
+  const shpb::Overlay o = shpb::PulseOverlay(scene, m, false).overlay(scene, sim.gauges);
   REQUIRE(o.offset_s == 0);  // the incident pulse is unchanged: the same clock
   // Over each pulse's window the laid-over signal is the simulation later by the excess: 2d for
   // the reflected pulse, d + d' of bar for the transmitted one.
