@@ -9,6 +9,8 @@
 #include "analysis/pulse_window.hpp"
 #include "core/csv_writer.hpp"  // format_double
 #include "core/error.hpp"
+#include "dispersion/pochhammer_chree.hpp"  // the supported Poisson ratios
+#include "model/test_setup.hpp"
 
 namespace shpb {
 namespace {
@@ -207,13 +209,13 @@ KolskySetup resolve_setup(const Scene& scene, const std::vector<std::string>& av
   for (const auto& g : inc.gauges)
     if (has(g.name)) {
       k.incident_gauge = g.name;
-      k.incident_distance_m = inc.length_m - g.position_m;
+      k.incident_distance_m = *distance_to_specimen_m(scene, s - 1, g.position_m);
       break;
     }
   for (const auto& g : tra.gauges)
     if (has(g.name)) {
       k.transmitted_gauge = g.name;
-      k.transmitted_distance_m = g.position_m;
+      k.transmitted_distance_m = *distance_to_specimen_m(scene, s + 1, g.position_m);
       break;
     }
   std::string names;
@@ -231,11 +233,13 @@ KolskySetup resolve_setup(const Scene& scene, const std::vector<std::string>& av
   // Pochhammer–Chree tables are computed for 0 ≤ ν ≤ 0.49 (docs/methods.md §5): bar steels,
   // aluminium, titanium and PMMA lie well inside; auxetic (ν < 0) bars are not supported.
   for (const std::size_t b : {s - 1, s + 1})
-    if (const double nu = scene.bars[b].material.poisson_ratio; !(nu >= 0 && nu <= 0.49))
+    if (const double nu = scene.bars[b].material.poisson_ratio; !poisson_ratio_supported(nu))
       throw input_error(file, "bars[" + std::to_string(b) + "].material.poisson_ratio",
                         format_double(nu),
-                        "must be in [0, 0.49] for a bar whose pulses are processed (dispersion "
-                        "tables cover that range; auxetic bars are not supported)");
+                        "must be in [" + format_double(kMinPoissonRatio) + ", " +
+                            format_double(kMaxPoissonRatio) +
+                            "] for a bar whose pulses are processed (dispersion "
+                            "tables cover that range; auxetic bars are not supported)");
   k.specimen = {scene.bars[s].length_m, scene.bars[s].area_m2};
   if (const double c = scene.bars[s].material.wave_speed_m_s(); c > 0)
     k.specimen_transit_s = scene.bars[s].length_m / c;
@@ -252,11 +256,9 @@ KolskySetup resolve_setup(const Scene& scene, const std::vector<std::string>& av
               100 * kReflectedTimeRange, modelled * 1e6, k.incident_distance_m * 1e3));
     k.excess_delay_s_per_m = (calibrated - modelled) / (2 * k.incident_distance_m);
   }
-  if (s >= 2) {
-    k.striker_impedance_kg_s = scene.bars[s - 2].impedance_kg_s();
-    if (scene.bars[s - 2].velocity_m_s != 0)
-      k.striker_velocity_m_s = std::abs(scene.bars[s - 2].velocity_m_s);
-  }
+  if (const auto striker = test_roles(scene).striker)
+    k.striker_impedance_kg_s = scene.bars[*striker].impedance_kg_s();
+  k.striker_velocity_m_s = scene_striker_speed_m_s(scene);
   return k;
 }
 

@@ -124,10 +124,9 @@ std::size_t last_compared_sample(const MeasuredPulses& m) {
   return last;
 }
 
-double striker_velocity_from_plateau(const Scene& scene, const MeasuredPulses& measured) {
-  const std::size_t incident_bar = *scene.specimen - 1, striker = incident_bar - 1;
-  const double z_s = scene.bars[striker].impedance_kg_s(),
-               z_b = scene.bars[incident_bar].impedance_kg_s();
+double striker_velocity_from_plateau(const MeasuredPulses& measured) {
+  const double z_b = measured.setup.incident_impedance_kg_s;
+  const double z_s = measured.setup.striker_impedance_kg_s.value_or(z_b);
   return measured.setup.front.c0_m_s * measured.incident_plateau * (z_s + z_b) / z_s;
 }
 

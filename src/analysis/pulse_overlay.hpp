@@ -40,8 +40,8 @@ struct MeasuredPulses {
 MeasuredPulses find_measured_pulses(const Scene& scene, const GaugeSignals& signals);
 
 // The striker velocity the measured incident plateau implies: v_bar = c0 ε_I and
-// V = v_bar (Z_s + Z_b)/Z_s (docs/methods.md §4). The scene has a striker (bars[specimen − 2]).
-double striker_velocity_from_plateau(const Scene& scene, const MeasuredPulses& measured);
+// V = v_bar (Z_s + Z_b)/Z_s (docs/methods.md §4), Z_s the striker's (model/test_setup.hpp).
+double striker_velocity_from_plateau(const MeasuredPulses& measured);
 
 // A compared window, in samples of the measured grid.
 struct OverlaidPulse {

@@ -34,6 +34,7 @@
 #include "core/json_value.hpp"
 #include "core/output_folder.hpp"
 #include "model/discretization.hpp"
+#include "model/test_setup.hpp"
 #include "model/wave_travel.hpp"
 #include "solver/simulation.hpp"
 #include "version.hpp"
@@ -75,11 +76,12 @@ int run_compare(const CompareArgs& args) {
     throw input_error(file, "measurement", "(missing)", "compare needs measured signals");
   if (scene.measurement->channels.empty())
     throw input_error(file, "measurement.channels", "(missing)", "compare needs measured signals");
-  if (!scene.specimen || *scene.specimen < 2)
+  const TestRoles roles = test_roles(scene);
+  if (!roles.striker || !roles.incident || *roles.striker >= *roles.incident)
     throw input_error(file, "specimen", "(missing or no striker)",
                       "compare needs a striker, an incident bar and a specimen");
   const GaugeSignals measured = read_gauge_signals(*scene.measurement, {});
-  const std::size_t incident_bar = *scene.specimen - 1, striker = incident_bar - 1;
+  const std::size_t incident_bar = *roles.incident, striker = *roles.striker;
 
   // 1. The measured pulses.
   const MeasuredPulses found = find_measured_pulses(scene, measured);
@@ -95,7 +97,7 @@ int run_compare(const CompareArgs& args) {
                       JsonValue::format(*args.striker_velocity, Dimension::kVelocity),
                       "must be in (0, " + format_double(kMaxStrikerVelocity_m_s) + " m/s]");
   const double plateau = found.incident_plateau;
-  const double inferred_velocity = striker_velocity_from_plateau(scene, found);
+  const double inferred_velocity = striker_velocity_from_plateau(found);
   std::string velocity_source;
   double velocity = 0;
   if (args.striker_velocity) {
@@ -107,11 +109,12 @@ int run_compare(const CompareArgs& args) {
     velocity = inferred_velocity;
     velocity_source = "inferred from the measured incident plateau";
   }
+  // Launched the way the scene's striker moves (a tension striker pulls: − to the left).
   const double scene_velocity = scene.bars[striker].velocity_m_s;
-  scene.bars[striker].velocity_m_s = velocity;
+  scene.bars[striker].velocity_m_s = striker_direction(scene) * velocity;
   std::vector<std::string> warnings = measured.warnings;
   for (const auto& w : signal_warnings(measured)) warnings.push_back(w);
-  for (const double other : {velocity, scene_velocity})
+  for (const double other : {velocity, std::abs(scene_velocity)})
     if (other > 0 && std::abs(inferred_velocity - other) > kVelocityMismatch * other) {
       warnings.push_back("the striker velocity inferred from the measured incident plateau, " +
                          format_double(inferred_velocity) + " m/s, differs from the " +
@@ -198,7 +201,7 @@ int run_compare(const CompareArgs& args) {
   }
   nlohmann::json s;
   s["scene"] = file;
-  s["striker_velocity_m_s"] = velocity;
+  s["striker_velocity_m_s"] = scene.bars[striker].velocity_m_s;  // as launched, + to the right
   s["striker_velocity_source"] = velocity_source;
   s["scene_striker_velocity_m_s"] = scene_velocity;
   s["measured_incident_plateau_strain"] = plateau;

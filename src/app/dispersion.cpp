@@ -15,8 +15,10 @@
 namespace shpb {
 
 int run_dispersion(const DispersionArgs& args) {
-  if (!(args.poisson >= 0 && args.poisson <= 0.49))
-    throw input_error("--poisson", "", format_double(args.poisson), "must be in [0, 0.49]");
+  if (!poisson_ratio_supported(args.poisson))
+    throw input_error("--poisson", "", format_double(args.poisson),
+                      "must be in [" + format_double(kMinPoissonRatio) + ", " +
+                          format_double(kMaxPoissonRatio) + "]");
   std::vector<double> xs = args.a_over_lambda;
   if (xs.empty()) {
     if (args.points < 2)

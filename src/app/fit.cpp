@@ -112,7 +112,7 @@ int run_fit(const FitArgs& args) {
   const Campaign campaign = read_campaign(args.campaign);
   const FitSpec spec = read_fit_spec(campaign);
   std::vector<std::unique_ptr<FitCase>> cases;
-  for (const auto& test : campaign.tests)
+  for (const auto& test : fit_tests(campaign))
     cases.push_back(std::make_unique<FitCase>(test, campaign, spec));
   auto say = [&](const std::string& line) {
     if (!args.quiet) std::fprintf(stderr, "fit: %s\n", line.c_str());

@@ -11,7 +11,7 @@
 #include "analysis/bar_check.hpp"
 #include "analysis/gauge_signals.hpp"
 #include "analysis/processing.hpp"
-#include "analysis/specimen_corrections.hpp"
+#include "analysis/test_processing.hpp"
 #include "app/commands.hpp"
 #include "core/checked_write.hpp"
 #include "core/csv_writer.hpp"
@@ -140,7 +140,7 @@ int run_process(const ProcessArgs& args) {
     for (const auto& g : b.gauges) gauges.push_back(g.name);
 
   MeasurementSpec m;
-  ProcessingOptions options;
+  ProcessingOptions options = processing_options(scene);
   bool simulated = false;
   if (args.signals) {
     // A gauges.csv written by `shpb simulate` (time_s + one strain column per gauge): signals of
@@ -157,7 +157,9 @@ int run_process(const ProcessArgs& args) {
       ch.unit = SignalUnit::kStrain;
       m.channels.push_back(ch);
     }
+    options.dispersion = {};
     options.dispersion.correction = false;
+    options.windows = {};  // the scene's windows are on the measured clock
   } else {
     if (!scene.measurement)
       throw input_error(scene.file.string(), "measurement", "(missing)",
@@ -167,44 +169,16 @@ int run_process(const ProcessArgs& args) {
       throw input_error(
           scene.file.string(), "measurement.channels", "(missing)",
           "a list of {\"gauge\", \"column\", \"unit\", ...} to process measured signals");
-    options.dispersion = m.dispersion;
-    options.windows = m.windows;
-    options.load_drop = m.load_drop.value_or(kDefaultLoadDrop);
-    options.tension = m.tension;
   }
-  options.scene_file = scene.file.string();
   // What was assumed is said even with --quiet (which silences progress only), and as soon as
   // it is known: before any later error stops the run.
-  GaugeSignals signals = read_gauge_signals(m, {});
+  const GaugeSignals signals = read_gauge_signals(m, {});
   for (const auto& w : signals.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   const KolskySetup setup = resolve_setup(scene, signals.gauges);
-  // Tension: the reduction is linear in the strains, so negated signals reduce as a compression
-  // test whose "compression positive" outputs read tension positive; the pulses are negated back
-  // and the true values follow the tensile formulas.
-  if (options.tension)
-    for (auto& g : signals.strain)
-      for (double& x : g) x = -x;
-  ProcessingResult r = process_signals(signals, setup, options);
-  // Specimen corrections (docs/methods.md §8), also for simulated signals when the scene asks.
-  const CorrectionsSpec corrections =
-      scene.measurement ? scene.measurement->corrections : CorrectionsSpec{};
-  const BarSpec& specimen_bar = scene.bars[*scene.specimen];
-  const CorrectionReport removed = apply_specimen_corrections(
-      r.curve, signals.dt_s,
-      {specimen_bar.length_m, specimen_bar.area_m2, specimen_bar.material.density_kg_m3},
-      {corrections.friction, corrections.inertia});
-  if (corrections.friction || corrections.inertia)
-    r.peak_stress_Pa =
-        *std::max_element(r.curve.stress_3wave_Pa.begin(), r.curve.stress_3wave_Pa.end());
-  if (options.tension) {
-    for (auto* v : {&r.incident, &r.reflected, &r.transmitted})
-      for (double& x : *v) x = -x;
-    Curve& c = r.curve;
-    for (std::size_t i = 0; i < c.strain.size(); ++i) {
-      c.true_strain[i] = std::log1p(c.strain[i]);  // elongation: ln(1 + e)
-      c.true_stress_Pa[i] = c.stress_3wave_Pa[i] * (1 + c.strain[i]);
-    }
-  }
+  const ProcessedTest processed = process_test(scene, signals, setup, options);
+  ProcessingResult r = processed.result;
+  const SpecimenCorrections& corrections = processed.corrections;
+  const CorrectionReport& removed = processed.removed;
   for (const auto& w : r.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   std::vector<std::string> warnings = signals.warnings;
   warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
@@ -304,11 +278,8 @@ int run_process(const ProcessArgs& args) {
   s["incident_plateau_strain"] = r.incident_plateau_strain;
   s["striker_velocity_m_s"] = {
       {"inferred", r.inferred_striker_velocity_m_s},
-      {"scene", setup.striker_velocity_m_s
-                    ? nlohmann::json(*setup.striker_velocity_m_s)
-                    : (scene.measurement && scene.measurement->striker_velocity_m_s
-                           ? nlohmann::json(*scene.measurement->striker_velocity_m_s)
-                           : nlohmann::json())},
+      {"scene",
+       setup.striker_velocity_m_s ? nlohmann::json(*setup.striker_velocity_m_s) : nlohmann::json()},
       {"how", "incident plateau at the front face: V = E A eps (Z_s + Z_b)/(Z_s Z_b)"}};
   s["plateau_strain_rate_1_s"] =
       r.strain_rate_has_plateau ? nlohmann::json(r.plateau_strain_rate_1_s) : nlohmann::json();

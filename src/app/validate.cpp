@@ -11,32 +11,13 @@
 #include "model/discretization.hpp"
 #include "model/mesh_error_model.hpp"
 #include "model/scene_checks.hpp"
+#include "model/test_setup.hpp"
 #include "solver/contact.hpp"
 
 namespace shpb {
 namespace {
 
 using nlohmann::json;
-
-// Distance along the axis from a gauge to the specimen face on its side (docs/scene-format.md: bars
-// left of the specimen are the incident side, right of it the transmitted side). Gaps are included.
-std::optional<double> distance_to_specimen(const Scene& scene, std::size_t bar, double position) {
-  if (!scene.specimen || bar == *scene.specimen) return std::nullopt;
-  const std::size_t s = *scene.specimen;
-  double d = 0;
-  if (bar < s) {
-    d = scene.bars[bar].length_m - position;
-    for (std::size_t i = bar; i < s; ++i) {
-      if (i > bar) d += scene.bars[i].length_m;
-      d += scene.bars[i].gap_m;
-    }
-  } else {
-    d = position;
-    for (std::size_t i = s + 1; i < bar; ++i) d += scene.bars[i].length_m;
-    for (std::size_t i = s; i < bar; ++i) d += scene.bars[i].gap_m;
-  }
-  return d;
-}
 
 std::string g(double v, int digits = 4) {
   char buf[32];
@@ -75,12 +56,25 @@ json resolved_setup(const Scene& scene, const ChainDiscretization& d) {
                            {"courant", bd.courant}});
     for (const auto& g : b.gauges) {
       json gj = {{"name", g.name}, {"bar", b.name}, {"position_m", g.position_m}};
-      const auto dist = distance_to_specimen(scene, i, g.position_m);
+      const auto dist = distance_to_specimen_m(scene, i, g.position_m);
       gj["distance_to_specimen_m"] = dist ? json(*dist) : json(nullptr);
       out["gauges"].push_back(gj);
     }
   }
   if (!out.contains("gauges")) out["gauges"] = json::array();
+  const TestRoles roles = test_roles(scene);
+  auto bar_name = [&](std::optional<std::size_t> i) {
+    return i ? json(scene.bars[*i].name) : json(nullptr);
+  };
+  json shapers = json::array();
+  for (const std::size_t i : roles.shapers) shapers.push_back(scene.bars[i].name);
+  out["roles"] = {{"striker", bar_name(roles.striker)},
+                  {"shapers", shapers},
+                  {"incident", bar_name(roles.incident)},
+                  {"specimen", bar_name(roles.specimen)},
+                  {"transmitter", bar_name(roles.transmitter)}};
+  const auto speed = scene_striker_speed_m_s(scene);
+  out["striker_velocity_m_s"] = speed ? json(striker_direction(scene) * *speed) : json(nullptr);
   for (std::size_t i = 0; i + 1 < scene.bars.size(); ++i) {
     // What the run uses: the rigid-link limit ignores the penalty values; finite localized
     // links have one per side; node-to-node methods one link (no mass penalty for penalty).

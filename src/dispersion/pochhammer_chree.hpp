@@ -5,6 +5,13 @@
 
 namespace shpb {
 
+// The Poisson ratios shpb solves the mode for (docs/methods.md §5): bar steels, aluminium,
+// titanium and PMMA lie well inside; auxetic (ν < 0) bars are not supported.
+inline constexpr double kMinPoissonRatio = 0.0, kMaxPoissonRatio = 0.49;
+inline bool poisson_ratio_supported(double nu) {
+  return nu >= kMinPoissonRatio && nu <= kMaxPoissonRatio;
+}
+
 // Bulk wave speeds of an isotropic solid over c0, from ν alone.
 struct WaveSpeeds {
   double longitudinal;  // c_L/c0 = sqrt((1−ν)/((1+ν)(1−2ν)))

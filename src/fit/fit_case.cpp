@@ -5,10 +5,12 @@
 
 #include "analysis/gauge_signals.hpp"
 #include "analysis/processing.hpp"
+#include "analysis/test_processing.hpp"
 #include "core/error.hpp"
 #include "core/json_value.hpp"
 #include "core/output_folder.hpp"
 #include "fit/law_parameters.hpp"
+#include "model/test_setup.hpp"
 #include "solver/simulation.hpp"
 
 namespace shpb {
@@ -38,9 +40,12 @@ FitCase::FitCase(const CampaignTest& test, const Campaign& campaign, const FitSp
                               json_child_path(test.json_path, "scene"));
   if (!scene_.measurement)
     throw scene_entry.error("the scene has no measurement: a fit needs measured signals");
-  if (!scene_.specimen || *scene_.specimen < 2)
+  const TestRoles roles = test_roles(scene_);
+  if (!roles.striker || !roles.incident || *roles.striker >= *roles.incident)
     throw scene_entry.error("the scene needs a striker, an incident bar and a specimen");
-  const std::size_t s = *scene_.specimen, striker = s - 2;
+  const std::size_t s = *scene_.specimen, striker = *roles.striker;
+  striker_ = striker;
+  striker_direction_ = striker_direction(scene_);
 
   // The specimen becomes the law being fitted, at the test's own temperature.
   BarSpec& specimen = scene_.bars[s];
@@ -61,18 +66,15 @@ FitCase::FitCase(const CampaignTest& test, const Campaign& campaign, const FitSp
     start_.striker_velocity_m_s = *scene_.measurement->striker_velocity_m_s;
     velocity_source_ = "scene (measurement.striker_velocity)";
   } else {
-    start_.striker_velocity_m_s = striker_velocity_from_plateau(scene_, found);
+    start_.striker_velocity_m_s = striker_velocity_from_plateau(found);
     velocity_source_ = "inferred from the measured incident plateau";
   }
-  scene_.bars[striker].velocity_m_s = start_.striker_velocity_m_s;
+  scene_.bars[striker].velocity_m_s = striker_direction_ * start_.striker_velocity_m_s;
   start_.rise_time_s = interface_penalty(scene_.contact, striker).rise_time_s.value_or(0.0);
 
-  // The processed curve after equilibrium.
-  ProcessingOptions po;
-  po.dispersion = scene_.measurement->dispersion;
-  po.windows = scene_.measurement->windows;
-  po.scene_file = scene_.file.string();
-  const ProcessingResult pr = process_signals(signals, found.setup, po);
+  // The processed curve after equilibrium, as `process` writes it.
+  const ProcessingOptions options = processing_options(scene_);
+  const ProcessingResult pr = process_test(scene_, signals, found.setup, options).result;
   for (const auto& w : pr.warnings) warnings_.push_back(test.name + ": " + w);
   const Curve& c = pr.curve;
   const JohnsonCookParams& jc = law.johnson_cook;
@@ -89,7 +91,9 @@ FitCase::FitCase(const CampaignTest& test, const Campaign& campaign, const FitSp
       temperature += jc.taylor_quinney * stress * (ep - previous_ep) /
                      (law.density_kg_m3 * jc.specific_heat_J_kgK);
     previous_ep = std::max(previous_ep, ep);
-    const double rate = c.strain_rate_1_s[i] / std::max(1e-9, 1 - c.strain[i]);
+    // True rate ė/(1 − e) in compression, ė/(1 + e) in tension (the current length).
+    const double stretch = options.tension ? 1 + c.strain[i] : 1 - c.strain[i];
+    const double rate = c.strain_rate_1_s[i] / std::max(1e-9, stretch);
     // A sample in equilibrium (R ≤ 5 %) past the time equilibrium is reached, when processing
     // finds one. Processing reports that time only if equilibrium then holds to the end of the
     // loading (every sample above 20 % of the peak force), which the synthetic and LANL records
@@ -107,6 +111,26 @@ FitCase::FitCase(const CampaignTest& test, const Campaign& campaign, const FitSp
   // are.
   overlay_ = std::make_unique<PulseOverlay>(scene_, std::move(found),
                                             scene_.measurement->dispersion.correction);
+}
+
+std::vector<CampaignTest> fit_tests(const Campaign& campaign) {
+  std::vector<CampaignTest> tests = campaign.tests;
+  double mean = 0;
+  for (const CampaignTest& t : tests) mean += t.weight / static_cast<double>(tests.size());
+  for (CampaignTest& t : tests) t.weight /= mean;
+  for (std::size_t i = 0; i < tests.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j) {
+      std::error_code ec;
+      if (!std::filesystem::equivalent(tests[i].scene, tests[j].scene, ec)) continue;
+      const std::size_t k = std::stoul(tests[i].json_path.substr(6));
+      throw JsonValue(campaign.document.at("tests").at(k).at("scene"), campaign.display,
+                      json_child_path(tests[i].json_path, "scene"))
+          .error_with_value("\"" + tests[i].scene.string() + "\"",
+                            "the scene of test \"" + tests[j].name +
+                                "\" again: one record fitted as two independent tests would "
+                                "count twice (give a test one entry, and a weight)");
+    }
+  return tests;
 }
 
 void FitCase::set_windows(const Overlay& start) {
@@ -128,11 +152,11 @@ void FitCase::set_windows(const Overlay& start) {
 
 Overlay FitCase::simulate(const MaterialSpec& law, const Nuisance& nuisance) const {
   Scene scene = scene_;
-  const std::size_t s = *scene.specimen, striker = s - 2;
+  const std::size_t s = *scene.specimen, striker = striker_;
   const double temperature = scene.bars[s].material.johnson_cook.initial_temperature_K;
   scene.bars[s].material = law;
   scene.bars[s].material.johnson_cook.initial_temperature_K = temperature;
-  scene.bars[striker].velocity_m_s = nuisance.striker_velocity_m_s;
+  scene.bars[striker].velocity_m_s = striker_direction_ * nuisance.striker_velocity_m_s;
   if (nuisance.rise_time_s > 0 || start_.rise_time_s > 0) {
     auto it = std::find_if(scene.contact.interfaces.begin(), scene.contact.interfaces.end(),
                            [&](const InterfaceOverride& o) { return o.left_bar == striker; });

@@ -30,6 +30,12 @@ struct Nuisance {
   double time_shift_s = 0;
 };
 
+// The campaign's tests as a fit counts them. Weights are relative: divided by their mean, so the
+// fitted law and its convergence do not depend on their scale (1 and 1e-10 fit alike). A scene
+// listed twice is refused (InputError naming the second entry): one record fitted as two
+// independent tests would count twice and shrink the standard errors by √2.
+std::vector<CampaignTest> fit_tests(const Campaign& campaign);
+
 class FitCase {
  public:
   // Reads the scene and its measurement (InputError names the scene or the campaign entry).
@@ -69,7 +75,9 @@ class FitCase {
   CampaignTest test_;
   Scene scene_;
   std::unique_ptr<PulseOverlay> overlay_;
-  Nuisance start_;
+  std::size_t striker_ = 0;
+  double striker_direction_ = 1;  // +1 launched to the right, −1 pulled left (tension)
+  Nuisance start_;                // the striker velocity a speed, launched in striker_direction_
   std::string velocity_source_;
   double temperature_K_ = 0;
   std::vector<CurvePoint> curve_;

@@ -111,20 +111,12 @@ FitSpec read_fit_spec(const Campaign& c) {
       s.name = key;
       s.json_path = v->path();
       if (v->is_string() && !v->string().empty() && v->string().back() == '%') {
-        std::string text = v->string();
-        text.pop_back();
-        double percent = -1;
-        try {
-          std::size_t used = 0;
-          percent = std::stod(text, &used);
-          if (text.find_first_not_of(" ", used) != std::string::npos) percent = -1;
-        } catch (const std::exception&) {
-        }
-        if (!(percent > 0 && percent < 100))
-          throw v->error("expected \"N %\" with 0 < N < 100 (± N % of each test's start)");
         if (key == "time_shift")
           throw v->error("a time shift starts at 0: give absolute bounds [\"-2 us\", \"2 us\"]");
-        s.relative = percent / 100;
+        const double fraction = v->quantity(Dimension::kDimensionless);  // the one "%" parser
+        if (!(fraction > 0 && fraction < 1))
+          throw v->error("expected \"N %\" with 0 < N < 100 (± N % of each test's start)");
+        s.relative = fraction;
       } else {
         s.bounds = read_bounds(*v, nuisance_dimension(key));
         if (key != "time_shift" && s.bounds->first < 0) throw v->array()[0].error("must be >= 0");

@@ -82,14 +82,6 @@ std::optional<double> common_transit_s(const Scene& scene, const std::vector<boo
 // over its calibration runs is a factor 1.5 (rms of the log 0.41, kMeshErrorConstants).
 constexpr double kTargetFraction = 0.65;
 
-// The bar whose impact makes the pulse: the first moving bar with a bar on its right (it may be
-// pulled away, as in a bonded tension test: the pulse is then tensile, its fronts the same).
-std::optional<std::size_t> pulse_source(const Scene& scene) {
-  for (std::size_t i = 0; i + 1 < scene.bars.size(); ++i)
-    if (scene.bars[i].velocity_m_s != 0) return i;
-  return std::nullopt;
-}
-
 // Distances the pulses a gauge records travel in each bar before it has recorded them: the
 // striker's release wave runs 2 L_s (the pulse's tail; its front none: L_s on average); a bar
 // between the impact and the gauge is crossed whole, twice left of the specimen (the reflected
@@ -199,7 +191,7 @@ using BarsErrorCache = std::map<std::vector<double>, double>;
 GaugeErrorPrediction predict(const Scene& scene, const ChainDiscretization& d,
                              const MeshErrorConstants& k, BarsErrorCache* cache) {
   GaugeErrorPrediction p;
-  const auto striker = pulse_source(scene);
+  const auto striker = striker_bar(scene);
   if (!striker) {
     p.total = p.bars = std::numeric_limits<double>::quiet_NaN();
     return p;
@@ -283,7 +275,7 @@ GaugeErrorPrediction choose_meshes(Scene& scene) {
   const double asked = scene.simulation.tolerance.value_or(0);
   std::vector<bool> free(scene.bars.size());
   for (std::size_t i = 0; i < scene.bars.size(); ++i) free[i] = scene.bars[i].elements == 0;
-  const auto striker = pulse_source(scene);
+  const auto striker = striker_bar(scene);
   if (!striker) return predict_gauge_error(scene, discretize(scene));  // NaN: nothing to predict
 
   // Specimen element counts tried (a geometric ladder), or the user's.

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "core/csv_writer.hpp"  // format_double
 #include "model/wave_travel.hpp"
 
 namespace shpb {
@@ -36,6 +37,13 @@ std::vector<std::string> scene_warnings(const Scene& s, double duration_s) {
     return w;
   }
   const auto striker = striker_bar(s);
+  if (const auto launched = test_roles(s).striker; launched && !striker) {
+    w.push_back("bar " + s.bars[*launched].name +
+                " moves away from the bar on its right (velocity " +
+                format_double(s.bars[*launched].velocity_m_s) +
+                " m/s, + to the right) and is not bonded to it: it loads nothing");
+    return w;
+  }
   if (!striker) return w;
   const double pulse_s = striker_pulse_s(s, *striker);
   const std::size_t first = *striker + 1;  // impact at its left end at t = 0

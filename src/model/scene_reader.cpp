@@ -10,6 +10,7 @@
 #include "model/measurement_reader.hpp"
 #include "model/scene.hpp"
 #include "model/scene_validation.hpp"
+#include "model/test_setup.hpp"
 
 namespace shpb {
 namespace {
@@ -165,36 +166,42 @@ class SceneReader {
                                                   "distance from the bar's left end, e.g. \"1 m\" "
                                                   "(or distance_to_specimen)");
         gauge.position_m = pos.quantity(Dimension::kLength);
-        if (!(gauge.position_m >= 0 && gauge.position_m <= b.length_m))
+        if (to_specimen)  // on the bar once the specimen is known (resolve_distances_to_specimen)
+          gauge.distance_to_specimen_m = gauge.position_m;
+        else if (!(gauge.position_m >= 0 && gauge.position_m <= b.length_m))
           throw pos.error_with_value(JsonValue::format(gauge.position_m, Dimension::kLength),
                                      "must lie on the bar: within [0, " +
                                          JsonValue::format(b.length_m, Dimension::kLength) +
-                                         (to_specimen ? "]" : "] from its left end"));
-        if (to_specimen) gauge.distance_to_specimen_m = gauge.position_m;
+                                         "] from its left end");
         b.gauges.push_back(gauge);
       }
     }
     return b;
   }
 
-  // `distance_to_specimen` is measured to the specimen face the pulse reaches: the right end of a
-  // bar before the specimen, the left end of a bar after it.
+  // `distance_to_specimen` is the distance the pulse travels in the bars to the specimen face it
+  // loads (model/test_setup.hpp: distance_to_specimen_m, whose inverse this is).
   static void resolve_distances_to_specimen(Scene& scene, const std::vector<JsonValue>& items) {
     for (std::size_t i = 0; i < scene.bars.size(); ++i)
       for (std::size_t k = 0; k < scene.bars[i].gauges.size(); ++k) {
         GaugeSpec& g = scene.bars[i].gauges[k];
         if (!g.distance_to_specimen_m) continue;
-        if (!scene.specimen || *scene.specimen == i) {
-          const auto gauge = JsonObject(items[i]).get("gauges")->array()[k];
-          throw JsonObject(gauge)
-              .require("distance_to_specimen", "")
-              .error(scene.specimen
-                         ? "a gauge on the specimen has no distance to it; give position"
-                         : "needs \"specimen\" (the distance is to its face); give position "
-                           "from the bar's left end instead");
-        }
-        g.position_m = i < *scene.specimen ? scene.bars[i].length_m - *g.distance_to_specimen_m
-                                           : *g.distance_to_specimen_m;
+        const auto given = JsonObject(JsonObject(items[i]).get("gauges")->array()[k])
+                               .require("distance_to_specimen", "");
+        if (!scene.specimen || *scene.specimen == i)
+          throw given.error(scene.specimen
+                                ? "a gauge on the specimen has no distance to it; give position"
+                                : "needs \"specimen\" (the distance is to its face); give "
+                                  "position from the bar's left end instead");
+        const double between = bars_between_m(scene, i), d = *g.distance_to_specimen_m;
+        const double length = scene.bars[i].length_m;
+        if (!(d >= between && d <= between + length))
+          throw given.error_with_value(
+              JsonValue::format(d, Dimension::kLength),
+              "must lie on the bar: within [" + JsonValue::format(between, Dimension::kLength) +
+                  ", " + JsonValue::format(between + length, Dimension::kLength) +
+                  "] (the pulse's travel in the bars to the specimen face)");
+        g.position_m = i < *scene.specimen ? length - (d - between) : d - between;
       }
   }
 

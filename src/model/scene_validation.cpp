@@ -5,7 +5,9 @@
 
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
+#include "core/json_value.hpp"
 #include "model/mesh_error_model.hpp"
+#include "model/test_setup.hpp"
 
 namespace shpb {
 
@@ -28,6 +30,19 @@ ChainDiscretization validate_scene(const Scene& scene, const RunOptions& options
       throw input_error(scene.file.string(), "simulation.tolerance", value, what);
     }
   }
+  // Bars that move but never load an interface (a striker moving away from the bar on its right,
+  // not bonded to it) move rigidly for ever: the record would be all zero.
+  for (std::size_t i = 0; i < scene.bars.size(); ++i)
+    if (const double v = scene.bars[i].velocity_m_s; v != 0) {
+      if (any_interface_loaded(scene)) break;
+      throw input_error(scene.file.string(), "bars[" + std::to_string(i) + "].velocity",
+                        JsonValue::format(v, Dimension::kVelocity),
+                        "no bar ever loads another: this velocity (+ to the right) moves \"" +
+                            scene.bars[i].name +
+                            "\" away from its neighbours and no interface is bonded, so every "
+                            "gauge would record zero; a striker moving into the chain on its "
+                            "right has a positive velocity");
+    }
   return discretize(scene);
 }
 

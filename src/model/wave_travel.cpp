@@ -13,15 +13,6 @@ double travel_time_s(const Scene& s, std::size_t a, double xa, std::size_t b, do
   return t + xb / s.bars[b].material.wave_speed_m_s();
 }
 
-std::optional<std::size_t> striker_bar(const Scene& s) {
-  for (std::size_t i = 0; i < s.bars.size(); ++i)
-    if (s.bars[i].velocity_m_s != 0) {
-      if (i + 1 >= s.bars.size() || s.bars[i].velocity_m_s < 0) return std::nullopt;
-      return i;
-    }
-  return std::nullopt;
-}
-
 double longest_transit_s(const Scene& s) {
   double longest = 0;
   for (const BarSpec& b : s.bars)

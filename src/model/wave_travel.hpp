@@ -7,14 +7,12 @@
 #include <optional>
 
 #include "model/scene.hpp"
+#include "model/test_setup.hpp"  // striker_bar
 
 namespace shpb {
 
 // From (bar a, position xa) to (bar b, position xb), a <= b, through every bar in between.
 double travel_time_s(const Scene& scene, std::size_t a, double xa, std::size_t b, double xb);
-
-// The striker: the first moving bar, if it moves right into a bar on its right.
-std::optional<std::size_t> striker_bar(const Scene& scene);
 
 // The longest one-way transit L/c0 of any bar of the chain (0 without bars).
 double longest_transit_s(const Scene& scene);

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "../skip.hpp"
 #include "dispersion/propagation.hpp"
 #include "run_shpb.hpp"
 
@@ -508,8 +509,7 @@ TEST_CASE("A bars-together record is checked: Pochhammer-Chree against a plain t
 TEST_CASE("The report of a processed test heads with the striker, equilibrium and every warning",
           "[app][labdata][report]") {
   if (!shpb_test::have_matplotlib()) {
-    WARN("python3 with matplotlib and numpy not installed: report test skipped");
-    return;
+    SHPB_SKIP("python3 with matplotlib and numpy not installed: report test skipped");
   }
   const fs::path d = scratch_dir("labdata_report");
   json scene = scene_json();

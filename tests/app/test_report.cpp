@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "../skip.hpp"
 #include "run_shpb.hpp"
 
 namespace fs = std::filesystem;
@@ -61,8 +62,7 @@ fs::path write_study_folder(const fs::path& dir) {
 TEST_CASE("The report of the default experiment holds every figure, each referenced by the page",
           "[app][report]") {
   if (!shpb_test::have_matplotlib()) {
-    WARN("SKIPPED: python3 with matplotlib and numpy not installed: report test skipped");
-    return;
+    SHPB_SKIP("python3 with matplotlib and numpy not installed: report test skipped");
   }
   const fs::path dir = scratch_dir("report_default") / "classic";
   REQUIRE(run_shpb({"simulate", kClassic.string(), "-o", (dir / "simulate").string(), "--quiet"})
@@ -85,8 +85,7 @@ TEST_CASE("The report of the default experiment holds every figure, each referen
 TEST_CASE("The report of a study folder shows accuracy against cost and the stability map",
           "[app][report]") {
   if (!shpb_test::have_matplotlib()) {
-    WARN("SKIPPED: python3 with matplotlib and numpy not installed: report test skipped");
-    return;
+    SHPB_SKIP("python3 with matplotlib and numpy not installed: report test skipped");
   }
   const fs::path dir = write_study_folder(scratch_dir("report_study") / "study");
   const auto r = run_shpb({"report", dir.string()});
@@ -100,8 +99,7 @@ TEST_CASE("The report of a study folder shows accuracy against cost and the stab
 TEST_CASE("A folder without shpb outputs is refused with exit 2 and nothing written",
           "[app][report]") {
   if (!shpb_test::have_matplotlib()) {
-    WARN("SKIPPED: python3 with matplotlib and numpy not installed: report test skipped");
-    return;
+    SHPB_SKIP("python3 with matplotlib and numpy not installed: report test skipped");
   }
   const fs::path dir = scratch_dir("report_empty");
   std::ofstream(dir / "notes.txt") << "not an output folder\n";
@@ -115,12 +113,10 @@ TEST_CASE("A folder without shpb outputs is refused with exit 2 and nothing writ
 TEST_CASE("Headless Chromium renders report.html to a picture that is not blank",
           "[app][report][browser]") {
   if (!shpb_test::have_matplotlib()) {
-    WARN("SKIPPED: python3 with matplotlib and numpy not installed: browser test skipped");
-    return;
+    SHPB_SKIP("python3 with matplotlib and numpy not installed: browser test skipped");
   }
   if (std::system("command -v chromium >/dev/null 2>&1") != 0) {
-    WARN("SKIPPED: chromium not installed (make test installs it): browser test skipped");
-    return;
+    SHPB_SKIP("chromium not installed (make test installs it): browser test skipped");
   }
   const fs::path root = scratch_dir("report_browser");
   const fs::path dir = write_study_folder(root / "study");
