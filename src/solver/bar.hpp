@@ -50,8 +50,9 @@ struct BarModel {
   bool adaptive_step = false;
   double reference_step_s = 0;
   double own_step_s = 0;
-  // Interface friction on the specimen's faces (docs/methods.md §8): the axial stress of an
-  // element that flows (its law dissipates) in compression is raised by the factor
+  // Interface friction on the specimen's faces (docs/methods.md §8.2): while the bar shortens
+  // (its faces slide), the axial stress of an element that has entered flow (its law has
+  // dissipated) and is in compression is raised by the factor
   // φ = 1 + friction_factor_per_aspect · d/L of the whole bar's current diameter and length.
   double friction_factor_per_aspect = 0;  // μ/(3√3), μ the mean of the two faces' coefficients
   double diameter_m = 0;
@@ -91,7 +92,6 @@ struct BarState {
   std::vector<double> axial_force_N;  // element axial force N = A σ at t_n (material-law bars)
   std::vector<double> friction_stress_Pa;  // (φ − 1) τ of the last step (friction work)
   std::vector<double> strain_step;         // scratch: Δε of the step (friction work)
-  std::vector<double> dissipation_before;  // scratch: the law's dissipation before the step
   double smallest_stretch = 1;             // smallest element λ reached so far (finite strain)
   double inertia_rate_1_s = 0;  // whole-bar true strain rate at t_{n−1/2} (compression +)
   double inertia_acceleration_1_s2 = 0;  // its low-passed derivative

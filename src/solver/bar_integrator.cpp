@@ -146,19 +146,22 @@ void law_forces(const BarModel& bar, BarState& s, int lo, int hi, double dt) {
     for (int e = e0; e <= e1; ++e) {
       s.strain_step[e] = s.strain_next[e] - s.points[e].strain;
       s.dissipated_J += 0.5 * V0 * s.friction_stress_Pa[e] * s.strain_step[e];
-      s.dissipation_before[e] = s.points[e].dissipated_J_m3;
     }
   const std::size_t n = static_cast<std::size_t>(e1 - e0 + 1);
   bar.law->update(std::span<const double>(s.strain_next.data() + e0, n), dt,
                   std::span<MaterialPointState>(s.points.data() + e0, n),
                   std::span<double>(s.law_stress.data() + e0, n));
-  // Friction factor φ of the whole bar at its current aspect (volume-conserving diameter).
+  // Friction factor φ of the whole bar at its current aspect (volume-conserving diameter), and
+  // whether its faces slide: the bar shortens (its ends approach at t_{n−1/2}), so its section
+  // grows under the faces.
   double phi = 1;
+  bool sliding = false;
   if (friction) {
     const double length0 = h0 * bar.elements();
     const double stretch = 1 + (s.w[last] - s.w[0]) / length0;
     const double d = bar.finite_strain ? bar.diameter_m / std::sqrt(stretch) : bar.diameter_m;
     phi = 1 + bar.friction_factor_per_aspect * d / (length0 * stretch);
+    sliding = s.v[last] < s.v[0];
   }
   // Radial inertia of the whole bar (bar.hpp), compression positive.
   double inertia = 0;
@@ -192,10 +195,12 @@ void law_forces(const BarModel& bar, BarState& s, int lo, int hi, double dt) {
       finite_strain_forces(s, bar.volume_change_per_stress, inertia, A0, inv_h, e0, e1);
   for (int e = e0; e <= e1 && !plain_finite; ++e) {
     const double tau = s.law_stress[e];
-    // Friction raises the pressure needed for flow (Dharan & Hauser): it acts while the element
-    // flows (its law dissipates) under face pressure (compressive stress), not on elastic
-    // loading or unloading.
-    const bool flows = friction && tau < 0 && s.points[e].dissipated_J_m3 > s.dissipation_before[e];
+    // Friction raises the pressure needed for flow (Dharan & Hauser), a property of the flowing
+    // specimen whatever its law (docs/methods.md §8.2): it acts on an element that has entered
+    // flow (its law has dissipated), under face pressure (compressive stress), while the faces
+    // slide. Not step by step on the law's dissipation: a rate-independent element alternates
+    // between elastic and plastic steps, and the friction stress would with it.
+    const bool flows = sliding && tau < 0 && s.points[e].dissipated_J_m3 > 0;
     const double excess = flows ? (phi - 1) * tau : 0.0;
     if (friction) {
       s.friction_stress_Pa[e] = excess;
