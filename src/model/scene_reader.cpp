@@ -3,6 +3,7 @@
 #include <map>
 
 #include "core/closest_match.hpp"
+#include "core/csv_writer.hpp"  // format_double
 #include "core/error.hpp"
 #include "core/json_document.hpp"
 #include "core/json_value.hpp"
@@ -316,9 +317,11 @@ class SceneReader {
     if (auto x = o.get("sample_rate"))
       s.sample_rate_Hz = x->positive_quantity(Dimension::kFrequency);
     if (auto x = o.get("stepping")) s.stepping = enum_from(*x, kSteppingNames);
-    // Lumped central difference is stable for C <= 1 (docs/methods.md §1).
-    if (auto x = o.get("courant"))
-      s.courant = x->quantity_in(Dimension::kDimensionless, 0, 1, true, false);
+    if (auto x = o.get("courant")) {
+      s.courant = x->quantity(Dimension::kDimensionless);
+      if (const std::string what = courant_problem(*s.courant); !what.empty())
+        throw x->error_with_value(format_double(*s.courant), what);
+    }
     if (auto x = o.get("kinematics")) s.finite_strain = enum_from(*x, kKinematicsNames);
     // An engineering strain in (0, 1): the step shrinks with the shortest element.
     if (auto x = o.get("max_strain"))

@@ -16,9 +16,14 @@ std::string tolerance_problem(double fraction) {
   return "expected a gauge error above 0 % and below 100 %, such as \"1 %\"";
 }
 
+std::string courant_problem(double c) {
+  if (c > 0 && c <= 1) return {};
+  return "must be in (0, 1]: lumped central difference is stable for C <= 1";
+}
+
 ChainDiscretization validate_scene(const Scene& scene, const RunOptions& options) {
-  if (const auto c = scene.simulation.courant; c && !(*c > 0 && *c <= 1)) {
-    const std::string what = "must be in (0, 1]: lumped central difference is stable for C <= 1";
+  if (const auto c = scene.simulation.courant; c && !courant_problem(*c).empty()) {
+    const std::string what = courant_problem(*c);
     if (options.courant_from_command_line)
       throw input_error("--courant", "", format_double(*c), what);
     throw input_error(scene.file.string(), "simulation.courant", format_double(*c), what);

@@ -18,6 +18,11 @@ struct RunOptions {
   bool tolerance_from_command_line = false;
 };
 
+// Empty if `c` is an acceptable Courant number, else what is expected: lumped central difference
+// is stable for 0 < C <= 1 (docs/methods.md §1). The one rule for `simulation.courant` and
+// --courant.
+std::string courant_problem(double c);
+
 // Empty if `fraction` is an acceptable gauge-error tolerance (0 < it < 1, i.e. below 100 %),
 // else what is expected (the one rule for the scene's `simulation.tolerance` and --tolerance).
 std::string tolerance_problem(double fraction);

@@ -68,6 +68,7 @@ json curve_campaign(const json& tests) {
 }
 
 shpb_test::RunResult fit(const fs::path& dir, const json& campaign) {
+  fs::create_directories(dir);
   write_json(dir / "campaign.json", campaign);
   return run_shpb({"fit", (dir / "campaign.json").string(), "-o", (dir / "fit").string(), "-q"});
 }
@@ -140,6 +141,18 @@ TEST_CASE("fit's curve stage reduces a tension test as process does", "[app][set
     INFO(w);
     CHECK(w.get<std::string>().find("inverted") == std::string::npos);
   }
+  CHECK(fitted(dir, "yield_stress") == Approx(kYield_Pa).epsilon(kYieldFit));
+}
+
+TEST_CASE("fit's signals stage pulls a tension striker and recovers the law", "[app][setup][fit]") {
+  // Simulated at the scene's −10 m/s (a tensile pulse), the record matches the measured one only
+  // for the specimen's own yield stress; launched at +10 m/s it matches none and runs to a bound.
+  const fs::path dir = scratch_dir("setup_fit_tension_signals");
+  json c = curve_campaign({{{"scene", tension_scene().string()}}});
+  c["stages"] = {"curve", "signals"};
+  const auto r = fit(dir, c);
+  INFO(r.err);
+  REQUIRE(r.code == 0);
   CHECK(fitted(dir, "yield_stress") == Approx(kYield_Pa).epsilon(kYieldFit));
 }
 

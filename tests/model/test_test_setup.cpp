@@ -1,8 +1,12 @@
 // The roles of a chain's bars and the distances pulses travel to the specimen, resolved once for
 // every command (model/test_setup.hpp), checked on chains worked out by hand.
 #include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
 #include <string>
 
+#include "../scratch.hpp"
+#include "core/error.hpp"
 #include "model/test_setup.hpp"
 
 using namespace shpb;
@@ -76,4 +80,37 @@ TEST_CASE("A gauge's distance to the specimen is its pulse's travel in the bars,
   // On the output bar 0.2 m from its left end: the transmitter and 0.2 m.
   CHECK(*distance_to_specimen_m(s, 5, 0.2) == Approx(1.2).epsilon(kRoundOff));
   CHECK(!distance_to_specimen_m(s, 3, 0.001));
+}
+
+TEST_CASE("A scene's distance_to_specimen is the same travel: read back, it is what was given",
+          "[model][setup]") {
+  // A gauge on the output bar, 1.2 m from the specimen: 0.2 m past the 1 m transmitter.
+  const auto dir = shpb_test::scratch_dir("test_setup_distance");
+  auto scene_with = [&](const std::string& distance) {
+    std::ofstream(dir / "scene.json") << R"({"bars": [
+      {"name": "striker", "material": "steel", "length": "0.3 m", "diameter": "20 mm",
+       "velocity": "10 m/s"},
+      {"name": "incident", "material": "steel", "length": "2 m", "diameter": "20 mm"},
+      {"name": "specimen", "material": "steel", "length": "5 mm", "diameter": "10 mm"},
+      {"name": "transmitter", "material": "steel", "length": "1 m", "diameter": "20 mm"},
+      {"name": "output", "material": "steel", "length": "0.5 m", "diameter": "20 mm",
+       "gauges": [{"name": "far", "distance_to_specimen": ")" +
+                                             distance + R"("}]}],
+      "specimen": "specimen",
+      "materials": {"steel": {"model": "elastic", "density": 8000, "youngs_modulus": "200 GPa",
+                              "poisson_ratio": 0.29}}})";
+    return dir / "scene.json";
+  };
+  const Scene s = read_scene(scene_with("1.2 m"));
+  const GaugeSpec& g = s.bars[4].gauges[0];
+  CHECK(g.position_m == Approx(0.2).epsilon(kRoundOff));
+  CHECK(*distance_to_specimen_m(s, 4, g.position_m) == Approx(1.2).epsilon(kRoundOff));
+  // Closer than the transmitter's far end is not on the output bar.
+  std::string error;
+  try {
+    read_scene(scene_with("0.5 m"));
+  } catch (const InputError& e) {
+    error = e.what();
+  }
+  CHECK(error.find("bars[4].gauges[0].distance_to_specimen") != std::string::npos);
 }
