@@ -45,7 +45,8 @@ std::string error_of(F&& f) {
   return "";
 }
 
-// The measured records ship with their experiments (experiments/<name>/data, each with its LICENSE).
+// The measured records ship with their experiments (experiments/<name>/data, each with its
+// LICENSE).
 const fs::path kExperiments = fs::path(SHPB_SOURCE_DIR) / "experiments";
 
 }  // namespace

@@ -28,8 +28,7 @@ struct ReferenceRow {
 // The reference tables shipped in tests/data/pochhammer-chree (README there), pc_nu<ν>.csv:
 // a_over_Lambda,d_over_Lambda,c_over_c0,…
 std::vector<ReferenceRow> read_reference(const std::string& name) {
-  const auto file =
-      std::filesystem::path(SHPB_SOURCE_DIR) / "tests/data/pochhammer-chree" / name;
+  const auto file = std::filesystem::path(SHPB_SOURCE_DIR) / "tests/data/pochhammer-chree" / name;
   std::vector<ReferenceRow> rows;
   std::ifstream in(file);
   std::string line;
