@@ -23,11 +23,19 @@ def run_command(*args, cwd=None):
 
 def read_csv(path):
     """A CSV of the command as {column: float64 array}: the shortest round-trip text each value
-    was written with parses back to the very double."""
+    was written with parses back to the very double (an empty cell is NaN; a column of text
+    stays a list of strings)."""
     with open(path, newline="") as f:
         rows = list(csv.reader(f))
     header, body = rows[0], rows[1:]
-    return {name: np.array([float(r[i]) for r in body]) for i, name in enumerate(header)}
+    table = {}
+    for i, name in enumerate(header):
+        cells = [r[i] for r in body]
+        try:
+            table[name] = np.array([float(c) if c else np.nan for c in cells])
+        except ValueError:
+            table[name] = cells
+    return table
 
 
 def columns(table):

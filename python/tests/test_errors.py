@@ -24,7 +24,7 @@ def edits():
     def length(d): d["bars"][2]["length"] = "-5 mm"
     def key(d): d["bars"][0]["velocty"] = "15 m/s"
     def material(d): d["bars"][1]["material"] = "steel-c305"
-    def kind(d): d["simulation"]["duration"] = 800
+    def kind(d): d["simulation"]["duration"] = "800 kg"
     def courant(d): d["simulation"]["courant"] = 1.5
     def gauge(d): d["bars"][1]["gauges"][0]["position"] = "3 m"
     return [length, key, material, kind, courant, gauge]
