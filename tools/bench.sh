@@ -76,7 +76,7 @@ if [ "${BENCH_TOLERANCE:-1}" != 0 ]; then
 fi
 
 if [ -f "$BUILD"/python/shpb/__init__.py ]; then
-  cmake --build "$BUILD" -j 2 --target shpb_python shpb_python_help >/dev/null
+  cmake --build "$BUILD" -j 2 --target bench_simulator shpb_python shpb_python_help >/dev/null
   echo
   PYTHONPATH="$BUILD"/python /usr/bin/python3 tools/bench_python.py "$BUILD"
 fi
