@@ -10,6 +10,7 @@
 #include <pybind11/stl/filesystem.h>
 
 #include <chrono>
+#include <cmath>
 #include <condition_variable>
 #include <exception>
 #include <memory>
@@ -187,6 +188,27 @@ RunOverrides overrides_of(const py::object& tolerance, const std::optional<std::
   return o;
 }
 
+// An edited number meets the range the scene reader gives its JSON key (model/scene_reader.cpp,
+// model/material_reader.cpp), so that a run never starts from a value no scene file could hold.
+enum class Range { kFinite, kPositive, kNonNegative, kFraction };
+
+template <class T>
+auto checked(double T::*field, const char* name, Range range) {
+  return [field, name, range](T& object, double x) {
+    const bool ok =
+        std::isfinite(x) && (range == Range::kFinite || (range == Range::kPositive && x > 0) ||
+                             (range == Range::kNonNegative && x >= 0) ||
+                             (range == Range::kFraction && x >= 0 && x <= 1));
+    if (!ok)
+      throw input_error("scene edit", name, format_double(x),
+                        range == Range::kPositive      ? "must be > 0"
+                        : range == Range::kNonNegative ? "must be >= 0"
+                        : range == Range::kFraction    ? "must be in [0, 1]"
+                                                       : "must be a finite number");
+    object.*field = x;
+  };
+}
+
 // ---- results ----------------------------------------------------------------------------------
 
 struct Simulation {
@@ -230,28 +252,75 @@ PYBIND11_MODULE(_shpb, m) {
 
   // Material parameters, SI units in the names (docs/scene-format.md gives the JSON keys).
   py::class_<JohnsonCookParams>(m, "JohnsonCook")
-      .def_readwrite("A_Pa", &JohnsonCookParams::A_Pa)
-      .def_readwrite("B_Pa", &JohnsonCookParams::B_Pa)
-      .def_readwrite("n", &JohnsonCookParams::n)
-      .def_readwrite("C", &JohnsonCookParams::C)
-      .def_readwrite("reference_strain_rate_1_s", &JohnsonCookParams::reference_strain_rate_1_s)
-      .def_readwrite("m", &JohnsonCookParams::m)
-      .def_readwrite("room_temperature_K", &JohnsonCookParams::room_temperature_K)
-      .def_readwrite("melting_temperature_K", &JohnsonCookParams::melting_temperature_K)
-      .def_readwrite("initial_temperature_K", &JohnsonCookParams::initial_temperature_K)
-      .def_readwrite("specific_heat_J_kgK", &JohnsonCookParams::specific_heat_J_kgK)
-      .def_readwrite("taylor_quinney", &JohnsonCookParams::taylor_quinney)
+      .def_property(
+          "A_Pa", [](const JohnsonCookParams& o) { return o.A_Pa; },
+          checked(&JohnsonCookParams::A_Pa, "johnson_cook.A_Pa", Range::kNonNegative))
+      .def_property(
+          "B_Pa", [](const JohnsonCookParams& o) { return o.B_Pa; },
+          checked(&JohnsonCookParams::B_Pa, "johnson_cook.B_Pa", Range::kNonNegative))
+      .def_property(
+          "n", [](const JohnsonCookParams& o) { return o.n; },
+          checked(&JohnsonCookParams::n, "johnson_cook.n", Range::kFraction))
+      .def_property(
+          "C", [](const JohnsonCookParams& o) { return o.C; },
+          checked(&JohnsonCookParams::C, "johnson_cook.C", Range::kFinite))
+      .def_property(
+          "reference_strain_rate_1_s",
+          [](const JohnsonCookParams& o) { return o.reference_strain_rate_1_s; },
+          checked(&JohnsonCookParams::reference_strain_rate_1_s,
+                  "johnson_cook.reference_strain_rate_1_s", Range::kPositive))
+      .def_property(
+          "m", [](const JohnsonCookParams& o) { return o.m; },
+          checked(&JohnsonCookParams::m, "johnson_cook.m", Range::kPositive))
+      .def_property(
+          "room_temperature_K", [](const JohnsonCookParams& o) { return o.room_temperature_K; },
+          checked(&JohnsonCookParams::room_temperature_K, "johnson_cook.room_temperature_K",
+                  Range::kPositive))
+      .def_property(
+          "melting_temperature_K",
+          [](const JohnsonCookParams& o) { return o.melting_temperature_K; },
+          checked(&JohnsonCookParams::melting_temperature_K, "johnson_cook.melting_temperature_K",
+                  Range::kPositive))
+      .def_property(
+          "initial_temperature_K",
+          [](const JohnsonCookParams& o) { return o.initial_temperature_K; },
+          checked(&JohnsonCookParams::initial_temperature_K, "johnson_cook.initial_temperature_K",
+                  Range::kPositive))
+      .def_property(
+          "specific_heat_J_kgK", [](const JohnsonCookParams& o) { return o.specific_heat_J_kgK; },
+          checked(&JohnsonCookParams::specific_heat_J_kgK, "johnson_cook.specific_heat_J_kgK",
+                  Range::kPositive))
+      .def_property(
+          "taylor_quinney", [](const JohnsonCookParams& o) { return o.taylor_quinney; },
+          checked(&JohnsonCookParams::taylor_quinney, "johnson_cook.taylor_quinney",
+                  Range::kFraction))
       .def_readwrite("adiabatic", &JohnsonCookParams::adiabatic);
   py::class_<BilinearParams>(m, "Bilinear")
-      .def_readwrite("yield_stress_Pa", &BilinearParams::yield_stress_Pa)
-      .def_readwrite("tangent_modulus_Pa", &BilinearParams::tangent_modulus_Pa);
+      .def_property(
+          "yield_stress_Pa", [](const BilinearParams& o) { return o.yield_stress_Pa; },
+          checked(&BilinearParams::yield_stress_Pa, "bilinear.yield_stress_Pa", Range::kPositive))
+      .def_property(
+          "tangent_modulus_Pa", [](const BilinearParams& o) { return o.tangent_modulus_Pa; },
+          checked(&BilinearParams::tangent_modulus_Pa, "bilinear.tangent_modulus_Pa",
+                  Range::kNonNegative));
   py::class_<MaterialSpec>(m, "Material")
       .def_readonly("name", &MaterialSpec::name)
       .def_property_readonly("model",
                              [](const MaterialSpec& s) { return std::string(to_string(s.model)); })
-      .def_readwrite("density_kg_m3", &MaterialSpec::density_kg_m3)
-      .def_readwrite("youngs_modulus_Pa", &MaterialSpec::youngs_modulus_Pa)
-      .def_readwrite("poisson_ratio", &MaterialSpec::poisson_ratio)
+      .def_property(
+          "density_kg_m3", [](const MaterialSpec& o) { return o.density_kg_m3; },
+          checked(&MaterialSpec::density_kg_m3, "material.density_kg_m3", Range::kPositive))
+      .def_property(
+          "youngs_modulus_Pa", [](const MaterialSpec& o) { return o.youngs_modulus_Pa; },
+          checked(&MaterialSpec::youngs_modulus_Pa, "material.youngs_modulus_Pa", Range::kPositive))
+      .def_property(
+          "poisson_ratio", [](const MaterialSpec& o) { return o.poisson_ratio; },
+          [](MaterialSpec& o, double x) {
+            if (!(x > -1 && x < 0.5))
+              throw input_error("scene edit", "material.poisson_ratio", format_double(x),
+                                "must be in (-1, 0.5)");
+            o.poisson_ratio = x;
+          })
       .def_readonly("bilinear", &MaterialSpec::bilinear,
                     py::return_value_policy::reference_internal)
       .def_readonly("johnson_cook", &MaterialSpec::johnson_cook,
@@ -260,12 +329,26 @@ PYBIND11_MODULE(_shpb, m) {
   py::class_<BarSpec>(m, "Bar")
       .def_readonly("name", &BarSpec::name)
       .def_readonly("material", &BarSpec::material, py::return_value_policy::reference_internal)
-      .def_readwrite("length_m", &BarSpec::length_m)
+      .def_property(
+          "length_m", [](const BarSpec& o) { return o.length_m; },
+          checked(&BarSpec::length_m, "bar.length_m", Range::kPositive))
       .def_readonly("area_m2", &BarSpec::area_m2)
       .def_readonly("diameter_m", &BarSpec::diameter_m)
-      .def_readwrite("velocity_m_s", &BarSpec::velocity_m_s)
-      .def_readwrite("elements", &BarSpec::elements)
-      .def_readwrite("gap_m", &BarSpec::gap_m)
+      .def_property(
+          "velocity_m_s", [](const BarSpec& o) { return o.velocity_m_s; },
+          checked(&BarSpec::velocity_m_s, "bar.velocity_m_s", Range::kFinite))
+      .def_property(
+          "elements", [](const BarSpec& b) { return b.elements; },
+          [](BarSpec& b, int n) {
+            constexpr int kMaxElements = 100'000'000;  // the scene reader's bound
+            if (n < 0 || n > kMaxElements)
+              throw input_error("scene edit", "bar.elements", std::to_string(n),
+                                "must be in [1, 100000000], or 0 for the automatic mesh");
+            b.elements = n;
+          })
+      .def_property(
+          "gap_m", [](const BarSpec& o) { return o.gap_m; },
+          checked(&BarSpec::gap_m, "bar.gap_m", Range::kNonNegative))
       .def_property_readonly("gauges",
                              [](const BarSpec& b) {
                                py::dict d;
@@ -320,7 +403,11 @@ PYBIND11_MODULE(_shpb, m) {
           [](Scene& s, const py::object& t) { s.simulation.tolerance = tolerance_value(t); })
       .def_property(
           "duration_s", [](const Scene& s) { return s.simulation.duration_s; },
-          [](Scene& s, std::optional<double> t) { s.simulation.duration_s = t; })
+          [](Scene& s, std::optional<double> t) {
+            if (t && !(std::isfinite(*t) && *t > 0))
+              throw input_error("scene edit", "duration_s", format_double(*t), "must be > 0");
+            s.simulation.duration_s = t;
+          })
       .def(
           "validate",
           [](const Scene& s, const py::object& tolerance) {

@@ -68,3 +68,22 @@ def test_a_bad_tolerance_is_the_commands_message(tmp_path):
         shpb.simulate(scene, tolerance="150 %")
     assert "error: " + str(e.value) == err.strip()
     assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize("edit", [
+    lambda s: setattr(s.bars[1], "length_m", -1.0),
+    lambda s: setattr(s.bars[1], "gap_m", -0.001),
+    lambda s: setattr(s.striker, "velocity_m_s", float("nan")),
+    lambda s: setattr(s.bars[1], "elements", -5),
+    lambda s: setattr(s.bars[1].material, "density_kg_m3", 0.0),
+    lambda s: setattr(s.bars[1].material, "poisson_ratio", 0.7),
+    lambda s: setattr(s.specimen.material.johnson_cook, "n", 1.5),
+    lambda s: setattr(s, "duration_s", -1e-3),
+], ids=["length", "gap", "velocity", "elements", "density", "poisson", "jc-n", "duration"])
+def test_an_edit_outside_the_scene_files_range_is_refused(edit):
+    # A value no scene file could hold is refused when it is set, and the scene keeps its value.
+    scene = shpb.Scene.load(SOURCE / "experiments" / "classic-al6061" / "scene.json")
+    before = shpb.simulate(scene).gauges["incident"].tolist()
+    with pytest.raises(shpb.InputError):
+        edit(scene)
+    assert shpb.simulate(scene).gauges["incident"].tolist() == before
