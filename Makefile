@@ -56,7 +56,7 @@ docs: build
 bench: deps
 	@bash tools/bench.sh $(BUILD)
 
-FORMATTED = $$(git ls-files 'src/*.cpp' 'src/*.hpp' 'tests/*.cpp' 'tests/*.hpp' 'tools/*.cpp')
+FORMATTED = $$(git ls-files 'src/*.cpp' 'src/*.hpp' 'tests/*.cpp' 'tests/*.hpp' 'tools/*.cpp' 'python/*.cpp')
 format:
 	@clang-format -i $(FORMATTED)
 

@@ -16,6 +16,13 @@ test -f "$tmp/prefix/share/shpb/shpb_report/main.py" || { echo "FAIL: no report 
 mv "$tmp/prefix" "$tmp/moved"  # relocated: nothing may depend on where it was installed
 cp "$source/experiments/striker-on-bar/scene.json" "$tmp/scene.json"
 (cd "$tmp" && moved/bin/shpb simulate scene.json -o out --quiet)
+# The Python package, when built (docs/python.md), beside the executable: imports and runs.
+for pkg in "$tmp"/moved/lib/python3*/dist-packages; do
+  [ -d "$pkg/shpb" ] || continue
+  (cd "$tmp" && PYTHONDONTWRITEBYTECODE=1 PYTHONPATH="$pkg" /usr/bin/python3 -c \
+    "import shpb; assert shpb.simulate(shpb.Scene.load('scene.json')).stable") ||
+    { echo "FAIL: the installed Python package does not run" >&2; exit 1; }
+done
 if ! /usr/bin/python3 -c "import matplotlib, numpy" 2>/dev/null; then
   echo "SKIPPED: python3 with matplotlib and numpy not installed: installed report not checked"; exit 0
 fi

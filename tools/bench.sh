@@ -10,7 +10,9 @@
 #  4. the full pareto study of the classic experiment on 2 threads (skipped with BENCH_STUDY=0);
 #  5. --tolerance 1 % on the experiments (skipped with BENCH_TOLERANCE=0), and the classic
 #     experiment at --tolerance 3.5 %, the tolerance whose meshes are as accurate as its automatic
-#     ones, beside them: time and gauge error against the study's reference.
+#     ones, beside them: time and gauge error against the study's reference;
+#  6. the Python module (tools/bench_python.py, when it is built): a loop of 100 classic runs
+#     against the executable's solve time, two runs in two Python threads against serial.
 # Usage: tools/bench.sh [build-dir] [repetitions]
 set -euo pipefail
 BUILD=${1:-build}
@@ -71,4 +73,10 @@ if [ "${BENCH_TOLERANCE:-1}" != 0 ]; then
   echo "== the classic experiment at --tolerance 3.5 % against its automatic meshes"
   "$BUILD"/bench_simulator --repeat "$REPEAT" --asynchronous-only --tolerance 0.035 \
     experiments/classic-al6061/scene.json
+fi
+
+if [ -f "$BUILD"/python/shpb/__init__.py ]; then
+  cmake --build "$BUILD" -j 2 --target bench_simulator shpb_python shpb_python_help >/dev/null
+  echo
+  PYTHONPATH="$BUILD"/python /usr/bin/python3 tools/bench_python.py "$BUILD"
 fi

@@ -4,6 +4,10 @@ set -euo pipefail
 packages=(g++ cmake make pkg-config libeigen3-dev nlohmann-json3-dev libfftw3-dev libcli11-dev catch2
           python3-matplotlib python3-numpy python3-pytest libzip-dev libexpat1-dev libfreexl-dev
           libceres-dev)
+# The Python module (docs/python.md): pybind11 to build it; pytest, nbclient, ipykernel and pandas
+# to test it and run its notebook.
+packages+=(pybind11-dev python3-pybind11 python3-dev python3-pytest python3-nbclient python3-ipykernel
+           python3-pandas)
 packages+=("$@")
 missing=()
 for p in "${packages[@]}"; do

@@ -1,6 +1,8 @@
 // `shpb process SCENE -o DIR [--signals FILE]` (docs/commands.md, docs/outputs.md): gauge signals →
 // pulses at the specimen faces → 1/2/3-wave stress–strain curves. Everything is read and checked
 // before the output folder is created.
+#include "app/process.hpp"
+
 #include <malloc.h>
 
 #include <algorithm>
@@ -135,19 +137,40 @@ int run_process(const ProcessArgs& args) {
   mallopt(M_TRIM_THRESHOLD, kHeapBuffers);
   const Scene scene = read_scene(args.scene);
   if (!scene.specimen) return run_bar_check(args, scene);
+  const ProcessOutcome o = process_scene(scene, args.signals);
+  write_process_outputs(o, scene, args.scene.string(), args.output);
+  const ProcessingResult& r = o.result;
+  if (!args.quiet)
+    std::fprintf(stderr,
+                 "process: window %.6g–%.6g s at the faces; striker ≈ %.4g m/s (inferred); %s "
+                 "strain rate %.4g 1/s; peak 3-wave stress %.4g MPa -> %s\n",
+                 r.face_start_s, r.face_end_s, r.inferred_striker_velocity_m_s,
+                 r.strain_rate_has_plateau ? "plateau" : "no plateau: mean",
+                 r.strain_rate_has_plateau ? r.plateau_strain_rate_1_s : r.mean_strain_rate_1_s,
+                 r.peak_stress_Pa / 1e6, args.output.string().c_str());
+  return 0;
+}
+
+ProcessOutcome process_scene(const Scene& scene,
+                             const std::optional<std::filesystem::path>& signals_file,
+                             bool print_warnings) {
+  if (!scene.specimen)
+    throw input_error(scene.file.string(), "specimen", "(missing)",
+                      "name the specimen bar to reduce a test (a scene without one is the "
+                      "command's bars-together check)");
   std::vector<std::string> gauges;
   for (const auto& b : scene.bars)
     for (const auto& g : b.gauges) gauges.push_back(g.name);
 
-  MeasurementSpec m;
-  ProcessingOptions options = processing_options(scene);
-  bool simulated = false;
-  if (args.signals) {
+  ProcessOutcome o;
+  MeasurementSpec& m = o.measurement;
+  ProcessingOptions& options = o.options = processing_options(scene);
+  if (signals_file) {
     // A gauges.csv written by `shpb simulate` (time_s + one strain column per gauge): signals of
     // the 1D bar model, which does not disperse, so the faces are reached by a pure delay.
-    simulated = true;
+    o.simulated = true;
     const KolskySetup probe = resolve_setup(scene, gauges);
-    m.file = *args.signals;
+    m.file = *signals_file;
     m.format = SignalFormat::kCsv;
     m.time_column.name = "time_s";
     for (const auto& g : {probe.incident_gauge, probe.transmitted_gauge}) {
@@ -172,23 +195,34 @@ int run_process(const ProcessArgs& args) {
   }
   // What was assumed is said even with --quiet (which silences progress only), and as soon as
   // it is known: before any later error stops the run.
-  const GaugeSignals signals = read_gauge_signals(m, {});
-  for (const auto& w : signals.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
-  const KolskySetup setup = resolve_setup(scene, signals.gauges);
-  const ProcessedTest processed = process_test(scene, signals, setup, options);
-  ProcessingResult r = processed.result;
-  const SpecimenCorrections& corrections = processed.corrections;
-  const CorrectionReport& removed = processed.removed;
-  for (const auto& w : r.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
-  std::vector<std::string> warnings = signals.warnings;
+  GaugeSignals& signals = o.signals;
+  signals = read_gauge_signals(m, {});
+  if (print_warnings)
+    for (const auto& w : signals.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  const KolskySetup& setup = o.setup = resolve_setup(scene, signals.gauges);
+  ProcessedTest processed = process_test(scene, signals, setup, options);
+  ProcessingResult& r = o.result = std::move(processed.result);
+  o.corrections = processed.corrections;
+  o.removed = processed.removed;
+  if (print_warnings)
+    for (const auto& w : r.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  std::vector<std::string>& warnings = o.warnings = signals.warnings;
   warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
   for (const auto* v : {&r.incident, &r.reflected, &r.transmitted})
     if (!all_finite(*v)) throw NumericalError("process: the pulses hold a non-finite value");
+  o.failure = reduction_failure(r);
+  return o;
+}
 
+void write_process_outputs(const ProcessOutcome& o, const Scene& scene,
+                           const std::string& scene_display, const std::filesystem::path& output) {
+  const MeasurementSpec& m = o.measurement;
+  const GaugeSignals& signals = o.signals;
+  const ProcessingResult& r = o.result;
   std::vector<std::filesystem::path> inputs = scene_inputs(scene);
   inputs.push_back(m.file);
   for (const ChannelSpec& c : m.channels) inputs.push_back(c.file);
-  OutputFolder out(args.output, "process", inputs);
+  OutputFolder out(output, "process", inputs);
   {  // the signals as read, in strain: what the windows were found on
     std::vector<std::string> header = {"time_s"};
     header.insert(header.end(), signals.gauges.begin(), signals.gauges.end());
@@ -203,16 +237,16 @@ int run_process(const ProcessArgs& args) {
   }
   write_pulses(out, r);
   // A failed reduction still leaves the pulses at the faces to look at, and says why.
-  if (const std::string failure = reduction_failure(r); !failure.empty()) {
+  if (!o.failure.empty()) {
     write_json(out, "summary.json",
                {{"version", kVersion},
                 {"command", "process"},
-                {"scene", args.scene.string()},
-                {"error", failure},
-                {"warnings", warnings},
+                {"scene", scene_display},
+                {"error", o.failure},
+                {"warnings", o.warnings},
                 {"written", "pulses.csv only: the reduction failed"}});
     out.commit();
-    throw NumericalError(failure + " (pulses.csv written to " + args.output.string() + ")");
+    throw NumericalError(o.failure + " (pulses.csv written to " + output.string() + ")");
   }
   {
     const Curve& c = r.curve;
@@ -227,17 +261,31 @@ int run_process(const ProcessArgs& args) {
              c.force_back_N[i]});
     w.close();
   }
+  write_json(out, "summary.json", process_summary(o, scene, scene_display));
+  out.commit();
+}
+
+nlohmann::json process_summary(const ProcessOutcome& o, const Scene& scene,
+                               const std::string& scene_display) {
+  const MeasurementSpec& m = o.measurement;
+  const GaugeSignals& signals = o.signals;
+  const KolskySetup& setup = o.setup;
+  const ProcessingOptions& options = o.options;
+  const ProcessingResult& r = o.result;
+  const SpecimenCorrections& corrections = o.corrections;
+  const CorrectionReport& removed = o.removed;
+  const bool simulated = o.simulated;
   nlohmann::json s;
   s["version"] = kVersion;
   s["command"] = "process";
-  s["scene"] = args.scene.string();
+  s["scene"] = scene_display;
   s["signals"] = {{"source", simulated ? "simulated (--signals)" : "measurement"},
                   {"file", m.file.string()},
                   {"samples", signals.time_s.size()},
                   {"sample_interval_s", signals.dt_s},
                   {"incident_gauge", setup.incident_gauge},
                   {"transmitted_gauge", setup.transmitted_gauge}};
-  s["warnings"] = warnings;
+  s["warnings"] = o.warnings;
   s["test"] = options.tension ? "tension" : "compression";
   s["conventions"] =
       std::string(
@@ -328,17 +376,7 @@ int run_process(const ProcessArgs& args) {
       "R = 2|P1-P2|/|P1+P2| <= 0.05 while (P1+P2)/2 >= 20 % of its peak (loaded); reached at the "
       "start of the interval with R <= 0.05 that lasts until unloading";
   s["equilibrium"] = r.equilibrium;
-  write_json(out, "summary.json", s);
-  out.commit();
-  if (!args.quiet)
-    std::fprintf(stderr,
-                 "process: window %.6g–%.6g s at the faces; striker ≈ %.4g m/s (inferred); %s "
-                 "strain rate %.4g 1/s; peak 3-wave stress %.4g MPa -> %s\n",
-                 r.face_start_s, r.face_end_s, r.inferred_striker_velocity_m_s,
-                 r.strain_rate_has_plateau ? "plateau" : "no plateau: mean",
-                 r.strain_rate_has_plateau ? r.plateau_strain_rate_1_s : r.mean_strain_rate_1_s,
-                 r.peak_stress_Pa / 1e6, args.output.string().c_str());
-  return 0;
+  return s;
 }
 
 }  // namespace shpb

@@ -154,6 +154,8 @@ bool interrupted() { return g_interrupted.load(std::memory_order_relaxed); }
 void throw_if_interrupted() {
   if (interrupted()) throw Interrupted();
 }
+void request_interrupt() { g_interrupted.store(true); }
+void clear_interrupt() { g_interrupted.store(false); }
 
 OutputFolder::OutputFolder(fs::path final_dir, std::string command,
                            const std::vector<fs::path>& inputs)

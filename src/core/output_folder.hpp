@@ -71,5 +71,9 @@ void install_interrupt_handlers();
 bool interrupted();
 // Throws Interrupted if a signal arrived: the one-line poll of a loop.
 void throw_if_interrupted();
+// For a host with its own signal handling (the Python module: Ctrl-C in a notebook): ask the
+// running work to stop as a signal would, and forget the request once that work has stopped.
+void request_interrupt();
+void clear_interrupt();
 
 }  // namespace shpb

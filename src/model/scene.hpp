@@ -199,6 +199,9 @@ struct Scene {
 
 // Reads and validates a scene; throws InputError("<file>: <json path>: <value>: <constraint>").
 Scene read_scene(const std::filesystem::path& file);
+// The same from JSON text in memory (the Python module's Scene.from_dict): `file` names it in
+// messages and anchors its relative paths, as if the text had been read from there.
+Scene read_scene_text(const std::string& text, const std::filesystem::path& file);
 
 std::string_view to_string(ContactMethod m);
 std::string_view to_string(Stepping s);

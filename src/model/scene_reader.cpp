@@ -25,8 +25,9 @@ class SceneReader {
   explicit SceneReader(const fs::path& file)
       : file_(file), display_(file.string()), dir_(file.parent_path()) {}
 
-  Scene read() {
-    const nlohmann::json j = read_json_object_file(file_, display_);
+  Scene read() { return read(read_json_object_file(file_, display_)); }
+
+  Scene read(const nlohmann::json& j) {
     const JsonValue root(j, display_, "");
     const auto o = root.object(
         {"name", "notes", "bars", "specimen", "materials", "contact", "simulation", "measurement"});
@@ -349,6 +350,10 @@ class SceneReader {
 }  // namespace
 
 Scene read_scene(const std::filesystem::path& file) { return SceneReader(file).read(); }
+
+Scene read_scene_text(const std::string& text, const std::filesystem::path& file) {
+  return SceneReader(file).read(parse_json_object(text, file.string()));
+}
 
 // The gauged bars nearest to the specimen on either side: the incident and transmitter bars.
 std::optional<std::size_t> Scene::incident_bar() const {

@@ -333,6 +333,10 @@ void write_simulation_outputs(const SimulationResult& result, const Scene& scene
     }
     csv.close();
   }
+  write_text_file(dir / "summary.json", simulation_summary(result, scene).dump(2) + "\n");
+}
+
+nlohmann::ordered_json simulation_summary(const SimulationResult& result, const Scene& scene) {
   nlohmann::ordered_json j;
   j["version"] = kVersion;
   j["scene"] = scene.name;
@@ -357,7 +361,7 @@ void write_simulation_outputs(const SimulationResult& result, const Scene& scene
     j["tolerance"] = *t;
     j["predicted_gauge_error"] = predicted;
   }
-  write_text_file(dir / "summary.json", j.dump(2) + "\n");
+  return j;
 }
 
 }  // namespace shpb

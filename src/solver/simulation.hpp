@@ -4,6 +4,7 @@
 // these two functions; the signatures are kept stable.
 #include <filesystem>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -85,5 +86,7 @@ SimulationResult simulate(const Scene& scene, const SimulationOptions& options =
 // field.csv (long format: time_s,x_m,stress_Pa) and summary.json into `dir`.
 void write_simulation_outputs(const SimulationResult& result, const Scene& scene,
                               const std::filesystem::path& dir);
+// summary.json's content.
+nlohmann::ordered_json simulation_summary(const SimulationResult& result, const Scene& scene);
 
 }  // namespace shpb

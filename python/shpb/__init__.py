@@ -1,0 +1,272 @@
+"""shpb from Python: the virtual Split-Hopkinson pressure bar lab on the same C++ library as the
+`shpb` command (docs/python.md).
+
+    import shpb
+    run = shpb.simulate(shpb.Scene.load("experiments/classic-al6061/scene.json"))
+    run.gauges["incident"]            # numpy array, the gauges.csv column
+
+Scenes load from a file or a dict (the same checks and messages as the command, raised as
+shpb.InputError); results hold numpy arrays (tables as pandas DataFrames when pandas is
+installed) named as the command's CSV columns and summary.json, and result.save(dir) writes
+exactly the command's output folder. Simulations release the GIL (threads run in parallel);
+Ctrl-C stops a run as SIGINT stops the command.
+"""
+import os
+import shutil
+import tempfile
+
+from . import _shpb
+from ._shpb import (Bar, Bilinear, InputError, JohnsonCook, Material, NumericalError, Scene,
+                    WriteError)
+
+try:
+    from ._command_help import HELP as _HELP
+except ImportError:  # a source tree without the build's generated help
+    _HELP = {}
+
+try:
+    import pandas as _pandas
+except ImportError:
+    _pandas = None
+
+__version__ = _shpb.__version__
+__all__ = ["Scene", "Bar", "Material", "JohnsonCook", "Bilinear", "InputError", "NumericalError",
+           "WriteError", "simulate", "process", "compare", "dispersion", "fit", "study",
+           "SimulationResult", "ProcessResult", "FolderResult"]
+
+
+def _table(columns):
+    """A pandas DataFrame of the columns when pandas is installed, else the dict of arrays."""
+    if columns is None or _pandas is None:
+        return columns
+    return _pandas.DataFrame(columns, copy=False)
+
+
+def _with_help(command, python_part):
+    def decorate(function):
+        function.__doc__ = python_part
+        if command in _HELP:
+            function.__doc__ += ("\n\nThe command's options (`shpb " + command + " --help`):\n\n"
+                                 + _HELP[command])
+        return function
+    return decorate
+
+
+class SimulationResult:
+    """A run of `shpb simulate`, in memory. Tables (time_s and one column per CSV column):
+    gauges, interfaces, specimen (None without a specimen), energy; field: time_s, x_m and
+    stress_Pa[time, x]; summary: summary.json as a dict. save(dir) writes the command's folder."""
+
+    def __init__(self, native):
+        self._native = native
+
+    scene = property(lambda self: self._native.scene, doc="the scene as run (overrides applied)")
+    gauges = property(lambda self: _table(self._native.gauges), doc="gauges.csv")
+    interfaces = property(lambda self: _table(self._native.interfaces), doc="interfaces.csv")
+    specimen = property(lambda self: _table(self._native.specimen), doc="specimen.csv")
+    energy = property(lambda self: _table(self._native.energy), doc="energy.csv")
+    field = property(lambda self: self._native.field, doc="field.csv as a time x position grid")
+    summary = property(lambda self: self._native.summary, doc="summary.json")
+    stable = property(lambda self: self._native.stable)
+    failure = property(lambda self: self._native.failure)
+    warnings = property(lambda self: self._native.warnings)
+    wall_time_s = property(lambda self: self._native.wall_time_s, doc="the solve alone")
+
+    def arrays(self, table):
+        """The columns of `table` ("gauges", "energy", ...) as read-only numpy arrays that view
+        the library's memory (no copy)."""
+        return getattr(self._native, table)
+
+    def save(self, dir):
+        """Writes gauges.csv, interfaces.csv, specimen.csv, energy.csv, field.csv and
+        summary.json into `dir`, as `shpb simulate -o dir` (replaced atomically; a folder shpb
+        did not write is refused)."""
+        self._native.save(os.fspath(dir))
+
+    def __repr__(self):
+        s = self.summary
+        return (f"<shpb.SimulationResult {s['scene']}: {len(self._native.gauges['time_s'])} "
+                f"samples, stable={s['stable']}, {s['wall_time_s']:.3g} s>")
+
+
+class ProcessResult:
+    """A run of `shpb process`, in memory: raw_signals, pulses, curve (rows up to the end of
+    loading, as curve.csv) and summary (summary.json). save(dir) writes the command's folder."""
+
+    def __init__(self, native):
+        self._native = native
+
+    scene = property(lambda self: self._native.scene)
+    raw_signals = property(lambda self: _table(self._native.raw_signals), doc="raw_signals.csv")
+    pulses = property(lambda self: _table(self._native.pulses), doc="pulses.csv")
+    curve = property(lambda self: _table(self._native.curve), doc="curve.csv")
+    summary = property(lambda self: self._native.summary, doc="summary.json")
+    warnings = property(lambda self: self._native.warnings)
+
+    def arrays(self, table):
+        """The columns of `table` ("curve", "pulses", "raw_signals") as read-only numpy arrays
+        that view the library's memory (no copy)."""
+        return getattr(self._native, table)
+
+    def save(self, dir):
+        """Writes raw_signals.csv, pulses.csv, curve.csv and summary.json into `dir`, as
+        `shpb process -o dir`."""
+        self._native.save(os.fspath(dir))
+
+    def __repr__(self):
+        return f"<shpb.ProcessResult {self.summary['scene']}: peak {self.summary['peak_stress_Pa'] / 1e6:.4g} MPa>"
+
+
+@_with_help("simulate", """simulate(scene, tolerance=None, threads=0, contact=None, stepping=None,
+         courant=None, full_model=False) -> SimulationResult
+
+Runs `scene` (a shpb.Scene, or a path to a scene file) as `shpb simulate` does; nothing is
+written until result.save(dir). tolerance: the gauge error accepted, a fraction (0.01) or
+text ("1 %"); contact, stepping, courant, full_model: as --contact, --stepping, --courant,
+--full-model. threads: accepted for symmetry with the command (a simulation runs on one
+thread; run several from Python threads: the GIL is released). Raises shpb.InputError
+(exit 2 of the command), KeyboardInterrupt on Ctrl-C. An unstable run is returned with
+result.stable False and result.failure saying where and when (the command's exit 3).""")
+def simulate(scene, tolerance=None, threads=0, contact=None, stepping=None, courant=None,
+             full_model=False):
+    if not isinstance(scene, Scene):
+        scene = Scene.load(os.fspath(scene))
+    return SimulationResult(_shpb._simulate(scene, tolerance, contact, stepping, courant,
+                                            full_model))
+
+
+@_with_help("process", """process(scene, signals=None) -> ProcessResult
+
+Reduces the scene's measured signals (its `measurement`), or `signals` (a gauges.csv written
+by `shpb simulate`, or a SimulationResult), to the pulses at the specimen faces and the
+1/2/3-wave stress-strain curve, as `shpb process` does; nothing is written until
+result.save(dir). Raises shpb.InputError for a bad scene or signal file, and
+shpb.NumericalError when the reduction fails (the command's exit 3).""")
+def process(scene, signals=None):
+    if not isinstance(scene, Scene):
+        scene = Scene.load(os.fspath(scene))
+    if isinstance(signals, SimulationResult):
+        with tempfile.TemporaryDirectory(prefix="shpb-") as tmp:
+            signals.save(os.path.join(tmp, "run"))
+            return ProcessResult(_shpb._process(scene, os.path.join(tmp, "run", "gauges.csv")))
+    return ProcessResult(_shpb._process(scene, None if signals is None else os.fspath(signals)))
+
+
+class FolderResult:
+    """The output of `shpb compare`, `shpb study` or `shpb fit`, read into memory: tables (every
+    CSV file, by name without .csv) and json (every JSON file, by name without .json), as the
+    command wrote them. exit_code: 0, or 3 when the command wrote its result with a numerical
+    failure said in its summary. save(dir) writes the very files into `dir`."""
+
+    def __init__(self, command, folder, exit_code):
+        import weakref
+        self.command, self.exit_code, self._folder = command, exit_code, folder
+        weakref.finalize(self, shutil.rmtree, os.path.dirname(folder), True)
+        self.tables, self.json = {}, {}
+        for name in sorted(os.listdir(folder)):
+            path = os.path.join(folder, name)
+            if name.endswith(".csv"):
+                self.tables[name[:-4]] = _table(_read_csv(path))
+            elif name.endswith(".json"):
+                import json
+                with open(path, encoding="utf-8") as f:
+                    self.json[name[:-5]] = json.load(f)
+
+    @property
+    def summary(self):
+        return self.json.get("summary")
+
+    def save(self, dir):
+        """Writes the command's folder into `dir` (replaced atomically; a folder shpb did not
+        write is refused)."""
+        _shpb._save_folder(self._folder, os.fspath(dir), self.command)
+
+    def __repr__(self):
+        return f"<shpb.FolderResult of {self.command}: {', '.join(self.tables) or 'no tables'}>"
+
+
+def _read_csv(path):
+    """{column: float64 array} of a CSV the library wrote (numbers; text cells kept as text)."""
+    import csv
+    import numpy as np
+    with open(path, newline="", encoding="utf-8") as f:
+        rows = list(csv.reader(f))
+    if not rows:
+        return {}
+    columns = {}
+    for i, name in enumerate(rows[0]):
+        cells = [r[i] if i < len(r) else "" for r in rows[1:]]
+        try:
+            columns[name] = np.array([float(c) if c != "" else np.nan for c in cells])
+        except ValueError:
+            columns[name] = np.array(cells, dtype=object)
+    return columns
+
+
+def _folder_run(command, run):
+    tmp = tempfile.mkdtemp(prefix=f"shpb-{command}-")
+    folder = os.path.join(tmp, "out")
+    try:
+        code = run(folder)
+    except BaseException:
+        shutil.rmtree(tmp, True)
+        raise
+    return FolderResult(command, folder, code)
+
+
+def _scene_file(scene):
+    """compare and study run a scene file: a path, or the file a shpb.Scene was loaded from."""
+    if isinstance(scene, Scene):
+        raise TypeError("compare and study read the scene from its file, as the commands do: "
+                        "pass the path (a Scene edited in memory is not a file)")
+    return os.fspath(scene)
+
+
+@_with_help("compare", """compare(scene, tolerance=None, threads=0, contact=None, stepping=None,
+        courant=None, dispersion=True, striker_velocity=None) -> FolderResult
+
+Simulates the scene file and lays the simulated gauges over its measured signals, as
+`shpb compare` does; the command's files are in result.tables and result.json.""")
+def compare(scene, tolerance=None, threads=0, contact=None, stepping=None, courant=None,
+            dispersion=True, striker_velocity=None):
+    scene = _scene_file(scene)
+    return _folder_run("compare", lambda out: _shpb._compare(
+        scene, out, tolerance, contact, stepping, courant, threads, dispersion,
+        striker_velocity))
+
+
+@_with_help("study", """study(scene, sweep="pareto", refine=1, tolerance=None, threads=0,
+      contact=None, stepping=None, courant=None) -> FolderResult
+
+Runs the sweep of `shpb study` on the scene file (threads: parallel runs, 0 = all cores);
+the command's files are in result.tables and result.json.""")
+def study(scene, sweep="pareto", refine=1, tolerance=None, threads=0, contact=None,
+          stepping=None, courant=None):
+    scene = _scene_file(scene)
+    return _folder_run("study", lambda out: _shpb._study(
+        scene, out, sweep, refine, tolerance, contact, stepping, courant, threads))
+
+
+@_with_help("fit", """fit(campaign, threads=0, max_iterations=40, relative_step=0.05) -> FolderResult
+
+Fits the campaign file's free material parameters to its tests, as `shpb fit` does;
+result.json["fit"] is fit.json (a material file), result.tables the command's CSV files.""")
+def fit(campaign, threads=0, max_iterations=40, relative_step=0.05):
+    campaign = os.fspath(campaign)
+    return _folder_run("fit", lambda out: _shpb._fit(campaign, out, threads, max_iterations,
+                                                     relative_step))
+
+
+@_with_help("dispersion", """dispersion(poisson=0.29, a_over_lambda=None, max_a_over_lambda=1.6,
+           points=321, radius_m=None, c0_m_s=None)
+
+The Pochhammer-Chree table of `shpb dispersion` (columns a_over_lambda, c_over_c0, cg_over_c0,
+f_a_over_c0 and, with radius_m and c0_m_s, frequency_Hz): a DataFrame with pandas, else a
+dict of numpy arrays.""")
+def dispersion(poisson=0.29, a_over_lambda=None, max_a_over_lambda=1.6, points=321,
+               radius_m=None, c0_m_s=None):
+    with tempfile.TemporaryDirectory(prefix="shpb-dispersion-") as tmp:
+        path = os.path.join(tmp, "dispersion.csv")
+        _shpb._dispersion(poisson, [] if a_over_lambda is None else [float(x) for x in a_over_lambda], max_a_over_lambda, points,
+                          radius_m, c0_m_s, path)
+        return _table(_read_csv(path))

@@ -1,0 +1,643 @@
+// The Python module's native half, shpb._shpb (README (From Python), docs/python.md): the scene as
+// an editable object, and the library's own entry points of `shpb simulate` and `shpb process`
+// returning their results in memory. Pure-Python conveniences (tables, save of folders, the
+// commands' help) live in python/shpb/__init__.py. Nothing here re-implements a check, a formula or
+// a writer: each call goes to the function the command calls.
+#include <pybind11/functional.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <exception>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include "app/commands.hpp"
+#include "app/process.hpp"
+#include "core/csv_writer.hpp"
+#include "core/error.hpp"
+#include "core/output_folder.hpp"
+#include "core/units.hpp"
+#include "model/wave_travel.hpp"
+#include "solver/simulation.hpp"
+#include "version.hpp"
+
+namespace py = pybind11;
+using namespace shpb;
+
+namespace {
+
+// ---- running library work with the GIL released, Ctrl-C as the command's SIGINT --------------
+
+// Python runs its signal handlers in the main thread only, and only while it holds the GIL. Work
+// started from the main thread therefore runs in a worker thread while the main thread waits with
+// the GIL released and checks for signals every kSignalPoll; a KeyboardInterrupt (or any error a
+// handler raises) sets the library's interrupt flag, which the library's long loops poll as they
+// poll SIGINT in the command (core/output_folder.hpp), and is raised once the work has stopped.
+// From other threads the work runs in place with the GIL released: threads run in parallel.
+constexpr auto kSignalPoll = std::chrono::milliseconds(50);
+
+unsigned long g_main_thread = 0;  // set when the module is imported
+
+bool in_main_thread() { return PyThread_get_thread_ident() == g_main_thread; }
+
+template <class F>
+auto run_released(F&& work) -> decltype(work()) {
+  using R = decltype(work());
+  if (!in_main_thread()) {
+    py::gil_scoped_release release;
+    return work();
+  }
+  std::optional<R> value;
+  std::exception_ptr error;
+  std::mutex mutex;
+  std::condition_variable finished;
+  bool done = false;
+  std::thread worker([&] {
+    try {
+      value.emplace(work());
+    } catch (...) {
+      error = std::current_exception();
+    }
+    std::lock_guard lock(mutex);
+    done = true;
+    finished.notify_one();
+  });
+  std::optional<py::error_already_set> signal_error;
+  for (;;) {
+    {
+      py::gil_scoped_release release;
+      std::unique_lock lock(mutex);
+      if (finished.wait_for(lock, kSignalPoll, [&] { return done; })) break;
+    }
+    if (!signal_error && PyErr_CheckSignals() != 0) {
+      signal_error.emplace();  // fetches the KeyboardInterrupt
+      request_interrupt();
+    }
+  }
+  {
+    py::gil_scoped_release release;
+    worker.join();
+  }
+  if (signal_error) {
+    clear_interrupt();
+    throw std::move(*signal_error);
+  }
+  if (error) std::rethrow_exception(error);
+  return std::move(*value);
+}
+
+// ---- numpy views ------------------------------------------------------------------------------
+
+// A read-only numpy array over a vector that `owner` (a Python object holding it) keeps alive:
+// no copy of the library's time series.
+py::array_t<double> view(const std::vector<double>& v, py::handle owner) {
+  py::array_t<double> a(static_cast<py::ssize_t>(v.size()), v.data(), owner);
+  py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  return a;
+}
+
+// Columns of a TimeSeries as {"time_s": ..., name: ...}, in the CSV's order.
+py::dict series(const TimeSeries& s, py::handle owner) {
+  py::dict d;
+  d["time_s"] = view(s.time_s, owner);
+  for (std::size_t c = 0; c < s.columns.size(); ++c)
+    d[s.columns[c].c_str()] = view(s.values[c], owner);
+  return d;
+}
+
+py::object json_to_python(const nlohmann::ordered_json& j) {
+  return py::module_::import("json").attr("loads")(j.dump());
+}
+
+// ---- the scene --------------------------------------------------------------------------------
+
+// Python strings, ints and floats, nested in dicts and lists, as JSON text (json.dumps; numpy
+// scalars by their value). NaN and infinity are not JSON: refused as the scene file would be.
+std::string dict_to_json_text(const py::object& d) {
+  py::object json = py::module_::import("json");
+  py::object to_value = py::cpp_function([](py::object o) -> py::object {
+    if (py::hasattr(o, "item")) return o.attr("item")();  // numpy scalars
+    if (py::hasattr(o, "__fspath__")) return py::str(o);  // pathlib.Path
+    throw py::type_error("not JSON: " + py::repr(o).cast<std::string>());
+  });
+  try {
+    return json.attr("dumps")(d, py::arg("allow_nan") = false, py::arg("default") = to_value)
+        .cast<std::string>();
+  } catch (py::error_already_set& e) {
+    if (!e.matches(PyExc_ValueError) && !e.matches(PyExc_TypeError)) throw;
+    throw InputError(std::string("scene dict: not JSON: ") + e.what());
+  }
+}
+
+// The bar named `name` or at index `i` (negative from the end, as Python lists).
+BarSpec& bar_of(Scene& s, const py::object& key) {
+  if (py::isinstance<py::str>(key)) {
+    const std::string name = key.cast<std::string>();
+    for (auto& b : s.bars)
+      if (b.name == name) return b;
+    throw py::key_error("no bar named \"" + name + "\" in scene " + s.name);
+  }
+  long i = key.cast<long>();
+  const long n = static_cast<long>(s.bars.size());
+  if (i < 0) i += n;
+  if (i < 0 || i >= n) throw py::index_error("bar index out of range");
+  return s.bars[static_cast<std::size_t>(i)];
+}
+
+std::optional<double> tolerance_value(const py::object& t) {
+  if (t.is_none()) return std::nullopt;
+  if (py::isinstance<py::str>(t)) {
+    const std::string text = t.cast<std::string>();
+    try {
+      return parse_quantity(text, Dimension::kDimensionless);
+    } catch (const std::invalid_argument&) {
+      throw input_error("tolerance", "", "\"" + text + "\"",
+                        "expected a gauge error such as \"1 %\" or 0.01");
+    }
+  }
+  return t.cast<double>();
+}
+
+RunOverrides overrides_of(const py::object& tolerance, const std::optional<std::string>& contact,
+                          const std::optional<std::string>& stepping,
+                          const std::optional<double>& courant, int threads) {
+  RunOverrides o;
+  o.tolerance = tolerance_value(tolerance);
+  if (contact) {
+    o.contact = contact_method_from_string(*contact);
+    if (!o.contact || *o.contact == ContactMethod::kBonded)
+      throw input_error("contact", "", "\"" + *contact + "\"",
+                        "expected penalty, bipenalty or localized-bipenalty");
+  }
+  if (stepping) {
+    o.stepping = stepping_from_string(*stepping);
+    if (!o.stepping)
+      throw input_error("stepping", "", "\"" + *stepping + "\"", "expected asynchronous or global");
+  }
+  o.courant = courant;
+  o.threads = threads;
+  o.quiet = true;
+  return o;
+}
+
+// An edited number meets the range the scene reader gives its JSON key (model/scene_reader.cpp,
+// model/material_reader.cpp), so that a run never starts from a value no scene file could hold.
+enum class Range { kFinite, kPositive, kNonNegative, kFraction };
+
+template <class T>
+auto checked(double T::*field, const char* name, Range range) {
+  return [field, name, range](T& object, double x) {
+    const bool ok =
+        std::isfinite(x) && (range == Range::kFinite || (range == Range::kPositive && x > 0) ||
+                             (range == Range::kNonNegative && x >= 0) ||
+                             (range == Range::kFraction && x >= 0 && x <= 1));
+    if (!ok)
+      throw input_error("scene edit", name, format_double(x),
+                        range == Range::kPositive      ? "must be > 0"
+                        : range == Range::kNonNegative ? "must be >= 0"
+                        : range == Range::kFraction    ? "must be in [0, 1]"
+                                                       : "must be a finite number");
+    object.*field = x;
+  };
+}
+
+// ---- results ----------------------------------------------------------------------------------
+
+struct Simulation {
+  Scene scene;  // as run: overrides applied, meshes chosen
+  SimulationResult result;
+};
+
+struct Processing {
+  Scene scene;
+  ProcessOutcome outcome;
+};
+
+}  // namespace
+
+PYBIND11_MODULE(_shpb, m) {
+  m.doc() = "shpb's library: the scene, simulate and process (see the package shpb).";
+  m.attr("__version__") = kVersion;
+  g_main_thread =
+      py::module_::import("threading").attr("main_thread")().attr("ident").cast<unsigned long>();
+
+  // Errors: the command's exit codes as exception classes. InputError is a ValueError (exit 2),
+  // NumericalError a RuntimeError (exit 3), WriteError an OSError (exit 3); an interrupted run is
+  // a KeyboardInterrupt (exit 130).
+  static py::exception<InputError> input_error_type(m, "InputError", PyExc_ValueError);
+  static py::exception<NumericalError> numerical_error_type(m, "NumericalError",
+                                                            PyExc_RuntimeError);
+  static py::exception<WriteError> write_error_type(m, "WriteError", PyExc_OSError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const InputError& e) {
+      input_error_type(e.what());
+    } catch (const NumericalError& e) {
+      numerical_error_type(e.what());
+    } catch (const WriteError& e) {
+      write_error_type(e.what());
+    } catch (const Interrupted&) {
+      PyErr_SetNone(PyExc_KeyboardInterrupt);
+    }
+  });
+
+  // Material parameters, SI units in the names (docs/scene-format.md gives the JSON keys).
+  py::class_<JohnsonCookParams>(m, "JohnsonCook")
+      .def_property(
+          "A_Pa", [](const JohnsonCookParams& o) { return o.A_Pa; },
+          checked(&JohnsonCookParams::A_Pa, "johnson_cook.A_Pa", Range::kNonNegative))
+      .def_property(
+          "B_Pa", [](const JohnsonCookParams& o) { return o.B_Pa; },
+          checked(&JohnsonCookParams::B_Pa, "johnson_cook.B_Pa", Range::kNonNegative))
+      .def_property(
+          "n", [](const JohnsonCookParams& o) { return o.n; },
+          checked(&JohnsonCookParams::n, "johnson_cook.n", Range::kFraction))
+      .def_property(
+          "C", [](const JohnsonCookParams& o) { return o.C; },
+          checked(&JohnsonCookParams::C, "johnson_cook.C", Range::kFinite))
+      .def_property(
+          "reference_strain_rate_1_s",
+          [](const JohnsonCookParams& o) { return o.reference_strain_rate_1_s; },
+          checked(&JohnsonCookParams::reference_strain_rate_1_s,
+                  "johnson_cook.reference_strain_rate_1_s", Range::kPositive))
+      .def_property(
+          "m", [](const JohnsonCookParams& o) { return o.m; },
+          checked(&JohnsonCookParams::m, "johnson_cook.m", Range::kPositive))
+      .def_property(
+          "room_temperature_K", [](const JohnsonCookParams& o) { return o.room_temperature_K; },
+          checked(&JohnsonCookParams::room_temperature_K, "johnson_cook.room_temperature_K",
+                  Range::kPositive))
+      .def_property(
+          "melting_temperature_K",
+          [](const JohnsonCookParams& o) { return o.melting_temperature_K; },
+          checked(&JohnsonCookParams::melting_temperature_K, "johnson_cook.melting_temperature_K",
+                  Range::kPositive))
+      .def_property(
+          "initial_temperature_K",
+          [](const JohnsonCookParams& o) { return o.initial_temperature_K; },
+          checked(&JohnsonCookParams::initial_temperature_K, "johnson_cook.initial_temperature_K",
+                  Range::kPositive))
+      .def_property(
+          "specific_heat_J_kgK", [](const JohnsonCookParams& o) { return o.specific_heat_J_kgK; },
+          checked(&JohnsonCookParams::specific_heat_J_kgK, "johnson_cook.specific_heat_J_kgK",
+                  Range::kPositive))
+      .def_property(
+          "taylor_quinney", [](const JohnsonCookParams& o) { return o.taylor_quinney; },
+          checked(&JohnsonCookParams::taylor_quinney, "johnson_cook.taylor_quinney",
+                  Range::kFraction))
+      .def_readwrite("adiabatic", &JohnsonCookParams::adiabatic);
+  py::class_<BilinearParams>(m, "Bilinear")
+      .def_property(
+          "yield_stress_Pa", [](const BilinearParams& o) { return o.yield_stress_Pa; },
+          checked(&BilinearParams::yield_stress_Pa, "bilinear.yield_stress_Pa", Range::kPositive))
+      .def_property(
+          "tangent_modulus_Pa", [](const BilinearParams& o) { return o.tangent_modulus_Pa; },
+          checked(&BilinearParams::tangent_modulus_Pa, "bilinear.tangent_modulus_Pa",
+                  Range::kNonNegative));
+  py::class_<MaterialSpec>(m, "Material")
+      .def_readonly("name", &MaterialSpec::name)
+      .def_property_readonly("model",
+                             [](const MaterialSpec& s) { return std::string(to_string(s.model)); })
+      .def_property(
+          "density_kg_m3", [](const MaterialSpec& o) { return o.density_kg_m3; },
+          checked(&MaterialSpec::density_kg_m3, "material.density_kg_m3", Range::kPositive))
+      .def_property(
+          "youngs_modulus_Pa", [](const MaterialSpec& o) { return o.youngs_modulus_Pa; },
+          checked(&MaterialSpec::youngs_modulus_Pa, "material.youngs_modulus_Pa", Range::kPositive))
+      .def_property(
+          "poisson_ratio", [](const MaterialSpec& o) { return o.poisson_ratio; },
+          [](MaterialSpec& o, double x) {
+            if (!(x > -1 && x < 0.5))
+              throw input_error("scene edit", "material.poisson_ratio", format_double(x),
+                                "must be in (-1, 0.5)");
+            o.poisson_ratio = x;
+          })
+      .def_readonly("bilinear", &MaterialSpec::bilinear,
+                    py::return_value_policy::reference_internal)
+      .def_readonly("johnson_cook", &MaterialSpec::johnson_cook,
+                    py::return_value_policy::reference_internal)
+      .def_property_readonly("wave_speed_m_s", &MaterialSpec::wave_speed_m_s);
+  py::class_<BarSpec>(m, "Bar")
+      .def_readonly("name", &BarSpec::name)
+      .def_readonly("material", &BarSpec::material, py::return_value_policy::reference_internal)
+      .def_property(
+          "length_m", [](const BarSpec& o) { return o.length_m; },
+          checked(&BarSpec::length_m, "bar.length_m", Range::kPositive))
+      .def_readonly("area_m2", &BarSpec::area_m2)
+      .def_readonly("diameter_m", &BarSpec::diameter_m)
+      .def_property(
+          "velocity_m_s", [](const BarSpec& o) { return o.velocity_m_s; },
+          checked(&BarSpec::velocity_m_s, "bar.velocity_m_s", Range::kFinite))
+      .def_property(
+          "elements", [](const BarSpec& b) { return b.elements; },
+          [](BarSpec& b, int n) {
+            constexpr int kMaxElements = 100'000'000;  // the scene reader's bound
+            if (n < 0 || n > kMaxElements)
+              throw input_error("scene edit", "bar.elements", std::to_string(n),
+                                "must be in [1, 100000000], or 0 for the automatic mesh");
+            b.elements = n;
+          })
+      .def_property(
+          "gap_m", [](const BarSpec& o) { return o.gap_m; },
+          checked(&BarSpec::gap_m, "bar.gap_m", Range::kNonNegative))
+      .def_property_readonly("gauges",
+                             [](const BarSpec& b) {
+                               py::dict d;
+                               for (const auto& g : b.gauges) d[g.name.c_str()] = g.position_m;
+                               return d;
+                             })
+      .def("__repr__", [](const BarSpec& b) {
+        return "<shpb.Bar " + b.name + ": " + b.material.name + ", " + format_double(b.length_m) +
+               " m, " + format_double(b.velocity_m_s) + " m/s>";
+      });
+  // Edits (e.g. scene.striker.velocity_m_s = 12) act on the scene in memory; a run checks the
+  // edited scene with the one validation every command applies (model/scene_validation.hpp).
+  py::class_<Scene>(m, "Scene")
+      .def_static(
+          "load", [](const std::filesystem::path& file) { return read_scene(file); },
+          py::arg("path"))
+      .def_static(
+          "from_dict",
+          [](const py::object& d, const std::filesystem::path& file) {
+            return read_scene_text(dict_to_json_text(d), file);
+          },
+          py::arg("d"), py::arg("file") = std::filesystem::path("scene.json"))
+      .def_readwrite("name", &Scene::name)
+      .def_property_readonly("file", [](const Scene& s) { return s.file; })
+      .def_property_readonly(
+          "bars",
+          [](py::object self) {
+            Scene& s = self.cast<Scene&>();
+            py::list l;
+            for (auto& b : s.bars)
+              l.append(py::cast(&b, py::return_value_policy::reference_internal, self));
+            return l;
+          })
+      .def("bar", &bar_of, py::arg("key"), py::return_value_policy::reference_internal)
+      .def_property_readonly("specimen",
+                             [](py::object self) -> py::object {
+                               Scene& s = self.cast<Scene&>();
+                               if (!s.specimen) return py::none();
+                               return py::cast(&s.bars[*s.specimen],
+                                               py::return_value_policy::reference_internal, self);
+                             })
+      .def_property_readonly("striker",
+                             [](py::object self) -> py::object {
+                               Scene& s = self.cast<Scene&>();
+                               const auto i = striker_bar(s);
+                               if (!i) return py::none();
+                               return py::cast(&s.bars[*i],
+                                               py::return_value_policy::reference_internal, self);
+                             })
+      .def_property(
+          "tolerance", [](const Scene& s) { return s.simulation.tolerance; },
+          [](Scene& s, const py::object& t) { s.simulation.tolerance = tolerance_value(t); })
+      .def_property(
+          "duration_s", [](const Scene& s) { return s.simulation.duration_s; },
+          [](Scene& s, std::optional<double> t) {
+            if (t && !(std::isfinite(*t) && *t > 0))
+              throw input_error("scene edit", "duration_s", format_double(*t), "must be > 0");
+            s.simulation.duration_s = t;
+          })
+      .def(
+          "validate",
+          [](const Scene& s, const py::object& tolerance) {
+            Scene copy = s;
+            apply_overrides(overrides_of(tolerance, {}, {}, {}, 0), copy);
+          },
+          py::arg("tolerance") = py::none())
+      .def("copy", [](const Scene& s) { return Scene(s); })
+      .def("__copy__", [](const Scene& s) { return Scene(s); })
+      .def("__deepcopy__", [](const Scene& s, py::object) { return Scene(s); })
+      .def("__repr__", [](const Scene& s) {
+        return "<shpb.Scene " + s.name + ": " + std::to_string(s.bars.size()) + " bars>";
+      });
+
+  py::class_<Simulation, std::shared_ptr<Simulation>>(m, "_Simulation")
+      .def_property_readonly("scene", [](const Simulation& s) { return s.scene; })
+      .def_property_readonly(
+          "gauges",
+          [](py::object self) { return series(self.cast<Simulation&>().result.gauges, self); })
+      .def_property_readonly(
+          "interfaces",
+          [](py::object self) { return series(self.cast<Simulation&>().result.interfaces, self); })
+      .def_property_readonly("specimen",
+                             [](py::object self) -> py::object {
+                               const Simulation& s = self.cast<Simulation&>();
+                               if (!s.scene.specimen) return py::none();
+                               return series(s.result.specimen, self);
+                             })
+      .def_property_readonly(
+          "energy",
+          [](py::object self) { return series(self.cast<Simulation&>().result.energy, self); })
+      .def_property_readonly("field",
+                             [](py::object self) {
+                               const FieldGrid& f = self.cast<Simulation&>().result.field;
+                               py::array_t<double> stress = view(f.stress_Pa, self);
+                               py::dict d;
+                               d["time_s"] = view(f.time_s, self);
+                               d["x_m"] = view(f.x_m, self);
+                               d["stress_Pa"] =
+                                   stress.reshape({static_cast<py::ssize_t>(f.time_s.size()),
+                                                   static_cast<py::ssize_t>(f.x_m.size())});
+                               return d;
+                             })
+      .def_property_readonly(
+          "summary",
+          [](const Simulation& s) { return json_to_python(simulation_summary(s.result, s.scene)); })
+      .def_property_readonly("stable", [](const Simulation& s) { return s.result.stable; })
+      .def_property_readonly("failure", [](const Simulation& s) { return s.result.failure; })
+      .def_property_readonly("warnings", [](const Simulation& s) { return s.result.warnings; })
+      .def_property_readonly("wall_time_s",
+                             [](const Simulation& s) { return s.result.wall_time_s; })
+      .def(
+          "save",
+          [](const Simulation& s, const std::filesystem::path& dir) {
+            // As run_simulate (app/simulate.cpp): the folder's checks, the writers, one commit.
+            run_released([&] {
+              OutputFolder out(dir, "simulate", scene_inputs(s.scene, false));
+              write_simulation_outputs(s.result, s.scene, out.path());
+              out.commit();
+              return 0;
+            });
+          },
+          py::arg("dir"));
+
+  m.def(
+      "_simulate",
+      [](const Scene& scene, const py::object& tolerance, const std::optional<std::string>& contact,
+         const std::optional<std::string>& stepping, const std::optional<double>& courant,
+         bool full_model) {
+        auto s = std::make_shared<Simulation>();
+        s->scene = scene;
+        apply_overrides(overrides_of(tolerance, contact, stepping, courant, 0), s->scene);
+        SimulationOptions options;
+        options.full_model = full_model;
+        options.cancel = [] { return interrupted(); };
+        s->result = run_released([&] { return simulate(s->scene, options); });
+        return s;
+      },
+      py::arg("scene"), py::arg("tolerance") = py::none(), py::arg("contact") = py::none(),
+      py::arg("stepping") = py::none(), py::arg("courant") = py::none(),
+      py::arg("full_model") = false);
+
+  py::class_<Processing, std::shared_ptr<Processing>>(m, "_Processing")
+      .def_property_readonly("scene", [](const Processing& p) { return p.scene; })
+      .def_property_readonly("raw_signals",
+                             [](py::object self) {
+                               const GaugeSignals& g = self.cast<Processing&>().outcome.signals;
+                               py::dict d;
+                               d["time_s"] = view(g.time_s, self);
+                               for (std::size_t i = 0; i < g.gauges.size(); ++i)
+                                 d[g.gauges[i].c_str()] = view(g.strain[i], self);
+                               return d;
+                             })
+      .def_property_readonly("pulses",
+                             [](py::object self) {
+                               const ProcessingResult& r = self.cast<Processing&>().outcome.result;
+                               py::dict d;
+                               d["time_s"] = view(r.time_s, self);
+                               d["incident"] = view(r.incident, self);
+                               d["reflected"] = view(r.reflected, self);
+                               d["transmitted"] = view(r.transmitted, self);
+                               return d;
+                             })
+      .def_property_readonly(
+          "curve",
+          [](py::object self) {
+            // curve.csv's columns and rows (up to the end of loading), in its order.
+            const ProcessingResult& r = self.cast<Processing&>().outcome.result;
+            const Curve& c = r.curve;
+            const auto rows = static_cast<py::ssize_t>(r.loading_end);
+            py::dict d;
+            const std::pair<const char*, const std::vector<double>*> columns[] = {
+                {"time_s", &r.time_s},
+                {"strain_rate_1_s", &c.strain_rate_1_s},
+                {"strain", &c.strain},
+                {"stress_1wave_Pa", &c.stress_1wave_Pa},
+                {"stress_2wave_Pa", &c.stress_2wave_Pa},
+                {"stress_3wave_Pa", &c.stress_3wave_Pa},
+                {"true_strain", &c.true_strain},
+                {"true_stress_Pa", &c.true_stress_Pa},
+                {"equilibrium_ratio", &c.equilibrium_ratio},
+                {"strain_rate_1wave_1_s", &c.strain_rate_1wave_1_s},
+                {"force_front_N", &c.force_front_N},
+                {"force_back_N", &c.force_back_N}};
+            for (const auto& [name, v] : columns) d[name] = view(*v, self)[py::slice(0, rows, 1)];
+            return d;
+          })
+      .def_property_readonly(
+          "summary",
+          [](const Processing& p) {
+            return json_to_python(process_summary(p.outcome, p.scene, p.scene.file.string()));
+          })
+      .def_property_readonly("warnings", [](const Processing& p) { return p.outcome.warnings; })
+      .def(
+          "save",
+          [](const Processing& p, const std::filesystem::path& dir) {
+            run_released([&] {
+              write_process_outputs(p.outcome, p.scene, p.scene.file.string(), dir);
+              return 0;
+            });
+          },
+          py::arg("dir"));
+
+  m.def(
+      "_process",
+      [](const Scene& scene, const std::optional<std::filesystem::path>& signals) {
+        auto p = std::make_shared<Processing>();
+        p->scene = scene;
+        p->outcome = run_released([&] { return process_scene(p->scene, signals, false); });
+        if (!p->outcome.failure.empty()) throw NumericalError(p->outcome.failure);
+        return p;
+      },
+      py::arg("scene"), py::arg("signals") = py::none());
+
+  // compare, study, fit and dispersion: the command's own function, writing its folder (or file)
+  // where the Python side reads it back (python/shpb/__init__.py). The exit code is returned: 3
+  // is a result written with a numerical failure said in its summary.
+  m.def(
+      "_compare",
+      [](const std::filesystem::path& scene, const std::filesystem::path& output,
+         const py::object& tolerance, const std::optional<std::string>& contact,
+         const std::optional<std::string>& stepping, const std::optional<double>& courant,
+         int threads, bool dispersion, const std::optional<double>& striker_velocity) {
+        CompareArgs a{scene, output, overrides_of(tolerance, contact, stepping, courant, threads),
+                      dispersion, striker_velocity};
+        return run_released([&] { return run_compare(a); });
+      },
+      py::arg("scene"), py::arg("output"), py::arg("tolerance"), py::arg("contact"),
+      py::arg("stepping"), py::arg("courant"), py::arg("threads"), py::arg("dispersion"),
+      py::arg("striker_velocity"));
+  m.def(
+      "_study",
+      [](const std::filesystem::path& scene, const std::filesystem::path& output,
+         const std::string& sweep, int refine, const py::object& tolerance,
+         const std::optional<std::string>& contact, const std::optional<std::string>& stepping,
+         const std::optional<double>& courant, int threads) {
+        StudyArgs a;
+        a.scene = scene;
+        a.output = output;
+        const auto s = enum_value(kSweepNames, sweep);
+        if (!s) throw input_error("sweep", "", "\"" + sweep + "\"", "expected pareto or stability");
+        a.sweep = *s;
+        a.refine = refine;
+        a.overrides = overrides_of(tolerance, contact, stepping, courant, threads);
+        return run_released([&] { return run_study(a); });
+      },
+      py::arg("scene"), py::arg("output"), py::arg("sweep"), py::arg("refine"),
+      py::arg("tolerance"), py::arg("contact"), py::arg("stepping"), py::arg("courant"),
+      py::arg("threads"));
+  m.def(
+      "_fit",
+      [](const std::filesystem::path& campaign, const std::filesystem::path& output, int threads,
+         int max_iterations, double relative_step) {
+        FitArgs a;
+        a.campaign = campaign;
+        a.output = output;
+        a.threads = threads;
+        a.max_iterations = max_iterations;
+        a.relative_step = relative_step;
+        a.quiet = true;
+        return run_released([&] { return run_fit(a); });
+      },
+      py::arg("campaign"), py::arg("output"), py::arg("threads"), py::arg("max_iterations"),
+      py::arg("relative_step"));
+  m.def(
+      "_dispersion",
+      [](double poisson, const std::vector<double>& a_over_lambda, double max_a_over_lambda,
+         int points, const std::optional<double>& radius_m, const std::optional<double>& c0_m_s,
+         const std::filesystem::path& output) {
+        DispersionArgs a{poisson, a_over_lambda, max_a_over_lambda, points, radius_m,
+                         c0_m_s,  output};
+        return run_released([&] { return run_dispersion(a); });
+      },
+      py::arg("poisson"), py::arg("a_over_lambda"), py::arg("max_a_over_lambda"), py::arg("points"),
+      py::arg("radius_m"), py::arg("c0_m_s"), py::arg("output"));
+  // result.save(dir) of those: the command's folder copied with the output folder's own rules
+  // (checks, marker, atomic replacement; core/output_folder.hpp).
+  m.def(
+      "_save_folder",
+      [](const std::filesystem::path& from, const std::filesystem::path& dir,
+         const std::string& command) {
+        run_released([&] {
+          OutputFolder out(dir, command);
+          for (const auto& e : std::filesystem::directory_iterator(from))
+            if (e.path().filename() != kOutputMarker)
+              std::filesystem::copy(e.path(), out.file(e.path().filename().string()),
+                                    std::filesystem::copy_options::recursive);
+          out.commit();
+          return 0;
+        });
+      },
+      py::arg("from"), py::arg("dir"), py::arg("command"));
+}

@@ -1,0 +1,45 @@
+"""compare and dispersion from Python: the command's own function, so the command's files."""
+import numpy as np
+
+import shpb
+from conftest import SOURCE, columns, read_csv, run_command
+
+
+def test_dispersion_is_the_commands_table(tmp_path):
+    code, _, err = run_command("dispersion", "--poisson", "0.3", "--points", "41",
+                               "--radius", "0.01", "--c0", "5000", "-o", tmp_path / "d.csv")
+    assert code == 0, err
+    expected = read_csv(tmp_path / "d.csv")
+    got = columns(shpb.dispersion(poisson=0.3, points=41, radius_m=0.01, c0_m_s=5000))
+    assert list(got) == list(expected)
+    for name in expected:
+        assert np.array_equal(got[name], expected[name]), name
+
+
+def test_a_bad_dispersion_option_is_the_commands_message(tmp_path):
+    code, _, err = run_command("dispersion", "--poisson", "0.29", "--radius", "0.01", "-o", tmp_path / "d.csv")
+    assert code == 2
+    try:
+        shpb.dispersion(radius_m=0.01)
+    except shpb.InputError as e:
+        assert "error: " + str(e) == err.strip()
+    else:
+        raise AssertionError("no InputError")
+
+
+def test_compare_saves_the_commands_folder(tmp_path):
+    scene = SOURCE / "experiments" / "lanl-cu-ofe-273k" / "scene.json"
+    assert run_command("compare", scene, "-o", tmp_path / "cmd", "--quiet")[0] == 0
+    result = shpb.compare(scene)
+    assert result.exit_code == 0
+    result.save(tmp_path / "py")
+    names = sorted(p.name for p in (tmp_path / "cmd").iterdir())
+    assert names == sorted(p.name for p in (tmp_path / "py").iterdir())
+    for name in names:
+        if name.endswith(".csv"):
+            assert (tmp_path / "cmd" / name).read_bytes() == (tmp_path / "py" / name).read_bytes()
+            expected = read_csv(tmp_path / "cmd" / name)
+            got = columns(result.tables[name[:-4]])
+            assert list(got) == list(expected)
+            for column in expected:
+                np.testing.assert_array_equal(np.asarray(got[column]), np.asarray(expected[column]))

@@ -1,0 +1,89 @@
+"""Bad scenes from Python: shpb.InputError carrying the command's own one-line message, and
+nothing written."""
+import copy
+import json
+import os
+
+import pytest
+
+import shpb
+from conftest import SOURCE, run_command, scene_dir
+
+
+def command_message(path):
+    """The command's error line for a scene file, without main's "error: " prefix."""
+    code, _, err = run_command("validate", path)
+    assert code == 2
+    lines = err.strip().splitlines()
+    assert len(lines) == 1
+    assert lines[0].startswith("error: ")
+    return lines[0][len("error: "):]
+
+
+def edits():
+    def length(d): d["bars"][2]["length"] = "-5 mm"
+    def key(d): d["bars"][0]["velocty"] = "15 m/s"
+    def material(d): d["bars"][1]["material"] = "steel-c305"
+    def kind(d): d["simulation"]["duration"] = "800 kg"
+    def courant(d): d["simulation"]["courant"] = 1.5
+    def gauge(d): d["bars"][1]["gauges"][0]["position"] = "3 m"
+    return [length, key, material, kind, courant, gauge]
+
+
+@pytest.mark.parametrize("edit", edits(), ids=lambda e: e.__name__)
+def test_a_bad_dict_raises_the_commands_message(edit, tmp_path, classic_json):
+    folder = scene_dir(tmp_path, "classic-al6061")
+    bad = copy.deepcopy(classic_json)
+    edit(bad)
+    path = folder / "bad.json"
+    path.write_text(json.dumps(bad))
+    expected = command_message(path)
+    path.unlink()
+    before = sorted(os.walk(tmp_path))
+    with pytest.raises(shpb.InputError) as e:
+        run = shpb.simulate(shpb.Scene.from_dict(bad, file=path))
+    assert str(e.value) == expected
+    assert isinstance(e.value, ValueError)
+    assert sorted(os.walk(tmp_path)) == before  # nothing written
+
+
+def test_a_good_dict_is_the_scene_file(tmp_path, classic_json):
+    folder = scene_dir(tmp_path, "classic-al6061")
+    a = shpb.simulate(shpb.Scene.from_dict(classic_json, file=folder / "scene.json"))
+    b = shpb.simulate(shpb.Scene.load(SOURCE / "experiments" / "classic-al6061" / "scene.json"))
+    assert a.gauges["incident"].tolist() == b.gauges["incident"].tolist()
+
+
+def test_not_json_is_an_input_error(classic_json):
+    classic_json["bars"][0]["velocity"] = float("nan")
+    with pytest.raises(shpb.InputError):
+        shpb.Scene.from_dict(classic_json)
+
+
+def test_a_bad_tolerance_is_the_commands_message(tmp_path):
+    scene = SOURCE / "experiments" / "classic-al6061" / "scene.json"
+    code, _, err = run_command("simulate", scene, "-o", tmp_path / "out", "--tolerance", "150 %")
+    assert code == 2
+    with pytest.raises(shpb.InputError) as e:
+        shpb.simulate(scene, tolerance="150 %")
+    assert "error: " + str(e.value) == err.strip()
+    assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize("edit", [
+    lambda s: setattr(s.bars[1], "length_m", -1.0),
+    lambda s: setattr(s.bars[1], "gap_m", -0.001),
+    lambda s: setattr(s.striker, "velocity_m_s", float("nan")),
+    lambda s: setattr(s.bars[1], "elements", -5),
+    lambda s: setattr(s.bars[1].material, "density_kg_m3", 0.0),
+    lambda s: setattr(s.bars[1].material, "poisson_ratio", 0.7),
+    lambda s: setattr(s.specimen.material.johnson_cook, "n", 1.5),
+    lambda s: setattr(s, "duration_s", -1e-3),
+], ids=["length", "gap", "velocity", "elements", "density", "poisson", "jc-n", "duration"])
+def test_an_edit_outside_the_scene_files_range_is_refused(edit):
+    # A value no scene file could hold is refused when it is set, and the scene keeps its value.
+    scene = shpb.Scene.load(SOURCE / "experiments" / "classic-al6061" / "scene.json")
+    before = shpb.simulate(scene).gauges["incident"].tolist()
+    with pytest.raises(shpb.InputError):
+        edit(scene)
+    assert shpb.simulate(scene).gauges["incident"].tolist() == before

@@ -1,0 +1,36 @@
+"""Ctrl-C during a long simulation: KeyboardInterrupt as soon as the library stops, as SIGINT
+stops the command; the next run is not affected."""
+import os
+import subprocess
+import sys
+import textwrap
+
+from conftest import SOURCE
+
+SCRIPT = textwrap.dedent("""
+    import os, signal, sys, threading, time
+    import shpb
+    scene = shpb.Scene.load(sys.argv[1])
+    scene.duration_s = 0.05  # sixty times the test's own duration: seconds of solving
+    threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
+    start = time.monotonic()
+    try:
+        shpb.simulate(scene)
+        print("not interrupted")
+    except KeyboardInterrupt:
+        print("interrupted after %.1f s" % (time.monotonic() - start))
+    run = shpb.simulate(sys.argv[1])
+    print("next run stable:", run.stable)
+""")
+
+
+def test_sigint_interrupts_a_simulation_and_the_next_run_is_clean():
+    scene = SOURCE / "experiments" / "classic-al6061" / "scene.json"
+    # The solve stops within a poll of the library's loop; a minute means it was not stopped.
+    timeout_s = 60
+    p = subprocess.run([sys.executable, "-c", SCRIPT, str(scene)], capture_output=True,
+                       text=True, timeout=timeout_s, env=os.environ)
+    assert p.returncode == 0, p.stderr
+    lines = p.stdout.splitlines()
+    assert lines[0].startswith("interrupted after"), p.stdout
+    assert lines[1] == "next run stable: True"

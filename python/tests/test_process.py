@@ -1,0 +1,56 @@
+"""shpb.process against `shpb process`: the curve of curve.csv to the bit, the command's folder."""
+import json
+
+import numpy as np
+import pytest
+
+import shpb
+from conftest import SOURCE, columns, read_csv, run_command
+
+MEASURED = ["lanl-cu-ofe-273k", "lanl-pmma13-mini-kolsky", "epoxy-resin-sample01"]
+
+
+@pytest.mark.parametrize("experiment", MEASURED)
+def test_curve_equals_the_commands_curve_csv_bit_for_bit(experiment, tmp_path):
+    scene = SOURCE / "experiments" / experiment / "scene.json"
+    code, _, err = run_command("process", scene, "-o", tmp_path / "cmd", "--quiet")
+    assert code == 0, err
+    result = shpb.process(shpb.Scene.load(scene))
+    for table in ["curve", "pulses", "raw_signals"]:
+        expected = read_csv(tmp_path / "cmd" / f"{table}.csv")
+        got = columns(getattr(result, table))
+        assert list(got) == list(expected)
+        for name in expected:
+            assert np.array_equal(got[name], expected[name]), (table, name)
+    assert result.summary == json.loads((tmp_path / "cmd" / "summary.json").read_text())
+
+
+def test_save_writes_the_commands_folder(tmp_path):
+    scene = SOURCE / "experiments" / "lanl-cu-ofe-273k" / "scene.json"
+    assert run_command("process", scene, "-o", tmp_path / "cmd", "--quiet")[0] == 0
+    shpb.process(scene).save(tmp_path / "py")
+    names = sorted(p.name for p in (tmp_path / "cmd").iterdir())
+    assert names == sorted(p.name for p in (tmp_path / "py").iterdir())
+    for name in names:
+        assert (tmp_path / "cmd" / name).read_bytes() == (tmp_path / "py" / name).read_bytes(), name
+
+
+def test_simulated_signals_reduce_as_with_signals(tmp_path):
+    scene = SOURCE / "experiments" / "classic-al6061" / "scene.json"
+    assert run_command("simulate", scene, "-o", tmp_path / "sim", "--quiet")[0] == 0
+    assert run_command("process", scene, "-o", tmp_path / "cmd", "--quiet",
+                       "--signals", tmp_path / "sim" / "gauges.csv")[0] == 0
+    result = shpb.process(scene, signals=shpb.simulate(scene))
+    expected = read_csv(tmp_path / "cmd" / "curve.csv")
+    got = columns(result.curve)
+    for name in expected:
+        assert np.array_equal(got[name], expected[name]), name
+
+
+def test_a_scene_without_measurement_is_the_commands_message(tmp_path):
+    scene = SOURCE / "experiments" / "classic-al6061" / "scene.json"
+    code, _, err = run_command("process", scene, "-o", tmp_path / "cmd")
+    assert code == 2
+    with pytest.raises(shpb.InputError) as e:
+        shpb.process(scene)
+    assert "error: " + str(e.value) == err.strip()
