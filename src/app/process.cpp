@@ -215,14 +215,17 @@ int run_process(const ProcessArgs& args) {
   inputs.push_back(m.file);
   for (const ChannelSpec& c : m.channels) inputs.push_back(c.file);
   OutputFolder out(args.output, "process", inputs);
-  {  // the signals as read, in strain: what the windows were found on
+  {  // the signals as read, in strain, tension positive: what the windows were found on (a
+     // tension test's signals were negated above for the reduction; written back as read)
+    const double as_read = options.tension ? -1.0 : 1.0;
     std::vector<std::string> header = {"time_s"};
     header.insert(header.end(), signals.gauges.begin(), signals.gauges.end());
     CsvWriter w(out.file("raw_signals.csv"), header);
     std::vector<double> row(header.size());
     for (std::size_t i = 0; i < signals.time_s.size(); ++i) {
       row[0] = signals.time_s[i];
-      for (std::size_t g = 0; g < signals.strain.size(); ++g) row[g + 1] = signals.strain[g][i];
+      for (std::size_t g = 0; g < signals.strain.size(); ++g)
+        row[g + 1] = as_read * signals.strain[g][i];
       w.row(row);
     }
     w.close();
