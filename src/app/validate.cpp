@@ -296,10 +296,13 @@ void print_process(const json& p) {
     for (const auto& gj : p["gauges"])
       if (gj["name"] == gauge) peaks = &gj;
     const json& col = c["column"];
+    std::string column = "#";  // by index; built by append (GCC 12 warns falsely on "#" + string)
+    if (col.is_string())
+      column = col.get<std::string>();
+    else
+      column.append(std::to_string(col.get<int>()));
     std::printf("%-14s %-40s %-14s %-11s %14s %12s %12s\n", gauge.c_str(),
-                c["file"].get<std::string>().c_str(),
-                col.is_string() ? col.get<std::string>().c_str()
-                                : ("#" + std::to_string(col.get<int>())).c_str(),
+                c["file"].get<std::string>().c_str(), column.c_str(),
                 (c["unit"].get<std::string>() + (c["invert"].get<bool>() ? " (inv)" : "")).c_str(),
                 g(c["strain_per_unit"].get<double>()).c_str(),
                 g((*peaks)["strain_min"].get<double>()).c_str(),
@@ -408,7 +411,26 @@ int run_validate(const ValidateArgs& args) {
                                         apply_overrides(o, automatic).node_updates_estimate;
     }
   }
-  if (measured) setup["process"] = process_setup(scene);
+  if (measured) {
+    // A record not there (kept elsewhere) stays a warning, as for simulate; a record that is
+    // there is read as process reads it.
+    std::filesystem::path missing;
+    std::error_code ec;
+    for (const ChannelSpec& c : scene.measurement->channels) {
+      const auto& f = c.file.empty() ? scene.measurement->file : c.file;
+      if (missing.empty() && !std::filesystem::exists(f, ec)) missing = f;
+    }
+    if (missing.empty()) {
+      setup["process"] = process_setup(scene);
+    } else {
+      bool said = false;  // scene_warnings names a missing measurement.file already
+      for (const auto& w : setup["warnings"])
+        said = said || w.get<std::string>().find(missing.string()) != std::string::npos;
+      if (!said)
+        setup["warnings"].push_back("measurement file " + missing.string() +
+                                    " not found (process and compare will need it)");
+    }
+  }
   throw_if_interrupted();  // a signal during the checks: exit 130, not a report
   if (args.json)
     std::printf("%s\n", setup.dump(2).c_str());
