@@ -88,6 +88,7 @@ GaugeSignals read_gauge_signals(const MeasurementSpec& m, const std::filesystem:
     req.time_column = m.time_column;
     req.time_unit_s = m.time_unit_s;
     req.sheet = m.sheet;
+    req.resample = m.time_resample;
     for (std::size_t c : channels) req.columns.push_back(m.channels[c].column);
     SignalColumns cols = read_signal_columns(req);
     check_sample_interval(cols, m);

@@ -273,12 +273,23 @@ std::vector<std::string> signal_warnings(const GaugeSignals& signals) {
     const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
     for (const double extreme : {*hi, *lo}) {
       if (extreme == 0) continue;
-      std::size_t run = 0, longest = 0;
-      for (double v : x) longest = std::max(longest, run = v == extreme ? run + 1 : 0);
-      if (longest >= kClippedRun) {
+      // The level histogram at the extreme: its count, and that of the next level inward.
+      std::size_t run = 0, longest = 0, at_extreme = 0, at_next = 0;
+      double next = extreme == *hi ? *lo : *hi;
+      for (double v : x) {
+        longest = std::max(longest, run = v == extreme ? run + 1 : 0);
+        at_extreme += v == extreme;
+        if (v != extreme && std::abs(extreme - v) < std::abs(extreme - next)) next = v;
+      }
+      for (double v : x) at_next += v == next;
+      const bool piles_up =
+          static_cast<double>(at_extreme) >= kClippedPileUp * static_cast<double>(at_next);
+      if (longest >= kClippedRun && piles_up) {
         warnings.push_back("gauge \"" + signals.gauges[g] + "\": " + std::to_string(longest) +
                            " consecutive samples at the record's extreme " +
-                           format_double(extreme) +
+                           format_double(extreme) + " (" + std::to_string(at_extreme) +
+                           " samples at that level, " + std::to_string(at_next) +
+                           " at the next one)" +
                            ": the signal looks clipped (amplifier or digitizer range); pulses and "
                            "the striker velocity inferred from it are too small");
         break;

@@ -102,11 +102,15 @@ inline constexpr double kEquilibriumThreshold = 0.05;
 ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup& setup,
                                  const ProcessingOptions& options);
 
-// A record clipped by its amplifier or digitizer has flat tops at its extremes: at least
-// kClippedRun consecutive samples exactly equal to the record's maximum (or minimum). A real
-// pulse's plateau carries noise and ringing, so exact repeats of the extreme are the signature.
+// A record clipped by its amplifier or digitizer piles up at its extreme level: every sample the
+// range cut off lands there, so the level holds at least kClippedPileUp times as many samples as
+// the next level inward, and at least kClippedRun of them follow one another. An unclipped
+// record only touches its extreme: a noisy or ringing top spreads over the levels below it, so
+// its extreme level holds fewer samples than the next one even where a coarse (8-bit) digitizer
+// repeats the level for several samples running.
 // Also warns of a record too short to hold a pulse (fewer than kMinRecordSamples samples).
 inline constexpr std::size_t kClippedRun = 5;
+inline constexpr double kClippedPileUp = 2.0;
 inline constexpr std::size_t kMinRecordSamples = 16;
 std::vector<std::string> signal_warnings(const GaugeSignals& signals);
 

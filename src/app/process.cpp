@@ -223,7 +223,7 @@ void write_process_outputs(const ProcessOutcome& o, const Scene& scene,
   inputs.push_back(m.file);
   for (const ChannelSpec& c : m.channels) inputs.push_back(c.file);
   OutputFolder out(output, "process", inputs);
-  {  // the signals as read, in strain: what the windows were found on
+  {  // the signals as read, in strain, tension positive: what the windows were found on
     std::vector<std::string> header = {"time_s"};
     header.insert(header.end(), signals.gauges.begin(), signals.gauges.end());
     CsvWriter w(out.file("raw_signals.csv"), header);

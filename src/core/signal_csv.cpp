@@ -144,13 +144,49 @@ double number_at(const DelimitedText& text, const TextRow& row, std::size_t colu
       nan ? "not a number (NaN) where a finite sample was expected" : "expected a finite number");
 }
 
+namespace {
+
+// Why no row of `text` is all numbers, judged on its last row (a data row, if there are any):
+// the separator, the decimal mark or a field that is text.
+std::string no_numbers_cause(const DelimitedText& text) {
+  const TextRow& row = text.rows.back();
+  const char* separator = text.delimiter == '\t'  ? "tabs"
+                          : text.delimiter == ';' ? "semicolons"
+                          : text.delimiter == ',' ? "commas"
+                                                  : "blanks";
+  std::string read = "line " + std::to_string(row.line) + " was read as " +
+                     std::to_string(row.fields.size()) + " field(s) separated by " + separator +
+                     ", decimal " + (text.decimal_comma ? "comma" : "point");
+  for (const auto& f : row.fields) {
+    if (f.empty() || parse_number(f, text.decimal_comma)) continue;
+    const std::string field = "\"" + std::string(f.substr(0, 40)) + "\"";
+    if (parse_number(f, !text.decimal_comma))
+      return read + ": " + field + " is a number with a decimal " +
+             (text.decimal_comma ? "point" : "comma") +
+             " where the file's other numbers use the other mark; export with one decimal mark";
+    if (text.delimiter == ',' && f.find_first_of(" \t") != std::string_view::npos)
+      return read + ": " + field +
+             " looks like blank-separated numbers with decimal commas, the comma taken as the "
+             "separator; export with a tab or semicolon separator";
+    if (row.fields.size() == 1)
+      return read + ": the whole line is one field " + field +
+             ": values separated by a character other than tab, semicolon, comma or blanks, or a "
+             "quoted line with quotes inside it";
+    return read + ": " + field + " is not a number";
+  }
+  return read;
+}
+
+}  // namespace
+
 RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest& request) {
   // Data start at the first row whose fields are all numbers; the row before is the header.
   std::size_t first = 0;
   while (first < text.rows.size() && !all_numeric(text.rows[first], text.decimal_comma)) ++first;
   if (first == text.rows.size())
     throw input_error(text.file.string(), "line " + std::to_string(text.rows.back().line),
-                      "no numeric rows", "expected rows of numbers after the header");
+                      "no numeric rows",
+                      "expected rows of numbers after the header; " + no_numbers_cause(text));
   const TextRow* header = first > 0 ? &text.rows[first - 1] : nullptr;
   const std::size_t width = text.rows[first].fields.size();
   ColumnRef time_ref = request.time_column;
@@ -171,13 +207,20 @@ RawSignalColumns read_tektronix_columns(const DelimitedText& text, const SignalR
   constexpr std::size_t kTimeColumn = 3, kVoltColumn = 4;
   std::vector<std::size_t> indices;
   std::vector<std::string> names;
+  // Channels laid side by side (a sheet with several Tektronix blocks: time 3, volts 4, then
+  // 8, 9, ...) are plain columns of numbers below metadata: the CSV reader takes them by index.
+  const std::string as_csv =
+      "; several channels side by side (a workbook sheet holding Tektronix blocks) are read with "
+      "\"format\": \"csv\", \"time\": {\"column\": 3} and each channel's volts column by "
+      "index (4, 9, ...)";
   for (const auto& c : request.columns) {
     if (c.index && (*c.index < 0 || *c.index > static_cast<int>(kVoltColumn)))
       throw input_error(text.file.string(), "", describe(c),
-                        "a Tektronix channel file has columns 0–4 (time 3, volts 4)");
+                        "a Tektronix channel file has columns 0–4 (time 3, volts 4)" + as_csv);
     if (!c.index && !c.name.empty())
-      throw input_error(text.file.string(), "", describe(c),
-                        "a Tektronix channel file has no header: give the column as an index (4)");
+      throw input_error(
+          text.file.string(), "", describe(c),
+          "a Tektronix channel file has no header: give the column as an index (4)" + as_csv);
     indices.push_back(c.index ? static_cast<std::size_t>(*c.index) : kVoltColumn);
     names.push_back(text.file.filename().string());
   }

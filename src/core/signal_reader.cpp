@@ -7,6 +7,7 @@
 
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
+#include "core/interpolation.hpp"
 #include "core/median.hpp"
 #include "core/signal_formats.hpp"
 #include "core/signal_spreadsheet.hpp"
@@ -48,7 +49,7 @@ std::string seconds(double s) {
 // the sampling needs) are not an error: the base is rebuilt from a least-squares fit of t against
 // the sample index, with a warning.
 void check_time_base(const std::filesystem::path& file, const RawSignalColumns& raw,
-                     SignalColumns& out) {
+                     const SignalRequest& request, SignalColumns& out) {
   const auto& t = out.time_s;
   const std::size_t n = t.size();
   if (n < 2)
@@ -99,16 +100,60 @@ void check_time_base(const std::filesystem::path& file, const RawSignalColumns& 
   std::vector<double> steps(n - 1);
   for (std::size_t i = 1; i < n; ++i) steps[i - 1] = t[i] - t[i - 1];
   const double median_step = median(std::move(steps));
+  const double mean_step = span / static_cast<double>(n - 1);
+  std::size_t first_off = 0;  // first sample whose step is off the median (0: none)
+  double jitter = 0;          // largest |step − mean| / mean
+  double shortest = span, longest = 0;
   for (std::size_t i = 1; i < n; ++i) {
-    const double dt = median_step;
     const double step = t[i] - t[i - 1];
-    if (std::abs(step - dt) > kUniformStepTolerance * dt)
-      throw input_error(
-          file.string(), "line " + std::to_string(raw.lines[i]) + " (time column)",
-          "step " + seconds(step),
-          "expected uniform sampling at " + seconds(dt) + " (gap or jump in the record)");
+    shortest = std::min(shortest, step);
+    longest = std::max(longest, step);
+    if (!first_off && std::abs(step - median_step) > kUniformStepTolerance * median_step)
+      first_off = i;
+    jitter = std::max(jitter, std::abs(step - mean_step) / mean_step);
   }
-  out.dt_s = span / static_cast<double>(n - 1);
+  const TimeResampling& r = request.resample;
+  const bool resample =
+      r.mode == TimeResample::kAlways
+          ? first_off || r.interval_s
+          : first_off && r.mode == TimeResample::kAuto && jitter <= kAutoResampleJitter;
+  if (first_off && !resample) {
+    const std::size_t i = first_off;
+    char hint[200];
+    std::snprintf(hint, sizeof hint,
+                  "; steps vary by up to %.3g %% of the mean interval %s: \"time\": "
+                  "{\"resample\": true} resamples the record onto a uniform grid (linear)",
+                  100 * jitter, seconds(mean_step).c_str());
+    throw input_error(file.string(), "line " + std::to_string(raw.lines[i]) + " (time column)",
+                      "step " + seconds(t[i] - t[i - 1]),
+                      "expected uniform sampling at " + seconds(median_step) +
+                          " (gap or jump in the record)" + hint);
+  }
+  if (!resample) {
+    out.dt_s = mean_step;
+    return;
+  }
+  // Linear resampling (core/interpolation.hpp) onto t0 + k·dt over the record's span.
+  const double dt = r.interval_s.value_or(mean_step);
+  const auto m = static_cast<std::size_t>(std::floor(span / dt * (1 + 1e-12))) + 1;
+  std::vector<double> grid(m);
+  for (std::size_t k = 0; k < m; ++k) grid[k] = t.front() + static_cast<double>(k) * dt;
+  for (auto& v : out.values) {
+    std::vector<double> y(m);
+    for (std::size_t k = 0; k < m; ++k) y[k] = interpolate(t, v, grid[k]);
+    v = std::move(y);
+  }
+  char msg[500];
+  std::snprintf(msg, sizeof msg,
+                "%s: time base not uniform (steps %s to %s, up to %.3g %% off the mean interval "
+                "%s); %zu samples resampled (linear) onto a uniform grid of %zu at %.6g s "
+                "(%.6g MHz)%s",
+                file.string().c_str(), seconds(shortest).c_str(), seconds(longest).c_str(),
+                100 * jitter, seconds(mean_step).c_str(), n, m, dt, 1e-6 / dt,
+                r.mode == TimeResample::kAlways ? " as measurement.time.resample asks" : "");
+  out.warnings.push_back(msg);
+  out.time_s = std::move(grid);
+  out.dt_s = dt;
 }
 
 }  // namespace
@@ -139,7 +184,7 @@ SignalColumns read_signal_columns(const SignalRequest& request) {
     for (double& v : out.time_s) v *= request.time_unit_s;
   out.names = raw.names;
   out.values = std::move(raw.values);
-  check_time_base(request.file, raw, out);
+  check_time_base(request.file, raw, request, out);
   return out;
 }
 

@@ -20,7 +20,13 @@ struct SignalRequest {
   double time_unit_s = 1.0;  // seconds per unit of the time column
   std::vector<ColumnRef> columns;
   std::string sheet;  // .xlsx/.xls: the sheet by name (empty: the first)
+  TimeResampling resample;
 };
+
+// Steps within this fraction of the mean interval are a jittered clock (time stamps written with
+// the digitizer's clock error or rounding, e.g. 998 / 1022 ns alternating): resampled by default.
+// A step further off is a gap or a jump in the record, refused unless resampling is asked for.
+inline constexpr double kAutoResampleJitter = 0.05;
 
 struct SignalColumns {
   std::filesystem::path file;

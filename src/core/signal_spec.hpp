@@ -16,6 +16,16 @@ inline constexpr EnumName<SignalFormat> kSignalFormatNames[] = {
     {"tektronix", SignalFormat::kTektronix},
     {"lanl-raw", SignalFormat::kLanlRaw}};
 
+// measurement.time.resample (docs/scene-format.md): what a time base whose steps are not uniform
+// becomes. kAuto: resampled (linear) onto a uniform grid when every step is within
+// kAutoResampleJitter of the mean interval (export jitter), refused otherwise (a gap or a jump);
+// kNever: refused; kAlways: resampled whatever the steps, onto `interval_s` when given.
+enum class TimeResample { kAuto, kNever, kAlways };
+struct TimeResampling {
+  TimeResample mode = TimeResample::kAuto;
+  std::optional<double> interval_s;  // kAlways only: the grid's interval (else the mean step)
+};
+
 struct ColumnRef {
   std::string name;          // column by header name, or
   std::optional<int> index;  // by 0-based index

@@ -29,6 +29,12 @@ std::string_view trim(std::string_view s) {
 
 // Appends the fields of one line to `fields`.
 void split(std::string_view line, char delimiter, std::vector<std::string_view>& fields) {
+  // A line that is one quoted field with no quote inside (some exports, e.g. TranAX's, quote
+  // each whole line): its inside is the line.
+  if (const auto b = line.find_first_not_of(" \t"), e = line.find_last_not_of(" \t");
+      b != std::string_view::npos && e > b && line[b] == '"' && line[e] == '"' &&
+      line.find('"', b + 1) == e)
+    line = line.substr(b + 1, e - b - 1);
   if (delimiter == ' ') {
     std::size_t i = 0;
     while (i < line.size()) {

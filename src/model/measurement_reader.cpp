@@ -114,8 +114,20 @@ MeasurementSpec read_measurement(const JsonValue& value, const std::filesystem::
   if (auto f = o.get("file")) m.file = (scene_dir / f->name()).lexically_normal();
   if (auto f = o.get("format")) m.format = enum_from(*f, kSignalFormatNames);
   if (auto t = o.get("time")) {
-    const auto to = t->object({"column", "unit"});
+    const auto to = t->object({"column", "unit", "resample"});
     if (auto c = to.get("column")) m.time_column = read_column(*c);
+    if (auto r = to.get("resample")) {
+      if (r->json().is_boolean()) {
+        m.time_resample.mode = r->boolean() ? TimeResample::kAlways : TimeResample::kNever;
+      } else if (r->is_string()) {
+        m.time_resample.mode = TimeResample::kAlways;
+        m.time_resample.interval_s = r->positive_quantity(Dimension::kTime);
+      } else {
+        throw r->error(
+            "true (resample onto the mean interval), false (refuse a non-uniform time base) or "
+            "an interval, e.g. \"1 us\"");
+      }
+    }
     if (auto u = to.get("unit")) {
       const std::string unit = u->string();
       try {

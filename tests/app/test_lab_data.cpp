@@ -646,6 +646,58 @@ TEST_CASE("An .xlsx and an .xls file with the same signals as a CSV give identic
 }
 
 TEST_CASE(
+    "Tektronix channels side by side in a workbook sheet: refused as one channel, read as CSV",
+    "[app][labdata][excel]") {
+  // The clean record at 1 MHz as two Tektronix channel files pasted side by side into one sheet:
+  // each block is metadata (columns 0-2, first rows only), time (3) and volts (4).
+  const double dt = 1e-6;
+  const int samples = 800;
+  const Record r = clean();
+  std::ostringstream sheet;
+  sheet.precision(17);
+  const char* meta[][2] = {{"Record Length", "800"}, {"Sample Interval", "1e-06"},
+                           {"Trigger Point", "0"},   {"Source", "CH1"},
+                           {"Vertical Units", "V"},  {"Horizontal Units", "s"}};
+  for (int i = 0; i < samples; ++i) {
+    const double t = i * dt;
+    const double volts[] = {r.incident_gauge(t), r.transmitted_gauge(t)};
+    for (int channel = 0; channel < 2; ++channel) {
+      if (i < 6)
+        sheet << meta[i][0] << "," << meta[i][1] << ",,";
+      else
+        sheet << ",,,";
+      sheet << t << "," << volts[channel] << (channel == 1 ? "\n" : ",");
+    }
+  }
+  const fs::path d = scratch_dir("labdata_tek_sheet");
+  const auto base =
+      run_shpb({"process", write(d, scene_json(), csv(clean(), 1.0, dt, samples)).string(), "-o",
+                (d / "csv").string(), "--quiet"});
+  REQUIRE(base.code == 0);
+  write_xlsx(d / "scope.xlsx", sheet.str());
+  json scene = scene_json();
+  scene["measurement"]["file"] = "scope.xlsx";
+  scene["measurement"]["sheet"] = "signals";
+  scene["measurement"]["channels"][0]["column"] = 4;
+  scene["measurement"]["channels"][1]["column"] = 9;
+  scene["measurement"]["time"] = {{"unit", "s"}};
+  std::ofstream(d / "scene.json") << scene.dump(2);
+  auto p = run_shpb({"process", (d / "scene.json").string(), "-o", (d / "auto").string()});
+  CHECK(p.code == 2);
+  CHECK(p.err.find("\"format\": \"csv\"") != std::string::npos);
+  // As the message says: the CSV reader, time in column 3, each channel's volts by index.
+  scene["measurement"]["format"] = "csv";
+  scene["measurement"]["time"] = {{"column", 3}, {"unit", "s"}};
+  std::ofstream(d / "scene.json") << scene.dump(2);
+  p = run_shpb({"process", (d / "scene.json").string(), "-o", (d / "sheet").string(), "--quiet"});
+  INFO(p.err);
+  REQUIRE(p.code == 0);
+  const json ref = summary(d / "csv"), s = summary(d / "sheet");
+  for (const char* key : {"peak_stress_Pa", "max_strain", "incident_plateau_strain"})
+    CHECK(s[key].get<double>() == Approx(ref[key].get<double>()).epsilon(1e-12));
+}
+
+TEST_CASE(
     "\"test\": \"tension\" reduces a tensile record tension positive; a 1-wave/2-wave "
     "disagreement is warned about",
     "[app][labdata]") {
@@ -702,6 +754,20 @@ TEST_CASE("A simulated tension test with bonded specimen interfaces is processed
   // The bonded interfaces carried tension (negative contact force) at the specimen.
   const auto interfaces = read_csv(d / "sim/interfaces.csv");
   CHECK(*std::min_element(interfaces[3].begin(), interfaces[3].end()) < 0);
+  // The record the experiment ships (data/gauges.csv) is this run's: equal to round-off of the
+  // strains (1e-3), whatever the compiler's floating-point contraction.
+  {
+    constexpr double kRecordRoundOff = 1e-12;
+    const auto fresh = read_csv(d / "sim/gauges.csv");
+    const auto kept = read_csv(source / "experiments/tension-bonded/data/gauges.csv");
+    REQUIRE(kept.size() == fresh.size());
+    REQUIRE(kept[0].size() == fresh[0].size());
+    double worst = 0;
+    for (std::size_t c = 1; c < fresh.size(); ++c)
+      for (std::size_t i = 0; i < fresh[c].size(); ++i)
+        worst = std::max(worst, std::abs(kept[c][i] - fresh[c][i]));
+    CHECK(worst <= kRecordRoundOff);
+  }
   scene["measurement"]["file"] = (d / "sim/gauges.csv").string();
   std::ofstream(d / "scene.json") << scene.dump(2);
   r = run_shpb({"process", (d / "scene.json").string(), "-o", (d / "out").string(), "--quiet"});

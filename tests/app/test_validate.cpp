@@ -206,3 +206,45 @@ TEST_CASE(
           0);
   }
 }
+
+TEST_CASE("validate checks a scene that only processes: what process will read and use",
+          "[app][validate][process]") {
+  // The simulated tension test without its specimen's material: process runs on it, simulate
+  // cannot.
+  const fs::path source = fs::path(SHPB_SOURCE_DIR) / "experiments/tension-bonded";
+  const auto d = shpb_test::scratch_dir("validate_process_only");
+  json scene = json::parse(shpb_test::read_text(source / "scene.json"));
+  scene["bars"][2].erase("material");
+  scene["measurement"]["file"] = (source / "data/gauges.csv").string();
+  std::ofstream(d / "scene.json") << scene.dump(2);
+  const json v = validate_json(d / "scene.json");
+  CHECK(v["simulation"].get<std::string>().find("no material") != std::string::npos);
+  const json& p = v["process"];
+  // The shipped record: 900 us at 10 MHz, the first sample at 0.
+  CHECK(p["samples"] == 9001);
+  CHECK(p["sample_interval_s"].get<double>() == Approx(1e-7).epsilon(kRoundOff));
+  CHECK(p["record_s"][1].get<double>() == Approx(900e-6).epsilon(kRoundOff));
+  CHECK(p["test"] == "tension");
+  REQUIRE(p["channels"].size() == 2);
+  CHECK(p["channels"][1]["column"] == "transmitted");
+  CHECK(p["channels"][1]["strain_per_unit"].get<double>() == 1.0);
+  CHECK(p["incident_gauge"]["distance_to_specimen_m"].get<double>() == Approx(1.0));
+  CHECK(p["transmitted_gauge"]["distance_to_specimen_m"].get<double>() == Approx(0.5));
+  // Steel bars, c0 = sqrt(200 GPa / 8000 kg/m3) = 5000 m/s: the reflected pulse is back at the
+  // incident gauge 2 x 1 m / c0 = 400 us after the incident pulse passed it.
+  CHECK(p["timing"]["reflected_after_incident_s"].get<double>() ==
+        Approx(400e-6).epsilon(kRoundOff));
+  CHECK(p["windows"]["incident"] == "detected");
+  // The table says the same.
+  auto r = shpb_test::run_shpb({"validate", (d / "scene.json").string()});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(r.out.find("simulation   not possible") != std::string::npos);
+  CHECK(r.out.find("reflected 400 us after the incident") != std::string::npos);
+  // A column the file does not have is found by validate, as process would find it.
+  scene["measurement"]["channels"][1]["column"] = "transmited";
+  std::ofstream(d / "scene.json") << scene.dump(2);
+  r = shpb_test::run_shpb({"validate", (d / "scene.json").string()});
+  CHECK(r.code == 2);
+  CHECK(r.err.find("column \"transmited\": no such column") != std::string::npos);
+}
