@@ -4,7 +4,7 @@
 // `free`, `nuisance`, `stages`, from `document` with the same file and JSON paths in messages).
 //
 //   { "name": "...", "notes": "...",
-//     "tests": [ { "scene": "a/scene.json", "name": "1000/s", "weight": 1 }, ... ],
+//     "tests": [ { "scene": "a/scene.json", "name": "1000 per s", "weight": 1 }, ... ],
 //     "material": ..., "free": {...}, "nuisance": [...], "stages": [...] }
 //
 // Scenes are relative to the campaign file; test names are unique (they name output folders and
