@@ -30,9 +30,9 @@ struct RunOverrides {
 // Throws InputError (exit 2).
 ChainDiscretization apply_overrides(const RunOverrides& overrides, Scene& scene);
 
-// The files a run of `scene` reads (the scene and, unless `measured_files` is false — simulate and
-// study never open them — its measured signal files): an output folder may
-// not be or hold one of them (core/output_folder.hpp).
+// The files a run of `scene` reads (the scene, its material files and, unless `measured_files` is
+// false — simulate and study never open them — its measured signal files): the inputs each
+// command declares to its output folder (core/output_folder.hpp) and records in plans and parts.
 std::vector<std::filesystem::path> scene_inputs(const Scene& scene, bool measured_files = true);
 
 struct SimulateArgs {

@@ -157,7 +157,7 @@ int run_fit(const FitArgs& args) {
   for (const auto& c : cases)
     warnings.insert(warnings.end(), c->warnings().begin(), c->warnings().end());
 
-  std::vector<std::filesystem::path> inputs = {campaign.file};
+  std::vector<std::filesystem::path> inputs = {campaign.file, spec.material_file};
   for (const auto& c : cases)
     for (const auto& f : scene_inputs(c->scene())) inputs.push_back(f);
   // Every input checked: from here on results are written (never into a folder that holds one).

@@ -91,7 +91,7 @@ int run_bar_check(const ProcessArgs& args, const Scene& scene) {
   const BarCheckResult r = check_bars_together(signals, setup, m.dispersion, scene.file.string());
   std::vector<std::string> warnings = signals.warnings;
   warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
-  OutputFolder out(args.output);
+  OutputFolder out(args.output, "process", scene_inputs(scene));
   {
     CsvWriter p(out.file("pulses.csv"),
                 {"time_s", "far_measured", "far_pochhammer_chree", "far_time_shift"});

@@ -16,6 +16,7 @@
 #include "core/checked_write.hpp"
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
+#include "core/file_digest.hpp"
 #include "core/interpolation.hpp"
 #include "core/output_folder.hpp"
 #include "model/campaign.hpp"
@@ -54,13 +55,21 @@ double flow_stress(const std::vector<double>& strain, const std::vector<double>&
   return std::numeric_limits<double>::quiet_NaN();
 }
 
-// The columns `names` of a CSV file written by shpb (header, then numbers).
+// The columns `names` of a CSV file written by shpb (header, then rows of finite numbers): read
+// strictly, so a part's file cut short or garbled is refused, never taken for values that are not
+// there.
 std::vector<std::vector<double>> read_columns(const fs::path& csv,
                                               const std::vector<std::string>& names) {
-  std::ifstream in(csv);
+  std::ifstream in(csv, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string remedy =
+      ": not as shpb process writes it (cut short or edited?): process the "
+      "test again";
+  if (text.empty() || text.back() != '\n')
+    throw input_error(csv.string(), "", "", "does not end with a line break" + remedy);
+  std::stringstream lines(text);
   std::string line;
-  if (!std::getline(in, line))
-    throw input_error(csv.string(), "", "", "empty: a curve.csv written by shpb process expected");
+  std::getline(lines, line);
   std::vector<std::string> header;
   std::stringstream hs(line);
   for (std::string h; std::getline(hs, h, ',');) header.push_back(h);
@@ -72,19 +81,28 @@ std::vector<std::vector<double>> read_columns(const fs::path& csv,
   }
   std::vector<std::vector<double>> columns(names.size());
   std::vector<double> row;
-  while (std::getline(in, line)) {
+  for (std::size_t number = 2; std::getline(lines, line); ++number) {
     row.clear();
-    const char* p = line.c_str();
+    std::size_t start = 0;
     for (;;) {
+      const std::size_t comma = std::min(line.find(',', start), line.size());
+      const std::string cell = line.substr(start, comma - start);
       char* end = nullptr;
-      row.push_back(std::strtod(p, &end));
-      p = end;
-      if (*p != ',') break;
-      ++p;
+      const double v = std::strtod(cell.c_str(), &end);
+      if (cell.empty() || end != cell.c_str() + cell.size() || !std::isfinite(v))
+        throw input_error(
+            csv.string(),
+            "line " + std::to_string(number) + ", column " + std::to_string(row.size() + 1),
+            "\"" + cell + "\"", "not a number" + remedy);
+      row.push_back(v);
+      if (comma == line.size()) break;
+      start = comma + 1;
     }
-    for (std::size_t k = 0; k < names.size(); ++k)
-      columns[k].push_back(index[k] < row.size() ? row[index[k]]
-                                                 : std::numeric_limits<double>::quiet_NaN());
+    if (row.size() != header.size())
+      throw input_error(csv.string(), "line " + std::to_string(number),
+                        std::to_string(row.size()) + " cells",
+                        std::to_string(header.size()) + " expected, as in the header" + remedy);
+    for (std::size_t k = 0; k < names.size(); ++k) columns[k].push_back(row[index[k]]);
   }
   return columns;
 }
@@ -204,8 +222,12 @@ int run_process_campaign(const CampaignArgs& args) {
   const std::size_t n = c.tests.size();
   // Every scene read and checked before anything is processed or written: a bad scene is refused
   // as the one-scene command refuses it (exit 2, its one line), not after the tests before it.
-  if (!args.merge)
-    for (const auto& test : c.tests) read_scene(test.scene);
+  // The files they name (and the campaign file) are the run's inputs: no output folder may hold
+  // one, and a part records their digests for the merge.
+  std::vector<fs::path> inputs;
+  if (args.campaign) inputs.push_back(*args.campaign);
+  for (const auto& test : c.tests)
+    for (const auto& f : scene_inputs(read_scene(test.scene))) inputs.push_back(f);
 
   if (!args.shard.empty()) {
     const Shard shard = parse_shard("--shard", args.shard);
@@ -215,11 +237,21 @@ int run_process_campaign(const CampaignArgs& args) {
       return 0;
     }
     fs::create_directories(part.parent_path());
-    OutputFolder out(part);
+    OutputFolder out(part, "process", inputs);
     const auto runs = shard_runs(n, shard);
     for (std::size_t i : runs)
       process_test(c.tests[i], out.path() / c.tests[i].name, i, n, args.quiet);
-    Json j{{"command", "process"}, {"shard", args.shard}, {"tests", tests_json(c)}};
+    // What the part was computed from, and what it holds: both checked by the merge.
+    std::vector<fs::path> written;
+    for (std::size_t i : runs)
+      for (const auto& e : fs::recursive_directory_iterator(out.path() / c.tests[i].name))
+        if (e.is_regular_file()) written.push_back(e.path());
+    std::sort(written.begin(), written.end());
+    Json j{{"command", "process"},
+           {"shard", args.shard},
+           {"tests", tests_json(c)},
+           {"inputs", input_digests(inputs)},
+           {"files", input_digests(written, out.path())}};
     write_text_file(out.file("part.json"), j.dump(1) + "\n");
     out.commit();
     return 0;
@@ -232,20 +264,29 @@ int run_process_campaign(const CampaignArgs& args) {
     const std::string expected = tests_json(c).dump();
     std::vector<fs::path> folders(n);
     for (const Part& p : parts) {
-      std::ifstream in(p.path / "part.json");
+      const fs::path part_file = p.path / "part.json";
+      std::ifstream in(part_file);
+      nlohmann::json part;
       std::string tests;
       try {
-        tests = Json::parse(in).at("tests").dump();
+        part = nlohmann::json::parse(in);
+        tests = part.at("tests").dump();
       } catch (const std::exception&) {
-        throw input_error((p.path / "part.json").string(), "", "",
+        throw input_error(part_file.string(), "", "",
                           "missing or damaged: remove the part and run its shard again");
       }
       if (tests != expected)
-        throw input_error((p.path / "part.json").string(), "tests", "",
+        throw input_error(part_file.string(), "tests", "",
                           "a part of another list of tests: remove it and run its shard again");
+      const std::string again = "remove the part and run its shard again";
+      check_input_digests(part.contains("inputs") ? part["inputs"] : nlohmann::json(), part_file,
+                          "inputs", "the shard ran", again);
+      check_input_digests(part.contains("files") ? part["files"] : nlohmann::json(), part_file,
+                          "files", "the shard wrote it", again, p.path);
       for (std::size_t i : shard_runs(n, p.shard)) folders[i] = p.path / c.tests[i].name;
     }
-    OutputFolder out(args.output / "result");
+    inputs.push_back(parts_dir);
+    OutputFolder out(args.output / "result", "process", inputs);
     for (std::size_t i = 0; i < n; ++i) {
       std::error_code ec;
       fs::copy(folders[i], out.path() / c.tests[i].name, fs::copy_options::recursive, ec);
@@ -262,7 +303,7 @@ int run_process_campaign(const CampaignArgs& args) {
     return 0;
   }
 
-  OutputFolder out(args.output);
+  OutputFolder out(args.output, "process", inputs);
   std::vector<fs::path> folders;
   for (std::size_t i = 0; i < n; ++i) {
     folders.push_back(out.path() / c.tests[i].name);

@@ -18,6 +18,7 @@
 #include "core/checked_write.hpp"
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
+#include "core/file_digest.hpp"
 #include "core/output_folder.hpp"
 #include "core/parallel_runner.hpp"
 #include "model/mesh_error_model.hpp"
@@ -216,11 +217,10 @@ StudyPlan make_plan(const StudyArgs& args, const Scene& scene) {
   return plan;
 }
 
-// The scene of a plan read from its folder: the same file, unchanged, with the same options.
+// The scene of a plan read from its folder: the same files (scene, materials), unchanged, with the
+// same options.
 Scene plan_scene(const StudyPlan& plan, const std::filesystem::path& plan_file) {
-  if (read_text(plan.scene) != plan.scene_text)
-    throw input_error(plan_file.string(), "scene", "\"" + plan.scene.string() + "\"",
-                      "missing or changed since the plan was made: plan again");
+  check_input_digests(plan.inputs, plan_file, "inputs", "the plan was made", "plan again");
   Scene scene = read_scene(plan.scene);
   RunOverrides o;
   o.contact = plan.contact;
@@ -292,7 +292,9 @@ int plan_study(const StudyArgs& args) {
   plan.id = new_plan_id();
   plan.scene = std::filesystem::absolute(args.scene).lexically_normal();
   plan.scene_text = read_text(args.scene);
-  OutputFolder out(dir);
+  const std::vector<std::filesystem::path> inputs = scene_inputs(scene, false);
+  plan.inputs = input_digests(inputs);
+  OutputFolder out(dir, "study", inputs);
   std::filesystem::create_directory(out.path() / "parts");
   write_file_atomically(out.file("plan.json"), plan_text(plan));
   out.commit();
@@ -337,13 +339,33 @@ int run_study_shard(const StudyArgs& args) {
   return 0;
 }
 
+// Every gauge record of the parts names the scene's gauges in its order: the error compares column
+// by column with the reference.
+void check_gauge_columns(const StudyPlan& plan, const Scene& scene, const std::vector<Part>& parts,
+                         const StudyResults& results) {
+  std::vector<std::string> gauges;
+  for (const BarSpec& b : scene.bars)
+    for (const GaugeSpec& g : b.gauges) gauges.push_back(g.name);
+  for (const Part& p : parts)
+    for (std::size_t r : shard_runs(plan.runs(), p.shard))
+      if (r < results.pareto.size() && results.pareto[r].gauges.samples() > 0 &&
+          results.pareto[r].gauges.columns != gauges)
+        throw input_error(p.path.string(), "results (run " + std::to_string(r) + ")", "",
+                          "gauge columns other than the scene's gauges: remove the part and run "
+                          "its shard again");
+}
+
 // shpb study --merge DIR [-o OUT]: the whole study from DIR's parts.
 int merge_study(const StudyArgs& args) {
   const std::filesystem::path dir = *args.merge, plan_file = dir / "plan.json";
   const StudyPlan plan = read_study_plan(plan_file);
+  const Scene scene = plan_scene(plan, plan_file);  // an input changed: said first
   const std::vector<Part> parts = find_parts(dir / "parts", ".json");
   check_parts_cover(dir / "parts", plan.runs(), parts);
-  const Scene scene = plan_scene(plan, plan_file);
+  // The plan, its parts and the files they were computed from are this run's inputs.
+  std::vector<std::filesystem::path> inputs = {plan_file, dir / "parts"};
+  for (const auto& f : scene_inputs(scene, false)) inputs.push_back(f);
+  OutputFolder out(args.output.empty() ? dir / "result" : args.output, "study", inputs);
   StudyResults results;
   results.pareto.resize(plan.pareto.size());
   results.stability.resize(plan.stability.size());
@@ -365,7 +387,7 @@ int merge_study(const StudyArgs& args) {
     }
     read_part(j, p.path, plan, shard_runs(plan.runs(), p.shard), results);
   }
-  OutputFolder out(args.output.empty() ? dir / "result" : args.output);
+  check_gauge_columns(plan, scene, parts, results);
   write_study(plan, scene, results, threads, wall, out.path());
   out.commit();
   if (!args.overrides.quiet)
@@ -385,6 +407,9 @@ int run_study(const StudyArgs& args) {
     throw input_error("--refine", "", std::to_string(args.refine), "only with --sweep stability");
   if (!args.shard.empty() && !args.run)
     throw input_error("--shard", "", "\"" + args.shard + "\"", "only with --run DIR");
+  if ((args.run || args.plan) && !args.output.empty())
+    throw input_error("-o", "", "\"" + args.output.string() + "\"",
+                      "not with --plan or --run: they write into DIR (the plan, DIR/parts)");
   if ((args.run || args.merge) && !args.scene.empty())
     throw input_error(args.scene.string(), "", "",
                       "--run and --merge take the scene from DIR/plan.json: give no scene");

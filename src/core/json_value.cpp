@@ -102,19 +102,45 @@ std::string JsonValue::string() const {
   return json_->get<std::string>();
 }
 
-std::string JsonValue::name() const {
-  const std::string s = string();
-  if (s.empty() || s.find_first_not_of(' ') == std::string::npos) throw error("must not be empty");
+std::string name_problem(std::string_view s) {
+  if (s.empty() || s.find_first_not_of(' ') == std::string::npos) return "must not be empty";
   if (s.find_first_of(",\"\r\n") != std::string::npos)
-    throw error("must not contain a comma, quote or line break (names become CSV column names)");
+    return "must not contain a comma, quote or line break (names become CSV column names)";
   // Names are compared exactly as written: two that differ only in white space or in invisible
   // characters would be distinct here and the same to a reader that trims.
   if (std::isspace(static_cast<unsigned char>(s.front())) ||
       std::isspace(static_cast<unsigned char>(s.back())))
-    throw error("must not begin or end with white space (names are compared exactly)");
+    return "must not begin or end with white space (names are compared exactly)";
   for (const unsigned char c : s)
-    if (c < 0x20 || c == 0x7f)
-      throw error("must not contain control characters (tab, NUL, escape...)");
+    if (c < 0x20 || c == 0x7f) return "must not contain control characters (tab, NUL, escape...)";
+  return "";
+}
+
+std::string file_name_problem(std::string_view s, const std::vector<std::string>& reserved) {
+  if (std::string why = name_problem(s); !why.empty()) return why;
+  if (s.find_first_of("/\\") != std::string_view::npos)
+    return "must not contain a path separator (the name is a folder name)";
+  if (s == "." || s == "..") return "must not be \".\" or \"..\" (the name is a folder name)";
+  const auto lower = [](std::string_view t) {
+    std::string l(t);
+    for (char& c : l) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return l;
+  };
+  for (const std::string& r : reserved)
+    if (lower(s) == lower(r))
+      return "is the name of one of the output's own files (" + r + "): choose another name";
+  return "";
+}
+
+std::string JsonValue::name() const {
+  const std::string s = string();
+  if (const std::string why = name_problem(s); !why.empty()) throw error(why);
+  return s;
+}
+
+std::string JsonValue::file_name(const std::vector<std::string>& reserved) const {
+  const std::string s = string();
+  if (const std::string why = file_name_problem(s, reserved); !why.empty()) throw error(why);
   return s;
 }
 

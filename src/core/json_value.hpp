@@ -47,8 +47,10 @@ class JsonValue {
 
   std::int64_t integer(std::int64_t lo, std::int64_t hi) const;  // a whole number in [lo, hi]
   bool boolean() const;
-  std::string string() const;            // any string
-  std::string name() const;              // a non-empty string usable as a CSV column name
+  std::string string() const;  // any string
+  std::string name() const;    // a non-empty string usable as a CSV column name
+  // A name() that also names a file or folder: see file_name_problem().
+  std::string file_name(const std::vector<std::string>& reserved) const;
   std::vector<JsonValue> array() const;  // the elements of an array
   JsonObject object(std::vector<std::string> allowed_keys) const;
 
@@ -60,6 +62,14 @@ class JsonValue {
   std::string file_;
   std::string path_;
 };
+
+// Why `s` is not a name (bars, gauges, tests: they become CSV columns and rows), or "": not empty,
+// no comma, quote, line break or control character, no white space at either end.
+std::string name_problem(std::string_view s);
+// Why `s` is not a name that also names a file or folder (a campaign's test folders), or "": a
+// name, no path separator ('/', '\\'), not "." or "..", and none of `reserved` (the other files
+// of the same folder), compared ignoring case as some file systems do.
+std::string file_name_problem(std::string_view s, const std::vector<std::string>& reserved);
 
 class JsonObject {
  public:

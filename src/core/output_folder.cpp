@@ -13,11 +13,13 @@
 #include <optional>
 #include <random>
 #include <set>
+#include <sstream>
 #include <string>
 #include <system_error>
 
 #include "core/checked_write.hpp"
 #include "core/error.hpp"
+#include "core/file_digest.hpp"
 
 namespace shpb {
 namespace fs = std::filesystem;
@@ -30,8 +32,15 @@ extern "C" void on_signal(int sig) {
   std::signal(sig, SIG_DFL);
 }
 
-// ".<name>.tmp-<pid>-<random>" (and its ".old" twin): the temporary folders and files of this
-// scheme.
+// The temporaries of this scheme: ".<name>.tmp-<pid>-<host>-<random>", <host> the 16 hex digits
+// of the FNV-1a of this host's name (core/file_digest.hpp) so that a folder shared between
+// machines never has its pids judged by the wrong host; a folder also holds kTemporaryMarker
+// (signature, host, pid), and ".old" is the twin holding a previous result while it is replaced.
+constexpr const char* kTemporaryMarker = ".shpb-temporary";
+constexpr const char* kTemporarySignature =
+    "shpb temporary output: removed once its process is gone";
+constexpr std::size_t kRandomDigits = 5;
+
 std::string temp_prefix(const fs::path& final_path) {
   std::string prefix = ".";
   prefix += final_path.filename().string();
@@ -39,30 +48,79 @@ std::string temp_prefix(const fs::path& final_path) {
   return prefix;
 }
 
-// The pid in "<prefix><pid>-...", if the name is of our scheme and the pid a valid one; names
-// that merely look alike (too many digits, no dash) are not ours and are left alone.
+const std::string& host_name() {
+  static const std::string name = [] {
+    char buffer[256] = {};
+    if (::gethostname(buffer, sizeof buffer - 1) != 0) return std::string("unknown-host");
+    return std::string(buffer);
+  }();
+  return name;
+}
+
+std::string host_tag() {
+  char s[17];
+  std::snprintf(s, sizeof s, "%016llx", static_cast<unsigned long long>(fnv1a64(host_name())));
+  return s;
+}
+
+bool all_digits(std::string_view s, std::size_t max) {
+  return !s.empty() && s.size() <= max &&
+         s.find_first_not_of("0123456789") == std::string_view::npos;
+}
+
+// The pid in "<prefix><pid>-<host>-<random>[.old]" if the name is exactly of our scheme and
+// `host` is this host's tag; names that merely look alike are not ours and are left alone.
 std::optional<pid_t> temp_owner(const std::string& name, const std::string& prefix) {
   if (name.rfind(prefix, 0) != 0) return std::nullopt;
-  const std::string_view rest = std::string_view(name).substr(prefix.size());
+  std::string_view rest = std::string_view(name).substr(prefix.size());
+  if (rest.size() > 4 && rest.substr(rest.size() - 4) == ".old") rest.remove_suffix(4);
   const auto dash = rest.find('-');
-  if (dash == 0 || dash == std::string_view::npos || dash > 9) return std::nullopt;
+  if (dash == std::string_view::npos) return std::nullopt;
+  const std::string_view pid_text = rest.substr(0, dash), after = rest.substr(dash + 1);
+  const std::string tag = host_tag();
+  if (after.size() <= tag.size() + 1 || after.substr(0, tag.size()) != tag ||
+      after[tag.size()] != '-' || !all_digits(after.substr(tag.size() + 1), kRandomDigits) ||
+      !all_digits(pid_text, 9))
+    return std::nullopt;
   long pid = 0;
-  const auto [end, ec] = std::from_chars(rest.data(), rest.data() + dash, pid);
-  if (ec != std::errc() || end != rest.data() + dash || pid <= 0) return std::nullopt;
+  std::from_chars(pid_text.data(), pid_text.data() + pid_text.size(), pid);
+  if (pid <= 0) return std::nullopt;
   return static_cast<pid_t>(pid);
 }
 
+std::string temporary_marker_text() {
+  return std::string(kTemporarySignature) + "\nhost: " + host_name() +
+         "\npid: " + std::to_string(::getpid()) + "\n";
+}
+
+// The folder's marker says it is a temporary of process `pid` on this host.
+bool marked_temporary(const fs::path& folder, pid_t pid) {
+  std::error_code ec;
+  const fs::path marker = folder / kTemporaryMarker;
+  if (!fs::is_regular_file(fs::symlink_status(marker, ec))) return false;
+  std::ifstream in(marker);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str() == std::string(kTemporarySignature) + "\nhost: " + host_name() +
+                           "\npid: " + std::to_string(pid) + "\n";
+}
+
 // Temporaries left by a run that was killed outright (SIGKILL, power loss) are removed when the
-// next run starts: their owner process is gone. Only names of our own scheme are touched.
+// next run starts, and only what is provably shpb's: the exact name of the scheme with this
+// host's tag, a pid no process has now, and for a folder the marker naming this host and that pid.
+// Anything else (".res.tmp-2024-05-01.tar", a backup) is the user's and stays.
 void remove_stale_temporaries(const fs::path& final_path) {
   const std::string prefix = temp_prefix(final_path);
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(final_path.parent_path(), ec)) {
     const auto pid = temp_owner(e.path().filename().string(), prefix);
-    if (pid && ::kill(*pid, 0) != 0 && errno == ESRCH) {
-      std::error_code rm;
+    if (!pid || ::kill(*pid, 0) == 0 || errno != ESRCH) continue;
+    std::error_code rm;
+    const auto type = fs::symlink_status(e.path(), rm).type();
+    if (type == fs::file_type::regular)
+      fs::remove(e.path(), rm);
+    else if (type == fs::file_type::directory && marked_temporary(e.path(), *pid))
       fs::remove_all(e.path(), rm);
-    }
   }
 }
 
@@ -106,11 +164,19 @@ fs::path make_temporary(const fs::path& final_path, bool folder) {
   std::random_device rd;
   std::error_code ec;
   for (int attempt = 0; attempt < 100; ++attempt) {
-    const fs::path candidate =  // hidden sibling: ".<name>.tmp-<pid>-<random>"
+    const fs::path candidate =  // hidden sibling: ".<name>.tmp-<pid>-<host>-<random>"
         final_path.parent_path() / (temp_prefix(final_path) + std::to_string(::getpid()) + "-" +
-                                    std::to_string(rd() % 100000));
+                                    host_tag() + "-" + std::to_string(rd() % 100000));
     if (folder) {
-      if (fs::create_directory(candidate, ec)) return candidate;
+      if (fs::create_directory(candidate, ec)) {
+        try {
+          write_text_file(candidate / kTemporaryMarker, temporary_marker_text());
+        } catch (...) {
+          fs::remove_all(candidate, ec);
+          throw;
+        }
+        return candidate;
+      }
     } else {
       const int fd = ::open(candidate.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
       if (fd >= 0) {
@@ -130,6 +196,17 @@ fs::path absolute_output(const fs::path& given, const std::string& what) {
   fs::path absolute = fs::absolute(given, ec);
   if (ec) throw input_error(given.string(), "", "", "cannot resolve the output " + what);
   if (!absolute.has_filename()) absolute = absolute.parent_path();
+  // A symbolic link is written through: the link stays, its target receives the result (replaced
+  // atomically beside the target, docs/commands.md); a link to nothing is refused.
+  if (fs::is_symlink(absolute, ec)) {
+    const fs::path target = fs::canonical(absolute, ec);
+    if (ec)
+      throw input_error(given.string(), "", "",
+                        "is a symbolic link to a missing " + what + " (" +
+                            fs::read_symlink(absolute, ec).string() +
+                            "): create the target or choose another output " + what);
+    return target;
+  }
   return absolute;
 }
 
@@ -164,15 +241,20 @@ OutputFolder::OutputFolder(fs::path final_dir, std::string command,
   final_ = absolute_output(final_dir, "folder");
   if (fs::exists(final_, ec) && !fs::is_directory(final_, ec))
     throw input_error(final_.string(), "", "", "exists and is not a folder");
-  // An input of the run inside DIR would be deleted by the exchange (or DIR is one).
+  // An input of the run inside DIR would be deleted by the exchange (or DIR is one); DIR inside
+  // an input folder (a plan's parts) would change what the run reads.
   const fs::path real_dir = fs::weakly_canonical(final_, ec);
   for (const fs::path& input : inputs) {
     if (input.empty()) continue;
-    const fs::path real_input = fs::weakly_canonical(fs::absolute(input, ec), ec);
-    if (!ec && contains(real_dir, real_input))
+    std::error_code input_ec;
+    const fs::path real_input = fs::weakly_canonical(fs::absolute(input, input_ec), input_ec);
+    if (input_ec) continue;
+    const bool inside = fs::is_directory(real_input, input_ec) && contains(real_input, real_dir);
+    if (contains(real_dir, real_input) || inside)
       throw input_error(final_.string(), "", "",
-                        "is or holds an input of this run (" + input.string() +
-                            "); choose another output folder");
+                        std::string(inside ? "lies inside" : "is or holds") +
+                            " an input of this run (" + input.string() +
+                            "): choose an output folder apart from the run's inputs");
   }
   if (fs::exists(final_, ec))
     if (const std::string why = refusal(final_); !why.empty())
@@ -194,6 +276,7 @@ void OutputFolder::commit() {
   std::string marker = std::string(kOutputMarkerSignature) + "\ncommand: " + command_ + "\n";
   std::error_code ec;
   std::set<std::string> names;
+  fs::remove(temp_ / kTemporaryMarker, ec);  // the result holds only what the command wrote
   for (const auto& e : fs::directory_iterator(temp_, ec))
     names.insert(e.path().filename().string());
   for (const auto& name : names) marker += "file: " + name + "\n";
@@ -216,6 +299,11 @@ void OutputFolder::commit() {
     if (ec)
       throw input_error(final_.string(), "", "",
                         "cannot replace the previous result: " + ec.message());
+    // Marked as this run's: a run killed from here on leaves a twin the next one may remove.
+    try {
+      write_text_file(old / kTemporaryMarker, temporary_marker_text());
+    } catch (const WriteError&) {  // unmarked, the twin is left for the user: nothing is lost
+    }
   }
   fs::rename(temp_, final_, ec);
   if (ec) {

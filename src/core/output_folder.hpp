@@ -4,9 +4,11 @@
 // (docs/outputs.md (conventions)). Files the program did not write are never deleted: an existing
 // DIR is replaced only if it is empty or shpb wrote it — it holds the marker file `.shpb-output`
 // (signature line, command, the names shpb wrote) and nothing the marker does not list. A folder
-// that is, or holds, an input of the run is refused. Every file is fsync'ed before the one atomic
-// exchange of the two folders; temporary folders of runs that were killed outright are removed by
-// the next run into the same DIR.
+// that is, holds or lies inside an input of the run is refused. A DIR that is a symbolic link is
+// written through (the link stays, its target is replaced). Every file is fsync'ed before the one
+// atomic exchange of the two folders; temporaries of runs that were killed outright are removed by
+// the next run into the same DIR when they are provably shpb's (exact name with this host's tag,
+// dead pid, and for a folder its marker naming host and pid).
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -21,8 +23,10 @@ inline constexpr const char* kOutputMarkerSignature =
 class OutputFolder {
  public:
   // Checks that `final_dir` can be written and may be replaced (throws InputError otherwise) and
-  // creates the temporary folder. `command` is recorded in the marker; `inputs` are the files the
-  // run reads (scene, signal files): DIR may be none of them nor a folder holding one.
+  // creates the temporary folder. `command` is recorded in the marker; `inputs` are the files and
+  // folders the run reads (scene, material and signal files, a plan, its parts, a campaign): DIR
+  // may be none of them, nor hold one, nor lie inside an input folder. Every command declares its
+  // inputs here, the one check.
   explicit OutputFolder(std::filesystem::path final_dir, std::string command = "",
                         const std::vector<std::filesystem::path>& inputs = {});
   ~OutputFolder();  // removes the temporary folder unless commit() succeeded

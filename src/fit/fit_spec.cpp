@@ -64,6 +64,7 @@ FitSpec read_fit_spec(const Campaign& c) {
     if (!fs::is_regular_file(file, ec))
       throw material.error("no such material file (" + file.string() + ")");
     spec.material_display = file.string();
+    spec.material_file = file;
     spec.material_document = read_json_object_file(file, spec.material_display);
     spec.material = read_material(JsonValue(spec.material_document, spec.material_display, ""),
                                   spec.material_display);

@@ -42,7 +42,8 @@ std::string to_string(FitStage s);
 std::string to_string(FitLoss l);
 
 struct FitSpec {
-  std::string material_display;  // the material file as written, or "material" (inline)
+  std::string material_display;         // the material file as written, or "material" (inline)
+  std::filesystem::path material_file;  // the starting material's file (an input), if not inline
   nlohmann::json material_document;
   MaterialSpec material;
   std::vector<FreeParameter> free;

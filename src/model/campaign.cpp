@@ -5,6 +5,7 @@
 #include "core/error.hpp"
 #include "core/json_document.hpp"
 #include "core/json_value.hpp"
+#include "core/output_folder.hpp"
 
 namespace shpb {
 namespace fs = std::filesystem;
@@ -13,6 +14,12 @@ const std::vector<std::string>& campaign_keys() {
   static const std::vector<std::string> keys = {"name", "notes",    "tests",  "material",
                                                 "free", "nuisance", "stages", "loss"};
   return keys;
+}
+
+const std::vector<std::string>& campaign_output_names() {
+  static const std::vector<std::string> names = {"campaign.csv", "summary.json", "part.json",
+                                                 "parts",        "result",       kOutputMarker};
+  return names;
 }
 
 namespace {
@@ -56,7 +63,14 @@ Campaign read_campaign(const fs::path& file) {
     if (!fs::is_regular_file(test.scene, ec))
       throw scene.error_with_value("\"" + written.string() + "\"", "is not a regular file");
     test.name = name_of_scene(test.scene);
-    if (auto v = t.get("name")) test.name = v->name();
+    if (auto v = t.get("name")) {
+      test.name = v->file_name(campaign_output_names());
+    } else if (const std::string why = file_name_problem(test.name, campaign_output_names());
+               !why.empty()) {
+      throw scene.error_with_value(
+          "\"" + written.string() + "\"",
+          "names the test \"" + test.name + "\", which " + why + " (give the test a \"name\")");
+    }
     if (!names.insert(test.name).second)
       throw(t.get("name") ? *t.get("name") : scene)
           .error_with_value("\"" + test.name + "\"",
@@ -76,6 +90,11 @@ Campaign campaign_of_scenes(const std::vector<fs::path>& scenes) {
     test.scene = scenes[i];
     test.name = name_of_scene(scenes[i]);
     test.json_path = "scene " + std::to_string(i + 1);
+    if (const std::string why = file_name_problem(test.name, campaign_output_names()); !why.empty())
+      throw input_error(scenes[i].string(), "", "\"" + test.name + "\"",
+                        "names the test, which " + why +
+                            " (use a campaign file with a name per "
+                            "test)");
     if (!names.insert(test.name).second)
       throw input_error(scenes[i].string(), "", "\"" + test.name + "\"",
                         "two scenes named alike (test names name output folders and rows): "

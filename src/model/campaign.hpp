@@ -4,11 +4,13 @@
 // `free`, `nuisance`, `stages`, from `document` with the same file and JSON paths in messages).
 //
 //   { "name": "...", "notes": "...",
-//     "tests": [ { "scene": "a/scene.json", "name": "1000/s", "weight": 1 }, ... ],
+//     "tests": [ { "scene": "a/scene.json", "name": "1000 per s", "weight": 1 }, ... ],
 //     "material": ..., "free": {...}, "nuisance": [...], "stages": [...] }
 //
 // Scenes are relative to the campaign file; test names are unique (they name output folders and
-// CSV rows) and default to the scene's own name; weights are > 0 (default 1).
+// CSV rows: names as bars' and gauges' are, and folder names — no path separator, not "." or "..",
+// none of campaign_output_names()) and default to the scene's own name; weights are > 0 (default
+// 1).
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -30,6 +32,10 @@ struct Campaign {
   std::vector<CampaignTest> tests;
   nlohmann::json document;  // the whole file, for the readers of command-specific keys
 };
+
+// The files and folders a campaign's output folder holds besides its test folders
+// (app/process_campaign.cpp): no test may be named as one of them.
+const std::vector<std::string>& campaign_output_names();
 
 // Every top-level key a campaign may hold (the fit's keys included, so one file serves both).
 const std::vector<std::string>& campaign_keys();

@@ -192,6 +192,7 @@ struct Scene {
   ContactSpec contact;
   SimulationSpec simulation;
   std::optional<MeasurementSpec> measurement;
+  std::vector<std::filesystem::path> material_files;  // the material files it read, once each
 
   // Index of the first bar with a gauge left of the specimen / right of it, if any.
   std::optional<std::size_t> incident_bar() const;

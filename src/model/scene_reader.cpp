@@ -71,6 +71,7 @@ class SceneReader {
         for (const auto& g : b.gauges) gauges.push_back(g.name);
       scene.measurement = read_measurement(*v, dir_, gauges);
     }
+    for (const auto& entry : files_) scene.material_files.emplace_back(entry.first);
     return scene;
   }
 

@@ -1,15 +1,14 @@
 #include "study/shards.hpp"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <charconv>
 #include <fstream>
 #include <map>
-#include <random>
 #include <regex>
 
+#include "core/checked_write.hpp"
 #include "core/error.hpp"
+#include "core/output_folder.hpp"
 
 namespace shpb {
 namespace fs = std::filesystem;
@@ -38,9 +37,10 @@ Shard parse_shard(const std::string& option, const std::string& text) {
   if (slash == std::string::npos ||
       !parse_count(std::string_view(text).substr(0, slash), s.index) ||
       !parse_count(std::string_view(text).substr(slash + 1), s.count) || s.count == 0 ||
-      s.index >= s.count)
+      s.index >= s.count || s.count > kMaxShards)
     throw input_error(option, "", "\"" + text + "\"",
-                      "expected K/N with 0 <= K < N, e.g. 0/8 (shard K of N, K from 0)");
+                      "expected K/N with 0 <= K < N <= " + std::to_string(kMaxShards) +
+                          ", e.g. 0/8 (shard K of N, K from 0)");
   return s;
 }
 
@@ -50,32 +50,19 @@ std::string part_name(const Shard& shard) {
 
 std::vector<std::size_t> shard_runs(std::size_t total, const Shard& shard) {
   std::vector<std::size_t> runs;
-  for (std::size_t r = shard.index; r < total; r += shard.count) runs.push_back(r);
+  if (shard.count == 0) return runs;
+  // r + N is never formed past `total`: no wrap-around, whatever N.
+  for (std::size_t r = shard.index; r < total; r += shard.count) {
+    runs.push_back(r);
+    if (total - r <= shard.count) break;
+  }
   return runs;
 }
 
 void write_file_atomically(const fs::path& file, const std::string& text) {
-  std::random_device rd;
-  std::string name = ".";  // hidden sibling ".<name>.tmp-<pid>-<random>"
-  name += file.filename().string();
-  name += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(rd() % 100000);
-  const fs::path temp = file.parent_path() / name;
-  {
-    std::ofstream out(temp, std::ios::binary);
-    out << text;
-    out.flush();
-    if (!out) {
-      std::error_code ec;
-      fs::remove(temp, ec);
-      throw input_error(file.string(), "", "", "cannot be written");
-    }
-  }
-  std::error_code ec;
-  fs::rename(temp, file, ec);
-  if (ec) {
-    fs::remove(temp, ec);
-    throw input_error(file.string(), "", "", "cannot be moved into place");
-  }
+  OutputFile out(file);
+  write_text_file(out.path(), text);
+  out.commit();
 }
 
 std::vector<Part> find_parts(const fs::path& folder, const std::string& suffix) {

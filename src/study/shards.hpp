@@ -14,7 +14,11 @@ struct Shard {
   std::size_t count = 1;  // N
 };
 
-// "K/N" with 0 ≤ K < N; throws InputError naming `option`.
+// The most shards of one plan: more than any scheduler launches as one array (Slurm's
+// MaxArraySize tops out at 4 000 001), and far from where K + N could overflow.
+inline constexpr std::size_t kMaxShards = 1'000'000'000;
+
+// "K/N" with 0 ≤ K < N ≤ kMaxShards; throws InputError naming `option`.
 Shard parse_shard(const std::string& option, const std::string& text);
 
 // "K-of-N": the part's name (file "K-of-N.json" or folder "K-of-N").
@@ -23,8 +27,8 @@ std::string part_name(const Shard& shard);
 // The runs of a plan of `total` runs that shard K/N takes: K, K+N, K+2N, …
 std::vector<std::size_t> shard_runs(std::size_t total, const Shard& shard);
 
-// Writes `text` to `file` through a temporary file in the same folder and one rename, so a
-// killed writer leaves either no file or the whole one.
+// Writes `text` to `file` through a temporary file in the same folder and one rename
+// (core/output_folder.hpp OutputFile), so a killed writer leaves either no file or the whole one.
 void write_file_atomically(const std::filesystem::path& file, const std::string& text);
 
 struct Part {

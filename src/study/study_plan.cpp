@@ -31,6 +31,7 @@ Json series_json(const TimeSeries& s) {
   return Json{{"columns", s.columns}, {"time_s", s.time_s}, {"values", values}};
 }
 
+// A gauge record, checked to be a table: one value column per name, each as long as the times.
 TimeSeries series_from(const nlohmann::json& j) {
   TimeSeries s;
   s.columns = j.at("columns").get<std::vector<std::string>>();
@@ -39,8 +40,16 @@ TimeSeries series_from(const nlohmann::json& j) {
     std::vector<double> c;
     c.reserve(column.size());
     for (const auto& v : column) c.push_back(number(v));
+    if (c.size() != s.time_s.size())
+      throw std::invalid_argument("gauges.values[" + std::to_string(s.values.size()) + "] has " +
+                                  std::to_string(c.size()) + " values for " +
+                                  std::to_string(s.time_s.size()) + " times");
     s.values.push_back(std::move(c));
   }
+  if (s.values.size() != s.columns.size())
+    throw std::invalid_argument("gauges: " + std::to_string(s.values.size()) +
+                                " value columns for " + std::to_string(s.columns.size()) +
+                                " column names");
   return s;
 }
 
@@ -101,6 +110,7 @@ std::string plan_text(const StudyPlan& plan) {
   j["sweep"] = to_string(plan.sweep);
   j["scene"] = plan.scene.string();
   j["scene_text"] = plan.scene_text;
+  j["inputs"] = plan.inputs;
   Json options = Json::object();
   if (plan.contact) options["contact"] = to_string(*plan.contact);
   if (plan.stepping) options["stepping"] = to_string(*plan.stepping);
@@ -126,6 +136,8 @@ StudyPlan read_study_plan(const fs::path& plan_file) {
     plan.sweep = *sweep;
     plan.scene = j.at("scene").get<std::string>();
     plan.scene_text = j.at("scene_text").get<std::string>();
+    plan.inputs = j.at("inputs");
+    if (!plan.inputs.is_array()) throw std::invalid_argument("inputs is not a list");
     const auto& o = j.at("options");
     if (o.contains("contact")) plan.contact = method_from(o.at("contact"));
     if (o.contains("stepping")) plan.stepping = stepping_from(o.at("stepping"));
@@ -183,7 +195,7 @@ nlohmann::ordered_json part_json(const StudyPlan& plan, const StudyResults& resu
     }
     out.push_back(j);
   }
-  return Json{{"plan_id", plan.id}, {"results", out}};
+  return Json{{"plan_id", plan.id}, {"inputs", plan.inputs}, {"results", out}};
 }
 
 void read_part(const nlohmann::json& part, const fs::path& file, const StudyPlan& plan,
@@ -193,6 +205,10 @@ void read_part(const nlohmann::json& part, const fs::path& file, const StudyPlan
       throw input_error(file.string(), "plan_id", part.at("plan_id").dump(),
                         "a part of another plan (the folder was planned again): run this shard "
                         "again");
+    if (part.at("inputs") != plan.inputs)
+      throw input_error(file.string(), "inputs", "",
+                        "run on other input files than the plan lists now (a scene or material "
+                        "file changed between shards): remove the part and run its shard again");
     const auto& list = part.at("results");
     if (list.size() != expected.size()) throw std::invalid_argument("wrong number of runs");
     for (std::size_t i = 0; i < expected.size(); ++i) {
@@ -206,6 +222,9 @@ void read_part(const nlohmann::json& part, const fs::path& file, const StudyPlan
         p.wall_time_s = j.at("wall_time_s").get<double>();
         p.node_updates = j.at("node_updates").get<long long>();
         p.gauges = series_from(j.at("gauges"));
+        if (plan.pareto.at(r).reference && p.gauges.samples() == 0)
+          throw std::invalid_argument("the reference run (run " + std::to_string(r) +
+                                      ") has no gauge record");
       } else {
         StabilityJobResult& s = results.stability.at(r);
         if (plan.stability.at(r).boundary) {

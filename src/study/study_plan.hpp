@@ -20,6 +20,9 @@ struct StudyPlan {
   Sweep sweep{};                // pareto | stability (kSweepNames, study/sweep.hpp)
   std::filesystem::path scene;  // absolute
   std::string scene_text;       // the scene file as planned
+  // Every file the runs read (the scene, its material files) with its digest when planned
+  // (core/file_digest.hpp); runs and the merge refuse a plan whose inputs changed since.
+  nlohmann::json inputs = nlohmann::json::array();
   // The options of the planning command that change the scene (applied to it again by every run).
   std::optional<ContactMethod> contact;
   std::optional<Stepping> stepping;
@@ -45,12 +48,13 @@ std::string new_plan_id();
 std::string plan_text(const StudyPlan& plan);
 StudyPlan read_study_plan(const std::filesystem::path& plan_file);
 
-// The part of one shard: the plan id, the shard's own figures (threads, wall time) and the
-// results of `runs`. Exact round trip of every double.
+// The part of one shard: the plan id, the inputs' digests it ran with, the shard's own figures
+// (threads, wall time) and the results of `runs`. Exact round trip of every double.
 nlohmann::ordered_json part_json(const StudyPlan& plan, const StudyResults& results,
                                  const std::vector<std::size_t>& runs);
 // Reads a part into `results` at its runs (which must be `expected`); throws InputError naming
-// `file` on another plan's part or a damaged one.
+// `file` on another plan's part, a part run on other inputs than the plan's, or a damaged one:
+// gauge records whose columns, times and values disagree in size, a reference run without one.
 void read_part(const nlohmann::json& part, const std::filesystem::path& file, const StudyPlan& plan,
                const std::vector<std::size_t>& expected, StudyResults& results);
 

@@ -43,14 +43,14 @@ std::string error_of(const fs::path& file) {
 TEST_CASE("A campaign lists its tests relative to the campaign file", "[campaign]") {
   Scratch s;
   const auto c = read_campaign(s.write(R"({"name": "cu", "tests": [
-      {"scene": "a/scene.json"}, {"scene": "b/fast.json", "name": "4000/s", "weight": "2"}],
+      {"scene": "a/scene.json"}, {"scene": "b/fast.json", "name": "4000 per s", "weight": "2"}],
       "free": {"A": [1, 2]}})"));
   REQUIRE(c.name == "cu");
   REQUIRE(c.tests.size() == 2);
   CHECK(c.tests[0].name == "a");  // a scene.json is named by its folder, as scenes are
   CHECK(c.tests[0].weight == 1.0);
   CHECK(fs::equivalent(c.tests[0].scene, s.dir / "a" / "scene.json"));
-  CHECK(c.tests[1].name == "4000/s");
+  CHECK(c.tests[1].name == "4000 per s");
   CHECK(c.tests[1].weight == 2.0);
   CHECK(c.document.contains("free"));  // the fit's keys are kept for its own reader
 }

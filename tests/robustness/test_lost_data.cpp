@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "child_process.hpp"
+#include "measured_test.hpp"
 
 namespace {
 
@@ -312,4 +313,186 @@ TEST_CASE("A stray temporary-looking folder with a huge number is left alone, no
   INFO(o.err);
   CHECK(o.code == 0);
   CHECK(read_all(stray / "keep.txt") == "not shpb's");
+}
+
+TEST_CASE("study --merge PLAN -o PLAN, or -o inside its parts, is refused and the plan kept",
+          "[robustness][lost-data]") {
+  ScratchFolder scratch("lost");
+  const fs::path plan = scratch.path() / "plan";
+  write_bytes(scratch.path() / "scene.json", bar_scene("50 us"));
+  const auto quiet = [&](std::vector<std::string> args) {
+    args.push_back("-q");
+    return run(args, scratch.path(), kLimit_s);
+  };
+  REQUIRE(quiet({"study", (scratch.path() / "scene.json").string(), "--plan", plan.string(),
+                 "--contact", "bipenalty", "--stepping", "global"})
+              .code == 0);
+  REQUIRE(quiet({"study", "--run", plan.string(), "--shard", "0/1", "--threads", "1"}).code == 0);
+  const auto before = snapshot(plan);
+  for (const fs::path& o_dir : {plan, plan / "parts", plan / "parts" / "mine"}) {
+    INFO("-o " << o_dir);
+    check_refused(quiet({"study", "--merge", plan.string(), "-o", o_dir.string()}),
+                  "input of this run");
+    CHECK(snapshot(plan) == before);
+  }
+  // The default, DIR/result, is not an input.
+  CHECK(quiet({"study", "--merge", plan.string()}).code == 0);
+  CHECK(fs::exists(plan / "result" / "pareto.csv"));
+}
+
+TEST_CASE("Campaign test names are folder names: no path, no '.', '..', no campaign file name",
+          "[robustness][lost-data]") {
+  ScratchFolder scratch("lost");
+  const fs::path dir = scratch.path() / "campaign";
+  measured_test(dir);
+  // A result elsewhere on disk that an absolute test name would replace.
+  const fs::path elsewhere = scratch.path() / "elsewhere";
+  REQUIRE(
+      run({"simulate", (dir / "sim.json").string(), "-o", elsewhere.string(), "-q"}, dir, kLimit_s)
+          .code == 0);
+  const auto before = snapshot(scratch.path());
+  for (const std::string& name :
+       std::vector<std::string>{"../x", elsewhere.string(), "a/b", "a\\\\b", ".", "..",
+                                "campaign.csv", "Summary.json", "parts"}) {
+    INFO("test name " << name);
+    write_bytes(dir / "c.json",
+                R"({"tests": [{"scene": "measured.json", "name": ")" + name + R"("}]})");
+    const auto now = snapshot(scratch.path());
+    check_refused(run({"process", "--campaign", (dir / "c.json").string(), "-o",
+                       (dir / "out").string(), "-q"},
+                      dir, kLimit_s),
+                  "tests[0].name");
+    CHECK(snapshot(scratch.path()) == now);
+    CHECK_FALSE(fs::exists(dir / "out"));
+  }
+  fs::remove(dir / "c.json");
+  CHECK(snapshot(scratch.path()) == before);
+  // A scene file named as a campaign file names its test so: refused too.
+  fs::copy_file(dir / "measured.json", dir / "campaign.csv.json");
+  check_refused(run({"process", (dir / "measured.json").string(),
+                     (dir / "campaign.csv.json").string(), "-o", (dir / "out").string(), "-q"},
+                    dir, kLimit_s),
+                "campaign.csv");
+}
+
+TEST_CASE("The user's files that look like shpb temporaries beside -o are left alone",
+          "[robustness][lost-data]") {
+  ScratchFolder scratch("lost");
+  write_bytes(scratch.path() / "scene.json", bar_scene("50 us"));
+  const fs::path parent = scratch.path() / "work";
+  fs::create_directories(parent / ".res.tmp-123456-old");
+  write_bytes(parent / ".res.tmp-2024-05-01.tar", "the user's archive");
+  write_bytes(parent / ".res.tmp-4000000-backup", "the user's backup");
+  write_bytes(parent / ".res.tmp-123456-old" / "notes.txt", "the user's notes");
+  // Exactly the old naming (".<name>.tmp-<pid>-<random>") with a dead pid, but no marker.
+  fs::create_directories(parent / ".res.tmp-4000001-1234");
+  write_bytes(parent / ".res.tmp-4000001-1234" / "data.csv", "1,2\n");
+  const auto before = snapshot(parent);
+  const Outcome o = run(
+      {"simulate", (scratch.path() / "scene.json").string(), "-o", (parent / "res").string(), "-q"},
+      scratch.path(), kLimit_s);
+  INFO(o.err);
+  REQUIRE(o.code == 0);
+  auto after = snapshot(parent);
+  for (auto it = after.begin(); it != after.end();)  // the new result aside
+    it = it->first.rfind("res/", 0) == 0 ? after.erase(it) : std::next(it);
+  CHECK(after == before);
+}
+
+TEST_CASE("The temporary folder of a killed run is removed by the next run into the same -o",
+          "[robustness][lost-data]") {
+  ScratchFolder scratch("lost");
+  write_bytes(scratch.path() / "small.json", bar_scene("50 us"));
+  write_bytes(scratch.path() / "long.json", bar_scene("20 ms"));
+  const fs::path out = scratch.path() / "out";
+  Child child({"simulate", (scratch.path() / "long.json").string(), "-o", out.string(), "-q"},
+              scratch.path());
+  REQUIRE(child.started());
+  const auto start = std::chrono::steady_clock::now();
+  while (litter(scratch.path()).empty() &&
+         std::chrono::steady_clock::now() - start < std::chrono::duration<double>(kLimit_s))
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  REQUIRE(litter(scratch.path()).size() == 1);
+  child.signal(SIGKILL);
+  CHECK(child.wait(kLimit_s).signal == SIGKILL);
+  REQUIRE(litter(scratch.path()).size() == 1);
+  const Outcome o =
+      run({"simulate", (scratch.path() / "small.json").string(), "-o", out.string(), "-q"},
+          scratch.path(), kLimit_s);
+  INFO(o.err);
+  CHECK(o.code == 0);
+  CHECK(litter(scratch.path()).empty());
+}
+
+TEST_CASE("fit -o the folder of the starting material (a previous fit.json) is refused",
+          "[robustness][lost-data]") {
+  ScratchFolder scratch("lost");
+  const fs::path dir = scratch.path() / "t";
+  measured_test(dir);
+  // A previous fit's folder, its fit.json edited by hand: shpb's to replace, but an input now.
+  const fs::path previous = dir / "previous";
+  fs::create_directories(previous);
+  write_bytes(previous / "fit.json", kAluminium);
+  write_bytes(previous / ".shpb-output",
+              "shpb output folder: written by shpb, replaced only by shpb\ncommand: fit\n"
+              "file: fit.json\n");
+  write_bytes(dir / "campaign.json", R"({"tests": [{"scene": "measured.json"}],
+    "material": "previous/fit.json", "free": {"yield_stress": ["100 MPa", "200 MPa"]},
+    "stages": ["curve"]})");
+  const auto before = snapshot(previous);
+  check_refused(
+      run({"fit", (dir / "campaign.json").string(), "-o", previous.string(), "-q"}, dir, kLimit_s),
+      "input of this run");
+  CHECK(snapshot(previous) == before);
+}
+
+TEST_CASE("Campaign process -o holding a scene's measured file is refused and the file kept",
+          "[robustness][lost-data]") {
+  ScratchFolder scratch("lost");
+  const fs::path dir = scratch.path() / "t";
+  measured_test(dir);
+  fs::copy_file(dir / "measured.json", dir / "second.json");
+  write_bytes(dir / "c.json", R"({"tests": [{"scene": "measured.json", "name": "one"},
+    {"scene": "second.json", "name": "two"}]})");
+  const auto before = snapshot(dir / "sim");
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"process", (dir / "measured.json").string(),
+                                 (dir / "second.json").string()},
+        std::vector<std::string>{"process", "--campaign", (dir / "c.json").string()}}) {
+    std::vector<std::string> a = args;
+    a.insert(a.end(), {"-o", (dir / "sim").string(), "-q"});
+    INFO(a[1]);
+    check_refused(run(a, dir, kLimit_s), "input of this run");
+    CHECK(snapshot(dir / "sim") == before);
+  }
+}
+
+TEST_CASE("-o a symbolic link to a folder writes through it: the link stays",
+          "[robustness][lost-data]") {
+  ScratchFolder scratch("lost");
+  write_bytes(scratch.path() / "scene.json", bar_scene("50 us"));
+  const fs::path target = scratch.path() / "results" / "run1", link = scratch.path() / "latest";
+  const std::vector<std::string> args = {"simulate", (scratch.path() / "scene.json").string(), "-o",
+                                         link.string(), "-q"};
+  fs::create_directories(target);
+  fs::create_directory_symlink(target, link);
+  for (int run_number = 0; run_number < 2; ++run_number) {  // into the empty target, then over it
+    const Outcome o = run(args, scratch.path(), kLimit_s);
+    INFO(o.err);
+    REQUIRE(o.code == 0);
+    CHECK(fs::is_symlink(link));
+    CHECK(fs::read_symlink(link) == target);
+    CHECK(fs::is_regular_file(target / "gauges.csv"));
+  }
+  CHECK(litter(scratch.path()).empty());
+  CHECK(litter(target.parent_path()).empty());
+  // A link to nothing is refused, not replaced by a folder.
+  const fs::path dangling = scratch.path() / "dangling";
+  fs::create_directory_symlink(scratch.path() / "nowhere", dangling);
+  check_refused(
+      run({"simulate", (scratch.path() / "scene.json").string(), "-o", dangling.string(), "-q"},
+          scratch.path(), kLimit_s),
+      "symbolic link");
+  CHECK(fs::is_symlink(dangling));
+  CHECK_FALSE(fs::exists(scratch.path() / "nowhere"));
 }

@@ -68,8 +68,11 @@ TEST_CASE("A folder holding files shpb did not write is never replaced", "[robus
   CHECK(litter(scratch.path()).empty());
 }
 
-TEST_CASE("Temporary folders of killed runs are removed by the next run, others are kept",
+TEST_CASE("Folders that only look like temporaries of a dead run are kept",
           "[robustness][output]") {
+  // Removing needs proof (the exact name with this host's tag and the marker inside naming host
+  // and pid): a name alone, even with a dead pid, is not proof. The removal of a real killed run's
+  // folder is tested through the executable (test_lost_data.cpp).
   ScratchFolder scratch("folder");
   const fs::path dead = scratch.path() / (".out.tmp-" + std::to_string(dead_pid()) + "-123");
   const fs::path dead_old = fs::path(dead.string() + ".old");
@@ -78,9 +81,5 @@ TEST_CASE("Temporary folders of killed runs are removed by the next run, others 
   const fs::path look_alike = scratch.path() / ".out.tmp-notes";
   for (const auto& d : {dead, dead_old, alive, other, look_alike}) fs::create_directory(d);
   shpb::OutputFolder folder(scratch.path() / "out");
-  CHECK_FALSE(fs::exists(dead));
-  CHECK_FALSE(fs::exists(dead_old));
-  CHECK(fs::exists(alive));
-  CHECK(fs::exists(other));
-  CHECK(fs::exists(look_alike));
+  for (const auto& d : {dead, dead_old, alive, other, look_alike}) CHECK(fs::exists(d));
 }
