@@ -54,7 +54,7 @@ bool all_finite(const std::vector<double>& v) {
 std::string reduction_failure(const ProcessingResult& r) {
   const Curve& c = r.curve;
   for (const auto* v : {&c.strain_rate_1_s, &c.strain, &c.stress_3wave_Pa, &c.true_strain,
-                        &c.true_stress_Pa, &c.equilibrium_ratio})
+                        &c.true_stress_Pa, &c.equilibrium_ratio, &c.strain_1wave})
     if (!all_finite(*v)) return "process: the reduction produced a non-finite value";
   if (c.strain.size() && *std::max_element(c.strain.begin(), c.strain.end()) >= 1)
     return "process: engineering strain reached 1 (the specimen would have no length "
@@ -158,6 +158,11 @@ int run_process(const ProcessArgs& args) {
       m.channels.push_back(ch);
     }
     options.dispersion.correction = false;
+    if (scene.measurement) {  // the reduction's choices apply to simulated gauges too
+      options.align = scene.measurement->align;
+      options.primary = scene.measurement->primary;
+      options.rate_window = scene.measurement->rate_window;
+    }
   } else {
     if (!scene.measurement)
       throw input_error(scene.file.string(), "measurement", "(missing)",
@@ -171,8 +176,18 @@ int run_process(const ProcessArgs& args) {
     options.windows = m.windows;
     options.load_drop = m.load_drop.value_or(kDefaultLoadDrop);
     options.tension = m.tension;
+    options.align = m.align;
+    options.primary = m.primary;
+    options.rate_window = m.rate_window;
   }
   options.scene_file = scene.file.string();
+  const CorrectionsSpec corrections =
+      scene.measurement ? scene.measurement->corrections : CorrectionsSpec{};
+  if (options.primary == PrimaryReduction::kOneWave &&
+      (corrections.friction || corrections.inertia))
+    throw input_error(scene.file.string(), "measurement.primary", "\"1-wave\"",
+                      "the friction and inertia corrections apply to the 3-wave stress: use "
+                      "\"primary\": \"3-wave\" with measurement.corrections, or drop them");
   // What was assumed is said even with --quiet (which silences progress only), and as soon as
   // it is known: before any later error stops the run.
   GaugeSignals signals = read_gauge_signals(m, {});
@@ -186,24 +201,23 @@ int run_process(const ProcessArgs& args) {
       for (double& x : g) x = -x;
   ProcessingResult r = process_signals(signals, setup, options);
   // Specimen corrections (docs/methods.md §8), also for simulated signals when the scene asks.
-  const CorrectionsSpec corrections =
-      scene.measurement ? scene.measurement->corrections : CorrectionsSpec{};
   const BarSpec& specimen_bar = scene.bars[*scene.specimen];
   const CorrectionReport removed = apply_specimen_corrections(
       r.curve, signals.dt_s,
       {specimen_bar.length_m, specimen_bar.area_m2, specimen_bar.material.density_kg_m3},
       {corrections.friction, corrections.inertia});
   if (corrections.friction || corrections.inertia)
-    r.peak_stress_Pa =
+    r.peak_stress_Pa = r.peak_stress_3wave_Pa =
         *std::max_element(r.curve.stress_3wave_Pa.begin(), r.curve.stress_3wave_Pa.end());
-  if (options.tension) {
+  const bool one_wave = options.primary == PrimaryReduction::kOneWave;
+  if (options.tension)
     for (auto* v : {&r.incident, &r.reflected, &r.transmitted})
       for (double& x : *v) x = -x;
+  if (options.tension || one_wave) {  // true values of the primary reduction
     Curve& c = r.curve;
-    for (std::size_t i = 0; i < c.strain.size(); ++i) {
-      c.true_strain[i] = std::log1p(c.strain[i]);  // elongation: ln(1 + e)
-      c.true_stress_Pa[i] = c.stress_3wave_Pa[i] * (1 + c.strain[i]);
-    }
+    true_values(one_wave ? c.strain_1wave : c.strain,
+                one_wave ? c.stress_1wave_Pa : c.stress_3wave_Pa, options.tension, c.true_strain,
+                c.true_stress_Pa);
   }
   for (const auto& w : r.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   std::vector<std::string> warnings = signals.warnings;
@@ -241,16 +255,44 @@ int run_process(const ProcessArgs& args) {
     throw NumericalError(failure + " (pulses.csv written to " + args.output.string() + ")");
   }
   {
+    // The primary reduction's rate, strain, stress and true values lead (docs/outputs.md).
     const Curve& c = r.curve;
-    CsvWriter w(out.file("curve.csv"),
-                {"time_s", "strain_rate_1_s", "strain", "stress_1wave_Pa", "stress_2wave_Pa",
-                 "stress_3wave_Pa", "true_strain", "true_stress_Pa", "equilibrium_ratio",
-                 "strain_rate_1wave_1_s", "force_front_N", "force_back_N"});
-    for (std::size_t i = 0; i < r.loading_end; ++i)
-      w.row({r.time_s[i], c.strain_rate_1_s[i], c.strain[i], c.stress_1wave_Pa[i],
-             c.stress_2wave_Pa[i], c.stress_3wave_Pa[i], c.true_strain[i], c.true_stress_Pa[i],
-             c.equilibrium_ratio[i], c.strain_rate_1wave_1_s[i], c.force_front_N[i],
-             c.force_back_N[i]});
+    using Column = std::pair<const char*, const std::vector<double>*>;
+    std::vector<Column> columns = {{"time_s", &r.time_s},
+                                   {"strain_rate_1_s", &c.strain_rate_1_s},
+                                   {"strain", &c.strain},
+                                   {"stress_1wave_Pa", &c.stress_1wave_Pa},
+                                   {"stress_2wave_Pa", &c.stress_2wave_Pa},
+                                   {"stress_3wave_Pa", &c.stress_3wave_Pa},
+                                   {"true_strain", &c.true_strain},
+                                   {"true_stress_Pa", &c.true_stress_Pa},
+                                   {"equilibrium_ratio", &c.equilibrium_ratio},
+                                   {"strain_rate_1wave_1_s", &c.strain_rate_1wave_1_s},
+                                   {"force_front_N", &c.force_front_N},
+                                   {"force_back_N", &c.force_back_N},
+                                   {"strain_1wave", &c.strain_1wave}};
+    if (one_wave)
+      columns = {{"time_s", &r.time_s},
+                 {"strain_rate_1wave_1_s", &c.strain_rate_1wave_1_s},
+                 {"strain_1wave", &c.strain_1wave},
+                 {"stress_1wave_Pa", &c.stress_1wave_Pa},
+                 {"true_strain", &c.true_strain},
+                 {"true_stress_Pa", &c.true_stress_Pa},
+                 {"strain_rate_1_s", &c.strain_rate_1_s},
+                 {"strain", &c.strain},
+                 {"stress_2wave_Pa", &c.stress_2wave_Pa},
+                 {"stress_3wave_Pa", &c.stress_3wave_Pa},
+                 {"equilibrium_ratio", &c.equilibrium_ratio},
+                 {"force_front_N", &c.force_front_N},
+                 {"force_back_N", &c.force_back_N}};
+    std::vector<std::string> header;
+    for (const auto& [name, v] : columns) header.push_back(name);
+    CsvWriter w(out.file("curve.csv"), header);
+    std::vector<double> row(columns.size());
+    for (std::size_t i = 0; i < r.loading_end; ++i) {
+      for (std::size_t j = 0; j < columns.size(); ++j) row[j] = (*columns[j].second)[i];
+      w.row(row);
+    }
     w.close();
   }
   nlohmann::json s;
@@ -271,9 +313,24 @@ int run_process(const ProcessArgs& args) {
           "clock; curve.csv: ") +
       (options.tension ? "tension positive (true strain ln(1+e), true stress s(1+e))"
                        : "compression positive") +
-      ", strain and strain rate from the 3-wave reduction, true values from the 3-wave stress "
-      "(after "
-      "the corrections listed under corrections)";
+      (one_wave ? ", led by the 1-wave reduction (primary): 1-wave stress against the "
+                  "reflected-pulse strain, whose true values are given; the 3-wave columns "
+                  "follow"
+                : ", strain and strain rate from the 3-wave reduction, true values from the "
+                  "3-wave stress (after the corrections listed under corrections)");
+  s["primary"] = {
+      {"reduction", std::string(enum_name(kPrimaryNames, options.primary))},
+      {"stress", one_wave ? "stress_1wave_Pa" : "stress_3wave_Pa"},
+      {"strain", one_wave ? "strain_1wave" : "strain"},
+      {"how", one_wave ? "1-wave: transmitted-face stress P2/A_s against the strain of the "
+                         "reflected pulse, integral of 2 c0 eps_R / L_s; it does not depend on "
+                         "the alignment of the incident and reflected pulses"
+                       : "3-wave: the mean of the two face forces over A_s against the integral "
+                         "of (v1 - v2)/L_s"}};
+  s["reductions"] = {
+      {"3-wave", {{"peak_stress_Pa", r.peak_stress_3wave_Pa}, {"max_strain", r.max_strain_3wave}}},
+      {"1-wave", {{"peak_stress_Pa", r.peak_stress_1wave_Pa}, {"max_strain", r.max_strain_1wave}}},
+      {"over", "the loading (the rows of curve.csv)"}};
   nlohmann::json disp = {
       {"correction", std::string(enum_name(kCorrectionNames, options.dispersion.correction))},
       {"amplitude_factors", options.dispersion.amplitude_factors}};
@@ -297,32 +354,68 @@ int run_process(const ProcessArgs& args) {
                                                  ? nlohmann::json(*r.transmitted_onset_offset_s)
                                                  : nlohmann::json()},
       {"suspect", r.alignment_suspect},
+      {"align", std::string(enum_name(kAlignmentNames, options.align))},
+      {"applied",
+       {{"reflected",
+         r.reflected_at_onset ? "onset" : (options.windows.reflected ? "window" : "geometry")},
+        {"transmitted", r.transmitted_at_onset
+                            ? "onset"
+                            : (options.windows.transmitted ? "window" : "geometry")}}},
+      {"area_ratio", r.area_ratio},
+      {"reflected_offset_3wave_stress_error", r.reflected_offset_stress_error
+                                                  ? nlohmann::json(*r.reflected_offset_stress_error)
+                                                  : nlohmann::json()},
       {"how",
-       "incident forward and reflected/transmitted backward by their gauge distances over "
-       "c0 (dispersion-corrected); the detected reflected onset is reported, not applied "
-       "(onset picking on a dispersed front is less accurate than the geometry)"}};
+       std::string("incident forward and reflected/transmitted backward by their gauge distances "
+                   "over c0 (dispersion-corrected)") +
+           (options.align == Alignment::kOnsets
+                ? "; with align \"onsets\" the reflected and transmitted pulses are shifted "
+                  "further so that their detected onsets fall where geometry expects them"
+                : "; the detected onsets are reported, not applied (align \"geometry\")") +
+           ". reflected_offset_3wave_stress_error: the largest change of the 3-wave stress, as a "
+           "fraction of the 1-wave peak, that moving the reflected pulse by its onset offset "
+           "makes where the 1-wave stress is >= 20 % of its peak"}};
   s["incident_plateau_strain"] = r.incident_plateau_strain;
   s["striker_velocity_m_s"] = {
-      {"inferred", r.inferred_striker_velocity_m_s},
+      {"inferred",
+       setup.pulse_shaper ? nlohmann::json() : nlohmann::json(r.inferred_striker_velocity_m_s)},
+      {"meaningful", !setup.pulse_shaper},
       {"scene", setup.striker_velocity_m_s
                     ? nlohmann::json(*setup.striker_velocity_m_s)
                     : (scene.measurement && scene.measurement->striker_velocity_m_s
                            ? nlohmann::json(*scene.measurement->striker_velocity_m_s)
                            : nlohmann::json())},
-      {"how", "incident plateau at the front face: V = E A eps (Z_s + Z_b)/(Z_s Z_b)"}};
+      {"how", setup.pulse_shaper
+                  ? "not inferred: a pulse shaper lies between the striker and the incident bar, "
+                    "so the incident plateau is set by the shaper's flow, not by the striker's "
+                    "impedance"
+                  : "incident plateau at the front face: V = E A eps (Z_s + Z_b)/(Z_s Z_b)"}};
   s["plateau_strain_rate_1_s"] =
       r.strain_rate_has_plateau ? nlohmann::json(r.plateau_strain_rate_1_s) : nlohmann::json();
   s["strain_rate"] = {
       {"plateau_1_s", s["plateau_strain_rate_1_s"]},
       {"plateau_fraction_of_loading", r.strain_rate_plateau_fraction},
       {"mean_over_loading_1_s", r.mean_strain_rate_1_s},
+      {"reduction", std::string(enum_name(kPrimaryNames, options.primary))},
+      {"window",
+       !options.rate_window ? nlohmann::json()
+       : options.rate_window->by_strain
+           ? nlohmann::json({{"strain", {options.rate_window->from, options.rate_window->to}}})
+           : nlohmann::json({{"time_s", {options.rate_window->from, options.rate_window->to}}})},
+      {"mean_over_window_1_s",
+       r.window_strain_rate_1_s ? nlohmann::json(*r.window_strain_rate_1_s) : nlohmann::json()},
       {"how",
        "plateau: the longest run of samples within +-10 % of the rate's plateau level (median of "
        "the samples above half its 95th percentile) covers at least 30 % of the loading (samples "
-       "with a positive rate); otherwise null and only the mean is quoted"}};
+       "with a positive rate); otherwise null and only the mean is quoted. window: "
+       "measurement.rate_window, the strain or time range (faces' clock) over which "
+       "mean_over_window_1_s is the mean rate; of the primary reduction"}};
   s["end_of_loading"] = {{"time_s", r.time_s[r.loading_end - 1]},
                          {"how", r.loading_end_how},
                          {"curve_rows", r.loading_end},
+                         {"strain_reached", r.max_strain},
+                         {"record_max_strain", r.record_max_strain},
+                         {"cut_short", r.loading_cut_short},
                          {"note", "curve.csv ends here; pulses.csv keeps the whole window"}};
   s["peak_stress_Pa"] = r.peak_stress_Pa;
   s["max_strain"] = r.max_strain;
@@ -359,14 +452,27 @@ int run_process(const ProcessArgs& args) {
   s["equilibrium"] = r.equilibrium;
   write_json(out, "summary.json", s);
   out.commit();
-  if (!args.quiet)
+  if (!args.quiet) {
+    char striker[80], rate[120];
+    if (setup.pulse_shaper)
+      std::snprintf(striker, sizeof striker, "striker not inferred (pulse shaper)");
+    else
+      std::snprintf(striker, sizeof striker, "striker ≈ %.4g m/s (inferred)",
+                    r.inferred_striker_velocity_m_s);
+    if (r.window_strain_rate_1_s)
+      std::snprintf(rate, sizeof rate, "mean strain rate over the rate window %.4g 1/s",
+                    *r.window_strain_rate_1_s);
+    else
+      std::snprintf(rate, sizeof rate, "%s strain rate %.4g 1/s",
+                    r.strain_rate_has_plateau ? "plateau" : "no plateau: mean",
+                    r.strain_rate_has_plateau ? r.plateau_strain_rate_1_s : r.mean_strain_rate_1_s);
     std::fprintf(stderr,
-                 "process: window %.6g–%.6g s at the faces; striker ≈ %.4g m/s (inferred); %s "
-                 "strain rate %.4g 1/s; peak 3-wave stress %.4g MPa -> %s\n",
-                 r.face_start_s, r.face_end_s, r.inferred_striker_velocity_m_s,
-                 r.strain_rate_has_plateau ? "plateau" : "no plateau: mean",
-                 r.strain_rate_has_plateau ? r.plateau_strain_rate_1_s : r.mean_strain_rate_1_s,
+                 "process: window %.6g–%.6g s at the faces; %s; %s; peak %s stress %.4g MPa -> "
+                 "%s\n",
+                 r.face_start_s, r.face_end_s, striker, rate,
+                 std::string(enum_name(kPrimaryNames, options.primary)).c_str(),
                  r.peak_stress_Pa / 1e6, args.output.string().c_str());
+  }
   return 0;
 }
 
