@@ -189,6 +189,11 @@ TEST_CASE(
   CHECK(end["cut_short"] == true);
   CHECK(has_warning(s, "short of the record's strain maximum"));
   CHECK(r.err.find("warning: the curve ends at a load drop at strain") != std::string::npos);
+  if (shpb_test::have_matplotlib()) {  // the report's headline gives both strains
+    REQUIRE(run_shpb({"report", (d / "out").string()}).code == 0);
+    CHECK(read_text(d / "out/report.html").find("short of the record&#x27;s strain maximum") !=
+          std::string::npos);
+  }
   // An ordinary test ends at its unloading without that warning.
   const auto clean = run_shpb(
       {"process", write(d, steel_scene(), csv(Record{})).string(), "-o", (d / "clean").string()});
