@@ -636,18 +636,28 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
   const double tol_samples = kAlignmentSamples * dt;
   if (stress_scale && r.reflected_offset_stress_error && !options.windows.reflected &&
       !r.reflected_at_onset && std::abs(*r.reflected_onset_offset_s) > tol_samples &&
-      *r.reflected_offset_stress_error > kShiftStressError)
-    r.warnings.push_back(
-        fmt("the reflected pulse starts %.3g us ", std::abs(*r.reflected_onset_offset_s) * 1e6) +
-        (*r.reflected_onset_offset_s < 0 ? "earlier" : "later") +
-        fmt(" than the gauge distances and wave speed put it; at this bar/specimen area ratio "
-            "(%.3g) and strain rate (%.4g 1/s) that offset changes the 3-wave stress by up to ",
+      *r.reflected_offset_stress_error > kShiftStressError) {
+    const std::string effect =
+        fmt("at this bar/specimen area ratio (%.3g) and strain rate (%.4g 1/s) that offset "
+            "changes the 3-wave stress by up to ",
             r.area_ratio,
             r.strain_rate_has_plateau ? r.plateau_strain_rate_1_s : r.mean_strain_rate_1_s) +
         percent(*r.reflected_offset_stress_error) +
         " of the 1-wave peak (the 2-wave stress twice that): if the onsets are right (a trigger "
         "delay, a gauge position), set \"align\": \"onsets\"; \"primary\": \"1-wave\" "
-        "reports a stress that does not use the reflected pulse");
+        "reports a stress that does not use the reflected pulse";
+    // One warning per offset: added to the gauge-position warning when check_alignment gave one.
+    const std::string position = "gauge \"" + k.incident_gauge + "\": the reflected pulse starts";
+    const auto given = std::find_if(r.warnings.begin(), r.warnings.end(),
+                                    [&](const auto& w) { return w.rfind(position, 0) == 0; });
+    if (given != r.warnings.end())
+      *given += "; " + effect;
+    else
+      r.warnings.push_back(
+          fmt("the reflected pulse starts %.3g us ", std::abs(*r.reflected_onset_offset_s) * 1e6) +
+          (*r.reflected_onset_offset_s < 0 ? "earlier" : "later") +
+          " than the gauge distances and wave speed put it; " + effect);
+  }
   // A hand-set reflected or transmitted window is a time shift: one whose start is far from the
   // detected onset moves the pulse by that much (docs/scene-format.md).
   auto check_window = [&](const std::optional<TimeWindow>& w, const std::string& name,
