@@ -9,6 +9,7 @@
 #include "analysis/pulse_window.hpp"
 #include "core/csv_writer.hpp"  // format_double
 #include "core/error.hpp"
+#include "core/interpolation.hpp"
 #include "dispersion/pochhammer_chree.hpp"  // the supported Poisson ratios
 #include "model/test_setup.hpp"
 
@@ -59,6 +60,11 @@ std::string fmt(const char* format, double a, double b = 0, double c = 0, double
   char buf[400];
   std::snprintf(buf, sizeof buf, format, a, b, c, d);
   return buf;
+}
+
+// A fraction as a percentage: three significant digits, whole percent from 100 % up.
+std::string percent(double fraction) {
+  return fmt(100 * fraction < 99.95 ? "%.3g %%" : "%.0f %%", 100 * fraction);
 }
 
 // A detected onset further from the geometric one than a few samples or 2 % of the travel time
@@ -135,14 +141,19 @@ void judge_strain_rate(const std::vector<double>& rate, std::size_t n, Processin
 }
 
 // The 1-wave (transmitted) and 2-wave (incident + reflected) stresses of one specimen agree
-// within tens of percent once it is loaded; a larger disagreement means the record is not the
-// test the scene describes (a tensile record processed as compression, bars or gauges swapped).
-void check_one_and_two_wave(const Curve& c, std::size_t n, double peak_force, bool tension,
-                            std::vector<std::string>& warnings) {
+// within tens of percent once it is loaded; a larger disagreement is said with its size, and with
+// a cause only where the record shows one: a first pulse of the other polarity than the test's,
+// or a reflected onset off its geometric position by enough to move the 2-wave stress.
+// Loaded: where the 1-wave stress is at least 20 % of its peak (the front face's start-up
+// ringing, large on a thin specimen, would otherwise set the scale).
+void check_one_and_two_wave(const Curve& c, std::size_t n, const ProcessingResult& r,
+                            const ProcessingOptions& o, std::vector<std::string>& warnings) {
+  const double peak = *std::max_element(c.stress_1wave_Pa.begin(),
+                                        c.stress_1wave_Pa.begin() + static_cast<std::ptrdiff_t>(n));
   double one = 0, two = 0;
   std::size_t count = 0;
   for (std::size_t i = 0; i < n; ++i)
-    if (c.force_front_N[i] + c.force_back_N[i] >= kMeanForceForEquilibrium * peak_force) {
+    if (peak > 0 && c.stress_1wave_Pa[i] >= kMeanForceForEquilibrium * peak) {
       one += c.stress_1wave_Pa[i], two += c.stress_2wave_Pa[i];
       ++count;
     }
@@ -150,14 +161,44 @@ void check_one_and_two_wave(const Curve& c, std::size_t n, double peak_force, bo
   one /= static_cast<double>(count), two /= static_cast<double>(count);
   const double ratio = two / one;
   if (ratio > 1 / kOneTwoWaveRatio && ratio < kOneTwoWaveRatio) return;
-  warnings.push_back(
+  std::string text =
       fmt("the 1-wave and 2-wave stresses disagree over the loading (means %.4g and %.4g MPa, "
-          "ratio %.3g): ",
-          one * 1e-6, two * 1e-6, ratio) +
-      "the record may not be the test the scene describes (a " +
-      (tension ? "compressive record processed as \"test\": \"tension\""
-               : "tensile record processed as compression: \"test\": \"tension\"") +
-      "?), or gauges, bars or a bridge factor are mixed up");
+          "ratio %.3g)",
+          one * 1e-6, two * 1e-6, ratio);
+  std::string evidence;
+  for (const std::string& g : r.inverted_gauges)
+    evidence += (evidence.empty() ? "" : "; ") + ("gauge \"" + g + "\"'s first pulse was ") +
+                (o.tension ? "compressive" : "tensile") + " and was inverted (a " +
+                (o.tension ? "compressive" : "tensile") + " record, or its channel's `invert`?)";
+  if (r.reflected_onset_offset_s && !r.reflected_at_onset && r.reflected_offset_stress_error &&
+      *r.reflected_offset_stress_error > kShiftStressError)
+    evidence += (evidence.empty() ? "" : "; ") +
+                fmt("the reflected pulse starts %.3g us off its geometric position, which alone "
+                    "moves the 2-wave stress by up to ",
+                    *r.reflected_onset_offset_s * 1e6) +
+                percent(2 * *r.reflected_offset_stress_error) + " of the 1-wave peak";
+  if (!evidence.empty())
+    text += ": " + evidence;
+  else
+    text += std::string(": the first pulses have the polarity of the test and ") +
+            (r.reflected_at_onset ? "the reflected pulse was aligned at its onset"
+                                  : "the onsets agree with the geometry") +
+            ", so the record's polarity and timing do not explain it; the forces of the two "
+            "faces differ (bar areas or moduli, a channel's scale or bridge factor, which gauge "
+            "is which)";
+  warnings.push_back(text);
+}
+
+// Largest |y(t + shift) − y(t)| over the flagged samples: how much a pulse at the faces changes
+// when it is moved by `shift_samples` (linear between samples, zero outside the window).
+double largest_change_on_shift(const std::vector<double>& y, double shift_samples,
+                               const std::vector<char>& where) {
+  double worst = 0;
+  for (std::size_t i = 0; i < y.size(); ++i)
+    if (where[i])
+      worst = std::max(worst,
+                       std::abs(sample_at(y, static_cast<double>(i) + shift_samples, 0, 0) - y[i]));
+  return worst;
 }
 
 // Loaded: from the first to the last sample where the mean force is at least 20 % of its peak.
@@ -256,8 +297,9 @@ KolskySetup resolve_setup(const Scene& scene, const std::vector<std::string>& av
               100 * kReflectedTimeRange, modelled * 1e6, k.incident_distance_m * 1e3));
     k.excess_delay_s_per_m = (calibrated - modelled) / (2 * k.incident_distance_m);
   }
-  if (const auto striker = test_roles(scene).striker)
-    k.striker_impedance_kg_s = scene.bars[*striker].impedance_kg_s();
+  const TestRoles roles = test_roles(scene);
+  k.pulse_shaper = !roles.shapers.empty();
+  if (roles.striker) k.striker_impedance_kg_s = scene.bars[*roles.striker].impedance_kg_s();
   k.striker_velocity_m_s = scene_striker_speed_m_s(scene);
   return k;
 }
@@ -334,6 +376,7 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
                         "its signal never rises above its noise: no pulse to process");
     if (p->sign > 0) {
       for (double& v : x) v = -v;
+      r.inverted_gauges.push_back(gauge);
       r.warnings.push_back("gauge \"" + gauge +
                            (options.tension
                                 ? "\": its first pulse is compressive; a tension test's first "
@@ -375,27 +418,20 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
   // incident's face start.
   const double d_i = k.incident_distance_m, d_t = k.transmitted_distance_m;
   const double face_start = t[on] + d_i / c_front;
-  double extra_r = 0, extra_t = 0;
   const double expected_r = t[on] + 2 * d_i / c_front;
-  if (options.windows.reflected)
-    extra_r = t[nearest_sample(t, options.windows.reflected->start_s)] - expected_r;
-  if (options.windows.transmitted)
-    extra_t =
-        t[nearest_sample(t, options.windows.transmitted->start_s)] - d_t / c_back - face_start;
-  r.shift_incident_s = d_i / c_front;
-  r.shift_reflected_s = -d_i / c_front - extra_r;
-  r.shift_transmitted_s = -d_t / c_back - extra_t;
-  r.reflected_window = {k.incident_gauge, expected_r + extra_r, expected_r + extra_r + duration,
-                        !options.windows.reflected};
+  const double expected_t = t[on] + d_i / c_front + k.specimen_transit_s + d_t / c_back;
   // Alignment check: where the reflected and transmitted pulses really start against where
   // geometry puts them.
+  std::optional<double> reflected_onset_s, transmitted_onset_s;  // gauge clocks
   {
     const auto i0 = index_at(t, t[end - 1]);
     const auto i1 = index_at(t, expected_r + duration);
-    if (const auto o = find_onset(inc, {0.0, inc_noise}, +1.0, i0, i1))
+    if (const auto o = find_onset(inc, {0.0, inc_noise}, +1.0, i0, i1)) {
+      reflected_onset_s = t[*o];
       r.reflected_onset_offset_s = t[*o] - expected_r;
-    const double expected_t = t[on] + d_i / c_front + k.specimen_transit_s + d_t / c_back;
+    }
     if (const auto p = find_first_pulse(tra, {0.0, tra_noise})) {
+      transmitted_onset_s = t[p->onset];
       r.transmitted_onset_offset_s = t[p->onset] - expected_t;
       std::size_t half = p->onset;  // first half-peak sample: the front's rise
       while (half + 1 < p->end && p->sign * tra[half] < 0.5 * p->peak) ++half;
@@ -404,6 +440,28 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
     if (!options.windows.reflected && !options.windows.transmitted)
       check_alignment(r, k, dt, r.warnings);
   }
+  // Extra time shifts after the move by the gauge distances (docs/methods.md §6): a hand-set
+  // window puts its start at the incident pulse's face start (a window is a time shift); with
+  // "align": "onsets" each detected onset is put where geometry expects it.
+  double extra_r = 0, extra_t = 0;
+  if (options.windows.reflected) {
+    extra_r = t[nearest_sample(t, options.windows.reflected->start_s)] - expected_r;
+  } else if (options.align == Alignment::kOnsets && r.reflected_onset_offset_s) {
+    extra_r = *r.reflected_onset_offset_s;
+    r.reflected_at_onset = true;
+  }
+  if (options.windows.transmitted) {
+    extra_t =
+        t[nearest_sample(t, options.windows.transmitted->start_s)] - d_t / c_back - face_start;
+  } else if (options.align == Alignment::kOnsets && r.transmitted_onset_offset_s) {
+    extra_t = *r.transmitted_onset_offset_s;
+    r.transmitted_at_onset = true;
+  }
+  r.shift_incident_s = d_i / c_front;
+  r.shift_reflected_s = -d_i / c_front - extra_r;
+  r.shift_transmitted_s = -d_t / c_back - extra_t;
+  r.reflected_window = {k.incident_gauge, expected_r + extra_r, expected_r + extra_r + duration,
+                        !options.windows.reflected};
 
   // Propagation (Pochhammer–Chree or pure delay), strains and — with Tyas–Pope factors —
   // separate stress pulses.
@@ -502,35 +560,144 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
   const double zs = k.striker_impedance_kg_s.value_or(zb);
   r.inferred_striker_velocity_m_s = k.front.youngs_modulus_Pa * k.front.area_m2 *
                                     r.incident_plateau_strain * (zs + zb) / (zs * zb);
-  // The curve ends with loading: at the strain maximum or, earlier, where the stress drops.
   const Curve& c = r.curve;
-  const auto strain_max = static_cast<std::size_t>(
-      std::max_element(c.strain.begin(), c.strain.end()) - c.strain.begin());
+  const bool one_wave = options.primary == PrimaryReduction::kOneWave;
+  r.primary = options.primary;
+  const std::vector<double>& strain = one_wave ? c.strain_1wave : c.strain;
+  const std::vector<double>& rate = one_wave ? c.strain_rate_1wave_1_s : c.strain_rate_1_s;
+  const std::vector<double>& s1 = c.stress_1wave_Pa;
+  // The curve ends with loading (docs/methods.md §6): at the primary strain's maximum or, earlier,
+  // at the first sample from which the 1-wave stress stays below (1 − f) × the peak it had
+  // reached. The transmitted face carries neither the front face's start-up ringing nor the
+  // incident–reflected alignment, and a drop that recovers (an early overshoot) is not the end.
+  const auto strain_max =
+      static_cast<std::size_t>(std::max_element(strain.begin(), strain.end()) - strain.begin());
+  r.record_max_strain = strain[strain_max];
   r.loading_end = strain_max + 1;
   r.loading_end_how = "strain maximum";
   if (options.load_drop > 0) {
-    const auto peak = static_cast<std::size_t>(
-        std::max_element(c.stress_3wave_Pa.begin(), c.stress_3wave_Pa.end()) -
-        c.stress_3wave_Pa.begin());
-    for (std::size_t i = peak; i < r.loading_end; ++i)
-      if (c.stress_3wave_Pa[i] < (1 - options.load_drop) * c.stress_3wave_Pa[peak]) {
+    std::vector<double> later(strain_max + 1);  // largest 1-wave stress from i to the maximum
+    later[strain_max] = s1[strain_max];
+    for (std::size_t i = strain_max; i-- > 0;) later[i] = std::max(s1[i], later[i + 1]);
+    double reached = 0;
+    for (std::size_t i = 0; i <= strain_max; ++i) {
+      reached = std::max(reached, s1[i]);
+      if (reached > 0 && later[i] < (1 - options.load_drop) * reached) {
         r.loading_end = i;
-        r.loading_end_how = fmt("load drop: the 3-wave stress fell below %.3g %% of its peak",
-                                100 * (1 - options.load_drop));
+        r.loading_end_how =
+            fmt("load drop: the 1-wave stress fell below %.3g %% of the peak it had reached and "
+                "stayed there",
+                100 * (1 - options.load_drop));
         break;
       }
+    }
   }
   const std::size_t loaded = r.loading_end;
-  judge_strain_rate(c.strain_rate_1_s, loaded, r);
-  r.peak_stress_Pa = *std::max_element(
-      c.stress_3wave_Pa.begin(), c.stress_3wave_Pa.begin() + static_cast<std::ptrdiff_t>(loaded));
-  r.max_strain =
-      *std::max_element(c.strain.begin(), c.strain.begin() + static_cast<std::ptrdiff_t>(loaded));
+  auto largest = [loaded](const std::vector<double>& v) {
+    return *std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(loaded));
+  };
+  r.peak_stress_3wave_Pa = largest(c.stress_3wave_Pa);
+  r.max_strain_3wave = largest(c.strain);
+  r.peak_stress_1wave_Pa = largest(c.stress_1wave_Pa);
+  r.max_strain_1wave = largest(c.strain_1wave);
+  r.peak_stress_Pa = one_wave ? r.peak_stress_1wave_Pa : r.peak_stress_3wave_Pa;
+  r.max_strain = one_wave ? r.max_strain_1wave : r.max_strain_3wave;
+  if (loaded <= strain_max && r.max_strain < (1 - kLoadDropStrainShortfall) * r.record_max_strain) {
+    r.loading_cut_short = true;
+    r.warnings.push_back(
+        fmt("the curve ends at a load drop at strain %.3g, short of the record's strain maximum "
+            "%.3g (%.3g us after the window start): a specimen that broke there, or set "
+            "measurement.load_drop to false to keep the whole loading",
+            r.max_strain, r.record_max_strain, (r.time_s[loaded - 1] - r.time_s[0]) * 1e6));
+  }
+  judge_strain_rate(rate, loaded, r);
+  if (options.rate_window) {
+    const RateWindow& w = *options.rate_window;
+    double sum = 0;
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < loaded; ++i) {
+      const double x = w.by_strain ? strain[i] : r.time_s[i];
+      if (x >= w.from && x <= w.to) sum += rate[i], ++count;
+    }
+    if (count == 0)
+      throw input_error(
+          options.scene_file, "measurement.rate_window",
+          w.by_strain ? fmt("strain %.4g to %.4g", w.from, w.to)
+                      : fmt("%.6g to %.6g us", w.from * 1e6, w.to * 1e6),
+          w.by_strain ? fmt("a range inside the loading (strain 0 to %.4g)", r.max_strain)
+                      : fmt("a range inside the loading (faces' clock, as curve.csv's time_s: "
+                            "%.6g to %.6g us)",
+                            r.time_s[0] * 1e6, r.time_s[loaded - 1] * 1e6));
+    r.window_strain_rate_1_s = sum / static_cast<double>(count);
+  }
+  // What the reflected pulse's onset offset does to the stress when it is not applied: the
+  // largest change of the 3-wave stress, ½ E_f A_f |Δε_R| / A_s, over the transmitted face's
+  // loading (1-wave stress ≥ 20 % of its peak), as a fraction of the 1-wave peak (§6).
+  r.area_ratio = k.front.area_m2 / k.specimen.area_m2;
+  const double s1_peak = *std::max_element(s1.begin(), s1.end());
+  std::vector<char> transmitted_loaded(m);
+  for (std::size_t i = 0; i < m; ++i)
+    transmitted_loaded[i] = s1[i] >= kMeanForceForEquilibrium * s1_peak;
+  auto stress_change = [&](const std::vector<double>& pulse, const BarSide& bar, double shift_s) {
+    const double change = largest_change_on_shift(pulse, shift_s / dt, transmitted_loaded);
+    return 0.5 * bar.youngs_modulus_Pa * bar.area_m2 * change / (k.specimen.area_m2 * s1_peak);
+  };
+  const bool stress_scale = s1_peak > 0;
+  if (stress_scale && r.reflected_onset_offset_s)
+    r.reflected_offset_stress_error =
+        stress_change(r.reflected, k.front, *r.reflected_onset_offset_s);
+  const double tol_samples = kAlignmentSamples * dt;
+  if (stress_scale && r.reflected_offset_stress_error && !options.windows.reflected &&
+      !r.reflected_at_onset && std::abs(*r.reflected_onset_offset_s) > tol_samples &&
+      *r.reflected_offset_stress_error > kShiftStressError) {
+    const std::string effect =
+        fmt("at this bar/specimen area ratio (%.3g) and strain rate (%.4g 1/s) that offset "
+            "changes the 3-wave stress by up to ",
+            r.area_ratio,
+            r.strain_rate_has_plateau ? r.plateau_strain_rate_1_s : r.mean_strain_rate_1_s) +
+        percent(*r.reflected_offset_stress_error) +
+        " of the 1-wave peak (the 2-wave stress twice that): if the onsets are right (a trigger "
+        "delay, a gauge position), set \"align\": \"onsets\"; \"primary\": \"1-wave\" "
+        "reports a stress that does not use the reflected pulse";
+    // One warning per offset: added to the gauge-position warning when check_alignment gave one.
+    const std::string position = "gauge \"" + k.incident_gauge + "\": the reflected pulse starts";
+    const auto given = std::find_if(r.warnings.begin(), r.warnings.end(),
+                                    [&](const auto& w) { return w.rfind(position, 0) == 0; });
+    if (given != r.warnings.end())
+      *given += "; " + effect;
+    else
+      r.warnings.push_back(
+          fmt("the reflected pulse starts %.3g us ", std::abs(*r.reflected_onset_offset_s) * 1e6) +
+          (*r.reflected_onset_offset_s < 0 ? "earlier" : "later") +
+          " than the gauge distances and wave speed put it; " + effect);
+  }
+  // A hand-set reflected or transmitted window is a time shift: one whose start is far from the
+  // detected onset moves the pulse by that much (docs/scene-format.md).
+  auto check_window = [&](const std::optional<TimeWindow>& w, const std::string& name,
+                          const std::optional<double>& onset_s, const std::vector<double>& pulse,
+                          const BarSide& bar) {
+    if (!w || !onset_s || !stress_scale) return;
+    const double off = t[nearest_sample(t, w->start_s)] - *onset_s;
+    if (std::abs(off) <= tol_samples) return;
+    const double error = stress_change(pulse, bar, -off);
+    if (error <= kShiftStressError) return;
+    r.warnings.push_back(
+        "measurement.windows." + name + fmt(" starts %.3g us ", std::abs(off) * 1e6) +
+        (off < 0 ? "before" : "after") +
+        fmt(" the pulse's detected onset (%.6g us): a window is a time shift, so it moves the "
+            "pulse %.3g us at the faces, which changes the 3-wave stress by up to ",
+            *onset_s * 1e6, std::abs(off) * 1e6) +
+        percent(error) +
+        " of the 1-wave peak; start the window at the onset, or leave it to detection");
+  };
+  check_window(options.windows.reflected, "reflected", reflected_onset_s, r.reflected, k.front);
+  check_window(options.windows.transmitted, "transmitted", transmitted_onset_s, r.transmitted,
+               k.back);
   double peak_force = 0;
   for (std::size_t i = 0; i < loaded; ++i)
     peak_force = std::max(peak_force, c.force_front_N[i] + c.force_back_N[i]);
   r.equilibrium = judge_equilibrium(c, r.time_s, loaded, peak_force);
-  check_one_and_two_wave(c, loaded, peak_force, options.tension, r.warnings);
+  check_one_and_two_wave(c, loaded, r, options, r.warnings);
   if (r.equilibrium.holds_from_s)
     r.time_to_equilibrium_s = *r.equilibrium.holds_from_s - r.time_s[0];
   return r;

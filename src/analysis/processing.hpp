@@ -30,6 +30,9 @@ struct KolskySetup {
   // Travel time per metre of bar beyond 1/c0, from the lab's calibrated reflected time
   // (measurement.reflected_time; 0 without one): what the real bars add to the 1D model's travel.
   double excess_delay_s_per_m = 0;
+  // A bar between the striker and the incident bar (a pulse shaper): the incident plateau is then
+  // set by the shaper's flow, and the velocity inferred from it means nothing.
+  bool pulse_shaper = false;
 };
 
 // A calibrated reflected time further than this fraction from 2d/c0 is not the same bar or gauge:
@@ -40,9 +43,19 @@ inline constexpr double kReflectedTimeRange = 0.05;
 // gauges with a signal in `available` are used. Throws InputError naming the scene if impossible.
 KolskySetup resolve_setup(const Scene& scene, const std::vector<std::string>& available);
 
-// The curve ends at the strain maximum or where the 3-wave stress falls below half its peak after
-// the peak (fracture, or the end of the pulse), whichever comes first.
+// The curve ends at the strain maximum or, earlier, where the 1-wave stress falls below half the
+// peak it had reached and stays there (fracture, or the end of the pulse), docs/methods.md §6.
 inline constexpr double kDefaultLoadDrop = 0.5;
+
+// A load drop that ends the curve with less than 95 % of the record's strain maximum reached is
+// said: the strain gained after the drop at the end of an ordinary pulse (its unloading ramp,
+// while the reflected pulse dies out) is a few percent of the total.
+inline constexpr double kLoadDropStrainShortfall = 0.05;
+
+// A shift of a pulse at the faces that changes the 3-wave stress by more than 5 % of the 1-wave
+// peak is warned about: beyond the 5 % spread of the two face forces accepted as equilibrium, it
+// changes what is read as the specimen's response.
+inline constexpr double kShiftStressError = 0.05;
 
 struct ProcessingOptions {
   DispersionSpec dispersion;            // correction on/off, amplitude factors, cut-off
@@ -52,6 +65,9 @@ struct ProcessingOptions {
   // A tension test (split Hopkinson tension bar): the signals are given negated, so the
   // reduction's "compression positive" reads "tension positive"; named in warnings.
   bool tension = false;
+  Alignment align = Alignment::kGeometry;                   // measurement.align
+  PrimaryReduction primary = PrimaryReduction::kThreeWave;  // measurement.primary
+  std::optional<RateWindow> rate_window;                    // measurement.rate_window
 };
 
 struct WindowReport {
@@ -78,17 +94,32 @@ struct ProcessingResult {
   std::optional<double> reflected_onset_offset_s;    // detected − expected (alignment check)
   std::optional<double> transmitted_onset_offset_s;  // detected − expected (alignment check)
   double transmitted_rise_s = 0;                     // onset to half peak of the transmitted front
-  bool alignment_suspect = false;      // an onset is off: a gauge position or wave speed is wrong
-  double incident_plateau_strain = 0;  // compressive strain magnitude at the face
+  bool alignment_suspect = false;  // an onset is off: a gauge position or wave speed is wrong
+  bool reflected_at_onset = false, transmitted_at_onset = false;  // align "onsets" applied
+  // Largest change of the 3-wave stress over the loading, as a fraction of the 1-wave peak, that
+  // moving the reflected pulse by its onset offset makes (docs/methods.md §6); null without one.
+  std::optional<double> reflected_offset_stress_error;
+  double area_ratio = 0;                     // incident bar over specimen cross-section
+  std::vector<std::string> inverted_gauges;  // first pulse of the other polarity than the test's
+  double incident_plateau_strain = 0;        // compressive strain magnitude at the face
   double inferred_striker_velocity_m_s = 0;
   double plateau_strain_rate_1_s = 0;       // level of the top part of the rate (plateau_level)
   bool strain_rate_has_plateau = false;     // the rate stays at that level long enough to quote it
   double strain_rate_plateau_fraction = 0;  // longest run within ±10 % / samples with rate > 0
   double mean_strain_rate_1_s = 0;          // over the loading, where the rate is positive
+  std::optional<double> window_strain_rate_1_s;  // mean over options.rate_window
   std::size_t loading_end = 0;  // curve samples [0, loading_end) are the loading; the rest is cut
   std::string loading_end_how;
+  double record_max_strain = 0;    // of the primary strain over the whole face window
+  bool loading_cut_short = false;  // a load drop ended the curve short of record_max_strain
+  // The primary reduction's figures over the loading (strain rate, peak stress, strain) ...
+  PrimaryReduction primary = PrimaryReduction::kThreeWave;
   double peak_stress_Pa = 0;
   double max_strain = 0;
+  // ... and both reductions' (3-wave: 3-wave stress and strain; 1-wave: 1-wave stress and
+  // reflected-pulse strain).
+  double peak_stress_3wave_Pa = 0, max_strain_3wave = 0;
+  double peak_stress_1wave_Pa = 0, max_strain_1wave = 0;
   Equilibrium equilibrium;
   std::optional<double> time_to_equilibrium_s;  // holds_from_s − start of the face window
   double cutoff_Hz = 0;                         // 0 without dispersion correction

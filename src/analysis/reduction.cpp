@@ -6,6 +6,18 @@
 
 namespace shpb {
 
+void true_values(std::span<const double> strain, std::span<const double> stress, bool tension,
+                 std::vector<double>& true_strain, std::vector<double>& true_stress) {
+  true_strain.resize(strain.size());
+  true_stress.resize(strain.size());
+  for (std::size_t i = 0; i < strain.size(); ++i) {
+    const double e = tension ? -strain[i] : strain[i];  // shortening positive
+    true_strain[i] = e < 1 ? -std::log1p(-e) : -std::log(1e-12);
+    true_stress[i] = stress[i] * (1 - e);
+    if (tension) true_strain[i] = -true_strain[i];
+  }
+}
+
 Curve reduce_pulses(std::span<const double> ei, std::span<const double> er,
                     std::span<const double> et, std::span<const double> fi,
                     std::span<const double> fr, std::span<const double> ft, double dt,
@@ -15,9 +27,9 @@ Curve reduce_pulses(std::span<const double> ei, std::span<const double> er,
     throw std::invalid_argument("reduce_pulses: pulses of different lengths");
   Curve c;
   auto resize = [n](std::vector<double>& v) { v.assign(n, 0.0); };
-  for (auto* v : {&c.strain_rate_1_s, &c.strain_rate_1wave_1_s, &c.strain, &c.force_front_N,
-                  &c.force_back_N, &c.stress_1wave_Pa, &c.stress_2wave_Pa, &c.stress_3wave_Pa,
-                  &c.true_strain, &c.true_stress_Pa, &c.equilibrium_ratio})
+  for (auto* v : {&c.strain_rate_1_s, &c.strain_rate_1wave_1_s, &c.strain_1wave, &c.strain,
+                  &c.force_front_N, &c.force_back_N, &c.stress_1wave_Pa, &c.stress_2wave_Pa,
+                  &c.stress_3wave_Pa, &c.true_strain, &c.true_stress_Pa, &c.equilibrium_ratio})
     resize(*v);
   double peak_sum = 0;
   for (std::size_t i = 0; i < n; ++i) {
@@ -33,16 +45,15 @@ Curve reduce_pulses(std::span<const double> ei, std::span<const double> er,
     c.stress_2wave_Pa[i] = c.force_front_N[i] / s.area_m2;
     c.stress_3wave_Pa[i] = 0.5 * (c.force_front_N[i] + c.force_back_N[i]) / s.area_m2;
     peak_sum = std::max(peak_sum, std::abs(c.force_front_N[i] + c.force_back_N[i]));
-    if (i > 0)
+    if (i > 0) {
       c.strain[i] = c.strain[i - 1] + 0.5 * dt * (c.strain_rate_1_s[i] + c.strain_rate_1_s[i - 1]);
+      c.strain_1wave[i] = c.strain_1wave[i - 1] +
+                          0.5 * dt * (c.strain_rate_1wave_1_s[i] + c.strain_rate_1wave_1_s[i - 1]);
+    }
   }
   const double floor = std::max(kEquilibriumFloor * peak_sum, 1e-300);
+  true_values(c.strain, c.stress_3wave_Pa, false, c.true_strain, c.true_stress_Pa);
   for (std::size_t i = 0; i < n; ++i) {
-    const double e = c.strain[i];
-    // Constant volume, compression positive (docs/methods.md §6); defined while the specimen has
-    // length.
-    c.true_strain[i] = e < 1 ? -std::log1p(-e) : -std::log(1e-12);
-    c.true_stress_Pa[i] = c.stress_3wave_Pa[i] * (1 - e);
     const double sum = std::abs(c.force_front_N[i] + c.force_back_N[i]);
     c.equilibrium_ratio[i] =
         2 * std::abs(c.force_front_N[i] - c.force_back_N[i]) / std::max(sum, floor);

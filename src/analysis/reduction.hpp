@@ -22,20 +22,27 @@ struct SpecimenGeometry {
 struct Curve {
   std::vector<double> strain_rate_1_s;        // 3-wave: (v1 − v2)/L_s
   std::vector<double> strain_rate_1wave_1_s;  // 2 c0 ε_R / L_s
-  std::vector<double> strain;                 // ∫ 3-wave strain rate dt (trapezoid), engineering
-  std::vector<double> force_front_N;          // P1 = −E A (ε_I + ε_R), compression positive
-  std::vector<double> force_back_N;           // P2 = −E A ε_T
-  std::vector<double> stress_1wave_Pa;        // P2 / A_s
-  std::vector<double> stress_2wave_Pa;        // P1 / A_s
-  std::vector<double> stress_3wave_Pa;        // (P1 + P2) / (2 A_s)
-  std::vector<double> true_strain;            // −ln(1 − ε_e)
-  std::vector<double> true_stress_Pa;         // σ_e (1 − ε_e), from the 3-wave stress
-  std::vector<double> equilibrium_ratio;      // R = 2|P1 − P2| / |P1 + P2|
+  std::vector<double> strain_1wave;       // ∫ 1-wave strain rate dt: the reflected-pulse strain
+  std::vector<double> strain;             // ∫ 3-wave strain rate dt (trapezoid), engineering
+  std::vector<double> force_front_N;      // P1 = −E A (ε_I + ε_R), compression positive
+  std::vector<double> force_back_N;       // P2 = −E A ε_T
+  std::vector<double> stress_1wave_Pa;    // P2 / A_s
+  std::vector<double> stress_2wave_Pa;    // P1 / A_s
+  std::vector<double> stress_3wave_Pa;    // (P1 + P2) / (2 A_s)
+  std::vector<double> true_strain;        // −ln(1 − ε_e)
+  std::vector<double> true_stress_Pa;     // σ_e (1 − ε_e), from the 3-wave stress
+  std::vector<double> equilibrium_ratio;  // R = 2|P1 − P2| / |P1 + P2|
 };
 
 // Below this fraction of the peak |P1 + P2| the ratio R is meaningless (0/0 before the pulse
 // arrives); its denominator is floored there so R stays finite.
 inline constexpr double kEquilibriumFloor = 0.02;
+
+// True strain and stress of an engineering pair at constant volume (docs/methods.md §6):
+// compression −ln(1 − e) and σ(1 − e), tension ln(1 + e) and σ(1 + e); defined while the specimen
+// has length (a compressive e ≥ 1 gives a large finite true strain, refused by `process`).
+void true_values(std::span<const double> strain, std::span<const double> stress, bool tension,
+                 std::vector<double>& true_strain, std::vector<double>& true_stress);
 
 // `force_incident`/`force_reflected`/`force_transmitted` are the strains to use for forces (the
 // same as the kinematic ones unless Tyas–Pope m1·m2 factors were applied).

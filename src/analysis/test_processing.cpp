@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "analysis/reduction.hpp"
+
 namespace shpb {
 
 ProcessingOptions processing_options(const Scene& scene) {
@@ -14,6 +16,9 @@ ProcessingOptions processing_options(const Scene& scene) {
   o.windows = m.windows;
   o.load_drop = m.load_drop.value_or(kDefaultLoadDrop);
   o.tension = m.tension;
+  o.align = m.align;
+  o.primary = m.primary;
+  o.rate_window = m.rate_window;
   return o;
 }
 
@@ -37,16 +42,17 @@ ProcessedTest process_test(const Scene& scene, const GaugeSignals& signals,
       r.curve, signals.dt_s, {specimen.length_m, specimen.area_m2, specimen.material.density_kg_m3},
       t.corrections);
   if (t.corrections.friction || t.corrections.inertia)
-    r.peak_stress_Pa =
+    r.peak_stress_Pa = r.peak_stress_3wave_Pa =
         *std::max_element(r.curve.stress_3wave_Pa.begin(), r.curve.stress_3wave_Pa.end());
-  if (options.tension) {
+  if (options.tension)
     for (auto* v : {&r.incident, &r.reflected, &r.transmitted})
       for (double& x : *v) x = -x;
+  const bool one_wave = options.primary == PrimaryReduction::kOneWave;
+  if (options.tension || one_wave) {  // true values of the primary reduction (docs/methods.md §6)
     Curve& c = r.curve;
-    for (std::size_t i = 0; i < c.strain.size(); ++i) {
-      c.true_strain[i] = std::log1p(c.strain[i]);  // elongation: ln(1 + e)
-      c.true_stress_Pa[i] = c.stress_3wave_Pa[i] * (1 + c.strain[i]);
-    }
+    true_values(one_wave ? c.strain_1wave : c.strain,
+                one_wave ? c.stress_1wave_Pa : c.stress_3wave_Pa, options.tension, c.true_strain,
+                c.true_stress_Pa);
   }
   return t;
 }

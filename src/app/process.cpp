@@ -56,7 +56,7 @@ bool all_finite(const std::vector<double>& v) {
 std::string reduction_failure(const ProcessingResult& r) {
   const Curve& c = r.curve;
   for (const auto* v : {&c.strain_rate_1_s, &c.strain, &c.stress_3wave_Pa, &c.true_strain,
-                        &c.true_stress_Pa, &c.equilibrium_ratio})
+                        &c.true_stress_Pa, &c.equilibrium_ratio, &c.strain_1wave})
     if (!all_finite(*v)) return "process: the reduction produced a non-finite value";
   if (c.strain.size() && *std::max_element(c.strain.begin(), c.strain.end()) >= 1)
     return "process: engineering strain reached 1 (the specimen would have no length "
@@ -140,14 +140,27 @@ int run_process(const ProcessArgs& args) {
   const ProcessOutcome o = process_scene(scene, args.signals);
   write_process_outputs(o, scene, args.scene.string(), args.output);
   const ProcessingResult& r = o.result;
-  if (!args.quiet)
+  if (!args.quiet) {
+    char striker[80], rate[120];
+    if (o.setup.pulse_shaper)
+      std::snprintf(striker, sizeof striker, "striker not inferred (pulse shaper)");
+    else
+      std::snprintf(striker, sizeof striker, "striker ≈ %.4g m/s (inferred)",
+                    r.inferred_striker_velocity_m_s);
+    if (r.window_strain_rate_1_s)
+      std::snprintf(rate, sizeof rate, "mean strain rate over the rate window %.4g 1/s",
+                    *r.window_strain_rate_1_s);
+    else
+      std::snprintf(rate, sizeof rate, "%s strain rate %.4g 1/s",
+                    r.strain_rate_has_plateau ? "plateau" : "no plateau: mean",
+                    r.strain_rate_has_plateau ? r.plateau_strain_rate_1_s : r.mean_strain_rate_1_s);
     std::fprintf(stderr,
-                 "process: window %.6g–%.6g s at the faces; striker ≈ %.4g m/s (inferred); %s "
-                 "strain rate %.4g 1/s; peak 3-wave stress %.4g MPa -> %s\n",
-                 r.face_start_s, r.face_end_s, r.inferred_striker_velocity_m_s,
-                 r.strain_rate_has_plateau ? "plateau" : "no plateau: mean",
-                 r.strain_rate_has_plateau ? r.plateau_strain_rate_1_s : r.mean_strain_rate_1_s,
+                 "process: window %.6g–%.6g s at the faces; %s; %s; peak %s stress %.4g MPa -> "
+                 "%s\n",
+                 r.face_start_s, r.face_end_s, striker, rate,
+                 std::string(enum_name(kPrimaryNames, o.options.primary)).c_str(),
                  r.peak_stress_Pa / 1e6, args.output.string().c_str());
+  }
   return 0;
 }
 
@@ -193,6 +206,11 @@ ProcessOutcome process_scene(const Scene& scene,
           scene.file.string(), "measurement.channels", "(missing)",
           "a list of {\"gauge\", \"column\", \"unit\", ...} to process measured signals");
   }
+  if (options.primary == PrimaryReduction::kOneWave && scene.measurement &&
+      (scene.measurement->corrections.friction || scene.measurement->corrections.inertia))
+    throw input_error(scene.file.string(), "measurement.primary", "\"1-wave\"",
+                      "the friction and inertia corrections apply to the 3-wave stress: use "
+                      "\"primary\": \"3-wave\" with measurement.corrections, or drop them");
   // What was assumed is said even with --quiet (which silences progress only), and as soon as
   // it is known: before any later error stops the run.
   GaugeSignals& signals = o.signals;
@@ -219,6 +237,7 @@ void write_process_outputs(const ProcessOutcome& o, const Scene& scene,
   const MeasurementSpec& m = o.measurement;
   const GaugeSignals& signals = o.signals;
   const ProcessingResult& r = o.result;
+  const bool one_wave = o.options.primary == PrimaryReduction::kOneWave;
   std::vector<std::filesystem::path> inputs = scene_inputs(scene);
   inputs.push_back(m.file);
   for (const ChannelSpec& c : m.channels) inputs.push_back(c.file);
@@ -249,16 +268,44 @@ void write_process_outputs(const ProcessOutcome& o, const Scene& scene,
     throw NumericalError(o.failure + " (pulses.csv written to " + output.string() + ")");
   }
   {
+    // The primary reduction's rate, strain, stress and true values lead (docs/outputs.md).
     const Curve& c = r.curve;
-    CsvWriter w(out.file("curve.csv"),
-                {"time_s", "strain_rate_1_s", "strain", "stress_1wave_Pa", "stress_2wave_Pa",
-                 "stress_3wave_Pa", "true_strain", "true_stress_Pa", "equilibrium_ratio",
-                 "strain_rate_1wave_1_s", "force_front_N", "force_back_N"});
-    for (std::size_t i = 0; i < r.loading_end; ++i)
-      w.row({r.time_s[i], c.strain_rate_1_s[i], c.strain[i], c.stress_1wave_Pa[i],
-             c.stress_2wave_Pa[i], c.stress_3wave_Pa[i], c.true_strain[i], c.true_stress_Pa[i],
-             c.equilibrium_ratio[i], c.strain_rate_1wave_1_s[i], c.force_front_N[i],
-             c.force_back_N[i]});
+    using Column = std::pair<const char*, const std::vector<double>*>;
+    std::vector<Column> columns = {{"time_s", &r.time_s},
+                                   {"strain_rate_1_s", &c.strain_rate_1_s},
+                                   {"strain", &c.strain},
+                                   {"stress_1wave_Pa", &c.stress_1wave_Pa},
+                                   {"stress_2wave_Pa", &c.stress_2wave_Pa},
+                                   {"stress_3wave_Pa", &c.stress_3wave_Pa},
+                                   {"true_strain", &c.true_strain},
+                                   {"true_stress_Pa", &c.true_stress_Pa},
+                                   {"equilibrium_ratio", &c.equilibrium_ratio},
+                                   {"strain_rate_1wave_1_s", &c.strain_rate_1wave_1_s},
+                                   {"force_front_N", &c.force_front_N},
+                                   {"force_back_N", &c.force_back_N},
+                                   {"strain_1wave", &c.strain_1wave}};
+    if (one_wave)
+      columns = {{"time_s", &r.time_s},
+                 {"strain_rate_1wave_1_s", &c.strain_rate_1wave_1_s},
+                 {"strain_1wave", &c.strain_1wave},
+                 {"stress_1wave_Pa", &c.stress_1wave_Pa},
+                 {"true_strain", &c.true_strain},
+                 {"true_stress_Pa", &c.true_stress_Pa},
+                 {"strain_rate_1_s", &c.strain_rate_1_s},
+                 {"strain", &c.strain},
+                 {"stress_2wave_Pa", &c.stress_2wave_Pa},
+                 {"stress_3wave_Pa", &c.stress_3wave_Pa},
+                 {"equilibrium_ratio", &c.equilibrium_ratio},
+                 {"force_front_N", &c.force_front_N},
+                 {"force_back_N", &c.force_back_N}};
+    std::vector<std::string> header;
+    for (const auto& [name, v] : columns) header.push_back(name);
+    CsvWriter w(out.file("curve.csv"), header);
+    std::vector<double> row(columns.size());
+    for (std::size_t i = 0; i < r.loading_end; ++i) {
+      for (std::size_t j = 0; j < columns.size(); ++j) row[j] = (*columns[j].second)[i];
+      w.row(row);
+    }
     w.close();
   }
   write_json(out, "summary.json", process_summary(o, scene, scene_display));
@@ -275,6 +322,7 @@ nlohmann::json process_summary(const ProcessOutcome& o, const Scene& scene,
   const SpecimenCorrections& corrections = o.corrections;
   const CorrectionReport& removed = o.removed;
   const bool simulated = o.simulated;
+  const bool one_wave = options.primary == PrimaryReduction::kOneWave;
   nlohmann::json s;
   s["version"] = kVersion;
   s["command"] = "process";
@@ -293,9 +341,24 @@ nlohmann::json process_summary(const ProcessOutcome& o, const Scene& scene,
           "clock; curve.csv: ") +
       (options.tension ? "tension positive (true strain ln(1+e), true stress s(1+e))"
                        : "compression positive") +
-      ", strain and strain rate from the 3-wave reduction, true values from the 3-wave stress "
-      "(after "
-      "the corrections listed under corrections)";
+      (one_wave ? ", led by the 1-wave reduction (primary): 1-wave stress against the "
+                  "reflected-pulse strain, whose true values are given; the 3-wave columns "
+                  "follow"
+                : ", strain and strain rate from the 3-wave reduction, true values from the "
+                  "3-wave stress (after the corrections listed under corrections)");
+  s["primary"] = {
+      {"reduction", std::string(enum_name(kPrimaryNames, options.primary))},
+      {"stress", one_wave ? "stress_1wave_Pa" : "stress_3wave_Pa"},
+      {"strain", one_wave ? "strain_1wave" : "strain"},
+      {"how", one_wave ? "1-wave: transmitted-face stress P2/A_s against the strain of the "
+                         "reflected pulse, integral of 2 c0 eps_R / L_s; it does not depend on "
+                         "the alignment of the incident and reflected pulses"
+                       : "3-wave: the mean of the two face forces over A_s against the integral "
+                         "of (v1 - v2)/L_s"}};
+  s["reductions"] = {
+      {"3-wave", {{"peak_stress_Pa", r.peak_stress_3wave_Pa}, {"max_strain", r.max_strain_3wave}}},
+      {"1-wave", {{"peak_stress_Pa", r.peak_stress_1wave_Pa}, {"max_strain", r.max_strain_1wave}}},
+      {"over", "the loading (the rows of curve.csv)"}};
   nlohmann::json disp = {
       {"correction", std::string(enum_name(kCorrectionNames, options.dispersion.correction))},
       {"amplitude_factors", options.dispersion.amplitude_factors}};
@@ -319,29 +382,65 @@ nlohmann::json process_summary(const ProcessOutcome& o, const Scene& scene,
                                                  ? nlohmann::json(*r.transmitted_onset_offset_s)
                                                  : nlohmann::json()},
       {"suspect", r.alignment_suspect},
+      {"align", std::string(enum_name(kAlignmentNames, options.align))},
+      {"applied",
+       {{"reflected",
+         r.reflected_at_onset ? "onset" : (options.windows.reflected ? "window" : "geometry")},
+        {"transmitted", r.transmitted_at_onset
+                            ? "onset"
+                            : (options.windows.transmitted ? "window" : "geometry")}}},
+      {"area_ratio", r.area_ratio},
+      {"reflected_offset_3wave_stress_error", r.reflected_offset_stress_error
+                                                  ? nlohmann::json(*r.reflected_offset_stress_error)
+                                                  : nlohmann::json()},
       {"how",
-       "incident forward and reflected/transmitted backward by their gauge distances over "
-       "c0 (dispersion-corrected); the detected reflected onset is reported, not applied "
-       "(onset picking on a dispersed front is less accurate than the geometry)"}};
+       std::string("incident forward and reflected/transmitted backward by their gauge distances "
+                   "over c0 (dispersion-corrected)") +
+           (options.align == Alignment::kOnsets
+                ? "; with align \"onsets\" the reflected and transmitted pulses are shifted "
+                  "further so that their detected onsets fall where geometry expects them"
+                : "; the detected onsets are reported, not applied (align \"geometry\")") +
+           ". reflected_offset_3wave_stress_error: the largest change of the 3-wave stress, as a "
+           "fraction of the 1-wave peak, that moving the reflected pulse by its onset offset "
+           "makes where the 1-wave stress is >= 20 % of its peak"}};
   s["incident_plateau_strain"] = r.incident_plateau_strain;
   s["striker_velocity_m_s"] = {
-      {"inferred", r.inferred_striker_velocity_m_s},
+      {"inferred",
+       setup.pulse_shaper ? nlohmann::json() : nlohmann::json(r.inferred_striker_velocity_m_s)},
+      {"meaningful", !setup.pulse_shaper},
       {"scene",
        setup.striker_velocity_m_s ? nlohmann::json(*setup.striker_velocity_m_s) : nlohmann::json()},
-      {"how", "incident plateau at the front face: V = E A eps (Z_s + Z_b)/(Z_s Z_b)"}};
+      {"how", setup.pulse_shaper
+                  ? "not inferred: a pulse shaper lies between the striker and the incident bar, "
+                    "so the incident plateau is set by the shaper's flow, not by the striker's "
+                    "impedance"
+                  : "incident plateau at the front face: V = E A eps (Z_s + Z_b)/(Z_s Z_b)"}};
   s["plateau_strain_rate_1_s"] =
       r.strain_rate_has_plateau ? nlohmann::json(r.plateau_strain_rate_1_s) : nlohmann::json();
   s["strain_rate"] = {
       {"plateau_1_s", s["plateau_strain_rate_1_s"]},
       {"plateau_fraction_of_loading", r.strain_rate_plateau_fraction},
       {"mean_over_loading_1_s", r.mean_strain_rate_1_s},
+      {"reduction", std::string(enum_name(kPrimaryNames, options.primary))},
+      {"window",
+       !options.rate_window ? nlohmann::json()
+       : options.rate_window->by_strain
+           ? nlohmann::json({{"strain", {options.rate_window->from, options.rate_window->to}}})
+           : nlohmann::json({{"time_s", {options.rate_window->from, options.rate_window->to}}})},
+      {"mean_over_window_1_s",
+       r.window_strain_rate_1_s ? nlohmann::json(*r.window_strain_rate_1_s) : nlohmann::json()},
       {"how",
        "plateau: the longest run of samples within +-10 % of the rate's plateau level (median of "
        "the samples above half its 95th percentile) covers at least 30 % of the loading (samples "
-       "with a positive rate); otherwise null and only the mean is quoted"}};
+       "with a positive rate); otherwise null and only the mean is quoted. window: "
+       "measurement.rate_window, the strain or time range (faces' clock) over which "
+       "mean_over_window_1_s is the mean rate; of the primary reduction"}};
   s["end_of_loading"] = {{"time_s", r.time_s[r.loading_end - 1]},
                          {"how", r.loading_end_how},
                          {"curve_rows", r.loading_end},
+                         {"strain_reached", r.max_strain},
+                         {"record_max_strain", r.record_max_strain},
+                         {"cut_short", r.loading_cut_short},
                          {"note", "curve.csv ends here; pulses.csv keeps the whole window"}};
   s["peak_stress_Pa"] = r.peak_stress_Pa;
   s["max_strain"] = r.max_strain;

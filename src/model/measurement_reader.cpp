@@ -37,6 +37,32 @@ TimeWindow read_window(const JsonValue& v) {
   return w;
 }
 
+// {"strain": [from, to]} (engineering strain, 0 ≤ from < to) or {"time": [from, to]} (times).
+RateWindow read_rate_window(const JsonValue& v) {
+  const auto o = v.object({"strain", "time"});
+  const auto strain = o.get("strain"), time = o.get("time");
+  if (strain.has_value() == time.has_value())
+    throw v.error(
+        "expected {\"strain\": [from, to]} or {\"time\": [from, to]}, e.g. {\"strain\": "
+        "[0.05, 0.2]}");
+  RateWindow w;
+  w.by_strain = strain.has_value();
+  const JsonValue& range = strain ? *strain : *time;
+  const auto items = range.array();
+  if (items.size() != 2)
+    throw range.error(strain ? "expected [from, to], e.g. [0.05, 0.2]"
+                             : "expected [from, to], e.g. [\"260 us\", \"300 us\"]");
+  if (w.by_strain) {
+    w.from = items[0].quantity_in(Dimension::kDimensionless, 0, 1, false, true);
+    w.to = items[1].quantity_in(Dimension::kDimensionless, 0, 1, false, true);
+  } else {
+    w.from = items[0].quantity(Dimension::kTime);
+    w.to = items[1].quantity(Dimension::kTime);
+  }
+  if (!(w.to > w.from)) throw range.error("the end must come after the start");
+  return w;
+}
+
 ChannelSpec read_channel(const JsonValue& v, const std::filesystem::path& scene_dir,
                          const std::vector<std::string>& gauges) {
   const auto o = v.object({"gauge", "file", "column", "unit", "bridge", "scale", "invert"});
@@ -100,17 +126,24 @@ MeasurementSpec read_measurement(const JsonValue& value, const std::filesystem::
                                  const std::vector<std::string>& gauges) {
   const auto o = value.object({"file", "format", "time", "channels", "dispersion", "windows",
                                "striker_velocity", "notes", "load_drop", "sheet", "test",
-                               "corrections", "reflected_time"});
+                               "corrections", "reflected_time", "align", "primary", "rate_window"});
   MeasurementSpec m;
+  // The reduction's choices, which also apply to `process --signals` of simulated gauges.
+  if (auto a = o.get("align")) m.align = enum_from(*a, kAlignmentNames);
+  if (auto p = o.get("primary")) m.primary = enum_from(*p, kPrimaryNames);
+  if (auto w = o.get("rate_window")) m.rate_window = read_rate_window(*w);
   if (auto c = o.get("corrections")) {
     const auto co = c->object({"friction", "inertia"});
     // Coulomb coefficient of the faces, as contact.friction (docs/methods.md §8).
     if (auto f = co.get("friction"))
       m.corrections.friction = f->quantity_in(Dimension::kDimensionless, 0, 1, false, true);
     if (auto i = co.get("inertia")) m.corrections.inertia = i->boolean();
-    // Corrections alone (for `process --signals` of simulated gauges): no signals to read.
-    if (!o.get("channels") && !o.get("file")) return m;
   }
+  // Corrections or the reduction's choices alone (for `process --signals` of simulated gauges):
+  // no signals to read.
+  if (!o.get("channels") && !o.get("file") &&
+      (o.get("corrections") || o.get("align") || o.get("primary") || o.get("rate_window")))
+    return m;
   if (auto f = o.get("file")) m.file = (scene_dir / f->name()).lexically_normal();
   if (auto f = o.get("format")) m.format = enum_from(*f, kSignalFormatNames);
   if (auto t = o.get("time")) {

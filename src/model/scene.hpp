@@ -157,6 +157,26 @@ struct PulseWindows {  // manual windows on the signals' own clock override dete
   std::optional<TimeWindow> incident, reflected, transmitted;
 };
 
+// measurement.align: how the reflected and transmitted pulses are put on the incident pulse's clock
+// at the specimen faces (docs/methods.md §6): by the gauge distances over c0, or each at its
+// detected onset.
+enum class Alignment { kGeometry, kOnsets };
+inline constexpr EnumName<Alignment> kAlignmentNames[] = {{"geometry", Alignment::kGeometry},
+                                                          {"onsets", Alignment::kOnsets}};
+
+// measurement.primary: the reduction `curve.csv`, `summary.json` and the report lead with: the
+// 3-wave average, or the 1-wave stress (transmitted face) against the reflected-pulse strain.
+enum class PrimaryReduction { kThreeWave, kOneWave };
+inline constexpr EnumName<PrimaryReduction> kPrimaryNames[] = {
+    {"3-wave", PrimaryReduction::kThreeWave}, {"1-wave", PrimaryReduction::kOneWave}};
+
+// measurement.rate_window: the range over which the quoted mean strain rate is taken, in the
+// primary reduction's engineering strain or in time at the faces (curve.csv's time_s).
+struct RateWindow {
+  bool by_strain = true;
+  double from = 0, to = 0;
+};
+
 // Corrections `process` applies to the 3-wave curve (analysis/specimen_corrections.hpp).
 struct CorrectionsSpec {
   std::optional<double> friction;  // Coulomb μ of the specimen faces
@@ -182,6 +202,9 @@ struct MeasurementSpec {
   // The lab's calibrated reflected time of the incident bar: a pulse's round trip from the incident
   // gauge to the bar's specimen end and back, timed on the real bar (docs/scene-format.md).
   std::optional<double> reflected_time_s;
+  Alignment align = Alignment::kGeometry;
+  PrimaryReduction primary = PrimaryReduction::kThreeWave;
+  std::optional<RateWindow> rate_window;
 };
 
 struct Scene {

@@ -168,10 +168,12 @@ TEST_CASE("The epoxy file's repeated time stamps and doubtful scale are reported
   CHECK(r.err.find("time stamps repeat") != std::string::npos);
   CHECK(r.err.find("time base rebuilt from the sample interval 8e-08 s") != std::string::npos);
   CHECK(r.err.find("implausible strain scale") != std::string::npos);
-  // Rebuilt time base, two implausible scales, and the transmitted pulse ~28 µs later than the
-  // geometry puts it (the soft epoxy, or the gauge distance: said, not decided).
+  // Rebuilt time base, two implausible scales, the transmitted pulse ~28 µs later than the
+  // geometry puts it (the soft epoxy, or the gauge distance: said, not decided), and the reflected
+  // onset 0.7 µs early, which moves the 3-wave stress by more than 5 % of the 1-wave peak.
   CHECK(r.err.find("the transmitted pulse starts") != std::string::npos);
-  CHECK(summary(out)["warnings"].size() == 4);
+  CHECK(r.err.find("the reflected pulse starts 0.708 us earlier") != std::string::npos);
+  CHECK(summary(out)["warnings"].size() == 5);
 }
 
 TEST_CASE("process --signals reduces a gauges.csv written by simulate without dispersion",

@@ -55,23 +55,42 @@ def headline_html(src):
 
     if src.value("command") == "process":
         v = number("striker_velocity_m_s", "inferred")
-        if v is not None:
+        if src.value("striker_velocity_m_s", "meaningful") is False:
+            rows.append(("striker velocity (inferred)",
+                         "not meaningful: a pulse shaper sets the incident plateau"))
+        elif v is not None:
             scene_v = number("striker_velocity_m_s", "scene")
             rows.append(("striker velocity (inferred)", f"{v:.4g} m/s"
                          + (f" (scene: {scene_v:.4g} m/s)" if scene_v is not None else "")))
         plateau = number("plateau_strain_rate_1_s")
         mean = number("strain_rate", "mean_over_loading_1_s")
-        if plateau is not None:
+        window_mean = number("strain_rate", "mean_over_window_1_s")
+        if window_mean is not None:
+            lo, hi = (number("strain_rate", "window", "strain", i) for i in (0, 1))
+            t0, t1 = (number("strain_rate", "window", "time_s", i) for i in (0, 1))
+            span = (f"strain {lo:.4g}–{hi:.4g}" if lo is not None and hi is not None else
+                    f"{t0 * 1e6:.6g}–{t1 * 1e6:.6g} µs" if t0 is not None and t1 is not None
+                    else "the scene's window")
+            rows.append(("strain rate (mean over the rate window)",
+                         f"{window_mean:.4g} 1/s over {span}"))
+        elif plateau is not None:
             rows.append(("strain rate (plateau)", f"{plateau:.4g} 1/s"))
         elif mean is not None:
             rows.append(("strain rate", f"no plateau; mean over the loading {mean:.4g} 1/s"))
+        primary = src.value("primary", "reduction", kind=str) or "3-wave"
         peak = number("peak_stress_Pa")
         if peak is not None:
-            rows.append(("peak 3-wave stress", f"{peak * MPA:.4g} MPa"))
+            rows.append((f"peak {primary} stress", f"{peak * MPA:.4g} MPa"))
         strain = number("max_strain")
         if strain is not None:
             how = src.value("end_of_loading", "how", kind=str) or ""
-            rows.append(("strain at the end of loading", f"{strain:.4g} ({how})"))
+            record = number("end_of_loading", "record_max_strain")
+            if src.value("end_of_loading", "cut_short") is True and record is not None:
+                rows.append(("strain at the end of loading",
+                             f"{strain:.4g}, short of the record's strain maximum {record:.4g} "
+                             f"({how})"))
+            else:
+                rows.append(("strain at the end of loading", f"{strain:.4g} ({how})"))
         frac = number("equilibrium", "fraction_of_loaded_time")
         if frac is not None:
             t_eq = number("time_to_equilibrium_s")

@@ -27,15 +27,25 @@ def fig_pulses(src, figs):
 
 def fig_curve(src, figs, truth=None):
     t = src.table("curve.csv")
-    strain = t.numeric("strain")
+    # The primary reduction (summary.json primary) is drawn first and heaviest.
+    one_wave = src.value("primary", "reduction", kind=str) == "1-wave" and "strain_1wave" in t
+    primary = "1-wave" if one_wave else "3-wave"
+    strain = t.numeric("strain_1wave" if one_wave else "strain")
     fig, axes = new_figure(1, 2, height=4.6, width=11.0)
     ax = axes[0, 0]
-    for col, label, color in (("stress_1wave_Pa", "1-wave (transmitted)", "C2"),
-                              ("stress_2wave_Pa", "2-wave (incident + reflected)", "C1"),
-                              ("stress_3wave_Pa", "3-wave (average)", "k")):
-        if col in t:
-            ax.plot(strain * 100, t.numeric(col) * MPA, color=color,
-                    linewidth=1.6 if color == "k" else 1.0, label=label)
+    if one_wave:
+        ax.plot(strain * 100, t.numeric("stress_1wave_Pa") * MPA, color="k", linewidth=1.6,
+                label="1-wave (transmitted) against the reflected-pulse strain (primary)")
+        if "strain" in t and "stress_3wave_Pa" in t:
+            ax.plot(t.numeric("strain") * 100, t.numeric("stress_3wave_Pa") * MPA, color="0.5",
+                    linewidth=1.0, label="3-wave against the 3-wave strain")
+    else:
+        for col, label, color in (("stress_1wave_Pa", "1-wave (transmitted)", "C2"),
+                                  ("stress_2wave_Pa", "2-wave (incident + reflected)", "C1"),
+                                  ("stress_3wave_Pa", "3-wave (average)", "k")):
+            if col in t:
+                ax.plot(strain * 100, t.numeric(col) * MPA, color=color,
+                        linewidth=1.6 if color == "k" else 1.0, label=label)
     if truth is not None:
         ax.plot(truth.numeric("strain") * 100, truth.numeric("stress_Pa") * MPA, color="C4",
                 linestyle=":", linewidth=1.4, label="model truth (specimen.csv)")
@@ -46,9 +56,9 @@ def fig_curve(src, figs, truth=None):
     ax = axes[0, 1]
     if "true_strain" in t and "true_stress_Pa" in t:
         ax.plot(t.numeric("true_strain") * 100, t.numeric("true_stress_Pa") * MPA, color="k",
-                linewidth=1.4, label="true (3-wave)")
-    ax.plot(strain * 100, t.numeric("stress_3wave_Pa") * MPA, color="0.6", linewidth=1.0,
-            linestyle="--", label="engineering (3-wave)")
+                linewidth=1.4, label=f"true ({primary})")
+    ax.plot(strain * 100, t.numeric("stress_1wave_Pa" if one_wave else "stress_3wave_Pa") * MPA,
+            color="0.6", linewidth=1.0, linestyle="--", label=f"engineering ({primary})")
     if truth is not None and "true_strain" in truth and "true_stress_Pa" in truth:
         # The law as the specimen followed it: true stress at true strain (specimen.csv).
         ax.plot(truth.numeric("true_strain") * 100, truth.numeric("true_stress_Pa") * MPA,
@@ -58,8 +68,11 @@ def fig_curve(src, figs, truth=None):
     ax.set_title(src.title("True stress–strain"))
     ax.legend(loc="best", fontsize=8)
     figs.save(fig, src.png("stress_strain"), src.title("Stress–strain curves"),
-              "1-, 2- and 3-wave engineering stress against the 3-wave strain, and true stress "
-              "against true strain (curve.csv, docs/methods.md §6), compression positive"
+              ("1-wave stress against the reflected-pulse strain (the primary reduction) and "
+               "the 3-wave curve" if one_wave else
+               "1-, 2- and 3-wave engineering stress against the 3-wave strain")
+              + ", and true stress against true strain (curve.csv, docs/methods.md §6), "
+              "compression positive"
               + ("; dotted: the simulation's own specimen truth." if truth is not None else "."))
 
     time = t.numeric("time_s") * US
