@@ -36,11 +36,10 @@ void plan_end_segments(Chain& chain, const Scene& scene) {
     const int end = slow == k ? 1 : 0;
     BarModel& s = chain.bars[slow];
     const BarModel& f = chain.bars[fast];
-    // Not at the specimen's faces: its own step (adaptive or the fixed plan, §8.1) and its
-    // closed forms (radial inertia) are validated with the coupling of §3.4.
-    const bool specimen = scene.specimen && (*scene.specimen == slow || *scene.specimen == fast);
-    if (specimen || s.law || s.adaptive_step || f.adaptive_step || (end == 1 && s.dashpot_right))
-      continue;
+    // The fast bar may be the specimen on its adaptive step (§8.1): the segment takes each of its
+    // instants with the step the specimen plans there. At the specimen's faces the coupling of
+    // §3.4 is unstable near C = 1 (docs/methods.md §3.7).
+    if (s.law || s.adaptive_step || (end == 1 && s.dashpot_right)) continue;
     if (s.elements() < 2 * kSegmentElements + 2 + s.segment_elements[1 - end]) continue;
     // A light, stiff fast end: the tied pair's (k1 + k2)/(m1 + m2) well above the slow end's own
     // k1/m1 (docs/methods.md §3.6).
