@@ -144,12 +144,14 @@ void write_stability(const StabilityStudy& study, const Scene& scene, int refine
                      double wall_s, const std::filesystem::path& dir) {
   {
     std::ostringstream csv;
-    csv << "method,stiffness_factor,mass_ratio,courant,energy_growth,stable,step_ratio\n";
+    csv << "method,stiffness_factor,mass_ratio,courant,energy_growth,stable,step_ratio,"
+           "closings_after_release\n";
     for (const StabilityRow& r : study.rows)
       csv << to_string(r.point.method) << ',' << format_double(r.point.stiffness_factor) << ','
           << (r.point.method == ContactMethod::kPenalty ? "" : format_double(r.point.mass_ratio))
           << ',' << format_double(r.point.courant) << ',' << field(r.verdict.energy_growth) << ','
-          << (r.verdict.stable ? 1 : 0) << ',' << format_double(r.point.step_ratio) << '\n';
+          << (r.verdict.stable ? 1 : 0) << ',' << format_double(r.point.step_ratio) << ','
+          << r.verdict.closings_after_release << '\n';
     write_text_file(dir / "stability.csv", csv.str());
   }
   {

@@ -265,7 +265,13 @@ SimulationResult simulate(const Scene& scene, const SimulationOptions& options) 
     st.steps = s.step;
     st.courant = b.wave_speed_m_s * s.dt / b.element_length_m;
     st.node_updates = s.node_updates;
-    st.node_updates_full_model = static_cast<long long>(s.step) * b.full_nodes;
+    // An end segment's nodes step on their clock bar's instants (end_segment.hpp).
+    st.node_updates_full_model = static_cast<long long>(s.step) *
+                                 (b.full_nodes - b.segment_elements[0] - b.segment_elements[1]);
+    for (const EndSegment& seg : chain.segments)
+      if (seg.bar == i)
+        st.node_updates_full_model +=
+            static_cast<long long>(chain.states[seg.clock_bar].step) * seg.elements;
     double momentum = 0;
     for (int n = 0; n < b.nodes; ++n) momentum += b.mass_kg[n] * (s.v[n] + b.initial_velocity_m_s);
     st.final_velocity_m_s = momentum / b.total_mass_kg();

@@ -45,8 +45,12 @@ StabilityVerdict judge_stability(const Scene& probe, const StabilityPoint& point
   s.contact.method = point.method;
   s.contact.interfaces.clear();
   s.contact.penalty = {};
-  s.contact.penalty.stiffness_factor = point.stiffness_factor;
-  if (point.method != ContactMethod::kPenalty) s.contact.penalty.mass_ratio = point.mass_ratio;
+  // Localized bipenalty with no stiffness: the rigid-link limit (docs/methods.md §3.3).
+  const bool rigid_limit =
+      point.method == ContactMethod::kLocalizedBipenalty && point.stiffness_factor == 0;
+  if (!rigid_limit) s.contact.penalty.stiffness_factor = point.stiffness_factor;
+  if (point.method != ContactMethod::kPenalty && !rigid_limit)
+    s.contact.penalty.mass_ratio = point.mass_ratio;
   s.contact.penalty.tied = point.tied;
   // A tied link started at ġ = −V would hold ½ ε_m V² from nothing (the switching energy of
   // docs/methods.md §2), far above the bars' energy for a large mass penalty: the tied probe moves
@@ -71,6 +75,8 @@ StabilityVerdict judge_stability(const Scene& probe, const StabilityPoint& point
   if (!total.empty() && total.front() > 0)
     for (double e : total) v.energy_growth = std::max(v.energy_growth, e / total.front());
   v.stable = r.stable && v.energy_growth <= kUnstableEnergyGrowth;
+  for (const InterfaceStatistics& i : r.interface_statistics)
+    v.closings_after_release += std::max(0L, i.activations - 1);
   return v;
 }
 

@@ -24,6 +24,9 @@ Scene stability_probe_scene(const Scene& scene);
 struct StabilityVerdict {
   double energy_growth = 1;  // max total energy / initial (over what was computed)
   bool stable = true;
+  // Closings of the probe's contact after its first: every one comes after the striker's first
+  // release (unloading), so this counts the contact's rattle (docs/methods.md §3.7).
+  long closings_after_release = 0;
 };
 
 // Runs `probe` with the point's method, penalty parameters and Courant number.

@@ -191,6 +191,7 @@ nlohmann::ordered_json part_json(const StudyPlan& plan, const StudyResults& resu
       } else {
         j["energy_growth"] = number(s.verdict.energy_growth);
         j["stable"] = s.verdict.stable;
+        j["closings_after_release"] = s.verdict.closings_after_release;
       }
     }
     out.push_back(j);
@@ -232,6 +233,7 @@ void read_part(const nlohmann::json& part, const fs::path& file, const StudyPlan
         } else {
           s.verdict.energy_growth = number(j.at("energy_growth"));
           s.verdict.stable = j.at("stable").get<bool>();
+          s.verdict.closings_after_release = j.at("closings_after_release").get<long>();
         }
       }
     }

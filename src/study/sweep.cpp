@@ -98,10 +98,13 @@ std::vector<StabilityPoint> stability_grid(const std::vector<ContactMethod>& met
         m == ContactMethod::kPenalty ? std::vector<double>{0.0} : kMassRatios;
     const std::vector<double> steps =
         m == ContactMethod::kLocalizedBipenalty ? kStepRatios : std::vector<double>{1.0};
-    for (double q : steps)
+    for (double q : steps) {
+      if (m == ContactMethod::kLocalizedBipenalty)  // the rigid-link limit (stiffness 0)
+        for (double c : courant) grid.push_back({m, 0, 0, c, false, q});
       for (double r : ratios)
         for (double s : stiffness)
           for (double c : courant) grid.push_back({m, s, r, c, false, q});
+    }
   }
   return grid;
 }

@@ -55,17 +55,20 @@ struct StabilityPoint {
   double step_ratio = 1;
 };
 
-// Step ratios of the localized-bipenalty map: equal steps, π (the non-integer benchmark of
-// docs/methods.md §3) and π² ≈ 9.87 (a bar against a specimen ten times finer).
-inline const std::vector<double> kStepRatios = {1, 3.141592653589793, 9.869604401089358};
+// Step ratios of the localized-bipenalty map: equal steps, 2, π (the non-integer benchmark of
+// docs/methods.md §3), and a bar against a specimen ten times finer: 9.95 (the elastic classic
+// scene at its tolerance's meshes, docs/methods.md §3.7) and exactly 10.
+inline const std::vector<double> kStepRatios = {1, 2, 3.141592653589793, 9.95, 10};
 
 // The stability grid: ε_s/k from 1e-2 to 1e6 (two points per decade), C from 0.1 to
-// 1.05, and for the bipenalty methods R/R_crit from 0.25 to 4; localized bipenalty (finite links)
-// at every step ratio of kStepRatios.
+// 1.05 (with the near-exact 0.995, 0.9995 and 0.9999 a run or a tolerance may choose), and for the
+// bipenalty methods R/R_crit from 0.25 to 4; localized bipenalty at every step ratio of
+// kStepRatios, finite links and the rigid-link limit (ε_s/k and R/R_crit 0 in the map).
 inline const std::vector<double> kStiffnessFactors = {
     1e-2, 3e-2, 1e-1, 3e-1, 1, 3, 10, 30, 1e2, 3e2, 1e3, 3e3, 1e4, 3e4, 1e5, 3e5, 1e6};
-inline const std::vector<double> kCourantNumbers = {0.1, 0.15, 0.2, 0.25, 0.3,  0.4, 0.5,  0.6,
-                                                    0.7, 0.8,  0.9, 0.95, 0.98, 1.0, 1.02, 1.05};
+inline const std::vector<double> kCourantNumbers = {0.1,    0.15,   0.2, 0.25, 0.3,  0.4,  0.5,
+                                                    0.6,    0.7,    0.8, 0.9,  0.95, 0.98, 0.995,
+                                                    0.9995, 0.9999, 1.0, 1.02, 1.05};
 inline const std::vector<double> kMassRatios = {0.25, 0.5, 0.9, 1, 1.5, 2, 3, 4};
 
 // `refine` > 1 puts refine − 1 more points between neighbours on the stiffness axis (evenly in
