@@ -5,6 +5,7 @@
 
 #include "analysis/pulse_window.hpp"
 #include "core/error.hpp"
+#include "core/number_format.hpp"
 #include "dispersion/dispersion_table.hpp"
 
 namespace shpb {
@@ -93,8 +94,8 @@ BarCheckResult check_bars_together(const GaugeSignals& signals, const BarCheckSe
 
   if (s.distance_m / (s.waveguide.c0_m_s * dt) > kMaxDelaySamples)
     throw input_error(scene_file, "measurement.time.unit",
-                      "delay " + std::to_string(s.distance_m / s.waveguide.c0_m_s) + " s = " +
-                          std::to_string(s.distance_m / (s.waveguide.c0_m_s * dt)) + " samples",
+                      "delay " + format_number(s.distance_m / s.waveguide.c0_m_s) + " s = " +
+                          format_number(s.distance_m / (s.waveguide.c0_m_s * dt)) + " samples",
                       "expected at most 2^24 samples: is the time unit right?");
   PropagationOptions po;
   if (ds.cutoff_Hz)
@@ -102,7 +103,7 @@ BarCheckResult check_bars_together(const GaugeSignals& signals, const BarCheckSe
   const DispersionTable table(s.waveguide.poisson);
   if (po.cutoff_fa_over_c0 > table.max_normalized_frequency())
     throw input_error(scene_file, "measurement.dispersion.cutoff",
-                      "f·a/c0 = " + std::to_string(po.cutoff_fa_over_c0),
+                      "f·a/c0 = " + format_number(po.cutoff_fa_over_c0),
                       "cut-off beyond the tabulated mode");
   r.cutoff_Hz = po.cutoff_fa_over_c0 * s.waveguide.c0_m_s / s.waveguide.radius_m;
   // Zeros after the record leave room for the delay (the output keeps the input's length).

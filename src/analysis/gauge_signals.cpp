@@ -8,6 +8,7 @@
 #include "core/error.hpp"
 #include "core/interpolation.hpp"
 #include "core/median.hpp"
+#include "core/number_format.hpp"
 #include "core/signal_reader.hpp"
 
 namespace shpb {
@@ -155,13 +156,12 @@ GaugeSignals read_gauge_signals(const MeasurementSpec& m, const std::filesystem:
     if (peak < kPlausibleStrainMin || peak > kPlausibleStrainMax) {
       // Microstrain declared as strain is the usual slip: say so when ×1e-6 would be plausible.
       const bool micro = peak * 1e-6 >= kPlausibleStrainMin && peak * 1e-6 <= kPlausibleStrainMax;
-      char msg[400];
-      std::snprintf(msg, sizeof msg,
-                    "gauge \"%s\": implausible strain scale: peak |strain| %.3g is outside "
-                    "[%.0e, %.0e] for a Kolsky bar; check the channel's unit and bridge%s",
-                    out.gauges[g].c_str(), peak, kPlausibleStrainMin, kPlausibleStrainMax,
-                    micro ? " (the values look like microstrain: \"unit\": \"microstrain\")" : "");
-      out.warnings.push_back(msg);
+      out.warnings.push_back(
+          "gauge \"" + out.gauges[g] + "\": implausible strain scale: peak |strain| " +
+          format_number(peak) + " is outside " +
+          format_range(kPlausibleStrainMin, kPlausibleStrainMax) +
+          " for a Kolsky bar; check the channel's unit and bridge" +
+          (micro ? " (the values look like microstrain: \"unit\": \"microstrain\")" : ""));
     }
   }
   return out;

@@ -24,6 +24,7 @@
 #include "core/error.hpp"
 #include "core/json_value.hpp"
 #include "core/median.hpp"
+#include "core/number_format.hpp"
 #include "core/output_folder.hpp"
 #include "core/parallel_runner.hpp"
 #include "fit/fit_case.hpp"
@@ -291,13 +292,13 @@ int run_fit(const FitArgs& args) {
         warnings.push_back(
             "stage signals started from the material file's values: they fit the "
             "signals better (cost " +
-            std::to_string(from_file) +
+            format_number(from_file) +
             ") than the curve "
             "stage's (" +
-            std::to_string(from_curve) + ")");
+            format_number(from_curve) + ")");
       }
-      say("signals cost at the curve stage's values " + std::to_string(from_curve) +
-          ", at the material file's " + std::to_string(from_file));
+      say("signals cost at the curve stage's values " + format_number(from_curve) +
+          ", at the material file's " + format_number(from_file));
     }
     for (std::size_t i : report.unknowns) {
       const Unknown& u = unknowns[i];
@@ -318,11 +319,11 @@ int run_fit(const FitArgs& args) {
     simulations += report.simulations;
     if (stage == FitStage::kCurve) after_curve = law_values(current);
     std::string line = "stage " + to_string(stage) + " done: cost " +
-                       std::to_string(report.result.cost_start) + " -> " +
-                       std::to_string(report.result.cost) + ", " +
+                       format_number(report.result.cost_start) + " -> " +
+                       format_number(report.result.cost) + ", " +
                        std::to_string(report.result.evaluations) + " evaluations, " +
-                       std::to_string(report.wall_time_s) + " s (processor " +
-                       std::to_string(report.cpu_time_s) + " s);";
+                       format_number(report.wall_time_s) + " s (processor " +
+                       format_number(report.cpu_time_s) + " s);";
     for (std::size_t j = 0; j < params.size(); ++j)
       line += " " + params[j].name + " " +
               JsonValue::format(report.result.value[j], unknowns[report.unknowns[j]].dimension);
@@ -352,7 +353,7 @@ int run_fit(const FitArgs& args) {
           warnings.push_back(
               u.name + " and " + unknowns[idx[b]].name +
               " are not separately identifiable: correlation " +
-              std::to_string(r.correlation(static_cast<long>(a), static_cast<long>(b))));
+              format_number(r.correlation(static_cast<long>(a), static_cast<long>(b))));
       const double span = u.upper - u.lower;
       if (std::abs(r.value[a] - u.lower) < 1e-6 * span ||
           std::abs(u.upper - r.value[a]) < 1e-6 * span)
@@ -360,7 +361,7 @@ int run_fit(const FitArgs& args) {
                            JsonValue::format(r.value[a], u.dimension) +
                            "): widen the bounds or fix it");
       if (a < r.step_check.size() && r.step_check[a] > kStepCheckLimit)
-        warnings.push_back(u.name + ": the Jacobian changes by " + std::to_string(r.step_check[a]) +
+        warnings.push_back(u.name + ": the Jacobian changes by " + format_number(r.step_check[a]) +
                            " of itself when the step is halved (round-off or a kink)");
     }
   }
@@ -376,11 +377,10 @@ int run_fit(const FitArgs& args) {
         hi = std::max(hi, rate);
       }
       if (!(lo > 0) || hi / lo < kRateRatioForC)
-        warnings.push_back(
-            "C is not identifiable: the tests' strain rates span only " +
-            (lo > 0 ? std::to_string(hi / lo).substr(0, 4) + "x" : std::string("(none)")) + " (" +
-            std::to_string(cases.size()) +
-            " test(s)); the rate term needs at least two well-separated rates");
+        warnings.push_back("C is not identifiable: the tests' strain rates span only " +
+                           (lo > 0 ? format_number(hi / lo) + "x" : std::string("(none)")) + " (" +
+                           std::to_string(cases.size()) +
+                           " test(s)); the rate term needs at least two well-separated rates");
     }
 
   // fit.json: the starting material file with the fitted values.

@@ -7,6 +7,7 @@
 
 #include "core/closest_match.hpp"
 #include "core/csv_writer.hpp"
+#include "core/number_format.hpp"
 
 namespace shpb {
 
@@ -40,7 +41,7 @@ InputError JsonValue::error_with_value(const std::string& value,
 
 std::string JsonValue::format(double si_value, Dimension d) {
   const std::string unit(si_unit(d));
-  return format_double(si_value) + (unit.empty() ? "" : " " + unit);
+  return format_number(si_value) + (unit.empty() ? "" : " " + unit);
 }
 
 double JsonValue::quantity(Dimension d) const {
@@ -75,9 +76,7 @@ double JsonValue::quantity_in(Dimension d, double lo, double hi, bool lo_open, b
   const double v = quantity(d);
   const bool ok = (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
   if (!ok)
-    throw error_with_value(format(v, d), "must be in " + std::string(lo_open ? "(" : "[") +
-                                             format_double(lo) + ", " + format_double(hi) +
-                                             (hi_open ? ")" : "]"));
+    throw error_with_value(format(v, d), "must be in " + format_range(lo, hi, lo_open, hi_open));
   return v;
 }
 

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "core/error.hpp"
+#include "core/number_format.hpp"
 #include "core/signal_formats.hpp"
 
 namespace shpb {
@@ -44,14 +45,14 @@ RawSignalColumns read_lanl_raw_columns(const DelimitedText& text, const SignalRe
   const double start = number_at(text, rows[1], c0, rows[0].fields[c0]);
   const double dt = number_at(text, rows[2], c0, rows[0].fields[c0]);
   if (!(dt > 0))
-    throw input_error(text.file.string(), text_place(rows[2].line, c0), std::to_string(dt),
+    throw input_error(text.file.string(), text_place(rows[2].line, c0), format_number(dt) + " s",
                       "sample interval must be > 0");
   // The time base start + k·dt must increase at every sample: an interval below the start's
   // floating-point resolution (|start|·2^-52 per sample) would repeat time stamps.
   const double last = start + static_cast<double>(rows.size()) * dt;
   if (!std::isfinite(last) || dt <= 4 * std::numeric_limits<double>::epsilon() * std::abs(last))
-    throw input_error(text.file.string(), text_place(rows[2].line, c0), std::to_string(dt),
-                      "sample interval too small for the start time " + std::to_string(start) +
+    throw input_error(text.file.string(), text_place(rows[2].line, c0), format_number(dt) + " s",
+                      "sample interval too small for the start time " + format_number(start) +
                           " s: the time stamps would not increase");
   for (std::size_t idx : indices) {
     if (number_at(text, rows[1], idx, rows[0].fields[idx]) != start ||

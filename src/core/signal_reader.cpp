@@ -9,6 +9,7 @@
 #include "core/error.hpp"
 #include "core/interpolation.hpp"
 #include "core/median.hpp"
+#include "core/number_format.hpp"
 #include "core/signal_formats.hpp"
 #include "core/signal_spreadsheet.hpp"
 
@@ -39,11 +40,7 @@ double round_interval(double dt) {
   return dt;
 }
 
-std::string seconds(double s) {
-  char b[64];
-  std::snprintf(b, sizeof b, "%.6g s", s);
-  return b;
-}
+std::string seconds(double s) { return format_number(s) + " s"; }
 
 // Checks the time stamps: increasing and uniform. Repeated stamps (rounded to fewer digits than
 // the sampling needs) are not an error: the base is rebuilt from a least-squares fit of t against

@@ -148,10 +148,18 @@ DelimitedText read_delimited_text(const std::filesystem::path& file) {
   // Byte order marks: UTF-8 is dropped (spreadsheets write it); UTF-16 text is refused by name
   // rather than failing later on the NUL bytes between its characters.
   if (bytes.rfind("\xEF\xBB\xBF", 0) == 0) bytes.erase(0, 3);
-  if (bytes.rfind("\xFF\xFE", 0) == 0 || bytes.rfind("\xFE\xFF", 0) == 0 ||
-      bytes.find('\0') != std::string::npos)
-    throw input_error(file.string(), "line 1", "UTF-16 or binary data",
+  if (bytes.rfind("\xFF\xFE", 0) == 0 || bytes.rfind("\xFE\xFF", 0) == 0)
+    throw input_error(file.string(), "line 1", "UTF-16 text",
                       "expected text (ASCII, UTF-8 or Latin-1); save the file as UTF-8 or CSV");
+  if (const auto nul = bytes.find('\0'); nul != std::string::npos) {
+    // Named on its own line (LF, CRLF or lone CR end a line, as below), not on line 1.
+    std::size_t number = 1;
+    for (std::size_t i = 0; i < nul; ++i)
+      number += bytes[i] == '\n' || (bytes[i] == '\r' && (i + 1 == nul || bytes[i + 1] != '\n'));
+    throw input_error(file.string(), "line " + std::to_string(number),
+                      "UTF-16 or binary data (a NUL byte)",
+                      "expected text (ASCII, UTF-8 or Latin-1); save the file as UTF-8 or CSV");
+  }
 
   // Lines (LF, CRLF or lone CR) with their numbers, one at a time, blank ones skipped.
   const bool has_cr = bytes.find('\r') != std::string::npos;

@@ -11,6 +11,7 @@
 #include <mutex>
 
 #include "core/error.hpp"
+#include "core/output_folder.hpp"
 #include "core/parallel_runner.hpp"
 
 namespace shpb {
@@ -179,7 +180,9 @@ class Progress final : public ceres::IterationCallback {
  public:
   Progress(const Model& model, const LsOptions& options) : model_(model), options_(options) {}
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
-    if (model_.interrupted()) return ceres::SOLVER_ABORT;
+    // A signal stops the solve here too when no evaluation saw it (the curve stage's groups run
+    // no simulation that would notice).
+    if (model_.interrupted() || interrupted()) return ceres::SOLVER_ABORT;
     if (options_.progress) {
       char line[200];
       std::snprintf(line, sizeof line, "iteration %2d  cost %.6g  %s  evaluations %ld", s.iteration,
@@ -248,7 +251,7 @@ LsResult solve_least_squares(const std::vector<LsParameter>& parameters,
   ceres::Solver::Summary summary, run;
   ceres::Solve(so, &problem, &summary);
   int iterations = static_cast<int>(summary.iterations.size());
-  for (int k = 0; k < kMaxRestarts && !model.interrupted() &&
+  for (int k = 0; k < kMaxRestarts && !model.interrupted() && !interrupted() &&
                   summary.termination_type != ceres::FAILURE && iterations < options.max_iterations;
        ++k) {
     so.max_num_iterations = options.max_iterations - iterations;
@@ -260,7 +263,7 @@ LsResult solve_least_squares(const std::vector<LsParameter>& parameters,
     summary.message = run.message;
     if (!(gain > kRestartGain)) break;
   }
-  if (model.interrupted()) throw Interrupted();
+  if (model.interrupted() || interrupted()) throw Interrupted();
 
   LsResult r;
   long clock_evaluations = 0;
@@ -276,7 +279,13 @@ LsResult solve_least_squares(const std::vector<LsParameter>& parameters,
   if (!r.converged)
     r.warnings.push_back("the solver stopped before converging: " + summary.message);
 
-  // Covariance: Ceres' (JᵀJ)⁻¹ in x, times s², scaled back to θ.
+  // Covariance: Ceres' (JᵀJ)⁻¹ in x, times s², scaled back to θ. Ceres evaluates the Jacobian
+  // at x for it and goes on when that evaluation fails (a SIGINT/SIGTERM, or a simulation that
+  // breaks down there): with an empty Jacobian it then reads past its arrays. The residuals and
+  // Jacobian at x are therefore made current here first; Ceres then reads them from the model's
+  // cache and evaluates nothing, and the covariance is skipped when they cannot be had.
+  const bool at_solution = model.ensure(x.data(), true);
+  if (!at_solution && (model.interrupted() || interrupted())) throw Interrupted();
   ceres::Covariance::Options co;
   co.algorithm_type = ceres::DENSE_SVD;
   co.null_space_rank = -1;  // drop directions below min_reciprocal_condition_number
@@ -284,7 +293,7 @@ LsResult solve_least_squares(const std::vector<LsParameter>& parameters,
   ceres::Covariance covariance(co);
   std::vector<std::pair<const double*, const double*>> blocks = {{x.data(), x.data()}};
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> c(p, p);
-  if (covariance.Compute(blocks, &problem) &&
+  if (at_solution && covariance.Compute(blocks, &problem) &&
       covariance.GetCovarianceBlock(x.data(), x.data(), c.data())) {
     const double dof =
         std::max<double>(1.0, static_cast<double>(r.residuals) - static_cast<double>(p));
@@ -324,7 +333,9 @@ LsResult solve_least_squares(const std::vector<LsParameter>& parameters,
           r.correlation(static_cast<long>(i), static_cast<long>(j)) =
               cov(i, j) / std::sqrt(cov(i, i) * cov(j, j));
   } else {
-    r.warnings.push_back("no covariance: the Jacobian at the solution is rank-deficient");
+    r.warnings.push_back(at_solution
+                             ? "no covariance: the Jacobian at the solution is rank-deficient"
+                             : "no covariance: the Jacobian at the solution cannot be evaluated");
   }
 
   // The step against round-off: the Jacobian with half the step should agree.
@@ -339,6 +350,8 @@ LsResult solve_least_squares(const std::vector<LsParameter>& parameters,
       }
     }
   }
+  // A signal during the covariance or the step check leaves them incomplete: no result then.
+  if (model.interrupted() || interrupted()) throw Interrupted();
   r.evaluations = model.evaluations() + clock_evaluations;
   return r;
 }

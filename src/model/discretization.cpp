@@ -91,10 +91,14 @@ void refuse_unaffordable(const Scene& scene, const std::vector<double>& elements
     where = "bars[" + std::to_string(k) + "].gap";
     value = JsonValue::format(scene.bars[k].gap_m, Dimension::kLength);
   } else if (record_bytes > mesh_bytes && memory > kMaxMemoryBytes) {
-    where = scene.simulation.duration_s ? "simulation.duration" : "simulation.sample_rate";
-    value = scene.simulation.duration_s
-                ? JsonValue::format(duration_s, Dimension::kTime)
-                : JsonValue::format(scene.simulation.sample_rate_Hz, Dimension::kFrequency);
+    // The record is duration × sample rate: the sample rate is to blame when it samples finer
+    // than the solver steps (samples between steps hold nothing new), else the duration.
+    const double finest_step_s = duration_s / *std::max_element(steps.begin(), steps.end());
+    const bool oversampled = scene.simulation.sample_rate_Hz * finest_step_s > 1;
+    const bool duration = scene.simulation.duration_s && !oversampled;
+    where = duration ? "simulation.duration" : "simulation.sample_rate";
+    value = duration ? JsonValue::format(duration_s, Dimension::kTime)
+                     : JsonValue::format(scene.simulation.sample_rate_Hz, Dimension::kFrequency);
   } else if (memory > kMaxMemoryBytes || !scene.simulation.duration_s) {
     const BarSpec& bar = scene.bars[largest];
     where = "bars[" + std::to_string(largest) + (bar.elements > 0 ? "].elements" : "].length");

@@ -245,6 +245,10 @@ const std::vector<BadScene>& cases() {
        "simulation.duration"},
       {"a sample rate in seconds", [](json& s, json&) { s["simulation"]["sample_rate"] = "10 us"; },
        "simulation.sample_rate"},
+      // 1 THz records 1e6 samples a microsecond, finer than any solver step: the record's size
+      // is the sample rate's doing, not the 800 µs duration's.
+      {"a sample rate of 1 THz", [](json& s, json&) { s["simulation"]["sample_rate"] = "1 THz"; },
+       "simulation.sample_rate: 1e+12 Hz: the run would need about"},
       {"a misspelt stepping", [](json& s, json&) { s["simulation"]["stepping"] = "asynchronus"; },
        "simulation.stepping: \"asynchronus\": did you mean \"asynchronous\"?"},
       {"a fractional element count", [](json& s, json&) { s["bars"][1]["elements"] = 2.5; },

@@ -3,8 +3,6 @@
 // microstrain declared as strain, hand-set windows between samples, equilibrium that comes and
 // goes, fracture, a strain rate without a plateau, simulations shorter than the record. Every
 // case runs the executable on a synthetic record whose pulses are known exactly.
-#include <zip.h>
-
 #include <catch2/catch.hpp>
 #include <chrono>
 #include <cmath>
@@ -15,17 +13,20 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "../skip.hpp"
 #include "dispersion/propagation.hpp"
 #include "run_shpb.hpp"
+#include "write_xlsx.hpp"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
 using shpb_test::read_text;
 using shpb_test::run_shpb;
 using shpb_test::scratch_dir;
+using shpb_test::write_xlsx;
 
 namespace {
 
@@ -529,71 +530,6 @@ TEST_CASE("The report of a processed test heads with the striker, equilibrium an
   CHECK(fs::exists(d / "out/figures/raw_signals.png"));
 }
 
-namespace {
-
-// A minimal .xlsx: sheets "notes" (text) and "signals" (a header of shared strings, numbers as
-// written with 17 digits), zipped with libzip.
-void write_xlsx(const fs::path& file, const std::string& csv_text) {
-  std::istringstream in(csv_text);
-  std::string line, rows;
-  std::vector<std::string> shared;
-  for (std::size_t r = 1; std::getline(in, line); ++r) {
-    rows += "<row r=\"" + std::to_string(r) + "\">";
-    std::istringstream f(line);
-    std::string v;
-    for (char col = 'A'; std::getline(f, v, ','); ++col) {
-      std::string ref(1, col);  // built by append: GCC 12 warns falsely on char + string
-      ref += std::to_string(r);
-      if (r == 1) {
-        rows += "<c r=\"" + ref + "\" t=\"s\"><v>" + std::to_string(shared.size()) + "</v></c>";
-        shared.push_back(v);
-      } else {
-        rows += "<c r=\"" + ref + "\"><v>" + v + "</v></c>";
-      }
-    }
-    rows += "</row>";
-  }
-  std::string sst =
-      "<?xml version=\"1.0\" encoding=\"UTF-8\"?><sst "
-      "xmlns=\"http://schemas.openxmlformats.org/spreadsheetml/2006/main\">";
-  for (const auto& t : shared) sst += "<si><t>" + t + "</t></si>";
-  sst += "</sst>";
-  const std::string ns = "xmlns=\"http://schemas.openxmlformats.org/spreadsheetml/2006/main\"";
-  const std::string rel =
-      "xmlns:r=\"http://schemas.openxmlformats.org/officeDocument/2006/relationships\"";
-  const std::vector<std::pair<std::string, std::string>> parts = {
-      {"[Content_Types].xml",
-       "<?xml version=\"1.0\" encoding=\"UTF-8\"?><Types "
-       "xmlns=\"http://schemas.openxmlformats.org/package/2006/content-types\">"
-       "<Default Extension=\"xml\" ContentType=\"application/xml\"/></Types>"},
-      {"xl/workbook.xml",
-       "<?xml version=\"1.0\" encoding=\"UTF-8\"?><workbook " + ns + " " + rel +
-           "><sheets><sheet name=\"notes\" sheetId=\"1\" r:id=\"rId1\"/>"
-           "<sheet name=\"signals\" sheetId=\"2\" r:id=\"rId2\"/></sheets></workbook>"},
-      {"xl/_rels/workbook.xml.rels",
-       "<?xml version=\"1.0\" encoding=\"UTF-8\"?><Relationships "
-       "xmlns=\"http://schemas.openxmlformats.org/package/2006/relationships\">"
-       "<Relationship Id=\"rId1\" Target=\"worksheets/sheet1.xml\"/>"
-       "<Relationship Id=\"rId2\" Target=\"worksheets/sheet2.xml\"/></Relationships>"},
-      {"xl/worksheets/sheet1.xml",
-       "<?xml version=\"1.0\" encoding=\"UTF-8\"?><worksheet " + ns +
-           "><sheetData><row r=\"1\"><c r=\"A1\" t=\"inlineStr\"><is><t>a "
-           "synthetic record</t></is></c></row></sheetData></worksheet>"},
-      {"xl/worksheets/sheet2.xml", "<?xml version=\"1.0\" encoding=\"UTF-8\"?><worksheet " + ns +
-                                       "><sheetData>" + rows + "</sheetData></worksheet>"},
-      {"xl/sharedStrings.xml", sst}};
-  int err = 0;
-  zip_t* z = zip_open(file.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &err);
-  REQUIRE(z);
-  for (const auto& [name, text] : parts) {
-    zip_source_t* src = zip_source_buffer(z, text.data(), text.size(), 0);
-    REQUIRE(zip_file_add(z, name.c_str(), src, ZIP_FL_OVERWRITE) >= 0);
-  }
-  REQUIRE(zip_close(z) == 0);  // the buffers are read here, while `parts` is alive
-}
-
-}  // namespace
-
 TEST_CASE("An .xlsx and an .xls file with the same signals as a CSV give identical results",
           "[app][labdata][excel]") {
   // The clean record at 1 MHz (800 samples): small enough for the committed .xls, made by
@@ -695,6 +631,38 @@ TEST_CASE(
   const json ref = summary(d / "csv"), s = summary(d / "sheet");
   for (const char* key : {"peak_stress_Pa", "max_strain", "incident_plateau_strain"})
     CHECK(s[key].get<double>() == Approx(ref[key].get<double>()).epsilon(1e-12));
+}
+
+TEST_CASE(
+    "A TRUE/FALSE cell in an .xlsx record is refused naming its sheet and cell, not read as 1",
+    "[app][labdata][excel]") {
+  const fs::path d = scratch_dir("labdata_excel_boolean");
+  std::vector<std::string> shared;
+  const std::string rows = shpb_test::xlsx_rows(csv(clean(), 1.0, 1e-6, 800), shared);
+  json scene = scene_json();
+  scene["measurement"]["file"] = "signals.xlsx";
+  scene["measurement"]["sheet"] = "signals";
+  std::ofstream(d / "scene.json") << scene.dump(2);
+  // Cell C300 (transmitted, a sample inside the record) and A2 (the first sample's time) as
+  // Excel writes a boolean: t="b", 1 for TRUE and 0 for FALSE.
+  for (const auto& [cell, value, shown] :
+       {std::tuple{"C300", "1", "TRUE"}, std::tuple{"A2", "0", "FALSE"}}) {
+    CAPTURE(cell);
+    const std::string open = "<c r=\"" + std::string(cell) + "\">";
+    const auto at = rows.find(open);
+    REQUIRE(at != std::string::npos);
+    std::string changed = rows;
+    changed.replace(at, rows.find("</c>", at) + 4 - at,
+                    "<c r=\"" + std::string(cell) + "\" t=\"b\"><v>" + value + "</v></c>");
+    shpb_test::write_zip(d / "signals.xlsx", shpb_test::xlsx_parts(changed, shared));
+    const auto r =
+        run_shpb({"process", (d / "scene.json").string(), "-o", (d / "out").string(), "--quiet"});
+    INFO(r.err);
+    CHECK(r.code == 2);
+    CHECK(r.err.find("signals.xlsx: sheet \"signals\", cell " + std::string(cell) + ": " + shown +
+                     ": a boolean cell") != std::string::npos);
+    CHECK_FALSE(fs::exists(d / "out"));
+  }
 }
 
 TEST_CASE(

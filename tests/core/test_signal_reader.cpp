@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <tuple>
 
 #include "../scratch.hpp"
 #include "analysis/gauge_signals.hpp"
@@ -209,6 +210,35 @@ TEST_CASE("Tektronix and LANL raw files are read with their own time bases", "[c
     CHECK(s.values[0] == std::vector<double>{-0.5, -1.5, -2.5});
     CHECK(s.time_s[2] == Approx(-5e-5 + 2e-7));
     CHECK(s.dt_s == 1e-7);
+  }
+}
+
+TEST_CASE("A LANL header's sample interval is quoted as written, not as %f would print it",
+          "[core][signal][format]") {
+  // (interval, start) as the header gives them, and what the message must quote: %f printed
+  // -1e-07 as "-0.000000" and 1e308 as a 309-digit number.
+  for (const auto& [interval, start, quoted] :
+       {std::tuple{"-1.00E-07", "-5.00E-05", "-1e-07 s"},
+        std::tuple{"1.00E-07", "1.00E+308", "start time 1e+308 s"}}) {
+    CAPTURE(interval, start);
+    const auto p = write_file("x.raw", std::string("Test Date\t12/1/2006\tIncident\r\n") +
+                                           "Sample Length(mm)\t3.2\t" + start + "\r\n" +
+                                           "Test Temperature(C)\t0\t" + interval + "\r\n" +
+                                           "\t\t0.5\r\n\t\t1.5\r\n\t\t2.5\r\n");
+    SignalRequest r;
+    r.file = p;
+    r.columns = {by_name("Incident")};
+    try {
+      read_signal_columns(r);
+      FAIL("accepted");
+    } catch (const InputError& e) {
+      const std::string m = e.what();
+      INFO(m);
+      CHECK(m.find(quoted) != std::string::npos);
+      CHECK(m.find("0.000000") == std::string::npos);
+      constexpr std::size_t kOneLine = 200;  // a message, not a page of digits
+      CHECK(m.size() < kOneLine);
+    }
   }
 }
 

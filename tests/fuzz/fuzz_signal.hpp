@@ -32,11 +32,12 @@ inline int fuzz_signal(const std::uint8_t* data, std::size_t size, shpb::SignalF
   request.file = file;
   request.format = format;
   // Columns: by index (low bits), by a name the seeds use (bit 4), the time column named (bit 5),
-  // a time unit of microseconds (bit 6).
+  // a time unit of microseconds (bit 6), the workbook's sheet "signals" (bit 7; else the first).
   request.columns.push_back(shpb::ColumnRef{"", pick & 7});
   if (pick & 16) request.columns.push_back(shpb::ColumnRef{"ch2", std::nullopt});
   if (pick & 32) request.time_column = shpb::ColumnRef{"time_s", std::nullopt};
   if (pick & 64) request.time_unit_s = 1e-6;
+  if (pick & 128) request.sheet = "signals";
   try {
     const shpb::SignalColumns s = shpb::read_signal_columns(request);
     SHPB_FUZZ_REQUIRE(s.time_s.size() >= 2);

@@ -16,7 +16,12 @@ for t in "${targets[@]}"; do
   mkdir -p "$corpus" "$artifacts"
   cp -n "$here/corpus/$t/"* "$corpus/" 2>/dev/null || true
   log="$build/$t.log"
-  "$build/$t" "$corpus" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=8192 \
+  # Inputs up to 8 kB, or as long as the longest seed (a whole .xls workbook is tens of kB).
+  max_len=8192
+  for f in "$here/corpus/$t/"*; do
+    [ -f "$f" ] && size=$(stat -c %s "$f") && [ "$size" -gt "$max_len" ] && max_len=$size
+  done
+  "$build/$t" "$corpus" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len="$max_len" \
     -print_final_stats=1 -artifact_prefix="$artifacts/" >"$log" 2>&1
   rc=$?
   runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$')

@@ -53,6 +53,8 @@ class Child {
   }
 
   bool started() const { return pid_ > 0; }
+  // The file the process's stderr goes to (read while it runs: its progress lines).
+  const fs::path& err_file() const { return err_; }
 
   // Waits at most `limit_s` until the process catches SIGINT and SIGTERM (Linux: the SigCgt mask
   // of /proc/<pid>/status): shpb's main has installed its handlers, so a signal from now on tests

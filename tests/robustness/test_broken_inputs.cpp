@@ -302,6 +302,8 @@ TEST_CASE("Broken signal files are refused with file, line and column, or read w
        "signals.csv: line 8, column 3"},
       {"a number beyond double range", signal_row(7, "1.2e-06,1e999,0"), process(),
        Expect::kRefused, "signals.csv: line 8, column 2"},
+      {"a NUL byte on line 1002", signal_row(1001, std::string("2e-04,0\0,0", 10)), process(),
+       Expect::kRefused, "signals.csv: line 1002: UTF-16 or binary data (a NUL byte)"},
       {"an empty field", signal_row(9, "1.6e-06,,0"), process(), Expect::kRefused,
        "signals.csv: line 10, column 2"},
       {"a missing column", signals([](std::string s) {

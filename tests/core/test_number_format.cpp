@@ -1,0 +1,35 @@
+// The one number formatter of messages (core/number_format.hpp): values as a user would write
+// them, exact where the user typed them, short where they were computed.
+#include <catch2/catch.hpp>
+#include <limits>
+
+#include "core/number_format.hpp"
+
+using shpb::format_number;
+using shpb::format_range;
+
+TEST_CASE("Numbers in messages read as a user writes them", "[core][format]") {
+  // Typed values come back as typed (the shortest text that reads back as the same double).
+  CHECK(format_number(1e-7) == "1e-07");
+  CHECK(format_number(-1e-7) == "-1e-07");  // printf's %f: "-0.000000"
+  CHECK(format_number(0.05) == "0.05");
+  CHECK(format_number(2.5e11) == "2.5e+11");
+  CHECK(format_number(1e12) == "1e+12");
+  CHECK(format_number(1200) == "1200");
+  CHECK(format_number(0.29) == "0.29");
+  // 1e308 is 309 digits and ".000000" under %f.
+  CHECK(format_number(1e308) == "1e+308");
+  CHECK(format_number(std::numeric_limits<double>::max()) == "1.79769e+308");
+  // Computed values: 6 significant digits, not 17.
+  CHECK(format_number(0.1 + 0.2) == "0.3");
+  CHECK(format_number(1.0 / 3) == "0.333333");
+  CHECK(format_number(-0.0) == "0");
+  CHECK(format_number(std::numeric_limits<double>::quiet_NaN()) == "nan");
+  CHECK(format_number(-std::numeric_limits<double>::infinity()) == "-inf");
+}
+
+TEST_CASE("Ranges in messages are printed as a user would write them", "[core][format]") {
+  CHECK(format_range(1e-5, 0.05) == "[1e-05, 0.05]");
+  CHECK(format_range(0, 1, true, false) == "(0, 1]");
+  CHECK(format_range(0, 0.49, false, true) == "[0, 0.49)");
+}
