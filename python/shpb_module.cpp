@@ -511,34 +511,22 @@ PYBIND11_MODULE(_shpb, m) {
                                d["transmitted"] = view(r.transmitted, self);
                                return d;
                              })
-      .def_property_readonly(
-          "curve",
-          [](py::object self) {
-            // curve.csv's columns and rows (up to the end of loading), in its order.
-            const ProcessingResult& r = self.cast<Processing&>().outcome.result;
-            const Curve& c = r.curve;
-            const auto rows = static_cast<py::ssize_t>(r.loading_end);
-            py::dict d;
-            const std::pair<const char*, const std::vector<double>*> columns[] = {
-                {"time_s", &r.time_s},
-                {"strain_rate_1_s", &c.strain_rate_1_s},
-                {"strain", &c.strain},
-                {"stress_1wave_Pa", &c.stress_1wave_Pa},
-                {"stress_2wave_Pa", &c.stress_2wave_Pa},
-                {"stress_3wave_Pa", &c.stress_3wave_Pa},
-                {"true_strain", &c.true_strain},
-                {"true_stress_Pa", &c.true_stress_Pa},
-                {"equilibrium_ratio", &c.equilibrium_ratio},
-                {"strain_rate_1wave_1_s", &c.strain_rate_1wave_1_s},
-                {"force_front_N", &c.force_front_N},
-                {"force_back_N", &c.force_back_N}};
-            for (const auto& [name, v] : columns) d[name] = view(*v, self)[py::slice(0, rows, 1)];
-            return d;
-          })
+      .def_property_readonly("curve",
+                             [](py::object self) {
+                               // curve.csv's columns and rows (up to the end of loading), in its
+                               // order.
+                               const ProcessingResult& r = self.cast<Processing&>().outcome.result;
+                               const auto rows = static_cast<py::ssize_t>(r.loading_end);
+                               py::dict d;
+                               const auto columns = curve_columns(self.cast<Processing&>().outcome);
+                               for (const auto& [name, v] : columns)
+                                 d[name] = view(*v, self)[py::slice(0, rows, 1)];
+                               return d;
+                             })
       .def_property_readonly(
           "summary",
           [](const Processing& p) {
-            return json_to_python(process_summary(p.outcome, p.scene, p.scene.file.string()));
+            return json_to_python(process_summary(p.outcome, p.scene.file.string()));
           })
       .def_property_readonly("warnings", [](const Processing& p) { return p.outcome.warnings; })
       .def(

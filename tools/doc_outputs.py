@@ -12,7 +12,8 @@ from the project root, followed by a fenced code block:
 With several marker lines the commands run in order and the block shows each as `$ shpb ARGS`
 followed by what it printed. Outputs go under results/ (ignored by git). `--check` exits 1 and
 prints a diff when a block differs from what the executable prints now; `--update` rewrites the
-blocks (`make docs`). Figures that change from run to run (wall and CPU times) are masked.
+blocks (`make docs`). Figures that change from run to run (wall and CPU times) are masked, and
+progress lines left out.
 
 Usage: doc_outputs.py (--check | --update) SHPB_EXE FILE.md...
 """
@@ -27,6 +28,8 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 MARKER = re.compile(r"^<!-- shpb-output: (.+?) -->$")
+# Progress lines on stderr ("simulating: 40%"): left out of the documented output.
+PROGRESS = re.compile(r"^[a-z ]+: \d+%$")
 # Times of a run (solve, wall, CPU): the only figures a deterministic run does not repeat.
 VOLATILE = [
     (re.compile(r"\b(\d+(?:\.\d+)?) ?(s|ms) (wall|CPU|processor)\b"), r"<time> \3"),
@@ -47,7 +50,8 @@ def run(exe: str, commands: list[str]) -> str:
                                 text=True, timeout=600, check=False)
         # Paths as a reader at the project root sees them, wherever the clone lies.
         printed = (result.stdout + result.stderr).rstrip("\n").replace(f"{ROOT}/", "")
-        printed = "\n".join(line.rstrip() for line in printed.split("\n"))
+        printed = "\n".join(line.rstrip() for line in printed.split("\n")
+                             if not PROGRESS.match(line))
         if len(commands) > 1:
             shown.append(f"$ shpb {command}")
         if printed:

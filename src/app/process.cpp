@@ -232,12 +232,43 @@ ProcessOutcome process_scene(const Scene& scene,
   return o;
 }
 
+std::vector<CurveColumn> curve_columns(const ProcessOutcome& o) {
+  const ProcessingResult& r = o.result;
+  const Curve& c = r.curve;
+  if (o.options.primary == PrimaryReduction::kOneWave)
+    return {{"time_s", &r.time_s},
+            {"strain_rate_1wave_1_s", &c.strain_rate_1wave_1_s},
+            {"strain_1wave", &c.strain_1wave},
+            {"stress_1wave_Pa", &c.stress_1wave_Pa},
+            {"true_strain", &c.true_strain},
+            {"true_stress_Pa", &c.true_stress_Pa},
+            {"strain_rate_1_s", &c.strain_rate_1_s},
+            {"strain", &c.strain},
+            {"stress_2wave_Pa", &c.stress_2wave_Pa},
+            {"stress_3wave_Pa", &c.stress_3wave_Pa},
+            {"equilibrium_ratio", &c.equilibrium_ratio},
+            {"force_front_N", &c.force_front_N},
+            {"force_back_N", &c.force_back_N}};
+  return {{"time_s", &r.time_s},
+          {"strain_rate_1_s", &c.strain_rate_1_s},
+          {"strain", &c.strain},
+          {"stress_1wave_Pa", &c.stress_1wave_Pa},
+          {"stress_2wave_Pa", &c.stress_2wave_Pa},
+          {"stress_3wave_Pa", &c.stress_3wave_Pa},
+          {"true_strain", &c.true_strain},
+          {"true_stress_Pa", &c.true_stress_Pa},
+          {"equilibrium_ratio", &c.equilibrium_ratio},
+          {"strain_rate_1wave_1_s", &c.strain_rate_1wave_1_s},
+          {"force_front_N", &c.force_front_N},
+          {"force_back_N", &c.force_back_N},
+          {"strain_1wave", &c.strain_1wave}};
+}
+
 void write_process_outputs(const ProcessOutcome& o, const Scene& scene,
                            const std::string& scene_display, const std::filesystem::path& output) {
   const MeasurementSpec& m = o.measurement;
   const GaugeSignals& signals = o.signals;
   const ProcessingResult& r = o.result;
-  const bool one_wave = o.options.primary == PrimaryReduction::kOneWave;
   std::vector<std::filesystem::path> inputs = scene_inputs(scene);
   inputs.push_back(m.file);
   for (const ChannelSpec& c : m.channels) inputs.push_back(c.file);
@@ -268,36 +299,7 @@ void write_process_outputs(const ProcessOutcome& o, const Scene& scene,
     throw NumericalError(o.failure + " (pulses.csv written to " + output.string() + ")");
   }
   {
-    // The primary reduction's rate, strain, stress and true values lead (docs/outputs.md).
-    const Curve& c = r.curve;
-    using Column = std::pair<const char*, const std::vector<double>*>;
-    std::vector<Column> columns = {{"time_s", &r.time_s},
-                                   {"strain_rate_1_s", &c.strain_rate_1_s},
-                                   {"strain", &c.strain},
-                                   {"stress_1wave_Pa", &c.stress_1wave_Pa},
-                                   {"stress_2wave_Pa", &c.stress_2wave_Pa},
-                                   {"stress_3wave_Pa", &c.stress_3wave_Pa},
-                                   {"true_strain", &c.true_strain},
-                                   {"true_stress_Pa", &c.true_stress_Pa},
-                                   {"equilibrium_ratio", &c.equilibrium_ratio},
-                                   {"strain_rate_1wave_1_s", &c.strain_rate_1wave_1_s},
-                                   {"force_front_N", &c.force_front_N},
-                                   {"force_back_N", &c.force_back_N},
-                                   {"strain_1wave", &c.strain_1wave}};
-    if (one_wave)
-      columns = {{"time_s", &r.time_s},
-                 {"strain_rate_1wave_1_s", &c.strain_rate_1wave_1_s},
-                 {"strain_1wave", &c.strain_1wave},
-                 {"stress_1wave_Pa", &c.stress_1wave_Pa},
-                 {"true_strain", &c.true_strain},
-                 {"true_stress_Pa", &c.true_stress_Pa},
-                 {"strain_rate_1_s", &c.strain_rate_1_s},
-                 {"strain", &c.strain},
-                 {"stress_2wave_Pa", &c.stress_2wave_Pa},
-                 {"stress_3wave_Pa", &c.stress_3wave_Pa},
-                 {"equilibrium_ratio", &c.equilibrium_ratio},
-                 {"force_front_N", &c.force_front_N},
-                 {"force_back_N", &c.force_back_N}};
+    const std::vector<CurveColumn> columns = curve_columns(o);
     std::vector<std::string> header;
     for (const auto& [name, v] : columns) header.push_back(name);
     CsvWriter w(out.file("curve.csv"), header);
@@ -308,12 +310,11 @@ void write_process_outputs(const ProcessOutcome& o, const Scene& scene,
     }
     w.close();
   }
-  write_json(out, "summary.json", process_summary(o, scene, scene_display));
+  write_json(out, "summary.json", process_summary(o, scene_display));
   out.commit();
 }
 
-nlohmann::json process_summary(const ProcessOutcome& o, const Scene& scene,
-                               const std::string& scene_display) {
+nlohmann::json process_summary(const ProcessOutcome& o, const std::string& scene_display) {
   const MeasurementSpec& m = o.measurement;
   const GaugeSignals& signals = o.signals;
   const KolskySetup& setup = o.setup;

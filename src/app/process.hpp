@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "analysis/gauge_signals.hpp"
@@ -33,11 +34,14 @@ struct ProcessOutcome {
 ProcessOutcome process_scene(const Scene& scene,
                              const std::optional<std::filesystem::path>& signals_file,
                              bool print_warnings = true);
+// curve.csv's columns in their order (docs/outputs.md): the primary reduction's rate, strain,
+// stress and true values lead; rows up to result.loading_end.
+using CurveColumn = std::pair<const char*, const std::vector<double>*>;
+std::vector<CurveColumn> curve_columns(const ProcessOutcome& o);
 // `scene_display` is the scene as named in summary.json. A failed reduction writes pulses.csv and
 // the summary's error, then throws NumericalError, as the command does.
 void write_process_outputs(const ProcessOutcome& o, const Scene& scene,
                            const std::string& scene_display, const std::filesystem::path& output);
-nlohmann::json process_summary(const ProcessOutcome& o, const Scene& scene,
-                               const std::string& scene_display);
+nlohmann::json process_summary(const ProcessOutcome& o, const std::string& scene_display);
 
 }  // namespace shpb
