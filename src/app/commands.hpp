@@ -116,7 +116,8 @@ struct FitArgs {
   int threads = 0;          // simulations of one Jacobian in parallel; 0: all cores
   int max_iterations = 40;  // per stage
   // Central-difference step of the signals stage, relative to each parameter: well above the
-  // simulator's sensitivity noise (docs/methods.md §9; docs/validation.md (shpb fit) gives the measurement).
+  // simulator's sensitivity noise (docs/methods.md §9; docs/validation.md (shpb fit) gives the
+  // measurement).
   double relative_step = 0.05;
   bool quiet = false;
 };

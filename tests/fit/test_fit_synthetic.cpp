@@ -22,7 +22,8 @@ namespace {
 // the fitted pulses reach the noise floor within kFittedNrmse. The standard errors count the record
 // noise and the clock's (tools/fit_noise_seeds over 100 other noise seeds: root mean square of the
 // errors 0.91–1.03 standard errors): a two-standard-error check of four parameters then holds for
-// about 90 % of the seeds (92 of 100), as it should, and this seed is asserted (docs/validation.md, shpb fit).
+// about 90 % of the seeds (92 of 100), as it should, and this seed is asserted (docs/validation.md,
+// shpb fit).
 constexpr double kShapeTolerance = 0.03;
 constexpr double kRateTolerance = 0.10;
 constexpr double kStandardErrors = 2.0;
@@ -35,8 +36,8 @@ const fs::path kCopper = fs::path(SHPB_SOURCE_DIR) / "specimens/ofhc-copper.json
 // in the fit alike (the start below is the truth's file with A, B, n, C moved). Without it the rate
 // term follows each step's strain rate, which rings in the specimen: at 0.1 % steps of A the
 // signals' second differences are as large as the first even with global stepping; with it they
-// are 1e-3 of them (docs/validation.md, shpb fit). 1 µs: about one elastic transit of the specimen (1.1 µs),
-// short against the 10 µs rise of the loading.
+// are 1e-3 of them (docs/validation.md, shpb fit). 1 µs: about one elastic transit of the specimen
+// (1.1 µs), short against the 10 µs rise of the loading.
 const char* const kRateFilter = "1 us";
 
 // Asynchronous stepping, the default: its gauge signals are smooth in the law through the loading
