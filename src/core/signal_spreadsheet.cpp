@@ -211,6 +211,9 @@ bool write_all(int fd, const std::string& data) {
   // inherited from the parent must not record it as a crash of the parent's input.
   __sanitizer_set_death_callback(nullptr);
 #endif
+  // The child answers through `fd` only: what FreeXL (or a sanitizer report of its fault) prints
+  // is not shpb's one-line message, so its stderr goes nowhere.
+  if (const int null = ::open("/dev/null", O_WRONLY); null >= 0) ::dup2(null, STDERR_FILENO);
   std::string answer;
   try {
     answer = read_xls_cells(file, sheet);
