@@ -454,7 +454,7 @@ TEST_CASE(
   REQUIRE(r.code == 0);
   const json s = summary(d / "out");
   // The specimen's own engineering strain maximum (specimen.csv, compression positive).
-  const std::vector<double>& truth = read_table(d / "sim/specimen.csv")["strain"];
+  const std::vector<double> truth = read_table(d / "sim/specimen.csv")["strain"];
   const double true_max = *std::max_element(truth.begin(), truth.end());
   constexpr double kReached = 0.95;
   CHECK(s["max_strain"].get<double>() >= kReached * true_max);

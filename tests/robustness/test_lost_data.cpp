@@ -467,7 +467,7 @@ TEST_CASE("Campaign process -o holding a scene's measured file is refused and th
   }
 }
 
-TEST_CASE("-o a symbolic link to a folder writes through it: the link stays",
+TEST_CASE("An -o that is a symbolic link to a folder is written through: the link stays",
           "[robustness][lost-data]") {
   ScratchFolder scratch("lost");
   write_bytes(scratch.path() / "scene.json", bar_scene("50 us"));
