@@ -16,6 +16,13 @@ std::string format_double(double value) {
   return std::string(buffer, end);
 }
 
+std::string quote_cell(const std::string& s) {
+  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
 CsvWriter::CsvWriter(const std::filesystem::path& file, const std::vector<std::string>& header)
     : path_(file), columns_(header.size()) {
   file_ = std::fopen(file.c_str(), "w");
@@ -56,6 +63,20 @@ void CsvWriter::close() {
 }
 
 void CsvWriter::row(std::span<const double> values) { row({}, 0, values); }
+
+void CsvWriter::row(std::span<const std::string> cells) {
+  if (cells.size() != columns_)
+    throw std::logic_error(path_.string() + ": row has " + std::to_string(cells.size()) +
+                           " cells for " + std::to_string(columns_) + " columns");
+  if (!file_) throw std::logic_error(path_.string() + ": row written after close()");
+  line_.clear();
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    if (i) line_.push_back(',');
+    line_ += cells[i];
+  }
+  line_.push_back('\n');
+  write(line_);
+}
 
 void CsvWriter::row(std::string_view leading, std::size_t leading_columns,
                     std::span<const double> values) {

@@ -23,6 +23,9 @@ class CsvWriter {
   // A row whose first `leading_columns` cells are already text (comma-separated, each from
   // format_double), then the values: a long-format file repeats its key cells on many rows.
   void row(std::string_view leading, std::size_t leading_columns, std::span<const double> values);
+  // A row of cells already formatted (format_double, quote_cell, or empty for an undefined
+  // value): files that mix text and numbers through their columns.
+  void row(std::span<const std::string> cells);
   std::size_t columns() const { return columns_; }
   // Flushes and closes the file, checking both: a full disk is a WriteError naming the file and
   // the reason. Call it when the last row is written; the destructor of an unclosed writer (an
@@ -39,6 +42,9 @@ class CsvWriter {
   std::string line_;
   unsigned rows_ = 0;
 };
+
+// A text cell: quoted when it holds a comma, a quote or a line break (RFC 4180).
+std::string quote_cell(const std::string& text);
 
 // Shortest text that reads back to the same double.
 std::string format_double(double value);

@@ -3,7 +3,7 @@
 // the scene, each measured against one reference (exact or fine mesh, study/reference.hpp) and
 // by its cost (wall time of the solve, node updates). The sweep is a list of independent jobs
 // (the fine-mesh reference, when needed, and one per case) and an assembly of their results, so
-// that the jobs can run in one process or be spread over machines (study/shards.hpp).
+// that the jobs can run in one process or be spread over machines (core/shards.hpp).
 #include <functional>
 #include <string>
 #include <vector>

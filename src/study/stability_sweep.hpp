@@ -41,7 +41,7 @@ inline constexpr double kBoundaryCourantMin = 3e-4;
 inline constexpr double kBoundaryCourantMax = 1.1;
 
 // One job of the sweep: a point of the map, or the boundary bisection of the line through
-// `point` (its courant unused). Independent of each other (study/shards.hpp).
+// `point` (its courant unused). Independent of each other (core/shards.hpp).
 struct StabilityJob {
   StabilityPoint point;
   bool boundary = false;

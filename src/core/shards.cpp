@@ -1,4 +1,4 @@
-#include "study/shards.hpp"
+#include "core/shards.hpp"
 
 #include <algorithm>
 #include <charconv>

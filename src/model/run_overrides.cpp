@@ -1,4 +1,4 @@
-#include "app/commands.hpp"
+#include "model/run_overrides.hpp"
 
 namespace shpb {
 
@@ -14,16 +14,6 @@ ChainDiscretization apply_overrides(const RunOverrides& overrides, Scene& scene)
   options.courant_from_command_line = overrides.courant.has_value();
   options.tolerance_from_command_line = overrides.tolerance.has_value();
   return resolve_scene(scene, options);
-}
-
-std::vector<std::filesystem::path> scene_inputs(const Scene& scene, bool measured_files) {
-  std::vector<std::filesystem::path> files = {scene.file};
-  files.insert(files.end(), scene.material_files.begin(), scene.material_files.end());
-  if (scene.measurement && measured_files) {
-    files.push_back(scene.measurement->file);
-    for (const ChannelSpec& c : scene.measurement->channels) files.push_back(c.file);
-  }
-  return files;
 }
 
 }  // namespace shpb
