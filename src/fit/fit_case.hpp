@@ -28,6 +28,16 @@ struct Nuisance {
   double striker_velocity_m_s = 0;
   double rise_time_s = 0;
   double time_shift_s = 0;
+  double& operator[](NuisanceKind k) {
+    return k == NuisanceKind::kStrikerVelocity ? striker_velocity_m_s
+           : k == NuisanceKind::kRiseTime      ? rise_time_s
+                                               : time_shift_s;
+  }
+  double operator[](NuisanceKind k) const {
+    return k == NuisanceKind::kStrikerVelocity ? striker_velocity_m_s
+           : k == NuisanceKind::kRiseTime      ? rise_time_s
+                                               : time_shift_s;
+  }
 };
 
 // The campaign's tests as a fit counts them. Weights are relative: divided by their mean, so the

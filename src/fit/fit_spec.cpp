@@ -15,12 +15,13 @@ namespace fs = std::filesystem;
 
 std::string to_string(FitStage s) { return std::string(enum_name(kFitStageNames, s)); }
 std::string to_string(FitLoss l) { return std::string(enum_name(kFitLossNames, l)); }
+std::string to_string(NuisanceKind k) { return std::string(enum_name(kNuisanceNames, k)); }
+
+Dimension nuisance_dimension(NuisanceKind k) {
+  return k == NuisanceKind::kStrikerVelocity ? Dimension::kVelocity : Dimension::kTime;
+}
 
 namespace {
-
-Dimension nuisance_dimension(const std::string& name) {
-  return name == "striker_velocity" ? Dimension::kVelocity : Dimension::kTime;
-}
 
 // [lo, hi] with lo < hi, each a quantity of dimension d.
 std::pair<double, double> read_bounds(const JsonValue& v, Dimension d) {
@@ -104,23 +105,24 @@ FitSpec read_fit_spec(const Campaign& c) {
 
   // Nuisance parameters.
   if (auto nuisance = o.get("nuisance")) {
-    const auto n = nuisance->object({"striker_velocity", "rise_time", "time_shift"});
-    for (const std::string key : {"striker_velocity", "rise_time", "time_shift"}) {
-      const auto v = n.get(key);
+    const auto n = nuisance->object(enum_names(kNuisanceNames));
+    for (const auto& [key, kind] : kNuisanceNames) {
+      const auto v = n.get(std::string(key));
       if (!v) continue;
       NuisanceSpec s;
-      s.name = key;
+      s.kind = kind;
       s.json_path = v->path();
       if (v->is_string() && !v->string().empty() && v->string().back() == '%') {
-        if (key == "time_shift")
+        if (kind == NuisanceKind::kTimeShift)
           throw v->error("a time shift starts at 0: give absolute bounds [\"-2 us\", \"2 us\"]");
         const double fraction = v->quantity(Dimension::kDimensionless);  // the one "%" parser
         if (!(fraction > 0 && fraction < 1))
           throw v->error("expected \"N %\" with 0 < N < 100 (± N % of each test's start)");
         s.relative = fraction;
       } else {
-        s.bounds = read_bounds(*v, nuisance_dimension(key));
-        if (key != "time_shift" && s.bounds->first < 0) throw v->array()[0].error("must be >= 0");
+        s.bounds = read_bounds(*v, nuisance_dimension(kind));
+        if (kind != NuisanceKind::kTimeShift && s.bounds->first < 0)
+          throw v->array()[0].error("must be >= 0");
       }
       spec.nuisance.push_back(s);
     }

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/enum_names.hpp"
+#include "core/units.hpp"
 #include "model/campaign.hpp"
 #include "model/material.hpp"
 
@@ -24,9 +25,18 @@ struct FreeParameter {
   std::string json_path;                   // "free.A"
 };
 
+// The per-test parameters of the signals stage (docs/methods.md §9).
+enum class NuisanceKind { kStrikerVelocity, kRiseTime, kTimeShift };
+inline constexpr EnumName<NuisanceKind> kNuisanceNames[] = {
+    {"striker_velocity", NuisanceKind::kStrikerVelocity},
+    {"rise_time", NuisanceKind::kRiseTime},
+    {"time_shift", NuisanceKind::kTimeShift}};
+std::string to_string(NuisanceKind k);
+Dimension nuisance_dimension(NuisanceKind k);
+
 // A per-test parameter: absolute bounds, or ± a fraction of each test's own starting value.
 struct NuisanceSpec {
-  std::string name;  // striker_velocity | rise_time | time_shift
+  NuisanceKind kind = NuisanceKind::kStrikerVelocity;
   std::optional<std::pair<double, double>> bounds;
   std::optional<double> relative;
   std::string json_path;

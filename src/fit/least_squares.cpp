@@ -198,6 +198,72 @@ class Progress final : public ceres::IterationCallback {
   const LsOptions& options_;
 };
 
+using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+// Ceres' options for the bounded problem in scaled parameters.
+ceres::Solver::Options solver_options(const LsOptions& options) {
+  ceres::Solver::Options so;
+  so.linear_solver_type = ceres::DENSE_QR;
+  so.max_num_iterations = options.max_iterations;
+  so.num_threads = 1;  // the model evaluates in parallel itself
+  so.function_tolerance = 1e-7;
+  so.parameter_tolerance = 1e-6;
+  so.gradient_tolerance = 1e-12;
+  so.logging_type = ceres::SILENT;
+  // With bounds, Ceres follows each trust-region step by a projected line search whose trial
+  // points ask for gradients, i.e. a whole Jacobian (2P simulations per test) each: on the LANL
+  // test a refused step cost 40-53 simulations instead of one. The bounds are kept by projecting
+  // the step onto the box alone.
+  so.max_num_line_search_step_size_iterations = 0;
+  return so;
+}
+
+// A group's clock error δt moves its residuals by δt ∂r/∂t, and the estimate by G δt with
+// G = (JᵀJ)⁻¹ Jᵀ ∂r/∂t (Gauss–Newton): its variance adds σ_c² G Gᵀ. A free time shift of the same
+// group absorbs it (G is then that parameter's unit vector).
+void add_clock_errors(Model& model, const std::vector<LsGroup>& groups, std::vector<double>& x,
+                      const RowMatrix& c, Eigen::MatrixXd& cov, LsResult& r,
+                      long& clock_evaluations) {
+  const std::size_t p = x.size();
+  if (model.ensure(x.data(), true)) {
+    const Eigen::MatrixXd& jac = model.jacobian();
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+      if (!(groups[g].clock_sd_s > 0) || !groups[g].clock_sensitivity) continue;
+      std::vector<double> d;
+      try {
+        ++clock_evaluations;
+        d = groups[g].clock_sensitivity(model.theta(x.data()));
+      } catch (const NumericalError&) {
+      }
+      if (d.size() != groups[g].loss_scale.size()) {
+        r.warnings.push_back("the standard errors leave out a clock error: its evaluation failed");
+        continue;
+      }
+      Eigen::VectorXd jtd = Eigen::VectorXd::Zero(static_cast<long>(p));
+      for (std::size_t i = 0; i < d.size(); ++i)
+        jtd += d[i] * jac.row(static_cast<long>(model.offset(g) + i)).transpose();
+      const Eigen::VectorXd gain = c * jtd;
+      cov += groups[g].clock_sd_s * groups[g].clock_sd_s * gain * gain.transpose();
+    }
+  }
+}
+
+// The step against round-off: the Jacobian with half the step should agree.
+void check_step(Model& model, std::vector<double>& x, const LsOptions& options, LsResult& r) {
+  const std::size_t p = x.size();
+  if (model.ensure(x.data(), true)) {
+    const Eigen::MatrixXd jh = model.jacobian();
+    Eigen::MatrixXd jh2;
+    if (model.jacobian_at(x, options.relative_step / 2, jh2)) {
+      r.step_check.resize(p);
+      for (std::size_t j = 0; j < p; ++j) {
+        const double norm = jh.col(static_cast<long>(j)).norm();
+        r.step_check[j] = norm > 0 ? (jh - jh2).col(static_cast<long>(j)).norm() / norm : 0.0;
+      }
+    }
+  }
+}
+
 }  // namespace
 
 LsResult solve_least_squares(const std::vector<LsParameter>& parameters,
@@ -227,19 +293,7 @@ LsResult solve_least_squares(const std::vector<LsParameter>& parameters,
                                    parameters[i].upper / parameters[i].scale);
   }
 
-  ceres::Solver::Options so;
-  so.linear_solver_type = ceres::DENSE_QR;
-  so.max_num_iterations = options.max_iterations;
-  so.num_threads = 1;  // the model evaluates in parallel itself
-  so.function_tolerance = 1e-7;
-  so.parameter_tolerance = 1e-6;
-  so.gradient_tolerance = 1e-12;
-  so.logging_type = ceres::SILENT;
-  // With bounds, Ceres follows each trust-region step by a projected line search whose trial
-  // points ask for gradients, i.e. a whole Jacobian (2P simulations per test) each: on the LANL
-  // test a refused step cost 40-53 simulations instead of one. The bounds are kept by projecting
-  // the step onto the box alone.
-  so.max_num_line_search_step_size_iterations = 0;
+  ceres::Solver::Options so = solver_options(options);
   Progress progress(model, options);
   so.callbacks.push_back(&progress);
   // The simulator's residuals carry a small non-smooth part (docs/methods.md §9): a Jacobian
@@ -292,37 +346,13 @@ LsResult solve_least_squares(const std::vector<LsParameter>& parameters,
   co.num_threads = 1;
   ceres::Covariance covariance(co);
   std::vector<std::pair<const double*, const double*>> blocks = {{x.data(), x.data()}};
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> c(p, p);
+  RowMatrix c(p, p);
   if (at_solution && covariance.Compute(blocks, &problem) &&
       covariance.GetCovarianceBlock(x.data(), x.data(), c.data())) {
     const double dof =
         std::max<double>(1.0, static_cast<double>(r.residuals) - static_cast<double>(p));
     Eigen::MatrixXd cov = c * (2 * r.cost / dof);
-    // A group's clock error δt moves its residuals by δt ∂r/∂t, and the estimate by
-    // G δt with G = (JᵀJ)⁻¹ Jᵀ ∂r/∂t (Gauss–Newton): its variance adds σ_c² G Gᵀ. A free time shift
-    // of the same group absorbs it (G is then that parameter's unit vector).
-    if (model.ensure(x.data(), true)) {
-      const Eigen::MatrixXd& jac = model.jacobian();
-      for (std::size_t g = 0; g < groups.size(); ++g) {
-        if (!(groups[g].clock_sd_s > 0) || !groups[g].clock_sensitivity) continue;
-        std::vector<double> d;
-        try {
-          ++clock_evaluations;
-          d = groups[g].clock_sensitivity(model.theta(x.data()));
-        } catch (const NumericalError&) {
-        }
-        if (d.size() != groups[g].loss_scale.size()) {
-          r.warnings.push_back(
-              "the standard errors leave out a clock error: its evaluation failed");
-          continue;
-        }
-        Eigen::VectorXd jtd = Eigen::VectorXd::Zero(static_cast<long>(p));
-        for (std::size_t i = 0; i < d.size(); ++i)
-          jtd += d[i] * jac.row(static_cast<long>(model.offset(g) + i)).transpose();
-        const Eigen::VectorXd gain = c * jtd;
-        cov += groups[g].clock_sd_s * groups[g].clock_sd_s * gain * gain.transpose();
-      }
-    }
+    add_clock_errors(model, groups, x, c, cov, r, clock_evaluations);
     r.std_error.resize(p);
     r.correlation = Eigen::MatrixXd::Identity(static_cast<long>(p), static_cast<long>(p));
     for (std::size_t i = 0; i < p; ++i)
@@ -338,18 +368,7 @@ LsResult solve_least_squares(const std::vector<LsParameter>& parameters,
                              : "no covariance: the Jacobian at the solution cannot be evaluated");
   }
 
-  // The step against round-off: the Jacobian with half the step should agree.
-  if (model.ensure(x.data(), true)) {
-    const Eigen::MatrixXd jh = model.jacobian();
-    Eigen::MatrixXd jh2;
-    if (model.jacobian_at(x, options.relative_step / 2, jh2)) {
-      r.step_check.resize(p);
-      for (std::size_t j = 0; j < p; ++j) {
-        const double norm = jh.col(static_cast<long>(j)).norm();
-        r.step_check[j] = norm > 0 ? (jh - jh2).col(static_cast<long>(j)).norm() / norm : 0.0;
-      }
-    }
-  }
+  check_step(model, x, options, r);
   // A signal during the covariance or the step check leaves them incomplete: no result then.
   if (model.interrupted() || interrupted()) throw Interrupted();
   r.evaluations = model.evaluations() + clock_evaluations;
