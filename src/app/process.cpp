@@ -1,133 +1,32 @@
 // `shpb process SCENE -o DIR [--signals FILE]` (docs/commands.md, docs/outputs.md): gauge signals →
-// pulses at the specimen faces → 1/2/3-wave stress–strain curves. Everything is read and checked
-// before the output folder is created.
+// pulses at the specimen faces → 1/2/3-wave stress–strain curves (analysis/process_scene.hpp),
+// written by analysis/process_outputs.hpp. Everything is read and checked before the output
+// folder is created.
 #include "app/process.hpp"
 
 #include <malloc.h>
 
-#include <algorithm>
-#include <cmath>
 #include <cstdio>
-#include <nlohmann/json.hpp>
+#include <memory>
 
-#include "analysis/bar_check.hpp"
-#include "analysis/gauge_signals.hpp"
-#include "analysis/processing.hpp"
-#include "analysis/test_processing.hpp"
+#include "analysis/process_campaign.hpp"
+#include "app/cli_options.hpp"
 #include "app/commands.hpp"
-#include "core/checked_write.hpp"
-#include "core/csv_writer.hpp"
 #include "core/error.hpp"
-#include "core/output_folder.hpp"
-#include "core/signal_reader.hpp"
-#include "version.hpp"
 
 namespace shpb {
-
-// summary.json's entries (docs/outputs.md): one pulse window, and the equilibrium's extent.
-void to_json(nlohmann::json& j, const WindowReport& w) {
-  j = {{"gauge", w.gauge},
-       {"start_s", w.start_s},
-       {"end_s", w.end_s},
-       {"source", w.detected ? "detected" : "scene"}};
-}
-
-void to_json(nlohmann::json& j, const Equilibrium& e) {
-  auto interval = [](const std::optional<std::pair<double, double>>& p) {
-    return p ? nlohmann::json::array({p->first, p->second}) : nlohmann::json();
-  };
-  j = {{"fraction_of_loaded_time", e.loaded_s ? nlohmann::json(e.fraction) : nlohmann::json()},
-       {"loaded_s", interval(e.loaded_s)},
-       {"longest_interval_s", interval(e.longest_s)},
-       {"holds_until_unloading_from_s",
-        e.holds_from_s ? nlohmann::json(*e.holds_from_s) : nlohmann::json()}};
-}
-
 namespace {
 
-bool all_finite(const std::vector<double>& v) {
-  for (double x : v)
-    if (!std::isfinite(x)) return false;
-  return true;
+void print_bar_check(const BarCheckOutcome& o, const std::filesystem::path& output) {
+  std::fprintf(stderr,
+               "process: bars together, %s -> %s over %.4g m: RMS %.3g %% of peak with "
+               "Pochhammer-Chree dispersion, %.3g %% with a plain time shift -> %s\n",
+               o.setup.near_gauge.c_str(), o.setup.far_gauge.c_str(), o.setup.distance_m,
+               100 * o.result.rms_dispersion, 100 * o.result.rms_time_shift,
+               output.string().c_str());
 }
 
-// Why the reduction cannot be reported (empty: it can). The pulses are checked separately: they
-// are written even when the reduction fails.
-std::string reduction_failure(const ProcessingResult& r) {
-  const Curve& c = r.curve;
-  for (const auto* v : {&c.strain_rate_1_s, &c.strain, &c.stress_3wave_Pa, &c.true_strain,
-                        &c.true_stress_Pa, &c.equilibrium_ratio, &c.strain_1wave})
-    if (!all_finite(*v)) return "process: the reduction produced a non-finite value";
-  if (c.strain.size() && *std::max_element(c.strain.begin(), c.strain.end()) >= 1)
-    return "process: engineering strain reached 1 (the specimen would have no length "
-           "left): check the channels' units and bridge factors, the specimen length and the "
-           "windows";
-  return "";
-}
-
-void write_pulses(const OutputFolder& out, const ProcessingResult& r) {
-  CsvWriter p(out.file("pulses.csv"), {"time_s", "incident", "reflected", "transmitted"});
-  for (std::size_t i = 0; i < r.time_s.size(); ++i)
-    p.row({r.time_s[i], r.incident[i], r.reflected[i], r.transmitted[i]});
-  p.close();
-}
-
-void write_json(const OutputFolder& out, const std::string& name, const nlohmann::json& s) {
-  write_text_file(out.file(name), s.dump(2) + "\n");
-}
-
-// A scene without a specimen: the bars-together check of the bars' dispersion (bar_check.hpp).
-int run_bar_check(const ProcessArgs& args, const Scene& scene) {
-  if (args.signals)
-    throw input_error(scene.file.string(), "specimen", "(missing)",
-                      "--signals reduces a simulated test: name the specimen bar");
-  if (!scene.measurement)
-    throw input_error(scene.file.string(), "measurement", "(missing)",
-                      "a bars-together check needs the measured signals of two gauges");
-  const MeasurementSpec& m = *scene.measurement;
-  const GaugeSignals signals = read_gauge_signals(m, {});
-  for (const auto& w : signals.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
-  const BarCheckSetup setup = resolve_bar_check(scene, signals.gauges);
-  const BarCheckResult r = check_bars_together(signals, setup, m.dispersion, scene.file.string());
-  std::vector<std::string> warnings = signals.warnings;
-  warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
-  OutputFolder out(args.output, "process", scene_inputs(scene));
-  {
-    CsvWriter p(out.file("pulses.csv"),
-                {"time_s", "far_measured", "far_pochhammer_chree", "far_time_shift"});
-    for (std::size_t i = 0; i < r.time_s.size(); ++i)
-      p.row({r.time_s[i], r.far_measured[i], r.far_dispersion[i], r.far_time_shift[i]});
-  }
-  write_json(
-      out, "summary.json",
-      {{"version", kVersion},
-       {"command", "process"},
-       {"scene", args.scene.string()},
-       {"check", "bars together (no specimen)"},
-       {"near_gauge", setup.near_gauge},
-       {"far_gauge", setup.far_gauge},
-       {"distance_m", setup.distance_m},
-       {"cutoff_Hz", r.cutoff_Hz},
-       {"rms_of_peak", {{"pochhammer_chree", r.rms_dispersion}, {"time_shift", r.rms_time_shift}}},
-       {"how",
-        "the near gauge's first pulse (the rest of its record zeroed) moved by the distance "
-        "to the far gauge, with Pochhammer-Chree dispersion and by a plain delay "
-        "distance/c0; RMS of the difference from the far record over its pulse (+-20 % of "
-        "its length), as a fraction of its peak"},
-       {"warnings", warnings}});
-  out.commit();
-  if (!args.quiet)
-    std::fprintf(stderr,
-                 "process: bars together, %s -> %s over %.4g m: RMS %.3g %% of peak with "
-                 "Pochhammer-Chree dispersion, %.3g %% with a plain time shift -> %s\n",
-                 setup.near_gauge.c_str(), setup.far_gauge.c_str(), setup.distance_m,
-                 100 * r.rms_dispersion, 100 * r.rms_time_shift, args.output.string().c_str());
-  return 0;
-}
-
-}  // namespace
-
-int run_process(const ProcessArgs& args) {
+void reuse_heap_buffers() {
   // A long record passes through buffers of tens of MB (file, fields, columns, FFT): taken from
   // the heap and, once freed, reused instead of returned to the kernel and faulted in again
   // (1 M-row record: 70 700 -> 40 400 page faults, system time 0.17 -> 0.08 s). A glibc that
@@ -135,12 +34,19 @@ int run_process(const ProcessArgs& args) {
   constexpr int kHeapBuffers = 1 << 30;
   mallopt(M_MMAP_THRESHOLD, kHeapBuffers);
   mallopt(M_TRIM_THRESHOLD, kHeapBuffers);
-  const Scene scene = read_scene(args.scene);
-  if (!scene.specimen) return run_bar_check(args, scene);
-  const ProcessOutcome o = process_scene(scene, args.signals);
-  write_process_outputs(o, scene, args.scene.string(), args.output);
-  const ProcessingResult& r = o.result;
-  if (!args.quiet) {
+}
+
+}  // namespace
+
+int run_process(const ProcessArgs& args) {
+  reuse_heap_buffers();
+  const ProcessedScene p = process_into(args.scene, args.signals, args.output);
+  if (args.quiet) return 0;
+  if (p.bars) {
+    print_bar_check(*p.bars, args.output);
+  } else {
+    const ProcessOutcome& o = *p.outcome;
+    const ProcessingResult& r = o.result;
     char striker[80], rate[120];
     if (o.setup.pulse_shaper)
       std::snprintf(striker, sizeof striker, "striker not inferred (pulse shaper)");
@@ -164,319 +70,60 @@ int run_process(const ProcessArgs& args) {
   return 0;
 }
 
-ProcessOutcome process_scene(const Scene& scene,
-                             const std::optional<std::filesystem::path>& signals_file,
-                             bool print_warnings) {
-  if (!scene.specimen)
-    throw input_error(scene.file.string(), "specimen", "(missing)",
-                      "name the specimen bar to reduce a test (a scene without one is the "
-                      "command's bars-together check)");
-  std::vector<std::string> gauges;
-  for (const auto& b : scene.bars)
-    for (const auto& g : b.gauges) gauges.push_back(g.name);
-
-  ProcessOutcome o;
-  MeasurementSpec& m = o.measurement;
-  ProcessingOptions& options = o.options = processing_options(scene);
-  if (signals_file) {
-    // A gauges.csv written by `shpb simulate` (time_s + one strain column per gauge): signals of
-    // the 1D bar model, which does not disperse, so the faces are reached by a pure delay.
-    o.simulated = true;
-    const KolskySetup probe = resolve_setup(scene, gauges);
-    m.file = *signals_file;
-    m.format = SignalFormat::kCsv;
-    m.time_column.name = "time_s";
-    for (const auto& g : {probe.incident_gauge, probe.transmitted_gauge}) {
-      ChannelSpec ch;
-      ch.gauge = g;
-      ch.column.name = g;
-      ch.unit = SignalUnit::kStrain;
-      m.channels.push_back(ch);
-    }
-    options.dispersion = {};
-    options.dispersion.correction = false;
-    options.windows = {};  // the scene's windows are on the measured clock
-  } else {
-    if (!scene.measurement)
-      throw input_error(scene.file.string(), "measurement", "(missing)",
-                        "needed to process measured signals (or give --signals FILE)");
-    m = *scene.measurement;
-    if (m.channels.empty())
-      throw input_error(
-          scene.file.string(), "measurement.channels", "(missing)",
-          "a list of {\"gauge\", \"column\", \"unit\", ...} to process measured signals");
-  }
-  if (options.primary == PrimaryReduction::kOneWave && scene.measurement &&
-      (scene.measurement->corrections.friction || scene.measurement->corrections.inertia))
-    throw input_error(scene.file.string(), "measurement.primary", "\"1-wave\"",
-                      "the friction and inertia corrections apply to the 3-wave stress: use "
-                      "\"primary\": \"3-wave\" with measurement.corrections, or drop them");
-  // What was assumed is said even with --quiet (which silences progress only), and as soon as
-  // it is known: before any later error stops the run.
-  GaugeSignals& signals = o.signals;
-  signals = read_gauge_signals(m, {});
-  if (print_warnings)
-    for (const auto& w : signals.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
-  const KolskySetup& setup = o.setup = resolve_setup(scene, signals.gauges);
-  ProcessedTest processed = process_test(scene, signals, setup, options);
-  ProcessingResult& r = o.result = std::move(processed.result);
-  o.corrections = processed.corrections;
-  o.removed = processed.removed;
-  if (print_warnings)
-    for (const auto& w : r.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
-  std::vector<std::string>& warnings = o.warnings = signals.warnings;
-  warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
-  for (const auto* v : {&r.incident, &r.reflected, &r.transmitted})
-    if (!all_finite(*v)) throw NumericalError("process: the pulses hold a non-finite value");
-  o.failure = reduction_failure(r);
-  return o;
-}
-
-std::vector<CurveColumn> curve_columns(const ProcessOutcome& o) {
-  const ProcessingResult& r = o.result;
-  const Curve& c = r.curve;
-  if (o.options.primary == PrimaryReduction::kOneWave)
-    return {{"time_s", &r.time_s},
-            {"strain_rate_1wave_1_s", &c.strain_rate_1wave_1_s},
-            {"strain_1wave", &c.strain_1wave},
-            {"stress_1wave_Pa", &c.stress_1wave_Pa},
-            {"true_strain", &c.true_strain},
-            {"true_stress_Pa", &c.true_stress_Pa},
-            {"strain_rate_1_s", &c.strain_rate_1_s},
-            {"strain", &c.strain},
-            {"stress_2wave_Pa", &c.stress_2wave_Pa},
-            {"stress_3wave_Pa", &c.stress_3wave_Pa},
-            {"equilibrium_ratio", &c.equilibrium_ratio},
-            {"force_front_N", &c.force_front_N},
-            {"force_back_N", &c.force_back_N}};
-  return {{"time_s", &r.time_s},
-          {"strain_rate_1_s", &c.strain_rate_1_s},
-          {"strain", &c.strain},
-          {"stress_1wave_Pa", &c.stress_1wave_Pa},
-          {"stress_2wave_Pa", &c.stress_2wave_Pa},
-          {"stress_3wave_Pa", &c.stress_3wave_Pa},
-          {"true_strain", &c.true_strain},
-          {"true_stress_Pa", &c.true_stress_Pa},
-          {"equilibrium_ratio", &c.equilibrium_ratio},
-          {"strain_rate_1wave_1_s", &c.strain_rate_1wave_1_s},
-          {"force_front_N", &c.force_front_N},
-          {"force_back_N", &c.force_back_N},
-          {"strain_1wave", &c.strain_1wave}};
-}
-
-void write_process_outputs(const ProcessOutcome& o, const Scene& scene,
-                           const std::string& scene_display, const std::filesystem::path& output) {
-  const MeasurementSpec& m = o.measurement;
-  const GaugeSignals& signals = o.signals;
-  const ProcessingResult& r = o.result;
-  std::vector<std::filesystem::path> inputs = scene_inputs(scene);
-  inputs.push_back(m.file);
-  for (const ChannelSpec& c : m.channels) inputs.push_back(c.file);
-  OutputFolder out(output, "process", inputs);
-  {  // the signals as read, in strain, tension positive: what the windows were found on
-    std::vector<std::string> header = {"time_s"};
-    header.insert(header.end(), signals.gauges.begin(), signals.gauges.end());
-    CsvWriter w(out.file("raw_signals.csv"), header);
-    std::vector<double> row(header.size());
-    for (std::size_t i = 0; i < signals.time_s.size(); ++i) {
-      row[0] = signals.time_s[i];
-      for (std::size_t g = 0; g < signals.strain.size(); ++g) row[g + 1] = signals.strain[g][i];
-      w.row(row);
-    }
-    w.close();
-  }
-  write_pulses(out, r);
-  // A failed reduction still leaves the pulses at the faces to look at, and says why.
-  if (!o.failure.empty()) {
-    write_json(out, "summary.json",
-               {{"version", kVersion},
-                {"command", "process"},
-                {"scene", scene_display},
-                {"error", o.failure},
-                {"warnings", o.warnings},
-                {"written", "pulses.csv only: the reduction failed"}});
-    out.commit();
-    throw NumericalError(o.failure + " (pulses.csv written to " + output.string() + ")");
-  }
-  {
-    const std::vector<CurveColumn> columns = curve_columns(o);
-    std::vector<std::string> header;
-    for (const auto& [name, v] : columns) header.push_back(name);
-    CsvWriter w(out.file("curve.csv"), header);
-    std::vector<double> row(columns.size());
-    for (std::size_t i = 0; i < r.loading_end; ++i) {
-      for (std::size_t j = 0; j < columns.size(); ++j) row[j] = (*columns[j].second)[i];
-      w.row(row);
-    }
-    w.close();
-  }
-  write_json(out, "summary.json", process_summary(o, scene_display));
-  out.commit();
-}
-
-nlohmann::json process_summary(const ProcessOutcome& o, const std::string& scene_display) {
-  const MeasurementSpec& m = o.measurement;
-  const GaugeSignals& signals = o.signals;
-  const KolskySetup& setup = o.setup;
-  const ProcessingOptions& options = o.options;
-  const ProcessingResult& r = o.result;
-  const SpecimenCorrections& corrections = o.corrections;
-  const CorrectionReport& removed = o.removed;
-  const bool simulated = o.simulated;
-  const bool one_wave = options.primary == PrimaryReduction::kOneWave;
-  nlohmann::json s;
-  s["version"] = kVersion;
-  s["command"] = "process";
-  s["scene"] = scene_display;
-  s["signals"] = {{"source", simulated ? "simulated (--signals)" : "measurement"},
-                  {"file", m.file.string()},
-                  {"samples", signals.time_s.size()},
-                  {"sample_interval_s", signals.dt_s},
-                  {"incident_gauge", setup.incident_gauge},
-                  {"transmitted_gauge", setup.transmitted_gauge}};
-  s["warnings"] = o.warnings;
-  s["test"] = options.tension ? "tension" : "compression";
-  s["conventions"] =
-      std::string(
-          "pulses.csv: strains at the specimen faces, tension positive, on the signals' "
-          "clock; curve.csv: ") +
-      (options.tension ? "tension positive (true strain ln(1+e), true stress s(1+e))"
-                       : "compression positive") +
-      (one_wave ? ", led by the 1-wave reduction (primary): 1-wave stress against the "
-                  "reflected-pulse strain, whose true values are given; the 3-wave columns "
-                  "follow"
-                : ", strain and strain rate from the 3-wave reduction, true values from the "
-                  "3-wave stress (after the corrections listed under corrections)");
-  s["primary"] = {
-      {"reduction", std::string(enum_name(kPrimaryNames, options.primary))},
-      {"stress", one_wave ? "stress_1wave_Pa" : "stress_3wave_Pa"},
-      {"strain", one_wave ? "strain_1wave" : "strain"},
-      {"how", one_wave ? "1-wave: transmitted-face stress P2/A_s against the strain of the "
-                         "reflected pulse, integral of 2 c0 eps_R / L_s; it does not depend on "
-                         "the alignment of the incident and reflected pulses"
-                       : "3-wave: the mean of the two face forces over A_s against the integral "
-                         "of (v1 - v2)/L_s"}};
-  s["reductions"] = {
-      {"3-wave", {{"peak_stress_Pa", r.peak_stress_3wave_Pa}, {"max_strain", r.max_strain_3wave}}},
-      {"1-wave", {{"peak_stress_Pa", r.peak_stress_1wave_Pa}, {"max_strain", r.max_strain_1wave}}},
-      {"over", "the loading (the rows of curve.csv)"}};
-  nlohmann::json disp = {
-      {"correction", std::string(enum_name(kCorrectionNames, options.dispersion.correction))},
-      {"amplitude_factors", options.dispersion.amplitude_factors}};
-  if (options.dispersion.correction) disp["cutoff_Hz"] = r.cutoff_Hz;
-  if (simulated)
-    disp["reason"] = "signals of the 1D bar model do not disperse: pure delay by distance/c0";
-  s["dispersion"] = disp;
-  s["windows"] = {{"incident", r.incident_window},
-                  {"reflected", r.reflected_window},
-                  {"transmitted", r.transmitted_window},
-                  {"specimen_faces", {{"start_s", r.face_start_s}, {"end_s", r.face_end_s}}}};
-  s["shifts_s"] = {{"incident", r.shift_incident_s},
-                   {"reflected", r.shift_reflected_s},
-                   {"transmitted", r.shift_transmitted_s}};
-  s["gauge_distances_m"] = {{"incident", setup.incident_distance_m},
-                            {"transmitted", setup.transmitted_distance_m}};
-  s["alignment"] = {
-      {"reflected_onset_minus_expected_s",
-       r.reflected_onset_offset_s ? nlohmann::json(*r.reflected_onset_offset_s) : nlohmann::json()},
-      {"transmitted_onset_minus_expected_s", r.transmitted_onset_offset_s
-                                                 ? nlohmann::json(*r.transmitted_onset_offset_s)
-                                                 : nlohmann::json()},
-      {"suspect", r.alignment_suspect},
-      {"align", std::string(enum_name(kAlignmentNames, options.align))},
-      {"applied",
-       {{"reflected",
-         r.reflected_at_onset ? "onset" : (options.windows.reflected ? "window" : "geometry")},
-        {"transmitted", r.transmitted_at_onset
-                            ? "onset"
-                            : (options.windows.transmitted ? "window" : "geometry")}}},
-      {"area_ratio", r.area_ratio},
-      {"reflected_offset_3wave_stress_error", r.reflected_offset_stress_error
-                                                  ? nlohmann::json(*r.reflected_offset_stress_error)
-                                                  : nlohmann::json()},
-      {"how",
-       std::string("incident forward and reflected/transmitted backward by their gauge distances "
-                   "over c0 (dispersion-corrected)") +
-           (options.align == Alignment::kOnsets
-                ? "; with align \"onsets\" the reflected and transmitted pulses are shifted "
-                  "further so that their detected onsets fall where geometry expects them"
-                : "; the detected onsets are reported, not applied (align \"geometry\")") +
-           ". reflected_offset_3wave_stress_error: the largest change of the 3-wave stress, as a "
-           "fraction of the 1-wave peak, that moving the reflected pulse by its onset offset "
-           "makes where the 1-wave stress is >= 20 % of its peak"}};
-  s["incident_plateau_strain"] = r.incident_plateau_strain;
-  s["striker_velocity_m_s"] = {
-      {"inferred",
-       setup.pulse_shaper ? nlohmann::json() : nlohmann::json(r.inferred_striker_velocity_m_s)},
-      {"meaningful", !setup.pulse_shaper},
-      {"scene",
-       setup.striker_velocity_m_s ? nlohmann::json(*setup.striker_velocity_m_s) : nlohmann::json()},
-      {"how", setup.pulse_shaper
-                  ? "not inferred: a pulse shaper lies between the striker and the incident bar, "
-                    "so the incident plateau is set by the shaper's flow, not by the striker's "
-                    "impedance"
-                  : "incident plateau at the front face: V = E A eps (Z_s + Z_b)/(Z_s Z_b)"}};
-  s["plateau_strain_rate_1_s"] =
-      r.strain_rate_has_plateau ? nlohmann::json(r.plateau_strain_rate_1_s) : nlohmann::json();
-  s["strain_rate"] = {
-      {"plateau_1_s", s["plateau_strain_rate_1_s"]},
-      {"plateau_fraction_of_loading", r.strain_rate_plateau_fraction},
-      {"mean_over_loading_1_s", r.mean_strain_rate_1_s},
-      {"reduction", std::string(enum_name(kPrimaryNames, options.primary))},
-      {"window",
-       !options.rate_window ? nlohmann::json()
-       : options.rate_window->by_strain
-           ? nlohmann::json({{"strain", {options.rate_window->from, options.rate_window->to}}})
-           : nlohmann::json({{"time_s", {options.rate_window->from, options.rate_window->to}}})},
-      {"mean_over_window_1_s",
-       r.window_strain_rate_1_s ? nlohmann::json(*r.window_strain_rate_1_s) : nlohmann::json()},
-      {"how",
-       "plateau: the longest run of samples within +-10 % of the rate's plateau level (median of "
-       "the samples above half its 95th percentile) covers at least 30 % of the loading (samples "
-       "with a positive rate); otherwise null and only the mean is quoted. window: "
-       "measurement.rate_window, the strain or time range (faces' clock) over which "
-       "mean_over_window_1_s is the mean rate; of the primary reduction"}};
-  s["end_of_loading"] = {{"time_s", r.time_s[r.loading_end - 1]},
-                         {"how", r.loading_end_how},
-                         {"curve_rows", r.loading_end},
-                         {"strain_reached", r.max_strain},
-                         {"record_max_strain", r.record_max_strain},
-                         {"cut_short", r.loading_cut_short},
-                         {"note", "curve.csv ends here; pulses.csv keeps the whole window"}};
-  s["peak_stress_Pa"] = r.peak_stress_Pa;
-  s["max_strain"] = r.max_strain;
-  s["time_to_equilibrium_s"] =
-      r.time_to_equilibrium_s ? nlohmann::json(*r.time_to_equilibrium_s) : nlohmann::json();
-  {
-    nlohmann::json c = nlohmann::json::object();
-    if (corrections.friction) {
-      c["friction"] = {
-          {"mu", *corrections.friction},
-          {"form",
-           "Dharan & Hauser (1970): measured = flow stress x (1 + mu d/(3 sqrt(3) L)), "
-           "d and L current (volume-conserving)"},
-          {"factor_min", removed.friction_factor_min},
-          {"factor_max", removed.friction_factor_max}};
-    }
-    if (corrections.inertia)
-      c["inertia"] = {{"form",
-                       "3-wave minus flow stress = rho L^2 (eps_dd - eps_d^2)/12 (axial) + rho a^2 "
-                       "(eps_dd/8 + eps_d^2/16) (radial; Davies & Hunter 1963, Gorham 1989, "
-                       "Forrestal et al. 2007), true rates, L and a current"}};
-    nlohmann::json terms = nlohmann::json::object();
-    for (const RemovedTerm& t : removed.terms)
-      terms[t.name] = {{"median_Pa", t.median_Pa}, {"max_abs_Pa", t.max_abs_Pa}};
-    if (!removed.terms.empty()) {
-      c["removed_true_stress"] = terms;
-      c["removed_where"] = "samples with 3-wave stress >= 20 % of its peak, before correction";
-    }
-    s["corrections"] = c;
-  }
-  s["equilibrium_criterion"] =
-      "R = 2|P1-P2|/|P1+P2| <= 0.05 while (P1+P2)/2 >= 20 % of its peak (loaded); reached at the "
-      "start of the interval with R <= 0.05 that lasts until unloading";
-  s["equilibrium"] = r.equilibrium;
-  return s;
+Command add_process_command(CLI::App& app) {
+  struct Options {
+    ProcessArgs one;
+    CampaignOptions campaign;
+    std::vector<std::string> scenes;
+    std::string campaign_file, signals;
+  };
+  auto o = std::make_shared<Options>();
+  CampaignOptions& campaign = o->campaign;
+  auto* cmd = app.add_subcommand(
+      "process",
+      "Reduce gauge signals (the scene's measurement, or --signals) to aligned pulses "
+      "and 1/2/3-wave stress–strain curves; write pulses.csv, curve.csv, summary.json");
+  cmd->add_option("scene", o->scenes,
+                  "Scene JSON file (bars, gauges, specimen, measurement); several: a "
+                  "campaign, one folder per test and campaign.csv");
+  cmd->add_option("--campaign", o->campaign_file,
+                  "Campaign file (tests[]: {scene, name}) instead of scenes: one folder per "
+                  "test and campaign.csv");
+  cmd->add_option("--flow-stress-at", campaign.flow_strains,
+                  "Campaigns: engineering strains at which campaign.csv gives the flow "
+                  "stress, e.g. 0.02,0.05")
+      ->delimiter(',');
+  cmd->add_option("--shard", campaign.shard,
+                  "Campaigns: process every N-th test from K into DIR/parts/K-of-N (K/N)");
+  cmd->add_flag("--merge", campaign.merge,
+                "Campaigns: check DIR/parts holds every test once; write DIR/result");
+  cmd->add_option("-o,--output", o->one.output, "Output folder (replaced atomically)")->required();
+  cmd->add_option("--signals", o->signals,
+                  "Gauge signals to process instead of the scene's measurement, e.g. a "
+                  "gauges.csv written by `shpb simulate`");
+  cmd->add_flag("--quiet,-q", o->one.quiet, "No progress output on stderr");
+  return {cmd, [o] {
+            CampaignOptions& c = o->campaign;
+            const bool several = o->scenes.size() != 1 || !o->campaign_file.empty() ||
+                                 !c.shard.empty() || c.merge || !c.flow_strains.empty();
+            if (several) {
+              if (!o->signals.empty())
+                throw input_error("--signals", "", "", "processes one scene: not with a campaign");
+              for (const auto& s : o->scenes) c.scenes.push_back(s);
+              if (!o->campaign_file.empty()) c.campaign = o->campaign_file;
+              c.output = o->one.output;
+              if (!o->one.quiet)
+                c.progress = [](const std::string& l) {
+                  std::fprintf(stderr, "process: %s\n", l.c_str());
+                };
+              reuse_heap_buffers();
+              process_campaign(c);
+              return 0;
+            }
+            o->one.scene = o->scenes.front();
+            if (!o->signals.empty()) o->one.signals = o->signals;
+            return run_process(o->one);
+          }};
 }
 
 }  // namespace shpb

@@ -34,7 +34,7 @@ struct Campaign {
 };
 
 // The files and folders a campaign's output folder holds besides its test folders
-// (app/process_campaign.cpp): no test may be named as one of them.
+// (analysis/process_campaign.cpp): no test may be named as one of them.
 const std::vector<std::string>& campaign_output_names();
 
 // Every top-level key a campaign may hold (the fit's keys included, so one file serves both).

@@ -1,0 +1,29 @@
+#pragma once
+// `shpb process` over several tests (docs/commands.md): scenes or a campaign file; each test's
+// folder as the one-test command writes it (analysis/process_outputs.hpp process_into), plus
+// campaign.csv; --shard K/N and --merge as for `study` (core/shards.hpp).
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace shpb {
+
+struct CampaignOptions {
+  std::vector<std::filesystem::path> scenes;
+  std::optional<std::filesystem::path> campaign;
+  std::filesystem::path output;
+  std::vector<double> flow_strains;  // engineering strains of the flow_stress_Pa_at_<e> columns
+  std::string shard;                 // "K/N"
+  bool merge = false;
+  std::function<void(const std::string&)> progress;  // one line at a time; empty: silent
+  // Ceres' Solver::Options::IsValid: false with the reason in `error`.
+  bool IsValid(std::string* error) const;
+};
+
+// Every scene read and checked before anything is processed or written. InputError (exit 2),
+// NumericalError (exit 3) as the one-test command.
+void process_campaign(const CampaignOptions& options);
+
+}  // namespace shpb

@@ -1,0 +1,154 @@
+// `shpb process` without writing (docs/commands.md): the signals read and checked, the pulses at
+// the specimen faces, the 1/2/3-wave reduction.
+#include "analysis/process_scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "core/error.hpp"
+
+namespace shpb {
+namespace {
+
+bool all_finite(const std::vector<double>& v) {
+  for (double x : v)
+    if (!std::isfinite(x)) return false;
+  return true;
+}
+
+// Why the reduction cannot be reported (empty: it can). The pulses are checked separately: they
+// are written even when the reduction fails.
+std::string reduction_failure(const ProcessingResult& r) {
+  const Curve& c = r.curve;
+  for (const auto* v : {&c.strain_rate_1_s, &c.strain, &c.stress_3wave_Pa, &c.true_strain,
+                        &c.true_stress_Pa, &c.equilibrium_ratio, &c.strain_1wave})
+    if (!all_finite(*v)) return "process: the reduction produced a non-finite value";
+  if (c.strain.size() && *std::max_element(c.strain.begin(), c.strain.end()) >= 1)
+    return "process: engineering strain reached 1 (the specimen would have no length "
+           "left): check the channels' units and bridge factors, the specimen length and the "
+           "windows";
+  return "";
+}
+
+}  // namespace
+
+BarCheckOutcome check_scene_bars(const Scene& scene, bool with_signals_file) {
+  if (with_signals_file)
+    throw input_error(scene.file.string(), "specimen", "(missing)",
+                      "--signals reduces a simulated test: name the specimen bar");
+  if (!scene.measurement)
+    throw input_error(scene.file.string(), "measurement", "(missing)",
+                      "a bars-together check needs the measured signals of two gauges");
+  const MeasurementSpec& m = *scene.measurement;
+  const GaugeSignals signals = read_gauge_signals(m, {});
+  for (const auto& w : signals.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  BarCheckOutcome o;
+  o.setup = resolve_bar_check(scene, signals.gauges);
+  o.result = check_bars_together(signals, o.setup, m.dispersion, scene.file.string());
+  o.warnings = signals.warnings;
+  o.warnings.insert(o.warnings.end(), o.result.warnings.begin(), o.result.warnings.end());
+  return o;
+}
+
+ProcessOutcome process_scene(const Scene& scene,
+                             const std::optional<std::filesystem::path>& signals_file,
+                             bool print_warnings) {
+  if (!scene.specimen)
+    throw input_error(scene.file.string(), "specimen", "(missing)",
+                      "name the specimen bar to reduce a test (a scene without one is the "
+                      "command's bars-together check)");
+  std::vector<std::string> gauges;
+  for (const auto& b : scene.bars)
+    for (const auto& g : b.gauges) gauges.push_back(g.name);
+
+  ProcessOutcome o;
+  MeasurementSpec& m = o.measurement;
+  ProcessingOptions& options = o.options = processing_options(scene);
+  if (signals_file) {
+    // A gauges.csv written by `shpb simulate` (time_s + one strain column per gauge): signals of
+    // the 1D bar model, which does not disperse, so the faces are reached by a pure delay.
+    o.simulated = true;
+    const KolskySetup probe = resolve_setup(scene, gauges);
+    m.file = *signals_file;
+    m.format = SignalFormat::kCsv;
+    m.time_column.name = "time_s";
+    for (const auto& g : {probe.incident_gauge, probe.transmitted_gauge}) {
+      ChannelSpec ch;
+      ch.gauge = g;
+      ch.column.name = g;
+      ch.unit = SignalUnit::kStrain;
+      m.channels.push_back(ch);
+    }
+    options.dispersion = {};
+    options.dispersion.correction = false;
+    options.windows = {};  // the scene's windows are on the measured clock
+  } else {
+    if (!scene.measurement)
+      throw input_error(scene.file.string(), "measurement", "(missing)",
+                        "needed to process measured signals (or give --signals FILE)");
+    m = *scene.measurement;
+    if (m.channels.empty())
+      throw input_error(
+          scene.file.string(), "measurement.channels", "(missing)",
+          "a list of {\"gauge\", \"column\", \"unit\", ...} to process measured signals");
+  }
+  if (options.primary == PrimaryReduction::kOneWave && scene.measurement &&
+      (scene.measurement->corrections.friction || scene.measurement->corrections.inertia))
+    throw input_error(scene.file.string(), "measurement.primary", "\"1-wave\"",
+                      "the friction and inertia corrections apply to the 3-wave stress: use "
+                      "\"primary\": \"3-wave\" with measurement.corrections, or drop them");
+  // What was assumed is said even with --quiet (which silences progress only), and as soon as
+  // it is known: before any later error stops the run.
+  GaugeSignals& signals = o.signals;
+  signals = read_gauge_signals(m, {});
+  if (print_warnings)
+    for (const auto& w : signals.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  const KolskySetup& setup = o.setup = resolve_setup(scene, signals.gauges);
+  ProcessedTest processed = process_test(scene, signals, setup, options);
+  ProcessingResult& r = o.result = std::move(processed.result);
+  o.corrections = processed.corrections;
+  o.removed = processed.removed;
+  if (print_warnings)
+    for (const auto& w : r.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  std::vector<std::string>& warnings = o.warnings = signals.warnings;
+  warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
+  for (const auto* v : {&r.incident, &r.reflected, &r.transmitted})
+    if (!all_finite(*v)) throw NumericalError("process: the pulses hold a non-finite value");
+  o.failure = reduction_failure(r);
+  return o;
+}
+
+std::vector<CurveColumn> curve_columns(const ProcessOutcome& o) {
+  const ProcessingResult& r = o.result;
+  const Curve& c = r.curve;
+  if (o.options.primary == PrimaryReduction::kOneWave)
+    return {{"time_s", &r.time_s},
+            {"strain_rate_1wave_1_s", &c.strain_rate_1wave_1_s},
+            {"strain_1wave", &c.strain_1wave},
+            {"stress_1wave_Pa", &c.stress_1wave_Pa},
+            {"true_strain", &c.true_strain},
+            {"true_stress_Pa", &c.true_stress_Pa},
+            {"strain_rate_1_s", &c.strain_rate_1_s},
+            {"strain", &c.strain},
+            {"stress_2wave_Pa", &c.stress_2wave_Pa},
+            {"stress_3wave_Pa", &c.stress_3wave_Pa},
+            {"equilibrium_ratio", &c.equilibrium_ratio},
+            {"force_front_N", &c.force_front_N},
+            {"force_back_N", &c.force_back_N}};
+  return {{"time_s", &r.time_s},
+          {"strain_rate_1_s", &c.strain_rate_1_s},
+          {"strain", &c.strain},
+          {"stress_1wave_Pa", &c.stress_1wave_Pa},
+          {"stress_2wave_Pa", &c.stress_2wave_Pa},
+          {"stress_3wave_Pa", &c.stress_3wave_Pa},
+          {"true_strain", &c.true_strain},
+          {"true_stress_Pa", &c.true_stress_Pa},
+          {"equilibrium_ratio", &c.equilibrium_ratio},
+          {"strain_rate_1wave_1_s", &c.strain_rate_1wave_1_s},
+          {"force_front_N", &c.force_front_N},
+          {"force_back_N", &c.force_back_N},
+          {"strain_1wave", &c.strain_1wave}};
+}
+
+}  // namespace shpb

@@ -1,0 +1,52 @@
+#pragma once
+// `shpb process` as a library, for the command and for callers that keep the result in memory
+// (the Python module): process_scene() reads the signals and reduces them, writing nothing;
+// analysis/process_outputs.hpp writes the command's folder (docs/outputs.md) from its result.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "analysis/bar_check.hpp"
+#include "analysis/gauge_signals.hpp"
+#include "analysis/processing.hpp"
+#include "analysis/test_processing.hpp"
+#include "model/scene.hpp"
+
+namespace shpb {
+
+struct ProcessOutcome {
+  MeasurementSpec measurement;  // what was read (the scene's, or the --signals file's columns)
+  bool simulated = false;       // --signals: a gauges.csv of `shpb simulate`
+  ProcessingOptions options;
+  GaugeSignals signals;  // as read, in strain (raw_signals.csv)
+  KolskySetup setup;
+  ProcessingResult result;  // pulses.csv, curve.csv (rows up to result.loading_end)
+  SpecimenCorrections corrections;
+  CorrectionReport removed;
+  std::vector<std::string> warnings;
+  std::string failure;  // why the reduction cannot be reported (empty: it can)
+};
+
+// Throws InputError for a scene that cannot be processed (no specimen: the command's
+// bars-together check is not a reduction) and NumericalError for non-finite pulses.
+ProcessOutcome process_scene(const Scene& scene,
+                             const std::optional<std::filesystem::path>& signals_file,
+                             bool print_warnings = true);
+// curve.csv's columns in their order (docs/outputs.md): the primary reduction's rate, strain,
+// stress and true values lead; rows up to result.loading_end.
+using CurveColumn = std::pair<const char*, const std::vector<double>*>;
+std::vector<CurveColumn> curve_columns(const ProcessOutcome& o);
+
+// A scene without a specimen: the bars-together check of the bars' dispersion (bar_check.hpp).
+struct BarCheckOutcome {
+  BarCheckSetup setup;
+  BarCheckResult result;
+  std::vector<std::string> warnings;
+};
+// InputError when the scene cannot be checked (no measurement, or `with_signals_file`: --signals
+// reduces a simulated test).
+BarCheckOutcome check_scene_bars(const Scene& scene, bool with_signals_file);
+
+}  // namespace shpb
