@@ -1,0 +1,138 @@
+#include "study/study_run.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "core/file_digest.hpp"
+#include "core/output_folder.hpp"
+#include "core/parallel_runner.hpp"
+#include "model/run_overrides.hpp"
+#include "study/pareto_sweep.hpp"
+#include "study/stability_sweep.hpp"
+
+namespace shpb {
+namespace {
+
+// Every gauge record of the parts names the scene's gauges in its order: the error compares column
+// by column with the reference.
+void check_gauge_columns(const StudyPlan& plan, const Scene& scene, const std::vector<Part>& parts,
+                         const StudyResults& results) {
+  std::vector<std::string> gauges;
+  for (const BarSpec& b : scene.bars)
+    for (const GaugeSpec& g : b.gauges) gauges.push_back(g.name);
+  for (const Part& p : parts)
+    for (std::size_t r : shard_runs(plan.runs(), p.shard))
+      if (r < results.pareto.size() && results.pareto[r].gauges.samples() > 0 &&
+          results.pareto[r].gauges.columns != gauges)
+        throw input_error(p.path.string(), "results (run " + std::to_string(r) + ")", "",
+                          "gauge columns other than the scene's gauges: remove the part and run "
+                          "its shard again");
+}
+
+}  // namespace
+
+std::string read_text(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The plan of the sweep the options ask for (ids and the scene's text filled in by the caller).
+StudyPlan make_study_plan(const StudyOptions& args, const Scene& scene) {
+  StudyPlan plan;
+  plan.sweep = args.sweep;
+  plan.contact = args.contact;
+  plan.stepping = args.stepping;
+  plan.courant = args.courant;
+  plan.refine = args.refine;
+  std::vector<ContactMethod> methods;
+  std::vector<Stepping> steppings;
+  if (plan.contact) methods.push_back(*plan.contact);
+  if (plan.stepping) steppings.push_back(*plan.stepping);
+  if (plan.sweep == Sweep::kStability)
+    plan.stability = stability_jobs(stability_grid(methods, plan.refine));
+  else
+    plan.pareto = pareto_jobs(scene, pareto_cases(methods, steppings));
+  return plan;
+}
+
+// The scene of a plan read from its folder: the same files (scene, materials), unchanged, with the
+// same options.
+Scene plan_scene(const StudyPlan& plan, const std::filesystem::path& plan_file) {
+  check_input_digests(plan.inputs, plan_file, "inputs", "the plan was made", "plan again");
+  Scene scene = read_scene(plan.scene);
+  RunOverrides o;
+  o.contact = plan.contact;
+  o.stepping = plan.stepping;
+  o.courant = plan.courant;
+  apply_overrides(o, scene);
+  return scene;
+}
+
+// Runs `runs` of the plan on `threads` workers, each result into its slot.
+void run_plan(const StudyPlan& plan, const Scene& scene, const std::vector<std::size_t>& runs,
+              int threads, const std::function<void(std::size_t, std::size_t)>& progress,
+              StudyResults& results) {
+  const auto cancel = [] { return interrupted(); };
+  results.pareto.resize(plan.pareto.size());
+  results.stability.resize(plan.stability.size());
+  if (plan.sweep == Sweep::kStability) {
+    const Scene probe = stability_probe_scene(scene);
+    run_parallel(
+        runs.size(), threads,
+        [&](std::size_t i) {
+          if (cancel()) throw Interrupted();
+          results.stability[runs[i]] = run_stability_job(probe, plan.stability[runs[i]]);
+        },
+        progress);
+  } else {
+    run_parallel(
+        runs.size(), threads,
+        [&](std::size_t i) {
+          results.pareto[runs[i]] = run_pareto_job(scene, plan.pareto[runs[i]], cancel);
+        },
+        progress);
+  }
+}
+
+std::vector<std::size_t> all_runs(std::size_t n) {
+  std::vector<std::size_t> runs(n);
+  for (std::size_t i = 0; i < n; ++i) runs[i] = i;
+  return runs;
+}
+
+MergedParts merge_parts(const StudyPlan& plan, const Scene& scene,
+                        const std::filesystem::path& dir) {
+  MergedParts m;
+  m.parts = find_parts(dir / "parts", ".json");
+  check_parts_cover(dir / "parts", plan.runs(), m.parts);
+  StudyResults& results = m.results;
+  results.pareto.resize(plan.pareto.size());
+  results.stability.resize(plan.stability.size());
+  // Threads and wall time of a merged study: the most threads a shard used, the shards' sum.
+  int& threads = m.threads;
+  double& wall = m.wall_s;
+  for (const Part& p : m.parts) {
+    std::ifstream in(p.path);
+    nlohmann::json j;
+    try {
+      j = nlohmann::json::parse(in);
+      threads = std::max(threads, j.at("threads").get<int>());
+      wall += j.at("wall_time_s").get<double>();
+    } catch (const std::exception& e) {
+      throw input_error(p.path.string(), "", "",
+                        std::string("damaged part (") + e.what() +
+                            "): remove it and run its "
+                            "shard again");
+    }
+    read_part(j, p.path, plan, shard_runs(plan.runs(), p.shard), results);
+  }
+  check_gauge_columns(plan, scene, m.parts, results);
+  return m;
+}
+
+}  // namespace shpb
