@@ -1,0 +1,71 @@
+#include "dispersion/mode_table.hpp"
+
+#include <cmath>
+
+#include "core/csv_writer.hpp"
+#include "core/error.hpp"
+#include "core/output_folder.hpp"
+#include "dispersion/pochhammer_chree.hpp"
+
+namespace shpb {
+namespace {
+
+std::vector<double> table_points(const ModeTableOptions& o) {
+  std::vector<double> xs = o.a_over_lambda;
+  if (xs.empty())
+    for (int i = 0; i < o.points; ++i) xs.push_back(o.max_a_over_lambda * i / (o.points - 1));
+  return xs;
+}
+
+}  // namespace
+
+bool ModeTableOptions::IsValid(std::string* error) const {
+  std::optional<InputError> e;
+  if (!poisson_ratio_supported(poisson))
+    e = input_error("--poisson", "", format_double(poisson),
+                    "must be in [" + format_double(kMinPoissonRatio) + ", " +
+                        format_double(kMaxPoissonRatio) + "]");
+  else if (a_over_lambda.empty() && points < 2)
+    e = input_error("--points", "", std::to_string(points), "must be >= 2");
+  for (double x : e ? std::vector<double>{} : table_points(*this))
+    if (!e && (!(x >= 0) || x > 1000))
+      e = input_error("--a-over-lambda", "", format_double(x), "must be in [0, 1000]");
+  if (!e && radius_m.has_value() != c0_m_s.has_value())
+    e = input_error(radius_m ? "--c0" : "--radius", "", "missing",
+                    "--radius and --c0 go together (frequency_Hz needs both)");
+  else if (!e && radius_m && (!(*radius_m > 0) || !(*c0_m_s > 0)))
+    e = input_error("--radius/--c0", "", "", "must be > 0");
+  if (e) *error = e->what();
+  return !e;
+}
+
+std::vector<std::string> mode_table_header(const ModeTableOptions& options) {
+  std::vector<std::string> header = {"a_over_lambda", "c_over_c0", "cg_over_c0", "f_a_over_c0"};
+  if (options.radius_m && options.c0_m_s) header.push_back("frequency_Hz");
+  return header;
+}
+
+void mode_table(const ModeTableOptions& options,
+                const std::function<void(const std::vector<double>&)>& row) {
+  // Marching guess only for a small increasing step (the narrow bracket then cannot reach
+  // another mode; see phase_velocity).
+  constexpr double kMarchingStep = 0.01;
+  const bool with_frequency = options.radius_m && options.c0_m_s;
+  double previous_x = -1, previous_c = 0;
+  for (double x : table_points(options)) {
+    throw_if_interrupted();
+    const bool near = x > previous_x && x - previous_x <= kMarchingStep && previous_x >= 0;
+    const double c = phase_velocity(options.poisson, x, near ? previous_c : 0.0);
+    previous_x = x;
+    previous_c = c;
+    const double cg = group_velocity(options.poisson, x, c);
+    std::vector<double> r = {x, c, cg, x * c};
+    if (with_frequency) r.push_back(x * c * *options.c0_m_s / *options.radius_m);
+    for (double v : r)
+      if (!std::isfinite(v))
+        throw NumericalError("dispersion: non-finite value at a/lambda = " + format_double(x));
+    row(r);
+  }
+}
+
+}  // namespace shpb

@@ -1,0 +1,28 @@
+#pragma once
+// The table `shpb dispersion` prints (docs/commands.md, docs/methods.md §5): the first
+// Pochhammer–Chree mode of a solid round bar at a list of a/Λ, one row at a time.
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace shpb {
+
+struct ModeTableOptions {
+  double poisson = 0.29;
+  std::vector<double> a_over_lambda;  // explicit list, or
+  double max_a_over_lambda = 1.6;     // an evenly spaced table of `points` from 0
+  int points = 321;
+  std::optional<double> radius_m;  // both, or neither: the frequency_Hz column
+  std::optional<double> c0_m_s;
+  // Ceres' Solver::Options::IsValid: false with the one-line reason in `error`.
+  bool IsValid(std::string* error) const;
+};
+
+// a_over_lambda,c_over_c0,cg_over_c0,f_a_over_c0[,frequency_Hz].
+std::vector<std::string> mode_table_header(const ModeTableOptions& options);
+// Calls `row` for every a/Λ in order. NumericalError for a non-finite value.
+void mode_table(const ModeTableOptions& options,
+                const std::function<void(const std::vector<double>&)>& row);
+
+}  // namespace shpb
