@@ -1,39 +1,41 @@
 #pragma once
-// One function per subcommand (one file each in app/). Each returns the process exit code:
-// 0 success, 2 bad input (InputError), 3 numerical failure (NumericalError). main() catches
-// what escapes and maps it to these codes.
+// One file per subcommand in app/: it registers its options (add_<command>_command, called by
+// main.cpp in the order of `shpb --help`) and runs it (run_<command>, also called by the Python
+// module): options checked (IsValid), one library call that returns a result, the result written.
+// Each run_<command> returns the process exit code: 0 success, 2 bad input (InputError), 3
+// numerical failure (NumericalError). main() catches what escapes and maps it to these codes.
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "core/options_check.hpp"
+#include "model/run_overrides.hpp"
 #include "model/scene.hpp"
+#include "model/scene_inputs.hpp"
 #include "model/scene_validation.hpp"
 #include "study/sweep.hpp"
 
+namespace CLI {
+class App;
+}
+
 namespace shpb {
 
-// Options shared by simulate, compare and study (docs/commands.md); unset means "as the scene
-// says".
-struct RunOverrides {
-  std::optional<ContactMethod> contact;
-  std::optional<Stepping> stepping;
-  std::optional<double> courant;
-  std::optional<double> tolerance;  // --tolerance: the gauge error accepted (a fraction)
-  int threads = 0;                  // 0: all cores
-  bool quiet = false;
+// A registered subcommand and what runs it once the command line is parsed.
+struct Command {
+  CLI::App* app = nullptr;
+  std::function<int()> run;
 };
-
-// Applies --contact/--stepping/--courant/--tolerance to a scene read from file, then checks the
-// result with resolve_scene() (model/scene_validation.hpp), the one validation every command
-// shares (with a tolerance it also meshes the scene); returns the discretization the run will use.
-// Throws InputError (exit 2).
-ChainDiscretization apply_overrides(const RunOverrides& overrides, Scene& scene);
-
-// The files a run of `scene` reads (the scene, its material files and, unless `measured_files` is
-// false — simulate and study never open them — its measured signal files): the inputs each
-// command declares to its output folder (core/output_folder.hpp) and records in plans and parts.
-std::vector<std::filesystem::path> scene_inputs(const Scene& scene, bool measured_files = true);
+Command add_simulate_command(CLI::App& app);
+Command add_process_command(CLI::App& app);
+Command add_compare_command(CLI::App& app);
+Command add_dispersion_command(CLI::App& app);
+Command add_study_command(CLI::App& app);
+Command add_validate_command(CLI::App& app);
+Command add_report_command(CLI::App& app);
+Command add_fit_command(CLI::App& app);
 
 struct SimulateArgs {
   std::filesystem::path scene;
@@ -50,19 +52,6 @@ struct ProcessArgs {
   bool quiet = false;
 };
 int run_process(const ProcessArgs& args);
-
-// `shpb process` over several tests (docs/commands.md): scenes or a campaign file; each test's
-// folder by run_process, plus campaign.csv; --shard K/N and --merge as for `study`.
-struct CampaignArgs {
-  std::vector<std::filesystem::path> scenes;
-  std::optional<std::filesystem::path> campaign;
-  std::filesystem::path output;
-  std::vector<double> flow_strains;  // engineering strains of the flow_stress_Pa_at_<e> columns
-  std::string shard;                 // "K/N"
-  bool merge = false;
-  bool quiet = false;
-};
-int run_process_campaign(const CampaignArgs& args);
 
 struct CompareArgs {
   std::filesystem::path scene;
@@ -95,6 +84,7 @@ struct StudyArgs {
   std::optional<std::filesystem::path> run;    // run shard `shard` of DIR's plan
   std::optional<std::filesystem::path> merge;  // merge DIR's parts into -o (default DIR/result)
   std::string shard;                           // "K/N"
+  bool IsValid(std::string* error) const;      // the modes and their options
 };
 int run_study(const StudyArgs& args);
 
@@ -120,6 +110,7 @@ struct FitArgs {
   // measurement).
   double relative_step = 0.05;
   bool quiet = false;
+  bool IsValid(std::string* error) const;
 };
 int run_fit(const FitArgs& args);
 

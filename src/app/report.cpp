@@ -5,8 +5,10 @@
 #include <spawn.h>
 #include <sys/wait.h>
 
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -80,6 +82,18 @@ int run_report(const ReportArgs& args) {
   std::fprintf(stderr, "error: internal: %s %s exited with status %d\n", python->c_str(),
                script->c_str(), rc);
   return 4;
+}
+
+Command add_report_command(CLI::App& app) {
+  auto args = std::make_shared<ReportArgs>();
+  auto* cmd = app.add_subcommand(
+      "report",
+      "Turn an output folder of simulate/process/compare/study into PNG figures and one "
+      "self-contained report.html (needs python3 with matplotlib)");
+  cmd->add_option("folder", args->folder, "Output folder")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  return {cmd, [args] { return run_report(*args); }};
 }
 
 }  // namespace shpb

@@ -2,8 +2,10 @@
 // written), run it, write the files of docs/outputs.md atomically. An instability is exit 3 with
 // what was computed until then and a summary saying where and when (still written atomically).
 #include <cstdio>
+#include <memory>
 #include <new>
 
+#include "app/cli_options.hpp"
 #include "app/commands.hpp"
 #include "app/progress.hpp"
 #include "core/error.hpp"
@@ -45,6 +47,26 @@ int run_simulate(const SimulateArgs& args) {
                  scene.name.c_str(), result.wall_time_s, result.node_updates, result.energy_error,
                  out.final_path().string().c_str());
   return 0;
+}
+
+Command add_simulate_command(CLI::App& app) {
+  struct Options {
+    SimulateArgs args;
+    RunOptionText run;
+  };
+  auto o = std::make_shared<Options>();
+  auto* cmd = app.add_subcommand("simulate",
+                                 "Run a scene; write gauges.csv, interfaces.csv, "
+                                 "specimen.csv, energy.csv, field.csv, summary.json");
+  cmd->add_option("scene", o->args.scene, "Scene JSON file")->required();
+  cmd->add_option("-o,--output", o->args.output, "Output folder (replaced atomically)")->required();
+  cmd->add_flag("--full-model", o->args.full_model,
+                "Update every node of every bar from the start (no causal economy)");
+  add_run_options(cmd, o->args.overrides, o->run);
+  return {cmd, [o] {
+            resolve_run_options(o->args.overrides, o->run);
+            return run_simulate(o->args);
+          }};
 }
 
 }  // namespace shpb

@@ -1,0 +1,65 @@
+#include "app/cli_options.hpp"
+
+#include "core/csv_writer.hpp"
+#include "core/enum_names.hpp"
+#include "core/error.hpp"
+#include "model/discretization.hpp"
+
+namespace shpb {
+
+std::string alternatives(const std::vector<std::string>& names) {
+  std::string text;
+  for (const auto& n : names) text += (text.empty() ? "" : " | ") + n;
+  return text;
+}
+
+void add_run_options(CLI::App* cmd, RunOverrides& o, RunOptionText& text) {
+  std::vector<std::string> methods = enum_names(kContactMethodNames);
+  std::erase(methods, std::string(to_string(ContactMethod::kBonded)));
+  const std::vector<std::string> steppings = enum_names(kSteppingNames);
+  cmd->add_option("--contact", text.contact,
+                  "Contact method at every interface: " + alternatives(methods) +
+                      " (default: the scene's, else " +
+                      std::string(to_string(ContactSpec{}.method)) + ")")
+      ->check(CLI::IsMember(methods));
+  cmd->add_option("--stepping", text.stepping,
+                  alternatives(steppings) +
+                      ": every bar its own time step, or all bars at the smallest step (default: "
+                      "the scene's, else " +
+                      std::string(to_string(SimulationSpec{}.stepping)) + ")")
+      ->check(CLI::IsMember(steppings));
+  // Its range, (0, 1] as in the scene, is checked with the scene (model/scene_validation.hpp).
+  cmd->add_option("--courant", o.courant,
+                  "Courant number of every bar, c·Δt/h, in (0, 1] (default: the scene's, else " +
+                      format_double(kDefaultCourant) + ")");
+  // Its range, (0 %, 100 %) as in the scene, is checked with the scene
+  // (model/scene_validation.hpp).
+  cmd->add_option("--tolerance", text.tolerance,
+                  "Gauge error accepted, e.g. \"1 %\": every bar meshed as coarsely as the error "
+                  "model predicts meets it (default: the scene's simulation.tolerance, else the "
+                  "automatic meshes)");
+  cmd->add_option("--threads", o.threads, "Worker threads (0 = all cores)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--quiet,-q", o.quiet, "No progress output on stderr");
+}
+
+void resolve_run_options(RunOverrides& o, const RunOptionText& text) {
+  if (!text.contact.empty()) o.contact = contact_method_from_string(text.contact);
+  if (!text.stepping.empty()) o.stepping = stepping_from_string(text.stepping);
+  if (!text.tolerance.empty()) try {
+      o.tolerance = parse_quantity(text.tolerance, Dimension::kDimensionless);
+    } catch (const std::invalid_argument&) {
+      throw input_error("--tolerance", "", "\"" + text.tolerance + "\"",
+                        "expected a gauge error such as \"1 %\"");
+    }
+}
+
+double quantity_option(const std::string& option, const std::string& text, Dimension d) {
+  try {
+    return parse_quantity(text, d);
+  } catch (const std::invalid_argument& e) {
+    throw input_error(option, "", "\"" + text + "\"", e.what());
+  }
+}
+
+}  // namespace shpb
