@@ -153,7 +153,8 @@ def main(argv: list[str]) -> int:
             path.write_text("\n".join(out), encoding="utf-8")
             print(f"updated {name}")
     if stale and not update:
-        print(f"{stale} documented output(s) differ from what shpb prints now: run `make docs`",
+        print(f"{stale} documented output(s) or column table(s) differ from what shpb prints or "
+              "the output schema lists now: run `make docs`",
               file=sys.stderr)
         return 1
     return 0
