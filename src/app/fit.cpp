@@ -31,6 +31,7 @@
 #include "fit/fit_spec.hpp"
 #include "fit/law_parameters.hpp"
 #include "fit/least_squares.hpp"
+#include "output_schema.hpp"
 #include "version.hpp"
 
 namespace shpb {
@@ -498,9 +499,10 @@ int run_fit(const FitArgs& args) {
     const MaterialSpec law0 = spec.material,
                        law1 = after_curve.empty() ? law0 : law_with(spec, after_curve),
                        law2 = law_with(spec, final_law);
-    CsvWriter w(out.file("curves.csv"), {"test", "time_s", "true_strain", "true_plastic_strain",
-                                         "strain_rate_1_s", "temperature_K", "stress_measured_Pa",
-                                         "stress_start_Pa", "stress_curve_Pa", "stress_fitted_Pa"});
+    namespace k = schema::fit_curves;  // the column names (src/core/output_schema.json)
+    CsvWriter w(out.file(k::kFile), {k::test, k::time_s, k::true_strain, k::true_plastic_strain,
+                                     k::strain_rate_1_s, k::temperature_K, k::stress_measured_Pa,
+                                     k::stress_start_Pa, k::stress_curve_Pa, k::stress_fitted_Pa});
     auto flow = [](const MaterialSpec& m, const CurvePoint& p) {
       return law_flow_stress(m, p.plastic_strain, p.strain_rate_1_s, p.temperature_K).value_or(0.0);
     };
@@ -515,8 +517,9 @@ int run_fit(const FitArgs& args) {
   }
   // signals.csv: measured, start and fitted strains in each compared window.
   {
-    CsvWriter w(out.file("signals.csv"), {"test", "gauge", "pulse", "time_s", "measured_strain",
-                                          "start_strain", "fitted_strain"});
+    namespace k = schema::fit_signals;
+    CsvWriter w(out.file(k::kFile), {k::test, k::gauge, k::pulse, k::time_s, k::measured_strain,
+                                     k::start_strain, k::fitted_strain});
     for (std::size_t k = 0; k < cases.size(); ++k) {
       const auto& m = cases[k]->measured();
       for (const auto& p : cases[k]->windows()) {

@@ -20,6 +20,7 @@
 #include "core/error.hpp"
 #include "core/output_folder.hpp"
 #include "core/signal_reader.hpp"
+#include "output_schema.hpp"
 #include "version.hpp"
 
 namespace shpb {
@@ -66,7 +67,8 @@ std::string reduction_failure(const ProcessingResult& r) {
 }
 
 void write_pulses(const OutputFolder& out, const ProcessingResult& r) {
-  CsvWriter p(out.file("pulses.csv"), {"time_s", "incident", "reflected", "transmitted"});
+  namespace k = schema::pulses;
+  CsvWriter p(out.file(k::kFile), {k::time_s, k::incident, k::reflected, k::transmitted});
   for (std::size_t i = 0; i < r.time_s.size(); ++i)
     p.row({r.time_s[i], r.incident[i], r.reflected[i], r.transmitted[i]});
   p.close();
@@ -93,8 +95,9 @@ int run_bar_check(const ProcessArgs& args, const Scene& scene) {
   warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
   OutputFolder out(args.output, "process", scene_inputs(scene));
   {
-    CsvWriter p(out.file("pulses.csv"),
-                {"time_s", "far_measured", "far_pochhammer_chree", "far_time_shift"});
+    namespace k = schema::bar_check_pulses;
+    CsvWriter p(out.file(k::kFile),
+                {k::time_s, k::far_measured, k::far_pochhammer_chree, k::far_time_shift});
     for (std::size_t i = 0; i < r.time_s.size(); ++i)
       p.row({r.time_s[i], r.far_measured[i], r.far_dispersion[i], r.far_time_shift[i]});
   }
@@ -235,33 +238,34 @@ ProcessOutcome process_scene(const Scene& scene,
 std::vector<CurveColumn> curve_columns(const ProcessOutcome& o) {
   const ProcessingResult& r = o.result;
   const Curve& c = r.curve;
+  namespace k = schema::curve;  // the column names (src/core/output_schema.json)
   if (o.options.primary == PrimaryReduction::kOneWave)
-    return {{"time_s", &r.time_s},
-            {"strain_rate_1wave_1_s", &c.strain_rate_1wave_1_s},
-            {"strain_1wave", &c.strain_1wave},
-            {"stress_1wave_Pa", &c.stress_1wave_Pa},
-            {"true_strain", &c.true_strain},
-            {"true_stress_Pa", &c.true_stress_Pa},
-            {"strain_rate_1_s", &c.strain_rate_1_s},
-            {"strain", &c.strain},
-            {"stress_2wave_Pa", &c.stress_2wave_Pa},
-            {"stress_3wave_Pa", &c.stress_3wave_Pa},
-            {"equilibrium_ratio", &c.equilibrium_ratio},
-            {"force_front_N", &c.force_front_N},
-            {"force_back_N", &c.force_back_N}};
-  return {{"time_s", &r.time_s},
-          {"strain_rate_1_s", &c.strain_rate_1_s},
-          {"strain", &c.strain},
-          {"stress_1wave_Pa", &c.stress_1wave_Pa},
-          {"stress_2wave_Pa", &c.stress_2wave_Pa},
-          {"stress_3wave_Pa", &c.stress_3wave_Pa},
-          {"true_strain", &c.true_strain},
-          {"true_stress_Pa", &c.true_stress_Pa},
-          {"equilibrium_ratio", &c.equilibrium_ratio},
-          {"strain_rate_1wave_1_s", &c.strain_rate_1wave_1_s},
-          {"force_front_N", &c.force_front_N},
-          {"force_back_N", &c.force_back_N},
-          {"strain_1wave", &c.strain_1wave}};
+    return {{k::time_s, &r.time_s},
+            {k::strain_rate_1wave_1_s, &c.strain_rate_1wave_1_s},
+            {k::strain_1wave, &c.strain_1wave},
+            {k::stress_1wave_Pa, &c.stress_1wave_Pa},
+            {k::true_strain, &c.true_strain},
+            {k::true_stress_Pa, &c.true_stress_Pa},
+            {k::strain_rate_1_s, &c.strain_rate_1_s},
+            {k::strain, &c.strain},
+            {k::stress_2wave_Pa, &c.stress_2wave_Pa},
+            {k::stress_3wave_Pa, &c.stress_3wave_Pa},
+            {k::equilibrium_ratio, &c.equilibrium_ratio},
+            {k::force_front_N, &c.force_front_N},
+            {k::force_back_N, &c.force_back_N}};
+  return {{k::time_s, &r.time_s},
+          {k::strain_rate_1_s, &c.strain_rate_1_s},
+          {k::strain, &c.strain},
+          {k::stress_1wave_Pa, &c.stress_1wave_Pa},
+          {k::stress_2wave_Pa, &c.stress_2wave_Pa},
+          {k::stress_3wave_Pa, &c.stress_3wave_Pa},
+          {k::true_strain, &c.true_strain},
+          {k::true_stress_Pa, &c.true_stress_Pa},
+          {k::equilibrium_ratio, &c.equilibrium_ratio},
+          {k::strain_rate_1wave_1_s, &c.strain_rate_1wave_1_s},
+          {k::force_front_N, &c.force_front_N},
+          {k::force_back_N, &c.force_back_N},
+          {k::strain_1wave, &c.strain_1wave}};
 }
 
 void write_process_outputs(const ProcessOutcome& o, const Scene& scene,
@@ -274,9 +278,9 @@ void write_process_outputs(const ProcessOutcome& o, const Scene& scene,
   for (const ChannelSpec& c : m.channels) inputs.push_back(c.file);
   OutputFolder out(output, "process", inputs);
   {  // the signals as read, in strain, tension positive: what the windows were found on
-    std::vector<std::string> header = {"time_s"};
+    std::vector<std::string> header = {schema::raw_signals::time_s};
     header.insert(header.end(), signals.gauges.begin(), signals.gauges.end());
-    CsvWriter w(out.file("raw_signals.csv"), header);
+    CsvWriter w(out.file(schema::raw_signals::kFile), header);
     std::vector<double> row(header.size());
     for (std::size_t i = 0; i < signals.time_s.size(); ++i) {
       row[0] = signals.time_s[i];
@@ -302,7 +306,7 @@ void write_process_outputs(const ProcessOutcome& o, const Scene& scene,
     const std::vector<CurveColumn> columns = curve_columns(o);
     std::vector<std::string> header;
     for (const auto& [name, v] : columns) header.push_back(name);
-    CsvWriter w(out.file("curve.csv"), header);
+    CsvWriter w(out.file(schema::curve::kFile), header);
     std::vector<double> row(columns.size());
     for (std::size_t i = 0; i < r.loading_end; ++i) {
       for (std::size_t j = 0; j < columns.size(); ++j) row[j] = (*columns[j].second)[i];
@@ -349,8 +353,8 @@ nlohmann::json process_summary(const ProcessOutcome& o, const std::string& scene
                   "3-wave stress (after the corrections listed under corrections)");
   s["primary"] = {
       {"reduction", std::string(enum_name(kPrimaryNames, options.primary))},
-      {"stress", one_wave ? "stress_1wave_Pa" : "stress_3wave_Pa"},
-      {"strain", one_wave ? "strain_1wave" : "strain"},
+      {"stress", one_wave ? schema::curve::stress_1wave_Pa : schema::curve::stress_3wave_Pa},
+      {"strain", one_wave ? schema::curve::strain_1wave : schema::curve::strain},
       {"how", one_wave ? "1-wave: transmitted-face stress P2/A_s against the strain of the "
                          "reflected pulse, integral of 2 c0 eps_R / L_s; it does not depend on "
                          "the alignment of the incident and reflected pulses"

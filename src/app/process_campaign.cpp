@@ -21,6 +21,7 @@
 #include "core/output_folder.hpp"
 #include "model/campaign.hpp"
 #include "model/scene.hpp"
+#include "output_schema.hpp"
 #include "study/shards.hpp"
 #include "version.hpp"
 
@@ -110,10 +111,11 @@ std::vector<std::vector<double>> read_columns(const fs::path& csv,
 std::string strain_label(double strain) { return format_double(strain); }
 
 std::vector<std::string> campaign_header(const std::vector<double>& flow_strains) {
-  std::vector<std::string> h = {"test", "scene", "plateau_strain_rate_1_s", "peak_stress_Pa"};
+  namespace k = schema::campaign;  // the column names (src/core/output_schema.json)
+  std::vector<std::string> h = {k::test, k::scene, k::plateau_strain_rate_1_s, k::peak_stress_Pa};
   for (double e : flow_strains) h.push_back("flow_stress_Pa_at_" + strain_label(e));
-  for (const char* c : {"time_to_equilibrium_s", "striker_velocity_m_s",
-                        "striker_velocity_inferred_m_s", "warnings"})
+  for (const char* c : {k::time_to_equilibrium_s, k::striker_velocity_m_s,
+                        k::striker_velocity_inferred_m_s, k::warnings})
     h.push_back(c);
   return h;
 }
@@ -128,7 +130,8 @@ std::string campaign_row(const CampaignTest& test, const fs::path& folder,
                                     number_cell(s.at("plateau_strain_rate_1_s")),
                                     number_cell(s.at("peak_stress_Pa"))};
   if (!flow_strains.empty()) {
-    const auto c = read_columns(folder / "curve.csv", {"strain", "stress_3wave_Pa"});
+    const auto c = read_columns(folder / schema::curve::kFile,
+                                {schema::curve::strain, schema::curve::stress_3wave_Pa});
     for (double e : flow_strains) {
       const double f = flow_stress(c[0], c[1], e);
       cells.push_back(std::isfinite(f) ? format_double(f) : "");
@@ -167,7 +170,7 @@ void write_campaign(const Campaign& c, const std::vector<fs::path>& folders,
                          {"scene", c.tests[i].scene.string()},
                          {"folder", c.tests[i].name}});
   }
-  write_text_file(dir / "campaign.csv", csv);
+  write_text_file(dir / schema::campaign::kFile, csv);
   Json s;
   s["version"] = kVersion;
   s["command"] = "process";
