@@ -36,6 +36,7 @@
 #include "model/discretization.hpp"
 #include "model/test_setup.hpp"
 #include "model/wave_travel.hpp"
+#include "output_schema.hpp"
 #include "solver/simulation.hpp"
 #include "version.hpp"
 
@@ -97,7 +98,8 @@ int run_compare(const CompareArgs& args) {
                       JsonValue::format(*args.striker_velocity, Dimension::kVelocity),
                       "must be in (0, " + format_double(kMaxStrikerVelocity_m_s) + " m/s]");
   const double plateau = found.incident_plateau;
-  const double inferred_velocity = striker_velocity_from_plateau(found);
+  const double inferred_velocity =
+      striker_velocity_from_plateau(found.setup, found.incident_plateau);
   std::string velocity_source;
   double velocity = 0;
   if (args.striker_velocity) {
@@ -177,9 +179,12 @@ int run_compare(const CompareArgs& args) {
 
   {
     std::ostringstream csv;
-    csv << "gauge,pulse,window_start_s,window_end_s,arrival_shift_s,peak_ratio,plateau_ratio,"
-           "duration_ratio,"
-           "rise_time_measured_s,rise_time_simulated_s,nrmse,correlation\n";
+    namespace k = schema::comparison;  // the column names (src/core/output_schema.json)
+    for (const char* c : {k::gauge, k::pulse, k::window_start_s, k::window_end_s,
+                          k::arrival_shift_s, k::peak_ratio, k::plateau_ratio, k::duration_ratio,
+                          k::rise_time_measured_s, k::rise_time_simulated_s, k::nrmse})
+      csv << c << ',';
+    csv << k::correlation << '\n';
     for (const auto& c : results)
       csv << c.gauge << ',' << c.pulse << ',' << format_double(c.window_start_s) << ','
           << format_double(c.window_end_s) << ',' << format_double(c.arrival_shift_s) << ','
@@ -187,14 +192,15 @@ int run_compare(const CompareArgs& args) {
           << format_double(c.duration_ratio) << ',' << format_double(c.rise_time_measured_s) << ','
           << format_double(c.rise_time_simulated_s) << ',' << format_double(c.nrmse) << ','
           << format_double(c.correlation) << '\n';
-    write_text_file(out.file("comparison.csv"), csv.str());
+    write_text_file(out.file(schema::comparison::kFile), csv.str());
   }
   {
     const std::vector<std::string> g = {setup.incident_gauge, setup.transmitted_gauge};
-    CsvWriter w(out.file("signals.csv"),
-                {"time_s", g[0] + "_measured_strain", g[0] + "_simulated_strain",
-                 g[0] + "_simulated_raw_strain", g[1] + "_measured_strain",
-                 g[1] + "_simulated_strain", g[1] + "_simulated_raw_strain"});
+    CsvWriter w(
+        out.file(schema::compare_signals::kFile),
+        {schema::compare_signals::time_s, g[0] + "_measured_strain", g[0] + "_simulated_strain",
+         g[0] + "_simulated_raw_strain", g[1] + "_measured_strain", g[1] + "_simulated_strain",
+         g[1] + "_simulated_raw_strain"});
     for (std::size_t k = 0; k < n && measured.time_s[k] - offset <= t_sim_end; ++k)
       w.row({measured.time_s[k], m_inc[k], sim_inc[k], raw_inc[k], m_tr[k], sim_tr[k], raw_tr[k]});
     w.close();
