@@ -48,10 +48,12 @@ fuzz:
 	@cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_targets
 	@bash tests/fuzz/run_fuzzers.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_TARGETS)
 
-# The printed output shown in the experiment READMEs and docs/commands.md, run again and rewritten
-# (ctest docs.outputs fails when it is stale).
+# The printed output shown in the experiment READMEs and docs/commands.md, run again and rewritten,
+# and the column tables of docs/outputs.md from src/core/output_schema.json (ctest docs.outputs
+# fails when either is stale).
 docs: build
-	@python3 tools/doc_outputs.py --update $(BUILD)/shpb experiments/*/README.md docs/commands.md
+	@python3 tools/doc_outputs.py --update $(BUILD)/shpb experiments/*/README.md docs/commands.md \
+	  docs/outputs.md
 
 bench: deps
 	@bash tools/bench.sh $(BUILD)

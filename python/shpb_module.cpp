@@ -25,6 +25,7 @@
 #include "core/error.hpp"
 #include "core/output_folder.hpp"
 #include "core/units.hpp"
+#include "model/input_limits.hpp"
 #include "model/wave_travel.hpp"
 #include "solver/simulation.hpp"
 #include "version.hpp"
@@ -316,9 +317,10 @@ PYBIND11_MODULE(_shpb, m) {
       .def_property(
           "poisson_ratio", [](const MaterialSpec& o) { return o.poisson_ratio; },
           [](MaterialSpec& o, double x) {
-            if (!(x > -1 && x < 0.5))
+            if (!(x > kPoissonRatioAbove && x < kPoissonRatioBelow))
               throw input_error("scene edit", "material.poisson_ratio", format_double(x),
-                                "must be in (-1, 0.5)");
+                                "must be in (" + format_double(kPoissonRatioAbove) + ", " +
+                                    format_double(kPoissonRatioBelow) + ")");
             o.poisson_ratio = x;
           })
       .def_readonly("bilinear", &MaterialSpec::bilinear,
@@ -340,10 +342,10 @@ PYBIND11_MODULE(_shpb, m) {
       .def_property(
           "elements", [](const BarSpec& b) { return b.elements; },
           [](BarSpec& b, int n) {
-            constexpr int kMaxElements = 100'000'000;  // the scene reader's bound
             if (n < 0 || n > kMaxElements)
               throw input_error("scene edit", "bar.elements", std::to_string(n),
-                                "must be in [1, 100000000], or 0 for the automatic mesh");
+                                "must be in [1, " + std::to_string(kMaxElements) +
+                                    "], or 0 for the automatic mesh");
             b.elements = n;
           })
       .def_property(

@@ -15,11 +15,20 @@ prints a diff when a block differs from what the executable prints now; `--updat
 blocks (`make docs`). Figures that change from run to run (wall and CPU times) are masked, and
 progress lines left out.
 
+The column tables of docs/outputs.md come from the output schema (src/core/output_schema.json, the
+list the C++ writers and the report take their names from): a line
+
+    <!-- shpb-schema: curve -->
+
+(the schema's id of a file) is followed by the table of that file's columns, checked and rewritten
+like the printed output.
+
 Usage: doc_outputs.py (--check | --update) SHPB_EXE FILE.md...
 """
 from __future__ import annotations
 
 import difflib
+import json
 import re
 import shlex
 import subprocess
@@ -28,6 +37,8 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 MARKER = re.compile(r"^<!-- shpb-output: (.+?) -->$")
+SCHEMA_MARKER = re.compile(r"^<!-- shpb-schema: ([a-z_]+) -->$")
+SCHEMA = ROOT / "src" / "core" / "output_schema.json"
 # Progress lines on stderr ("simulating: 40%"): left out of the documented output.
 PROGRESS = re.compile(r"^[a-z ]+: \d+%$")
 # Times of a run (solve, wall, CPU): the only figures a deterministic run does not repeat.
@@ -84,6 +95,27 @@ def blocks(lines: list[str]):
             i += 1
 
 
+def schema_table(file_id: str) -> list[str]:
+    """The Markdown table of one file's columns in the output schema."""
+    files = json.loads(SCHEMA.read_text(encoding="utf-8"))["files"]
+    entry = next((f for f in files if f["id"] == file_id), None)
+    if entry is None:
+        raise SystemExit(f"{SCHEMA}: no file with id {file_id!r}")
+    rows = [f"| `{c['name']}` | {c['unit']} | {c['meaning']} |" for c in entry["columns"]]
+    return ["| column | unit | meaning |", "|---|---|---|", *rows]
+
+
+def schema_blocks(lines: list[str]):
+    """(file id, table start, table end) of every table marked as generated from the schema."""
+    for i, line in enumerate(lines):
+        match = SCHEMA_MARKER.match(line)
+        if match:
+            end = i + 1
+            while end < len(lines) and lines[end].startswith("|"):
+                end += 1
+            yield match.group(1), i + 1, end
+
+
 def main(argv: list[str]) -> int:
     if len(argv) < 4 or argv[1] not in ("--check", "--update"):
         print(__doc__.strip().splitlines()[-1], file=sys.stderr)
@@ -92,8 +124,19 @@ def main(argv: list[str]) -> int:
     stale = 0
     for name in files:
         path = Path(name)
-        lines = path.read_text(encoding="utf-8").split("\n")
-        out = list(lines)
+        original = path.read_text(encoding="utf-8").split("\n")
+        lines, out = original, list(original)
+        for file_id, start, end in reversed(list(schema_blocks(lines))):
+            table = schema_table(file_id)
+            if lines[start:end] != table:
+                stale += 1
+                if not update:
+                    diff = difflib.unified_diff(lines[start:end], table,
+                                                f"{name}:{start + 1} (documented)",
+                                                f"{SCHEMA.name} ({file_id})", lineterm="")
+                    print("\n".join(diff))
+                out[start:end] = table
+        lines, out = out, list(out)  # the printed outputs' blocks, in the updated tables' lines
         # Replace from the last block up so earlier line numbers stay valid.
         for start, commands, fence, end in reversed(list(blocks(lines))):
             documented = mask("\n".join(lines[fence + 1:end]))
@@ -106,11 +149,12 @@ def main(argv: list[str]) -> int:
                                                 f"{where} (documented)", "printed now", lineterm="")
                     print("\n".join(diff))
                 out[fence + 1:end] = printed.split("\n") if printed else []
-        if update and out != lines:
+        if update and out != original:
             path.write_text("\n".join(out), encoding="utf-8")
             print(f"updated {name}")
     if stale and not update:
-        print(f"{stale} documented output(s) differ from what shpb prints now: run `make docs`",
+        print(f"{stale} documented output(s) or column table(s) differ from what shpb prints or "
+              "the output schema lists now: run `make docs`",
               file=sys.stderr)
         return 1
     return 0

@@ -12,6 +12,7 @@
 #include "model/discretization.hpp"
 #include "model/test_setup.hpp"
 #include "model/wave_travel.hpp"
+#include "output_schema.hpp"
 #include "version.hpp"
 
 namespace shpb {
@@ -42,7 +43,7 @@ constexpr double kDurationMargin = 0.1;
 // striker pulls: − to the left).
 void set_striker_velocity(ComparePlan& p, std::optional<double> given) {
   Scene& scene = p.scene;
-  p.inferred_velocity_m_s = striker_velocity_from_plateau(p.found);
+  p.inferred_velocity_m_s = striker_velocity_from_plateau(p.found.setup, p.found.incident_plateau);
   if (given) {
     p.velocity_m_s = *given, p.velocity_source = "given (--striker-velocity)";
   } else if (scene.measurement->striker_velocity_m_s) {
@@ -87,9 +88,10 @@ void extend_duration(ComparePlan& p, std::size_t incident_bar) {
 
 void write_comparison_csv(const std::vector<PulseComparison>& results,
                           const std::filesystem::path& file) {
-  CsvWriter csv(file, {"gauge", "pulse", "window_start_s", "window_end_s", "arrival_shift_s",
-                       "peak_ratio", "plateau_ratio", "duration_ratio", "rise_time_measured_s",
-                       "rise_time_simulated_s", "nrmse", "correlation"});
+  namespace k = schema::comparison;  // the column names (src/core/output_schema.json)
+  CsvWriter csv(file, {k::gauge, k::pulse, k::window_start_s, k::window_end_s, k::arrival_shift_s,
+                       k::peak_ratio, k::plateau_ratio, k::duration_ratio, k::rise_time_measured_s,
+                       k::rise_time_simulated_s, k::nrmse, k::correlation});
   for (const auto& c : results) {
     // As computed: a ratio of a flat measured pulse may be non-finite, and is written as such.
     std::vector<std::string> cells = {c.gauge, c.pulse};
@@ -105,9 +107,10 @@ void write_comparison_csv(const std::vector<PulseComparison>& results,
 void write_signals_csv(const ComparePlan& p, const Overlay& o, const std::filesystem::path& file) {
   const std::vector<std::string> g = {p.found.setup.incident_gauge,
                                       p.found.setup.transmitted_gauge};
-  CsvWriter w(file, {"time_s", g[0] + "_measured_strain", g[0] + "_simulated_strain",
-                     g[0] + "_simulated_raw_strain", g[1] + "_measured_strain",
-                     g[1] + "_simulated_strain", g[1] + "_simulated_raw_strain"});
+  CsvWriter w(
+      file, {schema::compare_signals::time_s, g[0] + "_measured_strain", g[0] + "_simulated_strain",
+             g[0] + "_simulated_raw_strain", g[1] + "_measured_strain", g[1] + "_simulated_strain",
+             g[1] + "_simulated_raw_strain"});
   const auto& t = p.measured.time_s;
   for (std::size_t k = 0; k < t.size() && t[k] - o.offset_s <= o.t_sim_end; ++k)
     w.row({t[k], p.found.incident[k], o.incident[k], o.raw_incident[k], p.found.transmitted[k],
@@ -170,8 +173,8 @@ void write_comparison(const ComparePlan& plan, const CompareOutcome& outcome,
                       const TimeSeries& simulated_gauges, bool dispersion,
                       const SimulationFacts& simulation, const std::filesystem::path& dir) {
   const Overlay& o = outcome.overlay;
-  write_comparison_csv(outcome.results, dir / "comparison.csv");
-  write_signals_csv(plan, o, dir / "signals.csv");
+  write_comparison_csv(outcome.results, dir / schema::comparison::kFile);
+  write_signals_csv(plan, o, dir / schema::compare_signals::kFile);
   nlohmann::json s;
   s["scene"] = plan.scene.file.string();
   s["striker_velocity_m_s"] = plan.scene.bars[plan.striker].velocity_m_s;  // + to the right

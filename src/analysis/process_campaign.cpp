@@ -26,6 +26,7 @@
 #include "model/campaign.hpp"
 #include "model/scene.hpp"
 #include "model/scene_inputs.hpp"
+#include "output_schema.hpp"
 #include "version.hpp"
 
 namespace shpb {
@@ -109,10 +110,11 @@ std::vector<std::vector<double>> read_columns(const fs::path& csv,
 std::string strain_label(double strain) { return format_double(strain); }
 
 std::vector<std::string> campaign_header(const std::vector<double>& flow_strains) {
-  std::vector<std::string> h = {"test", "scene", "plateau_strain_rate_1_s", "peak_stress_Pa"};
+  namespace k = schema::campaign;  // the column names (src/core/output_schema.json)
+  std::vector<std::string> h = {k::test, k::scene, k::plateau_strain_rate_1_s, k::peak_stress_Pa};
   for (double e : flow_strains) h.push_back("flow_stress_Pa_at_" + strain_label(e));
-  for (const char* c : {"time_to_equilibrium_s", "striker_velocity_m_s",
-                        "striker_velocity_inferred_m_s", "warnings"})
+  for (const char* c : {k::time_to_equilibrium_s, k::striker_velocity_m_s,
+                        k::striker_velocity_inferred_m_s, k::warnings})
     h.push_back(c);
   return h;
 }
@@ -127,7 +129,8 @@ std::vector<std::string> campaign_row(const CampaignTest& test, const fs::path& 
                                     number_cell(s.at("plateau_strain_rate_1_s")),
                                     number_cell(s.at("peak_stress_Pa"))};
   if (!flow_strains.empty()) {
-    const auto c = read_columns(folder / "curve.csv", {"strain", "stress_3wave_Pa"});
+    const auto c = read_columns(folder / schema::curve::kFile,
+                                {schema::curve::strain, schema::curve::stress_3wave_Pa});
     for (double e : flow_strains) {
       const double f = flow_stress(c[0], c[1], e);
       cells.push_back(std::isfinite(f) ? format_double(f) : "");
@@ -147,7 +150,7 @@ std::vector<std::string> campaign_row(const CampaignTest& test, const fs::path& 
 // campaign.csv and summary.json of the campaign into `dir`, from the test folders `folders`.
 void write_campaign(const Campaign& c, const std::vector<fs::path>& folders,
                     const std::vector<double>& flow_strains, const fs::path& dir) {
-  CsvWriter csv(dir / "campaign.csv", campaign_header(flow_strains));
+  CsvWriter csv(dir / schema::campaign::kFile, campaign_header(flow_strains));
   Json tests = Json::array();
   for (std::size_t i = 0; i < c.tests.size(); ++i) {
     try {

@@ -5,6 +5,7 @@
 #include "core/error.hpp"
 #include "core/output_folder.hpp"
 #include "model/scene_inputs.hpp"
+#include "output_schema.hpp"
 #include "version.hpp"
 
 namespace shpb {
@@ -31,7 +32,8 @@ void to_json(nlohmann::json& j, const Equilibrium& e) {
 namespace {
 
 void write_pulses(const OutputFolder& out, const ProcessingResult& r) {
-  CsvWriter p(out.file("pulses.csv"), {"time_s", "incident", "reflected", "transmitted"});
+  namespace k = schema::pulses;
+  CsvWriter p(out.file(k::kFile), {k::time_s, k::incident, k::reflected, k::transmitted});
   for (std::size_t i = 0; i < r.time_s.size(); ++i)
     p.row({r.time_s[i], r.incident[i], r.reflected[i], r.transmitted[i]});
   p.close();
@@ -149,8 +151,9 @@ void write_bar_check(const BarCheckOutcome& o, const Scene& scene, const std::st
   const BarCheckResult& r = o.result;
   OutputFolder out(output, "process", scene_inputs(scene));
   {
-    CsvWriter p(out.file("pulses.csv"),
-                {"time_s", "far_measured", "far_pochhammer_chree", "far_time_shift"});
+    namespace k = schema::bar_check_pulses;
+    CsvWriter p(out.file(k::kFile),
+                {k::time_s, k::far_measured, k::far_pochhammer_chree, k::far_time_shift});
     for (std::size_t i = 0; i < r.time_s.size(); ++i)
       p.row({r.time_s[i], r.far_measured[i], r.far_dispersion[i], r.far_time_shift[i]});
   }
@@ -184,9 +187,9 @@ void write_process_outputs(const ProcessOutcome& o, const Scene& scene,
   for (const ChannelSpec& c : m.channels) inputs.push_back(c.file);
   OutputFolder out(output, "process", inputs);
   {  // the signals as read, in strain, tension positive: what the windows were found on
-    std::vector<std::string> header = {"time_s"};
+    std::vector<std::string> header = {schema::raw_signals::time_s};
     header.insert(header.end(), signals.gauges.begin(), signals.gauges.end());
-    CsvWriter w(out.file("raw_signals.csv"), header);
+    CsvWriter w(out.file(schema::raw_signals::kFile), header);
     std::vector<double> row(header.size());
     for (std::size_t i = 0; i < signals.time_s.size(); ++i) {
       row[0] = signals.time_s[i];
@@ -212,7 +215,7 @@ void write_process_outputs(const ProcessOutcome& o, const Scene& scene,
     const std::vector<CurveColumn> columns = curve_columns(o);
     std::vector<std::string> header;
     for (const auto& [name, v] : columns) header.push_back(name);
-    CsvWriter w(out.file("curve.csv"), header);
+    CsvWriter w(out.file(schema::curve::kFile), header);
     std::vector<double> row(columns.size());
     for (std::size_t i = 0; i < r.loading_end; ++i) {
       for (std::size_t j = 0; j < columns.size(); ++j) row[j] = (*columns[j].second)[i];
@@ -257,8 +260,8 @@ nlohmann::json process_summary(const ProcessOutcome& o, const std::string& scene
                   "3-wave stress (after the corrections listed under corrections)");
   s["primary"] = {
       {"reduction", std::string(enum_name(kPrimaryNames, options.primary))},
-      {"stress", one_wave ? "stress_1wave_Pa" : "stress_3wave_Pa"},
-      {"strain", one_wave ? "strain_1wave" : "strain"},
+      {"stress", one_wave ? schema::curve::stress_1wave_Pa : schema::curve::stress_3wave_Pa},
+      {"strain", one_wave ? schema::curve::strain_1wave : schema::curve::strain},
       {"how", one_wave ? "1-wave: transmitted-face stress P2/A_s against the strain of the "
                          "reflected pulse, integral of 2 c0 eps_R / L_s; it does not depend on "
                          "the alignment of the incident and reflected pulses"

@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "core/error.hpp"
+#include "output_schema.hpp"
 
 namespace shpb {
 namespace {
@@ -122,33 +123,34 @@ ProcessOutcome process_scene(const Scene& scene,
 std::vector<CurveColumn> curve_columns(const ProcessOutcome& o) {
   const ProcessingResult& r = o.result;
   const Curve& c = r.curve;
+  namespace k = schema::curve;  // the column names (src/core/output_schema.json)
   if (o.options.primary == PrimaryReduction::kOneWave)
-    return {{"time_s", &r.time_s},
-            {"strain_rate_1wave_1_s", &c.strain_rate_1wave_1_s},
-            {"strain_1wave", &c.strain_1wave},
-            {"stress_1wave_Pa", &c.stress_1wave_Pa},
-            {"true_strain", &c.true_strain},
-            {"true_stress_Pa", &c.true_stress_Pa},
-            {"strain_rate_1_s", &c.strain_rate_1_s},
-            {"strain", &c.strain},
-            {"stress_2wave_Pa", &c.stress_2wave_Pa},
-            {"stress_3wave_Pa", &c.stress_3wave_Pa},
-            {"equilibrium_ratio", &c.equilibrium_ratio},
-            {"force_front_N", &c.force_front_N},
-            {"force_back_N", &c.force_back_N}};
-  return {{"time_s", &r.time_s},
-          {"strain_rate_1_s", &c.strain_rate_1_s},
-          {"strain", &c.strain},
-          {"stress_1wave_Pa", &c.stress_1wave_Pa},
-          {"stress_2wave_Pa", &c.stress_2wave_Pa},
-          {"stress_3wave_Pa", &c.stress_3wave_Pa},
-          {"true_strain", &c.true_strain},
-          {"true_stress_Pa", &c.true_stress_Pa},
-          {"equilibrium_ratio", &c.equilibrium_ratio},
-          {"strain_rate_1wave_1_s", &c.strain_rate_1wave_1_s},
-          {"force_front_N", &c.force_front_N},
-          {"force_back_N", &c.force_back_N},
-          {"strain_1wave", &c.strain_1wave}};
+    return {{k::time_s, &r.time_s},
+            {k::strain_rate_1wave_1_s, &c.strain_rate_1wave_1_s},
+            {k::strain_1wave, &c.strain_1wave},
+            {k::stress_1wave_Pa, &c.stress_1wave_Pa},
+            {k::true_strain, &c.true_strain},
+            {k::true_stress_Pa, &c.true_stress_Pa},
+            {k::strain_rate_1_s, &c.strain_rate_1_s},
+            {k::strain, &c.strain},
+            {k::stress_2wave_Pa, &c.stress_2wave_Pa},
+            {k::stress_3wave_Pa, &c.stress_3wave_Pa},
+            {k::equilibrium_ratio, &c.equilibrium_ratio},
+            {k::force_front_N, &c.force_front_N},
+            {k::force_back_N, &c.force_back_N}};
+  return {{k::time_s, &r.time_s},
+          {k::strain_rate_1_s, &c.strain_rate_1_s},
+          {k::strain, &c.strain},
+          {k::stress_1wave_Pa, &c.stress_1wave_Pa},
+          {k::stress_2wave_Pa, &c.stress_2wave_Pa},
+          {k::stress_3wave_Pa, &c.stress_3wave_Pa},
+          {k::true_strain, &c.true_strain},
+          {k::true_stress_Pa, &c.true_stress_Pa},
+          {k::equilibrium_ratio, &c.equilibrium_ratio},
+          {k::strain_rate_1wave_1_s, &c.strain_rate_1wave_1_s},
+          {k::force_front_N, &c.force_front_N},
+          {k::force_back_N, &c.force_back_N},
+          {k::strain_1wave, &c.strain_1wave}};
 }
 
 }  // namespace shpb

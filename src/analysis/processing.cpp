@@ -233,6 +233,12 @@ Equilibrium judge_equilibrium(const Curve& c, const std::vector<double>& t, std:
 
 }  // namespace
 
+double striker_velocity_from_plateau(const KolskySetup& setup, double incident_plateau_strain) {
+  const double z_b = setup.incident_impedance_kg_s;
+  const double z_s = setup.striker_impedance_kg_s.value_or(z_b);
+  return setup.front.c0_m_s * incident_plateau_strain * (z_s + z_b) / z_s;
+}
+
 KolskySetup resolve_setup(const Scene& scene, const std::vector<std::string>& available) {
   const std::string file = scene.file.string();
   if (!scene.specimen)
@@ -555,11 +561,7 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
   const std::size_t m = r.time_s.size();
   const std::size_t inc_end = std::min(m, index_at(r.time_s, face_start + duration));
   r.incident_plateau_strain = plateau_level(r.incident, 0, inc_end, -1.0);
-  // Striker on the incident bar: F1 = Z_s Z_b V/(Z_s + Z_b) = E A ε (docs/methods.md §4).
-  const double zb = k.incident_impedance_kg_s;
-  const double zs = k.striker_impedance_kg_s.value_or(zb);
-  r.inferred_striker_velocity_m_s = k.front.youngs_modulus_Pa * k.front.area_m2 *
-                                    r.incident_plateau_strain * (zs + zb) / (zs * zb);
+  r.inferred_striker_velocity_m_s = striker_velocity_from_plateau(k, r.incident_plateau_strain);
   const Curve& c = r.curve;
   const bool one_wave = options.primary == PrimaryReduction::kOneWave;
   r.primary = options.primary;

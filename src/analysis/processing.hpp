@@ -35,6 +35,12 @@ struct KolskySetup {
   bool pulse_shaper = false;
 };
 
+// The striker velocity an incident plateau ε_I implies, striker on the incident bar
+// (docs/methods.md §4): the bar's particle velocity v = c0 ε_I = V Z_s/(Z_s + Z_b), so
+// V = c0 ε_I (Z_s + Z_b)/Z_s; the striker's impedance Z_s is the incident bar's Z_b when the set-up
+// has none. Used by `process`, `compare` and `fit`.
+double striker_velocity_from_plateau(const KolskySetup& setup, double incident_plateau_strain);
+
 // A calibrated reflected time further than this fraction from 2d/c0 is not the same bar or gauge:
 // a wave speed or a gauge position off by more than 5 % is a wrong scene, not a calibration.
 inline constexpr double kReflectedTimeRange = 0.05;

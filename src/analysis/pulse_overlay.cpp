@@ -124,12 +124,6 @@ std::size_t last_compared_sample(const MeasuredPulses& m) {
   return last;
 }
 
-double striker_velocity_from_plateau(const MeasuredPulses& measured) {
-  const double z_b = measured.setup.incident_impedance_kg_s;
-  const double z_s = measured.setup.striker_impedance_kg_s.value_or(z_b);
-  return measured.setup.front.c0_m_s * measured.incident_plateau * (z_s + z_b) / z_s;
-}
-
 PulseOverlay::PulseOverlay(const Scene&, MeasuredPulses measured, bool dispersion)
     : measured_(std::move(measured)) {
   if (dispersion) {

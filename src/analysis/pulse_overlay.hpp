@@ -39,10 +39,6 @@ struct MeasuredPulses {
 // Finds the pulses in `signals`; InputError (naming the scene) when there is no incident pulse.
 MeasuredPulses find_measured_pulses(const Scene& scene, const GaugeSignals& signals);
 
-// The striker velocity the measured incident plateau implies: v_bar = c0 ε_I and
-// V = v_bar (Z_s + Z_b)/Z_s (docs/methods.md §4), Z_s the striker's (model/test_setup.hpp).
-double striker_velocity_from_plateau(const MeasuredPulses& measured);
-
 // A compared window, in samples of the measured grid.
 struct OverlaidPulse {
   std::string gauge, name;  // name: incident | reflected | transmitted

@@ -66,7 +66,8 @@ FitCase::FitCase(const CampaignTest& test, const Campaign& campaign, const FitSp
     start_.striker_velocity_m_s = *scene_.measurement->striker_velocity_m_s;
     velocity_source_ = "scene (measurement.striker_velocity)";
   } else {
-    start_.striker_velocity_m_s = striker_velocity_from_plateau(found);
+    start_.striker_velocity_m_s =
+        striker_velocity_from_plateau(found.setup, found.incident_plateau);
     velocity_source_ = "inferred from the measured incident plateau";
   }
   scene_.bars[striker].velocity_m_s = striker_direction_ * start_.striker_velocity_m_s;

@@ -5,6 +5,7 @@
 #include "core/checked_write.hpp"
 #include "core/csv_writer.hpp"
 #include "fit/law_parameters.hpp"
+#include "output_schema.hpp"
 #include "version.hpp"
 
 namespace shpb {
@@ -161,9 +162,10 @@ void write_fit_curves(const FitRun& run, const std::filesystem::path& file) {
   const MaterialSpec law0 = run.spec.material,
                      law1 = run.after_curve.empty() ? law0 : run.law_with(run.after_curve),
                      law2 = run.law_with(run.law_values(run.current));
-  CsvWriter w(file, {"test", "time_s", "true_strain", "true_plastic_strain", "strain_rate_1_s",
-                     "temperature_K", "stress_measured_Pa", "stress_start_Pa", "stress_curve_Pa",
-                     "stress_fitted_Pa"});
+  namespace k = schema::fit_curves;  // the column names (src/core/output_schema.json)
+  CsvWriter w(file, {k::test, k::time_s, k::true_strain, k::true_plastic_strain, k::strain_rate_1_s,
+                     k::temperature_K, k::stress_measured_Pa, k::stress_start_Pa,
+                     k::stress_curve_Pa, k::stress_fitted_Pa});
   auto flow = [](const MaterialSpec& m, const CurvePoint& p) {
     return law_flow_stress(m, p.plastic_strain, p.strain_rate_1_s, p.temperature_K).value_or(0.0);
   };
@@ -178,8 +180,9 @@ void write_fit_curves(const FitRun& run, const std::filesystem::path& file) {
 }
 
 void write_fit_signals(const FitRun& run, const std::filesystem::path& file) {
-  CsvWriter w(file, {"test", "gauge", "pulse", "time_s", "measured_strain", "start_strain",
-                     "fitted_strain"});
+  namespace k = schema::fit_signals;
+  CsvWriter w(file, {k::test, k::gauge, k::pulse, k::time_s, k::measured_strain, k::start_strain,
+                     k::fitted_strain});
   for (std::size_t k = 0; k < run.cases.size(); ++k) {
     const auto& m = run.cases[k]->measured();
     for (const auto& p : run.cases[k]->windows()) {
@@ -199,8 +202,8 @@ void write_fit_signals(const FitRun& run, const std::filesystem::path& file) {
 void write_fit_outputs(const FitRun& run, const std::filesystem::path& dir) {
   write_text_file(dir / "fit.json", fit_material(run).dump(2) + "\n");
   const nlohmann::json summary = fit_summary(run);
-  write_fit_curves(run, dir / "curves.csv");
-  write_fit_signals(run, dir / "signals.csv");
+  write_fit_curves(run, dir / schema::fit_curves::kFile);
+  write_fit_signals(run, dir / schema::fit_signals::kFile);
   write_text_file(dir / "summary.json", summary.dump(2) + "\n");
 }
 

@@ -2,6 +2,7 @@
 
 #include "core/closest_match.hpp"
 #include "core/json_document.hpp"
+#include "model/input_limits.hpp"
 #include "model/material_law.hpp"
 #include "model/scene.hpp"
 
@@ -131,7 +132,8 @@ MaterialSpec read_material(const JsonValue& value, const std::string& name) {
         o.require("youngs_modulus", "e.g. \"200 GPa\"").positive_quantity(Dimension::kPressure);
   }
   const auto nu = o.require("poisson_ratio", "e.g. 0.3");
-  m.poisson_ratio = nu.quantity_in(Dimension::kDimensionless, -1, 0.5, true, true);
+  m.poisson_ratio =
+      nu.quantity_in(Dimension::kDimensionless, kPoissonRatioAbove, kPoissonRatioBelow, true, true);
 
   if (m.model == MaterialModel::kBilinear) read_bilinear(o, m);
   if (m.model == MaterialModel::kJohnsonCook) read_johnson_cook(o, m);

@@ -7,6 +7,7 @@
 #include "core/error.hpp"
 #include "core/json_document.hpp"
 #include "core/json_value.hpp"
+#include "model/input_limits.hpp"
 #include "model/material_reader.hpp"
 #include "model/measurement_reader.hpp"
 #include "model/scene.hpp"
@@ -17,8 +18,6 @@ namespace shpb {
 namespace {
 
 namespace fs = std::filesystem;
-
-constexpr std::int64_t kMaxElements = 100'000'000;  // far beyond any useful mesh; guards overflow
 
 class SceneReader {
  public:

@@ -5,6 +5,7 @@
 
 #include "core/interpolation.hpp"
 #include "core/record_filter.hpp"
+#include "output_schema.hpp"
 #include "solver/bar_integrator.hpp"
 
 namespace shpb {
@@ -264,8 +265,9 @@ void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& resu
   for (const BarRecorder& r : bars_) {
     if (!r.specimen) continue;
     TimeSeries& ts = result.specimen;
-    ts.columns = {"strain",         "strain_rate_1_s", "stress_Pa",     "front_stress_Pa",
-                  "back_stress_Pa", "true_strain",     "true_stress_Pa"};
+    namespace k = schema::specimen;  // the column names (src/core/output_schema.json)
+    ts.columns = {k::strain,         k::strain_rate_1_s, k::stress_Pa,     k::front_stress_Pa,
+                  k::back_stress_Pa, k::true_strain,     k::true_stress_Pa};
     const long n = time_count(r.specimen_sampler.filled());
     ts.values.assign(kSpecimenColumns, std::vector<double>(n));
     ts.time_s.reserve(n);
@@ -277,7 +279,8 @@ void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& resu
   // Energy.
   {
     TimeSeries& ts = result.energy;
-    ts.columns = {"kinetic_J", "strain_J", "contact_J", "dissipated_J", "total_J"};
+    namespace k = schema::energy;
+    ts.columns = {k::kinetic_J, k::strain_J, k::contact_J, k::dissipated_J, k::total_J};
     ts.values.assign(5, {});
     const long n = energy_complete();
     for (long k = 0; k < n; ++k) {

@@ -11,6 +11,7 @@
 #include "core/error.hpp"
 #include "model/mesh_error_model.hpp"
 #include "model/specimen_response.hpp"
+#include "output_schema.hpp"
 #include "solver/chain.hpp"
 #include "solver/end_segment.hpp"
 #include "solver/recorders.hpp"
@@ -121,7 +122,7 @@ void keep_finite_prefix(TimeSeries& ts) {
 }
 
 void write_series(const std::filesystem::path& file, const TimeSeries& ts) {
-  std::vector<std::string> header{"time_s"};
+  std::vector<std::string> header{schema::gauges::time_s};  // every series leads with time
   header.insert(header.end(), ts.columns.begin(), ts.columns.end());
   CsvWriter csv(file, header);
   std::vector<double> row(header.size());
@@ -319,12 +320,13 @@ void to_json(nlohmann::ordered_json& j, const InterfaceStatistics& i) {
 
 void write_simulation_outputs(const SimulationResult& result, const Scene& scene,
                               const std::filesystem::path& dir) {
-  write_series(dir / "gauges.csv", result.gauges);
-  write_series(dir / "interfaces.csv", result.interfaces);
-  if (scene.specimen) write_series(dir / "specimen.csv", result.specimen);
-  write_series(dir / "energy.csv", result.energy);
+  write_series(dir / schema::gauges::kFile, result.gauges);
+  write_series(dir / schema::interfaces::kFile, result.interfaces);
+  if (scene.specimen) write_series(dir / schema::specimen::kFile, result.specimen);
+  write_series(dir / schema::energy::kFile, result.energy);
   {
-    CsvWriter csv(dir / "field.csv", {"time_s", "x_m", "stress_Pa"});
+    namespace k = schema::field;  // the column names (src/core/output_schema.json)
+    CsvWriter csv(dir / k::kFile, {k::time_s, k::x_m, k::stress_Pa});
     const FieldGrid& f = result.field;
     // Long format: each time and position repeats on many rows, so each is formatted once.
     std::vector<std::string> x_text;

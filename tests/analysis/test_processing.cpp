@@ -170,3 +170,21 @@ TEST_CASE("Processing dispersed gauge signals with Pochhammer-Chree correction r
         std::max(worst_uncorrected, std::abs(u.incident[i] - face.incident(u.time_s[i])));
   CHECK(worst_uncorrected > 3 * kRecovered * kStrain0);
 }
+
+TEST_CASE("The striker velocity an incident plateau implies follows the impact of two bars",
+          "[analysis][striker]") {
+  // Striker of impedance Z_s at V on a bar of Z_b at rest: the bar moves at V Z_s/(Z_s + Z_b) and
+  // carries the strain ε = that velocity / c0 (docs/methods.md §4). Exact, so only the rounding
+  // of a few floating-point operations separates the two.
+  constexpr double kStrain = 5e-4, kRounding = 1e-14;
+  KolskySetup k = setup();
+  SECTION("a striker of the bar's own impedance (or none given): V = 2 c0 ε") {
+    CHECK(striker_velocity_from_plateau(k, kStrain) ==
+          Approx(2 * kC0 * kStrain).epsilon(kRounding));
+  }
+  SECTION("a striker of half the bar's impedance: V = 3 c0 ε") {
+    k.striker_impedance_kg_s = 0.5 * k.incident_impedance_kg_s;
+    CHECK(striker_velocity_from_plateau(k, kStrain) ==
+          Approx(3 * kC0 * kStrain).epsilon(kRounding));
+  }
+}

@@ -18,120 +18,39 @@
 
 #include "../skip.hpp"
 #include "dispersion/propagation.hpp"
+#include "lab_record.hpp"
 #include "run_shpb.hpp"
 #include "write_xlsx.hpp"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
+using shpb_test::clean;
+using shpb_test::csv;
+using shpb_test::has_warning;
+using shpb_test::kDt;
+using shpb_test::kSamples;
+using shpb_test::read_columns;
 using shpb_test::read_text;
+using shpb_test::Record;
 using shpb_test::run_shpb;
 using shpb_test::scratch_dir;
+using shpb_test::steel_scene;
+using shpb_test::summary;
+using shpb_test::trap;
+using shpb_test::write;
 using shpb_test::write_xlsx;
 
 namespace {
 
-constexpr double kC0 = 5000;    // steel bars: sqrt(200 GPa / 8000 kg/m3)
-constexpr double kDt = 1e-7;    // 10 MHz record
-constexpr int kSamples = 8000;  // 800 µs
+constexpr double kC0 = 5000;  // steel bars: sqrt(200 GPa / 8000 kg/m3)
 constexpr double kSpecimenL = 5e-3;
-
-// A trapezoid of unit height starting at t0: `rise` up, flat, `rise` down, `length` long.
-double trap(double t, double t0, double length = 100e-6, double rise = 10e-6) {
-  const double u = t - t0;
-  if (u <= 0 || u >= length) return 0.0;
-  if (u < rise) return u / rise;
-  if (u > length - rise) return (length - u) / rise;
-  return 1.0;
-}
-
-// Gauge strains as functions of time (tension positive).
-struct Record {
-  std::function<double(double)> incident_gauge, transmitted_gauge;
-};
-
-// The clean test of test_process.cpp: incident −1e-3 at 50 µs on a gauge 1 m from the specimen
-// (reflected +0.6e-3 back at 450 µs), transmitted −0.4e-3 at 350 µs on a gauge 0.5 m from it.
-Record clean(double rise = 10e-6) {
-  return {[=](double t) {
-            return -1e-3 * trap(t, 50e-6, 100e-6, rise) + 0.6e-3 * trap(t, 450e-6, 100e-6, rise);
-          },
-          [=](double t) { return -0.4e-3 * trap(t, 350e-6, 100e-6, rise); }};
-}
-
-std::string csv(const Record& r, double scale = 1.0, double dt = kDt, int samples = kSamples) {
-  std::ostringstream s;
-  s.precision(17);
-  s << "time_s,incident,transmitted\n";
-  for (int i = 0; i < samples; ++i) {
-    const double t = i * dt;
-    s << t << "," << scale * r.incident_gauge(t) << "," << scale * r.transmitted_gauge(t) << "\n";
-  }
-  return s.str();
-}
-
-// Steel Kolsky bars (2 m, 20 mm), a 5 mm specimen; the incident gauge 1 m and the transmitted
-// gauge 0.5 m from the specimen.
-json scene_json() {
-  return json::parse(R"({
-  "bars": [
-    { "name": "striker", "material": "steel", "length": "200 mm", "diameter": "20 mm", "velocity": "10 m/s" },
-    { "name": "incident", "material": "steel", "length": "2 m", "diameter": "20 mm",
-      "gauges": [ { "name": "incident", "position": "1 m" } ] },
-    { "name": "specimen", "material": "soft", "length": "5 mm", "diameter": "10 mm" },
-    { "name": "transmitter", "material": "steel", "length": "2 m", "diameter": "20 mm",
-      "gauges": [ { "name": "transmitted", "position": "0.5 m" } ] }
-  ],
-  "specimen": "specimen",
-  "materials": {
-    "steel": { "model": "elastic", "density": 8000, "youngs_modulus": "200 GPa", "poisson_ratio": 0.29 },
-    "soft": { "model": "elastic", "density": 2700, "youngs_modulus": "70 GPa", "poisson_ratio": 0.33 }
-  },
-  "measurement": {
-    "file": "signals.csv", "time": { "column": "time_s", "unit": "s" },
-    "channels": [ { "gauge": "incident", "column": "incident", "unit": "strain" },
-                  { "gauge": "transmitted", "column": "transmitted", "unit": "strain" } ],
-    "dispersion": { "correction": "none" }
-  }
-})");
-}
-
-fs::path write(const fs::path& dir, const json& scene, const std::string& signals) {
-  std::ofstream(dir / "signals.csv") << signals;
-  std::ofstream(dir / "scene.json") << scene.dump(2);
-  return dir / "scene.json";
-}
-
-json summary(const fs::path& out) { return json::parse(read_text(out / "summary.json")); }
-
-// The columns of a CSV file written by shpb (header + numbers).
-std::vector<std::vector<double>> read_csv(const fs::path& file) {
-  std::istringstream in(read_text(file));
-  std::string line;
-  std::getline(in, line);
-  std::vector<std::vector<double>> cols;
-  while (std::getline(in, line)) {
-    std::istringstream f(line);
-    std::string v;
-    for (std::size_t c = 0; std::getline(f, v, ','); ++c) {
-      if (cols.size() <= c) cols.emplace_back();
-      cols[c].push_back(std::strtod(v.c_str(), nullptr));  // subnormals too
-    }
-  }
-  return cols;
-}
-
-bool has_warning(const json& s, const std::string& text) {
-  for (const auto& w : s["warnings"])
-    if (w.get<std::string>().find(text) != std::string::npos) return true;
-  return false;
-}
 
 }  // namespace
 
 TEST_CASE("A gauge entered by its distance to the specimen is placed from the specimen face",
           "[app][labdata]") {
   const fs::path d = scratch_dir("labdata_distance");
-  json scene = scene_json();
+  json scene = steel_scene();
   scene["bars"][1]["gauges"][0] = {{"name", "incident"}, {"distance_to_specimen", "1 m"}};
   scene["bars"][3]["gauges"][0] = {{"name", "transmitted"}, {"distance_to_specimen", "0.5 m"}};
   const auto r =
@@ -152,7 +71,7 @@ TEST_CASE("A gauge 60 mm off is warned about with the right sign and size", "[ap
   // distance read as a position from the other end): the reflected pulse comes 2 × 60 mm / c0 =
   // 24 µs before the geometry's time.
   const fs::path d = scratch_dir("labdata_gauge_off");
-  json scene = scene_json();
+  json scene = steel_scene();
   scene["bars"][1]["gauges"][0]["position"] = "0.94 m";
   const auto r =
       run_shpb({"process", write(d, scene, csv(clean())).string(), "-o", (d / "out").string()});
@@ -179,7 +98,7 @@ TEST_CASE("A gauge 60 mm off is warned about with the right sign and size", "[ap
   // The transmitted gauge alone 60 mm off (scene 0.56 m, really 0.5 m): 12 µs early. The
   // synthetic record has no specimen transit (~1 µs of the 5 mm specimen), so the size is
   // right to that transit: 5 mm of bar.
-  scene = scene_json();
+  scene = steel_scene();
   scene["bars"][3]["gauges"][0]["position"] = "0.56 m";
   const auto t =
       run_shpb({"process", write(d, scene, csv(clean())).string(), "-o", (d / "out2").string()});
@@ -195,7 +114,7 @@ TEST_CASE("A time unit that does not match the column exits 2 before anything is
   for (const std::string unit : {"us", "ns"}) {
     CAPTURE(unit);
     const fs::path d = scratch_dir("labdata_unit");
-    json scene = scene_json();
+    json scene = steel_scene();
     scene["measurement"]["time"]["unit"] = unit;
     const auto start = std::chrono::steady_clock::now();
     const auto r =
@@ -212,7 +131,7 @@ TEST_CASE("A time unit that does not match the column exits 2 before anything is
   }
   // Seconds declared on a column in microseconds: a 0.1 s sample interval.
   const fs::path d = scratch_dir("labdata_unit_s");
-  json scene = scene_json();
+  json scene = steel_scene();
   std::string micro = "time_us,incident,transmitted\n";
   for (int i = 0; i < kSamples; ++i) micro += std::to_string(i * 0.1) + ",0,0\n";
   scene["measurement"]["time"]["column"] = "time_us";
@@ -225,7 +144,7 @@ TEST_CASE("Microstrain declared as strain is warned about, then pulses.csv is wr
           "[app][labdata]") {
   const fs::path d = scratch_dir("labdata_microstrain");
   const auto r = run_shpb(
-      {"process", write(d, scene_json(), csv(clean(), 1e6)).string(), "-o", (d / "out").string()});
+      {"process", write(d, steel_scene(), csv(clean(), 1e6)).string(), "-o", (d / "out").string()});
   INFO(r.err);
   CHECK(r.code == 3);
   const auto warning = r.err.find("warning: gauge \"incident\": implausible strain scale");
@@ -240,7 +159,7 @@ TEST_CASE("Microstrain declared as strain is warned about, then pulses.csv is wr
   CHECK(s["error"].get<std::string>().find("engineering strain reached 1") != std::string::npos);
   CHECK(has_warning(s, "implausible strain scale"));
   // The pulses are there, at the faces, in the file's (wrong) scale: incident plateau 1e-3·1e6.
-  const auto p = read_csv(d / "out/pulses.csv");
+  const auto p = read_columns(d / "out/pulses.csv");
   CHECK(*std::min_element(p[1].begin(), p[1].end()) == Approx(-1e3).epsilon(1e-9));
 }
 
@@ -251,7 +170,7 @@ TEST_CASE("Hand-set windows between samples are put on the nearest sample for al
   for (const double offset : {0.049e-6, -0.049e-6, 0.0}) {
     CAPTURE(offset);
     const fs::path d = scratch_dir("labdata_windows");
-    json scene = scene_json();
+    json scene = steel_scene();
     scene["measurement"]["windows"] = {{"incident", {50e-6 + offset, 150e-6 + offset}},
                                        {"reflected", {450e-6 + offset, 550e-6 + offset}},
                                        {"transmitted", {350e-6 + offset, 450e-6 + offset}}};
@@ -260,7 +179,7 @@ TEST_CASE("Hand-set windows between samples are put on the nearest sample for al
     INFO(r.err);
     REQUIRE(r.code == 0);
     // At the faces all three start at 250 µs (the gauges are 1 m and 0.5 m away, c0 = 5000 m/s).
-    const auto p = read_csv(d / "out/pulses.csv");
+    const auto p = read_columns(d / "out/pulses.csv");
     double worst = 0;
     for (std::size_t i = 0; i < p[0].size(); ++i) {
       const double t = p[0][i];
@@ -287,7 +206,7 @@ TEST_CASE(
   };
   const fs::path d = scratch_dir("labdata_equilibrium");
   const auto r =
-      run_shpb({"process", write(d, scene_json(), csv(rec)).string(), "-o", (d / "out").string()});
+      run_shpb({"process", write(d, steel_scene(), csv(rec)).string(), "-o", (d / "out").string()});
   INFO(r.err);
   REQUIRE(r.code == 0);
   const json s = summary(d / "out");
@@ -311,21 +230,10 @@ TEST_CASE("The curve ends with loading: at a load drop (fracture) or the strain 
           "[app][labdata]") {
   // Fracture 50 µs into the pulse: the transmitted pulse stops and the whole incident pulse is
   // reflected (front force zero) while the faces keep moving apart at 2 c0 ε_I / L.
-  Record rec;
-  rec.incident_gauge = [](double t) {
-    // Reflected: 0.6e-3 until 40 µs, ramping to 1e-3 over 40–50 µs, then the incident's shape.
-    const double u = t - 450e-6;
-    double refl = 0.6e-3 * trap(t, 450e-6);
-    if (u > 40e-6) refl += 0.4e-3 * std::min(1.0, (u - 40e-6) / 10e-6) * trap(t, 450e-6);
-    return -1e-3 * trap(t, 50e-6) + refl;
-  };
-  rec.transmitted_gauge = [](double t) {
-    const double u = t - 350e-6;
-    const double cut = u < 40e-6 ? 1.0 : std::max(0.0, 1 - (u - 40e-6) / 10e-6);
-    return -0.4e-3 * trap(t, 350e-6) * cut;
-  };
+  // Reflected: 0.6e-3 until 40 µs, ramping to 1e-3 over 40–50 µs, then the incident's shape.
+  const Record rec = shpb_test::fractured();
   const fs::path d = scratch_dir("labdata_fracture");
-  json scene = scene_json();
+  json scene = steel_scene();
   const auto r =
       run_shpb({"process", write(d, scene, csv(rec)).string(), "-o", (d / "out").string()});
   INFO(r.err);
@@ -334,7 +242,7 @@ TEST_CASE("The curve ends with loading: at a load drop (fracture) or the strain 
   CHECK(s["end_of_loading"]["how"].get<std::string>().find("load drop") != std::string::npos);
   // 3-wave stress ∝ 0.4e-3 until 40 µs, then (0.4 − 0.4 u')·… falls below half at 45 µs.
   // Strain up to there: rate (c0/L)(1 + ε_R − |ε_T|)/1e3: 1200/s on the plateau, ~0.05.
-  const auto c = read_csv(d / "out/curve.csv");
+  const auto c = read_columns(d / "out/curve.csv");
   CHECK(c[0].back() - c[0].front() == Approx(45e-6 - 0.3e-6).margin(3 * kDt));
   const double max_strain = s["max_strain"].get<double>();
   CHECK(max_strain < 0.06);  // the whole record would give 0.15
@@ -360,7 +268,7 @@ TEST_CASE("A strain rate without a plateau quotes no plateau rate", "[app][labda
   };
   const fs::path d = scratch_dir("labdata_no_plateau");
   const auto r =
-      run_shpb({"process", write(d, scene_json(), csv(rec)).string(), "-o", (d / "out").string()});
+      run_shpb({"process", write(d, steel_scene(), csv(rec)).string(), "-o", (d / "out").string()});
   INFO(r.err);
   REQUIRE(r.code == 0);
   const json s = summary(d / "out");
@@ -428,12 +336,12 @@ TEST_CASE("compare covers the measured pulses by default and warns when a set du
 TEST_CASE("process needs no specimen material; volt channels take a strain-per-volt scale",
           "[app][labdata]") {
   const fs::path d = scratch_dir("labdata_friction");
-  const auto base = run_shpb({"process", write(d, scene_json(), csv(clean())).string(), "-o",
+  const auto base = run_shpb({"process", write(d, steel_scene(), csv(clean())).string(), "-o",
                               (d / "strain").string(), "--quiet"});
   REQUIRE(base.code == 0);
   const double peak = summary(d / "strain")["peak_stress_Pa"].get<double>();
   // No specimen material: the geometry is all the reduction uses.
-  json scene = scene_json();
+  json scene = steel_scene();
   scene["bars"][2].erase("material");
   auto r = run_shpb({"process", write(d, scene, csv(clean())).string(), "-o",
                      (d / "no-material").string(), "--quiet"});
@@ -446,7 +354,7 @@ TEST_CASE("process needs no specimen material; volt channels take a strain-per-v
   CHECK(r.err.find("bars[2].material: (missing)") != std::string::npos);
   // Volts with a calibration factor: 2.5e-4 strain per volt (4 V at a 1e-3 incident plateau).
   constexpr double kScale = 2.5e-4;
-  scene = scene_json();
+  scene = steel_scene();
   for (auto& ch : scene["measurement"]["channels"]) {
     ch["unit"] = "V";
     ch["scale"] = kScale;
@@ -513,7 +421,7 @@ TEST_CASE("The report of a processed test heads with the striker, equilibrium an
     SHPB_SKIP("python3 with matplotlib and numpy not installed: report test skipped");
   }
   const fs::path d = scratch_dir("labdata_report");
-  json scene = scene_json();
+  json scene = steel_scene();
   scene["bars"][1]["gauges"][0]["position"] = "0.94 m";  // 60 mm off: a warning to show
   REQUIRE(run_shpb({"process", write(d, scene, csv(clean())).string(), "-o", (d / "out").string(),
                     "--quiet"})
@@ -538,10 +446,10 @@ TEST_CASE("An .xlsx and an .xls file with the same signals as a CSV give identic
   const std::string text = csv(clean(), 1.0, dt, 800);
   const fs::path d = scratch_dir("labdata_excel");
   const auto base = run_shpb(
-      {"process", write(d, scene_json(), text).string(), "-o", (d / "csv").string(), "--quiet"});
+      {"process", write(d, steel_scene(), text).string(), "-o", (d / "csv").string(), "--quiet"});
   REQUIRE(base.code == 0);
   const json ref = summary(d / "csv");
-  const auto ref_pulses = read_csv(d / "csv/pulses.csv");
+  const auto ref_pulses = read_columns(d / "csv/pulses.csv");
   write_xlsx(d / "signals.xlsx", text);
   fs::copy_file(fs::path(SHPB_SOURCE_DIR) / "tests/data/signals.xls", d / "signals.xls",
                 fs::copy_options::overwrite_existing);
@@ -550,7 +458,7 @@ TEST_CASE("An .xlsx and an .xls file with the same signals as a CSV give identic
   for (const auto& [file, tolerance] :
        {std::pair{"signals.xlsx", 0.0}, std::pair{"signals.xls", 1e-12}}) {
     CAPTURE(file);
-    json scene = scene_json();
+    json scene = steel_scene();
     scene["measurement"]["file"] = file;
     scene["measurement"]["sheet"] = "signals";
     std::ofstream(d / "scene.json") << scene.dump(2);
@@ -563,7 +471,7 @@ TEST_CASE("An .xlsx and an .xls file with the same signals as a CSV give identic
     for (const char* key : {"peak_stress_Pa", "max_strain", "incident_plateau_strain"})
       CHECK(s[key].get<double>() == Approx(ref[key].get<double>()).epsilon(tolerance));
     CHECK(s["windows"] == ref["windows"]);
-    const auto p = read_csv(out / "pulses.csv");
+    const auto p = read_columns(out / "pulses.csv");
     REQUIRE(p[0].size() == ref_pulses[0].size());
     double worst = 0;
     for (std::size_t c = 1; c < 4; ++c)
@@ -607,11 +515,11 @@ TEST_CASE(
   }
   const fs::path d = scratch_dir("labdata_tek_sheet");
   const auto base =
-      run_shpb({"process", write(d, scene_json(), csv(clean(), 1.0, dt, samples)).string(), "-o",
+      run_shpb({"process", write(d, steel_scene(), csv(clean(), 1.0, dt, samples)).string(), "-o",
                 (d / "csv").string(), "--quiet"});
   REQUIRE(base.code == 0);
   write_xlsx(d / "scope.xlsx", sheet.str());
-  json scene = scene_json();
+  json scene = steel_scene();
   scene["measurement"]["file"] = "scope.xlsx";
   scene["measurement"]["sheet"] = "signals";
   scene["measurement"]["channels"][0]["column"] = 4;
@@ -639,7 +547,7 @@ TEST_CASE(
   const fs::path d = scratch_dir("labdata_excel_boolean");
   std::vector<std::string> shared;
   const std::string rows = shpb_test::xlsx_rows(csv(clean(), 1.0, 1e-6, 800), shared);
-  json scene = scene_json();
+  json scene = steel_scene();
   scene["measurement"]["file"] = "signals.xlsx";
   scene["measurement"]["sheet"] = "signals";
   std::ofstream(d / "scene.json") << scene.dump(2);
@@ -670,7 +578,7 @@ TEST_CASE(
     "disagreement is warned about",
     "[app][labdata]") {
   const fs::path d = scratch_dir("labdata_tension");
-  REQUIRE(run_shpb({"process", write(d, scene_json(), csv(clean())).string(), "-o",
+  REQUIRE(run_shpb({"process", write(d, steel_scene(), csv(clean())).string(), "-o",
                     (d / "compression").string(), "--quiet"})
               .code == 0);
   const json c = summary(d / "compression");
@@ -678,7 +586,7 @@ TEST_CASE(
   Record tensile = clean();
   tensile.incident_gauge = [](double t) { return -clean().incident_gauge(t); };
   tensile.transmitted_gauge = [](double t) { return -clean().transmitted_gauge(t); };
-  json scene = scene_json();
+  json scene = steel_scene();
   scene["measurement"]["test"] = "tension";
   auto r =
       run_shpb({"process", write(d, scene, csv(tensile)).string(), "-o", (d / "tension").string()});
@@ -692,18 +600,18 @@ TEST_CASE(
         Approx(c["peak_stress_Pa"].get<double>()).epsilon(kRoundOff));
   CHECK(t["max_strain"].get<double>() == Approx(c["max_strain"].get<double>()).epsilon(kRoundOff));
   // Tensile true values: ln(1 + e) and σ(1 + e); the pulses keep the record's signs.
-  const auto curve = read_csv(d / "tension/curve.csv");
+  const auto curve = read_columns(d / "tension/curve.csv");
   const std::size_t last = curve[0].size() - 1;
   CHECK(curve[6][last] == Approx(std::log1p(curve[2][last])).epsilon(kRoundOff));
   CHECK(curve[7][last] == Approx(curve[5][last] * (1 + curve[2][last])).epsilon(kRoundOff));
-  const auto p = read_csv(d / "tension/pulses.csv");
+  const auto p = read_columns(d / "tension/pulses.csv");
   CHECK(*std::max_element(p[1].begin(), p[1].end()) == Approx(1e-3));  // tensile incident
   // A record whose transmitted pulse is a third of what the front face carries: the 1- and
   // 2-wave stresses disagree threefold (0.133e-3 against 0.4e-3 of bar strain).
   Record mixed = clean();
   mixed.transmitted_gauge = [](double t) { return clean().transmitted_gauge(t) / 3; };
   r = run_shpb(
-      {"process", write(d, scene_json(), csv(mixed)).string(), "-o", (d / "mixed").string()});
+      {"process", write(d, steel_scene(), csv(mixed)).string(), "-o", (d / "mixed").string()});
   REQUIRE(r.code == 0);
   CHECK(has_warning(summary(d / "mixed"), "the 1-wave and 2-wave stresses disagree"));
   CHECK(r.err.find("ratio 3") != std::string::npos);
@@ -720,14 +628,14 @@ TEST_CASE("A simulated tension test with bonded specimen interfaces is processed
   INFO(r.err);
   REQUIRE(r.code == 0);
   // The bonded interfaces carried tension (negative contact force) at the specimen.
-  const auto interfaces = read_csv(d / "sim/interfaces.csv");
+  const auto interfaces = read_columns(d / "sim/interfaces.csv");
   CHECK(*std::min_element(interfaces[3].begin(), interfaces[3].end()) < 0);
   // The record the experiment ships (data/gauges.csv) is this run's: equal to round-off of the
   // strains (1e-3), whatever the compiler's floating-point contraction.
   {
     constexpr double kRecordRoundOff = 1e-12;
-    const auto fresh = read_csv(d / "sim/gauges.csv");
-    const auto kept = read_csv(source / "experiments/tension-bonded/data/gauges.csv");
+    const auto fresh = read_columns(d / "sim/gauges.csv");
+    const auto kept = read_columns(source / "experiments/tension-bonded/data/gauges.csv");
     REQUIRE(kept.size() == fresh.size());
     REQUIRE(kept[0].size() == fresh[0].size());
     double worst = 0;
@@ -748,7 +656,7 @@ TEST_CASE("A simulated tension test with bonded specimen interfaces is processed
   // (2.7 % at worst); their RMS is the figure.
   constexpr double kE = 70e9, kY = 300e6, kEt = 2e9;
   constexpr double kLawRms = 0.02;
-  const auto c = read_csv(d / "out/curve.csv");
+  const auto c = read_columns(d / "out/curve.csv");
   double sum = 0;
   std::size_t n = 0;
   for (std::size_t i = 0; i < c[0].size(); ++i) {

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <string>
 
+#include "lab_record.hpp"
 #include "run_shpb.hpp"
 
 using namespace std::string_literals;
@@ -15,65 +16,22 @@ namespace fs = std::filesystem;
 namespace {
 
 using shpb_test::run_shpb;
+using shpb_test::summary;
 
 fs::path temp_dir(const std::string& name) { return shpb_test::scratch_dir("process_" + name); }
 
 // A steel Kolsky bar whose measurement is `signals.csv` beside the scene (strain columns by name).
 fs::path write_scene(const fs::path& dir, const std::string& signals) {
-  std::ofstream(dir / "signals.csv") << signals;
-  std::ofstream(dir / "scene.json") << R"({
-  "name": "test bar",
-  "bars": [
-    { "name": "striker", "material": "steel", "length": "200 mm", "diameter": "20 mm", "velocity": "10 m/s" },
-    { "name": "incident", "material": "steel", "length": "2 m", "diameter": "20 mm",
-      "gauges": [ { "name": "incident", "position": "1 m" } ] },
-    { "name": "specimen", "material": "soft", "length": "5 mm", "diameter": "10 mm" },
-    { "name": "transmitter", "material": "steel", "length": "2 m", "diameter": "20 mm",
-      "gauges": [ { "name": "transmitted", "position": "0.5 m" } ] }
-  ],
-  "specimen": "specimen",
-  "materials": {
-    "steel": { "model": "elastic", "density": 8000, "youngs_modulus": "200 GPa", "poisson_ratio": 0.29 },
-    "soft": { "model": "elastic", "density": 2700, "youngs_modulus": "70 GPa", "poisson_ratio": 0.33 }
-  },
-  "measurement": {
-    "file": "signals.csv", "time": { "column": "time_s", "unit": "s" },
-    "channels": [ { "gauge": "incident", "column": "incident", "unit": "strain" },
-                  { "gauge": "transmitted", "column": "transmitted", "unit": "strain" } ],
-    "dispersion": { "correction": "none" }
-  }
-})";
-  return dir / "scene.json";
+  nlohmann::json scene = shpb_test::steel_scene();
+  scene["name"] = "test bar";
+  return shpb_test::write(dir, scene, signals);
 }
 
-// A clean record: incident −1e-3 trapezoid at 50 µs, reflected +0.6e-3 at 450 µs, transmitted
-// −0.4e-3 at 305 µs (face clock: the incident reaches the specimen at 250 µs).
-std::string good_signals() {
-  std::string s = "time_s,incident,transmitted\n";
-  auto trap = [](double t, double t0) {
-    const double u = t - t0;
-    if (u <= 0 || u >= 100e-6) return 0.0;
-    if (u < 10e-6) return u / 10e-6;
-    if (u > 90e-6) return (100e-6 - u) / 10e-6;
-    return 1.0;
-  };
-  for (int i = 0; i < 8000; ++i) {
-    const double t = i * 1e-7;
-    std::ostringstream row;
-    row.precision(17);
-    row << t << "," << -1e-3 * trap(t, 50e-6) + 0.6e-3 * trap(t, 450e-6) << ","
-        << -0.4e-3 * trap(t, 350e-6) << "\n";
-    s += row.str();
-  }
-  return s;
-}
+// The clean record (lab_record.hpp): incident −1e-3 trapezoid at 50 µs, reflected +0.6e-3 at
+// 450 µs, transmitted −0.4e-3 at 350 µs (face clock: all reach the specimen at 250 µs).
+std::string good_signals() { return shpb_test::csv(shpb_test::Record{}); }
 
 const fs::path kExperiments = fs::path(SHPB_SOURCE_DIR) / "experiments";
-
-nlohmann::json summary(const fs::path& dir) {
-  std::ifstream in(dir / "summary.json");
-  return nlohmann::json::parse(in);
-}
 
 }  // namespace
 

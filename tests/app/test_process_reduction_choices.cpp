@@ -15,63 +15,30 @@
 #include <string>
 #include <vector>
 
+#include "lab_record.hpp"
 #include "run_shpb.hpp"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
+using shpb_test::csv;
+using shpb_test::has_warning;
+using shpb_test::kDt;
+using shpb_test::kSamples;
+using shpb_test::read_table;
 using shpb_test::read_text;
+using shpb_test::Record;
 using shpb_test::run_shpb;
 using shpb_test::scratch_dir;
+using shpb_test::steel_scene;
+using shpb_test::summary;
+using shpb_test::Table;
+using shpb_test::trap;
+using shpb_test::write;
+using shpb_test::write_table;
 
 namespace {
 
 const fs::path kSource = SHPB_SOURCE_DIR;
-
-// A CSV file written by shpb or by these tests: the header's names and the columns.
-struct Table {
-  std::vector<std::string> names;
-  std::vector<std::vector<double>> columns;
-  const std::vector<double>& operator[](const std::string& name) const {
-    const auto it = std::find(names.begin(), names.end(), name);
-    REQUIRE(it != names.end());
-    return columns[static_cast<std::size_t>(it - names.begin())];
-  }
-};
-
-Table read_table(const fs::path& file) {
-  std::istringstream in(read_text(file));
-  Table t;
-  std::string line, cell;
-  std::getline(in, line);
-  for (std::istringstream h(line); std::getline(h, cell, ',');) t.names.push_back(cell);
-  t.columns.resize(t.names.size());
-  while (std::getline(in, line)) {
-    std::istringstream f(line);
-    for (std::size_t c = 0; c < t.names.size() && std::getline(f, cell, ','); ++c)
-      t.columns[c].push_back(std::strtod(cell.c_str(), nullptr));
-  }
-  return t;
-}
-
-// Rows [0, rows) taking every `step`-th, written with 17 digits.
-void write_table(const fs::path& file, const Table& t, std::size_t step = 1) {
-  std::ofstream out(file);
-  out.precision(17);
-  for (std::size_t c = 0; c < t.names.size(); ++c) out << (c ? "," : "") << t.names[c];
-  out << "\n";
-  for (std::size_t i = 0; i < t.columns[0].size(); i += step) {
-    for (std::size_t c = 0; c < t.names.size(); ++c) out << (c ? "," : "") << t.columns[c][i];
-    out << "\n";
-  }
-}
-
-json summary(const fs::path& out) { return json::parse(read_text(out / "summary.json")); }
-
-bool has_warning(const json& s, const std::string& text) {
-  for (const auto& w : s["warnings"])
-    if (w.get<std::string>().find(text) != std::string::npos) return true;
-  return false;
-}
 
 // The measurement block reading a simulated gauges.csv by column name, without dispersion (the
 // 1D model has none).
@@ -84,73 +51,6 @@ json gauges_measurement(const fs::path& file) {
           {"dispersion", {{"correction", "none"}}}};
 }
 
-// ---- synthetic records (steel bars 2 m, 20 mm; a 5 mm specimen; gauges 1 m and 0.5 m from it)
-
-constexpr double kDt = 1e-7;  // 10 MHz
-constexpr int kSamples = 8000;
-
-// A trapezoid of unit height starting at t0: `rise` up, flat, `rise` down, `length` long.
-double trap(double t, double t0, double length = 100e-6, double rise = 10e-6) {
-  const double u = t - t0;
-  if (u <= 0 || u >= length) return 0.0;
-  if (u < rise) return u / rise;
-  if (u > length - rise) return (length - u) / rise;
-  return 1.0;
-}
-
-// Gauge strains against time, tension positive. The clean test: incident −1e-3 at 50 µs
-// (reaching the specimen at 250 µs), reflected +0.6e-3 back at 450 µs, transmitted −0.4e-3 at
-// 350 µs; at the faces all three start at 250 µs.
-struct Record {
-  std::function<double(double)> incident_gauge = [](double t) {
-    return -1e-3 * trap(t, 50e-6) + 0.6e-3 * trap(t, 450e-6);
-  };
-  std::function<double(double)> transmitted_gauge = [](double t) {
-    return -0.4e-3 * trap(t, 350e-6);
-  };
-};
-
-std::string csv(const Record& r, double sign = 1) {
-  std::ostringstream s;
-  s.precision(17);
-  s << "time_s,incident,transmitted\n";
-  for (int i = 0; i < kSamples; ++i) {
-    const double t = i * kDt;
-    s << t << "," << sign * r.incident_gauge(t) << "," << sign * r.transmitted_gauge(t) << "\n";
-  }
-  return s.str();
-}
-
-json steel_scene() {
-  return json::parse(R"({
-  "bars": [
-    { "name": "striker", "material": "steel", "length": "200 mm", "diameter": "20 mm", "velocity": "10 m/s" },
-    { "name": "incident", "material": "steel", "length": "2 m", "diameter": "20 mm",
-      "gauges": [ { "name": "incident", "position": "1 m" } ] },
-    { "name": "specimen", "material": "soft", "length": "5 mm", "diameter": "10 mm" },
-    { "name": "transmitter", "material": "steel", "length": "2 m", "diameter": "20 mm",
-      "gauges": [ { "name": "transmitted", "position": "0.5 m" } ] }
-  ],
-  "specimen": "specimen",
-  "materials": {
-    "steel": { "model": "elastic", "density": 8000, "youngs_modulus": "200 GPa", "poisson_ratio": 0.29 },
-    "soft": { "model": "elastic", "density": 2700, "youngs_modulus": "70 GPa", "poisson_ratio": 0.33 }
-  },
-  "measurement": {
-    "file": "signals.csv", "time": { "column": "time_s", "unit": "s" },
-    "channels": [ { "gauge": "incident", "column": "incident", "unit": "strain" },
-                  { "gauge": "transmitted", "column": "transmitted", "unit": "strain" } ],
-    "dispersion": { "correction": "none" }
-  }
-})");
-}
-
-fs::path write(const fs::path& dir, const json& scene, const std::string& signals) {
-  std::ofstream(dir / "signals.csv") << signals;
-  std::ofstream(dir / "scene.json") << scene.dump(2);
-  return dir / "scene.json";
-}
-
 }  // namespace
 
 TEST_CASE(
@@ -160,17 +60,7 @@ TEST_CASE(
   // Fracture 40 µs into the loading (faces' clock): the transmitted pulse falls to zero over
   // 10 µs and stays there, while the whole incident pulse is reflected and the faces keep moving
   // apart. Before: rate (c0/L)(|ε_I| − ε_R... ) = 1200 1/s; after: 2000 1/s until the pulse ends.
-  Record rec;
-  rec.incident_gauge = [](double t) {
-    const double u = t - 450e-6;
-    double refl = 0.6e-3 * trap(t, 450e-6);
-    if (u > 40e-6) refl += 0.4e-3 * std::min(1.0, (u - 40e-6) / 10e-6) * trap(t, 450e-6);
-    return -1e-3 * trap(t, 50e-6) + refl;
-  };
-  rec.transmitted_gauge = [](double t) {
-    const double u = t - 350e-6;
-    return -0.4e-3 * trap(t, 350e-6) * (u < 40e-6 ? 1.0 : std::max(0.0, 1 - (u - 40e-6) / 10e-6));
-  };
+  const Record rec = shpb_test::fractured();
   const fs::path d = scratch_dir("reduction_fracture");
   const auto r =
       run_shpb({"process", write(d, steel_scene(), csv(rec)).string(), "-o", (d / "out").string()});

@@ -13,34 +13,21 @@
 #include <string>
 #include <vector>
 
+#include "lab_record.hpp"
 #include "run_shpb.hpp"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
+using shpb_test::has_warning;
+using shpb_test::read_columns;
 using shpb_test::read_text;
 using shpb_test::run_shpb;
 using shpb_test::scratch_dir;
+using shpb_test::summary;
 
 namespace {
 
 const fs::path kExperiment = fs::path(SHPB_SOURCE_DIR) / "experiments/tension-bonded";
-
-// The columns of a CSV file (header + numbers, comma separated).
-std::vector<std::vector<double>> read_columns(const fs::path& file) {
-  std::istringstream in(read_text(file));
-  std::string line;
-  std::getline(in, line);
-  std::vector<std::vector<double>> cols;
-  while (std::getline(in, line)) {
-    std::istringstream f(line);
-    std::string v;
-    for (std::size_t c = 0; std::getline(f, v, ','); ++c) {
-      if (cols.size() <= c) cols.emplace_back();
-      cols[c].push_back(std::strtod(v.c_str(), nullptr));
-    }
-  }
-  return cols;
-}
 
 // time_s, incident, transmitted of the shipped record.
 std::vector<std::vector<double>> shipped() { return read_columns(kExperiment / "data/gauges.csv"); }
@@ -59,14 +46,6 @@ fs::path scene_reading(const fs::path& dir, const std::string& signals) {
   scene["measurement"]["file"] = signals;
   std::ofstream(dir / "scene.json") << scene.dump(2);
   return dir / "scene.json";
-}
-
-json summary(const fs::path& out) { return json::parse(read_text(out / "summary.json")); }
-
-bool warns(const json& s, const std::string& text) {
-  for (const auto& w : s["warnings"])
-    if (w.get<std::string>().find(text) != std::string::npos) return true;
-  return false;
 }
 
 // An 8-bit digitizer of range ±range: 256 levels, values beyond the range held at its ends.
@@ -140,7 +119,7 @@ TEST_CASE("An 8-bit record is not called clipped; a record cut by its range is",
   INFO(r.err);
   REQUIRE(r.code == 0);
   CHECK(r.err.find("clipped") == std::string::npos);
-  CHECK_FALSE(warns(summary(d / "quantised"), "clipped"));
+  CHECK_FALSE(has_warning(summary(d / "quantised"), "clipped"));
   // The same scope with the incident channel's range at 80 % of its peak: the tensile incident
   // plateau is cut and piles up at the top level.
   constexpr double kCutRange = 0.8;
@@ -151,9 +130,9 @@ TEST_CASE("An 8-bit record is not called clipped; a record cut by its range is",
   r = run_shpb({"process", scene_reading(d, "clipped.csv").string(), "-o", (d / "clipped").string(),
                 "--quiet"});
   REQUIRE(r.code == 0);
-  CHECK(warns(summary(d / "clipped"), "gauge \"incident\""));
-  CHECK(warns(summary(d / "clipped"), "clipped"));
-  CHECK_FALSE(warns(summary(d / "clipped"), "gauge \"transmitted\""));
+  CHECK(has_warning(summary(d / "clipped"), "gauge \"incident\""));
+  CHECK(has_warning(summary(d / "clipped"), "clipped"));
+  CHECK_FALSE(has_warning(summary(d / "clipped"), "gauge \"transmitted\""));
 }
 
 TEST_CASE("A jittered time base is resampled onto a uniform grid, with a warning",
@@ -192,7 +171,7 @@ TEST_CASE("A jittered time base is resampled onto a uniform grid, with a warning
   INFO(r.err);
   REQUIRE(r.code == 0);
   const json u = summary(d / "uniform"), j = summary(d / "jittered");
-  CHECK(warns(j, "resampled (linear) onto a uniform grid"));
+  CHECK(has_warning(j, "resampled (linear) onto a uniform grid"));
   CHECK(r.err.find("1.01e-06 s") != std::string::npos);  // the interval used
   CHECK(j["signals"]["sample_interval_s"].get<double>() == Approx(1010e-9).epsilon(1e-9));
   // Resampling moves each sample by at most 12 ns (1.2 % of a step) along a front that rises

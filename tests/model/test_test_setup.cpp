@@ -6,27 +6,17 @@
 #include <string>
 
 #include "../scratch.hpp"
+#include "chain_bar.hpp"
 #include "core/error.hpp"
 #include "model/test_setup.hpp"
 
 using namespace shpb;
+using shpb_test::bar;
 
 namespace {
 
 // Sums of a few bar lengths: equal to round-off.
 constexpr double kRoundOff = 1e-12;
-
-BarSpec bar(const std::string& name, double length_m, double velocity_m_s = 0) {
-  BarSpec b;
-  b.name = name;
-  b.material.density_kg_m3 = 8000;
-  b.material.youngs_modulus_Pa = 200e9;
-  b.length_m = length_m;
-  b.area_m2 = 1e-4;
-  b.diameter_m = 0.0113;
-  b.velocity_m_s = velocity_m_s;
-  return b;
-}
 
 // Striker 0.3 m, a 3 mm shaper, incident 2 m (gap 0.1 mm to the specimen), specimen 5 mm,
 // transmitter 1 m, a second output bar 0.5 m.

@@ -3,30 +3,19 @@
 #include <catch2/catch.hpp>
 #include <string>
 
+#include "chain_bar.hpp"
 #include "model/discretization.hpp"
 #include "model/scene_checks.hpp"
 #include "model/wave_travel.hpp"
 
 using namespace shpb;
+using shpb_test::bar;
 
 namespace {
 
 // Sums of a few quotients: equal to round-off.
 constexpr double kRoundOff = 1e-12;
 constexpr double kMarginOfDefault = 1.1;  // docs/scene-format.md: the default duration's 10 %
-
-// Bars of one material with c0 = 5000 m/s (E = 200 GPa, ρ = 8000 kg/m³).
-BarSpec bar(const std::string& name, double length_m, double velocity_m_s = 0) {
-  BarSpec b;
-  b.name = name;
-  b.material.density_kg_m3 = 8000;
-  b.material.youngs_modulus_Pa = 200e9;
-  b.length_m = length_m;
-  b.area_m2 = 1e-4;
-  b.diameter_m = 0.0113;
-  b.velocity_m_s = velocity_m_s;
-  return b;
-}
 
 // Striker 0.5 m; incident bar 2 m with its gauge 0.2 m from the impact end (1.8 m from the
 // specimen); specimen 10 mm; transmitter 1 m with its gauge 0.1 m from the specimen. The pulse

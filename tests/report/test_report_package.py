@@ -96,3 +96,17 @@ def test_the_output_marker_learns_the_report_files_only_if_it_is_shpbs(tmp_path)
     report_main.tell_output_marker(str(foreign), ["figures"])
     assert (foreign / ".shpb-output").read_text(encoding="utf-8") == "not ours\n"
     assert not [n for n in os.listdir(foreign) if n.startswith(".shpb-output.tmp")]
+
+
+def test_column_names_come_from_the_output_schema():
+    # The names the figures read are the schema's (src/core/output_schema.json, the list the C++
+    # writers use): a name it does not list fails loudly instead of drawing a figure without it.
+    from shpb_report.schema import columns, suffix
+    curve = columns("curve")
+    assert curve.FILE == "curve.csv"
+    assert curve.stress_3wave_Pa == "stress_3wave_Pa"
+    with pytest.raises(AttributeError):
+        curve.stress_4wave_Pa  # noqa: B018
+    assert suffix("compare_signals", "<gauge>_measured_strain") == "_measured_strain"
+    with pytest.raises(KeyError):
+        suffix("compare_signals", "<gauge>_modelled_strain")

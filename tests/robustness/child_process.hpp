@@ -128,6 +128,23 @@ inline double seconds_after_startup(const std::vector<std::string>& args, const 
   return child.wait(limit_s).seconds;
 }
 
+// Runs `shpb args...` and sends it `sig` `delay_s` after it can be interrupted. A run faster than
+// the one timed that ends first with exit 2 (the work it was given holds no answer) gets the
+// signal twice as early, up to five times. `delay_s` is left at the delay of the last attempt.
+inline Outcome interrupted_run(const std::vector<std::string>& args, const fs::path& scratch,
+                               int sig, double& delay_s, double limit_s) {
+  Outcome o;
+  for (int attempt = 0; attempt < 5; ++attempt, delay_s /= 2) {
+    Child child(args, scratch);
+    if (!child.started() || !child.wait_until_interruptible(limit_s)) return o;
+    std::this_thread::sleep_for(std::chrono::duration<double>(delay_s));
+    child.signal(sig);
+    o = child.wait(limit_s);
+    if (o.code != 2) break;
+  }
+  return o;
+}
+
 // A fresh empty scratch folder per object (a counter tells apart those of one process), removed
 // with the object.
 class ScratchFolder : public shpb_test::ScratchDir {

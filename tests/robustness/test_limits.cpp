@@ -178,16 +178,7 @@ TEST_CASE("SIGTERM stops process reading a long record within a second",
   REQUIRE(run_s > 0);
   for (const double fraction : {0.1, 0.33}) {
     double delay_s = fraction * run_s;
-    Outcome o;
-    for (int attempt = 0; attempt < 5; ++attempt, delay_s /= 2) {
-      Child child(args, scratch.path());
-      REQUIRE(child.started());
-      REQUIRE(child.wait_until_interruptible(kLimit_s));
-      std::this_thread::sleep_for(std::chrono::duration<double>(delay_s));
-      child.signal(SIGTERM);
-      o = child.wait(kLimit_s);
-      if (o.code != 2) break;
-    }
+    const Outcome o = interrupted_run(args, scratch.path(), SIGTERM, delay_s, kLimit_s);
     INFO("signal after " << delay_s << " s of a " << run_s << " s run");
     INFO(o.err);
     CHECK(o.signal == 0);

@@ -239,16 +239,7 @@ TEST_CASE("SIGTERM and SIGINT stop the reading of a large .xlsx within a second"
   for (const double fraction : {0.1, 0.33}) {
     const int sig = k++ ? SIGINT : SIGTERM;
     double delay_s = fraction * run_s;
-    Outcome o;
-    for (int attempt = 0; attempt < 5; ++attempt, delay_s /= 2) {
-      Child child(args, scratch.path());
-      REQUIRE(child.started());
-      REQUIRE(child.wait_until_interruptible(kLimit_s));
-      std::this_thread::sleep_for(std::chrono::duration<double>(delay_s));
-      child.signal(sig);
-      o = child.wait(kLimit_s);
-      if (o.code != 2) break;
-    }
+    const Outcome o = interrupted_run(args, scratch.path(), sig, delay_s, kLimit_s);
     INFO("signal " << sig << " after " << delay_s << " s of a " << run_s << " s run");
     INFO(o.err);
     CHECK(o.signal == 0);

@@ -3,36 +3,44 @@ with the compared pulse windows of comparison.csv."""
 import re
 
 from .drawing import MICRO, US, new_figure, outside_legend
+from .schema import columns, suffix
+
+COMPARISON = columns("comparison")
+SIGNALS = columns("compare_signals")
+MEASURED = suffix("compare_signals", "<gauge>_measured_strain")
+SIMULATED = suffix("compare_signals", "<gauge>_simulated_strain")
+SIMULATED_RAW = suffix("compare_signals", "<gauge>_simulated_raw_strain")
 
 
 def fig_compare_signals(src, figs):
-    t = src.table("signals.csv")
-    time = t.numeric("time_s") * US
+    t = src.table(SIGNALS.FILE)
+    time = t.numeric(SIGNALS.time_s) * US
     gauges = []
     for n in t.names:
-        m = re.fullmatch(r"(.+)_measured_strain", n)
+        m = re.fullmatch("(.+)" + re.escape(MEASURED), n)
         if m:
             gauges.append(m.group(1))
     if not gauges:
         return
     windows = []
-    if src.has("comparison.csv"):
-        c = src.table("comparison.csv")
-        if all(k in c for k in ("gauge", "pulse", "window_start_s", "window_end_s")):
-            for row in zip(c["gauge"], c["pulse"], c.numeric("window_start_s"),
-                           c.numeric("window_end_s")):
+    if src.has(COMPARISON.FILE):
+        c = src.table(COMPARISON.FILE)
+        k = COMPARISON
+        if all(n in c for n in (k.gauge, k.pulse, k.window_start_s, k.window_end_s)):
+            for row in zip(c[k.gauge], c[k.pulse], c.numeric(k.window_start_s),
+                           c.numeric(k.window_end_s)):
                 windows.append(row)
     fig, axes = new_figure(len(gauges), 1, height=2.9 * len(gauges) + 0.6, sharex=True)
     for ax, g in zip(axes[:, 0], gauges):
-        ax.plot(time, t.numeric(f"{g}_measured_strain") * MICRO, color="k", linewidth=1.2,
+        ax.plot(time, t.numeric(g + MEASURED) * MICRO, color="k", linewidth=1.2,
                 label="measured")
-        if f"{g}_simulated_raw_strain" in t:
-            ax.plot(time, t.numeric(f"{g}_simulated_raw_strain") * MICRO, color="C0",
+        if g + SIMULATED_RAW in t:
+            ax.plot(time, t.numeric(g + SIMULATED_RAW) * MICRO, color="C0",
                     linewidth=0.8, alpha=0.6, label="simulated (1D, no dispersion)")
-        if f"{g}_simulated_strain" in t:
+        if g + SIMULATED in t:
             dispersed = src.value("dispersion")
             label = "simulated + Pochhammer–Chree" if dispersed else "simulated"
-            ax.plot(time, t.numeric(f"{g}_simulated_strain") * MICRO, color="C3",
+            ax.plot(time, t.numeric(g + SIMULATED) * MICRO, color="C3",
                     linewidth=1.0, linestyle="--", label=label)
         for gauge, pulse, t0, t1 in windows:
             if gauge == g:

@@ -5,17 +5,21 @@ import numpy as np
 
 from .drawing import MICRO, MPA, US, new_figure
 from .reading import ReportError
+from .schema import columns
+
+CURVES = columns("fit_curves")
+SIGNALS = columns("fit_signals")
 
 
 def fig_fit(src, figs):
     """Measured against start and fitted pulses per test, curves with the law, correlations."""
-    t = src.table("signals.csv")
-    for name in ("test", "pulse", "time_s", "measured_strain", "start_strain", "fitted_strain"):
+    t, k = src.table(SIGNALS.FILE), SIGNALS
+    for name in (k.test, k.pulse, k.time_s, k.measured_strain, k.start_strain, k.fitted_strain):
         if name not in t:
             raise ReportError(f"{t.path}: header: {','.join(t.names)}: a column {name} "
                               "was expected (shpb fit's signals.csv)")
-    tests = list(dict.fromkeys(t["test"]))
-    pulses = list(dict.fromkeys(t["pulse"]))
+    tests = list(dict.fromkeys(t[k.test]))
+    pulses = list(dict.fromkeys(t[k.pulse]))
     if not tests or not pulses:
         return
     nrmse = {x["name"]: x for x in src.value("tests", kind=list) or []
@@ -25,13 +29,13 @@ def fig_fit(src, figs):
     for i, test in enumerate(tests):
         for j, pulse in enumerate(pulses):
             ax = axes[i, j]
-            m = (t["test"] == test) & (t["pulse"] == pulse)
-            time = t.numeric("time_s")[m] * US
-            ax.plot(time, t.numeric("measured_strain")[m] * MICRO, color="k", linewidth=1.1,
+            m = (t[k.test] == test) & (t[k.pulse] == pulse)
+            time = t.numeric(k.time_s)[m] * US
+            ax.plot(time, t.numeric(k.measured_strain)[m] * MICRO, color="k", linewidth=1.1,
                     label="measured")
-            ax.plot(time, t.numeric("start_strain")[m] * MICRO, color="C0", linewidth=0.8,
+            ax.plot(time, t.numeric(k.start_strain)[m] * MICRO, color="C0", linewidth=0.8,
                     alpha=0.7, label="start")
-            ax.plot(time, t.numeric("fitted_strain")[m] * MICRO, color="C3", linewidth=1.0,
+            ax.plot(time, t.numeric(k.fitted_strain)[m] * MICRO, color="C3", linewidth=1.0,
                     linestyle="--", label="fitted")
             r = nrmse.get(test, {})
             before, after = r.get(f"nrmse_{pulse}_before"), r.get(f"nrmse_{pulse}_after")
@@ -47,18 +51,18 @@ def fig_fit(src, figs):
               "Each compared window of each test: measured (black), simulated with the starting "
               "law (blue) and with the fitted one (dashed); NRMSE as in summary.json.")
 
-    if src.has("curves.csv"):
-        c = src.table("curves.csv")
+    if src.has(CURVES.FILE):
+        c = src.table(CURVES.FILE)
         fig, axes = new_figure()
         ax = axes[0, 0]
-        for k, test in enumerate(dict.fromkeys(c["test"])):
-            m = c["test"] == test
-            ep = c.numeric("true_plastic_strain")[m]
-            ax.plot(ep, c.numeric("stress_measured_Pa")[m] * MPA, color=f"C{k}", linewidth=1.0,
+        for n, test in enumerate(dict.fromkeys(c[CURVES.test])):
+            m = c[CURVES.test] == test
+            ep = c.numeric(CURVES.true_plastic_strain)[m]
+            ax.plot(ep, c.numeric(CURVES.stress_measured_Pa)[m] * MPA, color=f"C{n}", linewidth=1.0,
                     label=f"{test} processed")
-            ax.plot(ep, c.numeric("stress_fitted_Pa")[m] * MPA, color=f"C{k}", linewidth=1.0,
+            ax.plot(ep, c.numeric(CURVES.stress_fitted_Pa)[m] * MPA, color=f"C{n}", linewidth=1.0,
                     linestyle="--", label=f"{test} fitted law")
-            ax.plot(ep, c.numeric("stress_start_Pa")[m] * MPA, color=f"C{k}", linewidth=0.7,
+            ax.plot(ep, c.numeric(CURVES.stress_start_Pa)[m] * MPA, color=f"C{n}", linewidth=0.7,
                     linestyle=":", alpha=0.8)
         ax.set_xlabel("true plastic strain")
         ax.set_ylabel("true stress (MPa)")

@@ -3,19 +3,28 @@ the pulses at the specimen faces, the stress–strain curves with strain rate an
 bars-together check, and a campaign's curves on one plot."""
 from .drawing import MICRO, MPA, US, gauge_columns, new_figure, outside_legend, ratio_finite
 from .reading import NUMBER
+from .schema import columns
+
+BAR_CHECK = columns("bar_check_pulses")
+CURVE = columns("curve")
+PULSES = columns("pulses")
+RAW_SIGNALS = columns("raw_signals")
+SPECIMEN = columns("specimen")
 
 
 def fig_pulses(src, figs):
-    t = src.table("pulses.csv")
-    time = t.numeric("time_s") * US
+    t = src.table(PULSES.FILE)
+    time = t.numeric(PULSES.time_s) * US
     fig, axes = new_figure()
     ax = axes[0, 0]
-    for name, color in (("incident", "C0"), ("reflected", "C3"), ("transmitted", "C2")):
+    for name, color in ((PULSES.incident, "C0"), (PULSES.reflected, "C3"),
+                        (PULSES.transmitted, "C2")):
         if name in t:
             ax.plot(time, t.numeric(name) * MICRO, color=color, linewidth=1.0, label=name)
-    if all(n in t for n in ("incident", "reflected", "transmitted")):
-        ax.plot(time, (t.numeric("incident") + t.numeric("reflected")) * MICRO, color="k",
-                linewidth=0.8, linestyle="--", label="incident + reflected (front face)")
+    if all(n in t for n in (PULSES.incident, PULSES.reflected, PULSES.transmitted)):
+        front = t.numeric(PULSES.incident) + t.numeric(PULSES.reflected)
+        ax.plot(time, front * MICRO, color="k", linewidth=0.8, linestyle="--",
+                label="incident + reflected (front face)")
     ax.set_xlabel("time at the specimen faces (µs)")
     ax.set_ylabel("bar strain (µε, tension +)")
     ax.set_title(src.title("Pulses shifted to the specimen faces"), pad=24)
@@ -26,43 +35,45 @@ def fig_pulses(src, figs):
 
 
 def fig_curve(src, figs, truth=None):
-    t = src.table("curve.csv")
+    t = src.table(CURVE.FILE)
     # The primary reduction (summary.json primary) is drawn first and heaviest.
-    one_wave = src.value("primary", "reduction", kind=str) == "1-wave" and "strain_1wave" in t
+    one_wave = src.value("primary", "reduction", kind=str) == "1-wave" and CURVE.strain_1wave in t
     primary = "1-wave" if one_wave else "3-wave"
-    strain = t.numeric("strain_1wave" if one_wave else "strain")
+    strain = t.numeric(CURVE.strain_1wave if one_wave else CURVE.strain)
     fig, axes = new_figure(1, 2, height=4.6, width=11.0)
     ax = axes[0, 0]
     if one_wave:
-        ax.plot(strain * 100, t.numeric("stress_1wave_Pa") * MPA, color="k", linewidth=1.6,
+        ax.plot(strain * 100, t.numeric(CURVE.stress_1wave_Pa) * MPA, color="k", linewidth=1.6,
                 label="1-wave (transmitted) against the reflected-pulse strain (primary)")
-        if "strain" in t and "stress_3wave_Pa" in t:
-            ax.plot(t.numeric("strain") * 100, t.numeric("stress_3wave_Pa") * MPA, color="0.5",
-                    linewidth=1.0, label="3-wave against the 3-wave strain")
+        if CURVE.strain in t and CURVE.stress_3wave_Pa in t:
+            ax.plot(t.numeric(CURVE.strain) * 100, t.numeric(CURVE.stress_3wave_Pa) * MPA,
+                    color="0.5", linewidth=1.0, label="3-wave against the 3-wave strain")
     else:
-        for col, label, color in (("stress_1wave_Pa", "1-wave (transmitted)", "C2"),
-                                  ("stress_2wave_Pa", "2-wave (incident + reflected)", "C1"),
-                                  ("stress_3wave_Pa", "3-wave (average)", "k")):
+        for col, label, color in ((CURVE.stress_1wave_Pa, "1-wave (transmitted)", "C2"),
+                                  (CURVE.stress_2wave_Pa, "2-wave (incident + reflected)", "C1"),
+                                  (CURVE.stress_3wave_Pa, "3-wave (average)", "k")):
             if col in t:
                 ax.plot(strain * 100, t.numeric(col) * MPA, color=color,
                         linewidth=1.6 if color == "k" else 1.0, label=label)
     if truth is not None:
-        ax.plot(truth.numeric("strain") * 100, truth.numeric("stress_Pa") * MPA, color="C4",
-                linestyle=":", linewidth=1.4, label="model truth (specimen.csv)")
+        ax.plot(truth.numeric(SPECIMEN.strain) * 100, truth.numeric(SPECIMEN.stress_Pa) * MPA,
+                color="C4", linestyle=":", linewidth=1.4, label="model truth (specimen.csv)")
     ax.set_xlabel("engineering strain (%, compression +)")
     ax.set_ylabel("engineering stress (MPa, compression +)")
     ax.set_title(src.title("Engineering stress–strain"))
     ax.legend(loc="best", fontsize=8)
     ax = axes[0, 1]
-    if "true_strain" in t and "true_stress_Pa" in t:
-        ax.plot(t.numeric("true_strain") * 100, t.numeric("true_stress_Pa") * MPA, color="k",
-                linewidth=1.4, label=f"true ({primary})")
-    ax.plot(strain * 100, t.numeric("stress_1wave_Pa" if one_wave else "stress_3wave_Pa") * MPA,
-            color="0.6", linewidth=1.0, linestyle="--", label=f"engineering ({primary})")
-    if truth is not None and "true_strain" in truth and "true_stress_Pa" in truth:
+    if CURVE.true_strain in t and CURVE.true_stress_Pa in t:
+        ax.plot(t.numeric(CURVE.true_strain) * 100, t.numeric(CURVE.true_stress_Pa) * MPA,
+                color="k", linewidth=1.4, label=f"true ({primary})")
+    stress = CURVE.stress_1wave_Pa if one_wave else CURVE.stress_3wave_Pa
+    ax.plot(strain * 100, t.numeric(stress) * MPA, color="0.6", linewidth=1.0, linestyle="--",
+            label=f"engineering ({primary})")
+    if truth is not None and SPECIMEN.true_strain in truth and SPECIMEN.true_stress_Pa in truth:
         # The law as the specimen followed it: true stress at true strain (specimen.csv).
-        ax.plot(truth.numeric("true_strain") * 100, truth.numeric("true_stress_Pa") * MPA,
-                color="C4", linestyle=":", linewidth=1.4, label="law, model truth (true)")
+        ax.plot(truth.numeric(SPECIMEN.true_strain) * 100,
+                truth.numeric(SPECIMEN.true_stress_Pa) * MPA, color="C4", linestyle=":",
+                linewidth=1.4, label="law, model truth (true)")
     ax.set_xlabel("true strain (%, compression +)")
     ax.set_ylabel("true stress (MPa, compression +)")
     ax.set_title(src.title("True stress–strain"))
@@ -75,18 +86,19 @@ def fig_curve(src, figs, truth=None):
               "compression positive"
               + ("; dotted: the simulation's own specimen truth." if truth is not None else "."))
 
-    time = t.numeric("time_s") * US
+    time = t.numeric(CURVE.time_s) * US
     fig, axes = new_figure(2, 1, height=6.0, sharex=True)
-    axes[0, 0].plot(time, t.numeric("strain_rate_1_s"), color="k", linewidth=1.0,
+    axes[0, 0].plot(time, t.numeric(CURVE.strain_rate_1_s), color="k", linewidth=1.0,
                     label="3-wave")
     if truth is not None:
-        axes[0, 0].plot(truth.numeric("time_s") * US, truth.numeric("strain_rate_1_s"),
-                        color="C4", linestyle=":", linewidth=1.2, label="model truth")
+        axes[0, 0].plot(truth.numeric(SPECIMEN.time_s) * US,
+                        truth.numeric(SPECIMEN.strain_rate_1_s), color="C4", linestyle=":",
+                        linewidth=1.2, label="model truth")
         axes[0, 0].legend(loc="best", fontsize=8)
     axes[0, 0].set_ylabel("strain rate (1/s, compression +)")
     axes[0, 0].set_title(src.title("Strain rate and equilibrium against time"))
-    if "equilibrium_ratio" in t:
-        axes[1, 0].plot(time, ratio_finite(t.numeric("equilibrium_ratio")), color="C0",
+    if CURVE.equilibrium_ratio in t:
+        axes[1, 0].plot(time, ratio_finite(t.numeric(CURVE.equilibrium_ratio)), color="C0",
                         linewidth=1.0, label="2|P1 − P2| / |P1 + P2|")
         axes[1, 0].axhline(0.05, color="C3", linestyle=":", linewidth=1.0, label="5 %")
         axes[1, 0].set_ylim(0, 1)
@@ -102,14 +114,14 @@ def fig_curve(src, figs, truth=None):
 
 def fig_campaign(folder, sources, figs):
     """All tests of a campaign (`shpb process` over several scenes) on one stress–strain plot."""
-    tests = [s for s in sources if s.label != "." and s.has("curve.csv")]
+    tests = [s for s in sources if s.label != "." and s.has(CURVE.FILE)]
     if not tests:
         return
     fig, axes = new_figure(1, 1, height=5.0)
     ax = axes[0, 0]
     for i, src in enumerate(tests):
-        t = src.table("curve.csv")
-        ax.plot(t.numeric("strain") * 100, t.numeric("stress_3wave_Pa") * MPA,
+        t = src.table(CURVE.FILE)
+        ax.plot(t.numeric(CURVE.strain) * 100, t.numeric(CURVE.stress_3wave_Pa) * MPA,
                 color=f"C{i % 10}", linewidth=1.2, label=src.label)
     ax.set_xlabel("engineering strain (%, compression +)")
     ax.set_ylabel("3-wave engineering stress (MPa, compression +)")
@@ -121,8 +133,8 @@ def fig_campaign(folder, sources, figs):
 
 
 def fig_raw_signals(src, figs):
-    t = src.table("raw_signals.csv")
-    time = t.numeric("time_s") * US
+    t = src.table(RAW_SIGNALS.FILE)
+    time = t.numeric(RAW_SIGNALS.time_s) * US
     gauges = gauge_columns(t)
     fig, axes = new_figure(len(gauges), 1, height=2.6 * len(gauges) + 0.8, sharex=True)
     colors = {"incident": "C0", "reflected": "C3", "transmitted": "C2"}
@@ -145,14 +157,15 @@ def fig_raw_signals(src, figs):
 
 
 def fig_bar_check(src, figs):
-    t = src.table("pulses.csv")
-    time = t.numeric("time_s") * US
+    t = src.table(BAR_CHECK.FILE)
+    time = t.numeric(BAR_CHECK.time_s) * US
     fig, axes = new_figure()
     ax = axes[0, 0]
-    ax.plot(time, t.numeric("far_measured") * MICRO, color="k", linewidth=1.4, label="measured")
-    ax.plot(time, t.numeric("far_pochhammer_chree") * MICRO, color="C3", linewidth=1.0,
+    ax.plot(time, t.numeric(BAR_CHECK.far_measured) * MICRO, color="k", linewidth=1.4,
+            label="measured")
+    ax.plot(time, t.numeric(BAR_CHECK.far_pochhammer_chree) * MICRO, color="C3", linewidth=1.0,
             linestyle="--", label="near pulse + Pochhammer–Chree")
-    ax.plot(time, t.numeric("far_time_shift") * MICRO, color="C0", linewidth=0.9,
+    ax.plot(time, t.numeric(BAR_CHECK.far_time_shift) * MICRO, color="C0", linewidth=0.9,
             label="near pulse, time shift only")
     ax.set_xlabel("time on the signals' clock (µs)")
     ax.set_ylabel("far gauge strain (µε, tension +)")

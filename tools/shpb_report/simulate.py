@@ -3,11 +3,19 @@ x–t wave diagram, the energy history and the specimen's own truth."""
 import numpy as np
 
 from .drawing import MICRO, MPA, US, gauge_columns, new_figure
+from .schema import columns, suffix
+
+ENERGY = columns("energy")
+FIELD = columns("field")
+GAUGES = columns("gauges")
+INTERFACES = columns("interfaces")
+SPECIMEN = columns("specimen")
+FORCE = suffix("interfaces", "<left>-<right>_force_N")
 
 
 def fig_gauges(src, figs):
-    t = src.table("gauges.csv")
-    time = t.numeric("time_s") * US
+    t = src.table(GAUGES.FILE)
+    time = t.numeric(GAUGES.time_s) * US
     fig, axes = new_figure()
     ax = axes[0, 0]
     for name in gauge_columns(t):
@@ -24,15 +32,15 @@ def fig_gauges(src, figs):
 
 
 def fig_interfaces(src, figs):
-    t = src.table("interfaces.csv")
-    time = t.numeric("time_s") * US
-    forces = [n for n in t.names if n.endswith("_force_N")]
+    t = src.table(INTERFACES.FILE)
+    time = t.numeric(INTERFACES.time_s) * US
+    forces = [n for n in t.names if n.endswith(FORCE)]
     if not forces:
         return
     fig, axes = new_figure()
     ax = axes[0, 0]
     for name in forces:
-        ax.plot(time, t.numeric(name) * 1e-3, linewidth=1.0, label=name[:-len("_force_N")])
+        ax.plot(time, t.numeric(name) * 1e-3, linewidth=1.0, label=name[:-len(FORCE)])
     ax.set_xlabel("time since impact (µs)")
     ax.set_ylabel("contact force (kN, compression +)")
     ax.set_title(src.title("Interface forces"))
@@ -43,8 +51,8 @@ def fig_interfaces(src, figs):
 
 def read_field(src):
     """field.csv (long format time_s,x_m,stress_Pa) as (x_m, t_s, stress[t, x])."""
-    t = src.table("field.csv")
-    time, x, s = t.numeric("time_s"), t.numeric("x_m"), t.numeric("stress_Pa")
+    t = src.table(FIELD.FILE)
+    time, x, s = t.numeric(FIELD.time_s), t.numeric(FIELD.x_m), t.numeric(FIELD.stress_Pa)
     ts = np.unique(time)
     xs = np.unique(x)
     field = np.full((ts.size, xs.size), np.nan)
@@ -76,21 +84,22 @@ def fig_wave_diagram(src, figs):
 
 
 def fig_energy(src, figs):
-    t = src.table("energy.csv")
-    time = t.numeric("time_s") * US
+    t = src.table(ENERGY.FILE)
+    time = t.numeric(ENERGY.time_s) * US
     fig, axes = new_figure(2, 1, height=6.0, sharex=True,
                            gridspec_kw={"height_ratios": [3, 1]})
     ax = axes[0, 0]
-    labels = {"kinetic_J": "kinetic", "strain_J": "strain", "contact_J": "contact (penalty)",
-              "dissipated_J": "dissipated (plastic, contact)", "total_J": "total"}
+    labels = {ENERGY.kinetic_J: "kinetic", ENERGY.strain_J: "strain",
+              ENERGY.contact_J: "contact (penalty)",
+              ENERGY.dissipated_J: "dissipated (plastic, contact)", ENERGY.total_J: "total"}
     for name in t.names[1:]:
-        style = {"color": "k", "linewidth": 1.6} if name == "total_J" else {"linewidth": 1.0}
+        style = {"color": "k", "linewidth": 1.6} if name == ENERGY.total_J else {"linewidth": 1.0}
         ax.plot(time, t.numeric(name), label=labels.get(name, name), **style)
     ax.set_ylabel("energy (J)")
     ax.set_title(src.title("Energy history"))
     ax.legend(loc="best", fontsize=8)
-    if "total_J" in t and len(t):
-        total = t.numeric("total_J")
+    if ENERGY.total_J in t and len(t):
+        total = t.numeric(ENERGY.total_J)
         e0 = total[0] if total[0] != 0 else (np.max(np.abs(total)) or 1.0)
         axes[1, 0].plot(time, (total - total[0]) / abs(e0) * 100, color="k", linewidth=1.0)
         axes[1, 0].set_ylabel("(total − initial)\n/ initial (%)")
@@ -102,16 +111,17 @@ def fig_energy(src, figs):
 
 def fig_specimen(src, figs):
     """The model's own specimen truth: stress-strain and strain rate/equilibrium."""
-    t = src.table("specimen.csv")
-    time = t.numeric("time_s") * US
-    strain = t.numeric("strain")
-    stress = t.numeric("stress_Pa")
+    t = src.table(SPECIMEN.FILE)
+    time = t.numeric(SPECIMEN.time_s) * US
+    strain = t.numeric(SPECIMEN.strain)
+    stress = t.numeric(SPECIMEN.stress_Pa)
     fig, axes = new_figure()
     ax = axes[0, 0]
     ax.plot(strain * 100, stress * MPA, color="k", linewidth=1.4, label="engineering (model)")
-    if "true_strain" in t and "true_stress_Pa" in t:
-        ax.plot(t.numeric("true_strain") * 100, t.numeric("true_stress_Pa") * MPA, color="C3",
-                linewidth=1.0, linestyle="--", label="true (model: force over current area)")
+    if SPECIMEN.true_strain in t and SPECIMEN.true_stress_Pa in t:
+        ax.plot(t.numeric(SPECIMEN.true_strain) * 100, t.numeric(SPECIMEN.true_stress_Pa) * MPA,
+                color="C3", linewidth=1.0, linestyle="--",
+                label="true (model: force over current area)")
     else:
         ok = strain < 1
         ax.plot(-np.log(1 - strain[ok]) * 100, stress[ok] * (1 - strain[ok]) * MPA, color="C3",
@@ -127,11 +137,11 @@ def fig_specimen(src, figs):
               "(docs/methods.md §6, §8). Compression positive.")
 
     fig, axes = new_figure(2, 1, height=6.0, sharex=True)
-    axes[0, 0].plot(time, t.numeric("strain_rate_1_s"), color="k", linewidth=1.0)
+    axes[0, 0].plot(time, t.numeric(SPECIMEN.strain_rate_1_s), color="k", linewidth=1.0)
     axes[0, 0].set_ylabel("strain rate (1/s, compression +)")
     axes[0, 0].set_title(src.title("Specimen strain rate and equilibrium (model truth)"))
-    if "front_stress_Pa" in t and "back_stress_Pa" in t:
-        f, b = t.numeric("front_stress_Pa"), t.numeric("back_stress_Pa")
+    if SPECIMEN.front_stress_Pa in t and SPECIMEN.back_stress_Pa in t:
+        f, b = t.numeric(SPECIMEN.front_stress_Pa), t.numeric(SPECIMEN.back_stress_Pa)
         with np.errstate(divide="ignore", invalid="ignore"):
             r = 2 * np.abs(f - b) / np.abs(f + b)
         peak = np.max(np.abs(f + b)) if len(f) else 0
