@@ -134,6 +134,14 @@ int main(int argc, char** argv) {
                       "Gauge signals to process instead of the scene's measurement, e.g. a "
                       "gauges.csv written by `shpb simulate`");
   process->add_flag("--quiet,-q", proc.quiet, "No progress output on stderr");
+  process
+      ->add_option("--draws", proc.monte_carlo.draws,
+                   "Monte Carlo draws of measurement.uncertainty (default 1000)")
+      ->check(CLI::Range(2, 10000000));
+  process->add_option("--seed", proc.monte_carlo.seed,
+                      "Seed of the Monte Carlo draws (default 1: the same draws every run)");
+  process->add_option("--threads", proc.monte_carlo.threads,
+                      "Worker threads of the Monte Carlo draws (0 = all cores)");
 
   CompareArgs cmp;
   std::string striker_velocity;

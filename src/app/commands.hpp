@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/uncertainty.hpp"
 #include "model/scene.hpp"
 #include "model/scene_validation.hpp"
 #include "study/sweep.hpp"
@@ -48,6 +49,7 @@ struct ProcessArgs {
   std::filesystem::path output;
   std::optional<std::filesystem::path> signals;  // a gauges.csv written by simulate, or a file
   bool quiet = false;
+  MonteCarloOptions monte_carlo;  // --draws, --seed, --threads (measurement.uncertainty)
 };
 int run_process(const ProcessArgs& args);
 

@@ -137,7 +137,10 @@ int run_process(const ProcessArgs& args) {
   mallopt(M_TRIM_THRESHOLD, kHeapBuffers);
   const Scene scene = read_scene(args.scene);
   if (!scene.specimen) return run_bar_check(args, scene);
-  const ProcessOutcome o = process_scene(scene, args.signals);
+  ProcessOutcome o = process_scene(scene, args.signals);
+  if (scene.measurement && scene.measurement->uncertainty && o.failure.empty())
+    o.uncertainty = propagate_uncertainty(scene, o.measurement, o.signals, o.options, o.result,
+                                          args.monte_carlo);
   write_process_outputs(o, scene, args.scene.string(), args.output);
   const ProcessingResult& r = o.result;
   if (!args.quiet) {
@@ -160,6 +163,7 @@ int run_process(const ProcessArgs& args) {
                  r.face_start_s, r.face_end_s, striker, rate,
                  std::string(enum_name(kPrimaryNames, o.options.primary)).c_str(),
                  r.peak_stress_Pa / 1e6, args.output.string().c_str());
+    if (o.uncertainty) std::fprintf(stderr, "%s\n", uncertainty_headline(*o.uncertainty).c_str());
   }
   return 0;
 }
@@ -232,7 +236,10 @@ ProcessOutcome process_scene(const Scene& scene,
   return o;
 }
 
-std::vector<CurveColumn> curve_columns(const ProcessOutcome& o) {
+namespace {
+
+// The reduction's own columns.
+std::vector<CurveColumn> nominal_curve_columns(const ProcessOutcome& o) {
   const ProcessingResult& r = o.result;
   const Curve& c = r.curve;
   if (o.options.primary == PrimaryReduction::kOneWave)
@@ -262,6 +269,16 @@ std::vector<CurveColumn> curve_columns(const ProcessOutcome& o) {
           {"force_front_N", &c.force_front_N},
           {"force_back_N", &c.force_back_N},
           {"strain_1wave", &c.strain_1wave}};
+}
+
+}  // namespace
+
+// The band columns of measurement.uncertainty follow (docs/outputs.md).
+std::vector<CurveColumn> curve_columns(const ProcessOutcome& o) {
+  std::vector<CurveColumn> columns = nominal_curve_columns(o);
+  if (o.uncertainty)
+    for (const auto& band : uncertainty_band_columns(*o.uncertainty)) columns.push_back(band);
+  return columns;
 }
 
 void write_process_outputs(const ProcessOutcome& o, const Scene& scene,
@@ -476,6 +493,7 @@ nlohmann::json process_summary(const ProcessOutcome& o, const std::string& scene
       "R = 2|P1-P2|/|P1+P2| <= 0.05 while (P1+P2)/2 >= 20 % of its peak (loaded); reached at the "
       "start of the interval with R <= 0.05 that lasts until unloading";
   s["equilibrium"] = r.equilibrium;
+  if (o.uncertainty) s["uncertainty"] = uncertainty_summary(*o.uncertainty);
   return s;
 }
 
