@@ -6,7 +6,8 @@
 #  2. the dispersion correction (bench_dispersion): the table, a 1 M-sample correction of a
 #     10 MS/s pulse moved 1 m on a 20 mm steel bar, plans shared against planned per correction;
 #  3. `shpb process` of a 1 M-row CSV (time and two gauge columns, correction on) as a whole
-#     process, reading included: wall, CPU and peak memory;
+#     process, reading included: wall, CPU and peak memory; and the LANL copper test's Monte
+#     Carlo uncertainty, 1000 draws on 2 threads against 2 draws;
 #  4. the full pareto study of the classic experiment on 2 threads (skipped with BENCH_STUDY=0);
 #  5. --tolerance 1 % on the experiments (skipped with BENCH_TOLERANCE=0), and the classic
 #     experiment at --tolerance 3.5 %, the tolerance whose meshes are as accurate as its automatic
@@ -48,6 +49,15 @@ echo "== shpb process of a 1 M-row CSV (time + 2 gauges, Pochhammer-Chree correc
 ls -l "$WORK/record/record.csv" | awk '{printf "  record.csv: %.1f MB\n", $5 / 1e6}'
 for i in 1 2 3; do
   timed "$BUILD"/shpb process "$WORK/record/scene.json" -o "$WORK/process-$i" --quiet
+done
+
+echo
+echo "== Monte Carlo uncertainty of the LANL copper test (measurement.uncertainty), 2 threads:"
+echo "   1000 draws against 2 (the reading, the nominal reduction and the outputs alone)"
+for draws in 2 1000; do
+  echo "  --draws $draws"
+  timed "$BUILD"/shpb process experiments/lanl-cu-ofe-273k/scene.json -o "$WORK/mc-$draws" \
+    --draws "$draws" --threads 2 --quiet
 done
 
 if [ "${BENCH_STUDY:-1}" != 0 ]; then

@@ -309,12 +309,14 @@ nlohmann::json process_summary(const ProcessOutcome& o, const std::string& scene
       "R = 2|P1-P2|/|P1+P2| <= 0.05 while (P1+P2)/2 >= 20 % of its peak (loaded); reached at the "
       "start of the interval with R <= 0.05 that lasts until unloading";
   s["equilibrium"] = r.equilibrium;
+  if (o.uncertainty) s["uncertainty"] = uncertainty_summary(*o.uncertainty);
   return s;
 }
 
 ProcessedScene process_into(const std::filesystem::path& scene_file,
                             const std::optional<std::filesystem::path>& signals_file,
-                            const std::filesystem::path& output) {
+                            const std::filesystem::path& output,
+                            const MonteCarloOptions* monte_carlo) {
   ProcessedScene p;
   p.scene = read_scene(scene_file);
   if (!p.scene.specimen) {
@@ -322,6 +324,10 @@ ProcessedScene process_into(const std::filesystem::path& scene_file,
     write_bar_check(*p.bars, p.scene, scene_file.string(), output);
   } else {
     p.outcome = process_scene(p.scene, signals_file);
+    ProcessOutcome& o = *p.outcome;
+    if (monte_carlo && p.scene.measurement && p.scene.measurement->uncertainty && o.failure.empty())
+      o.uncertainty = propagate_uncertainty(p.scene, o.measurement, o.signals, o.options, o.result,
+                                            *monte_carlo);
     write_process_outputs(*p.outcome, p.scene, scene_file.string(), output);
   }
   return p;

@@ -29,6 +29,7 @@ struct ProcessedScene {
 };
 ProcessedScene process_into(const std::filesystem::path& scene_file,
                             const std::optional<std::filesystem::path>& signals_file,
-                            const std::filesystem::path& output);
+                            const std::filesystem::path& output,
+                            const MonteCarloOptions* monte_carlo = nullptr);
 
 }  // namespace shpb

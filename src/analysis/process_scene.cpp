@@ -120,7 +120,10 @@ ProcessOutcome process_scene(const Scene& scene,
   return o;
 }
 
-std::vector<CurveColumn> curve_columns(const ProcessOutcome& o) {
+namespace {
+
+// The reduction's own columns.
+std::vector<CurveColumn> nominal_curve_columns(const ProcessOutcome& o) {
   const ProcessingResult& r = o.result;
   const Curve& c = r.curve;
   namespace k = schema::curve;  // the column names (src/core/output_schema.json)
@@ -151,6 +154,16 @@ std::vector<CurveColumn> curve_columns(const ProcessOutcome& o) {
           {k::force_front_N, &c.force_front_N},
           {k::force_back_N, &c.force_back_N},
           {k::strain_1wave, &c.strain_1wave}};
+}
+
+}  // namespace
+
+// The band columns of measurement.uncertainty follow (docs/outputs.md).
+std::vector<CurveColumn> curve_columns(const ProcessOutcome& o) {
+  std::vector<CurveColumn> columns = nominal_curve_columns(o);
+  if (o.uncertainty)
+    for (const auto& band : uncertainty_band_columns(*o.uncertainty)) columns.push_back(band);
+  return columns;
 }
 
 }  // namespace shpb

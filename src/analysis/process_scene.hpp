@@ -12,6 +12,7 @@
 #include "analysis/gauge_signals.hpp"
 #include "analysis/processing.hpp"
 #include "analysis/test_processing.hpp"
+#include "analysis/uncertainty.hpp"
 #include "model/scene.hpp"
 
 namespace shpb {
@@ -27,6 +28,9 @@ struct ProcessOutcome {
   CorrectionReport removed;
   std::vector<std::string> warnings;
   std::string failure;  // why the reduction cannot be reported (empty: it can)
+  // measurement.uncertainty propagated (process_into with Monte Carlo options; absent without
+  // the block).
+  std::optional<UncertaintyResult> uncertainty;
 };
 
 // Throws InputError for a scene that cannot be processed (no specimen: the command's

@@ -463,6 +463,8 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
     extra_t = *r.transmitted_onset_offset_s;
     r.transmitted_at_onset = true;
   }
+  extra_r += options.reflected_shift_s;
+  extra_t += options.transmitted_shift_s;
   r.shift_incident_s = d_i / c_front;
   r.shift_reflected_s = -d_i / c_front - extra_r;
   r.shift_transmitted_s = -d_t / c_back - extra_t;
@@ -481,16 +483,23 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
   // The mode is tabulated only for a correction, and only up to the highest cut-off asked of its
   // Poisson ratio; the corrections share their FFT plans (one per padded length).
   std::optional<DispersionTable> front_table, back_own;
+  const DispersionTable* front = nullptr;
+  const DispersionTable* back = nullptr;
   if (ds.correction) {
     const bool shared = k.back_waveguide.poisson == k.front_waveguide.poisson;
     const double fa_front = cutoff_fa(k.front_waveguide), fa_back = cutoff_fa(k.back_waveguide);
-    front_table.emplace(DispersionTable::up_to(k.front_waveguide.poisson,
-                                               shared ? std::max(fa_front, fa_back) : fa_front));
-    if (!shared) back_own.emplace(DispersionTable::up_to(k.back_waveguide.poisson, fa_back));
+    const double fa_shared = shared ? std::max(fa_front, fa_back) : fa_front;
+    if (options.tables) {
+      front = &options.tables->up_to(k.front_waveguide.poisson, fa_shared);
+      back = shared ? front : &options.tables->up_to(k.back_waveguide.poisson, fa_back);
+    } else {
+      front = &front_table.emplace(DispersionTable::up_to(k.front_waveguide.poisson, fa_shared));
+      back = shared ? front
+                    : &back_own.emplace(DispersionTable::up_to(k.back_waveguide.poisson, fa_back));
+    }
   }
-  const DispersionTable* front = front_table ? &*front_table : nullptr;
-  const DispersionTable* back = back_own ? &*back_own : front;
-  FftPlans plans;
+  FftPlans own_plans;
+  FftPlans& plans = options.plans ? *options.plans : own_plans;
   // A manual window's extra shift is a pure delay after the move.
   auto delayed = [&](std::vector<double> y, double extra) {
     if (extra == 0) return y;

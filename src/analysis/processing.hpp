@@ -74,6 +74,12 @@ struct ProcessingOptions {
   Alignment align = Alignment::kGeometry;                   // measurement.align
   PrimaryReduction primary = PrimaryReduction::kThreeWave;  // measurement.primary
   std::optional<RateWindow> rate_window;                    // measurement.rate_window
+  // Further time shifts of the reflected and transmitted pulses at the faces (a Monte Carlo
+  // draw's trigger delay and window starts, analysis/uncertainty.hpp); 0 for a plain reduction.
+  double reflected_shift_s = 0, transmitted_shift_s = 0;
+  // Shared by repeated reductions (null: each reduction solves its own tables and plans).
+  DispersionTableCache* tables = nullptr;
+  FftPlans* plans = nullptr;
 };
 
 struct WindowReport {

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/uncertainty.hpp"
 #include "core/options_check.hpp"
 #include "model/run_overrides.hpp"
 #include "model/scene.hpp"
@@ -50,6 +51,7 @@ struct ProcessArgs {
   std::filesystem::path output;
   std::optional<std::filesystem::path> signals;  // a gauges.csv written by simulate, or a file
   bool quiet = false;
+  MonteCarloOptions monte_carlo;  // --draws, --seed, --threads (measurement.uncertainty)
 };
 int run_process(const ProcessArgs& args);
 

@@ -40,7 +40,7 @@ void reuse_heap_buffers() {
 
 int run_process(const ProcessArgs& args) {
   reuse_heap_buffers();
-  const ProcessedScene p = process_into(args.scene, args.signals, args.output);
+  const ProcessedScene p = process_into(args.scene, args.signals, args.output, &args.monte_carlo);
   if (args.quiet) return 0;
   if (p.bars) {
     print_bar_check(*p.bars, args.output);
@@ -66,6 +66,7 @@ int run_process(const ProcessArgs& args) {
                  r.face_start_s, r.face_end_s, striker, rate,
                  std::string(enum_name(kPrimaryNames, o.options.primary)).c_str(),
                  r.peak_stress_Pa / 1e6, args.output.string().c_str());
+    if (o.uncertainty) std::fprintf(stderr, "%s\n", uncertainty_headline(*o.uncertainty).c_str());
   }
   return 0;
 }
@@ -102,6 +103,13 @@ Command add_process_command(CLI::App& app) {
                   "Gauge signals to process instead of the scene's measurement, e.g. a "
                   "gauges.csv written by `shpb simulate`");
   cmd->add_flag("--quiet,-q", o->one.quiet, "No progress output on stderr");
+  cmd->add_option("--draws", o->one.monte_carlo.draws,
+                  "Monte Carlo draws of measurement.uncertainty (default 1000)")
+      ->check(CLI::Range(2, 10000000));
+  cmd->add_option("--seed", o->one.monte_carlo.seed,
+                  "Seed of the Monte Carlo draws (default 1: the same draws every run)");
+  cmd->add_option("--threads", o->one.monte_carlo.threads,
+                  "Worker threads of the Monte Carlo draws (0 = all cores)");
   return {cmd, [o] {
             CampaignOptions& c = o->campaign;
             const bool several = o->scenes.size() != 1 || !o->campaign_file.empty() ||

@@ -17,6 +17,17 @@ DispersionTable DispersionTable::up_to(double poisson, double fa_over_c0) {
   return DispersionTable(poisson, kMaxAOverLambda, kPoints, fa_over_c0);
 }
 
+const DispersionTable& DispersionTableCache::up_to(double poisson, double fa_over_c0) {
+  // 30 % above the cut-off asked: a few standard uncertainties of a cut-off known to 10 %.
+  constexpr double kHeadroom = 1.3;
+  const std::lock_guard lock(mutex_);
+  for (const auto& t : tables_)
+    if (t->poisson() == poisson && t->max_normalized_frequency() >= fa_over_c0) return *t;
+  tables_.push_back(
+      std::make_unique<DispersionTable>(DispersionTable::up_to(poisson, kHeadroom * fa_over_c0)));
+  return *tables_.back();
+}
+
 DispersionTable::DispersionTable(double poisson, double max_x, int points, double stop_fa)
     : poisson_(poisson) {
   if (points < 2 || !(max_x > 0)) throw std::invalid_argument("DispersionTable: bad grid");

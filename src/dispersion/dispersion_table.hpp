@@ -1,6 +1,8 @@
 #pragma once
 // The first Pochhammer–Chree mode of one Poisson ratio, solved once on a fine a/Λ grid and
 // interpolated by normalised frequency f·a/c0 (the quantity an FFT bin gives directly).
+#include <memory>
+#include <mutex>
 #include <vector>
 
 namespace shpb {
@@ -39,6 +41,19 @@ class DispersionTable {
   std::vector<double> m1_;  // Tyas–Pope m1 (infinite at the pole: clamped, never used there)
   std::vector<double> m1m2_;
   double m1_pole_fa_ = 0;
+};
+
+// The tables of repeated corrections (the draws of a Monte Carlo propagation, on several threads):
+// each Poisson ratio solved once, with headroom above the cut-off asked (a drawn cut-off a little
+// higher reuses it). A table's values do not depend on where it stops, so a reduction with a
+// cached table equals one with its own.
+class DispersionTableCache {
+ public:
+  const DispersionTable& up_to(double poisson, double fa_over_c0);
+
+ private:
+  std::mutex mutex_;
+  std::vector<std::unique_ptr<DispersionTable>> tables_;
 };
 
 }  // namespace shpb

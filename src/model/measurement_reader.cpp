@@ -1,6 +1,9 @@
 #include "model/measurement_reader.hpp"
 
+#include <algorithm>
+
 #include "core/closest_match.hpp"
+#include "model/uncertainty_reader.hpp"
 
 namespace shpb {
 namespace {
@@ -123,11 +126,16 @@ DispersionSpec read_dispersion(const JsonValue& v) {
 }  // namespace
 
 MeasurementSpec read_measurement(const JsonValue& value, const std::filesystem::path& scene_dir,
-                                 const std::vector<std::string>& gauges) {
-  const auto o = value.object({"file", "format", "time", "channels", "dispersion", "windows",
-                               "striker_velocity", "notes", "load_drop", "sheet", "test",
-                               "corrections", "reflected_time", "align", "primary", "rate_window"});
+                                 const std::vector<std::string>& gauges,
+                                 const std::vector<std::string>& bars,
+                                 std::optional<std::size_t> specimen) {
+  const auto o =
+      value.object({"file", "format", "time", "channels", "dispersion", "windows",
+                    "striker_velocity", "notes", "load_drop", "sheet", "test", "corrections",
+                    "reflected_time", "align", "primary", "rate_window", "uncertainty"});
   MeasurementSpec m;
+  const auto uncertainty = o.get("uncertainty");
+  if (uncertainty) m.uncertainty = read_uncertainty(*uncertainty, bars, specimen);
   // The reduction's choices, which also apply to `process --signals` of simulated gauges.
   if (auto a = o.get("align")) m.align = enum_from(*a, kAlignmentNames);
   if (auto p = o.get("primary")) m.primary = enum_from(*p, kPrimaryNames);
@@ -139,11 +147,23 @@ MeasurementSpec read_measurement(const JsonValue& value, const std::filesystem::
       m.corrections.friction = f->quantity_in(Dimension::kDimensionless, 0, 1, false, true);
     if (auto i = co.get("inertia")) m.corrections.inertia = i->boolean();
   }
+  // An uncertainty of a value the scene does not use would be propagated as zero: refused.
+  if (uncertainty && m.uncertainty->friction && !m.corrections.friction)
+    throw input_error(value.file(), m.uncertainty->friction->path,
+                      uncertainty->json()["friction"].dump(),
+                      "an uncertainty of the friction correction's coefficient needs "
+                      "measurement.corrections.friction");
   // Corrections or the reduction's choices alone (for `process --signals` of simulated gauges):
   // no signals to read.
   if (!o.get("channels") && !o.get("file") &&
-      (o.get("corrections") || o.get("align") || o.get("primary") || o.get("rate_window")))
+      (o.get("corrections") || o.get("align") || o.get("primary") || o.get("rate_window") ||
+       uncertainty)) {
+    if (uncertainty && m.uncertainty->gauge_factor)
+      throw input_error(value.file(), m.uncertainty->gauge_factor->path,
+                        uncertainty->json()["gauge_factor"].dump(),
+                        "a bridge's uncertainty needs measured channels in volts with a bridge");
     return m;
+  }
   if (auto f = o.get("file")) m.file = (scene_dir / f->name()).lexically_normal();
   if (auto f = o.get("format")) m.format = enum_from(*f, kSignalFormatNames);
   if (auto t = o.get("time")) {
@@ -200,6 +220,17 @@ MeasurementSpec read_measurement(const JsonValue& value, const std::filesystem::
   }
   if (auto s = o.get("striker_velocity"))
     m.striker_velocity_m_s = s->positive_quantity(Dimension::kVelocity);
+  if (uncertainty) {
+    const UncertaintySpec& u = *m.uncertainty;
+    const bool bridged = std::any_of(m.channels.begin(), m.channels.end(),
+                                     [](const ChannelSpec& c) { return c.bridge.has_value(); });
+    for (const auto& [key, given] :
+         {std::pair{"gauge_factor", &u.gauge_factor}, std::pair{"excitation", &u.excitation},
+          std::pair{"gain", &u.gain}})
+      if (*given && !bridged)
+        throw input_error(value.file(), (*given)->path, uncertainty->json()[key].dump(),
+                          "a bridge's uncertainty needs a channel in volts with a bridge");
+  }
   return m;
 }
 

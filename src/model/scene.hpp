@@ -183,6 +183,29 @@ struct CorrectionsSpec {
   bool inertia = false;
 };
 
+// measurement.uncertainty (docs/scene-format.md): standard uncertainties of what a lab knows it
+// does not know, propagated by `process` by Monte Carlo (analysis/uncertainty.hpp).
+struct StandardUncertainty {
+  double value = 0;  // SI, or a fraction of the nominal value when `relative` ("%")
+  bool relative = false;
+  std::string path;  // where the scene gives it (named in messages and in the contributions)
+};
+struct BarUncertainty {
+  std::size_t bar = 0;  // index into Scene::bars
+  std::optional<StandardUncertainty> youngs_modulus, density, wave_speed, poisson_ratio, diameter,
+      length;
+};
+struct UncertaintySpec {
+  // Of every bridge channel, each drawn on its own (every channel has its own gauge and bridge).
+  std::optional<StandardUncertainty> gauge_factor, excitation, gain;
+  std::optional<StandardUncertainty> gauge_position;  // of each processed gauge along its bar
+  std::optional<StandardUncertainty> trigger_delay;   // transmitted channel against incident
+  std::optional<StandardUncertainty> window_start;    // reflected/transmitted starts, samples
+  std::optional<StandardUncertainty> dispersion_cutoff;
+  std::optional<StandardUncertainty> friction;  // μ of measurement.corrections.friction
+  std::vector<BarUncertainty> bars;
+};
+
 struct MeasurementSpec {
   std::filesystem::path file;  // resolved relative to the scene
   SignalFormat format = SignalFormat::kAuto;
@@ -205,6 +228,7 @@ struct MeasurementSpec {
   Alignment align = Alignment::kGeometry;
   PrimaryReduction primary = PrimaryReduction::kThreeWave;
   std::optional<RateWindow> rate_window;
+  std::optional<UncertaintySpec> uncertainty;
 };
 
 struct Scene {

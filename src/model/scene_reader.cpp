@@ -68,7 +68,9 @@ class SceneReader {
       std::vector<std::string> gauges;
       for (const auto& b : scene.bars)
         for (const auto& g : b.gauges) gauges.push_back(g.name);
-      scene.measurement = read_measurement(*v, dir_, gauges);
+      std::vector<std::string> bar_names;
+      for (const auto& b : scene.bars) bar_names.push_back(b.name);
+      scene.measurement = read_measurement(*v, dir_, gauges, bar_names, scene.specimen);
     }
     for (const auto& entry : files_) scene.material_files.emplace_back(entry.first);
     return scene;

@@ -93,6 +93,8 @@ FIGURE_TABLE: list[list[tuple[Callable[[Source], bool], FigureDrawer]]] = [
     [(_pulses_with(process.PULSES.incident), lambda s, f, t: process.fig_pulses(s, f)),
      (_pulses_with(process.BAR_CHECK.far_measured), lambda s, f, t: process.fig_bar_check(s, f))],
     [(lambda s: s.has("curve.csv"), process.fig_curve)],
+    [(lambda s: s.value("uncertainty", "figures") is not None,
+      lambda s, f, t: process.fig_uncertainty(s, f))],
     [(lambda s: s.has("specimen.csv"), lambda s, f, t: simulate.fig_specimen(s, f))],
     [(lambda s: s.has("interfaces.csv"), lambda s, f, t: simulate.fig_interfaces(s, f))],
     [(lambda s: s.has("energy.csv"), lambda s, f, t: simulate.fig_energy(s, f))],

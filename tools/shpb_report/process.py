@@ -58,6 +58,12 @@ def fig_curve(src, figs, truth=None):
     if truth is not None:
         ax.plot(truth.numeric(SPECIMEN.strain) * 100, truth.numeric(SPECIMEN.stress_Pa) * MPA,
                 color="C4", linestyle=":", linewidth=1.4, label="model truth (specimen.csv)")
+    bands = [(f"stress_{n}wave", f"{n}-wave 95 % band", c) for n, c in (("3", "0.3"), ("1", "C2"))
+             if f"stress_{n}wave_p2.5_Pa" in t]
+    for base, label, color in bands:
+        ax.fill_between(strain * 100, t.numeric(base + "_p2.5_Pa") * MPA,
+                        t.numeric(base + "_p97.5_Pa") * MPA, color=color, alpha=0.25,
+                        linewidth=0, label=label)
     ax.set_xlabel("engineering strain (%, compression +)")
     ax.set_ylabel("engineering stress (MPa, compression +)")
     ax.set_title(src.title("Engineering stress–strain"))
@@ -84,12 +90,19 @@ def fig_curve(src, figs, truth=None):
                "1-, 2- and 3-wave engineering stress against the 3-wave strain")
               + ", and true stress against true strain (curve.csv, docs/methods.md §6), "
               "compression positive"
+              + ("; shaded: the 95 % bands of measurement.uncertainty (Monte Carlo, "
+                 "docs/methods.md §10)" if bands else "")
               + ("; dotted: the simulation's own specimen truth." if truth is not None else "."))
 
     time = t.numeric(CURVE.time_s) * US
     fig, axes = new_figure(2, 1, height=6.0, sharex=True)
     axes[0, 0].plot(time, t.numeric(CURVE.strain_rate_1_s), color="k", linewidth=1.0,
                     label="3-wave")
+    if "strain_rate_p2.5_1_s" in t:
+        axes[0, 0].fill_between(time, t.numeric("strain_rate_p2.5_1_s"),
+                                t.numeric("strain_rate_p97.5_1_s"), color="0.3", alpha=0.25,
+                                linewidth=0, label=f"95 % band ({primary})")
+        axes[0, 0].legend(loc="best", fontsize=8)
     if truth is not None:
         axes[0, 0].plot(truth.numeric(SPECIMEN.time_s) * US,
                         truth.numeric(SPECIMEN.strain_rate_1_s), color="C4", linestyle=":",
@@ -110,6 +123,34 @@ def fig_curve(src, figs, truth=None):
               "3-wave strain rate and the equilibrium ratio R(t) = 2|P1 − P2|/|P1 + P2| of the "
               "front and back face forces (curve.csv); below the dotted 5 % line the specimen "
               "is taken as in equilibrium.")
+
+
+def fig_uncertainty(src, figs):
+    """Each input's share of the variance of the headline figures (summary.json uncertainty)."""
+    figures = src.value("uncertainty", "figures", kind=dict) or {}
+    names = [n for n in ("flow_stress_Pa_at_strain_0.1", "peak_stress_Pa", "plateau_strain_rate_1_s",
+                         "mean_strain_rate_1_s") if isinstance(figures.get(n), dict)][:3]
+    if not names:
+        return
+    fig, axes = new_figure(1, len(names), height=4.2, width=4.2 * len(names) + 1.5)
+    for ax, name in zip(axes[0], names):
+        shares = [c for c in figures[name].get("contributions", []) if isinstance(c, dict)][:8]
+        labels = [str(c.get("input")) for c in shares][::-1]
+        values = [100 * float(c.get("share", 0)) for c in shares][::-1]
+        ax.barh(range(len(values)), values, color="C0")
+        ax.set_yticks(range(len(values)), labels, fontsize=7)
+        ax.set_xlabel("share of the variance (%)")
+        f = figures[name]
+        low, high = (f.get("interval_95") or [None, None])[:2]
+        scale, unit = (MPA, "MPa") if name.endswith("Pa") or "_Pa_" in name else (1.0, f.get("unit", ""))
+        title = name
+        if isinstance(low, (int, float)) and isinstance(high, (int, float)):
+            title += f"\n95 %: {low * scale:.4g} to {high * scale:.4g} {unit}"
+        ax.set_title(title, fontsize=9)
+    figs.save(fig, src.png("uncertainty"), src.title("Uncertainty contributions"),
+              "Each uncertain input's share of the variance of the headline figures (squared "
+              "correlation over the Monte Carlo draws, summary.json uncertainty, docs/methods.md "
+              "§10), the largest eight; the title gives the 95 % interval.")
 
 
 def fig_campaign(folder, sources, figs):

@@ -1,0 +1,526 @@
+#include "analysis/uncertainty.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <map>
+#include <numbers>
+#include <random>
+#include <set>
+#include <stdexcept>
+#include <tuple>
+
+#include "analysis/test_processing.hpp"
+#include "core/error.hpp"
+#include "core/parallel_runner.hpp"
+#include "core/units.hpp"
+
+namespace shpb {
+namespace {
+
+// Failed draws are reported by their first few distinct reasons.
+constexpr std::size_t kFailureReasons = 3;
+
+// The samples where x reaches a new maximum: x is increasing along them, so a strain is first
+// reached between two of them (binary search).
+struct FirstReach {
+  std::vector<std::size_t> at;
+  FirstReach(const std::vector<double>& x, std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i)
+      if (at.empty() || x[i] > x[at.back()]) at.push_back(i);
+  }
+  double operator()(const std::vector<double>& x, const std::vector<double>& y, double v) const {
+    if (at.empty()) return 0;
+    if (v <= x[at.front()]) return y[at.front()];
+    if (v >= x[at.back()]) return y[at.back()];
+    const auto hi = std::upper_bound(at.begin(), at.end(), v,
+                                     [&](double value, std::size_t i) { return value < x[i]; });
+    const std::size_t b = *hi, a = *(hi - 1);
+    const double w = (v - x[a]) / (x[b] - x[a]);
+    return y[a] + w * (y[b] - y[a]);
+  }
+};
+
+// Quantile p of sorted values, linear between order statistics (Hyndman & Fan type 7).
+double quantile(const std::vector<double>& sorted, double p) {
+  if (sorted.empty()) return 0;
+  const double h = p * static_cast<double>(sorted.size() - 1);
+  const auto lo = static_cast<std::size_t>(std::floor(h));
+  const std::size_t hi = std::min(lo + 1, sorted.size() - 1);
+  return sorted[lo] + (h - static_cast<double>(lo)) * (sorted[hi] - sorted[lo]);
+}
+constexpr double kQuantiles[3] = {0.025, 0.5, 0.975};
+
+// A draw's perturbed test: the scene (bars, gauges, friction), the options (cut-off, shifts) and
+// the factor of each channel's strain (nominal over drawn bridge product).
+struct DrawState {
+  Scene scene;
+  ProcessingOptions options;
+  std::vector<double> channel_factor;
+};
+
+struct Input {
+  UncertainInput info;
+  bool positive = true;  // a drawn value ≤ 0 has no meaning (fails the draw)
+  std::function<void(double, DrawState&)> apply;
+};
+
+// What one draw gives: the curve at the nominal strains and the headline figures (NaN: none).
+struct DrawResult {
+  bool ok = false;
+  std::string failure;
+  std::vector<double> stress3, stress1, rate;
+  std::vector<double> figures;
+};
+
+double absolute(const StandardUncertainty& u, double nominal) {
+  return u.relative ? u.value * std::abs(nominal) : u.value;
+}
+
+std::string unit_of(Dimension d) { return std::string(si_unit(d)); }
+
+std::vector<Input> inputs_of(const Scene& scene, const MeasurementSpec& m,
+                             const GaugeSignals& signals, const ProcessingOptions& options,
+                             const ProcessingResult& nominal, const KolskySetup& setup) {
+  const UncertaintySpec& u = *scene.measurement->uncertainty;
+  const std::string file = scene.file.string();
+  std::vector<Input> in;
+  auto add = [&](std::string name, double value, double sigma, Dimension d, bool positive,
+                 std::function<void(double, DrawState&)> apply) {
+    if (sigma > 0)
+      in.push_back({{std::move(name), value, sigma, unit_of(d)}, positive, std::move(apply)});
+  };
+  // Bridge factors: ε = k V/(GF gain V_ex), so a drawn factor x scales the strain by x0/x.
+  for (std::size_t c = 0; c < m.channels.size(); ++c) {
+    const ChannelSpec& ch = m.channels[c];
+    if (!ch.bridge) continue;
+    const std::string where = "channel " + std::to_string(c) + " (" + ch.gauge + ") ";
+    for (const auto& [key, spec, value, dim] :
+         {std::tuple{"gauge_factor", &u.gauge_factor, ch.bridge->gauge_factor,
+                     Dimension::kDimensionless},
+          std::tuple{"excitation", &u.excitation, ch.bridge->excitation_V, Dimension::kVoltage},
+          std::tuple{"gain", &u.gain, ch.bridge->gain, Dimension::kDimensionless}})
+      if (*spec)
+        add(where + key, value, absolute(**spec, value), dim, true,
+            [c, x0 = value](double x, DrawState& d) { d.channel_factor[c] *= x0 / x; });
+  }
+  const std::size_t s = *scene.specimen;
+  for (const BarUncertainty& b : u.bars) {
+    const BarSpec& bar = scene.bars[b.bar];
+    const std::string name = bar.name + " ";
+    const std::size_t i = b.bar;
+    if (b.youngs_modulus)
+      add(name + "youngs_modulus", bar.material.youngs_modulus_Pa,
+          absolute(*b.youngs_modulus, bar.material.youngs_modulus_Pa), Dimension::kPressure, true,
+          [i](double x, DrawState& d) { d.scene.bars[i].material.youngs_modulus_Pa = x; });
+    if (b.density)
+      add(name + "density", bar.material.density_kg_m3,
+          absolute(*b.density, bar.material.density_kg_m3), Dimension::kDensity, true,
+          [i](double x, DrawState& d) { d.scene.bars[i].material.density_kg_m3 = x; });
+    if (b.wave_speed) {
+      // c0 = sqrt(E/ρ): the drawn speed with the drawn density sets the modulus when the density
+      // is the other uncertain value, else with the (drawn) modulus the density. Applied after
+      // the bar's modulus and density (inputs are applied in order).
+      const double c0 = bar.material.wave_speed_m_s();
+      const bool keep_density = b.density && !b.youngs_modulus;
+      add(name + "wave_speed", c0, absolute(*b.wave_speed, c0), Dimension::kVelocity, true,
+          [i, keep_density](double x, DrawState& d) {
+            MaterialSpec& mat = d.scene.bars[i].material;
+            if (keep_density)
+              mat.youngs_modulus_Pa = mat.density_kg_m3 * x * x;
+            else
+              mat.density_kg_m3 = mat.youngs_modulus_Pa / (x * x);
+          });
+    }
+    if (b.poisson_ratio) {
+      const double nu = bar.material.poisson_ratio;
+      const double sigma = absolute(*b.poisson_ratio, nu);
+      const double step = kPoissonGridSigma * sigma;
+      add(name + "poisson_ratio", nu, sigma, Dimension::kDimensionless, true,
+          [i, nu, step](double x, DrawState& d) {
+            d.scene.bars[i].material.poisson_ratio = nu + step * std::round((x - nu) / step);
+          });
+    }
+    if (b.diameter)
+      add(name + "diameter", bar.diameter_m, absolute(*b.diameter, bar.diameter_m),
+          Dimension::kLength, true, [i, d0 = bar.diameter_m](double x, DrawState& d) {
+            BarSpec& bs = d.scene.bars[i];
+            bs.area_m2 *= (x / d0) * (x / d0);
+            bs.diameter_m = x;
+          });
+    if (b.length)
+      add(name + "length", bar.length_m, absolute(*b.length, bar.length_m), Dimension::kLength,
+          true, [i](double x, DrawState& d) { d.scene.bars[i].length_m = x; });
+  }
+  if (u.gauge_position) {
+    for (const auto& [bar, gauge, distance] :
+         {std::tuple{s - 1, setup.incident_gauge, setup.incident_distance_m},
+          std::tuple{s + 1, setup.transmitted_gauge, setup.transmitted_distance_m}}) {
+      const auto& gauges = scene.bars[bar].gauges;
+      const auto g = static_cast<std::size_t>(
+          std::find_if(gauges.begin(), gauges.end(),
+                       [&](const GaugeSpec& x) { return x.name == gauge; }) -
+          gauges.begin());
+      // Drawn as the distance to the specimen; moved along the bar by the difference.
+      add("gauge " + gauge + " distance_to_specimen", distance,
+          absolute(*u.gauge_position, distance), Dimension::kLength, true,
+          [bar, g, distance, toward = bar < s](double x, DrawState& d) {
+            d.scene.bars[bar].gauges[g].position_m += (toward ? -1 : 1) * (x - distance);
+          });
+    }
+  }
+  if (u.trigger_delay)
+    add("trigger_delay", 0, u.trigger_delay->value, Dimension::kTime, false,
+        [](double x, DrawState& d) { d.options.transmitted_shift_s += x; });
+  if (u.window_start) {
+    const double dt = signals.dt_s;
+    add("reflected window_start", 0, u.window_start->value * dt, Dimension::kTime, false,
+        [](double x, DrawState& d) { d.options.reflected_shift_s += x; });
+    add("transmitted window_start", 0, u.window_start->value * dt, Dimension::kTime, false,
+        [](double x, DrawState& d) { d.options.transmitted_shift_s += x; });
+  }
+  if (u.dispersion_cutoff) {
+    if (!options.dispersion.correction)
+      throw input_error(file, u.dispersion_cutoff->path, "",
+                        "the reduction applies no dispersion correction (measurement.dispersion "
+                        "\"correction\": \"none\", or simulated signals): it has no cut-off");
+    const double f0 = nominal.cutoff_Hz;
+    add("dispersion_cutoff", f0, absolute(*u.dispersion_cutoff, f0), Dimension::kFrequency, true,
+        [f0](double x, DrawState& d) {
+          // The cut-off scales with its draw whichever way the scene gives it (f·a/c0 ∝ f).
+          DispersionSpec& ds = d.options.dispersion;
+          if (ds.cutoff_Hz)
+            *ds.cutoff_Hz *= x / f0;
+          else
+            ds.cutoff_fa_c0 = ds.cutoff_fa_c0.value_or(kDefaultCutoffFaOverC0) * x / f0;
+        });
+  }
+  if (u.friction) {
+    const double mu = *scene.measurement->corrections.friction;
+    // μ ≥ 0: a draw below zero is the frictionless face.
+    add("friction", mu, absolute(*u.friction, mu), Dimension::kDimensionless, false,
+        [](double x, DrawState& d) {
+          d.scene.measurement->corrections.friction = std::max(0.0, x);
+        });
+  }
+  return in;
+}
+
+// Standard normal draws, Box–Muller on a 64-bit Mersenne twister: the same numbers from every
+// standard library (std::normal_distribution's algorithm is the library's own).
+class NormalDraws {
+ public:
+  explicit NormalDraws(std::uint64_t seed) : engine_(seed) {}
+  double operator()() {
+    if (has_spare_) {
+      has_spare_ = false;
+      return spare_;
+    }
+    constexpr double kTwoPow53 = 9007199254740992.0;
+    double u1 = 0;
+    while (u1 == 0) u1 = static_cast<double>(engine_() >> 11) / kTwoPow53;
+    const double u2 = static_cast<double>(engine_() >> 11) / kTwoPow53;
+    const double r = std::sqrt(-2 * std::log(u1));
+    spare_ = r * std::sin(2 * std::numbers::pi * u2);
+    has_spare_ = true;
+    return r * std::cos(2 * std::numbers::pi * u2);
+  }
+
+ private:
+  std::mt19937_64 engine_;
+  double spare_ = 0;
+  bool has_spare_ = false;
+};
+
+// The headline figures of a reduction, in the order of figure_names(); NaN where it gives none.
+struct FigureSpec {
+  std::string name, unit;
+  std::function<double(const ProcessingResult&)> of;
+};
+
+std::vector<FigureSpec> figure_specs(const ProcessingResult& nominal, const KolskySetup& setup,
+                                     const ProcessingOptions& options) {
+  const bool one_wave = options.primary == PrimaryReduction::kOneWave;
+  std::vector<FigureSpec> f;
+  f.push_back({"peak_stress_Pa", "Pa", [](const ProcessingResult& r) { return r.peak_stress_Pa; }});
+  f.push_back({"max_strain", "", [](const ProcessingResult& r) { return r.max_strain; }});
+  for (const double e : kFlowStressStrains) {
+    if (e > nominal.max_strain) break;
+    char name[64];
+    std::snprintf(name, sizeof name, "flow_stress_Pa_at_strain_%g", e);
+    f.push_back({name, "Pa", [e, one_wave](const ProcessingResult& r) {
+                   const Curve& c = r.curve;
+                   const auto& x = one_wave ? c.strain_1wave : c.strain;
+                   const auto& y = one_wave ? c.stress_1wave_Pa : c.stress_3wave_Pa;
+                   if (e > r.max_strain) return std::nan("");
+                   return value_at_first_reach(x, y, r.loading_end, e);
+                 }});
+  }
+  f.push_back({"mean_strain_rate_1_s", "1/s",
+               [](const ProcessingResult& r) { return r.mean_strain_rate_1_s; }});
+  if (nominal.strain_rate_has_plateau)
+    f.push_back({"plateau_strain_rate_1_s", "1/s",
+                 [](const ProcessingResult& r) { return r.plateau_strain_rate_1_s; }});
+  if (nominal.window_strain_rate_1_s)
+    f.push_back({"mean_strain_rate_over_window_1_s", "1/s", [](const ProcessingResult& r) {
+                   return r.window_strain_rate_1_s.value_or(std::nan(""));
+                 }});
+  if (!setup.pulse_shaper)
+    f.push_back({"striker_velocity_m_s", "m/s",
+                 [](const ProcessingResult& r) { return r.inferred_striker_velocity_m_s; }});
+  return f;
+}
+
+bool all_finite(const std::vector<double>& v, std::size_t n) {
+  for (std::size_t i = 0; i < n; ++i)
+    if (!std::isfinite(v[i])) return false;
+  return true;
+}
+
+}  // namespace
+
+double value_at_first_reach(const std::vector<double>& x, const std::vector<double>& y,
+                            std::size_t n, double at) {
+  return FirstReach(x, n)(x, y, at);
+}
+
+UncertaintyResult propagate_uncertainty(const Scene& scene, const MeasurementSpec& m,
+                                        const GaugeSignals& signals,
+                                        const ProcessingOptions& options,
+                                        const ProcessingResult& nominal,
+                                        const MonteCarloOptions& mc) {
+  if (!scene.measurement || !scene.measurement->uncertainty || !scene.specimen)
+    throw std::logic_error("propagate_uncertainty: the scene has no uncertainty block");
+  const KolskySetup setup = resolve_setup(scene, signals.gauges);
+  const std::vector<Input> inputs = inputs_of(scene, m, signals, options, nominal, setup);
+  const std::vector<FigureSpec> figures = figure_specs(nominal, setup, options);
+  UncertaintyResult out;
+  out.draws = mc.draws;
+  out.seed = mc.seed;
+  for (const Input& i : inputs) out.inputs.push_back(i.info);
+
+  // All draws first, in one sequence: the result does not depend on the thread count.
+  const std::size_t k = inputs.size(), n_draws = mc.draws;
+  std::vector<double> z(n_draws * k);
+  NormalDraws normal(mc.seed);
+  for (double& v : z) v = normal();
+
+  const bool one_wave = options.primary == PrimaryReduction::kOneWave;
+  const Curve& nc = nominal.curve;
+  const std::vector<double>& nominal_strain = one_wave ? nc.strain_1wave : nc.strain;
+  const std::size_t rows = nominal.loading_end;
+  // Which channels make each gauge (the gauge's strain is their mean).
+  std::vector<std::vector<std::size_t>> channels_of(signals.gauges.size());
+  for (std::size_t c = 0; c < m.channels.size(); ++c)
+    for (std::size_t g = 0; g < signals.gauges.size(); ++g)
+      if (m.channels[c].gauge == signals.gauges[g]) channels_of[g].push_back(c);
+
+  DispersionTableCache tables;
+  std::vector<DrawResult> results(n_draws);
+  const int threads =
+      std::max(1, std::min<int>(resolve_threads(mc.threads),
+                                static_cast<int>(std::max<std::size_t>(1, n_draws))));
+  run_parallel(static_cast<std::size_t>(threads), threads, [&](std::size_t worker) {
+    FftPlans plans;
+    GaugeSignals scaled = signals;
+    for (std::size_t d = worker; d < n_draws; d += static_cast<std::size_t>(threads)) {
+      DrawResult& res = results[d];
+      try {
+        DrawState state{scene, options, std::vector<double>(m.channels.size(), 1.0)};
+        state.options.tables = &tables;
+        state.options.plans = &plans;
+        for (std::size_t i = 0; i < k; ++i) {
+          const Input& in = inputs[i];
+          const double x = in.info.nominal + in.info.standard_uncertainty * z[d * k + i];
+          if (in.positive && !(x > 0)) throw std::domain_error(in.info.name + " drawn <= 0");
+          in.apply(x, state);
+        }
+        for (std::size_t g = 0; g < signals.gauges.size(); ++g) {
+          double f = 0;
+          for (std::size_t c : channels_of[g]) f += state.channel_factor[c];
+          f = channels_of[g].empty() ? 1.0 : f / static_cast<double>(channels_of[g].size());
+          const auto& from = signals.strain[g];
+          auto& to = scaled.strain[g];
+          for (std::size_t i = 0; i < from.size(); ++i) to[i] = f * from[i];
+        }
+        const KolskySetup k_draw = resolve_setup(state.scene, signals.gauges);
+        const ProcessedTest t = process_test(state.scene, scaled, k_draw, state.options);
+        const ProcessingResult& r = t.result;
+        const Curve& c = r.curve;
+        const auto& x = one_wave ? c.strain_1wave : c.strain;
+        const auto& rate = one_wave ? c.strain_rate_1wave_1_s : c.strain_rate_1_s;
+        const std::size_t n = r.loading_end;
+        if (n == 0 || !all_finite(x, n) || !all_finite(c.stress_3wave_Pa, n) ||
+            !all_finite(c.stress_1wave_Pa, n) || !all_finite(rate, n))
+          throw std::domain_error("the reduction produced a non-finite value");
+        const FirstReach reach(x, n);
+        res.stress3.resize(rows);
+        res.stress1.resize(rows);
+        res.rate.resize(rows);
+        for (std::size_t j = 0; j < rows; ++j) {
+          res.stress3[j] = reach(x, c.stress_3wave_Pa, nominal_strain[j]);
+          res.stress1[j] = reach(x, c.stress_1wave_Pa, nominal_strain[j]);
+          res.rate[j] = reach(x, rate, nominal_strain[j]);
+        }
+        for (const FigureSpec& f : figures) res.figures.push_back(f.of(r));
+        res.ok = true;
+      } catch (const std::exception& e) {
+        res.ok = false;
+        res.failure = e.what();
+      }
+    }
+  });
+
+  std::vector<std::size_t> good;
+  std::set<std::string> reasons;
+  for (std::size_t d = 0; d < n_draws; ++d) {
+    if (results[d].ok) {
+      good.push_back(d);
+    } else {
+      ++out.failed;
+      if (reasons.size() < kFailureReasons && reasons.insert(results[d].failure).second)
+        out.failures.push_back(results[d].failure);
+    }
+  }
+  if (good.size() < 2)
+    throw NumericalError("process: " + std::to_string(out.failed) + " of " +
+                         std::to_string(n_draws) +
+                         " Monte Carlo draws of measurement.uncertainty failed" +
+                         (out.failures.empty() ? std::string() : ": " + out.failures.front()));
+  for (int q = 0; q < 3; ++q) {
+    out.stress_3wave[q].resize(rows);
+    out.stress_1wave[q].resize(rows);
+    out.strain_rate[q].resize(rows);
+  }
+  std::vector<double> column(good.size());
+  auto band = [&](std::vector<double> DrawResult::*field, std::vector<double>(&to)[3]) {
+    for (std::size_t j = 0; j < rows; ++j) {
+      for (std::size_t i = 0; i < good.size(); ++i) column[i] = (results[good[i]].*field)[j];
+      std::sort(column.begin(), column.end());
+      for (int q = 0; q < 3; ++q) to[q][j] = quantile(column, kQuantiles[q]);
+    }
+  };
+  band(&DrawResult::stress3, out.stress_3wave);
+  band(&DrawResult::stress1, out.stress_1wave);
+  band(&DrawResult::rate, out.strain_rate);
+
+  for (std::size_t f = 0; f < figures.size(); ++f) {
+    FigureUncertainty fu;
+    fu.name = figures[f].name;
+    fu.unit = figures[f].unit;
+    fu.nominal = figures[f].of(nominal);
+    std::vector<double> y;
+    std::vector<std::size_t> from;
+    for (std::size_t d : good)
+      if (std::isfinite(results[d].figures[f])) {
+        y.push_back(results[d].figures[f]);
+        from.push_back(d);
+      }
+    fu.draws = y.size();
+    if (y.size() < 2) {
+      out.figures.push_back(fu);
+      continue;
+    }
+    const double n = static_cast<double>(y.size());
+    double mean = 0;
+    for (double v : y) mean += v;
+    mean /= n;
+    double var = 0;
+    for (double v : y) var += (v - mean) * (v - mean);
+    var /= n - 1;
+    fu.standard_uncertainty = std::sqrt(var);
+    std::vector<double> sorted = y;
+    std::sort(sorted.begin(), sorted.end());
+    fu.low95 = quantile(sorted, kQuantiles[0]);
+    fu.median = quantile(sorted, kQuantiles[1]);
+    fu.high95 = quantile(sorted, kQuantiles[2]);
+    for (std::size_t i = 0; i < k; ++i) {
+      double zm = 0;
+      for (std::size_t d : from) zm += z[d * k + i];
+      zm /= n;
+      double szz = 0, szy = 0;
+      for (std::size_t j = 0; j < from.size(); ++j) {
+        const double dz = z[from[j] * k + i] - zm;
+        szz += dz * dz;
+        szy += dz * (y[j] - mean);
+      }
+      const double denominator = szz * var * (n - 1);
+      fu.shares.emplace_back(i, denominator > 0 ? szy * szy / denominator : 0.0);
+    }
+    std::stable_sort(fu.shares.begin(), fu.shares.end(),
+                     [](const auto& a, const auto& b) { return a.second > b.second; });
+    out.figures.push_back(fu);
+  }
+  return out;
+}
+
+std::vector<std::pair<const char*, const std::vector<double>*>> uncertainty_band_columns(
+    const UncertaintyResult& u) {
+  return {
+      {"stress_3wave_p2.5_Pa", &u.stress_3wave[0]},  {"stress_3wave_p50_Pa", &u.stress_3wave[1]},
+      {"stress_3wave_p97.5_Pa", &u.stress_3wave[2]}, {"stress_1wave_p2.5_Pa", &u.stress_1wave[0]},
+      {"stress_1wave_p50_Pa", &u.stress_1wave[1]},   {"stress_1wave_p97.5_Pa", &u.stress_1wave[2]},
+      {"strain_rate_p2.5_1_s", &u.strain_rate[0]},   {"strain_rate_p50_1_s", &u.strain_rate[1]},
+      {"strain_rate_p97.5_1_s", &u.strain_rate[2]}};
+}
+
+nlohmann::json uncertainty_summary(const UncertaintyResult& u) {
+  nlohmann::json inputs = nlohmann::json::array();
+  for (const UncertainInput& i : u.inputs)
+    inputs.push_back({{"name", i.name},
+                      {"nominal", i.nominal},
+                      {"standard_uncertainty", i.standard_uncertainty},
+                      {"unit", i.unit}});
+  nlohmann::json figures = nlohmann::json::object();
+  for (const FigureUncertainty& f : u.figures) {
+    nlohmann::json shares = nlohmann::json::array();
+    for (const auto& [i, share] : f.shares)
+      shares.push_back({{"input", u.inputs[i].name}, {"share", share}});
+    figures[f.name] = {{"nominal", f.nominal},
+                       {"median", f.median},
+                       {"standard_uncertainty", f.standard_uncertainty},
+                       {"interval_95", {f.low95, f.high95}},
+                       {"unit", f.unit},
+                       {"draws", f.draws},
+                       {"contributions", shares}};
+  }
+  return {{"method",
+           "Monte Carlo propagation (GUM Supplement 1, JCGM 101:2008): every input of "
+           "measurement.uncertainty drawn from a normal distribution with its standard "
+           "uncertainty, the test reduced again per draw; standard uncertainty = standard "
+           "deviation of the draws, interval_95 = their 2.5 and 97.5 % quantiles; contributions: "
+           "each input's share of the variance (squared correlation of the figure with the "
+           "input's draws), largest first; curve.csv's band columns: quantiles at each strain"},
+          {"draws", u.draws},
+          {"seed", u.seed},
+          {"failed_draws", u.failed},
+          {"failures", u.failures},
+          {"inputs", inputs},
+          {"figures", figures}};
+}
+
+std::string uncertainty_headline(const UncertaintyResult& u) {
+  const FigureUncertainty* f = nullptr;
+  for (const auto& x : u.figures)
+    if (x.name == "flow_stress_Pa_at_strain_0.1") f = &x;
+  for (const auto& x : u.figures)
+    if (!f && x.name == "peak_stress_Pa") f = &x;
+  if (!f) return "";
+  char line[400];
+  std::snprintf(line, sizeof line,
+                "process: uncertainty (%zu draws%s): %s %.4g MPa, 95 %% interval %.4g to %.4g MPa "
+                "(standard uncertainty %.3g MPa); largest contributors:",
+                u.draws, u.failed ? (", " + std::to_string(u.failed) + " failed").c_str() : "",
+                f->name == "peak_stress_Pa" ? "peak stress" : "flow stress at strain 0.1",
+                f->nominal / 1e6, f->low95 / 1e6, f->high95 / 1e6, f->standard_uncertainty / 1e6);
+  std::string text = line;
+  for (std::size_t i = 0; i < std::min<std::size_t>(3, f->shares.size()); ++i) {
+    std::snprintf(line, sizeof line, "%s %s %.0f %%", i ? "," : "",
+                  u.inputs[f->shares[i].first].name.c_str(), 100 * f->shares[i].second);
+    text += line;
+  }
+  return text;
+}
+
+}  // namespace shpb

@@ -1,0 +1,18 @@
+#pragma once
+// Reads measurement.uncertainty (docs/scene-format.md): standard uncertainties with a unit of the
+// quantity, or "%" of its nominal value.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/json_value.hpp"
+#include "model/scene.hpp"
+
+namespace shpb {
+
+// `bars` are the scene's bar names left to right; `specimen` its specimen bar (the bars named
+// in the block must be the specimen or its neighbours: the bars a reduction uses).
+UncertaintySpec read_uncertainty(const JsonValue& value, const std::vector<std::string>& bars,
+                                 std::optional<std::size_t> specimen);
+
+}  // namespace shpb
