@@ -247,6 +247,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1e-8, 0.1));
   fit_cmd->add_flag("--quiet,-q", fit.quiet, "No progress output on stderr");
 
+  auto* calibrate = add_calibrate_command(app);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -307,6 +309,7 @@ int main(int argc, char** argv) {
     }
     if (*report) return run_report(rep);
     if (*fit_cmd) return run_fit(fit);
+    if (*calibrate) return run_calibrate_command();
   } catch (const InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 2;

@@ -11,7 +11,16 @@
 #include "model/scene_validation.hpp"
 #include "study/sweep.hpp"
 
+namespace CLI {
+class App;
+}
+
 namespace shpb {
+
+// `shpb calibrate` (app/calibrate.cpp) registers its own subcommand and options; run the parsed
+// command with run_calibrate_command().
+CLI::App* add_calibrate_command(CLI::App& app);
+int run_calibrate_command();
 
 // Options shared by simulate, compare and study (docs/commands.md); unset means "as the scene
 // says".

@@ -33,6 +33,7 @@
 #include "core/error.hpp"
 #include "core/json_value.hpp"
 #include "core/output_folder.hpp"
+#include "model/calibration.hpp"
 #include "model/discretization.hpp"
 #include "model/test_setup.hpp"
 #include "model/wave_travel.hpp"
@@ -228,6 +229,7 @@ int run_compare(const CompareArgs& args) {
                                            : (scene.simulation.duration_s ? "scene" : "default");
   warnings.insert(warnings.end(), sim.warnings.begin(), sim.warnings.end());
   s["warnings"] = warnings;
+  s["calibration"] = calibration_summary(scene);
   s["version"] = kVersion;
   write_text_file(out.file("summary.json"), s.dump(2) + "\n");
   out.commit();

@@ -31,6 +31,7 @@
 #include "fit/fit_spec.hpp"
 #include "fit/law_parameters.hpp"
 #include "fit/least_squares.hpp"
+#include "model/calibration.hpp"
 #include "version.hpp"
 
 namespace shpb {
@@ -463,6 +464,7 @@ int run_fit(const FitArgs& args) {
     const FitCase& c = *cases[k];
     nlohmann::json t = {{"name", c.name()},
                         {"scene", c.scene().file.string()},
+                        {"calibration", calibration_summary(c.scene())},
                         {"weight", c.weight()},
                         {"temperature_K", c.temperature_K()},
                         {"striker_velocity_source", c.velocity_source()},

@@ -20,6 +20,7 @@
 #include "core/error.hpp"
 #include "core/output_folder.hpp"
 #include "core/signal_reader.hpp"
+#include "model/calibration.hpp"
 #include "version.hpp"
 
 namespace shpb {
@@ -103,6 +104,7 @@ int run_bar_check(const ProcessArgs& args, const Scene& scene) {
       {{"version", kVersion},
        {"command", "process"},
        {"scene", args.scene.string()},
+       {"calibration", calibration_summary(scene)},
        {"check", "bars together (no specimen)"},
        {"near_gauge", setup.near_gauge},
        {"far_gauge", setup.far_gauge},
@@ -178,6 +180,7 @@ ProcessOutcome process_scene(const Scene& scene,
   ProcessOutcome o;
   MeasurementSpec& m = o.measurement;
   ProcessingOptions& options = o.options = processing_options(scene);
+  o.calibration = calibration_summary(scene);
   if (signals_file) {
     // A gauges.csv written by `shpb simulate` (time_s + one strain column per gauge): signals of
     // the 1D bar model, which does not disperse, so the faces are reached by a pure delay.
@@ -292,6 +295,7 @@ void write_process_outputs(const ProcessOutcome& o, const Scene& scene,
                {{"version", kVersion},
                 {"command", "process"},
                 {"scene", scene_display},
+                {"calibration", o.calibration},
                 {"error", o.failure},
                 {"warnings", o.warnings},
                 {"written", "pulses.csv only: the reduction failed"}});
@@ -328,6 +332,7 @@ nlohmann::json process_summary(const ProcessOutcome& o, const std::string& scene
   s["version"] = kVersion;
   s["command"] = "process";
   s["scene"] = scene_display;
+  s["calibration"] = o.calibration;
   s["signals"] = {{"source", simulated ? "simulated (--signals)" : "measurement"},
                   {"file", m.file.string()},
                   {"samples", signals.time_s.size()},

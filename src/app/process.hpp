@@ -26,7 +26,8 @@ struct ProcessOutcome {
   SpecimenCorrections corrections;
   CorrectionReport removed;
   std::vector<std::string> warnings;
-  std::string failure;  // why the reduction cannot be reported (empty: it can)
+  std::string failure;         // why the reduction cannot be reported (empty: it can)
+  nlohmann::json calibration;  // the scene's calibration (model/calibration.hpp), or null
 };
 
 // Throws InputError for a scene that cannot be processed (no specimen: the command's

@@ -341,6 +341,7 @@ LsResult solve_least_squares(const std::vector<LsParameter>& parameters,
   // The step against round-off: the Jacobian with half the step should agree.
   if (model.ensure(x.data(), true)) {
     const Eigen::MatrixXd jh = model.jacobian();
+    r.jacobian = jh;
     Eigen::MatrixXd jh2;
     if (model.jacobian_at(x, options.relative_step / 2, jh2)) {
       r.step_check.resize(p);
