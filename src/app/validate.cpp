@@ -15,6 +15,7 @@
 #include "app/commands.hpp"
 #include "core/csv_writer.hpp"
 #include "core/output_folder.hpp"
+#include "model/calibration.hpp"
 #include "model/discretization.hpp"
 #include "model/mesh_error_model.hpp"
 #include "model/scene_checks.hpp"
@@ -37,6 +38,8 @@ json bars_and_gauges(const Scene& scene, const ChainDiscretization* d) {
   json out;
   out["name"] = scene.name;
   out["file"] = scene.file.string();
+  // The values below are the calibration's where it gives them (model/calibration.hpp).
+  if (!scene.calibration_file.empty()) out["calibration"] = calibration_summary(scene);
   out["specimen"] = scene.specimen ? json(scene.bars[*scene.specimen].name) : json(nullptr);
   for (std::size_t i = 0; i < scene.bars.size(); ++i) {
     const auto& b = scene.bars[i];
@@ -334,6 +337,8 @@ void print_process(const json& p) {
 void print_table(const json& s) {
   std::printf("scene      %s (%s)\n", s["name"].get<std::string>().c_str(),
               s["file"].get<std::string>().c_str());
+  if (s.contains("calibration"))
+    std::printf("calibration %s\n", s["calibration"]["file"].get<std::string>().c_str());
   std::printf("specimen   %s\n\n",
               s["specimen"].is_null() ? "(none)" : s["specimen"].get<std::string>().c_str());
   const bool simulates = s.contains("interfaces");

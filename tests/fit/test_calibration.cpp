@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "../app/run_shpb.hpp"
+#include "../skip.hpp"
 #include "dispersion/dispersion_table.hpp"
 #include "dispersion/propagation.hpp"
 
@@ -267,4 +268,38 @@ TEST_CASE("calibrate and a scene's calibration refuse bad input with one line an
   CHECK(one_line(r));
   CHECK(r.err.find("anvil") != std::string::npos);
   CHECK(!fs::exists(dir / "o2"));
+}
+
+TEST_CASE("calibrate names what one bars-together shot cannot determine", "[fit][calibrate]") {
+  const fs::path dir = write_shots("calibrate_alone");
+  const auto r =
+      run_shpb({"calibrate", (dir / "together.json").string(), "-o", (dir / "out").string(), "-q"});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  // Without the bars-apart shot the incident gauge's place, the incident bar's wave speed and the
+  // transmitter channel's delay move the one crossing time alike: reported, on stderr too.
+  const auto s = read_json(dir / "out" / "summary.json");
+  REQUIRE(!s["undetermined"].empty());
+  const std::string line = s["undetermined"][0];
+  CHECK(line.find("gauges.tr.delay_s") != std::string::npos);
+  CHECK(r.err.find("warning: the shots do not determine") != std::string::npos);
+  CHECK(parameter(s, "gauges.tr.delay_s")["sd"].is_null());
+}
+
+TEST_CASE("the report of a calibration draws each shot's signals and residuals",
+          "[fit][calibrate]") {
+  if (!shpb_test::have_matplotlib()) {
+    SHPB_SKIP("python3 with matplotlib and numpy not installed: report test skipped");
+  }
+  const fs::path dir = write_shots("calibrate_report");
+  REQUIRE(run_shpb({"calibrate", (dir / "apart.json").string(), (dir / "together.json").string(),
+                    "-o", (dir / "out").string(), "-q"})
+              .code == 0);
+  const auto r = run_shpb({"report", (dir / "out").string()});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  for (const char* png : {"calibration_shot1.png", "calibration_shot2.png"})
+    CHECK(fs::file_size(dir / "out" / "figures" / png) > 0);
+  CHECK(shpb_test::read_text(dir / "out" / "report.html").find("Calibration shot 2") !=
+        std::string::npos);
 }
