@@ -11,6 +11,7 @@
 #include "analysis/gauge_signals.hpp"
 #include "analysis/pulse_window.hpp"
 #include "core/error.hpp"
+#include "core/median.hpp"
 #include "core/number_format.hpp"
 #include "dispersion/dispersion_table.hpp"
 #include "dispersion/propagation.hpp"
@@ -79,6 +80,10 @@ struct Shot {
   double dt = 0, peak = 0, cutoff_Hz = 0;
   std::vector<ShotBar> bars;
   std::vector<Target> targets;
+  // A measured striker velocity: the source's plateau (as recorded) and the strain the striker
+  // gives the struck bar per unit of its wave speed, v Z_s / (Z_s + Z_b) (docs/methods.md §10).
+  std::optional<double> plateau, strain_times_c;
+  double plateau_sd = 0;  // its standard error from the noise over the plateau
 };
 
 // Dispersion tables by Poisson ratio, shared by the parallel evaluations.
@@ -200,6 +205,23 @@ Shot prepare_shot(const CalibrationShot& cs, Parameters& params, std::string& re
     if (i < keep0 || i >= keep1) source[i] = 0;
   s.source = source;
   s.peak = pulse->peak;
+  const auto striker = gauged[0] > 0 ? std::optional(gauged[0] - 1) : std::nullopt;
+  if (scene.measurement->striker_velocity_m_s && striker && scene.bars[*striker].has_material) {
+    const double zs = scene.bars[*striker].impedance_kg_s(), zb = first.impedance_kg_s();
+    s.strain_times_c = *scene.measurement->striker_velocity_m_s * zs / (zs + zb);
+    // The middle half of the pulse: past the front's dispersion ringing, before the tail's.
+    const std::size_t quarter = (pulse->end - pulse->onset) / 4;
+    const std::vector<double> middle(source.begin() + static_cast<long>(pulse->onset + quarter),
+                                     source.begin() + static_cast<long>(pulse->end - quarter));
+    s.plateau = std::abs(median(middle));
+    // Noise over the samples, and the ringing still on the plateau: the difference of the two
+    // halves' medians (a systematic part the noise does not show).
+    const auto half = static_cast<long>(middle.size() / 2);
+    const double drift = median({middle.begin(), middle.begin() + half}) -
+                         median({middle.begin() + half, middle.end()});
+    s.plateau_sd = std::hypot(
+        base.noise / std::sqrt(std::max<double>(1.0, static_cast<double>(middle.size()))), drift);
+  }
   const DispersionSpec& ds = scene.measurement->dispersion;
   const double c_src = first.material.wave_speed_m_s();
   s.cutoff_Hz = ds.cutoff_Hz ? *ds.cutoff_Hz
@@ -424,6 +446,36 @@ CalibrationFit calibrate_bars(const std::vector<CalibrationShot>& input,
         cal.gauges.push_back(gc);
       }
     }
+
+  // A measured striker velocity makes the gains absolute: the reference channel's gain is its
+  // recorded plateau over v Z_s / ((Z_s + Z_b) c0), with the fitted c0 (docs/methods.md §10).
+  double weight = 0, sum = 0;
+  for (const Shot& s : shots) {
+    if (!s.plateau || s.source_gauge != reference) continue;
+    const std::size_t ic = s.bars[0].c;
+    const double c = r.value[ic];
+    const double g = *s.plateau * c / *s.strain_times_c;
+    const auto sd_c = fit.parameters[ic].sd;
+    const double rel2 =
+        std::pow(s.plateau_sd / *s.plateau, 2) + (sd_c ? std::pow(*sd_c / c, 2) : 0);
+    const double w = 1 / std::max(rel2 * g * g, 1e-30);
+    sum += w * g, weight += w;
+  }
+  if (weight > 0) {
+    const double g = sum / weight, sd = std::sqrt(1 / weight);
+    cal.absolute_gain = true;
+    for (GaugeCalibration& gc : cal.gauges) {
+      if (gc.gauge == reference) {
+        gc.gain = {g, sd};
+        continue;
+      }
+      const double rel = gc.gain.sd ? *gc.gain.sd / gc.gain.value : 0.0;
+      gc.gain.sd =
+          gc.gain.sd ? std::optional(g * gc.gain.value * std::hypot(rel, sd / g)) : std::nullopt;
+      gc.gain.value *= g;
+    }
+    fit.parameters.push_back({"gauges." + reference + ".gain", 1.0, g, sd});
+  }
 
   std::vector<double> nominal(p);
   for (std::size_t j = 0; j < p; ++j) nominal[j] = list[j].start;

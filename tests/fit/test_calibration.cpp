@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -133,21 +134,28 @@ nlohmann::json scene(bool together, const std::string& csv) {
 
 void write_json(const fs::path& file, const nlohmann::json& j) { std::ofstream(file) << j.dump(2); }
 
-// The two shots of a lab: the incident bar alone (bars apart), and the bars together.
-fs::path write_shots(const std::string& name) {
+// The two shots of a lab: the incident bar alone (bars apart), and the bars together. With
+// `incident_gain` the incident channel reads that much of the true strain (and the transmitter
+// channel kTrueGain times as much), and the bars-apart shot gives its measured striker velocity.
+fs::path write_shots(const std::string& name, std::optional<double> incident_gain = {}) {
+  const double gi = incident_gain.value_or(1.0);
   const fs::path dir = shpb_test::scratch_dir(name);
   const double xi = kTrueIncidentGauge, li = kIncidentLength, lt = kTransmitterLength,
                xt = kTransmitterGauge;
   // Bars apart: the pulse at the gauge, back from the free far end (−), from the struck end (+).
   const auto apart =
-      record({{1, xi}, {-1, 2 * li - xi}, {1, 2 * li + xi}, {-1, 4 * li - xi}}, 1.0, 0.0, 1);
+      record({{1, xi}, {-1, 2 * li - xi}, {1, 2 * li + xi}, {-1, 4 * li - xi}}, gi, 0.0, 1);
   write_csv(dir / "apart.csv", {"inc"}, {apart});
-  write_json(dir / "apart.json", scene(false, "apart.csv"));
+  nlohmann::json apart_scene = scene(false, "apart.csv");
+  // A matched striker gives the bar the strain v / (2 c0): the pulse's 1e-3 is 10.07 m/s.
+  if (incident_gain)
+    apart_scene["measurement"]["striker_velocity"] = std::to_string(2 * kTrueC * kPeak) + " m/s";
+  write_json(dir / "apart.json", apart_scene);
   // Bars together: the incident pulse passes into the transmitter and comes back from its far
   // end; the transmitter's channel has its own gain and delay.
-  const auto inc = record({{1, xi}}, 1.0, 0.0, 2);
-  const auto tr = record({{1, li + xt}, {-1, li + 2 * lt - xt}, {1, li + 2 * lt + xt}}, kTrueGain,
-                         kTrueDelay, 3);
+  const auto inc = record({{1, xi}}, gi, 0.0, 2);
+  const auto tr = record({{1, li + xt}, {-1, li + 2 * lt - xt}, {1, li + 2 * lt + xt}},
+                         gi * kTrueGain, kTrueDelay, 3);
   write_csv(dir / "together.csv", {"inc", "tr"}, {inc, tr});
   write_json(dir / "together.json", scene(true, "together.csv"));
   return dir;
@@ -302,4 +310,23 @@ TEST_CASE("the report of a calibration draws each shot's signals and residuals",
     CHECK(fs::file_size(dir / "out" / "figures" / png) > 0);
   CHECK(shpb_test::read_text(dir / "out" / "report.html").find("Calibration shot 2") !=
         std::string::npos);
+}
+
+TEST_CASE("a measured striker velocity makes the channel gains absolute", "[fit][calibrate]") {
+  // The incident channel reads 2 % low (a gauge factor or amplifier gain off by as much).
+  constexpr double kIncidentGain = 0.98;
+  const fs::path dir = write_shots("calibrate_absolute", kIncidentGain);
+  const auto r = run_shpb({"calibrate", (dir / "apart.json").string(),
+                           (dir / "together.json").string(), "-o", (dir / "out").string(), "-q"});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  const auto s = read_json(dir / "out" / "summary.json");
+  check_recovered(s, "gauges.inc.gain", kIncidentGain, kGainTolerance);
+  check_recovered(s, "gauges.tr.gain", kTrueGain, kGainTolerance);  // relative to the incident
+  const auto c = read_json(dir / "out" / "calibration.json");
+  CHECK(c["absolute_gain"] == true);
+  for (const auto& g : c["gauges"])
+    if (g["gauge"] == "tr")
+      CHECK(std::abs(g["gain"]["value"].get<double>() - kIncidentGain * kTrueGain) <
+            2 * kGainTolerance);  // the errors of two gains add
 }
