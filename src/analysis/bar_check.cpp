@@ -50,7 +50,9 @@ BarCheckSetup resolve_bar_check(const Scene& scene, const std::vector<std::strin
   const BarSpec& bar = scene.bars[a.bar];
   for (std::size_t b = a.bar + 1; b <= z.bar; ++b) {
     const BarSpec& o = scene.bars[b];
-    if (!o.has_material || o.material.youngs_modulus_Pa != bar.material.youngs_modulus_Pa ||
+    if (!o.has_material ||
+        std::abs(o.material.wave_speed_m_s() / bar.material.wave_speed_m_s() - 1) >
+            kBarsTogetherSpeedSpread ||
         o.material.density_kg_m3 != bar.material.density_kg_m3 ||
         std::abs(o.diameter_m - bar.diameter_m) > 1e-9)
       throw input_error(file, "bars[" + std::to_string(b) + "]", "\"" + o.name + "\"",
@@ -61,6 +63,20 @@ BarCheckSetup resolve_bar_check(const Scene& scene, const std::vector<std::strin
     throw input_error(file, "bars", "gauges \"" + s.near_gauge + "\" and \"" + s.far_gauge + "\"",
                       "the two gauges are at the same place");
   s.waveguide = {0.5 * bar.diameter_m, bar.material.wave_speed_m_s(), bar.material.poisson_ratio};
+  for (std::size_t b = a.bar; b <= z.bar; ++b) {
+    const BarSpec& o = scene.bars[b];
+    const double from = b == a.bar ? a.gauge->position_m : 0.0;
+    const double to = b == z.bar ? z.gauge->position_m : o.length_m;
+    const BarWaveguide guide{0.5 * o.diameter_m, o.material.wave_speed_m_s(),
+                             o.material.poisson_ratio};
+    const auto same = [&](const BarWaveguide& w) {
+      return w.radius_m == guide.radius_m && w.c0_m_s == guide.c0_m_s && w.poisson == guide.poisson;
+    };
+    if (!s.path.empty() && same(s.path.back().first))  // one propagation through bars alike
+      s.path.back().second += to - from;
+    else
+      s.path.push_back({guide, to - from});
+  }
   return s;
 }
 
@@ -100,20 +116,30 @@ BarCheckResult check_bars_together(const GaugeSignals& signals, const BarCheckSe
   PropagationOptions po;
   if (ds.cutoff_Hz)
     po.cutoff_fa_over_c0 = *ds.cutoff_Hz * s.waveguide.radius_m / s.waveguide.c0_m_s;
-  const DispersionTable table(s.waveguide.poisson);
-  if (po.cutoff_fa_over_c0 > table.max_normalized_frequency())
-    throw input_error(scene_file, "measurement.dispersion.cutoff",
-                      "f·a/c0 = " + format_number(po.cutoff_fa_over_c0),
-                      "cut-off beyond the tabulated mode");
   r.cutoff_Hz = po.cutoff_fa_over_c0 * s.waveguide.c0_m_s / s.waveguide.radius_m;
   // Zeros after the record leave room for the delay (the output keeps the input's length).
+  std::vector<double> moved = near;
+  moved.resize(n + static_cast<std::size_t>(1.25 * s.distance_m / (s.waveguide.c0_m_s * dt)) + 1,
+               0.0);
+  std::vector<double> shifted(moved.size());
+  double delay_s = 0;
+  // Bar by bar, each with its own mode and the cut-off's frequency (one cut-off in Hz).
+  for (const auto& [guide, distance] : s.path) {
+    delay_s += distance / guide.c0_m_s;
+    if (!(distance > 0)) continue;
+    PropagationOptions bar_po = po;
+    bar_po.cutoff_fa_over_c0 = r.cutoff_Hz * guide.radius_m / guide.c0_m_s;
+    const DispersionTable table(guide.poisson);
+    if (bar_po.cutoff_fa_over_c0 > table.max_normalized_frequency())
+      throw input_error(scene_file, "measurement.dispersion.cutoff",
+                        "f·a/c0 = " + format_number(bar_po.cutoff_fa_over_c0),
+                        "cut-off beyond the tabulated mode");
+    Propagator prop(table, guide, bar_po);
+    moved = prop.propagate(moved, dt, distance);
+  }
   std::vector<double> padded = near;
-  padded.resize(n + static_cast<std::size_t>(1.25 * s.distance_m / (s.waveguide.c0_m_s * dt)) + 1,
-                0.0);
-  Propagator prop(table, s.waveguide, po);
-  const std::vector<double> moved = prop.propagate(padded, dt, s.distance_m);
-  std::vector<double> shifted(padded.size());
-  delay_by_interpolation(padded, s.distance_m / (s.waveguide.c0_m_s * dt), shifted);
+  padded.resize(moved.size(), 0.0);
+  delay_by_interpolation(padded, delay_s / dt, shifted);
 
   const std::size_t a = pf.onset > margin(pf) ? pf.onset - margin(pf) : 0;
   const std::size_t b = std::min(n, pf.end + margin(pf));

@@ -16,10 +16,18 @@ struct BarCheckSetup {
   std::string near_gauge, far_gauge;
   double distance_m = 0;   // along the bars, near → far
   BarWaveguide waveguide;  // of the near gauge's bar
+  // The way near → far bar by bar: each bar's waveguide and the distance in it (calibrated bars
+  // of one nominal material differ slightly in wave speed and Poisson ratio).
+  std::vector<std::pair<BarWaveguide, double>> path;
 };
 
+// Bars whose wave speeds differ by up to 5 % are checked as one set (density and diameter equal):
+// their impedances then differ by as much, and the interface reflects at most 2.5 % of the pulse.
+inline constexpr double kBarsTogetherSpeedSpread = 0.05;
+
 // The first and last gauges along the chain that have a signal. InputError naming the scene if
-// fewer than two, or if the bars between them differ in material or diameter.
+// fewer than two, or if the bars between them differ in density or diameter, or in wave speed by
+// more than kBarsTogetherSpeedSpread.
 BarCheckSetup resolve_bar_check(const Scene& scene, const std::vector<std::string>& available);
 
 struct BarCheckResult {

@@ -9,6 +9,7 @@
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
 #include "core/json_value.hpp"
+#include "model/calibration.hpp"
 #include "model/discretization.hpp"
 #include "model/test_setup.hpp"
 #include "model/wave_travel.hpp"
@@ -204,6 +205,7 @@ void write_comparison(const ComparePlan& plan, const CompareOutcome& outcome,
       plan.extended_duration_s ? "extended to cover the measured pulses"
                                : (plan.scene.simulation.duration_s ? "scene" : "default");
   s["warnings"] = outcome.warnings;
+  s["calibration"] = calibration_summary(plan.scene);
   s["version"] = kVersion;
   write_text_file(dir / "summary.json", s.dump(2) + "\n");
 }

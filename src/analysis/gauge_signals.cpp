@@ -132,7 +132,14 @@ GaugeSignals read_gauge_signals(const MeasurementSpec& m, const std::filesystem:
           break;
       }
       if (ch.invert) factor = -factor;
+      factor /= ch.calibrated_gain;  // model/calibration.hpp
       for (double& x : v) x *= factor;
+      if (ch.calibrated_delay_s != 0) {  // its record on the reference channel's clock
+        const std::vector<double> late = v;
+        const double shift = ch.calibrated_delay_s / out.dt_s;
+        for (std::size_t i = 0; i < v.size(); ++i)
+          v[i] = sample_at(late, static_cast<double>(i) + shift, late.front(), late.back());
+      }
       channel_strain[channels[k]] = std::move(v);
     }
   }

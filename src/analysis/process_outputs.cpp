@@ -4,6 +4,7 @@
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
 #include "core/output_folder.hpp"
+#include "model/calibration.hpp"
 #include "model/scene_inputs.hpp"
 #include "output_schema.hpp"
 #include "version.hpp"
@@ -162,6 +163,7 @@ void write_bar_check(const BarCheckOutcome& o, const Scene& scene, const std::st
       {{"version", kVersion},
        {"command", "process"},
        {"scene", scene_display},
+       {"calibration", calibration_summary(scene)},
        {"check", "bars together (no specimen)"},
        {"near_gauge", setup.near_gauge},
        {"far_gauge", setup.far_gauge},
@@ -205,6 +207,7 @@ void write_process_outputs(const ProcessOutcome& o, const Scene& scene,
                {{"version", kVersion},
                 {"command", "process"},
                 {"scene", scene_display},
+                {"calibration", o.calibration},
                 {"error", o.failure},
                 {"warnings", o.warnings},
                 {"written", "pulses.csv only: the reduction failed"}});
@@ -239,6 +242,7 @@ nlohmann::json process_summary(const ProcessOutcome& o, const std::string& scene
   s["version"] = kVersion;
   s["command"] = "process";
   s["scene"] = scene_display;
+  s["calibration"] = o.calibration;
   s["signals"] = {{"source", simulated ? "simulated (--signals)" : "measurement"},
                   {"file", m.file.string()},
                   {"samples", signals.time_s.size()},

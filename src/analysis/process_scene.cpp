@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "core/error.hpp"
+#include "model/calibration.hpp"
 #include "output_schema.hpp"
 
 namespace shpb {
@@ -66,6 +67,7 @@ ProcessOutcome process_scene(const Scene& scene,
   ProcessOutcome o;
   MeasurementSpec& m = o.measurement;
   ProcessingOptions& options = o.options = processing_options(scene);
+  o.calibration = calibration_summary(scene);
   if (signals_file) {
     // A gauges.csv written by `shpb simulate` (time_s + one strain column per gauge): signals of
     // the 1D bar model, which does not disperse, so the faces are reached by a pure delay.

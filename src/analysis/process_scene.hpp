@@ -3,6 +3,7 @@
 // (the Python module): process_scene() reads the signals and reduces them, writing nothing;
 // analysis/process_outputs.hpp writes the command's folder (docs/outputs.md) from its result.
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <utility>
@@ -13,6 +14,7 @@
 #include "analysis/processing.hpp"
 #include "analysis/test_processing.hpp"
 #include "analysis/uncertainty.hpp"
+#include "model/calibration.hpp"
 #include "model/scene.hpp"
 
 namespace shpb {
@@ -27,7 +29,8 @@ struct ProcessOutcome {
   SpecimenCorrections corrections;
   CorrectionReport removed;
   std::vector<std::string> warnings;
-  std::string failure;  // why the reduction cannot be reported (empty: it can)
+  std::string failure;         // why the reduction cannot be reported (empty: it can)
+  nlohmann::json calibration;  // the scene's calibration (model/calibration.hpp), or null
   // measurement.uncertainty propagated (process_into with Monte Carlo options; absent without
   // the block).
   std::optional<UncertaintyResult> uncertainty;

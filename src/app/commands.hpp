@@ -37,6 +37,7 @@ Command add_study_command(CLI::App& app);
 Command add_validate_command(CLI::App& app);
 Command add_report_command(CLI::App& app);
 Command add_fit_command(CLI::App& app);
+Command add_calibrate_command(CLI::App& app);
 
 struct SimulateArgs {
   std::filesystem::path scene;

@@ -5,6 +5,7 @@
 #include "core/checked_write.hpp"
 #include "core/csv_writer.hpp"
 #include "fit/law_parameters.hpp"
+#include "model/calibration.hpp"
 #include "output_schema.hpp"
 #include "version.hpp"
 
@@ -82,6 +83,7 @@ nlohmann::json tests_json(const FitRun& run) {
     const FitCase& c = *run.cases[k];
     nlohmann::json t = {{"name", c.name()},
                         {"scene", c.scene().file.string()},
+                        {"calibration", calibration_summary(c.scene())},
                         {"weight", c.weight()},
                         {"temperature_K", c.temperature_K()},
                         {"striker_velocity_source", c.velocity_source()},

@@ -253,6 +253,7 @@ void check_step(Model& model, std::vector<double>& x, const LsOptions& options, 
   const std::size_t p = x.size();
   if (model.ensure(x.data(), true)) {
     const Eigen::MatrixXd jh = model.jacobian();
+    r.jacobian = jh;
     Eigen::MatrixXd jh2;
     if (model.jacobian_at(x, options.relative_step / 2, jh2)) {
       r.step_check.resize(p);

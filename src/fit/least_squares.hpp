@@ -60,6 +60,7 @@ struct LsResult {
   std::string termination;
   bool converged = false;
   std::vector<double> step_check;  // per parameter: |J(h) − J(h/2)| / |J(h)| at the solution
+  Eigen::MatrixXd jacobian;        // ∂r/∂x at the solution (x = θ / scale); empty if it failed
   std::vector<std::string> warnings;
 };
 

@@ -137,6 +137,11 @@ struct ChannelSpec {
   std::optional<BridgeSpec> bridge;  // required for volts, or
   std::optional<double> scale;       // strain per volt (a calibration factor) instead
   bool invert = false;
+  // From a calibration of its gauge (model/calibration.hpp), never from the channel's own keys:
+  // the recorded strain over the true strain, and the time by which the record lags the reference
+  // channel. The signal is divided by the gain and moved earlier by the delay when it is read.
+  double calibrated_gain = 1.0;
+  double calibrated_delay_s = 0.0;
 };
 
 // measurement.dispersion.correction: the names of DispersionSpec::correction.
@@ -240,6 +245,8 @@ struct Scene {
   SimulationSpec simulation;
   std::optional<MeasurementSpec> measurement;
   std::vector<std::filesystem::path> material_files;  // the material files it read, once each
+  // The calibration whose values replaced the nominal ones (top-level "calibration"), or empty.
+  std::filesystem::path calibration_file;
 
   // Index of the first bar with a gauge left of the specimen / right of it, if any.
   std::optional<std::size_t> incident_bar() const;

@@ -7,6 +7,7 @@
 #include "core/error.hpp"
 #include "core/json_document.hpp"
 #include "core/json_value.hpp"
+#include "model/calibration.hpp"
 #include "model/input_limits.hpp"
 #include "model/material_reader.hpp"
 #include "model/measurement_reader.hpp"
@@ -28,8 +29,8 @@ class SceneReader {
 
   Scene read(const nlohmann::json& j) {
     const JsonValue root(j, display_, "");
-    const auto o = root.object(
-        {"name", "notes", "bars", "specimen", "materials", "contact", "simulation", "measurement"});
+    const auto o = root.object({"name", "notes", "bars", "specimen", "materials", "contact",
+                                "simulation", "measurement", "calibration"});
     Scene scene;
     scene.file = file_;
     scene.name = default_name();
@@ -73,6 +74,15 @@ class SceneReader {
       scene.measurement = read_measurement(*v, dir_, gauges, bar_names, scene.specimen);
     }
     for (const auto& entry : files_) scene.material_files.emplace_back(entry.first);
+    // After the gauges are placed: the calibration replaces the nominal values for every command.
+    if (auto v = o.get("calibration")) {
+      const fs::path path = (dir_ / v->name()).lexically_normal();
+      std::error_code ec;
+      if (!fs::is_regular_file(path, ec))
+        throw v->error("no such calibration file (looked for " + path.string() +
+                       "; paths are relative to the scene)");
+      apply_calibration(scene, read_calibration_file(path), path);
+    }
     return scene;
   }
 

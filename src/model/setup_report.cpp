@@ -1,5 +1,6 @@
 #include "model/setup_report.hpp"
 
+#include "model/calibration.hpp"
 #include "model/mesh_error_model.hpp"
 #include "model/scene_checks.hpp"
 #include "model/test_setup.hpp"
@@ -13,6 +14,8 @@ json scene_setup_json(const Scene& scene, const ChainDiscretization* d) {
   json out;
   out["name"] = scene.name;
   out["file"] = scene.file.string();
+  // The values below are the calibration's where it gives them (model/calibration.hpp).
+  if (!scene.calibration_file.empty()) out["calibration"] = calibration_summary(scene);
   out["specimen"] = scene.specimen ? json(scene.bars[*scene.specimen].name) : json(nullptr);
   for (std::size_t i = 0; i < scene.bars.size(); ++i) {
     const auto& b = scene.bars[i];

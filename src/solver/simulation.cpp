@@ -9,6 +9,7 @@
 #include "core/checked_write.hpp"
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
+#include "model/calibration.hpp"
 #include "model/mesh_error_model.hpp"
 #include "model/specimen_response.hpp"
 #include "output_schema.hpp"
@@ -348,6 +349,7 @@ nlohmann::ordered_json simulation_summary(const SimulationResult& result, const 
   nlohmann::ordered_json j;
   j["version"] = kVersion;
   j["scene"] = scene.name;
+  j["calibration"] = calibration_summary(scene);
   j["contact"] = std::string(to_string(scene.contact.method));
   j["stepping"] = std::string(to_string(result.discretization.stepping));
   // Material-law bars only; elastic bars are small strain either way (solver/bar.hpp).

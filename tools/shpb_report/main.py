@@ -20,16 +20,16 @@ import traceback
 import warnings
 from typing import Callable, Optional
 
-from . import compare, fit, process, simulate, study, sweeps
+from . import calibrate, compare, fit, process, simulate, study, sweeps
 from .drawing import Figures, close_all
 from .page import GENERATOR, write_html
 from .reading import ReportError, Source, find_sources, read_text
 
 USAGE = """usage: shpb report DIR
 
-DIR is an output folder of `shpb simulate`, `process`, `compare`, `study` or `fit`, or a folder
-whose immediate sub-folders are such outputs (e.g. `make run` writes simulate/ and process/ side by
-side). Writes DIR/figures/*.png and DIR/report.html; nothing else in DIR is touched."""
+DIR is an output folder of `shpb simulate`, `process`, `compare`, `study`, `fit` or `calibrate`, or
+a folder whose immediate sub-folders are such outputs (e.g. `make run` writes simulate/ and
+process/ side by side). Writes DIR/figures/*.png and DIR/report.html; nothing else in DIR is touched."""
 
 FIGURES_MARKER = ".shpb-report"
 FIGURES_SIGNATURE = "figures written by shpb report; replaced only by shpb report\n"
@@ -89,6 +89,7 @@ FIGURE_TABLE: list[list[tuple[Callable[[Source], bool], FigureDrawer]]] = [
      (lambda s: s.has("signals.csv"), lambda s, f, t: compare.fig_compare_signals(s, f)),
      (lambda s: s.has("gauges.csv"), lambda s, f, t: simulate.fig_gauges(s, f))],
     [(lambda s: s.has("field.csv"), lambda s, f, t: simulate.fig_wave_diagram(s, f))],
+    [(lambda s: s.has("calibration.json"), lambda s, f, t: calibrate.fig_calibration(s, f))],
     [(lambda s: s.has("raw_signals.csv"), lambda s, f, t: process.fig_raw_signals(s, f))],
     [(_pulses_with(process.PULSES.incident), lambda s, f, t: process.fig_pulses(s, f)),
      (_pulses_with(process.BAR_CHECK.far_measured), lambda s, f, t: process.fig_bar_check(s, f))],

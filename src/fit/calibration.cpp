@@ -1,0 +1,510 @@
+#include "fit/calibration.hpp"
+
+#include <Eigen/SVD>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <mutex>
+
+#include "analysis/gauge_signals.hpp"
+#include "analysis/pulse_window.hpp"
+#include "core/error.hpp"
+#include "core/median.hpp"
+#include "core/number_format.hpp"
+#include "dispersion/dispersion_table.hpp"
+#include "dispersion/propagation.hpp"
+#include "fit/least_squares.hpp"
+
+namespace shpb {
+namespace {
+
+// The compared windows reach this fraction of the source pulse's length beyond both of its ends
+// (the same margin as the bars-together check of `process`, analysis/bar_check.cpp).
+constexpr double kWindowMargin = 0.2;
+// A gauge's record is compared over the source's first returns only: a pulse dispersed over more
+// than three passes of a bar is spread far beyond its window.
+constexpr std::size_t kMaxArrivals = 3;
+
+// The parameters, by name, with their nominal values.
+class Parameters {
+ public:
+  std::size_t add(const std::string& name, double nominal, double lower, double upper,
+                  double scale) {
+    if (auto it = index_.find(name); it != index_.end()) return it->second;
+    index_[name] = list_.size();
+    list_.push_back({name, nominal, lower, upper, scale});
+    return list_.size() - 1;
+  }
+  const std::vector<LsParameter>& list() const { return list_; }
+
+ private:
+  std::vector<LsParameter> list_;
+  std::map<std::string, std::size_t> index_;
+};
+
+// A distance in a bar: constant + Σ coefficient · θ[parameter] (gauge positions are fitted).
+struct Segment {
+  std::size_t bar = 0;  // index into Shot::bars
+  double constant = 0;
+  std::vector<std::pair<std::size_t, double>> terms;
+  double length(const std::vector<double>& theta) const {
+    double d = constant;
+    for (const auto& [p, k] : terms) d += k * theta[p];
+    return d;
+  }
+};
+
+struct Arrival {
+  double sign = 1;  // −1 per reflection at a free end
+  std::vector<Segment> way;
+};
+
+struct ShotBar {
+  double radius_m = 0;
+  std::size_t c = 0, nu = 0;  // parameter indices
+};
+
+struct Target {
+  std::string gauge;
+  std::optional<std::size_t> gain, delay;
+  std::vector<Arrival> arrivals;
+  std::vector<double> measured;
+  std::vector<std::size_t> samples;  // the compared samples
+};
+
+struct Shot {
+  std::string scene, kind, source_gauge;
+  std::vector<double> time_s, source;
+  double dt = 0, peak = 0, cutoff_Hz = 0;
+  std::vector<ShotBar> bars;
+  std::vector<Target> targets;
+  // A measured striker velocity: the source's plateau (as recorded) and the strain the striker
+  // gives the struck bar per unit of its wave speed, v Z_s / (Z_s + Z_b) (docs/methods.md §11).
+  std::optional<double> plateau, strain_times_c;
+  double plateau_sd = 0;  // its standard error from the noise over the plateau
+};
+
+// Dispersion tables by Poisson ratio, shared by the parallel evaluations.
+class Tables {
+ public:
+  explicit Tables(double fa_over_c0) : fa_(fa_over_c0) {}
+  const DispersionTable& of(double nu) {
+    const std::lock_guard lock(m_);
+    auto& t = tables_[nu];
+    if (!t) t = std::make_unique<DispersionTable>(DispersionTable::up_to(nu, fa_));
+    return *t;
+  }
+
+ private:
+  double fa_;
+  std::mutex m_;
+  std::map<double, std::unique_ptr<DispersionTable>> tables_;
+};
+
+// The model of one target's record at θ.
+std::vector<double> model_of(const Shot& s, const Target& t, const std::vector<double>& theta,
+                             Tables& tables) {
+  const std::size_t n = s.source.size();
+  std::vector<double> sum(n, 0.0), x, y(n);
+  FftPlans plans;
+  for (const Arrival& a : t.arrivals) {
+    x = s.source;
+    for (const Segment& seg : a.way) {
+      const ShotBar& b = s.bars[seg.bar];
+      const double c0 = theta[b.c], nu = theta[b.nu];
+      PropagationOptions po;
+      po.cutoff_fa_over_c0 = s.cutoff_Hz * b.radius_m / c0;
+      Propagator p(tables.of(nu), {b.radius_m, c0, nu}, po, &plans);
+      p.propagate(x, s.dt, seg.length(theta), y);
+      x.swap(y);
+    }
+    for (std::size_t i = 0; i < n; ++i) sum[i] += a.sign * x[i];
+  }
+  const double gain = t.gain ? theta[*t.gain] : 1.0;
+  if (t.delay) {
+    delay_by_interpolation(sum, theta[*t.delay] / s.dt, y);
+    sum.swap(y);
+  }
+  for (double& v : sum) v *= gain;
+  return sum;
+}
+
+std::string bar_key(const BarSpec& b) { return "bars." + b.name; }
+std::string gauge_key(const GaugeSpec& g) { return "gauges." + g.name; }
+
+Shot prepare_shot(const CalibrationShot& cs, Parameters& params, std::string& reference) {
+  const Scene& scene = cs.scene;
+  const std::string file = scene.file.string();
+  Shot s;
+  s.scene = cs.display;
+  if (scene.specimen)
+    throw input_error(file, "specimen", "\"" + scene.bars[*scene.specimen].name + "\"",
+                      "a calibration shot has no specimen (bars apart, or bars together)");
+  if (!scene.measurement || scene.measurement->channels.empty())
+    throw input_error(file, "measurement", "(missing)",
+                      "a calibration shot needs the measured signals of its gauges");
+  const GaugeSignals signals = read_gauge_signals(*scene.measurement, {});
+  // The gauged bars, left to right, with their measured gauges.
+  std::vector<std::size_t> gauged;
+  for (std::size_t b = 0; b < scene.bars.size(); ++b)
+    for (const auto& g : scene.bars[b].gauges)
+      if (signals.find(g.name) && (gauged.empty() || gauged.back() != b)) gauged.push_back(b);
+  if (gauged.empty() || gauged.size() > 2)
+    throw input_error(file, "measurement.channels", std::to_string(gauged.size()) + " gauged bars",
+                      "a calibration shot records one bar (bars apart) or two bars in contact "
+                      "(bars together)");
+  if (gauged.size() == 2 && gauged[1] != gauged[0] + 1)
+    throw input_error(file, "bars", "\"" + scene.bars[gauged[1]].name + "\"",
+                      "bars together: the two gauged bars must be neighbours");
+  s.kind = gauged.size() == 1 ? "bars apart" : "bars together";
+  for (std::size_t b : gauged) {
+    const BarSpec& bar = scene.bars[b];
+    const double c = bar.material.wave_speed_m_s();
+    ShotBar sb;
+    sb.radius_m = 0.5 * bar.diameter_m;
+    sb.c = params.add(bar_key(bar) + ".wave_speed_m_s", c, (1 - kWaveSpeedRange) * c,
+                      (1 + kWaveSpeedRange) * c, c);
+    const double nu = bar.material.poisson_ratio;
+    sb.nu = params.add(bar_key(bar) + ".poisson_ratio", nu, 0.05, 0.45, 0.3);
+    s.bars.push_back(sb);
+  }
+  auto position = [&](const BarSpec& bar, const GaugeSpec& g) {
+    return params.add(gauge_key(g) + ".position_m", g.position_m, 0.0, bar.length_m,
+                      std::max(bar.length_m, 0.1));
+  };
+  // The source: the first gauge the pulse passes (the leftmost on the struck bar).
+  const BarSpec& first = scene.bars[gauged[0]];
+  const GaugeSpec* src = nullptr;
+  for (const auto& g : first.gauges)
+    if (signals.find(g.name) && (!src || g.position_m < src->position_m)) src = &g;
+  s.source_gauge = src->name;
+  if (reference.empty()) reference = src->name;
+  const std::size_t ps = position(first, *src);
+  s.dt = signals.dt_s;
+  s.time_s = signals.time_s;
+  const std::size_t n = s.time_s.size();
+  auto prepared = [&](const std::string& gauge) {
+    const std::vector<double>& raw = *signals.find(gauge);
+    const Baseline b = estimate_baseline(raw);
+    std::vector<double> x(raw.size());
+    for (std::size_t i = 0; i < raw.size(); ++i) x[i] = raw[i] - b.level;
+    return std::pair{x, b};
+  };
+  auto [source, base] = prepared(src->name);
+  const auto pulse = find_first_pulse(source, {0.0, base.noise});
+  if (!pulse)
+    throw input_error(file, "measurement.channels", "gauge \"" + src->name + "\"",
+                      "its signal never rises above its noise: no pulse to calibrate with");
+  const auto margin =
+      static_cast<std::size_t>(kWindowMargin * static_cast<double>(pulse->end - pulse->onset));
+  const std::size_t keep0 = pulse->onset > margin ? pulse->onset - margin : 0;
+  const std::size_t keep1 = std::min(n, pulse->end + margin);
+  for (std::size_t i = 0; i < n; ++i)
+    if (i < keep0 || i >= keep1) source[i] = 0;
+  s.source = source;
+  s.peak = pulse->peak;
+  const auto striker = gauged[0] > 0 ? std::optional(gauged[0] - 1) : std::nullopt;
+  if (scene.measurement->striker_velocity_m_s && striker && scene.bars[*striker].has_material) {
+    const double zs = scene.bars[*striker].impedance_kg_s(), zb = first.impedance_kg_s();
+    s.strain_times_c = *scene.measurement->striker_velocity_m_s * zs / (zs + zb);
+    // The middle half of the pulse: past the front's dispersion ringing, before the tail's.
+    const std::size_t quarter = (pulse->end - pulse->onset) / 4;
+    const std::vector<double> middle(source.begin() + static_cast<long>(pulse->onset + quarter),
+                                     source.begin() + static_cast<long>(pulse->end - quarter));
+    s.plateau = std::abs(median(middle));
+    // Noise over the samples, and the ringing still on the plateau: the difference of the two
+    // halves' medians (a systematic part the noise does not show).
+    const auto half = static_cast<long>(middle.size() / 2);
+    const double drift = median({middle.begin(), middle.begin() + half}) -
+                         median({middle.begin() + half, middle.end()});
+    s.plateau_sd = std::hypot(
+        base.noise / std::sqrt(std::max<double>(1.0, static_cast<double>(middle.size()))), drift);
+  }
+  const DispersionSpec& ds = scene.measurement->dispersion;
+  const double c_src = first.material.wave_speed_m_s();
+  s.cutoff_Hz = ds.cutoff_Hz ? *ds.cutoff_Hz
+                             : (ds.cutoff_fa_c0 ? *ds.cutoff_fa_c0 : kDefaultCutoffFaOverC0) *
+                                   c_src / (0.5 * first.diameter_m);
+
+  // The ways of the returning pulses, to each measured gauge (docs/methods.md §11).
+  for (std::size_t k = 0; k < gauged.size(); ++k) {
+    const BarSpec& bar = scene.bars[gauged[k]];
+    const double L = bar.length_m;
+    for (const auto& g : bar.gauges) {
+      if (!signals.find(g.name)) continue;
+      Target t;
+      t.gauge = g.name;
+      const std::size_t pg = position(bar, g);
+      std::vector<Arrival> ways;
+      if (k == 0) {
+        if (&g != src) ways.push_back({1, {{0, 0, {{pg, 1}, {ps, -1}}}}});
+        if (gauged.size() == 1) {  // bars apart: the far end, the struck end, the far end again
+          ways.push_back({-1, {{0, 2 * L, {{pg, -1}, {ps, -1}}}}});
+          ways.push_back({1, {{0, 2 * L, {{pg, 1}, {ps, -1}}}}});
+          ways.push_back({-1, {{0, 4 * L, {{pg, -1}, {ps, -1}}}}});
+        }
+      } else {  // the transmitter: through the interface, then from its free far end
+        const Segment in{0, first.length_m, {{ps, -1}}};
+        ways.push_back({1, {in, {1, 0, {{pg, 1}}}}});
+        ways.push_back({-1, {in, {1, 2 * L, {{pg, -1}}}}});
+        ways.push_back({1, {in, {1, 2 * L, {{pg, 1}}}}});
+      }
+      // Only the pulses whose window lies in the record, at the nominal values.
+      std::vector<double> nominal(params.list().size());
+      for (std::size_t p = 0; p < nominal.size(); ++p) nominal[p] = params.list()[p].start;
+      std::vector<char> mask(n, 0);
+      for (const Arrival& a : ways) {
+        if (t.arrivals.size() == kMaxArrivals) break;
+        double travel = 0;
+        for (const Segment& seg : a.way) travel += seg.length(nominal) / nominal[s.bars[seg.bar].c];
+        const double shift = travel / s.dt;
+        const double from = static_cast<double>(keep0) + shift,
+                     to = static_cast<double>(keep1) + shift;
+        if (!(to < static_cast<double>(n))) break;
+        t.arrivals.push_back(a);
+        for (auto i = static_cast<std::size_t>(std::max(0.0, from));
+             i < static_cast<std::size_t>(to); ++i)
+          mask[i] = 1;
+      }
+      if (t.arrivals.empty()) continue;
+      for (std::size_t i = 0; i < n; ++i)
+        if (mask[i]) t.samples.push_back(i);
+      t.measured = prepared(g.name).first;
+      if (&g != src) {
+        if (src->name != reference)
+          throw input_error(file, "measurement.channels", "gauge \"" + src->name + "\"",
+                            "gains and delays are relative to one reference channel, \"" +
+                                reference +
+                                "\" (the first shot's first gauge): its shots must "
+                                "record it too");
+        t.gain = params.add(gauge_key(g) + ".gain", 1.0, 0.5, 2.0, 1.0);
+        t.delay = params.add(gauge_key(g) + ".delay_s", 0.0, -kMaxChannelDelay_s,
+                             kMaxChannelDelay_s, 1e-6);
+      }
+      s.targets.push_back(std::move(t));
+    }
+  }
+  if (s.targets.empty())
+    throw input_error(file, "measurement", s.scene,
+                      "the record ends before any pulse returns to a gauge: record longer (at "
+                      "least two bar lengths' travel after the first pulse)");
+  return s;
+}
+
+std::vector<double> shot_residuals(const Shot& s, const std::vector<double>& theta,
+                                   Tables& tables) {
+  std::vector<double> r;
+  for (const Target& t : s.targets) {
+    const auto m = model_of(s, t, theta, tables);
+    for (std::size_t i : t.samples) r.push_back((m[i] - t.measured[i]) / s.peak);
+  }
+  return r;
+}
+
+std::vector<std::size_t> shot_parameters(const Shot& s) {
+  std::vector<std::size_t> p;
+  for (const ShotBar& b : s.bars) p.insert(p.end(), {b.c, b.nu});
+  for (const Target& t : s.targets) {
+    if (t.gain) p.push_back(*t.gain);
+    if (t.delay) p.push_back(*t.delay);
+    for (const Arrival& a : t.arrivals)
+      for (const Segment& seg : a.way)
+        for (const auto& term : seg.terms) p.push_back(term.first);
+  }
+  std::sort(p.begin(), p.end());
+  p.erase(std::unique(p.begin(), p.end()), p.end());
+  return p;
+}
+
+std::string two_digits(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2g", x);
+  return text;
+}
+
+double rms(const std::vector<double>& r) {
+  double e = 0;
+  for (double v : r) e += v * v;
+  return r.empty() ? 0.0 : std::sqrt(e / static_cast<double>(r.size()));
+}
+
+}  // namespace
+
+CalibrationFit calibrate_bars(const std::vector<CalibrationShot>& input,
+                              const CalibrateOptions& options) {
+  Parameters params;
+  std::string reference;
+  std::vector<Shot> shots;
+  double fa_max = kDefaultCutoffFaOverC0;
+  for (const auto& cs : input) {
+    shots.push_back(prepare_shot(cs, params, reference));
+    for (const ShotBar& b : shots.back().bars)
+      fa_max = std::max(fa_max, shots.back().cutoff_Hz * b.radius_m /
+                                    ((1 - kWaveSpeedRange) * params.list()[b.c].start));
+  }
+  // Tabulated a little beyond the highest cut-off any trial wave speed asks for.
+  Tables tables(1.05 * fa_max);
+  const std::vector<LsParameter>& list = params.list();
+  std::vector<LsGroup> groups;
+  for (const Shot& s : shots) {
+    LsGroup g;
+    g.parameters = shot_parameters(s);
+    const Shot* shot = &s;
+    g.residuals = [shot, &tables](const std::vector<double>& theta) {
+      return shot_residuals(*shot, theta, tables);
+    };
+    std::size_t count = 0;
+    for (const Target& t : s.targets) count += t.samples.size();
+    g.loss_scale.assign(count, 1.0);
+    groups.push_back(std::move(g));
+  }
+  LsOptions lo;
+  lo.threads = options.threads;
+  lo.max_iterations = options.max_iterations;
+  lo.relative_step = 1e-4;
+  lo.progress = options.progress;
+  const LsResult r = solve_least_squares(list, groups, lo);
+
+  CalibrationFit fit;
+  fit.iterations = r.iterations;
+  fit.converged = r.converged;
+  fit.residuals = r.residuals;
+  fit.warnings = r.warnings;
+  // Uncertainties from the Jacobian at the optimum (columns scaled to unit norm, SVD): the
+  // directions weaker than kWeakDirection are left out and named.
+  const std::size_t p = list.size();
+  const Eigen::MatrixXd& jx = r.jacobian;  // d r / d x, x = θ / scale
+  if (jx.rows() == 0 || jx.cols() != static_cast<long>(p))
+    throw NumericalError("calibrate: the Jacobian at the solution cannot be evaluated");
+  Eigen::VectorXd norm(static_cast<long>(p));
+  for (std::size_t j = 0; j < p; ++j) {
+    const double v = jx.col(static_cast<long>(j)).norm();
+    norm(static_cast<long>(j)) = v > 0 ? v : 1.0;
+  }
+  const Eigen::MatrixXd js = jx * norm.cwiseInverse().asDiagonal();
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(js, Eigen::ComputeThinV);
+  const Eigen::VectorXd sv = svd.singularValues();
+  const Eigen::MatrixXd& v = svd.matrixV();
+  fit.reciprocal_condition = sv(0) > 0 ? sv(static_cast<long>(p) - 1) / sv(0) : 0.0;
+  const double dof = std::max(1.0, static_cast<double>(r.residuals) - static_cast<double>(p));
+  const double s2 = 2 * r.cost / dof;
+  Eigen::MatrixXd cov = Eigen::MatrixXd::Zero(static_cast<long>(p), static_cast<long>(p));
+  std::vector<double> weak_weight(p, 0.0);
+  for (long i = 0; i < static_cast<long>(p); ++i) {
+    if (sv(i) > kWeakDirection * sv(0)) {
+      cov += v.col(i) * v.col(i).transpose() / (sv(i) * sv(i));
+      continue;
+    }
+    std::string line = "the shots do not determine ";
+    bool first = true;
+    for (std::size_t j = 0; j < p; ++j) {
+      const double w = v(static_cast<long>(j), i);
+      weak_weight[j] += w * w;
+      if (std::abs(w) < 0.2) continue;
+      line += (first ? "" : ", ") + list[j].name + " (" + two_digits(w) + ")";
+      first = false;
+    }
+    fit.undetermined.push_back(line + ": that combination moves the residuals " +
+                               two_digits(sv(i) / sv(0)) +
+                               " times as much as the best-determined one");
+  }
+  for (std::size_t j = 0; j < p; ++j) {
+    FittedParameter fp{list[j].name, list[j].start, r.value[j], std::nullopt};
+    // A parameter with a tenth of its weight on an undetermined direction is not determined.
+    constexpr double kUndeterminedShare = 0.1;
+    if (weak_weight[j] < kUndeterminedShare && r.residuals > p)
+      fp.sd = std::sqrt(s2 * cov(static_cast<long>(j), static_cast<long>(j))) /
+              norm(static_cast<long>(j)) * list[j].scale;
+    fit.parameters.push_back(fp);
+  }
+
+  // The calibration: every bar and gauge of the shots, the fitted values replacing the nominal.
+  auto value = [&](const std::string& name) -> std::optional<CalibratedValue> {
+    for (const auto& fp : fit.parameters)
+      if (fp.name == name) return CalibratedValue{fp.value, fp.sd};
+    return std::nullopt;
+  };
+  Calibration& cal = fit.calibration;
+  cal.reference_gauge = reference;
+  for (const auto& cs : input)
+    for (const BarSpec& bar : cs.scene.bars) {
+      const auto c = value(bar_key(bar) + ".wave_speed_m_s");
+      if (c && std::none_of(cal.bars.begin(), cal.bars.end(),
+                            [&](const BarCalibration& b) { return b.bar == bar.name; }))
+        cal.bars.push_back(
+            {bar.name, *c, *value(bar_key(bar) + ".poisson_ratio"), bar.material.density_kg_m3});
+      for (const GaugeSpec& g : bar.gauges) {
+        const auto x = value(gauge_key(g) + ".position_m");
+        if (!x || std::any_of(cal.gauges.begin(), cal.gauges.end(),
+                              [&](const GaugeCalibration& o) { return o.gauge == g.name; }))
+          continue;
+        GaugeCalibration gc{g.name, bar.name, *x, {1.0, 0.0}, {0.0, 0.0}};
+        if (const auto gain = value(gauge_key(g) + ".gain")) gc.gain = *gain;
+        if (const auto delay = value(gauge_key(g) + ".delay_s")) gc.delay_s = *delay;
+        cal.gauges.push_back(gc);
+      }
+    }
+
+  // A measured striker velocity makes the gains absolute: the reference channel's gain is its
+  // recorded plateau over v Z_s / ((Z_s + Z_b) c0), with the fitted c0 (docs/methods.md §11).
+  double weight = 0, sum = 0;
+  for (const Shot& s : shots) {
+    if (!s.plateau || s.source_gauge != reference) continue;
+    const std::size_t ic = s.bars[0].c;
+    const double c = r.value[ic];
+    const double g = *s.plateau * c / *s.strain_times_c;
+    const auto sd_c = fit.parameters[ic].sd;
+    const double rel2 =
+        std::pow(s.plateau_sd / *s.plateau, 2) + (sd_c ? std::pow(*sd_c / c, 2) : 0);
+    const double w = 1 / std::max(rel2 * g * g, 1e-30);
+    sum += w * g, weight += w;
+  }
+  if (weight > 0) {
+    const double g = sum / weight, sd = std::sqrt(1 / weight);
+    cal.absolute_gain = true;
+    for (GaugeCalibration& gc : cal.gauges) {
+      if (gc.gauge == reference) {
+        gc.gain = {g, sd};
+        continue;
+      }
+      const double rel = gc.gain.sd ? *gc.gain.sd / gc.gain.value : 0.0;
+      gc.gain.sd =
+          gc.gain.sd ? std::optional(g * gc.gain.value * std::hypot(rel, sd / g)) : std::nullopt;
+      gc.gain.value *= g;
+    }
+    fit.parameters.push_back({"gauges." + reference + ".gain", 1.0, g, sd});
+  }
+
+  std::vector<double> nominal(p);
+  for (std::size_t j = 0; j < p; ++j) nominal[j] = list[j].start;
+  for (const Shot& s : shots) {
+    ShotSignals out;
+    out.scene = s.scene;
+    out.kind = s.kind;
+    out.source_gauge = s.source_gauge;
+    out.time_s = s.time_s;
+    out.source = s.source;
+    std::vector<double> rn, rf;
+    for (const Target& t : s.targets) {
+      out.gauges.push_back(t.gauge);
+      out.measured.push_back(t.measured);
+      out.nominal.push_back(model_of(s, t, nominal, tables));
+      out.fitted.push_back(model_of(s, t, r.value, tables));
+      std::vector<char> mask(s.time_s.size(), 0);
+      for (std::size_t i : t.samples) {
+        mask[i] = 1;
+        rn.push_back((out.nominal.back()[i] - t.measured[i]) / s.peak);
+        rf.push_back((out.fitted.back()[i] - t.measured[i]) / s.peak);
+      }
+      out.fitted_window.push_back(std::move(mask));
+    }
+    out.rms_nominal = rms(rn);
+    out.rms_fitted = rms(rf);
+    fit.shots.push_back(std::move(out));
+  }
+  return fit;
+}
+
+}  // namespace shpb

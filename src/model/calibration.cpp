@@ -1,0 +1,134 @@
+#include "model/calibration.hpp"
+
+#include "core/error.hpp"
+#include "core/file_digest.hpp"
+#include "core/json_document.hpp"
+#include "core/json_value.hpp"
+#include "model/scene.hpp"
+
+namespace shpb {
+namespace {
+
+nlohmann::json value_json(const CalibratedValue& v) {
+  return {{"value", v.value}, {"sd", v.sd ? nlohmann::json(*v.sd) : nlohmann::json()}};
+}
+
+CalibratedValue read_value(const JsonValue& v, Dimension d, double lo, double hi) {
+  const auto o = v.object({"value", "sd"});
+  CalibratedValue c;
+  c.value = o.require("value", "the fitted value").quantity_in(d, lo, hi, true, true);
+  if (auto sd = o.get("sd"); sd && !sd->json().is_null()) c.sd = sd->non_negative_quantity(d);
+  return c;
+}
+
+}  // namespace
+
+nlohmann::json calibration_to_json(const Calibration& c) {
+  nlohmann::json bars = nlohmann::json::array(), gauges = nlohmann::json::array();
+  for (const auto& b : c.bars)
+    bars.push_back(
+        {{"bar", b.bar},
+         {"wave_speed_m_s", value_json(b.wave_speed_m_s)},
+         {"poisson_ratio", value_json(b.poisson_ratio)},
+         {"density_kg_m3", b.density_kg_m3},
+         {"youngs_modulus_Pa", b.density_kg_m3 * b.wave_speed_m_s.value * b.wave_speed_m_s.value}});
+  for (const auto& g : c.gauges)
+    gauges.push_back({{"gauge", g.gauge},
+                      {"bar", g.bar},
+                      {"position_m", value_json(g.position_m)},
+                      {"gain", value_json(g.gain)},
+                      {"delay_s", value_json(g.delay_s)}});
+  return {{"format", "shpb calibration 1"},
+          {"reference_gauge", c.reference_gauge},
+          {"absolute_gain", c.absolute_gain},
+          {"bars", bars},
+          {"gauges", gauges},
+          {"provenance", c.provenance}};
+}
+
+Calibration read_calibration_file(const std::filesystem::path& file) {
+  const std::string display = file.string();
+  const nlohmann::json j = read_json_object_file(file, display);
+  const JsonValue root(j, display, "");
+  const auto o = root.object({"format", "version", "command", "reference_gauge", "absolute_gain",
+                              "bars", "gauges", "provenance"});
+  const auto format = o.require("format", "\"shpb calibration 1\" (a file `shpb calibrate` wrote)");
+  if (format.string() != "shpb calibration 1")
+    throw format.error("expected \"shpb calibration 1\" (a file `shpb calibrate` wrote)");
+  Calibration c;
+  if (auto r = o.get("reference_gauge")) c.reference_gauge = r->string();
+  if (auto a = o.get("absolute_gain")) c.absolute_gain = a->boolean();
+  for (const auto& b : o.require("bars", "a list of calibrated bars").array()) {
+    const auto bo =
+        b.object({"bar", "wave_speed_m_s", "poisson_ratio", "density_kg_m3", "youngs_modulus_Pa"});
+    BarCalibration bc;
+    bc.bar = bo.require("bar", "the bar's name").name();
+    // Wave speeds of solids lie between about 100 m/s (soft polymers) and 20 km/s.
+    bc.wave_speed_m_s = read_value(bo.require("wave_speed_m_s", "{\"value\", \"sd\"}"),
+                                   Dimension::kVelocity, 0, 20000);
+    bc.poisson_ratio = read_value(bo.require("poisson_ratio", "{\"value\", \"sd\"}"),
+                                  Dimension::kDimensionless, 0, 0.5);
+    if (auto d = bo.get("density_kg_m3"))
+      bc.density_kg_m3 = d->positive_quantity(Dimension::kDensity);
+    c.bars.push_back(bc);
+  }
+  for (const auto& g : o.require("gauges", "a list of calibrated gauges").array()) {
+    const auto go = g.object({"gauge", "bar", "position_m", "gain", "delay_s"});
+    GaugeCalibration gc;
+    gc.gauge = go.require("gauge", "the gauge's name").name();
+    if (auto b = go.get("bar")) gc.bar = b->string();
+    gc.position_m =
+        read_value(go.require("position_m", "{\"value\", \"sd\"}"), Dimension::kLength, -1e3, 1e3);
+    gc.gain =
+        read_value(go.require("gain", "{\"value\", \"sd\"}"), Dimension::kDimensionless, 0, 1e6);
+    gc.delay_s = read_value(go.require("delay_s", "{\"value\", \"sd\"}"), Dimension::kTime, -1, 1);
+    c.gauges.push_back(gc);
+  }
+  if (auto p = o.get("provenance")) c.provenance = p->json();
+  return c;
+}
+
+void apply_calibration(Scene& scene, const Calibration& c, const std::filesystem::path& file) {
+  const std::string where = scene.file.string();
+  for (const auto& b : c.bars) {
+    BarSpec* bar = nullptr;
+    for (auto& s : scene.bars)
+      if (s.name == b.bar) bar = &s;
+    if (!bar || !bar->has_material)
+      throw input_error(where, "calibration", file.string(),
+                        "calibrates bar \"" + b.bar +
+                            "\", which the scene does not have (with a material): a calibration "
+                            "of other bars");
+    MaterialSpec& m = bar->material;
+    m.youngs_modulus_Pa = m.density_kg_m3 * b.wave_speed_m_s.value * b.wave_speed_m_s.value;
+    m.poisson_ratio = b.poisson_ratio.value;
+  }
+  for (const auto& g : c.gauges) {
+    GaugeSpec* gauge = nullptr;
+    BarSpec* on = nullptr;
+    for (auto& s : scene.bars)
+      for (auto& x : s.gauges)
+        if (x.name == g.gauge) gauge = &x, on = &s;
+    if (!gauge || (!g.bar.empty() && on->name != g.bar))
+      throw input_error(where, "calibration", file.string(),
+                        "calibrates gauge \"" + g.gauge + "\" on bar \"" + g.bar +
+                            "\", which the scene does not have: a calibration of other bars");
+    if (!(g.position_m.value >= 0 && g.position_m.value <= on->length_m))
+      throw input_error(where, "calibration", file.string(),
+                        "places gauge \"" + g.gauge + "\" off its bar (at " +
+                            std::to_string(g.position_m.value) + " m)");
+    gauge->position_m = g.position_m.value;
+    if (scene.measurement)
+      for (ChannelSpec& ch : scene.measurement->channels)
+        if (ch.gauge == g.gauge)
+          ch.calibrated_gain = g.gain.value, ch.calibrated_delay_s = g.delay_s.value;
+  }
+  scene.calibration_file = file;
+}
+
+nlohmann::json calibration_summary(const Scene& scene) {
+  if (scene.calibration_file.empty()) return nullptr;
+  return input_digests({scene.calibration_file}).at(0);
+}
+
+}  // namespace shpb
