@@ -543,14 +543,23 @@ PYBIND11_MODULE(_shpb, m) {
 
   m.def(
       "_process",
-      [](const Scene& scene, const std::optional<std::filesystem::path>& signals) {
+      [](const Scene& scene, const std::optional<std::filesystem::path>& signals, std::size_t draws,
+         std::uint64_t seed) {
         auto p = std::make_shared<Processing>();
         p->scene = scene;
-        p->outcome = run_released([&] { return process_scene(p->scene, signals, false); });
+        MonteCarloOptions monte_carlo;
+        monte_carlo.draws = draws;
+        monte_carlo.seed = seed;
+        p->outcome = run_released([&] {
+          ProcessOutcome o = process_scene(p->scene, signals, false);
+          add_uncertainty(p->scene, monte_carlo, o);
+          return o;
+        });
         if (!p->outcome.failure.empty()) throw NumericalError(p->outcome.failure);
         return p;
       },
-      py::arg("scene"), py::arg("signals") = py::none());
+      py::arg("scene"), py::arg("signals") = py::none(), py::arg("draws") = kDefaultDraws,
+      py::arg("seed") = kDefaultSeed);
 
   // compare, study, fit and dispersion: the command's own function, writing its folder (or file)
   // where the Python side reads it back (python/shpb/__init__.py). The exit code is returned: 3

@@ -135,21 +135,24 @@ def simulate(scene, tolerance=None, threads=0, contact=None, stepping=None, cour
                                             full_model))
 
 
-@_with_help("process", """process(scene, signals=None) -> ProcessResult
+@_with_help("process", """process(scene, signals=None, draws=1000, seed=1) -> ProcessResult
 
 Reduces the scene's measured signals (its `measurement`), or `signals` (a gauges.csv written
 by `shpb simulate`, or a SimulationResult), to the pulses at the specimen faces and the
-1/2/3-wave stress-strain curve, as `shpb process` does; nothing is written until
-result.save(dir). Raises shpb.InputError for a bad scene or signal file, and
+1/2/3-wave stress-strain curve, as `shpb process` does; a `measurement.uncertainty` block is
+propagated by `draws` Monte Carlo draws from `seed` (the command's --draws, --seed). Nothing is
+written until result.save(dir). Raises shpb.InputError for a bad scene or signal file, and
 shpb.NumericalError when the reduction fails (the command's exit 3).""")
-def process(scene, signals=None):
+def process(scene, signals=None, draws=1000, seed=1):
     if not isinstance(scene, Scene):
         scene = Scene.load(os.fspath(scene))
     if isinstance(signals, SimulationResult):
         with tempfile.TemporaryDirectory(prefix="shpb-") as tmp:
             signals.save(os.path.join(tmp, "run"))
-            return ProcessResult(_shpb._process(scene, os.path.join(tmp, "run", "gauges.csv")))
-    return ProcessResult(_shpb._process(scene, None if signals is None else os.fspath(signals)))
+            return ProcessResult(_shpb._process(scene, os.path.join(tmp, "run", "gauges.csv"),
+                                                draws, seed))
+    return ProcessResult(_shpb._process(scene, None if signals is None else os.fspath(signals),
+                                        draws, seed))
 
 
 class FolderResult:

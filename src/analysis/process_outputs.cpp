@@ -328,10 +328,7 @@ ProcessedScene process_into(const std::filesystem::path& scene_file,
     write_bar_check(*p.bars, p.scene, scene_file.string(), output);
   } else {
     p.outcome = process_scene(p.scene, signals_file);
-    ProcessOutcome& o = *p.outcome;
-    if (monte_carlo && p.scene.measurement && p.scene.measurement->uncertainty && o.failure.empty())
-      o.uncertainty = propagate_uncertainty(p.scene, o.measurement, o.signals, o.options, o.result,
-                                            *monte_carlo);
+    if (monte_carlo) add_uncertainty(p.scene, *monte_carlo, *p.outcome);
     write_process_outputs(*p.outcome, p.scene, scene_file.string(), output);
   }
   return p;

@@ -122,6 +122,19 @@ ProcessOutcome process_scene(const Scene& scene,
   return o;
 }
 
+void add_uncertainty(const Scene& scene, const MonteCarloOptions& monte_carlo, ProcessOutcome& o) {
+  if (!scene.measurement || !scene.measurement->uncertainty || !o.failure.empty()) return;
+  // The block describes the lab's record (its gauges, channels, correction); simulated signals
+  // have none of those uncertainties.
+  if (o.simulated) {
+    o.warnings.push_back(
+        "measurement.uncertainty not propagated: the signals are simulated (--signals)");
+    return;
+  }
+  o.uncertainty =
+      propagate_uncertainty(scene, o.measurement, o.signals, o.options, o.result, monte_carlo);
+}
+
 namespace {
 
 // The reduction's own columns.

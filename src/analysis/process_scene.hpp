@@ -43,6 +43,10 @@ ProcessOutcome process_scene(const Scene& scene,
                              bool print_warnings = true);
 // curve.csv's columns in their order (docs/outputs.md): the primary reduction's rate, strain,
 // stress and true values lead; rows up to result.loading_end.
+// measurement.uncertainty propagated by Monte Carlo into o.uncertainty (analysis/uncertainty.hpp),
+// when the scene has the block, the signals are its measured record and the reduction succeeded;
+// simulated signals (--signals) get a warning instead.
+void add_uncertainty(const Scene& scene, const MonteCarloOptions& monte_carlo, ProcessOutcome& o);
 using CurveColumn = std::pair<const char*, const std::vector<double>*>;
 std::vector<CurveColumn> curve_columns(const ProcessOutcome& o);
 
