@@ -1,5 +1,8 @@
 #include "analysis/process_outputs.hpp"
 
+#include <cstdio>
+#include <string>
+
 #include "core/checked_write.hpp"
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
@@ -332,6 +335,43 @@ ProcessedScene process_into(const std::filesystem::path& scene_file,
     write_process_outputs(*p.outcome, p.scene, scene_file.string(), output);
   }
   return p;
+}
+
+std::string bar_check_headline(const BarCheckOutcome& o, const std::filesystem::path& output) {
+  char line[512];
+  std::snprintf(line, sizeof line,
+                "process: bars together, %s -> %s over %.4g m: RMS %.3g %% of peak with "
+                "Pochhammer-Chree dispersion, %.3g %% with a plain time shift -> %s",
+                o.setup.near_gauge.c_str(), o.setup.far_gauge.c_str(), o.setup.distance_m,
+                100 * o.result.rms_dispersion, 100 * o.result.rms_time_shift,
+                output.string().c_str());
+  return line;
+}
+
+std::string process_headline(const ProcessOutcome& o, const std::filesystem::path& output) {
+  const ProcessingResult& r = o.result;
+  char striker[80], rate[120];
+  if (o.setup.pulse_shaper)
+    std::snprintf(striker, sizeof striker, "striker not inferred (pulse shaper)");
+  else
+    std::snprintf(striker, sizeof striker, "striker ≈ %.4g m/s (inferred)",
+                  r.inferred_striker_velocity_m_s);
+  if (r.window_strain_rate_1_s)
+    std::snprintf(rate, sizeof rate, "mean strain rate over the rate window %.4g 1/s",
+                  *r.window_strain_rate_1_s);
+  else
+    std::snprintf(rate, sizeof rate, "%s strain rate %.4g 1/s",
+                  r.strain_rate_has_plateau ? "plateau" : "no plateau: mean",
+                  r.strain_rate_has_plateau ? r.plateau_strain_rate_1_s : r.mean_strain_rate_1_s);
+  std::string line(1024, '\0');
+  line.resize(static_cast<std::size_t>(std::snprintf(
+      line.data(), line.size(),
+      "process: window %.6g–%.6g s at the faces; %s; %s; peak %s stress %.4g MPa -> %s",
+      r.face_start_s, r.face_end_s, striker, rate,
+      std::string(enum_name(kPrimaryNames, o.options.primary)).c_str(), r.peak_stress_Pa / 1e6,
+      output.string().c_str())));
+  if (o.uncertainty) line.append("\n").append(uncertainty_headline(*o.uncertainty));
+  return line;
 }
 
 }  // namespace shpb

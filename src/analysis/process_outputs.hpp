@@ -32,4 +32,8 @@ ProcessedScene process_into(const std::filesystem::path& scene_file,
                             const std::filesystem::path& output,
                             const MonteCarloOptions* monte_carlo = nullptr);
 
+// The one-line summaries the command prints on stderr (with the uncertainty's line when drawn).
+std::string bar_check_headline(const BarCheckOutcome& o, const std::filesystem::path& output);
+std::string process_headline(const ProcessOutcome& o, const std::filesystem::path& output);
+
 }  // namespace shpb

@@ -17,15 +17,6 @@
 namespace shpb {
 namespace {
 
-void print_bar_check(const BarCheckOutcome& o, const std::filesystem::path& output) {
-  std::fprintf(stderr,
-               "process: bars together, %s -> %s over %.4g m: RMS %.3g %% of peak with "
-               "Pochhammer-Chree dispersion, %.3g %% with a plain time shift -> %s\n",
-               o.setup.near_gauge.c_str(), o.setup.far_gauge.c_str(), o.setup.distance_m,
-               100 * o.result.rms_dispersion, 100 * o.result.rms_time_shift,
-               output.string().c_str());
-}
-
 void reuse_heap_buffers() {
   // A long record passes through buffers of tens of MB (file, fields, columns, FFT): taken from
   // the heap and, once freed, reused instead of returned to the kernel and faulted in again
@@ -42,32 +33,9 @@ int run_process(const ProcessArgs& args) {
   reuse_heap_buffers();
   const ProcessedScene p = process_into(args.scene, args.signals, args.output, &args.monte_carlo);
   if (args.quiet) return 0;
-  if (p.bars) {
-    print_bar_check(*p.bars, args.output);
-  } else {
-    const ProcessOutcome& o = *p.outcome;
-    const ProcessingResult& r = o.result;
-    char striker[80], rate[120];
-    if (o.setup.pulse_shaper)
-      std::snprintf(striker, sizeof striker, "striker not inferred (pulse shaper)");
-    else
-      std::snprintf(striker, sizeof striker, "striker ≈ %.4g m/s (inferred)",
-                    r.inferred_striker_velocity_m_s);
-    if (r.window_strain_rate_1_s)
-      std::snprintf(rate, sizeof rate, "mean strain rate over the rate window %.4g 1/s",
-                    *r.window_strain_rate_1_s);
-    else
-      std::snprintf(rate, sizeof rate, "%s strain rate %.4g 1/s",
-                    r.strain_rate_has_plateau ? "plateau" : "no plateau: mean",
-                    r.strain_rate_has_plateau ? r.plateau_strain_rate_1_s : r.mean_strain_rate_1_s);
-    std::fprintf(stderr,
-                 "process: window %.6g–%.6g s at the faces; %s; %s; peak %s stress %.4g MPa -> "
-                 "%s\n",
-                 r.face_start_s, r.face_end_s, striker, rate,
-                 std::string(enum_name(kPrimaryNames, o.options.primary)).c_str(),
-                 r.peak_stress_Pa / 1e6, args.output.string().c_str());
-    if (o.uncertainty) std::fprintf(stderr, "%s\n", uncertainty_headline(*o.uncertainty).c_str());
-  }
+  const std::string headline =
+      p.bars ? bar_check_headline(*p.bars, args.output) : process_headline(*p.outcome, args.output);
+  std::fprintf(stderr, "%s\n", headline.c_str());
   return 0;
 }
 

@@ -14,7 +14,6 @@
 #include "app/commands.hpp"
 #include "app/progress.hpp"
 #include "core/error.hpp"
-#include "core/file_digest.hpp"
 #include "core/output_folder.hpp"
 #include "core/parallel_runner.hpp"
 #include "core/shards.hpp"
@@ -44,83 +43,50 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 // shpb study SCENE --plan DIR: DIR/plan.json, nothing run.
 int plan_study(const StudyArgs& args) {
-  const std::filesystem::path dir = *args.plan;
-  std::error_code ec;
-  if (std::filesystem::exists(dir, ec) && !std::filesystem::is_empty(dir, ec))
-    throw input_error(dir.string(), "", "", "exists and is not empty: plan into a new folder");
+  require_new_plan_folder(*args.plan);
   if (args.overrides.tolerance)  // the plan re-applies only the scene's own tolerance
     throw input_error("--tolerance", "", "",
                       "not with --plan: give simulation.tolerance in the scene");
   Scene scene = read_scene(args.scene);
   apply_overrides(args.overrides, scene);
-  StudyPlan plan = make_study_plan(study_options(args), scene);
-  plan.id = new_plan_id();
-  plan.scene = std::filesystem::absolute(args.scene).lexically_normal();
-  plan.scene_text = read_text(args.scene);
-  const std::vector<std::filesystem::path> inputs = scene_inputs(scene, false);
-  plan.inputs = input_digests(inputs);
-  OutputFolder out(dir, "study", inputs);
-  std::filesystem::create_directory(out.path() / "parts");
-  write_file_atomically(out.file("plan.json"), plan_text(plan));
-  out.commit();
+  const StudyPlan plan = write_study_plan(args.scene, scene, study_options(args), *args.plan);
+  const std::string dir = args.plan->string();
   if (!args.overrides.quiet)
     std::fprintf(stderr,
                  "study %s of %s: %zu runs planned in %s; next: shpb study --run %s --shard K/N, "
                  "then shpb study --merge %s\n",
-                 to_string(plan.sweep).c_str(), scene.name.c_str(), plan.runs(),
-                 dir.string().c_str(), dir.string().c_str(), dir.string().c_str());
+                 to_string(plan.sweep).c_str(), scene.name.c_str(), plan.runs(), dir.c_str(),
+                 dir.c_str(), dir.c_str());
   return 0;
 }
 
 // shpb study --run DIR --shard K/N: DIR/parts/K-of-N.json.
 int run_study_shard(const StudyArgs& args) {
-  const std::filesystem::path dir = *args.run, plan_file = dir / "plan.json";
   if (args.shard.empty()) throw input_error("--shard", "", "", "K/N is needed with --run DIR");
-  const Shard shard = parse_shard("--shard", args.shard);
-  const StudyPlan plan = read_study_plan(plan_file);
-  const std::filesystem::path part = dir / "parts" / (part_name(shard) + ".json");
-  if (std::filesystem::exists(part)) {
-    if (!args.overrides.quiet)
-      std::fprintf(stderr, "study: %s exists, shard skipped\n", part.string().c_str());
-    return 0;
-  }
-  const Scene scene = plan_scene(plan, plan_file);
+  parse_shard("--shard", args.shard);  // a bad K/N is said before the plan is read
+  const StudyPlan plan = read_study_plan(*args.run / "plan.json");
   const int threads = resolve_threads(args.overrides.threads);
-  const auto start = std::chrono::steady_clock::now();
-  const std::vector<std::size_t> runs = shard_runs(plan.runs(), shard);
-  StudyResults results;
-  run_plan(plan, scene, runs, threads,
-           progress_printer(args.overrides.quiet, to_string(plan.sweep)), results);
-  if (interrupted()) throw Interrupted();
-  nlohmann::ordered_json j = part_json(plan, results, runs);
-  j["shard"] = args.shard;
-  j["threads"] = threads;
-  j["wall_time_s"] = seconds_since(start);
-  std::filesystem::create_directories(part.parent_path());
-  write_file_atomically(part, j.dump() + "\n");
-  if (!args.overrides.quiet)
+  const ShardRun r = run_study_shard(plan, *args.run, args.shard, threads,
+                                     progress_printer(args.overrides.quiet, to_string(plan.sweep)));
+  if (args.overrides.quiet) return 0;
+  if (r.skipped)
+    std::fprintf(stderr, "study: %s exists, shard skipped\n", r.part.string().c_str());
+  else
     std::fprintf(stderr, "study %s shard %s: %zu runs in %.3g s on %d threads; wrote %s\n",
-                 to_string(plan.sweep).c_str(), args.shard.c_str(), runs.size(),
-                 seconds_since(start), threads, part.string().c_str());
+                 to_string(plan.sweep).c_str(), args.shard.c_str(), r.runs, r.wall_s, threads,
+                 r.part.string().c_str());
   return 0;
 }
 
 // shpb study --merge DIR [-o OUT]: the whole study from DIR's parts.
 int merge_study(const StudyArgs& args) {
-  const std::filesystem::path dir = *args.merge, plan_file = dir / "plan.json";
-  const StudyPlan plan = read_study_plan(plan_file);
-  const Scene scene = plan_scene(plan, plan_file);  // an input changed: said first
-  // The plan, its parts and the files they were computed from are this run's inputs.
-  std::vector<std::filesystem::path> inputs = {plan_file, dir / "parts"};
-  for (const auto& f : scene_inputs(scene, false)) inputs.push_back(f);
-  const MergedParts merged = merge_parts(plan, scene, dir);
-  OutputFolder out(args.output.empty() ? dir / "result" : args.output, "study", inputs);
-  write_study(plan, scene, merged.results, merged.threads, merged.wall_s, out.path());
-  out.commit();
+  const StudyPlan plan = read_study_plan(*args.merge / "plan.json");
+  const MergedStudy m = merge_study_parts(
+      plan, *args.merge, args.output.empty() ? *args.merge / "result" : args.output);
   if (!args.overrides.quiet)
     std::fprintf(stderr, "study %s of %s: merged %zu parts (%zu runs); wrote %s\n",
-                 to_string(plan.sweep).c_str(), scene.name.c_str(), merged.parts.size(),
-                 plan.runs(), out.final_path().string().c_str());
+                 to_string(plan.sweep).c_str(), m.scene_name.c_str(), m.parts, plan.runs(),
+                 m.folder.string().c_str());
   return 0;
 }
 

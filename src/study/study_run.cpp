@@ -1,6 +1,7 @@
 #include "study/study_run.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -9,9 +10,12 @@
 #include "core/file_digest.hpp"
 #include "core/output_folder.hpp"
 #include "core/parallel_runner.hpp"
+#include "core/shards.hpp"
 #include "model/run_overrides.hpp"
+#include "model/scene_inputs.hpp"
 #include "study/pareto_sweep.hpp"
 #include "study/stability_sweep.hpp"
+#include "study/study_report.hpp"
 
 namespace shpb {
 namespace {
@@ -133,6 +137,68 @@ MergedParts merge_parts(const StudyPlan& plan, const Scene& scene,
   }
   check_gauge_columns(plan, scene, m.parts, results);
   return m;
+}
+
+void require_new_plan_folder(const std::filesystem::path& dir) {
+  std::error_code ec;
+  if (std::filesystem::exists(dir, ec) && !std::filesystem::is_empty(dir, ec))
+    throw input_error(dir.string(), "", "", "exists and is not empty: plan into a new folder");
+}
+
+StudyPlan write_study_plan(const std::filesystem::path& scene_file, const Scene& scene,
+                           const StudyOptions& options, const std::filesystem::path& dir) {
+  require_new_plan_folder(dir);
+  StudyPlan plan = make_study_plan(options, scene);
+  plan.id = new_plan_id();
+  plan.scene = std::filesystem::absolute(scene_file).lexically_normal();
+  plan.scene_text = read_text(scene_file);
+  const std::vector<std::filesystem::path> inputs = scene_inputs(scene, false);
+  plan.inputs = input_digests(inputs);
+  OutputFolder out(dir, "study", inputs);
+  std::filesystem::create_directory(out.path() / "parts");
+  write_file_atomically(out.file("plan.json"), plan_text(plan));
+  out.commit();
+  return plan;
+}
+
+ShardRun run_study_shard(const StudyPlan& plan, const std::filesystem::path& dir,
+                         const std::string& shard_text, int threads,
+                         const std::function<void(std::size_t, std::size_t)>& progress) {
+  const Shard shard = parse_shard("--shard", shard_text);
+  ShardRun r;
+  r.part = dir / "parts" / (part_name(shard) + ".json");
+  if (std::filesystem::exists(r.part)) {
+    r.skipped = true;
+    return r;
+  }
+  const Scene scene = plan_scene(plan, dir / "plan.json");
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<std::size_t> runs = shard_runs(plan.runs(), shard);
+  StudyResults results;
+  run_plan(plan, scene, runs, threads, progress, results);
+  if (interrupted()) throw Interrupted();
+  nlohmann::ordered_json j = part_json(plan, results, runs);
+  j["shard"] = shard_text;
+  j["threads"] = threads;
+  r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  j["wall_time_s"] = r.wall_s;
+  std::filesystem::create_directories(r.part.parent_path());
+  write_file_atomically(r.part, j.dump() + "\n");
+  r.runs = runs.size();
+  return r;
+}
+
+MergedStudy merge_study_parts(const StudyPlan& plan, const std::filesystem::path& dir,
+                              const std::filesystem::path& output) {
+  const std::filesystem::path plan_file = dir / "plan.json";
+  const Scene scene = plan_scene(plan, plan_file);  // an input changed: said first
+  std::vector<std::filesystem::path> inputs = {plan_file, dir / "parts"};
+  for (const auto& f : scene_inputs(scene, false)) inputs.push_back(f);
+  const MergedParts merged = merge_parts(plan, scene, dir);
+  OutputFolder out(output, "study", inputs);
+  write_study(plan, scene, merged.results, merged.threads, merged.wall_s, out.path());
+  out.commit();
+  return {out.final_path(), merged.parts.size(), scene.name};
 }
 
 }  // namespace shpb

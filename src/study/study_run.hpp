@@ -48,4 +48,33 @@ struct MergedParts {
 MergedParts merge_parts(const StudyPlan& plan, const Scene& scene,
                         const std::filesystem::path& dir);
 
+// A plan goes into a new or empty folder: InputError otherwise.
+void require_new_plan_folder(const std::filesystem::path& dir);
+// --plan DIR: the plan of `scene` (read from `scene_file`, run overrides applied) written into an
+// empty or new DIR as DIR/plan.json with DIR/parts/, nothing run; InputError for a DIR in use.
+StudyPlan write_study_plan(const std::filesystem::path& scene_file, const Scene& scene,
+                           const StudyOptions& options, const std::filesystem::path& dir);
+
+// --run DIR --shard K/N: the shard's runs of DIR's plan into DIR/parts/K-of-N.json, atomically; a
+// part that exists is left as it is (`skipped`).
+struct ShardRun {
+  std::filesystem::path part;
+  std::size_t runs = 0;
+  double wall_s = 0;
+  bool skipped = false;
+};
+ShardRun run_study_shard(const StudyPlan& plan, const std::filesystem::path& dir,
+                         const std::string& shard_text, int threads,
+                         const std::function<void(std::size_t, std::size_t)>& progress);
+
+// --merge DIR [-o OUT]: the whole study from DIR's checked parts, written into `output` (the
+// plan, its parts and the files they were computed from are its inputs); returns the folder.
+struct MergedStudy {
+  std::filesystem::path folder;
+  std::size_t parts = 0;
+  std::string scene_name;
+};
+MergedStudy merge_study_parts(const StudyPlan& plan, const std::filesystem::path& dir,
+                              const std::filesystem::path& output);
+
 }  // namespace shpb
