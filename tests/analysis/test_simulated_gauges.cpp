@@ -6,8 +6,11 @@
 
 #include "analysis/processing.hpp"
 #include "solver/simulation.hpp"
+#include "specimen_truth.hpp"
 
 using namespace shpb;
+
+using shpb_test::moving_average;
 
 namespace {
 
@@ -30,17 +33,6 @@ double interpolate(const std::vector<double>& t, const std::vector<double>& y, d
 struct Agreement {
   double stress_rms, rate_rms, strain_max;
 };
-
-std::vector<double> moving_average(const std::vector<double>& y, std::size_t half) {
-  std::vector<double> out(y.size());
-  for (std::size_t i = 0; i < y.size(); ++i) {
-    const std::size_t a = i >= half ? i - half : 0, b = std::min(y.size(), i + half + 1);
-    double sum = 0;
-    for (std::size_t k = a; k < b; ++k) sum += y[k];
-    out[i] = sum / static_cast<double>(b - a);
-  }
-  return out;
-}
 
 Agreement process_simulation(const Scene& scene) {
   const SimulationResult sim = simulate(scene);

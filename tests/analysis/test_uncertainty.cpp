@@ -25,8 +25,11 @@
 #include "analysis/uncertainty.hpp"
 #include "dispersion/propagation.hpp"
 #include "solver/simulation.hpp"
+#include "specimen_truth.hpp"
 
 using namespace shpb;
+
+using shpb_test::moving_average;
 
 namespace {
 
@@ -54,17 +57,6 @@ constexpr double kCoverageLow = 0.93, kCoverageHigh = 0.97;
 // Points judged: in equilibrium (R <= 5 %), the stress at least 20 % of its peak, before the
 // incident pulse ends at the front face (unloading).
 constexpr double kLoadedFraction = 0.2;
-
-std::vector<double> moving_average(const std::vector<double>& y, std::size_t half) {
-  std::vector<double> out(y.size());
-  for (std::size_t i = 0; i < y.size(); ++i) {
-    const std::size_t a = i >= half ? i - half : 0, b = std::min(y.size(), i + half + 1);
-    double sum = 0;
-    for (std::size_t k = a; k < b; ++k) sum += y[k];
-    out[i] = sum / static_cast<double>(b - a);
-  }
-  return out;
-}
 
 StandardUncertainty relative(double u) { return {u, true, "test"}; }
 StandardUncertainty absolute(double u) { return {u, false, "test"}; }

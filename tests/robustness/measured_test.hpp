@@ -59,6 +59,15 @@ inline void measured_test(const fs::path& dir) {
   write_bytes(dir / "measured.json", kolsky_scene("aluminium.json", "sim/gauges.csv"));
 }
 
+// measured_test(dir) twice over: second.json a copy of measured.json, and c.json the campaign of
+// the two (tests "one" and "two").
+inline void measured_campaign(const fs::path& dir) {
+  measured_test(dir);
+  fs::copy_file(dir / "measured.json", dir / "second.json");
+  write_bytes(dir / "c.json", R"({"tests": [{"scene": "measured.json", "name": "one"},
+    {"scene": "second.json", "name": "two"}]})");
+}
+
 // One line, exit 2: how every refusal looks.
 inline void check_refused(const Outcome& o, const std::string& says) {
   INFO(o.err);

@@ -450,10 +450,7 @@ TEST_CASE("Campaign process -o holding a scene's measured file is refused and th
           "[robustness][lost-data]") {
   ScratchFolder scratch("lost");
   const fs::path dir = scratch.path() / "t";
-  measured_test(dir);
-  fs::copy_file(dir / "measured.json", dir / "second.json");
-  write_bytes(dir / "c.json", R"({"tests": [{"scene": "measured.json", "name": "one"},
-    {"scene": "second.json", "name": "two"}]})");
+  measured_campaign(dir);
   const auto before = snapshot(dir / "sim");
   for (const std::vector<std::string>& args :
        {std::vector<std::string>{"process", (dir / "measured.json").string(),

@@ -107,10 +107,7 @@ TEST_CASE("A scene or measured file edited after its campaign shard ran is named
           "[robustness][plans]") {
   ScratchFolder scratch("plans");
   const fs::path dir = scratch.path() / "t";
-  measured_test(dir);
-  fs::copy_file(dir / "measured.json", dir / "second.json");
-  write_bytes(dir / "c.json", R"({"tests": [{"scene": "measured.json", "name": "one"},
-    {"scene": "second.json", "name": "two"}]})");
+  measured_campaign(dir);
   const fs::path out = dir / "out";
   const auto campaign = [&](std::vector<std::string> more) {
     std::vector<std::string> a = {"process", "--campaign", (dir / "c.json").string(), "-o",
