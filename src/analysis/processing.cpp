@@ -347,18 +347,11 @@ std::vector<std::string> signal_warnings(const GaugeSignals& signals) {
   return warnings;
 }
 
-ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup& k,
-                                 const ProcessingOptions& options) {
-  ProcessingResult r;
-  r.warnings = signal_warnings(signals);
-  const auto* inc_raw = signals.find(k.incident_gauge);
-  const auto* tra_raw = signals.find(k.transmitted_gauge);
-  if (!inc_raw || !tra_raw) throw std::logic_error("process_signals: gauge without a signal");
-  const double dt = signals.dt_s;
-  const auto& t = signals.time_s;
-  const std::size_t n = t.size();
-  // The pulses are moved by the gauge distances: refuse a delay of more samples than any record
-  // holds before the propagation pads the signal by it.
+namespace {
+
+// The pulses are moved by the gauge distances: refuse a delay of more samples than any record
+// holds before the propagation pads the signal by it.
+void require_delays_fit(const KolskySetup& k, double dt, const std::string& scene_file) {
   for (const auto& [distance, c, gauge] :
        {std::tuple{k.incident_distance_m, k.front.c0_m_s, k.incident_gauge},
         std::tuple{k.transmitted_distance_m, k.back.c0_m_s, k.transmitted_gauge}})
@@ -367,112 +360,133 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
       std::snprintf(value, sizeof value,
                     "gauge \"%s\": delay %.3g s to the specimen = %.3g samples of %.3g s",
                     gauge.c_str(), distance / c, distance / (c * dt), dt);
-      throw input_error(options.scene_file, "measurement.time.unit", value,
+      throw input_error(scene_file, "measurement.time.unit", value,
                         "expected at most 2^24 samples: is the time unit right?");
     }
+}
 
-  // Baseline removed; polarity checked (the first large excursion of each gauge is compressive).
-  auto prepare = [&](const std::vector<double>& raw, const std::string& gauge) {
-    const Baseline b = estimate_baseline(raw);
-    std::vector<double> x(raw.size());
-    for (std::size_t i = 0; i < raw.size(); ++i) x[i] = raw[i] - b.level;
-    const auto p = find_first_pulse(x, {0.0, b.noise});
-    if (!p)
-      throw input_error(options.scene_file, "measurement.channels", "gauge \"" + gauge + "\"",
-                        "its signal never rises above its noise: no pulse to process");
-    if (p->sign > 0) {
-      for (double& v : x) v = -v;
-      r.inverted_gauges.push_back(gauge);
-      r.warnings.push_back("gauge \"" + gauge +
-                           (options.tension
-                                ? "\": its first pulse is compressive; a tension test's first "
-                                  "pulse is tensile, so the signal was inverted (check the "
-                                  "channel's `invert` and the measurement's `test`)"
-                                : "\": its first pulse is tensile; a compression test's first "
-                                  "pulse is compressive, so the signal was inverted (check the "
-                                  "channel's `invert`, or \"test\": \"tension\")"));
-    }
-    return std::pair{x, b.noise};
-  };
-  auto [inc, inc_noise] = prepare(*inc_raw, k.incident_gauge);
-  auto [tra, tra_noise] = prepare(*tra_raw, k.transmitted_gauge);
-
-  // Incident window on the gauge clock: detected, or the scene's.
-  std::size_t on = 0, end = 0;
-  if (options.windows.incident) {
-    const TimeWindow& w = *options.windows.incident;
-    if (w.start_s < t.front() || w.end_s > t.back())
-      throw input_error(options.scene_file, "measurement.windows.incident", "",
-                        "the window lies outside the record");
-    on = nearest_sample(t, w.start_s);
-    end = nearest_sample(t, w.end_s) + 1;
-    if (!(end > on + 2) || end > n)
-      throw input_error(options.scene_file, "measurement.windows.incident", "",
-                        "the window lies outside the record or is shorter than 3 samples");
-  } else {
-    const auto p = find_first_pulse(inc, {0.0, inc_noise});
-    on = p->onset;
-    end = p->end;
-    r.incident_window.detected = true;
+// A gauge's signal with its baseline removed, and its noise; polarity checked (the first large
+// excursion of each gauge is compressive, in the reduction's sign convention).
+struct PreparedSignal {
+  std::vector<double> x;
+  double noise = 0;
+};
+PreparedSignal prepared_signal(const std::vector<double>& raw, const std::string& gauge,
+                               const ProcessingOptions& options, ProcessingResult& r) {
+  const Baseline b = estimate_baseline(raw);
+  std::vector<double> x(raw.size());
+  for (std::size_t i = 0; i < raw.size(); ++i) x[i] = raw[i] - b.level;
+  const auto p = find_first_pulse(x, {0.0, b.noise});
+  if (!p)
+    throw input_error(options.scene_file, "measurement.channels", "gauge \"" + gauge + "\"",
+                      "its signal never rises above its noise: no pulse to process");
+  if (p->sign > 0) {
+    for (double& v : x) v = -v;
+    r.inverted_gauges.push_back(gauge);
+    r.warnings.push_back("gauge \"" + gauge +
+                         (options.tension
+                              ? "\": its first pulse is compressive; a tension test's first "
+                                "pulse is tensile, so the signal was inverted (check the "
+                                "channel's `invert` and the measurement's `test`)"
+                              : "\": its first pulse is tensile; a compression test's first "
+                                "pulse is compressive, so the signal was inverted (check the "
+                                "channel's `invert`, or \"test\": \"tension\")"));
   }
-  const double c_front = k.front.c0_m_s, c_back = k.back.c0_m_s;
-  const double duration = t[end - 1] - t[on];
-  r.incident_window = {k.incident_gauge, t[on], t[end - 1], r.incident_window.detected};
+  return {std::move(x), b.noise};
+}
 
-  // Shifts to the faces: incident forward by d_I, reflected back by d_I, transmitted back by d_T;
-  // manual reflected/transmitted windows add a pure time shift that puts their start at the
-  // incident's face start.
+// The incident pulse's samples [on, end) on the gauge clock: the scene's window, or detected.
+std::pair<std::size_t, std::size_t> incident_samples(const std::vector<double>& t,
+                                                     const PreparedSignal& inc,
+                                                     const ProcessingOptions& options,
+                                                     ProcessingResult& r) {
+  if (!options.windows.incident) {
+    const auto p = find_first_pulse(inc.x, {0.0, inc.noise});
+    r.incident_window.detected = true;
+    return {p->onset, p->end};
+  }
+  const TimeWindow& w = *options.windows.incident;
+  if (w.start_s < t.front() || w.end_s > t.back())
+    throw input_error(options.scene_file, "measurement.windows.incident", "",
+                      "the window lies outside the record");
+  const std::size_t on = nearest_sample(t, w.start_s), end = nearest_sample(t, w.end_s) + 1;
+  if (!(end > on + 2) || end > t.size())
+    throw input_error(options.scene_file, "measurement.windows.incident", "",
+                      "the window lies outside the record or is shorter than 3 samples");
+  return {on, end};
+}
+
+// Where the pulses are expected at the gauges and at the faces, where they were detected, and the
+// extra time shifts of the reflected and transmitted pulses after the move by the gauge distances.
+struct PulseTiming {
+  double duration = 0;    // the incident pulse's
+  double face_start = 0;  // the incident pulse's start at the front face
+  double extra_r = 0, extra_t = 0;
+  std::optional<double> reflected_onset_s, transmitted_onset_s;  // gauge clocks
+};
+PulseTiming time_the_pulses(const std::vector<double>& t, double dt, std::size_t on,
+                            std::size_t end, const PreparedSignal& inc, const PreparedSignal& tra,
+                            const KolskySetup& k, const ProcessingOptions& options,
+                            ProcessingResult& r) {
+  PulseTiming p;
+  const double c_front = k.front.c0_m_s, c_back = k.back.c0_m_s;
   const double d_i = k.incident_distance_m, d_t = k.transmitted_distance_m;
-  const double face_start = t[on] + d_i / c_front;
+  p.duration = t[end - 1] - t[on];
+  p.face_start = t[on] + d_i / c_front;
   const double expected_r = t[on] + 2 * d_i / c_front;
   const double expected_t = t[on] + d_i / c_front + k.specimen_transit_s + d_t / c_back;
   // Alignment check: where the reflected and transmitted pulses really start against where
   // geometry puts them.
-  std::optional<double> reflected_onset_s, transmitted_onset_s;  // gauge clocks
-  {
-    const auto i0 = index_at(t, t[end - 1]);
-    const auto i1 = index_at(t, expected_r + duration);
-    if (const auto o = find_onset(inc, {0.0, inc_noise}, +1.0, i0, i1)) {
-      reflected_onset_s = t[*o];
-      r.reflected_onset_offset_s = t[*o] - expected_r;
-    }
-    if (const auto p = find_first_pulse(tra, {0.0, tra_noise})) {
-      transmitted_onset_s = t[p->onset];
-      r.transmitted_onset_offset_s = t[p->onset] - expected_t;
-      std::size_t half = p->onset;  // first half-peak sample: the front's rise
-      while (half + 1 < p->end && p->sign * tra[half] < 0.5 * p->peak) ++half;
-      r.transmitted_rise_s = t[half] - t[p->onset];
-    }
-    if (!options.windows.reflected && !options.windows.transmitted)
-      check_alignment(r, k, dt, r.warnings);
+  const auto i0 = index_at(t, t[end - 1]);
+  const auto i1 = index_at(t, expected_r + p.duration);
+  if (const auto o = find_onset(inc.x, {0.0, inc.noise}, +1.0, i0, i1)) {
+    p.reflected_onset_s = t[*o];
+    r.reflected_onset_offset_s = t[*o] - expected_r;
   }
+  if (const auto q = find_first_pulse(tra.x, {0.0, tra.noise})) {
+    p.transmitted_onset_s = t[q->onset];
+    r.transmitted_onset_offset_s = t[q->onset] - expected_t;
+    std::size_t half = q->onset;  // first half-peak sample: the front's rise
+    while (half + 1 < q->end && q->sign * tra.x[half] < 0.5 * q->peak) ++half;
+    r.transmitted_rise_s = t[half] - t[q->onset];
+  }
+  if (!options.windows.reflected && !options.windows.transmitted)
+    check_alignment(r, k, dt, r.warnings);
   // Extra time shifts after the move by the gauge distances (docs/methods.md §6): a hand-set
   // window puts its start at the incident pulse's face start (a window is a time shift); with
   // "align": "onsets" each detected onset is put where geometry expects it.
-  double extra_r = 0, extra_t = 0;
   if (options.windows.reflected) {
-    extra_r = t[nearest_sample(t, options.windows.reflected->start_s)] - expected_r;
+    p.extra_r = t[nearest_sample(t, options.windows.reflected->start_s)] - expected_r;
   } else if (options.align == Alignment::kOnsets && r.reflected_onset_offset_s) {
-    extra_r = *r.reflected_onset_offset_s;
+    p.extra_r = *r.reflected_onset_offset_s;
     r.reflected_at_onset = true;
   }
   if (options.windows.transmitted) {
-    extra_t =
-        t[nearest_sample(t, options.windows.transmitted->start_s)] - d_t / c_back - face_start;
+    p.extra_t =
+        t[nearest_sample(t, options.windows.transmitted->start_s)] - d_t / c_back - p.face_start;
   } else if (options.align == Alignment::kOnsets && r.transmitted_onset_offset_s) {
-    extra_t = *r.transmitted_onset_offset_s;
+    p.extra_t = *r.transmitted_onset_offset_s;
     r.transmitted_at_onset = true;
   }
-  extra_r += options.reflected_shift_s;
-  extra_t += options.transmitted_shift_s;
+  p.extra_r += options.reflected_shift_s;
+  p.extra_t += options.transmitted_shift_s;
   r.shift_incident_s = d_i / c_front;
-  r.shift_reflected_s = -d_i / c_front - extra_r;
-  r.shift_transmitted_s = -d_t / c_back - extra_t;
-  r.reflected_window = {k.incident_gauge, expected_r + extra_r, expected_r + extra_r + duration,
-                        !options.windows.reflected};
+  r.shift_reflected_s = -d_i / c_front - p.extra_r;
+  r.shift_transmitted_s = -d_t / c_back - p.extra_t;
+  r.reflected_window = {k.incident_gauge, expected_r + p.extra_r,
+                        expected_r + p.extra_r + p.duration, !options.windows.reflected};
+  return p;
+}
 
-  // Propagation (Pochhammer–Chree or pure delay), strains and — with Tyas–Pope factors —
-  // separate stress pulses.
+// The three pulses at the faces, as strains (e*) and — with Tyas–Pope amplitude factors — as
+// stresses over the modulus (f*; the strains again without them).
+struct FacePulses {
+  std::vector<double> ei, er, et, fi, fr, ft;
+};
+FacePulses pulses_at_faces(const PreparedSignal& inc, const PreparedSignal& tra, double dt,
+                           const PulseTiming& timing, const KolskySetup& k,
+                           const ProcessingOptions& options, ProcessingResult& r) {
+  // Propagation (Pochhammer–Chree or pure delay).
   const DispersionSpec& ds = options.dispersion;
   PropagationOptions po;
   po.dispersion = ds.correction;
@@ -529,25 +543,36 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
     Propagator p(tab, w, o, &plans);
     return delayed(p.propagate(x, dt, distance), extra);
   };
+  const double d_i = k.incident_distance_m, d_t = k.transmitted_distance_m;
   const auto kin = ds.amplitude_factors ? AmplitudeFactor::kStrain : AmplitudeFactor::kNone;
-  const auto ei = moved(inc, k.front_waveguide, front, d_i, 0, kin);
-  const auto er = moved(inc, k.front_waveguide, front, -d_i, extra_r, kin);
-  const auto et = moved(tra, k.back_waveguide, back, -d_t, extra_t, kin);
-  std::vector<double> fi = ei, fr = er, ft = et;
+  FacePulses f;
+  f.ei = moved(inc.x, k.front_waveguide, front, d_i, 0, kin);
+  f.er = moved(inc.x, k.front_waveguide, front, -d_i, timing.extra_r, kin);
+  f.et = moved(tra.x, k.back_waveguide, back, -d_t, timing.extra_t, kin);
   if (ds.amplitude_factors) {
-    fi = moved(inc, k.front_waveguide, front, d_i, 0, AmplitudeFactor::kStress);
-    fr = moved(inc, k.front_waveguide, front, -d_i, extra_r, AmplitudeFactor::kStress);
-    ft = moved(tra, k.back_waveguide, back, -d_t, extra_t, AmplitudeFactor::kStress);
+    f.fi = moved(inc.x, k.front_waveguide, front, d_i, 0, AmplitudeFactor::kStress);
+    f.fr = moved(inc.x, k.front_waveguide, front, -d_i, timing.extra_r, AmplitudeFactor::kStress);
+    f.ft = moved(tra.x, k.back_waveguide, back, -d_t, timing.extra_t, AmplitudeFactor::kStress);
+  } else {
+    f.fi = f.ei, f.fr = f.er, f.ft = f.et;
   }
   if (ds.correction)
     r.cutoff_Hz =
         cutoff_fa(k.front_waveguide) * k.front_waveguide.c0_m_s / k.front_waveguide.radius_m;
+  return f;
+}
 
-  // Common window at the faces: the incident duration plus a tail, never reaching the next
-  // reflection of the incident pulse (2 d_I / c0 later) nor the record's end.
-  double face_end = face_start + (1 + kWindowTail) * duration;
-  face_end = std::min({face_end, face_start + 2 * d_i / c_front - dt, t.back()});
-  const std::size_t a = index_at(t, face_start), b = std::min(index_at(t, face_end) + 1, n);
+// The pulses cut to a common window at the faces — the incident duration plus a tail, never
+// reaching the next reflection of the incident pulse (2 d_I / c0 later) nor the record's end —
+// and reduced to the curve.
+void reduce_at_faces(const std::vector<double>& t, double dt, const FacePulses& f,
+                     const PulseTiming& timing, const KolskySetup& k,
+                     const ProcessingOptions& options, ProcessingResult& r) {
+  double face_end = timing.face_start + (1 + kWindowTail) * timing.duration;
+  face_end = std::min(
+      {face_end, timing.face_start + 2 * k.incident_distance_m / k.front.c0_m_s - dt, t.back()});
+  const std::size_t a = index_at(t, timing.face_start);
+  const std::size_t b = std::min(index_at(t, face_end) + 1, t.size());
   if (!(b > a + 4))
     throw input_error(options.scene_file, "measurement", "gauge \"" + k.incident_gauge + "\"",
                       "the pulse window at the specimen faces lies outside the record");
@@ -560,49 +585,49 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
                                v.begin() + static_cast<std::ptrdiff_t>(b));
   };
   r.time_s = cut(t);
-  r.incident = cut(ei);
-  r.reflected = cut(er);
-  r.transmitted = cut(et);
-  r.curve = reduce_pulses(r.incident, r.reflected, r.transmitted, cut(fi), cut(fr), cut(ft), dt,
-                          k.front, k.back, k.specimen);
+  r.incident = cut(f.ei);
+  r.reflected = cut(f.er);
+  r.transmitted = cut(f.et);
+  r.curve = reduce_pulses(r.incident, r.reflected, r.transmitted, cut(f.fi), cut(f.fr), cut(f.ft),
+                          dt, k.front, k.back, k.specimen);
+}
 
-  // Summary numbers.
-  const std::size_t m = r.time_s.size();
-  const std::size_t inc_end = std::min(m, index_at(r.time_s, face_start + duration));
-  r.incident_plateau_strain = plateau_level(r.incident, 0, inc_end, -1.0);
-  r.inferred_striker_velocity_m_s = striker_velocity_from_plateau(k, r.incident_plateau_strain);
-  const Curve& c = r.curve;
-  const bool one_wave = options.primary == PrimaryReduction::kOneWave;
-  r.primary = options.primary;
-  const std::vector<double>& strain = one_wave ? c.strain_1wave : c.strain;
-  const std::vector<double>& rate = one_wave ? c.strain_rate_1wave_1_s : c.strain_rate_1_s;
-  const std::vector<double>& s1 = c.stress_1wave_Pa;
-  // The curve ends with loading (docs/methods.md §6): at the primary strain's maximum or, earlier,
-  // at the first sample from which the 1-wave stress stays below (1 − f) × the peak it had
-  // reached. The transmitted face carries neither the front face's start-up ringing nor the
-  // incident–reflected alignment, and a drop that recovers (an early overshoot) is not the end.
+// The curve ends with loading (docs/methods.md §6): at the primary strain's maximum or, earlier,
+// at the first sample from which the 1-wave stress stays below (1 − f) × the peak it had
+// reached. The transmitted face carries neither the front face's start-up ringing nor the
+// incident–reflected alignment, and a drop that recovers (an early overshoot) is not the end.
+// Returns whether a load drop ended it.
+bool find_loading_end(const std::vector<double>& strain, const ProcessingOptions& options,
+                      ProcessingResult& r) {
+  const std::vector<double>& s1 = r.curve.stress_1wave_Pa;
   const auto strain_max =
       static_cast<std::size_t>(std::max_element(strain.begin(), strain.end()) - strain.begin());
   r.record_max_strain = strain[strain_max];
   r.loading_end = strain_max + 1;
   r.loading_end_how = "strain maximum";
-  if (options.load_drop > 0) {
-    std::vector<double> later(strain_max + 1);  // largest 1-wave stress from i to the maximum
-    later[strain_max] = s1[strain_max];
-    for (std::size_t i = strain_max; i-- > 0;) later[i] = std::max(s1[i], later[i + 1]);
-    double reached = 0;
-    for (std::size_t i = 0; i <= strain_max; ++i) {
-      reached = std::max(reached, s1[i]);
-      if (reached > 0 && later[i] < (1 - options.load_drop) * reached) {
-        r.loading_end = i;
-        r.loading_end_how =
-            fmt("load drop: the 1-wave stress fell below %.3g %% of the peak it had reached and "
-                "stayed there",
-                100 * (1 - options.load_drop));
-        break;
-      }
+  if (options.load_drop <= 0) return false;
+  std::vector<double> later(strain_max + 1);  // largest 1-wave stress from i to the maximum
+  later[strain_max] = s1[strain_max];
+  for (std::size_t i = strain_max; i-- > 0;) later[i] = std::max(s1[i], later[i + 1]);
+  double reached = 0;
+  for (std::size_t i = 0; i <= strain_max; ++i) {
+    reached = std::max(reached, s1[i]);
+    if (reached > 0 && later[i] < (1 - options.load_drop) * reached) {
+      r.loading_end = i;
+      r.loading_end_how =
+          fmt("load drop: the 1-wave stress fell below %.3g %% of the peak it had reached and "
+              "stayed there",
+              100 * (1 - options.load_drop));
+      return true;
     }
   }
+  return false;
+}
+
+// Peaks and strains over the loading, and a warning when a load drop ended the curve well short
+// of the record's strain maximum.
+void summarize_loading(bool one_wave, bool dropped, ProcessingResult& r) {
+  const Curve& c = r.curve;
   const std::size_t loaded = r.loading_end;
   auto largest = [loaded](const std::vector<double>& v) {
     return *std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(loaded));
@@ -613,7 +638,7 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
   r.max_strain_1wave = largest(c.strain_1wave);
   r.peak_stress_Pa = one_wave ? r.peak_stress_1wave_Pa : r.peak_stress_3wave_Pa;
   r.max_strain = one_wave ? r.max_strain_1wave : r.max_strain_3wave;
-  if (loaded <= strain_max && r.max_strain < (1 - kLoadDropStrainShortfall) * r.record_max_strain) {
+  if (dropped && r.max_strain < (1 - kLoadDropStrainShortfall) * r.record_max_strain) {
     r.loading_cut_short = true;
     r.warnings.push_back(
         fmt("the curve ends at a load drop at strain %.3g, short of the record's strain maximum "
@@ -621,94 +646,159 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
             "measurement.load_drop to false to keep the whole loading",
             r.max_strain, r.record_max_strain, (r.time_s[loaded - 1] - r.time_s[0]) * 1e6));
   }
-  judge_strain_rate(rate, loaded, r);
-  if (options.rate_window) {
-    const RateWindow& w = *options.rate_window;
-    double sum = 0;
-    std::size_t count = 0;
-    for (std::size_t i = 0; i < loaded; ++i) {
-      const double x = w.by_strain ? strain[i] : r.time_s[i];
-      if (x >= w.from && x <= w.to) sum += rate[i], ++count;
-    }
-    if (count == 0)
-      throw input_error(
-          options.scene_file, "measurement.rate_window",
-          w.by_strain ? fmt("strain %.4g to %.4g", w.from, w.to)
-                      : fmt("%.6g to %.6g us", w.from * 1e6, w.to * 1e6),
-          w.by_strain ? fmt("a range inside the loading (strain 0 to %.4g)", r.max_strain)
-                      : fmt("a range inside the loading (faces' clock, as curve.csv's time_s: "
-                            "%.6g to %.6g us)",
-                            r.time_s[0] * 1e6, r.time_s[loaded - 1] * 1e6));
-    r.window_strain_rate_1_s = sum / static_cast<double>(count);
+}
+
+// The mean strain rate over measurement.rate_window (by strain or by time on the faces' clock).
+void mean_rate_in_window(const std::vector<double>& strain, const std::vector<double>& rate,
+                         const ProcessingOptions& options, ProcessingResult& r) {
+  if (!options.rate_window) return;
+  const RateWindow& w = *options.rate_window;
+  const std::size_t loaded = r.loading_end;
+  double sum = 0;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < loaded; ++i) {
+    const double x = w.by_strain ? strain[i] : r.time_s[i];
+    if (x >= w.from && x <= w.to) sum += rate[i], ++count;
   }
-  // What the reflected pulse's onset offset does to the stress when it is not applied: the
-  // largest change of the 3-wave stress, ½ E_f A_f |Δε_R| / A_s, over the transmitted face's
-  // loading (1-wave stress ≥ 20 % of its peak), as a fraction of the 1-wave peak (§6).
-  r.area_ratio = k.front.area_m2 / k.specimen.area_m2;
-  const double s1_peak = *std::max_element(s1.begin(), s1.end());
-  std::vector<char> transmitted_loaded(m);
-  for (std::size_t i = 0; i < m; ++i)
-    transmitted_loaded[i] = s1[i] >= kMeanForceForEquilibrium * s1_peak;
-  auto stress_change = [&](const std::vector<double>& pulse, const BarSide& bar, double shift_s) {
-    const double change = largest_change_on_shift(pulse, shift_s / dt, transmitted_loaded);
-    return 0.5 * bar.youngs_modulus_Pa * bar.area_m2 * change / (k.specimen.area_m2 * s1_peak);
-  };
-  const bool stress_scale = s1_peak > 0;
-  if (stress_scale && r.reflected_onset_offset_s)
+  if (count == 0)
+    throw input_error(options.scene_file, "measurement.rate_window",
+                      w.by_strain ? fmt("strain %.4g to %.4g", w.from, w.to)
+                                  : fmt("%.6g to %.6g us", w.from * 1e6, w.to * 1e6),
+                      w.by_strain
+                          ? fmt("a range inside the loading (strain 0 to %.4g)", r.max_strain)
+                          : fmt("a range inside the loading (faces' clock, as curve.csv's time_s: "
+                                "%.6g to %.6g us)",
+                                r.time_s[0] * 1e6, r.time_s[loaded - 1] * 1e6));
+  r.window_strain_rate_1_s = sum / static_cast<double>(count);
+}
+
+// What a time shift of a pulse at the faces does to the stress: the largest change of the 3-wave
+// stress, ½ E_f A_f |Δε| / A_s, over the transmitted face's loading (1-wave stress ≥ 20 % of its
+// peak), as a fraction of the 1-wave peak (docs/methods.md §6).
+class ShiftStressError {
+ public:
+  ShiftStressError(const ProcessingResult& r, const KolskySetup& k, double dt)
+      : k_(k), dt_(dt), s1_peak_(max_of(r.curve.stress_1wave_Pa)) {
+    const std::vector<double>& s1 = r.curve.stress_1wave_Pa;
+    loaded_.resize(s1.size());
+    for (std::size_t i = 0; i < s1.size(); ++i)
+      loaded_[i] = s1[i] >= kMeanForceForEquilibrium * s1_peak_;
+  }
+  bool has_scale() const { return s1_peak_ > 0; }
+  double operator()(const std::vector<double>& pulse, const BarSide& bar, double shift_s) const {
+    const double change = largest_change_on_shift(pulse, shift_s / dt_, loaded_);
+    return 0.5 * bar.youngs_modulus_Pa * bar.area_m2 * change / (k_.specimen.area_m2 * s1_peak_);
+  }
+
+ private:
+  static double max_of(const std::vector<double>& v) {
+    return *std::max_element(v.begin(), v.end());
+  }
+  const KolskySetup& k_;
+  double dt_, s1_peak_;
+  std::vector<char> loaded_;
+};
+
+// The reflected pulse's onset offset, when it is not applied and changes the stress by more than
+// kShiftStressError: said, beside the gauge-position warning check_alignment may have given.
+void warn_reflected_offset(const ShiftStressError& stress_change, const KolskySetup& k, double dt,
+                           const ProcessingOptions& options, ProcessingResult& r) {
+  if (stress_change.has_scale() && r.reflected_onset_offset_s)
     r.reflected_offset_stress_error =
         stress_change(r.reflected, k.front, *r.reflected_onset_offset_s);
-  const double tol_samples = kAlignmentSamples * dt;
-  if (stress_scale && r.reflected_offset_stress_error && !options.windows.reflected &&
-      !r.reflected_at_onset && std::abs(*r.reflected_onset_offset_s) > tol_samples &&
-      *r.reflected_offset_stress_error > kShiftStressError) {
-    const std::string effect =
-        fmt("at this bar/specimen area ratio (%.3g) and strain rate (%.4g 1/s) that offset "
-            "changes the 3-wave stress by up to ",
-            r.area_ratio,
-            r.strain_rate_has_plateau ? r.plateau_strain_rate_1_s : r.mean_strain_rate_1_s) +
-        percent(*r.reflected_offset_stress_error) +
-        " of the 1-wave peak (the 2-wave stress twice that): if the onsets are right (a trigger "
-        "delay, a gauge position), set \"align\": \"onsets\"; \"primary\": \"1-wave\" "
-        "reports a stress that does not use the reflected pulse";
-    // One warning per offset: added to the gauge-position warning when check_alignment gave one.
-    const std::string position = "gauge \"" + k.incident_gauge + "\": the reflected pulse starts";
-    const auto given = std::find_if(r.warnings.begin(), r.warnings.end(),
-                                    [&](const auto& w) { return w.rfind(position, 0) == 0; });
-    if (given != r.warnings.end())
-      *given += "; " + effect;
-    else
-      r.warnings.push_back(
-          fmt("the reflected pulse starts %.3g us ", std::abs(*r.reflected_onset_offset_s) * 1e6) +
-          (*r.reflected_onset_offset_s < 0 ? "earlier" : "later") +
-          " than the gauge distances and wave speed put it; " + effect);
-  }
-  // A hand-set reflected or transmitted window is a time shift: one whose start is far from the
-  // detected onset moves the pulse by that much (docs/scene-format.md).
-  auto check_window = [&](const std::optional<TimeWindow>& w, const std::string& name,
-                          const std::optional<double>& onset_s, const std::vector<double>& pulse,
-                          const BarSide& bar) {
-    if (!w || !onset_s || !stress_scale) return;
-    const double off = t[nearest_sample(t, w->start_s)] - *onset_s;
-    if (std::abs(off) <= tol_samples) return;
-    const double error = stress_change(pulse, bar, -off);
-    if (error <= kShiftStressError) return;
+  if (!(stress_change.has_scale() && r.reflected_offset_stress_error &&
+        !options.windows.reflected && !r.reflected_at_onset &&
+        std::abs(*r.reflected_onset_offset_s) > kAlignmentSamples * dt &&
+        *r.reflected_offset_stress_error > kShiftStressError))
+    return;
+  const std::string effect =
+      fmt("at this bar/specimen area ratio (%.3g) and strain rate (%.4g 1/s) that offset "
+          "changes the 3-wave stress by up to ",
+          r.area_ratio,
+          r.strain_rate_has_plateau ? r.plateau_strain_rate_1_s : r.mean_strain_rate_1_s) +
+      percent(*r.reflected_offset_stress_error) +
+      " of the 1-wave peak (the 2-wave stress twice that): if the onsets are right (a trigger "
+      "delay, a gauge position), set \"align\": \"onsets\"; \"primary\": \"1-wave\" "
+      "reports a stress that does not use the reflected pulse";
+  // One warning per offset: added to the gauge-position warning when check_alignment gave one.
+  const std::string position = "gauge \"" + k.incident_gauge + "\": the reflected pulse starts";
+  const auto given = std::find_if(r.warnings.begin(), r.warnings.end(),
+                                  [&](const auto& w) { return w.rfind(position, 0) == 0; });
+  if (given != r.warnings.end())
+    *given += "; " + effect;
+  else
     r.warnings.push_back(
-        "measurement.windows." + name + fmt(" starts %.3g us ", std::abs(off) * 1e6) +
-        (off < 0 ? "before" : "after") +
-        fmt(" the pulse's detected onset (%.6g us): a window is a time shift, so it moves the "
-            "pulse %.3g us at the faces, which changes the 3-wave stress by up to ",
-            *onset_s * 1e6, std::abs(off) * 1e6) +
-        percent(error) +
-        " of the 1-wave peak; start the window at the onset, or leave it to detection");
-  };
-  check_window(options.windows.reflected, "reflected", reflected_onset_s, r.reflected, k.front);
-  check_window(options.windows.transmitted, "transmitted", transmitted_onset_s, r.transmitted,
-               k.back);
+        fmt("the reflected pulse starts %.3g us ", std::abs(*r.reflected_onset_offset_s) * 1e6) +
+        (*r.reflected_onset_offset_s < 0 ? "earlier" : "later") +
+        " than the gauge distances and wave speed put it; " + effect);
+}
+
+// A hand-set reflected or transmitted window is a time shift: one whose start is far from the
+// detected onset moves the pulse by that much (docs/scene-format.md).
+void warn_window_shift(const ShiftStressError& stress_change, const std::vector<double>& t,
+                       double dt, const std::optional<TimeWindow>& w, const std::string& name,
+                       const std::optional<double>& onset_s, const std::vector<double>& pulse,
+                       const BarSide& bar, ProcessingResult& r) {
+  if (!w || !onset_s || !stress_change.has_scale()) return;
+  const double off = t[nearest_sample(t, w->start_s)] - *onset_s;
+  if (std::abs(off) <= kAlignmentSamples * dt) return;
+  const double error = stress_change(pulse, bar, -off);
+  if (error <= kShiftStressError) return;
+  r.warnings.push_back(
+      "measurement.windows." + name + fmt(" starts %.3g us ", std::abs(off) * 1e6) +
+      (off < 0 ? "before" : "after") +
+      fmt(" the pulse's detected onset (%.6g us): a window is a time shift, so it moves the "
+          "pulse %.3g us at the faces, which changes the 3-wave stress by up to ",
+          *onset_s * 1e6, std::abs(off) * 1e6) +
+      percent(error) +
+      " of the 1-wave peak; start the window at the onset, or leave it to detection");
+}
+
+}  // namespace
+
+ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup& k,
+                                 const ProcessingOptions& options) {
+  ProcessingResult r;
+  r.warnings = signal_warnings(signals);
+  const auto* inc_raw = signals.find(k.incident_gauge);
+  const auto* tra_raw = signals.find(k.transmitted_gauge);
+  if (!inc_raw || !tra_raw) throw std::logic_error("process_signals: gauge without a signal");
+  const double dt = signals.dt_s;
+  const auto& t = signals.time_s;
+  require_delays_fit(k, dt, options.scene_file);
+  const PreparedSignal inc = prepared_signal(*inc_raw, k.incident_gauge, options, r);
+  const PreparedSignal tra = prepared_signal(*tra_raw, k.transmitted_gauge, options, r);
+  const auto [on, end] = incident_samples(t, inc, options, r);
+  r.incident_window = {k.incident_gauge, t[on], t[end - 1], r.incident_window.detected};
+  const PulseTiming timing = time_the_pulses(t, dt, on, end, inc, tra, k, options, r);
+  reduce_at_faces(t, dt, pulses_at_faces(inc, tra, dt, timing, k, options, r), timing, k, options,
+                  r);
+
+  // Summary numbers.
+  const std::size_t inc_end =
+      std::min(r.time_s.size(), index_at(r.time_s, timing.face_start + timing.duration));
+  r.incident_plateau_strain = plateau_level(r.incident, 0, inc_end, -1.0);
+  r.inferred_striker_velocity_m_s = striker_velocity_from_plateau(k, r.incident_plateau_strain);
+  const Curve& c = r.curve;
+  const bool one_wave = options.primary == PrimaryReduction::kOneWave;
+  r.primary = options.primary;
+  const std::vector<double>& strain = one_wave ? c.strain_1wave : c.strain;
+  const std::vector<double>& rate = one_wave ? c.strain_rate_1wave_1_s : c.strain_rate_1_s;
+  summarize_loading(one_wave, find_loading_end(strain, options, r), r);
+  judge_strain_rate(rate, r.loading_end, r);
+  mean_rate_in_window(strain, rate, options, r);
+  r.area_ratio = k.front.area_m2 / k.specimen.area_m2;
+  const ShiftStressError stress_change(r, k, dt);
+  warn_reflected_offset(stress_change, k, dt, options, r);
+  warn_window_shift(stress_change, t, dt, options.windows.reflected, "reflected",
+                    timing.reflected_onset_s, r.reflected, k.front, r);
+  warn_window_shift(stress_change, t, dt, options.windows.transmitted, "transmitted",
+                    timing.transmitted_onset_s, r.transmitted, k.back, r);
   double peak_force = 0;
-  for (std::size_t i = 0; i < loaded; ++i)
+  for (std::size_t i = 0; i < r.loading_end; ++i)
     peak_force = std::max(peak_force, c.force_front_N[i] + c.force_back_N[i]);
-  r.equilibrium = judge_equilibrium(c, r.time_s, loaded, peak_force);
-  check_one_and_two_wave(c, loaded, r, options, r.warnings);
+  r.equilibrium = judge_equilibrium(c, r.time_s, r.loading_end, peak_force);
+  check_one_and_two_wave(c, r.loading_end, r, options, r.warnings);
   if (r.equilibrium.holds_from_s)
     r.time_to_equilibrium_s = *r.equilibrium.holds_from_s - r.time_s[0];
   return r;
