@@ -1,4 +1,7 @@
-"""compare and dispersion from Python: the command's own function, so the command's files."""
+"""compare, dispersion, study and fit from Python: the command's own function, so the command's
+files."""
+import json
+
 import numpy as np
 
 import shpb
@@ -43,3 +46,43 @@ def test_compare_saves_the_commands_folder(tmp_path):
             assert list(got) == list(expected)
             for column in expected:
                 np.testing.assert_array_equal(np.asarray(got[column]), np.asarray(expected[column]))
+
+
+def same_folder(cmd, py, result, timing=("wall_time",)):
+    """The command's folder and result.save's hold the same files; their CSV tables are equal
+    column by column apart from measured times (a column whose name holds a `timing` word, and
+    the Pareto front over wall time, which is read from them)."""
+    names = sorted(p.name for p in cmd.iterdir())
+    assert names == sorted(p.name for p in py.iterdir())
+    for name in (n for n in names if n.endswith(".csv")):
+        expected = read_csv(cmd / name)
+        got = columns(result.tables[name[:-4]])
+        assert list(got) == list(expected), name
+        for column in expected:
+            if any(word in column for word in timing):
+                continue
+            np.testing.assert_array_equal(np.asarray(got[column]), np.asarray(expected[column]),
+                                          err_msg=f"{name}: {column}")
+    return names
+
+
+def test_study_is_the_commands_sweep(tmp_path):
+    # Accuracy against cost on the striker on a bar (exact reference): every method and step.
+    scene = SOURCE / "experiments" / "striker-on-bar" / "scene.json"
+    assert run_command("study", scene, "-o", tmp_path / "cmd", "--quiet")[0] == 0
+    result = shpb.study(scene)
+    assert result.exit_code == 0
+    result.save(tmp_path / "py")
+    assert "pareto.csv" in same_folder(tmp_path / "cmd", tmp_path / "py", result)
+
+
+def test_fit_is_the_commands_fit(tmp_path):
+    # The LANL copper campaign: the fitted material equals the command's, parameter by parameter.
+    campaign = SOURCE / "experiments" / "lanl-cu-ofe-273k" / "campaign.json"
+    assert run_command("fit", campaign, "-o", tmp_path / "cmd", "--quiet")[0] == 0
+    result = shpb.fit(campaign)
+    assert result.exit_code == 0
+    result.save(tmp_path / "py")
+    same_folder(tmp_path / "cmd", tmp_path / "py", result)
+    # fit.json is the fitted material file: the same parameters, to the last digit.
+    assert result.json["fit"] == json.loads((tmp_path / "cmd" / "fit.json").read_text())

@@ -70,7 +70,7 @@ struct Coverage {
 TEST_CASE(
     "The Monte Carlo bands of the 3-wave stress and strain rate cover the specimen's truth "
     "at 95 % when the lab's values are drawn from their declared uncertainties",
-    "[uncertainty]") {
+    "[release-only][uncertainty]") {
   const fs::path copper = fs::path(SHPB_SOURCE_DIR) / "specimens/ofhc-copper.json";
   const Scene truth =
       read_scene_text(shpb_test::synthetic_scene(18.5, copper, "asynchronous").dump(),

@@ -1,5 +1,5 @@
 #pragma once
-// Runs the real `shpb` executable (SHPB_EXE) as a user would, without a shell in between, and
+// Runs the real `shpb` executable (shpb_exe()) as a user would, without a shell in between, and
 // returns its exit code with stdout and stderr. spawn_shpb is the one way every test starts it.
 #include <fcntl.h>
 #include <spawn.h>
@@ -39,11 +39,23 @@ inline bool have_matplotlib() {
          std::system("python3 -c 'import matplotlib, numpy' >/dev/null 2>&1") == 0;
 }
 
+// The executable under test: $SHPB_EXE, which CTest sets to the sanitized build's for the sanitized
+// suite (CMakeLists.txt), else the optimised build's.
+inline const char* shpb_exe() {
+  const char* given = std::getenv("SHPB_EXE");
+  return given && *given ? given : SHPB_EXE;
+}
+
+// True in the sanitized test binary: the AddressSanitizer runtime is linked in (a weak reference
+// that the optimised binary leaves null).
+extern "C" void __asan_init() __attribute__((weak));
+inline bool running_sanitized() { return &__asan_init != nullptr; }
+
 // Starts `shpb args...` with stdout and stderr written to the files `out` and `err` (truncated;
 // "/dev/null" discards). Returns the child's pid, or -1 if it could not be started.
 inline pid_t spawn_shpb(const std::vector<std::string>& args, const std::filesystem::path& out,
                         const std::filesystem::path& err) {
-  std::vector<std::string> argv_text = {SHPB_EXE};
+  std::vector<std::string> argv_text = {shpb_exe()};
   argv_text.insert(argv_text.end(), args.begin(), args.end());
   std::vector<char*> argv;
   for (auto& a : argv_text) argv.push_back(a.data());
@@ -53,7 +65,7 @@ inline pid_t spawn_shpb(const std::vector<std::string>& args, const std::filesys
   posix_spawn_file_actions_addopen(&actions, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   pid_t pid = 0;
-  if (posix_spawn(&pid, SHPB_EXE, &actions, nullptr, argv.data(), environ) != 0) pid = -1;
+  if (posix_spawn(&pid, shpb_exe(), &actions, nullptr, argv.data(), environ) != 0) pid = -1;
   posix_spawn_file_actions_destroy(&actions);
   return pid;
 }

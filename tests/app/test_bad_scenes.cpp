@@ -349,21 +349,24 @@ TEST_CASE("Every bad scene exits 2 with one line naming the file and the JSON pa
   fs::remove_all(root);
 }
 
+// Every command reads a scene through the same reader, which the sanitized suite runs over the
+// whole table above and through simulate here; what differs between the commands is their output
+// folder, which the optimised suite checks for each.
 TEST_CASE("simulate writes nothing for a bad scene", "[app][bad-scenes]") {
   check_writes_nothing("simulate");
 }
-TEST_CASE("process writes nothing for a bad scene", "[app][bad-scenes]") {
+TEST_CASE("process writes nothing for a bad scene", "[release-only][app][bad-scenes]") {
   check_writes_nothing("process");
 }
-TEST_CASE("compare writes nothing for a bad scene", "[app][bad-scenes]") {
+TEST_CASE("compare writes nothing for a bad scene", "[release-only][app][bad-scenes]") {
   check_writes_nothing("compare");
 }
-TEST_CASE("study writes nothing for a bad scene", "[app][bad-scenes]") {
+TEST_CASE("study writes nothing for a bad scene", "[release-only][app][bad-scenes]") {
   check_writes_nothing("study");
 }
 
 TEST_CASE("Every command that takes a scene refuses a bad scene with the same line",
-          "[app][bad-scenes]") {
+          "[release-only][app][bad-scenes]") {
   // One validation (model/scene_validation.hpp after read_scene): whatever the command, the same
   // bad scene gives exit 2, the same one-line message and nothing written. `process --campaign`
   // and `fit` reach the scene through a campaign file naming it.

@@ -87,12 +87,13 @@ void check_tolerance_met(const std::string& experiment) {
 
 }  // namespace
 
-TEST_CASE("A tolerance of 1 % meets 1 % on the classic experiment, as predicted", "[tolerance]") {
+TEST_CASE("A tolerance of 1 % meets 1 % on the classic experiment, as predicted",
+          "[release-only][tolerance]") {
   check_tolerance_met("classic-al6061");
 }
 
 TEST_CASE("A tolerance of 1 % meets 1 % on the LANL copper experiment, as predicted",
-          "[tolerance]") {
+          "[release-only][tolerance]") {
   check_tolerance_met("lanl-cu-ofe-273k");
 }
 
@@ -101,18 +102,20 @@ TEST_CASE("A tolerance of 1 % meets 1 % on the striker-on-bar's exact solution, 
   check_tolerance_met("striker-on-bar");
 }
 
-TEST_CASE("A tolerance of 1 % meets 1 % on the bonded tension test, as predicted", "[tolerance]") {
+TEST_CASE("A tolerance of 1 % meets 1 % on the bonded tension test, as predicted",
+          "[release-only][tolerance]") {
   check_tolerance_met("tension-bonded");
 }
 
 TEST_CASE("A tolerance of 1 % meets 1 % on the LANL PMMA mini-Kolsky test, as predicted",
-          "[tolerance]") {
+          "[release-only][tolerance]") {
   // Its 10 us pulse is 100 samples: point samples would alias its fronts (a floor of about
   // 0.85 %, docs/methods.md §1.1); a run with a tolerance records through the anti-alias filter.
   check_tolerance_met("lanl-pmma13-mini-kolsky");
 }
 
-TEST_CASE("A tolerance of 1 % meets 1 % on the pulse shaper, as predicted", "[tolerance]") {
+TEST_CASE("A tolerance of 1 % meets 1 % on the pulse shaper, as predicted",
+          "[release-only][tolerance]") {
   // Its disc's plastic front is first order in the disc's element, as the specimen's, and its ties
   // converge with the mesh through the end segments (docs/methods.md §1.1, §3.6).
   check_tolerance_met("pulse-shaper");

@@ -85,7 +85,7 @@ void check_constant_rate(const MaterialSpec& spec, double rate, double final_str
 }  // namespace
 
 TEST_CASE("A Johnson-Cook point at constant strain rate follows its isothermal closed form",
-          "[model][material][johnson-cook]") {
+          "[release-only][model][material][johnson-cook]") {
   // Rates below (floored to ε̇0), above and far above the reference rate.
   for (double rate : {1e-3, 1e2, 5e3}) {
     SECTION("Al 6061-T6 at " + std::to_string(rate) + " /s") {
@@ -98,7 +98,7 @@ TEST_CASE("A Johnson-Cook point at constant strain rate follows its isothermal c
 }
 
 TEST_CASE("A Johnson-Cook point heated adiabatically follows the fine ODE solution",
-          "[model][material][johnson-cook]") {
+          "[release-only][model][material][johnson-cook]") {
   for (double rate : {1e-3, 1e2, 5e3}) {
     SECTION("Al 6061-T6 at " + std::to_string(rate) + " /s") {
       check_constant_rate(al6061(true), rate, 0.3);

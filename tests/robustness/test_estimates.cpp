@@ -50,13 +50,7 @@ std::string record_scene(const std::string& duration) {
 }  // namespace
 
 TEST_CASE("The memory estimate is within 30 % of the measured peak of a run",
-          "[robustness][estimates]") {
-#ifdef SHPB_SANITIZED
-  // AddressSanitizer's shadow memory and redzones roughly double a run's resident memory: the
-  // estimate is of the program, measured in the Release build.
-  WARN("SKIPPED: peak memory is not comparable under AddressSanitizer");
-  return;
-#endif
+          "[release-only][robustness][estimates]") {
   ScratchFolder scratch("estimate");
   for (const std::string duration : {"100 ms", "200 ms"}) {  // 1e6 and 2e6 samples
     INFO("duration " << duration);
@@ -98,17 +92,13 @@ TEST_CASE("A striker's free flight across a gap counts in the time estimate",
 }
 
 TEST_CASE("Running out of memory is a failed run (exit 3) saying so, not an internal error",
-          "[robustness][estimates]") {
-#if defined(__SANITIZE_ADDRESS__)
-  WARN("SKIPPED: AddressSanitizer reserves more address space than the limit below allows");
-  return;
-#endif
+          "[release-only][robustness][estimates]") {
   // 60 MB of address space: less than the ~70 MB the 100 ms record needs (test above).
   ScratchFolder scratch("estimate");
   write_bytes(scratch.path() / "scene.json", record_scene("100 ms"));
   const fs::path err = scratch.path() / "err.txt";
-  const std::string command = "ulimit -v 60000; exec " + std::string(SHPB_EXE) + " simulate " +
-                              (scratch.path() / "scene.json").string() + " -o " +
+  const std::string command = "ulimit -v 60000; exec " + std::string(shpb_test::shpb_exe()) +
+                              " simulate " + (scratch.path() / "scene.json").string() + " -o " +
                               (scratch.path() / "out").string() + " -q 2>" + err.string();
   const int status = std::system(command.c_str());
   REQUIRE(WIFEXITED(status));

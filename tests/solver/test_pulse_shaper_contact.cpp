@@ -85,7 +85,8 @@ TEST_CASE("At global steps the pulse shaper is released once, without chatter",
   check_released_once(simulate(pulse_shaper(Stepping::kGlobal)));
 }
 
-TEST_CASE("At global steps the gauges converge with the pulse shaper's mesh", "[solver][shaper]") {
+TEST_CASE("At global steps the gauges converge with the pulse shaper's mesh",
+          "[release-only][solver][shaper]") {
   auto gauges = [](int elements) { return shaper_gauges(Stepping::kGlobal, elements); };
   const TimeSeries reference = gauges(160);
   for (const char* gauge : {"incident", "transmitted"}) {
