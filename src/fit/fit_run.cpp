@@ -36,8 +36,8 @@ constexpr double kLossDelta = 0.02;
 
 // A wave speed is solved for as its change from the start, in units of half its bounds' width
 // (least_squares.hpp: the difference step is FitOptions::relative_step of max(|x|, 1)): relative
-// to its own value the step would be 5 % of c0, moving the reflected pulse by 8 µs on 1 m of bar,
-// far more than its rise; so ±5 % bounds step it by 0.25 % (0.4 µs of that round trip).
+// to its own value the step would be 5 % of c0, moving the LANL copper reflected pulse (0.76 m
+// beyond its gauge) by 7.7 µs, far more than its rise; ±5 % bounds step it by 0.25 % (0.4 µs).
 bool solved_as_change(const FitUnknown& u) {
   return u.test >= 0 && nuisance_is_wave_speed(u.nuisance);
 }

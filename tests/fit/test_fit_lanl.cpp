@@ -104,7 +104,7 @@ double incident_gauge_distance_m(const json& scene) {
 }
 }  // namespace
 
-// A whole fit (~180 simulations, 8–10 s in Release): the Release pass only; the lighter test below
+// A whole fit (~240 simulations, 6–10 s in Release): the Release pass only; the lighter test below
 // runs the same code paths under the sanitizers.
 TEST_CASE("fit with the bars' wave speeds freed finds the LANL round trip the lab timed",
           "[fit][experiment][data][release-only]") {
@@ -138,7 +138,7 @@ TEST_CASE("fit with the bars' wave speeds freed finds the LANL round trip the la
 
 TEST_CASE("fit frees the LANL incident bar's wave speed and the transmitted channel's delay",
           "[fit][experiment][data]") {
-  // One iteration of the signals stage with only the bars free (15 simulations): the wave speed
+  // One iteration of the signals stage with only the bars free (17 simulations): the wave speed
   // moves the round trip from 2d/c0 of the nominal bars towards the lab's timed one, and both
   // fitted pulses come closer to the measured ones.
   const fs::path experiment = kRoot / "experiments/lanl-cu-ofe-273k";
