@@ -122,8 +122,8 @@ namespace {
 // frame's one bar step apart, so ½ m v_{n−1/2} v_{n+1/2} misses the energy the frame carried into
 // the neighbour meanwhile (PMMA mini-Kolsky at C 0.9995: 0.8 % of the total at the first contact,
 // back at the next instant). Its kinetic energy at τ is the frame's discrete one, ½ m v_f− v_f+.
-// Zero at global steps (the two are the same velocities); finite links and end segments keep
-// theirs.
+// Zero at global steps (the two are the same velocities). A stiff finite link's end follows its
+// half-frame at the link's rate (contact_localized_finite.cpp); end segments keep their own.
 double tied_ends_kinetic_correction(const Chain& chain, std::size_t i, double tau) {
   const BarModel& bar = chain.bars[i];
   const BarState& st = chain.states[i];
@@ -131,12 +131,14 @@ double tied_ends_kinetic_correction(const Chain& chain, std::size_t i, double ta
   for (int side = 0; side < 2; ++side) {  // side 0: node 0 (interface i − 1's right end)
     if (side == 0 && i == 0) continue;
     const std::size_t k = side == 0 ? i - 1 : i;
-    if (k >= chain.interfaces.size() || chain.segment_at(k) || chain.interfaces[k].finite_links)
-      continue;
+    if (k >= chain.interfaces.size() || chain.segment_at(k)) continue;
     const InterfaceState& is = chain.interface_states[k];
-    if (std::isnan(tied_end_position(chain.interfaces[k], is, side == 0 ? 1 : 0, tau))) continue;
+    const int link = side == 0 ? 1 : 0;  // this end's link at interface k
+    if (std::isnan(tied_end_position(chain.interfaces[k], is, link, tau))) continue;
+    // Finite links: the end follows its half-frame behind the link, at the link's rate.
+    const double rate = chain.interfaces[k].finite_links ? is.link_v[link] : 0.0;
     const int node = side == 0 ? 0 : bar.nodes - 1;
-    correction += 0.5 * bar.mass_kg[node] * is.frame_v_before * is.frame_v -
+    correction += 0.5 * bar.mass_kg[node] * (is.frame_v_before - rate) * (is.frame_v - rate) -
                   node_kinetic_energy(bar, st, node);
   }
   return correction;
