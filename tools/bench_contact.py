@@ -7,7 +7,8 @@ Usage: tools/bench_contact.py [build/shpb]
 1. Energy error (summary.json energy_error) of every experiments/*/scene.json and the elastic
    classic scene at the default, --tolerance 0.5 / 1 / 3.5 / 10 % and --courant 0.995 / 0.9995 /
    0.9999 / 1 (asynchronous); '*' marks a run beyond 0.5 %, 'exit N' a refused or unstable one.
-2. For every experiment with a specimen: closings of each specimen face after its first release
+2. For every experiment with a specimen: closings of each specimen (and pulse shaper) face after
+   its first release
    (interfaces[].activations - 1), "meetings" (closings more than the specimen's L/c = 1 us apart,
    from interfaces.csv at the record's rate) and the largest contact force after the release over
    the loading peak, for rigid links and finite links (contact.stiffness_factor 1e4), asynchronous
@@ -114,7 +115,9 @@ def closings_table(work):
                 summary = json.load(open(os.path.join(out, 'summary.json')))
                 cells = []
                 for i in summary['interfaces']:
-                    if scene['specimen'] not in i['name'].split('-') or i['method'] == 'bonded':
+                    sides = i['name'].split('-')
+                    if (scene['specimen'] not in sides and 'shaper' not in sides) or \
+                            i['method'] == 'bonded':
                         continue
                     meetings, force = after_release(os.path.join(out, 'interfaces.csv'), i['name'])
                     cells.append(f"{i['name']} {max(0, i['activations'] - 1)} / {meetings} / "
