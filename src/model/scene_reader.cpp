@@ -59,7 +59,7 @@ class SceneReader {
     // Radial inertia is the closed form of a Kolsky specimen (model/specimen_response.hpp): a
     // bar squeezed between two others, the specimen or a pulse shaper.
     for (std::size_t i = 0; i < scene.bars.size(); ++i)
-      if (scene.bars[i].inertia && scene.specimen != i && (i == 0 || i + 1 == scene.bars.size()))
+      if (scene.bars[i].inertia && scene.specimen != i && !squeezed_bar(i, scene.bars.size()))
         throw JsonObject(items[i])
             .require("inertia", "")
             .error(

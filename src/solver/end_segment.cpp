@@ -37,7 +37,7 @@ void plan_end_segments(Chain& chain, const Scene& scene) {
     // a pulse shaper or a specimen: measured, the shaper's ties chattered without them (46/42
     // closings; 422/385 and 9 % of the energy created at C 0.9995), while a steel striker of 2.19
     // times the bar's step rang more with them (plateau std 0.10 -> 0.84 %).
-    const bool squeezed = fast > 0 && fast + 1 < chain.bars.size();
+    const bool squeezed = squeezed_bar(fast, chain.bars.size());
     const bool finite = im.method == ContactMethod::kLocalizedBipenalty && im.finite_links;
     if (!rigid && !(finite && squeezed)) continue;
     const int end = slow == k ? 1 : 0;

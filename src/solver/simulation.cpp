@@ -45,7 +45,7 @@ void configure_bar(BarModel& bar, const Scene& scene, std::size_t i, bool adapti
   // (the closed form is a Kolsky specimen's, docs/methods.md §8.2); two faces of different μ act
   // through their mean (first order).
   const bool squeezed =
-      (scene.specimen && *scene.specimen == i) || (i > 0 && i + 1 < scene.bars.size());
+      (scene.specimen && *scene.specimen == i) || squeezed_bar(i, scene.bars.size());
   if (!squeezed) return;
   const double left = i > 0 ? interface_friction(scene.contact, i - 1) : 0.0;
   const double right = i + 1 < scene.bars.size() ? interface_friction(scene.contact, i) : 0.0;
