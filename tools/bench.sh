@@ -12,7 +12,10 @@
 #  5. --tolerance 1 % on the experiments (skipped with BENCH_TOLERANCE=0), and the classic
 #     experiment at --tolerance 3.5 %, the tolerance whose meshes are as accurate as its automatic
 #     ones, beside them: time and gauge error against the study's reference;
-#  6. the Python module (tools/bench_python.py, when it is built): a loop of 100 classic runs
+#  6. tools/bench_contact.py (skipped with BENCH_CONTACT=0): every experiment's energy error at
+#     --tolerance 0.5-10 % and --courant 0.995-1, and the specimen faces' closings after unloading
+#     (rigid and finite links, asynchronous and global);
+#  7. the Python module (tools/bench_python.py, when it is built): a loop of 100 classic runs
 #     against the executable's solve time, two runs in two Python threads against serial.
 # Usage: tools/bench.sh [build-dir] [repetitions]
 set -euo pipefail
@@ -83,6 +86,12 @@ if [ "${BENCH_TOLERANCE:-1}" != 0 ]; then
   echo "== the classic experiment at --tolerance 3.5 % against its automatic meshes"
   "$BUILD"/bench_simulator --repeat "$REPEAT" --asynchronous-only --tolerance 0.035 \
     experiments/classic-al6061/scene.json
+fi
+
+# 6. Energy near C = 1 and the specimen faces' closings after unloading (docs/methods.md §3.7).
+if [ "${BENCH_CONTACT:-1}" != 0 ]; then
+  echo
+  /usr/bin/python3 tools/bench_contact.py "$BUILD"/shpb
 fi
 
 if [ -f "$BUILD"/python/shpb/__init__.py ]; then

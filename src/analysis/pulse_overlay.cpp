@@ -136,9 +136,8 @@ PulseOverlay::PulseOverlay(const Scene&, MeasuredPulses measured, bool dispersio
 }
 
 std::vector<double> PulseOverlay::dispersed(const std::vector<double>& y, double dt,
-                                            double distance_m, bool back) const {
-  const BarWaveguide& guide =
-      back ? measured_.setup.back_waveguide : measured_.setup.front_waveguide;
+                                            double distance_m, bool back,
+                                            const BarWaveguide& guide) const {
   Propagator prop(back ? *back_table_ : *front_table_, guide, PropagationOptions{});
   // Zeros after the record leave room for the delay d/c(f) (the output keeps the input's length);
   // ×1.25 covers the slowest phase velocity below the cut-off.
@@ -153,7 +152,7 @@ std::vector<double> PulseOverlay::dispersed(const std::vector<double>& y, double
 }
 
 Overlay PulseOverlay::overlay(const Scene& scene, const TimeSeries& simulated_gauges,
-                              double shift_s) const {
+                              double shift_s, double transmitted_delay_s) const {
   const MeasuredPulses& m = measured_;
   const KolskySetup& setup = m.setup;
   const std::string file = scene.file.string();
@@ -168,6 +167,11 @@ Overlay PulseOverlay::overlay(const Scene& scene, const TimeSeries& simulated_ga
   if (!w_sim)
     throw NumericalError(file + ": simulation: no incident pulse at gauge " + setup.incident_gauge);
   const double t_meas0 = m.time_s.front(), dt = m.dt_s;
+  // The bars' waveguides with the simulated scene's wave speeds (the same Poisson ratio: the
+  // tables are the measurement's).
+  BarWaveguide front = setup.front_waveguide, back = setup.back_waveguide;
+  front.c0_m_s = scene.bars[incident_bar].material.wave_speed_m_s();
+  back.c0_m_s = scene.bars[incident_bar + 2].material.wave_speed_m_s();
   Overlay o;
   // The two clocks meet at the incident pulses' front times (the trigger time of a measurement is
   // unknown): a time averaged over the whole front, so the record noise moves it little, and that
@@ -182,7 +186,7 @@ Overlay PulseOverlay::overlay(const Scene& scene, const TimeSeries& simulated_ga
   std::vector<double> dispersed_incident;
   double front_sim = front_time(s_inc, base_sim.level, *w_sim).sample;
   if (dispersion()) {
-    dispersed_incident = dispersed(s_inc, dt_sim, l_inc - setup.incident_distance_m, false);
+    dispersed_incident = dispersed(s_inc, dt_sim, l_inc - setup.incident_distance_m, false, front);
     const auto w = find_first_pulse(dispersed_incident, base_sim);
     if (w) front_sim = front_time(dispersed_incident, base_sim.level, *w).sample;
   }
@@ -233,7 +237,7 @@ Overlay PulseOverlay::overlay(const Scene& scene, const TimeSeries& simulated_ga
   o.raw_transmitted = on_measured_clock(s_tr, 0);
   o.incident = o.raw_incident;
   o.transmitted = o.raw_transmitted;
-  if (!dispersion() && setup.excess_delay_s_per_m == 0) return o;
+  if (!dispersion() && setup.excess_delay_s_per_m == 0 && transmitted_delay_s == 0) return o;
   // The incident gauge carries two pulses: split its record half-way between them.
   const std::size_t split =
       m.reflected_window ? (m.incident_window.end + m.reflected_window->onset) / 2 : n;
@@ -244,12 +248,14 @@ Overlay PulseOverlay::overlay(const Scene& scene, const TimeSeries& simulated_ga
     const double beyond_incident_m = p.transmitted           ? d + setup.transmitted_distance_m
                                      : p.name == "reflected" ? 2 * d
                                                              : 0;
-    const double delay_s = setup.excess_delay_s_per_m * beyond_incident_m;
+    const double delay_s = setup.excess_delay_s_per_m * beyond_incident_m +
+                           (p.transmitted ? transmitted_delay_s : 0.0);
     const std::vector<double>* arriving = p.transmitted ? &s_tr : &s_inc;
     std::vector<double> moved_here;
     if (dispersion()) {
       if (p.name != "incident")
-        moved_here = dispersed(*arriving, dt_sim, p.distance_m, p.transmitted);
+        moved_here =
+            dispersed(*arriving, dt_sim, p.distance_m, p.transmitted, p.transmitted ? back : front);
       arriving = p.name == "incident" ? &dispersed_incident : &moved_here;
     }
     const std::vector<double> moved = on_measured_clock(*arriving, -delay_s);

@@ -68,10 +68,12 @@ class PulseOverlay {
   const MeasuredPulses& measured() const { return measured_; }
   bool dispersion() const { return front_table_.has_value(); }
 
-  // Lays the simulated gauges (of `scene`) over the measurement, later by `shift_s`. Throws
-  // NumericalError if the simulation has no incident pulse. Safe to call from several threads at
-  // once.
-  Overlay overlay(const Scene& scene, const TimeSeries& simulated_gauges, double shift_s = 0) const;
+  // Lays the simulated gauges (of `scene`) over the measurement, later by `shift_s`, and the
+  // transmitted pulse later still by `transmitted_delay_s` (its channel's delay). Each pulse is
+  // dispersed with the wave speed of `scene`'s bars (which `fit` may free). Throws NumericalError
+  // if the simulation has no incident pulse. Safe to call from several threads at once.
+  Overlay overlay(const Scene& scene, const TimeSeries& simulated_gauges, double shift_s = 0,
+                  double transmitted_delay_s = 0) const;
 
  private:
   // A simulated gauge signal y (sample interval dt) as it arrives after `distance_m` of the front
@@ -79,7 +81,7 @@ class PulseOverlay {
   // distance/c0, the delay the 1D model already has; on y's own clock (longer by the room the
   // slowest components need).
   std::vector<double> dispersed(const std::vector<double>& y, double dt, double distance_m,
-                                bool back) const;
+                                bool back, const BarWaveguide& guide) const;
 
   MeasuredPulses measured_;
   std::optional<DispersionTable> front_table_, back_table_;

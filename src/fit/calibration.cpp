@@ -134,19 +134,21 @@ std::vector<double> model_of(const Shot& s, const Target& t, const std::vector<d
 std::string bar_key(const BarSpec& b) { return "bars." + b.name; }
 std::string gauge_key(const GaugeSpec& g) { return "gauges." + g.name; }
 
-Shot prepare_shot(const CalibrationShot& cs, Parameters& params, std::string& reference) {
-  const Scene& scene = cs.scene;
-  const std::string file = scene.file.string();
-  Shot s;
-  s.scene = cs.display;
+// ---- One shot's model (docs/methods.md §11, "The model"), stage by stage ----
+
+// The scene is a calibration shot: no specimen, and measured gauges.
+void check_shot_scene(const Scene& scene, const std::string& file) {
   if (scene.specimen)
     throw input_error(file, "specimen", "\"" + scene.bars[*scene.specimen].name + "\"",
                       "a calibration shot has no specimen (bars apart, or bars together)");
   if (!scene.measurement || scene.measurement->channels.empty())
     throw input_error(file, "measurement", "(missing)",
                       "a calibration shot needs the measured signals of its gauges");
-  const GaugeSignals signals = read_gauge_signals(*scene.measurement, {});
-  // The gauged bars, left to right, with their measured gauges.
+}
+
+// The gauged bars, left to right: one (bars apart) or two neighbours in contact (bars together).
+std::vector<std::size_t> gauged_bars(const Scene& scene, const GaugeSignals& signals,
+                                     const std::string& file) {
   std::vector<std::size_t> gauged;
   for (std::size_t b = 0; b < scene.bars.size(); ++b)
     for (const auto& g : scene.bars[b].gauges)
@@ -158,7 +160,13 @@ Shot prepare_shot(const CalibrationShot& cs, Parameters& params, std::string& re
   if (gauged.size() == 2 && gauged[1] != gauged[0] + 1)
     throw input_error(file, "bars", "\"" + scene.bars[gauged[1]].name + "\"",
                       "bars together: the two gauged bars must be neighbours");
-  s.kind = gauged.size() == 1 ? "bars apart" : "bars together";
+  return gauged;
+}
+
+// Each gauged bar's wave speed (within ±kWaveSpeedRange) and Poisson ratio as parameters.
+std::vector<ShotBar> bar_parameters(const Scene& scene, const std::vector<std::size_t>& gauged,
+                                    Parameters& params) {
+  std::vector<ShotBar> bars;
   for (std::size_t b : gauged) {
     const BarSpec& bar = scene.bars[b];
     const double c = bar.material.wave_speed_m_s();
@@ -168,121 +176,190 @@ Shot prepare_shot(const CalibrationShot& cs, Parameters& params, std::string& re
                       (1 + kWaveSpeedRange) * c, c);
     const double nu = bar.material.poisson_ratio;
     sb.nu = params.add(bar_key(bar) + ".poisson_ratio", nu, 0.05, 0.45, 0.3);
-    s.bars.push_back(sb);
+    bars.push_back(sb);
   }
-  auto position = [&](const BarSpec& bar, const GaugeSpec& g) {
-    return params.add(gauge_key(g) + ".position_m", g.position_m, 0.0, bar.length_m,
-                      std::max(bar.length_m, 0.1));
-  };
-  // The source: the first gauge the pulse passes (the leftmost on the struck bar).
-  const BarSpec& first = scene.bars[gauged[0]];
+  return bars;
+}
+
+// A gauge's position as a parameter, anywhere on its bar.
+std::size_t position_parameter(Parameters& params, const BarSpec& bar, const GaugeSpec& g) {
+  return params.add(gauge_key(g) + ".position_m", g.position_m, 0.0, bar.length_m,
+                    std::max(bar.length_m, 0.1));
+}
+
+// The source gauge: the first measured gauge the pulse passes (the leftmost on the struck bar).
+const GaugeSpec& source_gauge(const BarSpec& struck, const GaugeSignals& signals) {
   const GaugeSpec* src = nullptr;
-  for (const auto& g : first.gauges)
+  for (const auto& g : struck.gauges)
     if (signals.find(g.name) && (!src || g.position_m < src->position_m)) src = &g;
-  s.source_gauge = src->name;
-  if (reference.empty()) reference = src->name;
-  const std::size_t ps = position(first, *src);
-  s.dt = signals.dt_s;
-  s.time_s = signals.time_s;
-  const std::size_t n = s.time_s.size();
-  auto prepared = [&](const std::string& gauge) {
-    const std::vector<double>& raw = *signals.find(gauge);
-    const Baseline b = estimate_baseline(raw);
-    std::vector<double> x(raw.size());
-    for (std::size_t i = 0; i < raw.size(); ++i) x[i] = raw[i] - b.level;
-    return std::pair{x, b};
-  };
-  auto [source, base] = prepared(src->name);
-  const auto pulse = find_first_pulse(source, {0.0, base.noise});
+  return *src;
+}
+
+// A gauge's record less its baseline level, with that baseline (level and noise).
+std::pair<std::vector<double>, Baseline> baseline_removed(const GaugeSignals& signals,
+                                                          const std::string& gauge) {
+  const std::vector<double>& raw = *signals.find(gauge);
+  const Baseline b = estimate_baseline(raw);
+  std::vector<double> x(raw.size());
+  for (std::size_t i = 0; i < raw.size(); ++i) x[i] = raw[i] - b.level;
+  return std::pair{x, b};
+}
+
+// The source's first pulse and the samples kept around it, [keep0, keep1).
+struct SourceWindow {
+  PulseWindow pulse;
+  std::size_t keep0 = 0, keep1 = 0;
+};
+
+// The source pulse (docs/methods.md §11): the first pulse of the source gauge's record, the record
+// zeroed outside the pulse widened by kWindowMargin of its length at both ends.
+SourceWindow cut_source(std::vector<double>& source, double noise, const std::string& file,
+                        const std::string& gauge) {
+  const auto pulse = find_first_pulse(source, {0.0, noise});
   if (!pulse)
-    throw input_error(file, "measurement.channels", "gauge \"" + src->name + "\"",
+    throw input_error(file, "measurement.channels", "gauge \"" + gauge + "\"",
                       "its signal never rises above its noise: no pulse to calibrate with");
+  const std::size_t n = source.size();
   const auto margin =
       static_cast<std::size_t>(kWindowMargin * static_cast<double>(pulse->end - pulse->onset));
-  const std::size_t keep0 = pulse->onset > margin ? pulse->onset - margin : 0;
-  const std::size_t keep1 = std::min(n, pulse->end + margin);
+  SourceWindow w{*pulse, pulse->onset > margin ? pulse->onset - margin : 0, 0};
+  w.keep1 = std::min(n, pulse->end + margin);
   for (std::size_t i = 0; i < n; ++i)
-    if (i < keep0 || i >= keep1) source[i] = 0;
-  s.source = source;
-  s.peak = pulse->peak;
-  const auto striker = gauged[0] > 0 ? std::optional(gauged[0] - 1) : std::nullopt;
-  if (scene.measurement->striker_velocity_m_s && striker && scene.bars[*striker].has_material) {
-    const double zs = scene.bars[*striker].impedance_kg_s(), zb = first.impedance_kg_s();
-    s.strain_times_c = *scene.measurement->striker_velocity_m_s * zs / (zs + zb);
-    // The middle half of the pulse: past the front's dispersion ringing, before the tail's.
-    const std::size_t quarter = (pulse->end - pulse->onset) / 4;
-    const std::vector<double> middle(source.begin() + static_cast<long>(pulse->onset + quarter),
-                                     source.begin() + static_cast<long>(pulse->end - quarter));
-    s.plateau = std::abs(median(middle));
-    // Noise over the samples, and the ringing still on the plateau: the difference of the two
-    // halves' medians (a systematic part the noise does not show).
-    const auto half = static_cast<long>(middle.size() / 2);
-    const double drift = median({middle.begin(), middle.begin() + half}) -
-                         median({middle.begin() + half, middle.end()});
-    s.plateau_sd = std::hypot(
-        base.noise / std::sqrt(std::max<double>(1.0, static_cast<double>(middle.size()))), drift);
-  }
-  const DispersionSpec& ds = scene.measurement->dispersion;
-  const double c_src = first.material.wave_speed_m_s();
-  s.cutoff_Hz = ds.cutoff_Hz ? *ds.cutoff_Hz
-                             : (ds.cutoff_fa_c0 ? *ds.cutoff_fa_c0 : kDefaultCutoffFaOverC0) *
-                                   c_src / (0.5 * first.diameter_m);
+    if (i < w.keep0 || i >= w.keep1) source[i] = 0;
+  return w;
+}
 
-  // The ways of the returning pulses, to each measured gauge (docs/methods.md §11).
+// A measured striker velocity (docs/methods.md §11, "Absolute gains"): the strain the striker
+// gives the struck bar per unit of its wave speed, v Z_s / (Z_s + Z_b), and the source's plateau
+// with its standard error. Nothing without a velocity or a striker bar with a material.
+void striker_plateau(Shot& s, const Scene& scene, std::size_t struck, const SourceWindow& w,
+                     double noise) {
+  const auto striker = struck > 0 ? std::optional(struck - 1) : std::nullopt;
+  if (!scene.measurement->striker_velocity_m_s || !striker || !scene.bars[*striker].has_material)
+    return;
+  const double zs = scene.bars[*striker].impedance_kg_s(), zb = scene.bars[struck].impedance_kg_s();
+  s.strain_times_c = *scene.measurement->striker_velocity_m_s * zs / (zs + zb);
+  // The middle half of the pulse: past the front's dispersion ringing, before the tail's.
+  const std::size_t quarter = (w.pulse.end - w.pulse.onset) / 4;
+  const std::vector<double> middle(s.source.begin() + static_cast<long>(w.pulse.onset + quarter),
+                                   s.source.begin() + static_cast<long>(w.pulse.end - quarter));
+  s.plateau = std::abs(median(middle));
+  // Noise over the samples, and the ringing still on the plateau: the difference of the two
+  // halves' medians (a systematic part the noise does not show).
+  const auto half = static_cast<long>(middle.size() / 2);
+  const double drift = median({middle.begin(), middle.begin() + half}) -
+                       median({middle.begin() + half, middle.end()});
+  s.plateau_sd = std::hypot(
+      noise / std::sqrt(std::max<double>(1.0, static_cast<double>(middle.size()))), drift);
+}
+
+// The low-pass cut-off in Hz, the same in every leg (docs/methods.md §5, §11): the scene's
+// `measurement.dispersion`, else kDefaultCutoffFaOverC0 at the struck bar's nominal c0.
+double cutoff_of(const DispersionSpec& ds, const BarSpec& struck) {
+  const double c_src = struck.material.wave_speed_m_s();
+  return ds.cutoff_Hz ? *ds.cutoff_Hz
+                      : (ds.cutoff_fa_c0 ? *ds.cutoff_fa_c0 : kDefaultCutoffFaOverC0) * c_src /
+                            (0.5 * struck.diameter_m);
+}
+
+// The ways of the returning pulses to a gauge (position parameter pg) on the k-th gauged bar
+// (length L), the source gauge's position parameter ps on the struck bar (length L_I),
+// docs/methods.md §11.
+std::vector<Arrival> ways_to(std::size_t k, bool together, double L, double L_I, std::size_t pg,
+                             std::size_t ps, bool is_source) {
+  std::vector<Arrival> ways;
+  if (k == 0) {
+    if (!is_source) ways.push_back({1, {{0, 0, {{pg, 1}, {ps, -1}}}}});
+    if (!together) {  // bars apart: the far end, the struck end, the far end again
+      ways.push_back({-1, {{0, 2 * L, {{pg, -1}, {ps, -1}}}}});
+      ways.push_back({1, {{0, 2 * L, {{pg, 1}, {ps, -1}}}}});
+      ways.push_back({-1, {{0, 4 * L, {{pg, -1}, {ps, -1}}}}});
+    }
+  } else {  // the transmitter: through the interface, then from its free far end
+    const Segment in{0, L_I, {{ps, -1}}};
+    ways.push_back({1, {in, {1, 0, {{pg, 1}}}}});
+    ways.push_back({-1, {in, {1, 2 * L, {{pg, -1}}}}});
+    ways.push_back({1, {in, {1, 2 * L, {{pg, 1}}}}});
+  }
+  return ways;
+}
+
+// The target's arrivals: the first kMaxArrivals ways whose window (the source's, moved by the
+// travel at the nominal values) lies in the record; its compared samples are those windows.
+void keep_in_record(Target& t, const std::vector<Arrival>& ways, const Shot& s,
+                    const Parameters& params, const SourceWindow& w) {
+  const std::size_t n = s.time_s.size();
+  std::vector<double> nominal(params.list().size());
+  for (std::size_t p = 0; p < nominal.size(); ++p) nominal[p] = params.list()[p].start;
+  std::vector<char> mask(n, 0);
+  for (const Arrival& a : ways) {
+    if (t.arrivals.size() == kMaxArrivals) break;
+    double travel = 0;
+    for (const Segment& seg : a.way) travel += seg.length(nominal) / nominal[s.bars[seg.bar].c];
+    const double shift = travel / s.dt;
+    const double from = static_cast<double>(w.keep0) + shift,
+                 to = static_cast<double>(w.keep1) + shift;
+    if (!(to < static_cast<double>(n))) break;
+    t.arrivals.push_back(a);
+    for (auto i = static_cast<std::size_t>(std::max(0.0, from)); i < static_cast<std::size_t>(to);
+         ++i)
+      mask[i] = 1;
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    if (mask[i]) t.samples.push_back(i);
+}
+
+// A channel other than the source's: its gain and delay relative to the reference channel's.
+void channel_parameters(Target& t, const GaugeSpec& g, const std::string& source,
+                        const std::string& reference, Parameters& params, const std::string& file) {
+  if (source != reference)
+    throw input_error(file, "measurement.channels", "gauge \"" + source + "\"",
+                      "gains and delays are relative to one reference channel, \"" + reference +
+                          "\" (the first shot's first gauge): its shots must record it too");
+  t.gain = params.add(gauge_key(g) + ".gain", 1.0, 0.5, 2.0, 1.0);
+  t.delay =
+      params.add(gauge_key(g) + ".delay_s", 0.0, -kMaxChannelDelay_s, kMaxChannelDelay_s, 1e-6);
+}
+
+// One calibration shot: its bars, its source pulse and the targets (each measured gauge's record
+// with the ways of the pulses returning to it), its parameters added to `params`.
+Shot prepare_shot(const CalibrationShot& cs, Parameters& params, std::string& reference) {
+  const Scene& scene = cs.scene;
+  const std::string file = scene.file.string();
+  Shot s;
+  s.scene = cs.display;
+  check_shot_scene(scene, file);
+  const GaugeSignals signals = read_gauge_signals(*scene.measurement, {});
+  const std::vector<std::size_t> gauged = gauged_bars(scene, signals, file);
+  s.kind = gauged.size() == 1 ? "bars apart" : "bars together";
+  s.bars = bar_parameters(scene, gauged, params);
+  const BarSpec& struck = scene.bars[gauged[0]];
+  const GaugeSpec& src = source_gauge(struck, signals);
+  s.source_gauge = src.name;
+  if (reference.empty()) reference = src.name;
+  const std::size_t ps = position_parameter(params, struck, src);
+  s.dt = signals.dt_s;
+  s.time_s = signals.time_s;
+  auto [source, base] = baseline_removed(signals, src.name);
+  const SourceWindow w = cut_source(source, base.noise, file, src.name);
+  s.source = source;
+  s.peak = w.pulse.peak;
+  striker_plateau(s, scene, gauged[0], w, base.noise);
+  s.cutoff_Hz = cutoff_of(scene.measurement->dispersion, struck);
+
   for (std::size_t k = 0; k < gauged.size(); ++k) {
     const BarSpec& bar = scene.bars[gauged[k]];
-    const double L = bar.length_m;
     for (const auto& g : bar.gauges) {
       if (!signals.find(g.name)) continue;
       Target t;
       t.gauge = g.name;
-      const std::size_t pg = position(bar, g);
-      std::vector<Arrival> ways;
-      if (k == 0) {
-        if (&g != src) ways.push_back({1, {{0, 0, {{pg, 1}, {ps, -1}}}}});
-        if (gauged.size() == 1) {  // bars apart: the far end, the struck end, the far end again
-          ways.push_back({-1, {{0, 2 * L, {{pg, -1}, {ps, -1}}}}});
-          ways.push_back({1, {{0, 2 * L, {{pg, 1}, {ps, -1}}}}});
-          ways.push_back({-1, {{0, 4 * L, {{pg, -1}, {ps, -1}}}}});
-        }
-      } else {  // the transmitter: through the interface, then from its free far end
-        const Segment in{0, first.length_m, {{ps, -1}}};
-        ways.push_back({1, {in, {1, 0, {{pg, 1}}}}});
-        ways.push_back({-1, {in, {1, 2 * L, {{pg, -1}}}}});
-        ways.push_back({1, {in, {1, 2 * L, {{pg, 1}}}}});
-      }
-      // Only the pulses whose window lies in the record, at the nominal values.
-      std::vector<double> nominal(params.list().size());
-      for (std::size_t p = 0; p < nominal.size(); ++p) nominal[p] = params.list()[p].start;
-      std::vector<char> mask(n, 0);
-      for (const Arrival& a : ways) {
-        if (t.arrivals.size() == kMaxArrivals) break;
-        double travel = 0;
-        for (const Segment& seg : a.way) travel += seg.length(nominal) / nominal[s.bars[seg.bar].c];
-        const double shift = travel / s.dt;
-        const double from = static_cast<double>(keep0) + shift,
-                     to = static_cast<double>(keep1) + shift;
-        if (!(to < static_cast<double>(n))) break;
-        t.arrivals.push_back(a);
-        for (auto i = static_cast<std::size_t>(std::max(0.0, from));
-             i < static_cast<std::size_t>(to); ++i)
-          mask[i] = 1;
-      }
+      const std::size_t pg = position_parameter(params, bar, g);
+      keep_in_record(
+          t, ways_to(k, gauged.size() == 2, bar.length_m, struck.length_m, pg, ps, &g == &src), s,
+          params, w);
       if (t.arrivals.empty()) continue;
-      for (std::size_t i = 0; i < n; ++i)
-        if (mask[i]) t.samples.push_back(i);
-      t.measured = prepared(g.name).first;
-      if (&g != src) {
-        if (src->name != reference)
-          throw input_error(file, "measurement.channels", "gauge \"" + src->name + "\"",
-                            "gains and delays are relative to one reference channel, \"" +
-                                reference +
-                                "\" (the first shot's first gauge): its shots must "
-                                "record it too");
-        t.gain = params.add(gauge_key(g) + ".gain", 1.0, 0.5, 2.0, 1.0);
-        t.delay = params.add(gauge_key(g) + ".delay_s", 0.0, -kMaxChannelDelay_s,
-                             kMaxChannelDelay_s, 1e-6);
-      }
+      t.measured = baseline_removed(signals, g.name).first;
+      if (&g != &src) channel_parameters(t, g, src.name, reference, params, file);
       s.targets.push_back(std::move(t));
     }
   }
@@ -330,23 +407,30 @@ double rms(const std::vector<double>& r) {
   return r.empty() ? 0.0 : std::sqrt(e / static_cast<double>(r.size()));
 }
 
-}  // namespace
+// ---- The fit and what it gives (docs/methods.md §11, "The fit" onwards), stage by stage ----
 
-CalibrationFit calibrate_bars(const std::vector<CalibrationShot>& input,
-                              const CalibrateOptions& options) {
+// Every shot prepared, the parameters they share, the reference channel and the highest cut-off
+// (as f·a/c0) any trial wave speed asks of the dispersion tables.
+struct PreparedShots {
   Parameters params;
   std::string reference;
   std::vector<Shot> shots;
   double fa_max = kDefaultCutoffFaOverC0;
+};
+
+PreparedShots prepare_shots(const std::vector<CalibrationShot>& input) {
+  PreparedShots ps;
   for (const auto& cs : input) {
-    shots.push_back(prepare_shot(cs, params, reference));
-    for (const ShotBar& b : shots.back().bars)
-      fa_max = std::max(fa_max, shots.back().cutoff_Hz * b.radius_m /
-                                    ((1 - kWaveSpeedRange) * params.list()[b.c].start));
+    ps.shots.push_back(prepare_shot(cs, ps.params, ps.reference));
+    for (const ShotBar& b : ps.shots.back().bars)
+      ps.fa_max = std::max(ps.fa_max, ps.shots.back().cutoff_Hz * b.radius_m /
+                                          ((1 - kWaveSpeedRange) * ps.params.list()[b.c].start));
   }
-  // Tabulated a little beyond the highest cut-off any trial wave speed asks for.
-  Tables tables(1.05 * fa_max);
-  const std::vector<LsParameter>& list = params.list();
+  return ps;
+}
+
+// One least-squares group per shot: its residuals over its compared samples, plain squares.
+std::vector<LsGroup> residual_groups(const std::vector<Shot>& shots, Tables& tables) {
   std::vector<LsGroup> groups;
   for (const Shot& s : shots) {
     LsGroup g;
@@ -360,33 +444,40 @@ CalibrationFit calibrate_bars(const std::vector<CalibrationShot>& input,
     g.loss_scale.assign(count, 1.0);
     groups.push_back(std::move(g));
   }
-  LsOptions lo;
-  lo.threads = options.threads;
-  lo.max_iterations = options.max_iterations;
-  lo.relative_step = 1e-4;
-  lo.progress = options.progress;
-  const LsResult r = solve_least_squares(list, groups, lo);
+  return groups;
+}
 
-  CalibrationFit fit;
-  fit.iterations = r.iterations;
-  fit.converged = r.converged;
-  fit.residuals = r.residuals;
-  fit.warnings = r.warnings;
-  // Uncertainties from the Jacobian at the optimum (columns scaled to unit norm, SVD): the
-  // directions weaker than kWeakDirection are left out and named.
-  const std::size_t p = list.size();
-  const Eigen::MatrixXd& jx = r.jacobian;  // d r / d x, x = θ / scale
+// The Jacobian at the optimum with its columns scaled to unit norm, and its SVD.
+struct ScaledSvd {
+  Eigen::VectorXd norm;  // the columns' norms (1 for a zero column)
+  Eigen::VectorXd sv;    // singular values, largest first
+  Eigen::MatrixXd v;     // right singular vectors
+};
+
+ScaledSvd scaled_svd(const Eigen::MatrixXd& jx, std::size_t p) {
   if (jx.rows() == 0 || jx.cols() != static_cast<long>(p))
     throw NumericalError("calibrate: the Jacobian at the solution cannot be evaluated");
-  Eigen::VectorXd norm(static_cast<long>(p));
+  ScaledSvd out;
+  out.norm.resize(static_cast<long>(p));
   for (std::size_t j = 0; j < p; ++j) {
     const double v = jx.col(static_cast<long>(j)).norm();
-    norm(static_cast<long>(j)) = v > 0 ? v : 1.0;
+    out.norm(static_cast<long>(j)) = v > 0 ? v : 1.0;
   }
-  const Eigen::MatrixXd js = jx * norm.cwiseInverse().asDiagonal();
+  const Eigen::MatrixXd js = jx * out.norm.cwiseInverse().asDiagonal();
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(js, Eigen::ComputeThinV);
-  const Eigen::VectorXd sv = svd.singularValues();
-  const Eigen::MatrixXd& v = svd.matrixV();
+  out.sv = svd.singularValues();
+  out.v = svd.matrixV();
+  return out;
+}
+
+// Uncertainties from the Jacobian at the optimum (docs/methods.md §11, "Uncertainties"):
+// s² V S⁻² Vᵀ over the directions stronger than kWeakDirection; the weaker ones are left out and
+// named in fit.undetermined, and a parameter weighing on them gets no sd.
+void fitted_parameters(const std::vector<LsParameter>& list, const LsResult& r,
+                       CalibrationFit& fit) {
+  const std::size_t p = list.size();
+  const ScaledSvd j = scaled_svd(r.jacobian, p);  // d r / d x, x = θ / scale
+  const Eigen::VectorXd& sv = j.sv;
   fit.reciprocal_condition = sv(0) > 0 ? sv(static_cast<long>(p) - 1) / sv(0) : 0.0;
   const double dof = std::max(1.0, static_cast<double>(r.residuals) - static_cast<double>(p));
   const double s2 = 2 * r.cost / dof;
@@ -394,39 +485,43 @@ CalibrationFit calibrate_bars(const std::vector<CalibrationShot>& input,
   std::vector<double> weak_weight(p, 0.0);
   for (long i = 0; i < static_cast<long>(p); ++i) {
     if (sv(i) > kWeakDirection * sv(0)) {
-      cov += v.col(i) * v.col(i).transpose() / (sv(i) * sv(i));
+      cov += j.v.col(i) * j.v.col(i).transpose() / (sv(i) * sv(i));
       continue;
     }
     std::string line = "the shots do not determine ";
     bool first = true;
-    for (std::size_t j = 0; j < p; ++j) {
-      const double w = v(static_cast<long>(j), i);
-      weak_weight[j] += w * w;
+    for (std::size_t k = 0; k < p; ++k) {
+      const double w = j.v(static_cast<long>(k), i);
+      weak_weight[k] += w * w;
       if (std::abs(w) < 0.2) continue;
-      line += (first ? "" : ", ") + list[j].name + " (" + two_digits(w) + ")";
+      line += (first ? "" : ", ") + list[k].name + " (" + two_digits(w) + ")";
       first = false;
     }
     fit.undetermined.push_back(line + ": that combination moves the residuals " +
                                two_digits(sv(i) / sv(0)) +
                                " times as much as the best-determined one");
   }
-  for (std::size_t j = 0; j < p; ++j) {
-    FittedParameter fp{list[j].name, list[j].start, r.value[j], std::nullopt};
+  for (std::size_t k = 0; k < p; ++k) {
+    FittedParameter fp{list[k].name, list[k].start, r.value[k], std::nullopt};
     // A parameter with a tenth of its weight on an undetermined direction is not determined.
     constexpr double kUndeterminedShare = 0.1;
-    if (weak_weight[j] < kUndeterminedShare && r.residuals > p)
-      fp.sd = std::sqrt(s2 * cov(static_cast<long>(j), static_cast<long>(j))) /
-              norm(static_cast<long>(j)) * list[j].scale;
+    if (weak_weight[k] < kUndeterminedShare && r.residuals > p)
+      fp.sd = std::sqrt(s2 * cov(static_cast<long>(k), static_cast<long>(k))) /
+              j.norm(static_cast<long>(k)) * list[k].scale;
     fit.parameters.push_back(fp);
   }
+}
 
-  // The calibration: every bar and gauge of the shots, the fitted values replacing the nominal.
+// The calibration: every bar and gauge of the shots, the fitted values replacing the nominal.
+Calibration calibration_of(const std::vector<CalibrationShot>& input,
+                           const std::vector<FittedParameter>& parameters,
+                           const std::string& reference) {
   auto value = [&](const std::string& name) -> std::optional<CalibratedValue> {
-    for (const auto& fp : fit.parameters)
+    for (const auto& fp : parameters)
       if (fp.name == name) return CalibratedValue{fp.value, fp.sd};
     return std::nullopt;
   };
-  Calibration& cal = fit.calibration;
+  Calibration cal;
   cal.reference_gauge = reference;
   for (const auto& cs : input)
     for (const BarSpec& bar : cs.scene.bars) {
@@ -446,14 +541,19 @@ CalibrationFit calibrate_bars(const std::vector<CalibrationShot>& input,
         cal.gauges.push_back(gc);
       }
     }
+  return cal;
+}
 
-  // A measured striker velocity makes the gains absolute: the reference channel's gain is its
-  // recorded plateau over v Z_s / ((Z_s + Z_b) c0), with the fitted c0 (docs/methods.md §11).
+// A measured striker velocity makes the gains absolute: the reference channel's gain is its
+// recorded plateau over v Z_s / ((Z_s + Z_b) c0), with the fitted c0, weighted over the shots
+// that give one (docs/methods.md §11, "Absolute gains"); every other gain is scaled by it.
+void make_gains_absolute(const std::vector<Shot>& shots, const std::vector<double>& theta,
+                         const std::string& reference, CalibrationFit& fit) {
   double weight = 0, sum = 0;
   for (const Shot& s : shots) {
     if (!s.plateau || s.source_gauge != reference) continue;
     const std::size_t ic = s.bars[0].c;
-    const double c = r.value[ic];
+    const double c = theta[ic];
     const double g = *s.plateau * c / *s.strain_times_c;
     const auto sd_c = fit.parameters[ic].sd;
     const double rel2 =
@@ -461,24 +561,31 @@ CalibrationFit calibrate_bars(const std::vector<CalibrationShot>& input,
     const double w = 1 / std::max(rel2 * g * g, 1e-30);
     sum += w * g, weight += w;
   }
-  if (weight > 0) {
-    const double g = sum / weight, sd = std::sqrt(1 / weight);
-    cal.absolute_gain = true;
-    for (GaugeCalibration& gc : cal.gauges) {
-      if (gc.gauge == reference) {
-        gc.gain = {g, sd};
-        continue;
-      }
-      const double rel = gc.gain.sd ? *gc.gain.sd / gc.gain.value : 0.0;
-      gc.gain.sd =
-          gc.gain.sd ? std::optional(g * gc.gain.value * std::hypot(rel, sd / g)) : std::nullopt;
-      gc.gain.value *= g;
+  if (weight <= 0) return;
+  const double g = sum / weight, sd = std::sqrt(1 / weight);
+  Calibration& cal = fit.calibration;
+  cal.absolute_gain = true;
+  for (GaugeCalibration& gc : cal.gauges) {
+    if (gc.gauge == reference) {
+      gc.gain = {g, sd};
+      continue;
     }
-    fit.parameters.push_back({"gauges." + reference + ".gain", 1.0, g, sd});
+    const double rel = gc.gain.sd ? *gc.gain.sd / gc.gain.value : 0.0;
+    gc.gain.sd =
+        gc.gain.sd ? std::optional(g * gc.gain.value * std::hypot(rel, sd / g)) : std::nullopt;
+    gc.gain.value *= g;
   }
+  fit.parameters.push_back({"gauges." + reference + ".gain", 1.0, g, sd});
+}
 
-  std::vector<double> nominal(p);
-  for (std::size_t j = 0; j < p; ++j) nominal[j] = list[j].start;
+// Each shot's records with the model at the nominal and the fitted values, and the RMS of both
+// over the compared samples (the figures and the per-shot residuals).
+std::vector<ShotSignals> shot_signals(const std::vector<Shot>& shots,
+                                      const std::vector<LsParameter>& list,
+                                      const std::vector<double>& fitted, Tables& tables) {
+  std::vector<double> nominal(list.size());
+  for (std::size_t j = 0; j < list.size(); ++j) nominal[j] = list[j].start;
+  std::vector<ShotSignals> all;
   for (const Shot& s : shots) {
     ShotSignals out;
     out.scene = s.scene;
@@ -491,7 +598,7 @@ CalibrationFit calibrate_bars(const std::vector<CalibrationShot>& input,
       out.gauges.push_back(t.gauge);
       out.measured.push_back(t.measured);
       out.nominal.push_back(model_of(s, t, nominal, tables));
-      out.fitted.push_back(model_of(s, t, r.value, tables));
+      out.fitted.push_back(model_of(s, t, fitted, tables));
       std::vector<char> mask(s.time_s.size(), 0);
       for (std::size_t i : t.samples) {
         mask[i] = 1;
@@ -502,8 +609,36 @@ CalibrationFit calibrate_bars(const std::vector<CalibrationShot>& input,
     }
     out.rms_nominal = rms(rn);
     out.rms_fitted = rms(rf);
-    fit.shots.push_back(std::move(out));
+    all.push_back(std::move(out));
   }
+  return all;
+}
+
+}  // namespace
+
+CalibrationFit calibrate_bars(const std::vector<CalibrationShot>& input,
+                              const CalibrateOptions& options) {
+  const PreparedShots prepared = prepare_shots(input);
+  // Tabulated a little beyond the highest cut-off any trial wave speed asks for.
+  Tables tables(1.05 * prepared.fa_max);
+  const std::vector<LsParameter>& list = prepared.params.list();
+  const std::vector<LsGroup> groups = residual_groups(prepared.shots, tables);
+  LsOptions lo;
+  lo.threads = options.threads;
+  lo.max_iterations = options.max_iterations;
+  lo.relative_step = 1e-4;
+  lo.progress = options.progress;
+  const LsResult r = solve_least_squares(list, groups, lo);
+
+  CalibrationFit fit;
+  fit.iterations = r.iterations;
+  fit.converged = r.converged;
+  fit.residuals = r.residuals;
+  fit.warnings = r.warnings;
+  fitted_parameters(list, r, fit);
+  fit.calibration = calibration_of(input, fit.parameters, prepared.reference);
+  make_gains_absolute(prepared.shots, r.value, prepared.reference, fit);
+  fit.shots = shot_signals(prepared.shots, list, r.value, tables);
   return fit;
 }
 

@@ -72,6 +72,15 @@ FitCase::FitCase(const CampaignTest& test, const Campaign& campaign, const FitSp
   }
   scene_.bars[striker].velocity_m_s = striker_direction_ * start_.striker_velocity_m_s;
   start_.rise_time_s = interface_penalty(scene_.contact, striker).rise_time_s.value_or(0.0);
+  start_.incident_wave_speed_m_s = scene_.bars[s - 1].material.wave_speed_m_s();
+  start_.transmitter_wave_speed_m_s = scene_.bars[s + 1].material.wave_speed_m_s();
+  const bool frees_bars =
+      std::any_of(spec.nuisance.begin(), spec.nuisance.end(),
+                  [](const NuisanceSpec& n) { return nuisance_is_wave_speed(n.kind); });
+  if (frees_bars && scene_.measurement->reflected_time_s)
+    warnings_.push_back(test.name +
+                        ": the scene's measurement.reflected_time already adds the lab's excess "
+                        "travel time to the pulses; a freed wave speed adds to it (drop one)");
 
   // The processed curve after equilibrium, as `process` writes it.
   const ProcessingOptions options = processing_options(scene_);
@@ -112,6 +121,24 @@ FitCase::FitCase(const CampaignTest& test, const Campaign& campaign, const FitSp
   // are.
   overlay_ = std::make_unique<PulseOverlay>(scene_, std::move(found),
                                             scene_.measurement->dispersion.correction);
+}
+
+double& Nuisance::operator[](NuisanceKind k) {
+  switch (k) {
+    case NuisanceKind::kStrikerVelocity:
+      return striker_velocity_m_s;
+    case NuisanceKind::kRiseTime:
+      return rise_time_s;
+    case NuisanceKind::kTimeShift:
+      return time_shift_s;
+    case NuisanceKind::kIncidentWaveSpeed:
+      return incident_wave_speed_m_s;
+    case NuisanceKind::kTransmitterWaveSpeed:
+      return transmitter_wave_speed_m_s;
+    case NuisanceKind::kTransmittedDelay:
+      return transmitted_delay_s;
+  }
+  return striker_velocity_m_s;  // unreachable: every kind is listed
 }
 
 std::vector<CampaignTest> fit_tests(const Campaign& campaign) {
@@ -158,6 +185,11 @@ Overlay FitCase::simulate(const MaterialSpec& law, const Nuisance& nuisance) con
   scene.bars[s].material = law;
   scene.bars[s].material.johnson_cook.initial_temperature_K = temperature;
   scene.bars[striker].velocity_m_s = striker_direction_ * nuisance.striker_velocity_m_s;
+  // A bar's wave speed at its own density: E = ρ c0² (docs/methods.md §9, "Unknowns").
+  for (const auto& [bar, c0] : {std::pair{s - 1, nuisance.incident_wave_speed_m_s},
+                                std::pair{s + 1, nuisance.transmitter_wave_speed_m_s}})
+    if (c0 != scene.bars[bar].material.wave_speed_m_s())
+      scene.bars[bar].material.youngs_modulus_Pa = scene.bars[bar].material.density_kg_m3 * c0 * c0;
   if (nuisance.rise_time_s > 0 || start_.rise_time_s > 0) {
     auto it = std::find_if(scene.contact.interfaces.begin(), scene.contact.interfaces.end(),
                            [&](const InterfaceOverride& o) { return o.left_bar == striker; });
@@ -176,7 +208,7 @@ Overlay FitCase::simulate(const MaterialSpec& law, const Nuisance& nuisance) con
   options.cancel = [] { return interrupted(); };
   const SimulationResult sim = shpb::simulate(scene, options);
   if (!sim.stable) throw NumericalError(scene.file.string() + ": " + sim.failure);
-  return overlay_->overlay(scene, sim.gauges, nuisance.time_shift_s);
+  return overlay_->overlay(scene, sim.gauges, nuisance.time_shift_s, nuisance.transmitted_delay_s);
 }
 
 namespace {

@@ -24,20 +24,16 @@ struct CurvePoint {
   double stress_Pa = 0;      // true stress (3-wave)
 };
 
+// A test's nuisance values. The wave speeds start at the scene's bars' c0, the rest as FitCase
+// says; every kind of NuisanceKind has its member.
 struct Nuisance {
   double striker_velocity_m_s = 0;
   double rise_time_s = 0;
   double time_shift_s = 0;
-  double& operator[](NuisanceKind k) {
-    return k == NuisanceKind::kStrikerVelocity ? striker_velocity_m_s
-           : k == NuisanceKind::kRiseTime      ? rise_time_s
-                                               : time_shift_s;
-  }
-  double operator[](NuisanceKind k) const {
-    return k == NuisanceKind::kStrikerVelocity ? striker_velocity_m_s
-           : k == NuisanceKind::kRiseTime      ? rise_time_s
-                                               : time_shift_s;
-  }
+  double incident_wave_speed_m_s = 0, transmitter_wave_speed_m_s = 0;
+  double transmitted_delay_s = 0;  // the transmitted channel's record later than the incident's
+  double& operator[](NuisanceKind k);
+  double operator[](NuisanceKind k) const { return const_cast<Nuisance&>(*this)[k]; }
 };
 
 // The campaign's tests as a fit counts them. Weights are relative: divided by their mean, so the

@@ -94,6 +94,12 @@ nlohmann::json tests_json(const FitRun& run) {
       std::sort(rates.begin(), rates.end());
       t["strain_rate_1_s"] = rates[rates.size() / 2];
     }
+    // The fitted travel from the incident gauge to the specimen and back, as the overlay lays the
+    // reflected pulse: 2d/c_I plus the lab's excess (measurement.reflected_time), if any.
+    const KolskySetup& setup = c.measured().setup;
+    const double d = setup.incident_distance_m;
+    t["round_trip_s"] = 2 * d / run.nuisance_of(k, run.current).incident_wave_speed_m_s +
+                        2 * d * setup.excess_delay_s_per_m;
     const auto cb = c.compare(run.before[k]), ca = c.compare(run.after[k]);
     for (std::size_t i = 0; i < cb.size(); ++i) {
       t["nrmse_" + cb[i].pulse + "_before"] = cb[i].nrmse;

@@ -34,7 +34,16 @@ constexpr int kCurveIterations = 200;  // closed-form residuals: iterations are 
 // Robust loss threshold in units of each residual's scale (least_squares.hpp).
 constexpr double kLossDelta = 0.02;
 
+// A wave speed is solved for as its change from the start, in units of half its bounds' width
+// (least_squares.hpp: the difference step is FitOptions::relative_step of max(|x|, 1)): relative
+// to its own value the step would be 5 % of c0, moving the LANL copper reflected pulse (0.76 m
+// beyond its gauge) by 7.7 µs, far more than its rise; ±5 % bounds step it by 0.25 % (0.4 µs).
+bool solved_as_change(const FitUnknown& u) {
+  return u.test >= 0 && nuisance_is_wave_speed(u.nuisance);
+}
+
 double scale_of(const FitUnknown& u) {
+  if (solved_as_change(u)) return 0.5 * (u.upper - u.lower);
   if (u.start != 0) return std::abs(u.start);
   return std::max(std::abs(u.lower), std::abs(u.upper));
 }
@@ -193,7 +202,8 @@ bool run_stage(FitRun& run, FitStage stage, const FitOptions& options) {
   std::vector<LsParameter> params;
   for (std::size_t i : report.unknowns) {
     const FitUnknown& u = run.unknowns[i];
-    params.push_back({u.name, run.current[i], u.lower, u.upper, scale_of(u)});
+    params.push_back(
+        {u.name, run.current[i], u.lower, u.upper, scale_of(u), solved_as_change(u) ? u.start : 0});
   }
   say(options,
       "stage " + to_string(stage) + ": " + std::to_string(params.size()) + " parameter(s)");

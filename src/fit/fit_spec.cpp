@@ -18,7 +18,14 @@ std::string to_string(FitLoss l) { return std::string(enum_name(kFitLossNames, l
 std::string to_string(NuisanceKind k) { return std::string(enum_name(kNuisanceNames, k)); }
 
 Dimension nuisance_dimension(NuisanceKind k) {
-  return k == NuisanceKind::kStrikerVelocity ? Dimension::kVelocity : Dimension::kTime;
+  return k == NuisanceKind::kStrikerVelocity || nuisance_is_wave_speed(k) ? Dimension::kVelocity
+                                                                          : Dimension::kTime;
+}
+bool nuisance_is_offset(NuisanceKind k) {
+  return k == NuisanceKind::kTimeShift || k == NuisanceKind::kTransmittedDelay;
+}
+bool nuisance_is_wave_speed(NuisanceKind k) {
+  return k == NuisanceKind::kIncidentWaveSpeed || k == NuisanceKind::kTransmitterWaveSpeed;
 }
 
 namespace {
@@ -113,15 +120,19 @@ FitSpec read_fit_spec(const Campaign& c) {
       s.kind = kind;
       s.json_path = v->path();
       if (v->is_string() && !v->string().empty() && v->string().back() == '%') {
-        if (kind == NuisanceKind::kTimeShift)
-          throw v->error("a time shift starts at 0: give absolute bounds [\"-2 us\", \"2 us\"]");
+        if (nuisance_is_offset(kind))
+          throw v->error(
+              "a time shift or delay starts at 0: give absolute bounds [\"-2 us\", "
+              "\"2 us\"]");
         const double fraction = v->quantity(Dimension::kDimensionless);  // the one "%" parser
         if (!(fraction > 0 && fraction < 1))
           throw v->error("expected \"N %\" with 0 < N < 100 (± N % of each test's start)");
         s.relative = fraction;
       } else {
         s.bounds = read_bounds(*v, nuisance_dimension(kind));
-        if (kind != NuisanceKind::kTimeShift && s.bounds->first < 0)
+        if (nuisance_is_wave_speed(kind) && !(s.bounds->first > 0))
+          throw v->array()[0].error("a wave speed must be > 0");
+        if (!nuisance_is_offset(kind) && s.bounds->first < 0)
           throw v->array()[0].error("must be >= 0");
       }
       spec.nuisance.push_back(s);

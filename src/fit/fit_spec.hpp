@@ -3,7 +3,9 @@
 //   "material": FILE | {...}       the starting law; its model is the one fitted
 //   "free": {"A": [lo, hi], ...}   parameters of that law freed within bounds (others stay)
 //   "nuisance": {"striker_velocity": [lo, hi] | "10 %", "rise_time": [lo, hi],
-//                "time_shift": [lo, hi]}   per-test parameters freed in the signals stage
+//                "time_shift": [lo, hi], "incident_wave_speed": [lo, hi] | "3 %",
+//                "transmitter_wave_speed": [lo, hi] | "3 %", "transmitted_delay": [lo, hi]}
+//                                  per-test parameters freed in the signals stage
 //   "stages": ["curve", "signals"]  (the default; either alone is allowed)
 //   "loss": "linear" (default) | "huber" | "cauchy"
 #include <filesystem>
@@ -25,14 +27,29 @@ struct FreeParameter {
   std::string json_path;                   // "free.A"
 };
 
-// The per-test parameters of the signals stage (docs/methods.md §9).
-enum class NuisanceKind { kStrikerVelocity, kRiseTime, kTimeShift };
+// The per-test parameters of the signals stage (docs/methods.md §9): the striker, the impact, the
+// clock, and the bars themselves for a lab without calibration shots (the incident and transmitter
+// bars' wave speeds, and the delay of the transmitted channel against the incident one).
+enum class NuisanceKind {
+  kStrikerVelocity,
+  kRiseTime,
+  kTimeShift,
+  kIncidentWaveSpeed,
+  kTransmitterWaveSpeed,
+  kTransmittedDelay
+};
 inline constexpr EnumName<NuisanceKind> kNuisanceNames[] = {
     {"striker_velocity", NuisanceKind::kStrikerVelocity},
     {"rise_time", NuisanceKind::kRiseTime},
-    {"time_shift", NuisanceKind::kTimeShift}};
+    {"time_shift", NuisanceKind::kTimeShift},
+    {"incident_wave_speed", NuisanceKind::kIncidentWaveSpeed},
+    {"transmitter_wave_speed", NuisanceKind::kTransmitterWaveSpeed},
+    {"transmitted_delay", NuisanceKind::kTransmittedDelay}};
 std::string to_string(NuisanceKind k);
 Dimension nuisance_dimension(NuisanceKind k);
+// A shift or a delay: starts at 0, may be negative, takes absolute bounds only.
+bool nuisance_is_offset(NuisanceKind k);
+bool nuisance_is_wave_speed(NuisanceKind k);
 
 // A per-test parameter: absolute bounds, or ± a fraction of each test's own starting value.
 struct NuisanceSpec {

@@ -38,7 +38,7 @@ class Model {
 
   std::vector<double> theta(const double* x) const {
     std::vector<double> t(params_.size());
-    for (std::size_t i = 0; i < t.size(); ++i) t[i] = x[i] * params_[i].scale;
+    for (std::size_t i = 0; i < t.size(); ++i) t[i] = params_[i].to_theta(x[i]);
     return t;
   }
 
@@ -67,8 +67,7 @@ class Model {
     std::vector<Task> tasks;
     std::vector<std::pair<double, double>> span(params_.size());  // x− and x+ used per column
     for (std::size_t j = 0; j < params_.size(); ++j) {
-      const double lo = params_[j].lower / params_[j].scale,
-                   hi = params_[j].upper / params_[j].scale;
+      const double lo = params_[j].to_x(params_[j].lower), hi = params_[j].to_x(params_[j].upper);
       const double h = step * std::max(std::abs(x[j]), 1.0);
       double minus = x[j] - h, plus = x[j] + h;
       if (plus > hi) plus = x[j];
@@ -274,7 +273,7 @@ LsResult solve_least_squares(const std::vector<LsParameter>& parameters,
   Model model(parameters, groups, options);
   const std::size_t p = parameters.size();
   std::vector<double> x(p);
-  for (std::size_t i = 0; i < p; ++i) x[i] = parameters[i].start / parameters[i].scale;
+  for (std::size_t i = 0; i < p; ++i) x[i] = parameters[i].to_x(parameters[i].start);
 
   ceres::Problem::Options problem_options;
   ceres::Problem problem(problem_options);
@@ -289,9 +288,9 @@ LsResult solve_least_squares(const std::vector<LsParameter>& parameters,
     }
   for (std::size_t i = 0; i < p; ++i) {
     problem.SetParameterLowerBound(x.data(), static_cast<int>(i),
-                                   parameters[i].lower / parameters[i].scale);
+                                   parameters[i].to_x(parameters[i].lower));
     problem.SetParameterUpperBound(x.data(), static_cast<int>(i),
-                                   parameters[i].upper / parameters[i].scale);
+                                   parameters[i].to_x(parameters[i].upper));
   }
 
   ceres::Solver::Options so = solver_options(options);

@@ -2,7 +2,8 @@
 // Bounded nonlinear least squares with Ceres Solver (Levenberg–Marquardt, box bounds) over a model
 // whose residuals are expensive (a simulation each): docs/methods.md §9.
 //  - Parameters are scaled to x = θ / scale (scale ≈ |start|) so that one relative step and
-//    Ceres' trust region see all parameters alike.
+//    Ceres' trust region see all parameters alike; one whose step must be small against its value
+//    (a bar's wave speed) is solved for as its change, x = (θ − offset) / scale.
 //  - The Jacobian is by central differences, x ± h with h = relative_step · max(|x|, 1), one-sided
 //    at a bound; all the residual groups and perturbations of one Jacobian are evaluated in
 //    parallel (each group depends on a subset of parameters: a test on the law's parameters and its
@@ -26,7 +27,10 @@ namespace shpb {
 struct LsParameter {
   std::string name;
   double start = 0, lower = 0, upper = 0;
-  double scale = 1;  // x = θ / scale
+  double scale = 1;   // x = (θ − offset) / scale
+  double offset = 0;  // a parameter far from 0 whose step must be small against its value
+  double to_x(double theta) const { return (theta - offset) / scale; }
+  double to_theta(double x) const { return x * scale + offset; }
 };
 
 // The residuals of one group (a test), from the full parameter vector θ (physical units).

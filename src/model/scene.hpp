@@ -89,6 +89,9 @@ struct ContactSpec {
 ContactMethod interface_method(const ContactSpec& contact, std::size_t k);
 PenaltyParams interface_penalty(const ContactSpec& contact, std::size_t k);
 double interface_friction(const ContactSpec& contact, std::size_t k);
+// Bar i of a chain of `bars` is squeezed between two others (a specimen or a pulse shaper): face
+// friction and radial inertia act on it (docs/methods.md §8.2).
+inline bool squeezed_bar(std::size_t i, std::size_t bars) { return i > 0 && i + 1 < bars; }
 
 struct SimulationSpec {
   std::optional<double> duration_s;  // default: the transmitted pulse has passed the last gauge

@@ -56,13 +56,15 @@ class SceneReader {
             "material",
             "a name from materials, a file or an object (only the specimen may go "
             "without one, for `process`)");
-    // Radial inertia is the closed form of a Kolsky specimen (model/specimen_response.hpp).
+    // Radial inertia is the closed form of a Kolsky specimen (model/specimen_response.hpp): a
+    // bar squeezed between two others, the specimen or a pulse shaper.
     for (std::size_t i = 0; i < scene.bars.size(); ++i)
-      if (scene.bars[i].inertia && scene.specimen != i)
+      if (scene.bars[i].inertia && scene.specimen != i && !squeezed_bar(i, scene.bars.size()))
         throw JsonObject(items[i])
             .require("inertia", "")
             .error(
-                "radial inertia is modelled for the specimen bar only (name it in \"specimen\")");
+                "radial inertia is modelled for a bar squeezed between two others (the "
+                "specimen or a pulse shaper)");
     if (auto v = o.get("contact")) scene.contact = read_contact(*v, scene);
     if (auto v = o.get("simulation")) scene.simulation = read_simulation(*v);
     if (auto v = o.get("measurement")) {

@@ -355,6 +355,14 @@ SHPB_TARGET_CLONES double elastic_strain_energy(const double* w, double k, int e
 }
 }  // namespace
 
+double node_kinetic_energy(const BarModel& bar, const BarState& s, int i) {
+  if (s.quiet() || i < s.lo || i > s.hi)
+    return 0.5 * bar.mass_kg[i] * bar.initial_velocity_m_s * bar.initial_velocity_m_s;
+  const bool same_step = s.step == 0 || s.dt_prev == s.dt;
+  return kinetic_term(s.v[i], s.force[i], bar.inverse_mass[i], bar.mass_kg[i],
+                      bar.initial_velocity_m_s, 0.5 * s.dt_prev, s.dt, same_step);
+}
+
 BarEnergy bar_energy(const BarModel& bar, const BarState& s) {
   BarEnergy e;
   const double V = bar.initial_velocity_m_s;

@@ -62,6 +62,8 @@ struct BarEnergy {
   double dissipated_J = 0;  // material dissipation (plastic, viscous) so far
 };
 BarEnergy bar_energy(const BarModel& bar, const BarState& s);
+// Node i's term of bar_energy's kinetic energy (the central difference's discrete one).
+double node_kinetic_energy(const BarModel& bar, const BarState& s, int i);
 
 // Full-step velocity v_n of node i (absolute), valid between assemble and advance.
 double node_velocity_now(const BarModel& bar, const BarState& s, int i);

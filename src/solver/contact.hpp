@@ -57,6 +57,10 @@ struct InterfaceState {
   // frame − gap0 + offset.
   double frame_u = 0, frame_v = 0, frame_tau = 0;
   double offset = 0;
+  // The frame's velocity over the union step that ended at frame_tau (frame_v is the one after
+  // it): a tied end's discrete kinetic energy there is ½ m_b v_before v_after
+  // (solver/recorders.cpp).
+  double frame_v_before = 0;
   // Finite links (contact_localized_finite.cpp): link i's extension d_i = u_f − (end i) at
   // link_tau[i] and its rate over side i's step: its next instant if its end follows the frame
   // (the link is integrated), its last one if not (d is measured).

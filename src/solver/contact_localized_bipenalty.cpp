@@ -97,6 +97,7 @@ ContactResult solve_localized_bipenalty(const InterfaceModel& model, InterfaceSt
   }
   s.frame_u += (tau - s.frame_tau) * s.frame_v;
   s.frame_tau = tau;
+  s.frame_v_before = s.frame_v;
   s.frame_v += kick * (left.free_force + right.free_force) / mass;
   // λ_i: the force that makes a stepping end leave with the frame's velocity.
   if (left.stepping) r.force_left_N = m1 * (s.frame_v - left.v) / left.kick_s - left.free_force;

@@ -132,6 +132,7 @@ ContactResult solve_localized_finite(const InterfaceModel& model, InterfaceState
   }
   s.frame_u = uf;
   s.frame_tau = tau;
+  s.frame_v_before = s.frame_v;
   s.frame_v += kick * (mu[0] * a[0] + mu[1] * a[1]) / (mu[0] + mu[1]);
   double energy = 0;
   double force[2] = {0, 0};

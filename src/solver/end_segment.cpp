@@ -29,10 +29,17 @@ void plan_end_segments(Chain& chain, const Scene& scene) {
     const InterfaceModel& im = chain.interfaces[k];
     const bool rigid = im.method == ContactMethod::kBonded ||
                        (im.method == ContactMethod::kLocalizedBipenalty && !im.finite_links);
-    if (!rigid) continue;
     const double dt_l = chain.bars[k].time_step_s, dt_r = chain.bars[k + 1].time_step_s;
     if (std::abs(dt_l - dt_r) <= kSameInstant * std::min(dt_l, dt_r)) continue;
     const std::size_t slow = dt_l > dt_r ? k : k + 1, fast = slow == k ? k + 1 : k;
+    // Finite links (docs/methods.md §3.5; their half-frames stepping together on the fast clock
+    // are its global-step scheme) take segments where the fast bar is squeezed between two others,
+    // a pulse shaper or a specimen: measured, the shaper's ties chattered without them (46/42
+    // closings; 422/385 and 9 % of the energy created at C 0.9995), while a steel striker of 2.19
+    // times the bar's step rang more with them (plateau std 0.10 -> 0.84 %).
+    const bool squeezed = squeezed_bar(fast, chain.bars.size());
+    const bool finite = im.method == ContactMethod::kLocalizedBipenalty && im.finite_links;
+    if (!rigid && !(finite && squeezed)) continue;
     const int end = slow == k ? 1 : 0;
     BarModel& s = chain.bars[slow];
     const BarModel& f = chain.bars[fast];

@@ -27,10 +27,11 @@ inline constexpr int kSegmentElements = 3;
 // striker on its bar, 1.02, keeps its coupling: segments there doubled its energy error).
 inline constexpr double kLightStiffEnd = 1.2;
 
-// Gives the slow bar of each asynchronous rigid-link tie with a light, stiff fast end (its pair's
-// (k1 + k2)/(m1 + m2) above kLightStiffEnd × k1/m1) an end segment on the fast bar's clock,
-// where that is supported: an elastic slow bar with fixed steps, a fast bar with fixed steps (an
-// elastic specimen too), no gauge and no cut end within the segment.
+// Gives the slow bar of each asynchronous localized tie (rigid links; finite links where the fast
+// bar is squeezed between two others, a pulse shaper or a specimen) with a light, stiff
+// fast end (its pair's (k1 + k2)/(m1 + m2) above kLightStiffEnd × k1/m1) an end segment on the fast
+// bar's clock, where that is supported: an elastic slow bar with fixed steps, a fast bar with fixed
+// steps (an elastic specimen too), no gauge and no cut end within the segment.
 void plan_end_segments(Chain& chain, const Scene& scene);
 
 // At an instant τ of the segment's clock bar (which steps), in take_instant's order: `prepare`

@@ -41,19 +41,23 @@ void configure_bar(BarModel& bar, const Scene& scene, std::size_t i, bool adapti
   if (!bar.law) return;
   bar.finite_strain = scene.simulation.finite_strain;
   bar.min_stretch = 1 - scene.simulation.max_strain.value_or(kDefaultMaxStrain);
-  // Friction on the specimen's faces only (the closed form is a Kolsky specimen's); a free end
-  // has none; two faces of different μ act through their mean (first order).
-  if (!scene.specimen || *scene.specimen != i) return;
+  // Friction on the faces of a bar squeezed between two others, the specimen or a pulse shaper
+  // (the closed form is a Kolsky specimen's, docs/methods.md §8.2); two faces of different μ act
+  // through their mean (first order).
+  const bool squeezed =
+      (scene.specimen && *scene.specimen == i) || squeezed_bar(i, scene.bars.size());
+  if (!squeezed) return;
   const double left = i > 0 ? interface_friction(scene.contact, i - 1) : 0.0;
   const double right = i + 1 < scene.bars.size() ? interface_friction(scene.contact, i) : 0.0;
   bar.friction_factor_per_aspect = friction_factor_per_aspect(0.5 * (left + right));
-  if (scene.bars[i].inertia) {  // the reader allows it on the specimen only
+  if (scene.bars[i].inertia) {  // the reader allows it on a squeezed bar only
     bar.radial_inertia_density_kg_m3 = bar.density_kg_m3;
     bar.inertia_filter_s =
         kInertiaFilterTransits * bar.element_length_m * bar.elements() / bar.wave_speed_m_s;
   }
-  bar.adaptive_step = adaptive && bar.finite_strain && bar.friction_factor_per_aspect == 0 &&
-                      bar.radial_inertia_density_kg_m3 == 0;
+  // The specimen only: a pulse shaper keeps its fixed step (its ties' end segments, §3.6).
+  bar.adaptive_step = adaptive && scene.specimen && *scene.specimen == i && bar.finite_strain &&
+                      bar.friction_factor_per_aspect == 0 && bar.radial_inertia_density_kg_m3 == 0;
 }
 
 // docs/methods.md §7: lumped central difference moves information by exactly one node per step, and

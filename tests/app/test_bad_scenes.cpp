@@ -227,13 +227,13 @@ const std::vector<BadScene>& cases() {
          s["contact"]["interfaces"] = {{{"between", {"incident", "specimen"}}, {"friction", -0.1}}};
        },
        "contact.interfaces[0].friction: -0.1"},
-      {"inertia on a bar that is not the specimen",
+      {"inertia on a bar that is not squeezed between two others",
        [](json& s, json& m) {
-         s["bars"][1]["material"] = "specimen.json";
-         s["bars"][1]["inertia"] = true;
+         s["bars"][0]["material"] = "specimen.json";
+         s["bars"][0]["inertia"] = true;
          (void)m;
        },
-       "bars[1].inertia: true: radial inertia is modelled for the specimen bar only"},
+       "bars[0].inertia: true: radial inertia is modelled for a bar squeezed between two others"},
       {"inertia on an elastic bar", [](json& s, json&) { s["bars"][1]["inertia"] = true; },
        "bars[1].inertia: true: radial inertia applies to a flowing specimen"},
       {"a correction friction of 2",

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "../app/run_shpb.hpp"
 
@@ -37,6 +38,29 @@ void write_scenes(const fs::path& dir) {
   std::ofstream(dir / "signals.csv") << "time_s,incident,transmitted\n0,0,0\n1e-7,0,0\n";
 }
 
+struct Case {
+  std::string campaign, expected;
+};
+
+// Each campaign: exit 2, one line starting with the campaign file and holding `expected`, and no
+// output folder.
+void check_rejected(const fs::path& dir, const std::vector<Case>& cases) {
+  int k = 0;
+  for (const Case& c : cases) {
+    const fs::path file = dir / ("campaign" + std::to_string(k++) + ".json");
+    std::ofstream(file) << c.campaign;
+    const fs::path out = dir / "out";
+    const auto r = run_shpb({"fit", file.string(), "-o", out.string(), "-q"});
+    INFO(c.campaign);
+    INFO(r.err);
+    CHECK(r.code == 2);
+    CHECK(r.err.rfind("error: " + file.string() + ": ", 0) == 0);
+    CHECK(r.err.find(c.expected) != std::string::npos);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    CHECK(!fs::exists(out));
+  }
+}
+
 }  // namespace
 
 TEST_CASE("Bad fit campaigns: exit 2 naming file and JSON path, nothing written", "[fit]") {
@@ -45,10 +69,7 @@ TEST_CASE("Bad fit campaigns: exit 2 naming file and JSON path, nothing written"
   const std::string copper = (fs::path(SHPB_SOURCE_DIR) / "specimens/ofhc-copper.json").string();
   const std::string tests = R"("tests": [{"scene": "measured.json"}])";
   const std::string material = R"("material": ")" + copper + R"(")";
-  struct Case {
-    std::string campaign, expected;
-  };
-  const Case cases[] = {
+  const std::vector<Case> cases = {
       {"{" + tests + "," + material + R"(, "free": {"A": ["50 MPa", "150 MPa"]}, "stagse": []})",
        "stagse"},
       {"{" + tests + "," + material + R"(, "free": {"Q": ["50 MPa", "150 MPa"]}})",
@@ -81,19 +102,22 @@ TEST_CASE("Bad fit campaigns: exit 2 naming file and JSON path, nothing written"
            R"(, "free": {"A": ["50 MPa", "150 MPa"]}})",
        "tests[0].scene: "},
   };
-  int k = 0;
-  for (const Case& c : cases) {
-    const fs::path file = dir / ("campaign" + std::to_string(k++) + ".json");
-    std::ofstream(file) << c.campaign;
-    const fs::path out = dir / "out";
-    const auto r = run_shpb({"fit", file.string(), "-o", out.string(), "-q"});
-    INFO(c.campaign);
-    INFO(r.err);
-    CHECK(r.code == 2);
-    CHECK(r.err.rfind("error: " + file.string() + ": ", 0) == 0);
-    CHECK(r.err.find(c.expected) != std::string::npos);
-    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
-    CHECK(!fs::exists(out));
-  }
+  check_rejected(dir, cases);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("Bad bar nuisances of a fit: exit 2 naming the key, the value and the rule", "[fit]") {
+  const fs::path dir = shpb_test::scratch_dir("fit_bad_bars");
+  write_scenes(dir);
+  const std::string head = R"({"tests": [{"scene": "measured.json"}], "material": ")" +
+                           (fs::path(SHPB_SOURCE_DIR) / "specimens/ofhc-copper.json").string() +
+                           R"(", "nuisance": )";
+  check_rejected(dir,
+                 {{head + R"({"incident_wave_speed": ["0 m/s", "5000 m/s"]}})",
+                   "nuisance.incident_wave_speed[0]: \"0 m/s\": a wave speed must be > 0"},
+                  {head + R"({"transmitter_wave_speed": "120 %"}})",
+                   "nuisance.transmitter_wave_speed: \"120 %\": expected \"N %\" with 0 < N < 100"},
+                  {head + R"({"transmitted_delay": "5 %"}})",
+                   "nuisance.transmitted_delay: \"5 %\": a time shift or delay starts at 0"}});
   fs::remove_all(dir);
 }
