@@ -20,10 +20,9 @@ constexpr std::size_t kMinRefits = 10;
 // Sampling standard deviations of the refits' spread within which it agrees with the linearised
 // standard error (about 95 % of bootstraps of a right one agree).
 constexpr double kSpreadSamplingSigmas = 2.0;
-// Weak identification (docs/methods.md §9, "Intervals"):
-//  - the refits scatter more than twice the linearised standard error: over the parameter's own
-//    uncertainty the cost is far from the quadratic the linearisation assumes;
-constexpr double kNonlinearRatio = 2.0;
+// Weak identification (docs/methods.md §9, "Intervals"). Not the refits' spread against the
+// linearised standard error: correlated (coloured) record noise widens the spread of a parameter
+// the data fix well.
 //  - the 95 % interval is wider than ±25 % of the value: the data fix the parameter's order of
 //    magnitude only (a law table quotes its constants to a few per cent);
 constexpr double kWeakRelativeHalfWidth = 0.25;
@@ -240,9 +239,6 @@ void set_intervals(FitRun& run) {
     std::string why;
     if (!p.known)
       why = "no interval (no covariance and no bootstrap)";
-    else if (p.has_linear && p.has_bootstrap && p.bootstrap_sd > kNonlinearRatio * se)
-      why = "the bootstrap's refits scatter " + format_number(p.bootstrap_sd / se) +
-            " times its linearised standard error";
     else if (p.at_bound >= kAtBoundFraction)
       why = format_number(100 * p.at_bound) + " % of the bootstrap's refits end at a bound";
     else if (std::max(value - p.lower, p.upper - value) > kWeakRelativeHalfWidth * std::abs(value))
