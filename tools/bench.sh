@@ -13,7 +13,9 @@
 #     experiment at --tolerance 3.5 %, the tolerance whose meshes are as accurate as its automatic
 #     ones, beside them: time and gauge error against the study's reference;
 #  6. the Python module (tools/bench_python.py, when it is built): a loop of 100 classic runs
-#     against the executable's solve time, two runs in two Python threads against serial.
+#     against the executable's solve time, two runs in two Python threads against serial;
+#  7. with BENCH_FIT_COVERAGE=1 only (about an hour): the coverage of the fit's 95 % intervals
+#     over 100 synthetic campaigns (tools/fit_interval_coverage).
 # Usage: tools/bench.sh [build-dir] [repetitions]
 set -euo pipefail
 BUILD=${1:-build}
@@ -89,4 +91,14 @@ if [ -f "$BUILD"/python/shpb/__init__.py ]; then
   cmake --build "$BUILD" -j 2 --target bench_simulator shpb_python shpb_python_help >/dev/null
   echo
   PYTHONPATH="$BUILD"/python /usr/bin/python3 tools/bench_python.py "$BUILD"
+fi
+
+# 7. Coverage of the fit's 95 % intervals over 100 synthetic campaigns (tools/fit_interval_coverage:
+#    two materials, two noise levels, white and coloured noise, 30 bootstrap refits each; about an
+#    hour on 2 cores): only with BENCH_FIT_COVERAGE=1.
+if [ "${BENCH_FIT_COVERAGE:-0}" != 0 ]; then
+  cmake --build "$BUILD" -j 2 --target fit_interval_coverage shpb >/dev/null
+  echo
+  echo "== fit intervals: coverage over 100 synthetic campaigns (30 bootstrap refits each)"
+  "$BUILD"/fit_interval_coverage --campaigns 100 --bootstrap 30 --threads 2
 fi
