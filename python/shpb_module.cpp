@@ -599,18 +599,20 @@ PYBIND11_MODULE(_shpb, m) {
   m.def(
       "_fit",
       [](const std::filesystem::path& campaign, const std::filesystem::path& output, int threads,
-         int max_iterations, double relative_step) {
+         int max_iterations, double relative_step, int bootstrap, unsigned long seed) {
         FitArgs a;
         a.campaign = campaign;
         a.output = output;
         a.threads = threads;
         a.max_iterations = max_iterations;
         a.relative_step = relative_step;
+        a.bootstrap = bootstrap;
+        a.seed = seed;
         a.quiet = true;
         return run_released([&] { return run_fit(a); });
       },
       py::arg("campaign"), py::arg("output"), py::arg("threads"), py::arg("max_iterations"),
-      py::arg("relative_step"));
+      py::arg("relative_step"), py::arg("bootstrap"), py::arg("seed"));
   m.def(
       "_dispersion",
       [](double poisson, const std::vector<double>& a_over_lambda, double max_a_over_lambda,

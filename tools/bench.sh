@@ -16,7 +16,9 @@
 #     --tolerance 0.5-10 % and --courant 0.995-1, and the specimen faces' closings after unloading
 #     (rigid and finite links, asynchronous and global);
 #  7. the Python module (tools/bench_python.py, when it is built): a loop of 100 classic runs
-#     against the executable's solve time, two runs in two Python threads against serial.
+#     against the executable's solve time, two runs in two Python threads against serial;
+#  8. with BENCH_FIT_COVERAGE=1 only (about an hour): the coverage of the fit's 95 % intervals
+#     over 100 synthetic campaigns (tools/fit_interval_coverage).
 # Usage: tools/bench.sh [build-dir] [repetitions]
 set -euo pipefail
 BUILD=${1:-build}
@@ -98,4 +100,14 @@ if [ -f "$BUILD"/python/shpb/__init__.py ]; then
   cmake --build "$BUILD" -j 2 --target bench_simulator shpb_python shpb_python_help >/dev/null
   echo
   PYTHONPATH="$BUILD"/python /usr/bin/python3 tools/bench_python.py "$BUILD"
+fi
+
+# 8. Coverage of the fit's 95 % intervals over 100 synthetic campaigns (tools/fit_interval_coverage:
+#    two materials, two noise levels, white and coloured noise, 30 bootstrap refits each; about an
+#    hour on 2 cores): only with BENCH_FIT_COVERAGE=1.
+if [ "${BENCH_FIT_COVERAGE:-0}" != 0 ]; then
+  cmake --build "$BUILD" -j 2 --target fit_interval_coverage shpb >/dev/null
+  echo
+  echo "== fit intervals: coverage over 100 synthetic campaigns (30 bootstrap refits each)"
+  "$BUILD"/fit_interval_coverage --campaigns 100 --bootstrap 30 --threads 2
 fi

@@ -250,14 +250,16 @@ def study(scene, sweep="pareto", refine=1, tolerance=None, threads=0, contact=No
         scene, out, sweep, refine, tolerance, contact, stepping, courant, threads))
 
 
-@_with_help("fit", """fit(campaign, threads=0, max_iterations=40, relative_step=0.05) -> FolderResult
+@_with_help("fit", """fit(campaign, threads=0, max_iterations=40, relative_step=0.05, bootstrap=30,
+    seed=1) -> FolderResult
 
-Fits the campaign file's free material parameters to its tests, as `shpb fit` does;
+Fits the campaign file's free material parameters to its tests, as `shpb fit` does (bootstrap:
+refits checking each parameter's interval, 0 for the linearised ones only);
 result.json["fit"] is fit.json (a material file), result.tables the command's CSV files.""")
-def fit(campaign, threads=0, max_iterations=40, relative_step=0.05):
+def fit(campaign, threads=0, max_iterations=40, relative_step=0.05, bootstrap=30, seed=1):
     campaign = os.fspath(campaign)
     return _folder_run("fit", lambda out: _shpb._fit(campaign, out, threads, max_iterations,
-                                                     relative_step))
+                                                     relative_step, bootstrap, seed))
 
 
 @_with_help("dispersion", """dispersion(poisson=0.29, a_over_lambda=None, max_a_over_lambda=1.6,

@@ -185,7 +185,7 @@ void process_test(const CampaignTest& test, const fs::path& folder, std::size_t 
                   const CampaignOptions& options) {
   say(options, "test " + std::to_string(i + 1) + "/" + std::to_string(n) + " \"" + test.name +
                    "\" (" + test.scene.string() + ")");
-  process_into(test.scene, {}, folder);
+  process_into(test.scene, {}, folder, &options.monte_carlo);
 }
 
 // The list of tests a part was written for: its check against the merge's own list.

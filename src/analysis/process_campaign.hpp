@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "analysis/uncertainty.hpp"
+
 namespace shpb {
 
 struct CampaignOptions {
@@ -17,6 +19,9 @@ struct CampaignOptions {
   std::vector<double> flow_strains;  // engineering strains of the flow_stress_Pa_at_<e> columns
   std::string shard;                 // "K/N"
   bool merge = false;
+  // Each test's measurement.uncertainty drawn as the one-test command draws it (--draws, --seed,
+  // --threads); a test without the block is processed as before.
+  MonteCarloOptions monte_carlo;
   std::function<void(const std::string&)> progress;  // one line at a time; empty: silent
   // Ceres' Solver::Options::IsValid: false with the reason in `error`.
   bool IsValid(std::string* error) const;

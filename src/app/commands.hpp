@@ -112,6 +112,11 @@ struct FitArgs {
   // simulator's sensitivity noise (docs/methods.md §9; docs/validation.md (shpb fit) gives the
   // measurement).
   double relative_step = 0.05;
+  // Refits of the parametric bootstrap that checks the intervals (fit/fit_bootstrap.hpp): 30
+  // give its spread to ±13 % (1/√(2·29)), enough to tell a linearised standard error that is
+  // right from one that is too small by half; 0: linearised intervals only.
+  int bootstrap = 30;
+  unsigned long seed = 1;
   bool quiet = false;
   bool IsValid(std::string* error) const;
 };

@@ -18,6 +18,8 @@ FitOptions fit_options(const FitArgs& args) {
   o.threads = args.threads;
   o.max_iterations = args.max_iterations;
   o.relative_step = args.relative_step;
+  o.bootstrap = args.bootstrap;
+  o.seed = args.seed;
   if (!args.quiet)
     o.progress = [](const std::string& l) { std::fprintf(stderr, "fit: %s\n", l.c_str()); };
   return o;
@@ -77,6 +79,12 @@ Command add_fit_command(CLI::App& app) {
                   "Central-difference step of the signals stage, relative to each parameter "
                   "(default 0.05: above the simulator's noise; the curve stage uses 1e-4)")
       ->check(CLI::Range(1e-8, 0.1));
+  cmd->add_option("--bootstrap", args->bootstrap,
+                  "Refits of the parametric bootstrap that checks each parameter's interval "
+                  "(default " +
+                      std::to_string(FitArgs{}.bootstrap) + "; 0: linearised intervals only)")
+      ->check(CLI::Range(0, 100000));
+  cmd->add_option("--seed", args->seed, "Seed of the bootstrap's noise draws (default 1)");
   cmd->add_flag("--quiet,-q", args->quiet, "No progress output on stderr");
   return {cmd, [args] { return run_fit(*args); }};
 }

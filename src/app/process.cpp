@@ -88,6 +88,7 @@ Command add_process_command(CLI::App& app) {
               for (const auto& s : o->scenes) c.scenes.push_back(s);
               if (!o->campaign_file.empty()) c.campaign = o->campaign_file;
               c.output = o->one.output;
+              c.monte_carlo = o->one.monte_carlo;
               if (!o->one.quiet)
                 c.progress = [](const std::string& l) {
                   std::fprintf(stderr, "process: %s\n", l.c_str());

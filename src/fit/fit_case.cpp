@@ -32,7 +32,8 @@ constexpr double kTailCut = 0.05;
 
 }  // namespace
 
-FitCase::FitCase(const CampaignTest& test, const Campaign& campaign, const FitSpec& spec)
+FitCase::FitCase(const CampaignTest& test, const Campaign& campaign, const FitSpec& spec,
+                 const GaugeSignals* signals_in)
     : test_(test), scene_(read_scene(test.scene)) {
   const JsonValue where(campaign.document.at("tests").at(std::stoul(test.json_path.substr(6))),
                         campaign.display, test.json_path);
@@ -57,7 +58,8 @@ FitCase::FitCase(const CampaignTest& test, const Campaign& campaign, const FitSp
         specimen.material.johnson_cook.initial_temperature_K;
   specimen.material = law;
 
-  const GaugeSignals signals = read_gauge_signals(*scene_.measurement, {});
+  signals_ = signals_in ? *signals_in : read_gauge_signals(*scene_.measurement, {});
+  const GaugeSignals& signals = signals_;
   for (const auto& w : signals.warnings) warnings_.push_back(test.name + ": " + w);
   MeasuredPulses found = find_measured_pulses(scene_, signals);
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "analysis/comparison.hpp"
+#include "analysis/gauge_signals.hpp"
 #include "analysis/pulse_overlay.hpp"
 #include "fit/fit_spec.hpp"
 #include "model/campaign.hpp"
@@ -45,7 +46,9 @@ std::vector<CampaignTest> fit_tests(const Campaign& campaign);
 class FitCase {
  public:
   // Reads the scene and its measurement (InputError names the scene or the campaign entry).
-  FitCase(const CampaignTest& test, const Campaign& campaign, const FitSpec& spec);
+  // `signals`, when given, stand for the measured record (a bootstrap draw, fit/fit_bootstrap.hpp).
+  FitCase(const CampaignTest& test, const Campaign& campaign, const FitSpec& spec,
+          const GaugeSignals* signals = nullptr);
 
   const std::string& name() const { return test_.name; }
   double weight() const { return test_.weight; }
@@ -56,6 +59,8 @@ class FitCase {
   double temperature_K() const { return temperature_K_; }
   const std::vector<CurvePoint>& curve() const { return curve_; }
   const std::vector<std::string>& warnings() const { return warnings_; }
+  // The measured record as read (time base and every gauge's strain).
+  const GaugeSignals& signals() const { return signals_; }
 
   // The windows compared (reflected, transmitted: compare's, the measured pulse ±20 %), fixed from
   // the simulation at the start so that every evaluation has the same residuals; the fitted
@@ -89,6 +94,7 @@ class FitCase {
   std::vector<CurvePoint> curve_;
   std::vector<OverlaidPulse> windows_, fitted_windows_;
   std::vector<std::string> warnings_;
+  GaugeSignals signals_;
 };
 
 }  // namespace shpb

@@ -56,6 +56,19 @@ nlohmann::json parameters_json(const FitRun& run) {
           p["std_error"] = last->result.std_error[j];
     if (u.law < run.spec.free.size() && u.test < 0 && !run.after_curve.empty())
       p["after_curve"] = run.after_curve[u.law];
+    if (i < run.intervals.size()) {
+      const ParameterInterval& iv = run.intervals[i];
+      p["interval_95"] = iv.known ? nlohmann::json{iv.lower, iv.upper} : nlohmann::json(nullptr);
+      p["interval_method"] = iv.known ? nlohmann::json(iv.method) : nlohmann::json(nullptr);
+      p["weakly_identified"] = iv.weak;
+      if (iv.weak) p["weakly_identified_why"] = iv.weak_reason;
+      if (iv.has_linear) p["linearised_interval_95"] = {iv.linear_lower, iv.linear_upper};
+      if (iv.has_bootstrap)
+        p["bootstrap"] = {{"std_dev", iv.bootstrap_sd},
+                          {"bias", iv.bootstrap_bias},
+                          {"interval_95", {iv.bootstrap_lower, iv.bootstrap_upper}},
+                          {"at_bound", iv.at_bound}};
+    }
     parameters[u.name] = p;
   }
   return parameters;
@@ -129,6 +142,16 @@ nlohmann::json fit_material(const FitRun& run) {
                        (spec.material.source.empty() ? "" : " (" + spec.material.source + ")");
   if (material.contains("name"))
     material["name"] = material["name"].get<std::string>() + " (fitted)";
+  // Each fitted parameter's 95 % interval, as summary.json gives it (fit/fit_bootstrap.hpp).
+  nlohmann::json uncertainty = nlohmann::json::object();
+  for (std::size_t i = 0; i < spec.free.size() && i < run.intervals.size(); ++i) {
+    const ParameterInterval& iv = run.intervals[i];
+    if (!iv.known) continue;
+    uncertainty[spec.free[i].name] = {{"interval_95", {iv.lower, iv.upper}},
+                                      {"method", iv.method},
+                                      {"weakly_identified", iv.weak}};
+  }
+  if (!uncertainty.empty()) material["uncertainty"] = uncertainty;
   return material;
 }
 
@@ -142,6 +165,12 @@ nlohmann::json fit_summary(const FitRun& run) {
   s["relative_step"] = run.relative_step;
   s["parameters"] = parameters_json(run);
   s["correlation"] = correlation_json(run);
+  s["bootstrap"] = {{"refits", run.bootstrap.draws},
+                    {"finished", run.bootstrap.estimates.size()},
+                    {"failed", run.bootstrap.failed},
+                    {"seed", run.bootstrap.seed},
+                    {"simulations", run.bootstrap.simulations},
+                    {"wall_time_s", run.bootstrap.wall_time_s}};
   nlohmann::json stages = nlohmann::json::array();
   double signals_time = 0, signals_cpu = 0;
   long signal_simulations = 0, evaluations = 0;

@@ -12,6 +12,7 @@
 #include "core/median.hpp"
 #include "core/number_format.hpp"
 #include "core/parallel_runner.hpp"
+#include "fit/fit_bootstrap.hpp"
 #include "fit/law_parameters.hpp"
 #include "model/scene_inputs.hpp"
 
@@ -303,6 +304,9 @@ bool FitOptions::IsValid(std::string* error) const {
     *error =
         input_error("--relative-step", "", format_number(relative_step), "expected 1e-8 to 0.1")
             .what();
+  else if (bootstrap < 0 || bootstrap > 100000)
+    *error =
+        input_error("--bootstrap", "", std::to_string(bootstrap), "expected 0 to 100000").what();
   else
     return true;
   return false;
@@ -331,13 +335,10 @@ MaterialSpec FitRun::law_with(const std::vector<double>& law_values) const {
   return m;
 }
 
-FitRun prepare_fit(const std::filesystem::path& campaign_file, const FitOptions& options) {
-  FitRun run;
-  run.started = std::chrono::steady_clock::now();
-  run.campaign = read_campaign(campaign_file);
-  run.spec = read_fit_spec(run.campaign);
-  for (const auto& test : fit_tests(run.campaign))
-    run.cases.push_back(std::make_unique<FitCase>(test, run.campaign, run.spec));
+namespace {
+
+// The unknowns (the law's free parameters, then each test's nuisances) and the test warnings.
+void lay_out(FitRun& run, int threads, double relative_step) {
   for (std::size_t i = 0; i < run.spec.free.size(); ++i) {
     const auto& f = run.spec.free[i];
     run.unknowns.push_back({f.name, i, -1, NuisanceKind::kStrikerVelocity, f.lower, f.upper,
@@ -346,8 +347,32 @@ FitRun prepare_fit(const std::filesystem::path& campaign_file, const FitOptions&
   add_nuisances(run);
   for (const auto& c : run.cases)
     run.warnings.insert(run.warnings.end(), c->warnings().begin(), c->warnings().end());
-  run.threads = resolve_threads(options.threads);
-  run.relative_step = options.relative_step;
+  run.threads = resolve_threads(threads);
+  run.relative_step = relative_step;
+}
+
+}  // namespace
+
+FitRun prepare_fit(const std::filesystem::path& campaign_file, const FitOptions& options) {
+  FitRun run;
+  run.started = std::chrono::steady_clock::now();
+  run.campaign = read_campaign(campaign_file);
+  run.spec = read_fit_spec(run.campaign);
+  for (const auto& test : fit_tests(run.campaign))
+    run.cases.push_back(std::make_unique<FitCase>(test, run.campaign, run.spec));
+  lay_out(run, options.threads, options.relative_step);
+  return run;
+}
+
+FitRun prepare_fit(const FitRun& base, const std::vector<GaugeSignals>& signals) {
+  FitRun run;
+  run.started = std::chrono::steady_clock::now();
+  run.campaign = base.campaign;
+  run.spec = base.spec;
+  const std::vector<CampaignTest> tests = fit_tests(run.campaign);
+  for (std::size_t k = 0; k < tests.size(); ++k)
+    run.cases.push_back(std::make_unique<FitCase>(tests[k], run.campaign, run.spec, &signals[k]));
+  lay_out(run, 1, base.relative_step);
   return run;
 }
 
@@ -370,6 +395,8 @@ void run_fit(FitRun& run, const FitOptions& options) {
   run.simulations += static_cast<long>(run.cases.size());
   check_identifiability(run);
   check_rate_span(run);
+  if (options.bootstrap > 0) run_bootstrap(run, options);
+  set_intervals(run);
 }
 
 }  // namespace shpb

@@ -14,6 +14,7 @@
 
 #include "core/units.hpp"
 #include "fit/fit_case.hpp"
+#include "fit/fit_interval.hpp"
 #include "fit/fit_spec.hpp"
 #include "fit/least_squares.hpp"
 #include "model/campaign.hpp"
@@ -27,6 +28,10 @@ struct FitOptions {
   // simulator's sensitivity noise (docs/methods.md §9; docs/validation.md (shpb fit) gives the
   // measurement).
   double relative_step = 0.05;
+  // Refits of the parametric bootstrap that checks the linearised intervals (fit/fit_bootstrap.hpp;
+  // 0: linearised only), and the seed of its noise draws.
+  int bootstrap = 0;
+  unsigned long seed = 1;
   std::function<void(const std::string&)> progress;  // one line at a time; empty: silent
   // Ceres' Solver::Options::IsValid: false with the reason in `error` for options out of range.
   bool IsValid(std::string* error) const;
@@ -65,6 +70,8 @@ struct FitRun {
   std::vector<Overlay> before, after;
   std::vector<FitStageReport> stages;
   long simulations = 0;
+  FitBootstrapSummary bootstrap;
+  std::vector<ParameterInterval> intervals;  // per unknown (fit/fit_bootstrap.hpp)
 
   std::vector<double> law_values(const std::vector<double>& v) const;
   Nuisance nuisance_of(std::size_t test, const std::vector<double>& v) const;
@@ -73,9 +80,13 @@ struct FitRun {
 
 // Reads and checks everything (InputError, exit 2).
 FitRun prepare_fit(const std::filesystem::path& campaign_file, const FitOptions& options);
+// A fit of the same campaign on other records (a bootstrap draw): `base`'s campaign, spec and
+// options, `signals[k]` standing for test k's measured record.
+FitRun prepare_fit(const FitRun& base, const std::vector<GaugeSignals>& signals);
 // The files the fit reads: its output folder may hold none of them.
 std::vector<std::filesystem::path> fit_inputs(const FitRun& run);
-// The stages; NumericalError for an unstable simulation.
+// The stages, then the intervals (with the bootstrap's refits when options.bootstrap > 0);
+// NumericalError for an unstable simulation.
 void run_fit(FitRun& run, const FitOptions& options);
 
 // Processor time of the whole process (every thread), s: on a shared machine the wall time

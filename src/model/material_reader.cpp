@@ -10,7 +10,8 @@ namespace shpb {
 namespace {
 
 std::vector<std::string> allowed_keys(MaterialModel model) {
-  std::vector<std::string> keys = {"model", "name", "density", "poisson_ratio", "source", "notes"};
+  std::vector<std::string> keys = {"model",  "name",  "density",    "poisson_ratio",
+                                   "source", "notes", "uncertainty"};
   switch (model) {
     case MaterialModel::kElastic:
       keys.push_back("youngs_modulus");
@@ -122,6 +123,9 @@ MaterialSpec read_material(const JsonValue& value, const std::string& name) {
   const JsonObject o = value.object(allowed_keys(m.model));
   if (auto v = o.get("source")) m.source = v->string();
   if (auto v = o.get("notes")) v->string();
+  // A fit's intervals of its parameters (docs/outputs.md, fit.json): documentation, not read.
+  if (auto v = o.get("uncertainty"); v && !v->is_object())
+    throw v->error("expected an object (a fit's intervals of its parameters)");
   if (auto v = o.get("name")) v->string();
   m.density_kg_m3 =
       o.require("density", "e.g. \"7.85 g/cm3\"").positive_quantity(Dimension::kDensity);

@@ -201,21 +201,42 @@ TEST_CASE("A campaign's rows equal each test processed alone; flow stress on its
 TEST_CASE("The three measured experiments as one campaign", "[app][process][campaign][data]") {
   const fs::path dir = shpb_test::scratch_dir("measured_campaign");
   const fs::path campaign = kRoot / "experiments/measured-campaign.json";
-  const auto r = shpb_test::run_shpb({"process", "--campaign", campaign.string(), "-o",
-                                      (dir / "out").string(), "--flow-stress-at", "0.02", "-q"});
+  // The LANL copper scene declares measurement.uncertainty: the campaign draws it as the one-test
+  // command does (few draws: the bands' equality is checked, not their width).
+  const std::vector<std::string> draws = {"--draws", "20", "--seed", "7", "-q"};
+  std::vector<std::string> args = {"process", "--campaign",           campaign.string(),
+                                   "-o",      (dir / "out").string(), "--flow-stress-at",
+                                   "0.02"};
+  args.insert(args.end(), draws.begin(), draws.end());
+  const auto r = shpb_test::run_shpb(args);
   INFO(r.err);
   REQUIRE(r.code == 0);
   const auto rows = read_campaign_csv(dir / "out/campaign.csv");
   REQUIRE(rows.size() == 3);
   const std::vector<std::string> scenes = {"epoxy-resin-sample01", "lanl-cu-ofe-273k",
                                            "lanl-pmma13-mini-kolsky"};
+  const std::vector<std::string> names = {"epoxy-resin", "cu-ofe-273k", "pmma-mini-kolsky"};
   for (std::size_t i = 0; i < 3; ++i) {
     const fs::path alone = dir / ("alone" + std::to_string(i));
-    REQUIRE(
-        shpb_test::run_shpb({"process", (kRoot / "experiments" / scenes[i] / "scene.json").string(),
-                             "-o", alone.string(), "-q"})
-            .code == 0);
+    std::vector<std::string> one = {"process",
+                                    (kRoot / "experiments" / scenes[i] / "scene.json").string(),
+                                    "-o", alone.string()};
+    one.insert(one.end(), draws.begin(), draws.end());
+    REQUIRE(shpb_test::run_shpb(one).code == 0);
     check_row_equals_alone(rows[i], summary(alone));
+    // The test's folder is the one-test command's, uncertainty bands included.
+    const auto read = [](const fs::path& f) {
+      std::ifstream in(f, std::ios::binary);
+      return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    };
+    const std::string curve = read(dir / "out" / names[i] / "curve.csv");
+    CHECK(curve == read(alone / "curve.csv"));
+    CHECK(summary(dir / "out" / names[i]).contains("uncertainty") ==
+          summary(alone).contains("uncertainty"));
+    if (names[i] == "cu-ofe-273k") {
+      CHECK(curve.find("stress_3wave_p97.5_Pa") != std::string::npos);
+      CHECK(summary(dir / "out" / names[i])["uncertainty"]["draws"] == 20);
+    }
   }
   fs::remove_all(dir);
 }

@@ -70,7 +70,8 @@ json curve_campaign(const json& tests) {
 shpb_test::RunResult fit(const fs::path& dir, const json& campaign) {
   fs::create_directories(dir);
   write_json(dir / "campaign.json", campaign);
-  return run_shpb({"fit", (dir / "campaign.json").string(), "-o", (dir / "fit").string(), "-q"});
+  return run_shpb({"fit", (dir / "campaign.json").string(), "-o", (dir / "fit").string(), "-q",
+                   "--bootstrap", "0"});
 }
 
 double fitted(const fs::path& dir, const std::string& parameter) {

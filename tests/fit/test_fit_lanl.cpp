@@ -26,7 +26,7 @@ TEST_CASE("fit brings the LANL copper pulses within NRMSE 0.06 and says C is not
   const fs::path experiment = root / "experiments/lanl-cu-ofe-273k";
   const fs::path dir = shpb_test::scratch_dir("fit_lanl");
   const auto r = run_shpb({"fit", (experiment / "campaign.json").string(), "-o",
-                           (dir / "out").string(), "--threads", "2", "-q"});
+                           (dir / "out").string(), "--threads", "2", "-q", "--bootstrap", "0"});
   INFO(r.err);
   REQUIRE(r.code == 0);
   const json s = json::parse(std::ifstream(dir / "out/summary.json"));
@@ -54,8 +54,8 @@ TEST_CASE("fit brings the LANL copper pulses within NRMSE 0.06 and says C is not
   campaign["free"]["C"] = {0.001, 0.2};
   campaign["stages"] = {"curve"};
   std::ofstream(dir / "campaign-c.json") << campaign.dump(1);
-  const auto rc =
-      run_shpb({"fit", (dir / "campaign-c.json").string(), "-o", (dir / "out-c").string(), "-q"});
+  const auto rc = run_shpb({"fit", (dir / "campaign-c.json").string(), "-o",
+                            (dir / "out-c").string(), "-q", "--bootstrap", "0"});
   INFO(rc.err);
   REQUIRE(rc.code == 0);
   const json sc = json::parse(std::ifstream(dir / "out-c/summary.json"));

@@ -59,8 +59,8 @@ TEST_CASE("SIGINT and SIGTERM stop fit within a second in every phase, nothing w
   const fs::path campaign =
       shpb_test::write_synthetic_campaign(scratch.path(), kCopper, "1 us", "asynchronous", 2024);
   const fs::path out = scratch.path() / "out";
-  const std::vector<std::string> args = {"fit",        campaign.string(), "-o",
-                                         out.string(), "--threads",       "2"};
+  const std::vector<std::string> args = {"fit", campaign.string(), "-o", out.string(), "--threads",
+                                         "2",   "--bootstrap",     "0"};
   // An uninterrupted run: its iteration lines, of the curve stage and then of the signals stage
   // (whose last one ends the solve: the covariance follows).
   std::size_t curve_iterations = 0, signals_iterations = 0;

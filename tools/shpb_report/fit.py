@@ -94,3 +94,59 @@ def fig_fit(src, figs):
         figs.save(fig, src.png("fit_correlation"), src.title("Fit: parameter correlations"),
                   "Correlations of the fitted parameters from the covariance of the last stage; "
                   "|r| > 0.98 means two parameters are not separately identifiable.")
+
+    draw_intervals(src, figs)
+
+
+def _pair(v):
+    """[lower, upper] of numbers, or None."""
+    if isinstance(v, list) and len(v) == 2 and all(
+            isinstance(x, (int, float)) and not isinstance(x, bool) for x in v):
+        return float(v[0]), float(v[1])
+    return None
+
+
+def draw_intervals(src, figs):
+    """Each parameter's 95 % intervals relative to its value: linearised, bootstrap and reported
+    (docs/outputs.md, fit: summary.json parameters; docs/methods.md §9, "Intervals")."""
+    params = src.value("parameters", kind=dict) or {}
+    rows = []
+    for name, p in params.items():
+        if not isinstance(p, dict) or not isinstance(p.get("value"), (int, float)):
+            continue
+        value = float(p["value"])
+        reported = _pair(p.get("interval_95"))
+        if reported is None or value == 0:
+            continue
+        boot = p.get("bootstrap") if isinstance(p.get("bootstrap"), dict) else {}
+        rows.append((str(name), value, reported, _pair(p.get("linearised_interval_95")),
+                     _pair(boot.get("interval_95")), str(p.get("interval_method", "")),
+                     bool(p.get("weakly_identified"))))
+    if not rows:
+        return
+    fig, axes = new_figure(height=0.55 * len(rows) + 2.2, width=7)
+    ax = axes[0, 0]
+    rel = lambda iv, v: (100 * (iv[0] / v - 1), 100 * (iv[1] / v - 1))  # noqa: E731
+    for i, (name, value, reported, linear, boot, method, weak) in enumerate(rows):
+        y = len(rows) - 1 - i
+        lo, hi = rel(reported, value)
+        ax.plot([lo, hi], [y, y], color="C3" if weak else "k", linewidth=4, alpha=0.35,
+                solid_capstyle="butt", label="reported" if i == 0 else None)
+        if linear:
+            a, b = rel(linear, value)
+            ax.plot([a, b], [y + 0.15, y + 0.15], color="C0", linewidth=1.5,
+                    label="linearised" if i == 0 else None)
+        if boot:
+            a, b = rel(boot, value)
+            ax.plot([a, b], [y - 0.15, y - 0.15], color="C2", linewidth=1.5,
+                    label="bootstrap" if i == 0 else None)
+        ax.text(hi, y, f"  {method}{' (weak)' if weak else ''}", va="center", fontsize=7)
+    ax.axvline(0, color="0.5", linewidth=0.8)
+    ax.set_yticks(range(len(rows)), [r[0] for r in reversed(rows)], fontsize=8)
+    ax.set_xlabel("95 % interval relative to the fitted value (%)")
+    ax.set_title(src.title("Parameter intervals"))
+    ax.legend(fontsize=7, loc="lower right")
+    figs.save(fig, src.png("fit_intervals"), src.title("Fit: parameter intervals"),
+              "Each parameter's 95 % interval relative to its value: linearised (blue), the "
+              "parametric bootstrap's (green) and the one reported (grey; red when the parameter "
+              "is weakly identified), with the method that gave it.")
