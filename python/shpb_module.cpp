@@ -603,11 +603,11 @@ PYBIND11_MODULE(_shpb, m) {
         FitArgs a;
         a.campaign = campaign;
         a.output = output;
-        a.threads = threads;
-        a.max_iterations = max_iterations;
-        a.relative_step = relative_step;
-        a.bootstrap = bootstrap;
-        a.seed = seed;
+        a.options.threads = threads;
+        a.options.max_iterations = max_iterations;
+        a.options.relative_step = relative_step;
+        a.options.bootstrap = bootstrap;
+        a.options.seed = seed;
         a.quiet = true;
         return run_released([&] { return run_fit(a); });
       },

@@ -12,6 +12,7 @@
 
 #include "analysis/uncertainty.hpp"
 #include "core/options_check.hpp"
+#include "fit/fit_run.hpp"
 #include "model/run_overrides.hpp"
 #include "model/scene.hpp"
 #include "model/scene_inputs.hpp"
@@ -106,19 +107,9 @@ int run_report(const ReportArgs& args);
 struct FitArgs {
   std::filesystem::path campaign;
   std::filesystem::path output;
-  int threads = 0;          // simulations of one Jacobian in parallel; 0: all cores
-  int max_iterations = 40;  // per stage
-  // Central-difference step of the signals stage, relative to each parameter: well above the
-  // simulator's sensitivity noise (docs/methods.md §9; docs/validation.md (shpb fit) gives the
-  // measurement).
-  double relative_step = 0.05;
-  // Refits of the parametric bootstrap that checks the intervals (fit/fit_bootstrap.hpp): 30
-  // give its spread to ±13 % (1/√(2·29)), enough to tell a linearised standard error that is
-  // right from one that is too small by half; 0: linearised intervals only.
-  int bootstrap = 30;
-  unsigned long seed = 1;
+  FitOptions options;  // fit/fit_run.hpp: threads, iterations, step, bootstrap and their defaults
   bool quiet = false;
-  bool IsValid(std::string* error) const;
+  bool IsValid(std::string* error) const { return options.IsValid(error); }
 };
 int run_fit(const FitArgs& args);
 

@@ -14,12 +14,7 @@ namespace shpb {
 namespace {
 
 FitOptions fit_options(const FitArgs& args) {
-  FitOptions o;
-  o.threads = args.threads;
-  o.max_iterations = args.max_iterations;
-  o.relative_step = args.relative_step;
-  o.bootstrap = args.bootstrap;
-  o.seed = args.seed;
+  FitOptions o = args.options;
   if (!args.quiet)
     o.progress = [](const std::string& l) { std::fprintf(stderr, "fit: %s\n", l.c_str()); };
   return o;
@@ -39,8 +34,6 @@ void print_outcome(const FitRun& run, const OutputFolder& out) {
 }
 
 }  // namespace
-
-bool FitArgs::IsValid(std::string* error) const { return fit_options(*this).IsValid(error); }
 
 int run_fit(const FitArgs& args) {
   require_valid(args);
@@ -69,22 +62,22 @@ Command add_fit_command(CLI::App& app) {
   cmd->add_option("campaign", args->campaign, "Campaign JSON file (tests, material, free, ...)")
       ->required();
   cmd->add_option("-o,--output", args->output, "Output folder (replaced atomically)")->required();
-  cmd->add_option("--threads", args->threads, "Simulations in parallel (0 = all cores)")
+  cmd->add_option("--threads", args->options.threads, "Simulations in parallel (0 = all cores)")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option(
-         "--max-iterations", args->max_iterations,
-         "Solver iterations per stage (default " + std::to_string(FitArgs{}.max_iterations) + ")")
+  cmd->add_option("--max-iterations", args->options.max_iterations,
+                  "Solver iterations per stage (default " +
+                      std::to_string(FitOptions{}.max_iterations) + ")")
       ->check(CLI::Range(1, 10000));
-  cmd->add_option("--relative-step", args->relative_step,
+  cmd->add_option("--relative-step", args->options.relative_step,
                   "Central-difference step of the signals stage, relative to each parameter "
                   "(default 0.05: above the simulator's noise; the curve stage uses 1e-4)")
       ->check(CLI::Range(1e-8, 0.1));
-  cmd->add_option("--bootstrap", args->bootstrap,
+  cmd->add_option("--bootstrap", args->options.bootstrap,
                   "Refits of the parametric bootstrap that checks each parameter's interval "
                   "(default " +
-                      std::to_string(FitArgs{}.bootstrap) + "; 0: linearised intervals only)")
+                      std::to_string(FitOptions{}.bootstrap) + "; 0: linearised intervals only)")
       ->check(CLI::Range(0, 100000));
-  cmd->add_option("--seed", args->seed, "Seed of the bootstrap's noise draws (default 1)");
+  cmd->add_option("--seed", args->options.seed, "Seed of the bootstrap's noise draws (default 1)");
   cmd->add_flag("--quiet,-q", args->quiet, "No progress output on stderr");
   return {cmd, [args] { return run_fit(*args); }};
 }
