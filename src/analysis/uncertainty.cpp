@@ -80,18 +80,18 @@ double absolute(const StandardUncertainty& u, double nominal) {
 
 std::string unit_of(Dimension d) { return std::string(si_unit(d)); }
 
-std::vector<Input> inputs_of(const Scene& scene, const MeasurementSpec& m,
-                             const GaugeSignals& signals, const ProcessingOptions& options,
-                             const ProcessingResult& nominal, const KolskySetup& setup) {
-  const UncertaintySpec& u = *scene.measurement->uncertainty;
-  const std::string file = scene.file.string();
+// The inputs, appended in the order they are applied to a draw (a zero uncertainty adds none).
+struct InputList {
   std::vector<Input> in;
-  auto add = [&](std::string name, double value, double sigma, Dimension d, bool positive,
-                 std::function<void(double, DrawState&)> apply) {
+  void add(std::string name, double value, double sigma, Dimension d, bool positive,
+           std::function<void(double, DrawState&)> apply) {
     if (sigma > 0)
       in.push_back({{std::move(name), value, sigma, unit_of(d)}, positive, std::move(apply)});
-  };
-  // Bridge factors: ε = k V/(GF gain V_ex), so a drawn factor x scales the strain by x0/x.
+  }
+};
+
+// Bridge factors: ε = k V/(GF gain V_ex), so a drawn factor x scales the strain by x0/x.
+void add_bridge_inputs(InputList& in, const UncertaintySpec& u, const MeasurementSpec& m) {
   for (std::size_t c = 0; c < m.channels.size(); ++c) {
     const ChannelSpec& ch = m.channels[c];
     if (!ch.bridge) continue;
@@ -102,109 +102,129 @@ std::vector<Input> inputs_of(const Scene& scene, const MeasurementSpec& m,
           std::tuple{"excitation", &u.excitation, ch.bridge->excitation_V, Dimension::kVoltage},
           std::tuple{"gain", &u.gain, ch.bridge->gain, Dimension::kDimensionless}})
       if (*spec)
-        add(where + key, value, absolute(**spec, value), dim, true,
-            [c, x0 = value](double x, DrawState& d) { d.channel_factor[c] *= x0 / x; });
+        in.add(where + key, value, absolute(**spec, value), dim, true,
+               [c, x0 = value](double x, DrawState& d) { d.channel_factor[c] *= x0 / x; });
   }
+}
+
+// One bar's material and geometry.
+void add_bar_inputs(InputList& in, const BarUncertainty& b, const BarSpec& bar) {
+  const std::string name = bar.name + " ";
+  const std::size_t i = b.bar;
+  if (b.youngs_modulus)
+    in.add(name + "youngs_modulus", bar.material.youngs_modulus_Pa,
+           absolute(*b.youngs_modulus, bar.material.youngs_modulus_Pa), Dimension::kPressure, true,
+           [i](double x, DrawState& d) { d.scene.bars[i].material.youngs_modulus_Pa = x; });
+  if (b.density)
+    in.add(name + "density", bar.material.density_kg_m3,
+           absolute(*b.density, bar.material.density_kg_m3), Dimension::kDensity, true,
+           [i](double x, DrawState& d) { d.scene.bars[i].material.density_kg_m3 = x; });
+  if (b.wave_speed) {
+    // c0 = sqrt(E/ρ): the drawn speed with the drawn density sets the modulus when the density
+    // is the other uncertain value, else with the (drawn) modulus the density. Applied after
+    // the bar's modulus and density (inputs are applied in order).
+    const double c0 = bar.material.wave_speed_m_s();
+    const bool keep_density = b.density && !b.youngs_modulus;
+    in.add(name + "wave_speed", c0, absolute(*b.wave_speed, c0), Dimension::kVelocity, true,
+           [i, keep_density](double x, DrawState& d) {
+             MaterialSpec& mat = d.scene.bars[i].material;
+             if (keep_density)
+               mat.youngs_modulus_Pa = mat.density_kg_m3 * x * x;
+             else
+               mat.density_kg_m3 = mat.youngs_modulus_Pa / (x * x);
+           });
+  }
+  if (b.poisson_ratio) {
+    const double nu = bar.material.poisson_ratio;
+    const double sigma = absolute(*b.poisson_ratio, nu);
+    const double step = kPoissonGridSigma * sigma;
+    in.add(name + "poisson_ratio", nu, sigma, Dimension::kDimensionless, true,
+           [i, nu, step](double x, DrawState& d) {
+             d.scene.bars[i].material.poisson_ratio = nu + step * std::round((x - nu) / step);
+           });
+  }
+  if (b.diameter)
+    in.add(name + "diameter", bar.diameter_m, absolute(*b.diameter, bar.diameter_m),
+           Dimension::kLength, true, [i, d0 = bar.diameter_m](double x, DrawState& d) {
+             BarSpec& bs = d.scene.bars[i];
+             bs.area_m2 *= (x / d0) * (x / d0);
+             bs.diameter_m = x;
+           });
+  if (b.length)
+    in.add(name + "length", bar.length_m, absolute(*b.length, bar.length_m), Dimension::kLength,
+           true, [i](double x, DrawState& d) { d.scene.bars[i].length_m = x; });
+}
+
+// The incident and transmitted gauges' distances to the specimen.
+void add_gauge_position_inputs(InputList& in, const StandardUncertainty& position,
+                               const Scene& scene, const KolskySetup& setup) {
   const std::size_t s = *scene.specimen;
-  for (const BarUncertainty& b : u.bars) {
-    const BarSpec& bar = scene.bars[b.bar];
-    const std::string name = bar.name + " ";
-    const std::size_t i = b.bar;
-    if (b.youngs_modulus)
-      add(name + "youngs_modulus", bar.material.youngs_modulus_Pa,
-          absolute(*b.youngs_modulus, bar.material.youngs_modulus_Pa), Dimension::kPressure, true,
-          [i](double x, DrawState& d) { d.scene.bars[i].material.youngs_modulus_Pa = x; });
-    if (b.density)
-      add(name + "density", bar.material.density_kg_m3,
-          absolute(*b.density, bar.material.density_kg_m3), Dimension::kDensity, true,
-          [i](double x, DrawState& d) { d.scene.bars[i].material.density_kg_m3 = x; });
-    if (b.wave_speed) {
-      // c0 = sqrt(E/ρ): the drawn speed with the drawn density sets the modulus when the density
-      // is the other uncertain value, else with the (drawn) modulus the density. Applied after
-      // the bar's modulus and density (inputs are applied in order).
-      const double c0 = bar.material.wave_speed_m_s();
-      const bool keep_density = b.density && !b.youngs_modulus;
-      add(name + "wave_speed", c0, absolute(*b.wave_speed, c0), Dimension::kVelocity, true,
-          [i, keep_density](double x, DrawState& d) {
-            MaterialSpec& mat = d.scene.bars[i].material;
-            if (keep_density)
-              mat.youngs_modulus_Pa = mat.density_kg_m3 * x * x;
-            else
-              mat.density_kg_m3 = mat.youngs_modulus_Pa / (x * x);
-          });
-    }
-    if (b.poisson_ratio) {
-      const double nu = bar.material.poisson_ratio;
-      const double sigma = absolute(*b.poisson_ratio, nu);
-      const double step = kPoissonGridSigma * sigma;
-      add(name + "poisson_ratio", nu, sigma, Dimension::kDimensionless, true,
-          [i, nu, step](double x, DrawState& d) {
-            d.scene.bars[i].material.poisson_ratio = nu + step * std::round((x - nu) / step);
-          });
-    }
-    if (b.diameter)
-      add(name + "diameter", bar.diameter_m, absolute(*b.diameter, bar.diameter_m),
-          Dimension::kLength, true, [i, d0 = bar.diameter_m](double x, DrawState& d) {
-            BarSpec& bs = d.scene.bars[i];
-            bs.area_m2 *= (x / d0) * (x / d0);
-            bs.diameter_m = x;
-          });
-    if (b.length)
-      add(name + "length", bar.length_m, absolute(*b.length, bar.length_m), Dimension::kLength,
-          true, [i](double x, DrawState& d) { d.scene.bars[i].length_m = x; });
+  for (const auto& [bar, gauge, distance] :
+       {std::tuple{s - 1, setup.incident_gauge, setup.incident_distance_m},
+        std::tuple{s + 1, setup.transmitted_gauge, setup.transmitted_distance_m}}) {
+    const auto& gauges = scene.bars[bar].gauges;
+    const auto g =
+        static_cast<std::size_t>(std::find_if(gauges.begin(), gauges.end(),
+                                              [&](const GaugeSpec& x) { return x.name == gauge; }) -
+                                 gauges.begin());
+    // Drawn as the distance to the specimen; moved along the bar by the difference.
+    in.add("gauge " + gauge + " distance_to_specimen", distance, absolute(position, distance),
+           Dimension::kLength, true, [bar, g, distance, toward = bar < s](double x, DrawState& d) {
+             d.scene.bars[bar].gauges[g].position_m += (toward ? -1 : 1) * (x - distance);
+           });
   }
-  if (u.gauge_position) {
-    for (const auto& [bar, gauge, distance] :
-         {std::tuple{s - 1, setup.incident_gauge, setup.incident_distance_m},
-          std::tuple{s + 1, setup.transmitted_gauge, setup.transmitted_distance_m}}) {
-      const auto& gauges = scene.bars[bar].gauges;
-      const auto g = static_cast<std::size_t>(
-          std::find_if(gauges.begin(), gauges.end(),
-                       [&](const GaugeSpec& x) { return x.name == gauge; }) -
-          gauges.begin());
-      // Drawn as the distance to the specimen; moved along the bar by the difference.
-      add("gauge " + gauge + " distance_to_specimen", distance,
-          absolute(*u.gauge_position, distance), Dimension::kLength, true,
-          [bar, g, distance, toward = bar < s](double x, DrawState& d) {
-            d.scene.bars[bar].gauges[g].position_m += (toward ? -1 : 1) * (x - distance);
-          });
-    }
-  }
+}
+
+// Timing (trigger delay, window starts), the dispersion cut-off and the friction coefficient.
+void add_analysis_inputs(InputList& in, const Scene& scene, const UncertaintySpec& u,
+                         const GaugeSignals& signals, const ProcessingOptions& options,
+                         const ProcessingResult& nominal) {
   if (u.trigger_delay)
-    add("trigger_delay", 0, u.trigger_delay->value, Dimension::kTime, false,
-        [](double x, DrawState& d) { d.options.transmitted_shift_s += x; });
+    in.add("trigger_delay", 0, u.trigger_delay->value, Dimension::kTime, false,
+           [](double x, DrawState& d) { d.options.transmitted_shift_s += x; });
   if (u.window_start) {
     const double dt = signals.dt_s;
-    add("reflected window_start", 0, u.window_start->value * dt, Dimension::kTime, false,
-        [](double x, DrawState& d) { d.options.reflected_shift_s += x; });
-    add("transmitted window_start", 0, u.window_start->value * dt, Dimension::kTime, false,
-        [](double x, DrawState& d) { d.options.transmitted_shift_s += x; });
+    in.add("reflected window_start", 0, u.window_start->value * dt, Dimension::kTime, false,
+           [](double x, DrawState& d) { d.options.reflected_shift_s += x; });
+    in.add("transmitted window_start", 0, u.window_start->value * dt, Dimension::kTime, false,
+           [](double x, DrawState& d) { d.options.transmitted_shift_s += x; });
   }
   if (u.dispersion_cutoff) {
     if (!options.dispersion.correction)
-      throw input_error(file, u.dispersion_cutoff->path, "",
+      throw input_error(scene.file.string(), u.dispersion_cutoff->path, "",
                         "the reduction applies no dispersion correction (measurement.dispersion "
                         "\"correction\": \"none\", or simulated signals): it has no cut-off");
     const double f0 = nominal.cutoff_Hz;
-    add("dispersion_cutoff", f0, absolute(*u.dispersion_cutoff, f0), Dimension::kFrequency, true,
-        [f0](double x, DrawState& d) {
-          // The cut-off scales with its draw whichever way the scene gives it (f·a/c0 ∝ f).
-          DispersionSpec& ds = d.options.dispersion;
-          if (ds.cutoff_Hz)
-            *ds.cutoff_Hz *= x / f0;
-          else
-            ds.cutoff_fa_c0 = ds.cutoff_fa_c0.value_or(kDefaultCutoffFaOverC0) * x / f0;
-        });
+    in.add("dispersion_cutoff", f0, absolute(*u.dispersion_cutoff, f0), Dimension::kFrequency, true,
+           [f0](double x, DrawState& d) {
+             // The cut-off scales with its draw whichever way the scene gives it (f·a/c0 ∝ f).
+             DispersionSpec& ds = d.options.dispersion;
+             if (ds.cutoff_Hz)
+               *ds.cutoff_Hz *= x / f0;
+             else
+               ds.cutoff_fa_c0 = ds.cutoff_fa_c0.value_or(kDefaultCutoffFaOverC0) * x / f0;
+           });
   }
   if (u.friction) {
     const double mu = *scene.measurement->corrections.friction;
     // μ ≥ 0: a draw below zero is the frictionless face.
-    add("friction", mu, absolute(*u.friction, mu), Dimension::kDimensionless, false,
-        [](double x, DrawState& d) {
-          d.scene.measurement->corrections.friction = std::max(0.0, x);
-        });
+    in.add("friction", mu, absolute(*u.friction, mu), Dimension::kDimensionless, false,
+           [](double x, DrawState& d) {
+             d.scene.measurement->corrections.friction = std::max(0.0, x);
+           });
   }
-  return in;
+}
+
+std::vector<Input> inputs_of(const Scene& scene, const MeasurementSpec& m,
+                             const GaugeSignals& signals, const ProcessingOptions& options,
+                             const ProcessingResult& nominal, const KolskySetup& setup) {
+  const UncertaintySpec& u = *scene.measurement->uncertainty;
+  InputList in;
+  add_bridge_inputs(in, u, m);
+  for (const BarUncertainty& b : u.bars) add_bar_inputs(in, b, scene.bars[b.bar]);
+  if (u.gauge_position) add_gauge_position_inputs(in, *u.gauge_position, scene, setup);
+  add_analysis_inputs(in, scene, u, signals, options, nominal);
+  return std::move(in.in);
 }
 
 // Standard normal draws, Box–Muller on a 64-bit Mersenne twister: the same numbers from every
@@ -278,6 +298,232 @@ bool all_finite(const std::vector<double>& v, std::size_t n) {
   return true;
 }
 
+// The standard normal draws of every input, draw after draw, in one sequence: the result does
+// not depend on the thread count.
+std::vector<double> standard_normals(std::size_t count, std::uint64_t seed) {
+  std::vector<double> z(count);
+  NormalDraws normal(seed);
+  for (double& v : z) v = normal();
+  return z;
+}
+
+// Which channels make each gauge (the gauge's strain is their mean).
+std::vector<std::vector<std::size_t>> channels_of_gauges(const MeasurementSpec& m,
+                                                         const GaugeSignals& signals) {
+  std::vector<std::vector<std::size_t>> channels_of(signals.gauges.size());
+  for (std::size_t c = 0; c < m.channels.size(); ++c)
+    for (std::size_t g = 0; g < signals.gauges.size(); ++g)
+      if (m.channels[c].gauge == signals.gauges[g]) channels_of[g].push_back(c);
+  return channels_of;
+}
+
+// What every draw shares: the nominal test, the inputs and their standard normal draws (z, k a
+// draw), the nominal strains the curve is read at (first `rows`) and the headline figures.
+struct DrawContext {
+  const Scene& scene;
+  const MeasurementSpec& m;
+  const GaugeSignals& signals;
+  const ProcessingOptions& options;
+  const std::vector<Input>& inputs;
+  const std::vector<double>& z;
+  const std::vector<std::vector<std::size_t>>& channels_of;
+  const std::vector<double>& nominal_strain;
+  std::size_t rows;
+  bool one_wave;
+  const std::vector<FigureSpec>& figures;
+};
+
+// Draw d's perturbed test: its inputs applied in order, a drawn value ≤ 0 of a positive input
+// failing the draw.
+DrawState perturbed_state(const DrawContext& ctx, std::size_t d) {
+  const std::size_t k = ctx.inputs.size();
+  DrawState state{ctx.scene, ctx.options, std::vector<double>(ctx.m.channels.size(), 1.0)};
+  for (std::size_t i = 0; i < k; ++i) {
+    const Input& in = ctx.inputs[i];
+    const double x = in.info.nominal + in.info.standard_uncertainty * ctx.z[d * k + i];
+    if (in.positive && !(x > 0)) throw std::domain_error(in.info.name + " drawn <= 0");
+    in.apply(x, state);
+  }
+  return state;
+}
+
+// Each gauge's strain scaled by the mean factor of its channels.
+void scale_strains(const DrawContext& ctx, const DrawState& state, GaugeSignals& scaled) {
+  const GaugeSignals& signals = ctx.signals;
+  for (std::size_t g = 0; g < signals.gauges.size(); ++g) {
+    const auto& channels = ctx.channels_of[g];
+    double f = 0;
+    for (std::size_t c : channels) f += state.channel_factor[c];
+    f = channels.empty() ? 1.0 : f / static_cast<double>(channels.size());
+    const auto& from = signals.strain[g];
+    auto& to = scaled.strain[g];
+    for (std::size_t i = 0; i < from.size(); ++i) to[i] = f * from[i];
+  }
+}
+
+// Draw d reduced again; its curve read at the nominal strains (where each is first reached) and
+// its figures. A failed reduction or a non-finite value fails the draw with the reason.
+DrawResult reduce_draw(const DrawContext& ctx, std::size_t d, DispersionTableCache& tables,
+                       FftPlans& plans, GaugeSignals& scaled) {
+  DrawResult res;
+  try {
+    DrawState state = perturbed_state(ctx, d);
+    state.options.tables = &tables;
+    state.options.plans = &plans;
+    scale_strains(ctx, state, scaled);
+    const KolskySetup k_draw = resolve_setup(state.scene, ctx.signals.gauges);
+    const ProcessedTest t = process_test(state.scene, scaled, k_draw, state.options);
+    const ProcessingResult& r = t.result;
+    const Curve& c = r.curve;
+    const auto& x = ctx.one_wave ? c.strain_1wave : c.strain;
+    const auto& rate = ctx.one_wave ? c.strain_rate_1wave_1_s : c.strain_rate_1_s;
+    const std::size_t n = r.loading_end;
+    if (n == 0 || !all_finite(x, n) || !all_finite(c.stress_3wave_Pa, n) ||
+        !all_finite(c.stress_1wave_Pa, n) || !all_finite(rate, n))
+      throw std::domain_error("the reduction produced a non-finite value");
+    const FirstReach reach(x, n);
+    res.stress3.resize(ctx.rows);
+    res.stress1.resize(ctx.rows);
+    res.rate.resize(ctx.rows);
+    for (std::size_t j = 0; j < ctx.rows; ++j) {
+      res.stress3[j] = reach(x, c.stress_3wave_Pa, ctx.nominal_strain[j]);
+      res.stress1[j] = reach(x, c.stress_1wave_Pa, ctx.nominal_strain[j]);
+      res.rate[j] = reach(x, rate, ctx.nominal_strain[j]);
+    }
+    for (const FigureSpec& f : ctx.figures) res.figures.push_back(f.of(r));
+    res.ok = true;
+  } catch (const std::exception& e) {
+    res = DrawResult{};
+    res.failure = e.what();
+  }
+  return res;
+}
+
+// Every draw, spread over the threads (draw d on worker d mod threads); the dispersion tables are
+// shared by all, the FFT plans and the scaled signals by one worker's draws.
+std::vector<DrawResult> run_draws(const DrawContext& ctx, std::size_t n_draws, int thread_option) {
+  DispersionTableCache tables;
+  std::vector<DrawResult> results(n_draws);
+  const int threads =
+      std::max(1, std::min<int>(resolve_threads(thread_option),
+                                static_cast<int>(std::max<std::size_t>(1, n_draws))));
+  run_parallel(static_cast<std::size_t>(threads), threads, [&](std::size_t worker) {
+    FftPlans plans;
+    GaugeSignals scaled = ctx.signals;
+    for (std::size_t d = worker; d < n_draws; d += static_cast<std::size_t>(threads))
+      results[d] = reduce_draw(ctx, d, tables, plans, scaled);
+  });
+  return results;
+}
+
+// The draws that succeeded; the failed ones counted in out with their first distinct reasons.
+// Fewer than two good draws give no spread: a numerical error.
+std::vector<std::size_t> good_draws(const std::vector<DrawResult>& results,
+                                    UncertaintyResult& out) {
+  std::vector<std::size_t> good;
+  std::set<std::string> reasons;
+  for (std::size_t d = 0; d < results.size(); ++d) {
+    if (results[d].ok) {
+      good.push_back(d);
+    } else {
+      ++out.failed;
+      if (reasons.size() < kFailureReasons && reasons.insert(results[d].failure).second)
+        out.failures.push_back(results[d].failure);
+    }
+  }
+  if (good.size() < 2)
+    throw NumericalError("process: " + std::to_string(out.failed) + " of " +
+                         std::to_string(results.size()) +
+                         " Monte Carlo draws of measurement.uncertainty failed" +
+                         (out.failures.empty() ? std::string() : ": " + out.failures.front()));
+  return good;
+}
+
+// The 2.5/50/97.5 % quantiles of the good draws' curves at each of the first `rows` strains.
+void fill_bands(const std::vector<DrawResult>& results, const std::vector<std::size_t>& good,
+                std::size_t rows, UncertaintyResult& out) {
+  for (int q = 0; q < 3; ++q) {
+    out.stress_3wave[q].resize(rows);
+    out.stress_1wave[q].resize(rows);
+    out.strain_rate[q].resize(rows);
+  }
+  std::vector<double> column(good.size());
+  auto band = [&](std::vector<double> DrawResult::*field, std::vector<double>(&to)[3]) {
+    for (std::size_t j = 0; j < rows; ++j) {
+      for (std::size_t i = 0; i < good.size(); ++i) column[i] = (results[good[i]].*field)[j];
+      std::sort(column.begin(), column.end());
+      for (int q = 0; q < 3; ++q) to[q][j] = quantile(column, kQuantiles[q]);
+    }
+  };
+  band(&DrawResult::stress3, out.stress_3wave);
+  band(&DrawResult::stress1, out.stress_1wave);
+  band(&DrawResult::rate, out.strain_rate);
+}
+
+// Each input's share of a figure's variance: the squared correlation of the figure's draws y
+// (mean, variance var) with the input's standard normal draws (z, k a draw), largest first.
+std::vector<std::pair<std::size_t, double>> variance_shares(const std::vector<double>& y,
+                                                            const std::vector<std::size_t>& from,
+                                                            double mean, double var,
+                                                            const std::vector<double>& z,
+                                                            std::size_t k) {
+  const double n = static_cast<double>(y.size());
+  std::vector<std::pair<std::size_t, double>> shares;
+  for (std::size_t i = 0; i < k; ++i) {
+    double zm = 0;
+    for (std::size_t d : from) zm += z[d * k + i];
+    zm /= n;
+    double szz = 0, szy = 0;
+    for (std::size_t j = 0; j < from.size(); ++j) {
+      const double dz = z[from[j] * k + i] - zm;
+      szz += dz * dz;
+      szy += dz * (y[j] - mean);
+    }
+    const double denominator = szz * var * (n - 1);
+    shares.emplace_back(i, denominator > 0 ? szy * szy / denominator : 0.0);
+  }
+  std::stable_sort(shares.begin(), shares.end(),
+                   [](const auto& a, const auto& b) { return a.second > b.second; });
+  return shares;
+}
+
+// Figure f over the good draws where it is finite: standard deviation, 95 % interval, median and
+// variance shares (none below two such draws).
+FigureUncertainty figure_uncertainty(const FigureSpec& spec, std::size_t f,
+                                     const ProcessingResult& nominal,
+                                     const std::vector<DrawResult>& results,
+                                     const std::vector<std::size_t>& good,
+                                     const std::vector<double>& z, std::size_t k) {
+  FigureUncertainty fu;
+  fu.name = spec.name;
+  fu.unit = spec.unit;
+  fu.nominal = spec.of(nominal);
+  std::vector<double> y;
+  std::vector<std::size_t> from;
+  for (std::size_t d : good)
+    if (std::isfinite(results[d].figures[f])) {
+      y.push_back(results[d].figures[f]);
+      from.push_back(d);
+    }
+  fu.draws = y.size();
+  if (y.size() < 2) return fu;
+  const double n = static_cast<double>(y.size());
+  double mean = 0;
+  for (double v : y) mean += v;
+  mean /= n;
+  double var = 0;
+  for (double v : y) var += (v - mean) * (v - mean);
+  var /= n - 1;
+  fu.standard_uncertainty = std::sqrt(var);
+  std::vector<double> sorted = y;
+  std::sort(sorted.begin(), sorted.end());
+  fu.low95 = quantile(sorted, kQuantiles[0]);
+  fu.median = quantile(sorted, kQuantiles[1]);
+  fu.high95 = quantile(sorted, kQuantiles[2]);
+  fu.shares = variance_shares(y, from, mean, var, z, k);
+  return fu;
+}
+
 }  // namespace
 
 double value_at_first_reach(const std::vector<double>& x, const std::vector<double>& y,
@@ -300,158 +546,28 @@ UncertaintyResult propagate_uncertainty(const Scene& scene, const MeasurementSpe
   out.seed = mc.seed;
   for (const Input& i : inputs) out.inputs.push_back(i.info);
 
-  // All draws first, in one sequence: the result does not depend on the thread count.
   const std::size_t k = inputs.size(), n_draws = mc.draws;
-  std::vector<double> z(n_draws * k);
-  NormalDraws normal(mc.seed);
-  for (double& v : z) v = normal();
-
+  const std::vector<double> z = standard_normals(n_draws * k, mc.seed);
   const bool one_wave = options.primary == PrimaryReduction::kOneWave;
   const Curve& nc = nominal.curve;
-  const std::vector<double>& nominal_strain = one_wave ? nc.strain_1wave : nc.strain;
-  const std::size_t rows = nominal.loading_end;
-  // Which channels make each gauge (the gauge's strain is their mean).
-  std::vector<std::vector<std::size_t>> channels_of(signals.gauges.size());
-  for (std::size_t c = 0; c < m.channels.size(); ++c)
-    for (std::size_t g = 0; g < signals.gauges.size(); ++g)
-      if (m.channels[c].gauge == signals.gauges[g]) channels_of[g].push_back(c);
+  const std::vector<std::vector<std::size_t>> channels_of = channels_of_gauges(m, signals);
+  const DrawContext ctx{scene,
+                        m,
+                        signals,
+                        options,
+                        inputs,
+                        z,
+                        channels_of,
+                        one_wave ? nc.strain_1wave : nc.strain,
+                        nominal.loading_end,
+                        one_wave,
+                        figures};
+  const std::vector<DrawResult> results = run_draws(ctx, n_draws, mc.threads);
 
-  DispersionTableCache tables;
-  std::vector<DrawResult> results(n_draws);
-  const int threads =
-      std::max(1, std::min<int>(resolve_threads(mc.threads),
-                                static_cast<int>(std::max<std::size_t>(1, n_draws))));
-  run_parallel(static_cast<std::size_t>(threads), threads, [&](std::size_t worker) {
-    FftPlans plans;
-    GaugeSignals scaled = signals;
-    for (std::size_t d = worker; d < n_draws; d += static_cast<std::size_t>(threads)) {
-      DrawResult& res = results[d];
-      try {
-        DrawState state{scene, options, std::vector<double>(m.channels.size(), 1.0)};
-        state.options.tables = &tables;
-        state.options.plans = &plans;
-        for (std::size_t i = 0; i < k; ++i) {
-          const Input& in = inputs[i];
-          const double x = in.info.nominal + in.info.standard_uncertainty * z[d * k + i];
-          if (in.positive && !(x > 0)) throw std::domain_error(in.info.name + " drawn <= 0");
-          in.apply(x, state);
-        }
-        for (std::size_t g = 0; g < signals.gauges.size(); ++g) {
-          double f = 0;
-          for (std::size_t c : channels_of[g]) f += state.channel_factor[c];
-          f = channels_of[g].empty() ? 1.0 : f / static_cast<double>(channels_of[g].size());
-          const auto& from = signals.strain[g];
-          auto& to = scaled.strain[g];
-          for (std::size_t i = 0; i < from.size(); ++i) to[i] = f * from[i];
-        }
-        const KolskySetup k_draw = resolve_setup(state.scene, signals.gauges);
-        const ProcessedTest t = process_test(state.scene, scaled, k_draw, state.options);
-        const ProcessingResult& r = t.result;
-        const Curve& c = r.curve;
-        const auto& x = one_wave ? c.strain_1wave : c.strain;
-        const auto& rate = one_wave ? c.strain_rate_1wave_1_s : c.strain_rate_1_s;
-        const std::size_t n = r.loading_end;
-        if (n == 0 || !all_finite(x, n) || !all_finite(c.stress_3wave_Pa, n) ||
-            !all_finite(c.stress_1wave_Pa, n) || !all_finite(rate, n))
-          throw std::domain_error("the reduction produced a non-finite value");
-        const FirstReach reach(x, n);
-        res.stress3.resize(rows);
-        res.stress1.resize(rows);
-        res.rate.resize(rows);
-        for (std::size_t j = 0; j < rows; ++j) {
-          res.stress3[j] = reach(x, c.stress_3wave_Pa, nominal_strain[j]);
-          res.stress1[j] = reach(x, c.stress_1wave_Pa, nominal_strain[j]);
-          res.rate[j] = reach(x, rate, nominal_strain[j]);
-        }
-        for (const FigureSpec& f : figures) res.figures.push_back(f.of(r));
-        res.ok = true;
-      } catch (const std::exception& e) {
-        res.ok = false;
-        res.failure = e.what();
-      }
-    }
-  });
-
-  std::vector<std::size_t> good;
-  std::set<std::string> reasons;
-  for (std::size_t d = 0; d < n_draws; ++d) {
-    if (results[d].ok) {
-      good.push_back(d);
-    } else {
-      ++out.failed;
-      if (reasons.size() < kFailureReasons && reasons.insert(results[d].failure).second)
-        out.failures.push_back(results[d].failure);
-    }
-  }
-  if (good.size() < 2)
-    throw NumericalError("process: " + std::to_string(out.failed) + " of " +
-                         std::to_string(n_draws) +
-                         " Monte Carlo draws of measurement.uncertainty failed" +
-                         (out.failures.empty() ? std::string() : ": " + out.failures.front()));
-  for (int q = 0; q < 3; ++q) {
-    out.stress_3wave[q].resize(rows);
-    out.stress_1wave[q].resize(rows);
-    out.strain_rate[q].resize(rows);
-  }
-  std::vector<double> column(good.size());
-  auto band = [&](std::vector<double> DrawResult::*field, std::vector<double>(&to)[3]) {
-    for (std::size_t j = 0; j < rows; ++j) {
-      for (std::size_t i = 0; i < good.size(); ++i) column[i] = (results[good[i]].*field)[j];
-      std::sort(column.begin(), column.end());
-      for (int q = 0; q < 3; ++q) to[q][j] = quantile(column, kQuantiles[q]);
-    }
-  };
-  band(&DrawResult::stress3, out.stress_3wave);
-  band(&DrawResult::stress1, out.stress_1wave);
-  band(&DrawResult::rate, out.strain_rate);
-
-  for (std::size_t f = 0; f < figures.size(); ++f) {
-    FigureUncertainty fu;
-    fu.name = figures[f].name;
-    fu.unit = figures[f].unit;
-    fu.nominal = figures[f].of(nominal);
-    std::vector<double> y;
-    std::vector<std::size_t> from;
-    for (std::size_t d : good)
-      if (std::isfinite(results[d].figures[f])) {
-        y.push_back(results[d].figures[f]);
-        from.push_back(d);
-      }
-    fu.draws = y.size();
-    if (y.size() < 2) {
-      out.figures.push_back(fu);
-      continue;
-    }
-    const double n = static_cast<double>(y.size());
-    double mean = 0;
-    for (double v : y) mean += v;
-    mean /= n;
-    double var = 0;
-    for (double v : y) var += (v - mean) * (v - mean);
-    var /= n - 1;
-    fu.standard_uncertainty = std::sqrt(var);
-    std::vector<double> sorted = y;
-    std::sort(sorted.begin(), sorted.end());
-    fu.low95 = quantile(sorted, kQuantiles[0]);
-    fu.median = quantile(sorted, kQuantiles[1]);
-    fu.high95 = quantile(sorted, kQuantiles[2]);
-    for (std::size_t i = 0; i < k; ++i) {
-      double zm = 0;
-      for (std::size_t d : from) zm += z[d * k + i];
-      zm /= n;
-      double szz = 0, szy = 0;
-      for (std::size_t j = 0; j < from.size(); ++j) {
-        const double dz = z[from[j] * k + i] - zm;
-        szz += dz * dz;
-        szy += dz * (y[j] - mean);
-      }
-      const double denominator = szz * var * (n - 1);
-      fu.shares.emplace_back(i, denominator > 0 ? szy * szy / denominator : 0.0);
-    }
-    std::stable_sort(fu.shares.begin(), fu.shares.end(),
-                     [](const auto& a, const auto& b) { return a.second > b.second; });
-    out.figures.push_back(fu);
-  }
+  const std::vector<std::size_t> good = good_draws(results, out);
+  fill_bands(results, good, nominal.loading_end, out);
+  for (std::size_t f = 0; f < figures.size(); ++f)
+    out.figures.push_back(figure_uncertainty(figures[f], f, nominal, results, good, z, k));
   return out;
 }
 
