@@ -37,10 +37,6 @@ StudyOptions study_options(const StudyArgs& args) {
           args.refine};
 }
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 // shpb study SCENE --plan DIR: DIR/plan.json, nothing run.
 int plan_study(const StudyArgs& args) {
   require_new_plan_folder(*args.plan);
