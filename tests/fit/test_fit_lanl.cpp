@@ -117,7 +117,7 @@ TEST_CASE("fit with the bars' wave speeds freed finds the LANL round trip the la
   std::ofstream(dir / "campaign.json") << campaign.dump(1);
 
   const auto r = run_shpb({"fit", (dir / "campaign.json").string(), "-o", (dir / "out").string(),
-                           "--threads", "2", "-q"});
+                           "--threads", "2", "-q", "--bootstrap", "0"});
   INFO(r.err);
   REQUIRE(r.code == 0);
   const json s = json::parse(std::ifstream(dir / "out/summary.json"));
@@ -150,7 +150,7 @@ TEST_CASE("fit frees the LANL incident bar's wave speed and the transmitted chan
   campaign["stages"] = {"signals"};
   std::ofstream(dir / "campaign.json") << campaign.dump(1);
   const auto r = run_shpb({"fit", (dir / "campaign.json").string(), "-o", (dir / "out").string(),
-                           "--threads", "2", "--max-iterations", "1", "-q"});
+                           "--threads", "2", "--max-iterations", "1", "-q", "--bootstrap", "0"});
   INFO(r.err);
   REQUIRE(r.code == 0);
   const json s = json::parse(std::ifstream(dir / "out/summary.json"));
