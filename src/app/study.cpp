@@ -13,6 +13,7 @@
 #include "app/cli_options.hpp"
 #include "app/commands.hpp"
 #include "app/progress.hpp"
+#include "core/clock.hpp"
 #include "core/error.hpp"
 #include "core/output_folder.hpp"
 #include "core/parallel_runner.hpp"

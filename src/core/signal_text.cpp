@@ -16,7 +16,7 @@ namespace {
 
 constexpr std::size_t kSniffLines = 200;  // lines inspected to choose delimiter and decimal mark
 
-std::string_view trim(std::string_view s) {
+std::string_view trim_field(std::string_view s) {
   const auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; };
   std::size_t b = 0, e = s.size();
   while (b < e && blank(s[b])) ++b;
@@ -42,7 +42,7 @@ void split(std::string_view line, char delimiter, std::vector<std::string_view>&
       if (i >= line.size()) break;
       std::size_t j = i;
       while (j < line.size() && line[j] != ' ' && line[j] != '\t') ++j;
-      fields.push_back(trim(line.substr(i, j - i)));
+      fields.push_back(trim_field(line.substr(i, j - i)));
       i = j;
     }
     return;
@@ -51,7 +51,7 @@ void split(std::string_view line, char delimiter, std::vector<std::string_view>&
     std::size_t start = 0;
     for (;;) {
       const std::size_t d = line.find(delimiter, start);
-      fields.push_back(trim(line.substr(start, d == std::string_view::npos ? d : d - start)));
+      fields.push_back(trim_field(line.substr(start, d == std::string_view::npos ? d : d - start)));
       if (d == std::string_view::npos) return;
       start = d + 1;
     }
@@ -61,7 +61,7 @@ void split(std::string_view line, char delimiter, std::vector<std::string_view>&
   for (std::size_t i = 0; i <= line.size(); ++i) {
     if (i < line.size() && line[i] == '"') quoted = !quoted;
     if (i == line.size() || (line[i] == delimiter && !quoted)) {
-      fields.push_back(trim(line.substr(start, i - start)));
+      fields.push_back(trim_field(line.substr(start, i - start)));
       start = i + 1;
     }
   }

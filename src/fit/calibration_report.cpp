@@ -8,13 +8,11 @@
 #include "core/checked_write.hpp"
 #include "core/csv_writer.hpp"
 #include "core/output_folder.hpp"
+#include "fit/fit_interval.hpp"
 #include "version.hpp"
 
 namespace shpb {
 namespace {
-
-// A 95 % interval is ± 1.96 standard uncertainties (normal errors; N ≫ P residuals).
-constexpr double kZ95 = 1.959964;
 
 nlohmann::json optional(const std::optional<double>& v) {
   return v ? nlohmann::json(*v) : nlohmann::json();
@@ -65,7 +63,7 @@ void write_calibration_outputs(CalibrationFit& fit, const std::filesystem::path&
   nlohmann::json parameters = nlohmann::json::array();
   for (const auto& p : fit.parameters) {
     nlohmann::json ci;
-    if (p.sd) ci = {p.value - kZ95 * *p.sd, p.value + kZ95 * *p.sd};
+    if (p.sd) ci = {p.value - kNormalZ95 * *p.sd, p.value + kNormalZ95 * *p.sd};
     parameters.push_back({{"name", p.name},
                           {"nominal", p.nominal},
                           {"value", p.value},

@@ -12,8 +12,6 @@
 namespace shpb {
 namespace {
 
-// The two-sided 95 % point of the normal distribution.
-constexpr double kZ95 = 1.959963984540054;
 // Fewer finished refits than this give no bootstrap interval: the spread of 10 draws is itself
 // uncertain by ±23 % (1/√(2(N−1))).
 constexpr std::size_t kMinRefits = 10;
@@ -103,7 +101,7 @@ std::vector<double> block_resample(const std::vector<double>& r, std::size_t n, 
 }
 
 double student_t95(double dof) {
-  const double z = kZ95, z2 = z * z, v = dof;
+  const double z = kNormalZ95, z2 = z * z, v = dof;
   const double g1 = (z2 + 1) * z / 4;
   const double g2 = ((5 * z2 + 16) * z2 + 3) * z / 96;
   const double g3 = (((3 * z2 + 19) * z2 + 17) * z2 - 15) * z / 384;
@@ -197,7 +195,7 @@ void set_intervals(FitRun& run) {
     if (!last.result.std_error.empty()) {
       se = last.result.std_error[a];
       p.has_linear = true;
-      p.linear_lower = value - kZ95 * se, p.linear_upper = value + kZ95 * se;
+      p.linear_lower = value - kNormalZ95 * se, p.linear_upper = value + kNormalZ95 * se;
     }
     if (bootstrap) {
       const auto n = static_cast<double>(est.size());

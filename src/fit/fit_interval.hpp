@@ -6,6 +6,10 @@
 
 namespace shpb {
 
+// The two-sided 95 % quantile of the standard normal distribution: a 95 % interval is this many
+// standard uncertainties either side (normal errors; many more residuals than parameters).
+constexpr double kNormalZ95 = 1.959963984540054;
+
 struct ParameterInterval {
   bool known = false;           // false: no covariance and no bootstrap (nothing to report)
   double lower = 0, upper = 0;  // the 95 % interval reported

@@ -312,11 +312,6 @@ bool FitOptions::IsValid(std::string* error) const {
   return false;
 }
 
-double seconds_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
-
 std::vector<double> FitRun::law_values(const std::vector<double>& v) const {
   return std::vector<double>(v.begin(), v.begin() + static_cast<long>(spec.free.size()));
 }

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "core/clock.hpp"
 #include "core/units.hpp"
 #include "fit/fit_case.hpp"
 #include "fit/fit_interval.hpp"
@@ -90,10 +91,5 @@ std::vector<std::filesystem::path> fit_inputs(const FitRun& run);
 // The stages, then the intervals (with the bootstrap's refits when options.bootstrap > 0);
 // NumericalError for an unstable simulation.
 void run_fit(FitRun& run, const FitOptions& options);
-
-// Processor time of the whole process (every thread), s: on a shared machine the wall time
-// depends on the others' load, the processor time much less.
-double cpu_seconds();
-double seconds_since(std::chrono::steady_clock::time_point t);
 
 }  // namespace shpb

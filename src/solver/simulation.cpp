@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/checked_write.hpp"
+#include "core/clock.hpp"
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
 #include "model/calibration.hpp"
@@ -223,8 +224,7 @@ SimulationResult simulate(const Scene& scene, const SimulationOptions& options) 
   const auto start = std::chrono::steady_clock::now();
   const ScheduleOutcome outcome = run_schedule(chain, recorders, options.progress, options.cancel,
                                                options.subcycle, options.skip_at_rest);
-  result.wall_time_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.wall_time_s = seconds_since(start);
 
   result.stable = outcome.stable;
   result.failure = outcome.failure;

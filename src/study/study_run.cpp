@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "core/clock.hpp"
 #include "core/error.hpp"
 #include "core/file_digest.hpp"
 #include "core/output_folder.hpp"
@@ -180,7 +181,7 @@ ShardRun run_study_shard(const StudyPlan& plan, const std::filesystem::path& dir
   nlohmann::ordered_json j = part_json(plan, results, runs);
   j["shard"] = shard_text;
   j["threads"] = threads;
-  r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.wall_s = seconds_since(start);
   j["wall_time_s"] = r.wall_s;
   std::filesystem::create_directories(r.part.parent_path());
   write_file_atomically(r.part, j.dump() + "\n");

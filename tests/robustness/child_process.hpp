@@ -26,6 +26,13 @@ constexpr double kSanitizerSlowdown = 3.0;
 inline double prompt_exit_s() {
   return kPromptExit_s * (shpb_test::running_sanitized() ? kSanitizerSlowdown : 1.0);
 }
+// The size of an input that keeps a run as long in either build: the sanitized executable reads a
+// third of it in the time the optimised one reads all (an interruption test needs a run long
+// enough to land a signal in, not a longer one).
+inline long same_run_length(long optimised_size) {
+  return shpb_test::running_sanitized() ? static_cast<long>(optimised_size / kSanitizerSlowdown)
+                                        : optimised_size;
+}
 
 namespace fs = std::filesystem;
 
