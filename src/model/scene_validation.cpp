@@ -56,7 +56,8 @@ namespace {
 // The default tolerance applies where the model has a bar to mesh and a pulse to predict, and
 // where it was calibrated: every bar but the specimen elastic. A pulse shaper's ramp is taken for
 // a step (docs/methods.md §1.1), so the model over-predicts its bars' share: 3.5 % would mesh the
-// pulse-shaper experiment at 24 x the automatic meshes' node updates, which measure 1.90 %.
+// pulse-shaper experiment at 5.2 x the automatic meshes' node updates (1.69 % measured), where
+// they already measure 1.90 %.
 bool default_tolerance_applies(const Scene& scene) {
   bool free = false;
   for (std::size_t i = 0; i < scene.bars.size(); ++i) {
@@ -64,7 +65,10 @@ bool default_tolerance_applies(const Scene& scene) {
     free = free || b.elements == 0;
     if (!(scene.specimen && *scene.specimen == i) && !b.material.is_elastic()) return false;
   }
-  return free && striker_bar(scene).has_value();
+  // A Courant number the user sets chooses the numerics: measured with the default's meshes at
+  // --courant 1, the classic experiment went unstable and the PMMA test lost 4.7 % of its energy
+  // (the marginal C = 1 with unequal steps, docs/methods.md §1.1); the automatic meshes hold there.
+  return free && !scene.simulation.courant && striker_bar(scene).has_value();
 }
 
 }  // namespace

@@ -44,7 +44,8 @@ ChainDiscretization validate_scene(const Scene& scene, const RunOptions& options
 // Without a tolerance (and options.default_tolerance): kDefaultTolerance, for the bars without an
 // `elements` of their own (an explicit mesh is the user's choice and wins for that bar), recorded
 // as simulation.tolerance with tolerance_is_default set. It is never refused: a scene whose every
-// bar is meshed by the user, or without a striker (nothing to predict), or with a material-law bar
+// bar is meshed by the user, or that sets a Courant number (scene or --courant), or without a
+// striker (nothing to predict), or with a material-law bar
 // besides the specimen (a pulse shaper: outside the model's calibration), or whose own meshes
 // leave the default out of reach, keeps the automatic meshes and point-sampled gauges.
 ChainDiscretization resolve_scene(Scene& scene, const RunOptions& options = {});
