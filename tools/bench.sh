@@ -9,9 +9,9 @@
 #     process, reading included: wall, CPU and peak memory; and the LANL copper test's Monte
 #     Carlo uncertainty, 1000 draws on 2 threads against 2 draws;
 #  4. the full pareto study of the classic experiment on 2 threads (skipped with BENCH_STUDY=0);
-#  5. --tolerance 1 % on the experiments (skipped with BENCH_TOLERANCE=0), and the classic
-#     experiment at --tolerance 3.5 %, the tolerance whose meshes are as accurate as its automatic
-#     ones, beside them: time and gauge error against the study's reference;
+#  5. --tolerance 1 % on the experiments (skipped with BENCH_TOLERANCE=0), and every
+#     experiment's default run before (the automatic meshes) and now (the default tolerance, 3.5 %):
+#     median solve time (summary.json wall_time_s) and gauge error against the study's reference;
 #  6. tools/bench_contact.py (skipped with BENCH_CONTACT=0): every experiment's energy error at
 #     --tolerance 0.5-10 % and --courant 0.995-1, and the specimen faces' closings after unloading
 #     (rigid and finite links, asynchronous and global);
@@ -85,9 +85,8 @@ if [ "${BENCH_TOLERANCE:-1}" != 0 ]; then
     experiments/striker-on-bar/scene.json experiments/pulse-shaper/scene.json \
     experiments/tension-bonded/scene.json
   echo
-  echo "== the classic experiment at --tolerance 3.5 % against its automatic meshes"
-  "$BUILD"/bench_simulator --repeat "$REPEAT" --asynchronous-only --tolerance 0.035 \
-    experiments/classic-al6061/scene.json
+  echo "== the default run: automatic meshes (before) against the default tolerance (now)"
+  "$BUILD"/bench_simulator --repeat "$REPEAT" --defaults experiments/*/scene.json
 fi
 
 # 6. Energy near C = 1 and the specimen faces' closings after unloading (docs/methods.md §3.7).

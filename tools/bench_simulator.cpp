@@ -9,17 +9,20 @@
 // --tolerance TOL (e.g. 0.03): also each scene at the meshes and Courant number that tolerance
 // chooses (model/mesh_error_model.hpp) beside its automatic meshes: CPU time and the gauge error
 // against the study's reference, recorded (study/recorded_error.hpp) and point-sampled (the
-// study's `error` column).
+// study's `error` column); --defaults: a table of each scene's default run before (automatic
+// meshes) and now (the default tolerance): solve time and gauge error against the reference.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "core/median.hpp"
+#include "model/mesh_error_model.hpp"
 #include "model/scene_validation.hpp"
 #include "solver/contact.hpp"
 #include "solver/simulation.hpp"
@@ -152,11 +155,58 @@ void tolerance_against_default(const Scene& scene, double tolerance,
   std::printf("; CPU time x%.2f the automatic meshes'\n", t.cpu_s / automatic.cpu_s);
 }
 
+// One row per scene: the automatic meshes (the default before the default tolerance) against the
+// default run's (kDefaultTolerance, model/scene_validation.hpp resolve_scene): median solve time
+// (summary.json's wall_time_s), CPU time, node updates, and the gauge error against the study's
+// reference (exact, or the 8 x run of the automatic meshes) as recorded (study/recorded_error.hpp).
+void defaults_table(const std::vector<std::string>& files, const SimulationOptions& options,
+                    int repeat) {
+  std::printf("default run: automatic meshes (before) against the default tolerance %g %% (now)\n",
+              100 * kDefaultTolerance);
+  std::printf("%-28s | %9s %9s %10s %8s | %9s %9s %10s %8s %9s\n", "experiment", "wall_ms",
+              "cpu_ms", "updates", "error", "wall_ms", "cpu_ms", "updates", "error", "predicted");
+  for (const std::string& file : files) {
+    Scene automatic;
+    try {
+      automatic = read_scene(file);
+    } catch (const std::exception& e) {
+      std::printf("%s: skipped (%s)\n", file.c_str(), e.what());
+      continue;
+    }
+    RunOptions none;
+    none.default_tolerance = false;
+    resolve_scene(automatic, none);
+    Scene now = read_scene(file);
+    resolve_scene(now);
+    const std::string name = std::filesystem::path(file).parent_path().filename().string();
+    if (!now.simulation.tolerance) {
+      std::printf("%-28s | no striker (a measured record): no default tolerance, unchanged\n",
+                  name.c_str());
+      continue;
+    }
+    const auto exact = exact_reference(automatic);
+    const GaugeReference ref =
+        exact ? *exact : fine_mesh_reference(automatic, kReferenceResolution, options);
+    const Timing a = run(automatic, options, repeat), n = run(now, options, repeat);
+    const auto error = [&](const Timing& t, const Scene& s) {
+      return t.last.stable
+                 ? 100 * recorded_gauge_error(t.last.gauges, ref, gauges_filtered(s.simulation))
+                 : std::nan("");
+    };
+    std::printf("%-28s | %9.2f %9.2f %10.3g %7.2f%% | %9.2f %9.2f %10.3g %7.2f%% %8.2f%%\n",
+                name.c_str(), a.wall_s * 1e3, a.cpu_s * 1e3, double(a.last.node_updates),
+                error(a, automatic), n.wall_s * 1e3, n.cpu_s * 1e3, double(n.last.node_updates),
+                error(n, now), 100 * predict_gauge_error(now, discretize(now)).total);
+    std::fflush(stdout);
+  }
+}
+
 int main(int argc, char** argv) {
   int repeat = 5;
   bool equal_error_comparison = true;
   bool asynchronous_only = false;
   double tolerance = 0;
+  bool defaults = false;
   std::vector<std::string> scenes;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -168,6 +218,8 @@ int main(int argc, char** argv) {
       asynchronous_only = true;
     else if (a == "--tolerance" && i + 1 < argc)
       tolerance = std::atof(argv[++i]);
+    else if (a == "--defaults")
+      defaults = true;
     else
       scenes.push_back(a);
   }
@@ -175,6 +227,10 @@ int main(int argc, char** argv) {
   economy.record_field = false;
   SimulationOptions full = economy;
   full.full_model = true;
+  if (defaults) {
+    defaults_table(scenes, economy, repeat);
+    return 0;
+  }
 
   for (const std::string& file : scenes) {
     Scene scene;

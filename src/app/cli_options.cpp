@@ -35,9 +35,11 @@ void add_run_options(CLI::App* cmd, RunOverrides& o, RunOptionText& text) {
   // Its range, (0 %, 100 %) as in the scene, is checked with the scene
   // (model/scene_validation.hpp).
   cmd->add_option("--tolerance", text.tolerance,
-                  "Gauge error accepted, e.g. \"1 %\": every bar meshed as coarsely as the error "
-                  "model predicts meets it (default: the scene's simulation.tolerance, else the "
-                  "automatic meshes)");
+                  "Gauge error accepted, e.g. \"1 %\": every bar without its own elements meshed "
+                  "as coarsely as the error model predicts meets it (default: the scene's "
+                  "simulation.tolerance, else " +
+                      format_double(100 * kDefaultTolerance) +
+                      " %; study: else the automatic meshes)");
   cmd->add_option("--threads", o.threads, "Worker threads (0 = all cores)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--quiet,-q", o.quiet, "No progress output on stderr");

@@ -33,6 +33,13 @@ std::function<void(std::size_t, std::size_t)> progress_printer(bool quiet, std::
   };
 }
 
+// The study sweeps multiples of the automatic meshes (its reference 8 x them) unless the scene or
+// --tolerance asks for a tolerance: the default one does not move its grid.
+RunOverrides study_overrides(RunOverrides o) {
+  o.default_tolerance = false;
+  return o;
+}
+
 StudyOptions study_options(const StudyArgs& args) {
   return {args.sweep, args.overrides.contact, args.overrides.stepping, args.overrides.courant,
           args.refine};
@@ -45,7 +52,7 @@ int plan_study(const StudyArgs& args) {
     throw input_error("--tolerance", "", "",
                       "not with --plan: give simulation.tolerance in the scene");
   Scene scene = read_scene(args.scene);
-  apply_overrides(args.overrides, scene);
+  apply_overrides(study_overrides(args.overrides), scene);
   const StudyPlan plan = write_study_plan(args.scene, scene, study_options(args), *args.plan);
   const std::string dir = args.plan->string();
   if (!args.overrides.quiet)
@@ -119,7 +126,7 @@ int run_study(const StudyArgs& args) {
   if (args.plan) return plan_study(args);
 
   Scene scene = read_scene(args.scene);  // InputError → exit 2, nothing written
-  apply_overrides(args.overrides, scene);
+  apply_overrides(study_overrides(args.overrides), scene);
   OutputFolder out(args.output, "study", scene_inputs(scene, false));  // measured files unread
   const int threads = resolve_threads(args.overrides.threads);
   const auto start = std::chrono::steady_clock::now();

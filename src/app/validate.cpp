@@ -78,6 +78,7 @@ int run_validate(const ValidateArgs& args) {
     if (scene.simulation.tolerance) {
       RunOverrides o = args.overrides;
       o.tolerance.reset();
+      o.default_tolerance = false;
       automatic.simulation.tolerance.reset();
       setup["cost_against_automatic"] = setup["node_updates_estimate"].get<double>() /
                                         apply_overrides(o, automatic).node_updates_estimate;

@@ -78,6 +78,23 @@ std::optional<double> common_transit_s(const Scene& scene, const std::vector<boo
   return static_cast<double>(divisor) * kLengthQuantum / speed;
 }
 
+// A compliant link (an interface's `rise_time` τ) is carried by its bars' steps: measured on the
+// LANL copper test (2 µs rise, C = 0.995), the energy error grows with the bars' step over τ —
+// 2.2·10⁻³ at 0.45, 3.6·10⁻³ at 0.62–0.69, 6·10⁻³ at 0.87, 8·10⁻³ at 1.2 (a rigid link at the
+// last meshes: 1·10⁻³) — so a tolerance meshes the bars at an element transit of at most half the
+// shortest rise time (docs/methods.md §1.1), inside the measured region within 0.5 %.
+constexpr double kRiseTimeTransits = 2;
+
+// The coarsest element transit h/c the bars may take: the longest bar's, or kRiseTimeTransits per
+// the shortest rise time of a compliant link.
+double coarsest_transit_s(const Scene& scene) {
+  double coarsest = longest_transit_s(scene);
+  for (std::size_t k = 0; k + 1 < scene.bars.size(); ++k)
+    if (const auto tau = interface_penalty(scene.contact, k).rise_time_s)
+      coarsest = std::min(coarsest, *tau / kRiseTimeTransits);
+  return coarsest;
+}
+
 // Meshes are chosen for a predicted error of this fraction of the tolerance: the model's scatter
 // over its calibration runs is a factor 1.5 (rms of the log 0.41, kMeshErrorConstants).
 constexpr double kTargetFraction = 0.65;
@@ -286,8 +303,9 @@ GaugeErrorPrediction choose_meshes(Scene& scene) {
   }
   // Close to C = 1 only where the bars can step together (common_transit_s).
   const std::optional<double> common = common_transit_s(scene, free);
-  // Element transits h/c tried for the bars: from one element per bar down to 1e-7 of it.
-  const double coarsest = longest_transit_s(scene), finest = coarsest * 1e-7;
+  // Element transits h/c tried for the bars: from one element per bar (at most half a compliant
+  // link's rise time, kRiseTimeTransits) down to 1e-7 of the longest bar's.
+  const double coarsest = coarsest_transit_s(scene), finest = longest_transit_s(scene) * 1e-7;
 
   BarsErrorCache cache;
   double closest = std::numeric_limits<double>::infinity();  // when none meets the tolerance
@@ -345,6 +363,7 @@ GaugeErrorPrediction choose_meshes(Scene& scene) {
         near.simulation.courant = kNearExactCourant;
         ChainDiscretization dn;
         for (long k = 1; k <= kMaxCommonDivisions; ++k) {
+          if (*common / k > coarsest) continue;  // coarser than a compliant link allows
           mesh_bars(near, free, *common / k);
           if (!std::isfinite(cost(near, &dn))) break;
           if (dn.node_updates_estimate >= best_cost) break;  // finer only costs more

@@ -56,7 +56,8 @@ GaugeErrorPrediction predict_gauge_error(const Scene& scene, const ChainDiscreti
 // 0.65 × the tolerance (the model's scatter; where no mesh is predicted that low — the bars the
 // user meshed, or the record's aliasing of sharp fronts, leave no room for the margin — halfway
 // between the lowest predicted error and the tolerance) — the bars at one element transit h/c,
-// searched from the coarsest down (the error is not monotone in h: aliasing), the specimen
+// searched from the coarsest down (the error is not monotone in h: aliasing; no coarser than half
+// the rise time of a compliant link, whose energy the bars' steps must carry), the specimen
 // searched on its own — written into the scene's bars; returns the prediction. Where the scene sets
 // no Courant number and its bars can be meshed to step together, C = 0.9999 at whole divisions of
 // their common transit is tried too, and the cheaper choice written into simulation.courant

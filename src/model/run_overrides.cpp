@@ -13,6 +13,7 @@ ChainDiscretization apply_overrides(const RunOverrides& overrides, Scene& scene)
   RunOptions options;
   options.courant_from_command_line = overrides.courant.has_value();
   options.tolerance_from_command_line = overrides.tolerance.has_value();
+  options.default_tolerance = overrides.default_tolerance;
   return resolve_scene(scene, options);
 }
 

@@ -18,6 +18,9 @@ struct RunOverrides {
   std::optional<double> tolerance;  // --tolerance: the gauge error accepted (a fraction)
   int threads = 0;                  // 0: all cores
   bool quiet = false;
+  // Without a tolerance, kDefaultTolerance meshes the scene (false: the automatic meshes, as the
+  // study sweeps them and validate compares against them).
+  bool default_tolerance = true;
 };
 
 // Applies --contact/--stepping/--courant/--tolerance to a scene read from file, then checks the

@@ -16,6 +16,9 @@ namespace shpb {
 struct RunOptions {
   bool courant_from_command_line = false;
   bool tolerance_from_command_line = false;
+  // Neither the scene nor the command line gives a tolerance: kDefaultTolerance applies (false:
+  // the automatic meshes, as the study's sweep and validate's cost comparison take them).
+  bool default_tolerance = true;
 };
 
 // Empty if `c` is an acceptable Courant number, else what is expected: lumped central difference
@@ -38,6 +41,13 @@ ChainDiscretization validate_scene(const Scene& scene, const RunOptions& options
 // bars so that every later discretize() sees it — and the result checked again. A tolerance no
 // affordable mesh is predicted to meet, or a scene without a striker, is refused (InputError
 // naming --tolerance or simulation.tolerance, with the best predicted error).
+// Without a tolerance (and options.default_tolerance): kDefaultTolerance, for the bars without an
+// `elements` of their own (an explicit mesh is the user's choice and wins for that bar), recorded
+// as simulation.tolerance with tolerance_is_default set. It is never refused: a scene whose every
+// bar is meshed by the user, or that sets a Courant number (scene or --courant), or without a
+// striker (nothing to predict), or with a material-law bar
+// besides the specimen (a pulse shaper: outside the model's calibration), or whose own meshes
+// leave the default out of reach, keeps the automatic meshes and point-sampled gauges.
 ChainDiscretization resolve_scene(Scene& scene, const RunOptions& options = {});
 
 }  // namespace shpb

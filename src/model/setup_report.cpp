@@ -87,6 +87,7 @@ json resolved_setup_json(const Scene& scene, const ChainDiscretization& d) {
   if (const auto t = scene.simulation.tolerance) {  // the meshes above are the model's choice
     const GaugeErrorPrediction p = predict_gauge_error(scene, d);
     out["tolerance"] = *t;
+    out["tolerance_is_default"] = scene.simulation.tolerance_is_default;
     out["predicted_gauge_error"] = p.total;
     out["predicted_gauge_error_bars"] = p.bars;
     out["predicted_gauge_error_specimen"] = p.specimen;

@@ -52,10 +52,14 @@ void print_simulation(const json& s) {
                 s["measurement"]["channels"].get<std::size_t>());
   if (s.contains("tolerance"))
     std::printf(
-        "tolerance    %s %%: meshes above chosen by the gauge-error model (docs/methods.md §1.1) "
-        "for a %s us pulse with %s; predicted gauge error %s %% (bar fronts %s %%, specimen mesh "
-        "%s %%); %s node updates, %s x the automatic meshes\n",
+        "tolerance    %s %%%s: meshes above chosen by the gauge-error model (docs/methods.md "
+        "§1.1) for a %s us pulse with %s; predicted gauge error %s %% (bar fronts %s %%, specimen "
+        "mesh %s %%); %s node updates, %s x the automatic meshes\n",
         g(100 * s["tolerance"].get<double>()).c_str(),
+        s.value("tolerance_is_default", false)
+            ? " (the default: the scene and the command line give none; bars with their own "
+              "elements keep them)"
+            : "",
         g(1e6 * s["pulse_duration_s"].get<double>()).c_str(),
         s["pulse_rise_time_s"].get<double>() > 0
             ? ("a " + g(1e6 * s["pulse_rise_time_s"].get<double>()) + " us rise").c_str()

@@ -373,6 +373,7 @@ nlohmann::ordered_json simulation_summary(const SimulationResult& result, const 
   if (const auto t = scene.simulation.tolerance) {  // the meshes chosen for it are in "bars"
     const double predicted = predict_gauge_error(scene, result.discretization).total;
     j["tolerance"] = *t;
+    j["tolerance_is_default"] = scene.simulation.tolerance_is_default;
     j["predicted_gauge_error"] = predicted;
   }
   return j;

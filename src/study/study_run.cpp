@@ -74,6 +74,7 @@ Scene plan_scene(const StudyPlan& plan, const std::filesystem::path& plan_file) 
   o.contact = plan.contact;
   o.stepping = plan.stepping;
   o.courant = plan.courant;
+  o.default_tolerance = false;  // the study sweeps the automatic meshes (study_overrides)
   apply_overrides(o, scene);
   return scene;
 }

@@ -366,6 +366,10 @@ TEST_CASE(
   scene["contact"] = {
       {"method", "localized-bipenalty"},
       {"interfaces", {{{"between", {"striker", "incident"}}, {"rise_time", "10 us"}}}}};
+  // The closed form is checked at the automatic meshes (a Courant number of the scene's own turns
+  // the default tolerance off): at the default tolerance's meshes (bars of 10 mm, 16 specimen
+  // elements) this run's energy balance misses by 0.84 % (docs/methods.md §1.1 "The default").
+  scene["simulation"]["courant"] = 0.995;
   const Processed raw = simulate_and_process(scene, dir / "raw");
   REQUIRE(raw.simulation["energy_error"].get<double>() < kEnergyTolerance);
   scene["measurement"] = {{"corrections", {{"inertia", true}}}};

@@ -178,10 +178,16 @@ TEST_CASE("validate prints the meshes chosen for a tolerance and their predicted
   const std::string scene = (kExperiments / "classic-al6061" / "scene.json").string();
   const auto plain = run_shpb({"validate", scene, "--json"});
   REQUIRE(plain.code == 0);
-  CHECK_FALSE(nlohmann::json::parse(plain.out).contains("tolerance"));  // nothing changes
+  // Without one, the default the README states (3.5 %), said to be the default.
+  constexpr double kStatedDefault = 0.035;
+  const auto by_default = nlohmann::json::parse(plain.out);
+  CHECK(by_default["tolerance"].get<double>() == Approx(kStatedDefault));
+  CHECK(by_default["tolerance_is_default"].get<bool>());
+  CHECK(by_default["predicted_gauge_error"].get<double>() <= kStatedDefault);
   const auto r = run_shpb({"validate", scene, "--json", "--tolerance", "1%"});
   REQUIRE(r.code == 0);
   const auto setup = nlohmann::json::parse(r.out);
+  CHECK_FALSE(setup["tolerance_is_default"].get<bool>());
   CHECK(setup["predicted_gauge_error"].get<double>() <= kTolerance);
   CHECK(setup["cost_against_automatic"].get<double>() > 0);
   const auto table = run_shpb({"validate", scene, "--tolerance", "1%"});
