@@ -44,24 +44,37 @@ TEST_CASE("Student's t 95 % quantile matches the published table", "[fit][bootst
   CHECK(std::abs(shpb::student_t95(1e9) - 1.960) < kTableRounding);
 }
 
-TEST_CASE("Residual blocks follow the noise's correlation and keep its level", "[fit][bootstrap]") {
-  const std::size_t n = 1000;
-  // White noise: the cube-root rule, ⌈1000^(1/3)⌉ = 10 (its autocorrelation is gone at lag 1).
-  const auto white = ar1_noise(n, 0, 7);
-  CHECK(shpb::residual_block_length(white) == 10);
-  // Noise correlated over 20 samples (autocorrelation e^(−lag/20)): falls below 1/e at lag 20,
-  // the block twice that (±3 lags of sampling scatter of the estimated autocorrelation).
-  const auto coloured = ar1_noise(20000, 20, 8);
-  const std::size_t block = shpb::residual_block_length(coloured);
-  CHECK(block >= 34);
-  CHECK(block <= 46);
+TEST_CASE("Noise draws keep the record noise's level and the spread of its long sums",
+          "[fit][bootstrap]") {
+  // White residuals: order 0 (no correlation to model), the draws are the residuals resampled.
+  const auto white = ar1_noise(2000, 0, 7);
+  CHECK(shpb::fit_noise_model(white).ar.empty());
+  // Residuals correlated over τ = 10 samples (autocorrelation φ^lag, φ = e^(−1/10)): a fitted
+  // parameter is a weighted sum over many samples, so the draws must keep the variance of a sum of
+  // L = 400 consecutive samples, σ²[L(1+φ)/(1−φ) − 2φ(1−φ^L)/(1−φ)²] for AR(1), not only the
+  // level. Blocks of 2τ would lose about τ/block of it at their joins (a third here).
+  const double tau = 10, phi = std::exp(-1 / tau);
+  const std::size_t n = 20000, length = 400, draws = 2000;
+  const auto coloured = ar1_noise(n, tau, 8);
+  const shpb::NoiseModel model = shpb::fit_noise_model(coloured);
+  REQUIRE_FALSE(model.ar.empty());
   std::mt19937_64 rng(3);
-  const auto drawn = shpb::block_resample(coloured, 20000, block, rng);
-  REQUIRE(drawn.size() == 20000);
+  const auto drawn = shpb::draw_noise(model, n, rng);
+  REQUIRE(drawn.size() == n);
   CHECK(std::abs(rms(drawn) / rms(coloured) - 1) < kSpreadTolerance);
-  // Lag-1 correlation kept: e^(−1/20) = 0.951 in the source; the block joins cost 1 in `block`.
-  double c0 = 0, c1 = 0;
-  for (std::size_t i = 1; i < drawn.size(); ++i)
-    c0 += drawn[i] * drawn[i], c1 += drawn[i] * drawn[i - 1];
-  CHECK(c1 / c0 > 0.9);
+  double var_sum = 0;
+  for (std::size_t d = 0; d < draws; ++d) {
+    const auto x = shpb::draw_noise(model, length, rng);
+    double s = 0;
+    for (double v : x) s += v;
+    var_sum += s * s / static_cast<double>(draws);
+  }
+  const auto L = static_cast<double>(length);
+  const double exact =
+      L * (1 + phi) / (1 - phi) - 2 * phi * (1 - std::pow(phi, L)) / ((1 - phi) * (1 - phi));
+  // The variance from 2000 sums is uncertain by √(2/2000) = 3.2 %, the long-run factor
+  // (1+φ)/(1−φ) from φ fitted on 20 000 samples by about 3 %: 15 % is three of their combined
+  // standard deviations.
+  constexpr double kSumVarianceTolerance = 0.15;
+  CHECK(std::abs(var_sum / exact - 1) < kSumVarianceTolerance);
 }
