@@ -103,10 +103,14 @@ fi
 
 # 8. Coverage of the fit's 95 % intervals over 100 synthetic campaigns (tools/fit_interval_coverage:
 #    two materials, two noise levels, white and coloured noise, 30 bootstrap refits each; about an
-#    hour on 2 cores): only with BENCH_FIT_COVERAGE=1.
+#    hour on 2 cores): only with BENCH_FIT_COVERAGE=1. BENCH_FIT_COVERAGE_CAMPAIGNS=N runs fewer,
+#    BENCH_FIT_COVERAGE_NOISE=white|coloured only the campaigns of that noise.
 if [ "${BENCH_FIT_COVERAGE:-0}" != 0 ]; then
   cmake --build "$BUILD" -j 2 --target fit_interval_coverage shpb >/dev/null
+  campaigns="${BENCH_FIT_COVERAGE_CAMPAIGNS:-100}"
+  noise=()
+  [ -n "${BENCH_FIT_COVERAGE_NOISE:-}" ] && noise=(--noise "$BENCH_FIT_COVERAGE_NOISE")
   echo
-  echo "== fit intervals: coverage over 100 synthetic campaigns (30 bootstrap refits each)"
-  "$BUILD"/fit_interval_coverage --campaigns 100 --bootstrap 30 --threads 2
+  echo "== fit intervals: coverage over $campaigns synthetic campaigns ${BENCH_FIT_COVERAGE_NOISE:-} (30 bootstrap refits each)"
+  "$BUILD"/fit_interval_coverage --campaigns "$campaigns" --bootstrap 30 --threads 2 "${noise[@]}"
 fi

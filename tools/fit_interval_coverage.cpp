@@ -9,7 +9,9 @@
 // Build: cmake --build build --target fit_interval_coverage shpb; run (about an hour on 2 cores at
 // the defaults):
 //   build/fit_interval_coverage [--campaigns N] [--bootstrap N] [--first SEED] [--threads N]
-//                               [--keep DIR] [--ofhc-classic]
+//                               [--keep DIR] [--ofhc-classic] [--noise white|coloured] [--from K]
+// --noise runs only the campaigns of that noise (the same campaigns and seeds as in the full run:
+// --campaigns N then counts those); --from K starts at the K-th of them (to continue a run).
 // --ofhc-classic fits, N times from seed --first on, the campaign of the suite's interval test
 // (three copper tests on the classic bars at 8, 15, 26 m/s, 1 % white noise).
 #include <chrono>
@@ -42,10 +44,11 @@ double si(const json& v) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  int campaigns = 100, bootstrap = 30, threads = 2;
+  int campaigns = 100, bootstrap = 30, threads = 2, from = 0;
   unsigned first = 5000;  // the suite's fit tests draw 2024-2026, tools/fit_noise_seeds 3000+
   fs::path keep;
   bool classic = false;
+  int only_colour = -1;  // --noise: 0 white, 1 coloured, -1 both
   for (int i = 1; i < argc; i += 2) {
     const std::string a = argv[i];
     if (a == "--ofhc-classic") {  // the one campaign of the suite's interval test, printed
@@ -65,6 +68,10 @@ int main(int argc, char** argv) {
       first = static_cast<unsigned>(std::stoul(v));
     else if (a == "--threads")
       threads = std::stoi(v);
+    else if (a == "--noise" && (v == "white" || v == "coloured"))
+      only_colour = v == "coloured";
+    else if (a == "--from")
+      from = std::stoi(v);
     else if (a == "--keep")
       keep = v;
     else {
@@ -82,7 +89,9 @@ int main(int argc, char** argv) {
   int covered[4] = {0, 0, 0, 0}, linear[4] = {0, 0, 0, 0}, weak[4] = {0, 0, 0, 0}, done = 0;
   std::printf("%4s %-10s %5s %6s   covered by the interval (linearised alone)   method\n", "#",
               "material", "noise", "colour");
-  for (int c = 0; c < campaigns; ++c) {
+  for (int k = from; k < from + campaigns; ++k) {
+    // Campaign c of the full run: white noise for c / 4 even, coloured for c / 4 odd.
+    const int c = only_colour < 0 ? k : 8 * (k / 4) + 4 * only_colour + k % 4;
     const Material& m = materials[classic ? 0 : c % 2];
     shpb_test::SyntheticSetup setup;
     setup.velocities = m.velocities;

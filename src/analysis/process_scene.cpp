@@ -19,20 +19,6 @@ bool all_finite(const std::vector<double>& v) {
   return true;
 }
 
-// Why the reduction cannot be reported (empty: it can). The pulses are checked separately: they
-// are written even when the reduction fails.
-std::string reduction_failure(const ProcessingResult& r) {
-  const Curve& c = r.curve;
-  for (const auto* v : {&c.strain_rate_1_s, &c.strain, &c.stress_3wave_Pa, &c.true_strain,
-                        &c.true_stress_Pa, &c.equilibrium_ratio, &c.strain_1wave})
-    if (!all_finite(*v)) return "process: the reduction produced a non-finite value";
-  if (c.strain.size() && *std::max_element(c.strain.begin(), c.strain.end()) >= 1)
-    return "process: engineering strain reached 1 (the specimen would have no length "
-           "left): check the channels' units and bridge factors, the specimen length and the "
-           "windows";
-  return "";
-}
-
 }  // namespace
 
 BarCheckOutcome check_scene_bars(const Scene& scene, bool with_signals_file) {
@@ -51,6 +37,35 @@ BarCheckOutcome check_scene_bars(const Scene& scene, bool with_signals_file) {
   o.warnings = signals.warnings;
   o.warnings.insert(o.warnings.end(), o.result.warnings.begin(), o.result.warnings.end());
   return o;
+}
+
+std::string reduction_failure(const ProcessingResult& r) {
+  const Curve& c = r.curve;
+  for (const auto* v : {&c.strain_rate_1_s, &c.strain, &c.stress_3wave_Pa, &c.true_strain,
+                        &c.true_stress_Pa, &c.equilibrium_ratio, &c.strain_1wave})
+    if (!all_finite(*v)) return "process: the reduction produced a non-finite value";
+  if (c.strain.size() && *std::max_element(c.strain.begin(), c.strain.end()) >= 1)
+    return "process: engineering strain reached 1 (the specimen would have no length "
+           "left): check the channels' units and bridge factors, the specimen length and the "
+           "windows";
+  return "";
+}
+
+void use_simulated_signals(ProcessingOptions& options) {
+  options.dispersion = {};
+  options.dispersion.correction = false;
+  options.windows = {};
+}
+
+GaugeSignals simulated_signals(const TimeSeries& gauges, const std::vector<std::string>& names) {
+  GaugeSignals g;
+  g.time_s = gauges.time_s;
+  g.dt_s = gauges.samples() > 1 ? gauges.time_s[1] - gauges.time_s[0] : 0.0;
+  for (const std::string& name : names) {
+    g.gauges.push_back(name);
+    g.strain.push_back(gauges.column(name));
+  }
+  return g;
 }
 
 ProcessOutcome process_scene(const Scene& scene,
@@ -83,9 +98,7 @@ ProcessOutcome process_scene(const Scene& scene,
       ch.unit = SignalUnit::kStrain;
       m.channels.push_back(ch);
     }
-    options.dispersion = {};
-    options.dispersion.correction = false;
-    options.windows = {};  // the scene's windows are on the measured clock
+    use_simulated_signals(options);
   } else {
     if (!scene.measurement)
       throw input_error(scene.file.string(), "measurement", "(missing)",

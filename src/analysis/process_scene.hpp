@@ -14,6 +14,7 @@
 #include "analysis/processing.hpp"
 #include "analysis/test_processing.hpp"
 #include "analysis/uncertainty.hpp"
+#include "core/time_series.hpp"
 #include "model/calibration.hpp"
 #include "model/scene.hpp"
 
@@ -35,6 +36,17 @@ struct ProcessOutcome {
   // the block).
   std::optional<UncertaintyResult> uncertainty;
 };
+
+// Why a reduction cannot be reported (empty: it can): a non-finite value, or an engineering strain
+// of 1. The pulses are checked separately: they are written even when the reduction fails.
+std::string reduction_failure(const ProcessingResult& r);
+
+// Signals of the 1D bar model (a simulation's gauges) reduced as `process --signals` reduces them:
+// the model does not disperse, so no dispersion correction (the faces are reached by a pure
+// delay), and no windows of the scene (they are on the measured clock).
+void use_simulated_signals(ProcessingOptions& options);
+// A simulation's gauges (tension positive, one column per gauge) as the signals of those gauges.
+GaugeSignals simulated_signals(const TimeSeries& gauges, const std::vector<std::string>& names);
 
 // Throws InputError for a scene that cannot be processed (no specimen: the command's
 // bars-together check is not a reduction) and NumericalError for non-finite pulses.

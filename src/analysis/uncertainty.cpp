@@ -22,36 +22,6 @@ namespace {
 // Failed draws are reported by their first few distinct reasons.
 constexpr std::size_t kFailureReasons = 3;
 
-// The samples where x reaches a new maximum: x is increasing along them, so a strain is first
-// reached between two of them (binary search).
-struct FirstReach {
-  std::vector<std::size_t> at;
-  FirstReach(const std::vector<double>& x, std::size_t n) {
-    for (std::size_t i = 0; i < n; ++i)
-      if (at.empty() || x[i] > x[at.back()]) at.push_back(i);
-  }
-  double operator()(const std::vector<double>& x, const std::vector<double>& y, double v) const {
-    if (at.empty()) return 0;
-    if (v <= x[at.front()]) return y[at.front()];
-    if (v >= x[at.back()]) return y[at.back()];
-    const auto hi = std::upper_bound(at.begin(), at.end(), v,
-                                     [&](double value, std::size_t i) { return value < x[i]; });
-    const std::size_t b = *hi, a = *(hi - 1);
-    const double w = (v - x[a]) / (x[b] - x[a]);
-    return y[a] + w * (y[b] - y[a]);
-  }
-};
-
-// Quantile p of sorted values, linear between order statistics (Hyndman & Fan type 7).
-double quantile(const std::vector<double>& sorted, double p) {
-  if (sorted.empty()) return 0;
-  const double h = p * static_cast<double>(sorted.size() - 1);
-  const auto lo = static_cast<std::size_t>(std::floor(h));
-  const std::size_t hi = std::min(lo + 1, sorted.size() - 1);
-  return sorted[lo] + (h - static_cast<double>(lo)) * (sorted[hi] - sorted[lo]);
-}
-constexpr double kQuantiles[3] = {0.025, 0.5, 0.975};
-
 // A draw's perturbed test: the scene (bars, gauges, friction), the options (cut-off, shifts) and
 // the factor of each channel's strain (nominal over drawn bridge product).
 struct DrawState {
@@ -145,11 +115,8 @@ void add_bar_inputs(InputList& in, const BarUncertainty& b, const BarSpec& bar) 
   }
   if (b.diameter)
     in.add(name + "diameter", bar.diameter_m, absolute(*b.diameter, bar.diameter_m),
-           Dimension::kLength, true, [i, d0 = bar.diameter_m](double x, DrawState& d) {
-             BarSpec& bs = d.scene.bars[i];
-             bs.area_m2 *= (x / d0) * (x / d0);
-             bs.diameter_m = x;
-           });
+           Dimension::kLength, true,
+           [i](double x, DrawState& d) { set_bar_diameter(d.scene.bars[i], x); });
   if (b.length)
     in.add(name + "length", bar.length_m, absolute(*b.length, bar.length_m), Dimension::kLength,
            true, [i](double x, DrawState& d) { d.scene.bars[i].length_m = x; });
@@ -225,77 +192,6 @@ std::vector<Input> inputs_of(const Scene& scene, const MeasurementSpec& m,
   if (u.gauge_position) add_gauge_position_inputs(in, *u.gauge_position, scene, setup);
   add_analysis_inputs(in, scene, u, signals, options, nominal);
   return std::move(in.in);
-}
-
-// Standard normal draws, Box–Muller on a 64-bit Mersenne twister: the same numbers from every
-// standard library (std::normal_distribution's algorithm is the library's own).
-class NormalDraws {
- public:
-  explicit NormalDraws(std::uint64_t seed) : engine_(seed) {}
-  double operator()() {
-    if (has_spare_) {
-      has_spare_ = false;
-      return spare_;
-    }
-    constexpr double kTwoPow53 = 9007199254740992.0;
-    double u1 = 0;
-    while (u1 == 0) u1 = static_cast<double>(engine_() >> 11) / kTwoPow53;
-    const double u2 = static_cast<double>(engine_() >> 11) / kTwoPow53;
-    const double r = std::sqrt(-2 * std::log(u1));
-    spare_ = r * std::sin(2 * std::numbers::pi * u2);
-    has_spare_ = true;
-    return r * std::cos(2 * std::numbers::pi * u2);
-  }
-
- private:
-  std::mt19937_64 engine_;
-  double spare_ = 0;
-  bool has_spare_ = false;
-};
-
-// The headline figures of a reduction, in the order of figure_names(); NaN where it gives none.
-struct FigureSpec {
-  std::string name, unit;
-  std::function<double(const ProcessingResult&)> of;
-};
-
-std::vector<FigureSpec> figure_specs(const ProcessingResult& nominal, const KolskySetup& setup,
-                                     const ProcessingOptions& options) {
-  const bool one_wave = options.primary == PrimaryReduction::kOneWave;
-  std::vector<FigureSpec> f;
-  f.push_back({"peak_stress_Pa", "Pa", [](const ProcessingResult& r) { return r.peak_stress_Pa; }});
-  f.push_back({"max_strain", "", [](const ProcessingResult& r) { return r.max_strain; }});
-  for (const double e : kFlowStressStrains) {
-    if (e > nominal.max_strain) break;
-    char name[64];
-    std::snprintf(name, sizeof name, "flow_stress_Pa_at_strain_%g", e);
-    f.push_back({name, "Pa", [e, one_wave](const ProcessingResult& r) {
-                   const Curve& c = r.curve;
-                   const auto& x = one_wave ? c.strain_1wave : c.strain;
-                   const auto& y = one_wave ? c.stress_1wave_Pa : c.stress_3wave_Pa;
-                   if (e > r.max_strain) return std::nan("");
-                   return value_at_first_reach(x, y, r.loading_end, e);
-                 }});
-  }
-  f.push_back({"mean_strain_rate_1_s", "1/s",
-               [](const ProcessingResult& r) { return r.mean_strain_rate_1_s; }});
-  if (nominal.strain_rate_has_plateau)
-    f.push_back({"plateau_strain_rate_1_s", "1/s",
-                 [](const ProcessingResult& r) { return r.plateau_strain_rate_1_s; }});
-  if (nominal.window_strain_rate_1_s)
-    f.push_back({"mean_strain_rate_over_window_1_s", "1/s", [](const ProcessingResult& r) {
-                   return r.window_strain_rate_1_s.value_or(std::nan(""));
-                 }});
-  if (!setup.pulse_shaper)
-    f.push_back({"striker_velocity_m_s", "m/s",
-                 [](const ProcessingResult& r) { return r.inferred_striker_velocity_m_s; }});
-  return f;
-}
-
-bool all_finite(const std::vector<double>& v, std::size_t n) {
-  for (std::size_t i = 0; i < n; ++i)
-    if (!std::isfinite(v[i])) return false;
-  return true;
 }
 
 // The standard normal draws of every input, draw after draw, in one sequence: the result does
@@ -374,22 +270,10 @@ DrawResult reduce_draw(const DrawContext& ctx, std::size_t d, DispersionTableCac
     const KolskySetup k_draw = resolve_setup(state.scene, ctx.signals.gauges);
     const ProcessedTest t = process_test(state.scene, scaled, k_draw, state.options);
     const ProcessingResult& r = t.result;
-    const Curve& c = r.curve;
-    const auto& x = ctx.one_wave ? c.strain_1wave : c.strain;
-    const auto& rate = ctx.one_wave ? c.strain_rate_1wave_1_s : c.strain_rate_1_s;
-    const std::size_t n = r.loading_end;
-    if (n == 0 || !all_finite(x, n) || !all_finite(c.stress_3wave_Pa, n) ||
-        !all_finite(c.stress_1wave_Pa, n) || !all_finite(rate, n))
-      throw std::domain_error("the reduction produced a non-finite value");
-    const FirstReach reach(x, n);
-    res.stress3.resize(ctx.rows);
-    res.stress1.resize(ctx.rows);
-    res.rate.resize(ctx.rows);
-    for (std::size_t j = 0; j < ctx.rows; ++j) {
-      res.stress3[j] = reach(x, c.stress_3wave_Pa, ctx.nominal_strain[j]);
-      res.stress1[j] = reach(x, c.stress_1wave_Pa, ctx.nominal_strain[j]);
-      res.rate[j] = reach(x, rate, ctx.nominal_strain[j]);
-    }
+    CurveAtStrains at = curve_at_strains(r, ctx.one_wave, ctx.nominal_strain, ctx.rows);
+    res.stress3 = std::move(at.stress3);
+    res.stress1 = std::move(at.stress1);
+    res.rate = std::move(at.rate);
     for (const FigureSpec& f : ctx.figures) res.figures.push_back(f.of(r));
     res.ok = true;
   } catch (const std::exception& e) {
@@ -442,94 +326,17 @@ std::vector<std::size_t> good_draws(const std::vector<DrawResult>& results,
 // The 2.5/50/97.5 % quantiles of the good draws' curves at each of the first `rows` strains.
 void fill_bands(const std::vector<DrawResult>& results, const std::vector<std::size_t>& good,
                 std::size_t rows, UncertaintyResult& out) {
-  for (int q = 0; q < 3; ++q) {
-    out.stress_3wave[q].resize(rows);
-    out.stress_1wave[q].resize(rows);
-    out.strain_rate[q].resize(rows);
-  }
-  std::vector<double> column(good.size());
   auto band = [&](std::vector<double> DrawResult::*field, std::vector<double>(&to)[3]) {
-    for (std::size_t j = 0; j < rows; ++j) {
-      for (std::size_t i = 0; i < good.size(); ++i) column[i] = (results[good[i]].*field)[j];
-      std::sort(column.begin(), column.end());
-      for (int q = 0; q < 3; ++q) to[q][j] = quantile(column, kQuantiles[q]);
-    }
+    std::vector<const std::vector<double>*> draws;
+    for (std::size_t d : good) draws.push_back(&(results[d].*field));
+    quantile_bands(draws, rows, to);
   };
   band(&DrawResult::stress3, out.stress_3wave);
   band(&DrawResult::stress1, out.stress_1wave);
   band(&DrawResult::rate, out.strain_rate);
 }
 
-// Each input's share of a figure's variance: the squared correlation of the figure's draws y
-// (mean, variance var) with the input's standard normal draws (z, k a draw), largest first.
-std::vector<std::pair<std::size_t, double>> variance_shares(const std::vector<double>& y,
-                                                            const std::vector<std::size_t>& from,
-                                                            double mean, double var,
-                                                            const std::vector<double>& z,
-                                                            std::size_t k) {
-  const double n = static_cast<double>(y.size());
-  std::vector<std::pair<std::size_t, double>> shares;
-  for (std::size_t i = 0; i < k; ++i) {
-    double zm = 0;
-    for (std::size_t d : from) zm += z[d * k + i];
-    zm /= n;
-    double szz = 0, szy = 0;
-    for (std::size_t j = 0; j < from.size(); ++j) {
-      const double dz = z[from[j] * k + i] - zm;
-      szz += dz * dz;
-      szy += dz * (y[j] - mean);
-    }
-    const double denominator = szz * var * (n - 1);
-    shares.emplace_back(i, denominator > 0 ? szy * szy / denominator : 0.0);
-  }
-  std::stable_sort(shares.begin(), shares.end(),
-                   [](const auto& a, const auto& b) { return a.second > b.second; });
-  return shares;
-}
-
-// Figure f over the good draws where it is finite: standard deviation, 95 % interval, median and
-// variance shares (none below two such draws).
-FigureUncertainty figure_uncertainty(const FigureSpec& spec, std::size_t f,
-                                     const ProcessingResult& nominal,
-                                     const std::vector<DrawResult>& results,
-                                     const std::vector<std::size_t>& good,
-                                     const std::vector<double>& z, std::size_t k) {
-  FigureUncertainty fu;
-  fu.name = spec.name;
-  fu.unit = spec.unit;
-  fu.nominal = spec.of(nominal);
-  std::vector<double> y;
-  std::vector<std::size_t> from;
-  for (std::size_t d : good)
-    if (std::isfinite(results[d].figures[f])) {
-      y.push_back(results[d].figures[f]);
-      from.push_back(d);
-    }
-  fu.draws = y.size();
-  if (y.size() < 2) return fu;
-  const double n = static_cast<double>(y.size());
-  double mean = 0;
-  for (double v : y) mean += v;
-  mean /= n;
-  double var = 0;
-  for (double v : y) var += (v - mean) * (v - mean);
-  var /= n - 1;
-  fu.standard_uncertainty = std::sqrt(var);
-  std::vector<double> sorted = y;
-  std::sort(sorted.begin(), sorted.end());
-  fu.low95 = quantile(sorted, kQuantiles[0]);
-  fu.median = quantile(sorted, kQuantiles[1]);
-  fu.high95 = quantile(sorted, kQuantiles[2]);
-  fu.shares = variance_shares(y, from, mean, var, z, k);
-  return fu;
-}
-
 }  // namespace
-
-double value_at_first_reach(const std::vector<double>& x, const std::vector<double>& y,
-                            std::size_t n, double at) {
-  return FirstReach(x, n)(x, y, at);
-}
 
 UncertaintyResult propagate_uncertainty(const Scene& scene, const MeasurementSpec& m,
                                         const GaugeSignals& signals,
@@ -540,7 +347,8 @@ UncertaintyResult propagate_uncertainty(const Scene& scene, const MeasurementSpe
     throw std::logic_error("propagate_uncertainty: the scene has no uncertainty block");
   const KolskySetup setup = resolve_setup(scene, signals.gauges);
   const std::vector<Input> inputs = inputs_of(scene, m, signals, options, nominal, setup);
-  const std::vector<FigureSpec> figures = figure_specs(nominal, setup, options);
+  const std::vector<FigureSpec> figures =
+      figure_specs(nominal, options.primary == PrimaryReduction::kOneWave, setup.pulse_shaper);
   UncertaintyResult out;
   out.draws = mc.draws;
   out.seed = mc.seed;
@@ -566,8 +374,12 @@ UncertaintyResult propagate_uncertainty(const Scene& scene, const MeasurementSpe
 
   const std::vector<std::size_t> good = good_draws(results, out);
   fill_bands(results, good, nominal.loading_end, out);
-  for (std::size_t f = 0; f < figures.size(); ++f)
-    out.figures.push_back(figure_uncertainty(figures[f], f, nominal, results, good, z, k));
+  std::vector<double> values(results.size());
+  for (std::size_t f = 0; f < figures.size(); ++f) {
+    for (std::size_t d : good) values[d] = results[d].figures[f];
+    out.figures.push_back(figure_statistics(figures[f].name, figures[f].unit,
+                                            figures[f].of(nominal), values, good, z, k));
+  }
   return out;
 }
 

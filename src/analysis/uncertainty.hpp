@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "analysis/gauge_signals.hpp"
+#include "analysis/monte_carlo.hpp"
 #include "analysis/processing.hpp"
 #include "model/scene.hpp"
 
@@ -44,19 +45,6 @@ struct UncertainInput {
   std::string unit;  // SI unit of the two values ("" for a plain number)
 };
 
-// A headline figure over the draws: nominal (the reduction with the scene's values), median,
-// standard deviation (its standard uncertainty) and the probabilistically symmetric 95 %
-// interval; each input's share of its variance (squared correlation of the figure with that
-// input's draws: the linear first-order share for independent inputs, Saltelli et al. 2008),
-// largest first.
-struct FigureUncertainty {
-  std::string name;
-  std::string unit;
-  double nominal = 0, median = 0, standard_uncertainty = 0, low95 = 0, high95 = 0;
-  std::size_t draws = 0;  // draws that gave it (a draw that does not reach a strain gives none)
-  std::vector<std::pair<std::size_t, double>> shares;  // (index into inputs, share)
-};
-
 struct UncertaintyResult {
   std::size_t draws = 0, failed = 0;
   std::uint64_t seed = 0;
@@ -77,15 +65,6 @@ UncertaintyResult propagate_uncertainty(const Scene& scene, const MeasurementSpe
                                         const ProcessingOptions& options,
                                         const ProcessingResult& nominal,
                                         const MonteCarloOptions& mc);
-
-// Engineering strains at which the flow stress is quoted with its uncertainty (those the nominal
-// curve reaches).
-inline constexpr double kFlowStressStrains[] = {0.05, 0.1, 0.2, 0.3};
-
-// The value of `y` where `x` first reaches `at` along the samples [0, n) (linear between the
-// samples where x reaches a new maximum); y at the last of them beyond x's maximum.
-double value_at_first_reach(const std::vector<double>& x, const std::vector<double>& y,
-                            std::size_t n, double at);
 
 // curve.csv's band columns (docs/outputs.md), in their order.
 std::vector<std::pair<const char*, const std::vector<double>*>> uncertainty_band_columns(

@@ -4,6 +4,7 @@
 // module): options checked (IsValid), one library call that returns a result, the result written.
 // Each run_<command> returns the process exit code: 0 success, 2 bad input (InputError), 3
 // numerical failure (NumericalError). main() catches what escapes and maps it to these codes.
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -83,6 +84,10 @@ struct StudyArgs {
   Sweep sweep = Sweep::kPareto;
   RunOverrides overrides;
   int refine = 1;  // stability grid refinement (study/sweep.hpp)
+  // --sweep monte-carlo: the distributions file, draws and seed (study/monte_carlo_sweep.hpp).
+  std::filesystem::path distributions;
+  std::size_t draws = 0;  // 0: the default (kDefaultMonteCarloDraws)
+  std::optional<std::uint64_t> seed;
   // Plan, run, merge (docs/commands.md): at most one of the three.
   std::optional<std::filesystem::path> plan;   // write DIR/plan.json (needs the scene)
   std::optional<std::filesystem::path> run;    // run shard `shard` of DIR's plan

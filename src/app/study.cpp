@@ -41,8 +41,12 @@ RunOverrides study_overrides(RunOverrides o) {
 }
 
 StudyOptions study_options(const StudyArgs& args) {
-  return {args.sweep, args.overrides.contact, args.overrides.stepping, args.overrides.courant,
-          args.refine};
+  StudyOptions o{args.sweep, args.overrides.contact, args.overrides.stepping,
+                 args.overrides.courant, args.refine};
+  o.distributions = args.distributions;
+  if (args.draws > 0) o.draws = args.draws;
+  if (args.seed) o.seed = *args.seed;
+  return o;
 }
 
 // shpb study SCENE --plan DIR: DIR/plan.json, nothing run.
@@ -98,11 +102,25 @@ int merge_study(const StudyArgs& args) {
 
 bool StudyArgs::IsValid(std::string* error) const {
   const int modes = (plan ? 1 : 0) + (run ? 1 : 0) + (merge ? 1 : 0);
+  // The Monte Carlo option given first, if any (named by the errors below).
+  const char* monte_carlo_option = !distributions.empty() ? "--distributions"
+                                   : draws > 0            ? "--draws"
+                                   : seed                 ? "--seed"
+                                                          : nullptr;
   std::optional<InputError> e;
   if (modes > 1)
     e = input_error("study", "", "", "--plan, --run and --merge are separate steps: give one");
   else if (refine != 1 && sweep != Sweep::kStability)
     e = input_error("--refine", "", std::to_string(refine), "only with --sweep stability");
+  else if ((run || merge) && monte_carlo_option)
+    e = input_error(monte_carlo_option, "", "",
+                    "not with --run or --merge: the plan holds the draws");
+  else if (sweep != Sweep::kMonteCarlo && monte_carlo_option)
+    e = input_error(monte_carlo_option, "", "", "only with --sweep monte-carlo");
+  else if (sweep == Sweep::kMonteCarlo && !run && !merge && distributions.empty())
+    e = input_error("--distributions", "", "",
+                    "a file of the values to draw is required with --sweep monte-carlo "
+                    "(docs/scene-format.md, \"Monte Carlo distributions\")");
   else if (!shard.empty() && !run)
     e = input_error("--shard", "", "\"" + shard + "\"", "only with --run DIR");
   else if ((run || plan) && !output.empty())
@@ -127,10 +145,13 @@ int run_study(const StudyArgs& args) {
 
   Scene scene = read_scene(args.scene);  // InputError → exit 2, nothing written
   apply_overrides(study_overrides(args.overrides), scene);
-  OutputFolder out(args.output, "study", scene_inputs(scene, false));  // measured files unread
-  const int threads = resolve_threads(args.overrides.threads);
   const auto start = std::chrono::steady_clock::now();
-  const StudyPlan plan = make_study_plan(study_options(args), scene);
+  const StudyPlan plan =
+      make_study_plan(study_options(args), scene);  // a bad file: nothing written
+  std::vector<std::filesystem::path> inputs = scene_inputs(scene, false);  // measured files unread
+  if (!args.distributions.empty()) inputs.push_back(args.distributions);
+  OutputFolder out(args.output, "study", inputs);
+  const int threads = resolve_threads(args.overrides.threads);
   StudyResults results;
   run_plan(plan, scene, all_runs(plan.runs()), threads,
            progress_printer(args.overrides.quiet, to_string(plan.sweep)), results);
@@ -149,13 +170,15 @@ Command add_study_command(CLI::App& app) {
     StudyArgs args;
     RunOptionText run;
     std::string sweep;
+    std::uint64_t seed = 0;
   };
   auto o = std::make_shared<Options>();
   StudyArgs& study = o->args;
   auto* cmd = app.add_subcommand(
       "study",
       "Sweep contact methods, steppings, resolutions and penalty parameters: accuracy "
-      "against cost (pareto.csv) and stability maps (stability.csv)");
+      "against cost (pareto.csv) and stability maps (stability.csv); or the Monte Carlo of a "
+      "planned test over uncertain scene values (bands on the gauges and the curve)");
   cmd->add_option("scene", study.scene, "Scene JSON file (not with --run/--merge)");
   cmd->add_option("-o,--output", study.output,
                   "Output folder (replaced atomically); with --merge default DIR/result");
@@ -167,6 +190,14 @@ Command add_study_command(CLI::App& app) {
                   "Stability map: refine-1 more points between neighbours on the stiffness "
                   "and Courant axes (2: about 4 x the points; default 1)")
       ->check(CLI::Range(1, 64));
+  cmd->add_option("--distributions", study.distributions,
+                  "Monte Carlo: JSON file of the scene values to draw and their distributions");
+  cmd->add_option(
+         "--draws", study.draws,
+         "Monte Carlo: number of draws (default " + std::to_string(kDefaultMonteCarloDraws) + ")")
+      ->check(CLI::Range(2, 1000000));
+  auto* seed = cmd->add_option(
+      "--seed", o->seed, "Monte Carlo: seed of the draws (default 1: the same draws every run)");
   cmd->add_option("--plan", study.plan,
                   "Write the sweep's independent runs into DIR/plan.json instead of running "
                   "them (then --run DIR --shard K/N, then --merge DIR)");
@@ -178,9 +209,10 @@ Command add_study_command(CLI::App& app) {
                   "Check DIR's parts (each run exactly once) and write the outputs of the "
                   "whole sweep into -o (default DIR/result)");
   add_run_options(cmd, study.overrides, o->run);
-  return {cmd, [o] {
+  return {cmd, [o, seed] {
             resolve_run_options(o->args.overrides, o->run);
             if (!o->sweep.empty()) o->args.sweep = *enum_value(kSweepNames, o->sweep);
+            if (seed->count() > 0) o->args.seed = o->seed;
             return run_study(o->args);
           }};
 }

@@ -48,8 +48,7 @@ std::vector<double> gauge_residuals(const FitCase& c, const Overlay& o, bool tra
 
 // A test's record as the fitted model makes it, plus a noise draw per gauge.
 GaugeSignals synthetic_record(const FitCase& c, const Overlay& fitted,
-                              const std::vector<double>& incident_residuals,
-                              const std::vector<double>& transmitted_residuals,
+                              const NoiseModel& incident_noise, const NoiseModel& transmitted_noise,
                               std::mt19937_64& rng) {
   GaugeSignals g = c.signals();
   g.warnings.clear();
@@ -58,11 +57,11 @@ GaugeSignals synthetic_record(const FitCase& c, const Overlay& fitted,
     const bool incident = g.gauges[k] == setup.incident_gauge;
     if (!incident && g.gauges[k] != setup.transmitted_gauge) continue;
     const std::vector<double>& sim = incident ? fitted.incident : fitted.transmitted;
-    const std::vector<double>& r = incident ? incident_residuals : transmitted_residuals;
-    if (sim.size() != g.strain[k].size() || r.empty())
+    const NoiseModel& noise_model = incident ? incident_noise : transmitted_noise;
+    if (sim.size() != g.strain[k].size() || noise_model.innovations.empty())
       throw NumericalError("bootstrap: test " + c.name() + ": no fitted record of gauge " +
                            g.gauges[k]);
-    const std::vector<double> noise = block_resample(r, sim.size(), residual_block_length(r), rng);
+    const std::vector<double> noise = draw_noise(noise_model, sim.size(), rng);
     for (std::size_t i = 0; i < sim.size(); ++i) g.strain[k][i] = sim[i] + noise[i];
   }
   return g;
@@ -70,34 +69,59 @@ GaugeSignals synthetic_record(const FitCase& c, const Overlay& fitted,
 
 }  // namespace
 
-std::size_t residual_block_length(const std::vector<double>& r) {
+NoiseModel fit_noise_model(const std::vector<double>& r) {
+  NoiseModel m;
   const std::size_t n = r.size();
-  if (n < 2) return 1;
-  double c0 = 0;
-  for (double v : r) c0 += v * v;
-  std::size_t lag = 1;
-  if (c0 > 0)
-    for (; lag < n / 4; ++lag) {
-      double c = 0;
-      for (std::size_t i = lag; i < n; ++i) c += r[i] * r[i - lag];
-      if (c / c0 < std::exp(-1.0)) break;
-    }
-  const auto cube_root = static_cast<std::size_t>(std::ceil(std::cbrt(static_cast<double>(n))));
-  return std::clamp<std::size_t>(std::max(cube_root, 2 * lag), 1, n);
+  if (n == 0) return m;
+  const std::size_t max_order = std::min(kMaxNoiseOrder, n / 10);
+  std::vector<double> gamma(max_order + 1, 0.0);  // biased autocovariances: a stationary fit
+  for (std::size_t k = 0; k <= max_order; ++k) {
+    for (std::size_t i = k; i < n; ++i) gamma[k] += r[i] * r[i - k];
+    gamma[k] /= static_cast<double>(n);
+  }
+  // Levinson–Durbin: the order-k coefficients from the order k−1 ones.
+  std::vector<double> a, best;
+  double e = gamma[0];
+  double best_aic = e > 0 ? static_cast<double>(n) * std::log(e) : 0.0;
+  for (std::size_t k = 1; k <= max_order && e > 0; ++k) {
+    double acc = gamma[k];
+    for (std::size_t j = 1; j < k; ++j) acc -= a[j - 1] * gamma[k - j];
+    const double lambda = acc / e;
+    std::vector<double> next(k);
+    for (std::size_t j = 1; j < k; ++j) next[j - 1] = a[j - 1] - lambda * a[k - j - 1];
+    next[k - 1] = lambda;
+    a = std::move(next);
+    e *= 1 - lambda * lambda;
+    if (!(e > 0)) break;
+    const double aic = static_cast<double>(n) * std::log(e) + 2.0 * static_cast<double>(k);
+    if (aic < best_aic) best_aic = aic, best = a;
+  }
+  m.ar = best;
+  const std::size_t p = m.ar.size();
+  for (std::size_t t = p; t < n; ++t) {
+    double v = r[t];
+    for (std::size_t j = 1; j <= p; ++j) v -= m.ar[j - 1] * r[t - j];
+    m.innovations.push_back(v);
+  }
+  double mean = 0;
+  for (double v : m.innovations) mean += v / static_cast<double>(m.innovations.size());
+  for (double& v : m.innovations) v -= mean;
+  return m;
 }
 
-std::vector<double> block_resample(const std::vector<double>& r, std::size_t n, std::size_t block,
-                                   std::mt19937_64& rng) {
-  std::vector<double> out;
-  out.reserve(n + block);
-  std::uniform_int_distribution<std::size_t> start(0, r.size() - block);
-  while (out.size() < n) {
-    const std::size_t s = start(rng);
-    out.insert(out.end(), r.begin() + static_cast<long>(s),
-               r.begin() + static_cast<long>(s + block));
+std::vector<double> draw_noise(const NoiseModel& m, std::size_t n, std::mt19937_64& rng) {
+  std::vector<double> x(n, 0.0);
+  if (m.innovations.empty()) return x;
+  const std::size_t p = m.ar.size(), burn = m.innovations.size() + p;
+  std::uniform_int_distribution<std::size_t> pick(0, m.innovations.size() - 1);
+  std::vector<double> all(burn + n, 0.0);
+  for (std::size_t t = 0; t < all.size(); ++t) {
+    double v = m.innovations[pick(rng)];
+    for (std::size_t j = 1; j <= std::min(p, t); ++j) v += m.ar[j - 1] * all[t - j];
+    all[t] = v;
   }
-  out.resize(n);
-  return out;
+  std::copy(all.begin() + static_cast<long>(burn), all.end(), x.begin());
+  return x;
 }
 
 double student_t95(double dof) {
@@ -113,13 +137,15 @@ void run_bootstrap(FitRun& run, const FitOptions& options) {
   if (run.stages.empty() || options.bootstrap <= 0) return;
   const auto started = std::chrono::steady_clock::now();
   const std::size_t tests = run.cases.size(), draws = static_cast<std::size_t>(options.bootstrap);
-  std::vector<std::vector<double>> incident(tests), transmitted(tests);
+  std::vector<NoiseModel> incident(tests), transmitted(tests);
   for (std::size_t k = 0; k < tests; ++k) {
-    incident[k] = gauge_residuals(*run.cases[k], run.after[k], false);
-    transmitted[k] = gauge_residuals(*run.cases[k], run.after[k], true);
+    std::vector<double> in = gauge_residuals(*run.cases[k], run.after[k], false);
+    std::vector<double> tr = gauge_residuals(*run.cases[k], run.after[k], true);
     // A gauge without a fitted window borrows the other gauge's residuals.
-    if (incident[k].empty()) incident[k] = transmitted[k];
-    if (transmitted[k].empty()) transmitted[k] = incident[k];
+    if (in.empty()) in = tr;
+    if (tr.empty()) tr = in;
+    incident[k] = fit_noise_model(in);
+    transmitted[k] = fit_noise_model(tr);
   }
   const std::vector<std::size_t>& fitted = run.stages.back().unknowns;
   std::vector<std::vector<double>> estimates(draws);

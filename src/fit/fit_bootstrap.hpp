@@ -5,9 +5,14 @@
 // Bootstrap, ch. 6 and §13.3; Davison & Hinkley 1997, Bootstrap Methods and their Application,
 // §2.2, §8.2): the fitted model stands for the truth, each refit sees the fitted simulation plus a
 // noise draw and is fitted again by the same stages from the same start.
-//  - The noise of a gauge is drawn by moving blocks (Künsch 1989, Ann. Stat. 17:1217) from the
-//    fit's own residuals of that gauge over its fitted windows: the draws keep the record noise's
-//    level, distribution and correlation (white or coloured) without a model of it.
+//  - The noise of a gauge is drawn by the autoregressive sieve (Kreiss 1992; Bühlmann 1997,
+//    Bernoulli 3:123) from the fit's own residuals of that gauge over its fitted windows: an AR(p)
+//    model by Yule–Walker with p chosen by AIC, driven by its own centred innovations drawn with
+//    replacement. A draw keeps the record noise's level, distribution and whole autocorrelation
+//    (white: p = 0), so the spread of a sum over many samples — what a fitted parameter is — is
+//    that of the record noise. (Moving blocks as long as twice the correlation time lose the
+//    correlation across every block join: the variance of such a sum falls by about the
+//    correlation time over the block length, a third to a half, and the intervals under-cover.)
 //  - The bootstrap interval is the bias-corrected normal one: value − bias ± t(0.975, N−1) · sd of
 //    the refits (t for the spread's own sampling error at a few tens of refits).
 //  - The interval reported is the linearised one where it holds (the refits' root-mean-square
@@ -20,13 +25,21 @@
 
 namespace shpb {
 
-// Block length of the residual resampling: at least ⌈L^(1/3)⌉ (Hall, Horowitz & Jing 1995,
-// Biometrika 82:561) and twice the lag where the residuals' autocorrelation first falls below 1/e.
-std::size_t residual_block_length(const std::vector<double>& residuals);
+// The residuals' noise model: AR coefficients a_1..a_p (x_t = Σ a_j x_{t−j} + e_t) and the
+// centred innovations e_t of the residuals.
+struct NoiseModel {
+  std::vector<double> ar;
+  std::vector<double> innovations;
+};
 
-// A noise series of n samples made of blocks of `block` consecutive residuals from random starts.
-std::vector<double> block_resample(const std::vector<double>& residuals, std::size_t n,
-                                   std::size_t block, std::mt19937_64& rng);
+// Yule–Walker (Levinson–Durbin) AR fits of order 0 … min(n/10, kMaxNoiseOrder), the order by AIC
+// (Akaike 1974): n ln σ²_p + 2p.
+inline constexpr std::size_t kMaxNoiseOrder = 40;
+NoiseModel fit_noise_model(const std::vector<double>& residuals);
+
+// n samples of the model driven by innovations drawn with replacement, after a burn-in as long as
+// the residuals (the start forgotten).
+std::vector<double> draw_noise(const NoiseModel& model, std::size_t n, std::mt19937_64& rng);
 
 // The options.bootstrap refits of `run` (after run_fit's stages), in parallel over run.threads
 // (each refit on one thread); fills run.bootstrap. Interrupted propagates; a refit that fails

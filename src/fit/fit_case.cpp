@@ -9,7 +9,7 @@
 #include "core/error.hpp"
 #include "core/json_value.hpp"
 #include "core/output_folder.hpp"
-#include "fit/law_parameters.hpp"
+#include "model/law_parameters.hpp"
 #include "model/scene_validation.hpp"
 #include "model/test_setup.hpp"
 #include "solver/simulation.hpp"

@@ -4,8 +4,8 @@
 
 #include "core/checked_write.hpp"
 #include "core/csv_writer.hpp"
-#include "fit/law_parameters.hpp"
 #include "model/calibration.hpp"
+#include "model/law_parameters.hpp"
 #include "output_schema.hpp"
 #include "version.hpp"
 

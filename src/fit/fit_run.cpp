@@ -13,7 +13,7 @@
 #include "core/number_format.hpp"
 #include "core/parallel_runner.hpp"
 #include "fit/fit_bootstrap.hpp"
-#include "fit/law_parameters.hpp"
+#include "model/law_parameters.hpp"
 #include "model/scene_inputs.hpp"
 
 namespace shpb {

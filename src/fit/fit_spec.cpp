@@ -6,7 +6,7 @@
 #include "core/closest_match.hpp"
 #include "core/json_document.hpp"
 #include "core/json_value.hpp"
-#include "fit/law_parameters.hpp"
+#include "model/law_parameters.hpp"
 #include "model/material_reader.hpp"
 #include "model/scene.hpp"
 

@@ -268,8 +268,10 @@ void check_step(Model& model, std::vector<double>& x, const LsOptions& options, 
 
 LsResult solve_least_squares(const std::vector<LsParameter>& parameters,
                              const std::vector<LsGroup>& groups, const LsOptions& options) {
-  // Ceres reports through glog; shpb prints its own one-line messages, so glog stays quiet.
-  FLAGS_minloglevel = google::GLOG_FATAL;
+  // Ceres reports through glog; shpb prints its own one-line messages, so glog stays quiet (set
+  // once: bootstrap refits solve on several threads at a time).
+  static std::once_flag quiet_glog;
+  std::call_once(quiet_glog, [] { FLAGS_minloglevel = google::GLOG_FATAL; });
   Model model(parameters, groups, options);
   const std::size_t p = parameters.size();
   std::vector<double> x(p);

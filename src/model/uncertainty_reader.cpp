@@ -3,12 +3,8 @@
 #include <algorithm>
 
 namespace shpb {
-namespace {
 
-// A standard uncertainty: "x %" of the nominal value, or an absolute value of dimension `d` (a
-// bare number for a plain number: "%" always means relative). `relative_ok` false: the nominal
-// value is zero (a delay, a window shift), so only an absolute value means something.
-StandardUncertainty read_value(const JsonValue& v, Dimension d, bool relative_ok = true) {
+StandardUncertainty read_standard_uncertainty(const JsonValue& v, Dimension d, bool relative_ok) {
   StandardUncertainty u;
   u.path = v.path();
   const bool percent = v.is_string() && v.string().find('%') != std::string::npos;
@@ -24,8 +20,6 @@ StandardUncertainty read_value(const JsonValue& v, Dimension d, bool relative_ok
   return u;
 }
 
-}  // namespace
-
 UncertaintySpec read_uncertainty(const JsonValue& value, const std::vector<std::string>& bars,
                                  std::optional<std::size_t> specimen) {
   const auto o =
@@ -33,16 +27,21 @@ UncertaintySpec read_uncertainty(const JsonValue& value, const std::vector<std::
                     "window_start", "dispersion_cutoff", "friction", "bars", "notes"});
   UncertaintySpec u;
   if (auto v = o.get("notes")) v->string();
-  if (auto v = o.get("gauge_factor")) u.gauge_factor = read_value(*v, Dimension::kDimensionless);
-  if (auto v = o.get("excitation")) u.excitation = read_value(*v, Dimension::kVoltage);
-  if (auto v = o.get("gain")) u.gain = read_value(*v, Dimension::kDimensionless);
-  if (auto v = o.get("gauge_position")) u.gauge_position = read_value(*v, Dimension::kLength);
-  if (auto v = o.get("trigger_delay")) u.trigger_delay = read_value(*v, Dimension::kTime, false);
+  if (auto v = o.get("gauge_factor"))
+    u.gauge_factor = read_standard_uncertainty(*v, Dimension::kDimensionless);
+  if (auto v = o.get("excitation"))
+    u.excitation = read_standard_uncertainty(*v, Dimension::kVoltage);
+  if (auto v = o.get("gain")) u.gain = read_standard_uncertainty(*v, Dimension::kDimensionless);
+  if (auto v = o.get("gauge_position"))
+    u.gauge_position = read_standard_uncertainty(*v, Dimension::kLength);
+  if (auto v = o.get("trigger_delay"))
+    u.trigger_delay = read_standard_uncertainty(*v, Dimension::kTime, false);
   if (auto v = o.get("window_start"))
-    u.window_start = read_value(*v, Dimension::kDimensionless, false);
+    u.window_start = read_standard_uncertainty(*v, Dimension::kDimensionless, false);
   if (auto v = o.get("dispersion_cutoff"))
-    u.dispersion_cutoff = read_value(*v, Dimension::kFrequency);
-  if (auto v = o.get("friction")) u.friction = read_value(*v, Dimension::kDimensionless);
+    u.dispersion_cutoff = read_standard_uncertainty(*v, Dimension::kFrequency);
+  if (auto v = o.get("friction"))
+    u.friction = read_standard_uncertainty(*v, Dimension::kDimensionless);
   if (auto b = o.get("bars")) {
     if (!b->is_object())
       throw b->error("expected {\"<bar name>\": {\"youngs_modulus\": \"1 %\", ...}, ...}");
@@ -67,19 +66,21 @@ UncertaintySpec read_uncertainty(const JsonValue& value, const std::vector<std::
       BarUncertainty bu;
       bu.bar = index;
       if (auto v = bo.get("youngs_modulus"))
-        bu.youngs_modulus = read_value(*v, Dimension::kPressure);
-      if (auto v = bo.get("density")) bu.density = read_value(*v, Dimension::kDensity);
+        bu.youngs_modulus = read_standard_uncertainty(*v, Dimension::kPressure);
+      if (auto v = bo.get("density"))
+        bu.density = read_standard_uncertainty(*v, Dimension::kDensity);
       if (auto v = bo.get("wave_speed")) {
         if (bu.youngs_modulus && bu.density)
           throw v->error(
               "the wave speed is sqrt(E/density): give two of youngs_modulus, density and "
               "wave_speed");
-        bu.wave_speed = read_value(*v, Dimension::kVelocity);
+        bu.wave_speed = read_standard_uncertainty(*v, Dimension::kVelocity);
       }
       if (auto v = bo.get("poisson_ratio"))
-        bu.poisson_ratio = read_value(*v, Dimension::kDimensionless);
-      if (auto v = bo.get("diameter")) bu.diameter = read_value(*v, Dimension::kLength);
-      if (auto v = bo.get("length")) bu.length = read_value(*v, Dimension::kLength);
+        bu.poisson_ratio = read_standard_uncertainty(*v, Dimension::kDimensionless);
+      if (auto v = bo.get("diameter"))
+        bu.diameter = read_standard_uncertainty(*v, Dimension::kLength);
+      if (auto v = bo.get("length")) bu.length = read_standard_uncertainty(*v, Dimension::kLength);
       u.bars.push_back(bu);
     }
   }

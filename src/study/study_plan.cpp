@@ -103,6 +103,12 @@ std::string plan_text(const StudyPlan& plan) {
                         {"tied", s.point.tied},
                         {"step_ratio", s.point.step_ratio}});
   }
+  for (std::size_t j = 0; j < plan.monte_carlo.size(); ++j) {
+    const MonteCarloJob& m = plan.monte_carlo[j];
+    Json r{{"run", j}, {"kind", m.nominal ? "nominal" : "draw"}};
+    if (!m.nominal) r["values"] = m.values;
+    runs.push_back(r);
+  }
   Json j;
   j["version"] = kVersion;
   j["command"] = "study";
@@ -116,6 +122,12 @@ std::string plan_text(const StudyPlan& plan) {
   if (plan.stepping) options["stepping"] = to_string(*plan.stepping);
   if (plan.courant) options["courant"] = *plan.courant;
   if (plan.refine != 1) options["refine"] = plan.refine;
+  if (plan.sweep == Sweep::kMonteCarlo) {
+    Json d = Json::array();
+    for (const Distribution& x : plan.distributions) d.push_back(distribution_json(x));
+    options["distributions"] = d;
+    options["seed"] = plan.seed;
+  }
   j["options"] = options;
   j["runs"] = runs;
   return j.dump(1) + "\n";
@@ -143,6 +155,11 @@ StudyPlan read_study_plan(const fs::path& plan_file) {
     if (o.contains("stepping")) plan.stepping = stepping_from(o.at("stepping"));
     if (o.contains("courant")) plan.courant = o.at("courant").get<double>();
     if (o.contains("refine")) plan.refine = o.at("refine").get<int>();
+    if (plan.sweep == Sweep::kMonteCarlo) {
+      for (const auto& d : o.at("distributions"))
+        plan.distributions.push_back(distribution_from(d));
+      plan.seed = o.at("seed").get<std::uint64_t>();
+    }
     for (const auto& r : j.at("runs")) {
       const std::string kind = r.at("kind").get<std::string>();
       if (plan.sweep == Sweep::kPareto && (kind == "case" || kind == "reference")) {
@@ -159,6 +176,15 @@ StudyPlan read_study_plan(const fs::path& plan_file) {
                    r.at("mass_ratio").get<double>(), r.at("courant").get<double>(),
                    r.at("tied").get<bool>(),         r.at("step_ratio").get<double>()};
         plan.stability.push_back(s);
+      } else if (plan.sweep == Sweep::kMonteCarlo && (kind == "nominal" || kind == "draw")) {
+        MonteCarloJob m;
+        m.nominal = kind == "nominal";
+        if (!m.nominal) m.values = r.at("values").get<std::vector<double>>();
+        if (m.values.size() != (m.nominal ? 0 : plan.distributions.size()))
+          throw std::invalid_argument("run " + r.at("run").dump() + " has " +
+                                      std::to_string(m.values.size()) + " values for " +
+                                      std::to_string(plan.distributions.size()) + " distributions");
+        plan.monte_carlo.push_back(m);
       } else {
         throw std::invalid_argument("run of kind \"" + kind + "\" in a " + to_string(plan.sweep) +
                                     " plan");
@@ -177,7 +203,9 @@ nlohmann::ordered_json part_json(const StudyPlan& plan, const StudyResults& resu
   Json out = Json::array();
   for (std::size_t r : runs) {
     Json j{{"run", r}};
-    if (plan.sweep == Sweep::kPareto) {
+    if (plan.sweep == Sweep::kMonteCarlo) {
+      j["result"] = job_result_json(results.monte_carlo[r]);
+    } else if (plan.sweep == Sweep::kPareto) {
       const ParetoJobResult& p = results.pareto[r];
       j["stable"] = p.stable;
       j["failure"] = p.failure;
@@ -216,7 +244,9 @@ void read_part(const nlohmann::json& part, const fs::path& file, const StudyPlan
       const auto& j = list[i];
       const std::size_t r = j.at("run").get<std::size_t>();
       if (r != expected[i]) throw std::invalid_argument("unexpected run " + std::to_string(r));
-      if (plan.sweep == Sweep::kPareto) {
+      if (plan.sweep == Sweep::kMonteCarlo) {
+        results.monte_carlo.at(r) = job_result_from(j.at("result"));
+      } else if (plan.sweep == Sweep::kPareto) {
         ParetoJobResult& p = results.pareto.at(r);
         p.stable = j.at("stable").get<bool>();
         p.failure = j.at("failure").get<std::string>();

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "model/scene.hpp"
+#include "study/monte_carlo_sweep.hpp"
 #include "study/pareto_sweep.hpp"
 #include "study/stability_sweep.hpp"
 
@@ -30,14 +31,24 @@ struct StudyPlan {
   int refine = 1;                       // of the stability grid (summary.json says it when > 1)
   std::vector<ParetoJob> pareto;        // sweep "pareto"
   std::vector<StabilityJob> stability;  // sweep "stability"
+  // Sweep "monte-carlo": the distributions as read from their file (which the runs do not read
+  // again: every run's drawn values are in the plan), the seed, and the runs (the nominal first).
+  std::vector<Distribution> distributions;
+  std::uint64_t seed = 0;
+  std::vector<MonteCarloJob> monte_carlo;
 
-  std::size_t runs() const { return sweep == Sweep::kPareto ? pareto.size() : stability.size(); }
+  std::size_t runs() const {
+    return sweep == Sweep::kPareto      ? pareto.size()
+           : sweep == Sweep::kStability ? stability.size()
+                                        : monte_carlo.size();
+  }
 };
 
 // Every run's result, by run index (only the runs of one shard filled in a part).
 struct StudyResults {
   std::vector<ParetoJobResult> pareto;
   std::vector<StabilityJobResult> stability;
+  std::vector<MonteCarloJobResult> monte_carlo;
 };
 
 // A fresh random plan id.

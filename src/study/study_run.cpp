@@ -58,7 +58,11 @@ StudyPlan make_study_plan(const StudyOptions& args, const Scene& scene) {
   std::vector<Stepping> steppings;
   if (plan.contact) methods.push_back(*plan.contact);
   if (plan.stepping) steppings.push_back(*plan.stepping);
-  if (plan.sweep == Sweep::kStability)
+  if (plan.sweep == Sweep::kMonteCarlo) {
+    plan.distributions = read_distributions(args.distributions, scene);
+    plan.seed = args.seed;
+    plan.monte_carlo = monte_carlo_jobs(plan.distributions, args.draws, args.seed);
+  } else if (plan.sweep == Sweep::kStability)
     plan.stability = stability_jobs(stability_grid(methods, plan.refine));
   else
     plan.pareto = pareto_jobs(scene, pareto_cases(methods, steppings));
@@ -86,7 +90,16 @@ void run_plan(const StudyPlan& plan, const Scene& scene, const std::vector<std::
   const auto cancel = [] { return interrupted(); };
   results.pareto.resize(plan.pareto.size());
   results.stability.resize(plan.stability.size());
-  if (plan.sweep == Sweep::kStability) {
+  results.monte_carlo.resize(plan.monte_carlo.size());
+  if (plan.sweep == Sweep::kMonteCarlo) {
+    run_parallel(
+        runs.size(), threads,
+        [&](std::size_t i) {
+          results.monte_carlo[runs[i]] =
+              run_monte_carlo_job(scene, plan.distributions, plan.monte_carlo[runs[i]], cancel);
+        },
+        progress);
+  } else if (plan.sweep == Sweep::kStability) {
     const Scene probe = stability_probe_scene(scene);
     run_parallel(
         runs.size(), threads,
@@ -119,6 +132,7 @@ MergedParts merge_parts(const StudyPlan& plan, const Scene& scene,
   StudyResults& results = m.results;
   results.pareto.resize(plan.pareto.size());
   results.stability.resize(plan.stability.size());
+  results.monte_carlo.resize(plan.monte_carlo.size());
   // Threads and wall time of a merged study: the most threads a shard used, the shards' sum.
   int& threads = m.threads;
   double& wall = m.wall_s;

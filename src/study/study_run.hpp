@@ -1,6 +1,7 @@
 #pragma once
 // `shpb study` as a library: the plan of a sweep's independent runs (study/study_plan.hpp), its
 // runs on threads (all of them, or one shard's), and the merge of the shards' parts.
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -21,9 +22,14 @@ struct StudyOptions {
   std::optional<Stepping> stepping;
   std::optional<double> courant;
   int refine = 1;  // stability grid refinement (study/sweep.hpp)
+  // Monte Carlo: the distributions file, the number of draws and their seed.
+  std::filesystem::path distributions;
+  std::size_t draws = kDefaultMonteCarloDraws;
+  std::uint64_t seed = 1;
 };
 
-// The plan of the sweep the options ask for (ids and the scene's text filled in by the caller).
+// The plan of the sweep the options ask for (ids and the scene's text filled in by the caller);
+// InputError for a bad distributions file.
 StudyPlan make_study_plan(const StudyOptions& options, const Scene& scene);
 // The file's text, as read (the plan keeps the scene as planned).
 std::string read_text(const std::filesystem::path& file);

@@ -76,11 +76,13 @@ inline const std::vector<double> kMassRatios = {0.25, 0.5, 0.9, 1, 1.5, 2, 3, 4}
 std::vector<StabilityPoint> stability_grid(const std::vector<ContactMethod>& methods,
                                            int refine = 1);
 
-// The two sweeps of `shpb study --sweep`: accuracy against cost (pareto.csv) or the stability map
-// (stability.csv); the names are those of the command line, plan.json and summary.json.
-enum class Sweep { kPareto, kStability };
+// The sweeps of `shpb study --sweep`: accuracy against cost (pareto.csv), the stability map
+// (stability.csv) or the Monte Carlo of a planned test (study/monte_carlo_sweep.hpp); the names are
+// those of the command line, plan.json and summary.json.
+enum class Sweep { kPareto, kStability, kMonteCarlo };
 inline constexpr EnumName<Sweep> kSweepNames[] = {{"pareto", Sweep::kPareto},
-                                                  {"stability", Sweep::kStability}};
+                                                  {"stability", Sweep::kStability},
+                                                  {"monte-carlo", Sweep::kMonteCarlo}};
 inline std::string to_string(Sweep s) { return std::string(enum_name(kSweepNames, s)); }
 
 }  // namespace shpb

@@ -12,8 +12,8 @@ namespace {
 
 // Table values of t(0.975, ν) (Abramowitz & Stegun, Table 26.10) are given to 3 decimals.
 constexpr double kTableRounding = 1.5e-3;
-// A standard deviation estimated from n = 20 000 samples is uncertain by 1/√(2n) = 0.5 %: 3 %
-// allows for the blocks' correlation too (fewer independent blocks than samples).
+// The model keeps the residuals' variance (Yule–Walker); the level of 100 000 drawn samples
+// correlated over 10 is then known to 1/√(2 · 100 000/19) = 1 %: 3 % is three of it.
 constexpr double kSpreadTolerance = 0.03;
 
 std::vector<double> ar1_noise(std::size_t n, double correlation_samples, unsigned seed) {
@@ -44,24 +44,49 @@ TEST_CASE("Student's t 95 % quantile matches the published table", "[fit][bootst
   CHECK(std::abs(shpb::student_t95(1e9) - 1.960) < kTableRounding);
 }
 
-TEST_CASE("Residual blocks follow the noise's correlation and keep its level", "[fit][bootstrap]") {
-  const std::size_t n = 1000;
-  // White noise: the cube-root rule, ⌈1000^(1/3)⌉ = 10 (its autocorrelation is gone at lag 1).
-  const auto white = ar1_noise(n, 0, 7);
-  CHECK(shpb::residual_block_length(white) == 10);
-  // Noise correlated over 20 samples (autocorrelation e^(−lag/20)): falls below 1/e at lag 20,
-  // the block twice that (±3 lags of sampling scatter of the estimated autocorrelation).
-  const auto coloured = ar1_noise(20000, 20, 8);
-  const std::size_t block = shpb::residual_block_length(coloured);
-  CHECK(block >= 34);
-  CHECK(block <= 46);
+namespace {
+
+// Variance of the sum of `length` consecutive samples over `draws` noise draws of the model.
+double variance_of_sums(const shpb::NoiseModel& model, std::size_t length, std::size_t draws,
+                        std::mt19937_64& rng) {
+  double var = 0;
+  for (std::size_t d = 0; d < draws; ++d) {
+    double s = 0;
+    for (double v : shpb::draw_noise(model, length, rng)) s += v;
+    var += s * s / static_cast<double>(draws);
+  }
+  return var;
+}
+
+// The variance from 2000 sums is uncertain by √(2/2000) = 3.2 %, the long-run factor (1+φ)/(1−φ)
+// of a model fitted on 5000 samples by about 5 %: 20 % is more than three of their combined
+// standard deviations. Moving blocks of twice the correlation time miss by about a half.
+constexpr double kSumVarianceTolerance = 0.2;
+constexpr std::size_t kSumLength = 400, kSums = 2000;
+
+}  // namespace
+
+TEST_CASE("Noise draws keep the record noise's level and the spread of its long sums",
+          "[fit][bootstrap]") {
   std::mt19937_64 rng(3);
-  const auto drawn = shpb::block_resample(coloured, 20000, block, rng);
-  REQUIRE(drawn.size() == 20000);
+  // White residuals (unit variance): a sum of L samples has variance L.
+  const auto white = ar1_noise(5000, 0, 7);
+  const shpb::NoiseModel white_model = shpb::fit_noise_model(white);
+  CHECK(variance_of_sums(white_model, kSumLength, kSums, rng) / kSumLength ==
+        Approx(1).epsilon(kSumVarianceTolerance));
+  // Residuals correlated over τ = 10 samples (autocorrelation φ^lag, φ = e^(−1/10)): a fitted
+  // parameter is a weighted sum over many samples, so the draws must keep the variance of a sum of
+  // L consecutive samples, σ²[L(1+φ)/(1−φ) − 2φ(1−φ^L)/(1−φ)²] for AR(1), not only the level.
+  const double tau = 10, phi = std::exp(-1 / tau);
+  const std::size_t n = 5000;
+  const auto coloured = ar1_noise(n, tau, 8);
+  const shpb::NoiseModel model = shpb::fit_noise_model(coloured);
+  const auto drawn = shpb::draw_noise(model, 20 * n, rng);
+  REQUIRE(drawn.size() == 20 * n);
   CHECK(std::abs(rms(drawn) / rms(coloured) - 1) < kSpreadTolerance);
-  // Lag-1 correlation kept: e^(−1/20) = 0.951 in the source; the block joins cost 1 in `block`.
-  double c0 = 0, c1 = 0;
-  for (std::size_t i = 1; i < drawn.size(); ++i)
-    c0 += drawn[i] * drawn[i], c1 += drawn[i] * drawn[i - 1];
-  CHECK(c1 / c0 > 0.9);
+  const auto L = static_cast<double>(kSumLength);
+  const double exact =
+      L * (1 + phi) / (1 - phi) - 2 * phi * (1 - std::pow(phi, L)) / ((1 - phi) * (1 - phi));
+  CHECK(variance_of_sums(model, kSumLength, kSums, rng) ==
+        Approx(exact).epsilon(kSumVarianceTolerance));
 }

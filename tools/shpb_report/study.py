@@ -1,5 +1,6 @@
-"""Figures of `shpb study --sweep pareto` (docs/outputs.md, study): accuracy against cost of
-every run, with the Pareto front of pareto.csv's `pareto_front_wall_time` column."""
+"""Figures of `shpb study` (docs/outputs.md, study): `--sweep pareto`, accuracy against cost of
+every run, with the Pareto front of pareto.csv's `pareto_front_wall_time` column; `--sweep
+monte-carlo`, the bands of the gauges and of the processed curve."""
 import textwrap
 
 import numpy as np
@@ -60,3 +61,37 @@ def fig_pareto(src, figs):
               "asynchronous stepping, open markers global stepping, numbers the mesh resolution "
               "factor; the black staircase is the Pareto front (no run is both faster and more "
               "accurate).")
+
+
+def fig_monte_carlo(src, figs):
+    """`--sweep monte-carlo`: the 95 % band of every gauge (gauge_bands.csv) and, with a reduced
+    test, of the 3-wave stress against strain (curve_bands.csv), each around its nominal run."""
+    g = src.table("gauge_bands.csv")
+    gauges = [n for n in g.names if n != "time_s" and not n.endswith(("_p2.5", "_p50", "_p97.5"))]
+    curve = src.has("curve_bands.csv")
+    fig, axes = new_figure(cols=2 if curve else 1, height=4.0)
+    ax = axes[0, 0]
+    t = g.numeric("time_s") * 1e6
+    for k, name in enumerate(gauges):
+        ax.fill_between(t, g.numeric(name + "_p2.5") * 1e6, g.numeric(name + "_p97.5") * 1e6,
+                        color=f"C{k}", alpha=0.3, linewidth=0)
+        ax.plot(t, g.numeric(name) * 1e6, color=f"C{k}", linewidth=0.8, label=name)
+    ax.set_xlabel("time (µs)")
+    ax.set_ylabel("strain (µε, tension positive)")
+    ax.legend(loc="best", fontsize=7)
+    if curve:
+        c = src.table("curve_bands.csv")
+        ax = axes[0, 1]
+        e = c.numeric("strain")
+        ax.fill_between(e, c.numeric("stress_3wave_p2.5_Pa") / 1e6,
+                        c.numeric("stress_3wave_p97.5_Pa") / 1e6, color="C0", alpha=0.3,
+                        linewidth=0, label="95 % band")
+        ax.plot(e, c.numeric("stress_3wave_Pa") / 1e6, color="C0", linewidth=1.0, label="nominal")
+        ax.set_xlabel("engineering strain")
+        ax.set_ylabel("3-wave stress (MPa)")
+        ax.legend(loc="best", fontsize=7)
+    draws = src.value("draws")
+    figs.save(fig, src.png("monte_carlo"), src.title("Monte Carlo bands"),
+              f"The 2.5–97.5 % band over {draws} draws of the distributions "
+              "(summary.json) around the nominal run: every gauge's strain against time"
+              + (" and the processed 3-wave stress against strain." if curve else "."))

@@ -1,4 +1,4 @@
-#include "fit/law_parameters.hpp"
+#include "model/law_parameters.hpp"
 
 #include <cstdio>
 #include <stdexcept>
