@@ -46,12 +46,19 @@ void add_run_options(CLI::App* cmd, RunOverrides& o, RunOptionText& text) {
 void resolve_run_options(RunOverrides& o, const RunOptionText& text) {
   if (!text.contact.empty()) o.contact = contact_method_from_string(text.contact);
   if (!text.stepping.empty()) o.stepping = stepping_from_string(text.stepping);
-  if (!text.tolerance.empty()) try {
-      o.tolerance = parse_quantity(text.tolerance, Dimension::kDimensionless);
-    } catch (const std::invalid_argument&) {
-      throw input_error("--tolerance", "", "\"" + text.tolerance + "\"",
-                        "expected a gauge error such as \"1 %\"");
-    }
+  if (!text.tolerance.empty()) o.tolerance = tolerance_option("--tolerance", text.tolerance);
+}
+
+double tolerance_option(const std::string& option, const std::string& text) {
+  double t = 0;
+  try {
+    t = parse_quantity(text, Dimension::kDimensionless);
+  } catch (const std::invalid_argument&) {
+    throw input_error(option, "", "\"" + text + "\"", "expected a gauge error such as \"1 %\"");
+  }
+  if (const std::string what = tolerance_problem(t); !what.empty())
+    throw input_error(option, "", format_double(t * 100) + " %", what);
+  return t;
 }
 
 double quantity_option(const std::string& option, const std::string& text, Dimension d) {
