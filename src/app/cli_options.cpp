@@ -32,8 +32,7 @@ void add_run_options(CLI::App* cmd, RunOverrides& o, RunOptionText& text) {
   cmd->add_option("--courant", o.courant,
                   "Courant number of every bar, c·Δt/h, in (0, 1] (default: the scene's, else " +
                       format_double(kDefaultCourant) + ")");
-  // Its range, (0 %, 100 %) as in the scene, is checked with the scene
-  // (model/scene_validation.hpp).
+  // Its range, (0 %, 100 %) as in the scene: tolerance_option.
   cmd->add_option("--tolerance", text.tolerance,
                   "Gauge error accepted, e.g. \"1 %\": every bar meshed as coarsely as the error "
                   "model predicts meets it (default: the scene's simulation.tolerance, else the "

@@ -12,12 +12,20 @@
 #include <chrono>
 #include <cmath>
 
+#include "core/csv_writer.hpp"  // format_double
 #include "core/error.hpp"
 #include "core/output_folder.hpp"
 #include "core/parallel_runner.hpp"
 #include "model/scene_validation.hpp"
 
 namespace shpb {
+
+bool PlanTargets::IsValid(std::string* error) const {
+  if (!(rate_1_s > 0)) *error = "--rate: " + format_double(rate_1_s) + " 1/s: must be > 0";
+  if (!(strain > 0 && strain < 1))
+    *error = "--strain: " + format_double(strain) + ": expected an engineering strain in (0, 1)";
+  return rate_1_s > 0 && strain > 0 && strain < 1;
+}
 
 bool LoadingMetrics::meets() const { return end_s > onset_s && shortfall() == 0; }
 
@@ -288,7 +296,7 @@ std::vector<PlanCandidate> Planner::grid() const {
 std::string Planner::binding(const Evaluation& best) const {
   const LoadingMetrics& m = best.metrics;
   const double R = targets_.rate_1_s, E = targets_.strain;
-  char what[600];
+  char what[700];
   const double c = in_.scene.bars[0].material.wave_speed_m_s();
   const double limit = std::min(spec_.striker_length.hi, striker_length_limit());
   if (m.plateau_rate_1_s < (1 - kRateBand) * R &&
@@ -319,7 +327,9 @@ std::string Planner::binding(const Evaluation& best) const {
                   100 * kEquilibriumRatio, 100 * m.equilibrium_fraction,
                   100 * kEquilibriumFraction);
   }
-  return what;
+  char prefix[100];
+  std::snprintf(prefix, sizeof prefix, "no set-up within the plan's bounds meets %.4g 1/s: ", R);
+  return prefix + std::string(what);
 }
 
 PlanResult Planner::run() {

@@ -23,6 +23,7 @@ inline constexpr double kEquilibriumFraction = 0.25;
 struct PlanTargets {
   double rate_1_s = 0;
   double strain = 0.15;
+  bool IsValid(std::string* error) const;  // a positive rate, a strain in (0, 1)
 };
 
 // One set-up: what the plan may change.
