@@ -6,6 +6,7 @@
 #include "analysis/gauge_signals.hpp"
 #include "core/checked_write.hpp"
 #include "core/csv_writer.hpp"
+#include "output_schema.hpp"
 
 namespace shpb {
 namespace {
@@ -205,10 +206,12 @@ void write_plan_outputs(const PlanResult& r, const PlanInput& in, const PlanTarg
         {"simulations", r.simulations},
         {"wall_time_s", r.wall_time_s}}}};
   write_text_file(dir / "summary.json", j.dump(2) + "\n");
-  CsvWriter path(dir / "path.csv", {"step", "striker_length_m", "striker_velocity_m_s", "shaper",
-                                    "shaper_thickness_m", "shaper_diameter_m", "specimen_length_m",
-                                    "plateau_rate_1_s", "band_fraction", "equilibrium_fraction",
-                                    "strain_reached", "changes", "meets"});
+  namespace k = schema::plan_path;  // the column names (src/core/output_schema.json)
+  CsvWriter path(dir / k::kFile,
+                 {k::step, k::striker_length_m, k::striker_velocity_m_s, k::shaper,
+                  k::shaper_thickness_m, k::shaper_diameter_m, k::specimen_length_m,
+                  k::plateau_rate_1_s, k::band_fraction, k::equilibrium_fraction,
+                  k::strain_reached, k::changes, k::meets});
   for (std::size_t i = 0; i < r.path.size(); ++i) {
     const auto& p = r.path[i];
     const auto& c = p.candidate;

@@ -1,4 +1,4 @@
-// The search of `shpb plan` (docs/methods.md §13). The objective (band fraction, equilibrium
+// The search of `shpb plan` (docs/methods.md §12). The objective (band fraction, equilibrium
 // time, strain reached) is read from thresholds crossed by a simulated record, so it is piecewise
 // constant in the set-up's values: no gradient to follow. The search is derivative-free: for each
 // geometry (striker length, shaper, specimen length) the striker velocity that puts the median

@@ -1,5 +1,5 @@
 #pragma once
-// The search of `shpb plan` (docs/methods.md §13): the set-up a lab should fire for a target
+// The search of `shpb plan` (docs/methods.md §12): the set-up a lab should fire for a target
 // specimen strain rate and strain, found by simulating candidates (docs/commands.md#plan).
 #include <functional>
 #include <optional>
@@ -12,7 +12,7 @@
 
 namespace shpb {
 
-// The criteria of a planned test (docs/methods.md §13): the specimen's strain rate within
+// The criteria of a planned test (docs/methods.md §12): the specimen's strain rate within
 // ±kRateBand of the target over at least kBandFraction of the loading, force equilibrium
 // (|R| ≤ kEquilibriumRatio) before kEquilibriumFraction of it, and the target strain reached.
 inline constexpr double kRateBand = 0.10;

@@ -62,7 +62,7 @@ double fraction_in_band(const fs::path& specimen_csv, double rate, double strain
 TEST_CASE("A planned striker velocity, re-simulated on its own, holds the target rate",
           "[app][plan][release-only]") {
   // The criterion of a usable test: the rate within ±10 % of the target over at least half of the
-  // loading (docs/methods.md, planning a test).
+  // loading (docs/methods.md §12).
   constexpr double kBandRate = 2000, kStrain = 0.15, kMinFraction = 0.5;
   ScratchDir dir("plan_band");
   const fs::path scene =
