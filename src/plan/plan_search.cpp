@@ -327,8 +327,15 @@ std::string Planner::binding(const Evaluation& best) const {
                   100 * kEquilibriumRatio, 100 * m.equilibrium_fraction,
                   100 * kEquilibriumFraction);
   }
-  char prefix[100];
-  std::snprintf(prefix, sizeof prefix, "no set-up within the plan's bounds meets %.4g 1/s: ", R);
+  char prefix[300];
+  const PlanCandidate& b = best.candidate;
+  std::snprintf(prefix, sizeof prefix,
+                "no set-up within the plan's bounds meets %.4g 1/s (the closest: striker %.4g m at "
+                "%.4g m/s, %s; rate in band over %.0f %% of the loading, equilibrium at %.0f %%, "
+                "strain %.3g): ",
+                R, b.striker_length_m, b.striker_velocity_m_s,
+                b.shaper < 0 ? "no shaper" : "shaped", 100 * m.band_fraction,
+                100 * m.equilibrium_fraction, m.strain_reached);
   return prefix + std::string(what);
 }
 
