@@ -207,11 +207,10 @@ void write_plan_outputs(const PlanResult& r, const PlanInput& in, const PlanTarg
         {"wall_time_s", r.wall_time_s}}}};
   write_text_file(dir / "summary.json", j.dump(2) + "\n");
   namespace k = schema::plan_path;  // the column names (src/core/output_schema.json)
-  CsvWriter path(dir / k::kFile,
-                 {k::step, k::striker_length_m, k::striker_velocity_m_s, k::shaper,
-                  k::shaper_thickness_m, k::shaper_diameter_m, k::specimen_length_m,
-                  k::plateau_rate_1_s, k::band_fraction, k::equilibrium_fraction,
-                  k::strain_reached, k::changes, k::meets});
+  CsvWriter path(dir / k::kFile, {k::step, k::striker_length_m, k::striker_velocity_m_s, k::shaper,
+                                  k::shaper_thickness_m, k::shaper_diameter_m, k::specimen_length_m,
+                                  k::plateau_rate_1_s, k::band_fraction, k::equilibrium_fraction,
+                                  k::strain_reached, k::changes, k::meets});
   for (std::size_t i = 0; i < r.path.size(); ++i) {
     const auto& p = r.path[i];
     const auto& c = p.candidate;
