@@ -17,7 +17,9 @@
 #     (rigid and finite links, asynchronous and global);
 #  7. the Python module (tools/bench_python.py, when it is built): a loop of 100 classic runs
 #     against the executable's solve time, two runs in two Python threads against serial;
-#  8. with BENCH_FIT_COVERAGE=1 only (about an hour): the coverage of the fit's 95 % intervals
+#  8. `shpb plan` (tools/bench_plan.sh, skipped with BENCH_PLAN=0): the classic bars planned for
+#     1000, 2500 and 5000 1/s with and without a pulse shaper, each re-simulated at 0.5 %;
+#  9. with BENCH_FIT_COVERAGE=1 only (about an hour): the coverage of the fit's 95 % intervals
 #     over 100 synthetic campaigns (tools/fit_interval_coverage).
 # Usage: tools/bench.sh [build-dir] [repetitions]
 set -euo pipefail
@@ -101,7 +103,14 @@ if [ -f "$BUILD"/python/shpb/__init__.py ]; then
   PYTHONPATH="$BUILD"/python /usr/bin/python3 tools/bench_python.py "$BUILD"
 fi
 
-# 8. Coverage of the fit's 95 % intervals over 100 synthetic campaigns (tools/fit_interval_coverage:
+# 8. shpb plan: wall time per plan and the planned scenes re-simulated on their own.
+if [ "${BENCH_PLAN:-1}" != 0 ]; then
+  echo
+  echo "== shpb plan: classic bars, 1000/2500/5000 1/s, with and without a shaper"
+  tools/bench_plan.sh "$BUILD" 2
+fi
+
+# 9. Coverage of the fit's 95 % intervals over 100 synthetic campaigns (tools/fit_interval_coverage:
 #    two materials, two noise levels, white and coloured noise, 30 bootstrap refits each; about an
 #    hour on 2 cores): only with BENCH_FIT_COVERAGE=1. BENCH_FIT_COVERAGE_CAMPAIGNS=N runs fewer,
 #    BENCH_FIT_COVERAGE_NOISE=white|coloured only the campaigns of that noise.

@@ -32,8 +32,7 @@ void add_run_options(CLI::App* cmd, RunOverrides& o, RunOptionText& text) {
   cmd->add_option("--courant", o.courant,
                   "Courant number of every bar, c·Δt/h, in (0, 1] (default: the scene's, else " +
                       format_double(kDefaultCourant) + ")");
-  // Its range, (0 %, 100 %) as in the scene, is checked with the scene
-  // (model/scene_validation.hpp).
+  // Its range, (0 %, 100 %) as in the scene: tolerance_option.
   cmd->add_option("--tolerance", text.tolerance,
                   "Gauge error accepted, e.g. \"1 %\": every bar without its own elements meshed "
                   "as coarsely as the error model predicts meets it (default: the scene's "
@@ -48,12 +47,19 @@ void add_run_options(CLI::App* cmd, RunOverrides& o, RunOptionText& text) {
 void resolve_run_options(RunOverrides& o, const RunOptionText& text) {
   if (!text.contact.empty()) o.contact = contact_method_from_string(text.contact);
   if (!text.stepping.empty()) o.stepping = stepping_from_string(text.stepping);
-  if (!text.tolerance.empty()) try {
-      o.tolerance = parse_quantity(text.tolerance, Dimension::kDimensionless);
-    } catch (const std::invalid_argument&) {
-      throw input_error("--tolerance", "", "\"" + text.tolerance + "\"",
-                        "expected a gauge error such as \"1 %\"");
-    }
+  if (!text.tolerance.empty()) o.tolerance = tolerance_option("--tolerance", text.tolerance);
+}
+
+double tolerance_option(const std::string& option, const std::string& text) {
+  double t = 0;
+  try {
+    t = parse_quantity(text, Dimension::kDimensionless);
+  } catch (const std::invalid_argument&) {
+    throw input_error(option, "", "\"" + text + "\"", "expected a gauge error such as \"1 %\"");
+  }
+  if (const std::string what = tolerance_problem(t); !what.empty())
+    throw input_error(option, "", format_double(t * 100) + " %", what);
+  return t;
 }
 
 double quantity_option(const std::string& option, const std::string& text, Dimension d) {

@@ -25,6 +25,8 @@ void add_run_options(CLI::App* cmd, RunOverrides& o, RunOptionText& text);
 // Into `o`; InputError for a tolerance that is not a gauge error.
 void resolve_run_options(RunOverrides& o, const RunOptionText& text);
 
+// A gauge-error option ("1 %") as a fraction in (0, 1); InputError naming the option.
+double tolerance_option(const std::string& option, const std::string& text);
 // A quantity option ("22 m/s") in SI; InputError naming the option.
 double quantity_option(const std::string& option, const std::string& text, Dimension d);
 

@@ -40,6 +40,7 @@ Command add_validate_command(CLI::App& app);
 Command add_report_command(CLI::App& app);
 Command add_fit_command(CLI::App& app);
 Command add_calibrate_command(CLI::App& app);
+Command add_plan_command(CLI::App& app);  // app/plan.cpp (its options: plan/plan_search.hpp)
 
 struct SimulateArgs {
   std::filesystem::path scene;

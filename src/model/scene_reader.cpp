@@ -30,7 +30,7 @@ class SceneReader {
   Scene read(const nlohmann::json& j) {
     const JsonValue root(j, display_, "");
     const auto o = root.object({"name", "notes", "bars", "specimen", "materials", "contact",
-                                "simulation", "measurement", "calibration"});
+                                "simulation", "measurement", "calibration", "plan"});
     Scene scene;
     scene.file = file_;
     scene.name = default_name();

@@ -1,0 +1,48 @@
+#include "core/external_program.hpp"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+extern char** environ;
+
+namespace shpb {
+
+namespace fs = std::filesystem;
+
+int run_program(const std::vector<std::string>& argv, bool quiet) {
+  std::vector<char*> args;
+  for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  if (quiet) {
+    posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_adddup2(&actions, 1, 2);
+  }
+  pid_t pid = 0;
+  const int rc = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0) return -1;
+  int status = 0;
+  if (waitpid(pid, &status, 0) < 0 || !WIFEXITED(status)) return -1;
+  return WEXITSTATUS(status);
+}
+
+std::optional<fs::path> find_installed(const std::string& name) {
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (ec) return std::nullopt;
+  for (const fs::path& c : {exe.parent_path().parent_path() / "share" / "shpb" / name,
+                            exe.parent_path() / "share" / "shpb" / name})
+    if (fs::is_regular_file(c, ec)) return c;
+  return std::nullopt;
+}
+
+std::optional<std::string> find_python(const std::string& check) {
+  for (const std::string python : {"/usr/bin/python3", "python3"})
+    if (run_program({python, "-c", check}, true) == 0) return python;
+  return std::nullopt;
+}
+
+}  // namespace shpb

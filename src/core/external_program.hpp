@@ -1,0 +1,25 @@
+#pragma once
+// Running another program (the report's Python script) and finding what shpb installs beside its
+// executable.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace shpb {
+
+// Runs `argv` (argv[0] looked up on PATH) and returns its exit status, or -1 if it could not be
+// started or died from a signal. With `quiet`, its stdout and stderr go to /dev/null.
+int run_program(const std::vector<std::string>& argv, bool quiet);
+
+// A file installed under share/shpb/, found from the executable alone, so an installed shpb works
+// without the source tree: PREFIX/bin/shpb → PREFIX/share/shpb/NAME; build/shpb →
+// build/share/shpb/NAME (CMake copies it there).
+std::optional<std::filesystem::path> find_installed(const std::string& name);
+
+// A Python that runs `check` (e.g. "import matplotlib, numpy"). Debian's python3-matplotlib
+// belongs to /usr/bin/python3, which may not be the first python3 on PATH (README.md (Layout)):
+// it is tried first.
+std::optional<std::string> find_python(const std::string& check);
+
+}  // namespace shpb

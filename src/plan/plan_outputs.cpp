@@ -1,0 +1,227 @@
+#include "plan/plan_outputs.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "analysis/gauge_signals.hpp"
+#include "core/checked_write.hpp"
+#include "core/csv_writer.hpp"
+#include "output_schema.hpp"
+
+namespace shpb {
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+
+std::string with_unit(double si, double scale, const char* unit) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.4g %s", si * scale, unit);
+  return text;
+}
+
+// A material given as a path relative to the scene, relative to the output folder instead.
+void rebase_material(nlohmann::json& bar, const nlohmann::json& scene, const fs::path& from,
+                     const fs::path& to) {
+  if (!bar.contains("material") || !bar["material"].is_string()) return;
+  const std::string s = bar["material"];
+  if (scene.contains("materials") && scene["materials"].contains(s)) return;
+  bar["material"] = fs::relative(fs::absolute(from / s), fs::absolute(to)).string();
+}
+
+// The scene file as given with the plan's values, ready for `simulate` from the output folder.
+nlohmann::json planned_json(const PlanResult& r, const PlanInput& in, const fs::path& final_dir) {
+  nlohmann::json j = in.json;
+  j.erase("plan");
+  j.erase("measurement");  // the record of a shot not yet fired
+  const fs::path from = in.scene.file.parent_path();
+  if (j.contains("calibration"))
+    j["calibration"] = fs::relative(fs::absolute(from / j["calibration"].get<std::string>()),
+                                    fs::absolute(final_dir))
+                           .string();
+  auto& bars = j["bars"];
+  const PlanCandidate& c = r.chosen;
+  bars[0]["length"] = with_unit(c.striker_length_m, 1e3, "mm");
+  bars[0]["velocity"] = with_unit(c.striker_velocity_m_s, 1, "m/s");
+  if (c.shaper >= 0) {
+    nlohmann::json shaper = {{"name", "shaper"}};
+    if (in.spec.scene_has_shaper) shaper = bars[1];
+    const auto& text = in.spec.shaper_materials[c.shaper].text;
+    if (!text.empty()) shaper["material"] = text;
+    shaper["length"] = with_unit(c.shaper_thickness_m, 1e3, "mm");
+    shaper.erase("area");
+    shaper["diameter"] = with_unit(c.shaper_diameter_m, 1e3, "mm");
+    if (in.spec.scene_has_shaper)
+      bars[1] = shaper;
+    else
+      bars.insert(bars.begin() + 1, shaper);
+  }
+  if (in.spec.specimen_length)
+    for (auto& b : bars)
+      if (b["name"] == in.scene.bars[*in.scene.specimen].name)
+        b["length"] = with_unit(c.specimen_length_m, 1e3, "mm");
+  for (auto& b : bars) rebase_material(b, in.json, from, final_dir);
+  return j;
+}
+
+// The smallest value of the 1–2–5 series at least x.
+double series_125(double x) {
+  const double decade = std::pow(10.0, std::floor(std::log10(x)));
+  for (double m : {1.0, 2.0, 5.0, 10.0})
+    if (m * decade >= x * (1 - 1e-12)) return m * decade;
+  return 10 * decade;
+}
+
+// The bridge of `gauge`'s channel in the scene's measurement, or a quarter bridge with the
+// scene format's defaults (docs/scene-format.md#measurement).
+BridgeSpec bridge_of(const Scene& s, const std::string& gauge, bool* given) {
+  *given = false;
+  if (s.measurement)
+    for (const auto& ch : s.measurement->channels)
+      if (ch.gauge == gauge && ch.bridge) {
+        *given = true;
+        return *ch.bridge;
+      }
+  return BridgeSpec{};
+}
+
+// Scope settings from the predicted signals (docs/commands.md#plan): the range holds the peak
+// with headroom, the incident rise spans kSamplesPerRise samples, the record holds the pulses
+// from the trigger to the transmitted pulse's end twice over, the trigger fires at a tenth of the
+// incident peak.
+Json scope_settings(const PlanResult& r, const Scene& original, Json& gauges) {
+  constexpr double kRangeHeadroom = 1.25;  // clipping costs the test: a quarter above the peak
+  constexpr double kSamplesPerRise = 20;   // a rise resolved well enough to time it
+  constexpr double kTriggerFraction = 0.1;
+  constexpr double kPretrigger = 0.2;      // of the record, for the baseline
+  constexpr double kRecordHeadroom = 2.0;  // for a slower pulse than predicted
+  const TimeSeries& g = r.verified.gauges;
+  const std::string incident = r.scene.bars[*r.scene.incident_bar()].gauges.at(0).name;
+  const std::string transmitted = r.scene.bars[*r.scene.transmitter_bar()].gauges.at(0).name;
+  double range = 0, trigger = 0, rise = 0, t_trigger = 0, t_end = 0;
+  for (std::size_t c = 0; c < g.columns.size(); ++c) {
+    const auto& x = g.values[c];
+    bool given = false;
+    const BridgeSpec bridge = bridge_of(original, g.columns[c], &given);
+    const double volts = 1 / volts_to_strain(bridge);
+    std::size_t kp = 0;
+    for (std::size_t k = 0; k < x.size(); ++k)
+      if (std::abs(x[k]) > std::abs(x[kp])) kp = k;
+    const double peak = x.empty() ? 0 : x[kp];
+    gauges.push_back(
+        {{"gauge", g.columns[c]},
+         {"peak_strain", peak},
+         {"peak_V", peak * volts},
+         {"bridge", given ? "the scene's" : "quarter bridge, factor 2, 10 V, gain 1"}});
+    range = std::max(range, std::abs(peak * volts));
+    if (peak == 0) continue;
+    std::size_t k10 = 0, k90 = 0;
+    while (k10 < kp && std::abs(x[k10]) < 0.1 * std::abs(peak)) ++k10;
+    while (k90 < kp && std::abs(x[k90]) < 0.9 * std::abs(peak)) ++k90;
+    if (g.columns[c] == incident) {
+      rise = g.time_s[k90] - g.time_s[k10];
+      trigger = kTriggerFraction * peak * volts;
+      t_trigger = g.time_s[k10];
+    }
+    if (g.columns[c] == transmitted) {
+      std::size_t k = x.size() - 1;
+      while (k > kp && std::abs(x[k]) < 0.1 * std::abs(peak)) --k;
+      t_end = g.time_s[k];
+    }
+  }
+  const double rate = series_125(std::max(1e6, kSamplesPerRise / std::max(rise, 1e-9)));
+  const double record = series_125(kRecordHeadroom * std::max(t_end - t_trigger, 1e-6));
+  return {{"range_V", series_125(kRangeHeadroom * std::max(range, 1e-6))},
+          {"sample_rate_Hz", rate},
+          {"record_length_s", record},
+          {"record_samples", std::ceil(record * rate)},
+          {"pretrigger_s", kPretrigger * record},
+          {"trigger_channel", incident},
+          {"trigger_level_V", trigger},
+          {"trigger_slope", trigger < 0 ? "falling" : "rising"},
+          {"incident_rise_s", rise}};
+}
+
+Json candidate_json(const PlanCandidate& c, const PlanInput& in) {
+  Json j = {{"striker_length_m", c.striker_length_m},
+            {"striker_velocity_m_s", c.striker_velocity_m_s},
+            {"shaper", nullptr},
+            {"specimen_length_m", c.specimen_length_m}};
+  if (c.shaper >= 0) {
+    const auto& text = in.spec.shaper_materials[c.shaper].text;
+    j["shaper"] = {{"material", text.empty() ? in.scene.bars[1].name : text},
+                   {"thickness_m", c.shaper_thickness_m},
+                   {"diameter_m", c.shaper_diameter_m}};
+  }
+  return j;
+}
+
+}  // namespace
+
+void write_plan_outputs(const PlanResult& r, const PlanInput& in, const PlanTargets& targets,
+                        const PlanOptions& options, const fs::path& dir,
+                        const fs::path& final_dir) {
+  write_text_file(dir / "scene.json", planned_json(r, in, final_dir).dump(2) + "\n");
+  const Scene& s = in.scene;
+  PlanCandidate given{
+      s.bars[0].length_m,          s.bars[0].velocity_m_s, in.spec.scene_has_shaper ? 0 : -1, 0, 0,
+      s.bars[*s.specimen].length_m};
+  if (in.spec.scene_has_shaper) {
+    given.shaper_thickness_m = s.bars[1].length_m;
+    given.shaper_diameter_m = s.bars[1].diameter_m;
+  }
+  const LoadingMetrics& m = r.metrics;
+  Json gauges = Json::array();
+  Json scope = scope_settings(r, s, gauges);
+  Json j = {
+      {"command", "plan"},
+      {"scene", s.file.string()},
+      {"targets",
+       {{"strain_rate_1_s", targets.rate_1_s},
+        {"strain", targets.strain},
+        {"rate_band", kRateBand},
+        {"band_fraction_min", kBandFraction},
+        {"equilibrium_ratio_max", kEquilibriumRatio},
+        {"equilibrium_before_fraction", kEquilibriumFraction}}},
+      {"feasible", r.feasible},
+      {"changes", r.changes},
+      {"chosen", candidate_json(r.chosen, in)},
+      {"scene_values", candidate_json(given, in)},
+      {"predicted",
+       {{"plateau_rate_1_s", m.plateau_rate_1_s},
+        {"band_fraction", m.band_fraction},
+        {"rate_spread", m.rate_spread},
+        {"loading_start_s", m.onset_s},
+        {"loading_end_s", m.end_s},
+        {"equilibrium_s", m.equilibrium_s},
+        {"equilibrium_fraction", m.equilibrium_fraction},
+        {"strain_reached", m.strain_reached}}},
+      {"gauges", gauges},
+      {"scope", scope},
+      {"search",
+       {{"method", "velocity by secant per geometry; grid of geometries, then compass search"},
+        {"search_tolerance", options.search_tolerance},
+        {"verify_tolerance", options.verify_tolerance},
+        {"candidates", r.path.size()},
+        {"simulations", r.simulations},
+        {"wall_time_s", r.wall_time_s}}}};
+  write_text_file(dir / "summary.json", j.dump(2) + "\n");
+  namespace k = schema::plan_path;  // the column names (src/core/output_schema.json)
+  CsvWriter path(dir / k::kFile, {k::step, k::striker_length_m, k::striker_velocity_m_s, k::shaper,
+                                  k::shaper_thickness_m, k::shaper_diameter_m, k::specimen_length_m,
+                                  k::plateau_rate_1_s, k::band_fraction, k::equilibrium_fraction,
+                                  k::strain_reached, k::changes, k::meets});
+  for (std::size_t i = 0; i < r.path.size(); ++i) {
+    const auto& p = r.path[i];
+    const auto& c = p.candidate;
+    path.row({double(i), c.striker_length_m, c.striker_velocity_m_s, double(c.shaper),
+              c.shaper_thickness_m, c.shaper_diameter_m, c.specimen_length_m,
+              p.metrics.plateau_rate_1_s, p.metrics.band_fraction, p.metrics.equilibrium_fraction,
+              p.metrics.strain_reached, double(p.changes), double(p.meets)});
+  }
+  path.close();
+  fs::create_directories(dir / "simulation");
+  write_simulation_outputs(r.verified, r.scene, dir / "simulation");
+}
+
+}  // namespace shpb

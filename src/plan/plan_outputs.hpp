@@ -1,0 +1,16 @@
+#pragma once
+// The files of `shpb plan` (docs/outputs.md#plan): the planned scene, summary.json with the
+// recommended scope settings, the search's path, and the verification run's own files.
+#include <filesystem>
+
+#include "plan/plan_search.hpp"
+
+namespace shpb {
+
+// Writes into `dir` (the temporary folder of `final_dir`: the planned scene's material paths are
+// made relative to `final_dir`).
+void write_plan_outputs(const PlanResult& result, const PlanInput& input,
+                        const PlanTargets& targets, const PlanOptions& options,
+                        const std::filesystem::path& dir, const std::filesystem::path& final_dir);
+
+}  // namespace shpb

@@ -1,0 +1,407 @@
+// The search of `shpb plan` (docs/methods.md §12). The objective (band fraction, equilibrium
+// time, strain reached) is read from thresholds crossed by a simulated record, so it is piecewise
+// constant in the set-up's values: no gradient to follow. The search is derivative-free: for each
+// geometry (striker length, shaper, specimen length) the striker velocity that puts the median
+// rate on the target is found by the secant method (the rate rises monotonically with the
+// velocity), over a coarse grid of geometries run in parallel, then refined by a compass search
+// around the best one with halving steps; the chosen set-up is verified on finer meshes.
+#include "plan/plan_search.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+
+#include "core/csv_writer.hpp"  // format_double
+#include "core/error.hpp"
+#include "core/output_folder.hpp"
+#include "core/parallel_runner.hpp"
+#include "model/scene_validation.hpp"
+
+namespace shpb {
+
+bool PlanTargets::IsValid(std::string* error) const {
+  if (!(rate_1_s > 0)) *error = "--rate: " + format_double(rate_1_s) + " 1/s: must be > 0";
+  if (!(strain > 0 && strain < 1))
+    *error = "--strain: " + format_double(strain) + ": expected an engineering strain in (0, 1)";
+  return rate_1_s > 0 && strain > 0 && strain < 1;
+}
+
+bool LoadingMetrics::meets() const { return end_s > onset_s && shortfall() == 0; }
+
+double LoadingMetrics::shortfall() const {
+  return std::max(0.0, kBandFraction - band_fraction) / kBandFraction +
+         std::max(0.0, equilibrium_fraction - kEquilibriumFraction) / (1 - kEquilibriumFraction) +
+         std::max(0.0, target_strain - strain_reached) / target_strain;
+}
+
+LoadingMetrics loading_metrics(const TimeSeries& specimen, const PlanTargets& targets) {
+  // A rate below this fraction of the target is no loading yet (or any more).
+  constexpr double kOnsetFraction = 0.1;
+  // |front + back| below this fraction of its peak is too small a force for a meaningful ratio
+  // (the same floor as process's equilibrium_ratio, docs/outputs.md).
+  constexpr double kForceFloor = 0.02;
+  LoadingMetrics m;
+  m.target_strain = targets.strain;
+  const auto& t = specimen.time_s;
+  const auto& strain = specimen.column("strain");
+  const auto& rate = specimen.column("strain_rate_1_s");
+  const auto& front = specimen.column("front_stress_Pa");
+  const auto& back = specimen.column("back_stress_Pa");
+  const double R = targets.rate_1_s;
+  for (double e : strain) m.strain_reached = std::max(m.strain_reached, e);
+  std::size_t k0 = 0;
+  while (k0 < t.size() && rate[k0] < kOnsetFraction * R) ++k0;
+  if (k0 + 2 >= t.size()) return m;
+  std::size_t k1 = k0;
+  while (k1 + 1 < t.size() && strain[k1] < targets.strain) ++k1;
+  if (strain[k1] < targets.strain) {  // not reached: the loading ends with the rate pulse
+    k1 = t.size() - 1;
+    while (k1 > k0 && rate[k1] < kOnsetFraction * R) --k1;
+  }
+  if (k1 <= k0 + 1) return m;
+  m.onset_s = t[k0];
+  m.end_s = t[k1];
+  std::vector<double> r(rate.begin() + k0, rate.begin() + k1 + 1);
+  double in_band = 0, sum = 0, sum2 = 0, peak = 0;
+  for (double x : r) {
+    in_band += std::abs(x - R) <= kRateBand * R;
+    sum += (x - R) / R;
+    sum2 += (x - R) * (x - R) / (R * R);
+  }
+  const double n = static_cast<double>(r.size());
+  m.band_fraction = in_band / n;
+  m.rate_spread = std::sqrt(std::max(0.0, sum2 / n - (sum / n) * (sum / n)));
+  std::nth_element(r.begin(), r.begin() + r.size() / 2, r.end());
+  m.plateau_rate_1_s = r[r.size() / 2];
+  for (std::size_t k = k0; k <= k1; ++k) peak = std::max(peak, std::abs(front[k] + back[k]));
+  std::size_t keq = k0;
+  for (std::size_t k = k0; k <= k1; ++k) {
+    const double mean = std::max(std::abs(front[k] + back[k]), kForceFloor * peak);
+    if (2 * std::abs(front[k] - back[k]) > kEquilibriumRatio * mean) keq = k + 1;
+  }
+  m.equilibrium_s = t[std::min(keq, k1)] - t[k0];
+  m.equilibrium_fraction = m.equilibrium_s / (m.end_s - m.onset_s);
+  return m;
+}
+
+Scene planned_scene(const PlanInput& input, const PlanCandidate& c) {
+  Scene s = input.scene;
+  const PlanSpec& spec = input.spec;
+  s.measurement.reset();
+  s.bars[0].length_m = c.striker_length_m;
+  s.bars[0].velocity_m_s = c.striker_velocity_m_s;
+  if (c.shaper >= 0) {
+    BarSpec shaper = spec.shaper_materials[c.shaper].bar;
+    shaper.length_m = c.shaper_thickness_m;
+    shaper.diameter_m = c.shaper_diameter_m;
+    shaper.area_m2 = M_PI * c.shaper_diameter_m * c.shaper_diameter_m / 4;
+    if (spec.scene_has_shaper) {
+      shaper.name = s.bars[1].name;
+      s.bars[1] = shaper;
+    } else {
+      s.bars.insert(s.bars.begin() + 1, shaper);
+      *s.specimen += 1;
+      for (auto& i : s.contact.interfaces)
+        if (i.left_bar >= 1) ++i.left_bar;
+    }
+  }
+  if (spec.specimen_length) s.bars[*s.specimen].length_m = c.specimen_length_m;
+  return s;
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// A scene's run on the meshes `tolerance` asks for; the record of a run that failed reads as no
+// loading at all.
+struct Evaluation {
+  PlanCandidate candidate;
+  LoadingMetrics metrics;
+  SimulationResult result;
+};
+
+class Planner {
+ public:
+  Planner(const PlanInput& in, const PlanTargets& targets, const PlanOptions& options)
+      : in_(in), spec_(in.spec), targets_(targets), options_(options) {}
+
+  PlanResult run();
+
+ private:
+  // The scene's loading for `c` on the meshes of `tolerance`; `full` keeps the scene's duration.
+  Evaluation evaluate(const PlanCandidate& c, double tolerance, bool full) {
+    throw_if_interrupted();
+    Scene s = planned_scene(in_, c);
+    s.simulation.tolerance = tolerance;
+    if (!full) {  // long enough for the loading: the incident bar's transit, then the pulse
+      const BarSpec& striker = s.bars[0];
+      const BarSpec& incident = s.bars[*s.incident_bar()];
+      const double pulse = 2 * striker.length_m / striker.material.wave_speed_m_s();
+      const double until = incident.length_m / incident.material.wave_speed_m_s() +
+                           kLoadingPulses * pulse + kLoadingMargin_s;
+      s.simulation.duration_s = std::min(s.simulation.duration_s.value_or(until), until);
+    }
+    Evaluation e{c, {}, {}};
+    try {
+      resolve_scene(s);
+      SimulationOptions o;
+      o.record_field = full;  // the verification run writes field.csv
+      e.result = simulate(s, o);
+    } catch (const InputError&) {  // a set-up too large to mesh: no loading
+      return e;
+    }
+    ++simulations_;
+    if (e.result.stable) e.metrics = loading_metrics(e.result.specimen, targets_);
+    return e;
+  }
+
+  // The velocity within its bounds whose median rate is the target, by the secant method from
+  // the rate of a striker that drives the specimen alone (v ≈ R·L_s).
+  Evaluation solve_velocity(PlanCandidate c, double tolerance, bool full,
+                            std::optional<double> start = {}) {
+    const PlanRange v = spec_.striker_velocity;
+    const double R = targets_.rate_1_s;
+    auto clamp = [&](double x) { return std::clamp(x, v.lo, v.hi); };
+    const double specimen =
+        spec_.specimen_length ? c.specimen_length_m : in_.scene.bars[*in_.scene.specimen].length_m;
+    double x0 = clamp(start.value_or(2 * R * specimen));
+    c.striker_velocity_m_s = x0;
+    Evaluation best = evaluate(c, tolerance, full);
+    double m0 = best.metrics.plateau_rate_1_s, x_prev = 0, m_prev = 0;
+    for (int i = 0; i < kSecantSteps && v.free(); ++i) {
+      if (std::abs(m0 - R) <= kVelocityTolerance * R) break;
+      double x1 = m0 > 0 ? clamp(x0 * R / m0) : clamp(2 * x0);
+      if (i > 0 && m0 != m_prev && x0 != x_prev)
+        x1 = clamp(x0 + (R - m0) * (x0 - x_prev) / (m0 - m_prev));
+      if (x1 == x0) break;  // at a bound
+      c.striker_velocity_m_s = x1;
+      Evaluation e = evaluate(c, tolerance, full);
+      x_prev = x0;
+      m_prev = m0;
+      x0 = x1;
+      m0 = e.metrics.plateau_rate_1_s;
+      if (better(e, best)) best = std::move(e);
+    }
+    return best;
+  }
+
+  int changes(const PlanCandidate& c) const {
+    auto differs = [](double a, double b) { return std::abs(a - b) > kSameValue * std::abs(b); };
+    const Scene& s = in_.scene;
+    int n = differs(c.striker_velocity_m_s, s.bars[0].velocity_m_s) +
+            differs(c.striker_length_m, s.bars[0].length_m);
+    if (spec_.scene_has_shaper)
+      n += c.shaper != 0 || differs(c.shaper_thickness_m, s.bars[1].length_m) ||
+           differs(c.shaper_diameter_m, s.bars[1].diameter_m);
+    else
+      n += c.shaper >= 0;
+    if (spec_.specimen_length) n += differs(c.specimen_length_m, s.bars[*s.specimen].length_m);
+    return n;
+  }
+
+  // Meeting the targets first; then the fewest changes and the widest band; else the closest.
+  bool better(const Evaluation& a, const Evaluation& b) const {
+    const bool ma = a.metrics.meets(), mb = b.metrics.meets();
+    if (ma != mb) return ma;
+    if (ma) {
+      const int ca = changes(a.candidate), cb = changes(b.candidate);
+      if (ca != cb) return ca < cb;
+      return a.metrics.band_fraction > b.metrics.band_fraction;
+    }
+    return a.metrics.shortfall() < b.metrics.shortfall();
+  }
+
+  // Each geometry with its velocity solved, in parallel; the path records them in order.
+  std::vector<Evaluation> solve_all(const std::vector<PlanCandidate>& geometries) {
+    std::vector<Evaluation> out(geometries.size());
+    run_parallel(geometries.size(), options_.threads, [&](std::size_t i) {
+      out[i] = solve_velocity(geometries[i], options_.search_tolerance, false);
+    });
+    for (const auto& e : out)
+      path_.push_back({e.candidate, e.metrics, changes(e.candidate), e.metrics.meets()});
+    return out;
+  }
+
+  std::vector<PlanCandidate> grid() const;
+  std::string binding(const Evaluation& best) const;
+  double striker_length_limit() const;
+
+  static constexpr int kSecantSteps = 6;
+  // The median rate within this fraction of the target ends the velocity search: a fifth of the
+  // ±10 % band, so that the band is centred on the target.
+  static constexpr double kVelocityTolerance = 0.02;
+  // Values within this fraction of the scene's count as unchanged.
+  static constexpr double kSameValue = 0.01;
+  // A search run lasts the incident bar's transit and this many striker pulses plus a margin:
+  // a pulse shaper's ramp lengthens the loading beyond one pulse.
+  static constexpr double kLoadingPulses = 2.5;
+  static constexpr double kLoadingMargin_s = 50e-6;
+  static constexpr int kGridPoints = 3;
+  static constexpr int kRefinements = 3;
+
+  const PlanInput& in_;
+  const PlanSpec& spec_;
+  PlanTargets targets_;
+  PlanOptions options_;
+  std::vector<PlanStep> path_;
+  std::atomic<long> simulations_ = 0;
+};
+
+std::vector<double> spread(PlanRange r, std::optional<double> also = {}) {
+  std::vector<double> v;
+  if (!r.free()) return {r.lo};
+  for (int i = 0; i < 3; ++i) v.push_back(r.lo + (r.hi - r.lo) * i / 2.0);
+  if (also && *also > r.lo && *also < r.hi) v.push_back(*also);
+  return v;
+}
+
+// The longest striker whose incident pulse passes the incident gauge before its reflection comes
+// back: 2 L/c_striker ≤ 2 d/c_bar, d the gauge's distance to the specimen face.
+double Planner::striker_length_limit() const {
+  const Scene& s = in_.scene;
+  const std::size_t inc = *s.incident_bar();
+  const BarSpec& bar = s.bars[inc];
+  double d = 0;
+  for (const auto& g : bar.gauges) d = std::max(d, bar.length_m - g.position_m);
+  return d * s.bars[0].material.wave_speed_m_s() / bar.material.wave_speed_m_s();
+}
+
+std::vector<PlanCandidate> Planner::grid() const {
+  const Scene& s = in_.scene;
+  PlanRange length = spec_.striker_length;
+  length.hi = std::min(length.hi, striker_length_limit());
+  length.lo = std::min(length.lo, length.hi);
+  std::vector<PlanCandidate> out;
+  std::vector<int> shapers;
+  if (!spec_.scene_has_shaper) shapers.push_back(-1);
+  for (std::size_t m = 0; m < spec_.shaper_materials.size(); ++m) shapers.push_back(int(m));
+  if (spec_.scene_has_shaper && spec_.shaper_materials.empty()) shapers.push_back(0);
+  const double specimen = s.bars[*s.specimen].length_m;
+  for (double L : spread(length, s.bars[0].length_m))
+    for (int sh : shapers)
+      for (double t : sh < 0 ? std::vector<double>{0} : spread(spec_.shaper_thickness))
+        for (double d : sh < 0 ? std::vector<double>{0} : spread(spec_.shaper_diameter))
+          for (double ls : spec_.specimen_length ? spread(*spec_.specimen_length, specimen)
+                                                 : std::vector<double>{specimen}) {
+            PlanCandidate c{L, 0, sh, t, d, ls};
+            if (spec_.scene_has_shaper && spec_.shaper_materials.empty())
+              c = {L, 0, 0, s.bars[1].length_m, s.bars[1].diameter_m, ls};
+            out.push_back(c);
+          }
+  return out;
+}
+
+std::string Planner::binding(const Evaluation& best) const {
+  const LoadingMetrics& m = best.metrics;
+  const double R = targets_.rate_1_s, E = targets_.strain;
+  char what[700];
+  const double c = in_.scene.bars[0].material.wave_speed_m_s();
+  const double limit = std::min(spec_.striker_length.hi, striker_length_limit());
+  if (m.plateau_rate_1_s < (1 - kRateBand) * R &&
+      best.candidate.striker_velocity_m_s >= spec_.striker_velocity.hi) {
+    std::snprintf(what, sizeof what,
+                  "plan.striker.velocity: at its upper bound %.3g m/s the specimen's rate reaches "
+                  "only %.3g 1/s; about %.3g m/s would be needed",
+                  spec_.striker_velocity.hi, m.plateau_rate_1_s,
+                  spec_.striker_velocity.hi * R / std::max(m.plateau_rate_1_s, 1e-9 * R));
+  } else if (m.strain_reached < E) {
+    std::snprintf(what, sizeof what,
+                  "the target strain %.3g is not reached (%.3g at best): at %.4g 1/s the loading "
+                  "must last %.3g us, a striker of at least %.3g m (2L/c >= strain/rate); the "
+                  "longest allowed is %.3g m (plan.striker.length, and the incident gauge's "
+                  "distance to the specimen so that the pulses do not overlap)",
+                  E, m.strain_reached, R, 1e6 * E / R, c * E / (2 * R), limit);
+  } else if (m.band_fraction < kBandFraction) {
+    std::snprintf(what, sizeof what,
+                  "the rate stays within ±%.0f %% of %.4g 1/s over only %.0f %% of the loading "
+                  "(%.0f %% needed): allow a pulse shaper (plan.shaper), a softer or thicker one, "
+                  "or a longer striker",
+                  100 * kRateBand, R, 100 * m.band_fraction, 100 * kBandFraction);
+  } else {
+    std::snprintf(what, sizeof what,
+                  "equilibrium (|R| <= %.0f %%) only at %.0f %% of the loading (before %.0f %% "
+                  "needed): a shorter specimen (plan.specimen.length) or a pulse shaper that ramps "
+                  "the incident pulse",
+                  100 * kEquilibriumRatio, 100 * m.equilibrium_fraction,
+                  100 * kEquilibriumFraction);
+  }
+  char prefix[300];
+  const PlanCandidate& b = best.candidate;
+  std::snprintf(prefix, sizeof prefix,
+                "no set-up within the plan's bounds meets %.4g 1/s (the closest: striker %.4g m at "
+                "%.4g m/s, %s; rate in band over %.0f %% of the loading, equilibrium at %.0f %%, "
+                "strain %.3g): ",
+                R, b.striker_length_m, b.striker_velocity_m_s,
+                b.shaper < 0 ? "no shaper" : "shaped", 100 * m.band_fraction,
+                100 * m.equilibrium_fraction, m.strain_reached);
+  return prefix + std::string(what);
+}
+
+PlanResult Planner::run() {
+  const auto start = Clock::now();
+  std::vector<Evaluation> all = solve_all(grid());
+  if (options_.progress) options_.progress(0.5);
+  auto best_of = [&](const std::vector<Evaluation>& v) {
+    std::size_t b = 0;
+    for (std::size_t i = 1; i < v.size(); ++i)
+      if (better(v[i], v[b])) b = i;
+    return v[b];
+  };
+  Evaluation best = best_of(all);
+  // Compass search around the best geometry over its free lengths, halving the steps.
+  struct Axis {
+    double PlanCandidate::*value;
+    PlanRange range;
+  };
+  std::vector<Axis> axes;
+  PlanRange length = spec_.striker_length;
+  length.hi = std::min(length.hi, striker_length_limit());
+  if (length.free()) axes.push_back({&PlanCandidate::striker_length_m, length});
+  if (best.candidate.shaper >= 0 && spec_.shaper_thickness.free())
+    axes.push_back({&PlanCandidate::shaper_thickness_m, spec_.shaper_thickness});
+  if (best.candidate.shaper >= 0 && spec_.shaper_diameter.free())
+    axes.push_back({&PlanCandidate::shaper_diameter_m, spec_.shaper_diameter});
+  if (spec_.specimen_length && spec_.specimen_length->free())
+    axes.push_back({&PlanCandidate::specimen_length_m, *spec_.specimen_length});
+  double step = 0.25;  // of each range: half the grid's spacing
+  for (int r = 0; r < kRefinements && !axes.empty(); ++r, step /= 2) {
+    std::vector<PlanCandidate> moves;
+    for (const Axis& a : axes)
+      for (double sign : {-1.0, 1.0}) {
+        PlanCandidate c = best.candidate;
+        c.*a.value = std::clamp(c.*a.value + sign * step * (a.range.hi - a.range.lo), a.range.lo,
+                                a.range.hi);
+        if (c.*a.value != best.candidate.*a.value) moves.push_back(c);
+      }
+    if (moves.empty()) continue;
+    const Evaluation b = best_of(solve_all(moves));
+    if (better(b, best)) best = b;
+    if (options_.progress) options_.progress(0.5 + 0.4 * (r + 1) / kRefinements);
+  }
+  PlanResult out;
+  // Verified on the finer meshes over the scene's whole duration, the velocity corrected there.
+  Evaluation v = solve_velocity(best.candidate, options_.verify_tolerance, true,
+                                best.candidate.striker_velocity_m_s);
+  out.chosen = v.candidate;
+  out.scene = planned_scene(in_, v.candidate);
+  out.metrics = v.metrics;
+  out.verified = std::move(v.result);
+  out.changes = changes(v.candidate);
+  out.feasible = v.metrics.meets() && out.verified.stable;
+  if (!out.feasible) out.binding = binding(best.metrics.meets() ? v : best);
+  out.path = std::move(path_);
+  out.simulations = simulations_;
+  out.wall_time_s = std::chrono::duration<double>(Clock::now() - start).count();
+  return out;
+}
+
+}  // namespace
+
+PlanResult plan_test(const PlanInput& input, const PlanTargets& targets,
+                     const PlanOptions& options) {
+  return Planner(input, targets, options).run();
+}
+
+}  // namespace shpb

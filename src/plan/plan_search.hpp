@@ -1,0 +1,87 @@
+#pragma once
+// The search of `shpb plan` (docs/methods.md §12): the set-up a lab should fire for a target
+// specimen strain rate and strain, found by simulating candidates (docs/commands.md#plan).
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/time_series.hpp"
+#include "plan/plan_spec.hpp"
+#include "solver/simulation.hpp"
+
+namespace shpb {
+
+// The criteria of a planned test (docs/methods.md §12): the specimen's strain rate within
+// ±kRateBand of the target over at least kBandFraction of the loading, force equilibrium
+// (|R| ≤ kEquilibriumRatio) before kEquilibriumFraction of it, and the target strain reached.
+inline constexpr double kRateBand = 0.10;
+inline constexpr double kBandFraction = 0.50;
+inline constexpr double kEquilibriumRatio = 0.05;
+inline constexpr double kEquilibriumFraction = 0.25;
+
+struct PlanTargets {
+  double rate_1_s = 0;
+  double strain = 0.15;
+  bool IsValid(std::string* error) const;  // a positive rate, a strain in (0, 1)
+};
+
+// One set-up: what the plan may change.
+struct PlanCandidate {
+  double striker_length_m = 0, striker_velocity_m_s = 0;
+  int shaper = -1;  // index into PlanSpec::shaper_materials; −1: none
+  double shaper_thickness_m = 0, shaper_diameter_m = 0;
+  double specimen_length_m = 0;
+};
+
+// What the specimen's own record (SimulationResult::specimen) says about a loading.
+struct LoadingMetrics {
+  double onset_s = 0, end_s = 0;  // the loading: rate first ≥ 10 % of the target → target strain
+  double plateau_rate_1_s = 0;    // median strain rate over the loading
+  double band_fraction = 0;       // of the loading with the rate within ±kRateBand of the target
+  double rate_spread = 0;         // standard deviation of the rate over the loading / the target
+  double equilibrium_s = 0;       // from the onset until |R| ≤ kEquilibriumRatio to the end
+  double equilibrium_fraction = 1;  // equilibrium_s over the loading's duration
+  double strain_reached = 0;        // largest engineering strain of the run
+  double target_strain = 0.15;
+  bool meets() const;  // every criterion
+  // How far from meeting them (0 when met): the sum of the relative shortfalls.
+  double shortfall() const;
+};
+LoadingMetrics loading_metrics(const TimeSeries& specimen, const PlanTargets& targets);
+
+struct PlanStep {  // one evaluated candidate, in the order of the search
+  PlanCandidate candidate;
+  LoadingMetrics metrics;
+  int changes = 0;  // values that differ from the scene's
+  bool meets = false;
+};
+
+struct PlanResult {
+  PlanCandidate chosen;
+  Scene scene;  // the planned scene, as verified
+  SimulationResult verified;
+  LoadingMetrics metrics;  // of the verification run
+  int changes = 0;
+  bool feasible = false;
+  std::string binding;  // when not feasible: the constraint that binds and what would be needed
+  std::vector<PlanStep> path;
+  double wall_time_s = 0;
+  long simulations = 0;
+};
+
+struct PlanOptions {
+  double search_tolerance = 0.03;   // gauge error of the search runs (coarse meshes)
+  double verify_tolerance = 0.005;  // of the chosen set-up's verification run
+  int threads = 0;
+  std::function<void(double)> progress;
+};
+
+// The set-up closest to the scene that meets the targets; InputError for a target out of range.
+PlanResult plan_test(const PlanInput& input, const PlanTargets& targets,
+                     const PlanOptions& options);
+
+// The scene with a candidate's values (a shaper inserted after the striker when it has none).
+Scene planned_scene(const PlanInput& input, const PlanCandidate& c);
+
+}  // namespace shpb
