@@ -18,7 +18,7 @@
 #include "model/scene.hpp"
 #include "model/scene_inputs.hpp"
 #include "model/scene_validation.hpp"
-#include "study/sweep.hpp"
+#include "study/study_args.hpp"
 
 namespace CLI {
 class App;
@@ -79,23 +79,6 @@ struct DispersionArgs {
 };
 int run_dispersion(const DispersionArgs& args);
 
-struct StudyArgs {
-  std::filesystem::path scene;
-  std::filesystem::path output;
-  Sweep sweep = Sweep::kPareto;
-  RunOverrides overrides;
-  int refine = 1;  // stability grid refinement (study/sweep.hpp)
-  // --sweep monte-carlo: the distributions file, draws and seed (study/monte_carlo_sweep.hpp).
-  std::filesystem::path distributions;
-  std::size_t draws = 0;  // 0: the default (kDefaultMonteCarloDraws)
-  std::optional<std::uint64_t> seed;
-  // Plan, run, merge (docs/commands.md): at most one of the three.
-  std::optional<std::filesystem::path> plan;   // write DIR/plan.json (needs the scene)
-  std::optional<std::filesystem::path> run;    // run shard `shard` of DIR's plan
-  std::optional<std::filesystem::path> merge;  // merge DIR's parts into -o (default DIR/result)
-  std::string shard;                           // "K/N"
-  bool IsValid(std::string* error) const;      // the modes and their options
-};
 int run_study(const StudyArgs& args);
 
 struct ValidateArgs {

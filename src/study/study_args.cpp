@@ -1,0 +1,44 @@
+#include "study/study_args.hpp"
+
+#include "core/error.hpp"
+
+namespace shpb {
+
+bool StudyArgs::IsValid(std::string* error) const {
+  const int modes = (plan ? 1 : 0) + (run ? 1 : 0) + (merge ? 1 : 0);
+  // The Monte Carlo option given first, if any (named by the errors below).
+  const char* monte_carlo_option = !distributions.empty() ? "--distributions"
+                                   : draws > 0            ? "--draws"
+                                   : seed                 ? "--seed"
+                                                          : nullptr;
+  std::optional<InputError> e;
+  if (modes > 1)
+    e = input_error("study", "", "", "--plan, --run and --merge are separate steps: give one");
+  else if (refine != 1 && sweep != Sweep::kStability)
+    e = input_error("--refine", "", std::to_string(refine), "only with --sweep stability");
+  else if ((run || merge) && monte_carlo_option)
+    e = input_error(monte_carlo_option, "", "",
+                    "not with --run or --merge: the plan holds the draws");
+  else if (sweep != Sweep::kMonteCarlo && monte_carlo_option)
+    e = input_error(monte_carlo_option, "", "", "only with --sweep monte-carlo");
+  else if (sweep == Sweep::kMonteCarlo && !run && !merge && distributions.empty())
+    e = input_error("--distributions", "", "",
+                    "a file of the values to draw is required with --sweep monte-carlo "
+                    "(docs/scene-format.md, \"Monte Carlo distributions\")");
+  else if (!shard.empty() && !run)
+    e = input_error("--shard", "", "\"" + shard + "\"", "only with --run DIR");
+  else if ((run || plan) && !output.empty())
+    e = input_error("-o", "", "\"" + output.string() + "\"",
+                    "not with --plan or --run: they write into DIR (the plan, DIR/parts)");
+  else if ((run || merge) && !scene.empty())
+    e = input_error(scene.string(), "", "",
+                    "--run and --merge take the scene from DIR/plan.json: give no scene");
+  else if (!run && !merge && scene.empty())
+    e = input_error("study", "", "", "a scene file is required");
+  else if (!run && !merge && !plan && output.empty())
+    e = input_error("-o", "", "", "an output folder is required");
+  if (e) *error = e->what();
+  return !e;
+}
+
+}  // namespace shpb

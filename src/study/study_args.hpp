@@ -1,0 +1,32 @@
+#pragma once
+// What `shpb study` is asked (docs/commands.md, "study"): the sweep, its options and which of the
+// plan / run / merge steps, with the check of their combinations.
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "model/run_overrides.hpp"
+#include "study/sweep.hpp"
+
+namespace shpb {
+
+struct StudyArgs {
+  std::filesystem::path scene;
+  std::filesystem::path output;
+  Sweep sweep = Sweep::kPareto;
+  RunOverrides overrides;
+  int refine = 1;  // stability grid refinement (study/sweep.hpp)
+  // --sweep monte-carlo: the distributions file, draws and seed (study/monte_carlo_sweep.hpp).
+  std::filesystem::path distributions;
+  std::size_t draws = 0;  // 0: the default (kDefaultMonteCarloDraws)
+  std::optional<std::uint64_t> seed;
+  // Plan, run, merge (docs/commands.md): at most one of the three.
+  std::optional<std::filesystem::path> plan;   // write DIR/plan.json (needs the scene)
+  std::optional<std::filesystem::path> run;    // run shard `shard` of DIR's plan
+  std::optional<std::filesystem::path> merge;  // merge DIR's parts into -o (default DIR/result)
+  std::string shard;                           // "K/N"
+  bool IsValid(std::string* error) const;      // the modes and their options
+};
+
+}  // namespace shpb
