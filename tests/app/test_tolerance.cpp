@@ -56,8 +56,8 @@ shpb::TimeSeries read_gauges(const fs::path& file) {
   return ts;
 }
 
-void check_tolerance_met(const std::string& experiment) {
-  const fs::path scene_file = kExperiments / experiment / "scene.json";
+void check_tolerance_met(const std::string& experiment, fs::path scene_file = {}) {
+  if (scene_file.empty()) scene_file = kExperiments / experiment / "scene.json";
   const fs::path dir = scratch_dir("tolerance_" + experiment) / "out";
   const auto r = run_shpb(
       {"simulate", scene_file.string(), "-o", dir.string(), "--tolerance", "1 %", "--quiet"});
@@ -104,7 +104,15 @@ TEST_CASE("A tolerance of 1 % meets 1 % on the striker-on-bar's exact solution, 
 
 TEST_CASE("A tolerance of 1 % meets 1 % on the bonded tension test, as predicted",
           "[release-only][tolerance]") {
-  check_tolerance_met("tension-bonded");
+  // The experiment pins the Courant number (its shipped record is that mesh's run); the tolerance
+  // model is checked where it chooses the Courant number too, as on the other experiments.
+  nlohmann::json scene =
+      nlohmann::json::parse(read_text(kExperiments / "tension-bonded/scene.json"));
+  scene["simulation"].erase("courant");
+  scene.erase("measurement");
+  const fs::path copy = scratch_dir("tolerance_tension_scene") / "scene.json";
+  std::ofstream(copy) << scene.dump(1);
+  check_tolerance_met("tension-bonded", copy);
 }
 
 TEST_CASE("A tolerance of 1 % meets 1 % on the LANL PMMA mini-Kolsky test, as predicted",

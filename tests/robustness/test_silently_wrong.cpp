@@ -62,12 +62,14 @@ bool warns(const json& s, const std::string& needle) {
 }
 
 // A striker on a bar, edited by the cases below.
+// Meshed by hand at 1 mm (the automatic meshes): a link that lets the bars pass through each
+// other must be flagged on a mesh that resolves them, whatever mesh a tolerance would choose.
 json bar_scene() {
   return json::parse(R"({"name": "plausibility",
   "bars": [
     {"name": "striker", "material": "steel", "length": "200 mm", "diameter": "12 mm",
-     "velocity": "10 m/s"},
-    {"name": "bar", "material": "steel", "length": "1 m", "diameter": "12 mm",
+     "velocity": "10 m/s", "elements": 200},
+    {"name": "bar", "material": "steel", "length": "1 m", "diameter": "12 mm", "elements": 1000,
      "gauges": [{"name": "gauge", "position": "500 mm"}]}],
   "materials": {"steel": {"model": "elastic", "density": "7850 kg/m3",
                           "youngs_modulus": "200 GPa", "poisson_ratio": 0.29}},
