@@ -481,11 +481,15 @@ PYBIND11_MODULE(_shpb, m) {
          bool full_model) {
         auto s = std::make_shared<Simulation>();
         s->scene = scene;
-        apply_overrides(overrides_of(tolerance, contact, stepping, courant, 0), s->scene);
+        const RunOverrides overrides = overrides_of(tolerance, contact, stepping, courant, 0);
         SimulationOptions options;
         options.full_model = full_model;
         options.cancel = [] { return interrupted(); };
-        s->result = run_released([&] { return simulate(s->scene, options); });
+        // The meshes a tolerance chooses are searched here too (tens of ms): without the GIL.
+        s->result = run_released([&] {
+          apply_overrides(overrides, s->scene);
+          return simulate(s->scene, options);
+        });
         return s;
       },
       py::arg("scene"), py::arg("tolerance") = py::none(), py::arg("contact") = py::none(),
