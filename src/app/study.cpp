@@ -33,13 +33,6 @@ std::function<void(std::size_t, std::size_t)> progress_printer(bool quiet, std::
   };
 }
 
-// The study sweeps multiples of the automatic meshes (its reference 8 x them) unless the scene or
-// --tolerance asks for a tolerance: the default one does not move its grid.
-RunOverrides study_overrides(RunOverrides o) {
-  o.default_tolerance = false;
-  return o;
-}
-
 StudyOptions study_options(const StudyArgs& args) {
   StudyOptions o{args.sweep, args.overrides.contact, args.overrides.stepping,
                  args.overrides.courant, args.refine};

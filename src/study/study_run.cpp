@@ -69,6 +69,11 @@ StudyPlan make_study_plan(const StudyOptions& args, const Scene& scene) {
   return plan;
 }
 
+RunOverrides study_overrides(RunOverrides o) {
+  o.default_tolerance = false;
+  return o;
+}
+
 // The scene of a plan read from its folder: the same files (scene, materials), unchanged, with the
 // same options.
 Scene plan_scene(const StudyPlan& plan, const std::filesystem::path& plan_file) {
@@ -78,8 +83,7 @@ Scene plan_scene(const StudyPlan& plan, const std::filesystem::path& plan_file) 
   o.contact = plan.contact;
   o.stepping = plan.stepping;
   o.courant = plan.courant;
-  o.default_tolerance = false;  // the study sweeps the automatic meshes (study_overrides)
-  apply_overrides(o, scene);
+  apply_overrides(study_overrides(o), scene);
   return scene;
 }
 

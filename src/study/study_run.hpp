@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/shards.hpp"
+#include "model/run_overrides.hpp"
 #include "model/scene.hpp"
 #include "study/study_plan.hpp"
 
@@ -33,6 +34,10 @@ struct StudyOptions {
 StudyPlan make_study_plan(const StudyOptions& options, const Scene& scene);
 // The file's text, as read (the plan keeps the scene as planned).
 std::string read_text(const std::filesystem::path& file);
+// The command line's overrides as a study applies them: it sweeps multiples of the automatic
+// meshes (its reference 8 x them) unless the scene or --tolerance asks for a tolerance, so the
+// default tolerance does not move its grid.
+RunOverrides study_overrides(RunOverrides o);
 // The scene of a plan read from its folder: the same files (scene, materials), unchanged, with
 // the same options. InputError when an input changed since the plan.
 Scene plan_scene(const StudyPlan& plan, const std::filesystem::path& plan_file);
