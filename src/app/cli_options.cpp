@@ -3,6 +3,7 @@
 #include "core/csv_writer.hpp"
 #include "core/enum_names.hpp"
 #include "core/error.hpp"
+#include "core/number_format.hpp"
 #include "model/discretization.hpp"
 
 namespace shpb {
@@ -37,7 +38,7 @@ void add_run_options(CLI::App* cmd, RunOverrides& o, RunOptionText& text) {
                   "Gauge error accepted, e.g. \"1 %\": every bar without its own elements meshed "
                   "as coarsely as the error model predicts meets it (default: the scene's "
                   "simulation.tolerance, else " +
-                      format_double(100 * kDefaultTolerance) +
+                      format_number(100 * kDefaultTolerance) +
                       " %; study: else the automatic meshes)");
   cmd->add_option("--threads", o.threads, "Worker threads (0 = all cores)")
       ->check(CLI::NonNegativeNumber);
