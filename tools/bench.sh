@@ -8,7 +8,8 @@
 #  3. `shpb process` of a 1 M-row CSV (time and two gauge columns, correction on) as a whole
 #     process, reading included: wall, CPU and peak memory; and the LANL copper test's Monte
 #     Carlo uncertainty, 1000 draws on 2 threads against 2 draws;
-#  4. the full pareto study of the classic experiment on 2 threads (skipped with BENCH_STUDY=0);
+#  4. the full pareto study of the classic experiment on 2 threads, and its Monte Carlo sweep of
+#     200 draws in process against 4 GNU parallel shards merged (skipped with BENCH_STUDY=0);
 #  5. --tolerance 1 % on the experiments (skipped with BENCH_TOLERANCE=0), and every
 #     experiment's default run before (the automatic meshes) and now (the default tolerance, 3.5 %):
 #     median solve time (summary.json wall_time_s) and gauge error against the study's reference;
@@ -73,6 +74,25 @@ if [ "${BENCH_STUDY:-1}" != 0 ]; then
   timed "$BUILD"/shpb study experiments/classic-al6061/scene.json -o "$WORK/study" \
     --threads 2 --quiet
   grep -m1 '"reference"' "$WORK/study/summary.json" || true
+  echo
+  echo "== Monte Carlo sweep of the classic experiment, 200 draws (its distributions.json):"
+  echo "   in process on 2 threads, then planned, 4 shards by GNU parallel (-j 2) and merged"
+  mc=(experiments/classic-al6061/scene.json --sweep monte-carlo --draws 200
+      --distributions experiments/classic-al6061/distributions.json)
+  timed "$BUILD"/shpb study "${mc[@]}" -o "$WORK/mc-whole" --threads 2 --quiet
+  if command -v parallel >/dev/null; then
+    "$BUILD"/shpb study "${mc[@]}" --plan "$WORK/mc-plan" --quiet
+    SHPB="$BUILD"/shpb timed tools/cluster/parallel.sh 4 study "$WORK/mc-plan" -j 2
+    for f in draws.csv gauge_bands.csv curve_bands.csv; do
+      if cmp -s "$WORK/mc-whole/$f" "$WORK/mc-plan/result/$f"; then
+        echo "  $f: sharded = in process (byte for byte)"
+      else
+        echo "  $f: DIFFERS between the sharded and the in-process sweep"
+      fi
+    done
+  else
+    echo "  (GNU parallel not installed: the sharded run is skipped)"
+  fi
 fi
 
 # 5. --tolerance 1%: the automatic meshes against the meshes the gauge-error model chooses
