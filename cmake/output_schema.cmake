@@ -17,9 +17,11 @@ foreach(f RANGE ${last_file})
   math(EXPR last_column "${column_count} - 1")
   foreach(c RANGE ${last_column})
     string(JSON column GET "${schema}" files ${f} columns ${c} name)
-    # A name in angle brackets stands for one column per gauge or interface: no constant.
-    if(column MATCHES "^[A-Za-z_][A-Za-z0-9_]*$")
-      string(APPEND namespaces "inline constexpr char ${column}[] = \"${column}\";\n")
+    # A name in angle brackets stands for one column per gauge or interface: no constant. A
+    # quantile's point ("p2.5") is an underscore in the constant's name (stress_3wave_p2_5_Pa).
+    string(REPLACE "." "_" constant "${column}")
+    if(constant MATCHES "^[A-Za-z_][A-Za-z0-9_]*$")
+      string(APPEND namespaces "inline constexpr char ${constant}[] = \"${column}\";\n")
     endif()
   endforeach()
   string(APPEND namespaces "}  // namespace ${id}\n")

@@ -101,7 +101,9 @@ def schema_table(file_id: str) -> list[str]:
     entry = next((f for f in files if f["id"] == file_id), None)
     if entry is None:
         raise SystemExit(f"{SCHEMA}: no file with id {file_id!r}")
-    rows = [f"| `{c['name']}` | {c['unit']} | {c['meaning']} |" for c in entry["columns"]]
+    # A column written under a condition ("only") says so after its meaning.
+    rows = [f"| `{c['name']}` | {c['unit']} | {c['meaning']}"
+            + (f" (only {c['only']})" if "only" in c else "") + " |" for c in entry["columns"]]
     return ["| column | unit | meaning |", "|---|---|---|", *rows]
 
 

@@ -15,6 +15,7 @@
 #include "core/error.hpp"
 #include "core/parallel_runner.hpp"
 #include "core/units.hpp"
+#include "output_schema.hpp"
 
 namespace shpb {
 namespace {
@@ -385,12 +386,16 @@ UncertaintyResult propagate_uncertainty(const Scene& scene, const MeasurementSpe
 
 std::vector<std::pair<const char*, const std::vector<double>*>> uncertainty_band_columns(
     const UncertaintyResult& u) {
-  return {
-      {"stress_3wave_p2.5_Pa", &u.stress_3wave[0]},  {"stress_3wave_p50_Pa", &u.stress_3wave[1]},
-      {"stress_3wave_p97.5_Pa", &u.stress_3wave[2]}, {"stress_1wave_p2.5_Pa", &u.stress_1wave[0]},
-      {"stress_1wave_p50_Pa", &u.stress_1wave[1]},   {"stress_1wave_p97.5_Pa", &u.stress_1wave[2]},
-      {"strain_rate_p2.5_1_s", &u.strain_rate[0]},   {"strain_rate_p50_1_s", &u.strain_rate[1]},
-      {"strain_rate_p97.5_1_s", &u.strain_rate[2]}};
+  namespace k = schema::curve;  // the column names (src/core/output_schema.json)
+  return {{k::stress_3wave_p2_5_Pa, &u.stress_3wave[0]},
+          {k::stress_3wave_p50_Pa, &u.stress_3wave[1]},
+          {k::stress_3wave_p97_5_Pa, &u.stress_3wave[2]},
+          {k::stress_1wave_p2_5_Pa, &u.stress_1wave[0]},
+          {k::stress_1wave_p50_Pa, &u.stress_1wave[1]},
+          {k::stress_1wave_p97_5_Pa, &u.stress_1wave[2]},
+          {k::strain_rate_p2_5_1_s, &u.strain_rate[0]},
+          {k::strain_rate_p50_1_s, &u.strain_rate[1]},
+          {k::strain_rate_p97_5_1_s, &u.strain_rate[2]}};
 }
 
 nlohmann::json uncertainty_summary(const UncertaintyResult& u) {

@@ -6,6 +6,7 @@
 #include "core/error.hpp"
 #include "core/output_folder.hpp"
 #include "dispersion/pochhammer_chree.hpp"
+#include "output_schema.hpp"
 
 namespace shpb {
 namespace {
@@ -40,8 +41,9 @@ bool ModeTableOptions::IsValid(std::string* error) const {
 }
 
 std::vector<std::string> mode_table_header(const ModeTableOptions& options) {
-  std::vector<std::string> header = {"a_over_lambda", "c_over_c0", "cg_over_c0", "f_a_over_c0"};
-  if (options.radius_m && options.c0_m_s) header.push_back("frequency_Hz");
+  namespace k = schema::dispersion;  // the column names (src/core/output_schema.json)
+  std::vector<std::string> header = {k::a_over_lambda, k::c_over_c0, k::cg_over_c0, k::f_a_over_c0};
+  if (options.radius_m && options.c0_m_s) header.push_back(k::frequency_Hz);
   return header;
 }
 

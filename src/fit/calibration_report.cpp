@@ -9,6 +9,7 @@
 #include "core/csv_writer.hpp"
 #include "core/output_folder.hpp"
 #include "fit/fit_interval.hpp"
+#include "output_schema.hpp"
 #include "version.hpp"
 
 namespace shpb {
@@ -41,7 +42,8 @@ void write_calibration_outputs(CalibrationFit& fit, const std::filesystem::path&
                   calibration_to_json(fit.calibration).dump(2) + "\n");
   for (std::size_t k = 0; k < fit.shots.size(); ++k) {
     const ShotSignals& s = fit.shots[k];
-    std::vector<std::string> header = {"time_s", s.source_gauge + "_source"};
+    std::vector<std::string> header = {schema::calibration_shot::time_s,
+                                       s.source_gauge + "_source"};
     for (const auto& g : s.gauges)
       for (const char* what : {"_measured", "_nominal", "_fitted", "_compared"})
         header.push_back(g + what);

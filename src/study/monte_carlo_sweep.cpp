@@ -19,6 +19,7 @@
 #include "model/law_parameters.hpp"
 #include "model/scene_validation.hpp"
 #include "model/uncertainty_reader.hpp"
+#include "output_schema.hpp"
 #include "solver/simulation.hpp"
 #include "version.hpp"
 
@@ -411,9 +412,10 @@ void write_draws(const std::vector<Distribution>& distributions,
                  const std::vector<MonteCarloJob>& jobs,
                  const std::vector<MonteCarloJobResult>& results,
                  const std::filesystem::path& file) {
-  std::vector<std::string> header = {"draw"};
+  namespace k = schema::draws;  // the column names (src/core/output_schema.json)
+  std::vector<std::string> header = {k::draw};
   for (const Distribution& d : distributions) header.push_back(column_name(d));
-  header.insert(header.end(), {"simulated", "reduced", "failure"});
+  header.insert(header.end(), {k::simulated, k::reduced, k::failure});
   CsvWriter csv(file, header);
   for (std::size_t r = 1; r < jobs.size(); ++r) {
     std::vector<std::string> cells = {std::to_string(r)};
@@ -433,7 +435,7 @@ void write_gauge_bands(const std::vector<MonteCarloJobResult>& results,
   const TimeSeries& n = results[0].gauges;
   std::size_t rows = n.samples();
   for (std::size_t d : good) rows = std::min(rows, results[d].gauges.samples());
-  std::vector<std::string> header = {"time_s"};
+  std::vector<std::string> header = {schema::gauge_bands::time_s};
   std::vector<std::vector<double>> columns;
   for (std::size_t g = 0; g < n.columns.size(); ++g) {
     std::vector<const std::vector<double>*> draws;
@@ -473,8 +475,9 @@ void write_curve_bands(const std::vector<MonteCarloJobResult>& results,
   band(&CurveAtStrains::stress1, u.stress_1wave);
   band(&CurveAtStrains::rate, u.strain_rate);
   const auto bands = uncertainty_band_columns(u);
-  std::vector<std::string> header = {"strain", "stress_3wave_Pa", "stress_1wave_Pa",
-                                     "strain_rate_1_s"};
+  namespace k = schema::curve_bands;  // the nominal columns, then the bands (as curve.csv's)
+  std::vector<std::string> header = {k::strain, k::stress_3wave_Pa, k::stress_1wave_Pa,
+                                     k::strain_rate_1_s};
   for (const auto& [name, column] : bands) header.push_back(name);
   CsvWriter csv(file, header);
   for (std::size_t i = 0; i < rows; ++i) {
@@ -511,9 +514,9 @@ void write_monte_carlo(const Scene& scene, const std::vector<Distribution>& dist
     throw NumericalError("study monte-carlo: " + std::to_string(failed) + " of " +
                          std::to_string(results.size() - 1) + " draws failed" +
                          (failures.empty() ? std::string() : ": " + failures.front()));
-  write_draws(distributions, jobs, results, dir / "draws.csv");
-  write_gauge_bands(results, good, dir / "gauge_bands.csv");
-  if (reduced.size() >= 2) write_curve_bands(results, reduced, dir / "curve_bands.csv");
+  write_draws(distributions, jobs, results, dir / schema::draws::kFile);
+  write_gauge_bands(results, good, dir / schema::gauge_bands::kFile);
+  if (reduced.size() >= 2) write_curve_bands(results, reduced, dir / schema::curve_bands::kFile);
 
   // Each quantity over the draws, with each drawn value's share of its variance.
   const std::size_t k = distributions.size();

@@ -6,6 +6,7 @@
 #include "core/checked_write.hpp"
 #include "core/csv_writer.hpp"
 #include "model/mesh_error_model.hpp"
+#include "output_schema.hpp"
 #include "study/pareto_front.hpp"
 #include "study/pareto_sweep.hpp"
 #include "study/stability_sweep.hpp"
@@ -70,9 +71,10 @@ void write_pareto(const ParetoStudy& study, const Scene& scene, int threads, dou
   // The one computation of the front: pareto.csv carries it for the report, summary.json lists it.
   const std::vector<bool> by_wall = pareto_front(err, wall),
                           by_updates = pareto_front(err, updates);
-  CsvWriter csv(dir / "pareto.csv", {"method", "stepping", "resolution", "error", "wall_time_s",
-                                     "node_updates", "stable", "pareto_front_wall_time",
-                                     "pareto_front_node_updates", "recorded_error"});
+  namespace k = schema::pareto;  // the column names (src/core/output_schema.json)
+  CsvWriter csv(dir / k::kFile, {k::method, k::stepping, k::resolution, k::error, k::wall_time_s,
+                                 k::node_updates, k::stable, k::pareto_front_wall_time,
+                                 k::pareto_front_node_updates, k::recorded_error});
   for (std::size_t i = 0; i < study.rows.size(); ++i) {
     const ParetoRow& r = study.rows[i];
     const std::string cells[] = {method_name(r.run),
@@ -122,9 +124,10 @@ void write_pareto(const ParetoStudy& study, const Scene& scene, int threads, dou
 
 void write_stability(const StabilityStudy& study, const Scene& scene, int refine, int threads,
                      double wall_s, const std::filesystem::path& dir) {
-  CsvWriter points(dir / "stability.csv",
-                   {"method", "stiffness_factor", "mass_ratio", "courant", "energy_growth",
-                    "stable", "step_ratio", "closings_after_release"});
+  namespace k = schema::stability;  // the column names (src/core/output_schema.json)
+  CsvWriter points(dir / k::kFile,
+                   {k::method, k::stiffness_factor, k::mass_ratio, k::courant, k::energy_growth,
+                    k::stable, k::step_ratio, k::closings_after_release});
   for (const StabilityRow& r : study.rows) {
     const bool penalty = r.point.method == ContactMethod::kPenalty;
     const std::string cells[] = {std::string(to_string(r.point.method)),
@@ -138,9 +141,9 @@ void write_stability(const StabilityStudy& study, const Scene& scene, int refine
     points.row(cells);
   }
   points.close();
-  CsvWriter lines(dir / "stability_boundary.csv",
-                  {"method", "link", "stiffness_factor", "mass_ratio", "critical_courant",
-                   "closed_form_courant", "step_ratio"});
+  namespace kb = schema::stability_boundary;
+  CsvWriter lines(dir / kb::kFile, {kb::method, kb::link, kb::stiffness_factor, kb::mass_ratio,
+                                    kb::critical_courant, kb::closed_form_courant, kb::step_ratio});
   for (const StabilityBoundary& b : study.boundaries) {
     const bool penalty = b.line.method == ContactMethod::kPenalty;
     const std::string cells[] = {

@@ -4,6 +4,9 @@
 
 #include "analysis/comparison.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_analysis_test_comparison {
+
 using namespace shpb;
 
 namespace {
@@ -73,3 +76,5 @@ TEST_CASE("The rise time of a raised-cosine ramp is its 10-90 % span", "[analysi
   const double expected = ramp * (std::acos(1 - 2 * 0.9) - std::acos(1 - 2 * 0.1)) / M_PI;
   CHECK(rise_time_samples(x, 0, 800) == Approx(expected).margin(0.02));
 }
+
+}  // namespace tests_analysis_test_comparison

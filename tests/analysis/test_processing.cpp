@@ -7,6 +7,9 @@
 #include "analysis/pulse_window.hpp"
 #include "dispersion/propagation.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_analysis_test_processing {
+
 using namespace shpb;
 
 namespace {
@@ -188,3 +191,5 @@ TEST_CASE("The striker velocity an incident plateau implies follows the impact o
           Approx(3 * kC0 * kStrain).epsilon(kRounding));
   }
 }
+
+}  // namespace tests_analysis_test_processing

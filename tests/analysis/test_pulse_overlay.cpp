@@ -14,6 +14,9 @@
 #include "dispersion/dispersion_table.hpp"
 #include "dispersion/propagation.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_analysis_test_pulse_overlay {
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -153,3 +156,5 @@ TEST_CASE("A calibrated reflected time delays the reflected and transmitted puls
   CHECK_THROWS_WITH(shpb::find_measured_pulses(scene, g),
                     Catch::Contains("measurement.reflected_time"));
 }
+
+}  // namespace tests_analysis_test_pulse_overlay

@@ -4,6 +4,9 @@
 
 #include "analysis/reduction.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_analysis_test_reduction {
+
 using namespace shpb;
 
 TEST_CASE("Constant pulses in equilibrium give equal 1-, 2- and 3-wave stresses and rates",
@@ -45,3 +48,5 @@ TEST_CASE("Out of equilibrium the ratio R measures the force difference", "[anal
   CHECK(c.stress_2wave_Pa[1] == Approx(3 * c.stress_1wave_Pa[1]));
   CHECK(c.stress_3wave_Pa[1] == Approx(2 * c.stress_1wave_Pa[1]));
 }
+
+}  // namespace tests_analysis_test_reduction

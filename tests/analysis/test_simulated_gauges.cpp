@@ -8,6 +8,9 @@
 #include "solver/simulation.hpp"
 #include "specimen_truth.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_analysis_test_simulated_gauges {
+
 using namespace shpb;
 
 using shpb_test::moving_average;
@@ -112,3 +115,5 @@ TEST_CASE("Processing the simulator's gauges recovers the specimen truth after e
     CHECK(a.strain_max < kAgreement);
   }
 }
+
+}  // namespace tests_analysis_test_simulated_gauges

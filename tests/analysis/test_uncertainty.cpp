@@ -27,6 +27,9 @@
 #include "solver/simulation.hpp"
 #include "specimen_truth.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_analysis_test_uncertainty {
+
 using namespace shpb;
 
 using shpb_test::moving_average;
@@ -190,3 +193,5 @@ TEST_CASE(
   CHECK(rate >= kCoverageLow);
   CHECK(rate <= kCoverageHigh);
 }
+
+}  // namespace tests_analysis_test_uncertainty

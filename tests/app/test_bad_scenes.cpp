@@ -15,6 +15,9 @@
 
 #include "run_shpb.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_app_test_bad_scenes {
+
 using nlohmann::json;
 using shpb_test::run_shpb;
 namespace fs = std::filesystem;
@@ -415,3 +418,5 @@ TEST_CASE("Every command that takes a scene refuses a bad scene with the same li
   }
   fs::remove_all(root);
 }
+
+}  // namespace tests_app_test_bad_scenes

@@ -8,6 +8,9 @@
 
 #include "run_shpb.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_app_test_cli {
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -121,3 +124,5 @@ TEST_CASE("shpb --version names the program", "[app][cli]") {
   CHECK(r.code == 0);
   CHECK(r.out.rfind("shpb ", 0) == 0);
 }
+
+}  // namespace tests_app_test_cli

@@ -11,6 +11,9 @@
 
 #include "run_shpb.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_app_test_compare {
+
 namespace fs = std::filesystem;
 using shpb_test::read_text;
 using shpb_test::run_shpb;
@@ -117,3 +120,5 @@ TEST_CASE("LANL copper: the simulated incident pulse meets the measured one with
   CHECK(incident["plateau_ratio"].get<double>() == Approx(1.0).margin(kPeakTolerance));
   CHECK(std::abs(incident["arrival_shift_s"].get<double>()) < kArrivalTolerance_s);
 }
+
+}  // namespace tests_app_test_compare

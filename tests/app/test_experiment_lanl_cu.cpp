@@ -12,6 +12,9 @@
 
 #include "run_shpb.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_app_test_experiment_lanl_cu {
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -63,3 +66,5 @@ TEST_CASE("The LANL copper test is in force balance with the scene's bridge sett
   CHECK(ratio[ratio.size() / 2] == Approx(1.0).margin(kForceBalanceTolerance));
   fs::remove_all(dir);
 }
+
+}  // namespace tests_app_test_experiment_lanl_cu

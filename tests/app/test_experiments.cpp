@@ -11,6 +11,9 @@
 
 #include "run_shpb.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_app_test_experiments {
+
 namespace fs = std::filesystem;
 using nlohmann::json;
 using shpb_test::read_text;
@@ -77,3 +80,5 @@ TEST_CASE("Every shipped experiment runs validate, process, compare and fit from
     }
   }
 }
+
+}  // namespace tests_app_test_experiments

@@ -22,6 +22,9 @@
 #include "run_shpb.hpp"
 #include "write_xlsx.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_app_test_lab_data {
+
 namespace fs = std::filesystem;
 using nlohmann::json;
 using shpb_test::clean;
@@ -672,3 +675,5 @@ TEST_CASE("A simulated tension test with bonded specimen interfaces is processed
                                                                << " samples in equilibrium");
   CHECK(rms < kLawRms);
 }
+
+}  // namespace tests_app_test_lab_data

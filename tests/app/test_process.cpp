@@ -10,6 +10,9 @@
 #include "lab_record.hpp"
 #include "run_shpb.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_app_test_process {
+
 using namespace std::string_literals;
 namespace fs = std::filesystem;
 
@@ -148,3 +151,5 @@ TEST_CASE("process --signals reduces a gauges.csv written by simulate without di
   // The scene's striker moves at 15 m/s; the incident plateau gives it back.
   CHECK(s["striker_velocity_m_s"]["inferred"].get<double>() == Approx(15).epsilon(0.01));
 }
+
+}  // namespace tests_app_test_process

@@ -11,7 +11,11 @@
 #include <sstream>
 
 #include "../skip.hpp"
+#include "output_schema_check.hpp"
 #include "run_shpb.hpp"
+
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_app_test_process_campaign {
 
 namespace fs = std::filesystem;
 
@@ -235,8 +239,11 @@ TEST_CASE("The three measured experiments as one campaign", "[app][process][camp
           summary(alone).contains("uncertainty"));
     if (names[i] == "cu-ofe-273k") {
       CHECK(curve.find("stress_3wave_p97.5_Pa") != std::string::npos);
+      shpb_test::check_schema_columns(alone / "curve.csv", "curve");  // with the band columns
       CHECK(summary(dir / "out" / names[i])["uncertainty"]["draws"] == 20);
     }
   }
   fs::remove_all(dir);
 }
+
+}  // namespace tests_app_test_process_campaign

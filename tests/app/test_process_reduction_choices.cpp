@@ -18,6 +18,9 @@
 #include "lab_record.hpp"
 #include "run_shpb.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_app_test_process_reduction_choices {
+
 namespace fs = std::filesystem;
 using nlohmann::json;
 using shpb_test::csv;
@@ -350,3 +353,5 @@ TEST_CASE(
   CHECK(s["max_strain"].get<double>() >= kReached * true_max);
   CHECK(s["end_of_loading"]["cut_short"] == false);
 }
+
+}  // namespace tests_app_test_process_reduction_choices

@@ -16,6 +16,9 @@
 #include "lab_record.hpp"
 #include "run_shpb.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_app_test_record_formats {
+
 namespace fs = std::filesystem;
 using nlohmann::json;
 using shpb_test::has_warning;
@@ -256,3 +259,5 @@ TEST_CASE("A TranAX-style export (quoted lines, CR line ends, decimal commas) is
     CHECK(r.err.find(cause) != std::string::npos);
   }
 }
+
+}  // namespace tests_app_test_record_formats

@@ -10,6 +10,9 @@
 #include "../skip.hpp"
 #include "run_shpb.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_app_test_report {
+
 namespace fs = std::filesystem;
 using shpb_test::read_text;
 using shpb_test::run_shpb;
@@ -142,3 +145,5 @@ TEST_CASE("Headless Chromium renders report.html to a picture that is not blank"
   const int colours = std::stoi(read_text(count));
   CHECK(colours > 10);
 }
+
+}  // namespace tests_app_test_report

@@ -13,6 +13,9 @@
 
 #include "run_shpb.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_app_test_resolved_setup {
+
 namespace fs = std::filesystem;
 using nlohmann::json;
 using shpb_test::read_text;
@@ -234,3 +237,5 @@ TEST_CASE("A striker moving away from the chain is refused: nothing would be rec
   }
   CHECK(!fs::exists(dir / "out"));
 }
+
+}  // namespace tests_app_test_resolved_setup

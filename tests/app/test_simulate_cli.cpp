@@ -8,6 +8,9 @@
 
 #include "run_shpb.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_app_test_simulate_cli {
+
 namespace fs = std::filesystem;
 using shpb_test::read_text;
 using shpb_test::run_shpb;
@@ -67,3 +70,5 @@ TEST_CASE("A detected instability exits with 3 and still writes what was compute
   CHECK(summary["failure"].get<std::string>().find("t = ") != std::string::npos);
   CHECK(fs::exists(dir / "gauges.csv"));
 }
+
+}  // namespace tests_app_test_simulate_cli

@@ -20,6 +20,9 @@
 // After the shpb headers: <signal.h> defines a macro si_value.
 #include "run_shpb.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_app_test_specimen_response {
+
 namespace fs = std::filesystem;
 using nlohmann::json;
 using shpb_test::run_shpb;
@@ -404,3 +407,5 @@ TEST_CASE(
   const json& removed = corrected.process["corrections"]["removed_true_stress"];
   REQUIRE(removed["inertia_radial_acceleration"]["max_abs_Pa"].get<double>() > 0.2 * law);
 }
+
+}  // namespace tests_app_test_specimen_response

@@ -17,6 +17,9 @@
 #include "study/recorded_error.hpp"
 #include "study/reference.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_app_test_tolerance {
+
 namespace fs = std::filesystem;
 using shpb_test::read_text;
 using shpb_test::run_shpb;
@@ -201,3 +204,5 @@ TEST_CASE("validate prints the meshes chosen for a tolerance and their predicted
   const auto table = run_shpb({"validate", scene, "--tolerance", "1%"});
   CHECK(table.out.find("predicted gauge error") != std::string::npos);
 }
+
+}  // namespace tests_app_test_tolerance

@@ -11,6 +11,9 @@
 #include "model/scene_validation.hpp"
 #include "run_shpb.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_app_test_validate {
+
 using nlohmann::json;
 namespace fs = std::filesystem;
 using namespace shpb;
@@ -250,3 +253,5 @@ TEST_CASE("validate checks a scene that only processes: what process will read a
   CHECK(r.code == 2);
   CHECK(r.err.find("column \"transmited\": no such column") != std::string::npos);
 }
+
+}  // namespace tests_app_test_validate

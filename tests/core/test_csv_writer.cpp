@@ -10,6 +10,9 @@
 #include "../scratch.hpp"
 #include "core/csv_writer.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_core_test_csv_writer {
+
 using namespace shpb;
 
 TEST_CASE("Doubles are written in shortest round-trip form and read back exactly", "[core][csv]") {
@@ -59,3 +62,5 @@ TEST_CASE("A row with preformatted leading cells reads as the same row of double
   REQUIRE(std::sscanf(leading.c_str(), "%lf,%lf,%lf", &t, &x, &sigma) == 3);
   REQUIRE((t == 1e-6 && x == 0.3 && sigma == -2.5e8));
 }
+
+}  // namespace tests_core_test_csv_writer

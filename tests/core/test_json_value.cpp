@@ -5,6 +5,9 @@
 #include "core/json_document.hpp"
 #include "core/json_value.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_core_test_json_value {
+
 using namespace shpb;
 
 namespace {
@@ -64,3 +67,5 @@ TEST_CASE("Documents that are not one JSON object are refused with their place",
         "double");
   CHECK(message_of("{\n  \"a\": 1,\n}").rfind("f.json: line 3, column 1: ", 0) == 0);
 }
+
+}  // namespace tests_core_test_json_value

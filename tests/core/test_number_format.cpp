@@ -5,6 +5,9 @@
 
 #include "core/number_format.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_core_test_number_format {
+
 using shpb::format_number;
 using shpb::format_range;
 
@@ -33,3 +36,5 @@ TEST_CASE("Ranges in messages are printed as a user would write them", "[core][f
   CHECK(format_range(0, 1, true, false) == "(0, 1]");
   CHECK(format_range(0, 0.49, false, true) == "[0, 0.49)");
 }
+
+}  // namespace tests_core_test_number_format

@@ -11,6 +11,9 @@
 #include "core/error.hpp"
 #include "core/signal_reader.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_core_test_signal_reader {
+
 using namespace shpb;
 namespace fs = std::filesystem;
 
@@ -303,3 +306,5 @@ TEST_CASE("The real files import: LANL raw, Tektronix channels, and the messy ep
     CHECK(g.warnings[2].find("implausible strain scale") != std::string::npos);
   }
 }
+
+}  // namespace tests_core_test_signal_reader

@@ -7,6 +7,9 @@
 
 #include "core/signal_text.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_core_test_signal_text {
+
 using namespace shpb;
 
 TEST_CASE("Numbers parse to the correctly rounded value, fast path or not", "[signal]") {
@@ -56,3 +59,5 @@ TEST_CASE("Numbers parse to the correctly rounded value, fast path or not", "[si
     CHECK_FALSE(parse_number(bad, false).has_value());
   }
 }
+
+}  // namespace tests_core_test_signal_text

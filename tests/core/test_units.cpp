@@ -4,6 +4,9 @@
 
 #include "core/units.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_core_test_units {
+
 using namespace shpb;
 
 namespace {
@@ -142,3 +145,5 @@ TEST_CASE("Every dimension has a name and an SI unit for messages", "[core][unit
   CHECK(si_unit(Dimension::kPressure) == "Pa");
   CHECK(si_unit(Dimension::kDimensionless).empty());
 }
+
+}  // namespace tests_core_test_units

@@ -8,7 +8,11 @@
 #include <string>
 #include <vector>
 
+#include "../app/output_schema_check.hpp"
 #include "../app/run_shpb.hpp"
+
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_dispersion_test_dispersion_command {
 
 namespace fs = std::filesystem;
 
@@ -47,6 +51,7 @@ TEST_CASE("shpb dispersion writes the curve and matches the reference within 2e-
     std::string header;
     const auto got = read_rows(out, &header);
     CHECK(header == "a_over_lambda,c_over_c0,cg_over_c0,f_a_over_c0,frequency_Hz");
+    shpb_test::check_schema_columns(out, "dispersion");
     REQUIRE(got.size() == 321);  // default: 0 … 1.6 in 321 points
     const auto& last = got.rbegin()->second;
     CHECK(last[0] == Approx(1.6));
@@ -70,3 +75,5 @@ TEST_CASE("shpb dispersion writes the curve and matches the reference within 2e-
 TEST_CASE("shpb dispersion rejects a radius without c0 with exit code 2", "[dispersion][app]") {
   CHECK(shpb_test::run_shpb({"dispersion", "--poisson", "0.3", "--radius", "5 mm"}).code == 2);
 }
+
+}  // namespace tests_dispersion_test_dispersion_command

@@ -11,6 +11,9 @@
 #include "dispersion/pochhammer_chree.hpp"
 #include "dispersion/propagation.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_dispersion_test_pochhammer_chree {
+
 using namespace shpb;
 
 namespace {
@@ -158,3 +161,5 @@ TEST_CASE("The table up to a cut-off is the whole table's grid, cut past the cut
     CHECK(std::abs(needed.m1(fa) - whole.m1(fa)) < kSameRoot * std::abs(whole.m1(fa)));
   }
 }
+
+}  // namespace tests_dispersion_test_pochhammer_chree

@@ -6,6 +6,9 @@
 #include "dispersion/pochhammer_chree.hpp"
 #include "dispersion/propagation.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_dispersion_test_propagation {
+
 using namespace shpb;
 
 namespace {
@@ -171,3 +174,5 @@ TEST_CASE("Corrections sharing their FFT plans give the same pulses as with plan
     CHECK(own.propagate(x, kDt, d) == sharing.propagate(x, kDt, d));
   }
 }
+
+}  // namespace tests_dispersion_test_propagation

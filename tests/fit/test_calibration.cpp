@@ -13,10 +13,14 @@
 #include <string>
 #include <vector>
 
+#include "../app/output_schema_check.hpp"
 #include "../app/run_shpb.hpp"
 #include "../skip.hpp"
 #include "dispersion/dispersion_table.hpp"
 #include "dispersion/propagation.hpp"
+
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_fit_test_calibration {
 
 using namespace shpb;
 using shpb_test::run_shpb;
@@ -192,6 +196,8 @@ TEST_CASE(
                            (dir / "together.json").string(), "-o", (dir / "out").string(), "-q"});
   INFO(r.err);
   REQUIRE(r.code == 0);
+  for (const char* shot : {"shot-1.csv", "shot-2.csv"})
+    shpb_test::check_schema_columns(dir / "out" / shot, "calibration_shot");
   const auto s = read_json(dir / "out" / "summary.json");
   for (const char* b : {"incident", "transmitter"}) {
     check_recovered(s, std::string("bars.") + b + ".wave_speed_m_s", kTrueC,
@@ -330,3 +336,5 @@ TEST_CASE("a measured striker velocity makes the channel gains absolute", "[fit]
       CHECK(std::abs(g["gain"]["value"].get<double>() - kIncidentGain * kTrueGain) <
             2 * kGainTolerance);  // the errors of two gains add
 }
+
+}  // namespace tests_fit_test_calibration

@@ -8,6 +8,9 @@
 
 #include "../app/run_shpb.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_fit_test_fit_bad_input {
+
 namespace fs = std::filesystem;
 using shpb_test::run_shpb;
 
@@ -121,3 +124,5 @@ TEST_CASE("Bad bar nuisances of a fit: exit 2 naming the key, the value and the 
                    "nuisance.transmitted_delay: \"5 %\": a time shift or delay starts at 0"}});
   fs::remove_all(dir);
 }
+
+}  // namespace tests_fit_test_fit_bad_input

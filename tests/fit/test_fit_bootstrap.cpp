@@ -8,6 +8,9 @@
 
 #include "fit/fit_bootstrap.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_fit_test_fit_bootstrap {
+
 namespace {
 
 // Table values of t(0.975, ν) (Abramowitz & Stegun, Table 26.10) are given to 3 decimals.
@@ -90,3 +93,5 @@ TEST_CASE("Noise draws keep the record noise's level and the spread of its long 
   CHECK(variance_of_sums(model, kSumLength, kSums, rng) ==
         Approx(exact).epsilon(kSumVarianceTolerance));
 }
+
+}  // namespace tests_fit_test_fit_bootstrap

@@ -11,6 +11,9 @@
 #include "../app/run_shpb.hpp"
 #include "synthetic_scene.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_fit_test_fit_intervals {
+
 namespace fs = std::filesystem;
 using nlohmann::json;
 using shpb_test::run_shpb;
@@ -91,3 +94,5 @@ TEST_CASE("fit's reported intervals hold the truth on a classic-bar copper campa
   }
   fs::remove_all(dir);
 }
+
+}  // namespace tests_fit_test_fit_intervals

@@ -10,6 +10,9 @@
 
 #include "../app/run_shpb.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_fit_test_fit_lanl {
+
 namespace fs = std::filesystem;
 using nlohmann::json;
 using shpb_test::run_shpb;
@@ -169,3 +172,5 @@ TEST_CASE("fit frees the LANL incident bar's wave speed and the transmitted chan
   CHECK(delay["unit"] == "s");
   CHECK(delay["std_error"].is_number());
 }
+
+}  // namespace tests_fit_test_fit_lanl

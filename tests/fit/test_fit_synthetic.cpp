@@ -10,6 +10,9 @@
 #include "../app/run_shpb.hpp"
 #include "synthetic_scene.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_fit_test_fit_synthetic {
+
 namespace fs = std::filesystem;
 using nlohmann::json;
 using shpb_test::run_shpb;
@@ -96,3 +99,5 @@ TEST_CASE("fit recovers Johnson-Cook A, B, n, C from three noisy simulated tests
   CHECK(run_shpb({"validate", (dir / "check.json").string()}).code == 0);
   fs::remove_all(dir);
 }
+
+}  // namespace tests_fit_test_fit_synthetic

@@ -8,6 +8,9 @@
 
 #include "fit/least_squares.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_fit_test_least_squares {
+
 using namespace shpb;
 
 namespace {
@@ -74,3 +77,5 @@ TEST_CASE("Least squares: a bound holds; a parameter without effect stays put", 
   CHECK(r.value[0] == Approx(0.8));  // held at its upper bound
   CHECK(r.value[1] == Approx(1.0));  // never moved
 }
+
+}  // namespace tests_fit_test_least_squares

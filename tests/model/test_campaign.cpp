@@ -10,6 +10,9 @@
 #include "core/error.hpp"
 #include "model/campaign.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_model_test_campaign {
+
 using namespace shpb;
 namespace fs = std::filesystem;
 
@@ -71,3 +74,5 @@ TEST_CASE("Bad campaigns name the file, the JSON path and what was expected", "[
   CHECK_THAT(error_of(s.write(R"({"tests": [{"scene": "a/scene.json", "weight": 0}]})")),
              Catch::Contains("tests[0].weight") && Catch::Contains("> 0"));
 }
+
+}  // namespace tests_model_test_campaign

@@ -11,6 +11,9 @@
 #include "johnson_cook_tables.hpp"
 #include "model/laws/johnson_cook_law.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_model_test_johnson_cook_block_return {
+
 using namespace shpb;
 
 namespace {
@@ -69,3 +72,5 @@ TEST_CASE("Johnson-Cook return mappings of a block equal the one-element return 
     CHECK(worst <= kBlockReturnRelativeTolerance);
   }
 }
+
+}  // namespace tests_model_test_johnson_cook_block_return

@@ -10,6 +10,9 @@
 #include "material_point.hpp"
 #include "model/laws/johnson_cook_law.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_model_test_johnson_cook_caches {
+
 using namespace shpb;
 
 namespace {
@@ -48,3 +51,5 @@ TEST_CASE(
   REQUIRE(point.state().temperature_K > 300);  // T* moved: the thermal pair was exercised
   CHECK(worst <= kFlowSurfaceTolerance);
 }
+
+}  // namespace tests_model_test_johnson_cook_caches

@@ -3,6 +3,9 @@
 
 #include "material_point.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_model_test_material_bilinear {
+
 using namespace shpb;
 
 namespace {
@@ -95,3 +98,5 @@ TEST_CASE("Work put into a bilinear point equals its stored plus dissipated ener
   const double sy = spec.bilinear.yield_stress_Pa;
   REQUIRE(dissipated > sy * (0.05 - sy / spec.youngs_modulus_Pa));
 }
+
+}  // namespace tests_model_test_material_bilinear

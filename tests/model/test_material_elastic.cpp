@@ -3,6 +3,9 @@
 
 #include "material_point.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_model_test_material_elastic {
+
 using namespace shpb;
 
 namespace {
@@ -31,3 +34,5 @@ TEST_CASE("An elastic point follows Hooke's law at any rate and stores all the w
   // Over a closed cycle the trapezoidal work of a linear spring is exactly zero.
   REQUIRE(point.work_J_m3() == Approx(0).margin(1e-6));
 }
+
+}  // namespace tests_model_test_material_elastic

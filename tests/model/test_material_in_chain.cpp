@@ -9,6 +9,9 @@
 #include "model/scene.hpp"
 #include "solver/simulation.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_model_test_material_in_chain {
+
 using namespace shpb;
 namespace fs = std::filesystem;
 
@@ -179,3 +182,5 @@ TEST_CASE("A viscoelastic specimen's stress is the hereditary integral of its ow
   REQUIRE(compared > 200);
   REQUIRE(worst < kHereditaryTolerance);
 }
+
+}  // namespace tests_model_test_material_in_chain

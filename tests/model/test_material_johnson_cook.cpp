@@ -7,6 +7,9 @@
 #include "material_point.hpp"
 #include "model/laws/johnson_cook_law.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_model_test_material_johnson_cook {
+
 using namespace shpb;
 using test::al6061;
 using test::ofhc_copper;
@@ -201,3 +204,5 @@ TEST_CASE("A Johnson-Cook point tested above room temperature is softer by the t
           Approx(reference_flow_stress(spec.johnson_cook, hot.state().plastic_strain, 2e3, 500))
               .epsilon(kClosedFormTolerance));
 }
+
+}  // namespace tests_model_test_material_johnson_cook

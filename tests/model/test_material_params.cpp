@@ -12,6 +12,9 @@
 #include "model/material_law.hpp"
 #include "model/scene.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_model_test_material_params {
+
 using namespace shpb;
 namespace fs = std::filesystem;
 
@@ -166,3 +169,5 @@ TEST_CASE("Every specimen file validates, cites its source and builds its law",
   }
   REQUIRE(files >= 5);
 }
+
+}  // namespace tests_model_test_material_params

@@ -3,6 +3,9 @@
 
 #include "material_point.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_model_test_material_viscoelastic {
+
 using namespace shpb;
 
 namespace {
@@ -124,3 +127,5 @@ TEST_CASE("A viscoelastic point is stiffest at its instantaneous modulus and nev
   REQUIRE(point.law().stored_energy_J_m3(point.state()) + dissipated ==
           Approx(point.work_J_m3()).epsilon(kEnergyTolerance));
 }
+
+}  // namespace tests_model_test_material_viscoelastic

@@ -9,6 +9,9 @@
 #include "core/error.hpp"
 #include "model/scene.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_model_test_scene_reader {
+
 using namespace shpb;
 namespace fs = std::filesystem;
 
@@ -224,3 +227,5 @@ TEST_CASE("Errors name the file, the JSON path, the value and the constraint", "
   write(file, R"({"bars": [], "materails": {}})");
   CHECK(error_of(file) == file.string() + ": materails: unknown key: did you mean \"materials\"?");
 }
+
+}  // namespace tests_model_test_scene_reader

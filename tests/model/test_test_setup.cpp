@@ -10,6 +10,9 @@
 #include "core/error.hpp"
 #include "model/test_setup.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_model_test_test_setup {
+
 using namespace shpb;
 using shpb_test::bar;
 
@@ -104,3 +107,5 @@ TEST_CASE("A scene's distance_to_specimen is the same travel: read back, it is w
   }
   CHECK(error.find("bars[4].gauges[0].distance_to_specimen") != std::string::npos);
 }
+
+}  // namespace tests_model_test_test_setup

@@ -8,6 +8,9 @@
 #include "model/scene_checks.hpp"
 #include "model/wave_travel.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_model_test_wave_travel {
+
 using namespace shpb;
 using shpb_test::bar;
 
@@ -61,3 +64,5 @@ TEST_CASE("The default duration covers what validate checks, so it is never warn
     warned = warned || w.find("ends before the pulses") != std::string::npos;
   CHECK(warned);
 }
+
+}  // namespace tests_model_test_wave_travel

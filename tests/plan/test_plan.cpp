@@ -13,6 +13,9 @@
 
 #include "../app/run_shpb.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_plan_test_plan {
+
 namespace fs = std::filesystem;
 using shpb_test::read_text;
 using shpb_test::run_shpb;
@@ -122,3 +125,5 @@ TEST_CASE("A bad plan block is exit 2 naming its JSON path, with nothing written
     CHECK_FALSE(fs::exists(out));
   }
 }
+
+}  // namespace tests_plan_test_plan

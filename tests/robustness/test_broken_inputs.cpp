@@ -12,6 +12,9 @@
 
 #include "child_process.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_robustness_test_broken_inputs {
+
 namespace {
 
 using namespace shpb_robust;
@@ -422,3 +425,5 @@ TEST_CASE("Files the program did not write are never deleted or modified", "[rob
   CHECK(processed.code == 0);
   CHECK(read_all(dir / "signals.csv") == good_signals());  // the measured file is untouched
 }
+
+}  // namespace tests_robustness_test_broken_inputs

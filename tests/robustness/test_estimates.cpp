@@ -12,6 +12,9 @@
 
 #include "child_process.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_robustness_test_estimates {
+
 namespace {
 
 using namespace shpb_robust;
@@ -110,3 +113,5 @@ TEST_CASE("Running out of memory is a failed run (exit 3) saying so, not an inte
   CHECK_FALSE(fs::exists(scratch.path() / "out"));
   CHECK(litter(scratch.path()).empty());
 }
+
+}  // namespace tests_robustness_test_estimates

@@ -10,6 +10,9 @@
 
 #include "child_process.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_robustness_test_interrupt {
+
 namespace {
 
 using namespace shpb_robust;
@@ -87,3 +90,5 @@ TEST_CASE("An interrupted simulation exits promptly and leaves the previous resu
   CHECK(fs::exists(dir / "out" / "summary.json"));
   CHECK(litter(dir).empty());
 }
+
+}  // namespace tests_robustness_test_interrupt

@@ -16,6 +16,9 @@
 #include "../fit/synthetic_scene.hpp"
 #include "child_process.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_robustness_test_interrupt_fit {
+
 namespace {
 
 using namespace shpb_robust;
@@ -112,3 +115,5 @@ TEST_CASE("SIGINT and SIGTERM stop fit within a second in every phase, nothing w
     CHECK(litter(scratch.path()).empty());
   }
 }
+
+}  // namespace tests_robustness_test_interrupt_fit

@@ -16,6 +16,9 @@
 
 #include "child_process.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_robustness_test_limits {
+
 namespace {
 
 using namespace shpb_robust;
@@ -262,3 +265,5 @@ TEST_CASE("report on deeply nested or malformed files is one error line, not a t
     write_bytes(dir / "gauges.csv", "time_s,gauge\n0,0\n1e-6,1e-4\n");
   }
 }
+
+}  // namespace tests_robustness_test_limits

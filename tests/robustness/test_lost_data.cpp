@@ -16,6 +16,9 @@
 #include "child_process.hpp"
 #include "measured_test.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_robustness_test_lost_data {
+
 namespace {
 
 using namespace shpb_robust;
@@ -494,3 +497,5 @@ TEST_CASE("An -o that is a symbolic link to a folder is written through: the lin
   CHECK(fs::is_symlink(dangling));
   CHECK_FALSE(fs::exists(scratch.path() / "nowhere"));
 }
+
+}  // namespace tests_robustness_test_lost_data

@@ -11,6 +11,9 @@
 #include "core/error.hpp"
 #include "core/output_folder.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_robustness_test_output_folder {
+
 namespace {
 using namespace shpb_robust;
 
@@ -83,3 +86,5 @@ TEST_CASE("Folders that only look like temporaries of a dead run are kept",
   shpb::OutputFolder folder(scratch.path() / "out");
   for (const auto& d : {dead, dead_old, alive, other, look_alike}) CHECK(fs::exists(d));
 }
+
+}  // namespace tests_robustness_test_output_folder

@@ -11,6 +11,9 @@
 #include "child_process.hpp"
 #include "measured_test.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_robustness_test_plans_and_parts {
+
 namespace {
 
 using namespace shpb_robust;
@@ -170,3 +173,5 @@ TEST_CASE("A shard count past what a plan can hold (2^64-1, or overflowing) is r
                   "--shard");
   }
 }
+
+}  // namespace tests_robustness_test_plans_and_parts

@@ -9,6 +9,9 @@
 
 #include "child_process.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_robustness_test_silently_wrong {
+
 namespace {
 
 using namespace shpb_robust;
@@ -294,3 +297,5 @@ TEST_CASE("Clipped signals are detected and warned about", "[robustness][silentl
   CHECK(o.err.find("clipped") != std::string::npos);
   CHECK(warns(summary(scratch.path(), "process"), "clipped"));
 }
+
+}  // namespace tests_robustness_test_silently_wrong

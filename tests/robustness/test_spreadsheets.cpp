@@ -16,6 +16,9 @@
 #include "../app/write_xlsx.hpp"
 #include "child_process.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_robustness_test_spreadsheets {
+
 namespace {
 
 using namespace shpb_robust;
@@ -267,3 +270,5 @@ TEST_CASE("A corrupted .xls that sends the .xls library past its buffers is refu
   CHECK(o.err.find("corrupt.xls") != std::string::npos);
   CHECK(std::count(o.err.begin(), o.err.end(), '\n') == 1);
 }
+
+}  // namespace tests_robustness_test_spreadsheets

@@ -11,6 +11,9 @@
 #include "solver/simulation.hpp"
 #include "test_scenes.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_solver_test_adaptive_step {
+
 using namespace shpb;
 
 namespace {
@@ -170,3 +173,5 @@ TEST_CASE("Anchored logarithmic strains equal std::log1p; the volume ratio equal
     worst_exp = std::max(worst_exp, std::abs(volume_ratio(x) / std::exp(x) - 1));
   CHECK(worst_exp <= kRoundOff);
 }
+
+}  // namespace tests_solver_test_adaptive_step

@@ -8,6 +8,9 @@
 #include "solver/simulation.hpp"
 #include "test_scenes.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_solver_test_causal_economy {
+
 using namespace shpb;
 
 namespace {
@@ -46,3 +49,5 @@ TEST_CASE("Cutting a long bar's far end with a dashpot changes no gauge value",
         0.25 * economy.energy.column("total_J").front());
   CHECK(economy.energy_error < kEnergyTolerance);
 }
+
+}  // namespace tests_solver_test_causal_economy

@@ -9,6 +9,9 @@
 #include "pulse_metrics.hpp"
 #include "solver/simulation.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_solver_test_classic_experiment {
+
 using namespace shpb;
 
 namespace {
@@ -70,3 +73,5 @@ TEST_CASE("Causal economy skips nodes no wave has reached and changes no recorde
     }
   }
 }
+
+}  // namespace tests_solver_test_classic_experiment

@@ -22,6 +22,9 @@
 #include "solver/bar_integrator.hpp"
 #include "test_scenes.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_solver_test_convergence {
+
 using namespace shpb;
 
 namespace {
@@ -145,3 +148,5 @@ TEST_CASE("At Courant number 1 the lumped central difference is exact at the nod
   INFO("largest element strain error " << worst << " over " << steps << " steps");
   CHECK(worst / std::abs(kAmplitude) < kRoundOff);
 }
+
+}  // namespace tests_solver_test_convergence

@@ -10,6 +10,9 @@
 
 #include "solver/bar_integrator.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_solver_test_energy_record {
+
 using namespace shpb;
 
 namespace {
@@ -58,3 +61,5 @@ TEST_CASE("The energy record's kinetic and strain energies equal the plain sums"
     }
   }
 }
+
+}  // namespace tests_solver_test_energy_record

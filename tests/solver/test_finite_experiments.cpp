@@ -8,6 +8,9 @@
 
 #include "solver/simulation.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_solver_test_finite_experiments {
+
 using namespace shpb;
 
 namespace {
@@ -119,3 +122,5 @@ TEST_CASE("The LANL PMMA experiment keeps its energy with asynchronous steps",
   REQUIRE(r.stable);
   CHECK(r.energy_error < kPmmaEnergyTolerance);
 }
+
+}  // namespace tests_solver_test_finite_experiments

@@ -8,6 +8,9 @@
 #include "solver/simulation.hpp"
 #include "test_scenes.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_solver_test_impedance_mismatch {
+
 using namespace shpb;
 
 namespace {
@@ -59,3 +62,5 @@ TEST_CASE("A lighter striker separates and rebounds at the exact velocity", "[so
     }
   }
 }
+
+}  // namespace tests_solver_test_impedance_mismatch

@@ -9,6 +9,9 @@
 #include "solver/simulation.hpp"
 #include "test_scenes.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_solver_test_localized_finite {
+
 using namespace shpb;
 
 namespace {
@@ -184,3 +187,5 @@ TEST_CASE(
     }
   }
 }
+
+}  // namespace tests_solver_test_localized_finite

@@ -15,6 +15,9 @@
 
 #include "solver/simulation.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_solver_test_pulse_shaper_contact {
+
 using namespace shpb;
 
 namespace {
@@ -260,3 +263,5 @@ TEST_CASE("a pulse shaper with face friction and radial inertia keeps its energy
     CHECK(peak(r) > peak(without));
   }
 }
+
+}  // namespace tests_solver_test_pulse_shaper_contact

@@ -14,6 +14,9 @@
 #include "model/scene.hpp"
 #include "solver/simulation.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_solver_test_smooth_response {
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -94,3 +97,5 @@ TEST_CASE("Asynchronous gauge signals respond smoothly to the law's A through th
   }
   fs::remove_all(dir);
 }
+
+}  // namespace tests_solver_test_smooth_response

@@ -11,6 +11,9 @@
 #include "model/scene_validation.hpp"
 #include "solver/simulation.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_solver_test_specimen_face_ties {
+
 using namespace shpb;
 
 namespace {
@@ -76,3 +79,5 @@ TEST_CASE("a viscoelastic specimen keeps its energy balance up to C = 1",
     CHECK(r.energy_error < kEnergyTolerance);
   }
 }
+
+}  // namespace tests_solver_test_specimen_face_ties

@@ -8,6 +8,9 @@
 #include "solver/simulation.hpp"
 #include "test_scenes.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_solver_test_specimen_ringup {
+
 using namespace shpb;
 
 namespace {
@@ -48,3 +51,5 @@ TEST_CASE("An elastic specimen rings up in the exact staircase", "[solver][speci
     }
   }
 }
+
+}  // namespace tests_solver_test_specimen_ringup

@@ -9,6 +9,9 @@
 #include "solver/simulation.hpp"
 #include "test_scenes.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_solver_test_step_ratio_pi {
+
 using namespace shpb;
 
 namespace {
@@ -51,3 +54,5 @@ TEST_CASE("A pulse crosses a joint with step ratio pi with exact transmission an
     }
   }
 }
+
+}  // namespace tests_solver_test_step_ratio_pi

@@ -8,6 +8,9 @@
 #include "solver/simulation.hpp"
 #include "test_scenes.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_solver_test_striker_on_bar {
+
 using namespace shpb;
 
 namespace {
@@ -94,3 +97,5 @@ TEST_CASE("A coarse striker on an identical bar keeps the central difference's d
     }
   }
 }
+
+}  // namespace tests_solver_test_striker_on_bar

@@ -7,6 +7,9 @@
 #include "solver/simulation.hpp"
 #include "test_scenes.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_solver_test_subcycle {
+
 using namespace shpb;
 
 namespace {
@@ -68,3 +71,5 @@ TEST_CASE("A specimen sub-cycled between its bars' instants gives the plain sche
     }
   }
 }
+
+}  // namespace tests_solver_test_subcycle

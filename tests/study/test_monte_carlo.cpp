@@ -11,10 +11,14 @@
 #include <string>
 #include <vector>
 
+#include "../app/output_schema_check.hpp"
 #include "../app/run_shpb.hpp"
 #include "core/shards.hpp"
 #include "study/study_report.hpp"
 #include "study/study_run.hpp"
+
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_study_test_monte_carlo {
 
 using namespace shpb;
 namespace fs = std::filesystem;
@@ -66,6 +70,8 @@ TEST_CASE("A normal striker velocity gives the incident plateau band of eps = v/
                                       "--draws", std::to_string(draws), "--seed", "7", "-q"});
   INFO(r.err);
   REQUIRE(r.code == 0);
+  shpb_test::check_schema_columns(dir / "out" / "draws.csv", "draws");
+  shpb_test::check_schema_columns(dir / "out" / "gauge_bands.csv", "gauge_bands");
   // The drawn velocities (m/s): N(10 m/s, 0.5 m/s).
   const auto drawn = read_csv(dir / "out" / "draws.csv");
   REQUIRE(drawn.size() == draws + 1);
@@ -168,6 +174,7 @@ TEST_CASE("A Monte Carlo study run in shards through parts equals the in-process
   fs::create_directories(dir / "sharded");
   write_study(read, scene, merged, 1, 2.0, dir / "sharded");
   REQUIRE(fs::exists(dir / "whole" / "curve_bands.csv"));
+  shpb_test::check_schema_columns(dir / "whole" / "curve_bands.csv", "curve_bands");
   for (const char* file : {"draws.csv", "gauge_bands.csv", "curve_bands.csv"})
     CHECK(shpb_test::read_text(dir / "whole" / file) ==
           shpb_test::read_text(dir / "sharded" / file));
@@ -180,3 +187,5 @@ TEST_CASE("A Monte Carlo study run in shards through parts equals the in-process
   CHECK(summary("whole") == summary("sharded"));
   CHECK(summary("whole").at("failed_draws") == 0);
 }
+
+}  // namespace tests_study_test_monte_carlo

@@ -9,11 +9,15 @@
 #include <string>
 #include <vector>
 
+#include "../app/output_schema_check.hpp"
 #include "../app/run_shpb.hpp"
 #include "../solver/test_scenes.hpp"
 #include "study/pareto_front.hpp"
 #include "study/pareto_sweep.hpp"
 #include "study/reference.hpp"
+
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_study_test_pareto {
 
 using namespace shpb;
 namespace fs = std::filesystem;
@@ -114,6 +118,7 @@ TEST_CASE("shpb study writes pareto.csv with the documented columns, and exits 2
   const auto ok = shpb_test::run_shpb({"study", scene.string(), "-o", (dir / "out").string(),
                                        "--sweep", "pareto", "--threads", "2", "--quiet"});
   REQUIRE(ok.code == 0);
+  shpb_test::check_schema_columns(dir / "out" / "pareto.csv", "pareto");
   std::ifstream csv(dir / "out" / "pareto.csv");
   std::string header;
   std::getline(csv, header);
@@ -167,3 +172,5 @@ TEST_CASE("shpb study writes pareto.csv with the documented columns, and exits 2
   CHECK(bad.err.rfind("error: ", 0) == 0);
   CHECK_FALSE(fs::exists(dir / "bad_out"));
 }
+
+}  // namespace tests_study_test_pareto

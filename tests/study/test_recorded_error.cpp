@@ -12,6 +12,9 @@
 #include "study/reference.hpp"
 #include "study/sweep.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_study_test_recorded_error {
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -83,3 +86,5 @@ TEST_CASE("The study keeps bonded interfaces bonded", "[recorded_error]") {
   for (std::size_t k = 0; k + 1 < fine.bars.size(); ++k)
     CHECK(shpb::interface_method(fine.contact, k) == shpb::ContactMethod::kBonded);
 }
+
+}  // namespace tests_study_test_recorded_error

@@ -18,6 +18,9 @@
 #include "study/shards.hpp"
 #include "study/study_plan.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_study_test_shards {
+
 using namespace shpb;
 namespace fs = std::filesystem;
 
@@ -189,3 +192,5 @@ TEST_CASE("shpb study --plan/--run/--merge equals the in-process sweep apart fro
   }
   fs::remove_all(dir);
 }
+
+}  // namespace tests_study_test_shards

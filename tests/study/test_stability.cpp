@@ -9,6 +9,9 @@
 #include "study/stability_probe.hpp"
 #include "study/sweep.hpp"
 
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_study_test_stability {
+
 using namespace shpb;
 
 namespace {
@@ -106,3 +109,5 @@ TEST_CASE(
   // 0.98, 0.995, 0.9995, 0.9999 and 1 at each of the five step ratios.
   CHECK(rigid_rows == 25);
 }
+
+}  // namespace tests_study_test_stability

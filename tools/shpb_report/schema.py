@@ -6,8 +6,10 @@ from the same file, so a figure reads exactly the columns that are written.
     CURVE = columns("curve")          # the schema's id of curve.csv
     t.numeric(CURVE.stress_3wave_Pa)  # a name the schema does not hold is an AttributeError
 
-Names in angle brackets (one column per gauge or interface) have no attribute: `suffix` gives the
-fixed end of such a name (`<gauge>_measured_strain` → `_measured_strain`).
+A quantile's point is an underscore in an attribute (`stress_3wave_p2_5_Pa` for
+`stress_3wave_p2.5_Pa`). Names in angle brackets (one column per gauge or interface) have no
+attribute: `suffix` gives the fixed end of such a name (`<gauge>_measured_strain` →
+`_measured_strain`).
 """
 from __future__ import annotations
 
@@ -34,7 +36,9 @@ def columns(file_id: str) -> SimpleNamespace:
     """The columns of one file: an attribute per plain name (its value the name), and FILE."""
     entry = next(f for f in SCHEMA["files"] if f["id"] == file_id)
     names = [c["name"] for c in entry["columns"]]
-    return SimpleNamespace(FILE=entry["file"], **{n: n for n in names if n.isidentifier()})
+    # A quantile's point is an underscore in the attribute: `stress_3wave_p2_5_Pa`, as in C++.
+    return SimpleNamespace(FILE=entry["file"], **{n.replace(".", "_"): n for n in names
+                                                  if n.replace(".", "_").isidentifier()})
 
 
 def suffix(file_id: str, pattern: str) -> str:
