@@ -156,6 +156,17 @@ Json candidate_json(const PlanCandidate& c, const PlanInput& in) {
   return j;
 }
 
+Json predicted_json(const LoadingMetrics& m) {
+  return {{"plateau_rate_1_s", m.plateau_rate_1_s},
+          {"band_fraction", m.band_fraction},
+          {"rate_spread", m.rate_spread},
+          {"loading_start_s", m.onset_s},
+          {"loading_end_s", m.end_s},
+          {"equilibrium_s", m.equilibrium_s},
+          {"equilibrium_fraction", m.equilibrium_fraction},
+          {"strain_reached", m.strain_reached}};
+}
+
 }  // namespace
 
 void write_plan_outputs(const PlanResult& r, const PlanInput& in, const PlanTargets& targets,
@@ -187,15 +198,8 @@ void write_plan_outputs(const PlanResult& r, const PlanInput& in, const PlanTarg
       {"changes", r.changes},
       {"chosen", candidate_json(r.chosen, in)},
       {"scene_values", candidate_json(given, in)},
-      {"predicted",
-       {{"plateau_rate_1_s", m.plateau_rate_1_s},
-        {"band_fraction", m.band_fraction},
-        {"rate_spread", m.rate_spread},
-        {"loading_start_s", m.onset_s},
-        {"loading_end_s", m.end_s},
-        {"equilibrium_s", m.equilibrium_s},
-        {"equilibrium_fraction", m.equilibrium_fraction},
-        {"strain_reached", m.strain_reached}}},
+      {"predicted", predicted_json(m)},
+      {"unshaped", nullptr},
       {"gauges", gauges},
       {"scope", scope},
       {"search",
@@ -205,6 +209,11 @@ void write_plan_outputs(const PlanResult& r, const PlanInput& in, const PlanTarg
         {"candidates", r.path.size()},
         {"simulations", r.simulations},
         {"wall_time_s", r.wall_time_s}}}};
+  if (r.unshaped)
+    j["unshaped"] = {{"chosen", candidate_json(r.unshaped->candidate, in)},
+                     {"meets", r.unshaped->meets},
+                     {"changes", r.unshaped->changes},
+                     {"predicted", predicted_json(r.unshaped->metrics)}};
   write_text_file(dir / "summary.json", j.dump(2) + "\n");
   namespace k = schema::plan_path;  // the column names (src/core/output_schema.json)
   CsvWriter path(dir / k::kFile, {k::step, k::striker_length_m, k::striker_velocity_m_s, k::shaper,
