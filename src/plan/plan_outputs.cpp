@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "analysis/gauge_signals.hpp"
+#include "analysis/reduction.hpp"
 #include "core/checked_write.hpp"
 #include "core/csv_writer.hpp"
 #include "output_schema.hpp"
@@ -229,6 +230,20 @@ void write_plan_outputs(const PlanResult& r, const PlanInput& in, const PlanTarg
               p.metrics.strain_reached, double(p.changes), double(p.meets)});
   }
   path.close();
+  namespace l = schema::plan_loading;
+  const FaceForces f = face_forces(r.verified, r.scene);
+  const std::vector<double> ratio = equilibrium_ratio(f.front, f.back);  // process's R (§6)
+  const TimeSeries& sp = r.verified.specimen;
+  const auto& strain = sp.column("strain");
+  const auto& rate = sp.column("strain_rate_1_s");
+  CsvWriter loading(dir / l::kFile, {l::time_s, l::strain, l::strain_rate_1_s, l::front_force_N,
+                                     l::back_force_N, l::equilibrium_ratio, l::loading});
+  for (std::size_t k = 0; k < sp.time_s.size(); ++k) {
+    const double t = sp.time_s[k];
+    loading.row({t, strain[k], rate[k], f.front[k], f.back[k], ratio[k],
+                 double(t >= m.onset_s && t <= m.end_s && m.end_s > m.onset_s)});
+  }
+  loading.close();
   fs::create_directories(dir / "simulation");
   write_simulation_outputs(r.verified, r.scene, dir / "simulation");
 }

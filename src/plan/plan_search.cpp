@@ -87,14 +87,19 @@ LoadingMetrics loading_metrics(const TimeSeries& specimen, std::span<const doubl
   return m;
 }
 
-LoadingMetrics loading_metrics(const SimulationResult& run, const Scene& scene,
-                               const PlanTargets& targets) {
+FaceForces face_forces(const SimulationResult& run, const Scene& scene) {
   const std::size_t s = *scene.specimen;
   auto force = [&](std::size_t left) -> const std::vector<double>& {
     return run.interfaces.column(scene.bars[left].name + "-" + scene.bars[left + 1].name +
                                  "_force_N");
   };
-  return loading_metrics(run.specimen, force(s - 1), force(s), targets);
+  return {force(s - 1), force(s)};
+}
+
+LoadingMetrics loading_metrics(const SimulationResult& run, const Scene& scene,
+                               const PlanTargets& targets) {
+  const FaceForces f = face_forces(run, scene);
+  return loading_metrics(run.specimen, f.front, f.back, targets);
 }
 
 Scene planned_scene(const PlanInput& input, const PlanCandidate& c) {

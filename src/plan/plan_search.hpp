@@ -58,8 +58,14 @@ struct LoadingMetrics {
 };
 LoadingMetrics loading_metrics(const TimeSeries& specimen, std::span<const double> front_force_N,
                                std::span<const double> back_force_N, const PlanTargets& targets);
-// The same of a run of `scene`: its faces' forces are the interfaces' with the specimen's
-// neighbours.
+// The forces of the bars on the specimen's faces in a run of `scene`: its interfaces' with the
+// specimen's neighbours (compression positive).
+struct FaceForces {
+  const std::vector<double>& front;
+  const std::vector<double>& back;
+};
+FaceForces face_forces(const SimulationResult& run, const Scene& scene);
+// loading_metrics of a run of `scene`, with its face forces.
 LoadingMetrics loading_metrics(const SimulationResult& run, const Scene& scene,
                                const PlanTargets& targets);
 
