@@ -201,6 +201,7 @@ void write_plan_outputs(const PlanResult& r, const PlanInput& in, const PlanTarg
       {"scene_values", candidate_json(given, in)},
       {"predicted", predicted_json(m)},
       {"unshaped", nullptr},
+      {"shaped", nullptr},
       {"gauges", gauges},
       {"scope", scope},
       {"search",
@@ -210,11 +211,12 @@ void write_plan_outputs(const PlanResult& r, const PlanInput& in, const PlanTarg
         {"candidates", r.path.size()},
         {"simulations", r.simulations},
         {"wall_time_s", r.wall_time_s}}}};
-  if (r.unshaped)
-    j["unshaped"] = {{"chosen", candidate_json(r.unshaped->candidate, in)},
-                     {"meets", r.unshaped->meets},
-                     {"changes", r.unshaped->changes},
-                     {"predicted", predicted_json(r.unshaped->metrics)}};
+  for (const auto& [key, side] : {std::pair{"unshaped", &r.unshaped}, {"shaped", &r.shaped}})
+    if (*side)
+      j[key] = {{"chosen", candidate_json((*side)->candidate, in)},
+                {"meets", (*side)->meets},
+                {"changes", (*side)->changes},
+                {"predicted", predicted_json((*side)->metrics)}};
   write_text_file(dir / "summary.json", j.dump(2) + "\n");
   namespace k = schema::plan_path;  // the column names (src/core/output_schema.json)
   CsvWriter path(dir / k::kFile, {k::step, k::striker_length_m, k::striker_velocity_m_s, k::shaper,

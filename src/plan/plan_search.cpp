@@ -429,20 +429,26 @@ PlanResult Planner::run() {
   out.changes = changes(v.candidate);
   out.feasible = v.metrics.meets() && out.verified.stable;
   if (!out.feasible) out.binding = binding(best.metrics.meets() ? first_failure : best);
-  // The best set-up without a shaper beside the chosen one (the shaper's gain), on the same
-  // meshes: verified too when the chosen one has a shaper.
-  const PlanStep* unshaped = nullptr;
-  for (const PlanStep& p : path_)
-    if (p.candidate.shaper < 0 &&
-        (!unshaped ||
-         better({p.candidate, p.metrics, {}}, {unshaped->candidate, unshaped->metrics, {}})))
-      unshaped = &p;
-  if (out.feasible && out.chosen.shaper < 0) {
-    out.unshaped = PlanStep{out.chosen, out.metrics, out.changes, true};
-  } else if (out.feasible && unshaped) {
-    const Evaluation u = solve_velocity(unshaped->candidate, options_.verify_tolerance, true,
-                                        unshaped->candidate.striker_velocity_m_s);
-    out.unshaped = PlanStep{u.candidate, u.metrics, changes(u.candidate), u.metrics.meets()};
+  // The shaper's gain: the best set-up of the search without a shaper and the best with one, each
+  // verified on the chosen one's meshes (the chosen one itself on its side).
+  auto best_step = [&](bool shaped) {
+    const PlanStep* b = nullptr;
+    for (const PlanStep& p : path_)
+      if ((p.candidate.shaper >= 0) == shaped &&
+          (!b || better({p.candidate, p.metrics, {}}, {b->candidate, b->metrics, {}})))
+        b = &p;
+    return b;
+  };
+  for (bool shaped : {false, true}) {
+    std::optional<PlanStep>& side = shaped ? out.shaped : out.unshaped;
+    if (!out.feasible) continue;
+    if ((out.chosen.shaper >= 0) == shaped) {
+      side = PlanStep{out.chosen, out.metrics, out.changes, true};
+    } else if (const PlanStep* b = best_step(shaped)) {
+      const Evaluation e = solve_velocity(b->candidate, options_.verify_tolerance, true,
+                                          b->candidate.striker_velocity_m_s);
+      side = PlanStep{e.candidate, e.metrics, changes(e.candidate), e.metrics.meets()};
+    }
   }
   out.path = std::move(path_);
   out.simulations = simulations_;

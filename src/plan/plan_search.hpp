@@ -85,9 +85,10 @@ struct PlanResult {
   bool feasible = false;
   std::string binding;  // when not feasible: the constraint that binds and what would be needed
   std::vector<PlanStep> path;
-  // The best set-up without a shaper, verified as the chosen one (the chosen one itself when it
-  // has none); empty when the plan searched none (the scene's own shaper) or is not feasible.
-  std::optional<PlanStep> unshaped;
+  // The best set-up without a shaper and the best with one, verified as the chosen one (the
+  // chosen one itself on its side): the shaper's gain. Empty when the plan searched none of that
+  // kind or is not feasible.
+  std::optional<PlanStep> unshaped, shaped;
   double wall_time_s = 0;
   long simulations = 0;
 };

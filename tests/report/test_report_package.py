@@ -122,6 +122,7 @@ def test_a_plan_folder_draws_the_plan_against_its_criteria(tmp_path):
       "predicted": {"band_fraction": 0.8, "rate_spread": 0.05, "equilibrium_fraction": 0.1},
       "unshaped": {"meets": true, "predicted": {"band_fraction": 0.6, "rate_spread": 0.1,
                                                  "equilibrium_fraction": 0.2}},
+      "shaped": null,
       "gauges": [{"gauge": "incident", "peak_strain": -1e-3, "peak_V": -5e-3}],
       "scope": {"range_V": 0.01, "trigger_level_V": -5e-4}}""")
     write(tmp_path, "path.csv",

@@ -104,9 +104,14 @@ def fig_scope(src, figs):
 
 
 def fig_gain(src, figs):
-    """The chosen set-up's rate flatness and equilibrium beside the best unshaped one's."""
-    chosen, unshaped = src.value("predicted", kind=dict), src.value("unshaped", kind=dict)
-    if not chosen or not unshaped or not isinstance(unshaped.get("predicted"), dict):
+    """The chosen set-up's rate flatness and equilibrium beside the best unshaped and shaped
+    ones' (the shaper's gain)."""
+    chosen = src.value("predicted", kind=dict)
+    sides = [(label, src.value(key, "predicted", kind=dict), colour)
+             for key, label, colour in (("unshaped", "best unshaped", "C7"),
+                                        ("shaped", "best shaped", "C1"))]
+    sides = [s for s in sides if s[1]]
+    if not chosen or not sides:
         return
     rate_target, band, ratio_max, before = _targets(src)
     keys = [("band_fraction", "rate in band\n(of the loading)", 0.5),
@@ -115,23 +120,24 @@ def fig_gain(src, figs):
     fig, axes = new_figure(1, 1, height=3.8, width=8)
     ax = axes[0, 0]
     x = np.arange(len(keys))
-    for dx, (label, p, colour) in zip((-0.18, 0.18), (
-            ("chosen" + (" (shaped)" if src.value("chosen", "shaper") else ""), chosen, "C0"),
-            ("best unshaped", unshaped["predicted"], "C7"))):
+    bars = [("chosen" + (" (shaped)" if src.value("chosen", "shaper") else ""), chosen, "C0")]
+    bars += sides
+    width = 0.8 / len(bars)
+    for i, (label, p, colour) in enumerate(bars):
         values = [p.get(k) if isinstance(p.get(k), (int, float)) else np.nan for k, _, _ in keys]
-        ax.bar(x + dx, values, width=0.34, color=colour, label=label)
+        ax.bar(x - 0.4 + width * (i + 0.5), values, width=width * 0.9, color=colour, label=label)
     for i, (_, _, limit) in enumerate(keys):
         if limit is not None:
-            ax.plot([i - 0.4, i + 0.4], [limit, limit], color="k", linestyle="--",
+            ax.plot([i - 0.45, i + 0.45], [limit, limit], color="k", linestyle="--",
                     linewidth=0.8)
     ax.set_xticks(x)
     ax.set_xticklabels([name for _, name, _ in keys])
     outside_legend(ax)
     figs.save(fig, src.png("plan_shaper_gain"), src.title("Planned test: the shaper's gain"),
-              "The chosen set-up beside the best one without a pulse shaper, both verified on "
-              "the same meshes: the fraction of the loading with the rate within the band "
-              "(at least 50 %), the rate's spread, and when equilibrium is reached (before 25 %); "
-              "dashed: the criteria.")
+              "The chosen set-up beside the best one of the search without a pulse shaper and "
+              "the best one with one, each verified on the same meshes: the fraction of the "
+              "loading with the rate within the band (at least 50 %), the rate's spread, and "
+              "when equilibrium is reached (before 25 %); dashed: the criteria.")
 
 
 def fig_path(src, figs):
