@@ -4,14 +4,14 @@
 // geometry (striker length, shaper, specimen length) the striker velocity that puts the median
 // rate on the target is found by the secant method (the rate rises monotonically with the
 // velocity), over a coarse grid of geometries run in parallel, then refined by a compass search
-// around the best one with halving steps; the chosen set-up is verified on finer meshes.
+// around the best one with halving steps; the set-ups that met the criteria are verified on finer
+// meshes in rank order until one meets them there.
 #include "plan/plan_search.hpp"
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 
 #include "analysis/reduction.hpp"
 #include "core/csv_writer.hpp"  // format_double
