@@ -18,6 +18,17 @@ void true_values(std::span<const double> strain, std::span<const double> stress,
   }
 }
 
+std::vector<double> equilibrium_ratio(std::span<const double> front, std::span<const double> back) {
+  const std::size_t n = std::min(front.size(), back.size());
+  double peak = 0;
+  for (std::size_t i = 0; i < n; ++i) peak = std::max(peak, std::abs(front[i] + back[i]));
+  const double floor = std::max(kEquilibriumFloor * peak, 1e-300);
+  std::vector<double> r(n);
+  for (std::size_t i = 0; i < n; ++i)
+    r[i] = 2 * std::abs(front[i] - back[i]) / std::max(std::abs(front[i] + back[i]), floor);
+  return r;
+}
+
 Curve reduce_pulses(std::span<const double> ei, std::span<const double> er,
                     std::span<const double> et, std::span<const double> fi,
                     std::span<const double> fr, std::span<const double> ft, double dt,
@@ -31,7 +42,6 @@ Curve reduce_pulses(std::span<const double> ei, std::span<const double> er,
                   &c.force_front_N, &c.force_back_N, &c.stress_1wave_Pa, &c.stress_2wave_Pa,
                   &c.stress_3wave_Pa, &c.true_strain, &c.true_stress_Pa, &c.equilibrium_ratio})
     resize(*v);
-  double peak_sum = 0;
   for (std::size_t i = 0; i < n; ++i) {
     // Tension-positive strains: a right-going wave has particle velocity −c0 ε, a left-going
     // one +c0 ε. Face velocities (to the right) v1 = −c0 (ε_I − ε_R), v2 = −c0 ε_T.
@@ -44,20 +54,14 @@ Curve reduce_pulses(std::span<const double> ei, std::span<const double> er,
     c.stress_1wave_Pa[i] = c.force_back_N[i] / s.area_m2;
     c.stress_2wave_Pa[i] = c.force_front_N[i] / s.area_m2;
     c.stress_3wave_Pa[i] = 0.5 * (c.force_front_N[i] + c.force_back_N[i]) / s.area_m2;
-    peak_sum = std::max(peak_sum, std::abs(c.force_front_N[i] + c.force_back_N[i]));
     if (i > 0) {
       c.strain[i] = c.strain[i - 1] + 0.5 * dt * (c.strain_rate_1_s[i] + c.strain_rate_1_s[i - 1]);
       c.strain_1wave[i] = c.strain_1wave[i - 1] +
                           0.5 * dt * (c.strain_rate_1wave_1_s[i] + c.strain_rate_1wave_1_s[i - 1]);
     }
   }
-  const double floor = std::max(kEquilibriumFloor * peak_sum, 1e-300);
   true_values(c.strain, c.stress_3wave_Pa, false, c.true_strain, c.true_stress_Pa);
-  for (std::size_t i = 0; i < n; ++i) {
-    const double sum = std::abs(c.force_front_N[i] + c.force_back_N[i]);
-    c.equilibrium_ratio[i] =
-        2 * std::abs(c.force_front_N[i] - c.force_back_N[i]) / std::max(sum, floor);
-  }
+  c.equilibrium_ratio = equilibrium_ratio(c.force_front_N, c.force_back_N);
   return c;
 }
 

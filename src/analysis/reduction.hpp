@@ -38,6 +38,12 @@ struct Curve {
 // arrives); its denominator is floored there so R stays finite.
 inline constexpr double kEquilibriumFloor = 0.02;
 
+// The force-equilibrium ratio R = 2|P1 − P2| / |P1 + P2| of the forces on the specimen's faces
+// (the bars' forces, compression positive), the denominator floored at kEquilibriumFloor of its
+// peak over the record (docs/methods.md §6). Used by the reduction and by `plan` (§12).
+std::vector<double> equilibrium_ratio(std::span<const double> front_N,
+                                      std::span<const double> back_N);
+
 // True strain and stress of an engineering pair at constant volume (docs/methods.md §6):
 // compression −ln(1 − e) and σ(1 − e), tension ln(1 + e) and σ(1 + e); defined while the specimen
 // has length (a compressive e ≥ 1 gives a large finite true strain, refused by `process`).

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "analysis/gauge_signals.hpp"
+#include "analysis/reduction.hpp"
 #include "core/checked_write.hpp"
 #include "core/csv_writer.hpp"
 #include "output_schema.hpp"
@@ -156,6 +157,17 @@ Json candidate_json(const PlanCandidate& c, const PlanInput& in) {
   return j;
 }
 
+Json predicted_json(const LoadingMetrics& m) {
+  return {{"plateau_rate_1_s", m.plateau_rate_1_s},
+          {"band_fraction", m.band_fraction},
+          {"rate_spread", m.rate_spread},
+          {"loading_start_s", m.onset_s},
+          {"loading_end_s", m.end_s},
+          {"equilibrium_s", m.equilibrium_s},
+          {"equilibrium_fraction", m.equilibrium_fraction},
+          {"strain_reached", m.strain_reached}};
+}
+
 }  // namespace
 
 void write_plan_outputs(const PlanResult& r, const PlanInput& in, const PlanTargets& targets,
@@ -187,15 +199,9 @@ void write_plan_outputs(const PlanResult& r, const PlanInput& in, const PlanTarg
       {"changes", r.changes},
       {"chosen", candidate_json(r.chosen, in)},
       {"scene_values", candidate_json(given, in)},
-      {"predicted",
-       {{"plateau_rate_1_s", m.plateau_rate_1_s},
-        {"band_fraction", m.band_fraction},
-        {"rate_spread", m.rate_spread},
-        {"loading_start_s", m.onset_s},
-        {"loading_end_s", m.end_s},
-        {"equilibrium_s", m.equilibrium_s},
-        {"equilibrium_fraction", m.equilibrium_fraction},
-        {"strain_reached", m.strain_reached}}},
+      {"predicted", predicted_json(m)},
+      {"unshaped", nullptr},
+      {"shaped", nullptr},
       {"gauges", gauges},
       {"scope", scope},
       {"search",
@@ -205,6 +211,12 @@ void write_plan_outputs(const PlanResult& r, const PlanInput& in, const PlanTarg
         {"candidates", r.path.size()},
         {"simulations", r.simulations},
         {"wall_time_s", r.wall_time_s}}}};
+  for (const auto& [key, side] : {std::pair{"unshaped", &r.unshaped}, {"shaped", &r.shaped}})
+    if (*side)
+      j[key] = {{"chosen", candidate_json((*side)->candidate, in)},
+                {"meets", (*side)->meets},
+                {"changes", (*side)->changes},
+                {"predicted", predicted_json((*side)->metrics)}};
   write_text_file(dir / "summary.json", j.dump(2) + "\n");
   namespace k = schema::plan_path;  // the column names (src/core/output_schema.json)
   CsvWriter path(dir / k::kFile, {k::step, k::striker_length_m, k::striker_velocity_m_s, k::shaper,
@@ -220,6 +232,20 @@ void write_plan_outputs(const PlanResult& r, const PlanInput& in, const PlanTarg
               p.metrics.strain_reached, double(p.changes), double(p.meets)});
   }
   path.close();
+  namespace l = schema::plan_loading;
+  const FaceForces f = face_forces(r.verified, r.scene);
+  const std::vector<double> ratio = equilibrium_ratio(f.front, f.back);  // process's R (§6)
+  const TimeSeries& sp = r.verified.specimen;
+  const auto& strain = sp.column("strain");
+  const auto& rate = sp.column("strain_rate_1_s");
+  CsvWriter loading(dir / l::kFile, {l::time_s, l::strain, l::strain_rate_1_s, l::front_force_N,
+                                     l::back_force_N, l::equilibrium_ratio, l::loading});
+  for (std::size_t k = 0; k < sp.time_s.size(); ++k) {
+    const double t = sp.time_s[k];
+    loading.row({t, strain[k], rate[k], f.front[k], f.back[k], ratio[k],
+                 double(t >= m.onset_s && t <= m.end_s && m.end_s > m.onset_s)});
+  }
+  loading.close();
   fs::create_directories(dir / "simulation");
   write_simulation_outputs(r.verified, r.scene, dir / "simulation");
 }

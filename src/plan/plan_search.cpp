@@ -4,7 +4,8 @@
 // geometry (striker length, shaper, specimen length) the striker velocity that puts the median
 // rate on the target is found by the secant method (the rate rises monotonically with the
 // velocity), over a coarse grid of geometries run in parallel, then refined by a compass search
-// around the best one with halving steps; the chosen set-up is verified on finer meshes.
+// around the best one with halving steps; the set-ups that met the criteria are verified on finer
+// meshes in rank order until one meets them there.
 #include "plan/plan_search.hpp"
 
 #include <algorithm>
@@ -12,6 +13,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "analysis/reduction.hpp"
 #include "core/csv_writer.hpp"  // format_double
 #include "core/error.hpp"
 #include "core/output_folder.hpp"
@@ -29,25 +31,27 @@ bool PlanTargets::IsValid(std::string* error) const {
 
 bool LoadingMetrics::meets() const { return end_s > onset_s && shortfall() == 0; }
 
+double LoadingMetrics::slack() const {
+  return std::min({(band_fraction - kBandFraction) / kBandFraction,
+                   (kEquilibriumFraction - equilibrium_fraction) / kEquilibriumFraction,
+                   (strain_reached - target_strain) / target_strain});
+}
+
 double LoadingMetrics::shortfall() const {
   return std::max(0.0, kBandFraction - band_fraction) / kBandFraction +
          std::max(0.0, equilibrium_fraction - kEquilibriumFraction) / (1 - kEquilibriumFraction) +
          std::max(0.0, target_strain - strain_reached) / target_strain;
 }
 
-LoadingMetrics loading_metrics(const TimeSeries& specimen, const PlanTargets& targets) {
+LoadingMetrics loading_metrics(const TimeSeries& specimen, std::span<const double> front,
+                               std::span<const double> back, const PlanTargets& targets) {
   // A rate below this fraction of the target is no loading yet (or any more).
   constexpr double kOnsetFraction = 0.1;
-  // |front + back| below this fraction of its peak is too small a force for a meaningful ratio
-  // (the same floor as process's equilibrium_ratio, docs/outputs.md).
-  constexpr double kForceFloor = 0.02;
   LoadingMetrics m;
   m.target_strain = targets.strain;
   const auto& t = specimen.time_s;
   const auto& strain = specimen.column("strain");
   const auto& rate = specimen.column("strain_rate_1_s");
-  const auto& front = specimen.column("front_stress_Pa");
-  const auto& back = specimen.column("back_stress_Pa");
   const double R = targets.rate_1_s;
   for (double e : strain) m.strain_reached = std::max(m.strain_reached, e);
   std::size_t k0 = 0;
@@ -63,7 +67,7 @@ LoadingMetrics loading_metrics(const TimeSeries& specimen, const PlanTargets& ta
   m.onset_s = t[k0];
   m.end_s = t[k1];
   std::vector<double> r(rate.begin() + k0, rate.begin() + k1 + 1);
-  double in_band = 0, sum = 0, sum2 = 0, peak = 0;
+  double in_band = 0, sum = 0, sum2 = 0;
   for (double x : r) {
     in_band += std::abs(x - R) <= kRateBand * R;
     sum += (x - R) / R;
@@ -74,15 +78,28 @@ LoadingMetrics loading_metrics(const TimeSeries& specimen, const PlanTargets& ta
   m.rate_spread = std::sqrt(std::max(0.0, sum2 / n - (sum / n) * (sum / n)));
   std::nth_element(r.begin(), r.begin() + r.size() / 2, r.end());
   m.plateau_rate_1_s = r[r.size() / 2];
-  for (std::size_t k = k0; k <= k1; ++k) peak = std::max(peak, std::abs(front[k] + back[k]));
+  const std::vector<double> ratio = equilibrium_ratio(front, back);  // process's R (§6)
   std::size_t keq = k0;
-  for (std::size_t k = k0; k <= k1; ++k) {
-    const double mean = std::max(std::abs(front[k] + back[k]), kForceFloor * peak);
-    if (2 * std::abs(front[k] - back[k]) > kEquilibriumRatio * mean) keq = k + 1;
-  }
+  for (std::size_t k = k0; k <= k1; ++k)
+    if (ratio[k] > kEquilibriumRatio) keq = k + 1;
   m.equilibrium_s = t[std::min(keq, k1)] - t[k0];
   m.equilibrium_fraction = m.equilibrium_s / (m.end_s - m.onset_s);
   return m;
+}
+
+FaceForces face_forces(const SimulationResult& run, const Scene& scene) {
+  const std::size_t s = *scene.specimen;
+  auto force = [&](std::size_t left) -> const std::vector<double>& {
+    return run.interfaces.column(scene.bars[left].name + "-" + scene.bars[left + 1].name +
+                                 "_force_N");
+  };
+  return {force(s - 1), force(s)};
+}
+
+LoadingMetrics loading_metrics(const SimulationResult& run, const Scene& scene,
+                               const PlanTargets& targets) {
+  const FaceForces f = face_forces(run, scene);
+  return loading_metrics(run.specimen, f.front, f.back, targets);
 }
 
 Scene planned_scene(const PlanInput& input, const PlanCandidate& c) {
@@ -153,7 +170,7 @@ class Planner {
       return e;
     }
     ++simulations_;
-    if (e.result.stable) e.metrics = loading_metrics(e.result.specimen, targets_);
+    if (e.result.stable) e.metrics = loading_metrics(e.result, s, targets_);
     return e;
   }
 
@@ -201,14 +218,14 @@ class Planner {
     return n;
   }
 
-  // Meeting the targets first; then the fewest changes and the widest band; else the closest.
+  // Meeting the targets first; then the fewest changes and the widest margin; else the closest.
   bool better(const Evaluation& a, const Evaluation& b) const {
     const bool ma = a.metrics.meets(), mb = b.metrics.meets();
     if (ma != mb) return ma;
     if (ma) {
       const int ca = changes(a.candidate), cb = changes(b.candidate);
       if (ca != cb) return ca < cb;
-      return a.metrics.band_fraction > b.metrics.band_fraction;
+      return a.metrics.slack() > b.metrics.slack();
     }
     return a.metrics.shortfall() < b.metrics.shortfall();
   }
@@ -240,6 +257,7 @@ class Planner {
   static constexpr double kLoadingMargin_s = 50e-6;
   static constexpr int kGridPoints = 3;
   static constexpr int kRefinements = 3;
+  static constexpr int kVerifications = 4;
 
   const PlanInput& in_;
   const PlanSpec& spec_;
@@ -382,15 +400,56 @@ PlanResult Planner::run() {
   }
   PlanResult out;
   // Verified on the finer meshes over the scene's whole duration, the velocity corrected there.
-  Evaluation v = solve_velocity(best.candidate, options_.verify_tolerance, true,
-                                best.candidate.striker_velocity_m_s);
+  // A set-up that met the criteria on the search's coarse meshes can miss them on the finer ones:
+  // a coarse mesh damps the specimen's ringing, and equilibrium read as "R stays ≤ 5 %" flips on
+  // a few tenths of a per cent. The meeting set-ups are verified in rank order (fewest changes,
+  // then the widest margin); after a failure the rest of its number of changes, less robust on
+  // the coarse meshes than the one that failed, are passed over for the next number.
+  std::vector<Evaluation> ranked;
+  for (const PlanStep& p : path_)
+    if (p.meets) ranked.push_back({p.candidate, p.metrics, {}});
+  std::stable_sort(ranked.begin(), ranked.end(),
+                   [&](const Evaluation& a, const Evaluation& b) { return better(a, b); });
+  if (ranked.empty()) ranked.push_back(best);  // none met: the closest, for its binding constraint
+  Evaluation v, first_failure;
+  int failed_changes = -1, verifications = 0;
+  for (std::size_t i = 0; i < ranked.size() && verifications < kVerifications; ++i) {
+    if (changes(ranked[i].candidate) == failed_changes) continue;
+    v = solve_velocity(ranked[i].candidate, options_.verify_tolerance, true,
+                       ranked[i].candidate.striker_velocity_m_s);
+    ++verifications;
+    if (v.metrics.meets() && v.result.stable) break;
+    failed_changes = changes(ranked[i].candidate);
+    if (verifications == 1) first_failure = v;
+  }
   out.chosen = v.candidate;
   out.scene = planned_scene(in_, v.candidate);
   out.metrics = v.metrics;
   out.verified = std::move(v.result);
   out.changes = changes(v.candidate);
   out.feasible = v.metrics.meets() && out.verified.stable;
-  if (!out.feasible) out.binding = binding(best.metrics.meets() ? v : best);
+  if (!out.feasible) out.binding = binding(best.metrics.meets() ? first_failure : best);
+  // The shaper's gain: the best set-up of the search without a shaper and the best with one, each
+  // verified on the chosen one's meshes (the chosen one itself on its side).
+  auto best_step = [&](bool shaped) {
+    const PlanStep* b = nullptr;
+    for (const PlanStep& p : path_)
+      if ((p.candidate.shaper >= 0) == shaped &&
+          (!b || better({p.candidate, p.metrics, {}}, {b->candidate, b->metrics, {}})))
+        b = &p;
+    return b;
+  };
+  for (bool shaped : {false, true}) {
+    std::optional<PlanStep>& side = shaped ? out.shaped : out.unshaped;
+    if (!out.feasible) continue;
+    if ((out.chosen.shaper >= 0) == shaped) {
+      side = PlanStep{out.chosen, out.metrics, out.changes, true};
+    } else if (const PlanStep* b = best_step(shaped)) {
+      const Evaluation e = solve_velocity(b->candidate, options_.verify_tolerance, true,
+                                          b->candidate.striker_velocity_m_s);
+      side = PlanStep{e.candidate, e.metrics, changes(e.candidate), e.metrics.meets()};
+    }
+  }
   out.path = std::move(path_);
   out.simulations = simulations_;
   out.wall_time_s = std::chrono::duration<double>(Clock::now() - start).count();

@@ -3,9 +3,11 @@
 // specimen strain rate and strain, found by simulating candidates (docs/commands.md#plan).
 #include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "analysis/processing.hpp"  // kEquilibriumThreshold
 #include "core/time_series.hpp"
 #include "plan/plan_spec.hpp"
 #include "solver/simulation.hpp"
@@ -13,11 +15,12 @@
 namespace shpb {
 
 // The criteria of a planned test (docs/methods.md §12): the specimen's strain rate within
-// ±kRateBand of the target over at least kBandFraction of the loading, force equilibrium
-// (|R| ≤ kEquilibriumRatio) before kEquilibriumFraction of it, and the target strain reached.
+// ±kRateBand of the target over at least kBandFraction of the loading, force equilibrium of the
+// bars' forces on the faces (R ≤ kEquilibriumRatio, process's criterion) before
+// kEquilibriumFraction of it, and the target strain reached.
 inline constexpr double kRateBand = 0.10;
 inline constexpr double kBandFraction = 0.50;
-inline constexpr double kEquilibriumRatio = 0.05;
+inline constexpr double kEquilibriumRatio = kEquilibriumThreshold;
 inline constexpr double kEquilibriumFraction = 0.25;
 
 struct PlanTargets {
@@ -34,7 +37,9 @@ struct PlanCandidate {
   double specimen_length_m = 0;
 };
 
-// What the specimen's own record (SimulationResult::specimen) says about a loading.
+// What a simulated record says about a loading: the specimen's rate and strain
+// (SimulationResult::specimen), and the equilibrium of the forces the bars put on its faces (the
+// forces a lab's gauges measure: incident + reflected at the front, transmitted at the back).
 struct LoadingMetrics {
   double onset_s = 0, end_s = 0;  // the loading: rate first ≥ 10 % of the target → target strain
   double plateau_rate_1_s = 0;    // median strain rate over the loading
@@ -45,10 +50,24 @@ struct LoadingMetrics {
   double strain_reached = 0;        // largest engineering strain of the run
   double target_strain = 0.15;
   bool meets() const;  // every criterion
+  // The smallest relative margin by which the band, equilibrium and strain criteria are met
+  // (negative: one is missed).
+  double slack() const;
   // How far from meeting them (0 when met): the sum of the relative shortfalls.
   double shortfall() const;
 };
-LoadingMetrics loading_metrics(const TimeSeries& specimen, const PlanTargets& targets);
+LoadingMetrics loading_metrics(const TimeSeries& specimen, std::span<const double> front_force_N,
+                               std::span<const double> back_force_N, const PlanTargets& targets);
+// The forces of the bars on the specimen's faces in a run of `scene`: its interfaces' with the
+// specimen's neighbours (compression positive).
+struct FaceForces {
+  const std::vector<double>& front;
+  const std::vector<double>& back;
+};
+FaceForces face_forces(const SimulationResult& run, const Scene& scene);
+// loading_metrics of a run of `scene`, with its face forces.
+LoadingMetrics loading_metrics(const SimulationResult& run, const Scene& scene,
+                               const PlanTargets& targets);
 
 struct PlanStep {  // one evaluated candidate, in the order of the search
   PlanCandidate candidate;
@@ -66,6 +85,10 @@ struct PlanResult {
   bool feasible = false;
   std::string binding;  // when not feasible: the constraint that binds and what would be needed
   std::vector<PlanStep> path;
+  // The best set-up without a shaper and the best with one, verified as the chosen one (the
+  // chosen one itself on its side): the shaper's gain. Empty when the plan searched none of that
+  // kind or is not feasible.
+  std::optional<PlanStep> unshaped, shaped;
   double wall_time_s = 0;
   long simulations = 0;
 };

@@ -110,3 +110,34 @@ def test_column_names_come_from_the_output_schema():
     assert suffix("compare_signals", "<gauge>_measured_strain") == "_measured_strain"
     with pytest.raises(KeyError):
         suffix("compare_signals", "<gauge>_modelled_strain")
+
+
+def test_a_plan_folder_draws_the_plan_against_its_criteria(tmp_path):
+    # A plan's folder: the predicted signals with the scope settings, the rate and equilibrium
+    # against the criteria, the shaper's gain and the search's path, beside the simulation's own.
+    write(tmp_path, "summary.json", """{"command": "plan",
+      "targets": {"strain_rate_1_s": 1000, "rate_band": 0.1, "equilibrium_ratio_max": 0.05,
+                  "equilibrium_before_fraction": 0.25},
+      "chosen": {"shaper": {"material": "cu"}},
+      "predicted": {"band_fraction": 0.8, "rate_spread": 0.05, "equilibrium_fraction": 0.1},
+      "unshaped": {"meets": true, "predicted": {"band_fraction": 0.6, "rate_spread": 0.1,
+                                                 "equilibrium_fraction": 0.2}},
+      "shaped": null,
+      "gauges": [{"gauge": "incident", "peak_strain": -1e-3, "peak_V": -5e-3}],
+      "scope": {"range_V": 0.01, "trigger_level_V": -5e-4}}""")
+    write(tmp_path, "path.csv",
+          "step,striker_length_m,striker_velocity_m_s,shaper,shaper_thickness_m,"
+          "shaper_diameter_m,specimen_length_m,plateau_rate_1_s,band_fraction,"
+          "equilibrium_fraction,strain_reached,changes,meets\n"
+          "0,0.3,10,-1,0,0,0.005,1000,0.6,0.2,0.2,1,1\n1,0.3,12,0,1e-3,1e-2,0.005,990,0.8,0.1,0.2,2,1\n")
+    write(tmp_path, "loading.csv",
+          "time_s,strain,strain_rate_1_s,front_force_N,back_force_N,equilibrium_ratio,loading\n"
+          "0,0,0,0,0,0,0\n1e-6,0.001,1000,10,9,0.1,1\n2e-6,0.002,1000,10,10,0,1\n")
+    sim = tmp_path / "simulation"
+    sim.mkdir()
+    write(sim, "gauges.csv", "time_s,incident\n0,0\n1e-6,-1e-3\n")
+    html, count = report_main.build(str(tmp_path))
+    figures = set(os.listdir(tmp_path / "figures"))
+    assert {"plan_gauges.png", "plan_loading.png", "plan_shaper_gain.png",
+            "plan_path.png"} <= figures
+    assert "plan_loading.png" in (tmp_path / "report.html").read_text(encoding="utf-8")

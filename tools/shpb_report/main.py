@@ -20,7 +20,7 @@ import traceback
 import warnings
 from typing import Callable, Optional
 
-from . import calibrate, compare, fit, process, simulate, study, sweeps
+from . import calibrate, compare, fit, plan, process, simulate, study, sweeps
 from .drawing import Figures, close_all
 from .page import GENERATOR, write_html
 from .reading import ReportError, Source, find_sources, read_text
@@ -85,6 +85,7 @@ def _pulses_with(column: str) -> Callable[[Source], bool]:
 # first figure whose condition holds is drawn (a fit's signals.csv is not a compare's).
 FigureDrawer = Callable[[Source, Figures, Optional[dict]], None]
 FIGURE_TABLE: list[list[tuple[Callable[[Source], bool], FigureDrawer]]] = [
+    [(lambda s: s.has("path.csv"), lambda s, f, t: plan.fig_plan(s, f))],
     [(lambda s: s.has("fit.json") and s.has("signals.csv"), lambda s, f, t: fit.fig_fit(s, f)),
      (lambda s: s.has("signals.csv"), lambda s, f, t: compare.fig_compare_signals(s, f)),
      (lambda s: s.has("gauges.csv"), lambda s, f, t: simulate.fig_gauges(s, f))],

@@ -19,7 +19,7 @@ KNOWN_FILES = ("gauges.csv", "interfaces.csv", "specimen.csv", "energy.csv", "fi
                "pulses.csv", "curve.csv", "signals.csv", "comparison.csv", "pareto.csv",
                "stability.csv", "summary.json", "raw_signals.csv", "stability_boundary.csv",
                "curves.csv", "fit.json", "calibration.json", "gauge_bands.csv",
-               "curve_bands.csv", "draws.csv")
+               "curve_bands.csv", "draws.csv", "path.csv", "loading.csv")
 NUMBER = "number"  # Source.value kind: an int or float, not a bool
 
 
