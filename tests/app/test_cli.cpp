@@ -1,6 +1,7 @@
 // The command line as users meet it (docs/commands.md): `shpb --help` and `shpb <command> --help`
 // describe every subcommand and option; usage errors exit 2 with one "error:" line.
 #include <catch2/catch.hpp>
+#include <cctype>
 #include <filesystem>
 #include <sstream>
 #include <string>
@@ -62,6 +63,22 @@ std::vector<std::string> undescribed_entries(const std::string& help) {
 const std::vector<std::string> kCommands = {"simulate", "process",  "compare", "dispersion",
                                             "study",    "validate", "report"};
 
+// Decimal numbers printed with a double's round-off left in ("3.5000000000000004", "0.30000000000000004"):
+// the fraction digits of each number holding six equal zeros or nines followed by a further digit.
+std::vector<std::string> round_off_numbers(const std::string& text) {
+  std::vector<std::string> found;
+  for (std::size_t i = text.find('.'); i != std::string::npos; i = text.find('.', i + 1)) {
+    std::size_t end = i + 1;
+    while (end < text.size() && std::isdigit(static_cast<unsigned char>(text[end]))) ++end;
+    const std::string fraction = text.substr(i + 1, end - i - 1);
+    for (const char* run : {"000000", "999999"}) {
+      const auto at = fraction.find(run);
+      if (at != std::string::npos && at + 6 < fraction.size()) found.push_back(fraction);
+    }
+  }
+  return found;
+}
+
 }  // namespace
 
 TEST_CASE("shpb --help lists every subcommand with a description", "[app][cli]") {
@@ -84,6 +101,8 @@ TEST_CASE("Every subcommand's --help describes every option", "[app][cli]") {
     const auto bad = undescribed_entries(r.out);
     for (const auto& b : bad) INFO("undescribed: " << b);
     CHECK(bad.empty());
+    // A default is printed as a user would write it, not with a double's round-off.
+    CHECK(round_off_numbers(r.out).empty());
   }
 }
 
