@@ -203,12 +203,11 @@ void defaults_table(const std::vector<std::string>& files, const SimulationOptio
                  ? 100 * recorded_gauge_error(t.last.gauges, ref, gauges_filtered(s.simulation))
                  : std::nan("");
     };
-    std::printf(
-        "%-28s | %9.2f %9.2f %10.3g %7.2f%% | %9.2f %9.2f %9.2f %10.3g %7.2f%% %8.2f%%\n",
-        name.c_str(), a.wall_s * 1e3, a.cpu_s * 1e3, double(a.last.node_updates),
-        error(a, automatic), median(choice) * 1e3, n.wall_s * 1e3, n.cpu_s * 1e3,
-        double(n.last.node_updates), error(n, now),
-        100 * predict_gauge_error(now, discretize(now)).total);
+    std::printf("%-28s | %9.2f %9.2f %10.3g %7.2f%% | %9.2f %9.2f %9.2f %10.3g %7.2f%% %8.2f%%\n",
+                name.c_str(), a.wall_s * 1e3, a.cpu_s * 1e3, double(a.last.node_updates),
+                error(a, automatic), median(choice) * 1e3, n.wall_s * 1e3, n.cpu_s * 1e3,
+                double(n.last.node_updates), error(n, now),
+                100 * predict_gauge_error(now, discretize(now)).total);
     std::fflush(stdout);
   }
 }
