@@ -457,6 +457,61 @@ void mesh_bars(Scene& scene, const std::vector<bool>& free, double delta) {
   }
 }
 
+// Specimen element counts tried (a geometric ladder, each count once), or the user's (0).
+std::vector<int> specimen_ladder(const Scene& scene, const std::vector<bool>& free) {
+  if (!scene.specimen || !free[*scene.specimen]) return {0};
+  std::vector<int> counts;
+  for (double n = 4; n <= 4000; n *= 1.15)
+    if (counts.empty() || counts.back() != static_cast<int>(n))
+      counts.push_back(static_cast<int>(n));
+  return counts;
+}
+
+// The scan's first transit: the first of its points (from the coarsest down by kScanRatio) at or
+// below the pulse's floor.
+double scan_start(double coarsest, double floor, double finest) {
+  double start = coarsest;
+  while (start > floor && start / kScanRatio > finest) start /= kScanRatio;
+  return start;
+}
+
+// Near C = 1 (kNearExactCourant): the bars of `s` at transits T/k of their common transit T,
+// k = 1, 2, … (none coarser than `coarsest`) up to the first that meets the target, kept in
+// `best` if cheaper than `best_cost`.
+void near_exact(const Scene& s, const std::vector<bool>& free, double common, double coarsest,
+                double target, PredictMode mode, SearchCache& cache, double& best_cost,
+                Scene& best) {
+  Scene near = s;
+  near.simulation.courant = kNearExactCourant;
+  ChainDiscretization dn;
+  for (long k = 1; k <= kMaxCommonDivisions; ++k) {
+    if (common / k > coarsest) continue;  // coarser than a compliant link or the pulse allows
+    mesh_bars(near, free, common / k);
+    if (!std::isfinite(cost(near, &dn))) break;
+    if (dn.node_updates_estimate >= best_cost) break;  // finer only costs more
+    const GaugeErrorPrediction p = predict(near, dn, kMeshErrorConstants, &cache, mode);
+    if (!(p.specimen <= target)) break;  // the specimen's share alone is too much
+    if (p.total <= target) {
+      best_cost = dn.node_updates_estimate, best = near;
+      break;
+    }
+  }
+}
+
+// The finest affordable element transit (refusal by discretize() is monotone in δ) between
+// `finest` and `coarsest`, within kSearchRatio; none if not even `coarsest` is.
+template <class Affordable>
+std::optional<double> finest_affordable(Affordable&& affordable, double finest, double coarsest) {
+  if (affordable(finest)) return finest;
+  if (!affordable(coarsest)) return std::nullopt;
+  double a = finest, b = coarsest;
+  while (b / a > kSearchRatio) {
+    const double mid = std::sqrt(a * b);
+    (affordable(mid) ? b : a) = mid;
+  }
+  return b;
+}
+
 }  // namespace
 
 GaugeErrorPrediction choose_meshes(Scene& scene) {
@@ -466,14 +521,7 @@ GaugeErrorPrediction choose_meshes(Scene& scene) {
   const auto striker = striker_bar(scene);
   if (!striker) return predict_gauge_error(scene, discretize(scene));  // NaN: nothing to predict
 
-  // Specimen element counts tried (a geometric ladder), or the user's.
-  std::vector<int> specimen_counts = {0};
-  if (scene.specimen && free[*scene.specimen]) {
-    specimen_counts.clear();
-    for (double n = 4; n <= 4000; n *= 1.15)
-      if (specimen_counts.empty() || specimen_counts.back() != static_cast<int>(n))
-        specimen_counts.push_back(static_cast<int>(n));
-  }
+  const std::vector<int> specimen_counts = specimen_ladder(scene, free);
   // Close to C = 1 only where the bars can step together (common_transit_s).
   const std::optional<double> common = common_transit_s(scene, free);
   // Element transits h/c tried for the bars: from one element per bar (at most half a compliant
@@ -481,8 +529,7 @@ GaugeErrorPrediction choose_meshes(Scene& scene) {
   // pulse's floor (kElementsPerPulse): the scan's points stay those from the coarsest.
   const double coarsest = coarsest_transit_s(scene), finest = longest_transit_s(scene) * 1e-7;
   const double floor = pulse_floor_transit_s(scene);
-  double start = coarsest;
-  while (start > floor && start / kScanRatio > finest) start /= kScanRatio;
+  const double start = scan_start(coarsest, floor, finest);
 
   SearchCache cache;
   double closest = std::numeric_limits<double>::infinity();  // when none meets the tolerance
@@ -511,42 +558,18 @@ GaugeErrorPrediction choose_meshes(Scene& scene) {
       if (prune && affordable(start) &&
           !(predict(s, d, kMeshErrorConstants, &cache, {0.0}).specimen <= target))
         continue;
-      if (common) {
-        // Near C = 1: the bars at transits T/k, k = 1, 2, … up to the first that meets the target.
-        Scene near = s;
-        near.simulation.courant = kNearExactCourant;
-        ChainDiscretization dn;
-        for (long k = 1; k <= kMaxCommonDivisions; ++k) {
-          if (*common / k > coarsest || *common / k > floor) continue;  // coarser than allowed
-          mesh_bars(near, free, *common / k);
-          if (!std::isfinite(cost(near, &dn))) break;
-          if (dn.node_updates_estimate >= best_cost) break;  // finer only costs more
-          const GaugeErrorPrediction p = predict(near, dn, kMeshErrorConstants, &cache, mode);
-          if (!(p.specimen <= target)) break;  // the specimen's share alone is too much
-          if (p.total <= target) {
-            best_cost = dn.node_updates_estimate, best = near;
-            break;
-          }
-        }
-      }
+      if (common)
+        near_exact(s, free, *common, std::min(coarsest, floor), target, mode, cache, best_cost,
+                   best);
       // The finest affordable element transit (refusal by discretize() is monotone in δ), found
       // only when the scan comes near it: the bisection ends within kSearchRatio above the
       // boundary, so a transit x whose x / kSearchRatio is affordable lies above it.
-      std::optional<double> fine_found;
+      std::optional<std::optional<double>> fine_found;
       bool none_affordable = false;
       const auto fine = [&] {
-        if (fine_found) return *fine_found;
-        double f = finest;
-        if (!affordable(f)) {
-          if (!affordable(coarsest)) none_affordable = true;
-          double a = finest, b = coarsest;
-          while (!none_affordable && b / a > kSearchRatio) {
-            const double mid = std::sqrt(a * b);
-            (affordable(mid) ? b : a) = mid;
-          }
-          f = b;
-        }
-        return *(fine_found = f);
+        if (!fine_found) fine_found = finest_affordable(affordable, finest, coarsest);
+        none_affordable = !fine_found->has_value();
+        return fine_found->value_or(finest);
       };
       // max(fine, x), and in `above` whether x is above fine.
       const auto clamp_fine = [&](double x, bool& above) {
