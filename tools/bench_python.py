@@ -52,8 +52,10 @@ print(f"  executable (summary.json, median of 9): solve {exe * 1e3:.2f} ms, mesh
 print(f"  from Python: wall per run {loop * 1e3:.2f} ms, CPU {loop_cpu * 1e3:.2f} ms (its own "
       f"summaries: solve {statistics.median(solve) * 1e3:.2f} ms, whole run "
       f"{statistics.median(run) * 1e3:.2f} ms)")
-print(f"  Python / executable: {loop / exe_whole:.3f} of the whole run (like with like), "
-      f"{loop / exe:.3f} of the solve alone")
+print(f"  Python / executable: {loop / exe_whole:.3f} of the whole run (like with like; the "
+      f"executable's runs are each a fresh process), {loop / exe:.3f} of the solve alone; "
+      f"Python's wall / its own runs' run_time_s {loop / statistics.median(run):.3f} (the "
+      f"binding's overhead)")
 
 # 2. Two simulations: one after the other, then in two threads.
 def serial():
