@@ -95,6 +95,20 @@ double coarsest_transit_s(const Scene& scene) {
   return coarsest;
 }
 
+// Whatever the tolerance, a bar carries the loading pulse (its duration T_p = 2 L_s/c_s, the
+// shortest wave the striker sends) over at least this many elements: the model weighs a front by
+// its rise, so a long rise time (a soft link) counts a pulse as resolved at any mesh, down to one
+// element per bar; ten elements leave a plateau of six between its two fronts, each spread over
+// two elements by the gauge's interpolation (docs/methods.md §1.1).
+constexpr double kElementsPerPulse = 10;
+
+// The floor on the bars' element transit: T_p / kElementsPerPulse (none without a striker).
+double pulse_floor_transit_s(const Scene& scene) {
+  const auto striker = striker_bar(scene);
+  return striker ? striker_pulse_s(scene, *striker) / kElementsPerPulse
+                 : std::numeric_limits<double>::infinity();
+}
+
 // Meshes are chosen for a predicted error of this fraction of the tolerance: the model's scatter
 // over its calibration runs is a factor 1.5 (rms of the log 0.41, kMeshErrorConstants).
 constexpr double kTargetFraction = 0.65;
@@ -130,83 +144,184 @@ constexpr double kFrequencyEnd = 7.75;  // × 1/Δs: e^{−ω²Δs²} = e^{−60
 constexpr int kAliasImages = 16;
 constexpr double kAliasStep = 0.1;  // × 1/Δs: 7 points per standard deviation of the Gaussian
 
-double aliased_error_s(const ChainDiscretization& d, const std::vector<double>& x, double sample_s,
-                       double rise_s) {
+// What the integrals weigh each frequency by depends on the record (Δs) and the pulse's rise (τ),
+// not on the mesh: computed once per search (docs/methods.md §1.1, the cost of the choice).
+struct FrequencyWeights {
+  double sample_s = -1, rise_s = -1;
+  double dw = 0;
+  std::vector<double> weight;  // (trapezoid end) e^{−ω²Δs²}/(1 + ω²τ²) at ω_j = j dω, j = 1…N
+  std::vector<double> w2;    // ω_j²
+  std::vector<double> tail;  // Σ_{m ≥ j} weight_m/ω_m²: the integrand where nothing is carried
+  // The aliasing integral's points ω and its running sums (the sum up to, not including, point n).
+  double alias_dw = 0;
+  std::vector<double> alias_w, alias_sum;
+
+  FrequencyWeights(double sample, double rise) : sample_s(sample), rise_s(rise) {
+    dw = kFrequencyEnd / sample_s / kFrequencyPoints;
+    weight.assign(kFrequencyPoints + 1, 0.0);
+    w2.assign(kFrequencyPoints + 1, 0.0);
+    tail.assign(kFrequencyPoints + 2, 0.0);
+    for (int j = 1; j <= kFrequencyPoints; ++j) {
+      const double w = j * dw;
+      w2[j] = w * w;
+      weight[j] = (j == kFrequencyPoints ? 0.5 : 1) *
+                  (std::exp(-w * w * sample_s * sample_s) / (1 + w * w * rise_s * rise_s));
+    }
+    for (int j = kFrequencyPoints; j >= 1; --j) tail[j] = tail[j + 1] + weight[j] / w2[j];
+    const double images = 2 * M_PI / sample_s;
+    const double top = (kAliasImages + 0.5) * images;
+    alias_dw = kAliasStep / sample_s;
+    double sum = 0;
+    for (double w = 0.5 * M_PI / sample_s; w < top; w += alias_dw) {
+      alias_w.push_back(w);
+      alias_sum.push_back(sum);
+      const double m = std::max(1.0, std::round(w / images));  // the nearest image dominates
+      double wt = 0;
+      for (double k = std::max(1.0, m - 1); k <= m + 1; ++k)
+        wt += std::exp(-std::pow((w - k * images) * sample_s, 2));
+      sum += wt / (w * w * (1 + w * w * rise_s * rise_s));
+    }
+    alias_w.push_back(top);
+    alias_sum.push_back(sum);
+  }
+};
+
+// The lowest cut-off 2 asin(C)/Δt of the bars on the path x (and the gauge's bar).
+double path_cutoff(const ChainDiscretization& d, const std::vector<double>& x,
+                   std::size_t gauge_bar) {
+  double cutoff = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < x.size(); ++i)
+    if (x[i] > 0 || i == gauge_bar)
+      cutoff =
+          std::min(cutoff, 2 * std::asin(std::min(d.bars[i].courant, 1.0)) / d.bars[i].time_step_s);
+  return cutoff;
+}
+
+double aliased_error_s(const ChainDiscretization& d, const std::vector<double>& x,
+                       const FrequencyWeights& f) {
   double cutoff = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < x.size(); ++i)
     if (x[i] > 0)
       cutoff =
           std::min(cutoff, 2 * std::asin(std::min(d.bars[i].courant, 1.0)) / d.bars[i].time_step_s);
-  const double images = 2 * M_PI / sample_s;
-  const double top = std::min(cutoff, (kAliasImages + 0.5) * images);
-  const double dw = kAliasStep / sample_s;
-  double sum = 0;
-  for (double w = 0.5 * M_PI / sample_s; w < top; w += dw) {
-    const double m = std::max(1.0, std::round(w / images));  // the nearest image dominates
-    double weight = 0;
-    for (double k = std::max(1.0, m - 1); k <= m + 1; ++k)
-      weight += std::exp(-std::pow((w - k * images) * sample_s, 2));
-    sum += weight / (w * w * (1 + w * w * rise_s * rise_s));
-  }
-  return sum * dw / M_PI;
+  // The running sum up to the first point at or above the cut-off.
+  const auto n =
+      std::lower_bound(f.alias_w.begin(), f.alias_w.end() - 1, cutoff) - f.alias_w.begin();
+  return f.alias_sum[n] * f.alias_dw / M_PI;
 }
 
-// (1/π) ∫ e^{−ω²Δs²}/(1 + ω²τ²) |H − 1|²/ω² dω for the bars' paths x (the model's I / A²).
-// sin(z)/z, 1 at 0.
-double sinc(double z) { return std::abs(z) < 1e-8 ? 1.0 : std::sin(z) / z; }
-
+// (1/π) ∫ e^{−ω²Δs²}/(1 + ω²τ²) |F H − 1|²/ω² dω for the bars' paths x (the model's I / A²).
+// Each bar's sin(ωΔt/2) by angle addition from one frequency to the next; the gauge's filter F
+// from sin(κh/2) = s itself (docs/methods.md §1.1).
+// `give_up`: once the integral below the cut-off passes it, return what it has summed (the
+// caller's bound then shows the mesh misses its target).
 double front_error_s(const ChainDiscretization& d, const std::vector<double>& x,
-                     std::size_t gauge_bar, double gauge_w, double sample_s, double rise_s,
-                     double aliasing) {
-  const double top = kFrequencyEnd / sample_s, dw = top / kFrequencyPoints;
-  const BarDiscretization& g = d.bars[gauge_bar];
+                     std::size_t gauge_bar, double gauge_w, const FrequencyWeights& f,
+                     double aliasing, double give_up = std::numeric_limits<double>::infinity(),
+                     bool* gave_up = nullptr) {
+  struct PathBar {
+    double x, courant, two_over_h, slowness, half_step;
+    std::complex<double> rotation, phasor;  // e^{i dω Δt/2}, e^{i ω Δt/2}
+    bool gauge;
+  };
+  std::vector<PathBar> path;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    if (!(x[i] > 0) && i != gauge_bar) continue;
+    const BarDiscretization& b = d.bars[i];
+    const double half_step = 0.5 * f.dw * b.time_step_s;
+    path.push_back({x[i],
+                    b.courant,
+                    2 / b.element_length_m,
+                    1 / b.wave_speed_m_s,
+                    half_step,
+                    std::polar(1.0, half_step),
+                    {1.0, 0.0},
+                    i == gauge_bar});
+  }
+  const double h = d.bars[gauge_bar].element_length_m;
   double sum = 0;
-  for (int j = 1; j <= kFrequencyPoints; ++j) {
-    const double w = j * dw;
-    double phase = 0, kg = 0;
+  int j = 1;
+  for (; j <= kFrequencyPoints; ++j) {
+    const double w = j * f.dw;
+    double phase = 0, sg = 0, kg = 0;
     bool carried = true;
-    for (std::size_t i = 0; i < x.size() && carried; ++i) {
-      if (!(x[i] > 0) && i != gauge_bar) continue;
-      const BarDiscretization& b = d.bars[i];
-      const double half = 0.5 * w * b.time_step_s;
-      const double s = half < 0.5 * M_PI ? std::sin(half) / b.courant : 2;
-      if (s >= 1) {
+    for (PathBar& b : path) {
+      b.phasor *= b.rotation;
+      if (!(j * b.half_step < 0.5 * M_PI)) {
         carried = false;  // above the mesh's cut-off: the frequency never reaches the gauge
         break;
       }
-      const double k = 2 / b.element_length_m * std::asin(s);
-      phase += x[i] * (k - w / b.wave_speed_m_s);
-      if (i == gauge_bar) kg = k;
+      const double s = b.phasor.imag() / b.courant;
+      if (s >= 1) {
+        carried = false;
+        break;
+      }
+      const double k = b.two_over_h * std::asin(s);
+      phase += b.x * (k - w * b.slowness);
+      if (b.gauge) sg = s, kg = k;
     }
+    // Above the lowest cut-off nothing is carried at any higher frequency either: the tail sum.
+    if (!carried) break;
     // The gauge reads element strains (each the mean over its element: sinc(κh/2)) interpolated
     // linearly between the centres around it, at fraction w of the pitch: the centres' values
     // lead and lag the gauge's own by w·h and (1 − w)·h, so
-    //   F = sinc(κh/2) ((1 − w) e^{iκwh} + w e^{−iκ(1−w)h})   (at C = 1 exactly what is left).
-    double miss = 1;
-    if (carried) {
-      const double kh = kg * g.element_length_m;
-      const std::complex<double> f =
-          sinc(0.5 * kh) * ((1 - gauge_w) * std::polar(1.0, kh * gauge_w) +
-                            gauge_w * std::polar(1.0, -kh * (1 - gauge_w)));
-      miss = std::norm(f * std::polar(1.0, phase) - 1.0);
+    //   F = sinc(κh/2) ((1 − w) e^{iκwh} + w e^{−iκ(1−w)h})   (at C = 1 exactly what is left),
+    // with sin(κh/2) = s and e^{−iκh} = (cos(κh/2) − i s)²; F H = sinc · e^{i(φ + κwh)} ·
+    // ((1 − w) + w e^{−iκh}).
+    const double kh = kg * h;
+    const double sinc = kh > 1e-8 ? 2 * sg / kh : 1.0;
+    const std::complex<double> back(std::sqrt(std::max(0.0, 1 - sg * sg)), -sg);
+    const double miss = std::norm(sinc * std::polar(1.0, phase + kh * gauge_w) *
+                                      ((1 - gauge_w) + gauge_w * (back * back)) -
+                                  1.0);
+    sum += f.weight[j] * miss / f.w2[j];
+    if (j % 32 == 0 && sum * f.dw / M_PI > give_up) {
+      *gave_up = true;
+      return sum * f.dw / M_PI;
     }
-    const double weight = std::exp(-w * w * sample_s * sample_s) / (1 + w * w * rise_s * rise_s);
-    sum += (j == kFrequencyPoints ? 0.5 : 1) * weight * miss / (w * w);
   }
-  return sum * dw / M_PI +
-         (aliasing > 0 ? aliasing * aliased_error_s(d, x, sample_s, rise_s) : 0.0);
+  if (j <= kFrequencyPoints) sum += f.tail[j];
+  return sum * f.dw / M_PI + (aliasing > 0 ? aliasing * aliased_error_s(d, x, f) : 0.0);
+}
+
+// A lower bound on front_error_s: the frequencies above the path's lowest cut-off, which no mesh
+// carries (|F H − 1| = 1), and the aliasing, without the integral below the cut-off.
+double front_error_floor_s(const ChainDiscretization& d, const std::vector<double>& x,
+                           std::size_t gauge_bar, const FrequencyWeights& f, double aliasing) {
+  const double cutoff = path_cutoff(d, x, gauge_bar);
+  const double first = std::ceil(cutoff / f.dw) + 1;  // the point at the cut-off may be carried
+  const double tail =
+      first > kFrequencyPoints ? 0.0 : f.tail[static_cast<std::size_t>(std::max(1.0, first))];
+  return tail * f.dw / M_PI + (aliasing > 0 ? aliasing * aliased_error_s(d, x, f) : 0.0);
 }
 
 }  // namespace
 
 namespace {
 
-// The bars' share by bar meshes and steps. The specimen is on no pulse's path in the
-// model, so a search over specimen meshes finds the bars' share here instead of re-integrating it.
-using BarsErrorCache = std::map<std::vector<double>, double>;
+// What a search computes once: the bars' share by bar meshes and steps (the specimen is on no
+// pulse's path in the model, so a search over specimen meshes finds the bars' share here instead
+// of re-integrating it), and the frequency weights.
+struct SearchCache {
+  // The sum of the gauges' integrals, or (exact false) a lower bound on it that shows the bars
+  // alone miss the search's target.
+  struct Bars {
+    double sum;
+    bool exact;
+  };
+  std::map<std::vector<double>, Bars> bars;
+  std::optional<FrequencyWeights> weights;
+};
+
+// How much of the prediction to compute: all of it, or a lower bound on the bars' share that is
+// enough to tell that a mesh misses `above` (then total is that bound).
+struct PredictMode {
+  double above = std::numeric_limits<double>::infinity();
+};
 
 GaugeErrorPrediction predict(const Scene& scene, const ChainDiscretization& d,
-                             const MeshErrorConstants& k, BarsErrorCache* cache) {
+                             const MeshErrorConstants& k, SearchCache* cache,
+                             PredictMode mode = {}) {
   GaugeErrorPrediction p;
   const auto striker = striker_bar(scene);
   if (!striker) {
@@ -218,28 +333,14 @@ GaugeErrorPrediction predict(const Scene& scene, const ChainDiscretization& d,
   const double sample_s = 1 / d.sample_rate_Hz;
   // A record filtered before it is sampled has no aliasing (model/scene.hpp gauges_filtered).
   const double aliasing = gauges_filtered(scene.simulation) ? 0.0 : k.aliasing;
-  std::vector<double> key;  // what the bars' share depends on: each bar's mesh and step
-  for (std::size_t i = 0; i < d.bars.size(); ++i)
-    if (!is_specimen(scene, i))
-      key.insert(key.end(), {1.0 * d.bars[i].elements, d.bars[i].time_step_s});
-  if (const auto hit = cache ? cache->find(key) : BarsErrorCache::iterator{};
-      cache && hit != cache->end()) {
-    p.bars = hit->second;
-  } else {
-    double sum = 0;
-    int gauges = 0;
-    for (std::size_t b = *striker + 1; b < scene.bars.size(); ++b)
-      for (const GaugeSpec& g : scene.bars[b].gauges) {
-        // The gauge's place between the element centres around it, a fraction of their pitch.
-        const double pitch = g.position_m / d.bars[b].element_length_m - 0.5;
-        const double w = std::clamp(pitch - std::floor(pitch), 0.0, 1.0);
-        sum += front_error_s(d, path_lengths(scene, *striker, b, g.position_m), b, w, sample_s,
-                             p.rise_time_s, aliasing);
-        ++gauges;
-      }
-    p.bars = gauges > 0 ? std::sqrt(k.front * 2 * sum / gauges / p.pulse_s) : 0.0;
-    if (cache) (*cache)[key] = p.bars;
+  SearchCache local;
+  SearchCache& c = cache ? *cache : local;
+  if (!c.weights || c.weights->sample_s != sample_s || c.weights->rise_s != p.rise_time_s) {
+    c.weights.emplace(sample_s, p.rise_time_s);
+    c.bars.clear();
   }
+  const FrequencyWeights& f = *c.weights;
+
   const auto resolution = [&](std::size_t i) {
     const BarDiscretization& b = d.bars[i];
     return k.specimen *
@@ -252,8 +353,78 @@ GaugeErrorPrediction predict(const Scene& scene, const ChainDiscretization& d,
       const double e = resolution(i);
       others += e * e;
     }
-  p.total = others > 0 ? std::sqrt(p.bars * p.bars + p.specimen * p.specimen + others)
-                       : std::hypot(p.bars, p.specimen);
+  const auto total = [&](double bars) {
+    return others > 0 ? std::sqrt(bars * bars + p.specimen * p.specimen + others)
+                      : std::hypot(bars, p.specimen);
+  };
+  std::vector<double> key;  // what the bars' share depends on: each bar's mesh and step
+  for (std::size_t i = 0; i < d.bars.size(); ++i)
+    if (!is_specimen(scene, i))
+      key.insert(key.end(), {1.0 * d.bars[i].elements, d.bars[i].time_step_s});
+  // The gauges: their paths, their place between the element centres around them (a fraction
+  // of the pitch).
+  int gauges = 0;
+  for (std::size_t b = *striker + 1; b < scene.bars.size(); ++b)
+    gauges += static_cast<int>(scene.bars[b].gauges.size());
+  const auto share = [&](double sum) {
+    return gauges > 0 ? std::sqrt(k.front * 2 * sum / gauges / p.pulse_s) : 0.0;
+  };
+  // Told to stop where the mesh misses `above`: the sum of the gauges' integrals that misses it
+  // with this specimen, and the one that misses it whatever the specimen (the bound misses by the
+  // rounding of its sum at most: a margin of 10⁻⁹).
+  const double above = mode.above * (1 + 1e-9);
+  const double scale = gauges * p.pulse_s / (2 * k.front);
+  const double misses = std::isfinite(mode.above)
+                            ? (above * above - p.specimen * p.specimen - others) * scale
+                            : std::numeric_limits<double>::infinity();
+  const double misses_alone = std::isfinite(mode.above) ? (above * above - others) * scale
+                                                        : std::numeric_limits<double>::infinity();
+  auto hit = c.bars.find(key);
+  if (hit == c.bars.end() || (!hit->second.exact && !(hit->second.sum > misses))) {
+    struct Gauge {
+      std::size_t bar;
+      std::vector<double> x;
+      double w, floor;
+    };
+    std::vector<Gauge> path;
+    for (std::size_t b = *striker + 1; b < scene.bars.size(); ++b)
+      for (const GaugeSpec& g : scene.bars[b].gauges) {
+        const double pitch = g.position_m / d.bars[b].element_length_m - 0.5;
+        path.push_back({b, path_lengths(scene, *striker, b, g.position_m),
+                        std::clamp(pitch - std::floor(pitch), 0.0, 1.0), 0.0});
+      }
+    // First against the bounds, then integrating and stopping where the sum so far passes the
+    // sum that misses whatever the specimen.
+    SearchCache::Bars found{0.0, false};
+    double sum = 0;
+    bool missed = false;
+    if (std::isfinite(misses)) {
+      for (Gauge& g : path) sum += g.floor = front_error_floor_s(d, g.x, g.bar, f, aliasing);
+      if (sum > misses) found.sum = sum, missed = true;
+    }
+    if (!missed) {
+      double full = 0;
+      found.exact = true;
+      for (const Gauge& g : path) {
+        bool gave_up = false;
+        const double i =
+            front_error_s(d, g.x, g.bar, g.w, f, aliasing, misses_alone - sum, &gave_up);
+        if (gave_up) {  // this gauge's part so far, the others' bounds
+          found = {sum + i, false};
+          break;
+        }
+        sum += i - g.floor;
+        full += i;
+      }
+      if (found.exact) found.sum = full;
+    }
+    // A bound shows a miss for this specimen only: kept where it holds for every one.
+    if (found.exact || found.sum > misses_alone) c.bars[key] = found;
+    p.bars = share(found.sum);
+  } else {
+    p.bars = share(hit->second.sum);
+  }
+  p.total = total(p.bars);
   return p;
 }
 
@@ -286,6 +457,61 @@ void mesh_bars(Scene& scene, const std::vector<bool>& free, double delta) {
   }
 }
 
+// Specimen element counts tried (a geometric ladder, each count once), or the user's (0).
+std::vector<int> specimen_ladder(const Scene& scene, const std::vector<bool>& free) {
+  if (!scene.specimen || !free[*scene.specimen]) return {0};
+  std::vector<int> counts;
+  for (double n = 4; n <= 4000; n *= 1.15)
+    if (counts.empty() || counts.back() != static_cast<int>(n))
+      counts.push_back(static_cast<int>(n));
+  return counts;
+}
+
+// The scan's first transit: the first of its points (from the coarsest down by kScanRatio) at or
+// below the pulse's floor.
+double scan_start(double coarsest, double floor, double finest) {
+  double start = coarsest;
+  while (start > floor && start / kScanRatio > finest) start /= kScanRatio;
+  return start;
+}
+
+// Near C = 1 (kNearExactCourant): the bars of `s` at transits T/k of their common transit T,
+// k = 1, 2, … (none coarser than `coarsest`) up to the first that meets the target, kept in
+// `best` if cheaper than `best_cost`.
+void near_exact(const Scene& s, const std::vector<bool>& free, double common, double coarsest,
+                double target, PredictMode mode, SearchCache& cache, double& best_cost,
+                Scene& best) {
+  Scene near = s;
+  near.simulation.courant = kNearExactCourant;
+  ChainDiscretization dn;
+  for (long k = 1; k <= kMaxCommonDivisions; ++k) {
+    if (common / k > coarsest) continue;  // coarser than a compliant link or the pulse allows
+    mesh_bars(near, free, common / k);
+    if (!std::isfinite(cost(near, &dn))) break;
+    if (dn.node_updates_estimate >= best_cost) break;  // finer only costs more
+    const GaugeErrorPrediction p = predict(near, dn, kMeshErrorConstants, &cache, mode);
+    if (!(p.specimen <= target)) break;  // the specimen's share alone is too much
+    if (p.total <= target) {
+      best_cost = dn.node_updates_estimate, best = near;
+      break;
+    }
+  }
+}
+
+// The finest affordable element transit (refusal by discretize() is monotone in δ) between
+// `finest` and `coarsest`, within kSearchRatio; none if not even `coarsest` is.
+template <class Affordable>
+std::optional<double> finest_affordable(Affordable&& affordable, double finest, double coarsest) {
+  if (affordable(finest)) return finest;
+  if (!affordable(coarsest)) return std::nullopt;
+  double a = finest, b = coarsest;
+  while (b / a > kSearchRatio) {
+    const double mid = std::sqrt(a * b);
+    (affordable(mid) ? b : a) = mid;
+  }
+  return b;
+}
+
 }  // namespace
 
 GaugeErrorPrediction choose_meshes(Scene& scene) {
@@ -295,24 +521,27 @@ GaugeErrorPrediction choose_meshes(Scene& scene) {
   const auto striker = striker_bar(scene);
   if (!striker) return predict_gauge_error(scene, discretize(scene));  // NaN: nothing to predict
 
-  // Specimen element counts tried (a geometric ladder), or the user's.
-  std::vector<int> specimen_counts = {0};
-  if (scene.specimen && free[*scene.specimen]) {
-    specimen_counts.clear();
-    for (double n = 4; n <= 4000; n *= 1.15) specimen_counts.push_back(static_cast<int>(n));
-  }
+  const std::vector<int> specimen_counts = specimen_ladder(scene, free);
   // Close to C = 1 only where the bars can step together (common_transit_s).
   const std::optional<double> common = common_transit_s(scene, free);
   // Element transits h/c tried for the bars: from one element per bar (at most half a compliant
-  // link's rise time, kRiseTimeTransits) down to 1e-7 of the longest bar's.
+  // link's rise time, kRiseTimeTransits) down to 1e-7 of the longest bar's, none coarser than the
+  // pulse's floor (kElementsPerPulse): the scan's points stay those from the coarsest.
   const double coarsest = coarsest_transit_s(scene), finest = longest_transit_s(scene) * 1e-7;
+  const double floor = pulse_floor_transit_s(scene);
+  const double start = scan_start(coarsest, floor, finest);
 
-  BarsErrorCache cache;
+  SearchCache cache;
   double closest = std::numeric_limits<double>::infinity();  // when none meets the tolerance
   Scene most_accurate = scene;
-  // The cheapest mesh predicted at most `target` into `best`; false if there is none.
-  const auto cheapest = [&](double target, Scene& best) {
+  // The cheapest mesh predicted at most `target` into `best`; false if there is none. `prune`:
+  // leave out what cannot beat the best found so far (a specimen whose share alone misses the
+  // target; meshes costing more than the best; meshes whose bound on the error misses) — the
+  // same choice, and `closest` then not the lowest error (computed again without it if needed).
+  const auto cheapest = [&](double target, Scene& best, bool prune) {
     double best_cost = std::numeric_limits<double>::infinity();
+    PredictMode mode;
+    if (prune) mode.above = target;
     for (int ns : specimen_counts) {
       Scene s = scene;
       if (ns > 0) s.bars[*scene.specimen].elements = ns;
@@ -322,33 +551,58 @@ GaugeErrorPrediction choose_meshes(Scene& scene) {
         return std::isfinite(cost(s, &d));
       };
       const auto error_at = [&](double delta) {
-        return affordable(delta) ? predict(s, d, kMeshErrorConstants, &cache).total
+        return affordable(delta) ? predict(s, d, kMeshErrorConstants, &cache, mode).total
                                  : std::numeric_limits<double>::infinity();
       };
-      // The finest affordable element transit (refusal by discretize() is monotone in δ)…
-      double fine = finest;
-      if (!affordable(fine)) {
-        if (!affordable(coarsest)) continue;
-        double a = finest, b = coarsest;
-        while (b / a > kSearchRatio) {
-          const double mid = std::sqrt(a * b);
-          (affordable(mid) ? b : a) = mid;
+      // Pruned: the specimen's share alone misses the target (the total is at least that share).
+      if (prune && affordable(start) &&
+          !(predict(s, d, kMeshErrorConstants, &cache, {0.0}).specimen <= target))
+        continue;
+      if (common)
+        near_exact(s, free, *common, std::min(coarsest, floor), target, mode, cache, best_cost,
+                   best);
+      // The finest affordable element transit (refusal by discretize() is monotone in δ), found
+      // only when the scan comes near it: the bisection ends within kSearchRatio above the
+      // boundary, so a transit x whose x / kSearchRatio is affordable lies above it.
+      std::optional<std::optional<double>> fine_found;
+      bool none_affordable = false;
+      const auto fine = [&] {
+        if (!fine_found) fine_found = finest_affordable(affordable, finest, coarsest);
+        none_affordable = !fine_found->has_value();
+        return fine_found->value_or(finest);
+      };
+      // max(fine, x), and in `above` whether x is above fine.
+      const auto clamp_fine = [&](double x, bool& above) {
+        if (!fine_found && x / kSearchRatio >= finest && affordable(x / kSearchRatio)) {
+          above = true;
+          return x;
         }
-        fine = b;
-      }
+        const double f = fine();
+        above = x > f;
+        return std::max(f, x);
+      };
+      bool above = false;
       // … then from the coarsest transit down, a step of kScanRatio at a time, to the first that
       // meets the target, and bisection back to its coarser neighbour: the error is not monotone
-      // in δ (the fronts' dispersion falls with it, their aliasing in the record grows).
-      double lo = coarsest, hi = coarsest, e = error_at(lo);
-      Scene closest_here = s;
+      // in δ (the fronts' dispersion falls with it, their aliasing in the record grows). Pruned,
+      // the scan stops where a mesh costs the best found: every finer one costs more.
+      double lo = clamp_fine(start, above), hi = lo;
+      if (none_affordable) continue;
+      const bool priced_out = prune && affordable(lo) && !(d.node_updates_estimate < best_cost);
+      double e = priced_out ? std::numeric_limits<double>::infinity() : error_at(lo);
+      Scene closest_here = prune ? Scene{} : s;  // pruned: `closest` is not asked for
       double closest_e = e;
-      while (!(e <= target) && lo > fine) {
+      while (!priced_out && !(e <= target) && above) {
+        // Pruned: a failing mesh costing the best already: every finer one (and the bisection
+        // below it) costs more.
+        if (prune && !(d.node_updates_estimate < best_cost)) break;
         hi = lo;
-        lo = std::max(fine, lo / kScanRatio);
+        lo = clamp_fine(lo / kScanRatio, above);
         e = error_at(lo);
-        if (e < closest_e) closest_e = e, closest_here = s;
+        if (!prune && e < closest_e) closest_e = e, closest_here = s;
       }
-      if (!(e <= target) && closest_e < closest) closest = closest_e, most_accurate = closest_here;
+      if (!prune && !(e <= target) && closest_e < closest)
+        closest = closest_e, most_accurate = closest_here;
       if (e <= target) {
         while (hi / lo > kSearchRatio) {
           const double mid = std::sqrt(lo * hi);
@@ -357,24 +611,6 @@ GaugeErrorPrediction choose_meshes(Scene& scene) {
         error_at(lo);
         if (d.node_updates_estimate < best_cost) best_cost = d.node_updates_estimate, best = s;
       }
-      if (common) {
-        // Near C = 1: the bars at transits T/k, k = 1, 2, … up to the first that meets the target.
-        Scene near = s;
-        near.simulation.courant = kNearExactCourant;
-        ChainDiscretization dn;
-        for (long k = 1; k <= kMaxCommonDivisions; ++k) {
-          if (*common / k > coarsest) continue;  // coarser than a compliant link allows
-          mesh_bars(near, free, *common / k);
-          if (!std::isfinite(cost(near, &dn))) break;
-          if (dn.node_updates_estimate >= best_cost) break;  // finer only costs more
-          const GaugeErrorPrediction p = predict(near, dn, kMeshErrorConstants, &cache);
-          if (!(p.specimen <= target)) break;  // the specimen's share alone is too much
-          if (p.total <= target) {
-            best_cost = dn.node_updates_estimate, best = near;
-            break;
-          }
-        }
-      }
     }
     return std::isfinite(best_cost);
   };
@@ -382,12 +618,17 @@ GaugeErrorPrediction choose_meshes(Scene& scene) {
   // or the record's aliasing of sharp fronts, leave no room for it) halfway between the best
   // predicted error and the tolerance; else the most accurate mesh (refused by resolve_scene()).
   Scene best = scene;
-  if (cheapest(kTargetFraction * asked, best) ||
-      (closest <= asked && cheapest(0.5 * (closest + asked), best)))
+  bool found = cheapest(kTargetFraction * asked, best, true);
+  if (!found) {
+    closest = std::numeric_limits<double>::infinity();
+    cheapest(kTargetFraction * asked, best, false);  // the lowest error, unpruned
+    found = closest <= asked && cheapest(0.5 * (closest + asked), best, false);
+  }
+  if (found)
     scene = best;
   else if (std::isfinite(closest))
     scene = most_accurate;
-  return predict_gauge_error(scene, discretize(scene));
+  return predict(scene, discretize(scene), kMeshErrorConstants, &cache);
 }
 
 }  // namespace shpb

@@ -1,8 +1,10 @@
 #include "model/scene_validation.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 
+#include "core/clock.hpp"
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
 #include "core/json_value.hpp"
@@ -80,7 +82,10 @@ ChainDiscretization resolve_scene(Scene& scene, const RunOptions& options) {
     Scene chosen = scene;
     chosen.simulation.tolerance = kDefaultTolerance;
     chosen.simulation.tolerance_is_default = true;
-    if (choose_meshes(chosen).total <= kDefaultTolerance) {
+    const auto start = std::chrono::steady_clock::now();
+    const double total = choose_meshes(chosen).total;
+    chosen.simulation.mesh_choice_time_s = seconds_since(start);
+    if (total <= kDefaultTolerance) {
       scene = std::move(chosen);
       return validate_scene(scene, options);
     }
@@ -88,7 +93,9 @@ ChainDiscretization resolve_scene(Scene& scene, const RunOptions& options) {
   }
   const auto t = scene.simulation.tolerance;
   if (!t) return automatic;
+  const auto start = std::chrono::steady_clock::now();
   const GaugeErrorPrediction p = choose_meshes(scene);
+  scene.simulation.mesh_choice_time_s = seconds_since(start);
   const ChainDiscretization d = validate_scene(scene, options);
   if (p.total <= *t) return d;
   char what[400];

@@ -70,6 +70,7 @@ struct SimulationResult {
   long long node_updates = 0;
   long long node_updates_full_model = 0;
   double wall_time_s = 0;   // the solve alone
+  double call_time_s = 0;   // the whole simulate() call: set-up, solve, records, statistics
   double energy_error = 0;  // max |total − initial| / initial
   double max_penetration_m = 0;
   double max_penetration_elements = 0;  // over the smaller neighbouring element of its interface

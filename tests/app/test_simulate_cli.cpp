@@ -45,6 +45,10 @@ TEST_CASE("Simulating a scene writes every output file with its documented heade
   for (const char* key : {"wall_time_s", "energy_error", "max_penetration_m", "version",
                           "node_updates", "node_updates_full_model"})
     CHECK(summary.contains(key));
+  // The whole run holds the mesh choice (the default tolerance's search) and the solve.
+  const double choice = summary.at("mesh_choice_time_s").get<double>();
+  CHECK(choice > 0);
+  CHECK(summary.at("run_time_s").get<double>() >= choice + summary["wall_time_s"].get<double>());
 }
 
 TEST_CASE("Simulating a scene that cannot be read exits with 2 and writes nothing",
