@@ -63,8 +63,9 @@ std::vector<std::string> undescribed_entries(const std::string& help) {
 const std::vector<std::string> kCommands = {"simulate", "process",  "compare", "dispersion",
                                             "study",    "validate", "report"};
 
-// Decimal numbers printed with a double's round-off left in ("3.5000000000000004", "0.30000000000000004"):
-// the fraction digits of each number holding six equal zeros or nines followed by a further digit.
+// Decimal numbers printed with a double's round-off left in ("3.5000000000000004",
+// "0.30000000000000004"): the fraction digits of each number holding six equal zeros or nines
+// followed by a further digit.
 std::vector<std::string> round_off_numbers(const std::string& text) {
   std::vector<std::string> found;
   for (std::size_t i = text.find('.'); i != std::string::npos; i = text.find('.', i + 1)) {
