@@ -3,7 +3,10 @@
     the executable's own whole run (summary.json run_time_s of `shpb simulate`: mesh choice,
     set-up, solve, records; median), and against its solve alone (wall_time_s);
  2. two simulations in two Python threads against the same two one after the other (the GIL is
-    released during a simulation): the ratio of the wall times, median of several repetitions.
+    released during a simulation): the ratio of the wall times, median of 15 repetitions, on a
+    pool of two threads that has run before (concurrent.futures, as a notebook's sweep uses
+    threads), and on two threads started afresh each time (each pays for its new malloc arena's
+    first page faults, a few ms against a 10 ms run).
 Usage: PYTHONPATH=build/python python3 tools/bench_python.py [build-dir] [runs]"""
 import json
 import os
@@ -13,6 +16,7 @@ import subprocess
 import sys
 import tempfile
 import threading
+from concurrent.futures import ThreadPoolExecutor
 import time
 
 import shpb
@@ -57,13 +61,21 @@ print(f"  Python / executable: {loop / exe_whole:.3f} of the whole run (like wit
       f"Python's wall / its own runs' run_time_s {loop / statistics.median(run):.3f} (the "
       f"binding's overhead)")
 
-# 2. Two simulations: one after the other, then in two threads.
+# 2. Two simulations: one after the other, then in two threads (a warm pool, then fresh threads).
 def serial():
     shpb.simulate(scene)
     shpb.simulate(scene)
 
 
-def threaded():
+pool = ThreadPoolExecutor(2)
+list(pool.map(lambda _: shpb.simulate(scene), range(4)))  # each pool thread has run once
+
+
+def pooled():
+    list(pool.map(lambda _: shpb.simulate(scene), range(2)))
+
+
+def fresh_threads():
     ts = [threading.Thread(target=shpb.simulate, args=(scene,)) for _ in range(2)]
     for t in ts:
         t.start()
@@ -71,17 +83,18 @@ def threaded():
         t.join()
 
 
-ratios, busy = [], []
-for _ in range(7):
-    t0 = time.perf_counter()
-    serial()
-    t1, c1 = time.perf_counter(), time.process_time()
-    threaded()
-    t2, c2 = time.perf_counter(), time.process_time()
-    ratios.append((t2 - t1) / (t1 - t0))
-    busy.append((c2 - c1) / (t2 - t1))  # above 1: both threads computed at the same time
 print("== two classic simulations in two Python threads against one after the other")
-print(f"  threads / serial wall: median {statistics.median(ratios):.3f} (of 7: "
-      f"{', '.join(f'{r:.2f}' for r in sorted(ratios))}); cores busy during the threaded runs "
-      f"(CPU / wall): median {statistics.median(busy):.2f}; {os.cpu_count()} cores, load "
-      f"average {os.getloadavg()[0]:.1f}")
+for name, threaded in (("a pool of two threads", pooled), ("two fresh threads", fresh_threads)):
+    ratios, busy = [], []
+    for _ in range(15):
+        t0 = time.perf_counter()
+        serial()
+        t1, c1 = time.perf_counter(), time.process_time()
+        threaded()
+        t2, c2 = time.perf_counter(), time.process_time()
+        ratios.append((t2 - t1) / (t1 - t0))
+        busy.append((c2 - c1) / (t2 - t1))  # above 1: both threads computed at the same time
+    print(f"  {name}: threads / serial wall median {statistics.median(ratios):.3f} (of 15: "
+          f"{', '.join(f'{r:.2f}' for r in sorted(ratios))}); cores busy (CPU / wall) median "
+          f"{statistics.median(busy):.2f}; {os.cpu_count()} cores, load average "
+          f"{os.getloadavg()[0]:.1f}")
