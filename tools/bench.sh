@@ -20,7 +20,9 @@
 #     against the executable's solve time, two runs in two Python threads against serial;
 #  8. `shpb plan` (tools/bench_plan.sh, skipped with BENCH_PLAN=0): the classic bars planned for
 #     1000, 2500 and 5000 1/s with and without a pulse shaper, each re-simulated at 0.5 %;
-#  9. with BENCH_FIT_COVERAGE=1 only (about an hour): the coverage of the fit's 95 % intervals
+#  9. the fit's intervals on the classic-bar copper campaign against its truth (skipped with
+#     BENCH_FIT_OFHC=0);
+# 10. with BENCH_FIT_COVERAGE=1 only (about an hour): the coverage of the fit's 95 % intervals
 #     over 100 synthetic campaigns (tools/fit_interval_coverage).
 # Usage: tools/bench.sh [build-dir] [repetitions]
 set -euo pipefail
@@ -130,7 +132,17 @@ if [ "${BENCH_PLAN:-1}" != 0 ]; then
   tools/bench_plan.sh "$BUILD" 2
 fi
 
-# 9. Coverage of the fit's 95 % intervals over 100 synthetic campaigns (tools/fit_interval_coverage:
+# 9. The classic-bar copper campaign (three OFHC copper tests at 8, 15 and 26 m/s on the classic
+#    bars, 1 % white noise, A, B, n, C started 20 % off, seed 2024, 20 bootstrap refits; about 100 s
+#    of CPU): each reported 95 % interval must hold the truth (skipped with BENCH_FIT_OFHC=0).
+if [ "${BENCH_FIT_OFHC:-1}" != 0 ]; then
+  cmake --build "$BUILD" -j 2 --target fit_interval_coverage shpb >/dev/null
+  echo
+  echo "== fit intervals on the classic-bar copper campaign (20 bootstrap refits)"
+  "$BUILD"/fit_interval_coverage --ofhc-classic --campaigns 1 --first 2024 --bootstrap 20 --threads 2
+fi
+
+# 10. Coverage of the fit's 95 % intervals over 100 synthetic campaigns (tools/fit_interval_coverage:
 #    two materials, two noise levels, white and coloured noise, 30 bootstrap refits each; about an
 #    hour on 2 cores): only with BENCH_FIT_COVERAGE=1. BENCH_FIT_COVERAGE_CAMPAIGNS=N runs fewer,
 #    BENCH_FIT_COVERAGE_NOISE=white|coloured only the campaigns of that noise.

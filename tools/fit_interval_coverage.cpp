@@ -12,7 +12,7 @@
 //                               [--keep DIR] [--ofhc-classic] [--noise white|coloured] [--from K]
 // --noise runs only the campaigns of that noise (the same campaigns and seeds as in the full run:
 // --campaigns N then counts those); --from K starts at the K-th of them (to continue a run).
-// --ofhc-classic fits, N times from seed --first on, the campaign of the suite's interval test
+// --ofhc-classic fits, N times from seed --first on, the classic-bar copper campaign (make bench)
 // (three copper tests on the classic bars at 8, 15, 26 m/s, 1 % white noise).
 #include <chrono>
 #include <cmath>
@@ -51,7 +51,7 @@ int main(int argc, char** argv) {
   int only_colour = -1;  // --noise: 0 white, 1 coloured, -1 both
   for (int i = 1; i < argc; i += 2) {
     const std::string a = argv[i];
-    if (a == "--ofhc-classic") {  // the one campaign of the suite's interval test, printed
+    if (a == "--ofhc-classic") {  // the classic-bar copper campaign, printed
       classic = true, --i;
       continue;
     }
@@ -99,7 +99,7 @@ int main(int argc, char** argv) {
     setup.noise_correlation_samples = correlation[(c / 4) % 2];
     unsigned seed = first + 10 * static_cast<unsigned>(c);
     if (classic) {
-      // Classic bars, strikers 8, 15, 26 m/s, 1 % white noise (tests/fit/test_fit_intervals.cpp).
+      // Classic bars, strikers 8, 15, 26 m/s, 1 % white noise, seed 2024 in make bench.
       setup.classic_bars = true;
       setup.velocities = {8, 15, 26};
       setup.noise_fraction = 0.01;

@@ -1,6 +1,8 @@
 // shpb fit's intervals through the executable (docs/methods.md §9, "Intervals"): the parametric
-// bootstrap on the fit's own synthetic campaign (light: the sanitizer builds run it), and the
-// reported intervals on three simulated OFHC copper tests on the classic bars.
+// bootstrap on the fit's own synthetic campaign (light: the sanitizer builds run it). Whether the
+// reported intervals hold the truth is a statistical question with minutes of CPU per campaign:
+// the benchmarks answer it (`make bench`: the classic-bar copper campaign, and with
+// BENCH_FIT_COVERAGE=1 the coverage over 100 campaigns; tools/fit_interval_coverage.cpp).
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
@@ -64,34 +66,6 @@ TEST_CASE("fit's bootstrap refits the campaign and reports each parameter's 95 %
   json check = shpb_test::synthetic_scene(18.5, dir / "out/fit.json", "asynchronous");
   std::ofstream(dir / "check.json") << check.dump(1);
   CHECK(run_shpb({"validate", (dir / "check.json").string()}).code == 0);
-  fs::remove_all(dir);
-}
-
-// Three copper tests on the classic bars at 8, 15 and 26 m/s (a rate span of about 3), 1 % white
-// noise, A, B, n, C started 20 % off: the linearised standard errors missed B and C on such a
-// campaign (B 3 % off at more than two of them, C 16 %); every reported interval must hold the
-// truth, and C — worth C ln 3 ≈ 3 % of the stress over the span — is said weakly identified
-// when its interval is that wide.
-TEST_CASE("fit's reported intervals hold the truth on a classic-bar copper campaign",
-          "[fit][bootstrap][release-only]") {
-  const fs::path dir = shpb_test::scratch_dir("fit_intervals_classic");
-  shpb_test::SyntheticSetup setup;
-  setup.classic_bars = true;
-  setup.velocities = {8, 15, 26};
-  shpb_test::write_synthetic_campaign(dir, kCopper, kRateFilter, "asynchronous", 2024, setup);
-  const auto r = run_shpb({"fit", (dir / "campaign.json").string(), "-o", (dir / "out").string(),
-                           "--threads", "2", "-q", "--bootstrap", "20"});
-  INFO(r.err);
-  REQUIRE(r.code == 0);
-  const json s = json::parse(std::ifstream(dir / "out/summary.json"));
-  INFO(s.dump(1));
-  for (const auto& [name, truth] : kTruth) {
-    const json& p = s["parameters"][name];
-    INFO(name << " truth " << truth << " " << p.dump());
-    REQUIRE(p["interval_95"].is_array());
-    CHECK(p["interval_95"][0].get<double>() <= truth);
-    CHECK(truth <= p["interval_95"][1].get<double>());
-  }
   fs::remove_all(dir);
 }
 

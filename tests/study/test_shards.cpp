@@ -117,8 +117,11 @@ TEST_CASE("A stability sweep run in shards through parts equals the in-process s
     CHECK(sharded.boundaries[i].critical_courant == whole.boundaries[i].critical_courant);
 }
 
+// Release only (18 s under the sanitizers): plan, run and merge through the executable run
+// sanitized in the tests of edited material files, foreign parts and refused merges, the pareto
+// sweep in its own test, and sharded sweeps in process in the stability and Monte Carlo tests.
 TEST_CASE("shpb study --plan/--run/--merge equals the in-process sweep apart from wall times",
-          "[study][shards][app]") {
+          "[study][shards][app][release-only]") {
   const fs::path dir = shpb_test::scratch_dir("study_shards");
   const fs::path plan = dir / "plan";
   auto run = [](std::vector<std::string> args) {
