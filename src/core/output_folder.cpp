@@ -88,26 +88,37 @@ std::optional<pid_t> temp_owner(const std::string& name, const std::string& pref
   return static_cast<pid_t>(pid);
 }
 
-std::string temporary_marker_text() {
+// The marker of a temporary of process `pid` on this host.
+std::string temporary_marker_text(pid_t pid) {
   return std::string(kTemporarySignature) + "\nhost: " + host_name() +
-         "\npid: " + std::to_string(::getpid()) + "\n";
+         "\npid: " + std::to_string(pid) + "\n";
 }
 
-// The folder's marker says it is a temporary of process `pid` on this host.
-bool marked_temporary(const fs::path& folder, pid_t pid) {
+// The folder is provably a temporary of process `pid` on this host: its marker names this host
+// and that pid; or the process was killed while creating it (make_temporary: the folder, then its
+// marker in one write), so it holds nothing, or only a marker cut short — a prefix of that text.
+bool provably_temporary(const fs::path& folder, pid_t pid) {
+  const std::string expected = temporary_marker_text(pid);
   std::error_code ec;
+  std::size_t entries = 0;
+  for (auto it = fs::directory_iterator(folder, ec); !ec && it != fs::directory_iterator();
+       it.increment(ec))
+    ++entries;
+  if (ec) return false;
+  if (entries == 0) return true;
   const fs::path marker = folder / kTemporaryMarker;
   if (!fs::is_regular_file(fs::symlink_status(marker, ec))) return false;
   std::ifstream in(marker);
   std::ostringstream text;
   text << in.rdbuf();
-  return text.str() == std::string(kTemporarySignature) + "\nhost: " + host_name() +
-                           "\npid: " + std::to_string(pid) + "\n";
+  const std::string found = text.str();
+  return found == expected || (entries == 1 && expected.rfind(found, 0) == 0);
 }
 
 // Temporaries left by a run that was killed outright (SIGKILL, power loss) are removed when the
 // next run starts, and only what is provably shpb's: the exact name of the scheme with this
-// host's tag, a pid no process has now, and for a folder the marker naming this host and that pid.
+// host's tag, a pid no process has now, and for a folder the marker naming this host and that pid
+// (or, killed while the folder was being made, nothing but a marker cut short).
 // Anything else (".res.tmp-2024-05-01.tar", a backup) is the user's and stays.
 void remove_stale_temporaries(const fs::path& final_path) {
   const std::string prefix = temp_prefix(final_path);
@@ -119,7 +130,7 @@ void remove_stale_temporaries(const fs::path& final_path) {
     const auto type = fs::symlink_status(e.path(), rm).type();
     if (type == fs::file_type::regular)
       fs::remove(e.path(), rm);
-    else if (type == fs::file_type::directory && marked_temporary(e.path(), *pid))
+    else if (type == fs::file_type::directory && provably_temporary(e.path(), *pid))
       fs::remove_all(e.path(), rm);
   }
 }
@@ -170,7 +181,7 @@ fs::path make_temporary(const fs::path& final_path, bool folder) {
     if (folder) {
       if (fs::create_directory(candidate, ec)) {
         try {
-          write_text_file(candidate / kTemporaryMarker, temporary_marker_text());
+          write_text_file(candidate / kTemporaryMarker, temporary_marker_text(::getpid()));
         } catch (...) {
           fs::remove_all(candidate, ec);
           throw;
@@ -301,7 +312,7 @@ void OutputFolder::commit() {
                         "cannot replace the previous result: " + ec.message());
     // Marked as this run's: a run killed from here on leaves a twin the next one may remove.
     try {
-      write_text_file(old / kTemporaryMarker, temporary_marker_text());
+      write_text_file(old / kTemporaryMarker, temporary_marker_text(::getpid()));
     } catch (const WriteError&) {  // unmarked, the twin is left for the user: nothing is lost
     }
   }

@@ -9,6 +9,7 @@
 
 #include "child_process.hpp"
 #include "core/error.hpp"
+#include "core/file_digest.hpp"
 #include "core/output_folder.hpp"
 
 // This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
@@ -23,6 +24,18 @@ pid_t dead_pid() {
   if (pid == 0) ::_exit(0);
   ::waitpid(pid, nullptr, 0);
   return pid;
+}
+
+// The name a temporary of process `pid` on this host has for the output "out": the scheme
+// of core/output_folder.cpp, ".<name>.tmp-<pid>-<16 hex digits of the host name's
+// FNV-1a>-<random>".
+std::string temporary_name(pid_t pid, int random) {
+  char host[256] = {};
+  ::gethostname(host, sizeof host - 1);
+  char tag[17];
+  std::snprintf(tag, sizeof tag, "%016llx",
+                static_cast<unsigned long long>(shpb::fnv1a64(std::string(host))));
+  return ".out.tmp-" + std::to_string(pid) + "-" + tag + "-" + std::to_string(random);
 }
 }  // namespace
 
@@ -85,6 +98,34 @@ TEST_CASE("Folders that only look like temporaries of a dead run are kept",
   for (const auto& d : {dead, dead_old, alive, other, look_alike}) fs::create_directory(d);
   shpb::OutputFolder folder(scratch.path() / "out");
   for (const auto& d : {dead, dead_old, alive, other, look_alike}) CHECK(fs::exists(d));
+}
+
+TEST_CASE("A run killed while making its temporary folder leaves nothing the next run keeps",
+          "[robustness][output]") {
+  // make_temporary creates the folder, then writes its marker in one write: a SIGKILL in between
+  // leaves the exact name with a dead pid and nothing inside, or a marker cut short. Nothing of
+  // anyone's is in such a folder, so the next run into the same -o removes it; a folder that also
+  // holds another file is not provably shpb's and stays.
+  ScratchFolder scratch("folder");
+  const pid_t pid = dead_pid();
+  const fs::path empty = scratch.path() / temporary_name(pid, 1);
+  const fs::path empty_marker = scratch.path() / temporary_name(pid, 2);
+  const fs::path cut_marker = scratch.path() / temporary_name(pid, 3);
+  const fs::path with_file = scratch.path() / temporary_name(pid, 4);
+  const fs::path foreign_marker = scratch.path() / temporary_name(pid, 5);
+  for (const auto& d : {empty, empty_marker, cut_marker, with_file, foreign_marker})
+    fs::create_directory(d);
+  write_bytes(empty_marker / ".shpb-temporary", "");
+  write_bytes(cut_marker / ".shpb-temporary", "shpb temporary output: remo");
+  write_bytes(with_file / ".shpb-temporary", "shpb temporary output: remo");
+  write_bytes(with_file / "notes.txt", "the user's");
+  write_bytes(foreign_marker / ".shpb-temporary", "something else");
+  shpb::OutputFolder folder(scratch.path() / "out");
+  CHECK_FALSE(fs::exists(empty));
+  CHECK_FALSE(fs::exists(empty_marker));
+  CHECK_FALSE(fs::exists(cut_marker));
+  CHECK(fs::exists(with_file / "notes.txt"));
+  CHECK(fs::exists(foreign_marker));
 }
 
 }  // namespace tests_robustness_test_output_folder
