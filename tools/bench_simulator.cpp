@@ -155,6 +155,16 @@ void tolerance_against_default(const Scene& scene, double tolerance,
   std::printf("; CPU time x%.2f the automatic meshes'\n", t.cpu_s / automatic.cpu_s);
 }
 
+// The scene of `file`, or nothing (a line says why) when it cannot be read: the table goes on.
+std::optional<Scene> read_or_skip(const std::string& file) {
+  try {
+    return read_scene(file);
+  } catch (const std::exception& e) {
+    std::printf("%s: skipped (%s)\n", file.c_str(), e.what());
+    return std::nullopt;
+  }
+}
+
 // One row per scene: the automatic meshes (the default before the default tolerance) against the
 // default run's (kDefaultTolerance, model/scene_validation.hpp resolve_scene): median solve time
 // (summary.json's wall_time_s), CPU time, node updates, and the gauge error against the study's
@@ -167,23 +177,18 @@ void defaults_table(const std::vector<std::string>& files, const SimulationOptio
               "cpu_ms", "updates", "error", "choice_ms", "wall_ms", "cpu_ms", "updates", "error",
               "predicted");
   for (const std::string& file : files) {
-    Scene automatic;
-    try {
-      automatic = read_scene(file);
-    } catch (const std::exception& e) {
-      std::printf("%s: skipped (%s)\n", file.c_str(), e.what());
-      continue;
-    }
+    const auto read = read_or_skip(file);
+    if (!read) continue;
+    Scene automatic = *read;
     RunOptions none;
     none.default_tolerance = false;
     resolve_scene(automatic, none);
     // The mesh choice's CPU time (resolve_scene: validation and, with the default, the error
     // model's search), median of `repeat`: a run pays it before its solve.
-    const Scene read = read_scene(file);
     Scene now;
     std::vector<double> choice;
     for (int i = 0; i < repeat; ++i) {
-      now = read;
+      now = *read;
       const std::clock_t c0 = std::clock();
       resolve_scene(now);
       choice.push_back(double(std::clock() - c0) / CLOCKS_PER_SEC);
@@ -244,13 +249,9 @@ int main(int argc, char** argv) {
   }
 
   for (const std::string& file : scenes) {
-    Scene scene;
-    try {
-      scene = read_scene(file);
-    } catch (const std::exception& e) {
-      std::printf("%s: skipped (%s)\n", file.c_str(), e.what());
-      continue;
-    }
+    auto read = read_or_skip(file);
+    if (!read) continue;
+    Scene scene = std::move(*read);
     if (std::none_of(scene.bars.begin(), scene.bars.end(),
                      [](const BarSpec& bar) { return bar.velocity_m_s != 0; })) {
       std::printf(

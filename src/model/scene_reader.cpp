@@ -9,6 +9,7 @@
 #include "core/json_value.hpp"
 #include "model/calibration.hpp"
 #include "model/input_limits.hpp"
+#include "model/interface_name.hpp"
 #include "model/material_reader.hpp"
 #include "model/measurement_reader.hpp"
 #include "model/scene.hpp"
@@ -241,8 +242,7 @@ class SceneReader {
     // Interface columns are "<left>-<right>_...": bars "a-b","c" and "a","b-c" would share them.
     std::map<std::string, std::size_t> interfaces;  // interface name → left bar index
     for (std::size_t i = 0; i + 1 < scene.bars.size(); ++i)
-      if (auto [it, ok] = interfaces.emplace(scene.bars[i].name + "-" + scene.bars[i + 1].name, i);
-          !ok)
+      if (auto [it, ok] = interfaces.emplace(interface_name(scene, i), i); !ok)
         throw JsonObject(items[i + 1])
             .require("name", "")
             .error("the interface " + it->first + " (bars " + std::to_string(i) + " and " +

@@ -18,6 +18,7 @@
 #include "core/error.hpp"
 #include "core/output_folder.hpp"
 #include "core/parallel_runner.hpp"
+#include "model/interface_name.hpp"
 #include "model/scene_validation.hpp"
 
 namespace shpb {
@@ -90,8 +91,7 @@ LoadingMetrics loading_metrics(const TimeSeries& specimen, std::span<const doubl
 FaceForces face_forces(const SimulationResult& run, const Scene& scene) {
   const std::size_t s = *scene.specimen;
   auto force = [&](std::size_t left) -> const std::vector<double>& {
-    return run.interfaces.column(scene.bars[left].name + "-" + scene.bars[left + 1].name +
-                                 "_force_N");
+    return run.interfaces.column(interface_name(scene, left) + "_force_N");
   };
   return {force(s - 1), force(s)};
 }

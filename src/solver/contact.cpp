@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "model/interface_name.hpp"
+
 namespace shpb {
 
 InterfaceModel make_interface_model(std::string name, ContactMethod method,
@@ -57,9 +59,9 @@ InterfaceModel interface_model(const Scene& scene, const ChainDiscretization& d,
     return NeighbourInfo{b.material.youngs_modulus_Pa * b.area_m2 / h, b.material.wave_speed_m_s(),
                          h};
   };
-  return make_interface_model(
-      scene.bars[k].name + "-" + scene.bars[k + 1].name, interface_method(scene.contact, k),
-      interface_penalty(scene.contact, k), scene.bars[k].gap_m, neighbour(k), neighbour(k + 1));
+  return make_interface_model(interface_name(scene, k), interface_method(scene.contact, k),
+                              interface_penalty(scene.contact, k), scene.bars[k].gap_m,
+                              neighbour(k), neighbour(k + 1));
 }
 
 ContactResult solve_contact(const InterfaceModel& model, InterfaceState& state, EndState left,
