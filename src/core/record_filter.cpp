@@ -23,6 +23,24 @@ std::vector<double> record_smoothed(const std::vector<double>& x, int sigma, int
   y.reserve(x.size() / stride + 1);
   for (long k = 0; k < n; k += stride) {
     double s = 0, weight = 0;
+    if (k >= half && k + 3 * stride + half < n) {
+      // Four outputs at once, each summed in the same order as alone: the four independent sums
+      // keep the floating-point unit busy where one waits on its own last addition.
+      const double* x0 = x.data() + (k - half);
+      const double* x1 = x0 + stride;
+      const double* x2 = x1 + stride;
+      const double* x3 = x2 + stride;
+      double s1 = 0, s2 = 0, s3 = 0;
+      for (int j = 0; j <= 2 * half; ++j) {
+        s += w[j] * x0[j];
+        s1 += w[j] * x1[j];
+        s2 += w[j] * x2[j];
+        s3 += w[j] * x3[j];
+      }
+      y.insert(y.end(), {s / inside, s1 / inside, s2 / inside, s3 / inside});
+      k += 3 * stride;
+      continue;
+    }
     if (k >= half && k + half < n) {  // the kernel inside the record: no bounds to check
       const double* xk = x.data() + (k - half);
       for (int j = 0; j <= 2 * half; ++j) s += w[j] * xk[j];

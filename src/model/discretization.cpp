@@ -59,29 +59,74 @@ std::string duration_text(double seconds) {
   return b;
 }
 
-// `duration_s` includes the free flight before first contact; `recorded_s` is what is sampled.
-void refuse_unaffordable(const Scene& scene, const std::vector<double>& elements,
-                         const std::vector<double>& steps, double duration_s, double recorded_s,
-                         ChainDiscretization& estimate) {
-  double mesh_bytes = 0, node_updates = 0, biggest = 0;
-  std::size_t largest = 0, gauges = 0;
-  for (std::size_t i = 0; i < elements.size(); ++i) {
-    mesh_bytes += kBytesPerElement * elements[i];
-    node_updates += (elements[i] + 1) * steps[i];
-    if (elements[i] > biggest) biggest = elements[i], largest = i;
-    gauges += scene.bars[i].gauges.size();
+// What each bar costs over the run (free flight included), in doubles before any count is cast
+// to an integer: its elements and its steps (at global steps the smallest step's count).
+struct BarCost {
+  double elements = 0, run_steps = 0;
+};
+std::vector<BarCost> bar_costs(const Scene& scene, double run_s, double courant) {
+  std::vector<BarCost> costs;
+  costs.reserve(scene.bars.size());
+  double global_dt = 0;
+  for (std::size_t i = 0; i < scene.bars.size(); ++i) {
+    const double elements = automatic_elements(scene, i);
+    const double dt = courant * stable_step_factor(scene, i) * scene.bars[i].length_m / elements /
+                      scene.bars[i].material.wave_speed_m_s();
+    costs.push_back({elements, std::ceil(run_s / dt)});
+    global_dt = i == 0 ? dt : std::min(global_dt, dt);
   }
+  if (scene.simulation.stepping == Stepping::kGlobal)
+    for (BarCost& c : costs) c.run_steps = std::ceil(run_s / global_dt);
+  return costs;
+}
+
+// The recorded series' bytes: every full-rate column twice (the recorder's buffer and the result
+// handed to the writers) and one time column per series (gauges, interfaces, specimen).
+double record_bytes(const Scene& scene, double recorded_s) {
+  std::size_t gauges = 0;
+  for (const BarSpec& b : scene.bars) gauges += b.gauges.size();
   const double interfaces = static_cast<double>(scene.bars.size()) - 1;
   const double specimen = scene.specimen ? 1 : 0;
   const double columns = static_cast<double>(gauges) + 2 * interfaces + 5 * specimen;
   const double series = (gauges > 0 ? 1 : 0) + (interfaces > 0 ? 1 : 0) + specimen;
-  const double record_bytes =
-      8 * (2 * columns + series) * recorded_s * scene.simulation.sample_rate_Hz;
-  const double memory = kProcessBytes + mesh_bytes + record_bytes;
-  estimate.memory_estimate_bytes = memory;
-  estimate.node_updates_estimate = node_updates;
-  if (memory <= kMaxMemoryBytes && node_updates <= kMaxNodeUpdates) return;
+  return 8 * (2 * columns + series) * recorded_s * scene.simulation.sample_rate_Hz;
+}
 
+// The chain's estimates from its bars' costs and its record: one sum for discretize() and for a
+// mesh search's re-pricing (estimates_with_bar()). `cost(i)` is bar i's BarCost.
+struct Estimates {
+  double mesh_bytes = 0, node_updates = 0;
+};
+template <class CostOf>
+Estimates sum_estimates(std::size_t bars, CostOf cost, double records, ChainDiscretization& d) {
+  Estimates e;
+  for (std::size_t i = 0; i < bars; ++i) {
+    const BarCost c = cost(i);
+    e.mesh_bytes += kBytesPerElement * c.elements;
+    e.node_updates += (c.elements + 1) * c.run_steps;
+  }
+  d.record_bytes_estimate = records;
+  d.memory_estimate_bytes = kProcessBytes + e.mesh_bytes + records;
+  d.node_updates_estimate = e.node_updates;
+  return e;
+}
+
+// `run_s` includes the free flight before first contact; `recorded_s` is what is sampled.
+void refuse_unaffordable(const Scene& scene, const std::vector<BarCost>& costs, double run_s,
+                         double recorded_s, ChainDiscretization& estimate) {
+  const double records = record_bytes(scene, recorded_s);
+  const double mesh_bytes =
+      sum_estimates(
+          costs.size(), [&](std::size_t i) { return costs[i]; }, records, estimate)
+          .mesh_bytes;
+  if (affordable(estimate)) return;
+  const double memory = estimate.memory_estimate_bytes;
+  const double node_updates = estimate.node_updates_estimate;
+  double biggest = 0;
+  std::size_t largest = 0;
+  for (std::size_t i = 0; i < costs.size(); ++i)
+    if (costs[i].elements > biggest) biggest = costs[i].elements, largest = i;
+  const double duration_s = run_s;
   std::string where, value;
   const double flight = first_contact_delay_s(scene);
   if (flight > 0.5 * duration_s && node_updates > kMaxNodeUpdates) {
@@ -90,10 +135,12 @@ void refuse_unaffordable(const Scene& scene, const std::vector<double>& elements
     while (k + 1 < scene.bars.size() && !(scene.bars[k].gap_m > 0)) ++k;
     where = "bars[" + std::to_string(k) + "].gap";
     value = JsonValue::format(scene.bars[k].gap_m, Dimension::kLength);
-  } else if (record_bytes > mesh_bytes && memory > kMaxMemoryBytes) {
+  } else if (records > mesh_bytes && memory > kMaxMemoryBytes) {
     // The record is duration × sample rate: the sample rate is to blame when it samples finer
     // than the solver steps (samples between steps hold nothing new), else the duration.
-    const double finest_step_s = duration_s / *std::max_element(steps.begin(), steps.end());
+    double most_steps = 0;
+    for (const BarCost& c : costs) most_steps = std::max(most_steps, c.run_steps);
+    const double finest_step_s = duration_s / most_steps;
     const bool oversampled = scene.simulation.sample_rate_Hz * finest_step_s > 1;
     const bool duration = scene.simulation.duration_s && !oversampled;
     where = duration ? "simulation.duration" : "simulation.sample_rate";
@@ -154,36 +201,36 @@ double default_duration_s(const Scene& scene) {
   return 2.0 * longest_transit_s(scene) * kDurationMargin;
 }
 
-ChainDiscretization discretize(const Scene& scene) {
-  for (std::size_t i = 0; i < scene.bars.size(); ++i)
-    if (!scene.bars[i].has_material)
-      throw input_error(scene.file.string(), "bars[" + std::to_string(i) + "].material",
-                        "(missing)",
-                        "a simulation needs every bar's material (only `process` works without "
-                        "the specimen's)");
+bool affordable(const ChainDiscretization& d) {
+  return d.memory_estimate_bytes <= kMaxMemoryBytes && d.node_updates_estimate <= kMaxNodeUpdates;
+}
+
+ChainEstimates estimates_with_bar(const ChainDiscretization& d, std::size_t i,
+                                  const BarDiscretization& b) {
+  ChainDiscretization e;
+  sum_estimates(
+      d.bars.size(),
+      [&](std::size_t k) {
+        const BarDiscretization& bar = k == i ? b : d.bars[k];
+        return BarCost{1.0 * bar.elements, bar.run_steps};
+      },
+      d.record_bytes_estimate, e);
+  return {e.memory_estimate_bytes, e.node_updates_estimate, affordable(e)};
+}
+
+namespace {
+
+// discretize() past its checks: `costs` from bar_costs() (every count fits an int).
+ChainDiscretization plan(const Scene& scene, double duration_s, double courant,
+                         const std::vector<BarCost>& costs) {
   ChainDiscretization d;
   d.sample_rate_Hz = scene.simulation.sample_rate_Hz;
   d.stepping = scene.simulation.stepping;
-  d.duration_s = scene.simulation.duration_s.value_or(default_duration_s(scene));
-  const double courant = scene.simulation.courant.value_or(kDefaultCourant);
-  const double run_s = d.duration_s + first_contact_delay_s(scene);  // free flight included
-  {  // the cost, estimated in doubles before any count is cast to an integer
-    std::vector<double> elements, steps;
-    double global_dt = 0;
-    for (std::size_t i = 0; i < scene.bars.size(); ++i) {
-      elements.push_back(automatic_elements(scene, i));
-      const double dt = courant * stable_step_factor(scene, i) * scene.bars[i].length_m /
-                        elements.back() / scene.bars[i].material.wave_speed_m_s();
-      steps.push_back(std::ceil(run_s / dt));
-      global_dt = i == 0 ? dt : std::min(global_dt, dt);
-    }
-    if (d.stepping == Stepping::kGlobal)
-      for (auto& s : steps) s = std::ceil(run_s / global_dt);
-    refuse_unaffordable(scene, elements, steps, run_s, d.duration_s, d);
-  }
+  d.duration_s = duration_s;
+  d.bars.reserve(scene.bars.size());
   for (std::size_t i = 0; i < scene.bars.size(); ++i) {
     BarDiscretization b;
-    b.elements = static_cast<int>(automatic_elements(scene, i));
+    b.elements = static_cast<int>(costs[i].elements);
     b.element_length_m = scene.bars[i].length_m / b.elements;
     // The stable step is fixed at the elastic bound for every material law (material_law.hpp),
     // for the shortest element finite strain allows (above): there the Courant number is the
@@ -192,6 +239,7 @@ ChainDiscretization discretize(const Scene& scene) {
     b.critical_step_s = b.element_length_m / b.wave_speed_m_s;
     b.time_step_s = courant * stable_step_factor(scene, i) * b.critical_step_s;
     b.courant = b.time_step_s / b.critical_step_s;  // on the reference length h
+    b.run_steps = costs[i].run_steps;
     d.bars.push_back(b);
   }
   if (d.stepping == Stepping::kGlobal && !d.bars.empty()) {
@@ -203,6 +251,38 @@ ChainDiscretization discretize(const Scene& scene) {
     }
   }
   for (auto& b : d.bars) b.steps = static_cast<long>(std::ceil(d.duration_s / b.time_step_s));
+  return d;
+}
+
+}  // namespace
+
+ChainDiscretization discretize(const Scene& scene) {
+  for (std::size_t i = 0; i < scene.bars.size(); ++i)
+    if (!scene.bars[i].has_material)
+      throw input_error(scene.file.string(), "bars[" + std::to_string(i) + "].material",
+                        "(missing)",
+                        "a simulation needs every bar's material (only `process` works without "
+                        "the specimen's)");
+  const double duration_s = scene.simulation.duration_s.value_or(default_duration_s(scene));
+  const double courant = scene.simulation.courant.value_or(kDefaultCourant);
+  const double run_s = duration_s + first_contact_delay_s(scene);  // free flight included
+  const std::vector<BarCost> costs = bar_costs(scene, run_s, courant);
+  ChainDiscretization estimate;
+  refuse_unaffordable(scene, costs, run_s, duration_s, estimate);
+  ChainDiscretization d = plan(scene, duration_s, courant, costs);
+  d.memory_estimate_bytes = estimate.memory_estimate_bytes;
+  d.node_updates_estimate = estimate.node_updates_estimate;
+  d.record_bytes_estimate = estimate.record_bytes_estimate;
+  return d;
+}
+
+ChainDiscretization plan_chain(const Scene& scene, double duration_s) {
+  const double courant = scene.simulation.courant.value_or(kDefaultCourant);
+  const std::vector<BarCost> costs =
+      bar_costs(scene, duration_s + first_contact_delay_s(scene), courant);
+  ChainDiscretization d = plan(scene, duration_s, courant, costs);
+  sum_estimates(
+      costs.size(), [&](std::size_t i) { return costs[i]; }, record_bytes(scene, duration_s), d);
   return d;
 }
 

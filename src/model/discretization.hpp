@@ -41,6 +41,7 @@ struct BarDiscretization {
   double time_step_s = 0;       // this bar's own Δt (asynchronous) or the global one
   double courant = 0;           // c Δt / h
   long steps = 0;               // steps to cover the duration
+  double run_steps = 0;         // steps over the run with its free flight (the cost estimate)
 };
 
 struct ChainDiscretization {
@@ -50,9 +51,27 @@ struct ChainDiscretization {
   Stepping stepping = Stepping::kAsynchronous;
   double memory_estimate_bytes = 0;  // peak memory of the run, outputs included (estimate)
   double node_updates_estimate = 0;  // free flight across initial gaps included
+  double record_bytes_estimate = 0;  // the recorded series' share of the memory
 };
 
+// The scene's discretization; refuses (InputError naming the entry that drives the cost) a run
+// beyond this machine's budget of memory and node updates.
 ChainDiscretization discretize(const Scene& scene);
+
+// Whether a discretization's estimates are within that budget.
+bool affordable(const ChainDiscretization& d);
+
+// For a search over meshes (model/mesh_error_model.cpp), which prices many candidates:
+// discretize() for a scene of `duration_s` whose element counts fit an int, without the refusal
+// (see affordable()); and the estimates of `d` with bar i discretized as `b` instead — a plan of
+// the chain at asynchronous steps, where each bar's step and cost are its own.
+ChainDiscretization plan_chain(const Scene& scene, double duration_s);
+struct ChainEstimates {
+  double memory_bytes = 0, node_updates = 0;
+  bool affordable = false;
+};
+ChainEstimates estimates_with_bar(const ChainDiscretization& d, std::size_t i,
+                                  const BarDiscretization& b);
 
 // docs/scene-format.md default duration: every gauge has seen the pulses of interest pass (the
 // incident pulse, and left of the specimen the reflected one; model/wave_travel.hpp), plus 10 %.

@@ -317,7 +317,35 @@ struct SearchCache {
 // enough to tell that a mesh misses `above` (then total is that bound).
 struct PredictMode {
   double above = std::numeric_limits<double>::infinity();
+  // The bound on the bars' share shows a miss whatever the specimen (a search reuses it for every
+  // specimen mesh); set by predict() to whether the bars' share is exact (else that bound).
+  bool bars_alone = false;
+  bool* bars_exact = nullptr;
 };
+
+// The predicted error from the bars' share, the specimen's and Σ e² of the other law bars.
+double combined_error(double bars, double specimen, double others) {
+  return others > 0 ? std::sqrt(bars * bars + specimen * specimen + others)
+                    : std::hypot(bars, specimen);
+}
+
+// e_law of a material-law bar meshed as `b` for records of sample interval Δs (the model's
+// first-order specimen term, docs/methods.md §1.1).
+double law_bar_share(const BarDiscretization& b, double sample_s, const MeshErrorConstants& k) {
+  return k.specimen * std::pow(b.element_length_m / b.wave_speed_m_s / sample_s, k.specimen_order);
+}
+
+// Σ e_law² of the material-law bars other than the specimen (pulse shapers).
+double other_law_bars(const Scene& scene, const ChainDiscretization& d, double sample_s,
+                      const MeshErrorConstants& k) {
+  double others = 0;
+  for (std::size_t i = 0; i < scene.bars.size(); ++i)
+    if (!is_specimen(scene, i) && !scene.bars[i].material.is_elastic()) {
+      const double e = law_bar_share(d.bars[i], sample_s, k);
+      others += e * e;
+    }
+  return others;
+}
 
 GaugeErrorPrediction predict(const Scene& scene, const ChainDiscretization& d,
                              const MeshErrorConstants& k, SearchCache* cache,
@@ -341,22 +369,9 @@ GaugeErrorPrediction predict(const Scene& scene, const ChainDiscretization& d,
   }
   const FrequencyWeights& f = *c.weights;
 
-  const auto resolution = [&](std::size_t i) {
-    const BarDiscretization& b = d.bars[i];
-    return k.specimen *
-           std::pow(b.element_length_m / b.wave_speed_m_s / sample_s, k.specimen_order);
-  };
-  if (scene.specimen) p.specimen = resolution(*scene.specimen);
-  double others = 0;  // Σ e_law² of the other material-law bars (pulse shapers)
-  for (std::size_t i = 0; i < scene.bars.size(); ++i)
-    if (!is_specimen(scene, i) && !scene.bars[i].material.is_elastic()) {
-      const double e = resolution(i);
-      others += e * e;
-    }
-  const auto total = [&](double bars) {
-    return others > 0 ? std::sqrt(bars * bars + p.specimen * p.specimen + others)
-                      : std::hypot(bars, p.specimen);
-  };
+  if (scene.specimen) p.specimen = law_bar_share(d.bars[*scene.specimen], sample_s, k);
+  const double others = other_law_bars(scene, d, sample_s, k);
+  const auto total = [&](double bars) { return combined_error(bars, p.specimen, others); };
   std::vector<double> key;  // what the bars' share depends on: each bar's mesh and step
   for (std::size_t i = 0; i < d.bars.size(); ++i)
     if (!is_specimen(scene, i))
@@ -374,11 +389,12 @@ GaugeErrorPrediction predict(const Scene& scene, const ChainDiscretization& d,
   // rounding of its sum at most: a margin of 10⁻⁹).
   const double above = mode.above * (1 + 1e-9);
   const double scale = gauges * p.pulse_s / (2 * k.front);
-  const double misses = std::isfinite(mode.above)
-                            ? (above * above - p.specimen * p.specimen - others) * scale
-                            : std::numeric_limits<double>::infinity();
   const double misses_alone = std::isfinite(mode.above) ? (above * above - others) * scale
                                                         : std::numeric_limits<double>::infinity();
+  const double misses = !std::isfinite(mode.above) ? std::numeric_limits<double>::infinity()
+                        : mode.bars_alone
+                            ? misses_alone
+                            : (above * above - p.specimen * p.specimen - others) * scale;
   auto hit = c.bars.find(key);
   if (hit == c.bars.end() || (!hit->second.exact && !(hit->second.sum > misses))) {
     struct Gauge {
@@ -421,8 +437,10 @@ GaugeErrorPrediction predict(const Scene& scene, const ChainDiscretization& d,
     // A bound shows a miss for this specimen only: kept where it holds for every one.
     if (found.exact || found.sum > misses_alone) c.bars[key] = found;
     p.bars = share(found.sum);
+    if (mode.bars_exact) *mode.bars_exact = found.exact;
   } else {
     p.bars = share(hit->second.sum);
+    if (mode.bars_exact) *mode.bars_exact = hit->second.exact;
   }
   p.total = total(p.bars);
   return p;
@@ -437,16 +455,6 @@ GaugeErrorPrediction predict_gauge_error(const Scene& scene, const ChainDiscreti
 
 namespace {
 
-// Node updates of the scene as meshed, or infinity where discretize() refuses it (too large).
-double cost(const Scene& scene, ChainDiscretization* d) {
-  try {
-    *d = discretize(scene);
-    return d->node_updates_estimate;
-  } catch (const InputError&) {
-    return std::numeric_limits<double>::infinity();
-  }
-}
-
 // The bars (not the specimen, not meshed by the user) at element transit δ = h/c.
 void mesh_bars(Scene& scene, const std::vector<bool>& free, double delta) {
   for (std::size_t i = 0; i < scene.bars.size(); ++i) {
@@ -456,6 +464,130 @@ void mesh_bars(Scene& scene, const std::vector<bool>& free, double delta) {
     b.elements = static_cast<int>(std::clamp(n, 1.0, 1e9));
   }
 }
+
+// A candidate mesh as the search sees it: whether discretize() affords it, its node updates, and
+// (error()) its predicted error or a bound showing it misses the target, and the specimen's share.
+struct Price {
+  bool affordable = false;
+  double cost = std::numeric_limits<double>::infinity();
+};
+struct Error {
+  double total = std::numeric_limits<double>::infinity(), specimen = 0;
+};
+
+// The search's candidates, a scene `s` with its bars at transit δ and its own specimen count, at
+// s's Courant number. At asynchronous steps a bar's step and node updates are its own, and the
+// model's bars' share does not see the specimen (it is on no pulse's path): the bars are planned
+// and predicted once per (C, δ), the specimen once per (C, count), and a candidate adds them up —
+// the numbers discretize() and predict() give for it, at a fraction of the cost (the search tries
+// thousands: docs/methods.md §1.1, the cost of the choice). At global steps every bar steps at the
+// smallest step, the specimen's included: each candidate is planned whole.
+class Candidates {
+ public:
+  Candidates(const Scene& scene, SearchCache& cache)
+      : cache_(cache),
+        duration_s_(scene.simulation.duration_s.value_or(default_duration_s(scene))),
+        sample_s_(1 / scene.simulation.sample_rate_Hz),
+        separable_(scene.simulation.stepping == Stepping::kAsynchronous),
+        specimen_(scene.specimen) {}
+
+  Price price(Scene& s, const std::vector<bool>& free, double delta) {
+    mesh_bars(s, free, delta);
+    if (!separable_) {
+      whole_ = plan_chain(s, duration_s_);
+      return priced(whole_);
+    }
+    const Bars& b = bars(s, delta);
+    if (!specimen_) return priced(b.plan);
+    const ChainEstimates e = estimates_with_bar(b.plan, *specimen_, specimen(s).bar);
+    return e.affordable ? Price{true, e.node_updates} : Price{};
+  }
+
+  // After price(s, free, delta) of the same s and δ.
+  Error error(const Scene& s, double delta, PredictMode mode) {
+    if (!separable_) {
+      const GaugeErrorPrediction p = predict(s, whole_, kMeshErrorConstants, &cache_, mode);
+      return {p.total, p.specimen};
+    }
+    const Bars& b = bars(s, delta);
+    const double spec = specimen_ ? specimen(s).share : 0.0;
+    const auto key = std::make_tuple(courant_of(s), delta, mode.above);
+    auto it = shares_.find(key);
+    if (it == shares_.end()) {
+      bool exact = false;
+      PredictMode alone = mode;
+      alone.bars_alone = true, alone.bars_exact = &exact;
+      const GaugeErrorPrediction p = predict(s, b.plan, kMeshErrorConstants, &cache_, alone);
+      it = shares_.emplace(key, Share{p.bars, exact}).first;
+    }
+    // A bound shows a miss whatever the specimen (PredictMode::bars_alone).
+    if (!it->second.exact) return {std::numeric_limits<double>::infinity(), spec};
+    return {combined_error(it->second.bars, spec, b.others), spec};
+  }
+
+  // The specimen's share at s's count (after price() of s).
+  double specimen_share(const Scene& s) {
+    if (!specimen_) return 0.0;
+    if (!separable_) return law_bar_share(whole_.bars[*specimen_], sample_s_, kMeshErrorConstants);
+    return specimen(s).share;
+  }
+
+ private:
+  struct Bars {
+    ChainDiscretization plan;  // with whatever specimen count planned it first
+    double others = 0;         // Σ e² of the other law bars
+  };
+  struct Specimen {
+    BarDiscretization bar;
+    double share = 0;
+  };
+  struct Share {
+    double bars = 0;
+    bool exact = false;
+  };
+
+  static double courant_of(const Scene& s) { return s.simulation.courant.value_or(0.0); }
+  static Price priced(const ChainDiscretization& d) {
+    return affordable(d) ? Price{true, d.node_updates_estimate} : Price{};
+  }
+
+  const Bars& bars(const Scene& s, double delta) {
+    const auto key = std::make_pair(courant_of(s), delta);
+    auto it = bars_.find(key);
+    if (it == bars_.end()) {
+      Bars b{plan_chain(s, duration_s_), 0.0};
+      b.others = other_law_bars(s, b.plan, sample_s_, kMeshErrorConstants);
+      if (specimen_) remember_specimen(s, b.plan);
+      it = bars_.emplace(key, std::move(b)).first;
+    }
+    return it->second;
+  }
+
+  const Specimen& specimen(const Scene& s) {
+    const auto key = std::make_pair(courant_of(s), s.bars[*specimen_].elements);
+    auto it = specimens_.find(key);
+    if (it == specimens_.end()) it = remember_specimen(s, plan_chain(s, duration_s_));
+    return it->second;
+  }
+
+  std::map<std::pair<double, int>, Specimen>::iterator remember_specimen(
+      const Scene& s, const ChainDiscretization& d) {
+    const BarDiscretization& b = d.bars[*specimen_];
+    return specimens_
+        .try_emplace(std::make_pair(courant_of(s), b.elements),
+                     Specimen{b, law_bar_share(b, sample_s_, kMeshErrorConstants)})
+        .first;
+  }
+
+  SearchCache& cache_;
+  const double duration_s_, sample_s_;
+  const bool separable_;
+  const std::optional<std::size_t> specimen_;
+  std::map<std::pair<double, double>, Bars> bars_;
+  std::map<std::pair<double, int>, Specimen> specimens_;
+  std::map<std::tuple<double, double, double>, Share> shares_;
+  ChainDiscretization whole_;  // global steps: the last candidate priced
+};
 
 // Specimen element counts tried (a geometric ladder, each count once), or the user's (0).
 std::vector<int> specimen_ladder(const Scene& scene, const std::vector<bool>& free) {
@@ -479,23 +611,44 @@ double scan_start(double coarsest, double floor, double finest) {
 // k = 1, 2, … (none coarser than `coarsest`) up to the first that meets the target, kept in
 // `best` if cheaper than `best_cost`.
 void near_exact(const Scene& s, const std::vector<bool>& free, double common, double coarsest,
-                double target, PredictMode mode, SearchCache& cache, double& best_cost,
+                double target, PredictMode mode, Candidates& candidates, double& best_cost,
                 Scene& best) {
   Scene near = s;
   near.simulation.courant = kNearExactCourant;
-  ChainDiscretization dn;
   for (long k = 1; k <= kMaxCommonDivisions; ++k) {
     if (common / k > coarsest) continue;  // coarser than a compliant link or the pulse allows
-    mesh_bars(near, free, common / k);
-    if (!std::isfinite(cost(near, &dn))) break;
-    if (dn.node_updates_estimate >= best_cost) break;  // finer only costs more
-    const GaugeErrorPrediction p = predict(near, dn, kMeshErrorConstants, &cache, mode);
-    if (!(p.specimen <= target)) break;  // the specimen's share alone is too much
-    if (p.total <= target) {
-      best_cost = dn.node_updates_estimate, best = near;
+    const Price price = candidates.price(near, free, common / k);
+    if (!price.affordable) break;
+    if (price.cost >= best_cost) break;  // finer only costs more
+    const Error e = candidates.error(near, common / k, mode);
+    if (!(e.specimen <= target)) break;  // the specimen's share alone is too much
+    if (e.total <= target) {
+      best_cost = price.cost, best = near;
       break;
     }
   }
+}
+
+// The order a pruned search tries the specimen counts in: from the one whose share is nearest
+// target/√2 (where neither the bars nor the specimen take the whole error) outwards. A candidate
+// near the cheapest found first lets the cost bound cut the others short: the same choice (the
+// cheapest over every count), found with a fraction of the error integrals.
+std::vector<int> trial_order(const Scene& scene, std::vector<int> counts,
+                             const std::vector<bool>& free, double start, double target,
+                             Candidates& candidates) {
+  if (!scene.specimen || counts.size() < 2) return counts;
+  std::vector<std::pair<double, int>> keyed;
+  for (int ns : counts) {
+    Scene s = scene;
+    s.bars[*scene.specimen].elements = ns;
+    candidates.price(s, free, start);
+    keyed.emplace_back(std::abs(std::log(candidates.specimen_share(s) * std::sqrt(2.0) / target)),
+                       ns);
+  }
+  std::stable_sort(keyed.begin(), keyed.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (std::size_t i = 0; i < counts.size(); ++i) counts[i] = keyed[i].second;
+  return counts;
 }
 
 // The finest affordable element transit (refusal by discretize() is monotone in δ) between
@@ -532,6 +685,7 @@ GaugeErrorPrediction choose_meshes(Scene& scene) {
   const double start = scan_start(coarsest, floor, finest);
 
   SearchCache cache;
+  Candidates candidates(scene, cache);
   double closest = std::numeric_limits<double>::infinity();  // when none meets the tolerance
   Scene most_accurate = scene;
   // The cheapest mesh predicted at most `target` into `best`; false if there is none. `prune`:
@@ -542,24 +696,24 @@ GaugeErrorPrediction choose_meshes(Scene& scene) {
     double best_cost = std::numeric_limits<double>::infinity();
     PredictMode mode;
     if (prune) mode.above = target;
-    for (int ns : specimen_counts) {
+    for (int ns : prune ? trial_order(scene, specimen_counts, free, start, target, candidates)
+                        : specimen_counts) {
       Scene s = scene;
       if (ns > 0) s.bars[*scene.specimen].elements = ns;
-      ChainDiscretization d;
+      double cost = 0;  // the node updates of the last candidate priced
       const auto affordable = [&](double delta) {
-        mesh_bars(s, free, delta);
-        return std::isfinite(cost(s, &d));
+        const Price p = candidates.price(s, free, delta);
+        cost = p.cost;
+        return p.affordable;
       };
       const auto error_at = [&](double delta) {
-        return affordable(delta) ? predict(s, d, kMeshErrorConstants, &cache, mode).total
+        return affordable(delta) ? candidates.error(s, delta, mode).total
                                  : std::numeric_limits<double>::infinity();
       };
       // Pruned: the specimen's share alone misses the target (the total is at least that share).
-      if (prune && affordable(start) &&
-          !(predict(s, d, kMeshErrorConstants, &cache, {0.0}).specimen <= target))
-        continue;
+      if (prune && affordable(start) && !(candidates.specimen_share(s) <= target)) continue;
       if (common)
-        near_exact(s, free, *common, std::min(coarsest, floor), target, mode, cache, best_cost,
+        near_exact(s, free, *common, std::min(coarsest, floor), target, mode, candidates, best_cost,
                    best);
       // The finest affordable element transit (refusal by discretize() is monotone in δ), found
       // only when the scan comes near it: the bisection ends within kSearchRatio above the
@@ -588,14 +742,14 @@ GaugeErrorPrediction choose_meshes(Scene& scene) {
       // the scan stops where a mesh costs the best found: every finer one costs more.
       double lo = clamp_fine(start, above), hi = lo;
       if (none_affordable) continue;
-      const bool priced_out = prune && affordable(lo) && !(d.node_updates_estimate < best_cost);
+      const bool priced_out = prune && affordable(lo) && !(cost < best_cost);
       double e = priced_out ? std::numeric_limits<double>::infinity() : error_at(lo);
       Scene closest_here = prune ? Scene{} : s;  // pruned: `closest` is not asked for
       double closest_e = e;
       while (!priced_out && !(e <= target) && above) {
         // Pruned: a failing mesh costing the best already: every finer one (and the bisection
         // below it) costs more.
-        if (prune && !(d.node_updates_estimate < best_cost)) break;
+        if (prune && !(cost < best_cost)) break;
         hi = lo;
         lo = clamp_fine(lo / kScanRatio, above);
         e = error_at(lo);
@@ -609,7 +763,7 @@ GaugeErrorPrediction choose_meshes(Scene& scene) {
           (error_at(mid) <= target ? lo : hi) = mid;
         }
         error_at(lo);
-        if (d.node_updates_estimate < best_cost) best_cost = d.node_updates_estimate, best = s;
+        if (cost < best_cost) best_cost = cost, best = s;
       }
     }
     return std::isfinite(best_cost);

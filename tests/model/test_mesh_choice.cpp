@@ -1,0 +1,108 @@
+// The mesh search of a tolerance (model/mesh_error_model.hpp, docs/methods.md §1.1): its pricing of
+// a candidate by parts equals discretize(), and what it chooses is the cheapest mesh the model
+// predicts within the target, checked against a brute-force search of the same model.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <filesystem>
+
+#include "model/discretization.hpp"
+#include "model/mesh_error_model.hpp"
+
+// This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
+namespace tests_model_test_mesh_choice {
+
+using namespace shpb;
+
+namespace {
+
+Scene classic() {
+  return read_scene(std::filesystem::path(SHPB_SOURCE_DIR) /
+                    "experiments/classic-al6061/scene.json");
+}
+constexpr std::size_t kSpecimen = 2;  // striker, incident, specimen, transmitter
+
+// The header's margin: meshes are chosen for a predicted error of 0.65 × the tolerance.
+constexpr double kTargetFraction = 0.65;
+// The search ends its bisections within 0.5 % of the element transit, so a mesh it misses may be
+// that much coarser: about 1 % fewer node updates (they scale as 1/δ²).
+constexpr double kSearchResolution = 1.01;
+
+Scene with_meshes(Scene s, double courant, int striker, int bar, int specimen) {
+  s.simulation.courant = courant;
+  s.bars[0].elements = striker;
+  s.bars[1].elements = s.bars[3].elements = bar;
+  s.bars[kSpecimen].elements = specimen;
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE(
+    "At asynchronous steps a chain's cost is its bars': a specimen mesh re-priced by parts "
+    "costs what discretize() says",
+    "[model][mesh-choice]") {
+  const Scene base = classic();
+  const double duration = base.simulation.duration_s.value_or(default_duration_s(base));
+  for (const int bars : {200, 1300}) {
+    const ChainDiscretization planned =
+        plan_chain(with_meshes(base, 0.995, bars / 6, bars, 7), duration);
+    for (const int specimen : {4, 18, 57, 400}) {
+      const Scene s = with_meshes(base, 0.995, bars / 6, bars, specimen);
+      const ChainDiscretization whole = discretize(s);
+      const ChainEstimates parts =
+          estimates_with_bar(planned, kSpecimen, plan_chain(s, duration).bars[kSpecimen]);
+      // Exactly: both are sums of whole numbers of node updates and bytes.
+      REQUIRE(parts.node_updates == whole.node_updates_estimate);
+      REQUIRE(parts.memory_bytes == whole.memory_estimate_bytes);
+      REQUIRE(parts.affordable);
+    }
+  }
+}
+
+TEST_CASE("The meshes a tolerance chooses are the cheapest the model predicts within its target",
+          "[model][mesh-choice][release-only]") {
+  const double tolerance = GENERATE(0.02, 0.035);
+  Scene scene = classic();
+  scene.simulation.tolerance = tolerance;
+  Scene chosen = scene;
+  const GaugeErrorPrediction p = choose_meshes(chosen);
+  const double target = kTargetFraction * tolerance;
+  REQUIRE(p.total <= target);
+  const double chosen_cost = discretize(chosen).node_updates_estimate;
+
+  // Brute force over the candidates the search is documented to consider: the specimen's ladder
+  // of counts (4 up by a factor 1.15, truncated); bars of one element transit δ at C = 0.995, no
+  // coarser than a tenth of the striker's pulse (δ on a 2 % ladder from half the common transit
+  // below), and at C = 0.9999 at whole divisions of the bars' common transit (their lengths' 100
+  // mm over c). Only meshes cheaper than the choice need a prediction.
+  const double c = scene.bars[0].material.wave_speed_m_s();
+  const double common = 0.1 / c;
+  int cheaper_meeting = 0, priced = 0;
+  int last = 0;
+  for (double ladder = 4; ladder <= 4000; ladder *= 1.15) {
+    const int specimen = static_cast<int>(ladder);
+    if (specimen == last) continue;
+    last = specimen;
+    const auto check = [&](double courant, double delta) {
+      const auto n = [&](double length) {
+        return static_cast<int>(std::ceil(length / (c * delta) - 1e-9));
+      };
+      const Scene s = with_meshes(scene, courant, n(scene.bars[0].length_m),
+                                  n(scene.bars[1].length_m), specimen);
+      const ChainDiscretization d = discretize(s);
+      if (d.node_updates_estimate * kSearchResolution >= chosen_cost) return false;  // costlier
+      ++priced;
+      if (predict_gauge_error(s, d).total <= target) ++cheaper_meeting;
+      return true;
+    };
+    for (double delta = common / 2; check(0.995, delta); delta /= 1.02) {
+    }
+    for (int k = 2; check(0.9999, common / k); ++k) {
+    }
+  }
+  INFO("chosen: " << chosen_cost << " node updates; cheaper meshes priced: " << priced);
+  REQUIRE(priced > 0);  // the brute force did look below the choice
+  REQUIRE(cheaper_meeting == 0);
+}
+
+}  // namespace tests_model_test_mesh_choice
