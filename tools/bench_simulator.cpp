@@ -195,8 +195,8 @@ void defaults_table(const std::vector<std::string>& files, const SimulationOptio
     }
     const std::string name = std::filesystem::path(file).parent_path().filename().string();
     if (!now.simulation.tolerance) {
-      std::printf("%-28s | no striker (a measured record): no default tolerance, unchanged\n",
-                  name.c_str());
+      std::printf("%-28s | automatic meshes, unchanged: %s\n", name.c_str(),
+                  now.simulation.tolerance_withheld.c_str());
       continue;
     }
     const auto exact = exact_reference(automatic);

@@ -110,6 +110,9 @@ struct SimulationSpec {
   // (model/scene_validation.hpp resolve_scene), with tolerance_is_default set.
   std::optional<double> tolerance;
   bool tolerance_is_default = false;
+  // Why resolve_scene() kept the automatic meshes instead of the default tolerance (empty where
+  // it applied, or where a tolerance was given or not asked for): `shpb validate` says it.
+  std::string tolerance_withheld;
   // Wall time of the error model's mesh choice for this run (resolve_scene), 0 without one: a run
   // pays it before its solve (summary.json mesh_choice_time_s, run_time_s).
   double mesh_choice_time_s = 0;

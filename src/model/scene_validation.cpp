@@ -59,26 +59,34 @@ namespace {
 // where it was calibrated: every bar but the specimen elastic. A pulse shaper's ramp is taken for
 // a step (docs/methods.md §1.1), so the model over-predicts its bars' share: 3.5 % would mesh the
 // pulse-shaper experiment at 5.2 x the automatic meshes' node updates (1.69 % measured), where
-// they already measure 1.90 %.
-bool default_tolerance_applies(const Scene& scene) {
+// they already measure 1.90 %. Returns why it does not apply to `scene` (empty where it does).
+std::string default_tolerance_withheld(const Scene& scene) {
   bool free = false;
   for (std::size_t i = 0; i < scene.bars.size(); ++i) {
     const BarSpec& b = scene.bars[i];
     free = free || b.elements == 0;
-    if (!(scene.specimen && *scene.specimen == i) && !b.material.is_elastic()) return false;
+    if (!(scene.specimen && *scene.specimen == i) && !b.material.is_elastic())
+      return "bar \"" + b.name +
+             "\" has a material law besides the specimen's, a pulse shaper whose ramp the model "
+             "takes for a step (docs/methods.md §1.1)";
   }
+  if (!free) return "every bar has its own elements";
   // A Courant number the user sets chooses the numerics: measured with the default's meshes at
   // --courant 1, the classic experiment went unstable and the PMMA test lost 4.7 % of its energy
   // (the marginal C = 1 with unequal steps, docs/methods.md §1.1); the automatic meshes hold there.
-  return free && !scene.simulation.courant && striker_bar(scene).has_value();
+  if (scene.simulation.courant) return "a Courant number is set (simulation.courant or --courant)";
+  if (!striker_bar(scene)) return "no bar has a velocity, so there is no pulse to predict";
+  return "";
 }
 
 }  // namespace
 
 ChainDiscretization resolve_scene(Scene& scene, const RunOptions& options) {
   const ChainDiscretization automatic = validate_scene(scene, options);
-  if (!scene.simulation.tolerance && options.default_tolerance &&
-      default_tolerance_applies(scene)) {
+  const std::string withheld = default_tolerance_withheld(scene);
+  if (!scene.simulation.tolerance && options.default_tolerance && !withheld.empty())
+    scene.simulation.tolerance_withheld = withheld;
+  if (!scene.simulation.tolerance && options.default_tolerance && withheld.empty()) {
     Scene chosen = scene;
     chosen.simulation.tolerance = kDefaultTolerance;
     chosen.simulation.tolerance_is_default = true;
@@ -89,7 +97,10 @@ ChainDiscretization resolve_scene(Scene& scene, const RunOptions& options) {
       scene = std::move(chosen);
       return validate_scene(scene, options);
     }
-    return automatic;  // out of reach with the user's own meshes: as without a tolerance
+    // Out of reach with the user's own meshes: as without a tolerance.
+    scene.simulation.tolerance_withheld =
+        "no mesh of the bars without elements of their own is predicted within it";
+    return automatic;
   }
   const auto t = scene.simulation.tolerance;
   if (!t) return automatic;

@@ -93,6 +93,8 @@ json resolved_setup_json(const Scene& scene, const ChainDiscretization& d) {
     out["predicted_gauge_error_specimen"] = p.specimen;
     out["pulse_rise_time_s"] = p.rise_time_s;  // what the model took: 0 is a step
     out["pulse_duration_s"] = p.pulse_s;
+  } else if (!scene.simulation.tolerance_withheld.empty()) {
+    out["tolerance_withheld"] = scene.simulation.tolerance_withheld;
   }
   return out;
 }

@@ -69,6 +69,10 @@ void print_simulation(const json& s) {
         g(100 * s["predicted_gauge_error_specimen"].get<double>(), 3).c_str(),
         g(s["node_updates_estimate"].get<double>(), 3).c_str(),
         g(s["cost_against_automatic"].get<double>(), 3).c_str());
+  else if (s.contains("tolerance_withheld"))
+    std::printf("tolerance    none: the automatic meshes above, not the default %s %%: %s\n",
+                g(100 * kDefaultTolerance).c_str(),
+                s["tolerance_withheld"].get<std::string>().c_str());
 }
 
 void print_process(const json& p) {

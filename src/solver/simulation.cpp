@@ -380,6 +380,8 @@ nlohmann::ordered_json simulation_summary(const SimulationResult& result, const 
     j["tolerance"] = *t;
     j["tolerance_is_default"] = scene.simulation.tolerance_is_default;
     j["predicted_gauge_error"] = predicted;
+  } else if (!scene.simulation.tolerance_withheld.empty()) {
+    j["tolerance_withheld"] = scene.simulation.tolerance_withheld;
   }
   return j;
 }

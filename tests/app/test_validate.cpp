@@ -70,6 +70,26 @@ TEST_CASE("validate --json reports what discretize() gives simulate", "[app][val
   CHECK(v["interfaces"][0]["method"] == "localized-bipenalty");
 }
 
+TEST_CASE("validate says why a scene keeps the automatic meshes instead of the default tolerance",
+          "[app][validate][tolerance]") {
+  const fs::path experiments = fs::path(SHPB_SOURCE_DIR) / "experiments";
+  // Each reason the default tolerance is withheld, on the experiment that has it; the classic
+  // test, where it applies, has none.
+  const std::pair<const char*, const char*> cases[] = {
+      {"pulse-shaper", "a pulse shaper"},                // a material-law bar besides the specimen
+      {"tension-bonded", "a Courant number is set"},     // the scene's own numerics
+      {"epoxy-resin-sample01", "no pulse to predict"}};  // a measured record: no striker
+  for (const auto& [experiment, reason] : cases) {
+    const json v = validate_json(experiments / experiment / "scene.json");
+    INFO(experiment);
+    REQUIRE(!v.contains("tolerance"));
+    REQUIRE(v["tolerance_withheld"].get<std::string>().find(reason) != std::string::npos);
+  }
+  const json classic = validate_json(experiments / "classic-al6061" / "scene.json");
+  REQUIRE(classic.contains("tolerance"));
+  REQUIRE(!classic.contains("tolerance_withheld"));
+}
+
 TEST_CASE("validate applies --contact, --stepping and --courant as simulate would",
           "[app][validate]") {
   const auto file = fs::path(SHPB_SOURCE_DIR) / "experiments/striker-on-bar/scene.json";
