@@ -1,7 +1,8 @@
 """Benchmark of the Python module (figures, never assertions; tools/bench.sh runs it):
- 1. a loop of 100 simulations of the classic experiment from Python: wall time per run against
-    the executable's own whole run (summary.json run_time_s of `shpb simulate`: mesh choice,
-    set-up, solve, records; median), and against its solve alone (wall_time_s);
+ 1. a loop of 100 simulations of the classic experiment from Python, in rounds interleaved with
+    runs of `shpb simulate`: wall time per run against the executable's solve (summary.json
+    wall_time_s) in the same round, and against its own runs' whole run (run_time_s: mesh choice,
+    set-up, solve, records), medians over the rounds;
  2. two simulations in two Python threads against the same two one after the other (the GIL is
     released during a simulation): the ratio of the wall times, median of 15 repetitions, on a
     pool of two threads that has run before (concurrent.futures, as a notebook's sweep uses
@@ -26,40 +27,52 @@ runs = int(sys.argv[2]) if len(sys.argv) > 2 else 100
 scene_file = pathlib.Path(__file__).resolve().parents[1] / "experiments/classic-al6061/scene.json"
 scene = shpb.Scene.load(scene_file)
 
-# 1. The executable's own times (summary.json, medians of 9), then the loop from Python. The
-# solve (wall_time_s) is only part of a run: before it the error model chooses the meshes
+# 1. The executable's own times (summary.json) and the loop from Python, interleaved: the machine's
+# speed drifts by tens of % between minutes (a shared VM), so each of 7 rounds runs the executable
+# 3 times and `runs` / 7 Python runs, and the ratios are taken within a round. The solve
+# (wall_time_s) is only part of a run: before it the error model chooses the meshes
 # (mesh_choice_time_s) and the bars and recorders are set up, after it the records and statistics
 # are made; run_time_s is all of it, what the library costs per run whoever calls it. A run from
 # Python pays the same, so the like-with-like figure is Python's wall per run against run_time_s.
-exe_solve, exe_run, exe_choice = [], [], []
-with tempfile.TemporaryDirectory() as tmp:
-    for i in range(9):
-        subprocess.run([build / "shpb", "simulate", scene_file, "-o", f"{tmp}/run", "--quiet"],
-                       check=True)
-        summary = json.loads(pathlib.Path(f"{tmp}/run/summary.json").read_text())
-        exe_solve.append(summary["wall_time_s"])
-        exe_run.append(summary["run_time_s"])
-        exe_choice.append(summary["mesh_choice_time_s"])
+ROUNDS = 7
 shpb.simulate(scene)  # warm: first-touch of the library's pages
-start, cpu_start = time.perf_counter(), time.process_time()
-solve, run = [], []
-for _ in range(runs):
-    summary = shpb.simulate(scene).summary
-    solve.append(summary["wall_time_s"])
-    run.append(summary["run_time_s"])
-loop = (time.perf_counter() - start) / runs
-loop_cpu = (time.process_time() - cpu_start) / runs
-exe, exe_whole = statistics.median(exe_solve), statistics.median(exe_run)
-print(f"== {runs} classic simulations from Python")
-print(f"  executable (summary.json, median of 9): solve {exe * 1e3:.2f} ms, mesh choice "
-      f"{statistics.median(exe_choice) * 1e3:.2f} ms, whole run {exe_whole * 1e3:.2f} ms")
-print(f"  from Python: wall per run {loop * 1e3:.2f} ms, CPU {loop_cpu * 1e3:.2f} ms (its own "
-      f"summaries: solve {statistics.median(solve) * 1e3:.2f} ms, whole run "
-      f"{statistics.median(run) * 1e3:.2f} ms)")
-print(f"  Python / executable: {loop / exe_whole:.3f} of the whole run (like with like; the "
-      f"executable's runs are each a fresh process), {loop / exe:.3f} of the solve alone; "
-      f"Python's wall / its own runs' run_time_s {loop / statistics.median(run):.3f} (the "
-      f"binding's overhead)")
+exe_solve, exe_run, exe_choice, py_solve, py_run = [], [], [], [], []
+to_solve, to_run, overhead, walls, cpus = [], [], [], [], []
+with tempfile.TemporaryDirectory() as tmp:
+    for _ in range(ROUNDS):
+        solves = []
+        for i in range(3):
+            subprocess.run([build / "shpb", "simulate", scene_file, "-o", f"{tmp}/run{i}",
+                            "--quiet"], check=True)
+            summary = json.loads(pathlib.Path(f"{tmp}/run{i}/summary.json").read_text())
+            solves.append(summary["wall_time_s"])
+            exe_run.append(summary["run_time_s"])
+            exe_choice.append(summary["mesh_choice_time_s"])
+        exe_solve += solves
+        n = max(1, runs // ROUNDS)
+        start, cpu_start = time.perf_counter(), time.process_time()
+        own = []
+        for _ in range(n):
+            summary = shpb.simulate(scene).summary
+            py_solve.append(summary["wall_time_s"])
+            own.append(summary["run_time_s"])
+        wall = (time.perf_counter() - start) / n
+        walls.append(wall)
+        cpus.append((time.process_time() - cpu_start) / n)
+        py_run += own
+        to_solve.append(wall / statistics.median(solves))
+        overhead.append(wall / statistics.median(own))
+med = statistics.median
+print(f"== {ROUNDS * max(1, runs // ROUNDS)} classic simulations from Python, in {ROUNDS} rounds "
+      f"each beside 3 runs of the executable")
+print(f"  executable (summary.json, median of {len(exe_solve)}): solve {med(exe_solve) * 1e3:.2f} "
+      f"ms, mesh choice {med(exe_choice) * 1e3:.2f} ms, whole run {med(exe_run) * 1e3:.2f} ms")
+print(f"  from Python: wall per run {med(walls) * 1e3:.2f} ms, CPU {med(cpus) * 1e3:.2f} ms (its "
+      f"own summaries: solve {med(py_solve) * 1e3:.2f} ms, whole run {med(py_run) * 1e3:.2f} ms)")
+print(f"  Python's wall per run / the executable's solve in the same round: median "
+      f"{med(to_solve):.3f} (rounds: {', '.join(f'{r:.2f}' for r in to_solve)})")
+print(f"  Python's wall / its own runs' run_time_s (the binding's overhead): median "
+      f"{med(overhead):.3f} (rounds: {', '.join(f'{r:.2f}' for r in overhead)})")
 
 # 2. Two simulations: one after the other, then in two threads (a warm pool, then fresh threads).
 def serial():
