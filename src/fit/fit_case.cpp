@@ -125,8 +125,9 @@ FitCase::FitCase(const CampaignTest& test, const Campaign& campaign, const FitSp
         (!pr.time_to_equilibrium_s || pr.time_s[i] - pr.time_s[0] >= *pr.time_to_equilibrium_s);
     if (equilibrium && i <= last_loading && ep >= kMinPlasticStrain &&
         c.strain_rate_1_s[i] >= kMinRateFraction * pr.plateau_strain_rate_1_s)
-      curve_.push_back({pr.time_s[i], c.true_strain[i], ep, rate, temperature, stress});
+      curve_.push_back({pr.time_s[i], c.true_strain[i], ep, rate, temperature, stress, i});
   }
+  history_ = {pr.time_s, c.true_strain, options.tension};
   // Bars that disperse (the measurement says so: "pochhammer-chree") carry each simulated pulse
   // through dispersion; "none" (e.g. signals of a 1D simulation) compares the 1D pulses as they
   // are.

@@ -23,6 +23,14 @@ struct CurvePoint {
   double strain_rate_1_s = 0;                  // true strain rate
   double temperature_K = 0;  // test temperature + adiabatic rise (if the law says)
   double stress_Pa = 0;      // true stress (3-wave)
+  std::size_t sample = 0;    // its index in the processed history (FitCase::history())
+};
+
+// The whole processed test from its start (a curve point's history): what a law without a flow
+// stress is driven along (model/law_parameters.hpp law_stress_along).
+struct ProcessedHistory {
+  std::vector<double> time_s, true_strain;
+  bool tension = false;
 };
 
 // A test's nuisance values. The wave speeds start at the scene's bars' c0, the rest as FitCase
@@ -58,6 +66,7 @@ class FitCase {
   const std::string& velocity_source() const { return velocity_source_; }
   double temperature_K() const { return temperature_K_; }
   const std::vector<CurvePoint>& curve() const { return curve_; }
+  const ProcessedHistory& history() const { return history_; }
   const std::vector<std::string>& warnings() const { return warnings_; }
   // The measured record as read (time base and every gauge's strain).
   const GaugeSignals& signals() const { return signals_; }
@@ -92,6 +101,7 @@ class FitCase {
   std::string velocity_source_;
   double temperature_K_ = 0;
   std::vector<CurvePoint> curve_;
+  ProcessedHistory history_;
   std::vector<OverlaidPulse> windows_, fitted_windows_;
   std::vector<std::string> warnings_;
   GaugeSignals signals_;

@@ -203,16 +203,35 @@ void write_fit_curves(const FitRun& run, const std::filesystem::path& file) {
   CsvWriter w(file, {k::test, k::time_s, k::true_strain, k::true_plastic_strain, k::strain_rate_1_s,
                      k::temperature_K, k::stress_measured_Pa, k::stress_start_Pa,
                      k::stress_curve_Pa, k::stress_fitted_Pa});
-  auto flow = [](const MaterialSpec& m, const CurvePoint& p) {
-    return law_flow_stress(m, p.plastic_strain, p.strain_rate_1_s, p.temperature_K).value_or(0.0);
-  };
-  for (const auto& c : run.cases)
-    for (const auto& p : c->curve()) {
-      const std::vector<double> v = {p.time_s,          p.true_strain,   p.plastic_strain,
-                                     p.strain_rate_1_s, p.temperature_K, p.stress_Pa,
-                                     flow(law0, p),     flow(law1, p),   flow(law2, p)};
+  for (const auto& c : run.cases) {
+    // A law's flow stress at each point; a law without one (viscoelastic) carries the stress of
+    // its response to the test's processed strain history, driven from the test's start.
+    const ProcessedHistory& h = c->history();
+    const auto law_stress = [&](const MaterialSpec& m) {
+      std::vector<double> along;
+      std::vector<double> out;
+      for (const CurvePoint& p : c->curve()) {
+        const auto flow = law_flow_stress(m, p.plastic_strain, p.strain_rate_1_s, p.temperature_K);
+        if (!flow && along.empty()) along = law_stress_along(m, h.time_s, h.true_strain, h.tension);
+        out.push_back(flow ? *flow : along[p.sample]);
+      }
+      return out;
+    };
+    const std::vector<double> s0 = law_stress(law0), s1 = law_stress(law1), s2 = law_stress(law2);
+    for (std::size_t i = 0; i < c->curve().size(); ++i) {
+      const CurvePoint& p = c->curve()[i];
+      const std::vector<double> v = {p.time_s,
+                                     p.true_strain,
+                                     p.plastic_strain,
+                                     p.strain_rate_1_s,
+                                     p.temperature_K,
+                                     p.stress_Pa,
+                                     s0[i],
+                                     s1[i],
+                                     s2[i]};
       w.row(c->name(), 1, v);
     }
+  }
   w.close();
 }
 

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "model/laws/johnson_cook_law.hpp"
+#include "model/material_law.hpp"
 
 namespace shpb {
 namespace {
@@ -120,6 +121,22 @@ std::optional<double> law_flow_stress(const MaterialSpec& m, double plastic_stra
     return m.bilinear.yield_stress_Pa + e * et / (e - et) * plastic_strain;
   }
   return std::nullopt;
+}
+
+std::vector<double> law_stress_along(const MaterialSpec& m, const std::vector<double>& time_s,
+                                     const std::vector<double>& strain, bool tension) {
+  const auto law = make_material_law(m);
+  MaterialPointState state;
+  law->initialize({&state, 1});
+  const double sign = tension ? 1.0 : -1.0;  // the laws' strain: negative in compression
+  std::vector<double> stress(strain.size(), 0.0);
+  for (std::size_t i = 1; i < strain.size(); ++i) {
+    const double next = sign * strain[i];
+    double out = 0;
+    law->update({&next, 1}, time_s[i] - time_s[i - 1], {&state, 1}, {&out, 1});
+    stress[i] = sign * out;
+  }
+  return stress;
 }
 
 }  // namespace shpb

@@ -30,6 +30,13 @@ void set_law_parameter(nlohmann::json& document, const std::string& name, double
 std::optional<double> law_flow_stress(const MaterialSpec& m, double plastic_strain,
                                       double strain_rate_1_s, double temperature_K);
 
+// The true stress (positive) a specimen of law `m` carries along a uniaxial true-strain history
+// (`strain[i]` ≥ 0 at `time_s[i]`, compression unless `tension`), driven from rest at the first
+// sample: the law's own response, what a law without a flow stress (viscoelastic: a hereditary
+// integral of the whole history, docs/methods.md §8) is compared by.
+std::vector<double> law_stress_along(const MaterialSpec& m, const std::vector<double>& time_s,
+                                     const std::vector<double>& strain, bool tension);
+
 // A value as a material file writes it: "95.2 MPa", "12 us", or a plain number.
 nlohmann::json law_parameter_json(const std::string& name, double value);
 

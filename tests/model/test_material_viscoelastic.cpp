@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include "material_point.hpp"
+#include "model/law_parameters.hpp"
 
 // This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
 namespace tests_model_test_material_viscoelastic {
@@ -60,6 +61,26 @@ TEST_CASE("A viscoelastic point at constant strain rate follows the Prony-series
                 Approx(constant_rate_stress(spec, rate, i * dt)).epsilon(kClosedFormTolerance));
       }
     }
+  }
+}
+
+TEST_CASE("A law driven along a processed strain history from rest carries the closed-form stress",
+          "[model][material][viscoelastic]") {
+  // What `shpb fit` compares a law without a flow stress by (curves.csv): a test's true strain
+  // history, positive in compression and in tension alike, and the stress the law carries.
+  const MaterialSpec spec = three_arm();
+  const double rate = 5e3;  // a Kolsky test's rate, 2 % strain in 4 µs
+  constexpr int kSamples = 500;
+  std::vector<double> time(kSamples + 1), strain(kSamples + 1);
+  for (int i = 0; i <= kSamples; ++i) {
+    time[i] = 20e-6 + i * (0.02 / rate) / kSamples;  // the record's clock: any origin
+    strain[i] = rate * (time[i] - time[0]);
+  }
+  for (const bool tension : {false, true}) {
+    const std::vector<double> stress = law_stress_along(spec, time, strain, tension);
+    for (int i = 1; i <= kSamples; ++i)
+      REQUIRE(stress[i] == Approx(constant_rate_stress(spec, rate, time[i] - time[0]))
+                               .epsilon(kClosedFormTolerance));
   }
 }
 

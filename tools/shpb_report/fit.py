@@ -55,22 +55,26 @@ def fig_fit(src, figs):
         c = src.table(CURVES.FILE)
         fig, axes = new_figure()
         ax = axes[0, 0]
+        # A viscoelastic law has no flow stress: curves.csv gives its response along the test's
+        # strain history, drawn against the true strain (its plastic strain means nothing).
+        viscous = src.value("model", kind=str) == "viscoelastic"
         for n, test in enumerate(dict.fromkeys(c[CURVES.test])):
             m = c[CURVES.test] == test
-            ep = c.numeric(CURVES.true_plastic_strain)[m]
+            ep = c.numeric(CURVES.true_strain if viscous else CURVES.true_plastic_strain)[m]
             ax.plot(ep, c.numeric(CURVES.stress_measured_Pa)[m] * MPA, color=f"C{n}", linewidth=1.0,
                     label=f"{test} processed")
             ax.plot(ep, c.numeric(CURVES.stress_fitted_Pa)[m] * MPA, color=f"C{n}", linewidth=1.0,
                     linestyle="--", label=f"{test} fitted law")
             ax.plot(ep, c.numeric(CURVES.stress_start_Pa)[m] * MPA, color=f"C{n}", linewidth=0.7,
                     linestyle=":", alpha=0.8)
-        ax.set_xlabel("true plastic strain")
+        ax.set_xlabel("true strain" if viscous else "true plastic strain")
         ax.set_ylabel("true stress (MPa)")
         ax.set_title(src.title("Processed curves after equilibrium and the law"))
         ax.legend(fontsize=7)
         figs.save(fig, src.png("fit_curves"), src.title("Fit: curves and the law"),
                   "Processed true stress after equilibrium (solid), the fitted law at the same "
-                  "plastic strain, rate and temperature (dashed) and the starting law (dotted).")
+                  "plastic strain, rate and temperature (dashed) and the starting law (dotted); "
+                  "a viscoelastic law: its stress along the test's processed strain history.")
 
     names = src.value("correlation", "parameters", kind=list) or []
     matrix = src.value("correlation", "matrix", kind=list) or []
