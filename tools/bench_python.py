@@ -111,3 +111,24 @@ for name, threaded in (("a pool of two threads", pooled), ("two fresh threads", 
           f"{', '.join(f'{r:.2f}' for r in sorted(ratios))}); cores busy (CPU / wall) median "
           f"{statistics.median(busy):.2f}; {os.cpu_count()} cores, load average "
           f"{os.getloadavg()[0]:.1f}")
+
+# 3. The machine's own ceiling for part 2: two processes, each running 10 simulations of the same
+# scene, at the same time against one after the other (no GIL, no shared heap: what two cores give
+# this workload; on a shared VM's two cores it is not 0.5).
+ceiling = []
+worker = ("import shpb, sys\ns = shpb.Scene.load(sys.argv[1])\nfor _ in range(10): "
+          "shpb.simulate(s)\n")
+command = [sys.executable, "-c", worker, str(scene_file)]
+for _ in range(5):
+    t0 = time.perf_counter()
+    for _ in range(2):
+        subprocess.run(command, check=True)
+    t1 = time.perf_counter()
+    both = [subprocess.Popen(command) for _ in range(2)]
+    for p in both:
+        p.wait()
+    t2 = time.perf_counter()
+    ceiling.append((t2 - t1) / (t1 - t0))
+print(f"  two processes (10 simulations each) at once / one after the other: median "
+      f"{statistics.median(ceiling):.3f} (of 5: {', '.join(f'{r:.2f}' for r in sorted(ceiling))}):"
+      f" the machine's ceiling for the threads above")
