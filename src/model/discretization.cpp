@@ -126,10 +126,9 @@ void refuse_unaffordable(const Scene& scene, const std::vector<BarCost>& costs, 
   std::size_t largest = 0;
   for (std::size_t i = 0; i < costs.size(); ++i)
     if (costs[i].elements > biggest) biggest = costs[i].elements, largest = i;
-  const double duration_s = run_s;
   std::string where, value;
   const double flight = first_contact_delay_s(scene);
-  if (flight > 0.5 * duration_s && node_updates > kMaxNodeUpdates) {
+  if (flight > 0.5 * run_s && node_updates > kMaxNodeUpdates) {
     // The striker's free flight across a gap is most of the run.
     std::size_t k = 0;
     while (k + 1 < scene.bars.size() && !(scene.bars[k].gap_m > 0)) ++k;
@@ -140,11 +139,11 @@ void refuse_unaffordable(const Scene& scene, const std::vector<BarCost>& costs, 
     // than the solver steps (samples between steps hold nothing new), else the duration.
     double most_steps = 0;
     for (const BarCost& c : costs) most_steps = std::max(most_steps, c.run_steps);
-    const double finest_step_s = duration_s / most_steps;
+    const double finest_step_s = run_s / most_steps;
     const bool oversampled = scene.simulation.sample_rate_Hz * finest_step_s > 1;
     const bool duration = scene.simulation.duration_s && !oversampled;
     where = duration ? "simulation.duration" : "simulation.sample_rate";
-    value = duration ? JsonValue::format(duration_s, Dimension::kTime)
+    value = duration ? JsonValue::format(run_s, Dimension::kTime)
                      : JsonValue::format(scene.simulation.sample_rate_Hz, Dimension::kFrequency);
   } else if (memory > kMaxMemoryBytes || !scene.simulation.duration_s) {
     const BarSpec& bar = scene.bars[largest];
@@ -153,7 +152,7 @@ void refuse_unaffordable(const Scene& scene, const std::vector<BarCost>& costs, 
                              : JsonValue::format(bar.length_m, Dimension::kLength);
   } else {
     where = "simulation.duration";
-    value = JsonValue::format(duration_s, Dimension::kTime);
+    value = JsonValue::format(run_s, Dimension::kTime);
   }
   char b[400];
   std::snprintf(b, sizeof b,
@@ -220,10 +219,9 @@ ChainEstimates estimates_with_bar(const ChainDiscretization& d, std::size_t i,
 
 namespace {
 
-// discretize() past its checks: `costs` from bar_costs() (every count fits an int).
-ChainDiscretization plan(const Scene& scene, double duration_s, double courant,
-                         const std::vector<BarCost>& costs) {
-  ChainDiscretization d;
+// discretize() past its checks, into `d`: `costs` from bar_costs() (every count fits an int).
+void plan_bars(const Scene& scene, double duration_s, double courant,
+               const std::vector<BarCost>& costs, ChainDiscretization& d) {
   d.sample_rate_Hz = scene.simulation.sample_rate_Hz;
   d.stepping = scene.simulation.stepping;
   d.duration_s = duration_s;
@@ -251,7 +249,6 @@ ChainDiscretization plan(const Scene& scene, double duration_s, double courant,
     }
   }
   for (auto& b : d.bars) b.steps = static_cast<long>(std::ceil(d.duration_s / b.time_step_s));
-  return d;
 }
 
 }  // namespace
@@ -267,12 +264,9 @@ ChainDiscretization discretize(const Scene& scene) {
   const double courant = scene.simulation.courant.value_or(kDefaultCourant);
   const double run_s = duration_s + first_contact_delay_s(scene);  // free flight included
   const std::vector<BarCost> costs = bar_costs(scene, run_s, courant);
-  ChainDiscretization estimate;
-  refuse_unaffordable(scene, costs, run_s, duration_s, estimate);
-  ChainDiscretization d = plan(scene, duration_s, courant, costs);
-  d.memory_estimate_bytes = estimate.memory_estimate_bytes;
-  d.node_updates_estimate = estimate.node_updates_estimate;
-  d.record_bytes_estimate = estimate.record_bytes_estimate;
+  ChainDiscretization d;
+  refuse_unaffordable(scene, costs, run_s, duration_s, d);
+  plan_bars(scene, duration_s, courant, costs, d);
   return d;
 }
 
@@ -280,9 +274,10 @@ ChainDiscretization plan_chain(const Scene& scene, double duration_s) {
   const double courant = scene.simulation.courant.value_or(kDefaultCourant);
   const std::vector<BarCost> costs =
       bar_costs(scene, duration_s + first_contact_delay_s(scene), courant);
-  ChainDiscretization d = plan(scene, duration_s, courant, costs);
+  ChainDiscretization d;
   sum_estimates(
       costs.size(), [&](std::size_t i) { return costs[i]; }, record_bytes(scene, duration_s), d);
+  plan_bars(scene, duration_s, courant, costs, d);
   return d;
 }
 

@@ -318,9 +318,13 @@ struct SearchCache {
 struct PredictMode {
   double above = std::numeric_limits<double>::infinity();
   // The bound on the bars' share shows a miss whatever the specimen (a search reuses it for every
-  // specimen mesh); set by predict() to whether the bars' share is exact (else that bound).
+  // specimen mesh).
   bool bars_alone = false;
-  bool* bars_exact = nullptr;
+};
+
+// predict()'s result, and whether its bars' share is exact (else the bound PredictMode allows).
+struct Predicted : GaugeErrorPrediction {
+  bool bars_exact = true;
 };
 
 // The predicted error from the bars' share, the specimen's and Σ e² of the other law bars.
@@ -347,10 +351,9 @@ double other_law_bars(const Scene& scene, const ChainDiscretization& d, double s
   return others;
 }
 
-GaugeErrorPrediction predict(const Scene& scene, const ChainDiscretization& d,
-                             const MeshErrorConstants& k, SearchCache* cache,
-                             PredictMode mode = {}) {
-  GaugeErrorPrediction p;
+Predicted predict(const Scene& scene, const ChainDiscretization& d, const MeshErrorConstants& k,
+                  SearchCache* cache, PredictMode mode = {}) {
+  Predicted p;
   const auto striker = striker_bar(scene);
   if (!striker) {
     p.total = p.bars = std::numeric_limits<double>::quiet_NaN();
@@ -437,10 +440,10 @@ GaugeErrorPrediction predict(const Scene& scene, const ChainDiscretization& d,
     // A bound shows a miss for this specimen only: kept where it holds for every one.
     if (found.exact || found.sum > misses_alone) c.bars[key] = found;
     p.bars = share(found.sum);
-    if (mode.bars_exact) *mode.bars_exact = found.exact;
+    p.bars_exact = found.exact;
   } else {
     p.bars = share(hit->second.sum);
-    if (mode.bars_exact) *mode.bars_exact = hit->second.exact;
+    p.bars_exact = hit->second.exact;
   }
   p.total = total(p.bars);
   return p;
@@ -509,16 +512,14 @@ class Candidates {
       const GaugeErrorPrediction p = predict(s, whole_, kMeshErrorConstants, &cache_, mode);
       return {p.total, p.specimen};
     }
-    const Bars& b = bars(s, delta);
+    Bars& b = bars(s, delta);
     const double spec = specimen_ ? specimen(s).share : 0.0;
-    const auto key = std::make_tuple(courant_of(s), delta, mode.above);
-    auto it = shares_.find(key);
-    if (it == shares_.end()) {
-      bool exact = false;
+    auto it = b.shares.find(mode.above);
+    if (it == b.shares.end()) {
       PredictMode alone = mode;
-      alone.bars_alone = true, alone.bars_exact = &exact;
-      const GaugeErrorPrediction p = predict(s, b.plan, kMeshErrorConstants, &cache_, alone);
-      it = shares_.emplace(key, Share{p.bars, exact}).first;
+      alone.bars_alone = true;
+      const Predicted p = predict(s, b.plan, kMeshErrorConstants, &cache_, alone);
+      it = b.shares.emplace(mode.above, Share{p.bars, p.bars_exact}).first;
     }
     // A bound shows a miss whatever the specimen (PredictMode::bars_alone).
     if (!it->second.exact) return {std::numeric_limits<double>::infinity(), spec};
@@ -533,17 +534,18 @@ class Candidates {
   }
 
  private:
+  struct Share {
+    double bars = 0;
+    bool exact = false;
+  };
   struct Bars {
-    ChainDiscretization plan;  // with whatever specimen count planned it first
-    double others = 0;         // Σ e² of the other law bars
+    ChainDiscretization plan;        // with whatever specimen count planned it first
+    double others = 0;               // Σ e² of the other law bars
+    std::map<double, Share> shares;  // the bars' share by the target it was bounded for
   };
   struct Specimen {
     BarDiscretization bar;
     double share = 0;
-  };
-  struct Share {
-    double bars = 0;
-    bool exact = false;
   };
 
   static double courant_of(const Scene& s) { return s.simulation.courant.value_or(0.0); }
@@ -551,11 +553,11 @@ class Candidates {
     return affordable(d) ? Price{true, d.node_updates_estimate} : Price{};
   }
 
-  const Bars& bars(const Scene& s, double delta) {
+  Bars& bars(const Scene& s, double delta) {
     const auto key = std::make_pair(courant_of(s), delta);
     auto it = bars_.find(key);
     if (it == bars_.end()) {
-      Bars b{plan_chain(s, duration_s_), 0.0};
+      Bars b{plan_chain(s, duration_s_), 0.0, {}};
       b.others = other_law_bars(s, b.plan, sample_s_, kMeshErrorConstants);
       if (specimen_) remember_specimen(s, b.plan);
       it = bars_.emplace(key, std::move(b)).first;
@@ -585,7 +587,6 @@ class Candidates {
   const std::optional<std::size_t> specimen_;
   std::map<std::pair<double, double>, Bars> bars_;
   std::map<std::pair<double, int>, Specimen> specimens_;
-  std::map<std::tuple<double, double, double>, Share> shares_;
   ChainDiscretization whole_;  // global steps: the last candidate priced
 };
 
@@ -638,8 +639,8 @@ std::vector<int> trial_order(const Scene& scene, std::vector<int> counts,
                              Candidates& candidates) {
   if (!scene.specimen || counts.size() < 2) return counts;
   std::vector<std::pair<double, int>> keyed;
+  Scene s = scene;
   for (int ns : counts) {
-    Scene s = scene;
     s.bars[*scene.specimen].elements = ns;
     candidates.price(s, free, start);
     keyed.emplace_back(std::abs(std::log(candidates.specimen_share(s) * std::sqrt(2.0) / target)),

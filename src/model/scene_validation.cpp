@@ -83,11 +83,10 @@ std::string default_tolerance_withheld(const Scene& scene) {
 
 ChainDiscretization resolve_scene(Scene& scene, const RunOptions& options) {
   const ChainDiscretization automatic = validate_scene(scene, options);
-  const std::string withheld = default_tolerance_withheld(scene);
   scene.simulation.tolerance_withheld.clear();  // a scene resolved again says it afresh
-  if (!scene.simulation.tolerance && options.default_tolerance && !withheld.empty())
-    scene.simulation.tolerance_withheld = withheld;
-  if (!scene.simulation.tolerance && options.default_tolerance && withheld.empty()) {
+  if (!scene.simulation.tolerance && options.default_tolerance) {
+    scene.simulation.tolerance_withheld = default_tolerance_withheld(scene);
+    if (!scene.simulation.tolerance_withheld.empty()) return automatic;
     Scene chosen = scene;
     chosen.simulation.tolerance = kDefaultTolerance;
     chosen.simulation.tolerance_is_default = true;
