@@ -9,11 +9,13 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
 #include <exception>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -50,6 +52,76 @@ unsigned long g_main_thread = 0;  // set when the module is imported
 
 bool in_main_thread() { return PyThread_get_thread_ident() == g_main_thread; }
 
+// The main thread's worker, started with the first piece of work and kept for the process: a
+// thread started per call cost its start and its first touches of a fresh malloc arena on every
+// run (measured on the classic test from a loop: 0.2 ms and more per run, docs/python.md). One
+// job at a time: only the main thread hands work to it, and waits for it.
+class MainWorker {
+ public:
+  static MainWorker& get() {
+    // Never destroyed: a joinable std::thread destroyed at exit would terminate the process, and
+    // the thread waits on its own state, so the state outlives every static. A child forked
+    // from this process (multiprocessing) has none of its parent's threads: it starts its own.
+    static MainWorker* worker = nullptr;
+    static pid_t owner = 0;
+    if (!worker || owner != getpid()) {
+      worker = new MainWorker;
+      owner = getpid();
+    }
+    return *worker;
+  }
+
+  // Runs `job` on the worker; returns once it has finished, checking for signals meanwhile.
+  void run(const std::function<void()>& job) {
+    {
+      std::lock_guard lock(mutex_);
+      job_ = &job;
+      done_ = false;
+    }
+    wake_.notify_one();
+    std::optional<py::error_already_set> signal_error;
+    for (;;) {
+      {
+        py::gil_scoped_release release;
+        std::unique_lock lock(mutex_);
+        if (finished_.wait_for(lock, kSignalPoll, [&] { return done_; })) break;
+      }
+      if (!signal_error && PyErr_CheckSignals() != 0) {
+        signal_error.emplace();  // fetches the KeyboardInterrupt
+        request_interrupt();
+      }
+    }
+    if (signal_error) {
+      clear_interrupt();
+      throw std::move(*signal_error);
+    }
+  }
+
+ private:
+  MainWorker() {
+    std::thread([this] { loop(); }).detach();
+  }
+
+  void loop() {
+    for (;;) {
+      std::unique_lock lock(mutex_);
+      wake_.wait(lock, [&] { return job_ != nullptr; });
+      const std::function<void()>* job = job_;
+      lock.unlock();
+      (*job)();  // catches its own exceptions (run_released)
+      lock.lock();
+      job_ = nullptr;
+      done_ = true;
+      finished_.notify_one();
+    }
+  }
+
+  std::mutex mutex_;
+  std::condition_variable wake_, finished_;
+  const std::function<void()>* job_ = nullptr;
+  bool done_ = false;
+};
+
 template <class F>
 auto run_released(F&& work) -> decltype(work()) {
   using R = decltype(work());
@@ -59,39 +131,13 @@ auto run_released(F&& work) -> decltype(work()) {
   }
   std::optional<R> value;
   std::exception_ptr error;
-  std::mutex mutex;
-  std::condition_variable finished;
-  bool done = false;
-  std::thread worker([&] {
+  MainWorker::get().run([&] {
     try {
       value.emplace(work());
     } catch (...) {
       error = std::current_exception();
     }
-    std::lock_guard lock(mutex);
-    done = true;
-    finished.notify_one();
   });
-  std::optional<py::error_already_set> signal_error;
-  for (;;) {
-    {
-      py::gil_scoped_release release;
-      std::unique_lock lock(mutex);
-      if (finished.wait_for(lock, kSignalPoll, [&] { return done; })) break;
-    }
-    if (!signal_error && PyErr_CheckSignals() != 0) {
-      signal_error.emplace();  // fetches the KeyboardInterrupt
-      request_interrupt();
-    }
-  }
-  {
-    py::gil_scoped_release release;
-    worker.join();
-  }
-  if (signal_error) {
-    clear_interrupt();
-    throw std::move(*signal_error);
-  }
   if (error) std::rethrow_exception(error);
   return std::move(*value);
 }
@@ -115,8 +161,37 @@ py::dict series(const TimeSeries& s, py::handle owner) {
   return d;
 }
 
+// summary.json's values as Python objects, keys in the file's order (what json.loads of the
+// file gives, without writing and parsing the text).
 py::object json_to_python(const nlohmann::ordered_json& j) {
-  return py::module_::import("json").attr("loads")(j.dump());
+  switch (j.type()) {
+    case nlohmann::ordered_json::value_t::null:
+      return py::none();
+    case nlohmann::ordered_json::value_t::boolean:
+      return py::bool_(j.get<bool>());
+    case nlohmann::ordered_json::value_t::number_integer:
+      return py::int_(j.get<std::int64_t>());
+    case nlohmann::ordered_json::value_t::number_unsigned:
+      return py::int_(j.get<std::uint64_t>());
+    case nlohmann::ordered_json::value_t::number_float: {
+      const double x = j.get<double>();  // the file holds null for a non-finite number
+      return std::isfinite(x) ? py::object(py::float_(x)) : py::object(py::none());
+    }
+    case nlohmann::ordered_json::value_t::string:
+      return py::str(j.get_ref<const std::string&>());
+    case nlohmann::ordered_json::value_t::array: {
+      py::list l(j.size());
+      for (std::size_t i = 0; i < j.size(); ++i) l[i] = json_to_python(j[i]);
+      return l;
+    }
+    case nlohmann::ordered_json::value_t::object: {
+      py::dict d;
+      for (const auto& [key, value] : j.items()) d[py::str(key)] = json_to_python(value);
+      return d;
+    }
+    default:  // binary and discarded values: summary.json holds none
+      throw std::logic_error("summary value of an unexpected JSON type");
+  }
 }
 
 // ---- the scene --------------------------------------------------------------------------------

@@ -34,3 +34,27 @@ def test_sigint_interrupts_a_simulation_and_the_next_run_is_clean():
     lines = p.stdout.splitlines()
     assert lines[0].startswith("interrupted after"), p.stdout
     assert lines[1] == "next run stable: True"
+
+
+FORK_SCRIPT = textwrap.dedent("""
+    import multiprocessing, sys
+    import shpb
+    scene = shpb.Scene.load(sys.argv[1])
+    shpb.simulate(scene)  # the parent's main thread has handed work to its worker thread
+    def run(velocity):
+        scene.striker.velocity_m_s = velocity
+        return shpb.simulate(scene).stable
+    with multiprocessing.get_context("fork").Pool(2) as pool:
+        print("forked children stable:", pool.map(run, [10.0, 12.0]))
+""")
+
+
+def test_a_forked_child_runs_simulations_from_its_main_thread():
+    # A child forked by multiprocessing has none of its parent's threads: work handed to a worker
+    # thread the parent started would wait for ever. Two runs take a second; a minute is a hang.
+    scene = SOURCE / "experiments" / "classic-al6061" / "scene.json"
+    timeout_s = 60
+    p = subprocess.run([sys.executable, "-c", FORK_SCRIPT, str(scene)], capture_output=True,
+                       text=True, timeout=timeout_s, env=os.environ)
+    assert p.returncode == 0, p.stderr
+    assert p.stdout.strip() == "forked children stable: [True, True]"
