@@ -9,18 +9,15 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
-#include <unistd.h>
+#include <signal.h>
 
-#include <chrono>
+#include <atomic>
 #include <cmath>
-#include <condition_variable>
+#include <csignal>
 #include <exception>
-#include <functional>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <string>
-#include <thread>
 
 #include "app/commands.hpp"
 #include "app/process.hpp"
@@ -41,86 +38,24 @@ namespace {
 // ---- running library work with the GIL released, Ctrl-C as the command's SIGINT --------------
 
 // Python runs its signal handlers in the main thread only, and only while it holds the GIL. Work
-// started from the main thread therefore runs in a worker thread while the main thread waits with
-// the GIL released and checks for signals every kSignalPoll; a KeyboardInterrupt (or any error a
-// handler raises) sets the library's interrupt flag, which the library's long loops poll as they
-// poll SIGINT in the command (core/output_folder.hpp), and is raised once the work has stopped.
-// From other threads the work runs in place with the GIL released: threads run in parallel.
-constexpr auto kSignalPoll = std::chrono::milliseconds(50);
+// runs in the calling thread with the GIL released, so Python threads run simulations in
+// parallel. Called from the main thread, Python's SIGINT handler is set aside for the work's
+// duration for one that sets the library's interrupt flag, which the library's long loops poll as
+// they poll SIGINT in the command (core/output_folder.hpp); once the work has stopped, Python's
+// handler is put back and given the signal (PyErr_SetInterruptEx), so Ctrl-C raises
+// KeyboardInterrupt then. No thread is started: a worker thread
+// per call cost its start and its wake-ups on every run (0.2–0.8 ms of a 7 ms run on a loaded
+// machine, docs/python.md), and a thread kept for the process is lost in a forked child.
+std::atomic<bool> g_sigint{false};
+
+extern "C" void on_sigint(int) {
+  g_sigint.store(true);
+  request_interrupt();
+}
 
 unsigned long g_main_thread = 0;  // set when the module is imported
 
 bool in_main_thread() { return PyThread_get_thread_ident() == g_main_thread; }
-
-// The main thread's worker, started with the first piece of work and kept for the process: a
-// thread started per call cost its start and its first touches of a fresh malloc arena on every
-// run (measured on the classic test from a loop: 0.2 ms and more per run, docs/python.md). One
-// job at a time: only the main thread hands work to it, and waits for it.
-class MainWorker {
- public:
-  static MainWorker& get() {
-    // Never destroyed: a joinable std::thread destroyed at exit would terminate the process, and
-    // the thread waits on its own state, so the state outlives every static. A child forked
-    // from this process (multiprocessing) has none of its parent's threads: it starts its own.
-    static MainWorker* worker = nullptr;
-    static pid_t owner = 0;
-    if (!worker || owner != getpid()) {
-      worker = new MainWorker;
-      owner = getpid();
-    }
-    return *worker;
-  }
-
-  // Runs `job` on the worker; returns once it has finished, checking for signals meanwhile.
-  void run(const std::function<void()>& job) {
-    {
-      std::lock_guard lock(mutex_);
-      job_ = &job;
-      done_ = false;
-    }
-    wake_.notify_one();
-    std::optional<py::error_already_set> signal_error;
-    for (;;) {
-      {
-        py::gil_scoped_release release;
-        std::unique_lock lock(mutex_);
-        if (finished_.wait_for(lock, kSignalPoll, [&] { return done_; })) break;
-      }
-      if (!signal_error && PyErr_CheckSignals() != 0) {
-        signal_error.emplace();  // fetches the KeyboardInterrupt
-        request_interrupt();
-      }
-    }
-    if (signal_error) {
-      clear_interrupt();
-      throw std::move(*signal_error);
-    }
-  }
-
- private:
-  MainWorker() {
-    std::thread([this] { loop(); }).detach();
-  }
-
-  void loop() {
-    for (;;) {
-      std::unique_lock lock(mutex_);
-      wake_.wait(lock, [&] { return job_ != nullptr; });
-      const std::function<void()>* job = job_;
-      lock.unlock();
-      (*job)();  // catches its own exceptions (run_released)
-      lock.lock();
-      job_ = nullptr;
-      done_ = true;
-      finished_.notify_one();
-    }
-  }
-
-  std::mutex mutex_;
-  std::condition_variable wake_, finished_;
-  const std::function<void()>* job_ = nullptr;
-  bool done_ = false;
-};
 
 template <class F>
 auto run_released(F&& work) -> decltype(work()) {
@@ -129,15 +64,33 @@ auto run_released(F&& work) -> decltype(work()) {
     py::gil_scoped_release release;
     return work();
   }
+  // Only where SIGINT raises KeyboardInterrupt (Python's default, and a notebook's while it runs a
+  // cell): a handler of the user's own runs after the work, as it would after any C call.
+  py::module_ signal = py::module_::import("signal");
+  struct sigaction python = {}, ours = {};
+  const bool python_handles =
+      signal.attr("getsignal")(SIGINT).is(signal.attr("default_int_handler")) &&
+      sigaction(SIGINT, nullptr, &python) == 0;
+  ours.sa_handler = on_sigint;
+  sigemptyset(&ours.sa_mask);
+  g_sigint.store(false);
+  if (python_handles) sigaction(SIGINT, &ours, nullptr);
   std::optional<R> value;
   std::exception_ptr error;
-  MainWorker::get().run([&] {
+  {
+    py::gil_scoped_release release;
     try {
       value.emplace(work());
     } catch (...) {
       error = std::current_exception();
     }
-  });
+  }
+  if (python_handles) sigaction(SIGINT, &python, nullptr);
+  if (g_sigint.exchange(false)) {
+    clear_interrupt();
+    PyErr_SetInterruptEx(SIGINT);
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();  // KeyboardInterrupt
+  }
   if (error) std::rethrow_exception(error);
   return std::move(*value);
 }

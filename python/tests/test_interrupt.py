@@ -58,3 +58,27 @@ def test_a_forked_child_runs_simulations_from_its_main_thread():
                        text=True, timeout=timeout_s, env=os.environ)
     assert p.returncode == 0, p.stderr
     assert p.stdout.strip() == "forked children stable: [True, True]"
+
+
+OWN_HANDLER_SCRIPT = textwrap.dedent("""
+    import os, signal, sys, threading
+    import shpb
+    scene = shpb.Scene.load(sys.argv[1])
+    scene.duration_s = 0.02  # about twenty times the test's own duration
+    received = []
+    signal.signal(signal.SIGINT, lambda number, frame: received.append(number))
+    threading.Timer(0.2, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
+    run = shpb.simulate(scene)
+    print("run stable:", run.stable, "handler called:", received == [signal.SIGINT])
+""")
+
+
+def test_a_sigint_handler_of_the_users_own_runs_and_the_simulation_completes():
+    # Only Python's default handler means "stop": a handler the user installed decides for itself,
+    # as it does around any other call, and is called once the work returns.
+    scene = SOURCE / "experiments" / "classic-al6061" / "scene.json"
+    timeout_s = 60
+    p = subprocess.run([sys.executable, "-c", OWN_HANDLER_SCRIPT, str(scene)],
+                       capture_output=True, text=True, timeout=timeout_s, env=os.environ)
+    assert p.returncode == 0, p.stderr
+    assert p.stdout.strip() == "run stable: True handler called: True"
