@@ -35,17 +35,17 @@ GridSampler::GridSampler(double tau0, double spacing, long count, int width)
       count_(std::max(0L, count)),
       width_(width),
       prev_(width, 0.0),
-      data_(static_cast<std::size_t>(count_) * width, 0.0) {}
+      data_(std::make_unique_for_overwrite<double[]>(static_cast<std::size_t>(count_) * width)) {}
 
 void GridSampler::push(double tau, const double* values) {
   while (filled_ < count_ && next_tau() <= tau) {
-    double* out = &data_[filled_ * width_];
+    double* out = data_.get() + filled_;
     const double t = next_tau();
     if (has_prev_ && tau > prev_tau_) {
       const double a = (t - prev_tau_) / (tau - prev_tau_);
-      for (int c = 0; c < width_; ++c) out[c] = lerp(prev_[c], values[c], a);
+      for (int c = 0; c < width_; ++c) out[c * count_] = lerp(prev_[c], values[c], a);
     } else {
-      for (int c = 0; c < width_; ++c) out[c] = values[c];
+      for (int c = 0; c < width_; ++c) out[c * count_] = values[c];
     }
     ++filled_;
   }
@@ -239,7 +239,7 @@ double ChainRecorders::energy_total(long k) const {
   return total;
 }
 
-void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& result) const {
+void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& result) {
   auto time_count = [&](long filled) {
     long n = std::min(filled, grid_count(until_s, sample_spacing_s_));
     return std::max(0L, n);
@@ -253,23 +253,21 @@ void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& resu
     for (const BarRecorder& r : bars_)
       if (!r.gauges.empty()) fine = std::min(fine, r.gauge_sampler.filled());
     const long n = fine > 0 ? (fine - 1) / os + 1 : 0;
-    ts.values.assign(gauge_names_.size(), std::vector<double>(n));
+    ts.values.resize(gauge_names_.size());  // each column is one gauge's, filled below
     ts.time_s.reserve(n);
     for (long k = 0; k < n; ++k) ts.time_s.push_back(k * sample_spacing_s_);
     for (const BarRecorder& r : bars_)
       for (std::size_t g = 0; g < r.gauges.size(); ++g) {
+        // Every fine point recorded (the Gaussian reaches past the last kept sample): at least
+        // (n − 1)·os + 1 of them, so at least n smoothed samples.
+        const std::span<const double> x = r.gauge_sampler.column(static_cast<int>(g));
         std::vector<double>& out = ts.values[r.gauges[g].column];
         if (os == 1) {
-          for (long k = 0; k < n; ++k) out[k] = r.gauge_sampler.at(k, static_cast<int>(g));
+          out.assign(x.begin(), x.begin() + n);
           continue;
         }
-        // Every fine point recorded (the Gaussian reaches past the last kept sample).
-        std::vector<double> x(r.gauge_sampler.filled());
-        for (long k = 0; k < r.gauge_sampler.filled(); ++k)
-          x[k] = r.gauge_sampler.at(k, static_cast<int>(g));
-        const std::vector<double> y = record_smoothed(x, os, os);
-        std::copy(y.begin(), y.begin() + std::min<long>(n, static_cast<long>(y.size())),
-                  out.begin());
+        out = record_smoothed(x, os, os);
+        out.resize(n);
       }
   }
   // Interfaces.
@@ -282,13 +280,10 @@ void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& resu
     for (std::size_t i = 0; i < interfaces_.size(); ++i) {
       ts.columns.push_back(interface_names_[i] + "_force_N");
       ts.columns.push_back(interface_names_[i] + "_gap_m");
-      std::vector<double> f(n), g(n);
-      for (long k = 0; k < n; ++k) {
-        f[k] = interfaces_[i].sampler.at(k, 0);
-        g[k] = interfaces_[i].sampler.at(k, 1);
+      for (int c = 0; c < 2; ++c) {
+        const std::span<const double> x = interfaces_[i].sampler.column(c);
+        ts.values.emplace_back(x.begin(), x.begin() + n);
       }
-      ts.values.push_back(std::move(f));
-      ts.values.push_back(std::move(g));
     }
   }
   // Specimen.
@@ -299,11 +294,11 @@ void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& resu
     ts.columns = {k::strain,         k::strain_rate_1_s, k::stress_Pa,     k::front_stress_Pa,
                   k::back_stress_Pa, k::true_strain,     k::true_stress_Pa};
     const long n = time_count(r.specimen_sampler.filled());
-    ts.values.assign(kSpecimenColumns, std::vector<double>(n));
     ts.time_s.reserve(n);
-    for (long k = 0; k < n; ++k) {
-      ts.time_s.push_back(k * sample_spacing_s_);
-      for (int c = 0; c < kSpecimenColumns; ++c) ts.values[c][k] = r.specimen_sampler.at(k, c);
+    for (long k = 0; k < n; ++k) ts.time_s.push_back(k * sample_spacing_s_);
+    for (int c = 0; c < kSpecimenColumns; ++c) {
+      const std::span<const double> x = r.specimen_sampler.column(c);
+      ts.values.emplace_back(x.begin(), x.begin() + n);
     }
   }
   // Energy.
@@ -341,15 +336,14 @@ void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& resu
     long rows = static_cast<long>(field_tau_.size());
     for (const BarRecorder& r : bars_) rows = std::min(rows, r.field_next);
     FieldGrid& f = result.field;
-    f.x_m = field_x_;
     for (long j = 0; j < rows; ++j) {
       const double t = field_tau_[j] + start_time_s_;
       if (t > until_s + 1e-12) break;
       f.time_s.push_back(t);
     }
-    f.stress_Pa.assign(
-        field_stress_.begin(),
-        field_stress_.begin() + static_cast<long>(f.time_s.size() * field_x_.size()));
+    f.stress_Pa = std::move(field_stress_);  // the grid's layout: no copy
+    f.stress_Pa.resize(f.time_s.size() * field_x_.size());
+    f.x_m = std::move(field_x_);
   }
 }
 

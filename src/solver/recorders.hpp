@@ -6,6 +6,8 @@
 // With a tolerance (model/scene.hpp gauges_filtered) the gauges are recorded at
 // kGaugeOversampling × the sample rate and seen through the record's Gaussian before they are
 // sampled (core/record_filter.hpp), as a digitiser's anti-alias filter does.
+#include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -27,7 +29,11 @@ class GridSampler {
   void push(double tau, const double* values);
   long filled() const { return filled_; }
   int width() const { return width_; }
-  double at(long k, int c) const { return data_[k * width_ + c]; }
+  double at(long k, int c) const { return data_[c * count_ + k]; }
+  // Column c at the grid points filled so far.
+  std::span<const double> column(int c) const {
+    return {data_.get() + c * count_, static_cast<std::size_t>(filled_)};
+  }
 
  private:
   double tau0_ = 0, spacing_ = 1;
@@ -35,7 +41,10 @@ class GridSampler {
   int width_ = 0;
   bool has_prev_ = false;
   double prev_tau_ = 0;
-  std::vector<double> prev_, data_;
+  std::vector<double> prev_;
+  // Column by column (column c from c·count), so that a column is copied out whole; left
+  // uninitialised (megabytes per run): a grid point is read only once filled.
+  std::unique_ptr<double[]> data_;
 };
 
 class ChainRecorders {
@@ -53,8 +62,9 @@ class ChainRecorders {
   double energy_total(long k) const;
   double energy_grid_tau(long k) const { return energy_tau0_ + k * energy_spacing_; }
 
-  // Fills the time series of `result` up to (and including) simulation time `until_s`.
-  void finish(const Chain& chain, double until_s, SimulationResult& result) const;
+  // Fills the time series of `result` up to (and including) simulation time `until_s`. Moves the
+  // recorded field into `result`: called once, at the end of the run.
+  void finish(const Chain& chain, double until_s, SimulationResult& result);
 
  private:
   struct GaugeProbe {
