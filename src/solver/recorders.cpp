@@ -1,7 +1,9 @@
 #include "solver/recorders.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 #include "core/interpolation.hpp"
 #include "core/record_filter.hpp"
@@ -26,6 +28,34 @@ constexpr int kSpecimenColumns = 7;
 
 long grid_count(double span, double spacing) {
   return span < 0 ? 0 : static_cast<long>(std::floor(span / spacing + 1e-9)) + 1;
+}
+
+// The index of the first non-finite value of `v`, v.size() if none. A run's records are hundreds
+// of thousands of values, almost always all finite: each block is first checked without a branch
+// (a value is non-finite where its exponent bits are all ones, and adding one to the exponent then
+// carries into the top bit), and searched value by value only if that finds one.
+std::size_t first_non_finite(std::span<const double> v) {
+  constexpr std::uint64_t kExponent = 0x7ff0000000000000, kExponentOne = 0x0010000000000000;
+  constexpr std::size_t kBlock = 512;
+  for (std::size_t b = 0; b < v.size(); b += kBlock) {
+    const std::size_t e = std::min(v.size(), b + kBlock);
+    std::uint64_t carried = 0;
+    for (std::size_t k = b; k < e; ++k)
+      carried |= (std::bit_cast<std::uint64_t>(v[k]) & kExponent) + kExponentOne;
+    if (carried >> 63)
+      for (std::size_t k = b; k < e; ++k)
+        if (!std::isfinite(v[k])) return k;
+  }
+  return v.size();
+}
+
+// Keeps the rows before the first non-finite value of any column (an unstable run's tail).
+void keep_finite_prefix(TimeSeries& ts) {
+  std::size_t n = ts.time_s.size();
+  for (const auto& col : ts.values)
+    n = std::min(n, first_non_finite({col.data(), std::min(n, col.size())}));
+  ts.time_s.resize(n);
+  for (auto& col : ts.values) col.resize(std::min(n, col.size()));
 }
 }  // namespace
 
@@ -200,8 +230,10 @@ void ChainRecorders::on_bar_instant(const Chain& chain, std::size_t i, double ta
     while (r.field_next < static_cast<long>(field_tau_.size()) &&
            field_tau_[r.field_next] <= tau_n) {
       double* row = &field_stress_[r.field_next * field_x_.size() + r.field_offset];
-      for (std::size_t p = 0; p < r.field_elements.size(); ++p)
-        row[p] = element_stress(bar, s, r.field_elements[p]);
+      const std::size_t points = r.field_elements.size();
+      for (std::size_t p = 0; p < points; ++p) row[p] = element_stress(bar, s, r.field_elements[p]);
+      // Checked here, where the row is at hand: finish() searches the grid only if one was seen.
+      if (first_non_finite({row, points}) < points) field_non_finite_ = true;
       ++r.field_next;
     }
   }
@@ -270,6 +302,7 @@ void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& resu
         out.resize(n);
       }
   }
+  keep_finite_prefix(result.gauges);
   // Interfaces.
   {
     TimeSeries& ts = result.interfaces;
@@ -286,6 +319,7 @@ void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& resu
       }
     }
   }
+  keep_finite_prefix(result.interfaces);
   // Specimen.
   for (const BarRecorder& r : bars_) {
     if (!r.specimen) continue;
@@ -301,6 +335,7 @@ void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& resu
       ts.values.emplace_back(x.begin(), x.begin() + n);
     }
   }
+  keep_finite_prefix(result.specimen);
   // Energy.
   {
     TimeSeries& ts = result.energy;
@@ -331,7 +366,8 @@ void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& resu
       ts.values[4].push_back(kin + strain + contact + diss);
     }
   }
-  // Field.
+  keep_finite_prefix(result.energy);
+  // Field: the rows before the first with a non-finite value.
   if (record_field_) {
     long rows = static_cast<long>(field_tau_.size());
     for (const BarRecorder& r : bars_) rows = std::min(rows, r.field_next);
@@ -341,8 +377,11 @@ void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& resu
       if (t > until_s + 1e-12) break;
       f.time_s.push_back(t);
     }
+    const std::size_t nx = field_x_.size();
+    if (field_non_finite_)
+      f.time_s.resize(first_non_finite({field_stress_.data(), f.time_s.size() * nx}) / nx);
     f.stress_Pa = std::move(field_stress_);  // the grid's layout: no copy
-    f.stress_Pa.resize(f.time_s.size() * field_x_.size());
+    f.stress_Pa.resize(f.time_s.size() * nx);
     f.x_m = std::move(field_x_);
   }
 }

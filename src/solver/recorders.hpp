@@ -62,8 +62,9 @@ class ChainRecorders {
   double energy_total(long k) const;
   double energy_grid_tau(long k) const { return energy_tau0_ + k * energy_spacing_; }
 
-  // Fills the time series of `result` up to (and including) simulation time `until_s`. Moves the
-  // recorded field into `result`: called once, at the end of the run.
+  // Fills the time series of `result` up to (and including) simulation time `until_s`, each
+  // ending before its first row with a non-finite value (an unstable run's tail), the field too.
+  // Moves the recorded field into `result`: called once, at the end of the run.
   void finish(const Chain& chain, double until_s, SimulationResult& result);
 
  private:
@@ -101,6 +102,7 @@ class ChainRecorders {
   std::vector<double> field_tau_;
   std::vector<double> field_x_;
   std::vector<double> field_stress_;
+  bool field_non_finite_ = false;  // a non-finite stress was recorded in the field
 };
 
 }  // namespace shpb

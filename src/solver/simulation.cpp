@@ -1,13 +1,10 @@
 #include "solver/simulation.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <chrono>
 #include <cmath>
-#include <cstdint>
 #include <cstdio>
 #include <nlohmann/json.hpp>
-#include <span>
 
 #include "core/checked_write.hpp"
 #include "core/clock.hpp"
@@ -115,34 +112,6 @@ Chain build_chain(const Scene& scene, const ChainDiscretization& d, bool full_mo
   plan_end_segments(c, scene);
   plan_first_steps(c);
   return c;
-}
-
-// The index of the first non-finite value of `v`, v.size() if none. A run's records are hundreds
-// of thousands of values, almost always all finite: each block is first checked without a branch
-// (a value is non-finite where its exponent bits are all ones, and adding one to the exponent then
-// carries into the top bit), and searched value by value only if that finds one.
-std::size_t first_non_finite(std::span<const double> v) {
-  constexpr std::uint64_t kExponent = 0x7ff0000000000000, kExponentOne = 0x0010000000000000;
-  constexpr std::size_t kBlock = 512;
-  for (std::size_t b = 0; b < v.size(); b += kBlock) {
-    const std::size_t e = std::min(v.size(), b + kBlock);
-    std::uint64_t carried = 0;
-    for (std::size_t k = b; k < e; ++k)
-      carried |= (std::bit_cast<std::uint64_t>(v[k]) & kExponent) + kExponentOne;
-    if (carried >> 63)
-      for (std::size_t k = b; k < e; ++k)
-        if (!std::isfinite(v[k])) return k;
-  }
-  return v.size();
-}
-
-// Keeps the rows before the first non-finite value of any column (an unstable run's tail).
-void keep_finite_prefix(TimeSeries& ts) {
-  std::size_t n = ts.time_s.size();
-  for (const auto& col : ts.values)
-    n = std::min(n, first_non_finite({col.data(), std::min(n, col.size())}));
-  ts.time_s.resize(n);
-  for (auto& col : ts.values) col.resize(std::min(n, col.size()));
 }
 
 void write_series(const std::filesystem::path& file, const TimeSeries& ts) {
@@ -263,17 +232,6 @@ SimulationResult simulate(const Scene& scene, const SimulationOptions& options) 
   result.max_penetration_m = std::max(0.0, chain.max_penetration_m);
   result.max_penetration_elements = std::max(0.0, chain.max_penetration_elements);
   recorders.finish(chain, outcome.checked_until_s, result);
-  for (TimeSeries* ts : {&result.gauges, &result.interfaces, &result.specimen, &result.energy})
-    keep_finite_prefix(*ts);
-  {
-    // Field rows with a non-finite value are dropped with everything after them.
-    FieldGrid& f = result.field;
-    const std::size_t nx = f.x_m.size();
-    std::size_t rows = f.time_s.size();
-    if (nx > 0) rows = first_non_finite({f.stress_Pa.data(), rows * nx}) / nx;
-    f.time_s.resize(rows);
-    f.stress_Pa.resize(rows * nx);
-  }
   for (std::size_t i = 0; i < chain.bars.size(); ++i) {
     const BarModel& b = chain.bars[i];
     const BarState& s = chain.states[i];
