@@ -69,19 +69,25 @@ GridSampler::GridSampler(double tau0, double spacing, long count, int width)
 
 void GridSampler::push(double tau, const double* values) {
   while (filled_ < count_ && next_tau() <= tau) {
-    double* out = data_.get() + filled_;
+    double* out = data_.get() + filled_ * width_;
     const double t = next_tau();
     if (has_prev_ && tau > prev_tau_) {
       const double a = (t - prev_tau_) / (tau - prev_tau_);
-      for (int c = 0; c < width_; ++c) out[c * count_] = lerp(prev_[c], values[c], a);
+      for (int c = 0; c < width_; ++c) out[c] = lerp(prev_[c], values[c], a);
     } else {
-      for (int c = 0; c < width_; ++c) out[c * count_] = values[c];
+      for (int c = 0; c < width_; ++c) out[c] = values[c];
     }
     ++filled_;
   }
   std::copy(values, values + width_, prev_.begin());
   prev_tau_ = tau;
   has_prev_ = true;
+}
+
+std::vector<double> GridSampler::column(int c, long n) const {
+  std::vector<double> v(n);
+  for (long k = 0; k < n; ++k) v[k] = at(k, c);
+  return v;
 }
 
 ChainRecorders::ChainRecorders(const Scene& scene, const Chain& chain, const ChainDiscretization& d,
@@ -292,7 +298,11 @@ void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& resu
       for (std::size_t g = 0; g < r.gauges.size(); ++g) {
         // Every fine point recorded (the Gaussian reaches past the last kept sample): at least
         // (n − 1)·os + 1 of them, so at least n smoothed samples.
-        const std::span<const double> x = r.gauge_sampler.column(static_cast<int>(g));
+        const GridSampler& sampler = r.gauge_sampler;
+        const std::vector<double> copied =
+            sampler.width() > 1 ? sampler.column(static_cast<int>(g), sampler.filled())
+                                : std::vector<double>{};
+        const std::span<const double> x = sampler.width() > 1 ? copied : sampler.rows();
         std::vector<double>& out = ts.values[r.gauges[g].column];
         if (os == 1) {
           out.assign(x.begin(), x.begin() + n);
@@ -313,10 +323,7 @@ void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& resu
     for (std::size_t i = 0; i < interfaces_.size(); ++i) {
       ts.columns.push_back(interface_names_[i] + "_force_N");
       ts.columns.push_back(interface_names_[i] + "_gap_m");
-      for (int c = 0; c < 2; ++c) {
-        const std::span<const double> x = interfaces_[i].sampler.column(c);
-        ts.values.emplace_back(x.begin(), x.begin() + n);
-      }
+      for (int c = 0; c < 2; ++c) ts.values.push_back(interfaces_[i].sampler.column(c, n));
     }
   }
   keep_finite_prefix(result.interfaces);
@@ -330,10 +337,7 @@ void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& resu
     const long n = time_count(r.specimen_sampler.filled());
     ts.time_s.reserve(n);
     for (long k = 0; k < n; ++k) ts.time_s.push_back(k * sample_spacing_s_);
-    for (int c = 0; c < kSpecimenColumns; ++c) {
-      const std::span<const double> x = r.specimen_sampler.column(c);
-      ts.values.emplace_back(x.begin(), x.begin() + n);
-    }
+    for (int c = 0; c < kSpecimenColumns; ++c) ts.values.push_back(r.specimen_sampler.column(c, n));
   }
   keep_finite_prefix(result.specimen);
   // Energy.
