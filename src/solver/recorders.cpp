@@ -65,11 +65,11 @@ GridSampler::GridSampler(double tau0, double spacing, long count, int width)
       count_(std::max(0L, count)),
       width_(width),
       prev_(width, 0.0),
-      data_(std::make_unique_for_overwrite<double[]>(static_cast<std::size_t>(count_) * width)) {}
+      data_(static_cast<std::size_t>(count_) * width, 0.0) {}
 
 void GridSampler::push(double tau, const double* values) {
   while (filled_ < count_ && next_tau() <= tau) {
-    double* out = data_.get() + filled_ * width_;
+    double* out = &data_[filled_ * width_];
     const double t = next_tau();
     if (has_prev_ && tau > prev_tau_) {
       const double a = (t - prev_tau_) / (tau - prev_tau_);
@@ -236,10 +236,8 @@ void ChainRecorders::on_bar_instant(const Chain& chain, std::size_t i, double ta
     while (r.field_next < static_cast<long>(field_tau_.size()) &&
            field_tau_[r.field_next] <= tau_n) {
       double* row = &field_stress_[r.field_next * field_x_.size() + r.field_offset];
-      const std::size_t points = r.field_elements.size();
-      for (std::size_t p = 0; p < points; ++p) row[p] = element_stress(bar, s, r.field_elements[p]);
-      // Checked here, where the row is at hand: finish() searches the grid only if one was seen.
-      if (first_non_finite({row, points}) < points) field_non_finite_ = true;
+      for (std::size_t p = 0; p < r.field_elements.size(); ++p)
+        row[p] = element_stress(bar, s, r.field_elements[p]);
       ++r.field_next;
     }
   }
@@ -382,7 +380,7 @@ void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& resu
       f.time_s.push_back(t);
     }
     const std::size_t nx = field_x_.size();
-    if (field_non_finite_)
+    if (nx > 0)
       f.time_s.resize(first_non_finite({field_stress_.data(), f.time_s.size() * nx}) / nx);
     f.stress_Pa = std::move(field_stress_);  // the grid's layout: no copy
     f.stress_Pa.resize(f.time_s.size() * nx);

@@ -6,7 +6,6 @@
 // With a tolerance (model/scene.hpp gauges_filtered) the gauges are recorded at
 // kGaugeOversampling × the sample rate and seen through the record's Gaussian before they are
 // sampled (core/record_filter.hpp), as a digitiser's anti-alias filter does.
-#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -34,7 +33,7 @@ class GridSampler {
   std::vector<double> column(int c, long n) const;
   // The filled grid points row after row: a sampler of width 1's column, without a copy.
   std::span<const double> rows() const {
-    return {data_.get(), static_cast<std::size_t>(filled_ * width_)};
+    return {data_.data(), static_cast<std::size_t>(filled_ * width_)};
   }
 
  private:
@@ -44,9 +43,10 @@ class GridSampler {
   bool has_prev_ = false;
   double prev_tau_ = 0;
   std::vector<double> prev_;
-  // Row by row (the solve writes a row at a time; column by column cost it 1.5–2 %), left
-  // uninitialised (megabytes per run): a grid point is read only once filled.
-  std::unique_ptr<double[]> data_;
+  // Row by row, as the solve writes them. Zero-filled: a fill writes whole cache lines, where left
+  // uninitialised the solve's first writes each fetched theirs (measured slower:
+  // docs/validation.md).
+  std::vector<double> data_;
 };
 
 class ChainRecorders {
@@ -104,7 +104,6 @@ class ChainRecorders {
   std::vector<double> field_tau_;
   std::vector<double> field_x_;
   std::vector<double> field_stress_;
-  bool field_non_finite_ = false;  // a non-finite stress was recorded in the field
 };
 
 }  // namespace shpb
