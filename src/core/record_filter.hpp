@@ -3,6 +3,7 @@
 // a Gaussian of standard deviation Δs. The study's recorded error sees runs and references
 // through it; a run with a tolerance records its gauges through it before sampling, as a
 // digitiser's anti-alias filter does (solver/recorders.hpp).
+#include <span>
 #include <vector>
 
 namespace shpb {
@@ -10,6 +11,6 @@ namespace shpb {
 // x smoothed by a Gaussian of standard deviation `sigma` samples (truncated at 4 σ, normalised by
 // the weights inside the record at its ends), kept every `stride`-th sample from the first (a
 // signal recorded at `stride` × the sample rate is smoothed with sigma = stride).
-std::vector<double> record_smoothed(const std::vector<double>& x, int sigma = 1, int stride = 1);
+std::vector<double> record_smoothed(std::span<const double> x, int sigma = 1, int stride = 1);
 
 }  // namespace shpb

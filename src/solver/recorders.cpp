@@ -1,7 +1,9 @@
 #include "solver/recorders.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 #include "core/interpolation.hpp"
 #include "core/record_filter.hpp"
@@ -26,6 +28,34 @@ constexpr int kSpecimenColumns = 7;
 
 long grid_count(double span, double spacing) {
   return span < 0 ? 0 : static_cast<long>(std::floor(span / spacing + 1e-9)) + 1;
+}
+
+// The index of the first non-finite value of `v`, v.size() if none. A run's records are hundreds
+// of thousands of values, almost always all finite: each block is first checked without a branch
+// (a value is non-finite where its exponent bits are all ones, and adding one to the exponent then
+// carries into the top bit), and searched value by value only if that finds one.
+std::size_t first_non_finite(std::span<const double> v) {
+  constexpr std::uint64_t kExponent = 0x7ff0000000000000, kExponentOne = 0x0010000000000000;
+  constexpr std::size_t kBlock = 512;
+  for (std::size_t b = 0; b < v.size(); b += kBlock) {
+    const std::size_t e = std::min(v.size(), b + kBlock);
+    std::uint64_t carried = 0;
+    for (std::size_t k = b; k < e; ++k)
+      carried |= (std::bit_cast<std::uint64_t>(v[k]) & kExponent) + kExponentOne;
+    if (carried >> 63)
+      for (std::size_t k = b; k < e; ++k)
+        if (!std::isfinite(v[k])) return k;
+  }
+  return v.size();
+}
+
+// Keeps the rows before the first non-finite value of any column (an unstable run's tail).
+void keep_finite_prefix(TimeSeries& ts) {
+  std::size_t n = ts.time_s.size();
+  for (const auto& col : ts.values)
+    n = std::min(n, first_non_finite({col.data(), std::min(n, col.size())}));
+  ts.time_s.resize(n);
+  for (auto& col : ts.values) col.resize(std::min(n, col.size()));
 }
 }  // namespace
 
@@ -52,6 +82,12 @@ void GridSampler::push(double tau, const double* values) {
   std::copy(values, values + width_, prev_.begin());
   prev_tau_ = tau;
   has_prev_ = true;
+}
+
+std::vector<double> GridSampler::column(int c, long n) const {
+  std::vector<double> v(n);
+  for (long k = 0; k < n; ++k) v[k] = at(k, c);
+  return v;
 }
 
 ChainRecorders::ChainRecorders(const Scene& scene, const Chain& chain, const ChainDiscretization& d,
@@ -239,7 +275,7 @@ double ChainRecorders::energy_total(long k) const {
   return total;
 }
 
-void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& result) const {
+void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& result) {
   auto time_count = [&](long filled) {
     long n = std::min(filled, grid_count(until_s, sample_spacing_s_));
     return std::max(0L, n);
@@ -253,25 +289,28 @@ void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& resu
     for (const BarRecorder& r : bars_)
       if (!r.gauges.empty()) fine = std::min(fine, r.gauge_sampler.filled());
     const long n = fine > 0 ? (fine - 1) / os + 1 : 0;
-    ts.values.assign(gauge_names_.size(), std::vector<double>(n));
+    ts.values.resize(gauge_names_.size());  // each column is one gauge's, filled below
     ts.time_s.reserve(n);
     for (long k = 0; k < n; ++k) ts.time_s.push_back(k * sample_spacing_s_);
     for (const BarRecorder& r : bars_)
       for (std::size_t g = 0; g < r.gauges.size(); ++g) {
+        // Every fine point recorded (the Gaussian reaches past the last kept sample): at least
+        // (n − 1)·os + 1 of them, so at least n smoothed samples.
+        const GridSampler& sampler = r.gauge_sampler;
+        const std::vector<double> copied =
+            sampler.width() > 1 ? sampler.column(static_cast<int>(g), sampler.filled())
+                                : std::vector<double>{};
+        const std::span<const double> x = sampler.width() > 1 ? copied : sampler.rows();
         std::vector<double>& out = ts.values[r.gauges[g].column];
         if (os == 1) {
-          for (long k = 0; k < n; ++k) out[k] = r.gauge_sampler.at(k, static_cast<int>(g));
+          out.assign(x.begin(), x.begin() + n);
           continue;
         }
-        // Every fine point recorded (the Gaussian reaches past the last kept sample).
-        std::vector<double> x(r.gauge_sampler.filled());
-        for (long k = 0; k < r.gauge_sampler.filled(); ++k)
-          x[k] = r.gauge_sampler.at(k, static_cast<int>(g));
-        const std::vector<double> y = record_smoothed(x, os, os);
-        std::copy(y.begin(), y.begin() + std::min<long>(n, static_cast<long>(y.size())),
-                  out.begin());
+        out = record_smoothed(x, os, os);
+        out.resize(n);
       }
   }
+  keep_finite_prefix(result.gauges);
   // Interfaces.
   {
     TimeSeries& ts = result.interfaces;
@@ -282,15 +321,10 @@ void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& resu
     for (std::size_t i = 0; i < interfaces_.size(); ++i) {
       ts.columns.push_back(interface_names_[i] + "_force_N");
       ts.columns.push_back(interface_names_[i] + "_gap_m");
-      std::vector<double> f(n), g(n);
-      for (long k = 0; k < n; ++k) {
-        f[k] = interfaces_[i].sampler.at(k, 0);
-        g[k] = interfaces_[i].sampler.at(k, 1);
-      }
-      ts.values.push_back(std::move(f));
-      ts.values.push_back(std::move(g));
+      for (int c = 0; c < 2; ++c) ts.values.push_back(interfaces_[i].sampler.column(c, n));
     }
   }
+  keep_finite_prefix(result.interfaces);
   // Specimen.
   for (const BarRecorder& r : bars_) {
     if (!r.specimen) continue;
@@ -299,13 +333,11 @@ void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& resu
     ts.columns = {k::strain,         k::strain_rate_1_s, k::stress_Pa,     k::front_stress_Pa,
                   k::back_stress_Pa, k::true_strain,     k::true_stress_Pa};
     const long n = time_count(r.specimen_sampler.filled());
-    ts.values.assign(kSpecimenColumns, std::vector<double>(n));
     ts.time_s.reserve(n);
-    for (long k = 0; k < n; ++k) {
-      ts.time_s.push_back(k * sample_spacing_s_);
-      for (int c = 0; c < kSpecimenColumns; ++c) ts.values[c][k] = r.specimen_sampler.at(k, c);
-    }
+    for (long k = 0; k < n; ++k) ts.time_s.push_back(k * sample_spacing_s_);
+    for (int c = 0; c < kSpecimenColumns; ++c) ts.values.push_back(r.specimen_sampler.column(c, n));
   }
+  keep_finite_prefix(result.specimen);
   // Energy.
   {
     TimeSeries& ts = result.energy;
@@ -336,20 +368,23 @@ void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& resu
       ts.values[4].push_back(kin + strain + contact + diss);
     }
   }
-  // Field.
+  keep_finite_prefix(result.energy);
+  // Field: the rows before the first with a non-finite value.
   if (record_field_) {
     long rows = static_cast<long>(field_tau_.size());
     for (const BarRecorder& r : bars_) rows = std::min(rows, r.field_next);
     FieldGrid& f = result.field;
-    f.x_m = field_x_;
     for (long j = 0; j < rows; ++j) {
       const double t = field_tau_[j] + start_time_s_;
       if (t > until_s + 1e-12) break;
       f.time_s.push_back(t);
     }
-    f.stress_Pa.assign(
-        field_stress_.begin(),
-        field_stress_.begin() + static_cast<long>(f.time_s.size() * field_x_.size()));
+    const std::size_t nx = field_x_.size();
+    if (nx > 0)
+      f.time_s.resize(first_non_finite({field_stress_.data(), f.time_s.size() * nx}) / nx);
+    f.stress_Pa = std::move(field_stress_);  // the grid's layout: no copy
+    f.stress_Pa.resize(f.time_s.size() * nx);
+    f.x_m = std::move(field_x_);
   }
 }
 

@@ -6,6 +6,7 @@
 // With a tolerance (model/scene.hpp gauges_filtered) the gauges are recorded at
 // kGaugeOversampling × the sample rate and seen through the record's Gaussian before they are
 // sampled (core/record_filter.hpp), as a digitiser's anti-alias filter does.
+#include <span>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,12 @@ class GridSampler {
   long filled() const { return filled_; }
   int width() const { return width_; }
   double at(long k, int c) const { return data_[k * width_ + c]; }
+  // Column c at the first n grid points (n ≤ filled()).
+  std::vector<double> column(int c, long n) const;
+  // The filled grid points row after row: a sampler of width 1's column, without a copy.
+  std::span<const double> rows() const {
+    return {data_.data(), static_cast<std::size_t>(filled_ * width_)};
+  }
 
  private:
   double tau0_ = 0, spacing_ = 1;
@@ -35,7 +42,11 @@ class GridSampler {
   int width_ = 0;
   bool has_prev_ = false;
   double prev_tau_ = 0;
-  std::vector<double> prev_, data_;
+  std::vector<double> prev_;
+  // Row by row, as the solve writes them. Zero-filled: a fill writes whole cache lines, where left
+  // uninitialised the solve's first writes each fetched theirs (measured slower:
+  // docs/validation.md).
+  std::vector<double> data_;
 };
 
 class ChainRecorders {
@@ -53,8 +64,10 @@ class ChainRecorders {
   double energy_total(long k) const;
   double energy_grid_tau(long k) const { return energy_tau0_ + k * energy_spacing_; }
 
-  // Fills the time series of `result` up to (and including) simulation time `until_s`.
-  void finish(const Chain& chain, double until_s, SimulationResult& result) const;
+  // Fills the time series of `result` up to (and including) simulation time `until_s`, each
+  // ending before its first row with a non-finite value (an unstable run's tail), the field too.
+  // Moves the recorded field into `result`: called once, at the end of the run.
+  void finish(const Chain& chain, double until_s, SimulationResult& result);
 
  private:
   struct GaugeProbe {

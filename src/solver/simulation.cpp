@@ -114,19 +114,6 @@ Chain build_chain(const Scene& scene, const ChainDiscretization& d, bool full_mo
   return c;
 }
 
-// Keeps the rows before the first non-finite value of any column (an unstable run's tail).
-void keep_finite_prefix(TimeSeries& ts) {
-  std::size_t n = ts.time_s.size();
-  for (const auto& col : ts.values)
-    for (std::size_t k = 0; k < std::min(n, col.size()); ++k)
-      if (!std::isfinite(col[k])) {
-        n = k;
-        break;
-      }
-  ts.time_s.resize(n);
-  for (auto& col : ts.values) col.resize(std::min(n, col.size()));
-}
-
 void write_series(const std::filesystem::path& file, const TimeSeries& ts) {
   std::vector<std::string> header{schema::gauges::time_s};  // every series leads with time
   header.insert(header.end(), ts.columns.begin(), ts.columns.end());
@@ -245,22 +232,6 @@ SimulationResult simulate(const Scene& scene, const SimulationOptions& options) 
   result.max_penetration_m = std::max(0.0, chain.max_penetration_m);
   result.max_penetration_elements = std::max(0.0, chain.max_penetration_elements);
   recorders.finish(chain, outcome.checked_until_s, result);
-  for (TimeSeries* ts : {&result.gauges, &result.interfaces, &result.specimen, &result.energy})
-    keep_finite_prefix(*ts);
-  {
-    // Field rows with a non-finite value are dropped with everything after them.
-    FieldGrid& f = result.field;
-    const std::size_t nx = f.x_m.size();
-    std::size_t rows = f.time_s.size();
-    for (std::size_t j = 0; j < rows && nx > 0; ++j)
-      for (std::size_t x = 0; x < nx; ++x)
-        if (!std::isfinite(f.stress_Pa[j * nx + x])) {
-          rows = j;
-          break;
-        }
-    f.time_s.resize(rows);
-    f.stress_Pa.resize(rows * nx);
-  }
   for (std::size_t i = 0; i < chain.bars.size(); ++i) {
     const BarModel& b = chain.bars[i];
     const BarState& s = chain.states[i];
