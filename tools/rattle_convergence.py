@@ -11,18 +11,19 @@ and 0.5 %, and every bar's elements k x the default run's (k = 1, 2, 4, and 8 wh
 predicts it under a minute) — prints one line per specimen face:
   elements per bar (striker/incident/specimen/transmitter), wall time of the full run;
   t_r, the face's unloading: the first record sample after its force's peak at which it is zero
-  (the earlier of the two faces' is printed; each face's windows below are after its own);
+  (each face's windows below are after its own; a face never released says so);
   closings after the first release (summary.json interfaces[].activations - 1), total and per
   window after t_r: before t_r | 0-10 | 10-40 | 40-100 | 100+ us, counted exactly by re-running
   the same scene to t_r + 10, 40, 100 us (the solver is deterministic and causal);
-  the face force's RMS over the loading peak in the same windows (%), the specimen's mean stress
-  (specimen.csv) RMS over its peak in the same windows (%: its ringing), the largest gap after t_r;
+  the face force's RMS over the loading peak in the same windows (%), the specimen's stress
+  (specimen.csv stress_Pa) RMS over its peak in the same windows (%: its ringing), the largest gap after t_r;
   the timing of the closings: their count in the record (100 MHz with explicit elements, else the
   scene's rate), the meetings among them (closings more than the specimen's L/c apart), the
   closings "felt" (the force rising through 0.1 % of the loading peak), the median interval
   between the closings seen; the specimen's fundamental period 2L/c (L deformed, at the end of the
   run; c = Courant x h / step from summary.json), its element transit h/c, and the dominant period
-  (below 5 us) of the specimen's mean stress (specimen.csv, its ringing) over 40 us after t_r.
+  (below 5 us) of the specimen's stress (its ringing) over 40 us after t_r.
+Runs one simulation at a time under nice -n 19; the three experiments take about 6 minutes.
 """
 import json
 import os
