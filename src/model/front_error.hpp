@@ -25,7 +25,7 @@ struct FrequencyWeights {
   FrequencyWeights(double sample, double rise);
 };
 
-// The weights of (Δs, τ), computed once per thread for the pairs asked for recently.
+// The weights of (Δs, τ), computed once for the pairs asked for recently (shared by every thread).
 std::shared_ptr<const FrequencyWeights> frequency_weights(double sample_s, double rise_s);
 
 // A front's path to one gauge: with the weights, all that front_error_s() reads.
@@ -44,15 +44,16 @@ struct FrontPath {
 // (1/π) ∫ e^{−ω²Δs²}/(1 + ω²τ²) |F H − 1|²/ω² dω + the aliasing (the model's I / A²) for the
 // front's path `p`, `f` the weights of its record. `give_up`: once the integral below the cut-off
 // passes it (checked every 32 points), return what it has summed with *gave_up set (the caller's
-// bound then shows the mesh misses its target). Remembered per thread by every number it reads
-// (a few thousand paths at most): the very double integrating it again would give.
+// bound then shows the mesh misses its target). Remembered by every number it reads from the
+// second time a path is asked for (a few thousand paths at most, shared by every thread): the very
+// double integrating it again gives.
 double front_error_s(const FrontPath& p, const FrequencyWeights& f, double give_up, bool* gave_up);
 
 // A lower bound on front_error_s: the frequencies above the path's lowest cut-off, which no mesh
 // carries (|F H − 1| = 1), and the aliasing, without the integral below the cut-off.
 double front_error_floor_s(const FrontPath& p, const FrequencyWeights& f);
 
-// Forgets this thread's remembered integrals and weights (a choice made afresh).
+// Forgets the remembered integrals and weights (the next choice is made afresh).
 void forget_front_errors();
 
 }  // namespace shpb
