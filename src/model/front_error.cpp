@@ -56,8 +56,10 @@ struct Trace {
 };
 
 // The integral itself (docs/methods.md §1.1): each bar's sin(ωΔt/2) by angle addition from one
-// frequency to the next; the gauge's filter F from sin(κh/2) = s itself.
-void integrate(const FrontPath& p, const FrequencyWeights& f, double give_up, Trace& t) {
+// frequency to the next; the gauge's filter F from sin(κh/2) = s itself. Out of line: inlined
+// into the memo's lookup it took 15 % more instructions (measured on the classic choice).
+[[gnu::noinline]] void integrate(const FrontPath& p, const FrequencyWeights& f, double give_up,
+                                 Trace& t) {
   struct PathBar {
     double x, courant, two_over_h, slowness, half_step;
     std::complex<double> rotation, phasor;  // e^{i dω Δt/2}, e^{i ω Δt/2}
@@ -65,6 +67,8 @@ void integrate(const FrontPath& p, const FrequencyWeights& f, double give_up, Tr
   };
   std::vector<PathBar> path;
   double h = 0;
+  const double gauge_w = p.gauge_w;  // in a register, not read through `p` at every frequency
+  path.reserve(p.bars.size());
   for (const FrontPath::Bar& b : p.bars) {
     const double half_step = 0.5 * f.dw * b.time_step_s;
     path.push_back({b.x,
@@ -77,8 +81,7 @@ void integrate(const FrontPath& p, const FrequencyWeights& f, double give_up, Tr
                     b.gauge});
     if (b.gauge) h = b.element_length_m;
   }
-  // The sums kept in locals while integrating, copied into `t` at the end (measured: 13 %
-  // fewer instructions than storing into `t` as they come).
+  // The sums kept in locals while integrating, copied into `t` at the end.
   std::array<double, kFrequencyPoints / kGiveUpStride> sums;
   int count = 0;
   const auto keep = [&](double value, bool complete) {
@@ -117,8 +120,8 @@ void integrate(const FrontPath& p, const FrequencyWeights& f, double give_up, Tr
     const double kh = kg * h;
     const double sinc = kh > 1e-8 ? 2 * sg / kh : 1.0;
     const std::complex<double> back(std::sqrt(std::max(0.0, 1 - sg * sg)), -sg);
-    const double miss = std::norm(sinc * std::polar(1.0, phase + kh * p.gauge_w) *
-                                      ((1 - p.gauge_w) + p.gauge_w * (back * back)) -
+    const double miss = std::norm(sinc * std::polar(1.0, phase + kh * gauge_w) *
+                                      ((1 - gauge_w) + gauge_w * (back * back)) -
                                   1.0);
     sum += f.weight[j] * miss / f.w2[j];
     if (j % kGiveUpStride == 0) {
