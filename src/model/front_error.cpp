@@ -49,7 +49,7 @@ double aliased_error_s(const FrontPath& p, const FrequencyWeights& f) {
 // What front_error_s returns for any give-up bound: the sums it compares with the bound, in
 // order, and (complete) the integral; incomplete, it stopped at its last sum.
 struct Trace {
-  std::array<double, kFrequencyPoints / kGiveUpStride> sums;
+  std::array<double, kFrequencyPoints / kGiveUpStride> sums{};
   int count = 0;  // of sums
   double value = 0;
   bool complete = false;
