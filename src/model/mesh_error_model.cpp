@@ -2,13 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <complex>
 #include <limits>
 #include <map>
+#include <memory>
 #include <numeric>
 #include <optional>
 
 #include "core/error.hpp"
+#include "model/front_error.hpp"
 #include "model/wave_travel.hpp"
 
 namespace shpb {
@@ -130,169 +131,23 @@ std::vector<double> path_lengths(const Scene& scene, std::size_t striker, std::s
   return x;
 }
 
-// Points of the frequency integral, up to where the record's Gaussian has fallen to e^{−60}.
-constexpr int kFrequencyPoints = 800;
-constexpr double kFrequencyEnd = 7.75;  // × 1/Δs: e^{−ω²Δs²} = e^{−60} there
-
-// The record is a point sample every Δs: what a front carries above the Nyquist frequency π/Δs
-// folds back onto the record's band. Averaged over where the samples fall on the front, the
-// images at ω − 2πm/Δs add in energy, seen through the record's Gaussian:
-//   (1/π) ∫₀^{ω_c} W(ω)/(1 + ω²τ²)/ω² dω,   W(ω) = Σ_{m≠0} e^{−(ω − 2πm/Δs)² Δs²},
-// ω_c the lowest cut-off of the bars on the path (none of a reference recorded through the
-// Gaussian, study/reference.hpp). The images beyond kAliasImages sample frequencies are left out
-// (their share falls as 1/m²).
-constexpr int kAliasImages = 16;
-constexpr double kAliasStep = 0.1;  // × 1/Δs: 7 points per standard deviation of the Gaussian
-
-// What the integrals weigh each frequency by depends on the record (Δs) and the pulse's rise (τ),
-// not on the mesh: computed once per search (docs/methods.md §1.1, the cost of the choice).
-struct FrequencyWeights {
-  double sample_s = -1, rise_s = -1;
-  double dw = 0;
-  std::vector<double> weight;  // (trapezoid end) e^{−ω²Δs²}/(1 + ω²τ²) at ω_j = j dω, j = 1…N
-  std::vector<double> w2;    // ω_j²
-  std::vector<double> tail;  // Σ_{m ≥ j} weight_m/ω_m²: the integrand where nothing is carried
-  // The aliasing integral's points ω and its running sums (the sum up to, not including, point n).
-  double alias_dw = 0;
-  std::vector<double> alias_w, alias_sum;
-
-  FrequencyWeights(double sample, double rise) : sample_s(sample), rise_s(rise) {
-    dw = kFrequencyEnd / sample_s / kFrequencyPoints;
-    weight.assign(kFrequencyPoints + 1, 0.0);
-    w2.assign(kFrequencyPoints + 1, 0.0);
-    tail.assign(kFrequencyPoints + 2, 0.0);
-    for (int j = 1; j <= kFrequencyPoints; ++j) {
-      const double w = j * dw;
-      w2[j] = w * w;
-      weight[j] = (j == kFrequencyPoints ? 0.5 : 1) *
-                  (std::exp(-w * w * sample_s * sample_s) / (1 + w * w * rise_s * rise_s));
-    }
-    for (int j = kFrequencyPoints; j >= 1; --j) tail[j] = tail[j + 1] + weight[j] / w2[j];
-    const double images = 2 * M_PI / sample_s;
-    const double top = (kAliasImages + 0.5) * images;
-    alias_dw = kAliasStep / sample_s;
-    double sum = 0;
-    for (double w = 0.5 * M_PI / sample_s; w < top; w += alias_dw) {
-      alias_w.push_back(w);
-      alias_sum.push_back(sum);
-      const double m = std::max(1.0, std::round(w / images));  // the nearest image dominates
-      double wt = 0;
-      for (double k = std::max(1.0, m - 1); k <= m + 1; ++k)
-        wt += std::exp(-std::pow((w - k * images) * sample_s, 2));
-      sum += wt / (w * w * (1 + w * w * rise_s * rise_s));
-    }
-    alias_w.push_back(top);
-    alias_sum.push_back(sum);
-  }
-};
-
-// The lowest cut-off 2 asin(C)/Δt of the bars on the path x (and the gauge's bar).
-double path_cutoff(const ChainDiscretization& d, const std::vector<double>& x,
-                   std::size_t gauge_bar) {
-  double cutoff = std::numeric_limits<double>::infinity();
+// The path of the fronts a gauge at `position` on `bar` records, the chain meshed as `d`: the
+// bars crossed and the gauge's own, and the gauge's place between the element centres around it
+// (a fraction of the pitch).
+FrontPath front_path(const Scene& scene, const ChainDiscretization& d, std::size_t striker,
+                     std::size_t bar, double position, double aliasing) {
+  const std::vector<double> x = path_lengths(scene, striker, bar, position);
+  FrontPath p;
+  p.aliasing = aliasing;
+  const double pitch = position / d.bars[bar].element_length_m - 0.5;
+  p.gauge_w = std::clamp(pitch - std::floor(pitch), 0.0, 1.0);
   for (std::size_t i = 0; i < x.size(); ++i)
-    if (x[i] > 0 || i == gauge_bar)
-      cutoff =
-          std::min(cutoff, 2 * std::asin(std::min(d.bars[i].courant, 1.0)) / d.bars[i].time_step_s);
-  return cutoff;
-}
-
-double aliased_error_s(const ChainDiscretization& d, const std::vector<double>& x,
-                       const FrequencyWeights& f) {
-  double cutoff = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < x.size(); ++i)
-    if (x[i] > 0)
-      cutoff =
-          std::min(cutoff, 2 * std::asin(std::min(d.bars[i].courant, 1.0)) / d.bars[i].time_step_s);
-  // The running sum up to the first point at or above the cut-off.
-  const auto n =
-      std::lower_bound(f.alias_w.begin(), f.alias_w.end() - 1, cutoff) - f.alias_w.begin();
-  return f.alias_sum[n] * f.alias_dw / M_PI;
-}
-
-// (1/π) ∫ e^{−ω²Δs²}/(1 + ω²τ²) |F H − 1|²/ω² dω for the bars' paths x (the model's I / A²).
-// Each bar's sin(ωΔt/2) by angle addition from one frequency to the next; the gauge's filter F
-// from sin(κh/2) = s itself (docs/methods.md §1.1).
-// `give_up`: once the integral below the cut-off passes it, return what it has summed (the
-// caller's bound then shows the mesh misses its target).
-double front_error_s(const ChainDiscretization& d, const std::vector<double>& x,
-                     std::size_t gauge_bar, double gauge_w, const FrequencyWeights& f,
-                     double aliasing, double give_up = std::numeric_limits<double>::infinity(),
-                     bool* gave_up = nullptr) {
-  struct PathBar {
-    double x, courant, two_over_h, slowness, half_step;
-    std::complex<double> rotation, phasor;  // e^{i dω Δt/2}, e^{i ω Δt/2}
-    bool gauge;
-  };
-  std::vector<PathBar> path;
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    if (!(x[i] > 0) && i != gauge_bar) continue;
-    const BarDiscretization& b = d.bars[i];
-    const double half_step = 0.5 * f.dw * b.time_step_s;
-    path.push_back({x[i],
-                    b.courant,
-                    2 / b.element_length_m,
-                    1 / b.wave_speed_m_s,
-                    half_step,
-                    std::polar(1.0, half_step),
-                    {1.0, 0.0},
-                    i == gauge_bar});
-  }
-  const double h = d.bars[gauge_bar].element_length_m;
-  double sum = 0;
-  int j = 1;
-  for (; j <= kFrequencyPoints; ++j) {
-    const double w = j * f.dw;
-    double phase = 0, sg = 0, kg = 0;
-    bool carried = true;
-    for (PathBar& b : path) {
-      b.phasor *= b.rotation;
-      if (!(j * b.half_step < 0.5 * M_PI)) {
-        carried = false;  // above the mesh's cut-off: the frequency never reaches the gauge
-        break;
-      }
-      const double s = b.phasor.imag() / b.courant;
-      if (s >= 1) {
-        carried = false;
-        break;
-      }
-      const double k = b.two_over_h * std::asin(s);
-      phase += b.x * (k - w * b.slowness);
-      if (b.gauge) sg = s, kg = k;
+    if (x[i] > 0 || i == bar) {
+      const BarDiscretization& b = d.bars[i];
+      p.bars.push_back(
+          {x[i], b.courant, b.element_length_m, b.wave_speed_m_s, b.time_step_s, i == bar});
     }
-    // Above the lowest cut-off nothing is carried at any higher frequency either: the tail sum.
-    if (!carried) break;
-    // The gauge reads element strains (each the mean over its element: sinc(κh/2)) interpolated
-    // linearly between the centres around it, at fraction w of the pitch: the centres' values
-    // lead and lag the gauge's own by w·h and (1 − w)·h, so
-    //   F = sinc(κh/2) ((1 − w) e^{iκwh} + w e^{−iκ(1−w)h})   (at C = 1 exactly what is left),
-    // with sin(κh/2) = s and e^{−iκh} = (cos(κh/2) − i s)²; F H = sinc · e^{i(φ + κwh)} ·
-    // ((1 − w) + w e^{−iκh}).
-    const double kh = kg * h;
-    const double sinc = kh > 1e-8 ? 2 * sg / kh : 1.0;
-    const std::complex<double> back(std::sqrt(std::max(0.0, 1 - sg * sg)), -sg);
-    const double miss = std::norm(sinc * std::polar(1.0, phase + kh * gauge_w) *
-                                      ((1 - gauge_w) + gauge_w * (back * back)) -
-                                  1.0);
-    sum += f.weight[j] * miss / f.w2[j];
-    if (j % 32 == 0 && sum * f.dw / M_PI > give_up) {
-      *gave_up = true;
-      return sum * f.dw / M_PI;
-    }
-  }
-  if (j <= kFrequencyPoints) sum += f.tail[j];
-  return sum * f.dw / M_PI + (aliasing > 0 ? aliasing * aliased_error_s(d, x, f) : 0.0);
-}
-
-// A lower bound on front_error_s: the frequencies above the path's lowest cut-off, which no mesh
-// carries (|F H − 1| = 1), and the aliasing, without the integral below the cut-off.
-double front_error_floor_s(const ChainDiscretization& d, const std::vector<double>& x,
-                           std::size_t gauge_bar, const FrequencyWeights& f, double aliasing) {
-  const double cutoff = path_cutoff(d, x, gauge_bar);
-  const double first = std::ceil(cutoff / f.dw) + 1;  // the point at the cut-off may be carried
-  const double tail =
-      first > kFrequencyPoints ? 0.0 : f.tail[static_cast<std::size_t>(std::max(1.0, first))];
-  return tail * f.dw / M_PI + (aliasing > 0 ? aliasing * aliased_error_s(d, x, f) : 0.0);
+  return p;
 }
 
 }  // namespace
@@ -310,7 +165,7 @@ struct SearchCache {
     bool exact;
   };
   std::map<std::vector<double>, Bars> bars;
-  std::optional<FrequencyWeights> weights;
+  std::shared_ptr<const FrequencyWeights> weights;
 };
 
 // How much of the prediction to compute: all of it, or a lower bound on the bars' share that is
@@ -367,7 +222,7 @@ Predicted predict(const Scene& scene, const ChainDiscretization& d, const MeshEr
   SearchCache local;
   SearchCache& c = cache ? *cache : local;
   if (!c.weights || c.weights->sample_s != sample_s || c.weights->rise_s != p.rise_time_s) {
-    c.weights.emplace(sample_s, p.rise_time_s);
+    c.weights = frequency_weights(sample_s, p.rise_time_s);
     c.bars.clear();
   }
   const FrequencyWeights& f = *c.weights;
@@ -401,24 +256,20 @@ Predicted predict(const Scene& scene, const ChainDiscretization& d, const MeshEr
   auto hit = c.bars.find(key);
   if (hit == c.bars.end() || (!hit->second.exact && !(hit->second.sum > misses))) {
     struct Gauge {
-      std::size_t bar;
-      std::vector<double> x;
-      double w, floor;
+      FrontPath path;
+      double floor;
     };
     std::vector<Gauge> path;
     for (std::size_t b = *striker + 1; b < scene.bars.size(); ++b)
-      for (const GaugeSpec& g : scene.bars[b].gauges) {
-        const double pitch = g.position_m / d.bars[b].element_length_m - 0.5;
-        path.push_back({b, path_lengths(scene, *striker, b, g.position_m),
-                        std::clamp(pitch - std::floor(pitch), 0.0, 1.0), 0.0});
-      }
+      for (const GaugeSpec& g : scene.bars[b].gauges)
+        path.push_back({front_path(scene, d, *striker, b, g.position_m, aliasing), 0.0});
     // First against the bounds, then integrating and stopping where the sum so far passes the
     // sum that misses whatever the specimen.
     SearchCache::Bars found{0.0, false};
     double sum = 0;
     bool missed = false;
     if (std::isfinite(misses)) {
-      for (Gauge& g : path) sum += g.floor = front_error_floor_s(d, g.x, g.bar, f, aliasing);
+      for (Gauge& g : path) sum += g.floor = front_error_floor_s(g.path, f);
       if (sum > misses) found.sum = sum, missed = true;
     }
     if (!missed) {
@@ -426,8 +277,7 @@ Predicted predict(const Scene& scene, const ChainDiscretization& d, const MeshEr
       found.exact = true;
       for (const Gauge& g : path) {
         bool gave_up = false;
-        const double i =
-            front_error_s(d, g.x, g.bar, g.w, f, aliasing, misses_alone - sum, &gave_up);
+        const double i = front_error_s(g.path, f, misses_alone - sum, &gave_up);
         if (gave_up) {  // this gauge's part so far, the others' bounds
           found = {sum + i, false};
           break;
