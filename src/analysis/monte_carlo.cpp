@@ -6,6 +6,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "core/finite_values.hpp"
+
 namespace shpb {
 namespace {
 
@@ -30,12 +32,6 @@ struct FirstReach {
     return y[a] + w * (y[b] - y[a]);
   }
 };
-
-bool all_finite(const std::vector<double>& v, std::size_t n) {
-  for (std::size_t i = 0; i < n; ++i)
-    if (!std::isfinite(v[i])) return false;
-  return true;
-}
 
 // Each input's share of a figure's variance: the squared correlation of the figure's draws y
 // (mean, variance var) with the input's draws (z, k a draw), largest first.
@@ -105,8 +101,8 @@ CurveAtStrains curve_at_strains(const std::vector<double>& x, const std::vector<
                                 const std::vector<double>& stress1, const std::vector<double>& rate,
                                 std::size_t n, const std::vector<double>& strains,
                                 std::size_t rows) {
-  if (n == 0 || !all_finite(x, n) || !all_finite(stress3, n) || !all_finite(stress1, n) ||
-      !all_finite(rate, n))
+  if (n == 0 || !all_finite({x.data(), n}) || !all_finite({stress3.data(), n}) ||
+      !all_finite({stress1.data(), n}) || !all_finite({rate.data(), n}))
     throw std::domain_error("the reduction produced a non-finite value");
   const FirstReach reach(x, n);
   CurveAtStrains out;

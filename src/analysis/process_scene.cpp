@@ -7,19 +7,11 @@
 #include <cstdio>
 
 #include "core/error.hpp"
+#include "core/finite_values.hpp"
 #include "model/calibration.hpp"
 #include "output_schema.hpp"
 
 namespace shpb {
-namespace {
-
-bool all_finite(const std::vector<double>& v) {
-  for (double x : v)
-    if (!std::isfinite(x)) return false;
-  return true;
-}
-
-}  // namespace
 
 BarCheckOutcome check_scene_bars(const Scene& scene, bool with_signals_file) {
   if (with_signals_file)

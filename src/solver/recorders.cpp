@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "core/finite_values.hpp"
 #include "core/interpolation.hpp"
 #include "core/record_filter.hpp"
 #include "output_schema.hpp"
@@ -28,25 +29,6 @@ constexpr int kSpecimenColumns = 7;
 
 long grid_count(double span, double spacing) {
   return span < 0 ? 0 : static_cast<long>(std::floor(span / spacing + 1e-9)) + 1;
-}
-
-// The index of the first non-finite value of `v`, v.size() if none. A run's records are hundreds
-// of thousands of values, almost always all finite: each block is first checked without a branch
-// (a value is non-finite where its exponent bits are all ones, and adding one to the exponent then
-// carries into the top bit), and searched value by value only if that finds one.
-std::size_t first_non_finite(std::span<const double> v) {
-  constexpr std::uint64_t kExponent = 0x7ff0000000000000, kExponentOne = 0x0010000000000000;
-  constexpr std::size_t kBlock = 512;
-  for (std::size_t b = 0; b < v.size(); b += kBlock) {
-    const std::size_t e = std::min(v.size(), b + kBlock);
-    std::uint64_t carried = 0;
-    for (std::size_t k = b; k < e; ++k)
-      carried |= (std::bit_cast<std::uint64_t>(v[k]) & kExponent) + kExponentOne;
-    if (carried >> 63)
-      for (std::size_t k = b; k < e; ++k)
-        if (!std::isfinite(v[k])) return k;
-  }
-  return v.size();
 }
 
 // Keeps the rows before the first non-finite value of any column (an unstable run's tail).
