@@ -24,6 +24,8 @@ import subprocess
 import sys
 import tempfile
 
+from experiment_variant import finite_links, linked_scene
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 EXE = sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, 'build', 'shpb')
 EXPERIMENTS = sorted(d for d in os.listdir(os.path.join(ROOT, 'experiments'))
@@ -59,25 +61,9 @@ def energy_table(work):
 
 
 def finite_links_scene(experiment, work):
-    """The experiment's scene with finite links (stiffness_factor 1e4) at every interface, in a
-    folder beside links to the experiment's own files (its relative paths then still resolve)."""
-    src = os.path.join(ROOT, 'experiments', experiment)
-    folder = os.path.join(work, 'experiments', experiment)
-    os.makedirs(folder, exist_ok=True)
-    if not os.path.exists(os.path.join(work, 'specimens')):
-        os.symlink(os.path.join(ROOT, 'specimens'), os.path.join(work, 'specimens'))
-    for f in os.listdir(src):
-        if f != 'scene.json' and not os.path.exists(os.path.join(folder, f)):
-            os.symlink(os.path.join(src, f), os.path.join(folder, f))
-    scene = json.load(open(os.path.join(src, 'scene.json')))
-    contact = scene.setdefault('contact', {})
-    contact['stiffness_factor'] = 1e4
-    for i in contact.get('interfaces', []):
-        i.pop('rise_time', None)
-        i['stiffness_factor'] = 1e4
-    path = os.path.join(folder, 'scene.json')
-    json.dump(scene, open(path, 'w'))
-    return path
+    """The experiment's scene with finite links (stiffness_factor 1e4) at every interface
+    (tools/experiment_variant.py)."""
+    return linked_scene(experiment, work, lambda scene: finite_links(scene, 1e4))[0]
 
 
 def after_release(interfaces_csv, name):

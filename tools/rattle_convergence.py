@@ -34,6 +34,8 @@ import time
 
 import numpy as np
 
+from experiment_variant import finite_links, linked_scene
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 EXE = sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, 'build', 'shpb')
 EXPERIMENTS = sys.argv[2:] or ['classic-al6061', 'lanl-cu-ofe-273k', 'lanl-pmma13-mini-kolsky']
@@ -47,33 +49,19 @@ FINITE = 1e4  # contact.stiffness_factor of the finite links
 
 
 def scene_copy(experiment, work, elements=None, duration_s=None, finite=False):
-    """The experiment's scene in a folder of links to its own files (relative paths resolve),
-    with explicit elements per bar (then recorded at SAMPLE_RATE), a shorter duration and/or
-    finite links at every interface."""
-    src = os.path.join(ROOT, 'experiments', experiment)
-    folder = os.path.join(work, 'experiments', experiment)
-    os.makedirs(folder, exist_ok=True)
-    if not os.path.exists(os.path.join(work, 'specimens')):
-        os.symlink(os.path.join(ROOT, 'specimens'), os.path.join(work, 'specimens'))
-    for f in os.listdir(src):
-        if f != 'scene.json' and not os.path.exists(os.path.join(folder, f)):
-            os.symlink(os.path.join(src, f), os.path.join(folder, f))
-    scene = json.load(open(os.path.join(src, 'scene.json')))
-    if elements:  # a finer record would make a tolerance choose finer meshes
-        scene.setdefault('simulation', {})['sample_rate'] = SAMPLE_RATE
-    if duration_s is not None:
-        scene['simulation']['duration'] = f'{duration_s * 1e6:.6f} us'
-    if elements:
-        for b in scene['bars']:
-            b['elements'] = elements[b['name']]
-    if finite:
-        contact = scene.setdefault('contact', {})
-        contact['stiffness_factor'] = FINITE
-        for i in contact.get('interfaces', []):
-            i.pop('rise_time', None)
-            i['stiffness_factor'] = FINITE
-    path = os.path.join(folder, 'scene.json')
-    json.dump(scene, open(path, 'w'))
+    """The experiment's scene (tools/experiment_variant.py) with explicit elements per bar (then
+    recorded at SAMPLE_RATE), a shorter duration and/or finite links at every interface."""
+    def edit(scene):
+        if elements:  # a finer record would make a tolerance choose finer meshes
+            scene.setdefault('simulation', {})['sample_rate'] = SAMPLE_RATE
+        if duration_s is not None:
+            scene['simulation']['duration'] = f'{duration_s * 1e6:.6f} us'
+        if elements:
+            for b in scene['bars']:
+                b['elements'] = elements[b['name']]
+        if finite:
+            finite_links(scene, FINITE)
+    path, scene = linked_scene(experiment, work, edit)
     return path, scene['specimen']
 
 
