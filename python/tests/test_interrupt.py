@@ -24,15 +24,23 @@ SCRIPT = textwrap.dedent("""
 """)
 
 
-def test_sigint_interrupts_a_simulation_and_the_next_run_is_clean():
+# Each script runs the classic experiment in a Python of its own and ends within seconds; a minute
+# means a run was not stopped, or never started.
+HANG_S = 60
+
+
+def run_script(script):
     scene = SOURCE / "experiments" / "classic-al6061" / "scene.json"
-    # The solve stops within a poll of the library's loop; a minute means it was not stopped.
-    timeout_s = 60
-    p = subprocess.run([sys.executable, "-c", SCRIPT, str(scene)], capture_output=True,
-                       text=True, timeout=timeout_s, env=os.environ)
+    p = subprocess.run([sys.executable, "-c", script, str(scene)], capture_output=True, text=True,
+                       timeout=HANG_S, env=os.environ)
     assert p.returncode == 0, p.stderr
-    lines = p.stdout.splitlines()
-    assert lines[0].startswith("interrupted after"), p.stdout
+    return p.stdout
+
+
+def test_sigint_interrupts_a_simulation_and_the_next_run_is_clean():
+    # The solve stops within a poll of the library's loop.
+    lines = run_script(SCRIPT).splitlines()
+    assert lines[0].startswith("interrupted after"), lines
     assert lines[1] == "next run stable: True"
 
 
@@ -51,13 +59,8 @@ FORK_SCRIPT = textwrap.dedent("""
 
 def test_a_forked_child_runs_simulations_from_its_main_thread():
     # A child forked by multiprocessing has none of its parent's threads: work handed to a worker
-    # thread the parent started would wait for ever. Two runs take a second; a minute is a hang.
-    scene = SOURCE / "experiments" / "classic-al6061" / "scene.json"
-    timeout_s = 60
-    p = subprocess.run([sys.executable, "-c", FORK_SCRIPT, str(scene)], capture_output=True,
-                       text=True, timeout=timeout_s, env=os.environ)
-    assert p.returncode == 0, p.stderr
-    assert p.stdout.strip() == "forked children stable: [True, True]"
+    # thread the parent started would wait for ever.
+    assert run_script(FORK_SCRIPT).strip() == "forked children stable: [True, True]"
 
 
 OWN_HANDLER_SCRIPT = textwrap.dedent("""
@@ -76,9 +79,4 @@ OWN_HANDLER_SCRIPT = textwrap.dedent("""
 def test_a_sigint_handler_of_the_users_own_runs_and_the_simulation_completes():
     # Only Python's default handler means "stop": a handler the user installed decides for itself,
     # as it does around any other call, and is called once the work returns.
-    scene = SOURCE / "experiments" / "classic-al6061" / "scene.json"
-    timeout_s = 60
-    p = subprocess.run([sys.executable, "-c", OWN_HANDLER_SCRIPT, str(scene)],
-                       capture_output=True, text=True, timeout=timeout_s, env=os.environ)
-    assert p.returncode == 0, p.stderr
-    assert p.stdout.strip() == "run stable: True handler called: True"
+    assert run_script(OWN_HANDLER_SCRIPT).strip() == "run stable: True handler called: True"
