@@ -1,8 +1,8 @@
 """Benchmark of the Python module (figures, never assertions; tools/bench.sh runs it):
- 1. a loop of 100 simulations of the classic experiment from Python, in 5 rounds, each loop
-    between runs of `shpb simulate` (3 before it, 2 after): wall time per run against the
-    executable's solve (summary.json wall_time_s) in the same round, and against its own runs'
-    whole run (run_time_s: mesh choice, set-up, solve, records), medians over the rounds;
+ 1. a loop of 100 simulations of the classic experiment from Python, in rounds interleaved with
+    runs of `shpb simulate`: wall time per run against the executable's solve (summary.json
+    wall_time_s) in the same round, and against its own runs' whole run (run_time_s: mesh choice,
+    set-up, solve, records), medians over the rounds;
  2. two simulations in two Python threads against the same two one after the other (the GIL is
     released during a simulation): the ratio of the wall times, median of 15 repetitions, on a
     pool of two threads that has run before (concurrent.futures, as a notebook's sweep uses
@@ -28,32 +28,28 @@ scene_file = pathlib.Path(__file__).resolve().parents[1] / "experiments/classic-
 scene = shpb.Scene.load(scene_file)
 
 # 1. The executable's own times (summary.json) and the loop from Python, interleaved: the machine's
-# speed drifts by tens of % between minutes (a shared VM), so each of 5 rounds runs a whole loop of
-# `runs` Python runs (under a second) between runs of the executable, 3 before and 2 after, and the
-# ratios are taken within a round. The solve (wall_time_s) is only part of a run: before it the
-# error model chooses the meshes (mesh_choice_time_s) and the bars and recorders are set up, after
-# it the records and statistics are made; run_time_s is all of it, what the library costs per run
-# whoever calls it. A run from Python pays the same, so the like-with-like figure is Python's wall
-# per run against run_time_s.
-ROUNDS = 5
+# speed drifts by tens of % between minutes (a shared VM), so each of 7 rounds runs the executable
+# 3 times and `runs` / 7 Python runs, and the ratios are taken within a round. The solve
+# (wall_time_s) is only part of a run: before it the error model chooses the meshes
+# (mesh_choice_time_s) and the bars and recorders are set up, after it the records and statistics
+# are made; run_time_s is all of it, what the library costs per run whoever calls it. A run from
+# Python pays the same, so the like-with-like figure is Python's wall per run against run_time_s.
+ROUNDS = 7
 shpb.simulate(scene)  # warm: first-touch of the library's pages
 exe_solve, exe_run, exe_choice, py_solve, py_run = [], [], [], [], []
 to_solve, to_run, overhead, walls, cpus = [], [], [], [], []
 with tempfile.TemporaryDirectory() as tmp:
-    def executable(count):
+    for _ in range(ROUNDS):
         solves = []
-        for i in range(count):
+        for i in range(3):
             subprocess.run([build / "shpb", "simulate", scene_file, "-o", f"{tmp}/run{i}",
                             "--quiet"], check=True)
             summary = json.loads(pathlib.Path(f"{tmp}/run{i}/summary.json").read_text())
             solves.append(summary["wall_time_s"])
             exe_run.append(summary["run_time_s"])
             exe_choice.append(summary["mesh_choice_time_s"])
-        return solves
-
-    for _ in range(ROUNDS):
-        solves = executable(3)
-        n = max(1, runs)
+        exe_solve += solves
+        n = max(1, runs // ROUNDS)
         start, cpu_start = time.perf_counter(), time.process_time()
         own = []
         for _ in range(n):
@@ -61,16 +57,14 @@ with tempfile.TemporaryDirectory() as tmp:
             py_solve.append(summary["wall_time_s"])
             own.append(summary["run_time_s"])
         wall = (time.perf_counter() - start) / n
-        cpus.append((time.process_time() - cpu_start) / n)
-        solves += executable(2)
-        exe_solve += solves
         walls.append(wall)
+        cpus.append((time.process_time() - cpu_start) / n)
         py_run += own
         to_solve.append(wall / statistics.median(solves))
         overhead.append(wall / statistics.median(own))
 med = statistics.median
-print(f"== loops of {max(1, runs)} classic simulations from Python, in {ROUNDS} rounds, each "
-      f"between 5 runs of the executable")
+print(f"== {ROUNDS * max(1, runs // ROUNDS)} classic simulations from Python, in {ROUNDS} rounds "
+      f"each beside 3 runs of the executable")
 print(f"  executable (summary.json, median of {len(exe_solve)}): solve {med(exe_solve) * 1e3:.2f} "
       f"ms, mesh choice {med(exe_choice) * 1e3:.2f} ms, whole run {med(exe_run) * 1e3:.2f} ms")
 print(f"  from Python: wall per run {med(walls) * 1e3:.2f} ms, CPU {med(cpus) * 1e3:.2f} ms (its "
