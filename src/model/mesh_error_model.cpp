@@ -547,9 +547,11 @@ GaugeErrorPrediction choose_meshes(Scene& scene) {
     double best_cost = std::numeric_limits<double>::infinity();
     PredictMode mode;
     if (prune) mode.above = target;
+    // One candidate scene for every count: each sets its specimen's elements, and every pricing
+    // meshes the other free bars afresh (mesh_bars), so nothing of the previous count remains.
+    Scene s = scene;
     for (int ns : prune ? trial_order(scene, specimen_counts, free, start, target, candidates)
                         : specimen_counts) {
-      Scene s = scene;
       if (ns > 0) s.bars[*scene.specimen].elements = ns;
       double cost = 0;  // the node updates of the last candidate priced
       const auto affordable = [&](double delta) {
