@@ -13,7 +13,6 @@
 
 #include <atomic>
 #include <cmath>
-#include <csignal>
 #include <exception>
 #include <memory>
 #include <optional>
@@ -43,9 +42,9 @@ namespace {
 // duration for one that sets the library's interrupt flag, which the library's long loops poll as
 // they poll SIGINT in the command (core/output_folder.hpp); once the work has stopped, Python's
 // handler is put back and given the signal (PyErr_SetInterruptEx), so Ctrl-C raises
-// KeyboardInterrupt then. No thread is started: a worker thread
-// per call cost its start and its wake-ups on every run (0.2–0.8 ms of a 7 ms run on a loaded
-// machine, docs/python.md), and a thread kept for the process is lost in a forked child.
+// KeyboardInterrupt then. No thread is started: a worker thread per call cost its start and its
+// wake-ups on every run (0.2–0.8 ms of a 7 ms run on a loaded machine, docs/python.md), and a
+// thread kept for the process is lost in a forked child.
 std::atomic<bool> g_sigint{false};
 
 extern "C" void on_sigint(int) {
@@ -57,25 +56,27 @@ unsigned long g_main_thread = 0;  // set when the module is imported
 
 bool in_main_thread() { return PyThread_get_thread_ident() == g_main_thread; }
 
+// Only in the main thread, and only where SIGINT raises KeyboardInterrupt (Python's default, and a
+// notebook's while it runs a cell): a handler of the user's own runs after the work, as it would
+// after any C call.
+bool default_sigint_handler() {
+  const py::module_ signal = py::module_::import("signal");
+  return signal.attr("getsignal")(SIGINT).is(signal.attr("default_int_handler"));
+}
+
 template <class F>
 auto run_released(F&& work) -> decltype(work()) {
-  using R = decltype(work());
-  if (!in_main_thread()) {
-    py::gil_scoped_release release;
-    return work();
+  struct sigaction python = {};
+  const bool set_aside =
+      in_main_thread() && default_sigint_handler() && sigaction(SIGINT, nullptr, &python) == 0;
+  if (set_aside) {
+    struct sigaction ours = {};
+    ours.sa_handler = on_sigint;
+    sigemptyset(&ours.sa_mask);
+    g_sigint.store(false);
+    sigaction(SIGINT, &ours, nullptr);
   }
-  // Only where SIGINT raises KeyboardInterrupt (Python's default, and a notebook's while it runs a
-  // cell): a handler of the user's own runs after the work, as it would after any C call.
-  py::module_ signal = py::module_::import("signal");
-  struct sigaction python = {}, ours = {};
-  const bool python_handles =
-      signal.attr("getsignal")(SIGINT).is(signal.attr("default_int_handler")) &&
-      sigaction(SIGINT, nullptr, &python) == 0;
-  ours.sa_handler = on_sigint;
-  sigemptyset(&ours.sa_mask);
-  g_sigint.store(false);
-  if (python_handles) sigaction(SIGINT, &ours, nullptr);
-  std::optional<R> value;
+  std::optional<decltype(work())> value;
   std::exception_ptr error;
   {
     py::gil_scoped_release release;
@@ -85,11 +86,13 @@ auto run_released(F&& work) -> decltype(work()) {
       error = std::current_exception();
     }
   }
-  if (python_handles) sigaction(SIGINT, &python, nullptr);
-  if (g_sigint.exchange(false)) {
-    clear_interrupt();
-    PyErr_SetInterruptEx(SIGINT);
-    if (PyErr_CheckSignals() != 0) throw py::error_already_set();  // KeyboardInterrupt
+  if (set_aside) {
+    sigaction(SIGINT, &python, nullptr);
+    if (g_sigint.exchange(false)) {
+      clear_interrupt();
+      PyErr_SetInterruptEx(SIGINT);
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();  // KeyboardInterrupt
+    }
   }
   if (error) std::rethrow_exception(error);
   return std::move(*value);

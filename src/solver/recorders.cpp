@@ -1,9 +1,7 @@
 #include "solver/recorders.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
-#include <cstdint>
 
 #include "core/finite_values.hpp"
 #include "core/interpolation.hpp"
@@ -262,6 +260,12 @@ void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& resu
     long n = std::min(filled, grid_count(until_s, sample_spacing_s_));
     return std::max(0L, n);
   };
+  // The record's first n sample times (gauges, interfaces and specimen share the grid).
+  auto sample_times = [&](long n) {
+    std::vector<double> t(n);
+    for (long k = 0; k < n; ++k) t[k] = k * sample_spacing_s_;
+    return t;
+  };
   // Gauges.
   {
     TimeSeries& ts = result.gauges;
@@ -272,8 +276,7 @@ void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& resu
       if (!r.gauges.empty()) fine = std::min(fine, r.gauge_sampler.filled());
     const long n = fine > 0 ? (fine - 1) / os + 1 : 0;
     ts.values.resize(gauge_names_.size());  // each column is one gauge's, filled below
-    ts.time_s.reserve(n);
-    for (long k = 0; k < n; ++k) ts.time_s.push_back(k * sample_spacing_s_);
+    ts.time_s = sample_times(n);
     for (const BarRecorder& r : bars_)
       for (std::size_t g = 0; g < r.gauges.size(); ++g) {
         // Every fine point recorded (the Gaussian reaches past the last kept sample): at least
@@ -298,8 +301,7 @@ void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& resu
     TimeSeries& ts = result.interfaces;
     long n = time_count(samples_);
     for (const InterfaceRecorder& r : interfaces_) n = std::min(n, r.sampler.filled());
-    ts.time_s.reserve(n);
-    for (long k = 0; k < n; ++k) ts.time_s.push_back(k * sample_spacing_s_);
+    ts.time_s = sample_times(n);
     for (std::size_t i = 0; i < interfaces_.size(); ++i) {
       ts.columns.push_back(interface_names_[i] + "_force_N");
       ts.columns.push_back(interface_names_[i] + "_gap_m");
@@ -315,8 +317,7 @@ void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& resu
     ts.columns = {k::strain,         k::strain_rate_1_s, k::stress_Pa,     k::front_stress_Pa,
                   k::back_stress_Pa, k::true_strain,     k::true_stress_Pa};
     const long n = time_count(r.specimen_sampler.filled());
-    ts.time_s.reserve(n);
-    for (long k = 0; k < n; ++k) ts.time_s.push_back(k * sample_spacing_s_);
+    ts.time_s = sample_times(n);
     for (int c = 0; c < kSpecimenColumns; ++c) ts.values.push_back(r.specimen_sampler.column(c, n));
   }
   keep_finite_prefix(result.specimen);
