@@ -56,13 +56,15 @@ unsigned long g_main_thread = 0;  // set when the module is imported
 
 bool in_main_thread() { return PyThread_get_thread_ident() == g_main_thread; }
 
+// Python's _signal.getsignal and _signal.default_int_handler (what signal.py wraps), looked up
+// once when the module is imported: an import per call cost 50 µs of every run. Kept for the
+// process (never released: the interpreter may be finalising when static objects are destroyed).
+py::handle g_getsignal, g_default_int_handler;
+
 // Only in the main thread, and only where SIGINT raises KeyboardInterrupt (Python's default, and a
 // notebook's while it runs a cell): a handler of the user's own runs after the work, as it would
 // after any C call.
-bool default_sigint_handler() {
-  const py::module_ signal = py::module_::import("signal");
-  return signal.attr("getsignal")(SIGINT).is(signal.attr("default_int_handler"));
-}
+bool default_sigint_handler() { return g_getsignal(SIGINT).is(g_default_int_handler); }
 
 template <class F>
 auto run_released(F&& work) -> decltype(work()) {
@@ -269,6 +271,9 @@ PYBIND11_MODULE(_shpb, m) {
   mallopt(M_TRIM_THRESHOLD, 256 << 20);
   g_main_thread =
       py::module_::import("threading").attr("main_thread")().attr("ident").cast<unsigned long>();
+  const py::module_ signal = py::module_::import("_signal");
+  g_getsignal = py::object(signal.attr("getsignal")).release();
+  g_default_int_handler = py::object(signal.attr("default_int_handler")).release();
 
   // Errors: the command's exit codes as exception classes. InputError is a ValueError (exit 2),
   // NumericalError a RuntimeError (exit 3), WriteError an OSError (exit 3); an interrupted run is

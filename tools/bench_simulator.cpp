@@ -175,9 +175,9 @@ void defaults_table(const std::vector<std::string>& files, const SimulationOptio
                     int repeat) {
   std::printf("default run: automatic meshes (before) against the default tolerance %g %% (now)\n",
               100 * kDefaultTolerance);
-  std::printf("%-28s | %9s %9s %10s %8s | %9s %9s %9s %9s %10s %8s %9s\n", "experiment", "wall_ms",
-              "cpu_ms", "updates", "error", "fresh_ms", "choice_ms", "wall_ms", "cpu_ms", "updates",
-              "error", "predicted");
+  std::printf("%-28s | %9s %9s %10s %8s | %9s %9s %9s %9s %9s %10s %8s %9s\n", "experiment",
+              "wall_ms", "cpu_ms", "updates", "error", "fresh_ms", "search_ms", "found_ms",
+              "wall_ms", "cpu_ms", "updates", "error", "predicted");
   for (const std::string& file : files) {
     const auto read = read_or_skip(file);
     if (!read) continue;
@@ -186,18 +186,21 @@ void defaults_table(const std::vector<std::string>& files, const SimulationOptio
     none.default_tolerance = false;
     resolve_scene(automatic, none);
     // The mesh choice's CPU time (resolve_scene: validation and, with the default, the error
-    // model's search), median of `repeat`: a run pays it before its solve. Made afresh (the
-    // model's remembered integrals forgotten first, as in a process of its own) and made again in
-    // the same process, as a loop of runs from Python or a study makes it (model/front_error.hpp).
+    // model's search), median of `repeat`: a run pays it before its solve. Made afresh (nothing
+    // remembered, as in a process of its own); searched again with the model's integrals
+    // remembered, as a study or a velocity sweep searches (model/front_error.hpp); and the same
+    // scene's choice found again, as a loop of runs of one scene finds it (mesh_error_model.hpp).
     Scene now;
-    std::vector<double> fresh, choice;
-    for (const bool forget : {true, false})
+    enum Remembered { kNothing, kIntegrals, kChoices };
+    std::vector<double> times[3];
+    for (const Remembered remembered : {kNothing, kIntegrals, kChoices})
       for (int i = 0; i < repeat; ++i) {
-        if (forget) forget_front_errors();
+        if (remembered == kNothing) forget_front_errors();
+        if (remembered != kChoices) forget_mesh_choices();
         now = *read;
         const std::clock_t c0 = std::clock();
         resolve_scene(now);
-        (forget ? fresh : choice).push_back(double(std::clock() - c0) / CLOCKS_PER_SEC);
+        times[remembered].push_back(double(std::clock() - c0) / CLOCKS_PER_SEC);
       }
     const std::string name = std::filesystem::path(file).parent_path().filename().string();
     if (!now.simulation.tolerance) {
@@ -215,11 +218,12 @@ void defaults_table(const std::vector<std::string>& files, const SimulationOptio
                  : std::nan("");
     };
     std::printf(
-        "%-28s | %9.2f %9.2f %10.3g %7.2f%% | %9.2f %9.2f %9.2f %9.2f %10.3g %7.2f%% %8.2f%%\n",
+        "%-28s | %9.2f %9.2f %10.3g %7.2f%% | %9.2f %9.2f %9.3f %9.2f %9.2f %10.3g %7.2f%% "
+        "%8.2f%%\n",
         name.c_str(), a.wall_s * 1e3, a.cpu_s * 1e3, double(a.last.node_updates),
-        error(a, automatic), median(fresh) * 1e3, median(choice) * 1e3, n.wall_s * 1e3,
-        n.cpu_s * 1e3, double(n.last.node_updates), error(n, now),
-        100 * predict_gauge_error(now, discretize(now)).total);
+        error(a, automatic), median(times[kNothing]) * 1e3, median(times[kIntegrals]) * 1e3,
+        median(times[kChoices]) * 1e3, n.wall_s * 1e3, n.cpu_s * 1e3, double(n.last.node_updates),
+        error(n, now), 100 * predict_gauge_error(now, discretize(now)).total);
     std::fflush(stdout);
   }
 }

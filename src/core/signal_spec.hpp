@@ -24,11 +24,13 @@ enum class TimeResample { kAuto, kNever, kAlways };
 struct TimeResampling {
   TimeResample mode = TimeResample::kAuto;
   std::optional<double> interval_s;  // kAlways only: the grid's interval (else the mean step)
+  bool operator==(const TimeResampling&) const = default;
 };
 
 struct ColumnRef {
   std::string name;          // column by header name, or
   std::optional<int> index;  // by 0-based index
+  bool operator==(const ColumnRef&) const = default;
 };
 
 }  // namespace shpb

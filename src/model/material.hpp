@@ -19,6 +19,7 @@ inline constexpr EnumName<MaterialModel> kMaterialModelNames[] = {
 struct BilinearParams {
   double yield_stress_Pa = 0;     // initial yield stress σ_y > 0
   double tangent_modulus_Pa = 0;  // hardening slope of σ–ε after yield, 0 ≤ E_t < E
+  bool operator==(const BilinearParams&) const = default;
 };
 
 // σ = (A + B ε_p^n)(1 + C ln(ε̇*/ε̇0))(1 − T*^m), T* = (T − T_room)/(T_melt − T_room);
@@ -39,16 +40,19 @@ struct JohnsonCookParams {
   // τ of a first-order low-pass filter on the rate of the rate term (0: off, the step's rate);
   // see model/laws/johnson_cook_law.hpp.
   double strain_rate_filter_s = 0;
+  bool operator==(const JohnsonCookParams&) const = default;
 };
 
 // Generalized Maxwell (Prony series): E(t) = E_inf + Σ E_k exp(−t/τ_k).
 struct MaxwellArm {
   double modulus_Pa = 0;
   double relaxation_time_s = 0;
+  bool operator==(const MaxwellArm&) const = default;
 };
 struct ViscoelasticParams {
   double long_term_modulus_Pa = 0;  // E_inf
   std::vector<MaxwellArm> arms;
+  bool operator==(const ViscoelasticParams&) const = default;
 };
 
 struct MaterialSpec {
@@ -64,6 +68,7 @@ struct MaterialSpec {
 
   double wave_speed_m_s() const { return std::sqrt(youngs_modulus_Pa / density_kg_m3); }
   bool is_elastic() const { return model == MaterialModel::kElastic; }
+  bool operator==(const MaterialSpec&) const = default;
 };
 
 }  // namespace shpb

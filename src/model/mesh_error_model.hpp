@@ -65,5 +65,9 @@ GaugeErrorPrediction predict_gauge_error(const Scene& scene, const ChainDiscreti
 // one is kept and its prediction returned (resolve_scene() then refuses the tolerance); a scene
 // without a striker is left as it is, its prediction NaN.
 GaugeErrorPrediction choose_meshes(Scene& scene);
+// The same scene asked for again gets the choice made before (remembered by the whole scene, the
+// last 16 per process). forget_mesh_choices() forgets them, so the next choice is searched for
+// (its frequency integrals stay remembered: forget_front_errors(), model/front_error.hpp).
+void forget_mesh_choices();
 
 }  // namespace shpb

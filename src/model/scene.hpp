@@ -19,6 +19,7 @@ struct GaugeSpec {
   // As given (`distance_to_specimen`): to the specimen face the pulse reaches; position_m is
   // resolved from it once the specimen is known.
   std::optional<double> distance_to_specimen_m;
+  bool operator==(const GaugeSpec&) const = default;
 };
 
 struct BarSpec {
@@ -37,6 +38,7 @@ struct BarSpec {
   double impedance_kg_s() const {
     return material.density_kg_m3 * material.wave_speed_m_s() * area_m2;
   }
+  bool operator==(const BarSpec&) const = default;
 };
 
 enum class ContactMethod { kPenalty, kBipenalty, kLocalizedBipenalty, kBonded };
@@ -67,6 +69,7 @@ struct PenaltyParams {
   // bipenalty links act in tension too, so the contact never opens and its linear stability
   // limit can be measured.
   bool tied = false;
+  bool operator==(const PenaltyParams&) const = default;
 };
 
 struct InterfaceOverride {
@@ -74,6 +77,7 @@ struct InterfaceOverride {
   std::optional<ContactMethod> method;
   PenaltyParams penalty;
   std::optional<double> friction;  // Coulomb μ of the faces (docs/methods.md §8)
+  bool operator==(const InterfaceOverride&) const = default;
 };
 
 struct ContactSpec {
@@ -81,6 +85,7 @@ struct ContactSpec {
   PenaltyParams penalty;
   std::vector<InterfaceOverride> interfaces;
   double friction = 0;  // Coulomb μ on every interface unless overridden
+  bool operator==(const ContactSpec&) const = default;
 };
 
 // Method and penalty parameters of the interface between bars[k] and bars[k + 1]: the scene-wide
@@ -116,6 +121,7 @@ struct SimulationSpec {
   // Wall time of the error model's mesh choice for this run (resolve_scene), 0 without one: a run
   // pays it before its solve (summary.json mesh_choice_time_s, run_time_s).
   double mesh_choice_time_s = 0;
+  bool operator==(const SimulationSpec&) const = default;
 };
 
 // The gauge error a run accepts when neither the scene nor --tolerance gives one: the cheapest
@@ -144,6 +150,7 @@ struct BridgeSpec {
   double gauge_factor = 2.0;
   double excitation_V = 10.0;
   double gain = 1.0;
+  bool operator==(const BridgeSpec&) const = default;
 };
 
 struct ChannelSpec {
@@ -159,6 +166,7 @@ struct ChannelSpec {
   // channel. The signal is divided by the gain and moved earlier by the delay when it is read.
   double calibrated_gain = 1.0;
   double calibrated_delay_s = 0.0;
+  bool operator==(const ChannelSpec&) const = default;
 };
 
 // measurement.dispersion.correction: the names of DispersionSpec::correction.
@@ -169,14 +177,17 @@ struct DispersionSpec {
   bool amplitude_factors = false;      // Tyas–Pope m1, m2
   std::optional<double> cutoff_Hz;     // default: f·a/c0 = 0.2619 (d/Λ = 0.6), smooth roll-off
   std::optional<double> cutoff_fa_c0;  // or the cut-off as f·a/c0 (dimensionless)
+  bool operator==(const DispersionSpec&) const = default;
 };
 
 struct TimeWindow {
   double start_s = 0;
   double end_s = 0;
+  bool operator==(const TimeWindow&) const = default;
 };
 struct PulseWindows {  // manual windows on the signals' own clock override detection
   std::optional<TimeWindow> incident, reflected, transmitted;
+  bool operator==(const PulseWindows&) const = default;
 };
 
 // measurement.align: how the reflected and transmitted pulses are put on the incident pulse's clock
@@ -197,12 +208,14 @@ inline constexpr EnumName<PrimaryReduction> kPrimaryNames[] = {
 struct RateWindow {
   bool by_strain = true;
   double from = 0, to = 0;
+  bool operator==(const RateWindow&) const = default;
 };
 
 // Corrections `process` applies to the 3-wave curve (analysis/specimen_corrections.hpp).
 struct CorrectionsSpec {
   std::optional<double> friction;  // Coulomb μ of the specimen faces
   bool inertia = false;
+  bool operator==(const CorrectionsSpec&) const = default;
 };
 
 // measurement.uncertainty (docs/scene-format.md): standard uncertainties of what a lab knows it
@@ -211,11 +224,13 @@ struct StandardUncertainty {
   double value = 0;  // SI, or a fraction of the nominal value when `relative` ("%")
   bool relative = false;
   std::string path;  // where the scene gives it (named in messages and in the contributions)
+  bool operator==(const StandardUncertainty&) const = default;
 };
 struct BarUncertainty {
   std::size_t bar = 0;  // index into Scene::bars
   std::optional<StandardUncertainty> youngs_modulus, density, wave_speed, poisson_ratio, diameter,
       length;
+  bool operator==(const BarUncertainty&) const = default;
 };
 struct UncertaintySpec {
   // Of every bridge channel, each drawn on its own (every channel has its own gauge and bridge).
@@ -226,6 +241,7 @@ struct UncertaintySpec {
   std::optional<StandardUncertainty> dispersion_cutoff;
   std::optional<StandardUncertainty> friction;  // μ of measurement.corrections.friction
   std::vector<BarUncertainty> bars;
+  bool operator==(const UncertaintySpec&) const = default;
 };
 
 struct MeasurementSpec {
@@ -251,6 +267,7 @@ struct MeasurementSpec {
   PrimaryReduction primary = PrimaryReduction::kThreeWave;
   std::optional<RateWindow> rate_window;
   std::optional<UncertaintySpec> uncertainty;
+  bool operator==(const MeasurementSpec&) const = default;
 };
 
 struct Scene {
@@ -268,6 +285,7 @@ struct Scene {
   // Index of the first bar with a gauge left of the specimen / right of it, if any.
   std::optional<std::size_t> incident_bar() const;
   std::optional<std::size_t> transmitter_bar() const;
+  bool operator==(const Scene&) const = default;
 };
 
 // Reads and validates a scene; throws InputError("<file>: <json path>: <value>: <constraint>").

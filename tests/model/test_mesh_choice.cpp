@@ -4,6 +4,9 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "model/discretization.hpp"
 #include "model/mesh_error_model.hpp"
@@ -103,6 +106,48 @@ TEST_CASE("The meshes a tolerance chooses are the cheapest the model predicts wi
   INFO("chosen: " << chosen_cost << " node updates; cheaper meshes priced: " << priced);
   REQUIRE(priced > 0);  // the brute force did look below the choice
   REQUIRE(cheaper_meeting == 0);
+}
+
+TEST_CASE(
+    "A choice made again for the same scene is the one made before, and an edit anywhere in the "
+    "scene is chosen for afresh",
+    "[model][mesh-choice]") {
+  Scene base = classic();
+  base.simulation.tolerance = 0.035;
+  // Edits in every part of the scene the search reads: the simulation block, a bar's geometry, a
+  // bar's material, a gauge's place (the path its pulse travels). Each moves the cheapest mesh, so
+  // a choice remembered under a key that left the edited field out would be the base's.
+  std::vector<std::pair<std::string, Scene>> edited;
+  edited.emplace_back("tolerance", base);
+  edited.back().second.simulation.tolerance = 0.01;
+  edited.emplace_back("specimen length", base);
+  edited.back().second.bars[kSpecimen].length_m *= 2;
+  edited.emplace_back("incident bar's modulus", base);
+  edited.back().second.bars[1].material.youngs_modulus_Pa *= 0.8;
+  edited.emplace_back("incident gauge's place", base);
+  edited.back().second.bars[1].gauges.at(0).position_m *= 0.5;
+
+  Scene first = base;
+  const GaugeErrorPrediction p = choose_meshes(first);
+  for (auto& [what, scene] : edited) {
+    INFO("edited: " << what);
+    Scene chosen = scene;
+    const GaugeErrorPrediction q = choose_meshes(chosen);
+    const auto elements = [](const Scene& s) {
+      std::vector<int> n;
+      for (const BarSpec& b : s.bars) n.push_back(b.elements);
+      return n;
+    };
+    REQUIRE(elements(chosen) != elements(first));
+    // Asked again, after the base was asked in between: the same choice, to the bit.
+    Scene again_base = base, again = scene;
+    const GaugeErrorPrediction p2 = choose_meshes(again_base);
+    const GaugeErrorPrediction q2 = choose_meshes(again);
+    REQUIRE(again_base == first);
+    REQUIRE(again == chosen);
+    REQUIRE(p2.total == p.total);
+    REQUIRE(q2.total == q.total);
+  }
 }
 
 }  // namespace tests_model_test_mesh_choice
