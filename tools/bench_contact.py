@@ -61,8 +61,8 @@ def energy_table(work):
 
 
 def finite_links_scene(experiment, work):
-    """The experiment's scene with finite links (stiffness_factor 1e4) at every interface
-    (tools/experiment_variant.py)."""
+    """The experiment's scene with finite links (stiffness_factor 1e4) at every interface it
+    leaves rigid (tools/experiment_variant.py)."""
     return linked_scene(experiment, work, lambda scene: finite_links(scene, 1e4))[0]
 
 

@@ -5,7 +5,7 @@ docs/methods.md §3.7): is the rattle the model's physics or its discretization?
 Usage: tools/rattle_convergence.py [build/shpb] [experiment ...]
        (default: classic-al6061 lanl-cu-ofe-273k lanl-pmma13-mini-kolsky)
 
-For each experiment, links (rigid, then finite: contact.stiffness_factor 1e4 at every interface),
+For each experiment, links (rigid, then finite: contact.stiffness_factor 1e4 at every rigid interface),
 stepping (global, then asynchronous) and mesh — the default, --tolerance 1 %
 and 0.5 %, and every bar's elements k x the default run's (k = 1, 2, 4, and 8 when the k = 4 run
 predicts it under a minute) — prints one line per specimen face:
