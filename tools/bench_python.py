@@ -1,8 +1,8 @@
 """Benchmark of the Python module (figures, never assertions; tools/bench.sh runs it):
  1. a loop of 100 simulations of the classic experiment from Python, in rounds interleaved with
     runs of `shpb simulate`: wall time per run against the executable's solve (summary.json
-    wall_time_s) in the same round, and against its own runs' whole run (run_time_s: mesh choice,
-    set-up, solve, records), medians over the rounds;
+    wall_time_s) in the same round, against its own runs' solve, and against its own runs' whole
+    run (run_time_s: mesh choice, set-up, solve, records), medians over the rounds;
  2. two simulations in two Python threads against the same two one after the other (the GIL is
     released during a simulation): the ratio of the wall times, median of 15 repetitions, on a
     pool of two threads that has run before (concurrent.futures, as a notebook's sweep uses
@@ -37,7 +37,7 @@ scene = shpb.Scene.load(scene_file)
 ROUNDS = 7
 shpb.simulate(scene)  # warm: first-touch of the library's pages
 exe_solve, exe_run, exe_choice, py_solve, py_run = [], [], [], [], []
-to_solve, to_run, overhead, walls, cpus = [], [], [], [], []
+to_solve, to_own_solve, overhead, walls, cpus = [], [], [], [], []
 with tempfile.TemporaryDirectory() as tmp:
     for _ in range(ROUNDS):
         solves = []
@@ -61,6 +61,7 @@ with tempfile.TemporaryDirectory() as tmp:
         cpus.append((time.process_time() - cpu_start) / n)
         py_run += own
         to_solve.append(wall / statistics.median(solves))
+        to_own_solve.append(wall / statistics.median(py_solve[-n:]))
         overhead.append(wall / statistics.median(own))
 med = statistics.median
 print(f"== {ROUNDS * max(1, runs // ROUNDS)} classic simulations from Python, in {ROUNDS} rounds "
@@ -71,6 +72,9 @@ print(f"  from Python: wall per run {med(walls) * 1e3:.2f} ms, CPU {med(cpus) * 
       f"own summaries: solve {med(py_solve) * 1e3:.2f} ms, whole run {med(py_run) * 1e3:.2f} ms)")
 print(f"  Python's wall per run / the executable's solve in the same round: median "
       f"{med(to_solve):.3f} (rounds: {', '.join(f'{r:.2f}' for r in to_solve)})")
+print(f"  Python's wall per run / its own runs' solve (the same process: free of the executable's "
+      f"cold start and of the machine's drift between processes): median {med(to_own_solve):.3f} "
+      f"(rounds: {', '.join(f'{r:.2f}' for r in to_own_solve)})")
 print(f"  Python's wall / its own runs' run_time_s (the binding's overhead): median "
       f"{med(overhead):.3f} (rounds: {', '.join(f'{r:.2f}' for r in overhead)})")
 
