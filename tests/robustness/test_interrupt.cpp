@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "child_process.hpp"
+#include "striker_on_bar_scene.hpp"
 
 // This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
 namespace tests_robustness_test_interrupt {
@@ -20,26 +21,6 @@ using namespace shpb_robust;
 // Least time the long run gets before it is interrupted.
 constexpr double kRunBeforeSignal_s = 0.5;
 constexpr double kHangLimit_s = 60.0;
-
-// Striker on a bar (docs/methods.md §4). `duration` makes it short (a normal run) or long: 5 s on
-// these meshes is ~2.5e10 node updates, seconds of solving even optimised, far more than
-// kRunBeforeSignal_s. The meshes are the scene's own: the default tolerance would choose meshes
-// coarse enough to finish 5 s in half a second (measured), before the signal.
-std::string scene(const std::string& duration, const std::string& sample_rate) {
-  return R"({
-  "name": "interrupt",
-  "bars": [
-    {"name": "striker", "material": "steel", "length": "200 mm", "diameter": "12 mm",
-     "velocity": "10 m/s", "elements": 200},
-    {"name": "bar", "material": "steel", "length": "1 m", "diameter": "12 mm", "elements": 1000,
-     "gauges": [{"name": "gauge", "position": "500 mm"}]}
-  ],
-  "materials": {"steel": {"model": "elastic", "density": "7850 kg/m3",
-                          "youngs_modulus": "200 GPa", "poisson_ratio": 0.29}},
-  "simulation": {"duration": ")" +
-         duration + R"(", "sample_rate": ")" + sample_rate + R"("}
-})";
-}
 
 std::vector<std::string> simulate(const fs::path& dir, const std::string& scene_file) {
   return {"simulate", (dir / scene_file).string(), "-o", (dir / "out").string(), "--quiet"};
@@ -53,8 +34,8 @@ TEST_CASE("An interrupted simulation exits promptly and leaves the previous resu
   INFO("signal " << sig);
   ScratchFolder scratch("interrupt");
   const fs::path& dir = scratch.path();
-  write_bytes(dir / "short.json", scene("300 us", "1 MHz"));
-  write_bytes(dir / "long.json", scene("5 s", "100 kHz"));
+  write_bytes(dir / "short.json", striker_on_bar_scene("300 us"));
+  write_bytes(dir / "long.json", striker_on_bar_scene("5 s", "100 kHz"));
 
   const Outcome first = run(simulate(dir, "short.json"), dir, kHangLimit_s);
   INFO(first.err);

@@ -15,6 +15,7 @@
 
 #include "child_process.hpp"
 #include "measured_test.hpp"
+#include "striker_on_bar_scene.hpp"
 
 // This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
 namespace tests_robustness_test_lost_data {
@@ -25,25 +26,6 @@ using namespace shpb_robust;
 
 const fs::path kClassic = fs::path(SHPB_SOURCE_DIR) / "experiments/classic-al6061/scene.json";
 constexpr double kLimit_s = 120.0;  // a hang, not a slow machine
-
-// Striker on a bar; `duration` sets the size of field.csv (about 12 MB per ms at 1 MHz).
-// Meshed by hand at 1 mm (the automatic meshes): the sizes of the outputs, which the full-disk
-// test relies on, are then those of this mesh, not of the one a tolerance would choose.
-std::string bar_scene(const std::string& duration) {
-  return R"({
-  "name": "lost data",
-  "bars": [
-    {"name": "striker", "material": "steel", "length": "200 mm", "diameter": "12 mm",
-     "velocity": "10 m/s", "elements": 200},
-    {"name": "bar", "material": "steel", "length": "1 m", "diameter": "12 mm", "elements": 1000,
-     "gauges": [{"name": "gauge", "position": "500 mm"}]}
-  ],
-  "materials": {"steel": {"model": "elastic", "density": "7850 kg/m3",
-                          "youngs_modulus": "200 GPa", "poisson_ratio": 0.29}},
-  "simulation": {"duration": ")" +
-         duration + R"(", "sample_rate": "1 MHz"}
-})";
-}
 
 // Every regular file under `dir` with its bytes, for byte-for-byte comparisons.
 std::map<std::string, std::string> snapshot(const fs::path& dir) {
@@ -63,7 +45,7 @@ TEST_CASE("A folder with a foreign summary.json and the user's files is not repl
   write_bytes(dir / "summary.json", "{\"mine\": true}\n");
   write_bytes(dir / "thesis.tex", "\\documentclass{article}\n");
   write_bytes(dir / "data" / "raw.csv", "t,v\n0,1\n");
-  write_bytes(scratch.path() / "scene.json", bar_scene("50 us"));
+  write_bytes(scratch.path() / "scene.json", striker_on_bar_scene("50 us"));
   const auto before = snapshot(dir);
   const Outcome o =
       run({"simulate", (scratch.path() / "scene.json").string(), "-o", dir.string(), "-q"},
@@ -79,7 +61,7 @@ TEST_CASE("A file the user added to a shpb result keeps the folder from being re
           "[robustness][lost-data]") {
   ScratchFolder scratch("lost");
   const fs::path out = scratch.path() / "out";
-  write_bytes(scratch.path() / "scene.json", bar_scene("50 us"));
+  write_bytes(scratch.path() / "scene.json", striker_on_bar_scene("50 us"));
   const std::vector<std::string> args = {"simulate", (scratch.path() / "scene.json").string(), "-o",
                                          out.string(), "-q"};
   REQUIRE(run(args, scratch.path(), kLimit_s).code == 0);
@@ -96,7 +78,7 @@ TEST_CASE("An output folder holding the scene being run is refused", "[robustnes
   ScratchFolder scratch("lost");
   const fs::path res = scratch.path() / "res";
   // A shpb result into which the user then put the scene: the marker alone would not save it.
-  write_bytes(scratch.path() / "scene.json", bar_scene("50 us"));
+  write_bytes(scratch.path() / "scene.json", striker_on_bar_scene("50 us"));
   REQUIRE(run({"simulate", (scratch.path() / "scene.json").string(), "-o", res.string(), "-q"},
               scratch.path(), kLimit_s)
               .code == 0);
@@ -147,7 +129,7 @@ TEST_CASE("report never replaces a figures/ folder or report.html it did not wri
   }
   ScratchFolder scratch("lost");
   const fs::path out = scratch.path() / "out";
-  write_bytes(scratch.path() / "scene.json", bar_scene("50 us"));
+  write_bytes(scratch.path() / "scene.json", striker_on_bar_scene("50 us"));
   REQUIRE(run({"simulate", (scratch.path() / "scene.json").string(), "-o", out.string(), "-q"},
               scratch.path(), kLimit_s)
               .code == 0);
@@ -195,7 +177,7 @@ TEST_CASE("report on a read-only folder is one error line, not a traceback",
   }
   ScratchFolder scratch("lost");
   const fs::path out = scratch.path() / "out";
-  write_bytes(scratch.path() / "scene.json", bar_scene("50 us"));
+  write_bytes(scratch.path() / "scene.json", striker_on_bar_scene("50 us"));
   REQUIRE(run({"simulate", (scratch.path() / "scene.json").string(), "-o", out.string(), "-q"},
               scratch.path(), kLimit_s)
               .code == 0);
@@ -239,8 +221,8 @@ TEST_CASE("A full disk fails the run naming the file and keeps the previous resu
     fs::path p;
     ~Unmount() { ::umount2(p.c_str(), MNT_DETACH); }
   } unmount{disk};
-  write_bytes(scratch.path() / "small.json", bar_scene("50 us"));
-  write_bytes(scratch.path() / "big.json", bar_scene("1 ms"));
+  write_bytes(scratch.path() / "small.json", striker_on_bar_scene("50 us"));
+  write_bytes(scratch.path() / "big.json", striker_on_bar_scene("1 ms"));
   const fs::path out = disk / "out";
   for (const std::string command : {"simulate", "dispersion"}) {
     INFO(command);
@@ -310,7 +292,7 @@ TEST_CASE("A stray temporary-looking folder with a huge number is left alone, no
   const fs::path stray = scratch.path() / ".out.tmp-99999999999999999999-1";
   fs::create_directory(stray);
   write_bytes(stray / "keep.txt", "not shpb's");
-  write_bytes(scratch.path() / "scene.json", bar_scene("50 us"));
+  write_bytes(scratch.path() / "scene.json", striker_on_bar_scene("50 us"));
   const Outcome o = run({"simulate", (scratch.path() / "scene.json").string(), "-o",
                          (scratch.path() / "out").string(), "-q"},
                         scratch.path(), kLimit_s);
@@ -323,7 +305,7 @@ TEST_CASE("study --merge PLAN -o PLAN, or -o inside its parts, is refused and th
           "[robustness][lost-data]") {
   ScratchFolder scratch("lost");
   const fs::path plan = scratch.path() / "plan";
-  write_bytes(scratch.path() / "scene.json", bar_scene("50 us"));
+  write_bytes(scratch.path() / "scene.json", striker_on_bar_scene("50 us"));
   const auto quiet = [&](std::vector<std::string> args) {
     args.push_back("-q");
     return run(args, scratch.path(), kLimit_s);
@@ -382,7 +364,7 @@ TEST_CASE("Campaign test names are folder names: no path, no '.', '..', no campa
 TEST_CASE("The user's files that look like shpb temporaries beside -o are left alone",
           "[robustness][lost-data]") {
   ScratchFolder scratch("lost");
-  write_bytes(scratch.path() / "scene.json", bar_scene("50 us"));
+  write_bytes(scratch.path() / "scene.json", striker_on_bar_scene("50 us"));
   const fs::path parent = scratch.path() / "work";
   fs::create_directories(parent / ".res.tmp-123456-old");
   write_bytes(parent / ".res.tmp-2024-05-01.tar", "the user's archive");
@@ -406,8 +388,8 @@ TEST_CASE("The user's files that look like shpb temporaries beside -o are left a
 TEST_CASE("The temporary folder of a killed run is removed by the next run into the same -o",
           "[robustness][lost-data]") {
   ScratchFolder scratch("lost");
-  write_bytes(scratch.path() / "small.json", bar_scene("50 us"));
-  write_bytes(scratch.path() / "long.json", bar_scene("20 ms"));
+  write_bytes(scratch.path() / "small.json", striker_on_bar_scene("50 us"));
+  write_bytes(scratch.path() / "long.json", striker_on_bar_scene("20 ms"));
   const fs::path out = scratch.path() / "out";
   Child child({"simulate", (scratch.path() / "long.json").string(), "-o", out.string(), "-q"},
               scratch.path());
@@ -471,7 +453,7 @@ TEST_CASE("Campaign process -o holding a scene's measured file is refused and th
 TEST_CASE("An -o that is a symbolic link to a folder is written through: the link stays",
           "[robustness][lost-data]") {
   ScratchFolder scratch("lost");
-  write_bytes(scratch.path() / "scene.json", bar_scene("50 us"));
+  write_bytes(scratch.path() / "scene.json", striker_on_bar_scene("50 us"));
   const fs::path target = scratch.path() / "results" / "run1", link = scratch.path() / "latest";
   const std::vector<std::string> args = {"simulate", (scratch.path() / "scene.json").string(), "-o",
                                          link.string(), "-q"};
