@@ -11,7 +11,8 @@
 // against the study's reference, recorded (study/recorded_error.hpp) and point-sampled (the
 // study's `error` column); --defaults: a table of each scene's default run before (automatic
 // meshes) and now (the default tolerance): solve time and gauge error against the reference, and
-// the mesh choice's CPU made afresh and made again in the same process.
+// the mesh choice's CPU made afresh, searched again with the integrals remembered, and the same
+// scene's choice found again.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

@@ -50,7 +50,7 @@ FINITE = 1e4  # contact.stiffness_factor of the finite links
 
 def scene_copy(experiment, work, elements=None, duration_s=None, finite=False):
     """The experiment's scene (tools/experiment_variant.py) with explicit elements per bar (then
-    recorded at SAMPLE_RATE), a shorter duration and/or finite links at every interface."""
+    recorded at SAMPLE_RATE), a shorter duration and/or finite links at every rigid interface."""
     def edit(scene):
         if elements:  # a finer record would make a tolerance choose finer meshes
             scene.setdefault('simulation', {})['sample_rate'] = SAMPLE_RATE

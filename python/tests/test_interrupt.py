@@ -48,7 +48,7 @@ FORK_SCRIPT = textwrap.dedent("""
     import multiprocessing, sys
     import shpb
     scene = shpb.Scene.load(sys.argv[1])
-    shpb.simulate(scene)  # the parent's main thread has handed work to its worker thread
+    shpb.simulate(scene)  # the parent has run before forking (a kept worker thread would exist)
     def run(velocity):
         scene.striker.velocity_m_s = velocity
         return shpb.simulate(scene).stable
