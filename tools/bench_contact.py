@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """Energy balance near C = 1 and the specimen faces' closings after unloading (figures, not
-assertions; docs/methods.md §3.7).
+assertions; docs/methods.md §3.7;
+docs/validation.md, "The specimen's faces after unloading").
 
 Usage: tools/bench_contact.py [build/shpb]
 
@@ -15,7 +16,7 @@ Usage: tools/bench_contact.py [build/shpb]
    and global, at the default meshes (those of the default tolerance, 3.5 %); then the share of the record's
    samples after the release in which the face is closed and its mean gap: a face pinned to its
    bar (closed most of the time, mean gap within a nm) or a specimen floating between separating
-   bars (closed a few % of the time, mean gap of order 100 nm) — the two regimes of §3.7.
+   bars (closed a few % of the time, mean gap of order 100 nm) — the two regimes measured there.
 """
 import csv
 import json

@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """Does a change of the specimen's numerics move the loading? (figures, not assertions;
-docs/methods.md §3.7)
+docs/methods.md §3.7;
+docs/validation.md, "The specimen's faces after unloading")
 
 Usage: tools/compare_loading.py BASE_SHPB NEW_SHPB [simulate options...]
 

@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """The specimen faces' closings after unloading as the meshes are refined (figures, not assertions;
-docs/methods.md §3.7): is the rattle the model's physics or its discretization?
+docs/methods.md §3.7; docs/validation.md, "The specimen's faces after unloading"):
+is the rattle the model's physics or its discretization?
 
 Usage: tools/rattle_convergence.py [build/shpb] [experiment ...]
        (default: classic-al6061 lanl-cu-ofe-273k lanl-pmma13-mini-kolsky)
