@@ -255,6 +255,13 @@ double ChainRecorders::energy_total(long k) const {
   return total;
 }
 
+double ChainRecorders::energy_strain(long k) const {
+  double strain = 0;
+  for (const BarRecorder& r : bars_) strain += r.energy_sampler.at(k, 1);
+  for (const InterfaceRecorder& r : interfaces_) strain += r.energy_sampler.at(k, 3);
+  return strain;
+}
+
 void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& result) {
   auto time_count = [&](long filled) {
     long n = std::min(filled, grid_count(until_s, sample_spacing_s_));

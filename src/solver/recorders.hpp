@@ -62,6 +62,7 @@ class ChainRecorders {
   // Energy grid points complete in every recorder, and the total energy at one of them.
   long energy_complete() const;
   double energy_total(long k) const;
+  double energy_strain(long k) const;  // the bars' and end segments' strain energy alone
   double energy_grid_tau(long k) const { return energy_tau0_ + k * energy_spacing_; }
 
   // Fills the time series of `result` up to (and including) simulation time `until_s`, each

@@ -52,10 +52,10 @@ void apply_end(Chain& chain, std::size_t bar, int node, double tau, bool steppin
   if (stepping) s.force[node] += force;
 }
 
-std::string describe_failure(const Chain& chain, double t, double ratio) {
+std::string describe_failure(const Chain& chain, double t, const char* energy, double ratio) {
   std::ostringstream out;
-  out << "unstable: the total energy reached " << ratio << " times its initial value at t = " << t
-      << " s";
+  out << "unstable: the " << energy << " reached " << ratio
+      << " times the initial energy at t = " << t << " s";
   std::size_t worst = chain.interfaces.size();
   double largest = 0;
   for (std::size_t k = 0; k < chain.interfaces.size(); ++k) {
@@ -240,9 +240,15 @@ ScheduleOutcome run_schedule(Chain& chain, ChainRecorders& recorders,
       const bool finite = std::isfinite(e);
       if (finite && energy0 > 0)
         outcome.energy_error = std::max(outcome.energy_error, std::abs(e - energy0) / energy0);
-      if (!finite || (energy0 > 0 && e > kEnergyGrowthLimit * energy0)) {
+      // The strain energy alone too: a Nyquist mode's negative kinetic energy cancels it in the
+      // total (scheduler.hpp, kStrainGrowthLimit).
+      const double strain = recorders.energy_strain(energy_checked);
+      const bool total_grew = !finite || (energy0 > 0 && e > kEnergyGrowthLimit * energy0);
+      if (total_grew || (energy0 > 0 && strain > kStrainGrowthLimit * energy0)) {
         outcome.stable = false;
-        outcome.failure = describe_failure(chain, t, finite ? e / energy0 : e);
+        outcome.failure = total_grew
+                              ? describe_failure(chain, t, "total energy", finite ? e / energy0 : e)
+                              : describe_failure(chain, t, "strain energy", strain / energy0);
         outcome.checked_until_s =
             energy_checked == 0
                 ? chain.start_time_s

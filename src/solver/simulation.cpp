@@ -188,8 +188,8 @@ void check_plausibility(const Scene& scene, const Chain& chain, SimulationResult
               std::to_string(chain.interface_states[most].activations) + " times";
     if (!chain.global_stepping)
       text +=
-          ": a tie between bars on different steps that no end segment covers can chatter "
-          "(docs/methods.md §3.6); compare with \"stepping\": \"global\" or finer meshes";
+          ": a tie between bars on different steps can chatter (docs/methods.md §3.6–3.7); "
+          "compare with \"stepping\": \"global\" or finer meshes";
     result.warnings.push_back(text);
   }
   // A bar of one element has no interior node: its waves are not resolved.

@@ -71,6 +71,7 @@ TEST_CASE("Node-to-node bipenalty at the same stiffness stays stable and keeps t
   const double expected = -V / (2 * c0);
   const SimulationResult r =
       simulate(striker_on_bar(ContactMethod::kBipenalty, Stepping::kAsynchronous));
+  INFO(r.failure << "; energy error " << r.energy_error);
   REQUIRE(r.stable);
   const auto p = test::square_pulse(r.gauges.time_s, r.gauges.column("incident"), expected);
   REQUIRE(p.found);
