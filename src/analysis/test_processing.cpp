@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "analysis/reduction.hpp"
 
@@ -34,6 +35,20 @@ ProcessedTest process_test(const Scene& scene, const GaugeSignals& signals,
   } else {
     r = process_signals(signals, setup, options);
   }
+  // The move to the faces (docs/methods.md §5) and the reduction (§6) are those of elastic bars.
+  // A bar with a material law (a polymer bar) attenuates and disperses a pulse on its way from the
+  // gauge to the face; the reduction takes its instantaneous modulus for E and c0 and corrects
+  // nothing of the rest, so the face strains, rates and forces are off by it.
+  for (const std::size_t b : {*scene.specimen + 1, *scene.specimen - 1})  // incident first
+    if (!scene.bars[b].material.is_elastic())
+      r.warnings.insert(
+          r.warnings.begin(),
+          "bar \"" + scene.bars[b].name + "\" has a " +
+              std::string(enum_name(kMaterialModelNames, scene.bars[b].material.model)) +
+              " law: its pulses are moved to the specimen and reduced as in an elastic bar of its "
+              "instantaneous modulus, without the attenuation and dispersion the law gives them "
+              "over "
+              "the gauge distance; the strains, rates and stresses are off by those");
   if (scene.measurement)
     t.corrections = {scene.measurement->corrections.friction,
                      scene.measurement->corrections.inertia};

@@ -137,6 +137,17 @@ MeasurementSpec read_measurement(const JsonValue& value, const std::filesystem::
   const auto uncertainty = o.get("uncertainty");
   if (uncertainty) m.uncertainty = read_uncertainty(*uncertainty, bars, specimen);
   // The reduction's choices, which also apply to `process --signals` of simulated gauges.
+  if (auto t = o.get("test"))
+    m.tension = enum_from<bool>(*t, {{"compression", false}, {"tension", true}});
+  if (auto d = o.get("load_drop")) {
+    if (d->json().is_boolean()) {
+      if (d->boolean())
+        throw d->error("false (cut at the strain maximum only) or a fraction, e.g. 0.5");
+      m.load_drop = 0.0;
+    } else {
+      m.load_drop = d->quantity_in(Dimension::kDimensionless, 0, 1, true, true);
+    }
+  }
   if (auto a = o.get("align")) m.align = enum_from(*a, kAlignmentNames);
   if (auto p = o.get("primary")) m.primary = enum_from(*p, kPrimaryNames);
   if (auto w = o.get("rate_window")) m.rate_window = read_rate_window(*w);
@@ -156,8 +167,8 @@ MeasurementSpec read_measurement(const JsonValue& value, const std::filesystem::
   // Corrections or the reduction's choices alone (for `process --signals` of simulated gauges):
   // no signals to read.
   if (!o.get("channels") && !o.get("file") &&
-      (o.get("corrections") || o.get("align") || o.get("primary") || o.get("rate_window") ||
-       uncertainty)) {
+      (o.get("test") || o.get("load_drop") || o.get("corrections") || o.get("align") ||
+       o.get("primary") || o.get("rate_window") || uncertainty)) {
     if (uncertainty && m.uncertainty->gauge_factor)
       throw input_error(value.file(), m.uncertainty->gauge_factor->path,
                         uncertainty->json()["gauge_factor"].dump(),
@@ -207,17 +218,6 @@ MeasurementSpec read_measurement(const JsonValue& value, const std::filesystem::
   }
   if (auto sh = o.get("sheet")) m.sheet = sh->name();
   if (auto r = o.get("reflected_time")) m.reflected_time_s = r->positive_quantity(Dimension::kTime);
-  if (auto t = o.get("test"))
-    m.tension = enum_from<bool>(*t, {{"compression", false}, {"tension", true}});
-  if (auto d = o.get("load_drop")) {
-    if (d->json().is_boolean()) {
-      if (d->boolean())
-        throw d->error("false (cut at the strain maximum only) or a fraction, e.g. 0.5");
-      m.load_drop = 0.0;
-    } else {
-      m.load_drop = d->quantity_in(Dimension::kDimensionless, 0, 1, true, true);
-    }
-  }
   if (auto s = o.get("striker_velocity"))
     m.striker_velocity_m_s = s->positive_quantity(Dimension::kVelocity);
   if (uncertainty) {

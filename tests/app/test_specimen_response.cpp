@@ -307,6 +307,65 @@ void check_friction(json scene, const shpb::MaterialSpec& material, LawAlong law
 }  // namespace
 
 TEST_CASE(
+    "A simulated tension test whose measurement gives only \"test\" is processed back to its "
+    "bilinear law, tension positive",
+    "[app][finite-strain][tension]") {
+  // A split Hopkinson tension bar built for this test: titanium bars of 12 mm, a 0.4 m striker
+  // bonded to the incident bar and pulled at 8 m/s, an L/D = 2 specimen (8 mm x 4 mm) glued to
+  // both bars. `process --signals` takes the test type from the scene's measurement, which for a
+  // simulation holds no file and no channels.
+  const auto dir = scratch_dir("tension_signals");
+  const double rho = 4430, E_bar = 113.8e9, V = 8;
+  const json ti = {
+      {"model", "elastic"}, {"density", rho}, {"youngs_modulus", E_bar}, {"poisson_ratio", 0.342}};
+  const json metal = {{"model", "bilinear"},        {"density", "2700 kg/m3"},
+                      {"youngs_modulus", "70 GPa"}, {"poisson_ratio", 0.33},
+                      {"yield_stress", "250 MPa"},  {"tangent_modulus", "1.5 GPa"}};
+  const json scene = {
+      {"bars",
+       {{{"name", "striker"},
+         {"material", ti},
+         {"length", "0.4 m"},
+         {"diameter", "12 mm"},
+         {"velocity", -V}},
+        {{"name", "incident"},
+         {"material", ti},
+         {"length", "2.5 m"},
+         {"diameter", "12 mm"},
+         {"gauges", {{{"name", "incident"}, {"distance_to_specimen", "1.2 m"}}}}},
+        {{"name", "specimen"}, {"material", metal}, {"length", "8 mm"}, {"diameter", "4 mm"}},
+        {{"name", "transmitter"},
+         {"material", ti},
+         {"length", "1.6 m"},
+         {"diameter", "12 mm"},
+         {"gauges", {{{"name", "transmitted"}, {"distance_to_specimen", "0.4 m"}}}}}}},
+      {"specimen", "specimen"},
+      {"contact", {{"method", "bonded"}}},
+      {"simulation", {{"duration", "1 ms"}}},
+      {"measurement", {{"test", "tension"}}}};
+  const Processed p = simulate_and_process(scene, dir);
+  REQUIRE(p.process["test"] == "tension");
+  // Striker and bar of one material and area: incident strain V/(2 c0), tension positive
+  // (docs/methods.md §4), read to the plateau's flatness at these meshes.
+  constexpr double kPlateauTolerance = 0.005;
+  const double c0 = std::sqrt(E_bar / rho);
+  REQUIRE(p.process["incident_plateau_strain"].get<double>() ==
+          Approx(V / (2 * c0)).epsilon(kPlateauTolerance));
+  // Tension positive: the curve's strain grows, and its true values are ln(1 + e), σ(1 + e).
+  const auto& c = p.curve;
+  const std::size_t last = c.at("strain").size() - 1;
+  REQUIRE(c.at("strain")[last] > 0.05);
+  REQUIRE(c.at("true_strain")[last] == Approx(std::log1p(c.at("strain")[last])).epsilon(1e-9));
+  const auto f = dir / "bilinear.json";
+  std::ofstream(f) << metal.dump();
+  const auto ratios = flow_ratios(c, bilinear_along(c, shpb::read_material_file(f, f.string())),
+                                  [](double) { return 1.0; });
+  INFO("samples " << ratios.all.size() << ", median processed/law " << median(ratios.all));
+  REQUIRE(ratios.all.size() > 200);  // 20 µs of the flow at 10 MHz at least
+  REQUIRE(std::abs(median(ratios.all) - 1) < kLawTolerance);
+}
+
+TEST_CASE(
     "Friction mu = 0.1 on an L/D = 0.5 Johnson-Cook specimen: high by the Dharan-Hauser "
     "factor, corrected back",
     "[app][finite-strain][friction]") {
