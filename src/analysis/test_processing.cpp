@@ -47,8 +47,7 @@ ProcessedTest process_test(const Scene& scene, const GaugeSignals& signals,
               std::string(enum_name(kMaterialModelNames, scene.bars[b].material.model)) +
               " law: its pulses are moved to the specimen and reduced as in an elastic bar of its "
               "instantaneous modulus, without the attenuation and dispersion the law gives them "
-              "over "
-              "the gauge distance; the strains, rates and stresses are off by those");
+              "over the gauge distance; the strains, rates and stresses are off by those");
   if (scene.measurement)
     t.corrections = {scene.measurement->corrections.friction,
                      scene.measurement->corrections.inertia};
