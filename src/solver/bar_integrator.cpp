@@ -277,14 +277,22 @@ long advance(const BarModel& bar, BarState& s) {
 }
 
 double end_free_force_at(const BarModel& bar, const BarState& s, int end, double tau_n, double tau,
-                         double end_w) {
+                         double end_w, bool law_on_path) {
   const int last = bar.nodes - 1;
-  if (bar.law) return end == 0 ? s.axial_force_N[0] : -s.axial_force_N[last - 1];  // current area
+  const int element = end == 0 ? 0 : last - 1;
+  if (bar.law && !law_on_path) return end == 0 ? s.axial_force_N[0] : -s.axial_force_N[last - 1];
   const int other = end == 0 ? 1 : last - 1;
   const double back = tau_n - tau;
   const double w_end = std::isnan(end_w) ? s.w[end] - back * s.v[end] : end_w;
   const double w_other = s.w[other] - back * s.v[other];
-  return bar.stiffness_N_m * (w_other - w_end);
+  if (!bar.law) return bar.stiffness_N_m * (w_other - w_end);
+  // The axial force of the last assembly (at the instant before τ_n, current area) plus the
+  // instantaneous response to the end element's stretch since: its strain then is in strain_next.
+  const double h = bar.element_length_m, strain = s.strain_next[element];
+  const double then = bar.finite_strain ? h * std::expm1(strain) : h * strain;
+  const double now = end == 0 ? w_other - w_end : w_end - w_other;
+  const double axial = s.axial_force_N[element] + bar.stiffness_N_m * (now - then);
+  return end == 0 ? axial : -axial;
 }
 
 double node_velocity_now(const BarModel& bar, const BarState& s, int i) {

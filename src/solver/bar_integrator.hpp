@@ -38,9 +38,11 @@ long advance(const BarModel& bar, BarState& s);
 // Free (internal) force on end node `end` (0 or nodes−1) at time τ within the bar's last step,
 // from the interpolated displacements (exact for elastic bars) or the last stress of a
 // material-law bar: the predictor of a neighbour's end load (docs/methods.md §3). A finite
-// `end_w` puts the end node there instead (an end tied to an interface frame).
+// `end_w` puts the end node there instead (an end tied to an interface frame). `law_on_path`: a
+// material-law bar's end force is carried from its last assembly to the end element's length at
+// τ with the instantaneous stiffness EA/h (the slow side of a tie, §3.4).
 double end_free_force_at(const BarModel& bar, const BarState& s, int end, double tau_n, double tau,
-                         double end_w);
+                         double end_w, bool law_on_path = false);
 
 // Element stress at t_n (tension positive): true (Cauchy) stress, force over current area.
 inline double element_stress(const BarModel& bar, const BarState& s, int e) {

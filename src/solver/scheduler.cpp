@@ -15,8 +15,10 @@ namespace shpb {
 namespace {
 
 // The end of bar i that touches interface k: its last node (left side) or node 0 (right side).
+// `neighbour_dt`: the other side's step; an ahead material-law bar with the longer step carries
+// its end force along its path (rule 4).
 EndState end_state(const Chain& chain, std::size_t bar, int node, double tau, bool stepping,
-                   double tied_u) {
+                   double tied_u, double neighbour_dt = 0) {
   const BarModel& b = chain.bars[bar];
   const BarState& s = chain.states[bar];
   const double tau_n = chain.bar_tau(bar);
@@ -31,7 +33,8 @@ EndState end_state(const Chain& chain, std::size_t bar, int node, double tau, bo
     // A tied end is at the frame (rule 4); otherwise on its own linear path.
     const double w_end = std::isnan(tied_u) ? std::numeric_limits<double>::quiet_NaN()
                                             : tied_u - b.initial_velocity_m_s * tau;
-    e.free_force = end_free_force_at(b, s, node, tau_n, tau, w_end);
+    const bool slow = s.dt > (1 + kSameInstant) * neighbour_dt;
+    e.free_force = end_free_force_at(b, s, node, tau_n, tau, w_end, slow);
   }
   e.v = node_velocity(b, s, node);
   e.kick_s = 0.5 * (s.dt_prev + s.dt);  // ½(Δt_{n−1} + Δt_n), ½Δt_0 at n = 0
@@ -149,10 +152,12 @@ void take_instant(Chain& chain, ChainRecorders& recorders, const std::vector<cha
     }
     // A stepping end is already at the frame (rule 4); an ahead one is put there for its load.
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    EndState left = end_state(chain, l, l_node, tau, stepping[l],
-                              stepping[l] ? nan : tied_end_position(im, is, 0, tau));
-    EndState right = end_state(chain, r, 0, tau, stepping[r],
-                               stepping[r] ? nan : tied_end_position(im, is, 1, tau));
+    EndState left =
+        end_state(chain, l, l_node, tau, stepping[l],
+                  stepping[l] ? nan : tied_end_position(im, is, 0, tau), chain.states[r].dt);
+    EndState right =
+        end_state(chain, r, 0, tau, stepping[r],
+                  stepping[r] ? nan : tied_end_position(im, is, 1, tau), chain.states[l].dt);
     const double next_l = stepping[l] ? tau + chain.states[l].dt : chain.bar_tau(l);
     const double next_r = stepping[r] ? tau + chain.states[r].dt : chain.bar_tau(r);
     const double next = std::min(next_l, next_r);

@@ -24,7 +24,8 @@
 //     ahead: τ_{j,m} − Δt_j ≤ τ* < τ_{j,m} (rule 2 picked the minimum). Its end displacement at τ*
 //     is interpolated on its current step, on which the central-difference path is linear (exact);
 //     its free end force is recomputed from the interpolated displacements (exact for elastic bars;
-//     the last stress of a material law).
+//     the last stress of a material law, carried along the end element's path with its
+//     instantaneous stiffness where that bar has the longer step of the tie: docs/methods.md §3.7).
 //  5. A solved interface force is applied only by the sides stepping at τ*; a side that is ahead
 //     used the force solved at its own instant ("each partition takes its own full step with its
 //     latest multiplier").
