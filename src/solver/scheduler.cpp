@@ -71,6 +71,9 @@ std::string describe_failure(const Chain& chain, double t, const char* energy, d
   if (worst < chain.interfaces.size())
     out << "; largest contact force " << largest << " N at interface "
         << chain.interfaces[worst].name << " (" << to_string(chain.interfaces[worst].method) << ")";
+  // Ties between bars on different steps near C = 1 are where the localized coupling can feed a
+  // mode (docs/methods.md §3.6–3.7); a plain penalty link's stiffness is its own limit (§2).
+  if (!chain.global_stepping) out << "; compare with --stepping global or --courant 0.995";
   return out.str();
 }
 
