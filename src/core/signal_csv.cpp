@@ -187,10 +187,31 @@ RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest
     throw input_error(text.file.string(), "line " + std::to_string(text.rows.back().line),
                       "no numeric rows",
                       "expected rows of numbers after the header; " + no_numbers_cause(text));
-  const TextRow* header = first > 0 ? &text.rows[first - 1] : nullptr;
   const std::size_t width = text.rows[first].fields.size();
   ColumnRef time_ref = request.time_column;
   if (time_ref.name.empty() && !time_ref.index) time_ref.index = 0;
+  // Rows just above that are shaped as data are data rows with a text in some field (a scope's
+  // "OVER", "NaN" or "∞" in its first samples), never the header: taken as the header they
+  // would drop those samples unseen, or hide the real header. Such a row has the data rows'
+  // width and a number in the time column (by index), or, with the time column named, lacks
+  // that name and is at least half numbers. Its fields are then read as every sample's: a text
+  // in a column read is refused by line and column, one in a column not read is left alone.
+  const auto data_shaped = [&](const TextRow& row) {
+    if (row.fields.size() != width) return false;
+    if (time_ref.index)
+      return static_cast<std::size_t>(*time_ref.index) < width &&
+             parse_number(row.fields[static_cast<std::size_t>(*time_ref.index)],
+                          text.decimal_comma);
+    std::size_t numbers = 0, filled = 0;
+    for (const auto& f : row.fields) {
+      if (f == time_ref.name) return false;
+      filled += !f.empty();
+      numbers += parse_number(f, text.decimal_comma).has_value();
+    }
+    return numbers > 0 && 2 * numbers >= filled;
+  };
+  while (first > 0 && data_shaped(text.rows[first - 1])) --first;
+  const TextRow* header = first > 0 ? &text.rows[first - 1] : nullptr;
   const std::size_t time_index = resolve(text, header, time_ref, width);
   std::vector<std::size_t> indices;
   std::vector<std::string> names;

@@ -138,6 +138,61 @@ TEST_CASE("Broken signal files are rejected naming file, line and column", "[cor
   }
 }
 
+TEST_CASE("A data row with text in one field is a data row, never taken for the header",
+          "[core][signal]") {
+  // A scope writes "NaN", "OVER" or "∞" for a sample beyond its range; in the first rows such a
+  // row, taken for the header, would drop its samples unseen or hide the real header.
+  const std::string head = "time_s,incident,transmitted,trigger\n";
+  const std::string rest = "2e-6,3,30,0\n3e-6,4,40,0\n";
+  struct Case {
+    const char* what;
+    std::string file;
+    ColumnRef time, column;
+    std::string error;        // the refusal, or empty: read whole
+    std::size_t samples = 0;  // ... with this many samples
+  };
+  const Case cases[] = {
+      {"NaN in the first sample of a column read by index",
+       head + "0,NaN,0,0\n1e-6,2,20,0\n" + rest,
+       {},
+       by_index(1),
+       "first.csv: line 2, column 2 (\"incident\"): \"NaN\""},
+      {"NaN in the first sample of a column read by name", head + "0,NaN,0,0\n1e-6,2,20,0\n" + rest,
+       by_name("time_s"), by_name("incident"),
+       "first.csv: line 2, column 2 (\"incident\"): \"NaN\""},
+      {"OVER in the first samples of a column not read, by name",
+       head + "0,1,10,OVER\n1e-6,2,20,OVER\n" + rest, by_name("time_s"), by_name("incident"), "",
+       4},
+      {"\u221e in the first samples of a column not read, by index, no header",
+       "0,1,10,\u221e\n1e-6,2,20,\u221e\n" + rest,
+       {},
+       by_index(1),
+       "",
+       4},
+      {"a metadata line right above the data stays metadata",
+       "Sample Interval,1e-6,s,V\n" + rest,
+       {},
+       by_index(1),
+       "",
+       2},
+  };
+  for (const auto& c : cases) {
+    DYNAMIC_SECTION(c.what) {
+      const auto p = write_file("first.csv", c.file);
+      auto r = csv_request(p, {c.column});
+      r.time_column = c.time;
+      if (!c.error.empty()) {
+        CHECK(error_of([&] { read_signal_columns(r); }).find(c.error) != std::string::npos);
+      } else {
+        const SignalColumns s = read_signal_columns(r);
+        REQUIRE(s.time_s.size() == c.samples);
+        CHECK(s.values[0].back() == 4);
+        CHECK(s.time_s.front() == (c.samples == 4 ? 0 : 2e-6));
+      }
+    }
+  }
+}
+
 TEST_CASE("A long record is read whole and its first bad field named, whichever half it is in",
           "[core][signal]") {
   // 300 000 rows: parsed in two halves at once (signal_csv.cpp); the values land in order.
