@@ -83,7 +83,8 @@ struct Shot {
   // A measured striker velocity: the source's plateau (as recorded) and the strain the striker
   // gives the struck bar per unit of its wave speed, v Z_s / (Z_s + Z_b) (docs/methods.md §11).
   std::optional<double> plateau, strain_times_c;
-  double plateau_sd = 0;  // its standard error from the noise over the plateau
+  double plateau_sd = 0;              // its standard error from the noise over the plateau
+  std::vector<std::string> warnings;  // what reading its record assumed (a rebuilt time base, ...)
 };
 
 // Dispersion tables by Poisson ratio, shared by the parallel evaluations.
@@ -330,6 +331,7 @@ Shot prepare_shot(const CalibrationShot& cs, Parameters& params, std::string& re
   s.scene = cs.display;
   check_shot_scene(scene, file);
   const GaugeSignals signals = read_gauge_signals(*scene.measurement, {});
+  s.warnings = signals.warnings;
   const std::vector<std::size_t> gauged = gauged_bars(scene, signals, file);
   s.kind = gauged.size() == 1 ? "bars apart" : "bars together";
   s.bars = bar_parameters(scene, gauged, params);
@@ -634,7 +636,10 @@ CalibrationFit calibrate_bars(const std::vector<CalibrationShot>& input,
   fit.iterations = r.iterations;
   fit.converged = r.converged;
   fit.residuals = r.residuals;
-  fit.warnings = r.warnings;
+  // What reading the records assumed comes first, then what the solve found.
+  for (const Shot& s : prepared.shots)
+    fit.warnings.insert(fit.warnings.end(), s.warnings.begin(), s.warnings.end());
+  fit.warnings.insert(fit.warnings.end(), r.warnings.begin(), r.warnings.end());
   fitted_parameters(list, r, fit);
   fit.calibration = calibration_of(input, fit.parameters, prepared.reference);
   make_gains_absolute(prepared.shots, r.value, prepared.reference, fit);

@@ -4,6 +4,7 @@
 // recover the true values within the tolerances a lab needs and inside its own 95 % intervals.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -316,6 +317,39 @@ TEST_CASE("the report of a calibration draws each shot's signals and residuals",
     CHECK(fs::file_size(dir / "out" / "figures" / png) > 0);
   CHECK(shpb_test::read_text(dir / "out" / "report.html").find("Calibration shot 2") !=
         std::string::npos);
+}
+
+TEST_CASE("calibrate says what reading a shot's record assumed: a time base rebuilt",
+          "[fit][calibrate]") {
+  const fs::path dir = write_shots("calibrate_rounded_clock");
+  // The bars-apart record with its time stamps rounded to 3 digits (1.23e-04, 1.23e-04, ...), as
+  // a spreadsheet column formatted too short writes them: read on the time base rebuilt from
+  // the sample index, which a lab must be told.
+  {
+    std::ifstream in(dir / "apart.csv");
+    std::string text, line;
+    std::getline(in, line);
+    text = line + "\n";
+    while (std::getline(in, line)) {
+      const auto comma = line.find(',');
+      char stamp[32];
+      std::snprintf(stamp, sizeof stamp, "%.3g", std::stod(line.substr(0, comma)));
+      text += stamp + line.substr(comma) + "\n";
+    }
+    in.close();
+    std::ofstream(dir / "apart.csv") << text;
+  }
+  const auto r =
+      run_shpb({"calibrate", (dir / "apart.json").string(), "-o", (dir / "out").string(), "-q"});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(r.err.find("time base rebuilt") != std::string::npos);
+  const auto s = read_json(dir / "out" / "summary.json");
+  bool said = false;
+  for (const std::string w : s["warnings"]) said = said || w.find("time base rebuilt") != w.npos;
+  CHECK(said);
+  // The rebuilt clock is the digitiser's: the bar's wave speed comes out as from the exact stamps.
+  check_recovered(s, "bars.incident.wave_speed_m_s", kTrueC, kWaveSpeedTolerance * kTrueC);
 }
 
 TEST_CASE("a measured striker velocity makes the channel gains absolute", "[fit][calibrate]") {
