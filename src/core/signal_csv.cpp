@@ -1,11 +1,15 @@
 // Plain CSV/TSV and Tektronix per-channel CSV (signal_formats.hpp).
 #include <algorithm>
+#include <cmath>
 #include <exception>
+#include <stdexcept>
 #include <thread>
 
 #include "core/error.hpp"
+#include "core/number_format.hpp"
 #include "core/output_folder.hpp"
 #include "core/signal_formats.hpp"
+#include "core/units.hpp"
 
 namespace shpb {
 namespace {
@@ -122,6 +126,32 @@ RawSignalColumns read_columns(const DelimitedText& text, std::size_t first_data,
   return raw;
 }
 
+// The time unit a header field names, as scopes and spreadsheets write it: "Time (ms)",
+// "Zeit [us]", "Time/s", "time_s", or a unit row's "(ms)", "second"; nothing for a name without
+// one ("Time", "Sample"). The unit is read as a scene's quantities are (core/units.hpp).
+std::optional<std::pair<std::string, double>> header_time_unit(std::string_view field) {
+  std::string_view unit = field;
+  if (const auto open = field.find_last_of("(["); open != std::string_view::npos) {
+    const auto close = field.find_first_of(")]", open);
+    unit = field.substr(open + 1, close == std::string_view::npos ? close : close - open - 1);
+  } else if (const auto cut = field.find_last_of("/_ "); cut != std::string_view::npos) {
+    unit = field.substr(cut + 1);
+  }
+  while (!unit.empty() && unit.front() == ' ') unit.remove_prefix(1);
+  while (!unit.empty() && unit.back() == ' ') unit.remove_suffix(1);
+  std::string name(unit);
+  if (name == "second" || name == "seconds" || name == "sec") name = "s";
+  // A unit starts with a letter or µ (UTF-8 C2 B5, Greek μ CE BC, Latin-1 B5): not a number.
+  const auto first = static_cast<unsigned char>(name.empty() ? '0' : name.front());
+  if (!std::isalpha(first) && first != 0xC2 && first != 0xCE && first != 0xB5) return std::nullopt;
+  if (first == 0xB5) name = "u" + name.substr(1);
+  try {
+    return std::make_pair(std::string(unit), parse_quantity("1 " + name, Dimension::kTime));
+  } catch (const std::invalid_argument&) {
+    return std::nullopt;
+  }
+}
+
 }  // namespace
 
 double number_at(const DelimitedText& text, const TextRow& row, std::size_t column,
@@ -213,6 +243,19 @@ RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest
   while (first > 0 && data_shaped(text.rows[first - 1])) --first;
   const TextRow* header = first > 0 ? &text.rows[first - 1] : nullptr;
   const std::size_t time_index = resolve(text, header, time_ref, width);
+  // A header that names the time column's unit must agree with the unit it is read in: a column
+  // in ms read as seconds passes the sample-interval check at 10 MHz and above (0.1 ms -> 1e-4 s).
+  if (header && time_index < header->fields.size())
+    if (const auto unit = header_time_unit(header->fields[time_index]);
+        unit && std::abs(unit->second / request.time_unit_s - 1) > 1e-9)
+      throw input_error(text.file.string(), text_place(header->line, time_index),
+                        "\"" + std::string(header->fields[time_index]) + "\"",
+                        "the header gives the time in " + unit->first +
+                            ", but the column is read "
+                            "in units of " +
+                            format_number(request.time_unit_s) +
+                            " s (measurement.time.unit, default s): set \"time\": {\"unit\": \"" +
+                            unit->first + "\"} or correct the header");
   std::vector<std::size_t> indices;
   std::vector<std::string> names;
   for (const auto& c : request.columns) {

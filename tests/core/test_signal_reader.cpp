@@ -193,6 +193,41 @@ TEST_CASE("A data row with text in one field is a data row, never taken for the 
   }
 }
 
+TEST_CASE("A time unit the header gives must be the one the column is read in", "[core][signal]") {
+  // Scopes and spreadsheets name the unit in the header ("Time (ms)", "t [us]", "Time/s"), or in
+  // a unit row below it (PicoScope "(ms)", Keysight "second"); a name without one says nothing.
+  struct Case {
+    std::string head;
+    double unit_s;  // seconds per unit the column is read in
+    bool refused;
+  };
+  const Case cases[] = {
+      {"Time (ms),v", 1, true},
+      {"Time (ms),v", 1e-3, false},
+      {"t [us],v", 1e-6, false},
+      {"Zeit [\xb5s],v", 1e-6, false},
+      {"t [\xc2\xb5s],v", 1, true},
+      {"Time/s,v", 1e-6, true},
+      {"time_s,v", 1, false},
+      {"Time,v\n(ms),(V)", 1, true},
+      {"x-axis,1\nsecond,Volt", 1, false},
+      {"Time,v", 1e-3, false},
+      {"Sample,v", 1e-6, false},
+      {"time_index,v", 1e-6, false},
+  };
+  for (const auto& c : cases) {
+    DYNAMIC_SECTION(c.head << " read in " << c.unit_s << " s") {
+      const auto p = write_file("unit.csv", c.head + "\n0,1\n1,2\n2,3\n");
+      auto r = csv_request(p, {by_index(1)});
+      r.time_unit_s = c.unit_s;
+      const std::string error = error_of([&] { read_signal_columns(r); });
+      INFO(error);
+      CHECK((error.find("the header gives the time in") != std::string::npos) == c.refused);
+      if (c.refused) CHECK(error.find("unit.csv: line ") != std::string::npos);
+    }
+  }
+}
+
 TEST_CASE("A long record is read whole and its first bad field named, whichever half it is in",
           "[core][signal]") {
   // 300 000 rows: parsed in two halves at once (signal_csv.cpp); the values land in order.
