@@ -9,6 +9,7 @@
 #include <mutex>
 
 #include "analysis/gauge_signals.hpp"
+#include "analysis/processing.hpp"
 #include "analysis/pulse_window.hpp"
 #include "core/error.hpp"
 #include "core/median.hpp"
@@ -331,7 +332,10 @@ Shot prepare_shot(const CalibrationShot& cs, Parameters& params, std::string& re
   s.scene = cs.display;
   check_shot_scene(scene, file);
   const GaugeSignals signals = read_gauge_signals(*scene.measurement, {});
+  // What reading the record assumed, and what makes it doubtful (clipping, too few samples):
+  // process's own checks of a record (analysis/processing.hpp).
   s.warnings = signals.warnings;
+  for (auto& w : signal_warnings(signals)) s.warnings.push_back(std::move(w));
   const std::vector<std::size_t> gauged = gauged_bars(scene, signals, file);
   s.kind = gauged.size() == 1 ? "bars apart" : "bars together";
   s.bars = bar_parameters(scene, gauged, params);
