@@ -32,9 +32,17 @@ std::string describe(const ColumnRef& c) {
   return c.index ? "column index " + std::to_string(*c.index) : "column \"" + c.name + "\"";
 }
 
+// Fields of a row up to its last non-empty one (a trailing separator adds none).
+std::size_t filled_width(const TextRow& row) {
+  std::size_t n = row.fields.size();
+  while (n > 0 && row.fields[n - 1].empty()) --n;
+  return n;
+}
+
 // Column index of a reference: by 0-based index, or by exact (then case-insensitive) header name.
+// `wider`: the first data row holding more filled fields than the header names, if any.
 std::size_t resolve(const DelimitedText& text, const TextRow* header, const ColumnRef& ref,
-                    std::size_t columns_in_data) {
+                    std::size_t columns_in_data, const TextRow* wider) {
   if (ref.index) {
     if (*ref.index < 0 || static_cast<std::size_t>(*ref.index) >= columns_in_data)
       throw input_error(text.file.string(), "", describe(ref),
@@ -43,6 +51,17 @@ std::size_t resolve(const DelimitedText& text, const TextRow* header, const Colu
     return static_cast<std::size_t>(*ref.index);
   }
   if (header) {
+    // A header naming fewer columns than the data hold cannot say which column a name means:
+    // a comma-separated file with decimal commas splits every number in two ("0,5" is "0", "5")
+    // and the names would land on the halves.
+    if (wider)
+      throw input_error(
+          text.file.string(), "line " + std::to_string(header->line), describe(ref),
+          "the header names " + std::to_string(filled_width(*header)) + " columns but line " +
+              std::to_string(wider->line) + " holds " + std::to_string(filled_width(*wider)) +
+              ": a name cannot say which column it means; decimal commas in a comma-separated "
+              "file split every number in two (export with a semicolon or tab separator), else "
+              "give the column as an index");
     const auto& f = header->fields;
     auto lower = [](std::string s) {
       std::transform(s.begin(), s.end(), s.begin(),
@@ -242,7 +261,11 @@ RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest
   };
   while (first > 0 && data_shaped(text.rows[first - 1])) --first;
   const TextRow* header = first > 0 ? &text.rows[first - 1] : nullptr;
-  const std::size_t time_index = resolve(text, header, time_ref, width);
+  const TextRow* wider = nullptr;
+  if (header)
+    for (std::size_t i = first; i < text.rows.size() && !wider; ++i)
+      if (filled_width(text.rows[i]) > filled_width(*header)) wider = &text.rows[i];
+  const std::size_t time_index = resolve(text, header, time_ref, width, wider);
   // A header that names the time column's unit must agree with the unit it is read in: a column
   // in ms read as seconds passes the sample-interval check at 10 MHz and above (0.1 ms -> 1e-4 s).
   if (header && time_index < header->fields.size())
@@ -259,7 +282,7 @@ RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest
   std::vector<std::size_t> indices;
   std::vector<std::string> names;
   for (const auto& c : request.columns) {
-    indices.push_back(resolve(text, header, c, width));
+    indices.push_back(resolve(text, header, c, width, wider));
     names.push_back(header && indices.back() < header->fields.size()
                         ? std::string(header->fields[indices.back()])
                         : "column " + std::to_string(indices.back()));

@@ -228,6 +228,24 @@ TEST_CASE("A time unit the header gives must be the one the column is read in", 
   }
 }
 
+TEST_CASE("Names are refused where the data rows hold more columns than the header names",
+          "[core][signal]") {
+  // Decimal commas in a comma-separated file: "-990,5" is two fields, and "incident" would land
+  // on the integer part of the incident strain and "transmitted" on its decimals.
+  const std::string split =
+      "time_ns,incident,transmitted\n0,0,0\n200,-990,5,-3,25\n"
+      "400,-1001,5,-4,5\n600,-998,75,-5,125\n";
+  auto r = csv_request(write_file("split.csv", split), {by_name("transmitted")});
+  r.time_unit_s = 1e-9;
+  const std::string error = error_of([&] { read_signal_columns(r); });
+  CHECK(error.find("split.csv: line 1: column \"transmitted\": the header names 3 columns but "
+                   "line 3 holds 5") != std::string::npos);
+  // A trailing separator adds no column.
+  const auto trailing = write_file("trailing.csv", "t,a,b\n0,1,2,\n1,3,4,\n2,5,6,\n");
+  CHECK(read_signal_columns(csv_request(trailing, {by_name("b")})).values[0] ==
+        std::vector<double>{2, 4, 6});
+}
+
 TEST_CASE("A long record is read whole and its first bad field named, whichever half it is in",
           "[core][signal]") {
   // 300 000 rows: parsed in two halves at once (signal_csv.cpp); the values land in order.
