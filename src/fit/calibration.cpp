@@ -323,6 +323,28 @@ void channel_parameters(Target& t, const GaugeSpec& g, const std::string& source
       params.add(gauge_key(g) + ".delay_s", 0.0, -kMaxChannelDelay_s, kMaxChannelDelay_s, 1e-6);
 }
 
+// A record more than twice as long as the span the fit compares (a scope's long idle tail) is
+// cut to that span: every evaluation transforms the whole record, so a 10^7-sample shot took
+// minutes per iteration for samples no residual uses. The span ends at the last compared sample
+// plus the largest channel delay (a delay moves the model by up to that much), with a warning.
+void cut_to_compared_span(Shot& s, const std::string& file) {
+  const std::size_t n = s.time_s.size();
+  std::size_t used = 0;
+  for (const Target& t : s.targets)
+    if (!t.samples.empty()) used = std::max(used, t.samples.back() + 1);
+  used += static_cast<std::size_t>(std::ceil(kMaxChannelDelay_s / s.dt)) + 2;
+  if (2 * used >= n) return;
+  char msg[300];
+  std::snprintf(msg, sizeof msg,
+                "%s: the record's %zu samples cut to its first %zu (to %.6g s): the span the "
+                "fit compares and the largest channel delay",
+                file.c_str(), n, used, s.time_s[used - 1]);
+  s.warnings.push_back(msg);
+  s.time_s.resize(used);
+  s.source.resize(used);
+  for (Target& t : s.targets) t.measured.resize(used);
+}
+
 // One calibration shot: its bars, its source pulse and the targets (each measured gauge's record
 // with the ways of the pulses returning to it), its parameters added to `params`.
 Shot prepare_shot(const CalibrationShot& cs, Parameters& params, std::string& reference) {
@@ -373,6 +395,7 @@ Shot prepare_shot(const CalibrationShot& cs, Parameters& params, std::string& re
     throw input_error(file, "measurement", s.scene,
                       "the record ends before any pulse returns to a gauge: record longer (at "
                       "least two bar lengths' travel after the first pulse)");
+  cut_to_compared_span(s, file);
   return s;
 }
 
