@@ -1,11 +1,15 @@
 // Plain CSV/TSV and Tektronix per-channel CSV (signal_formats.hpp).
 #include <algorithm>
+#include <cmath>
 #include <exception>
+#include <stdexcept>
 #include <thread>
 
 #include "core/error.hpp"
+#include "core/number_format.hpp"
 #include "core/output_folder.hpp"
 #include "core/signal_formats.hpp"
+#include "core/units.hpp"
 
 namespace shpb {
 namespace {
@@ -28,9 +32,17 @@ std::string describe(const ColumnRef& c) {
   return c.index ? "column index " + std::to_string(*c.index) : "column \"" + c.name + "\"";
 }
 
+// Fields of a row up to its last non-empty one (a trailing separator adds none).
+std::size_t filled_width(const TextRow& row) {
+  std::size_t n = row.fields.size();
+  while (n > 0 && row.fields[n - 1].empty()) --n;
+  return n;
+}
+
 // Column index of a reference: by 0-based index, or by exact (then case-insensitive) header name.
+// `wider`: the first data row holding more filled fields than the header names, if any.
 std::size_t resolve(const DelimitedText& text, const TextRow* header, const ColumnRef& ref,
-                    std::size_t columns_in_data) {
+                    std::size_t columns_in_data, const TextRow* wider) {
   if (ref.index) {
     if (*ref.index < 0 || static_cast<std::size_t>(*ref.index) >= columns_in_data)
       throw input_error(text.file.string(), "", describe(ref),
@@ -39,6 +51,17 @@ std::size_t resolve(const DelimitedText& text, const TextRow* header, const Colu
     return static_cast<std::size_t>(*ref.index);
   }
   if (header) {
+    // A header naming fewer columns than the data hold cannot say which column a name means:
+    // a comma-separated file with decimal commas splits every number in two ("0,5" is "0", "5")
+    // and the names would land on the halves.
+    if (wider)
+      throw input_error(
+          text.file.string(), "line " + std::to_string(header->line), describe(ref),
+          "the header names " + std::to_string(filled_width(*header)) + " columns but line " +
+              std::to_string(wider->line) + " holds " + std::to_string(filled_width(*wider)) +
+              ": a name cannot say which column it means; decimal commas in a comma-separated "
+              "file split every number in two (export with a semicolon or tab separator), else "
+              "give the column as an index");
     const auto& f = header->fields;
     auto lower = [](std::string s) {
       std::transform(s.begin(), s.end(), s.begin(),
@@ -122,6 +145,32 @@ RawSignalColumns read_columns(const DelimitedText& text, std::size_t first_data,
   return raw;
 }
 
+// The time unit a header field names, as scopes and spreadsheets write it: "Time (ms)",
+// "Zeit [us]", "Time/s", "time_s", or a unit row's "(ms)", "second"; nothing for a name without
+// one ("Time", "Sample"). The unit is read as a scene's quantities are (core/units.hpp).
+std::optional<std::pair<std::string, double>> header_time_unit(std::string_view field) {
+  std::string_view unit = field;
+  if (const auto open = field.find_last_of("(["); open != std::string_view::npos) {
+    const auto close = field.find_first_of(")]", open);
+    unit = field.substr(open + 1, close == std::string_view::npos ? close : close - open - 1);
+  } else if (const auto cut = field.find_last_of("/_ "); cut != std::string_view::npos) {
+    unit = field.substr(cut + 1);
+  }
+  while (!unit.empty() && unit.front() == ' ') unit.remove_prefix(1);
+  while (!unit.empty() && unit.back() == ' ') unit.remove_suffix(1);
+  std::string name(unit);
+  if (name == "second" || name == "seconds" || name == "sec") name = "s";
+  // A unit starts with a letter or µ (UTF-8 C2 B5, Greek μ CE BC, Latin-1 B5): not a number.
+  const auto first = static_cast<unsigned char>(name.empty() ? '0' : name.front());
+  if (!std::isalpha(first) && first != 0xC2 && first != 0xCE && first != 0xB5) return std::nullopt;
+  if (first == 0xB5) name = "u" + name.substr(1);
+  try {
+    return std::make_pair(std::string(unit), parse_quantity("1 " + name, Dimension::kTime));
+  } catch (const std::invalid_argument&) {
+    return std::nullopt;
+  }
+}
+
 }  // namespace
 
 double number_at(const DelimitedText& text, const TextRow& row, std::size_t column,
@@ -187,15 +236,53 @@ RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest
     throw input_error(text.file.string(), "line " + std::to_string(text.rows.back().line),
                       "no numeric rows",
                       "expected rows of numbers after the header; " + no_numbers_cause(text));
-  const TextRow* header = first > 0 ? &text.rows[first - 1] : nullptr;
   const std::size_t width = text.rows[first].fields.size();
   ColumnRef time_ref = request.time_column;
   if (time_ref.name.empty() && !time_ref.index) time_ref.index = 0;
-  const std::size_t time_index = resolve(text, header, time_ref, width);
+  // Rows just above that are shaped as data are data rows with a text in some field (a scope's
+  // "OVER", "NaN" or "∞" in its first samples), never the header: taken as the header they
+  // would drop those samples unseen, or hide the real header. Such a row has the data rows'
+  // width and a number in the time column (by index), or, with the time column named, lacks
+  // that name and is at least half numbers. Its fields are then read as every sample's: a text
+  // in a column read is refused by line and column, one in a column not read is left alone.
+  const auto data_shaped = [&](const TextRow& row) {
+    if (row.fields.size() != width) return false;
+    if (time_ref.index)
+      return static_cast<std::size_t>(*time_ref.index) < width &&
+             parse_number(row.fields[static_cast<std::size_t>(*time_ref.index)],
+                          text.decimal_comma);
+    std::size_t numbers = 0, filled = 0;
+    for (const auto& f : row.fields) {
+      if (f == time_ref.name) return false;
+      filled += !f.empty();
+      numbers += parse_number(f, text.decimal_comma).has_value();
+    }
+    return numbers > 0 && 2 * numbers >= filled;
+  };
+  while (first > 0 && data_shaped(text.rows[first - 1])) --first;
+  const TextRow* header = first > 0 ? &text.rows[first - 1] : nullptr;
+  const TextRow* wider = nullptr;
+  if (header)
+    for (std::size_t i = first; i < text.rows.size() && !wider; ++i)
+      if (filled_width(text.rows[i]) > filled_width(*header)) wider = &text.rows[i];
+  const std::size_t time_index = resolve(text, header, time_ref, width, wider);
+  // A header that names the time column's unit must agree with the unit it is read in: a column
+  // in ms read as seconds passes the sample-interval check at 10 MHz and above (0.1 ms -> 1e-4 s).
+  if (header && time_index < header->fields.size())
+    if (const auto unit = header_time_unit(header->fields[time_index]);
+        unit && std::abs(unit->second / request.time_unit_s - 1) > 1e-9)
+      throw input_error(text.file.string(), text_place(header->line, time_index),
+                        "\"" + std::string(header->fields[time_index]) + "\"",
+                        "the header gives the time in " + unit->first +
+                            ", but the column is read "
+                            "in units of " +
+                            format_number(request.time_unit_s) +
+                            " s (measurement.time.unit, default s): set \"time\": {\"unit\": \"" +
+                            unit->first + "\"} or correct the header");
   std::vector<std::size_t> indices;
   std::vector<std::string> names;
   for (const auto& c : request.columns) {
-    indices.push_back(resolve(text, header, c, width));
+    indices.push_back(resolve(text, header, c, width, wider));
     names.push_back(header && indices.back() < header->fields.size()
                         ? std::string(header->fields[indices.back()])
                         : "column " + std::to_string(indices.back()));

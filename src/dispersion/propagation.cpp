@@ -9,6 +9,12 @@
 #include "core/output_folder.hpp"
 
 namespace shpb {
+namespace {
+
+// The end taper spans at most this many periods of the low-pass cut-off (docs/methods.md §5).
+constexpr double kTaperPeriods = 4;
+
+}  // namespace
 
 Propagator::Propagator(const DispersionTable& table, const BarWaveguide& bar,
                        const PropagationOptions& options, FftPlans* plans)
@@ -60,8 +66,15 @@ void Propagator::propagate(std::span<const double> signal, double dt, double dis
   std::span<double> x = fft.samples();
   std::copy(signal.begin(), signal.end(), x.begin());
   std::fill(x.begin() + static_cast<std::ptrdiff_t>(n), x.end(), 0.0);
-  // Cosine taper of both ends: the record need not start or end at zero.
-  const auto taper = static_cast<std::size_t>(options_.taper_fraction * static_cast<double>(n));
+  // Cosine taper of both ends: the record need not start or end at zero. Over 2 % of the record
+  // but at most kTaperPeriods periods of the cut-off: the ramp's own spectrum then lies below the
+  // cut-off (no ringing), and a long record's pulse near its start (a short pre-trigger) is never
+  // under it; over 2 % of a 100 000-sample record the taper scaled such a pulse down unseen.
+  const double cutoff_period_samples =
+      bar_.radius_m / (options_.cutoff_fa_over_c0 * bar_.c0_m_s * dt);
+  const auto taper =
+      std::min(static_cast<std::size_t>(options_.taper_fraction * static_cast<double>(n)),
+               static_cast<std::size_t>(std::ceil(kTaperPeriods * cutoff_period_samples)));
   for (std::size_t i = 0; i < taper; ++i) {
     const double w = 0.5 * (1 - std::cos(std::numbers::pi * (static_cast<double>(i) + 0.5) /
                                          static_cast<double>(taper)));

@@ -9,6 +9,7 @@
 #include <mutex>
 
 #include "analysis/gauge_signals.hpp"
+#include "analysis/processing.hpp"
 #include "analysis/pulse_window.hpp"
 #include "core/error.hpp"
 #include "core/median.hpp"
@@ -83,7 +84,8 @@ struct Shot {
   // A measured striker velocity: the source's plateau (as recorded) and the strain the striker
   // gives the struck bar per unit of its wave speed, v Z_s / (Z_s + Z_b) (docs/methods.md §11).
   std::optional<double> plateau, strain_times_c;
-  double plateau_sd = 0;  // its standard error from the noise over the plateau
+  double plateau_sd = 0;              // its standard error from the noise over the plateau
+  std::vector<std::string> warnings;  // what reading its record assumed (a rebuilt time base, ...)
 };
 
 // Dispersion tables by Poisson ratio, shared by the parallel evaluations.
@@ -321,6 +323,28 @@ void channel_parameters(Target& t, const GaugeSpec& g, const std::string& source
       params.add(gauge_key(g) + ".delay_s", 0.0, -kMaxChannelDelay_s, kMaxChannelDelay_s, 1e-6);
 }
 
+// A record more than twice as long as the span the fit compares (a scope's long idle tail) is
+// cut to that span: every evaluation transforms the whole record, so a 10^7-sample shot took
+// minutes per iteration for samples no residual uses. The span ends at the last compared sample
+// plus the largest channel delay (a delay moves the model by up to that much), with a warning.
+void cut_to_compared_span(Shot& s, const std::string& file) {
+  const std::size_t n = s.time_s.size();
+  std::size_t used = 0;
+  for (const Target& t : s.targets)
+    if (!t.samples.empty()) used = std::max(used, t.samples.back() + 1);
+  used += static_cast<std::size_t>(std::ceil(kMaxChannelDelay_s / s.dt)) + 2;
+  if (2 * used >= n) return;
+  char msg[300];
+  std::snprintf(msg, sizeof msg,
+                "%s: the record's %zu samples cut to its first %zu (to %.6g s): the span the "
+                "fit compares and the largest channel delay",
+                file.c_str(), n, used, s.time_s[used - 1]);
+  s.warnings.push_back(msg);
+  s.time_s.resize(used);
+  s.source.resize(used);
+  for (Target& t : s.targets) t.measured.resize(used);
+}
+
 // One calibration shot: its bars, its source pulse and the targets (each measured gauge's record
 // with the ways of the pulses returning to it), its parameters added to `params`.
 Shot prepare_shot(const CalibrationShot& cs, Parameters& params, std::string& reference) {
@@ -330,6 +354,10 @@ Shot prepare_shot(const CalibrationShot& cs, Parameters& params, std::string& re
   s.scene = cs.display;
   check_shot_scene(scene, file);
   const GaugeSignals signals = read_gauge_signals(*scene.measurement, {});
+  // What reading the record assumed, and what makes it doubtful (clipping, too few samples):
+  // process's own checks of a record (analysis/processing.hpp).
+  s.warnings = signals.warnings;
+  for (auto& w : signal_warnings(signals)) s.warnings.push_back(std::move(w));
   const std::vector<std::size_t> gauged = gauged_bars(scene, signals, file);
   s.kind = gauged.size() == 1 ? "bars apart" : "bars together";
   s.bars = bar_parameters(scene, gauged, params);
@@ -367,6 +395,7 @@ Shot prepare_shot(const CalibrationShot& cs, Parameters& params, std::string& re
     throw input_error(file, "measurement", s.scene,
                       "the record ends before any pulse returns to a gauge: record longer (at "
                       "least two bar lengths' travel after the first pulse)");
+  cut_to_compared_span(s, file);
   return s;
 }
 
@@ -634,7 +663,10 @@ CalibrationFit calibrate_bars(const std::vector<CalibrationShot>& input,
   fit.iterations = r.iterations;
   fit.converged = r.converged;
   fit.residuals = r.residuals;
-  fit.warnings = r.warnings;
+  // What reading the records assumed comes first, then what the solve found.
+  for (const Shot& s : prepared.shots)
+    fit.warnings.insert(fit.warnings.end(), s.warnings.begin(), s.warnings.end());
+  fit.warnings.insert(fit.warnings.end(), r.warnings.begin(), r.warnings.end());
   fitted_parameters(list, r, fit);
   fit.calibration = calibration_of(input, fit.parameters, prepared.reference);
   make_gains_absolute(prepared.shots, r.value, prepared.reference, fit);

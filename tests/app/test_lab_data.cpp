@@ -114,20 +114,22 @@ TEST_CASE("A gauge 60 mm off is warned about with the right sign and size", "[ap
 
 TEST_CASE("A time unit that does not match the column exits 2 before anything is sized from it",
           "[app][labdata]") {
+  // The time column named "t": a header without a unit, so only the interval can tell.
+  const auto unitless = [](const std::string& text) { return "t" + text.substr(text.find(',')); };
   for (const std::string unit : {"us", "ns"}) {
     CAPTURE(unit);
     const fs::path d = scratch_dir("labdata_unit");
     json scene = steel_scene();
-    scene["measurement"]["time"]["unit"] = unit;
+    scene["measurement"]["time"] = {{"column", "t"}, {"unit", unit}};
     const auto start = std::chrono::steady_clock::now();
-    const auto r =
-        run_shpb({"process", write(d, scene, csv(clean())).string(), "-o", (d / "out").string()});
+    const auto r = run_shpb(
+        {"process", write(d, scene, unitless(csv(clean()))).string(), "-o", (d / "out").string()});
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     INFO(r.err);
     CHECK(r.code == 2);
     CHECK(r.err.rfind("error: ", 0) == 0);
-    CHECK(r.err.find("column \"time_s\" in \"" + unit + "\"") != std::string::npos);
+    CHECK(r.err.find("column \"t\" in \"" + unit + "\"") != std::string::npos);
     CHECK(r.err.find('\n') == r.err.size() - 1);
     CHECK_FALSE(fs::exists(d / "out"));
     INFO("refused in " << seconds << " s");
@@ -135,12 +137,47 @@ TEST_CASE("A time unit that does not match the column exits 2 before anything is
   // Seconds declared on a column in microseconds: a 0.1 s sample interval.
   const fs::path d = scratch_dir("labdata_unit_s");
   json scene = steel_scene();
-  std::string micro = "time_us,incident,transmitted\n";
+  std::string micro = "t,incident,transmitted\n";
   for (int i = 0; i < kSamples; ++i) micro += std::to_string(i * 0.1) + ",0,0\n";
-  scene["measurement"]["time"]["column"] = "time_us";
+  scene["measurement"]["time"]["column"] = "t";
   const auto r = run_shpb({"process", write(d, scene, micro).string(), "-o", (d / "out").string()});
   CHECK(r.code == 2);
   CHECK(r.err.find("sample interval 0.1 s") != std::string::npos);
+}
+
+TEST_CASE(
+    "A time column whose header gives another unit is refused, where the interval cannot tell",
+    "[app][labdata][compare]") {
+  // The 10 MHz record with its time in ms ("Time (ms)", as PicoScope or a spreadsheet writes it)
+  // and no measurement.time.unit: read as seconds, its 1e-4 ms interval passes for a 10 kHz
+  // digitiser's 1e-4 s, and compare stretched the test a thousandfold without a word.
+  const fs::path d = scratch_dir("labdata_header_unit");
+  std::string text = csv(clean());
+  std::ostringstream ms;
+  ms.precision(17);
+  ms << "Time (ms),incident,transmitted\n";
+  std::istringstream in(text.substr(text.find('\n') + 1));
+  for (std::string line; std::getline(in, line);) {
+    const auto comma = line.find(',');
+    ms << std::stod(line.substr(0, comma)) * 1e3 << line.substr(comma) << "\n";
+  }
+  json scene = steel_scene();
+  scene["measurement"].erase("time");
+  const auto r = run_shpb(
+      {"compare", write(d, scene, ms.str()).string(), "-o", (d / "out").string(), "--quiet"});
+  INFO(r.err);
+  CHECK(r.code == 2);
+  CHECK(r.err.rfind("error: ", 0) == 0);
+  CHECK(
+      r.err.find("signals.csv: line 1, column 1: \"Time (ms)\": the header gives the time in ms") !=
+      std::string::npos);
+  CHECK(r.err.find('\n') == r.err.size() - 1);
+  CHECK_FALSE(fs::exists(d / "out"));
+  // Declared, the same file is read: the unit and the header agree.
+  scene["measurement"]["time"] = {{"unit", "ms"}};
+  const auto ok = run_shpb({"validate", write(d, scene, ms.str()).string()});
+  INFO(ok.err);
+  CHECK(ok.code == 0);
 }
 
 TEST_CASE("Microstrain declared as strain is warned about, then pulses.csv is written and exit 3",

@@ -138,6 +138,114 @@ TEST_CASE("Broken signal files are rejected naming file, line and column", "[cor
   }
 }
 
+TEST_CASE("A data row with text in one field is a data row, never taken for the header",
+          "[core][signal]") {
+  // A scope writes "NaN", "OVER" or "∞" for a sample beyond its range; in the first rows such a
+  // row, taken for the header, would drop its samples unseen or hide the real header.
+  const std::string head = "time_s,incident,transmitted,trigger\n";
+  const std::string rest = "2e-6,3,30,0\n3e-6,4,40,0\n";
+  struct Case {
+    const char* what;
+    std::string file;
+    ColumnRef time, column;
+    std::string error;        // the refusal, or empty: read whole
+    std::size_t samples = 0;  // ... with this many samples
+  };
+  const Case cases[] = {
+      {"NaN in the first sample of a column read by index",
+       head + "0,NaN,0,0\n1e-6,2,20,0\n" + rest,
+       {},
+       by_index(1),
+       "first.csv: line 2, column 2 (\"incident\"): \"NaN\""},
+      {"NaN in the first sample of a column read by name", head + "0,NaN,0,0\n1e-6,2,20,0\n" + rest,
+       by_name("time_s"), by_name("incident"),
+       "first.csv: line 2, column 2 (\"incident\"): \"NaN\""},
+      {"OVER in the first samples of a column not read, by name",
+       head + "0,1,10,OVER\n1e-6,2,20,OVER\n" + rest, by_name("time_s"), by_name("incident"), "",
+       4},
+      {"\u221e in the first samples of a column not read, by index, no header",
+       "0,1,10,\u221e\n1e-6,2,20,\u221e\n" + rest,
+       {},
+       by_index(1),
+       "",
+       4},
+      {"a metadata line right above the data stays metadata",
+       "Sample Interval,1e-6,s,V\n" + rest,
+       {},
+       by_index(1),
+       "",
+       2},
+  };
+  for (const auto& c : cases) {
+    DYNAMIC_SECTION(c.what) {
+      const auto p = write_file("first.csv", c.file);
+      auto r = csv_request(p, {c.column});
+      r.time_column = c.time;
+      if (!c.error.empty()) {
+        CHECK(error_of([&] { read_signal_columns(r); }).find(c.error) != std::string::npos);
+      } else {
+        const SignalColumns s = read_signal_columns(r);
+        REQUIRE(s.time_s.size() == c.samples);
+        CHECK(s.values[0].back() == 4);
+        CHECK(s.time_s.front() == (c.samples == 4 ? 0 : 2e-6));
+      }
+    }
+  }
+}
+
+TEST_CASE("A time unit the header gives must be the one the column is read in", "[core][signal]") {
+  // Scopes and spreadsheets name the unit in the header ("Time (ms)", "t [us]", "Time/s"), or in
+  // a unit row below it (PicoScope "(ms)", Keysight "second"); a name without one says nothing.
+  struct Case {
+    std::string head;
+    double unit_s;  // seconds per unit the column is read in
+    bool refused;
+  };
+  const Case cases[] = {
+      {"Time (ms),v", 1, true},
+      {"Time (ms),v", 1e-3, false},
+      {"t [us],v", 1e-6, false},
+      {"Zeit [\xb5s],v", 1e-6, false},
+      {"t [\xc2\xb5s],v", 1, true},
+      {"Time/s,v", 1e-6, true},
+      {"time_s,v", 1, false},
+      {"Time,v\n(ms),(V)", 1, true},
+      {"x-axis,1\nsecond,Volt", 1, false},
+      {"Time,v", 1e-3, false},
+      {"Sample,v", 1e-6, false},
+      {"time_index,v", 1e-6, false},
+  };
+  for (const auto& c : cases) {
+    DYNAMIC_SECTION(c.head << " read in " << c.unit_s << " s") {
+      const auto p = write_file("unit.csv", c.head + "\n0,1\n1,2\n2,3\n");
+      auto r = csv_request(p, {by_index(1)});
+      r.time_unit_s = c.unit_s;
+      const std::string error = error_of([&] { read_signal_columns(r); });
+      INFO(error);
+      CHECK((error.find("the header gives the time in") != std::string::npos) == c.refused);
+      if (c.refused) CHECK(error.find("unit.csv: line ") != std::string::npos);
+    }
+  }
+}
+
+TEST_CASE("Names are refused where the data rows hold more columns than the header names",
+          "[core][signal]") {
+  // Decimal commas in a comma-separated file: "-990,5" is two fields, and "incident" would land
+  // on the integer part of the incident strain and "transmitted" on its decimals.
+  const std::string split =
+      "time_ns,incident,transmitted\n0,0,0\n200,-990,5,-3,25\n"
+      "400,-1001,5,-4,5\n600,-998,75,-5,125\n";
+  auto r = csv_request(write_file("split.csv", split), {by_name("transmitted")});
+  r.time_unit_s = 1e-9;
+  const std::string error = error_of([&] { read_signal_columns(r); });
+  CHECK(error.find("split.csv: line 1: column \"transmitted\": the header names 3 columns but "
+                   "line 3 holds 5") != std::string::npos);
+  // A trailing separator adds no column.
+  const auto trailing = write_file("trailing.csv", "t,a,b\n0,1,2,\n1,3,4,\n2,5,6,\n");
+  CHECK(read_signal_columns(csv_request(trailing, {by_name("b")})).values[0] ==
+        std::vector<double>{2, 4, 6});
+}
+
 TEST_CASE("A long record is read whole and its first bad field named, whichever half it is in",
           "[core][signal]") {
   // 300 000 rows: parsed in two halves at once (signal_csv.cpp); the values land in order.

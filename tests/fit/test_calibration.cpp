@@ -2,14 +2,18 @@
 // from their nominal constants are made with the library's Pochhammer–Chree propagation (the
 // physics of docs/methods.md §5, not the calibration's model), noise is added, and the command must
 // recover the true values within the tolerances a lab needs and inside its own 95 % intervals.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <optional>
 #include <random>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -316,6 +320,78 @@ TEST_CASE("the report of a calibration draws each shot's signals and residuals",
     CHECK(fs::file_size(dir / "out" / "figures" / png) > 0);
   CHECK(shpb_test::read_text(dir / "out" / "report.html").find("Calibration shot 2") !=
         std::string::npos);
+}
+
+TEST_CASE("calibrate says what reading a shot's record assumed or found doubtful",
+          "[fit][calibrate]") {
+  // The bars-apart record edited line by line (its time stamp and its sample as written).
+  struct Case {
+    const char* what;
+    std::function<std::string(double t, double v)> line;
+    const char* said;
+    bool recovers;              // the wave speed still within the lab tolerance
+    std::size_t idle_tail = 0;  // quiet samples appended (a scope armed far longer)
+  };
+  const Case cases[] = {
+      // Stamps rounded to 3 digits (1.23e-04, 1.23e-04, ...) as a spreadsheet column formatted
+      // too short writes them: read on the time base rebuilt from the sample index.
+      {"time stamps rounded so that they repeat",
+       [](double t, double v) {
+         char line[64];
+         std::snprintf(line, sizeof line, "%.3g,%.10g", t, v);
+         return std::string(line);
+       },
+       "time base rebuilt", true},
+      // An amplifier that saturates at 80 % of the pulse's 1e-3.
+      {"a clipped channel",
+       [](double t, double v) {
+         char line[64];
+         std::snprintf(line, sizeof line, "%.10g,%.10g", t,
+                       std::clamp(v, -0.8 * kPeak, 0.8 * kPeak));
+         return std::string(line);
+       },
+       "looks clipped", false},
+      // A record ten times as long as the shot, its tail quiet: cut to the span the fit compares
+      // (every evaluation would transform the whole record), the result as from the shot alone.
+      {"a long idle tail",
+       [](double t, double v) {
+         char line[64];
+         std::snprintf(line, sizeof line, "%.10g,%.10g", t, v);
+         return std::string(line);
+       },
+       "cut to its first", true, 9 * kSamples},
+  };
+  // One set of shots for every section (Catch runs the test case once per section).
+  static const fs::path dir = write_shots("calibrate_record_said");
+  static const std::string apart = shpb_test::read_text(dir / "apart.csv");
+  for (const auto& c : cases) {
+    DYNAMIC_SECTION(c.what) {
+      std::istringstream in(apart);
+      std::string text, line;
+      std::getline(in, line);
+      text = line + "\n";
+      while (std::getline(in, line)) {
+        const auto comma = line.find(',');
+        text += c.line(std::stod(line.substr(0, comma)), std::stod(line.substr(comma + 1))) + "\n";
+      }
+      for (std::size_t i = kSamples; i < kSamples + c.idle_tail; ++i)
+        text += c.line(static_cast<double>(i) * kDt, 0.0) + "\n";
+      std::ofstream(dir / "apart.csv") << text;
+      fs::remove_all(dir / "out");
+      const auto r = run_shpb(
+          {"calibrate", (dir / "apart.json").string(), "-o", (dir / "out").string(), "-q"});
+      INFO(r.err);
+      REQUIRE(r.code == 0);
+      CHECK(r.err.find(c.said) != std::string::npos);
+      const auto s = read_json(dir / "out" / "summary.json");
+      bool said = false;
+      for (const std::string w : s["warnings"]) said = said || w.find(c.said) != w.npos;
+      CHECK(said);
+      // A rebuilt clock is the digitiser's: the wave speed comes out as from the exact stamps.
+      if (c.recovers)
+        check_recovered(s, "bars.incident.wave_speed_m_s", kTrueC, kWaveSpeedTolerance * kTrueC);
+    }
+  }
 }
 
 TEST_CASE("a measured striker velocity makes the channel gains absolute", "[fit][calibrate]") {

@@ -301,6 +301,15 @@ TEST_CASE("Broken signal files are refused with file, line and column, or read w
        "signals.csv: line 6, column 2"},
       {"NaN in a sample", signal_row(7, "1.2e-06,NaN,0"), process(), Expect::kRefused,
        "signals.csv: line 8, column 2"},
+      {"NaN in the first sample", signal_row(1, "0,NaN,0"), process(), Expect::kRefused,
+       "signals.csv: line 2, column 2"},
+      {"a scope's OVER in a column not read, in the first samples", signals([](std::string s) {
+         auto lines = split_lines(s);
+         lines[0] += ",trigger";
+         for (std::size_t i = 1; i < lines.size(); ++i) lines[i] += i <= 3 ? ",OVER" : ",0";
+         return join(lines);
+       }),
+       process(), Expect::kWorks, ""},
       {"inf in a sample", signal_row(7, "1.2e-06,0,inf"), process(), Expect::kRefused,
        "signals.csv: line 8, column 3"},
       {"a number beyond double range", signal_row(7, "1.2e-06,1e999,0"), process(),
