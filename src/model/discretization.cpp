@@ -70,7 +70,7 @@ std::vector<BarCost> bar_costs(const Scene& scene, double run_s, double courant)
   double global_dt = 0;
   for (std::size_t i = 0; i < scene.bars.size(); ++i) {
     const double elements = automatic_elements(scene, i);
-    const double dt = courant * stable_step_factor(scene, i) * scene.bars[i].length_m / elements /
+    const double dt = bar_courant(scene, i, courant) * scene.bars[i].length_m / elements /
                       scene.bars[i].material.wave_speed_m_s();
     costs.push_back({elements, std::ceil(run_s / dt)});
     global_dt = i == 0 ? dt : std::min(global_dt, dt);
@@ -167,22 +167,23 @@ void refuse_unaffordable(const Scene& scene, const std::vector<BarCost>& costs, 
 }
 }  // namespace
 
-double stable_step_factor(const Scene& scene, std::size_t bar) {
+double bar_courant(const Scene& scene, std::size_t bar, double courant) {
   const BarSpec& b = scene.bars[bar];
-  if (b.material.is_elastic()) return 1.0;
+  const bool specimen = scene.specimen && *scene.specimen == bar;
+  if (b.material.is_elastic()) return specimen ? std::min(courant, kDefaultCourant) : courant;
   const double e_max = scene.simulation.finite_strain
                            ? scene.simulation.max_strain.value_or(kDefaultMaxStrain)
                            : 0.0;
   // Face friction stiffens the bar by φ = 1 + μ d/(3√3 L) (model/specimen_response.hpp), largest
-  // at the shortest, widest (volume-conserving) shape the step is planned for: Δt ∝ 1/√φ.
-  const bool specimen = scene.specimen && *scene.specimen == bar;  // friction acts there only
+  // at the shortest, widest (volume-conserving) shape the step is planned for: Δt ∝ 1/√φ. It acts
+  // on the specimen's faces only.
   const double left = specimen && bar > 0 ? interface_friction(scene.contact, bar - 1) : 0.0;
   const double right =
       specimen && bar + 1 < scene.bars.size() ? interface_friction(scene.contact, bar) : 0.0;
   const double stretch = 1 - e_max;
   const double phi = friction_factor(0.5 * (left + right), b.diameter_m / std::sqrt(stretch),
                                      b.length_m * stretch);
-  return stretch / std::sqrt(phi);
+  return courant * stretch / std::sqrt(phi);
 }
 
 double first_contact_delay_s(const Scene& scene) {
@@ -235,7 +236,7 @@ void plan_bars(const Scene& scene, double duration_s, double courant,
     // scene's; the one reported is on the reference length.
     b.wave_speed_m_s = scene.bars[i].material.wave_speed_m_s();
     b.critical_step_s = b.element_length_m / b.wave_speed_m_s;
-    b.time_step_s = courant * stable_step_factor(scene, i) * b.critical_step_s;
+    b.time_step_s = bar_courant(scene, i, courant) * b.critical_step_s;
     b.courant = b.time_step_s / b.critical_step_s;  // on the reference length h
     b.run_steps = costs[i].run_steps;
     d.bars.push_back(b);

@@ -38,7 +38,7 @@ void configure_bar(BarModel& bar, const Scene& scene, std::size_t i, bool adapti
   const double courant = scene.simulation.courant.value_or(kDefaultCourant);
   const double critical_step_s = bar.element_length_m / bar.wave_speed_m_s;
   bar.reference_step_s = courant * critical_step_s;
-  bar.own_step_s = courant * stable_step_factor(scene, i) * critical_step_s;  // discretize()'s
+  bar.own_step_s = bar_courant(scene, i, courant) * critical_step_s;  // discretize()'s
   if (!bar.law) return;
   bar.finite_strain = scene.simulation.finite_strain;
   bar.min_stretch = 1 - scene.simulation.max_strain.value_or(kDefaultMaxStrain);
