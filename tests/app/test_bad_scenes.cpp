@@ -221,6 +221,10 @@ const std::vector<BadScene>& cases() {
        "rise_time"},
       {"a Courant number above 1", [](json& s, json&) { s["simulation"]["courant"] = 1.5; },
        "simulation.courant: 1.5: must be in (0, 1]"},
+      // Every bar's steps grow as 1/C: the run is beyond the budget because of the Courant
+      // number, not of the 800 us duration the refusal of a costly run names otherwise.
+      {"a Courant number of 1e-9", [](json& s, json&) { s["simulation"]["courant"] = 1e-9; },
+       "simulation.courant: 1e-09: every bar's steps grow as 1/C"},
       {"a misspelt kinematics", [](json& s, json&) { s["simulation"]["kinematics"] = "smal"; },
        "simulation.kinematics: \"smal\": did you mean \"small\"?"},
       {"a friction coefficient of 1.5", [](json& s, json&) { s["contact"]["friction"] = 1.5; },
