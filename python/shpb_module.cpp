@@ -3,6 +3,10 @@
 // returning their results in memory. Pure-Python conveniences (tables, save of folders, the
 // commands' help) live in python/shpb/__init__.py. Nothing here re-implements a check, a formula or
 // a writer: each call goes to the function the command calls.
+// clang-format off
+#include "core/json_value.hpp"  // before <signal.h>: its si_value macro names a parameter here
+// clang-format on
+
 #include <malloc.h>
 #include <pybind11/functional.h>
 #include <pybind11/numpy.h>
@@ -154,9 +158,39 @@ py::object json_to_python(const nlohmann::ordered_json& j) {
 
 // ---- the scene --------------------------------------------------------------------------------
 
+// The first value of `o` json.dumps refuses, with its JSON path as the scene reader writes paths
+// (core/json_value.hpp) and its repr: a NaN or infinite number, or an object of no JSON type.
+struct NotJson {
+  std::string path, value;
+};
+std::optional<NotJson> first_not_json(const py::handle& o, const std::string& path) {
+  if (py::isinstance<py::dict>(o)) {
+    for (const auto& [key, value] : py::reinterpret_borrow<py::dict>(o))
+      if (auto bad = first_not_json(value, json_child_path(path, py::str(key).cast<std::string>())))
+        return bad;
+    return std::nullopt;
+  }
+  if (py::isinstance<py::list>(o) || py::isinstance<py::tuple>(o)) {
+    std::size_t i = 0;
+    for (const auto& item : o)
+      if (auto bad = first_not_json(item, json_element_path(path, i++))) return bad;
+    return std::nullopt;
+  }
+  const py::object value =
+      py::hasattr(o, "item") ? o.attr("item")() : py::reinterpret_borrow<py::object>(o);
+  if (py::isinstance<py::float_>(value) && !std::isfinite(value.cast<double>()))
+    return NotJson{path, py::repr(value).cast<std::string>()};
+  if (value.is_none() || py::isinstance<py::str>(value) || py::isinstance<py::bool_>(value) ||
+      py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value) ||
+      py::hasattr(value, "__fspath__"))
+    return std::nullopt;
+  return NotJson{path, py::repr(value).cast<std::string>()};
+}
+
 // Python strings, ints and floats, nested in dicts and lists, as JSON text (json.dumps; numpy
-// scalars by their value). NaN and infinity are not JSON: refused as the scene file would be.
-std::string dict_to_json_text(const py::object& d) {
+// scalars by their value). NaN and infinity are not JSON: refused as the scene file would be, in
+// the reader's one line naming `file`, the JSON path and the value.
+std::string dict_to_json_text(const py::object& d, const std::filesystem::path& file) {
   py::object json = py::module_::import("json");
   py::object to_value = py::cpp_function([](py::object o) -> py::object {
     if (py::hasattr(o, "item")) return o.attr("item")();  // numpy scalars
@@ -168,7 +202,11 @@ std::string dict_to_json_text(const py::object& d) {
         .cast<std::string>();
   } catch (py::error_already_set& e) {
     if (!e.matches(PyExc_ValueError) && !e.matches(PyExc_TypeError)) throw;
-    throw InputError(std::string("scene dict: not JSON: ") + e.what());
+    if (const auto bad = first_not_json(d, ""))
+      throw input_error(file.string(), bad->path.empty() ? "(top level)" : bad->path, bad->value,
+                        "expected a finite number, a string, true, false, null, a list or a dict "
+                        "(NaN and infinity are not JSON)");
+    throw input_error(file.string(), "", "", "not JSON: " + py::str(e.value()).cast<std::string>());
   }
 }
 
@@ -415,7 +453,7 @@ PYBIND11_MODULE(_shpb, m) {
       .def_static(
           "from_dict",
           [](const py::object& d, const std::filesystem::path& file) {
-            return read_scene_text(dict_to_json_text(d), file);
+            return read_scene_text(dict_to_json_text(d, file), file);
           },
           py::arg("d"), py::arg("file") = std::filesystem::path("scene.json"))
       .def_readwrite("name", &Scene::name)

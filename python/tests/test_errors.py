@@ -54,10 +54,16 @@ def test_a_good_dict_is_the_scene_file(tmp_path, classic_json):
     assert a.gauges["incident"].tolist() == b.gauges["incident"].tolist()
 
 
-def test_not_json_is_an_input_error(classic_json):
-    classic_json["bars"][0]["velocity"] = float("nan")
-    with pytest.raises(shpb.InputError):
-        shpb.Scene.from_dict(classic_json)
+@pytest.mark.parametrize("value, shown", [
+    (float("nan"), "nan"), (float("inf"), "inf"), (-float("inf"), "-inf")])
+def test_not_json_is_an_input_error(value, shown, classic_json):
+    """A number no JSON file can hold: the reader's one line naming the file, path and value."""
+    classic_json["bars"][1]["gauges"][0]["position"] = value
+    with pytest.raises(shpb.InputError) as e:
+        shpb.Scene.from_dict(classic_json, file="lab/scene.json")
+    message = str(e.value)
+    assert "\n" not in message
+    assert message.startswith(f"lab/scene.json: bars[1].gauges[0].position: {shown}: ")
 
 
 def test_a_bad_tolerance_is_the_commands_message(tmp_path):

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "core/error.hpp"
@@ -64,14 +65,19 @@ std::string duration_text(double seconds) {
 struct BarCost {
   double elements = 0, run_steps = 0;
 };
+// Bar i's own stable step with `elements` elements (before global stepping takes the smallest).
+double own_step_s(const Scene& scene, std::size_t i, double elements, double courant) {
+  return bar_courant(scene, i, courant) * scene.bars[i].length_m / elements /
+         scene.bars[i].material.wave_speed_m_s();
+}
+
 std::vector<BarCost> bar_costs(const Scene& scene, double run_s, double courant) {
   std::vector<BarCost> costs;
   costs.reserve(scene.bars.size());
   double global_dt = 0;
   for (std::size_t i = 0; i < scene.bars.size(); ++i) {
     const double elements = automatic_elements(scene, i);
-    const double dt = bar_courant(scene, i, courant) * scene.bars[i].length_m / elements /
-                      scene.bars[i].material.wave_speed_m_s();
+    const double dt = own_step_s(scene, i, elements, courant);
     costs.push_back({elements, std::ceil(run_s / dt)});
     global_dt = i == 0 ? dt : std::min(global_dt, dt);
   }
@@ -111,9 +117,53 @@ Estimates sum_estimates(std::size_t bars, CostOf cost, double records, ChainDisc
   return e;
 }
 
+// The bar whose own step, far below the others', alone puts the run beyond kMaxNodeUpdates: the
+// run would be within it were that bar — or, a material being to blame, every bar of its material
+// — to step as the next finest bar. `material`: the wave speed departs further from the next
+// bar's than the element length does (a bar shorter than the fewest automatic elements, or its
+// own elements, otherwise).
+struct FinestStep {
+  std::size_t bar = 0;
+  bool material = false;
+  double step_s = 0, next_step_s = 0;
+};
+std::optional<FinestStep> finest_step_to_blame(const Scene& scene,
+                                               const std::vector<BarCost>& costs, double run_s,
+                                               double courant) {
+  std::vector<double> steps;
+  for (std::size_t i = 0; i < costs.size(); ++i)
+    steps.push_back(own_step_s(scene, i, costs[i].elements, courant));
+  const auto finest =
+      static_cast<std::size_t>(std::min_element(steps.begin(), steps.end()) - steps.begin());
+  const std::string& material = scene.bars[finest].material.name;
+  const bool global = scene.simulation.stepping == Stepping::kGlobal;
+  for (const bool by_material : {false, true}) {
+    const auto moved = [&](std::size_t i) {
+      return by_material ? scene.bars[i].material.name == material : i == finest;
+    };
+    double next = std::numeric_limits<double>::infinity();
+    std::size_t next_bar = finest;
+    for (std::size_t i = 0; i < steps.size(); ++i)
+      if (!moved(i) && steps[i] < next) next = steps[i], next_bar = i;
+    if (!std::isfinite(next)) return std::nullopt;  // every bar moved: no other to step as
+    double node_updates = 0;
+    for (std::size_t i = 0; i < costs.size(); ++i)
+      node_updates += (costs[i].elements + 1) * std::ceil(run_s / (global     ? next
+                                                                   : moved(i) ? next
+                                                                              : steps[i]));
+    if (node_updates > kMaxNodeUpdates) continue;
+    const BarSpec &f = scene.bars[finest], &n = scene.bars[next_bar];
+    const double h = f.length_m / costs[finest].elements;
+    const double h_next = n.length_m / costs[next_bar].elements;
+    const bool wave_speed = f.material.wave_speed_m_s() / n.material.wave_speed_m_s() > h_next / h;
+    return FinestStep{finest, by_material || wave_speed, steps[finest], next};
+  }
+  return std::nullopt;
+}
+
 // `run_s` includes the free flight before first contact; `recorded_s` is what is sampled.
 void refuse_unaffordable(const Scene& scene, const std::vector<BarCost>& costs, double run_s,
-                         double recorded_s, ChainDiscretization& estimate) {
+                         double recorded_s, double courant, ChainDiscretization& estimate) {
   const double records = record_bytes(scene, recorded_s);
   const double mesh_bytes =
       sum_estimates(
@@ -145,6 +195,27 @@ void refuse_unaffordable(const Scene& scene, const std::vector<BarCost>& costs, 
     where = duration ? "simulation.duration" : "simulation.sample_rate";
     value = duration ? JsonValue::format(run_s, Dimension::kTime)
                      : JsonValue::format(scene.simulation.sample_rate_Hz, Dimension::kFrequency);
+  } else if (const auto f = memory > kMaxMemoryBytes
+                                ? std::nullopt
+                                : finest_step_to_blame(scene, costs, run_s, courant)) {
+    const BarSpec& bar = scene.bars[f->bar];
+    const std::string at = "bars[" + std::to_string(f->bar) + "]";
+    char b[400];
+    std::snprintf(b, sizeof b,
+                  "bar \"%s\" steps every %.3g s (elements of %.3g m, wave speed %.3g m/s), %.3g "
+                  "times finer than the next bar: the run would need %.3g node updates (about %s "
+                  "at %.0e node updates/s; limit %.0e): check its %s",
+                  bar.name.c_str(), f->step_s, bar.length_m / costs[f->bar].elements,
+                  bar.material.wave_speed_m_s(), f->next_step_s / f->step_s, node_updates,
+                  duration_text(node_updates / kNodeUpdatesPerSecond).c_str(),
+                  kNodeUpdatesPerSecond, kMaxNodeUpdates,
+                  f->material ? "material's density and modulus" : "length and elements");
+    if (f->material)
+      throw input_error(scene.file.string(), at + ".material", "\"" + bar.material.name + "\"", b);
+    if (bar.elements > 0)
+      throw input_error(scene.file.string(), at + ".elements", std::to_string(bar.elements), b);
+    throw input_error(scene.file.string(), at + ".length",
+                      JsonValue::format(bar.length_m, Dimension::kLength), b);
   } else if (memory > kMaxMemoryBytes || !scene.simulation.duration_s) {
     const BarSpec& bar = scene.bars[largest];
     where = "bars[" + std::to_string(largest) + (bar.elements > 0 ? "].elements" : "].length");
@@ -266,7 +337,7 @@ ChainDiscretization discretize(const Scene& scene) {
   const double run_s = duration_s + first_contact_delay_s(scene);  // free flight included
   const std::vector<BarCost> costs = bar_costs(scene, run_s, courant);
   ChainDiscretization d;
-  refuse_unaffordable(scene, costs, run_s, duration_s, d);
+  refuse_unaffordable(scene, costs, run_s, duration_s, courant, d);
   plan_bars(scene, duration_s, courant, costs, d);
   return d;
 }

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include "core/clock.hpp"
 #include "core/csv_writer.hpp"
@@ -22,6 +23,26 @@ std::string courant_problem(double c) {
   if (c > 0 && c <= 1) return {};
   return "must be in (0, 1]: lumped central difference is stable for C <= 1";
 }
+
+namespace {
+
+// For a run discretize() refused: its node updates at the default Courant number when a smaller
+// one (the scene's or --courant) is what puts it beyond this machine's budget (every bar's steps
+// grow as 1/C, docs/methods.md §1), else nothing: then the duration, a bar or the sample rate
+// discretize() named is to blame.
+std::optional<double> cost_at_default_courant(const Scene& scene) {
+  const auto c = scene.simulation.courant;
+  if (!c || !(*c < kDefaultCourant)) return std::nullopt;
+  Scene at_default = scene;
+  at_default.simulation.courant.reset();
+  try {
+    return discretize(at_default).node_updates_estimate;
+  } catch (const InputError&) {
+    return std::nullopt;  // beyond the budget at any Courant number
+  }
+}
+
+}  // namespace
 
 ChainDiscretization validate_scene(const Scene& scene, const RunOptions& options) {
   if (const auto c = scene.simulation.courant; c && !courant_problem(*c).empty()) {
@@ -50,7 +71,21 @@ ChainDiscretization validate_scene(const Scene& scene, const RunOptions& options
                             "gauge would record zero; a striker moving into the chain on its "
                             "right has a positive velocity");
     }
-  return discretize(scene);
+  try {
+    return discretize(scene);
+  } catch (const InputError&) {
+    const auto at_default = cost_at_default_courant(scene);
+    if (!at_default) throw;
+    const double c = *scene.simulation.courant;
+    char what[300];
+    std::snprintf(what, sizeof what,
+                  "every bar's steps grow as 1/C: about %.3g node updates, beyond this machine's "
+                  "budget, where the default %g needs %.3g; use a Courant number near 1",
+                  *at_default * kDefaultCourant / c, kDefaultCourant, *at_default);
+    if (options.courant_from_command_line)
+      throw input_error("--courant", "", format_double(c), what);
+    throw input_error(scene.file.string(), "simulation.courant", format_double(c), what);
+  }
 }
 
 namespace {

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <stdexcept>
 
@@ -15,6 +14,7 @@
 #include "core/closest_match.hpp"
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
+#include "core/json_document.hpp"
 #include "core/json_value.hpp"
 #include "model/law_parameters.hpp"
 #include "model/scene_validation.hpp"
@@ -123,17 +123,9 @@ std::vector<double> doubles_from(const nlohmann::json& j) {
 
 std::vector<Distribution> read_distributions(const std::filesystem::path& file,
                                              const Scene& scene) {
-  std::ifstream in(file);
-  if (!in)
-    throw input_error(file.string(), "", "",
-                      "cannot be read (a JSON object {\"values\": {\"striker.velocity\": "
-                      "{\"normal\": \"0.2 m/s\"}, ...}})");
-  nlohmann::json doc;
-  try {
-    doc = nlohmann::json::parse(in);
-  } catch (const std::exception& e) {
-    throw input_error(file.string(), "", "", std::string("not valid JSON: ") + e.what());
-  }
+  // The scene's reader: a folder, a device or a FIFO (which would block), duplicate keys, depth
+  // and size beyond the limits are refused naming the file (core/json_document.hpp).
+  const nlohmann::json doc = read_json_object_file(file, file.string());
   const JsonValue root(doc, file.string(), "");
   const auto o = root.object({"values", "notes"});
   if (auto v = o.get("notes")) v->string();

@@ -69,6 +69,30 @@ TEST_CASE("A delayed, scaled and stretched pulse gives its delay, scale and stre
   }
 }
 
+TEST_CASE("NRMSE and correlation are scale-free: a record off by 1e300 keeps them finite",
+          "[analysis][comparison]") {
+  // A bridge factor mistyped by hundreds of orders of magnitude is a warning (an implausible
+  // strain scale), not an error: the comparison must still be finite numbers.
+  const auto measured = pulse(1500, 200, 40, 500, -2e-3);
+  const auto simulated = pulse(1500, 207.3, 40, 500, -2.2e-3);
+  const PulseComparison c = compare_pulse(measured, simulated, kDt, 100, 1000);
+  const auto scaled = [](std::vector<double> x, double f) {
+    for (double& v : x) v *= f;
+    return x;
+  };
+  for (const double f : {1e300, 1e-300}) {
+    INFO("both signals times " << f);
+    const PulseComparison b =
+        compare_pulse(scaled(measured, f), scaled(simulated, f), kDt, 100, 1000);
+    CHECK(b.nrmse == Approx(c.nrmse).epsilon(kRoundOff));
+    CHECK(b.correlation == Approx(c.correlation).epsilon(kRoundOff));
+  }
+  // The measured record alone 1e300 times too large: the simulated pulse is nothing beside it.
+  const PulseComparison m = compare_pulse(scaled(measured, 1e300), simulated, kDt, 100, 1000);
+  CHECK(std::isfinite(m.nrmse));
+  CHECK(m.correlation == Approx(c.correlation).epsilon(kRoundOff));
+}
+
 TEST_CASE("The rise time of a raised-cosine ramp is its 10-90 % span", "[analysis][comparison]") {
   const double ramp = 100;
   const auto x = pulse(800, 100, ramp, 300, 1.0);

@@ -221,6 +221,18 @@ const std::vector<BadScene>& cases() {
        "rise_time"},
       {"a Courant number above 1", [](json& s, json&) { s["simulation"]["courant"] = 1.5; },
        "simulation.courant: 1.5: must be in (0, 1]"},
+      // Every bar's steps grow as 1/C: the run is beyond the budget because of the Courant
+      // number, not of the 800 us duration the refusal of a costly run names otherwise.
+      {"a Courant number of 1e-9", [](json& s, json&) { s["simulation"]["courant"] = 1e-9; },
+       "simulation.courant: 1e-09: every bar's steps grow as 1/C"},
+      // One bar stepping far finer than the others makes the run unaffordable at any duration:
+      // the refusal names that bar's length (shorter than its fewest elements) or its material
+      // (an absurd wave speed), not the 800 us duration.
+      {"a striker of 1e-9 mm", [](json& s, json&) { s["bars"][0]["length"] = "1e-9 mm"; },
+       "bars[0].length: 1e-12 m: bar \"striker\" steps every"},
+      {"bars of density 1e-9 kg/m3",
+       [](json& s, json&) { s["materials"]["steel"]["density"] = "1e-9 kg/m3"; },
+       "bars[0].material: \"steel\": bar \"striker\" steps every"},
       {"a misspelt kinematics", [](json& s, json&) { s["simulation"]["kinematics"] = "smal"; },
        "simulation.kinematics: \"smal\": did you mean \"small\"?"},
       {"a friction coefficient of 1.5", [](json& s, json&) { s["contact"]["friction"] = 1.5; },

@@ -121,6 +121,12 @@ TEST_CASE("validate and simulate refuse a --courant outside 0 < C <= 1 alike", "
       CHECK_FALSE(fs::exists(dir / "out"));
     }
   }
+  // A tiny one is in range but multiplies every bar's steps (1/C) beyond the machine's budget:
+  // the refusal names the option, not the scene's duration or bars.
+  const auto r = shpb_test::run_shpb({"validate", file.string(), "--courant", "1e-9"});
+  INFO(r.err);
+  CHECK(r.code == 2);
+  CHECK(r.err.rfind("error: --courant: 1e-09: every bar's steps grow as 1/C", 0) == 0);
   fs::remove_all(dir);
 }
 

@@ -109,6 +109,18 @@ TEST_CASE("A FIFO or a device as an input is refused by its type without blockin
   CHECK_FALSE(o.timed_out);
   CHECK(o.code == 2);
   CHECK(o.err.find("FIFO") != std::string::npos);
+  // A FIFO as the distributions file of a Monte Carlo study: opening it waits for a writer, past
+  // any SIGTERM, unless refused by its type first.
+  const fs::path distributions = scratch.path() / "distributions.json";
+  REQUIRE(::mkfifo(distributions.c_str(), 0644) == 0);
+  const Outcome study =
+      run({"study", kClassic.string(), "--sweep", "monte-carlo", "--distributions",
+           distributions.string(), "-o", (scratch.path() / "out").string(), "-q"},
+          scratch.path(), 10.0);
+  INFO(study.err);
+  CHECK_FALSE(study.timed_out);
+  CHECK(study.code == 2);
+  CHECK(study.err.find("FIFO") != std::string::npos);
 }
 
 TEST_CASE("SIGTERM and SIGINT stop validate and dispersion within a second",

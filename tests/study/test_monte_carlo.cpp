@@ -124,7 +124,10 @@ TEST_CASE("A normal striker velocity gives the incident plateau band of eps = v/
     for (const auto& [text, says] :
          {std::pair{R"({"values": {"striker.velocty": {"normal": "1 %"}}})", "striker.velocity"},
           std::pair{R"({"values": {"striker.velocity": {"normal": "-1 m/s"}}})", "normal"},
-          std::pair{R"({"values": {"bar.length": {"uniform": ["2 m", "1 m"]}}})", "low < high"}}) {
+          std::pair{R"({"values": {"bar.length": {"uniform": ["2 m", "1 m"]}}})", "low < high"},
+          // JSON lets the second "values" silently win; every input of shpb refuses it.
+          std::pair{R"({"values": {"striker.velocity": {"normal": "1 %"}}, "values": {}})",
+                    "values: duplicate key"}}) {
       std::ofstream(dist) << text;
       const auto bad =
           shpb_test::run_shpb({"study", kStrikerOnBar, "-o", (dir / "bad").string(), "--sweep",
