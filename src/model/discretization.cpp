@@ -241,7 +241,8 @@ void refuse_unaffordable(const Scene& scene, const std::vector<BarCost>& costs, 
 double bar_courant(const Scene& scene, std::size_t bar, double courant) {
   const BarSpec& b = scene.bars[bar];
   const bool specimen = scene.specimen && *scene.specimen == bar;
-  if (b.material.is_elastic()) return specimen ? std::min(courant, kDefaultCourant) : courant;
+  if (b.material.is_elastic())
+    return specimen ? std::min(courant, kElasticSpecimenCourant) : courant;
   const double e_max = scene.simulation.finite_strain
                            ? scene.simulation.max_strain.value_or(kDefaultMaxStrain)
                            : 0.0;
