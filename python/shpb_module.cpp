@@ -3,10 +3,6 @@
 // returning their results in memory. Pure-Python conveniences (tables, save of folders, the
 // commands' help) live in python/shpb/__init__.py. Nothing here re-implements a check, a formula or
 // a writer: each call goes to the function the command calls.
-// clang-format off
-#include "core/json_value.hpp"  // before <signal.h>: its si_value macro names a parameter here
-// clang-format on
-
 #include <malloc.h>
 #include <pybind11/functional.h>
 #include <pybind11/numpy.h>
@@ -26,6 +22,7 @@
 #include "app/process.hpp"
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
+#include "core/json_value.hpp"
 #include "core/output_folder.hpp"
 #include "core/units.hpp"
 #include "model/input_limits.hpp"

@@ -39,9 +39,9 @@ InputError JsonValue::error_with_value(const std::string& value,
   return input_error(file_, path_.empty() ? "(top level)" : path_, value, constraint);
 }
 
-std::string JsonValue::format(double si_value, Dimension d) {
+std::string JsonValue::format(double value_si, Dimension d) {
   const std::string unit(si_unit(d));
-  return format_number(si_value) + (unit.empty() ? "" : " " + unit);
+  return format_number(value_si) + (unit.empty() ? "" : " " + unit);
 }
 
 double JsonValue::quantity(Dimension d) const {

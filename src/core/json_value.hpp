@@ -55,7 +55,7 @@ class JsonValue {
   JsonObject object(std::vector<std::string> allowed_keys) const;
 
   // Formats an SI value of dimension d for messages: "-0.005 m".
-  static std::string format(double si_value, Dimension d);
+  static std::string format(double value_si, Dimension d);
 
  private:
   const nlohmann::json* json_;

@@ -280,7 +280,8 @@ double end_free_force_at(const BarModel& bar, const BarState& s, int end, double
                          double end_w, bool law_on_path) {
   const int last = bar.nodes - 1;
   const int element = end == 0 ? 0 : last - 1;
-  if (bar.law && !law_on_path) return end == 0 ? s.axial_force_N[0] : -s.axial_force_N[last - 1];
+  if (bar.law && !law_on_path)
+    return end == 0 ? s.axial_force_N[element] : -s.axial_force_N[element];
   const int other = end == 0 ? 1 : last - 1;
   const double back = tau_n - tau;
   const double w_end = std::isnan(end_w) ? s.w[end] - back * s.v[end] : end_w;

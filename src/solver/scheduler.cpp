@@ -16,9 +16,9 @@ namespace {
 
 // The end of bar i that touches interface k: its last node (left side) or node 0 (right side).
 // `neighbour_dt`: the other side's step; an ahead material-law bar with the longer step carries
-// its end force along its path (rule 4).
+// its end force along its path (rule 4). Not given (a stepping end): never the slow side.
 EndState end_state(const Chain& chain, std::size_t bar, int node, double tau, bool stepping,
-                   double tied_u, double neighbour_dt = 0) {
+                   double tied_u, double neighbour_dt = std::numeric_limits<double>::infinity()) {
   const BarModel& b = chain.bars[bar];
   const BarState& s = chain.states[bar];
   const double tau_n = chain.bar_tau(bar);
