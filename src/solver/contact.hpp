@@ -73,7 +73,30 @@ struct InterfaceState {
   // the last solve, recorded with the interface (it steps at the interface's instants).
   double segment_kinetic_J = 0, segment_strain_J = 0;
   long activations = 0, releases = 0;
+
+  // A localized interface closes at τ: its frame starts at the left end's position u with the
+  // velocity v, and the remaining gap (< |ġ|Δt, or a penetration ≤ |ġ|Δt if the contact was
+  // missed by a neighbour's step) is kept as the rest offset: no node is moved, no energy is
+  // created (docs/methods.md §3.2).
+  void close_frame(double u, double v, double tau) {
+    active = true;
+    ++activations;
+    frame_u = u;
+    frame_v = v;
+    frame_tau = tau;
+    offset = gap_m;
+  }
 };
+
+// Contact predicted one step ahead, so that no penetration is ever created: an open interface
+// closes at τ when its ends do not separate (ġ = v₂ − v₁ ≤ 0) and would meet before the next
+// instant, g + ġΔ ≤ 0. Ends that separate stay open whatever the gap: a release leaves the rest
+// offset's penetration (≤ |ġ|Δt), and closing on it would merge separating ends by a tensile
+// impulse.
+inline bool closes_within(double gap_m, double v_left, double v_right, double step_s) {
+  const double rate = v_right - v_left;
+  return rate <= 0 && gap_m + rate * step_s <= 0;
+}
 
 // What a solve returns: forces to add to the stepping end nodes, velocity jumps of a
 // momentum-consistent activation (both ends, absolute), and the energy it dissipated.

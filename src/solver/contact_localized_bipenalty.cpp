@@ -20,12 +20,13 @@
 // momentum, p = M_old v_old = M_new v_new: for ε_m ≫ m_b that is the inelastic node-to-node impact,
 // both ends take their momentum-weighted velocity (V/2 for equal bars: the exact continuum
 // interface velocity), the frame is placed at the contact point with both localized gaps and link
-// rates zero; contact is predicted one step ahead (g + ġΔ ≤ 0) so that no penetration is created,
-// the small remaining gap being kept as the links' rest offset. From that state the links are
-// loaded quasi-statically, g_i = −λ_i/ε_s,i, a fraction ~1/ε_s-factor (10⁻⁴ at the default) of an
-// element's stretch: the equations above then hold in their limit ε_s, ε_m → ∞ at fixed R, M^P →
-// m_b1 + m_b2, ü_bi → ü_f, λ_i = m_bi ü_f − f̃_i, which is what is solved here — the end pair moves
-// as one merged node and a same-Δt striker/bar pair reproduces the tied bar (exact at C = 1).
+// rates zero; contact is predicted one step ahead (closes_within: g + ġΔ ≤ 0) so that no
+// penetration is created, the small remaining gap being kept as the links' rest offset. From that
+// state the links are loaded quasi-statically, g_i = −λ_i/ε_s,i, a fraction ~1/ε_s-factor (10⁻⁴ at
+// the default) of an element's stretch: the equations above then hold in their limit ε_s, ε_m → ∞
+// at fixed R, M^P → m_b1 + m_b2, ü_bi → ü_f, λ_i = m_bi ü_f − f̃_i, which is what is solved here —
+// the end pair moves as one merged node and a same-Δt striker/bar pair reproduces the tied bar
+// (exact at C = 1).
 //
 // Asynchronous steps (after Dvořák et al. 2023, CMAME 413:116110): the frame carries the
 // condensed mass m_b1 + m_b2 and is advanced on the union of its neighbours' instants by
@@ -55,12 +56,10 @@ ContactResult solve_localized_bipenalty(const InterfaceModel& model, InterfaceSt
   const double step_after = frame_next_tau - tau;
   double kick = 0.5 * (tau - s.frame_tau + step_after);
   if (!s.active) {
-    // Contact is predicted one step ahead so that no penetration is ever created. Ends that
-    // separate stay open whatever the gap: a release leaves the rest offset's penetration
-    // (≤ |ġ|Δt), and closing on it merged separating ends by a tensile impulse that the next
-    // check released again (measured: 450–800 closings in the asynchronous tail instead of 4).
+    // Ends that separate stay open (measured: closing on the rest offset's penetration gave
+    // 450–800 closings in the asynchronous tail instead of 4).
     const double v1 = left.velocity_now(), v2 = right.velocity_now();
-    const bool stays_open = v2 - v1 > 0 || s.gap_m + (v2 - v1) * step_after > 0;
+    const bool stays_open = !closes_within(s.gap_m, v1, v2, step_after);
     if (stays_open && !(bonded && s.gap_m <= 0)) {
       s.force_N = 0;
       s.energy_J = 0;
@@ -74,15 +73,7 @@ ContactResult solve_localized_bipenalty(const InterfaceModel& model, InterfaceSt
     r.dissipated_J = 0.5 * m1 * r.dv_left * r.dv_left + 0.5 * m2 * r.dv_right * r.dv_right;
     left.v += r.dv_left;
     right.v += r.dv_right;
-    s.active = true;
-    ++s.activations;
-    // The frame at the left end; the remaining gap (< |ġ|Δt, or a penetration ≤ |ġ|Δt if the
-    // contact was missed by a neighbour's step) is kept as the rest offset: no node is moved,
-    // no energy is created.
-    s.frame_u = left.u;
-    s.frame_v = vc;
-    s.frame_tau = tau;
-    s.offset = s.gap_m;
+    s.close_frame(left.u, vc, tau);
     kick = 0.5 * step_after;  // from the full-step velocity: half a kick
   }
   // Merged-node contact force, compression positive.

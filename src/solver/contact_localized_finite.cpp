@@ -41,9 +41,9 @@
 // R ≤ R_crit at every ε_s/k = 10⁻² … 10⁶, and above R_crit the 2/√R step for ε_s ≳ 10 k.
 //
 // Switching (as in the limit, decided on the force Λ the interface puts on the bars): contact is
-// predicted one step ahead (ġ < 0 and g + ġΔ ≤ 0, Δ to the next union instant: ends that
-// separate after a release are not closed again) and closes by the impulsive
-// tie of the half-frames, which conserves momentum (the penalty mass carries none): both take the
+// predicted one step ahead (closes_within in contact.hpp: ġ ≤ 0 and g + ġΔ ≤ 0, Δ to the next union
+// instant: ends that separate after a release are not closed again) and closes by the impulsive tie
+// of the half-frames, which conserves momentum (the penalty mass carries none): both take the
 // μ-weighted velocity, end i's velocity jumps by Π_i/m_bi and its link rate by Π_i/ε_m,i; the
 // remaining gap is kept as the links' rest offset, so no penetration and no potential energy is
 // created, and the kinetic energy lost is contact dissipation. It releases only when the tie force
@@ -77,9 +77,8 @@ ContactResult solve_localized_finite(const InterfaceModel& model, InterfaceState
   const double step_after = frame_next_tau - tau;
   double kick = 0.5 * (tau - s.frame_tau + step_after);
   if (!s.active) {
-    // Contact is predicted one step ahead so that no penetration is ever created.
     const double v1 = left.velocity_now(), v2 = right.velocity_now();
-    if (v2 - v1 >= 0 || s.gap_m + (v2 - v1) * step_after > 0) {
+    if (!closes_within(s.gap_m, v1, v2, step_after)) {
       open_links(s);
       return r;
     }
@@ -101,12 +100,7 @@ ContactResult solve_localized_finite(const InterfaceModel& model, InterfaceState
       s.link_tau[i] = model.end_follows_frame[i] && !end[i]->stepping ? end[i]->next_tau : tau;
       s.link_d[i] = (s.link_tau[i] - tau) * rate;
     }
-    s.active = true;
-    ++s.activations;
-    s.frame_u = left.u;
-    s.frame_v = vc;
-    s.frame_tau = tau;
-    s.offset = s.gap_m;
+    s.close_frame(left.u, vc, tau);
     kick = 0.5 * step_after;  // from the full-step velocity: half a kick
   }
   // Link extensions at τ, from the frame and the ends (an ahead end on its linear path), and the
