@@ -160,9 +160,16 @@ std::vector<Distribution> read_distributions(const std::filesystem::path& file,
       if (!(x > 0)) throw s.error("must be > 0 (a spread)");
       return x;
     };
+    // A value of one sign keeps it in every draw (drawn_value_problem): a distribution that
+    // crosses zero is refused here rather than failing its draws.
     if (auto n = dist.get("normal")) {
       d.kind = DistributionKind::kNormal;
       d.standard_deviation = spread(*n);
+      if (d.nominal != 0)
+        if (const std::string what =
+                sign_keeping_problem(d.nominal, d.standard_deviation, d.dimension);
+            !what.empty())
+          throw n->error(what);
     } else if (auto u = dist.get("uniform")) {
       d.kind = DistributionKind::kUniform;
       if (u->json().is_array()) {
@@ -177,6 +184,10 @@ std::vector<Distribution> read_distributions(const std::filesystem::path& file,
         d.low = d.nominal - h, d.high = d.nominal + h;
       }
       d.standard_deviation = (d.high - d.low) / std::sqrt(12.0);
+      if ((d.nominal > 0 && d.low < 0) || (d.nominal < 0 && d.high > 0))
+        throw u->error("reaches " + JsonValue::format(d.nominal > 0 ? d.low : d.high, d.dimension) +
+                       ": the scene's value " + JsonValue::format(d.nominal, d.dimension) +
+                       " must keep its sign in every draw");
     }
     out.push_back(d);
   }

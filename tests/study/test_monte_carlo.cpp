@@ -125,6 +125,11 @@ TEST_CASE("A normal striker velocity gives the incident plateau band of eps = v/
          {std::pair{R"({"values": {"striker.velocty": {"normal": "1 %"}}})", "striker.velocity"},
           std::pair{R"({"values": {"striker.velocity": {"normal": "-1 m/s"}}})", "normal"},
           std::pair{R"({"values": {"bar.length": {"uniform": ["2 m", "1 m"]}}})", "low < high"},
+          // A striker at 10 m/s drawn with s.d. 12 m/s (or from [-1, 20] m/s) goes backwards in
+          // many draws: the spread must keep the sign (s.d. below a sixth of the value).
+          std::pair{R"({"values": {"striker.velocity": {"normal": "12 m/s"}}})", "must stay > 0"},
+          std::pair{R"({"values": {"striker.velocity": {"uniform": ["-1 m/s", "20 m/s"]}}})",
+                    "must keep its sign"},
           // JSON lets the second "values" silently win; every input of shpb refuses it.
           std::pair{R"({"values": {"striker.velocity": {"normal": "1 %"}}, "values": {}})",
                     "values: duplicate key"}}) {
