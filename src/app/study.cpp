@@ -155,8 +155,8 @@ Command add_study_command(CLI::App& app) {
          "--draws", study.draws,
          "Monte Carlo: number of draws (default " + std::to_string(kDefaultMonteCarloDraws) + ")")
       ->check(CLI::Range(2, 1000000));
-  auto* seed = cmd->add_option(
-      "--seed", o->seed, "Monte Carlo: seed of the draws (default 1: the same draws every run)");
+  auto* seed = add_seed_option(
+      cmd, o->seed, "Monte Carlo: seed of the draws (default 1: the same draws every run)");
   cmd->add_option("--plan", study.plan,
                   "Write the sweep's independent runs into DIR/plan.json instead of running "
                   "them (then --run DIR --shard K/N, then --merge DIR)");
