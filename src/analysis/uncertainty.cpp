@@ -15,6 +15,7 @@
 #include "core/error.hpp"
 #include "core/parallel_runner.hpp"
 #include "core/units.hpp"
+#include "model/uncertainty_reader.hpp"
 #include "output_schema.hpp"
 
 namespace shpb {
@@ -52,12 +53,18 @@ double absolute(const StandardUncertainty& u, double nominal) {
 std::string unit_of(Dimension d) { return std::string(si_unit(d)); }
 
 // The inputs, appended in the order they are applied to a draw (a zero uncertainty adds none).
+// A positive input's standard uncertainty must keep its draws > 0 (sign_keeping_problem):
+// refused (exit 2, naming the scene's JSON path) before any draw.
 struct InputList {
+  std::string file;  // the scene
   std::vector<Input> in;
-  void add(std::string name, double value, double sigma, Dimension d, bool positive,
-           std::function<void(double, DrawState&)> apply) {
-    if (sigma > 0)
-      in.push_back({{std::move(name), value, sigma, unit_of(d)}, positive, std::move(apply)});
+  void add(std::string name, double value, double sigma, Dimension d, const std::string& path,
+           bool positive, std::function<void(double, DrawState&)> apply) {
+    if (!(sigma > 0)) return;
+    if (positive)
+      if (const std::string what = sign_keeping_problem(value, sigma, d); !what.empty())
+        throw input_error(file, path, JsonValue::format(sigma, d), what);
+    in.push_back({{std::move(name), value, sigma, unit_of(d)}, positive, std::move(apply)});
   }
 };
 
@@ -73,7 +80,7 @@ void add_bridge_inputs(InputList& in, const UncertaintySpec& u, const Measuremen
           std::tuple{"excitation", &u.excitation, ch.bridge->excitation_V, Dimension::kVoltage},
           std::tuple{"gain", &u.gain, ch.bridge->gain, Dimension::kDimensionless}})
       if (*spec)
-        in.add(where + key, value, absolute(**spec, value), dim, true,
+        in.add(where + key, value, absolute(**spec, value), dim, (*spec)->path, true,
                [c, x0 = value](double x, DrawState& d) { d.channel_factor[c] *= x0 / x; });
   }
 }
@@ -84,20 +91,21 @@ void add_bar_inputs(InputList& in, const BarUncertainty& b, const BarSpec& bar) 
   const std::size_t i = b.bar;
   if (b.youngs_modulus)
     in.add(name + "youngs_modulus", bar.material.youngs_modulus_Pa,
-           absolute(*b.youngs_modulus, bar.material.youngs_modulus_Pa), Dimension::kPressure, true,
+           absolute(*b.youngs_modulus, bar.material.youngs_modulus_Pa), Dimension::kPressure,
+           b.youngs_modulus->path, true,
            [i](double x, DrawState& d) { d.scene.bars[i].material.youngs_modulus_Pa = x; });
   if (b.density)
     in.add(name + "density", bar.material.density_kg_m3,
-           absolute(*b.density, bar.material.density_kg_m3), Dimension::kDensity, true,
-           [i](double x, DrawState& d) { d.scene.bars[i].material.density_kg_m3 = x; });
+           absolute(*b.density, bar.material.density_kg_m3), Dimension::kDensity, b.density->path,
+           true, [i](double x, DrawState& d) { d.scene.bars[i].material.density_kg_m3 = x; });
   if (b.wave_speed) {
     // c0 = sqrt(E/ρ): the drawn speed with the drawn density sets the modulus when the density
     // is the other uncertain value, else with the (drawn) modulus the density. Applied after
     // the bar's modulus and density (inputs are applied in order).
     const double c0 = bar.material.wave_speed_m_s();
     const bool keep_density = b.density && !b.youngs_modulus;
-    in.add(name + "wave_speed", c0, absolute(*b.wave_speed, c0), Dimension::kVelocity, true,
-           [i, keep_density](double x, DrawState& d) {
+    in.add(name + "wave_speed", c0, absolute(*b.wave_speed, c0), Dimension::kVelocity,
+           b.wave_speed->path, true, [i, keep_density](double x, DrawState& d) {
              MaterialSpec& mat = d.scene.bars[i].material;
              if (keep_density)
                mat.youngs_modulus_Pa = mat.density_kg_m3 * x * x;
@@ -109,18 +117,18 @@ void add_bar_inputs(InputList& in, const BarUncertainty& b, const BarSpec& bar) 
     const double nu = bar.material.poisson_ratio;
     const double sigma = absolute(*b.poisson_ratio, nu);
     const double step = kPoissonGridSigma * sigma;
-    in.add(name + "poisson_ratio", nu, sigma, Dimension::kDimensionless, true,
-           [i, nu, step](double x, DrawState& d) {
+    in.add(name + "poisson_ratio", nu, sigma, Dimension::kDimensionless, b.poisson_ratio->path,
+           true, [i, nu, step](double x, DrawState& d) {
              d.scene.bars[i].material.poisson_ratio = nu + step * std::round((x - nu) / step);
            });
   }
   if (b.diameter)
     in.add(name + "diameter", bar.diameter_m, absolute(*b.diameter, bar.diameter_m),
-           Dimension::kLength, true,
+           Dimension::kLength, b.diameter->path, true,
            [i](double x, DrawState& d) { set_bar_diameter(d.scene.bars[i], x); });
   if (b.length)
     in.add(name + "length", bar.length_m, absolute(*b.length, bar.length_m), Dimension::kLength,
-           true, [i](double x, DrawState& d) { d.scene.bars[i].length_m = x; });
+           b.length->path, true, [i](double x, DrawState& d) { d.scene.bars[i].length_m = x; });
 }
 
 // The incident and transmitted gauges' distances to the specimen.
@@ -137,7 +145,8 @@ void add_gauge_position_inputs(InputList& in, const StandardUncertainty& positio
                                  gauges.begin());
     // Drawn as the distance to the specimen; moved along the bar by the difference.
     in.add("gauge " + gauge + " distance_to_specimen", distance, absolute(position, distance),
-           Dimension::kLength, true, [bar, g, distance, toward = bar < s](double x, DrawState& d) {
+           Dimension::kLength, position.path, true,
+           [bar, g, distance, toward = bar < s](double x, DrawState& d) {
              d.scene.bars[bar].gauges[g].position_m += (toward ? -1 : 1) * (x - distance);
            });
   }
@@ -148,13 +157,15 @@ void add_analysis_inputs(InputList& in, const Scene& scene, const UncertaintySpe
                          const GaugeSignals& signals, const ProcessingOptions& options,
                          const ProcessingResult& nominal) {
   if (u.trigger_delay)
-    in.add("trigger_delay", 0, u.trigger_delay->value, Dimension::kTime, false,
-           [](double x, DrawState& d) { d.options.transmitted_shift_s += x; });
+    in.add("trigger_delay", 0, u.trigger_delay->value, Dimension::kTime, u.trigger_delay->path,
+           false, [](double x, DrawState& d) { d.options.transmitted_shift_s += x; });
   if (u.window_start) {
     const double dt = signals.dt_s;
-    in.add("reflected window_start", 0, u.window_start->value * dt, Dimension::kTime, false,
+    in.add("reflected window_start", 0, u.window_start->value * dt, Dimension::kTime,
+           u.window_start->path, false,
            [](double x, DrawState& d) { d.options.reflected_shift_s += x; });
-    in.add("transmitted window_start", 0, u.window_start->value * dt, Dimension::kTime, false,
+    in.add("transmitted window_start", 0, u.window_start->value * dt, Dimension::kTime,
+           u.window_start->path, false,
            [](double x, DrawState& d) { d.options.transmitted_shift_s += x; });
   }
   if (u.dispersion_cutoff) {
@@ -163,8 +174,8 @@ void add_analysis_inputs(InputList& in, const Scene& scene, const UncertaintySpe
                         "the reduction applies no dispersion correction (measurement.dispersion "
                         "\"correction\": \"none\", or simulated signals): it has no cut-off");
     const double f0 = nominal.cutoff_Hz;
-    in.add("dispersion_cutoff", f0, absolute(*u.dispersion_cutoff, f0), Dimension::kFrequency, true,
-           [f0](double x, DrawState& d) {
+    in.add("dispersion_cutoff", f0, absolute(*u.dispersion_cutoff, f0), Dimension::kFrequency,
+           u.dispersion_cutoff->path, true, [f0](double x, DrawState& d) {
              // The cut-off scales with its draw whichever way the scene gives it (f·a/c0 ∝ f).
              DispersionSpec& ds = d.options.dispersion;
              if (ds.cutoff_Hz)
@@ -176,8 +187,8 @@ void add_analysis_inputs(InputList& in, const Scene& scene, const UncertaintySpe
   if (u.friction) {
     const double mu = *scene.measurement->corrections.friction;
     // μ ≥ 0: a draw below zero is the frictionless face.
-    in.add("friction", mu, absolute(*u.friction, mu), Dimension::kDimensionless, false,
-           [](double x, DrawState& d) {
+    in.add("friction", mu, absolute(*u.friction, mu), Dimension::kDimensionless, u.friction->path,
+           false, [](double x, DrawState& d) {
              d.scene.measurement->corrections.friction = std::max(0.0, x);
            });
   }
@@ -188,6 +199,7 @@ std::vector<Input> inputs_of(const Scene& scene, const MeasurementSpec& m,
                              const ProcessingResult& nominal, const KolskySetup& setup) {
   const UncertaintySpec& u = *scene.measurement->uncertainty;
   InputList in;
+  in.file = scene.file.string();
   add_bridge_inputs(in, u, m);
   for (const BarUncertainty& b : u.bars) add_bar_inputs(in, b, scene.bars[b.bar]);
   if (u.gauge_position) add_gauge_position_inputs(in, *u.gauge_position, scene, setup);

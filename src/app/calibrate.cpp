@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "app/cli_options.hpp"
 #include "app/commands.hpp"
 #include "fit/calibration.hpp"
 #include "fit/calibration_report.hpp"
@@ -60,8 +61,7 @@ Command add_calibrate_command(CLI::App& app) {
                   "Scenes of calibration shots (no specimen; a measurement each)")
       ->required();
   cmd->add_option("-o,--output", args->output, "Output folder (replaced atomically)")->required();
-  cmd->add_option("--threads", args->threads, "Evaluations in parallel (0 = all cores)")
-      ->check(CLI::NonNegativeNumber);
+  add_threads_option(cmd, args->threads, "Evaluations in parallel (0 = all cores)");
   cmd->add_flag("--quiet,-q", args->quiet, "No progress output on stderr");
   return {cmd, [args] { return run_calibrate(*args); }};
 }

@@ -1,5 +1,9 @@
 #include "app/cli_options.hpp"
 
+#include <charconv>
+#include <climits>
+#include <cmath>
+
 #include "core/csv_writer.hpp"
 #include "core/enum_names.hpp"
 #include "core/error.hpp"
@@ -12,6 +16,51 @@ std::string alternatives(const std::vector<std::string>& names) {
   std::string text;
   for (const auto& n : names) text += (text.empty() ? "" : " | ") + n;
   return text;
+}
+
+namespace {
+
+// A whole number of type T from 0 to `max`, written without sign, fraction or exponent;
+// `description` is what --help shows after the option's type.
+template <class T>
+CLI::Validator whole_number_check(T max, const std::string& description, const std::string& name) {
+  const std::string expected = "expected a whole number from 0 to " + std::to_string(max);
+  return CLI::Validator(
+      [max, expected](std::string& text) -> std::string {
+        T value{};
+        const char* end = text.data() + text.size();
+        const auto [at, ec] = std::from_chars(text.data(), end, value);
+        if (text.empty() || text.front() == '-' || ec != std::errc() || at != end || value > max)
+          return text + ": " + expected;
+        return {};
+      },
+      description, name);
+}
+
+}  // namespace
+
+CLI::Option* add_seed_option(CLI::App* cmd, std::uint64_t& seed, const std::string& help) {
+  static const CLI::Validator check = whole_number_check<std::uint64_t>(UINT64_MAX, "", "seed");
+  return cmd->add_option("--seed", seed, help)->check(check);
+}
+
+CLI::Option* add_threads_option(CLI::App* cmd, int& threads, const std::string& help) {
+  static const CLI::Validator check = whole_number_check<int>(INT_MAX, "NONNEGATIVE", "threads");
+  return cmd->add_option("--threads", threads, help)->check(check);
+}
+
+const CLI::Validator& finite_positive_check() {
+  static const CLI::Validator check(
+      [](std::string& text) -> std::string {
+        double v = 0;
+        const char* end = text.data() + text.size();
+        const auto [at, ec] = std::from_chars(text.data(), end, v);
+        if (ec != std::errc() || at != end || !std::isfinite(v) || !(v > 0))
+          return text + ": expected a finite number > 0";
+        return {};
+      },
+      "POSITIVE", "finite positive");
+  return check;
 }
 
 void add_run_options(CLI::App* cmd, RunOverrides& o, RunOptionText& text) {
@@ -40,8 +89,7 @@ void add_run_options(CLI::App* cmd, RunOverrides& o, RunOptionText& text) {
                   "simulation.tolerance, else " +
                       format_number(100 * kDefaultTolerance) +
                       " %; study: else the automatic meshes)");
-  cmd->add_option("--threads", o.threads, "Worker threads (0 = all cores)")
-      ->check(CLI::NonNegativeNumber);
+  add_threads_option(cmd, o.threads, "Worker threads (0 = all cores)");
   cmd->add_flag("--quiet,-q", o.quiet, "No progress output on stderr");
 }
 

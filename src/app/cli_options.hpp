@@ -2,6 +2,7 @@
 // Command-line pieces several commands register (CLI11): the run options and quantities with
 // units.
 #include <CLI/CLI.hpp>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,15 @@ struct RunOptionText {
 void add_run_options(CLI::App* cmd, RunOverrides& o, RunOptionText& text);
 // Into `o`; InputError for a tolerance that is not a gauge error.
 void resolve_run_options(RunOverrides& o, const RunOptionText& text);
+
+// The numeric options several commands share, each checked in one place (CLI11 validators, run on
+// the text as given: exit 2 with "error: --seed: -1: expected ..."):
+// --seed, a whole number 0 … 2^64 − 1 (no sign, no fraction, no wrap-around of "-1");
+CLI::Option* add_seed_option(CLI::App* cmd, std::uint64_t& seed, const std::string& help);
+// --threads, a whole number ≥ 0 (0: all cores);
+CLI::Option* add_threads_option(CLI::App* cmd, int& threads, const std::string& help);
+// a finite number > 0 (not NaN, not inf).
+const CLI::Validator& finite_positive_check();
 
 // A gauge-error option ("1 %") as a fraction in (0, 1); InputError naming the option.
 double tolerance_option(const std::string& option, const std::string& text);

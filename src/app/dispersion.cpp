@@ -60,7 +60,7 @@ Command add_dispersion_command(CLI::App& app) {
       ->delimiter(',');
   cmd->add_option("--max-a-over-lambda", disp.max_a_over_lambda,
                   "Largest a/Λ of an evenly spaced table (default 1.6)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_positive_check());
   cmd->add_option("--points", disp.points, "Number of table points (default 321)")
       ->check(CLI::Range(2, 1000000));
   cmd->add_option("--radius", o->radius, "Bar radius, e.g. \"9.525 mm\" (adds frequency_Hz)");

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "app/cli_options.hpp"
 #include "app/commands.hpp"
 #include "core/output_folder.hpp"
 #include "fit/fit_report.hpp"
@@ -62,8 +63,7 @@ Command add_fit_command(CLI::App& app) {
   cmd->add_option("campaign", args->campaign, "Campaign JSON file (tests, material, free, ...)")
       ->required();
   cmd->add_option("-o,--output", args->output, "Output folder (replaced atomically)")->required();
-  cmd->add_option("--threads", args->options.threads, "Simulations in parallel (0 = all cores)")
-      ->check(CLI::NonNegativeNumber);
+  add_threads_option(cmd, args->options.threads, "Simulations in parallel (0 = all cores)");
   cmd->add_option("--max-iterations", args->options.max_iterations,
                   "Solver iterations per stage (default " +
                       std::to_string(FitOptions{}.max_iterations) + ")")
@@ -77,7 +77,7 @@ Command add_fit_command(CLI::App& app) {
                   "(default " +
                       std::to_string(FitOptions{}.bootstrap) + "; 0: linearised intervals only)")
       ->check(CLI::Range(0, 100000));
-  cmd->add_option("--seed", args->options.seed, "Seed of the bootstrap's noise draws (default 1)");
+  add_seed_option(cmd, args->options.seed, "Seed of the bootstrap's noise draws (default 1)");
   cmd->add_flag("--quiet,-q", args->quiet, "No progress output on stderr");
   return {cmd, [args] { return run_fit(*args); }};
 }

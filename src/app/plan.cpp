@@ -25,8 +25,7 @@ Command add_plan_command(CLI::App& app) {
   cmd->add_option("--strain", o->strain, "Engineering strain the test must reach (default 0.15)");
   cmd->add_option("--search-tolerance", o->search, "Gauge error of the search's runs (\"3 %\")");
   cmd->add_option("--tolerance", o->tolerance, "Gauge error of the verification run (\"0.5 %\")");
-  cmd->add_option("--threads", o->plan.threads, "Worker threads (0 = all cores)")
-      ->check(CLI::NonNegativeNumber);
+  add_threads_option(cmd, o->plan.threads, "Worker threads (0 = all cores)");
   cmd->add_flag("--quiet,-q", o->quiet, "No progress output on stderr");
   return {cmd, [o] {
             const PlanTargets targets{

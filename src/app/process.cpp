@@ -74,10 +74,10 @@ Command add_process_command(CLI::App& app) {
   cmd->add_option("--draws", o->one.monte_carlo.draws,
                   "Monte Carlo draws of measurement.uncertainty (default 1000)")
       ->check(CLI::Range(2, 10000000));
-  cmd->add_option("--seed", o->one.monte_carlo.seed,
+  add_seed_option(cmd, o->one.monte_carlo.seed,
                   "Seed of the Monte Carlo draws (default 1: the same draws every run)");
-  cmd->add_option("--threads", o->one.monte_carlo.threads,
-                  "Worker threads of the Monte Carlo draws (0 = all cores)");
+  add_threads_option(cmd, o->one.monte_carlo.threads,
+                     "Worker threads of the Monte Carlo draws (0 = all cores)");
   return {cmd, [o] {
             CampaignOptions& c = o->campaign;
             const bool several = o->scenes.size() != 1 || !o->campaign_file.empty() ||

@@ -84,6 +84,7 @@ int merge_study(const StudyArgs& args) {
   const StudyPlan plan = read_study_plan(*args.merge / "plan.json");
   const MergedStudy m = merge_study_parts(
       plan, *args.merge, args.output.empty() ? *args.merge / "result" : args.output);
+  for (const auto& w : m.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   if (!args.overrides.quiet)
     std::fprintf(stderr, "study %s of %s: merged %zu parts (%zu runs); wrote %s\n",
                  to_string(plan.sweep).c_str(), m.scene_name.c_str(), m.parts, plan.runs(),
@@ -111,9 +112,11 @@ int run_study(const StudyArgs& args) {
   StudyResults results;
   run_plan(plan, scene, all_runs(plan.runs()), threads,
            progress_printer(args.overrides.quiet, to_string(plan.sweep)), results);
-  write_study(plan, scene, results, threads, seconds_since(start), out.path());
+  const std::vector<std::string> warnings =
+      write_study(plan, scene, results, threads, seconds_since(start), out.path());
   const double wall = seconds_since(start);
   out.commit();
+  for (const auto& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   if (!args.overrides.quiet)
     std::fprintf(stderr, "study %s of %s in %.3g s on %d threads; wrote %s\n",
                  to_string(args.sweep).c_str(), scene.name.c_str(), wall, threads,
@@ -152,8 +155,8 @@ Command add_study_command(CLI::App& app) {
          "--draws", study.draws,
          "Monte Carlo: number of draws (default " + std::to_string(kDefaultMonteCarloDraws) + ")")
       ->check(CLI::Range(2, 1000000));
-  auto* seed = cmd->add_option(
-      "--seed", o->seed, "Monte Carlo: seed of the draws (default 1: the same draws every run)");
+  auto* seed = add_seed_option(
+      cmd, o->seed, "Monte Carlo: seed of the draws (default 1: the same draws every run)");
   cmd->add_option("--plan", study.plan,
                   "Write the sweep's independent runs into DIR/plan.json instead of running "
                   "them (then --run DIR --shard K/N, then --merge DIR)");

@@ -28,6 +28,7 @@ struct BarSpec {
   double length_m = 0;
   double area_m2 = 0;       // from `area`, or π d²/4 from `diameter`
   double diameter_m = 0;    // given, or the equivalent circular diameter of `area`
+  bool area_given = false;  // the scene gives `area` (named in messages), not `diameter`
   double velocity_m_s = 0;  // initial rigid velocity, + to the right
   int elements = 0;         // 0: chosen automatically (see model/mesh.hpp)
   double gap_m = 0;         // initial gap to the next bar on the right

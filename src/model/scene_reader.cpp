@@ -150,6 +150,7 @@ class SceneReader {
     if (diameter && area) throw area->error("give either diameter or area, not both");
     if (area) {
       b.area_m2 = area->positive_quantity(Dimension::kArea);
+      b.area_given = true;
       b.diameter_m = std::sqrt(4 * b.area_m2 / M_PI);  // equivalent circular diameter
     } else {
       b.diameter_m = o.require("diameter", "e.g. \"19.05 mm\" (or give area)")

@@ -9,6 +9,7 @@
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
 #include "core/json_value.hpp"
+#include "model/computable.hpp"
 #include "model/mesh_error_model.hpp"
 #include "model/test_setup.hpp"
 
@@ -71,8 +72,9 @@ ChainDiscretization validate_scene(const Scene& scene, const RunOptions& options
                             "gauge would record zero; a striker moving into the chain on its "
                             "right has a positive velocity");
     }
+  ChainDiscretization d;
   try {
-    return discretize(scene);
+    d = discretize(scene);
   } catch (const InputError&) {
     const auto at_default = cost_at_default_courant(scene);
     if (!at_default) throw;
@@ -86,6 +88,8 @@ ChainDiscretization validate_scene(const Scene& scene, const RunOptions& options
       throw input_error("--courant", "", format_double(c), what);
     throw input_error(scene.file.string(), "simulation.courant", format_double(c), what);
   }
+  check_computable(scene, d);
+  return d;
 }
 
 namespace {

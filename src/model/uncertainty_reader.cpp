@@ -1,8 +1,25 @@
 #include "model/uncertainty_reader.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 
 namespace shpb {
+
+std::string sign_keeping_problem(double value, double sigma, Dimension d) {
+  if (sigma < std::abs(value) / kSignKeepingSigmas) return {};
+  const double p = 0.5 * std::erfc(std::abs(value) / sigma / std::sqrt(2.0));
+  char b[400];
+  std::snprintf(b, sizeof b,
+                "a standard deviation of %s on a value of %s that must stay %s: a normal draw "
+                "would be %s with probability %.2g; expected one below %s (|value| / %g, a draw "
+                "of the other sign then has a probability below 1e-9)",
+                JsonValue::format(sigma, d).c_str(), JsonValue::format(value, d).c_str(),
+                value > 0 ? "> 0" : "< 0", value > 0 ? "<= 0" : ">= 0", p,
+                JsonValue::format(std::abs(value) / kSignKeepingSigmas, d).c_str(),
+                kSignKeepingSigmas);
+  return b;
+}
 
 StandardUncertainty read_standard_uncertainty(const JsonValue& v, Dimension d, bool relative_ok) {
   StandardUncertainty u;

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "model/discretization.hpp"
+#include "model/penalty_links.hpp"
 #include "model/scene.hpp"
 
 namespace shpb {
@@ -106,24 +107,6 @@ struct ContactResult {
   double dissipated_J = 0;
 };
 
-// Default penalty parameters (docs/methods.md §2): ε_s = kDefaultStiffnessFactor × the stiffer
-// neighbour's EA/h; R_i = kDefaultMassRatio × (2 c_i/h_i)², the bar's own critical ratio, so
-// that every link leaves its bar's stable step unchanged.
-inline constexpr double kDefaultStiffnessFactor = 1e4;
-inline constexpr double kDefaultMassRatio = 0.9;
-
-struct NeighbourInfo {
-  double stiffness_N_m;  // EA/h of the end element
-  double wave_speed_m_s;
-  double element_length_m;
-  double impedance_kg_s() const {
-    return stiffness_N_m * element_length_m / wave_speed_m_s;
-  }                             // EA/c
-  double end_mass_kg() const {  // ρAh/2 = (EA/h) h² / (2c²)
-    return 0.5 * stiffness_N_m * element_length_m * element_length_m /
-           (wave_speed_m_s * wave_speed_m_s);
-  }
-};
 InterfaceModel make_interface_model(std::string name, ContactMethod method,
                                     const PenaltyParams& params, double gap0_m,
                                     const NeighbourInfo& left, const NeighbourInfo& right);

@@ -160,9 +160,16 @@ std::vector<Distribution> read_distributions(const std::filesystem::path& file,
       if (!(x > 0)) throw s.error("must be > 0 (a spread)");
       return x;
     };
+    // A value of one sign keeps it in every draw (drawn_value_problem): a distribution that
+    // crosses zero is refused here rather than failing its draws.
     if (auto n = dist.get("normal")) {
       d.kind = DistributionKind::kNormal;
       d.standard_deviation = spread(*n);
+      if (d.nominal != 0)
+        if (const std::string what =
+                sign_keeping_problem(d.nominal, d.standard_deviation, d.dimension);
+            !what.empty())
+          throw n->error(what);
     } else if (auto u = dist.get("uniform")) {
       d.kind = DistributionKind::kUniform;
       if (u->json().is_array()) {
@@ -177,6 +184,10 @@ std::vector<Distribution> read_distributions(const std::filesystem::path& file,
         d.low = d.nominal - h, d.high = d.nominal + h;
       }
       d.standard_deviation = (d.high - d.low) / std::sqrt(12.0);
+      if ((d.nominal > 0 && d.low < 0) || (d.nominal < 0 && d.high > 0))
+        throw u->error("reaches " + JsonValue::format(d.nominal > 0 ? d.low : d.high, d.dimension) +
+                       ": the scene's value " + JsonValue::format(d.nominal, d.dimension) +
+                       " must keep its sign in every draw");
     }
     out.push_back(d);
   }
@@ -483,29 +494,45 @@ void write_curve_bands(const std::vector<MonteCarloJobResult>& results,
 
 }  // namespace
 
-void write_monte_carlo(const Scene& scene, const std::vector<Distribution>& distributions,
-                       std::uint64_t seed, const std::vector<MonteCarloJob>& jobs,
-                       const std::vector<MonteCarloJobResult>& results, int threads, double wall_s,
-                       const std::filesystem::path& dir) {
+std::vector<std::string> write_monte_carlo(
+    const Scene& scene, const std::vector<Distribution>& distributions, std::uint64_t seed,
+    const std::vector<MonteCarloJob>& jobs, const std::vector<MonteCarloJobResult>& results,
+    int threads, double wall_s, const std::filesystem::path& dir) {
   const MonteCarloJobResult& nominal = results.at(0);
   if (!nominal.ok)
     throw NumericalError("study monte-carlo: the nominal scene does not run: " + nominal.failure);
   std::vector<std::size_t> good, reduced;
   std::vector<std::string> failures;
   std::size_t failed = 0;
+  std::string first_failure, first_unreduced;  // the first cause of each kind, in draw order
   for (std::size_t d = 1; d < results.size(); ++d) {
     if (results[d].ok) good.push_back(d);
     if (results[d].ok && results[d].reduced && nominal.reduced) reduced.push_back(d);
     const std::string& why = results[d].ok ? results[d].reduction_failure : results[d].failure;
     if (!results[d].ok) ++failed;
+    std::string& first = results[d].ok ? first_unreduced : first_failure;
+    if (first.empty()) first = why;
     if (!why.empty() && failures.size() < 3 &&
         std::find(failures.begin(), failures.end(), why) == failures.end())
       failures.push_back(why);
   }
+  const std::string draws = std::to_string(results.size() - 1);
+  // Fewer than two good draws have no spread: the study failed (exit 3), nothing written.
   if (good.size() < 2)
-    throw NumericalError("study monte-carlo: " + std::to_string(failed) + " of " +
-                         std::to_string(results.size() - 1) + " draws failed" +
-                         (failures.empty() ? std::string() : ": " + failures.front()));
+    throw NumericalError("study monte-carlo: " + std::to_string(failed) + " of " + draws +
+                         " draws failed" +
+                         (first_failure.empty() ? std::string() : ": " + first_failure));
+  // Some failed: the bands are over the others, said on stderr as in summary.json.
+  std::vector<std::string> warnings;
+  if (failed > 0)
+    warnings.push_back("study monte-carlo: " + std::to_string(failed) + " of " + draws +
+                       " draws failed (summary.json failed_draws), the bands are over the " +
+                       std::to_string(good.size()) + " others; the first: " + first_failure);
+  if (const std::size_t unreduced = good.size() - reduced.size(); nominal.reduced && unreduced > 0)
+    warnings.push_back("study monte-carlo: " + std::to_string(unreduced) + " of " + draws +
+                       " draws ran but were not reduced (summary.json unreduced_draws)" +
+                       (reduced.size() < 2 ? ", so no curve_bands.csv" : "") +
+                       "; the first: " + first_unreduced);
   write_draws(distributions, jobs, results, dir / schema::draws::kFile);
   write_gauge_bands(results, good, dir / schema::gauge_bands::kFile);
   if (reduced.size() >= 2) write_curve_bands(results, reduced, dir / schema::curve_bands::kFile);
@@ -559,6 +586,7 @@ void write_monte_carlo(const Scene& scene, const std::vector<Distribution>& dist
   j["threads"] = threads;
   j["wall_time_s"] = wall_s;
   write_text_file(dir / "summary.json", j.dump(2) + "\n");
+  return warnings;
 }
 
 }  // namespace shpb

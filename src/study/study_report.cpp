@@ -184,17 +184,19 @@ void write_stability(const StabilityStudy& study, const Scene& scene, int refine
 
 }  // namespace
 
-void write_study(const StudyPlan& plan, const Scene& scene, const StudyResults& results,
-                 int threads, double wall_s, const std::filesystem::path& dir) {
+std::vector<std::string> write_study(const StudyPlan& plan, const Scene& scene,
+                                     const StudyResults& results, int threads, double wall_s,
+                                     const std::filesystem::path& dir) {
   if (plan.sweep == Sweep::kMonteCarlo)
-    write_monte_carlo(scene, plan.distributions, plan.seed, plan.monte_carlo, results.monte_carlo,
-                      threads, wall_s, dir);
-  else if (plan.sweep == Sweep::kStability)
+    return write_monte_carlo(scene, plan.distributions, plan.seed, plan.monte_carlo,
+                             results.monte_carlo, threads, wall_s, dir);
+  if (plan.sweep == Sweep::kStability)
     write_stability(
         assemble_stability(stability_probe_scene(scene), plan.stability, results.stability), scene,
         plan.refine, threads, wall_s, dir);
   else
     write_pareto(assemble_pareto(scene, plan.pareto, results.pareto), scene, threads, wall_s, dir);
+  return {};
 }
 
 }  // namespace shpb

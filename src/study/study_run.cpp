@@ -216,9 +216,10 @@ MergedStudy merge_study_parts(const StudyPlan& plan, const std::filesystem::path
   for (const auto& f : scene_inputs(scene, false)) inputs.push_back(f);
   const MergedParts merged = merge_parts(plan, scene, dir);
   OutputFolder out(output, "study", inputs);
-  write_study(plan, scene, merged.results, merged.threads, merged.wall_s, out.path());
+  std::vector<std::string> warnings =
+      write_study(plan, scene, merged.results, merged.threads, merged.wall_s, out.path());
   out.commit();
-  return {out.final_path(), merged.parts.size(), scene.name};
+  return {out.final_path(), merged.parts.size(), scene.name, std::move(warnings)};
 }
 
 }  // namespace shpb

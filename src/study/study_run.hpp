@@ -84,6 +84,7 @@ struct MergedStudy {
   std::filesystem::path folder;
   std::size_t parts = 0;
   std::string scene_name;
+  std::vector<std::string> warnings;  // write_study()'s
 };
 MergedStudy merge_study_parts(const StudyPlan& plan, const std::filesystem::path& dir,
                               const std::filesystem::path& output);

@@ -431,4 +431,57 @@ TEST_CASE("Every command that takes a scene refuses a bad scene with the same li
   fs::remove_all(root);
 }
 
+// Values each within what the reader accepts on its own but beyond double precision in what a run
+// derives from them (model/computable.hpp): refused before the first step, naming the input.
+TEST_CASE("A scene whose derived quantities overflow or underflow a double is refused, not run",
+          "[app][bad-scenes][computable]") {
+  struct Case {
+    std::string what;
+    std::function<void(json&)> breaks;
+    std::string where;
+  };
+  const std::vector<Case> table = {
+      {"a striker 1e300 mm across: its area overflows",
+       [](json& s) { s["bars"][0]["diameter"] = "1e300 mm"; }, "bars[0].diameter: 1e+297 m: "},
+      {"a specimen 1e-200 mm across: its area underflows to 0",
+       [](json& s) { s["bars"][2]["diameter"] = "1e-200 mm"; }, "bars[2].diameter: 1e-203 m: "},
+      {"a contact rise time of 1e-300 us: its penalty stiffness overflows",
+       [](json& s) { s["contact"]["rise_time"] = "1e-300 us"; }, "contact.rise_time: 1e-306 s: "},
+      {"an interface's stiffness factor of 1e300",
+       [](json& s) {
+         s["contact"]["interfaces"] = {
+             {{"between", {"striker", "incident"}}, {"stiffness_factor", 1e300}}};
+       },
+       "contact.interfaces[0].stiffness_factor: 1e+300: "},
+      {"a striker at 1e300 m/s: its kinetic energy overflows",
+       [](json& s) { s["bars"][0]["velocity"] = "1e300 m/s"; }, "bars[0].velocity: 1e+300 m/s: "},
+  };
+  const auto root = shpb_test::scratch_dir("bad_scenes_computable");
+  for (std::size_t i = 0; i < table.size(); ++i) {
+    INFO(table[i].what);
+    const auto dir = root / ("case" + std::to_string(i));
+    fs::create_directories(dir);
+    json scene = base_scene();
+    scene.erase("measurement");
+    table[i].breaks(scene);
+    std::ofstream(dir / "scene.json") << scene.dump(2);
+    std::ofstream(dir / "specimen.json") << base_specimen().dump(2);
+    const auto r = run_shpb({"validate", (dir / "scene.json").string()});
+    INFO("stderr: " << r.err);
+    CHECK(r.code == 2);
+    CHECK(r.err.rfind("error: " + (dir / "scene.json").string() + ": " + table[i].where, 0) == 0);
+    CHECK(r.err.find("double precision") != std::string::npos);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    if (i == 0) {  // simulate refuses it alike, before writing anything
+      const auto before = listing(dir);
+      const auto sim =
+          run_shpb({"simulate", (dir / "scene.json").string(), "-o", (dir / "out").string()});
+      CHECK(sim.code == 2);
+      CHECK(sim.err == r.err);
+      CHECK(listing(dir) == before);
+    }
+  }
+  fs::remove_all(root);
+}
+
 }  // namespace tests_app_test_bad_scenes

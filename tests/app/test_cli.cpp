@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "run_shpb.hpp"
@@ -130,6 +131,37 @@ TEST_CASE("Usage errors exit 2 with one error line", "[app][cli]") {
     CHECK(r.err.rfind("error: ", 0) == 0);
     CHECK(lines(r.err).size() == 1);
     CHECK(r.out.empty());
+  }
+}
+
+// Seeds, thread counts and positive sizes are checked where the options are declared
+// (app/cli_options.hpp), before any file is read: "-1" is not wrapped to 2^64 - 1 nor taken as
+// "all cores", a seed past 2^64 - 1 is not saturated, NaN and inf are no size.
+TEST_CASE("Numeric options refuse a sign, a fraction, NaN, inf or an overflow", "[app][cli]") {
+  const std::string missing = "/nonexistent/input.json";
+  const std::string out = (shpb_test::scratch_dir("cli_numbers") / "out").string();
+  for (const auto& [args, says] : std::vector<std::pair<std::string, std::string>>{
+           {"study " + missing + " -o " + out + " --seed -1",
+            "--seed: -1: expected a whole number"},
+           {"process " + missing + " -o " + out + " --seed 18446744073709551616",
+            "--seed: 18446744073709551616: expected a whole number"},
+           {"fit " + missing + " -o " + out + " --seed 1.5",
+            "--seed: 1.5: expected a whole number"},
+           {"process " + missing + " -o " + out + " --threads -1",
+            "--threads: -1: expected a whole number"},
+           {"simulate " + missing + " -o " + out + " --threads nan",
+            "--threads: nan: expected a whole number"},
+           {"dispersion --poisson 0.3 --max-a-over-lambda inf",
+            "--max-a-over-lambda: inf: expected a finite number > 0"},
+           // The largest seed is a seed: the error is then the missing file's.
+           {"process " + missing + " -o " + out + " --seed 18446744073709551615",
+            missing + ": no such file"}}) {
+    INFO("shpb " << args);
+    const auto r = shpb(args);
+    CHECK(r.code == 2);
+    CHECK(r.err.rfind("error: " + says, 0) == 0);
+    CHECK(lines(r.err).size() == 1);
+    CHECK_FALSE(fs::exists(out));
   }
 }
 

@@ -1,4 +1,5 @@
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cstdlib>
 #include <filesystem>
@@ -116,6 +117,38 @@ TEST_CASE("The LANL copper and PMMA tests process end to end from the scene alon
     CHECK(s["strain_rate"]["mean_over_loading_1_s"].get<double>() > 1000);
     CHECK(s["dispersion"]["correction"] == "pochhammer-chree");
     CHECK(fs::file_size(out / "curve.csv") > 1000);
+  }
+}
+
+// A normal draw of a bar's modulus with a standard uncertainty above a sixth of it crosses zero
+// often enough to matter (model/uncertainty_reader.hpp: kSignKeepingSigmas): refused before any
+// draw, naming the JSON path, the value and its uncertainty; a sixth of it is drawn.
+TEST_CASE("process refuses an uncertainty that would draw a positive quantity <= 0",
+          "[app][process][uncertainty]") {
+  const fs::path dir = temp_dir("uncertainty_sign");
+  nlohmann::json scene = shpb_test::steel_scene();
+  for (const auto& [given, refused] :
+       {std::pair{"250 GPa", true}, std::pair{"34 GPa", true}, std::pair{"33 GPa", false}}) {
+    CAPTURE(given);
+    scene["measurement"]["uncertainty"] = {{"bars", {{"incident", {{"youngs_modulus", given}}}}}};
+    const fs::path file = shpb_test::write(dir, scene, good_signals());
+    fs::remove_all(dir / "out");
+    const auto r = run_shpb(
+        {"process", file.string(), "-o", (dir / "out").string(), "--draws", "20", "--quiet"});
+    INFO(r.err);
+    if (!refused) {
+      CHECK(r.code == 0);
+      continue;
+    }
+    CHECK(r.code == 2);
+    // The error is the last line (the nominal reduction's warnings on this record come first).
+    const std::string last = r.err.substr(r.err.rfind("error: "));
+    CHECK(last.rfind("error: " + file.string() +
+                         ": measurement.uncertainty.bars.incident.youngs_modulus: ",
+                     0) == 0);
+    CHECK(last.find("on a value of 2e+11 Pa that must stay > 0") != std::string::npos);
+    CHECK(std::count(last.begin(), last.end(), '\n') == 1);
+    CHECK_FALSE(fs::exists(dir / "out"));
   }
 }
 

@@ -125,6 +125,11 @@ TEST_CASE("A normal striker velocity gives the incident plateau band of eps = v/
          {std::pair{R"({"values": {"striker.velocty": {"normal": "1 %"}}})", "striker.velocity"},
           std::pair{R"({"values": {"striker.velocity": {"normal": "-1 m/s"}}})", "normal"},
           std::pair{R"({"values": {"bar.length": {"uniform": ["2 m", "1 m"]}}})", "low < high"},
+          // A striker at 10 m/s drawn with s.d. 12 m/s (or from [-1, 20] m/s) goes backwards in
+          // many draws: the spread must keep the sign (s.d. below a sixth of the value).
+          std::pair{R"({"values": {"striker.velocity": {"normal": "12 m/s"}}})", "must stay > 0"},
+          std::pair{R"({"values": {"striker.velocity": {"uniform": ["-1 m/s", "20 m/s"]}}})",
+                    "must keep its sign"},
           // JSON lets the second "values" silently win; every input of shpb refuses it.
           std::pair{R"({"values": {"striker.velocity": {"normal": "1 %"}}, "values": {}})",
                     "values: duplicate key"}}) {
@@ -140,6 +145,46 @@ TEST_CASE("A normal striker velocity gives the incident plateau band of eps = v/
       CHECK_FALSE(fs::exists(dir / "bad"));
     }
   }
+}
+
+// A draw whose Poisson's ratio reaches 0.5 is refused by the scene (an incompressible solid has
+// no finite bulk modulus) and fails alone: a third of the draws of [0.3, 0.6], all of [0.5, 0.6].
+TEST_CASE("A Monte Carlo study warns of its failed draws, and fails when every draw fails",
+          "[study][monte-carlo]") {
+  const fs::path dir = shpb_test::scratch_dir("study_failed_draws");
+  const fs::path dist = dir / "distributions.json";
+  const auto study = [&](const char* range) {
+    std::ofstream(dist) << std::string(R"({"values": {"bar.poisson_ratio": {"uniform": )") + range +
+                               "}}}";
+    fs::remove_all(dir / "out");
+    return shpb_test::run_shpb({"study", kStrikerOnBar, "-o", (dir / "out").string(), "--sweep",
+                                "monte-carlo", "--distributions", dist.string(), "--draws", "6",
+                                "-q"});
+  };
+  const auto some = study("[0.3, 0.6]");
+  INFO(some.err);
+  REQUIRE(some.code == 0);
+  const auto summary = nlohmann::json::parse(shpb_test::read_text(dir / "out" / "summary.json"));
+  const auto failed = summary.at("failed_draws").get<std::size_t>();
+  REQUIRE(failed > 0);
+  REQUIRE(failed < 6);
+  CHECK(some.err.rfind(
+            "warning: study monte-carlo: " + std::to_string(failed) + " of 6 draws failed", 0) ==
+        0);
+  CHECK(some.err.find("the first: bar.poisson_ratio drawn") != std::string::npos);
+  CHECK(std::count(some.err.begin(), some.err.end(), '\n') == 1);
+
+  const auto all = study("[0.5, 0.6]");
+  INFO(all.err);
+  CHECK(all.code == 3);
+  CHECK(all.err.rfind("error: study monte-carlo: 6 of 6 draws failed: bar.poisson_ratio drawn",
+                      0) == 0);
+  CHECK(std::count(all.err.begin(), all.err.end(), '\n') == 1);
+  // Nothing written: neither the output folder nor a temporary one beside it.
+  std::vector<std::string> left;
+  for (const auto& e : fs::directory_iterator(dir)) left.push_back(e.path().filename().string());
+  CHECK(left == std::vector<std::string>{"distributions.json"});
+  fs::remove_all(dir);
 }
 
 TEST_CASE("A Monte Carlo study run in shards through parts equals the in-process study",
