@@ -464,9 +464,15 @@ PulseTiming time_the_pulses(const std::vector<double>& t, double dt, std::size_t
                                                   inc.x.begin() + static_cast<std::ptrdiff_t>(end));
   while (inc_half + 1 < end && -inc.x[inc_half] < 0.5 * incident_peak) ++inc_half;
   r.incident_rise_s = t[inc_half] - t[on];
+  // A reflected front due before the incident pulse has ended on its gauge (a gauge closer to the
+  // specimen than half the pulse's length) cannot be told from that pulse: no onset is sought.
+  const double travel_r = 2 * d_i / c_front;
+  const bool apart =
+      t[end - 1] < expected_r - std::max(kAlignmentSamples * dt, kAlignmentFraction * travel_r);
   const auto i0 = index_at(t, t[end - 1]);
   const auto i1 = index_at(t, expected_r + p.duration);
-  if (const auto o = find_onset(inc.x, {0.0, inc.noise}, reflected_sign(k), i0, i1)) {
+  if (const auto o =
+          apart ? find_onset(inc.x, {0.0, inc.noise}, reflected_sign(k), i0, i1) : std::nullopt) {
     p.reflected_onset_s = t[o->onset];
     r.reflected_onset_offset_s = t[o->onset] - expected_r;
     r.reflected_rise_s = t[o->half] - t[o->onset];
