@@ -115,10 +115,7 @@ void refuse_cut_last_line(const DelimitedText& text, std::size_t first_data,
                           const std::vector<std::size_t>& columns,
                           const std::vector<std::string_view>& names) {
   constexpr std::size_t kRowsToJudgeBy = 2;
-  const std::string& bytes = *text.bytes;
-  if (bytes.empty() || bytes.back() == '\n' || bytes.back() == '\r' || bytes.back() == ' ' ||
-      bytes.back() == '\t' || text.rows.size() < first_data + kRowsToJudgeBy + 1)
-    return;
+  if (!text.last_row_unterminated || text.rows.size() < first_data + kRowsToJudgeBy + 1) return;
   const char mark = text.decimal_comma ? ',' : '.';
   const TextRow& last = text.rows.back();
   for (std::size_t k = 0; k < columns.size(); ++k) {
