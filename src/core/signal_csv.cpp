@@ -128,7 +128,8 @@ void refuse_cut_last_line(const DelimitedText& text, std::size_t first_data,
       uniform = shape_of(text.rows[i].fields[c], mark) == fixed;
     if (!uniform) continue;
     const auto written = [](const NumberShape& n) {
-      return std::to_string(n.decimals) + " decimals" + (n.exponent ? " and an exponent" : "");
+      return std::to_string(n.decimals) + (n.decimals == 1 ? " decimal" : " decimals") +
+             (n.exponent ? " and an exponent" : "");
     };
     throw input_error(
         text.file.string(),
