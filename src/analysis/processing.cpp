@@ -630,9 +630,11 @@ void reduce_at_faces(const std::vector<double>& t, double dt, const FacePulses& 
 // at the first sample from which the 1-wave stress stays below (1 − f) × the peak it had
 // reached. The transmitted face carries neither the front face's start-up ringing nor the
 // incident–reflected alignment, and a drop that recovers (an early overshoot) is not the end.
-// Returns whether a load drop ended it.
-bool find_loading_end(const std::vector<double>& strain, const ProcessingOptions& options,
-                      ProcessingResult& r) {
+// A maximum before `ring_up` (the specimen still ringing up) is an overshoot, not the end of
+// loading — an elastic specimen's strain then stays on a plateau below it —, so the load drop is
+// then sought to the record's end. Returns whether a load drop ended it.
+bool find_loading_end(const std::vector<double>& strain, std::size_t ring_up,
+                      const ProcessingOptions& options, ProcessingResult& r) {
   const std::vector<double>& s1 = r.curve.stress_1wave_Pa;
   const auto strain_max =
       static_cast<std::size_t>(std::max_element(strain.begin(), strain.end()) - strain.begin());
@@ -640,11 +642,12 @@ bool find_loading_end(const std::vector<double>& strain, const ProcessingOptions
   r.loading_end = strain_max + 1;
   r.loading_end_how = "strain maximum";
   if (options.load_drop <= 0) return false;
-  std::vector<double> later(strain_max + 1);  // largest 1-wave stress from i to the maximum
-  later[strain_max] = s1[strain_max];
-  for (std::size_t i = strain_max; i-- > 0;) later[i] = std::max(s1[i], later[i + 1]);
+  const std::size_t last = strain_max < ring_up ? strain.size() - 1 : strain_max;
+  std::vector<double> later(last + 1);  // largest 1-wave stress from i to `last`
+  later[last] = s1[last];
+  for (std::size_t i = last; i-- > 0;) later[i] = std::max(s1[i], later[i + 1]);
   double reached = 0;
-  for (std::size_t i = 0; i <= strain_max; ++i) {
+  for (std::size_t i = 0; i <= last; ++i) {
     reached = std::max(reached, s1[i]);
     if (reached > 0 && later[i] < (1 - options.load_drop) * reached) {
       r.loading_end = i;
@@ -818,7 +821,14 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
   r.primary = options.primary;
   const std::vector<double>& strain = one_wave ? c.strain_1wave : c.strain;
   const std::vector<double>& rate = one_wave ? c.strain_rate_1wave_1_s : c.strain_rate_1_s;
-  summarize_loading(one_wave, find_loading_end(strain, options, r), r);
+  // The specimen rings up over a few transits once the incident front has risen (Davies & Hunter);
+  // without its wave speed no ring-up is assumed.
+  const std::size_t ring_up =
+      k.specimen_transit_s > 0
+          ? index_at(r.time_s,
+                     r.time_s[0] + r.incident_rise_s + (1 + kRingUpTransits) * k.specimen_transit_s)
+          : 0;
+  summarize_loading(one_wave, find_loading_end(strain, ring_up, options, r), r);
   judge_strain_rate(rate, r.loading_end, r);
   mean_rate_in_window(strain, rate, options, r);
   r.area_ratio = k.front.area_m2 / k.specimen.area_m2;

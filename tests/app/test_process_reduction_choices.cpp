@@ -496,6 +496,11 @@ TEST_CASE("A specimen stiffer than the bars first reflects a compressive pulse, 
         kOnsetSamples * kDt);
   CHECK_FALSE(s["alignment"]["suspect"].get<bool>());
   CHECK(r.err.find("the reflected pulse starts") == std::string::npos);
+  // The elastic specimen's strain overshoots in its ring-up and then stays below that maximum:
+  // the loading runs on to the load drop at the pulse's end, where 1- and 2-wave stresses agree.
+  CHECK(s["end_of_loading"]["how"].get<std::string>().rfind("load drop", 0) == 0);
+  CHECK_FALSE(s["end_of_loading"]["cut_short"].get<bool>());
+  CHECK(r.err.find("disagree") == std::string::npos);
 }
 
 }  // namespace tests_app_test_process_reduction_choices
