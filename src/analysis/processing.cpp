@@ -67,6 +67,17 @@ std::string percent(double fraction) {
   return fmt(100 * fraction < 99.95 ? "%.3g %%" : "%.0f %%", 100 * fraction);
 }
 
+// How far the reflected onset may lie from the geometric one: a few samples or a fraction of the
+// travel time (as a transmitted onset), and, earlier, by as much as the reflected front rises more
+// slowly than the incident one. An onset is picked at the foot of its front, and a front that is
+// wider — dispersed over its longer path, shaped by the specimen's ring-up, or spread by a model's
+// elements at an interface — has its foot earlier by up to its extra rise with nothing mistimed.
+double reflected_tolerance_s(const ProcessingResult& r, double dt, double travel_s) {
+  const double wider = std::max(0.0, r.reflected_rise_s - r.incident_rise_s);
+  return std::max(kAlignmentSamples * dt, kAlignmentFraction * travel_s) +
+         (*r.reflected_onset_offset_s < 0 ? wider : 0.0);
+}
+
 // A detected onset further from the geometric one than a few samples or 2 % of the travel time
 // means a gauge position or a wave speed in the scene is wrong: the reflected pulse has travelled
 // 2 d_I (so its offset δ_R = 2 e_I/c0), the transmitted one d_I + d_T (δ_T − δ_R/2 = e_T/c0).
@@ -76,8 +87,7 @@ void check_alignment(ProcessingResult& r, const KolskySetup& k, double dt,
   const double travel_r = 2 * k.incident_distance_m / c_f;
   if (r.reflected_onset_offset_s) {
     const double off = *r.reflected_onset_offset_s;
-    const double tol = std::max(kAlignmentSamples * dt, kAlignmentFraction * travel_r);
-    if (std::abs(off) > tol) {
+    if (std::abs(off) > reflected_tolerance_s(r, dt, travel_r)) {
       const double e = 0.5 * off * c_f;  // gauge farther (+) or closer (−) than the scene says
       const double speed = travel_r / (travel_r + off) - 1;  // signed: + faster
       warnings.push_back(
@@ -288,8 +298,10 @@ KolskySetup resolve_setup(const Scene& scene, const std::vector<std::string>& av
                             "] for a bar whose pulses are processed (dispersion "
                             "tables cover that range; auxetic bars are not supported)");
   k.specimen = {scene.bars[s].length_m, scene.bars[s].area_m2};
-  if (const double c = scene.bars[s].material.wave_speed_m_s(); c > 0)
+  if (const double c = scene.bars[s].material.wave_speed_m_s(); c > 0) {
     k.specimen_transit_s = scene.bars[s].length_m / c;
+    k.specimen_impedance_kg_s = scene.bars[s].impedance_kg_s();
+  }
   k.incident_impedance_kg_s = inc.impedance_kg_s();
   if (scene.measurement && scene.measurement->reflected_time_s) {
     // The model's round trip is 2d/c0; the calibration says how much longer the real bar takes.
@@ -416,6 +428,16 @@ std::pair<std::size_t, std::size_t> incident_samples(const std::vector<double>& 
   return {on, end};
 }
 
+// The sign of the reflected pulse's front on the incident gauge, whose incident pulse is negative
+// here: at the front face σ_R/σ_I = (Z_s − Z_b)/(Z_s + Z_b) until the specimen rings up
+// (docs/methods.md §6), so a specimen of lower impedance ρ c0 A than the incident bar first
+// reflects a tensile pulse (+), a stiffer one a compressive pulse (−). Without the specimen's
+// modulus the usual softer specimen is assumed.
+double reflected_sign(const KolskySetup& k) {
+  return k.specimen_impedance_kg_s && *k.specimen_impedance_kg_s > k.incident_impedance_kg_s ? -1.0
+                                                                                             : 1.0;
+}
+
 // Where the pulses are expected at the gauges and at the faces, where they were detected, and the
 // extra time shifts of the reflected and transmitted pulses after the move by the gauge distances.
 struct PulseTiming {
@@ -437,11 +459,23 @@ PulseTiming time_the_pulses(const std::vector<double>& t, double dt, std::size_t
   const double expected_t = t[on] + d_i / c_front + k.specimen_transit_s + d_t / c_back;
   // Alignment check: where the reflected and transmitted pulses really start against where
   // geometry puts them.
+  std::size_t inc_half = on;  // first half-peak sample of the incident pulse: its front's rise
+  const double incident_peak = -*std::min_element(inc.x.begin() + static_cast<std::ptrdiff_t>(on),
+                                                  inc.x.begin() + static_cast<std::ptrdiff_t>(end));
+  while (inc_half + 1 < end && -inc.x[inc_half] < 0.5 * incident_peak) ++inc_half;
+  r.incident_rise_s = t[inc_half] - t[on];
+  // A reflected front due before the incident pulse has ended on its gauge (a gauge closer to the
+  // specimen than half the pulse's length) cannot be told from that pulse: no onset is sought.
+  const double travel_r = 2 * d_i / c_front;
+  const bool apart =
+      t[end - 1] < expected_r - std::max(kAlignmentSamples * dt, kAlignmentFraction * travel_r);
   const auto i0 = index_at(t, t[end - 1]);
   const auto i1 = index_at(t, expected_r + p.duration);
-  if (const auto o = find_onset(inc.x, {0.0, inc.noise}, +1.0, i0, i1)) {
-    p.reflected_onset_s = t[*o];
-    r.reflected_onset_offset_s = t[*o] - expected_r;
+  if (const auto o =
+          apart ? find_onset(inc.x, {0.0, inc.noise}, reflected_sign(k), i0, i1) : std::nullopt) {
+    p.reflected_onset_s = t[o->onset];
+    r.reflected_onset_offset_s = t[o->onset] - expected_r;
+    r.reflected_rise_s = t[o->half] - t[o->onset];
   }
   if (const auto q = find_first_pulse(tra.x, {0.0, tra.noise})) {
     p.transmitted_onset_s = t[q->onset];
@@ -596,9 +630,11 @@ void reduce_at_faces(const std::vector<double>& t, double dt, const FacePulses& 
 // at the first sample from which the 1-wave stress stays below (1 − f) × the peak it had
 // reached. The transmitted face carries neither the front face's start-up ringing nor the
 // incident–reflected alignment, and a drop that recovers (an early overshoot) is not the end.
-// Returns whether a load drop ended it.
-bool find_loading_end(const std::vector<double>& strain, const ProcessingOptions& options,
-                      ProcessingResult& r) {
+// A maximum before `ring_up` (the specimen still ringing up) is an overshoot, not the end of
+// loading — an elastic specimen's strain then stays on a plateau below it —, so the load drop is
+// then sought to the record's end. Returns whether a load drop ended it.
+bool find_loading_end(const std::vector<double>& strain, std::size_t ring_up,
+                      const ProcessingOptions& options, ProcessingResult& r) {
   const std::vector<double>& s1 = r.curve.stress_1wave_Pa;
   const auto strain_max =
       static_cast<std::size_t>(std::max_element(strain.begin(), strain.end()) - strain.begin());
@@ -606,11 +642,12 @@ bool find_loading_end(const std::vector<double>& strain, const ProcessingOptions
   r.loading_end = strain_max + 1;
   r.loading_end_how = "strain maximum";
   if (options.load_drop <= 0) return false;
-  std::vector<double> later(strain_max + 1);  // largest 1-wave stress from i to the maximum
-  later[strain_max] = s1[strain_max];
-  for (std::size_t i = strain_max; i-- > 0;) later[i] = std::max(s1[i], later[i + 1]);
+  const std::size_t last = strain_max < ring_up ? strain.size() - 1 : strain_max;
+  std::vector<double> later(last + 1);  // largest 1-wave stress from i to `last`
+  later[last] = s1[last];
+  for (std::size_t i = last; i-- > 0;) later[i] = std::max(s1[i], later[i + 1]);
   double reached = 0;
-  for (std::size_t i = 0; i <= strain_max; ++i) {
+  for (std::size_t i = 0; i <= last; ++i) {
     reached = std::max(reached, s1[i]);
     if (reached > 0 && later[i] < (1 - options.load_drop) * reached) {
       r.loading_end = i;
@@ -708,7 +745,7 @@ void warn_reflected_offset(const ShiftStressError& stress_change, const KolskySe
         stress_change(r.reflected, k.front, *r.reflected_onset_offset_s);
   if (!(stress_change.has_scale() && r.reflected_offset_stress_error &&
         !options.windows.reflected && !r.reflected_at_onset &&
-        std::abs(*r.reflected_onset_offset_s) > kAlignmentSamples * dt &&
+        std::abs(*r.reflected_onset_offset_s) > reflected_tolerance_s(r, dt, 0) &&
         *r.reflected_offset_stress_error > kShiftStressError))
     return;
   const std::string effect =
@@ -784,7 +821,14 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
   r.primary = options.primary;
   const std::vector<double>& strain = one_wave ? c.strain_1wave : c.strain;
   const std::vector<double>& rate = one_wave ? c.strain_rate_1wave_1_s : c.strain_rate_1_s;
-  summarize_loading(one_wave, find_loading_end(strain, options, r), r);
+  // The specimen rings up over a few transits once the incident front has risen (Davies & Hunter);
+  // without its wave speed no ring-up is assumed.
+  const std::size_t ring_up =
+      k.specimen_transit_s > 0
+          ? index_at(r.time_s,
+                     r.time_s[0] + r.incident_rise_s + (1 + kRingUpTransits) * k.specimen_transit_s)
+          : 0;
+  summarize_loading(one_wave, find_loading_end(strain, ring_up, options, r), r);
   judge_strain_rate(rate, r.loading_end, r);
   mean_rate_in_window(strain, rate, options, r);
   r.area_ratio = k.front.area_m2 / k.specimen.area_m2;

@@ -23,6 +23,7 @@ struct KolskySetup {
   BarWaveguide front_waveguide, back_waveguide;
   SpecimenGeometry specimen;
   double specimen_transit_s = 0;  // L_s / c0 of the specimen (0 when its material is not given)
+  std::optional<double> specimen_impedance_kg_s;  // ρ c0 A_s, when its modulus is given
   // Striker (the bar left of the incident bar), for the inferred velocity: impedance ratio.
   std::optional<double> striker_impedance_kg_s;
   double incident_impedance_kg_s = 0;
@@ -106,6 +107,8 @@ struct ProcessingResult {
   std::optional<double> reflected_onset_offset_s;    // detected − expected (alignment check)
   std::optional<double> transmitted_onset_offset_s;  // detected − expected (alignment check)
   double transmitted_rise_s = 0;                     // onset to half peak of the transmitted front
+  double reflected_rise_s = 0;                       // … and of the reflected front
+  double incident_rise_s = 0;                        // … and of the incident front
   bool alignment_suspect = false;  // an onset is off: a gauge position or wave speed is wrong
   bool reflected_at_onset = false, transmitted_at_onset = false;  // align "onsets" applied
   // Largest change of the 3-wave stress over the loading, as a fraction of the 1-wave peak, that

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 #include <vector>
 
 #include "core/median.hpp"
@@ -13,13 +14,15 @@ constexpr double kNoiseSigmas = 5.0;           // band of the baseline, in σ
 constexpr double kBandOfPeak = 0.03;           // … and at least this fraction of the peak
 constexpr double kDetectFractionOfPeak = 0.5;  // a pulse is found at half its height
 constexpr double kMadToSigma = 1.4826;         // σ of Gaussian noise from its MAD
+constexpr std::size_t kMinRestSamples = 10;    // as estimate_baseline's smallest quiet segment
 
 }  // namespace
 
 Baseline estimate_baseline(std::span<const double> x, double fraction) {
   const std::size_t n = std::min(
-      x.size(), std::max<std::size_t>(
-                    10, static_cast<std::size_t>(fraction * static_cast<double>(x.size()))));
+      x.size(),
+      std::max<std::size_t>(kMinRestSamples,
+                            static_cast<std::size_t>(fraction * static_cast<double>(x.size()))));
   std::vector<double> seg(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(n));
   Baseline b;
   b.level = median(seg);
@@ -72,17 +75,29 @@ std::optional<PulseWindow> find_first_pulse(std::span<const double> x, const Bas
   return w;
 }
 
-std::optional<std::size_t> find_onset(std::span<const double> x, const Baseline& b, double sign,
-                                      std::size_t from, std::size_t to) {
+std::optional<Onset> find_onset(std::span<const double> x, const Baseline& b, double sign,
+                                std::size_t from, std::size_t to) {
   to = std::min(to, x.size());
-  double peak = 0;
-  for (std::size_t i = from; i < to; ++i) peak = std::max(peak, sign * (x[i] - b.level));
-  const double band = std::max(kNoiseSigmas * b.noise, kBandOfPeak * peak);
-  if (!(peak > 2 * band)) return std::nullopt;
-  std::size_t i = from;
-  while (i < to && sign * (x[i] - b.level) < kDetectFractionOfPeak * peak) ++i;
-  while (i > from && sign * (x[i - 1] - b.level) > band) --i;
-  return i;
+  if (from >= to) return std::nullopt;
+  // The pulse's first half-peak sample above `level`, with the band below which it is at rest.
+  auto front = [&](double level) {
+    double peak = 0;
+    for (std::size_t i = from; i < to; ++i) peak = std::max(peak, sign * (x[i] - level));
+    std::size_t i = from;
+    while (i < to && sign * (x[i] - level) < kDetectFractionOfPeak * peak) ++i;
+    return std::tuple{i, peak, std::max(kNoiseSigmas * b.noise, kBandOfPeak * peak)};
+  };
+  // The level at rest is the median from `from` to the half-peak sample: the record there is
+  // mostly at rest (a preceding pulse's tail, a staircase's later step), the front's rise is short.
+  double level = b.level;
+  if (const auto [half, peak, band] = front(b.level); half - from >= kMinRestSamples)
+    level = median(std::vector<double>(x.begin() + static_cast<std::ptrdiff_t>(from),
+                                       x.begin() + static_cast<std::ptrdiff_t>(half)));
+  const auto [half, peak, band] = front(level);
+  if (!(peak > 2 * band) || half == to) return std::nullopt;
+  Onset o{half, half};
+  while (o.onset > from && sign * (x[o.onset - 1] - level) > band) --o.onset;
+  return o;
 }
 
 double plateau_level(std::span<const double> x, std::size_t begin, std::size_t end, double sign) {

@@ -29,9 +29,14 @@ struct PulseWindow {
 std::optional<PulseWindow> find_first_pulse(std::span<const double> x, const Baseline& baseline,
                                             std::size_t from = 0);
 
-// Onset of a pulse of the given sign after sample `from`, the same way; nullopt if none.
-std::optional<std::size_t> find_onset(std::span<const double> x, const Baseline& baseline,
-                                      double sign, std::size_t from, std::size_t to);
+// Onset of a pulse of the given sign in [from, to), the same way, and its first half-peak
+// sample (onset to half is the front's rise); nullopt if none.
+struct Onset {
+  std::size_t onset = 0;
+  std::size_t half = 0;
+};
+std::optional<Onset> find_onset(std::span<const double> x, const Baseline& baseline, double sign,
+                                std::size_t from, std::size_t to);
 
 // Median over the samples of x[begin, end) that are at least half of their 95th percentile
 // (times sign): the plateau of a pulse, insensitive to its ramps and to single spikes.

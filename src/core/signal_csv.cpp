@@ -90,6 +90,57 @@ std::size_t resolve(const DelimitedText& text, const TextRow* header, const Colu
                     "no such column: the file has no header row (give the column as an index)");
 }
 
+// How a number is written: its decimals and whether it has an exponent. A column exported in a
+// fixed format ("%.6e", "%.4f") writes every value the same way.
+struct NumberShape {
+  std::size_t decimals = 0;
+  bool exponent = false;
+  bool operator==(const NumberShape&) const = default;
+};
+NumberShape shape_of(std::string_view field, char decimal_mark) {
+  const auto e = field.find_first_of("eE");
+  const std::string_view mantissa = field.substr(0, e);
+  const auto mark = mantissa.find(decimal_mark);
+  return {mark == std::string_view::npos ? 0 : mantissa.size() - mark - 1,
+          e != std::string_view::npos};
+}
+
+// A file that ends inside its last line (no line end after it) may have been cut there. When
+// that line still parses ("1.2e-05" cut to "1.2"), the cut shows only in a column written in a
+// fixed format: all the other rows' values have the same decimals (and exponent), the last one
+// fewer. Such a last line is refused by line and column. A column of varying widths ("%g") gives
+// nothing to judge by, and a last line without a line end is otherwise accepted (some exports
+// write none).
+void refuse_cut_last_line(const DelimitedText& text, std::size_t first_data,
+                          const std::vector<std::size_t>& columns,
+                          const std::vector<std::string_view>& names) {
+  constexpr std::size_t kRowsToJudgeBy = 2;
+  if (!text.last_row_unterminated || text.rows.size() < first_data + kRowsToJudgeBy + 1) return;
+  const char mark = text.decimal_comma ? ',' : '.';
+  const TextRow& last = text.rows.back();
+  for (std::size_t k = 0; k < columns.size(); ++k) {
+    const std::size_t c = columns[k];
+    const NumberShape cut = shape_of(last.fields[c], mark);
+    const NumberShape fixed = shape_of(text.rows[first_data].fields[c], mark);
+    if (cut.decimals >= fixed.decimals && cut.exponent == fixed.exponent) continue;
+    bool uniform = true;
+    for (std::size_t i = first_data + 1; uniform && i + 1 < text.rows.size(); ++i)
+      uniform = shape_of(text.rows[i].fields[c], mark) == fixed;
+    if (!uniform) continue;
+    const auto written = [](const NumberShape& n) {
+      return std::to_string(n.decimals) + (n.decimals == 1 ? " decimal" : " decimals") +
+             (n.exponent ? " and an exponent" : "");
+    };
+    throw input_error(
+        text.file.string(),
+        text_place(last.line, c) + (names[k].empty() ? "" : " (\"" + std::string(names[k]) + "\")"),
+        "\"" + std::string(last.fields[c]) + "\"",
+        "the file ends inside this line, and this value is written with " + written(cut) +
+            " where every other value of the column has " + written(fixed) +
+            ": a line cut off (an interrupted export or copy); expected complete rows");
+  }
+}
+
 RawSignalColumns read_columns(const DelimitedText& text, std::size_t first_data,
                               const TextRow* header, std::size_t time_index,
                               const std::vector<std::size_t>& indices,
@@ -120,8 +171,13 @@ RawSignalColumns read_columns(const DelimitedText& text, std::size_t first_data,
   // A long record is parsed in two halves at once (the process's largest single cost on a
   // million rows); an error in the first half is reported before one in the second, so the
   // message names the first bad field either way.
+  std::vector<std::size_t> columns{time_index};
+  columns.insert(columns.end(), indices.begin(), indices.end());
+  std::vector<std::string_view> names_read{time_name};
+  names_read.insert(names_read.end(), column_names.begin(), column_names.end());
   if (n < kParallelParseRows) {
     parse(0, n);
+    refuse_cut_last_line(text, first_data, columns, names_read);
     return raw;
   }
   const std::size_t half = n / 2;
@@ -142,6 +198,7 @@ RawSignalColumns read_columns(const DelimitedText& text, std::size_t first_data,
   second.join();
   if (first_error) std::rethrow_exception(first_error);
   if (second_error) std::rethrow_exception(second_error);
+  refuse_cut_last_line(text, first_data, columns, names_read);
   return raw;
 }
 

@@ -42,21 +42,62 @@ double round_interval(double dt) {
 
 std::string seconds(double s) { return format_number(s) + " s"; }
 
-// Checks the time stamps: increasing and uniform. Repeated stamps (rounded to fewer digits than
-// the sampling needs) are not an error: the base is rebuilt from a least-squares fit of t against
-// the sample index, with a warning.
+// A few repeated time stamps are repeated rows, not a rounded column: stamps rounded to a step q
+// coarser than the sampling interval repeat in a fraction 1 − dt/q of the rows, which is more than
+// the 2 % by which the reader lets steps differ from the interval (kUniformStepTolerance) unless q
+// is that close to dt. A repeated row whose values read are those of the row before is a row
+// exported twice (a known scope-export glitch): it is skipped with a warning naming its line, so
+// the samples after it keep their times. One with other values is refused: which of the two is
+// the sample at that time cannot be told. The file itself is never changed.
+void drop_repeated_rows(const std::filesystem::path& file, std::vector<std::size_t>& lines,
+                        SignalColumns& out) {
+  std::vector<double>& t = out.time_s;
+  std::vector<std::size_t> skipped;
+  std::size_t kept = 1;
+  for (std::size_t i = 1; i < t.size(); ++i) {
+    const bool repeat = t[i] == t[kept - 1];
+    bool same = repeat;
+    for (const auto& v : out.values) same = same && v[i] == v[kept - 1];
+    if (repeat && !same)
+      throw input_error(file.string(), "line " + std::to_string(lines[i]) + " (time column)",
+                        seconds(t[i]),
+                        "the time of line " + std::to_string(lines[kept - 1]) +
+                            " again, with other values; expected strictly increasing time (which "
+                            "of the two rows is the sample at that time cannot be told)");
+    if (repeat) {
+      skipped.push_back(lines[i]);
+      continue;
+    }
+    t[kept] = t[i], lines[kept] = lines[i];
+    for (auto& v : out.values) v[kept] = v[i];
+    ++kept;
+  }
+  t.resize(kept), lines.resize(kept);
+  for (auto& v : out.values) v.resize(kept);
+  std::string which;
+  for (const std::size_t line : skipped)
+    which += (which.empty() ? "" : ", ") + std::to_string(line);
+  out.warnings.push_back(file.string() + ": line" + (skipped.size() > 1 ? "s " : " ") + which +
+                         " repeat" + (skipped.size() > 1 ? "" : "s") +
+                         " the row before (the same time and values: a row exported twice); "
+                         "skipped, so the samples after keep their times");
+}
+
+// Checks the time stamps: increasing and uniform. Repeated stamps throughout (rounded to fewer
+// digits than the sampling needs) are not an error: the base is rebuilt from a least-squares fit
+// of t against the sample index, with a warning; a few are repeated rows (drop_repeated_rows).
 void check_time_base(const std::filesystem::path& file, const RawSignalColumns& raw,
                      const SignalRequest& request, SignalColumns& out) {
   const auto& t = out.time_s;
-  const std::size_t n = t.size();
-  if (n < 2)
-    throw input_error(file.string(), "", std::to_string(n) + " samples", "expected at least 2");
+  if (t.size() < 2)
+    throw input_error(file.string(), "", std::to_string(t.size()) + " samples",
+                      "expected at least 2");
   if (raw.time_from_header) {
     out.dt_s = raw.header_dt;
     return;
   }
   std::size_t repeats = 0;
-  for (std::size_t i = 1; i < n; ++i) {
+  for (std::size_t i = 1; i < t.size(); ++i) {
     if (t[i] < t[i - 1])
       throw input_error(file.string(), "line " + std::to_string(raw.lines[i]) + " (time column)",
                         seconds(t[i]),
@@ -64,9 +105,18 @@ void check_time_base(const std::filesystem::path& file, const RawSignalColumns& 
                             "); expected increasing time");
     repeats += t[i] == t[i - 1];
   }
+  std::vector<std::size_t> kept_lines;  // the line of each sample, once repeated rows are skipped
+  if (repeats > 0 &&
+      static_cast<double>(repeats) <= kUniformStepTolerance * static_cast<double>(t.size() - 1)) {
+    kept_lines = raw.lines;
+    drop_repeated_rows(file, kept_lines, out);
+    repeats = 0;
+  }
+  const std::vector<std::size_t>& lines = kept_lines.empty() ? raw.lines : kept_lines;
+  const std::size_t n = t.size();
   const double span = t.back() - t.front();
   if (!(span > 0))
-    throw input_error(file.string(), "line " + std::to_string(raw.lines.back()) + " (time column)",
+    throw input_error(file.string(), "line " + std::to_string(lines.back()) + " (time column)",
                       seconds(t.back()), "time does not advance");
   if (repeats > 0) {
     // Least-squares line t ≈ t0 + i·dt.
@@ -121,7 +171,7 @@ void check_time_base(const std::filesystem::path& file, const RawSignalColumns& 
                   "; steps vary by up to %.3g %% of the mean interval %s: \"time\": "
                   "{\"resample\": true} resamples the record onto a uniform grid (linear)",
                   100 * jitter, seconds(mean_step).c_str());
-    throw input_error(file.string(), "line " + std::to_string(raw.lines[i]) + " (time column)",
+    throw input_error(file.string(), "line " + std::to_string(lines[i]) + " (time column)",
                       "step " + seconds(t[i] - t[i - 1]),
                       "expected uniform sampling at " + seconds(median_step) +
                           " (gap or jump in the record)" + hint);

@@ -238,6 +238,10 @@ DelimitedText read_delimited_text(const std::filesystem::path& file) {
     text.rows[i].fields =
         std::span<const std::string_view>(fields->data() + begin, ends[i] - begin);
   }
+  const auto last_end = bytes.find_last_of("\r\n");
+  text.last_row_unterminated =
+      bytes.find_first_not_of(" \t", last_end == std::string::npos ? 0 : last_end + 1) !=
+      std::string::npos;
   text.bytes = std::move(owned);
   text.all_fields = std::move(fields);
 

@@ -22,7 +22,8 @@ struct DelimitedText {
   std::filesystem::path file;
   char delimiter = ',';  // '\t', ';', ',' or ' ' (runs of blanks)
   bool decimal_comma = false;
-  std::vector<TextRow> rows;  // non-blank lines only
+  std::vector<TextRow> rows;           // non-blank lines only
+  bool last_row_unterminated = false;  // the file ends inside its last row (no line end after it)
   // What the rows view: the file's bytes and every row's fields, one after the other (shared so
   // that copies and moves of the text keep the views valid).
   std::shared_ptr<const std::string> bytes;

@@ -292,6 +292,71 @@ TEST_CASE("Repeated time stamps are detected and the time base rebuilt with a wa
   CHECK(std::abs(s.time_s[0] - -1.98e-4) < 1e-6);
 }
 
+// A scope export at 10 MHz written in a fixed format: row i holds t = i·0.1 µs and the value i.
+std::vector<std::string> fixed_format_rows(int n) {
+  std::vector<std::string> rows;
+  for (int i = 0; i < n; ++i) {
+    char line[64];
+    std::snprintf(line, sizeof line, "%.6e,%.6e", i * 1e-7, -1e-6 * i);
+    rows.emplace_back(line);
+  }
+  return rows;
+}
+std::string lines_of(const std::vector<std::string>& rows, bool final_newline = true) {
+  std::string text = "time_s,incident\n";
+  for (const auto& r : rows) text += r + "\n";
+  if (!final_newline) text.pop_back();
+  return text;
+}
+
+TEST_CASE(
+    "A row exported twice is skipped by its line; a repeated time with other values is "
+    "refused",
+    "[core][signal]") {
+  auto rows = fixed_format_rows(1000);
+  rows.insert(rows.begin() + 501, rows[500]);  // row 500 (line 502) again, on line 503
+  const auto s =
+      read_signal_columns(csv_request(write_file("twice.csv", lines_of(rows)), {by_index(1)}));
+  REQUIRE(s.warnings.size() == 1);
+  CHECK(s.warnings[0].find("twice.csv: line 503 repeats the row before") != std::string::npos);
+  // Every sample keeps its own time and value: nothing shifted by the repeat.
+  REQUIRE(s.time_s.size() == 1000);
+  constexpr double kStampDigits = 1e-6;  // %.6e: 7 significant digits
+  for (int i : {0, 500, 501, 999}) {
+    CHECK(s.time_s[static_cast<std::size_t>(i)] == Approx(i * 1e-7).epsilon(kStampDigits));
+    CHECK(s.values[0][static_cast<std::size_t>(i)] == Approx(-1e-6 * i).epsilon(kStampDigits));
+  }
+  CHECK(s.dt_s == Approx(1e-7).epsilon(kStampDigits));
+
+  rows[501] = rows[500].substr(0, rows[500].find(',')) + ",1.000000e-03";
+  const auto msg = error_of([&] {
+    read_signal_columns(csv_request(write_file("clash.csv", lines_of(rows)), {by_index(1)}));
+  });
+  CHECK(msg.find("clash.csv: line 503 (time column): 5e-05 s") != std::string::npos);
+  CHECK(msg.find("strictly increasing time") != std::string::npos);
+}
+
+TEST_CASE("A last line cut inside a number that still parses is refused where the format shows it",
+          "[core][signal]") {
+  auto rows = fixed_format_rows(100);
+  rows.back() = rows.back().substr(0, rows.back().find(',') + 5);  // "…,-9.9" of "-9.900000e-05"
+  const auto msg = error_of([&] {
+    read_signal_columns(
+        csv_request(write_file("cut.csv", lines_of(rows, false)), {by_name("incident")}));
+  });
+  CHECK(msg.find("cut.csv: line 101, column 2 (\"incident\"): \"-9.9\"") != std::string::npos);
+  CHECK(msg.find("cut off") != std::string::npos);
+  // Nothing to judge by: the same line ending a file with a line end (written so), or a column
+  // of varying widths, or a complete last line without a line end, is read.
+  CHECK_NOTHROW(read_signal_columns(
+      csv_request(write_file("short.csv", lines_of(rows)), {by_name("incident")})));
+  CHECK_NOTHROW(read_signal_columns(csv_request(
+      write_file("g.csv", "time_s,incident\n0,0\n1e-07,-1e-06\n2e-07,-2.5e-06\n3e-07,-1.2"),
+      {by_name("incident")})));
+  CHECK_NOTHROW(read_signal_columns(csv_request(
+      write_file("whole.csv", lines_of(fixed_format_rows(100), false)), {by_name("incident")})));
+}
+
 TEST_CASE("Tektronix and LANL raw files are read with their own time bases", "[core][signal]") {
   SECTION("Tektronix") {
     const auto p = write_file("tek.csv",
