@@ -140,13 +140,10 @@ std::string text_place(std::size_t line, std::size_t column_index) {
   return "line " + std::to_string(line) + ", column " + std::to_string(column_index + 1);
 }
 
-DelimitedText read_delimited_text(const std::filesystem::path& file) {
-  // Type (no FIFO or device) and size checked before reading: 1 GiB is far beyond any record.
-  auto owned = std::make_shared<std::string>(
-      read_input_file(file, file.string(), "a signal file", std::uintmax_t{1} << 30));
-  std::string& bytes = *owned;
-  // Byte order marks: UTF-8 is dropped (spreadsheets write it); UTF-16 text is refused by name
-  // rather than failing later on the NUL bytes between its characters.
+namespace {
+// Byte order marks: UTF-8 is dropped (spreadsheets write it); UTF-16 text is refused by name
+// rather than failing later on the NUL bytes between its characters.
+void drop_bom_or_refuse_binary(const std::filesystem::path& file, std::string& bytes) {
   if (bytes.rfind("\xEF\xBB\xBF", 0) == 0) bytes.erase(0, 3);
   if (bytes.rfind("\xFF\xFE", 0) == 0 || bytes.rfind("\xFE\xFF", 0) == 0)
     throw input_error(file.string(), "line 1", "UTF-16 text",
@@ -160,6 +157,15 @@ DelimitedText read_delimited_text(const std::filesystem::path& file) {
                       "UTF-16 or binary data (a NUL byte)",
                       "expected text (ASCII, UTF-8 or Latin-1); save the file as UTF-8 or CSV");
   }
+}
+}  // namespace
+
+DelimitedText read_delimited_text(const std::filesystem::path& file) {
+  // Type (no FIFO or device) and size checked before reading: 1 GiB is far beyond any record.
+  auto owned = std::make_shared<std::string>(
+      read_input_file(file, file.string(), "a signal file", std::uintmax_t{1} << 30));
+  std::string& bytes = *owned;
+  drop_bom_or_refuse_binary(file, bytes);
 
   // Lines (LF, CRLF or lone CR) with their numbers, one at a time, blank ones skipped.
   const bool has_cr = bytes.find('\r') != std::string::npos;
