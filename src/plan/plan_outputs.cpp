@@ -62,6 +62,10 @@ nlohmann::json planned_json(const PlanResult& r, const PlanInput& in, const fs::
       if (b["name"] == in.scene.bars[*in.scene.specimen].name)
         b["length"] = with_unit(c.specimen_length_m, 1e3, "mm");
   for (auto& b : bars) rebase_material(b, in.json, from, final_dir);
+  // A duration the planned pulse outlasts, extended as the verification run was (planned_scene).
+  const auto& given = in.scene.simulation.duration_s;
+  if (given && r.scene.simulation.duration_s && *r.scene.simulation.duration_s > *given)
+    j["simulation"]["duration"] = with_unit(*r.scene.simulation.duration_s, 1e6, "us");
   return j;
 }
 
