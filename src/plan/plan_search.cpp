@@ -80,6 +80,13 @@ LoadingMetrics loading_metrics(const TimeSeries& specimen, std::span<const doubl
   m.rate_spread = std::sqrt(std::max(0.0, sum2 / n - (sum / n) * (sum / n)));
   std::nth_element(r.begin(), r.begin() + r.size() / 2, r.end());
   m.plateau_rate_1_s = r[r.size() / 2];
+  const auto k_max = static_cast<std::size_t>(
+      std::max_element(strain.begin() + static_cast<std::ptrdiff_t>(k0), strain.end()) -
+      strain.begin());
+  double positive = 0, rate_sum = 0;
+  for (std::size_t k = k0; k <= k_max; ++k)
+    if (rate[k] > 0) ++positive, rate_sum += rate[k];
+  m.test_mean_rate_1_s = positive > 0 ? rate_sum / positive : 0;
   const std::vector<double> ratio = equilibrium_ratio(front, back);  // process's R (§6)
   std::size_t keq = k0;
   for (std::size_t k = k0; k <= k1; ++k)
