@@ -72,26 +72,35 @@ void add_bridge_inputs(InputList& in, const UncertaintySpec& u, const Measuremen
     const std::optional<StandardUncertainty>* spec;
     double BridgeSpec::*value;
     Dimension dim;
+    bool shared;
+  };
+  auto is_shared = [&](const char* key) {
+    return std::find(u.shared.begin(), u.shared.end(), key) != u.shared.end();
   };
   const Factor factors[] = {
-      {"gauge_factor", &u.gauge_factor, &BridgeSpec::gauge_factor, Dimension::kDimensionless},
-      {"excitation", &u.excitation, &BridgeSpec::excitation_V, Dimension::kVoltage},
-      {"gain", &u.gain, &BridgeSpec::gain, Dimension::kDimensionless}};
-  for (const Factor& f : factors) {
-    if (!*f.spec) continue;
-    const bool shared = std::find(u.shared.begin(), u.shared.end(), f.key) != u.shared.end();
-    std::vector<std::tuple<std::size_t, double, double>> channels;  // (c, x0_c, σ_c)
-    for (std::size_t c = 0; c < m.channels.size(); ++c) {
-      const ChannelSpec& ch = m.channels[c];
-      if (!ch.bridge) continue;
-      const double x0 = (*ch.bridge).*f.value, sigma = absolute(**f.spec, x0);
-      if (shared) {
-        channels.emplace_back(c, x0, sigma);
-        continue;
+      {"gauge_factor", &u.gauge_factor, &BridgeSpec::gauge_factor, Dimension::kDimensionless,
+       is_shared("gauge_factor")},
+      {"excitation", &u.excitation, &BridgeSpec::excitation_V, Dimension::kVoltage,
+       is_shared("excitation")},
+      {"gain", &u.gain, &BridgeSpec::gain, Dimension::kDimensionless, is_shared("gain")}};
+  // Per channel first, channel by channel (the order of the draws), then the shared factors.
+  for (std::size_t c = 0; c < m.channels.size(); ++c) {
+    const ChannelSpec& ch = m.channels[c];
+    if (!ch.bridge) continue;
+    for (const Factor& f : factors)
+      if (*f.spec && !f.shared) {
+        const double x0 = (*ch.bridge).*f.value;
+        in.add("channel " + std::to_string(c) + " (" + ch.gauge + ") " + f.key, x0,
+               absolute(**f.spec, x0), f.dim, true,
+               [c, x0](double x, DrawState& d) { d.channel_factor[c] *= x0 / x; });
       }
-      in.add("channel " + std::to_string(c) + " (" + ch.gauge + ") " + f.key, x0, sigma, f.dim,
-             true, [c, x0](double x, DrawState& d) { d.channel_factor[c] *= x0 / x; });
-    }
+  }
+  for (const Factor& f : factors) {
+    if (!*f.spec || !f.shared) continue;
+    std::vector<std::tuple<std::size_t, double, double>> channels;  // (c, x0_c, σ_c)
+    for (std::size_t c = 0; c < m.channels.size(); ++c)
+      if (const auto& b = m.channels[c].bridge)
+        channels.emplace_back(c, (*b).*f.value, absolute(**f.spec, (*b).*f.value));
     if (channels.empty()) continue;
     const auto [c0, x00, s00] = channels.front();
     in.add(std::string("every channel ") + f.key, x00, s00, f.dim, true,
