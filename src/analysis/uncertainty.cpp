@@ -68,20 +68,57 @@ struct InputList {
   }
 };
 
-// Bridge factors: ε = k V/(GF gain V_ex), so a drawn factor x scales the strain by x0/x.
+// Bridge factors: ε = k V/(GF gain V_ex), so a drawn factor x scales the strain by x0/x. A factor
+// named in `shared` is one draw for every channel (channel c's value x0_c + σ_c z with the same
+// standard normal z): the strains then scale together, which independent draws average away —
+// the 3-wave stress's uncertainty from a shared 1 % gauge factor is 1 %, from independent ones
+// about 0.7 % (docs/methods.md §10).
 void add_bridge_inputs(InputList& in, const UncertaintySpec& u, const MeasurementSpec& m) {
+  struct Factor {
+    const char* key;
+    const std::optional<StandardUncertainty>* spec;
+    double BridgeSpec::*value;
+    Dimension dim;
+    bool shared;
+  };
+  auto is_shared = [&](const char* key) {
+    return std::find(u.shared.begin(), u.shared.end(), key) != u.shared.end();
+  };
+  const Factor factors[] = {
+      {"gauge_factor", &u.gauge_factor, &BridgeSpec::gauge_factor, Dimension::kDimensionless,
+       is_shared("gauge_factor")},
+      {"excitation", &u.excitation, &BridgeSpec::excitation_V, Dimension::kVoltage,
+       is_shared("excitation")},
+      {"gain", &u.gain, &BridgeSpec::gain, Dimension::kDimensionless, is_shared("gain")}};
+  // Per channel first, channel by channel (the order of the draws), then the shared factors.
   for (std::size_t c = 0; c < m.channels.size(); ++c) {
     const ChannelSpec& ch = m.channels[c];
     if (!ch.bridge) continue;
-    const std::string where = "channel " + std::to_string(c) + " (" + ch.gauge + ") ";
-    for (const auto& [key, spec, value, dim] :
-         {std::tuple{"gauge_factor", &u.gauge_factor, ch.bridge->gauge_factor,
-                     Dimension::kDimensionless},
-          std::tuple{"excitation", &u.excitation, ch.bridge->excitation_V, Dimension::kVoltage},
-          std::tuple{"gain", &u.gain, ch.bridge->gain, Dimension::kDimensionless}})
-      if (*spec)
-        in.add(where + key, value, absolute(**spec, value), dim, (*spec)->path, true,
-               [c, x0 = value](double x, DrawState& d) { d.channel_factor[c] *= x0 / x; });
+    for (const Factor& f : factors)
+      if (*f.spec && !f.shared) {
+        const double x0 = (*ch.bridge).*f.value;
+        in.add("channel " + std::to_string(c) + " (" + ch.gauge + ") " + f.key, x0,
+               absolute(**f.spec, x0), f.dim, (*f.spec)->path, true,
+               [c, x0](double x, DrawState& d) { d.channel_factor[c] *= x0 / x; });
+      }
+  }
+  for (const Factor& f : factors) {
+    if (!*f.spec || !f.shared) continue;
+    std::vector<std::tuple<std::size_t, double, double>> channels;  // (c, x0_c, σ_c)
+    for (std::size_t c = 0; c < m.channels.size(); ++c)
+      if (const auto& b = m.channels[c].bridge)
+        channels.emplace_back(c, (*b).*f.value, absolute(**f.spec, (*b).*f.value));
+    if (channels.empty()) continue;
+    const auto [c0, x00, s00] = channels.front();
+    in.add(std::string("every channel ") + f.key, x00, s00, f.dim, (*f.spec)->path, true,
+           [channels, x00, s00](double x, DrawState& d) {
+             const double z = s00 > 0 ? (x - x00) / s00 : 0.0;
+             for (const auto& [c, x0, sigma] : channels) {
+               const double xc = x0 + sigma * z;
+               if (!(xc > 0)) throw std::domain_error("a shared bridge factor drawn <= 0");
+               d.channel_factor[c] *= x0 / xc;
+             }
+           });
   }
 }
 

@@ -44,6 +44,8 @@ Command add_plan_command(CLI::App& app) {
             }
             write_plan_outputs(r, input, targets, o->plan, out.path(), out.final_path());
             out.commit();
+            for (const std::string& w : plan_warnings(r, targets))
+              std::fprintf(stderr, "warning: %s\n", w.c_str());
             if (!o->quiet)
               std::fprintf(stderr, "planned %s in %.3g s (%ld runs): %d change(s); wrote %s\n",
                            input.scene.name.c_str(), r.wall_time_s, r.simulations, r.changes,

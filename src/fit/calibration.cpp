@@ -499,11 +499,75 @@ ScaledSvd scaled_svd(const Eigen::MatrixXd& jx, std::size_t p) {
   return out;
 }
 
+// The combinations of wave speeds, gauge positions and channel delays that move no compared
+// pulse's arrival time (docs/methods.md §11, "Uncertainties"): the null space of the arrival
+// times' derivatives, T = Σ legs d/c + τ, in the scaled parameters. Such a combination is fixed by
+// the dispersion's shape alone — the Jacobian of the residuals sees it, far too weakly to trust
+// (a record holding two of the transmitter's three returns: its wave speed 4 % off at a stated
+// 0.02 %). It is named in fit.undetermined; its parameters, and the Poisson ratio of a bar whose
+// wave speed is among them (fitted to the dispersion that then stands in for the travel times),
+// get a weight of 1 in the returned vector (0 for the others).
+std::vector<double> timing_undetermined(const std::vector<Shot>& shots,
+                                        const std::vector<LsParameter>& list,
+                                        const std::vector<double>& theta, CalibrationFit& fit) {
+  const std::size_t p = list.size();
+  std::vector<std::vector<double>> rows;
+  for (const Shot& s : shots)
+    for (const Target& t : s.targets)
+      for (const Arrival& a : t.arrivals) {
+        std::vector<double> row(p, 0.0);
+        for (const Segment& seg : a.way) {
+          const std::size_t ic = s.bars[seg.bar].c;
+          const double c = theta[ic];
+          row[ic] -= seg.length(theta) / (c * c);
+          for (const auto& [q, k] : seg.terms) row[q] += k / c;
+        }
+        if (t.delay) row[*t.delay] += 1;
+        rows.push_back(std::move(row));
+      }
+  std::vector<std::size_t> used;  // the parameters some arrival time depends on
+  for (std::size_t j = 0; j < p; ++j)
+    if (std::any_of(rows.begin(), rows.end(), [j](const auto& r) { return r[j] != 0; }))
+      used.push_back(j);
+  std::vector<double> weight(p, 0.0);
+  if (used.empty()) return weight;
+  Eigen::MatrixXd a(static_cast<long>(std::max(rows.size(), used.size())),
+                    static_cast<long>(used.size()));
+  a.setZero();  // rows beyond the arrivals: zero (a thin SVD then gives every direction)
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    for (std::size_t j = 0; j < used.size(); ++j)
+      a(static_cast<long>(i), static_cast<long>(j)) = rows[i][used[j]] * list[used[j]].scale;
+  const ScaledSvd svd = scaled_svd(a, used.size());
+  // Travel times are exact functions of the parameters: a free combination has a singular value
+  // at round-off, far below any that the arrivals determine.
+  constexpr double kFreeDirection = 1e-9;
+  for (long i = 0; i < svd.sv.size(); ++i) {
+    if (svd.sv(i) > kFreeDirection * svd.sv(0)) continue;
+    std::string line = "the travel times of the compared pulses do not determine ";
+    bool first = true;
+    for (std::size_t j = 0; j < used.size(); ++j) {
+      const double w = svd.v(static_cast<long>(j), i);
+      weight[used[j]] = std::max(weight[used[j]], w * w);
+      if (std::abs(w) < 0.2) continue;
+      line += (first ? "" : ", ") + list[used[j]].name + " (" + two_digits(w) + ")";
+      first = false;
+    }
+    fit.undetermined.push_back(
+        line +
+        ": only the dispersion's shape separates them, too weakly to trust; a record long enough "
+        "to hold more of the pulse's returns to the gauges determines them");
+  }
+  for (const Shot& s : shots)
+    for (const ShotBar& b : s.bars) weight[b.nu] = std::max(weight[b.nu], weight[b.c]);
+  return weight;
+}
+
 // Uncertainties from the Jacobian at the optimum (docs/methods.md §11, "Uncertainties"):
 // s² V S⁻² Vᵀ over the directions stronger than kWeakDirection; the weaker ones are left out and
-// named in fit.undetermined, and a parameter weighing on them gets no sd.
+// named in fit.undetermined, and a parameter weighing on them, or on a combination the travel
+// times leave free (`timing_weight`), gets no sd.
 void fitted_parameters(const std::vector<LsParameter>& list, const LsResult& r,
-                       CalibrationFit& fit) {
+                       const std::vector<double>& timing_weight, CalibrationFit& fit) {
   const std::size_t p = list.size();
   const ScaledSvd j = scaled_svd(r.jacobian, p);  // d r / d x, x = θ / scale
   const Eigen::VectorXd& sv = j.sv;
@@ -511,7 +575,7 @@ void fitted_parameters(const std::vector<LsParameter>& list, const LsResult& r,
   const double dof = std::max(1.0, static_cast<double>(r.residuals) - static_cast<double>(p));
   const double s2 = 2 * r.cost / dof;
   Eigen::MatrixXd cov = Eigen::MatrixXd::Zero(static_cast<long>(p), static_cast<long>(p));
-  std::vector<double> weak_weight(p, 0.0);
+  std::vector<double> weak_weight = timing_weight;
   for (long i = 0; i < static_cast<long>(p); ++i) {
     if (sv(i) > kWeakDirection * sv(0)) {
       cov += j.v.col(i) * j.v.col(i).transpose() / (sv(i) * sv(i));
@@ -667,7 +731,13 @@ CalibrationFit calibrate_bars(const std::vector<CalibrationShot>& input,
   for (const Shot& s : prepared.shots)
     fit.warnings.insert(fit.warnings.end(), s.warnings.begin(), s.warnings.end());
   fit.warnings.insert(fit.warnings.end(), r.warnings.begin(), r.warnings.end());
-  fitted_parameters(list, r, fit);
+  CalibrationFit timing;
+  const std::vector<double> timing_weight =
+      timing_undetermined(prepared.shots, list, r.value, timing);
+  fitted_parameters(list, r, timing_weight, fit);
+  // The Jacobian's weak directions first, then what the travel times leave free besides.
+  fit.undetermined.insert(fit.undetermined.end(), timing.undetermined.begin(),
+                          timing.undetermined.end());
   fit.calibration = calibration_of(input, fit.parameters, prepared.reference);
   make_gains_absolute(prepared.shots, r.value, prepared.reference, fit);
   fit.shots = shot_signals(prepared.shots, list, r.value, tables);

@@ -234,8 +234,10 @@ struct BarUncertainty {
   bool operator==(const BarUncertainty&) const = default;
 };
 struct UncertaintySpec {
-  // Of every bridge channel, each drawn on its own (every channel has its own gauge and bridge).
+  // Of every bridge channel, each drawn on its own (every channel has its own gauge and bridge),
+  // or once for every channel when named in `shared` (one gauge lot, one supply, one amplifier).
   std::optional<StandardUncertainty> gauge_factor, excitation, gain;
+  std::vector<std::string> shared;                    // of "gauge_factor", "excitation", "gain"
   std::optional<StandardUncertainty> gauge_position;  // of each processed gauge along its bar
   std::optional<StandardUncertainty> trigger_delay;   // transmitted channel against incident
   std::optional<StandardUncertainty> window_start;    // reflected/transmitted starts, samples

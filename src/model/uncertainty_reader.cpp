@@ -41,7 +41,7 @@ UncertaintySpec read_uncertainty(const JsonValue& value, const std::vector<std::
                                  std::optional<std::size_t> specimen) {
   const auto o =
       value.object({"gauge_factor", "excitation", "gain", "gauge_position", "trigger_delay",
-                    "window_start", "dispersion_cutoff", "friction", "bars", "notes"});
+                    "window_start", "dispersion_cutoff", "friction", "bars", "shared", "notes"});
   UncertaintySpec u;
   if (auto v = o.get("notes")) v->string();
   if (auto v = o.get("gauge_factor"))
@@ -49,6 +49,20 @@ UncertaintySpec read_uncertainty(const JsonValue& value, const std::vector<std::
   if (auto v = o.get("excitation"))
     u.excitation = read_standard_uncertainty(*v, Dimension::kVoltage);
   if (auto v = o.get("gain")) u.gain = read_standard_uncertainty(*v, Dimension::kDimensionless);
+  if (auto sh = o.get("shared")) {
+    for (const JsonValue& e : sh->array()) {
+      const std::string key = e.is_string() ? e.string() : std::string();
+      const bool given = (key == "gauge_factor" && u.gauge_factor) ||
+                         (key == "excitation" && u.excitation) || (key == "gain" && u.gain);
+      if (!given)
+        throw e.error(
+            "expected \"gauge_factor\", \"excitation\" or \"gain\", each with its own "
+            "uncertainty in this block, once");
+      if (std::find(u.shared.begin(), u.shared.end(), key) != u.shared.end())
+        throw e.error("listed twice");
+      u.shared.push_back(key);
+    }
+  }
   if (auto v = o.get("gauge_position"))
     u.gauge_position = read_standard_uncertainty(*v, Dimension::kLength);
   if (auto v = o.get("trigger_delay"))

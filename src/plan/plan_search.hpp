@@ -48,6 +48,9 @@ struct LoadingMetrics {
   double equilibrium_s = 0;       // from the onset until |R| ≤ kEquilibriumRatio to the end
   double equilibrium_fraction = 1;  // equilibrium_s over the loading's duration
   double strain_reached = 0;        // largest engineering strain of the run
+  // The mean of the positive rate from the onset to the strain maximum: the mean over the whole
+  // loading that `process` quotes (its loading ends at the strain maximum, docs/methods.md §6).
+  double test_mean_rate_1_s = 0;
   double target_strain = 0.15;
   bool meets() const;  // every criterion
   // The smallest relative margin by which the band, equilibrium and strain criteria are met

@@ -189,4 +189,35 @@ TEST_CASE("process --signals reduces a gauges.csv written by simulate without di
   CHECK(s["striker_velocity_m_s"]["inferred"].get<double>() == Approx(15).epsilon(0.01));
 }
 
+TEST_CASE("A gauge factor shared by every channel moves the stress by its whole uncertainty",
+          "[app][process][uncertainty]") {
+  // Gauges from one lot: a gauge factor 1 % off scales every strain of the record, so the 3-wave
+  // stress (front and back forces averaged) scales with it and its peak's standard uncertainty is
+  // the gauge factor's, 1 %. Drawn for each channel on its own the two halves' errors partly
+  // cancel (1/sqrt(2): 0.71 %), understating a lot's error. 400 draws give a standard deviation
+  // to sqrt(1/(2·399)) = 3.5 %: ±10 % is three of those.
+  constexpr double kGaugeFactorU = 0.01, kDraws = 400, kSpread = 0.1;
+  const fs::path dir = temp_dir("shared_gauge_factor");
+  nlohmann::json scene = shpb_test::steel_scene();
+  // Half bridges, gauge factor 2, 5 V, gain 100: 250 V per unit strain.
+  const nlohmann::json bridge = {
+      {"arms", 2}, {"gauge_factor", 2.0}, {"excitation", "5 V"}, {"gain", 100}};
+  for (auto& ch : scene["measurement"]["channels"]) {
+    ch["unit"] = "V";
+    ch["bridge"] = bridge;
+  }
+  scene["measurement"]["uncertainty"] = {{"gauge_factor", "1 %"}, {"shared", {"gauge_factor"}}};
+  const fs::path file = shpb_test::write(dir, scene, shpb_test::csv(shpb_test::Record{}, 250.0));
+  const auto r = run_shpb({"process", file.string(), "-o", (dir / "out").string(), "--draws",
+                           std::to_string(int(kDraws)), "--threads", "2", "-q"});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  const auto peak = summary(dir / "out")["uncertainty"]["figures"]["peak_stress_Pa"];
+  INFO(peak.dump());
+  const double relative =
+      peak["standard_uncertainty"].get<double>() / peak["nominal"].get<double>();
+  CHECK(relative >= (1 - kSpread) * kGaugeFactorU);
+  CHECK(relative <= (1 + kSpread) * kGaugeFactorU);
+}
+
 }  // namespace tests_app_test_process
