@@ -479,14 +479,21 @@ PYBIND11_MODULE(_shpb, m) {
       });
   // Edits (e.g. scene.striker.velocity_m_s = 12) act on the scene in memory; a run checks the
   // edited scene with the one validation every command applies (model/scene_validation.hpp).
+  // The scene's file made absolute when read: its relative paths (measurement data, read when the
+  // scene is processed) then resolve as they did when it was loaded, whatever os.chdir (a
+  // notebook's %cd) did in between.
   py::class_<Scene>(m, "Scene")
       .def_static(
-          "load", [](const std::filesystem::path& file) { return read_scene(file); },
+          "load",
+          [](const std::filesystem::path& file) {
+            return read_scene(std::filesystem::absolute(file));
+          },
           py::arg("path"))
       .def_static(
           "from_dict",
           [](const py::object& d, const std::filesystem::path& file) {
-            return read_scene_text(dict_to_json_text(d, file), file);
+            const std::filesystem::path anchored = std::filesystem::absolute(file);
+            return read_scene_text(dict_to_json_text(d, anchored), anchored);
           },
           py::arg("d"), py::arg("file") = std::filesystem::path("scene.json"))
       .def_readwrite("name", &Scene::name)

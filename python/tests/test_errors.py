@@ -63,7 +63,8 @@ def test_not_json_is_an_input_error(value, shown, classic_json):
         shpb.Scene.from_dict(classic_json, file="lab/scene.json")
     message = str(e.value)
     assert "\n" not in message
-    assert message.startswith(f"lab/scene.json: bars[1].gauges[0].position: {shown}: ")
+    file = os.path.join(os.getcwd(), "lab", "scene.json")  # anchored where the dict was read
+    assert message.startswith(f"{file}: bars[1].gauges[0].position: {shown}: ")
 
 
 def test_a_bad_tolerance_is_the_commands_message(tmp_path):
