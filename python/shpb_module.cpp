@@ -14,6 +14,7 @@
 #include <atomic>
 #include <cmath>
 #include <exception>
+#include <initializer_list>
 #include <memory>
 #include <optional>
 #include <string>
@@ -26,6 +27,7 @@
 #include "core/output_folder.hpp"
 #include "core/units.hpp"
 #include "model/input_limits.hpp"
+#include "model/scene_validation.hpp"
 #include "model/wave_travel.hpp"
 #include "solver/simulation.hpp"
 #include "version.hpp"
@@ -236,6 +238,14 @@ std::optional<double> tolerance_value(const py::object& t) {
   return t.cast<double>();
 }
 
+// Some text per edited field: name=value, SI units in the names (the attributes' own names).
+std::string fields(std::initializer_list<std::pair<const char*, double>> values) {
+  std::string text;
+  for (const auto& [name, value] : values)
+    text += (text.empty() ? "" : ", ") + std::string(name) + "=" + format_double(value);
+  return text;
+}
+
 RunOverrides overrides_of(const py::object& tolerance, const std::optional<std::string>& contact,
                           const std::optional<std::string>& stepping,
                           const std::optional<double>& courant, int threads) {
@@ -375,7 +385,19 @@ PYBIND11_MODULE(_shpb, m) {
           "taylor_quinney", [](const JohnsonCookParams& o) { return o.taylor_quinney; },
           checked(&JohnsonCookParams::taylor_quinney, "johnson_cook.taylor_quinney",
                   Range::kFraction))
-      .def_readwrite("adiabatic", &JohnsonCookParams::adiabatic);
+      .def_readwrite("adiabatic", &JohnsonCookParams::adiabatic)
+      .def("__repr__", [](const JohnsonCookParams& o) {
+        return "<shpb.JohnsonCook " +
+               fields({{"A_Pa", o.A_Pa},
+                       {"B_Pa", o.B_Pa},
+                       {"n", o.n},
+                       {"C", o.C},
+                       {"reference_strain_rate_1_s", o.reference_strain_rate_1_s},
+                       {"m", o.m},
+                       {"room_temperature_K", o.room_temperature_K},
+                       {"melting_temperature_K", o.melting_temperature_K}}) +
+               (o.adiabatic ? ", adiabatic" : "") + ">";
+      });
   py::class_<BilinearParams>(m, "Bilinear")
       .def_property(
           "yield_stress_Pa", [](const BilinearParams& o) { return o.yield_stress_Pa; },
@@ -383,7 +405,13 @@ PYBIND11_MODULE(_shpb, m) {
       .def_property(
           "tangent_modulus_Pa", [](const BilinearParams& o) { return o.tangent_modulus_Pa; },
           checked(&BilinearParams::tangent_modulus_Pa, "bilinear.tangent_modulus_Pa",
-                  Range::kNonNegative));
+                  Range::kNonNegative))
+      .def("__repr__", [](const BilinearParams& o) {
+        return "<shpb.Bilinear " +
+               fields({{"yield_stress_Pa", o.yield_stress_Pa},
+                       {"tangent_modulus_Pa", o.tangent_modulus_Pa}}) +
+               ">";
+      });
   py::class_<MaterialSpec>(m, "Material")
       .def_readonly("name", &MaterialSpec::name)
       .def_property_readonly("model",
@@ -407,7 +435,15 @@ PYBIND11_MODULE(_shpb, m) {
                     py::return_value_policy::reference_internal)
       .def_readonly("johnson_cook", &MaterialSpec::johnson_cook,
                     py::return_value_policy::reference_internal)
-      .def_property_readonly("wave_speed_m_s", &MaterialSpec::wave_speed_m_s);
+      .def_property_readonly("wave_speed_m_s", &MaterialSpec::wave_speed_m_s)
+      .def("__repr__", [](const MaterialSpec& s) {
+        return "<shpb.Material " + s.name + " (" + std::string(to_string(s.model)) + "): " +
+               fields({{"density_kg_m3", s.density_kg_m3},
+                       {"youngs_modulus_Pa", s.youngs_modulus_Pa},
+                       {"poisson_ratio", s.poisson_ratio},
+                       {"wave_speed_m_s", s.wave_speed_m_s()}}) +
+               ">";
+      });
   py::class_<BarSpec>(m, "Bar")
       .def_readonly("name", &BarSpec::name)
       .def_readonly("material", &BarSpec::material, py::return_value_policy::reference_internal)
@@ -443,14 +479,21 @@ PYBIND11_MODULE(_shpb, m) {
       });
   // Edits (e.g. scene.striker.velocity_m_s = 12) act on the scene in memory; a run checks the
   // edited scene with the one validation every command applies (model/scene_validation.hpp).
+  // The scene's file made absolute when read: its relative paths (measurement data, read when the
+  // scene is processed) then resolve as they did when it was loaded, whatever os.chdir (a
+  // notebook's %cd) did in between.
   py::class_<Scene>(m, "Scene")
       .def_static(
-          "load", [](const std::filesystem::path& file) { return read_scene(file); },
+          "load",
+          [](const std::filesystem::path& file) {
+            return read_scene(std::filesystem::absolute(file));
+          },
           py::arg("path"))
       .def_static(
           "from_dict",
           [](const py::object& d, const std::filesystem::path& file) {
-            return read_scene_text(dict_to_json_text(d, file), file);
+            const std::filesystem::path anchored = std::filesystem::absolute(file);
+            return read_scene_text(dict_to_json_text(d, anchored), anchored);
           },
           py::arg("d"), py::arg("file") = std::filesystem::path("scene.json"))
       .def_readwrite("name", &Scene::name)
@@ -482,7 +525,16 @@ PYBIND11_MODULE(_shpb, m) {
                              })
       .def_property(
           "tolerance", [](const Scene& s) { return s.simulation.tolerance; },
-          [](Scene& s, const py::object& t) { s.simulation.tolerance = tolerance_value(t); })
+          [](Scene& s, const py::object& t) {
+            // Refused when set, as the other edits, with the one rule of the scene's key and
+            // --tolerance (model/scene_validation.hpp).
+            const auto value = tolerance_value(t);
+            if (value)
+              if (const std::string what = tolerance_problem(*value); !what.empty())
+                throw input_error("scene edit", "simulation.tolerance",
+                                  format_double(*value * 100) + " %", what);
+            s.simulation.tolerance = value;
+          })
       .def_property(
           "duration_s", [](const Scene& s) { return s.simulation.duration_s; },
           [](Scene& s, std::optional<double> t) {
@@ -666,12 +718,19 @@ PYBIND11_MODULE(_shpb, m) {
       [](const std::filesystem::path& scene, const std::filesystem::path& output,
          const std::string& sweep, int refine, const py::object& tolerance,
          const std::optional<std::string>& contact, const std::optional<std::string>& stepping,
-         const std::optional<double>& courant, int threads) {
+         const std::optional<double>& courant, int threads,
+         const std::optional<std::filesystem::path>& distributions, std::size_t draws,
+         const std::optional<std::uint64_t>& seed) {
         StudyArgs a;
         a.scene = scene;
         a.output = output;
+        if (distributions) a.distributions = *distributions;
+        a.draws = draws;
+        a.seed = seed;
         const auto s = enum_value(kSweepNames, sweep);
-        if (!s) throw input_error("sweep", "", "\"" + sweep + "\"", "expected pareto or stability");
+        if (!s)
+          throw input_error("sweep", "", "\"" + sweep + "\"",
+                            "expected pareto, stability or monte-carlo");
         a.sweep = *s;
         a.refine = refine;
         a.overrides = overrides_of(tolerance, contact, stepping, courant, threads);
@@ -679,7 +738,7 @@ PYBIND11_MODULE(_shpb, m) {
       },
       py::arg("scene"), py::arg("output"), py::arg("sweep"), py::arg("refine"),
       py::arg("tolerance"), py::arg("contact"), py::arg("stepping"), py::arg("courant"),
-      py::arg("threads"));
+      py::arg("threads"), py::arg("distributions"), py::arg("draws"), py::arg("seed"));
   m.def(
       "_fit",
       [](const std::filesystem::path& campaign, const std::filesystem::path& output, int threads,

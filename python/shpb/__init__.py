@@ -239,15 +239,20 @@ def compare(scene, tolerance=None, threads=0, contact=None, stepping=None, coura
 
 
 @_with_help("study", """study(scene, sweep="pareto", refine=1, tolerance=None, threads=0,
-      contact=None, stepping=None, courant=None) -> FolderResult
+      contact=None, stepping=None, courant=None, distributions=None, draws=None,
+      seed=None) -> FolderResult
 
-Runs the sweep of `shpb study` on the scene file (threads: parallel runs, 0 = all cores);
-the command's files are in result.tables and result.json.""")
+Runs the sweep of `shpb study` on the scene file (threads: parallel runs, 0 = all cores):
+"pareto", "stability" (refine: the map's refinement) or "monte-carlo" (distributions: the
+file of the scene values to draw, draws and seed as --draws and --seed); the command's files
+are in result.tables and result.json.""")
 def study(scene, sweep="pareto", refine=1, tolerance=None, threads=0, contact=None,
-          stepping=None, courant=None):
+          stepping=None, courant=None, distributions=None, draws=None, seed=None):
     scene = _scene_file(scene)
+    distributions = None if distributions is None else os.fspath(distributions)
     return _folder_run("study", lambda out: _shpb._study(
-        scene, out, sweep, refine, tolerance, contact, stepping, courant, threads))
+        scene, out, sweep, refine, tolerance, contact, stepping, courant, threads,
+        distributions, 0 if draws is None else draws, seed))
 
 
 @_with_help("fit", """fit(campaign, threads=0, max_iterations=40, relative_step=0.05, bootstrap=30,

@@ -80,3 +80,16 @@ def test_fit_is_the_commands_fit(tmp_path):
     same_folder(tmp_path / "cmd", tmp_path / "py", result)
     # fit.json is the fitted material file: the same parameters, to the last digit.
     assert result.json["fit"] == json.loads((tmp_path / "cmd" / "fit.json").read_text())
+
+
+def test_a_monte_carlo_study_is_the_commands(tmp_path):
+    # The planned test's uncertainty: the scene values of distributions.json drawn and simulated,
+    # bands on the gauges and the curve; two draws are enough to compare the files.
+    scene = SOURCE / "experiments" / "classic-al6061" / "scene.json"
+    distributions = SOURCE / "experiments" / "classic-al6061" / "distributions.json"
+    assert run_command("study", scene, "-o", tmp_path / "cmd", "--quiet", "--sweep", "monte-carlo",
+                       "--distributions", distributions, "--draws", "2", "--seed", "7")[0] == 0
+    result = shpb.study(scene, sweep="monte-carlo", distributions=distributions, draws=2, seed=7)
+    assert result.exit_code == 0
+    result.save(tmp_path / "py")
+    assert "draws.csv" in same_folder(tmp_path / "cmd", tmp_path / "py", result)

@@ -63,7 +63,8 @@ def test_not_json_is_an_input_error(value, shown, classic_json):
         shpb.Scene.from_dict(classic_json, file="lab/scene.json")
     message = str(e.value)
     assert "\n" not in message
-    assert message.startswith(f"lab/scene.json: bars[1].gauges[0].position: {shown}: ")
+    file = os.path.join(os.getcwd(), "lab", "scene.json")  # anchored where the dict was read
+    assert message.startswith(f"{file}: bars[1].gauges[0].position: {shown}: ")
 
 
 def test_a_bad_tolerance_is_the_commands_message(tmp_path):
@@ -85,7 +86,11 @@ def test_a_bad_tolerance_is_the_commands_message(tmp_path):
     lambda s: setattr(s.bars[1].material, "poisson_ratio", 0.7),
     lambda s: setattr(s.specimen.material.johnson_cook, "n", 1.5),
     lambda s: setattr(s, "duration_s", -1e-3),
-], ids=["length", "gap", "velocity", "elements", "density", "poisson", "jc-n", "duration"])
+    lambda s: setattr(s, "tolerance", 1.5),
+    lambda s: setattr(s, "tolerance", "-1 %"),
+    lambda s: setattr(s, "tolerance", float("nan")),
+], ids=["length", "gap", "velocity", "elements", "density", "poisson", "jc-n", "duration",
+        "tolerance-150%", "tolerance-negative", "tolerance-nan"])
 def test_an_edit_outside_the_scene_files_range_is_refused(edit):
     # A value no scene file could hold is refused when it is set, and the scene keeps its value.
     scene = shpb.Scene.load(SOURCE / "experiments" / "classic-al6061" / "scene.json")
@@ -93,3 +98,24 @@ def test_an_edit_outside_the_scene_files_range_is_refused(edit):
     with pytest.raises(shpb.InputError):
         edit(scene)
     assert shpb.simulate(scene).gauges["incident"].tolist() == before
+
+
+@pytest.mark.parametrize("call, option", [
+    (lambda: shpb.study(SOURCE / "experiments" / "striker-on-bar" / "scene.json",
+                        sweep="stability", refine=0), "--refine"),
+    (lambda: shpb.study(SOURCE / "experiments" / "striker-on-bar" / "scene.json",
+                        sweep="stability", refine=65), "--refine"),
+    (lambda: shpb.process(SOURCE / "experiments" / "lanl-cu-ofe-273k" / "scene.json", draws=1),
+     "--draws"),
+    (lambda: shpb.dispersion(max_a_over_lambda=0), "--max-a-over-lambda"),
+    (lambda: shpb.dispersion(points=1000001), "--points"),
+], ids=["refine-0", "refine-65", "draws-1", "max-a-over-lambda-0", "points-1000001"])
+def test_an_option_outside_the_commands_range_is_an_input_error(call, option):
+    # The range the command's option parser gives the option holds from Python too: refused before
+    # any work, in one line naming the option (not a run of a grid of 0, a MemoryError, a
+    # "0 of 1 draws failed" or a table of zeros).
+    with pytest.raises(shpb.InputError) as e:
+        call()
+    message = str(e.value)
+    assert "\n" not in message
+    assert message.startswith(option + ": ")

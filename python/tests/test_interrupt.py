@@ -80,3 +80,32 @@ def test_a_sigint_handler_of_the_users_own_runs_and_the_simulation_completes():
     # Only Python's default handler means "stop": a handler the user installed decides for itself,
     # as it does around any other call, and is called once the work returns.
     assert run_script(OWN_HANDLER_SCRIPT).strip() == "run stable: True handler called: True"
+
+
+MONTE_CARLO_SCRIPT = textwrap.dedent("""
+    import os, pathlib, signal, sys, threading, time
+    import shpb
+    lanl = pathlib.Path(sys.argv[1]).parents[1] / "lanl-cu-ofe-273k" / "scene.json"
+    sent = []
+    def interrupt():
+        sent.append(time.monotonic())
+        os.kill(os.getpid(), signal.SIGINT)
+    threading.Timer(0.5, interrupt).start()
+    try:
+        shpb.process(lanl, draws=300000)  # minutes of draws
+        print("not interrupted")
+    except KeyboardInterrupt:
+        print("stopped after %.3f s" % (time.monotonic() - sent[0]))
+    print("next run draws:", shpb.process(lanl, draws=20).summary["uncertainty"]["draws"])
+""")
+
+# A draw of the LANL copper's uncertainty is reduced in milliseconds; a stop within a few seconds
+# leaves a loaded machine its margin, and is far from the minutes the whole Monte Carlo takes.
+STOP_WITHIN_S = 5.0
+
+
+def test_sigint_stops_the_monte_carlo_of_a_measurement_uncertainty():
+    lines = run_script(MONTE_CARLO_SCRIPT).splitlines()
+    assert lines[0].startswith("stopped after"), lines
+    assert float(lines[0].split()[2]) < STOP_WITHIN_S, lines
+    assert lines[1] == "next run draws: 20"

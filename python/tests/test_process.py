@@ -54,3 +54,17 @@ def test_a_scene_without_measurement_is_the_commands_message(tmp_path):
     with pytest.raises(shpb.InputError) as e:
         shpb.process(scene)
     assert "error: " + str(e.value) == err.strip()
+
+
+def test_a_scene_loaded_by_a_relative_path_processes_after_a_change_of_folder(tmp_path,
+                                                                               monkeypatch):
+    # A notebook loads "scene.json" from its folder, then changes folder (os.chdir, %cd): the
+    # measured record, read when the scene is processed, is still found beside the scene.
+    folder = SOURCE / "experiments" / "lanl-cu-ofe-273k"
+    expected = shpb.process(shpb.Scene.load(folder / "scene.json"), draws=2).arrays("curve")
+    monkeypatch.chdir(folder)
+    scene = shpb.Scene.load("scene.json")
+    monkeypatch.chdir(tmp_path)
+    got = shpb.process(scene, draws=2).arrays("curve")
+    for name in expected:
+        assert np.array_equal(got[name], expected[name]), name

@@ -115,3 +115,17 @@ def test_results_are_views_of_the_library_memory():
     assert not first.flags.writeable and not first.flags.owndata
     with pytest.raises(ValueError):
         first[0] = 1.0
+
+
+def test_scene_parts_print_their_values():
+    # A notebook shows an object by its repr: each field as name=value, the attribute's own name
+    # (SI unit in it) and its value, which reads back as the attribute.
+    scene = shpb.Scene.load(SOURCE / "experiments" / "classic-al6061" / "scene.json")
+    material = scene.specimen.material
+    for part in [material, material.johnson_cook, material.bilinear]:
+        text = repr(part)
+        assert text.startswith("<shpb." + type(part).__name__ + " ") and " at 0x" not in text
+        shown = dict(field.split("=") for field in text.rstrip(">").split(" ") if "=" in field)
+        assert shown, text
+        for name, value in shown.items():
+            assert float(value.rstrip(",")) == getattr(part, name), (text, name)

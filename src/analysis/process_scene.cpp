@@ -8,6 +8,7 @@
 
 #include "core/error.hpp"
 #include "core/finite_values.hpp"
+#include "core/options_check.hpp"
 #include "model/calibration.hpp"
 #include "output_schema.hpp"
 
@@ -128,6 +129,7 @@ ProcessOutcome process_scene(const Scene& scene,
 }
 
 void add_uncertainty(const Scene& scene, const MonteCarloOptions& monte_carlo, ProcessOutcome& o) {
+  require_valid(monte_carlo);  // --draws, as the command's option check gives it
   if (!scene.measurement || !scene.measurement->uncertainty || !o.failure.empty()) return;
   // The block describes the lab's record (its gauges, channels, correction); simulated signals
   // have none of those uncertainties.

@@ -13,6 +13,7 @@
 
 #include "analysis/test_processing.hpp"
 #include "core/error.hpp"
+#include "core/output_folder.hpp"
 #include "core/parallel_runner.hpp"
 #include "core/units.hpp"
 #include "model/uncertainty_reader.hpp"
@@ -326,6 +327,8 @@ DrawResult reduce_draw(const DrawContext& ctx, std::size_t d, DispersionTableCac
     res.rate = std::move(at.rate);
     for (const FigureSpec& f : ctx.figures) res.figures.push_back(f.of(r));
     res.ok = true;
+  } catch (const Interrupted&) {
+    throw;  // a signal stops the draws: not a failed draw
   } catch (const std::exception& e) {
     res = DrawResult{};
     res.failure = e.what();
@@ -344,8 +347,10 @@ std::vector<DrawResult> run_draws(const DrawContext& ctx, std::size_t n_draws, i
   run_parallel(static_cast<std::size_t>(threads), threads, [&](std::size_t worker) {
     FftPlans plans;
     GaugeSignals scaled = ctx.signals;
-    for (std::size_t d = worker; d < n_draws; d += static_cast<std::size_t>(threads))
+    for (std::size_t d = worker; d < n_draws; d += static_cast<std::size_t>(threads)) {
+      throw_if_interrupted();  // Ctrl-C stops a long Monte Carlo within a draw (milliseconds)
       results[d] = reduce_draw(ctx, d, tables, plans, scaled);
+    }
   });
   return results;
 }
@@ -387,6 +392,14 @@ void fill_bands(const std::vector<DrawResult>& results, const std::vector<std::s
 }
 
 }  // namespace
+
+bool MonteCarloOptions::IsValid(std::string* error) const {
+  if (draws >= kMinDraws && draws <= kMaxDraws) return true;
+  *error = input_error("--draws", "", std::to_string(draws),
+                       "expected " + std::to_string(kMinDraws) + " to " + std::to_string(kMaxDraws))
+               .what();
+  return false;
+}
 
 UncertaintyResult propagate_uncertainty(const Scene& scene, const MeasurementSpec& m,
                                         const GaugeSignals& signals,

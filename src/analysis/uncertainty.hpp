@@ -30,10 +30,16 @@ inline constexpr std::uint64_t kDefaultSeed = 1;
 // contributes within 2 % (a uniform rounding error of ±σ/4 adds σ²/48) with 13 tables over ±3σ.
 inline constexpr double kPoissonGridSigma = 0.5;
 
+// --draws: a spread needs two draws; the upper bound, the option's since it was added, stops a
+// mistyped count before the draws' results are allocated.
+inline constexpr std::size_t kMinDraws = 2;
+inline constexpr std::size_t kMaxDraws = 10000000;
 struct MonteCarloOptions {
   std::size_t draws = kDefaultDraws;
   std::uint64_t seed = kDefaultSeed;
   int threads = 0;  // ≤ 0: all cores
+  // Ceres' Solver::Options::IsValid: false with the one-line reason (--draws) in `error`.
+  bool IsValid(std::string* error) const;
 };
 
 // One scalar input drawn: its name (the scene value it perturbs), nominal value and standard

@@ -62,7 +62,7 @@ Command add_dispersion_command(CLI::App& app) {
                   "Largest a/Λ of an evenly spaced table (default 1.6)")
       ->check(finite_positive_check());
   cmd->add_option("--points", disp.points, "Number of table points (default 321)")
-      ->check(CLI::Range(2, 1000000));
+      ->check(CLI::Range(2, kMaxTablePoints));
   cmd->add_option("--radius", o->radius, "Bar radius, e.g. \"9.525 mm\" (adds frequency_Hz)");
   cmd->add_option("--c0", o->c0, "Bar wave speed sqrt(E/ρ), e.g. \"4975 m/s\"");
   cmd->add_option("-o,--output", disp.output, "CSV file to write (default: stdout)");

@@ -73,7 +73,7 @@ Command add_process_command(CLI::App& app) {
   cmd->add_flag("--quiet,-q", o->one.quiet, "No progress output on stderr");
   cmd->add_option("--draws", o->one.monte_carlo.draws,
                   "Monte Carlo draws of measurement.uncertainty (default 1000)")
-      ->check(CLI::Range(2, 10000000));
+      ->check(CLI::Range(static_cast<int>(kMinDraws), static_cast<int>(kMaxDraws)));
   add_seed_option(cmd, o->one.monte_carlo.seed,
                   "Seed of the Monte Carlo draws (default 1: the same draws every run)");
   add_threads_option(cmd, o->one.monte_carlo.threads,

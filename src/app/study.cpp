@@ -148,13 +148,13 @@ Command add_study_command(CLI::App& app) {
   cmd->add_option("--refine", study.refine,
                   "Stability map: refine-1 more points between neighbours on the stiffness "
                   "and Courant axes (2: about 4 x the points; default 1)")
-      ->check(CLI::Range(1, 64));
+      ->check(CLI::Range(1, kMaxRefine));
   cmd->add_option("--distributions", study.distributions,
                   "Monte Carlo: JSON file of the scene values to draw and their distributions");
   cmd->add_option(
          "--draws", study.draws,
          "Monte Carlo: number of draws (default " + std::to_string(kDefaultMonteCarloDraws) + ")")
-      ->check(CLI::Range(2, 1000000));
+      ->check(CLI::Range(static_cast<int>(kMinDraws), static_cast<int>(kMaxStudyDraws)));
   auto* seed = add_seed_option(
       cmd, o->seed, "Monte Carlo: seed of the draws (default 1: the same draws every run)");
   cmd->add_option("--plan", study.plan,

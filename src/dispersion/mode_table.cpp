@@ -26,8 +26,11 @@ bool ModeTableOptions::IsValid(std::string* error) const {
     e = input_error("--poisson", "", format_double(poisson),
                     "must be in [" + format_double(kMinPoissonRatio) + ", " +
                         format_double(kMaxPoissonRatio) + "]");
-  else if (a_over_lambda.empty() && points < 2)
-    e = input_error("--points", "", std::to_string(points), "must be >= 2");
+  else if (a_over_lambda.empty() && (points < 2 || points > kMaxTablePoints))
+    e = input_error("--points", "", std::to_string(points),
+                    "must be in [2, " + std::to_string(kMaxTablePoints) + "]");
+  else if (a_over_lambda.empty() && !(max_a_over_lambda > 0))
+    e = input_error("--max-a-over-lambda", "", format_double(max_a_over_lambda), "must be > 0");
   for (double x : e ? std::vector<double>{} : table_points(*this))
     if (!e && (!(x >= 0) || x > 1000))
       e = input_error("--a-over-lambda", "", format_double(x), "must be in [0, 1000]");

@@ -8,6 +8,10 @@
 
 namespace shpb {
 
+// The largest evenly spaced table: a million rows (about 60 MB of CSV) is far past any plot or
+// interpolation a bar needs, and bounds a mistyped count before it is allocated.
+inline constexpr int kMaxTablePoints = 1000000;
+
 struct ModeTableOptions {
   double poisson = 0.29;
   std::vector<double> a_over_lambda;  // explicit list, or

@@ -1,5 +1,6 @@
 #include "study/study_args.hpp"
 
+#include "analysis/uncertainty.hpp"
 #include "core/error.hpp"
 
 namespace shpb {
@@ -14,6 +15,13 @@ bool StudyArgs::IsValid(std::string* error) const {
   std::optional<InputError> e;
   if (modes > 1)
     e = input_error("study", "", "", "--plan, --run and --merge are separate steps: give one");
+  else if (refine < 1 || refine > kMaxRefine)
+    e = input_error("--refine", "", std::to_string(refine),
+                    "expected 1 to " + std::to_string(kMaxRefine));
+  else if (draws != 0 && (draws < kMinDraws || draws > kMaxStudyDraws))
+    e = input_error(
+        "--draws", "", std::to_string(draws),
+        "expected " + std::to_string(kMinDraws) + " to " + std::to_string(kMaxStudyDraws));
   else if (refine != 1 && sweep != Sweep::kStability)
     e = input_error("--refine", "", std::to_string(refine), "only with --sweep stability");
   else if ((run || merge) && monte_carlo_option)

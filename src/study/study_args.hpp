@@ -11,6 +11,13 @@
 
 namespace shpb {
 
+// The stability map's refinement: 64 puts about 64² ≈ 4000 times refine 1's points on the grid,
+// and bounds a mistyped value before its grid is allocated.
+inline constexpr int kMaxRefine = 64;
+// Monte Carlo draws of a study, each a whole simulation: a million is far past the 200 that give
+// band edges to two digits (study/monte_carlo_sweep.hpp), and bounds the draws' storage.
+inline constexpr std::size_t kMaxStudyDraws = 1000000;
+
 struct StudyArgs {
   std::filesystem::path scene;
   std::filesystem::path output;
