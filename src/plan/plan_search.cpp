@@ -18,7 +18,7 @@
 #include "core/error.hpp"
 #include "core/output_folder.hpp"
 #include "core/parallel_runner.hpp"
-#include "model/discretization.hpp"  // default_duration_s
+#include "model/discretization.hpp"  // default_duration_s, kDefaultMaxStrain
 #include "model/interface_name.hpp"
 #include "model/scene_validation.hpp"
 
@@ -36,13 +36,15 @@ bool LoadingMetrics::meets() const { return end_s > onset_s && shortfall() == 0;
 double LoadingMetrics::slack() const {
   return std::min({(band_fraction - kBandFraction) / kBandFraction,
                    (kEquilibriumFraction - equilibrium_fraction) / kEquilibriumFraction,
-                   (strain_reached - target_strain) / target_strain});
+                   (strain_reached - target_strain) / target_strain,
+                   (strain_limit - strain_reached) / strain_limit});
 }
 
 double LoadingMetrics::shortfall() const {
   return std::max(0.0, kBandFraction - band_fraction) / kBandFraction +
          std::max(0.0, equilibrium_fraction - kEquilibriumFraction) / (1 - kEquilibriumFraction) +
-         std::max(0.0, target_strain - strain_reached) / target_strain;
+         std::max(0.0, target_strain - strain_reached) / target_strain +
+         std::max(0.0, strain_reached - strain_limit) / strain_limit;
 }
 
 LoadingMetrics loading_metrics(const TimeSeries& specimen, std::span<const double> front,
@@ -107,7 +109,10 @@ FaceForces face_forces(const SimulationResult& run, const Scene& scene) {
 LoadingMetrics loading_metrics(const SimulationResult& run, const Scene& scene,
                                const PlanTargets& targets) {
   const FaceForces f = face_forces(run, scene);
-  return loading_metrics(run.specimen, f.front, f.back, targets);
+  LoadingMetrics m = loading_metrics(run.specimen, f.front, f.back, targets);
+  m.strain_limit =
+      kSimulableStrainFraction * scene.simulation.max_strain.value_or(kDefaultMaxStrain);
+  return m;
 }
 
 Scene planned_scene(const PlanInput& input, const PlanCandidate& c) {
@@ -208,7 +213,8 @@ class Planner {
     // there while 7.6 m/s meets every criterion.
     double below = v.lo, above = v.hi;
     auto bracket = [&](double x, const Evaluation& e) {
-      if (e.result.stable && e.metrics.plateau_rate_1_s < R)
+      if (e.result.stable && e.metrics.plateau_rate_1_s < R &&
+          e.metrics.strain_reached <= e.metrics.strain_limit)
         below = std::max(below, x);
       else
         above = std::min(above, x);
@@ -361,6 +367,12 @@ std::string Planner::binding(const Evaluation& best) const {
                   "longest allowed is %.3g m (plan.striker.length, and the incident gauge's "
                   "distance to the specimen so that the pulses do not overlap)",
                   E, m.strain_reached, R, 1e6 * E / R, c * E / (2 * R), limit);
+  } else if (m.strain_reached > m.strain_limit) {
+    std::snprintf(what, sizeof what,
+                  "the pulse takes the specimen to strain %.3g, beyond %.3g (%.0f %% of "
+                  "simulation.max_strain, the strain its steps are planned for): a shorter "
+                  "striker (plan.striker.length) ends the loading nearer the target strain",
+                  m.strain_reached, m.strain_limit, 100 * kSimulableStrainFraction);
   } else if (m.band_fraction < kBandFraction) {
     std::snprintf(what, sizeof what,
                   "the rate stays within ±%.0f %% of %.4g 1/s over only %.0f %% of the loading "

@@ -22,6 +22,9 @@ inline constexpr double kRateBand = 0.10;
 inline constexpr double kBandFraction = 0.50;
 inline constexpr double kEquilibriumRatio = kEquilibriumThreshold;
 inline constexpr double kEquilibriumFraction = 0.25;
+// Of simulation.max_strain, the mean strain a planned test may reach
+// (LoadingMetrics::strain_limit).
+inline constexpr double kSimulableStrainFraction = 0.9;
 
 struct PlanTargets {
   double rate_1_s = 0;
@@ -52,6 +55,11 @@ struct LoadingMetrics {
   // loading that `process` quotes (its loading ends at the strain maximum, docs/methods.md §6).
   double test_mean_rate_1_s = 0;
   double target_strain = 0.15;
+  // The largest mean strain a plan may take the specimen to: kSimulableStrainFraction of the
+  // strain its steps are planned for (simulation.max_strain). The shortest element runs ahead of
+  // the mean, and a finer mesh stops there (exit 3): measured, a plan at a mean of 0.499 on the
+  // search's meshes compressed an element past 0.5 on the 0.5 % meshes.
+  double strain_limit = 1;
   bool meets() const;  // every criterion
   // The smallest relative margin by which the band, equilibrium and strain criteria are met
   // (negative: one is missed).

@@ -165,12 +165,14 @@ TEST_CASE(
   // hardening slows it. The whole loading's mean rate is stated, equal to `process`'s mean over
   // the loading of the planned gauges (the 1D gauges carry the faces' state; 2 % allows the
   // reduction's first and last samples), and a mean more than the ±10 % band off is warned about.
+  // The steps are planned for strain 0.8, so that a test to ~0.5 is one the plan may propose.
   constexpr double kRateAgreement = 0.02, kRateBand = 0.1, kTarget = 5000;
   ScratchDir dir("plan_overshoot");
   const fs::path scene =
       classic_with_plan(dir.path(), {{"striker", {{"velocity", {"2 m/s", "40 m/s"}}}}});
   nlohmann::json j = nlohmann::json::parse(read_text(scene));
   j["bars"][2]["length"] = "3 mm";
+  j["simulation"]["max_strain"] = 0.8;
   std::ofstream(scene) << j.dump(2);
   const fs::path out = dir.path() / "out";
   const auto r = run_shpb(
@@ -192,6 +194,26 @@ TEST_CASE(
   REQUIRE(std::abs(quoted - kTarget) > kRateBand * kTarget);
   CHECK(r.err.find("warning: the pulse loads the specimen on to strain") != std::string::npos);
   CHECK(plan["warnings"].size() == 1);
+}
+
+TEST_CASE("A plan is never a test the simulation's planned steps cannot verify", "[app][plan]") {
+  // The classic 300 mm striker, velocity free, on a 3 mm specimen at 5000 1/s takes the specimen
+  // to a mean strain of ~0.48: within the default simulation.max_strain 0.5 on the search's meshes,
+  // while its shortest element runs ahead of the mean and crossed 0.5 on finer ones (exit 3). A
+  // plan keeps the mean below 90 % of max_strain, so this one has no set-up: exit 3 naming it.
+  ScratchDir dir("plan_max_strain");
+  const fs::path scene =
+      classic_with_plan(dir.path(), {{"striker", {{"velocity", {"2 m/s", "40 m/s"}}}}});
+  nlohmann::json j = nlohmann::json::parse(read_text(scene));
+  j["bars"][2]["length"] = "3 mm";
+  std::ofstream(scene) << j.dump(2);
+  const fs::path out = dir.path() / "out";
+  const auto r = run_shpb(
+      {"plan", scene.string(), "--rate", "5000 1/s", "-o", out.string(), "--threads", "2", "-q"});
+  INFO(r.err);
+  CHECK(r.code == 3);
+  CHECK(r.err.find("simulation.max_strain") != std::string::npos);
+  CHECK_FALSE(fs::exists(out / "scene.json"));
 }
 
 TEST_CASE("A rate beyond the striker's velocity bound is exit 3 naming that bound", "[app][plan]") {
