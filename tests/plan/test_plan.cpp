@@ -8,6 +8,7 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -102,6 +103,40 @@ double equilibrium_fraction(const fs::path& run, double rate, double strain) {
   return (t[std::min(held_from, k1)] - t[k0]) / (t[k1] - t[k0]);
 }
 
+// `shpb plan` of `scene` with `args`, then `process` of the planned scene's own gauges: the two
+// summary.json, or the failing command's exit (INFO'd) stops the test.
+struct PlannedAndProcessed {
+  nlohmann::json plan, process;
+  std::string plan_err;
+};
+PlannedAndProcessed plan_then_process(const fs::path& dir, const fs::path& scene,
+                                      std::vector<std::string> args) {
+  const fs::path out = dir / "out";
+  args.insert(args.begin(), {"plan", scene.string()});
+  args.insert(args.end(), {"-o", out.string(), "--threads", "2", "-q"});
+  const auto r = run_shpb(args);
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  const auto p =
+      run_shpb({"process", (out / "scene.json").string(), "--signals",
+                (out / "simulation" / "gauges.csv").string(), "-o", (dir / "proc").string(), "-q"});
+  INFO(p.err);
+  REQUIRE(p.code == 0);
+  return {nlohmann::json::parse(read_text(out / "summary.json")),
+          nlohmann::json::parse(read_text(dir / "proc" / "summary.json")), r.err};
+}
+
+// The classic scene with the striker's velocity free (2–40 m/s) and a 3 mm specimen, its steps
+// planned for `max_strain` when given.
+fs::path classic_3mm_velocity_free(const fs::path& dir, std::optional<double> max_strain = {}) {
+  const fs::path scene = classic_with_plan(dir, {{"striker", {{"velocity", {"2 m/s", "40 m/s"}}}}});
+  nlohmann::json j = nlohmann::json::parse(read_text(scene));
+  j["bars"][2]["length"] = "3 mm";
+  if (max_strain) j["simulation"]["max_strain"] = *max_strain;
+  std::ofstream(scene) << j.dump(2);
+  return scene;
+}
+
 }  // namespace
 
 TEST_CASE("A planned striker velocity, re-simulated on its own, holds the target rate",
@@ -139,18 +174,8 @@ TEST_CASE("A planned striker longer than the scene's records its whole test in t
   ScratchDir dir("plan_long_striker");
   const fs::path scene =
       classic_with_plan(dir.path(), {{"striker", {{"velocity", {"2 m/s", "40 m/s"}}}}}, "900 mm");
-  const fs::path out = dir.path() / "out";
-  const auto r = run_shpb({"plan", scene.string(), "--rate", "500 1/s", "--strain", "0.1", "-o",
-                           out.string(), "--threads", "2", "-q"});
-  INFO(r.err);
-  REQUIRE(r.code == 0);
-  const auto p = run_shpb({"process", (out / "scene.json").string(), "--signals",
-                           (out / "simulation" / "gauges.csv").string(), "-o",
-                           (dir.path() / "proc").string(), "-q"});
-  INFO(p.err);
-  REQUIRE(p.code == 0);
-  const auto plan = nlohmann::json::parse(read_text(out / "summary.json"));
-  const auto proc = nlohmann::json::parse(read_text(dir.path() / "proc" / "summary.json"));
+  const auto [plan, proc, err] =
+      plan_then_process(dir.path(), scene, {"--rate", "500 1/s", "--strain", "0.1"});
   const double reached = plan["predicted"]["strain_reached"];
   INFO("specimen " << reached << ", processed gauges " << proc["max_strain"]);
   CHECK(std::abs(proc["max_strain"].get<double>() - reached) <= kStrainAgreement * reached);
@@ -168,31 +193,15 @@ TEST_CASE(
   // The steps are planned for strain 0.8, so that a test to ~0.5 is one the plan may propose.
   constexpr double kRateAgreement = 0.02, kRateBand = 0.1, kTarget = 5000;
   ScratchDir dir("plan_overshoot");
-  const fs::path scene =
-      classic_with_plan(dir.path(), {{"striker", {{"velocity", {"2 m/s", "40 m/s"}}}}});
-  nlohmann::json j = nlohmann::json::parse(read_text(scene));
-  j["bars"][2]["length"] = "3 mm";
-  j["simulation"]["max_strain"] = 0.8;
-  std::ofstream(scene) << j.dump(2);
-  const fs::path out = dir.path() / "out";
-  const auto r = run_shpb(
-      {"plan", scene.string(), "--rate", "5000 1/s", "-o", out.string(), "--threads", "2", "-q"});
-  INFO(r.err);
-  REQUIRE(r.code == 0);
-  const auto p = run_shpb({"process", (out / "scene.json").string(), "--signals",
-                           (out / "simulation" / "gauges.csv").string(), "-o",
-                           (dir.path() / "proc").string(), "-q"});
-  INFO(p.err);
-  REQUIRE(p.code == 0);
-  const auto plan = nlohmann::json::parse(read_text(out / "summary.json"));
-  const auto proc = nlohmann::json::parse(read_text(dir.path() / "proc" / "summary.json"));
+  const auto [plan, proc, err] = plan_then_process(
+      dir.path(), classic_3mm_velocity_free(dir.path(), 0.8), {"--rate", "5000 1/s"});
   REQUIRE(plan["predicted"].contains("test_mean_rate_1_s"));
   const double stated = plan["predicted"]["test_mean_rate_1_s"];
   const double quoted = proc["strain_rate"]["mean_over_loading_1_s"];
   INFO("plan's whole-loading mean " << stated << ", process " << quoted);
   CHECK(std::abs(stated - quoted) <= kRateAgreement * quoted);
   REQUIRE(std::abs(quoted - kTarget) > kRateBand * kTarget);
-  CHECK(r.err.find("warning: the pulse loads the specimen on to strain") != std::string::npos);
+  CHECK(err.find("warning: the pulse loads the specimen on to strain") != std::string::npos);
   CHECK(plan["warnings"].size() == 1);
 }
 
@@ -202,11 +211,7 @@ TEST_CASE("A plan is never a test the simulation's planned steps cannot verify",
   // while its shortest element runs ahead of the mean and crossed 0.5 on finer ones (exit 3). A
   // plan keeps the mean below 90 % of max_strain, so this one has no set-up: exit 3 naming it.
   ScratchDir dir("plan_max_strain");
-  const fs::path scene =
-      classic_with_plan(dir.path(), {{"striker", {{"velocity", {"2 m/s", "40 m/s"}}}}});
-  nlohmann::json j = nlohmann::json::parse(read_text(scene));
-  j["bars"][2]["length"] = "3 mm";
-  std::ofstream(scene) << j.dump(2);
+  const fs::path scene = classic_3mm_velocity_free(dir.path());
   const fs::path out = dir.path() / "out";
   const auto r = run_shpb(
       {"plan", scene.string(), "--rate", "5000 1/s", "-o", out.string(), "--threads", "2", "-q"});
