@@ -67,15 +67,20 @@ std::string percent(double fraction) {
   return fmt(100 * fraction < 99.95 ? "%.3g %%" : "%.0f %%", 100 * fraction);
 }
 
-// How far the reflected onset may lie from the geometric one: a few samples or a fraction of the
-// travel time (as a transmitted onset), and, earlier, by as much as the reflected front rises more
-// slowly than the incident one. An onset is picked at the foot of its front, and a front that is
-// wider — dispersed over its longer path, shaped by the specimen's ring-up, or spread by a model's
-// elements at an interface — has its foot earlier by up to its extra rise with nothing mistimed.
+// How far an onset may lie from the geometric one with nothing mistimed: a few samples or a
+// fraction of its pulse's travel time from the specimen face to its gauge.
+double alignment_tolerance_s(double dt, double travel_s) {
+  return std::max(kAlignmentSamples * dt, kAlignmentFraction * travel_s);
+}
+
+// How far the reflected onset may lie from the geometric one: the alignment tolerance, and,
+// earlier, by as much as the reflected front rises more slowly than the incident one. An onset is
+// picked at the foot of its front, and a front that is wider — dispersed over its longer path,
+// shaped by the specimen's ring-up, or spread by a model's elements at an interface — has its foot
+// earlier by up to its extra rise with nothing mistimed.
 double reflected_tolerance_s(const ProcessingResult& r, double dt, double travel_s) {
   const double wider = std::max(0.0, r.reflected_rise_s - r.incident_rise_s);
-  return std::max(kAlignmentSamples * dt, kAlignmentFraction * travel_s) +
-         (*r.reflected_onset_offset_s < 0 ? wider : 0.0);
+  return alignment_tolerance_s(dt, travel_s) + (*r.reflected_onset_offset_s < 0 ? wider : 0.0);
 }
 
 // A detected onset further from the geometric one than a few samples or 2 % of the travel time
@@ -109,7 +114,7 @@ void check_alignment(ProcessingResult& r, const KolskySetup& k, double dt,
     const double travel_t = k.transmitted_distance_m / c_b;
     // Later than geometry may also be a soft specimen's slow rise: its onset, picked at a few
     // percent of the peak, is uncertain by up to the front's rise.
-    const double tol = std::max(kAlignmentSamples * dt, kAlignmentFraction * travel_t) +
+    const double tol = alignment_tolerance_s(dt, travel_t) +
                        kRingUpTransits * k.specimen_transit_s +
                        (off > 0 ? r.transmitted_rise_s : 0);
     if (std::abs(off) > tol) {
@@ -467,8 +472,7 @@ PulseTiming time_the_pulses(const std::vector<double>& t, double dt, std::size_t
   // A reflected front due before the incident pulse has ended on its gauge (a gauge closer to the
   // specimen than half the pulse's length) cannot be told from that pulse: no onset is sought.
   const double travel_r = 2 * d_i / c_front;
-  const bool apart =
-      t[end - 1] < expected_r - std::max(kAlignmentSamples * dt, kAlignmentFraction * travel_r);
+  const bool apart = t[end - 1] < expected_r - alignment_tolerance_s(dt, travel_r);
   const auto i0 = index_at(t, t[end - 1]);
   const auto i1 = index_at(t, expected_r + p.duration);
   if (const auto o =

@@ -506,10 +506,12 @@ ScaledSvd scaled_svd(const Eigen::MatrixXd& jx, std::size_t p) {
 // (a record holding two of the transmitter's three returns: its wave speed 4 % off at a stated
 // 0.02 %). It is named in fit.undetermined; its parameters, and the Poisson ratio of a bar whose
 // wave speed is among them (fitted to the dispersion that then stands in for the travel times),
-// get a weight of 1 in the returned vector (0 for the others).
+// get a weight of 1 in the returned vector (0 for the others); each combination is described in
+// `undetermined`.
 std::vector<double> timing_undetermined(const std::vector<Shot>& shots,
                                         const std::vector<LsParameter>& list,
-                                        const std::vector<double>& theta, CalibrationFit& fit) {
+                                        const std::vector<double>& theta,
+                                        std::vector<std::string>& undetermined) {
   const std::size_t p = list.size();
   std::vector<std::vector<double>> rows;
   for (const Shot& s : shots)
@@ -552,7 +554,7 @@ std::vector<double> timing_undetermined(const std::vector<Shot>& shots,
       line += (first ? "" : ", ") + list[used[j]].name + " (" + two_digits(w) + ")";
       first = false;
     }
-    fit.undetermined.push_back(
+    undetermined.push_back(
         line +
         ": only the dispersion's shape separates them, too weakly to trust; a record long enough "
         "to hold more of the pulse's returns to the gauges determines them");
@@ -731,13 +733,12 @@ CalibrationFit calibrate_bars(const std::vector<CalibrationShot>& input,
   for (const Shot& s : prepared.shots)
     fit.warnings.insert(fit.warnings.end(), s.warnings.begin(), s.warnings.end());
   fit.warnings.insert(fit.warnings.end(), r.warnings.begin(), r.warnings.end());
-  CalibrationFit timing;
+  std::vector<std::string> timing_free;
   const std::vector<double> timing_weight =
-      timing_undetermined(prepared.shots, list, r.value, timing);
+      timing_undetermined(prepared.shots, list, r.value, timing_free);
   fitted_parameters(list, r, timing_weight, fit);
   // The Jacobian's weak directions first, then what the travel times leave free besides.
-  fit.undetermined.insert(fit.undetermined.end(), timing.undetermined.begin(),
-                          timing.undetermined.end());
+  fit.undetermined.insert(fit.undetermined.end(), timing_free.begin(), timing_free.end());
   fit.calibration = calibration_of(input, fit.parameters, prepared.reference);
   make_gains_absolute(prepared.shots, r.value, prepared.reference, fit);
   fit.shots = shot_signals(prepared.shots, list, r.value, tables);

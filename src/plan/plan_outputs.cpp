@@ -184,8 +184,7 @@ std::vector<std::string> plan_warnings(const PlanResult& r, const PlanTargets& t
                 m.strain_reached, targets.strain, m.test_mean_rate_1_s,
                 100 * (m.test_mean_rate_1_s / R - 1));
   std::string text = line;
-  // A pulse of E/R: 2L/c = E/R (docs/methods.md §12, "Infeasible targets").
-  const double needed = targets.strain * striker.material.wave_speed_m_s() / (2 * R);
+  const double needed = striker_length_for(targets.strain, R, striker.material.wave_speed_m_s());
   if (m.strain_reached > kOvershoot * targets.strain && needed < striker.length_m) {
     std::snprintf(line, sizeof line,
                   "; a shorter striker (about %.3g m: 2L/c = strain/rate, plan.striker.length) "

@@ -366,7 +366,7 @@ std::string Planner::binding(const Evaluation& best) const {
                   "must last %.3g us, a striker of at least %.3g m (2L/c >= strain/rate); the "
                   "longest allowed is %.3g m (plan.striker.length, and the incident gauge's "
                   "distance to the specimen so that the pulses do not overlap)",
-                  E, m.strain_reached, R, 1e6 * E / R, c * E / (2 * R), limit);
+                  E, m.strain_reached, R, 1e6 * E / R, striker_length_for(E, R, c), limit);
   } else if (m.strain_reached > m.strain_limit) {
     std::snprintf(what, sizeof what,
                   "the pulse takes the specimen to strain %.3g, beyond %.3g (%.0f %% of "

@@ -22,6 +22,10 @@ inline constexpr double kRateBand = 0.10;
 inline constexpr double kBandFraction = 0.50;
 inline constexpr double kEquilibriumRatio = kEquilibriumThreshold;
 inline constexpr double kEquilibriumFraction = 0.25;
+// The striker whose pulse lasts strain/rate: 2L/c = E/R (docs/methods.md §12).
+inline double striker_length_for(double strain, double rate_1_s, double wave_speed_m_s) {
+  return strain * wave_speed_m_s / (2 * rate_1_s);
+}
 // Of simulation.max_strain, the mean strain a planned test may reach
 // (LoadingMetrics::strain_limit).
 inline constexpr double kSimulableStrainFraction = 0.9;
