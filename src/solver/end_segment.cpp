@@ -45,9 +45,10 @@ void plan_end_segments(Chain& chain, const Scene& scene) {
     const BarModel& f = chain.bars[fast];
     // The fast bar may be an elastic specimen (docs/methods.md §3.7). A specimen with a material
     // law keeps the coupling of §3.4 on both its steps: with its adaptive step (§8.1) segments
-    // kept the energy and cut the closings too, but the gauges' second difference in a law
-    // parameter grew tenfold (the fit's smooth response, §9), the fixed plan's gauges then moved
-    // from the adaptive step's, and the radial-inertia closed form (§8.3) moved 8 % (not analysed).
+    // kept the energy and cut the closings too, but the gauges' response to a law parameter got
+    // kinks (the fit's smooth response, §9: its adaptive instants slide with the law past the
+    // bar's, and the joint's result changes slope at each crossing), the fixed plan's gauges then
+    // moved from the adaptive step's, and the radial-inertia closed form (§8.3) moved 8 %.
     const bool law_specimen = scene.specimen && *scene.specimen == fast && f.law;
     if (law_specimen || s.law || s.adaptive_step || f.adaptive_step ||
         (end == 1 && s.dashpot_right))
