@@ -27,6 +27,14 @@ std::string courant_problem(double c) {
 
 namespace {
 
+// A tolerance as the user wrote it: 12 significant digits drop the round-off of the percent's
+// conversion (3.5 % is 0.035000000000000003 × 100 = 3.5000000000000004).
+std::string percent_text(double fraction) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.12g %%", 100 * fraction);
+  return text;
+}
+
 // For a run discretize() refused: its node updates at the default Courant number when a smaller
 // one (the scene's or --courant) is what puts it beyond this machine's budget (every bar's steps
 // grow as 1/C, docs/methods.md §1), else nothing: then the duration, a bar or the sample rate
@@ -54,7 +62,7 @@ ChainDiscretization validate_scene(const Scene& scene, const RunOptions& options
   }
   if (const auto t = scene.simulation.tolerance) {
     if (const std::string what = tolerance_problem(*t); !what.empty()) {
-      const std::string value = format_double(*t * 100) + " %";
+      const std::string value = percent_text(*t);
       if (options.tolerance_from_command_line) throw input_error("--tolerance", "", value, what);
       throw input_error(scene.file.string(), "simulation.tolerance", value, what);
     }
@@ -158,7 +166,7 @@ ChainDiscretization resolve_scene(Scene& scene, const RunOptions& options) {
                   "not reachable: the most accurate mesh this machine affords (%.3g node updates) "
                   "is predicted at %.3g %% gauge error (docs/methods.md §1.1)",
                   d.node_updates_estimate, 100 * p.total);
-  const std::string value = format_double(100 * *t) + " %";
+  const std::string value = percent_text(*t);
   if (options.tolerance_from_command_line) throw input_error("--tolerance", "", value, what);
   throw input_error(scene.file.string(), "simulation.tolerance", value, what);
 }

@@ -24,6 +24,9 @@ struct SimulationOptions {
   bool subcycle = true;                  // a lone fast bar steps in a tight loop (scheduler.hpp)
   bool adaptive_step = true;  // finite-strain bars step from their shortest element (step_control)
   bool skip_at_rest = true;   // a lone bar at rest skips its no-op instants (scheduler.hpp rule 10)
+  // An asynchronous run that loses its energy is run again with end segments at a law specimen's
+  // faces, else at global steps (simulate()); off where the methods themselves are measured.
+  bool stabilize = true;
 };
 
 // Stress along the chain on a coarse x–t grid (the wave diagram): stress_Pa[t * x_m.size() + x].

@@ -27,6 +27,7 @@ ParetoJobResult run_pareto_job(const Scene& scene, const ParetoJob& job,
   SimulationOptions options;
   options.record_field = false;
   options.cancel = cancel;
+  options.stabilize = job.reference;  // a case is charted as its method runs
   SimulationResult r = simulate(
       job.reference ? fine_reference_scene(scene, job.run.resolution) : scene_for(scene, job.run),
       options);

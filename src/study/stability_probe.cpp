@@ -69,6 +69,7 @@ StabilityVerdict judge_stability(const Scene& probe, const StabilityPoint& point
   }
   SimulationOptions options;
   options.record_field = false;
+  options.stabilize = false;  // the map shows where each method fails
   const SimulationResult r = simulate(s, options);
   StabilityVerdict v;
   const std::vector<double>& total = r.energy.column("total_J");

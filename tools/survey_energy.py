@@ -1,0 +1,69 @@
+#!/usr/bin/python3
+"""Energy balance of ordinary set-ups the experiments do not hold (docs/methods.md §3.7,
+docs/validation.md "A law specimen that stays elastic").
+
+Usage: tools/survey_energy.py SHPB [--stepping asynchronous|global]
+
+The classic experiment's layout (300 mm striker, 2 m bars of Ø19.05 mm, gauges at mid-length) with
+its bars made of steel, aluminium or titanium (or a magnesium transmitter on steel, or an aluminium
+striker on steel), a specimen of Al 6061-T6, OFHC copper, Ti-6Al-4V or PMMA (specimens/*.json) of
+10 × 5, 16 × 2 or 6 × 6 mm (diameter × length), struck at 8 or 25 m/s: 144 scenes, each run by
+`shpb simulate` at its defaults. Prints one line per run whose energy balance is off by more than
+0.5 % or that did not exit 0 (exit code, energy error, closings per interface, stepping kept, first
+warning), then the counts.
+"""
+import itertools
+import json
+import pathlib
+import subprocess
+import sys
+import tempfile
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+SHPB = sys.argv[1]
+EXTRA = sys.argv[2:]
+BARS = {"steel": ("8080 kg/m3", "200 GPa", 0.29), "al": ("2700 kg/m3", "70 GPa", 0.33),
+        "ti": ("4430 kg/m3", "113.8 GPa", 0.342), "mg": ("1800 kg/m3", "45 GPa", 0.35)}
+LAYOUTS = [("steel", "steel", "steel"), ("steel", "steel", "al"), ("al", "al", "al"),
+           ("ti", "ti", "ti"), ("steel", "steel", "mg"), ("al", "steel", "steel")]
+SPECIMENS = {"al6061": "al6061-t6.json", "cu": "ofhc-copper.json", "ti": "ti6al4v.json",
+             "pmma": "pmma.json"}
+SHAPES = [("10 mm", "5 mm"), ("16 mm", "2 mm"), ("6 mm", "6 mm")]
+VELOCITIES = [8, 25]
+BOUND = 0.005  # the experiments' own bound on the energy balance
+
+base = json.loads((ROOT / "experiments/classic-al6061/scene.json").read_text())
+off = failed = 0
+with tempfile.TemporaryDirectory() as tmp:
+    for layout, specimen, shape, velocity in itertools.product(LAYOUTS, SPECIMENS, SHAPES,
+                                                               VELOCITIES):
+        scene = json.loads(json.dumps(base))
+        scene["materials"] = {name: {"model": "elastic", "density": rho, "youngs_modulus": e,
+                                     "poisson_ratio": nu} for name, (rho, e, nu) in BARS.items()}
+        for bar, material in zip([0, 1, 3], layout):
+            scene["bars"][bar]["material"] = material
+        scene["bars"][0]["velocity"] = f"{velocity} m/s"
+        scene["bars"][2].update(material=str(ROOT / "specimens" / SPECIMENS[specimen]),
+                                diameter=shape[0], length=shape[1])
+        name = f"{'-'.join(layout)}_{specimen}_{shape[0].split()[0]}x{shape[1].split()[0]}_{velocity}"
+        path = pathlib.Path(tmp) / f"{name}.json"
+        path.write_text(json.dumps(scene))
+        out = pathlib.Path(tmp) / name
+        run = subprocess.run([SHPB, "simulate", str(path), "-o", str(out), "-q", *EXTRA],
+                             capture_output=True, text=True)
+        summary = out / "summary.json"
+        if not summary.exists():
+            failed += 1
+            print(f"{name}: exit {run.returncode}: {run.stderr.strip()[:160]}")
+            continue
+        s = json.loads(summary.read_text())
+        bad = run.returncode != 0 or abs(s["energy_error"]) > BOUND
+        off += abs(s["energy_error"]) > BOUND
+        failed += run.returncode != 0
+        if bad:
+            closings = "/".join(str(i["activations"]) for i in s["interfaces"])
+            warning = s["warnings"][0][:120] if s["warnings"] else ""
+            print(f"{name}: exit {run.returncode}, energy error {s['energy_error']:.2e}, "
+                  f"closings {closings}, {s['stepping']}; {warning}")
+print(f"{off} runs off by more than {100 * BOUND:g} %, {failed} not exit 0, of "
+      f"{len(LAYOUTS) * len(SPECIMENS) * len(SHAPES) * len(VELOCITIES)}")
