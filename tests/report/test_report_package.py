@@ -2,6 +2,7 @@
 report.package). The end-to-end exit codes are tests/app/report_exit_codes.py."""
 import os
 import sys
+import warnings
 from pathlib import Path
 
 import pytest
@@ -9,6 +10,7 @@ import pytest
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools"))
 
 from shpb_report import main as report_main  # noqa: E402
+from shpb_report import sweeps  # noqa: E402
 from shpb_report.reading import ReportError, Source, Table  # noqa: E402
 
 
@@ -141,3 +143,38 @@ def test_a_plan_folder_draws_the_plan_against_its_criteria(tmp_path):
     assert {"plan_gauges.png", "plan_loading.png", "plan_shaper_gain.png",
             "plan_path.png"} <= figures
     assert "plan_loading.png" in (tmp_path / "report.html").read_text(encoding="utf-8")
+
+
+def test_the_rigid_link_limit_of_a_stability_map_is_drawn(tmp_path):
+    # `study --sweep stability` maps localized bipenalty's rigid-link limit with ε_s/k and R/R_crit
+    # 0 (docs/outputs.md, study): a stiffness of 0 has no place on a log axis, where its points
+    # vanished with a warning on stderr. Its panel must show every one of them.
+    courants = (0.5, 1.0, 1.05)
+    rows = [f"localized-bipenalty,{k},{r},{c},1,{int(c <= 1)},1,0"
+            for k, r in ((0, 0), (1, 0.5), (100, 0.5)) for c in courants]
+    write(tmp_path, "stability.csv", "method,stiffness_factor,mass_ratio,courant,energy_growth,"
+          "stable,step_ratio,closings_after_release\n" + "\n".join(rows) + "\n")
+    write(tmp_path, "stability_boundary.csv", "method,link,stiffness_factor,mass_ratio,"
+          "critical_courant,closed_form_courant,step_ratio\n"
+          "localized-bipenalty,unilateral,0,0,1.0,1,1\n"
+          "localized-bipenalty,unilateral,1,0.5,1.0,1,1\n")
+
+    class Kept:
+        def __init__(self):
+            self.figures = []
+
+        def save(self, fig, *caption):
+            self.figures.append(fig)
+
+    kept = Kept()
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # matplotlib's "no positive values" warning fails the test
+        sweeps.fig_stability(Source(str(tmp_path), "."), kept)
+    (fig,) = kept.figures
+    panels = [ax for ax in fig.axes if ax.get_visible()]
+    rigid = [ax for ax in panels if ax.get_xscale() == "linear"]
+    assert len(panels) == 2 and len(rigid) == 1
+    low, high = rigid[0].get_xlim()
+    shown = [xy for points in rigid[0].collections for xy in points.get_offsets()
+             if low <= xy[0] <= high]
+    assert len(shown) == len(courants)

@@ -9,6 +9,24 @@ from .drawing import new_figure
 from .reading import slug
 
 
+def boundary(ax, b, rows, rigid):
+    """The measured boundary of each link and its closed form (stability_boundary.csv's `rows`):
+    lines over the stiffness, or a level across a rigid-link panel, which has no stiffness."""
+    bx = b.numeric("stiffness_factor")
+    lines = [(b.numeric("critical_courant"), rows & (b["link"] == link),
+              {"color": color, "linestyle": dash}, f"measured boundary ({link})")
+             for link, color, dash in (("unilateral", "k", "-"), ("tied", "b", "--"))]
+    lines.append((b.numeric("closed_form_courant"), rows, {"color": "C4", "linestyle": ":"},
+                  "closed form"))
+    for values, on, style, label in lines:
+        m = np.flatnonzero(on)
+        if m.size and rigid:
+            ax.axhline(values[m[0]], linewidth=1.0, label=label, **style)
+        elif m.size:
+            m = m[np.argsort(bx[m])]
+            ax.plot(bx[m], values[m], linewidth=1.0, label=label, **style)
+
+
 def fig_stability(src, figs):
     t = src.table("stability.csv")
     xcol, ycol = "stiffness_factor", "courant"
@@ -21,6 +39,8 @@ def fig_stability(src, figs):
     methods = list(dict.fromkeys(keys)) if keys is not None else [""]
     stable = t.numeric("stable") > 0.5
     x, y = t.numeric(xcol), t.numeric(ycol)
+    positive = x[x > 0]
+    finite_range = ((positive.min() / 2, positive.max() * 2) if positive.size else (1e-2, 1e6))
     # The measured boundary and its closed form (stability_boundary.csv), keyed as the map is.
     b = src.table("stability_boundary.csv") if src.has("stability_boundary.csv") else None
     if b is not None and len(b):
@@ -35,13 +55,15 @@ def fig_stability(src, figs):
         n = len(ratios)
         cols = min(n, 3)
         rows = math.ceil(n / cols)
+        # Not sharex: the rigid-link limit (ε_s/k 0) has no place on the stiffness's log axis.
         fig, axes = new_figure(rows, cols, height=3.6 * rows + 0.4, width=4.2 * cols + 1.0,
-                               sharex=True, sharey=True)
+                               sharey=True)
         for k, r in enumerate(ratios):
             ax = axes.flat[k]
             s = sel.copy()
             if r is not None:
                 s &= t.numeric(rcol) == r
+            rigid = bool(s.any()) and not np.any(x[s] > 0)
             ax.scatter(x[s & stable], y[s & stable], marker="s", s=28, color="C2",
                        label="stable")
             ax.scatter(x[s & ~stable], y[s & ~stable], marker="x", s=28, color="C3",
@@ -50,24 +72,21 @@ def fig_stability(src, figs):
                 bs = bkeys == method
                 if r is not None:
                     bs &= b.numeric("mass_ratio") == r
-                bx = b.numeric("stiffness_factor")
-                for link, style in (("unilateral", "k-"), ("tied", "b--")):
-                    m = np.flatnonzero(bs & (b["link"] == link))
-                    m = m[np.argsort(bx[m])]
-                    if m.size:
-                        ax.plot(bx[m], b.numeric("critical_courant")[m], style, linewidth=1.0,
-                                label=f"measured boundary ({link})")
-                m = np.flatnonzero(bs)
-                m = m[np.argsort(bx[m])]
-                if m.size:
-                    ax.plot(bx[m], b.numeric("closed_form_courant")[m], color="C4", linestyle=":",
-                            linewidth=1.0, label="closed form")
+                boundary(ax, b, bs, rigid)
             if method == "penalty":
                 k_ratio = np.logspace(np.log10(max(np.nanmin(x), 1e-12)),
                                       np.log10(np.nanmax(x)), 200)
                 ax.plot(k_ratio, np.minimum(1.0, np.sqrt(2.0 / k_ratio)), color="k",
                         linestyle="--", linewidth=1.0, label="≈ √(2k/ε_s) (docs/methods.md §2)")
+            if rigid:
+                ax.set_xlim(-1.0, 1.0)
+                ax.set_xticks([0.0], ["rigid-link limit"])
+                ax.set_title("rigid-link limit (no ε_s, R)", fontsize=9)
+                ax.set_ylabel("Courant number c·Δt/h")
+                ax.legend(loc="lower left", fontsize=7)
+                continue
             ax.set_xscale("log")
+            ax.set_xlim(*finite_range)
             ax.set_title((f"R/R_crit = {r:g}" if r is not None else method), fontsize=9)
             ax.set_xlabel("penalty stiffness ε_s / (EA/h)")
             ax.set_ylabel("Courant number c·Δt/h")
