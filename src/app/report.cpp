@@ -33,8 +33,8 @@ Command add_report_command(CLI::App& app) {
   auto args = std::make_shared<ReportArgs>();
   auto* cmd = app.add_subcommand(
       "report",
-      "Turn an output folder of simulate/process/compare/study into PNG figures and one "
-      "self-contained report.html (needs python3 with matplotlib)");
+      "Turn an output folder of simulate/process/compare/study/fit/calibrate/plan into PNG figures "
+      "and one self-contained report.html (needs python3 with matplotlib)");
   cmd->add_option("folder", args->folder, "Output folder")
       ->required()
       ->check(CLI::ExistingDirectory);

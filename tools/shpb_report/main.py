@@ -123,7 +123,7 @@ def build(folder: str) -> tuple[str, int]:
     if not sources:
         raise ReportError(f"{folder}: no gauges.csv, curve.csv, signals.csv, pareto.csv or "
                           "other shpb output: an output folder of simulate, process, compare, "
-                          "study or fit was expected")
+                          "study, fit, calibrate or plan was expected")
     check_ownership(folder)
     # Figures are drawn into a temporary folder and moved into place at the end, so a failure
     # leaves any previous report intact (docs/outputs.md (conventions)).
