@@ -22,8 +22,13 @@ int run_dispersion(const DispersionArgs& args) {
   const std::vector<std::string> header = mode_table_header(options);
   // A file through CsvWriter, or stdout (never reopened: that would truncate a redirect).
   // The file is written atomically: FILE keeps its previous content until the table is complete.
+  // It replaces only a table of this command: a first line that starts with the columns every
+  // table has (those without frequency_Hz).
   if (args.output) {
-    OutputFile file(*args.output);
+    std::string columns;
+    for (const std::string& name : mode_table_header(ModeTableOptions{}))
+      columns += (columns.empty() ? "" : ",") + name;
+    OutputFile file(*args.output, columns);
     CsvWriter csv(file.path(), header);
     mode_table(options, [&](const std::vector<double>& row) { csv.row(row); });
     csv.close();

@@ -326,13 +326,23 @@ void OutputFolder::commit() {
   if (!old.empty()) fs::remove_all(old, ec);
 }
 
-OutputFile::OutputFile(fs::path final_file) {
+OutputFile::OutputFile(fs::path final_file, const std::string& header) {
   final_ = absolute_output(final_file, "file");
   std::error_code ec;
   if (fs::is_directory(final_, ec))
     throw input_error(final_.string(), "", "", "is a folder: a file name was expected");
   if (fs::exists(final_, ec) && !fs::is_regular_file(final_, ec))
     throw input_error(final_.string(), "", "", "exists and is not a regular file");
+  if (!header.empty() && fs::exists(final_, ec) && fs::file_size(final_, ec) > 0) {
+    std::ifstream in(final_, std::ios::binary);
+    std::string first(header.size(), '\0');
+    in.read(first.data(), static_cast<std::streamsize>(first.size()));
+    if (first != header)
+      throw input_error(final_.string(), "", "",
+                        "exists and does not start with \"" + header +
+                            "\": shpb replaces only a file it wrote (move it away or choose "
+                            "another file)");
+  }
   prepare_parent(final_);
   remove_stale_temporaries(final_);
   temp_ = make_temporary(final_, false);

@@ -51,10 +51,12 @@ class OutputFolder {
 
 // One output file written atomically (e.g. `dispersion -o FILE`): written to a temporary file in
 // the same folder, fsync'ed and renamed over FILE by commit(); FILE keeps its previous content
-// until then, also when the process is killed.
+// until then, also when the process is killed. With a `header`, an existing FILE is replaced only
+// if it is empty or its first line starts with it: a file shpb wrote (docs/outputs.md,
+// Conventions); anything else is refused (InputError) before any work.
 class OutputFile {
  public:
-  explicit OutputFile(std::filesystem::path final_file);
+  explicit OutputFile(std::filesystem::path final_file, const std::string& header = "");
   ~OutputFile();  // removes the temporary file unless commit() succeeded
   OutputFile(const OutputFile&) = delete;
   OutputFile& operator=(const OutputFile&) = delete;

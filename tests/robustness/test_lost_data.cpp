@@ -286,6 +286,37 @@ TEST_CASE("dispersion -o killed or interrupted keeps the previous file",
   CHECK(read_all(table) != previous);
 }
 
+TEST_CASE("dispersion -o replaces only a table it wrote, never a file of the user's",
+          "[robustness][lost-data]") {
+  // docs/outputs.md, Conventions: no file shpb did not write is replaced. A dispersion table
+  // starts with its header; an empty file holds nothing to lose.
+  ScratchFolder scratch("lost");
+  const fs::path notes = scratch.path() / "notes.csv", link = scratch.path() / "link.csv";
+  write_bytes(notes, "my measurements\n1,2\n");
+  fs::create_symlink(notes, link);
+  for (const fs::path& target : {notes, link}) {
+    INFO("-o " << target);
+    check_refused(
+        run({"dispersion", "--poisson", "0.29", "-o", target.string()}, scratch.path(), kLimit_s),
+        "shpb replaces only a file it wrote");
+    CHECK(read_all(notes) == "my measurements\n1,2\n");
+    CHECK(fs::is_symlink(link));
+  }
+  CHECK(litter(scratch.path()).empty());
+  // Its own table, with or without the frequency column, and an empty file are replaced.
+  const fs::path table = scratch.path() / "table.csv";
+  write_bytes(table, "");
+  for (const std::vector<std::string>& extra :
+       {std::vector<std::string>{}, {"--radius", "5 mm", "--c0", "5000 m/s"}, {}}) {
+    std::vector<std::string> args = {"dispersion", "--poisson", "0.29", "-o", table.string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const Outcome o = run(args, scratch.path(), kLimit_s);
+    INFO(o.err);
+    CHECK(o.code == 0);
+    CHECK(read_all(table).rfind("a_over_lambda,c_over_c0,cg_over_c0,f_a_over_c0", 0) == 0);
+  }
+}
+
 TEST_CASE("A stray temporary-looking folder with a huge number is left alone, not a crash",
           "[robustness][lost-data]") {
   ScratchFolder scratch("lost");
