@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "app/commands.hpp"
+#include "core/closest_match.hpp"
 #include "core/error.hpp"
 #include "core/output_folder.hpp"
 #include "version.hpp"
@@ -46,6 +47,32 @@ int run_command(const Command& command) {
   }
 }
 
+// A misspelt command or option named with the closest one (core/closest_match.hpp), as a misspelt
+// scene key is; anything else in CLI11's words.
+std::string usage_error(CLI::App& app, const CLI::ParseError& e, int argc, char** argv) {
+  const auto subcommands = app.get_subcommands([](const CLI::App*) { return true; });
+  if (app.get_subcommands().empty() && argc > 1 && argv[1][0] != '-') {
+    std::vector<std::string> names;
+    for (const CLI::App* c : subcommands) names.push_back(c->get_name());
+    return std::string(argv[1]) + ": unknown command; " + suggestion_text(argv[1], names) +
+           " (see shpb --help)";
+  }
+  for (const std::string& extra : app.remaining(true)) {
+    if (extra.size() < 2 || extra[0] != '-' || app.get_subcommands().empty()) continue;
+    const CLI::App& command = *app.get_subcommands().front();
+    const std::string word = extra.substr(0, extra.find('=')),
+                      see = " (see shpb " + command.get_name() + " --help)";
+    if (word[1] != '-') return word + ": unknown option of shpb " + command.get_name() + see;
+    std::vector<std::string> options;  // long names: a one-letter typo is not worth a guess
+    for (const CLI::Option* o : command.get_options())
+      for (const std::string& name : o->get_lnames())
+        if (name != "help") options.push_back("--" + name);
+    return word + ": unknown option of shpb " + command.get_name() + "; " +
+           suggestion_text(word, options) + see;
+  }
+  return std::string(e.what()) + " (see shpb --help)";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -69,7 +96,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "error: %s (see shpb --help)\n", e.what());
+    std::fprintf(stderr, "error: %s\n", usage_error(app, e, argc, argv).c_str());
     return 2;
   }
   install_interrupt_handlers();

@@ -61,8 +61,8 @@ std::vector<std::string> undescribed_entries(const std::string& help) {
   return bad;
 }
 
-const std::vector<std::string> kCommands = {"simulate", "process",  "compare", "dispersion",
-                                            "study",    "validate", "report"};
+const std::vector<std::string> kCommands = {"simulate", "process", "compare", "dispersion", "study",
+                                            "validate", "report",  "fit",     "calibrate",  "plan"};
 
 // Decimal numbers printed with a double's round-off left in ("3.5000000000000004",
 // "0.30000000000000004"): the fraction digits of each number holding six equal zeros or nines
@@ -131,6 +131,29 @@ TEST_CASE("Usage errors exit 2 with one error line", "[app][cli]") {
     CHECK(r.err.rfind("error: ", 0) == 0);
     CHECK(lines(r.err).size() == 1);
     CHECK(r.out.empty());
+  }
+}
+
+// docs/commands.md, Exit codes: a misspelt command or option is named with the closest one, as a
+// misspelt scene key is; an unknown one with the list to choose from.
+TEST_CASE("A misspelt command or option is named, with the one meant", "[app][cli]") {
+  for (const auto& [args, says] : std::vector<std::pair<std::string, std::string>>{
+           {"simulat scene.json",
+            "simulat: unknown command; did you mean \"simulate\"? (see shpb "
+            "--help)"},
+           {"frobnicate", "frobnicate: unknown command; expected one of: simulate, process, "},
+           {"validate scene.json --tolerence 1%",
+            "--tolerence: unknown option of shpb validate; did you mean \"--tolerance\"? (see "
+            "shpb validate --help)"},
+           {"plan scene.json --rat=100 -o out",
+            "--rat: unknown option of shpb plan; did you mean \"--rate\"?"},
+           {"validate scene.json --bogus",
+            "--bogus: unknown option of shpb validate; expected one of: --json, --contact, "}}) {
+    INFO("shpb " << args);
+    const auto r = shpb(args);
+    CHECK(r.code == 2);
+    CHECK(r.err.rfind("error: " + says, 0) == 0);
+    CHECK(lines(r.err).size() == 1);
   }
 }
 
