@@ -2,7 +2,7 @@
 """Energy balance of ordinary set-ups the experiments do not hold (docs/methods.md §3.7,
 docs/validation.md "A law specimen that stays elastic").
 
-Usage: tools/survey_energy.py SHPB [--stepping asynchronous|global]
+Usage: tools/survey_energy.py SHPB [--shapers] [other simulate options, e.g. --stepping global]
 
 The classic experiment's layout (300 mm striker, 2 m bars of Ø19.05 mm, gauges at mid-length) with
 its bars made of steel, aluminium or titanium (or a magnesium transmitter on steel, or an aluminium
@@ -11,6 +11,10 @@ striker on steel), a specimen of Al 6061-T6, OFHC copper, Ti-6Al-4V or PMMA (spe
 `shpb simulate` at its defaults. Prints one line per run whose energy balance is off by more than
 0.5 % or that did not exit 0 (exit code, energy error, closings per interface, stepping kept, first
 warning), then the counts.
+
+--shapers: instead, experiments/pulse-shaper (steel striker and bars, a copper disc) with discs of
+3 × 16, 1 × 10 and 0.5 × 6 mm (length × diameter), the four specimens of 10 × 5 and 16 × 2 mm, at 10
+and 25 m/s: 48 scenes (docs/methods.md §8.1, the strain a bar's steps are planned for).
 """
 import itertools
 import json
@@ -21,7 +25,8 @@ import tempfile
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 SHPB = sys.argv[1]
-EXTRA = sys.argv[2:]
+SHAPERS = "--shapers" in sys.argv[2:]
+EXTRA = [a for a in sys.argv[2:] if a != "--shapers"]
 BARS = {"steel": ("8080 kg/m3", "200 GPa", 0.29), "al": ("2700 kg/m3", "70 GPa", 0.33),
         "ti": ("4430 kg/m3", "113.8 GPa", 0.342), "mg": ("1800 kg/m3", "45 GPa", 0.35)}
 LAYOUTS = [("steel", "steel", "steel"), ("steel", "steel", "al"), ("al", "al", "al"),
@@ -32,9 +37,11 @@ SHAPES = [("10 mm", "5 mm"), ("16 mm", "2 mm"), ("6 mm", "6 mm")]
 VELOCITIES = [8, 25]
 BOUND = 0.005  # the experiments' own bound on the energy balance
 
-base = json.loads((ROOT / "experiments/classic-al6061/scene.json").read_text())
-off = failed = 0
-with tempfile.TemporaryDirectory() as tmp:
+DISCS = [("3 mm", "16 mm"), ("1 mm", "10 mm"), ("0.5 mm", "6 mm")]
+
+
+def bars_scenes():
+    base = json.loads((ROOT / "experiments/classic-al6061/scene.json").read_text())
     for layout, specimen, shape, velocity in itertools.product(LAYOUTS, SPECIMENS, SHAPES,
                                                                VELOCITIES):
         scene = json.loads(json.dumps(base))
@@ -45,7 +52,28 @@ with tempfile.TemporaryDirectory() as tmp:
         scene["bars"][0]["velocity"] = f"{velocity} m/s"
         scene["bars"][2].update(material=str(ROOT / "specimens" / SPECIMENS[specimen]),
                                 diameter=shape[0], length=shape[1])
-        name = f"{'-'.join(layout)}_{specimen}_{shape[0].split()[0]}x{shape[1].split()[0]}_{velocity}"
+        yield (f"{'-'.join(layout)}_{specimen}_{shape[0].split()[0]}x{shape[1].split()[0]}_"
+               f"{velocity}", scene)
+
+
+def shaper_scenes():
+    base = json.loads((ROOT / "experiments/pulse-shaper/scene.json").read_text())
+    base["bars"][1]["material"] = str(ROOT / "specimens/pulse-shaper-copper.json")
+    for disc, specimen, shape, velocity in itertools.product(DISCS, SPECIMENS, SHAPES[:2],
+                                                             [10, 25]):
+        scene = json.loads(json.dumps(base))
+        scene["bars"][0]["velocity"] = f"{velocity} m/s"
+        scene["bars"][1].update(length=disc[0], diameter=disc[1])
+        scene["bars"][3].update(material=str(ROOT / "specimens" / SPECIMENS[specimen]),
+                                diameter=shape[0], length=shape[1])
+        yield (f"disc{disc[0].split()[0]}x{disc[1].split()[0]}_{specimen}_"
+               f"{shape[0].split()[0]}x{shape[1].split()[0]}_{velocity}", scene)
+
+
+off = failed = runs = 0
+with tempfile.TemporaryDirectory() as tmp:
+    for name, scene in (shaper_scenes() if SHAPERS else bars_scenes()):
+        runs += 1
         path = pathlib.Path(tmp) / f"{name}.json"
         path.write_text(json.dumps(scene))
         out = pathlib.Path(tmp) / name
@@ -65,5 +93,4 @@ with tempfile.TemporaryDirectory() as tmp:
             warning = s["warnings"][0][:120] if s["warnings"] else ""
             print(f"{name}: exit {run.returncode}, energy error {s['energy_error']:.2e}, "
                   f"closings {closings}, {s['stepping']}; {warning}")
-print(f"{off} runs off by more than {100 * BOUND:g} %, {failed} not exit 0, of "
-      f"{len(LAYOUTS) * len(SPECIMENS) * len(SHAPES) * len(VELOCITIES)}")
+print(f"{off} runs off by more than {100 * BOUND:g} %, {failed} not exit 0, of {runs}")

@@ -26,7 +26,8 @@ inline constexpr int kMinSpecimenElements = 50;
 // strain the run may reach: Δt = C (1 − e_max) h0 / c (the scheduler's steps are fixed per bar).
 // The default e_max = 0.5 covers Kolsky specimens (20–40 %) and most pulse shapers at twice the
 // specimen's step count; `simulation.max_strain` changes it, and a run whose elements shorten
-// past it stops as failed (exit 3) saying so. The geometric stiffening of a stressed element,
+// past it stops as failed (exit 3) saying so, where the scene set it (else simulate() plans the
+// run again for more, solver/simulation.cpp). The geometric stiffening of a stressed element,
 // 1 + |τ|/E, raises the effective Courant number by |τ|/(2E) < 0.5 % for |τ|/E < 1 %, which the
 // default C = 0.995 leaves room for. Face friction scales the axial stiffness by its factor φ
 // (largest at e_max): the step is divided by √φ there too, small strain included.

@@ -78,8 +78,9 @@ struct SimulationResult {
   double max_penetration_m = 0;
   double max_penetration_elements = 0;  // over the smaller neighbouring element of its interface
   bool stable = true;
-  std::string failure;                // where and when, if not stable
-  std::vector<std::string> warnings;  // physically implausible but computed (plausibility checks)
+  std::string failure;                 // where and when, if not stable
+  bool beyond_planned_strain = false;  // failed: an element shorter than its step was planned for
+  std::vector<std::string> warnings;   // physically implausible but computed (plausibility checks)
 };
 
 // Runs the scene (already validated by read_scene). Never throws on instability: the result
