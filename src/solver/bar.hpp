@@ -93,6 +93,7 @@ struct BarState {
   std::vector<double> friction_stress_Pa;  // (φ − 1) τ of the last step (friction work)
   std::vector<double> strain_step;         // scratch: Δε of the step (friction work)
   double smallest_stretch = 1;             // smallest element λ reached so far (finite strain)
+  double largest_stress_Pa = 0;            // largest element |τ| reached so far (finite strain)
   double inertia_rate_1_s = 0;  // whole-bar true strain rate at t_{n−1/2} (compression +)
   double inertia_acceleration_1_s2 = 0;  // its low-passed derivative
   double inertia_stress_Pa = 0;          // the radial-inertia stress applied at t_n (compression +)
@@ -110,10 +111,11 @@ struct BarState {
   double dt = 0, dt_prev = 0;
   long phase_step = 0;
   double phase_tau = 0;
-  double planned_stretch = 1;  // adaptive: the current step holds down to this element stretch
-  int lo = 0, hi = -1;         // nodes that may differ from rest: [lo, hi] (empty if lo > hi)
-  double dissipated_J = 0;     // material dissipation so far
-  long long node_updates = 0;  // nodes advanced so far (causal economy counts only active ones)
+  double planned_stretch = 1;    // adaptive: the current step holds down to this element stretch
+  double planned_stress_Pa = 0;  // ... and up to this element |τ| (geometric stiffening)
+  int lo = 0, hi = -1;           // nodes that may differ from rest: [lo, hi] (empty if lo > hi)
+  double dissipated_J = 0;       // material dissipation so far
+  long long node_updates = 0;    // nodes advanced so far (causal economy counts only active ones)
 
   bool quiet() const { return lo > hi; }
 };

@@ -103,7 +103,7 @@ SHPB_TARGET_CLONES bool finite_strain_kernel(const double* __restrict w,
                                              double* __restrict axial_force,
                                              double* __restrict stress, double kappa,
                                              double inertia, double A0, double inv_h, int e0,
-                                             int e1, double* smallest) {
+                                             int e1, double* smallest, double* largest) {
   int outside = 0;
   for (int e = e0; e <= e1; ++e) outside |= !(std::abs(kappa * tau[e]) <= kExpSeriesRange);
   if (outside) return false;
@@ -114,9 +114,11 @@ SHPB_TARGET_CLONES bool finite_strain_kernel(const double* __restrict w,
     axial_force[e] = axial * A0 / stretch;
     stress[e] = axial / J;
   }
-  double m = *smallest;  // a loop of its own: a min reduction keeps the one above scalar
+  double m = *smallest, t = *largest;  // loops of their own: reductions keep the one above scalar
   for (int e = e0; e <= e1; ++e) m = std::min(m, 1 + (w[e + 1] - w[e]) * inv_h);
+  for (int e = e0; e <= e1; ++e) t = std::max(t, std::abs(tau[e]));
   *smallest = m;
+  *largest = t;
   return true;
 }
 
@@ -124,7 +126,7 @@ bool finite_strain_forces(BarState& s, double kappa, double inertia, double A0, 
                           int e0, int e1) {
   return finite_strain_kernel(s.w.data(), s.law_stress.data(), s.axial_force_N.data(),
                               s.stress_Pa.data(), kappa, inertia, A0, inv_h, e0, e1,
-                              &s.smallest_stretch);
+                              &s.smallest_stretch, &s.largest_stress_Pa);
 }
 
 // Material-law kernel: element strains → one law update for the range → axial forces N_e →
@@ -213,6 +215,7 @@ void law_forces(const BarModel& bar, BarState& s, int lo, int hi, double dt) {
       s.axial_force_N[e] = axial * A0 / stretch;
       s.stress_Pa[e] = axial / J;
       s.smallest_stretch = std::min(s.smallest_stretch, stretch);
+      s.largest_stress_Pa = std::max(s.largest_stress_Pa, std::abs(tau));
     } else {
       const double axial = tau + excess - inertia;
       s.axial_force_N[e] = axial * A0;

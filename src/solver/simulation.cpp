@@ -274,7 +274,7 @@ SimulationResult run_chain(const Scene& scene, const ChainDiscretization& d,
 // An asynchronous run whose energy balance is off by more than this, or that failed, is run again
 // (SimulationOptions::stabilize): the shipped experiments close to 2.2·10⁻³ or better, and
 // ordinary set-ups missed by 0.5–191 % at exit 0 (docs/validation.md, "A law specimen that stays
-// elastic", "A soft specimen at large strain").
+// elastic").
 constexpr double kAsynchronousEnergyError = 5e-3;
 
 // The element strains a run that crushed a bar past the default plan (kDefaultMaxStrain 0.5) is

@@ -5,7 +5,12 @@
 
 namespace shpb {
 
-double planned_step_s(const BarModel& bar, double stretch) {
+double geometric_stiffening(const BarModel& bar, double stress_Pa) {
+  const double ratio = stress_Pa / (bar.density_kg_m3 * bar.wave_speed_m_s * bar.wave_speed_m_s);
+  return ratio > kGeometricStiffeningRoom ? std::sqrt(1 + ratio) : 1.0;
+}
+
+double planned_step_s(const BarModel& bar, double stretch, double stress_Pa) {
   if (!bar.adaptive_step) return bar.own_step_s;
   double phi = 1;
   if (bar.friction_factor_per_aspect > 0) {
@@ -13,7 +18,8 @@ double planned_step_s(const BarModel& bar, double stretch) {
     const double length = bar.element_length_m * bar.elements() * stretch;
     phi = 1 + bar.friction_factor_per_aspect * bar.diameter_m / std::sqrt(stretch) / length;
   }
-  return std::max(bar.time_step_s, bar.reference_step_s * stretch / std::sqrt(phi));
+  return std::max(bar.time_step_s, bar.reference_step_s * stretch /
+                                       (std::sqrt(phi) * geometric_stiffening(bar, stress_Pa)));
 }
 
 void start_phase(Chain& chain, std::size_t i, double dt) {
@@ -30,7 +36,7 @@ void plan_first_steps(Chain& chain) {
   bool any = false;
   double common = 0;
   for (std::size_t i = 0; i < nb; ++i) {
-    const double dt = planned_step_s(chain.bars[i], 1.0);
+    const double dt = planned_step_s(chain.bars[i], 1.0, 0.0);
     common = i == 0 ? dt : std::min(common, dt);
     any = any || chain.bars[i].adaptive_step;
   }
@@ -39,7 +45,7 @@ void plan_first_steps(Chain& chain) {
     if (chain.global_stepping)
       start_phase(chain, i, common);
     else if (chain.bars[i].adaptive_step)
-      start_phase(chain, i, planned_step_s(chain.bars[i], 1.0));
+      start_phase(chain, i, planned_step_s(chain.bars[i], 1.0, 0.0));
 }
 
 void replan_steps(Chain& chain, const std::vector<char>& stepping, std::size_t first,
@@ -48,16 +54,23 @@ void replan_steps(Chain& chain, const std::vector<char>& stepping, std::size_t f
   for (std::size_t i = first; i <= last; ++i) {
     const BarModel& b = chain.bars[i];
     BarState& s = chain.states[i];
-    if (!stepping[i] || !b.adaptive_step || s.smallest_stretch >= s.planned_stretch) continue;
-    s.planned_stretch = std::max(b.min_stretch, s.smallest_stretch - kStepPlanMargin);
+    if (!stepping[i] || !b.adaptive_step) continue;
+    const bool shorter = s.smallest_stretch < s.planned_stretch;
+    const bool stiffer = s.largest_stress_Pa > s.planned_stress_Pa &&
+                         geometric_stiffening(b, s.largest_stress_Pa) > 1;
+    if (!shorter && !stiffer) continue;
+    if (shorter) s.planned_stretch = std::max(b.min_stretch, s.smallest_stretch - kStepPlanMargin);
+    if (stiffer) s.planned_stress_Pa = s.largest_stress_Pa * (1 + kStressPlanMargin);
     changed = true;
-    if (!chain.global_stepping) start_phase(chain, i, planned_step_s(b, s.planned_stretch));
+    if (!chain.global_stepping)
+      start_phase(chain, i, planned_step_s(b, s.planned_stretch, s.planned_stress_Pa));
   }
   if (!changed || !chain.global_stepping) return;
   // Global stepping: every bar steps at every instant; all take the smallest step needed.
   double common = 0;
   for (std::size_t i = 0; i < chain.bars.size(); ++i) {
-    const double dt = planned_step_s(chain.bars[i], chain.states[i].planned_stretch);
+    const double dt = planned_step_s(chain.bars[i], chain.states[i].planned_stretch,
+                                     chain.states[i].planned_stress_Pa);
     common = i == 0 ? dt : std::min(common, dt);
   }
   for (std::size_t i = 0; i < chain.bars.size(); ++i) start_phase(chain, i, common);
