@@ -2,7 +2,8 @@
 """Energy balance of ordinary set-ups the experiments do not hold (docs/methods.md §3.7,
 docs/validation.md "A law specimen that stays elastic").
 
-Usage: tools/survey_energy.py SHPB [--shapers] [other simulate options, e.g. --stepping global]
+Usage: tools/survey_energy.py SHPB [--shapers | --tension] [other simulate options, e.g.
+       --stepping global]
 
 The classic experiment's layout (300 mm striker, 2 m bars of Ø19.05 mm, gauges at mid-length) with
 its bars made of steel, aluminium or titanium (or a magnesium transmitter on steel, or an aluminium
@@ -15,6 +16,9 @@ warning), then the counts.
 --shapers: instead, experiments/pulse-shaper (steel striker and bars, a copper disc) with discs of
 3 × 16, 1 × 10 and 0.5 × 6 mm (length × diameter), the four specimens of 10 × 5 and 16 × 2 mm, at 10
 and 25 m/s: 48 scenes (docs/methods.md §8.1, the strain a bar's steps are planned for).
+--tension: instead, experiments/tension-bonded (bonded specimen, striker pulled at 5 or 15 m/s, the
+scene's Courant number left to the default) with steel, aluminium or titanium bars and the four
+specimens or the scene's bilinear metal, of 10 × 5, 4 × 8 and 16 × 2 mm: 90 scenes.
 """
 import itertools
 import json
@@ -25,8 +29,8 @@ import tempfile
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 SHPB = sys.argv[1]
-SHAPERS = "--shapers" in sys.argv[2:]
-EXTRA = [a for a in sys.argv[2:] if a != "--shapers"]
+MODE = next((a for a in sys.argv[2:] if a in ("--shapers", "--tension")), "")
+EXTRA = [a for a in sys.argv[2:] if a != MODE]
 BARS = {"steel": ("8080 kg/m3", "200 GPa", 0.29), "al": ("2700 kg/m3", "70 GPa", 0.33),
         "ti": ("4430 kg/m3", "113.8 GPa", 0.342), "mg": ("1800 kg/m3", "45 GPa", 0.35)}
 LAYOUTS = [("steel", "steel", "steel"), ("steel", "steel", "al"), ("al", "al", "al"),
@@ -70,9 +74,32 @@ def shaper_scenes():
                f"{shape[0].split()[0]}x{shape[1].split()[0]}_{velocity}", scene)
 
 
+def tension_scenes():
+    base = json.loads((ROOT / "experiments/tension-bonded/scene.json").read_text())
+    base.pop("measurement", None)
+    base["simulation"].pop("courant", None)
+    base["materials"].update({name: {"model": "elastic", "density": rho, "youngs_modulus": e,
+                                     "poisson_ratio": nu}
+                              for name, (rho, e, nu) in BARS.items() if name != "mg"})
+    specimens = dict(SPECIMENS, metal=None)
+    for bars, specimen, shape, velocity in itertools.product(["steel", "al", "ti"], specimens,
+                                                             [SHAPES[0], ("4 mm", "8 mm"),
+                                                              SHAPES[1]], [5, 15]):
+        scene = json.loads(json.dumps(base))
+        for bar in (0, 1, 3):
+            scene["bars"][bar]["material"] = bars
+        scene["bars"][0]["velocity"] = f"{-velocity} m/s"
+        if specimens[specimen]:
+            scene["bars"][2]["material"] = str(ROOT / "specimens" / specimens[specimen])
+        scene["bars"][2].update(diameter=shape[0], length=shape[1])
+        yield (f"tension-{bars}_{specimen}_{shape[0].split()[0]}x{shape[1].split()[0]}_"
+               f"{velocity}", scene)
+
+
+SCENES = {"--shapers": shaper_scenes, "--tension": tension_scenes}.get(MODE, bars_scenes)
 off = failed = runs = 0
 with tempfile.TemporaryDirectory() as tmp:
-    for name, scene in (shaper_scenes() if SHAPERS else bars_scenes()):
+    for name, scene in SCENES():
         runs += 1
         path = pathlib.Path(tmp) / f"{name}.json"
         path.write_text(json.dumps(scene))
