@@ -2,8 +2,8 @@
 """Energy balance of ordinary set-ups the experiments do not hold (docs/methods.md §3.7,
 docs/validation.md "A law specimen that stays elastic").
 
-Usage: tools/survey_energy.py SHPB [--shapers | --tension] [other simulate options, e.g.
-       --stepping global]
+Usage: tools/survey_energy.py SHPB [--shapers | --tension | --friction | --inertia] [other
+       simulate options, e.g. --stepping global]
 
 The classic experiment's layout (300 mm striker, 2 m bars of Ø19.05 mm, gauges at mid-length) with
 its bars made of steel, aluminium or titanium (or a magnesium transmitter on steel, or an aluminium
@@ -16,6 +16,8 @@ warning), then the counts.
 --shapers: instead, experiments/pulse-shaper (steel striker and bars, a copper disc) with discs of
 3 × 16, 1 × 10 and 0.5 × 6 mm (length × diameter), the four specimens of 10 × 5 and 16 × 2 mm, at 10
 and 25 m/s: 48 scenes (docs/methods.md §8.1, the strain a bar's steps are planned for).
+--friction, --inertia: the 144 with face friction 0.1 (contact.friction), or with the specimen's
+radial inertia on (docs/methods.md §8.2–8.3; the specimen then keeps the fixed step plan).
 --tension: instead, experiments/tension-bonded (bonded specimen, striker pulled at 5 or 15 m/s, the
 scene's Courant number left to the default) with steel, aluminium or titanium bars and the four
 specimens or the scene's bilinear metal, of 10 × 5, 4 × 8 and 16 × 2 mm: 90 scenes.
@@ -29,7 +31,8 @@ import tempfile
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 SHPB = sys.argv[1]
-MODE = next((a for a in sys.argv[2:] if a in ("--shapers", "--tension")), "")
+MODE = next((a for a in sys.argv[2:]
+             if a in ("--shapers", "--tension", "--friction", "--inertia")), "")
 EXTRA = [a for a in sys.argv[2:] if a != MODE]
 BARS = {"steel": ("8080 kg/m3", "200 GPa", 0.29), "al": ("2700 kg/m3", "70 GPa", 0.33),
         "ti": ("4430 kg/m3", "113.8 GPa", 0.342), "mg": ("1800 kg/m3", "45 GPa", 0.35)}
@@ -56,6 +59,10 @@ def bars_scenes():
         scene["bars"][0]["velocity"] = f"{velocity} m/s"
         scene["bars"][2].update(material=str(ROOT / "specimens" / SPECIMENS[specimen]),
                                 diameter=shape[0], length=shape[1])
+        if MODE == "--friction":
+            scene["contact"]["friction"] = 0.1
+        if MODE == "--inertia":
+            scene["bars"][2]["inertia"] = True
         yield (f"{'-'.join(layout)}_{specimen}_{shape[0].split()[0]}x{shape[1].split()[0]}_"
                f"{velocity}", scene)
 
