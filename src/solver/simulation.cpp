@@ -311,8 +311,9 @@ void take_if_better(SimulationResult& result, SimulationResult better, const std
 // The coupling of §3.4 at a law specimen's faces is kept wherever it holds the energy (it is the
 // cheapest, and what every shipped experiment uses); where it does not, the run is repeated with
 // end segments at those faces (§3.7: 21 of 144 ordinary compression set-ups and 35 of 90 bonded
-// tension ones were repaired so, to 1.4·10⁻³ at most), else at global steps, the reference. Scenes without one keep their run (a coarse mesh loses energy
-// at either stepping), and a repeated run holds two results in memory.
+// tension ones were repaired so, to 1.4·10⁻³ at most), else at global steps, the reference. Scenes
+// without one keep their run (a coarse mesh loses energy at either stepping), and a repeated run
+// holds two results in memory.
 SimulationResult simulate(const Scene& scene, const SimulationOptions& options) {
   const auto called = std::chrono::steady_clock::now();
   Scene planned = scene;
