@@ -189,5 +189,5 @@ def main(argv: list[str]) -> int:
               f"{os.path.basename(frame.filename)}:{frame.lineno}): please report it",
               file=sys.stderr)
         return 4
-    print(f"report: {count} figures, {os.path.abspath(path)}")
+    print(f"report: {count} figure{'' if count == 1 else 's'}, {os.path.abspath(path)}")
     return 0
