@@ -143,6 +143,7 @@ ComparePlan plan_comparison(Scene scene, std::optional<double> striker_velocity_
   p.scene = std::move(scene);
   p.warnings = p.measured.warnings;
   for (const auto& w : signal_warnings(p.measured)) p.warnings.push_back(w);
+  p.warnings.insert(p.warnings.end(), p.found.warnings.begin(), p.found.warnings.end());
   set_striker_velocity(p, striker_velocity_m_s);
   extend_duration(p, *roles.incident);
   return p;

@@ -364,6 +364,28 @@ std::vector<std::string> signal_warnings(const GaugeSignals& signals) {
   return warnings;
 }
 
+RestSignal signal_from_rest(const std::vector<double>& raw, double expected_sign) {
+  const Baseline b = estimate_baseline(raw);
+  RestSignal s{std::vector<double>(raw.size()), b.noise, std::nullopt, false};
+  for (std::size_t i = 0; i < raw.size(); ++i) s.x[i] = raw[i] - b.level;
+  s.first = find_first_pulse(s.x, {0.0, b.noise});
+  if (s.first && s.first->sign != expected_sign) {
+    for (double& v : s.x) v = -v;
+    s.first->sign = expected_sign, s.inverted = true;
+  }
+  return s;
+}
+
+std::string inverted_gauge_warning(const std::string& gauge, bool tension) {
+  return "gauge \"" + gauge +
+         (tension ? "\": its first pulse is compressive; a tension test's first pulse is tensile, "
+                    "so the signal was inverted (check the channel's `invert` and the "
+                    "measurement's `test`)"
+                  : "\": its first pulse is tensile; a compression test's first pulse is "
+                    "compressive, so the signal was inverted (check the channel's `invert`, or "
+                    "\"test\": \"tension\")");
+}
+
 namespace {
 
 // The pulses are moved by the gauge distances: refuse a delay of more samples than any record
@@ -382,7 +404,7 @@ void require_delays_fit(const KolskySetup& k, double dt, const std::string& scen
     }
 }
 
-// A gauge's signal with its baseline removed, and its noise; polarity checked (the first large
+// A gauge's signal from its rest level, and its noise; polarity checked (the first large
 // excursion of each gauge is compressive, in the reduction's sign convention).
 struct PreparedSignal {
   std::vector<double> x;
@@ -390,26 +412,15 @@ struct PreparedSignal {
 };
 PreparedSignal prepared_signal(const std::vector<double>& raw, const std::string& gauge,
                                const ProcessingOptions& options, ProcessingResult& r) {
-  const Baseline b = estimate_baseline(raw);
-  std::vector<double> x(raw.size());
-  for (std::size_t i = 0; i < raw.size(); ++i) x[i] = raw[i] - b.level;
-  const auto p = find_first_pulse(x, {0.0, b.noise});
-  if (!p)
+  RestSignal s = signal_from_rest(raw, -1.0);
+  if (!s.first)
     throw input_error(options.scene_file, "measurement.channels", "gauge \"" + gauge + "\"",
                       "its signal never rises above its noise: no pulse to process");
-  if (p->sign > 0) {
-    for (double& v : x) v = -v;
+  if (s.inverted) {
     r.inverted_gauges.push_back(gauge);
-    r.warnings.push_back("gauge \"" + gauge +
-                         (options.tension
-                              ? "\": its first pulse is compressive; a tension test's first "
-                                "pulse is tensile, so the signal was inverted (check the "
-                                "channel's `invert` and the measurement's `test`)"
-                              : "\": its first pulse is tensile; a compression test's first "
-                                "pulse is compressive, so the signal was inverted (check the "
-                                "channel's `invert`, or \"test\": \"tension\")"));
+    r.warnings.push_back(inverted_gauge_warning(gauge, options.tension));
   }
-  return {std::move(x), b.noise};
+  return {std::move(s.x), s.noise};
 }
 
 // The incident pulse's samples [on, end) on the gauge clock: the scene's window, or detected.

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "analysis/gauge_signals.hpp"
+#include "analysis/pulse_window.hpp"
 #include "analysis/reduction.hpp"
 #include "dispersion/propagation.hpp"
 #include "model/scene.hpp"
@@ -41,6 +42,21 @@ struct KolskySetup {
 // V = c0 ε_I (Z_s + Z_b)/Z_s; the striker's impedance Z_s is the incident bar's Z_b when the set-up
 // has none. Used by `process`, `compare` and `fit`.
 double striker_velocity_from_plateau(const KolskySetup& setup, double incident_plateau_strain);
+
+// A gauge record from its rest level: less its baseline (estimate_baseline: a bridge's offset is no
+// strain), with its first pulse (find_first_pulse). A record whose first pulse has the other sign
+// than `expected_sign` (−1: a compression test's, +1: a tension test's) is turned over (a bridge
+// wired the other way, docs/commands.md `process`). Used by `process`, `compare` and `fit`.
+struct RestSignal {
+  std::vector<double> x;
+  double noise = 0;                  // the baseline's
+  std::optional<PulseWindow> first;  // in x, after any turn; nullopt: nothing above the noise
+  bool inverted = false;
+};
+RestSignal signal_from_rest(const std::vector<double>& raw, double expected_sign);
+
+// What a turned record's gauge is told.
+std::string inverted_gauge_warning(const std::string& gauge, bool tension);
 
 // A calibrated reflected time further than this fraction from 2d/c0 is not the same bar or gauge:
 // a wave speed or a gauge position off by more than 5 % is a wrong scene, not a calibration.

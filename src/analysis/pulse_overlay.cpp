@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <tuple>
 
 #include "core/error.hpp"
 #include "core/interpolation.hpp"
@@ -84,6 +85,38 @@ std::size_t widen(std::size_t i, double by, bool down, std::size_t n) {
   return std::min(n, i + d);
 }
 
+// A pulse the record does not hold (it ended first, or a dead channel) is not compared, and one
+// still on at the record's end is compared over its recorded part only: both said.
+void report_missing_pulses(MeasuredPulses& m) {
+  const KolskySetup& k = m.setup;
+  const double t_end = m.time_s.back(), t_inc = m.time_s[m.incident_window.onset];
+  char msg[400];
+  if (!m.reflected_window) {
+    std::snprintf(msg, sizeof msg,
+                  "gauge \"%s\": no reflected pulse in the record, which ends at %.4g s (%.3g s "
+                  "after the incident onset; the reflected pulse follows it by 2d/c0 = %.3g s): "
+                  "the reflected pulse is not compared",
+                  k.incident_gauge.c_str(), t_end, t_end - t_inc,
+                  2 * k.incident_distance_m / k.front.c0_m_s);
+    m.warnings.push_back(msg);
+  }
+  if (!m.transmitted_window)
+    m.warnings.push_back("gauge \"" + k.transmitted_gauge +
+                         "\": no pulse above the noise: the transmitted pulse is not compared");
+  const std::size_t n = m.time_s.size();
+  for (const auto& [w, name, gauge] :
+       {std::tuple{std::optional<PulseWindow>(m.incident_window), "incident", k.incident_gauge},
+        std::tuple{m.reflected_window, "reflected", k.incident_gauge},
+        std::tuple{m.transmitted_window, "transmitted", k.transmitted_gauge}})
+    if (w && w->end >= n) {
+      std::snprintf(msg, sizeof msg,
+                    "gauge \"%s\": the %s pulse lasts until the record ends (%.4g s): compared "
+                    "over its recorded part only",
+                    gauge.c_str(), name, t_end);
+      m.warnings.push_back(msg);
+    }
+}
+
 }  // namespace
 
 MeasuredPulses find_measured_pulses(const Scene& scene, const GaugeSignals& signals) {
@@ -91,22 +124,28 @@ MeasuredPulses find_measured_pulses(const Scene& scene, const GaugeSignals& sign
   m.setup = resolve_setup(scene, signals.gauges);
   m.time_s = signals.time_s;
   m.dt_s = signals.dt_s;
-  m.incident = *signals.find(m.setup.incident_gauge);
-  m.transmitted = *signals.find(m.setup.transmitted_gauge);
-  m.incident_baseline = estimate_baseline(m.incident);
-  m.transmitted_baseline = estimate_baseline(m.transmitted);
-  const auto w_inc = find_first_pulse(m.incident, m.incident_baseline);
-  if (!w_inc)
+  const bool tension = scene.measurement && scene.measurement->tension;
+  const double first_sign = tension ? 1.0 : -1.0;
+  RestSignal inc = signal_from_rest(*signals.find(m.setup.incident_gauge), first_sign);
+  RestSignal tra = signal_from_rest(*signals.find(m.setup.transmitted_gauge), first_sign);
+  if (!inc.first)
     throw input_error(scene.file.string(), "measurement", m.setup.incident_gauge,
                       "no incident pulse above the noise in the measured signal");
-  m.incident_window = *w_inc;
-  m.reflected_window = find_first_pulse(m.incident, m.incident_baseline, w_inc->end);
-  m.transmitted_window = find_first_pulse(m.transmitted, m.transmitted_baseline);
-  m.incident_plateau = std::abs(plateau_level(m.incident, w_inc->onset, w_inc->end, w_inc->sign) -
-                                m.incident_baseline.level);
+  for (const auto* s : {&inc, &tra})
+    if (s->inverted)
+      m.warnings.push_back(inverted_gauge_warning(
+          s == &inc ? m.setup.incident_gauge : m.setup.transmitted_gauge, tension));
+  m.incident = std::move(inc.x), m.transmitted = std::move(tra.x);
+  m.incident_baseline = {0.0, inc.noise}, m.transmitted_baseline = {0.0, tra.noise};
+  m.incident_window = *inc.first;
+  m.reflected_window = find_first_pulse(m.incident, m.incident_baseline, inc.first->end);
+  m.transmitted_window = tra.first;
+  report_missing_pulses(m);
+  m.incident_plateau =
+      std::abs(plateau_level(m.incident, inc.first->onset, inc.first->end, inc.first->sign));
   // T moves by −dt/(P (b − a)) per unit of each sample between the levels: with white noise σ,
   // sd(T) = dt σ √n / (P (b − a)).
-  const FrontTime front = front_time(m.incident, m.incident_baseline.level, m.incident_window);
+  const FrontTime front = front_time(m.incident, 0.0, m.incident_window);
   if (front.plateau > 0)
     m.incident_front_sd_s = m.dt_s * m.incident_baseline.noise * std::sqrt(front.samples) /
                             (front.plateau * (kFrontHigh - kFrontLow));

@@ -26,17 +26,22 @@ struct MeasuredPulses {
   KolskySetup setup;
   std::vector<double> time_s;
   double dt_s = 0;
-  std::vector<double> incident, transmitted;  // strain at the incident and transmitted gauges
-  Baseline incident_baseline, transmitted_baseline;
+  // Strain at the incident and transmitted gauges from their rest levels (signal_from_rest).
+  std::vector<double> incident, transmitted;
+  Baseline incident_baseline, transmitted_baseline;  // level 0: removed; the records' noise
   PulseWindow incident_window;
   std::optional<PulseWindow> reflected_window, transmitted_window;
-  double incident_plateau = 0;  // |plateau − baseline| of the incident pulse, strain
+  double incident_plateau = 0;  // |plateau| of the incident pulse, strain
   // Standard deviation of the incident pulse's front time (the clock) from the baseline's noise,
   // taken as white: what the record noise alone makes of the alignment.
   double incident_front_sd_s = 0;
+  // A channel turned over, a pulse the record does not hold or cuts short.
+  std::vector<std::string> warnings;
 };
 
-// Finds the pulses in `signals`; InputError (naming the scene) when there is no incident pulse.
+// Finds the pulses in `signals`, each record from its rest level and turned over when its first
+// pulse has the other sign than the test's, as `process` does; InputError (naming the scene) when
+// there is no incident pulse.
 MeasuredPulses find_measured_pulses(const Scene& scene, const GaugeSignals& signals);
 
 // A compared window, in samples of the measured grid.

@@ -97,6 +97,10 @@ FitCase::FitCase(const CampaignTest& test, const Campaign& campaign, const FitSp
   const ProcessingOptions options = processing_options(scene_);
   const ProcessingResult pr = process_test(scene_, signals, found.setup, options).result;
   for (const auto& w : pr.warnings) warnings_.push_back(test.name + ": " + w);
+  // Processing has said a turned channel already.
+  for (const auto& w : found.warnings)
+    if (std::find(pr.warnings.begin(), pr.warnings.end(), w) == pr.warnings.end())
+      warnings_.push_back(test.name + ": " + w);
   const Curve& c = pr.curve;
   const JohnsonCookParams& jc = law.johnson_cook;
   const bool heats = law.model == MaterialModel::kJohnsonCook && jc.adiabatic;
