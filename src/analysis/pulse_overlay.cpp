@@ -85,6 +85,17 @@ std::size_t widen(std::size_t i, double by, bool down, std::size_t n) {
   return std::min(n, i + d);
 }
 
+// The rest level again, from the whole record before the first pulse rather than its first 5 %
+// (an amplifier settling after the trigger; and its error is an offset common to the hundreds of
+// samples a fit lays over each pulse, docs/validation.md "shpb fit"), and the pulse found anew.
+void settle_rest_level(RestSignal& s) {
+  if (!s.first) return;
+  const auto level = rest_level_before(s.x, s.first->half);
+  if (!level) return;
+  for (double& v : s.x) v -= *level;
+  if (auto again = find_first_pulse(s.x, {0.0, s.noise})) s.first = again;
+}
+
 // A pulse the record does not hold (it ended first, or a dead channel) is not compared, and one
 // still on at the record's end is compared over its recorded part only: both said.
 void report_missing_pulses(MeasuredPulses& m) {
@@ -135,6 +146,7 @@ MeasuredPulses find_measured_pulses(const Scene& scene, const GaugeSignals& sign
     if (s->inverted)
       m.warnings.push_back(inverted_gauge_warning(
           s == &inc ? m.setup.incident_gauge : m.setup.transmitted_gauge, tension));
+  for (auto* s : {&inc, &tra}) settle_rest_level(*s);
   m.incident = std::move(inc.x), m.transmitted = std::move(tra.x);
   m.incident_baseline = {0.0, inc.noise}, m.transmitted_baseline = {0.0, tra.noise};
   m.incident_window = *inc.first;

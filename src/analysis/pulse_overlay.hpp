@@ -26,7 +26,8 @@ struct MeasuredPulses {
   KolskySetup setup;
   std::vector<double> time_s;
   double dt_s = 0;
-  // Strain at the incident and transmitted gauges from their rest levels (signal_from_rest).
+  // Strain at the incident and transmitted gauges from their rest levels (signal_from_rest, then
+  // the median before the first pulse).
   std::vector<double> incident, transmitted;
   Baseline incident_baseline, transmitted_baseline;  // level 0: removed; the records' noise
   PulseWindow incident_window;
@@ -39,9 +40,9 @@ struct MeasuredPulses {
   std::vector<std::string> warnings;
 };
 
-// Finds the pulses in `signals`, each record from its rest level and turned over when its first
-// pulse has the other sign than the test's, as `process` does; InputError (naming the scene) when
-// there is no incident pulse.
+// Finds the pulses in `signals`, each record from its rest level before its first pulse and
+// turned over when that pulse has the other sign than the test's (as `process` turns it);
+// InputError (naming the scene) when there is no incident pulse.
 MeasuredPulses find_measured_pulses(const Scene& scene, const GaugeSignals& signals);
 
 // A compared window, in samples of the measured grid.

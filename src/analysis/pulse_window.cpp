@@ -31,6 +31,11 @@ Baseline estimate_baseline(std::span<const double> x, double fraction) {
   return b;
 }
 
+std::optional<double> rest_level_before(std::span<const double> x, std::size_t half) {
+  if (half < kMinRestSamples || half > x.size()) return std::nullopt;
+  return median(std::vector<double>(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(half)));
+}
+
 std::optional<PulseWindow> find_first_pulse(std::span<const double> x, const Baseline& b,
                                             std::size_t from) {
   double peak = 0;
@@ -43,6 +48,7 @@ std::optional<PulseWindow> find_first_pulse(std::span<const double> x, const Bas
   if (i == x.size()) return std::nullopt;
   PulseWindow w;
   w.sign = x[i] - b.level < 0 ? -1.0 : 1.0;
+  w.half = i;
   auto level = [&](std::size_t k) { return w.sign * (x[k] - b.level); };
   std::size_t on = i;
   while (on > from && level(on - 1) > band) --on;

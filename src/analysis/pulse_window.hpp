@@ -15,9 +15,15 @@ struct Baseline {
 // Baseline from the first `fraction` of the record (at least 10 samples).
 Baseline estimate_baseline(std::span<const double> x, double fraction = 0.05);
 
+// The median of x before `half` (a pulse's first half-height sample): the rest level from the
+// whole record before the pulse, whose short rise moves a median little (as find_onset takes it);
+// nullopt when there are fewer samples than estimate_baseline's smallest segment holds.
+std::optional<double> rest_level_before(std::span<const double> x, std::size_t half);
+
 struct PulseWindow {
   std::size_t onset = 0;  // first sample of the pulse
   std::size_t end = 0;    // one past its last sample
+  std::size_t half = 0;   // its first sample at half its height
   double sign = -1;       // −1 compressive (strain < 0), +1 tensile
   double peak = 0;        // largest |x − baseline| inside the window
 };

@@ -53,7 +53,8 @@ fs::path self_measured_scene(const fs::path& dir) {
 
 // The self-measured scene of `dir` reading instead a copy of its gauges altered row by row (the
 // incident and the transmitted strain) and ending at `until_s`.
-fs::path altered_scene(const fs::path& dir, const std::function<void(double&, double&)>& alter,
+fs::path altered_scene(const fs::path& dir,
+                       const std::function<void(double, double&, double&)>& alter,
                        double until_s = 1.0) {
   std::istringstream in(read_text(dir / "sim" / "gauges.csv"));
   std::ofstream out(dir / "altered.csv");
@@ -65,7 +66,7 @@ fs::path altered_scene(const fs::path& dir, const std::function<void(double&, do
     char comma = 0;
     std::istringstream(line) >> t >> comma >> inc >> comma >> tra;
     if (t > until_s) break;
-    alter(inc, tra);
+    alter(t, inc, tra);
     out.precision(17);
     out << t << "," << inc << "," << tra << "\n";
   }
@@ -156,7 +157,8 @@ TEST_CASE("A bridge's offset is no strain: compare measures the pulses from the 
   self_measured_scene(dir);
   constexpr double kOffset = 4.5e-5;
   const auto summary = compared(
-      altered_scene(dir, [](double& inc, double& tra) { inc += kOffset, tra += kOffset; }), dir);
+      altered_scene(dir, [](double, double& inc, double& tra) { inc += kOffset, tra += kOffset; }),
+      dir);
   CHECK(summary["striker_velocity_m_s"].get<double>() ==
         Approx(kStrikerVelocity).epsilon(kInferredVelocity));
   REQUIRE(summary["pulses"].size() == 3);
@@ -167,11 +169,35 @@ TEST_CASE("A bridge's offset is no strain: compare measures the pulses from the 
   }
 }
 
+TEST_CASE("The rest level is the whole record before the pulse, not its first samples",
+          "[app][compare]") {
+  // An amplifier settling after the trigger: the record's first 30 µs (the first 5 % the baseline
+  // of process reads is 40 µs) sit 3 % of the incident plateau off, the 170 µs after them at rest
+  // until the incident pulse arrives (~200 µs). The pulses are those of the clean record.
+  const fs::path dir = scratch_dir("compare_settling");
+  self_measured_scene(dir);
+  constexpr double kSettling = 4.5e-5, kSettlingEnd_s = 30e-6;
+  const auto summary = compared(altered_scene(dir,
+                                              [](double t, double& inc, double& tra) {
+                                                if (t < kSettlingEnd_s)
+                                                  inc += kSettling, tra += kSettling;
+                                              }),
+                                dir);
+  CHECK(summary["striker_velocity_m_s"].get<double>() ==
+        Approx(kStrikerVelocity).epsilon(kInferredVelocity));
+  REQUIRE(summary["pulses"].size() == 3);
+  for (const auto& p : summary["pulses"]) {
+    INFO(p.dump());
+    CHECK(p["plateau_ratio"].get<double>() == Approx(1.0).epsilon(kInferredVelocity));
+  }
+}
+
 TEST_CASE("A channel wired the other way is turned over and said, as process does",
           "[app][compare]") {
   const fs::path dir = scratch_dir("compare_turned");
   self_measured_scene(dir);
-  const auto summary = compared(altered_scene(dir, [](double&, double& tra) { tra = -tra; }), dir);
+  const auto summary =
+      compared(altered_scene(dir, [](double, double&, double& tra) { tra = -tra; }), dir);
   CHECK(warns(summary, "gauge \"transmitted\": its first pulse is tensile"));
   REQUIRE(summary["pulses"].size() == 3);
   const auto& transmitted = summary["pulses"][2];
@@ -187,7 +213,7 @@ TEST_CASE("A record that ends inside its pulses is compared over what it holds, 
   self_measured_scene(dir);
   constexpr double kRecordEnd_s = 700e-6;
   const auto summary = compared(altered_scene(
-                                    dir, [](double&, double&) {}, kRecordEnd_s),
+                                    dir, [](double, double&, double&) {}, kRecordEnd_s),
                                 dir);
   CHECK(summary["pulses"].size() == 3);
   CHECK(warns(summary, "the reflected pulse lasts until the record ends"));
@@ -197,7 +223,8 @@ TEST_CASE("A record that ends inside its pulses is compared over what it holds, 
   fs::create_directories(dead / "sim");
   fs::copy_file(dir / "sim" / "gauges.csv", dead / "sim" / "gauges.csv");
   fs::copy_file(dir / "scene.json", dead / "scene.json");
-  const auto no_pulse = compared(altered_scene(dead, [](double&, double& tra) { tra = 0; }), dead);
+  const auto no_pulse =
+      compared(altered_scene(dead, [](double, double&, double& tra) { tra = 0; }), dead);
   CHECK(warns(no_pulse, "no pulse above the noise: the transmitted pulse is not compared"));
   for (const auto& p : no_pulse["pulses"]) CHECK(p["pulse"] != "transmitted");
 }
