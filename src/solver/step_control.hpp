@@ -5,12 +5,15 @@
 // discretization.hpp), the step follows the shortest element reached so far.
 //
 // Rule. At each of its instants, after its forces are assembled (scheduler.hpp rule 3), the bar
-// knows λ_min, the smallest element stretch reached so far (a running minimum: it never grows).
-// While λ_min ≥ λ_p, the stretch the current step was planned for, the step stays. Below it, a new
-// phase of constant step starts at this instant (rule 1) with
-//   λ_p = max(1 − e_max, λ_min − kStepPlanMargin),   Δt = C h0 λ_p / (c √φ(λ_p)),
-// φ the face-friction factor at the volume-conserving shape of stretch λ_p (1 without friction),
-// and never below the fixed plan's step. The first phase is planned for λ_p = 1.
+// knows λ_min, the smallest element stretch reached so far, and τ_max, the largest element |τ|
+// (running extremes: they never recede). While λ_min ≥ λ_p and τ_max ≤ τ_p, the stretch and
+// stress the current step was planned for, the step stays. Otherwise a new phase of constant step
+// starts at this instant (rule 1) with
+//   λ_p = max(1 − e_max, λ_min − kStepPlanMargin),   τ_p = (1 + kStressPlanMargin) τ_max,
+//   Δt = C h0 λ_p / (c √φ(λ_p) g(τ_p)),
+// φ the face-friction factor at the volume-conserving shape of stretch λ_p (1 without friction), g
+// the geometric stiffening (below; 1 while τ_p is within 1 % of ρc²), and never below the fixed
+// plan's step. The first phase is planned for λ_p = 1, τ_p = 0.
 //
 // Why it is stable. (i) Per instant: the step taken from t_n is planned for a stretch no larger
 // than any element's at t_n, so it is within the critical step h0 λ/c of the state it starts from:
