@@ -78,8 +78,9 @@ void add_run_options(CLI::App* cmd, RunOverrides& o, RunOptionText& text) {
                       "the scene's, else " +
                       std::string(to_string(SimulationSpec{}.stepping)) + ")")
       ->check(CLI::IsMember(steppings));
-  // Its range, (0, 1] as in the scene, is checked with the scene (model/scene_validation.hpp).
-  cmd->add_option("--courant", o.courant,
+  // Read as the scene's simulation.courant is (a number or "50 %"); its range, (0, 1], is
+  // checked with the scene (model/scene_validation.hpp).
+  cmd->add_option("--courant", text.courant,
                   "Courant number of every bar, c·Δt/h, in (0, 1] (default: the scene's, else " +
                       format_double(kDefaultCourant) + ")");
   // Its range, (0 %, 100 %) as in the scene: tolerance_option.
@@ -96,6 +97,8 @@ void add_run_options(CLI::App* cmd, RunOverrides& o, RunOptionText& text) {
 void resolve_run_options(RunOverrides& o, const RunOptionText& text) {
   if (!text.contact.empty()) o.contact = contact_method_from_string(text.contact);
   if (!text.stepping.empty()) o.stepping = stepping_from_string(text.stepping);
+  if (!text.courant.empty())
+    o.courant = quantity_option("--courant", text.courant, Dimension::kDimensionless);
   if (!text.tolerance.empty()) o.tolerance = tolerance_option("--tolerance", text.tolerance);
 }
 

@@ -16,7 +16,7 @@ std::string alternatives(const std::vector<std::string>& names);
 
 // The text of --contact/--stepping/--tolerance as given, resolved after parsing.
 struct RunOptionText {
-  std::string contact, stepping, tolerance;
+  std::string contact, stepping, courant, tolerance;
 };
 
 // --contact/--stepping/--courant/--tolerance/--threads/--quiet for simulate, compare, study and

@@ -1,6 +1,7 @@
 // `shpb validate --json` prints the resolved set-up: the same mesh and steps as discretize()
 // (what simulate uses), wave speeds and impedances from the materials (docs/methods.md notation:
 // c0 = sqrt(E/ρ), Z = ρ c0 A, C = c0 Δt / h) and gauge distances to the specimen faces.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
@@ -128,6 +129,29 @@ TEST_CASE("validate and simulate refuse a --courant outside 0 < C <= 1 alike", "
   CHECK(r.code == 2);
   CHECK(r.err.rfind("error: --courant: 1e-09: every bar's steps grow as 1/C", 0) == 0);
   fs::remove_all(dir);
+}
+
+TEST_CASE("--courant is read as the scene's simulation.courant: a number or a percentage",
+          "[app][validate]") {
+  // docs/commands.md: --courant is checked with the scene, by the scene's own rules, and a
+  // dimensionless quantity may be written in percent (docs/scene-format.md, Quantities).
+  const auto file = fs::path(SHPB_SOURCE_DIR) / "experiments/striker-on-bar/scene.json";
+  const json half = validate_json(file, {"--courant", "0.5"});
+  for (const char* percent : {"50 %", "50%"}) {
+    INFO(percent);
+    const json v = validate_json(file, {"--courant", percent});
+    for (std::size_t i = 0; i < v["bars"].size(); ++i)
+      CHECK(v["bars"][i]["time_step_s"].get<double>() ==
+            Approx(half["bars"][i]["time_step_s"].get<double>()).epsilon(kRoundOff));
+  }
+  // Not a number, or a quantity with a unit: one line naming the option and the text given.
+  for (const std::string bad : {"abc", "1 mm"}) {
+    const auto r = shpb_test::run_shpb({"validate", file.string(), "--courant", bad});
+    INFO(bad << ": " << r.err);
+    CHECK(r.code == 2);
+    CHECK(r.err.rfind("error: --courant: \"" + bad + "\": ", 0) == 0);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  }
 }
 
 TEST_CASE("validate warns when pulses overlap at a gauge or the duration is too short",
