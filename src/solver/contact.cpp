@@ -37,9 +37,17 @@ ContactResult solve_contact(const InterfaceModel& model, InterfaceState& state, 
   state.gap_m = model.gap0_m + right.u - left.u;
   switch (model.method) {
     case ContactMethod::kPenalty:
-      return solve_penalty(model, state, left, right);
-    case ContactMethod::kBipenalty:
-      return solve_bipenalty(model, state, left, right);
+    case ContactMethod::kBipenalty: {
+      // The node-to-node methods switch by the gap and the link force alone: their closings and
+      // openings are counted here (summary.json interfaces[].activations, releases).
+      const bool was_active = state.active;
+      const ContactResult r = model.method == ContactMethod::kPenalty
+                                  ? solve_penalty(model, state, left, right)
+                                  : solve_bipenalty(model, state, left, right);
+      if (state.active && !was_active) ++state.activations;
+      if (!state.active && was_active) ++state.releases;
+      return r;
+    }
     case ContactMethod::kBonded:  // the rigid link, bilateral
       return solve_localized_bipenalty(model, state, left, right, tau, frame_next_tau);
     case ContactMethod::kLocalizedBipenalty:
