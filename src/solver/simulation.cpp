@@ -165,13 +165,25 @@ void check_plausibility(const Scene& scene, const Chain& chain, SimulationResult
                                 "): the result is not physical");
     }
   }
-  if (chain.max_penetration_elements > kPlausiblePenetrationElements)
-    result.warnings.push_back(
-        "the bars interpenetrated by " + format_double(chain.max_penetration_m * 1e3) + " mm, " +
-        format_double(chain.max_penetration_elements) +
-        " of the smaller neighbouring element (more than " +
-        format_double(kPlausiblePenetrationElements) +
-        "): the contact is too soft (stiffness, stiffness_factor or rise_time)");
+  if (chain.max_penetration_elements > kPlausiblePenetrationElements) {
+    // A rigid link creates no penetration of its own; it keeps one its ends reached between a
+    // coarse neighbour's instants (≤ |ġ|Δt, docs/methods.md §3.2–3.4).
+    bool compliant = false;
+    for (const InterfaceModel& m : chain.interfaces)
+      compliant = compliant || m.finite_links || m.method == ContactMethod::kPenalty ||
+                  m.method == ContactMethod::kBipenalty;
+    char text[300];
+    std::snprintf(text, sizeof text,
+                  "the bars interpenetrated by %.3g mm, %.3g of the smaller neighbouring element "
+                  "(more than %.3g): %s",
+                  chain.max_penetration_m * 1e3, chain.max_penetration_elements,
+                  kPlausiblePenetrationElements,
+                  compliant ? "the contact is too soft (stiffness, stiffness_factor or rise_time)"
+                            : "a rigid link kept what its ends closed between a neighbour's "
+                              "coarse steps; compare with \"stepping\": \"global\" or finer "
+                              "meshes");
+    result.warnings.push_back(text);
+  }
   const std::size_t samples = result.gauges.samples();
   if (samples > 0 && samples < kMinRecordSamples)
     result.warnings.push_back("the record has only " + std::to_string(samples) +

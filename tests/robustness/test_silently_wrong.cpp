@@ -227,6 +227,30 @@ TEST_CASE("Implausible simulations are flagged in warnings and summary.json",
     CHECK(o.code == 0);
     CHECK(warns(summary(scratch.path(), "simulate"), "interpenetrated"));
   }
+  SECTION("a rigid link whose neighbour steps coarsely: no stiffness to blame") {
+    // The default link has no stiffness (docs/methods.md §3.3); a 1.5 m bar of 2 elements steps
+    // every 150 µs, and the striker's end (1 mm elements) moves up to 1.5 mm meanwhile (≤ |ġ|Δt,
+    // §3.2). The number is given as a person reads it (three significant digits).
+    json s = bar_scene();
+    s["bars"][0]["length"] = "300 mm";
+    s["bars"][0]["elements"] = 300;
+    s["bars"][1]["length"] = "1.5 m";
+    s["bars"][1]["elements"] = 2;
+    s["simulation"]["duration"] = "1000 us";
+    const Outcome o = run_scene(scratch.path(), "simulate", s);
+    INFO(o.err);
+    CHECK(o.code == 0);
+    const json sum = summary(scratch.path(), "simulate");
+    std::string said;
+    for (const auto& w : sum["warnings"])
+      if (w.get<std::string>().find("interpenetrated") != std::string::npos) said = w;
+    INFO(said);
+    REQUIRE(!said.empty());
+    CHECK(said.find("stiffness") == std::string::npos);
+    CHECK(said.find("\"stepping\": \"global\"") != std::string::npos);
+    const std::size_t number = said.find("by ") + 3;
+    CHECK(said.find(' ', number) - number <= 5);  // e.g. "0.948"
+  }
   SECTION("a sample rate of 1 Hz") {
     json s = bar_scene();
     s["simulation"]["sample_rate"] = "1 Hz";
