@@ -76,9 +76,10 @@ ChainDiscretization validate_scene(const Scene& scene, const RunOptions& options
                         JsonValue::format(v, Dimension::kVelocity),
                         "no bar ever loads another: this velocity (+ to the right) moves \"" +
                             scene.bars[i].name +
-                            "\" away from its neighbours and no interface is bonded, so every "
-                            "gauge would record zero; a striker moving into the chain on its "
-                            "right has a positive velocity");
+                            "\" away from its neighbours and no interface is bonded without a "
+                            "gap (a bonded joint pulls only from contact, and one apart never "
+                            "closes), so every gauge would record zero; a striker moving into "
+                            "the chain on its right has a positive velocity");
     }
   ChainDiscretization d;
   try {

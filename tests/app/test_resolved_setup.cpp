@@ -2,6 +2,7 @@
 // a chain with a pulse shaper, a gauge's distance to the specimen across a gap, the processing
 // options of a tension test in `fit`, a striker launched the way the scene moves it, relative
 // fit weights, one record fitted once, one percent parser, and a striker that loads nothing.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
@@ -236,6 +237,24 @@ TEST_CASE("A striker moving away from the chain is refused: nothing would be rec
     CHECK(r.err.find("bars[0].velocity") != std::string::npos);
   }
   CHECK(!fs::exists(dir / "out"));
+}
+
+TEST_CASE("A striker pulling away from a bonded joint with a gap is refused, naming the gap",
+          "[app][setup]") {
+  // docs/scene-format.md, Roles: a striker loads the chain when it pulls it through a bonded
+  // interface without a gap; with a gap it moves away rigidly for ever.
+  const fs::path dir = scratch_dir("setup_bonded_gap");
+  json s = read_json(kExperiments / "striker-on-bar/scene.json");
+  s["contact"] = {{"method", "bonded"}};
+  s["bars"][0]["velocity"] = "-10 m/s";
+  s["bars"][0]["gap"] = "1 mm";
+  write_json(dir / "scene.json", s);
+  const auto r = run_shpb({"validate", (dir / "scene.json").string()});
+  INFO(r.err);
+  CHECK(r.code == 2);
+  CHECK(r.err.find("bars[0].velocity") != std::string::npos);
+  CHECK(r.err.find("bonded without a gap") != std::string::npos);
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
 }
 
 }  // namespace tests_app_test_resolved_setup
