@@ -128,7 +128,9 @@ std::string default_tolerance_withheld(const Scene& scene) {
   // (the marginal C = 1 with unequal steps, docs/methods.md §1.1); the automatic meshes hold there.
   if (scene.simulation.courant) return "a Courant number is set (simulation.courant or --courant)";
   const auto striker = striker_bar(scene);
-  if (!striker) return "no bar has a velocity, so there is no pulse to predict";
+  if (!striker)
+    return "no striker (a moving bar that loads the bar on its right), so there is no pulse to "
+           "predict";
   bool gauged = false;
   for (std::size_t i = *striker + 1; i < scene.bars.size(); ++i)
     gauged = gauged || !scene.bars[i].gauges.empty();
@@ -170,8 +172,8 @@ ChainDiscretization resolve_scene(Scene& scene, const RunOptions& options) {
   char what[400];
   if (std::isnan(p.total))
     std::snprintf(what, sizeof what,
-                  "needs a striker (a bar with a velocity): the gauge-error model predicts the "
-                  "error of its pulse");
+                  "needs a striker (a moving bar that loads the bar on its right, docs/"
+                  "scene-format.md Roles): the gauge-error model predicts the error of its pulse");
   else
     std::snprintf(what, sizeof what,
                   "not reachable: the most accurate mesh this machine affords (%.3g node updates) "

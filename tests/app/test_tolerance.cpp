@@ -183,6 +183,22 @@ TEST_CASE("A tolerance no affordable mesh meets, or a scene without a striker, i
   CHECK(e.code == 2);
   CHECK(e.err.rfind("error: --tolerance: 3.5 %: needs a striker", 0) == 0);
   CHECK(std::count(e.err.begin(), e.err.end(), '\n') == 1);
+  // A chain struck from the right: a bar moves, but none loads the bar on its right, which is
+  // what a striker is (docs/scene-format.md, Roles); the refusal says so, not "a bar with a
+  // velocity" of a scene that has one.
+  const fs::path dir = scratch_dir("tolerance_struck_from_right");
+  nlohmann::json scene =
+      nlohmann::json::parse(read_text(kExperiments / "striker-on-bar" / "scene.json"));
+  std::swap(scene["bars"][0], scene["bars"][1]);
+  scene["bars"][1]["velocity"] = "-10 m/s";
+  std::ofstream(dir / "scene.json") << scene.dump();
+  const auto right = run_shpb({"validate", (dir / "scene.json").string(), "--tolerance", "1 %"});
+  INFO(right.err);
+  CHECK(right.code == 2);
+  CHECK(right.err.find("needs a striker (a moving bar that loads the bar on its right") !=
+        std::string::npos);
+  CHECK(std::count(right.err.begin(), right.err.end(), '\n') == 1);
+  fs::remove_all(dir);
 }
 
 TEST_CASE("validate prints the meshes chosen for a tolerance and their predicted error",
