@@ -167,8 +167,9 @@ TEST_CASE("validate and simulate refuse a --courant outside 0 < C <= 1 alike", "
   fs::remove_all(dir);
 }
 
-TEST_CASE("--courant is read as the scene's simulation.courant: a number or a percentage",
-          "[app][validate]") {
+TEST_CASE(
+    "The option --courant is read as the scene's simulation.courant: a number or a percentage",
+    "[app][validate]") {
   // docs/commands.md: --courant is checked with the scene, by the scene's own rules, and a
   // dimensionless quantity may be written in percent (docs/scene-format.md, Quantities).
   const auto file = fs::path(SHPB_SOURCE_DIR) / "experiments/striker-on-bar/scene.json";
