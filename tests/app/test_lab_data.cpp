@@ -354,7 +354,9 @@ TEST_CASE("compare covers the measured pulses by default and warns when a set du
   REQUIRE(r.code == 0);
   json s = summary(d / "default");
   CHECK(s["simulation"]["duration_source"] != "scene");
-  CHECK(s["warnings"].empty());
+  // Nothing cut (the set-up's own warning stays: the gauge 0.2 m from the impact end sees the
+  // end's reflection overlap the reflected pulse, as validate says).
+  CHECK_FALSE(has_warning(s, "ends before"));
   REQUIRE(s["pulses"].size() == 3);
   constexpr double kSelfComparison = 1e-3;  // the same simulation, re-sampled on its own grid
   for (const auto& p : s["pulses"]) {

@@ -211,6 +211,16 @@ TEST_CASE("Implausible simulations are flagged in warnings and summary.json",
       CHECK(warns(sum, "specimen engineering strain"));
     }
   }
+  SECTION("a duration that ends before the pulses reach the gauges") {
+    // The classic pulse reaches the transmitted gauge after about 500 µs: 100 µs of record holds
+    // zeros there. validate warned of it; the run itself said nothing (exit 0, no warning).
+    json s = classic();
+    s["simulation"]["duration"] = "100 us";
+    const Outcome o = run_scene(scratch.path(), "simulate", s);
+    INFO(o.err);
+    CHECK(o.code == 0);
+    CHECK(warns(summary(scratch.path(), "simulate"), "ends before the pulses have passed"));
+  }
   SECTION("bars passing through each other (a contact rise time of 1 s)") {
     json s = bar_scene();
     s["contact"] = {{"rise_time", "1 s"}};
