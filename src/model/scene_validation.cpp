@@ -112,6 +112,13 @@ namespace {
 // (striker-on-bar without its gauge: 60 mm elements, the energy balance off by 5 %; with a gauge
 // on the striker only, that gauge 6 % RMS off the exact pulse). Returns why it does not apply to
 // `scene` (empty where it does).
+// A gauge on a bar right of the striker: the only gauges the gauge-error model predicts.
+bool gauged_right_of(const Scene& scene, std::size_t striker) {
+  for (std::size_t i = striker + 1; i < scene.bars.size(); ++i)
+    if (!scene.bars[i].gauges.empty()) return true;
+  return false;
+}
+
 std::string default_tolerance_withheld(const Scene& scene) {
   bool free = false;
   for (std::size_t i = 0; i < scene.bars.size(); ++i) {
@@ -131,10 +138,7 @@ std::string default_tolerance_withheld(const Scene& scene) {
   if (!striker)
     return "no striker (a moving bar that loads the bar on its right), so there is no pulse to "
            "predict";
-  bool gauged = false;
-  for (std::size_t i = *striker + 1; i < scene.bars.size(); ++i)
-    gauged = gauged || !scene.bars[i].gauges.empty();
-  if (!gauged)
+  if (!gauged_right_of(scene, *striker))
     return "no gauge on a bar right of the striker, the gauges whose error the model predicts";
   return "";
 }
@@ -164,6 +168,16 @@ ChainDiscretization resolve_scene(Scene& scene, const RunOptions& options) {
   }
   const auto t = scene.simulation.tolerance;
   if (!t) return automatic;
+  const std::string value = percent_text(*t);
+  const auto refuse = [&](const std::string& what) {
+    if (options.tolerance_from_command_line) return input_error("--tolerance", "", value, what);
+    return input_error(scene.file.string(), "simulation.tolerance", value, what);
+  };
+  // Without such a gauge the model predicts no error and would mesh at its coarsest.
+  if (const auto striker = striker_bar(scene); striker && !gauged_right_of(scene, *striker))
+    throw refuse(
+        "needs a gauge on a bar right of the striker: the gauge-error model predicts the error "
+        "of those gauges (docs/methods.md §1.1)");
   const auto start = std::chrono::steady_clock::now();
   const GaugeErrorPrediction p = choose_meshes(scene);
   scene.simulation.mesh_choice_time_s = seconds_since(start);
@@ -179,9 +193,7 @@ ChainDiscretization resolve_scene(Scene& scene, const RunOptions& options) {
                   "not reachable: the most accurate mesh this machine affords (%.3g node updates) "
                   "is predicted at %.3g %% gauge error (docs/methods.md §1.1)",
                   d.node_updates_estimate, 100 * p.total);
-  const std::string value = percent_text(*t);
-  if (options.tolerance_from_command_line) throw input_error("--tolerance", "", value, what);
-  throw input_error(scene.file.string(), "simulation.tolerance", value, what);
+  throw refuse(what);
 }
 
 }  // namespace shpb

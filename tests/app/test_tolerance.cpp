@@ -198,6 +198,19 @@ TEST_CASE("A tolerance no affordable mesh meets, or a scene without a striker, i
   CHECK(right.err.find("needs a striker (a moving bar that loads the bar on its right") !=
         std::string::npos);
   CHECK(std::count(right.err.begin(), right.err.end(), '\n') == 1);
+  // A gauge on the striker only: the model predicts the gauges right of the striker, none here
+  // (it said 0 % and meshed at its coarsest, 60 mm elements).
+  scene = nlohmann::json::parse(read_text(kExperiments / "striker-on-bar" / "scene.json"));
+  scene["bars"][0]["gauges"] = scene["bars"][1]["gauges"];
+  scene["bars"][0]["gauges"][0]["position"] = "0.15 m";
+  scene["bars"][1].erase("gauges");
+  std::ofstream(dir / "scene.json") << scene.dump();
+  const auto g = run_shpb({"validate", (dir / "scene.json").string(), "--tolerance", "1 %"});
+  INFO(g.err);
+  CHECK(g.code == 2);
+  CHECK(g.err.rfind("error: --tolerance: 1 %: needs a gauge on a bar right of the striker", 0) ==
+        0);
+  CHECK(std::count(g.err.begin(), g.err.end(), '\n') == 1);
   fs::remove_all(dir);
 }
 
