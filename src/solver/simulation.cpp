@@ -188,7 +188,8 @@ void check_plausibility(const Scene& scene, const Chain& chain, SimulationResult
   const std::size_t samples = result.gauges.samples();
   if (samples > 0 && samples < kMinRecordSamples)
     result.warnings.push_back("the record has only " + std::to_string(samples) +
-                              " samples: raise simulation.sample_rate to resolve the pulses");
+                              " samples: raise simulation.sample_rate (or the duration) to "
+                              "resolve the pulses");
   if (std::abs(result.energy_error) > kPlausibleEnergyError) {
     std::size_t most = 0;
     for (std::size_t k = 1; k < chain.interfaces.size(); ++k)
@@ -199,17 +200,22 @@ void check_plausibility(const Scene& scene, const Chain& chain, SimulationResult
     if (!chain.interfaces.empty())
       text += "; interface " + chain.interfaces[most].name + " closed " +
               std::to_string(chain.interface_states[most].activations) + " times";
-    if (!chain.global_stepping)
+    bool unequal_steps = false;
+    for (const BarState& b : chain.states)
+      unequal_steps = unequal_steps || b.dt != chain.states.front().dt;
+    if (unequal_steps)
       text +=
           ": a tie between bars on different steps can chatter (docs/methods.md §3.6–3.7); "
           "compare with \"stepping\": \"global\" or finer meshes";
+    else
+      text += ": compare with finer meshes";
     result.warnings.push_back(text);
   }
   // A bar of one element has no interior node: its waves are not resolved.
   for (std::size_t i = 0; i < chain.bars.size(); ++i)
     if (chain.bars[i].full_nodes < 3)
-      result.warnings.push_back("bar " + chain.bars[i].name +
-                                " has a single element: its waves are not resolved");
+      result.warnings.push_back("bar \"" + chain.bars[i].name +
+                                "\" has a single element: its waves are not resolved");
 }
 
 // One run of the chain; `law_specimen_segments` as plan_end_segments takes it.
