@@ -35,6 +35,10 @@ constexpr double kPlateauMinFraction = 0.30;
 // The 1- and 2-wave stresses of a real test differ by tens of percent early in the loading (ring-
 // up); a mean ratio beyond 1.5 is not a specimen out of equilibrium but a wrong set-up.
 constexpr double kOneTwoWaveRatio = 1.5;
+// A specimen whose faces move relative to each other at less than this fraction of the incident
+// pulse's particle velocity c0 ε_I: a 1 % error in one pulse's amplitude (a gauge factor, a bar's
+// modulus) is then more than 20 % of its strain rate.
+constexpr double kFaceVelocityDifference = 0.05;
 
 BarSide side_of(const BarSpec& b) {
   return {b.material.youngs_modulus_Pa, b.area_m2, b.material.wave_speed_m_s()};
@@ -86,38 +90,52 @@ double reflected_tolerance_s(const ProcessingResult& r, double dt, double travel
 // A detected onset further from the geometric one than a few samples or 2 % of the travel time
 // means a gauge position or a wave speed in the scene is wrong: the reflected pulse has travelled
 // 2 d_I (so its offset δ_R = 2 e_I/c0), the transmitted one d_I + d_T (δ_T − δ_R/2 = e_T/c0).
+// An incident gauge or bar mistimed moves the transmitted onset (timed from the same incident
+// pulse) by half the reflected offset. A reflected offset the transmitted onset does not share,
+// while that is on its geometric time, is the reflected pulse's own shape instead: its foot lies
+// where the specimen starts to reflect (a thin, stiff wafer under a shaped ramp reflects next to
+// nothing until it yields), and no gauge is suspected.
 void check_alignment(ProcessingResult& r, const KolskySetup& k, double dt,
                      std::vector<std::string>& warnings) {
   const double c_f = k.front.c0_m_s, c_b = k.back.c0_m_s;
   const double travel_r = 2 * k.incident_distance_m / c_f;
-  if (r.reflected_onset_offset_s) {
+  const double travel_t = k.transmitted_distance_m / c_b;
+  // Later than geometry may also be a soft specimen's slow rise: its onset, picked at a few
+  // percent of the peak, is uncertain by up to the front's rise.
+  auto transmitted_tolerance = [&](double off) {
+    return alignment_tolerance_s(dt, travel_t) + kRingUpTransits * k.specimen_transit_s +
+           (off > 0 ? r.transmitted_rise_s : 0);
+  };
+  const bool reflected_off =
+      r.reflected_onset_offset_s &&
+      std::abs(*r.reflected_onset_offset_s) > reflected_tolerance_s(r, dt, travel_r);
+  if (reflected_off && r.transmitted_onset_offset_s) {
+    const double own = *r.transmitted_onset_offset_s;
+    const double shared = own - 0.5 * *r.reflected_onset_offset_s;
+    r.reflected_offset_is_shape = std::abs(own) <= transmitted_tolerance(own) &&
+                                  std::abs(shared) > transmitted_tolerance(shared);
+    if (r.reflected_offset_is_shape) return;
+  }
+  if (reflected_off) {
     const double off = *r.reflected_onset_offset_s;
-    if (std::abs(off) > reflected_tolerance_s(r, dt, travel_r)) {
-      const double e = 0.5 * off * c_f;  // gauge farther (+) or closer (−) than the scene says
-      const double speed = travel_r / (travel_r + off) - 1;  // signed: + faster
-      warnings.push_back(
-          "gauge \"" + k.incident_gauge + "\": the reflected pulse starts " +
-          fmt("%.3g us ", std::abs(off) * 1e6) + (off < 0 ? "earlier" : "later") +
-          fmt(" than the geometry predicts (2 x %.4g m / %.5g m/s): the incident gauge is likely "
-              "%.3g mm ",
-              k.incident_distance_m, c_f, std::abs(e) * 1e3) +
-          (e < 0 ? "closer to" : "farther from") +
-          fmt(" the specimen than the scene says (distance to specimen %.4g m, not %.4g m; a "
-              "position measured from the wrong end?), or the incident bar's wave speed is off by "
-              "%.2g %% (%.5g m/s)",
-              k.incident_distance_m + e, k.incident_distance_m, 100 * speed, c_f * (1 + speed)));
-      r.alignment_suspect = true;
-    }
+    const double e = 0.5 * off * c_f;  // gauge farther (+) or closer (−) than the scene says
+    const double speed = travel_r / (travel_r + off) - 1;  // signed: + faster
+    warnings.push_back(
+        "gauge \"" + k.incident_gauge + "\": the reflected pulse starts " +
+        fmt("%.3g us ", std::abs(off) * 1e6) + (off < 0 ? "earlier" : "later") +
+        fmt(" than the geometry predicts (2 x %.4g m / %.5g m/s): the incident gauge is likely "
+            "%.3g mm ",
+            k.incident_distance_m, c_f, std::abs(e) * 1e3) +
+        (e < 0 ? "closer to" : "farther from") +
+        fmt(" the specimen than the scene says (distance to specimen %.4g m, not %.4g m; a "
+            "position measured from the wrong end?), or the incident bar's wave speed is off by "
+            "%.2g %% (%.5g m/s)",
+            k.incident_distance_m + e, k.incident_distance_m, 100 * speed, c_f * (1 + speed)));
+    r.alignment_suspect = true;
   }
   if (r.transmitted_onset_offset_s) {
     const double off = *r.transmitted_onset_offset_s - 0.5 * r.reflected_onset_offset_s.value_or(0);
-    const double travel_t = k.transmitted_distance_m / c_b;
-    // Later than geometry may also be a soft specimen's slow rise: its onset, picked at a few
-    // percent of the peak, is uncertain by up to the front's rise.
-    const double tol = alignment_tolerance_s(dt, travel_t) +
-                       kRingUpTransits * k.specimen_transit_s +
-                       (off > 0 ? r.transmitted_rise_s : 0);
-    if (std::abs(off) > tol) {
+    if (std::abs(off) > transmitted_tolerance(off)) {
       const double e = off * c_b;
       warnings.push_back(
           "gauge \"" + k.transmitted_gauge + "\": the transmitted pulse starts " +
@@ -134,6 +152,27 @@ void check_alignment(ProcessingResult& r, const KolskySetup& k, double dt,
       r.alignment_suspect = true;
     }
   }
+}
+
+// The 3-wave strain rate is the difference of the face velocities over L_s (docs/methods.md §6).
+// A specimen much stiffer than the bars that stays elastic (a thin metal wafer) moves with them:
+// its faces move relative to each other at a small fraction of c0 ε_I, and that fraction divides
+// every error of the pulses' amplitudes. The stress, from the forces, is unaffected.
+void check_strain_resolution(const Curve& c, const std::vector<double>& t, std::size_t n,
+                             const KolskySetup& k, const ProcessingOptions& o,
+                             ProcessingResult& r) {
+  if (n < 2 || !(r.incident_plateau_strain > 0) || !(k.specimen.length_m > 0)) return;
+  const double rate = std::abs(c.strain[n - 1] - c.strain[0]) / (t[n - 1] - t[0]);
+  const double part = rate * k.specimen.length_m / (k.front.c0_m_s * r.incident_plateau_strain);
+  if (part >= kFaceVelocityDifference) return;
+  r.warnings.push_back(
+      "the specimen's faces move relative to each other at only " + percent(part) +
+      " of the incident pulse's particle velocity (mean 3-wave strain rate " +
+      fmt("%.4g 1/s", rate) + " x L_s against c0 x incident strain): a specimen this stiff " +
+      "against the bars moves with them, so its strain and strain rate are a small difference " +
+      "of face velocities and an error of 1 % in a gauge factor or a bar's modulus is " +
+      percent(0.01 / part) + " of them (its " + (o.tension ? "tensile" : "compressive") +
+      " stress, from the forces, is not affected)");
 }
 
 // A plateau of the strain rate: the longest run of samples within ±10 % of the plateau level
@@ -185,8 +224,8 @@ void check_one_and_two_wave(const Curve& c, std::size_t n, const ProcessingResul
     evidence += (evidence.empty() ? "" : "; ") + ("gauge \"" + g + "\"'s first pulse was ") +
                 (o.tension ? "compressive" : "tensile") + " and was inverted (a " +
                 (o.tension ? "compressive" : "tensile") + " record, or its channel's `invert`?)";
-  if (r.reflected_onset_offset_s && !r.reflected_at_onset && r.reflected_offset_stress_error &&
-      *r.reflected_offset_stress_error > kShiftStressError)
+  if (r.reflected_onset_offset_s && !r.reflected_at_onset && !r.reflected_offset_is_shape &&
+      r.reflected_offset_stress_error && *r.reflected_offset_stress_error > kShiftStressError)
     evidence += (evidence.empty() ? "" : "; ") +
                 fmt("the reflected pulse starts %.3g us off its geometric position, which alone "
                     "moves the 2-wave stress by up to ",
@@ -482,12 +521,16 @@ PulseTiming time_the_pulses(const std::vector<double>& t, double dt, std::size_t
   r.incident_rise_s = t[inc_half] - t[on];
   // A reflected front due before the incident pulse has ended on its gauge (a gauge closer to the
   // specimen than half the pulse's length) cannot be told from that pulse: no onset is sought.
+  // It is sought from the incident pulse's first sample at rest, and only a pulse rising beyond
+  // twice the band the incident pulse ended within is one: a smaller one (a specimen matched to
+  // the bar reflects next to nothing, docs/methods.md §6) cannot be told from the incident's tail.
   const double travel_r = 2 * d_i / c_front;
   const bool apart = t[end - 1] < expected_r - alignment_tolerance_s(dt, travel_r);
-  const auto i0 = index_at(t, t[end - 1]);
   const auto i1 = index_at(t, expected_r + p.duration);
-  if (const auto o =
-          apart ? find_onset(inc.x, {0.0, inc.noise}, reflected_sign(k), i0, i1) : std::nullopt) {
+  const double min_peak = 2 * rest_band(inc.noise, incident_peak);
+  if (const auto o = apart
+                         ? find_onset(inc.x, {0.0, inc.noise}, reflected_sign(k), end, i1, min_peak)
+                         : std::nullopt) {
     p.reflected_onset_s = t[o->onset];
     r.reflected_onset_offset_s = t[o->onset] - expected_r;
     r.reflected_rise_s = t[o->half] - t[o->onset];
@@ -657,7 +700,17 @@ bool find_loading_end(const std::vector<double>& strain, std::size_t ring_up,
   r.loading_end = strain_max + 1;
   r.loading_end_how = "strain maximum";
   if (options.load_drop <= 0) return false;
-  const std::size_t last = strain_max < ring_up ? strain.size() - 1 : strain_max;
+  // A maximum reached while the incident pulse still loads the front face at its plateau (within
+  // the plateau band of its peak) for a ring-up's span after it is an overshoot as well: under a
+  // load that has not begun to fall only an elastic specimen's strain goes down, settling just
+  // below its first peak for the whole pulse.
+  double incident_peak = 0;
+  for (const double e : r.incident) incident_peak = std::max(incident_peak, std::abs(e));
+  const bool held =
+      ring_up > 0 && strain_max + ring_up < r.incident.size() &&
+      std::all_of(r.incident.begin() + strain_max, r.incident.begin() + strain_max + ring_up + 1,
+                  [&](double e) { return std::abs(e) >= (1 - kPlateauBand) * incident_peak; });
+  const std::size_t last = strain_max < ring_up || held ? strain.size() - 1 : strain_max;
   std::vector<double> later(last + 1);  // largest 1-wave stress from i to `last`
   later[last] = s1[last];
   for (std::size_t i = last; i-- > 0;) later[i] = std::max(s1[i], later[i + 1]);
@@ -759,7 +812,7 @@ void warn_reflected_offset(const ShiftStressError& stress_change, const KolskySe
     r.reflected_offset_stress_error =
         stress_change(r.reflected, k.front, *r.reflected_onset_offset_s);
   if (!(stress_change.has_scale() && r.reflected_offset_stress_error &&
-        !options.windows.reflected && !r.reflected_at_onset &&
+        !options.windows.reflected && !r.reflected_at_onset && !r.reflected_offset_is_shape &&
         std::abs(*r.reflected_onset_offset_s) > reflected_tolerance_s(r, dt, 0) &&
         *r.reflected_offset_stress_error > kShiftStressError))
     return;
@@ -858,6 +911,7 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
     peak_force = std::max(peak_force, c.force_front_N[i] + c.force_back_N[i]);
   r.equilibrium = judge_equilibrium(c, r.time_s, r.loading_end, peak_force);
   check_one_and_two_wave(c, r.loading_end, r, options, r.warnings);
+  check_strain_resolution(c, r.time_s, r.loading_end, k, options, r);
   if (r.equilibrium.holds_from_s)
     r.time_to_equilibrium_s = *r.equilibrium.holds_from_s - r.time_s[0];
   return r;

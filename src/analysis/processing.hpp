@@ -126,6 +126,9 @@ struct ProcessingResult {
   double reflected_rise_s = 0;                       // … and of the reflected front
   double incident_rise_s = 0;                        // … and of the incident front
   bool alignment_suspect = false;  // an onset is off: a gauge position or wave speed is wrong
+  // The reflected onset is off by more than a mistiming of the incident side would leave the
+  // transmitted onset on time: the reflected pulse's own shape (its foot), not a mistiming.
+  bool reflected_offset_is_shape = false;
   bool reflected_at_onset = false, transmitted_at_onset = false;  // align "onsets" applied
   // Largest change of the 3-wave stress over the loading, as a fraction of the 1-wave peak, that
   // moving the reflected pulse by its onset offset makes (docs/methods.md §6); null without one.

@@ -36,11 +36,15 @@ std::optional<double> rest_level_before(std::span<const double> x, std::size_t h
   return median(std::vector<double>(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(half)));
 }
 
+double rest_band(double noise, double peak) {
+  return std::max(kNoiseSigmas * noise, kBandOfPeak * peak);
+}
+
 std::optional<PulseWindow> find_first_pulse(std::span<const double> x, const Baseline& b,
                                             std::size_t from) {
   double peak = 0;
   for (std::size_t i = from; i < x.size(); ++i) peak = std::max(peak, std::abs(x[i] - b.level));
-  const double band = std::max(kNoiseSigmas * b.noise, kBandOfPeak * peak);
+  const double band = rest_band(b.noise, peak);
   if (!(peak > 2 * band) && !(peak > 0 && b.noise == 0)) return std::nullopt;
   const double detect = kDetectFractionOfPeak * peak;
   std::size_t i = from;
@@ -82,7 +86,7 @@ std::optional<PulseWindow> find_first_pulse(std::span<const double> x, const Bas
 }
 
 std::optional<Onset> find_onset(std::span<const double> x, const Baseline& b, double sign,
-                                std::size_t from, std::size_t to) {
+                                std::size_t from, std::size_t to, double min_peak) {
   to = std::min(to, x.size());
   if (from >= to) return std::nullopt;
   // The pulse's first half-peak sample above `level`, with the band below which it is at rest.
@@ -91,7 +95,7 @@ std::optional<Onset> find_onset(std::span<const double> x, const Baseline& b, do
     for (std::size_t i = from; i < to; ++i) peak = std::max(peak, sign * (x[i] - level));
     std::size_t i = from;
     while (i < to && sign * (x[i] - level) < kDetectFractionOfPeak * peak) ++i;
-    return std::tuple{i, peak, std::max(kNoiseSigmas * b.noise, kBandOfPeak * peak)};
+    return std::tuple{i, peak, rest_band(b.noise, peak)};
   };
   // The level at rest is the median from `from` to the half-peak sample: the record there is
   // mostly at rest (a preceding pulse's tail, a staircase's later step), the front's rise is short.
@@ -100,7 +104,7 @@ std::optional<Onset> find_onset(std::span<const double> x, const Baseline& b, do
     level = median(std::vector<double>(x.begin() + static_cast<std::ptrdiff_t>(from),
                                        x.begin() + static_cast<std::ptrdiff_t>(half)));
   const auto [half, peak, band] = front(level);
-  if (!(peak > 2 * band) || half == to) return std::nullopt;
+  if (!(peak > 2 * band) || !(peak > min_peak) || half == to) return std::nullopt;
   Onset o{half, half};
   while (o.onset > from && sign * (x[o.onset - 1] - level) > band) --o.onset;
   return o;

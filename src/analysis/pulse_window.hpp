@@ -28,6 +28,10 @@ struct PulseWindow {
   double peak = 0;        // largest |x − baseline| inside the window
 };
 
+// The band within which a record counts as at rest around a pulse of this peak: max(5σ, 3 % of the
+// peak). A pulse is one that rises beyond twice it.
+double rest_band(double noise, double peak);
+
 // The first large pulse of either sign in x − baseline.level: it starts at the first sample beyond
 // half the record's largest excursion; the onset is the last sample before that within the
 // noise band (max(5σ, 3 % of the peak)), the end the first sample after the pulse's last
@@ -36,13 +40,14 @@ std::optional<PulseWindow> find_first_pulse(std::span<const double> x, const Bas
                                             std::size_t from = 0);
 
 // Onset of a pulse of the given sign in [from, to), the same way, and its first half-peak
-// sample (onset to half is the front's rise); nullopt if none.
+// sample (onset to half is the front's rise); nullopt if none, or if its peak is not above
+// min_peak.
 struct Onset {
   std::size_t onset = 0;
   std::size_t half = 0;
 };
 std::optional<Onset> find_onset(std::span<const double> x, const Baseline& baseline, double sign,
-                                std::size_t from, std::size_t to);
+                                std::size_t from, std::size_t to, double min_peak = 0);
 
 // Median over the samples of x[begin, end) that are at least half of their 95th percentile
 // (times sign): the plateau of a pulse, insensitive to its ramps and to single spikes.
