@@ -42,13 +42,21 @@ Curve reduce_pulses(std::span<const double> ei, std::span<const double> er,
                   &c.force_front_N, &c.force_back_N, &c.stress_1wave_Pa, &c.stress_2wave_Pa,
                   &c.stress_3wave_Pa, &c.true_strain, &c.true_stress_Pa, &c.equilibrium_ratio})
     resize(*v);
+  // The reflected-pulse strain rate with the incident pulse eliminated by the faces' equilibrium,
+  // E_I A_I (ε_I + ε_R) = E_T A_T ε_T: (v1 − v2)/L_s = (2 c_I ε_R + (c_T − k c_I) ε_T)/L_s with
+  // k = E_T A_T/(E_I A_I). Identical bars: 2 c0 ε_R / L_s, the textbook form (the second term
+  // exactly 0); a magnesium transmitter on steel bars (k 0.23) made that form 10²–10³ × off.
+  const double k =
+      back.youngs_modulus_Pa * back.area_m2 / (front.youngs_modulus_Pa * front.area_m2);
+  const double transmitted_weight = back.c0_m_s - k * front.c0_m_s;
   for (std::size_t i = 0; i < n; ++i) {
     // Tension-positive strains: a right-going wave has particle velocity −c0 ε, a left-going
     // one +c0 ε. Face velocities (to the right) v1 = −c0 (ε_I − ε_R), v2 = −c0 ε_T.
     const double v1 = -front.c0_m_s * (ei[i] - er[i]);
     const double v2 = -back.c0_m_s * et[i];
     c.strain_rate_1_s[i] = (v1 - v2) / s.length_m;  // shortening rate, compression positive
-    c.strain_rate_1wave_1_s[i] = 2 * front.c0_m_s * er[i] / s.length_m;
+    c.strain_rate_1wave_1_s[i] =
+        (2 * front.c0_m_s * er[i] + transmitted_weight * et[i]) / s.length_m;
     c.force_front_N[i] = -front.youngs_modulus_Pa * front.area_m2 * (fi[i] + fr[i]);
     c.force_back_N[i] = -back.youngs_modulus_Pa * back.area_m2 * ft[i];
     c.stress_1wave_Pa[i] = c.force_back_N[i] / s.area_m2;

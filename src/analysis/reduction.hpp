@@ -21,7 +21,7 @@ struct SpecimenGeometry {
 
 struct Curve {
   std::vector<double> strain_rate_1_s;        // 3-wave: (v1 − v2)/L_s
-  std::vector<double> strain_rate_1wave_1_s;  // 2 c0 ε_R / L_s
+  std::vector<double> strain_rate_1wave_1_s;  // 2 c0 ε_R / L_s (identical bars; reduction.cpp)
   std::vector<double> strain_1wave;       // ∫ 1-wave strain rate dt: the reflected-pulse strain
   std::vector<double> strain;             // ∫ 3-wave strain rate dt (trapezoid), engineering
   std::vector<double> force_front_N;      // P1 = −E A (ε_I + ε_R), compression positive
