@@ -28,6 +28,12 @@ std::vector<std::string> scene_warnings(const Scene& s, double duration_s) {
                   " not found (process and compare will need it)");
   }
 
+  // The largest strain a step is planned for applies to finite strain only (discretization.hpp).
+  if (s.simulation.max_strain && !s.simulation.finite_strain)
+    w.push_back(
+        "simulation.max_strain has no effect with \"kinematics\": \"small\" (the steps are "
+        "planned for it with finite strain only)");
+
   // The striker: the first moving bar. Its pulse lasts 2 L/c (docs/methods.md §4).
   if (std::none_of(s.bars.begin(), s.bars.end(),
                    [](const BarSpec& b) { return b.velocity_m_s != 0; })) {

@@ -65,4 +65,20 @@ TEST_CASE("The default duration covers what validate checks, so it is never warn
   CHECK(warned);
 }
 
+TEST_CASE("A strain plan with small kinematics is said to do nothing", "[model][scene-checks]") {
+  // simulation.max_strain plans the steps of finite-strain bars only (discretization.hpp); with
+  // small kinematics it was accepted without a word.
+  Scene s = far_incident_gauge();
+  const double d = default_duration_s(s);
+  auto said = [&] {
+    for (const auto& w : scene_warnings(s, d))
+      if (w.find("simulation.max_strain has no effect") != std::string::npos) return true;
+    return false;
+  };
+  s.simulation.max_strain = 0.3;
+  CHECK_FALSE(said());  // finite strain: it plans the steps
+  s.simulation.finite_strain = false;
+  CHECK(said());
+}
+
 }  // namespace tests_model_test_wave_travel
