@@ -370,9 +370,8 @@ SimulationResult simulate(const Scene& scene, const SimulationOptions& options) 
   // What `validate` warns of the set-up (a duration that ends before a pulse reaches its gauge,
   // nothing moving, pulses overlapping): a run of it records zeros or a mixture without it. The
   // measured record is not this command's concern.
-  Scene simulated = scene;
-  simulated.measurement.reset();
-  const std::vector<std::string> setup = scene_warnings(simulated, d.duration_s);
+  planned.measurement.reset();
+  const std::vector<std::string> setup = scene_warnings(planned, d.duration_s);
   result.warnings.insert(result.warnings.end(), setup.begin(), setup.end());
   result.call_time_s = seconds_since(called);
   return result;

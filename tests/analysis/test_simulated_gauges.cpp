@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <vector>
 
@@ -177,6 +178,25 @@ AlignmentSaid process_aligned(const Scene& scene, const SimulationResult& sim) {
   return a;
 }
 
+// An experiment's scene (experiments/NAME/scene.json) changed by `edit`, simulated as `shpb
+// simulate` runs it (its default tolerance's meshes, a filtered record).
+struct Simulated {
+  Scene scene;
+  SimulationResult sim;
+};
+Simulated simulated_variant(const std::string& experiment,
+                            const std::function<void(nlohmann::json&)>& edit) {
+  const std::filesystem::path at =
+      std::filesystem::path(SHPB_SOURCE_DIR) / "experiments" / experiment / "scene.json";
+  nlohmann::json j = nlohmann::json::parse(std::ifstream(at));
+  edit(j);
+  Simulated v{read_scene_text(j.dump(), at), {}};
+  resolve_scene(v.scene);
+  v.sim = simulate(v.scene);
+  REQUIRE(v.sim.stable);
+  return v;
+}
+
 // A specimen wafer of Ti-6Al-4V (16 × 2 mm) on aluminium bars is matched to them within 6 % in
 // impedance ρ c0 A: it reflects a pulse of a few percent of the incident one, and the bars'
 // trailing edge of the incident pulse rings at about as much (at 11 % in a point-sampled record).
@@ -240,18 +260,12 @@ TEST_CASE("A specimen nearly matched to the bars: no gauge position is suspected
 // alignment at the onsets is suggested (it would move the 3-wave stress by 19 % of its peak).
 TEST_CASE("A shaped ramp on a thin wafer: a late reflected foot suspects no gauge",
           "[analysis][processing][simulation][shaper]") {
-  const std::filesystem::path at =
-      std::filesystem::path(SHPB_SOURCE_DIR) / "experiments/pulse-shaper/scene.json";
-  std::ifstream in(at);
-  nlohmann::json j = nlohmann::json::parse(in);
-  j["bars"][0]["velocity"] = "25 m/s";
-  j["bars"][3]["diameter"] = "16 mm";
-  j["bars"][3]["length"] = "2 mm";
-  Scene scene = read_scene_text(j.dump(), at);
-  resolve_scene(scene);
-  const SimulationResult sim = simulate(scene);
-  REQUIRE(sim.stable);
-  const AlignmentSaid a = process_aligned(scene, sim);
+  const Simulated v = simulated_variant("pulse-shaper", [](nlohmann::json& j) {
+    j["bars"][0]["velocity"] = "25 m/s";
+    j["bars"][3]["diameter"] = "16 mm";
+    j["bars"][3]["length"] = "2 mm";
+  });
+  const AlignmentSaid a = process_aligned(v.scene, v.sim);
   INFO(a.warnings);
   // The case itself: the reflected foot is later than the alignment tolerance (2 % of the travel
   // time) allows a mistimed gauge.
@@ -268,23 +282,18 @@ TEST_CASE("A shaped ramp on a thin wafer: a late reflected foot suspects no gaug
 // The curve covers the loading, not the first 3 µs up to that overshoot (docs/methods.md §6).
 TEST_CASE("An elastic specimen's early strain overshoot does not end the loading",
           "[analysis][processing][simulation]") {
-  const std::filesystem::path at =
-      std::filesystem::path(SHPB_SOURCE_DIR) / "experiments/classic-al6061/scene.json";
-  std::ifstream in(at);
-  nlohmann::json j = nlohmann::json::parse(in);
-  j["materials"]["ti"] = {{"model", "elastic"},
-                          {"density", "4430 kg/m3"},
-                          {"youngs_modulus", "113.8 GPa"},
-                          {"poisson_ratio", 0.342}};
-  for (const int bar : {0, 1, 3}) j["bars"][bar]["material"] = "ti";
-  j["bars"][0]["velocity"] = "8 m/s";
-  j["bars"][2]["diameter"] = "16 mm";
-  j["bars"][2]["length"] = "2 mm";
-  Scene scene = read_scene_text(j.dump(), at);
-  resolve_scene(scene);
-  const SimulationResult sim = simulate(scene);
-  REQUIRE(sim.stable);
-  const AlignmentSaid a = process_aligned(scene, sim);
+  const Simulated v = simulated_variant("classic-al6061", [](nlohmann::json& j) {
+    j["materials"]["ti"] = {{"model", "elastic"},
+                            {"density", "4430 kg/m3"},
+                            {"youngs_modulus", "113.8 GPa"},
+                            {"poisson_ratio", 0.342}};
+    for (const int bar : {0, 1, 3}) j["bars"][bar]["material"] = "ti";
+    j["bars"][0]["velocity"] = "8 m/s";
+    j["bars"][2]["diameter"] = "16 mm";
+    j["bars"][2]["length"] = "2 mm";
+  });
+  const SimulationResult& sim = v.sim;
+  const AlignmentSaid a = process_aligned(v.scene, sim);
   INFO(a.warnings);
   // The time the specimen's own stress stays above half its peak, and the curve's.
   const auto& ts = sim.specimen.time_s;
