@@ -296,6 +296,25 @@ TEST_CASE("A bad plan block is exit 2 naming its JSON path, with nothing written
   }
 }
 
+TEST_CASE("A tension test is refused by plan, naming the striker's velocity", "[app][plan]") {
+  // The bonded tension experiment: its striker is pulled away (-10 m/s). plan searches
+  // compression tests only (a positive velocity bound), and planned it as one, the sign turned.
+  ScratchDir dir("plan_tension");
+  nlohmann::json j = nlohmann::json::parse(
+      read_text(fs::path(SHPB_SOURCE_DIR) / "experiments" / "tension-bonded" / "scene.json"));
+  j.erase("measurement");
+  j["plan"] = {{"striker", {{"velocity", {"2 m/s", "40 m/s"}}}}};
+  const fs::path scene = dir.path() / "scene.json", out = dir.path() / "out";
+  std::ofstream(scene) << j.dump(2);
+  const auto r =
+      run_shpb({"plan", scene.string(), "--rate", "1000", "--strain", "0.05", "-o", out.string()});
+  INFO(r.err);
+  CHECK(r.code == 2);
+  CHECK(r.err.rfind("error: " + scene.string() + ": bars[0].velocity: -10 m/s: ", 0) == 0);
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  CHECK_FALSE(fs::exists(out));
+}
+
 TEST_CASE("At a high rate a shorter specimen brings the bars' forces into equilibrium early",
           "[app][plan][release-only]") {
   // 5000 1/s on the classic Al 6061-T6 specimen from a 100 mm striker: the 5 mm specimen's faces
