@@ -40,11 +40,16 @@ double LoadingMetrics::slack() const {
                    (strain_limit - strain_reached) / strain_limit});
 }
 
+LoadingMetrics::Shortfalls LoadingMetrics::shortfalls() const {
+  return {std::max(0.0, target_strain - strain_reached) / target_strain,
+          std::max(0.0, strain_reached - strain_limit) / strain_limit,
+          std::max(0.0, kBandFraction - band_fraction) / kBandFraction,
+          std::max(0.0, equilibrium_fraction - kEquilibriumFraction) / (1 - kEquilibriumFraction)};
+}
+
 double LoadingMetrics::shortfall() const {
-  return std::max(0.0, kBandFraction - band_fraction) / kBandFraction +
-         std::max(0.0, equilibrium_fraction - kEquilibriumFraction) / (1 - kEquilibriumFraction) +
-         std::max(0.0, target_strain - strain_reached) / target_strain +
-         std::max(0.0, strain_reached - strain_limit) / strain_limit;
+  const Shortfalls f = shortfalls();
+  return f.strain + f.strain_limit + f.band + f.equilibrium;
 }
 
 LoadingMetrics loading_metrics(const TimeSeries& specimen, std::span<const double> front,
@@ -356,6 +361,10 @@ std::string Planner::binding(const Evaluation& best) const {
   char what[700];
   const double c = in_.scene.bars[0].material.wave_speed_m_s();
   const double limit = std::min(spec_.striker_length.hi, striker_length_limit());
+  // Beyond the velocity bound, the criterion the closest set-up misses most binds: a strain
+  // missed by 0.2 % beside a band missed by a quarter was named, with a striker the bounds allow.
+  const LoadingMetrics::Shortfalls f = m.shortfalls();
+  const double worst = std::max({f.strain, f.strain_limit, f.band, f.equilibrium});
   if (m.plateau_rate_1_s < (1 - kRateBand) * R &&
       best.candidate.striker_velocity_m_s >= spec_.striker_velocity.hi) {
     std::snprintf(what, sizeof what,
@@ -363,20 +372,20 @@ std::string Planner::binding(const Evaluation& best) const {
                   "only %.3g 1/s; about %.3g m/s would be needed",
                   spec_.striker_velocity.hi, m.plateau_rate_1_s,
                   spec_.striker_velocity.hi * R / std::max(m.plateau_rate_1_s, 1e-9 * R));
-  } else if (m.strain_reached < E) {
+  } else if (f.strain == worst && worst > 0) {
     std::snprintf(what, sizeof what,
-                  "the target strain %.3g is not reached (%.3g at best): at %.4g 1/s the loading "
+                  "the target strain %.3g is not reached (%.3g): at %.4g 1/s the loading "
                   "must last %.3g us, a striker of at least %.3g m (2L/c >= strain/rate); the "
                   "longest allowed is %.3g m (plan.striker.length, and the incident gauge's "
                   "distance to the specimen so that the pulses do not overlap)",
                   E, m.strain_reached, R, 1e6 * E / R, striker_length_for(E, R, c), limit);
-  } else if (m.strain_reached > m.strain_limit) {
+  } else if (f.strain_limit == worst && worst > 0) {
     std::snprintf(what, sizeof what,
                   "the pulse takes the specimen to strain %.3g, beyond %.3g (%.0f %% of "
                   "simulation.max_strain, the strain its steps are planned for): a shorter "
                   "striker (plan.striker.length) ends the loading nearer the target strain",
                   m.strain_reached, m.strain_limit, 100 * kSimulableStrainFraction);
-  } else if (m.band_fraction < kBandFraction) {
+  } else if (f.band == worst && worst > 0) {
     // A pulse far longer than strain/rate loads a hardening specimen on while its rate falls: a
     // shorter striker ends the loading before; otherwise the pulse's rise or a ramp is at fault.
     const double needed = striker_length_for(E, R, c);

@@ -70,6 +70,11 @@ struct LoadingMetrics {
   // The smallest relative margin by which the band, equilibrium and strain criteria are met
   // (negative: one is missed).
   double slack() const;
+  // How far from meeting each criterion, relative to its threshold (0 when met).
+  struct Shortfalls {
+    double strain = 0, strain_limit = 0, band = 0, equilibrium = 0;
+  };
+  Shortfalls shortfalls() const;
   // How far from meeting them (0 when met): the sum of the relative shortfalls.
   double shortfall() const;
 };
