@@ -15,11 +15,10 @@ namespace {
 namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
 
-std::string with_unit(double si, double scale, const char* unit) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.4g %s", si * scale, unit);
-  return text;
-}
+// A value in SI units as the scene reader reads it back bit for bit (the shortest text that
+// round-trips), so that `simulate DIR/scene.json` runs the verified set-up itself: rounded to four
+// digits, a 156.25 mm striker became 156.2 mm, was meshed otherwise and missed equilibrium.
+std::string si_text(double si, const char* unit) { return format_double(si) + " " + unit; }
 
 // A material given as a path relative to the scene, relative to the output folder instead.
 void rebase_material(nlohmann::json& bar, const nlohmann::json& scene, const fs::path& from,
@@ -42,16 +41,16 @@ nlohmann::json planned_json(const PlanResult& r, const PlanInput& in, const fs::
                            .string();
   auto& bars = j["bars"];
   const PlanCandidate& c = r.chosen;
-  bars[0]["length"] = with_unit(c.striker_length_m, 1e3, "mm");
-  bars[0]["velocity"] = with_unit(c.striker_velocity_m_s, 1, "m/s");
+  bars[0]["length"] = si_text(c.striker_length_m, "m");
+  bars[0]["velocity"] = si_text(c.striker_velocity_m_s, "m/s");
   if (c.shaper >= 0) {
     nlohmann::json shaper = {{"name", "shaper"}};
     if (in.spec.scene_has_shaper) shaper = bars[1];
     const auto& text = in.spec.shaper_materials[c.shaper].text;
     if (!text.empty()) shaper["material"] = text;
-    shaper["length"] = with_unit(c.shaper_thickness_m, 1e3, "mm");
+    shaper["length"] = si_text(c.shaper_thickness_m, "m");
     shaper.erase("area");
-    shaper["diameter"] = with_unit(c.shaper_diameter_m, 1e3, "mm");
+    shaper["diameter"] = si_text(c.shaper_diameter_m, "m");
     if (in.spec.scene_has_shaper)
       bars[1] = shaper;
     else
@@ -60,12 +59,12 @@ nlohmann::json planned_json(const PlanResult& r, const PlanInput& in, const fs::
   if (in.spec.specimen_length)
     for (auto& b : bars)
       if (b["name"] == in.scene.bars[*in.scene.specimen].name)
-        b["length"] = with_unit(c.specimen_length_m, 1e3, "mm");
+        b["length"] = si_text(c.specimen_length_m, "m");
   for (auto& b : bars) rebase_material(b, in.json, from, final_dir);
   // A duration the planned pulse outlasts, extended as the verification run was (planned_scene).
   const auto& given = in.scene.simulation.duration_s;
   if (given && r.scene.simulation.duration_s && *r.scene.simulation.duration_s > *given)
-    j["simulation"]["duration"] = with_unit(*r.scene.simulation.duration_s, 1e6, "us");
+    j["simulation"]["duration"] = si_text(*r.scene.simulation.duration_s, "s");
   return j;
 }
 
