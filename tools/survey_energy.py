@@ -2,8 +2,8 @@
 """Energy balance of ordinary set-ups the experiments do not hold (docs/methods.md §3.7,
 docs/validation.md "A law specimen that stays elastic").
 
-Usage: tools/survey_energy.py SHPB [--shapers | --tension | --friction | --inertia] [other
-       simulate options, e.g. --stepping global]
+Usage: tools/survey_energy.py SHPB [--shapers | --tension | --friction | --inertia | --coarse]
+       [other simulate options, e.g. --stepping global]
 
 The classic experiment's layout (300 mm striker, 2 m bars of Ø19.05 mm, gauges at mid-length) with
 its bars made of steel, aluminium or titanium (or a magnesium transmitter on steel, or an aluminium
@@ -21,6 +21,10 @@ radial inertia on (docs/methods.md §8.2–8.3; the specimen then keeps the fixe
 --tension: instead, experiments/tension-bonded (bonded specimen, striker pulled at 5 or 15 m/s, the
 scene's Courant number left to the default) with steel, aluminium or titanium bars and the four
 specimens or the scene's bilinear metal, of 10 × 5, 4 × 8 and 16 × 2 mm: 90 scenes.
+--coarse: instead, bars meshed by hand with few elements, ties no end segment covers:
+experiments/striker-on-bar with a steel, aluminium or titanium striker of 100 or 300 mm meshed by
+1, 2, 3, 5, 10 or 20 elements on its steel bar (36 scenes), and tools/bench_scenes/elastic-classic
+with an aluminium, titanium, steel or polycarbonate specimen of 1, 2 or 4 elements (12 scenes).
 """
 import itertools
 import json
@@ -32,10 +36,11 @@ import tempfile
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 SHPB = sys.argv[1]
 MODE = next((a for a in sys.argv[2:]
-             if a in ("--shapers", "--tension", "--friction", "--inertia")), "")
+             if a in ("--shapers", "--tension", "--friction", "--inertia", "--coarse")), "")
 EXTRA = [a for a in sys.argv[2:] if a != MODE]
 BARS = {"steel": ("8080 kg/m3", "200 GPa", 0.29), "al": ("2700 kg/m3", "70 GPa", 0.33),
-        "ti": ("4430 kg/m3", "113.8 GPa", 0.342), "mg": ("1800 kg/m3", "45 GPa", 0.35)}
+        "ti": ("4430 kg/m3", "113.8 GPa", 0.342), "mg": ("1800 kg/m3", "45 GPa", 0.35),
+        "pc": ("1200 kg/m3", "2.4 GPa", 0.37)}
 LAYOUTS = [("steel", "steel", "steel"), ("steel", "steel", "al"), ("al", "al", "al"),
            ("ti", "ti", "ti"), ("steel", "steel", "mg"), ("al", "steel", "steel")]
 SPECIMENS = {"al6061": "al6061-t6.json", "cu": "ofhc-copper.json", "ti": "ti6al4v.json",
@@ -103,7 +108,31 @@ def tension_scenes():
                f"{velocity}", scene)
 
 
-SCENES = {"--shapers": shaper_scenes, "--tension": tension_scenes}.get(MODE, bars_scenes)
+def elastic_materials():
+    return {name: {"model": "elastic", "density": rho, "youngs_modulus": e, "poisson_ratio": nu}
+            for name, (rho, e, nu) in BARS.items()}
+
+
+def coarse_scenes():
+    base = json.loads((ROOT / "experiments/striker-on-bar/scene.json").read_text())
+    base["materials"] = elastic_materials()
+    base["bars"][1]["material"] = "steel"
+    for striker, length, elements in itertools.product(["steel", "al", "ti"], ["100 mm", "300 mm"],
+                                                       [1, 2, 3, 5, 10, 20]):
+        scene = json.loads(json.dumps(base))
+        scene["bars"][0].update(material=striker, length=length, elements=elements)
+        yield f"striker-{striker}-{length.split()[0]}mm-{elements}el", scene
+    base = json.loads((ROOT / "tools/bench_scenes/elastic-classic.json").read_text())
+    for material, elements in itertools.product(["al", "ti", "steel", "pc"], [1, 2, 4]):
+        scene = json.loads(json.dumps(base))
+        scene["materials"].update(elastic_materials())
+        specimen = next(b for b in scene["bars"] if b["name"] == scene["specimen"])
+        specimen.update(material=material, elements=elements)
+        yield f"elastic-classic-{material}-{elements}el", scene
+
+
+SCENES = {"--shapers": shaper_scenes, "--tension": tension_scenes,
+          "--coarse": coarse_scenes}.get(MODE, bars_scenes)
 off = failed = runs = 0
 with tempfile.TemporaryDirectory() as tmp:
     for name, scene in SCENES():

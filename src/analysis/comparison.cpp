@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "analysis/pulse_window.hpp"
+#include "core/correlation.hpp"
 
 namespace shpb {
 namespace {
@@ -104,24 +105,19 @@ PulseComparison compare_pulse(std::span<const double> measured, std::span<const 
   c.rise_time_measured_s = rise_time_samples(measured, begin, end) * dt_s;
   c.rise_time_simulated_s = rise_time_samples(simulated, begin, end) * dt_s;
 
-  // The sums of squares run on each signal divided by its peak (the error on the larger peak), so
-  // that no square overflows whatever the record's scale (a bridge factor off by 1e300 gave an
-  // NRMSE of inf); both figures are scale-free, so this changes only their rounding.
+  // The error's squares run on the signals divided by the larger peak, so that no square
+  // overflows whatever the record's scale (a bridge factor off by 1e300 gave an NRMSE of inf);
+  // the figure is scale-free, so this changes only its rounding.
   const double n = static_cast<double>(end - begin);
-  const double unit_m = peak_m > 0 ? peak_m : 1, unit_s = peak_s > 0 ? peak_s : 1;
-  const double unit_e = std::max(unit_m, unit_s);
-  double sm = 0, ss = 0, se = 0;
-  for (std::size_t i = begin; i < end; ++i) sm += measured[i] / unit_m, ss += simulated[i] / unit_s;
-  sm /= n, ss /= n;
-  double cmm = 0, css = 0, cms = 0;
+  const double unit_e = std::max({peak_m, peak_s, 1e-300});
+  double se = 0;
   for (std::size_t i = begin; i < end; ++i) {
-    const double dm = measured[i] / unit_m - sm, ds = simulated[i] / unit_s - ss;
-    cmm += dm * dm, css += ds * ds, cms += dm * ds;
     const double e = simulated[i] / unit_e - measured[i] / unit_e;
     se += e * e;
   }
   c.nrmse = peak_m > 0 ? std::sqrt(se / n) * (unit_e / peak_m) : 0;
-  c.correlation = cmm > 0 && css > 0 ? cms / std::sqrt(cmm * css) : 0;
+  c.correlation = correlation_coefficient(measured.subspan(begin, end - begin),
+                                          simulated.subspan(begin, end - begin));
   return c;
 }
 

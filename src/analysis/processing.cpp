@@ -4,9 +4,11 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <optional>
 #include <tuple>
 
 #include "analysis/pulse_window.hpp"
+#include "core/correlation.hpp"
 #include "core/csv_writer.hpp"  // format_double
 #include "core/error.hpp"
 #include "core/interpolation.hpp"
@@ -366,40 +368,59 @@ KolskySetup resolve_setup(const Scene& scene, const std::vector<std::string>& av
   return k;
 }
 
+namespace {
+
+// The clipping warning of the record of gauge `name` (processing.hpp), if it looks clipped.
+std::optional<std::string> clipping_warning(const std::string& name, const std::vector<double>& x) {
+  if (x.empty()) return std::nullopt;
+  const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
+  for (const double extreme : {*hi, *lo}) {
+    if (extreme == 0) continue;
+    // The level histogram at the extreme: its count, and that of the next level inward.
+    std::size_t run = 0, longest = 0, at_extreme = 0, at_next = 0;
+    double next = extreme == *hi ? *lo : *hi;
+    for (double v : x) {
+      longest = std::max(longest, run = v == extreme ? run + 1 : 0);
+      at_extreme += v == extreme;
+      if (v != extreme && std::abs(extreme - v) < std::abs(extreme - next)) next = v;
+    }
+    for (double v : x) at_next += v == next;
+    const bool piles_up =
+        static_cast<double>(at_extreme) >= kClippedPileUp * static_cast<double>(at_next);
+    if (longest >= kClippedRun && piles_up)
+      return "gauge \"" + name + "\": " + std::to_string(longest) +
+             " consecutive samples at the record's extreme " + format_double(extreme) + " (" +
+             std::to_string(at_extreme) + " samples at that level, " + std::to_string(at_next) +
+             " at the next one)" +
+             ": the signal looks clipped (amplifier or digitizer range); pulses and the striker "
+             "velocity inferred from it are too small";
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
 std::vector<std::string> signal_warnings(const GaugeSignals& signals) {
   std::vector<std::string> warnings;
   if (signals.time_s.size() < kMinRecordSamples)
     warnings.push_back("the record has only " + std::to_string(signals.time_s.size()) +
                        " samples: too few to resolve a pulse (check the sample rate)");
-  for (std::size_t g = 0; g < signals.gauges.size(); ++g) {
-    const std::vector<double>& x = signals.strain[g];
-    if (x.empty()) continue;
-    const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
-    for (const double extreme : {*hi, *lo}) {
-      if (extreme == 0) continue;
-      // The level histogram at the extreme: its count, and that of the next level inward.
-      std::size_t run = 0, longest = 0, at_extreme = 0, at_next = 0;
-      double next = extreme == *hi ? *lo : *hi;
-      for (double v : x) {
-        longest = std::max(longest, run = v == extreme ? run + 1 : 0);
-        at_extreme += v == extreme;
-        if (v != extreme && std::abs(extreme - v) < std::abs(extreme - next)) next = v;
-      }
-      for (double v : x) at_next += v == next;
-      const bool piles_up =
-          static_cast<double>(at_extreme) >= kClippedPileUp * static_cast<double>(at_next);
-      if (longest >= kClippedRun && piles_up) {
-        warnings.push_back("gauge \"" + signals.gauges[g] + "\": " + std::to_string(longest) +
-                           " consecutive samples at the record's extreme " +
-                           format_double(extreme) + " (" + std::to_string(at_extreme) +
-                           " samples at that level, " + std::to_string(at_next) +
-                           " at the next one)" +
-                           ": the signal looks clipped (amplifier or digitizer range); pulses and "
-                           "the striker velocity inferred from it are too small");
-        break;
-      }
+  for (std::size_t g = 0; g < signals.gauges.size(); ++g)
+    if (auto w = clipping_warning(signals.gauges[g], signals.strain[g])) warnings.push_back(*w);
+  for (std::size_t g = 0; g < signals.gauges.size(); ++g)
+    for (std::size_t h = g + 1; h < signals.gauges.size(); ++h) {
+      const std::vector<double>& a = signals.strain[g];
+      const std::vector<double>& b = signals.strain[h];
+      if (a.size() != b.size() || a.empty()) continue;
+      const double r = correlation_coefficient(a, b);
+      if (std::abs(r) >= 1 - kCopiedChannelCorrelation)
+        warnings.push_back("gauges \"" + signals.gauges[g] + "\" and \"" + signals.gauges[h] +
+                           "\" hold the same record" + (r < 0 ? " inverted" : "") +
+                           " (correlation " + (r < 0 ? "-1" : "1") + " within " +
+                           format_double(kCopiedChannelCorrelation) +
+                           "): one channel was read twice (check the measurement's channels "
+                           "and the export)");
     }
-  }
   return warnings;
 }
 

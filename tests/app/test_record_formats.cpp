@@ -138,6 +138,32 @@ TEST_CASE("An 8-bit record is not called clipped; a record cut by its range is",
   CHECK_FALSE(has_warning(summary(d / "clipped"), "gauge \"transmitted\""));
 }
 
+TEST_CASE("A channel read twice is said by process and compare", "[app][process][compare]") {
+  // The transmitted column replaced by the incident one times 1.7 (one channel exported under two
+  // names, or mapped twice with another bridge factor), and by its negative. Two gauges on a bar
+  // record different pulses: the shipped record draws no such warning.
+  const fs::path d = scratch_dir("formats_copied");
+  const auto record = shipped();
+  for (const double scale : {1.7, -1.0}) {
+    INFO("transmitted = " << scale << " x incident");
+    auto copied = record;
+    for (std::size_t i = 0; i < record[1].size(); ++i) copied[2][i] = scale * record[1][i];
+    write_csv(d / "copied.csv", copied);
+    const fs::path scene = scene_reading(d, "copied.csv");
+    for (const char* command : {"process", "compare"}) {
+      const fs::path out = d / (std::string(command) + (scale < 0 ? "-inverted" : ""));
+      const auto r = run_shpb({command, scene.string(), "-o", out.string(), "--quiet"});
+      INFO(command << ": " << r.err);
+      REQUIRE(r.code == 0);
+      CHECK(has_warning(summary(out), "hold the same record"));
+    }
+  }
+  const auto r = run_shpb(
+      {"process", (kExperiment / "scene.json").string(), "-o", (d / "shipped").string(), "-q"});
+  REQUIRE(r.code == 0);
+  CHECK_FALSE(has_warning(summary(d / "shipped"), "hold the same record"));
+}
+
 TEST_CASE("A jittered time base is resampled onto a uniform grid, with a warning",
           "[app][process][timebase]") {
   const fs::path d = scratch_dir("formats_jitter");

@@ -19,6 +19,8 @@ using nlohmann::json;
 
 const fs::path kClassic = fs::path(SHPB_SOURCE_DIR) / "experiments/classic-al6061/scene.json";
 constexpr double kLimit_s = 120.0;  // a hang, not a slow machine
+// The balance a gauge can bear (the experiments' own bound, docs/methods.md §3.7).
+constexpr double kHalfPercent = 0.005;
 
 // The classic scene with its specimen file given by absolute path, ready to be edited.
 json classic() {
@@ -237,10 +239,10 @@ TEST_CASE("Implausible simulations are flagged in warnings and summary.json",
     CHECK(o.code == 0);
     CHECK(warns(summary(scratch.path(), "simulate"), "interpenetrated"));
   }
-  SECTION("a rigid link whose neighbour steps coarsely: no stiffness to blame") {
-    // The default link has no stiffness (docs/methods.md §3.3); a 1.5 m bar of 2 elements steps
-    // every 150 µs, and the striker's end (1 mm elements) moves up to 1.5 mm meanwhile (≤ |ġ|Δt,
-    // §3.2). The number is given as a person reads it (three significant digits).
+  SECTION("a rigid link whose neighbour steps coarsely: repeated at global steps") {
+    // A 1.5 m bar of 2 elements steps every 150 µs, and the striker's end (1 mm elements) moves up
+    // to 1.5 mm meanwhile: the asynchronous run ended 87 % off its energy with the bars
+    // interpenetrated by 0.54 mm. The run kept is the global one, which holds both.
     json s = bar_scene();
     s["bars"][0]["length"] = "300 mm";
     s["bars"][0]["elements"] = 300;
@@ -251,15 +253,11 @@ TEST_CASE("Implausible simulations are flagged in warnings and summary.json",
     INFO(o.err);
     CHECK(o.code == 0);
     const json sum = summary(scratch.path(), "simulate");
-    std::string said;
-    for (const auto& w : sum["warnings"])
-      if (w.get<std::string>().find("interpenetrated") != std::string::npos) said = w;
-    INFO(said);
-    REQUIRE(!said.empty());
-    CHECK(said.find("stiffness") == std::string::npos);
-    CHECK(said.find("\"stepping\": \"global\"") != std::string::npos);
-    const std::size_t number = said.find("by ") + 3;
-    CHECK(said.find(' ', number) - number <= 5);  // e.g. "0.948"
+    CHECK(sum["stepping"] == "global");
+    CHECK(std::abs(sum["energy_error"].get<double>()) < kHalfPercent);
+    CHECK(sum["warnings"][0].get<std::string>().find("repeated at global steps") !=
+          std::string::npos);
+    CHECK_FALSE(warns(sum, "interpenetrated"));
   }
   SECTION("a sample rate of 1 Hz") {
     json s = bar_scene();
