@@ -395,10 +395,13 @@ std::string Planner::binding(const Evaluation& best) const {
                     "a shorter striker (about %.3g m: 2L/c = strain/rate, plan.striker.length) "
                     "or a pulse shaper (plan.shaper)",
                     needed);
+    else if (spec_.scene_has_shaper || !spec_.shaper_materials.empty())  // one was searched
+      std::snprintf(remedy, sizeof remedy,
+                    "a softer or thicker pulse shaper than plan.shaper allows, or a longer "
+                    "striker");
     else
       std::snprintf(remedy, sizeof remedy,
-                    "allow a pulse shaper (plan.shaper), a softer or thicker one, or a longer "
-                    "striker");
+                    "allow a pulse shaper (plan.shaper), or a longer striker");
     std::snprintf(what, sizeof what,
                   "the rate stays within ±%.0f %% of %.4g 1/s over only %.0f %% of the loading "
                   "(%.0f %% needed): %s",
