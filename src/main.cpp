@@ -69,18 +69,20 @@ std::string unknown_option(const std::string& extra, const std::string& where,
 // A misspelt command or option named with the closest one (core/closest_match.hpp), as a misspelt
 // scene key is; anything else in CLI11's words.
 std::string usage_error(CLI::App& app, const CLI::ParseError& e, int argc, char** argv) {
-  const auto subcommands = app.get_subcommands([](const CLI::App*) { return true; });
-  if (app.get_subcommands().empty() && argc > 1) {
-    std::vector<std::string> names;
-    for (const CLI::App* c : subcommands) names.push_back(c->get_name());
-    if (argv[1][0] != '-')
-      return std::string(argv[1]) + ": unknown command; " + suggestion_text(argv[1], names) +
-             " (see shpb --help)";
-    // An option before any command: shpb's own (--version) or a command written as an option.
+  std::vector<std::string> names;
+  for (const CLI::App* c : app.get_subcommands([](const CLI::App*) { return true; }))
+    names.push_back(c->get_name());
+  // An option before any command (shpb's own, --help and --version, end the parse when they are
+  // given): a misspelt one of shpb's, or a command written as an option; whether a command
+  // follows or not.
+  if (argc > 1 && argv[1][0] == '-') {
     std::vector<std::string> candidates = long_options(app);
     candidates.insert(candidates.end(), names.begin(), names.end());
     return unknown_option(argv[1], "shpb", candidates);
   }
+  if (app.get_subcommands().empty() && argc > 1)
+    return std::string(argv[1]) + ": unknown command; " + suggestion_text(argv[1], names) +
+           " (see shpb --help)";
   for (const std::string& extra : app.remaining(true)) {
     if (extra.size() < 2 || extra[0] != '-' || app.get_subcommands().empty()) continue;
     const CLI::App& command = *app.get_subcommands().front();

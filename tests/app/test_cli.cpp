@@ -154,6 +154,8 @@ TEST_CASE("A misspelt command or option is named, with the one meant", "[app][cl
            {"--versoin",
             "--versoin: unknown option of shpb; did you mean \"--version\"? (see "
             "shpb --help)"},
+           {"--versoin validate scene.json",
+            "--versoin: unknown option of shpb; did you mean \"--version\"?"},
            {"--simulate scene.json",
             "--simulate: unknown option of shpb; did you mean \"simulate\"?"}}) {
     INFO("shpb " << args);
