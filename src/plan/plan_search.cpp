@@ -522,6 +522,8 @@ PlanResult Planner::run() {
   out.path = std::move(path_);
   out.simulations = simulations_;
   out.wall_time_s = std::chrono::duration<double>(Clock::now() - start).count();
+  // Done: the progress ends at 100 % (on a terminal, its line then ends before what follows).
+  if (options_.progress) options_.progress(1.0);
   return out;
 }
 

@@ -241,7 +241,8 @@ TEST_CASE(
   CHECK_FALSE(fs::exists(out));
 }
 
-TEST_CASE("The planned scene simulated is the plan's verification run", "[app][plan]") {
+TEST_CASE("The planned scene simulated is the plan's verification run; its progress ends at 100 %",
+          "[app][plan]") {
   // docs/commands.md#plan: scene.json is the planned scene, ready for `shpb simulate`; at the
   // verification's gauge error (--tolerance, 0.5 % by default) it is the same run as
   // simulation/, to the last digit. Its values were rounded to four digits (18.71 m/s for
@@ -251,9 +252,12 @@ TEST_CASE("The planned scene simulated is the plan's verification run", "[app][p
       classic_with_plan(dir.path(), {{"striker", {{"velocity", {"2 m/s", "40 m/s"}}}}});
   const fs::path out = dir.path() / "out";
   const auto r = run_shpb(
-      {"plan", scene.string(), "--rate", "2500 1/s", "-o", out.string(), "--threads", "2", "-q"});
+      {"plan", scene.string(), "--rate", "2500 1/s", "-o", out.string(), "--threads", "2"});
   INFO(r.err);
   REQUIRE(r.code == 0);
+  // Its progress (docs/commands.md: a plain line every 10 % and at the end) ends at 100 %: it
+  // stopped at 90 %, and on a terminal the closing line was written after the bar.
+  CHECK(r.err.find("planning: 100%\nplanned ") != std::string::npos);
   const auto sim = run_shpb({"simulate", (out / "scene.json").string(), "-o",
                              (dir.path() / "sim").string(), "--tolerance", "0.5 %", "-q"});
   INFO(sim.err);
