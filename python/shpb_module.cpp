@@ -610,10 +610,10 @@ PYBIND11_MODULE(_shpb, m) {
       "_simulate",
       [](const Scene& scene, const py::object& tolerance, const std::optional<std::string>& contact,
          const std::optional<std::string>& stepping, const std::optional<double>& courant,
-         bool full_model) {
+         int threads, bool full_model) {
         auto s = std::make_shared<Simulation>();
         s->scene = scene;
-        const RunOverrides overrides = overrides_of(tolerance, contact, stepping, courant, 0);
+        const RunOverrides overrides = overrides_of(tolerance, contact, stepping, courant, threads);
         SimulationOptions options;
         options.full_model = full_model;
         options.cancel = [] { return interrupted(); };
@@ -625,7 +625,7 @@ PYBIND11_MODULE(_shpb, m) {
         return s;
       },
       py::arg("scene"), py::arg("tolerance") = py::none(), py::arg("contact") = py::none(),
-      py::arg("stepping") = py::none(), py::arg("courant") = py::none(),
+      py::arg("stepping") = py::none(), py::arg("courant") = py::none(), py::arg("threads") = 0,
       py::arg("full_model") = false);
 
   py::class_<Processing, std::shared_ptr<Processing>>(m, "_Processing")

@@ -47,28 +47,46 @@ int run_command(const Command& command) {
   }
 }
 
+// The long options of `command` ("--name"), the closest-match candidates for a misspelt one: a
+// one-letter typo is not worth a guess, and --help is never the option meant.
+std::vector<std::string> long_options(const CLI::App& command) {
+  std::vector<std::string> options;
+  for (const CLI::Option* o : command.get_options())
+    for (const std::string& name : o->get_lnames())
+      if (name != "help") options.push_back("--" + name);
+  return options;
+}
+
+// An unknown option of `where` ("shpb" or "shpb simulate"), named with the closest of
+// `candidates` (core/closest_match.hpp), or the list to choose from.
+std::string unknown_option(const std::string& extra, const std::string& where,
+                           const std::vector<std::string>& candidates) {
+  const std::string word = extra.substr(0, extra.find('=')), see = " (see " + where + " --help)";
+  if (word.size() < 2 || word[1] != '-') return word + ": unknown option of " + where + see;
+  return word + ": unknown option of " + where + "; " + suggestion_text(word, candidates) + see;
+}
+
 // A misspelt command or option named with the closest one (core/closest_match.hpp), as a misspelt
 // scene key is; anything else in CLI11's words.
 std::string usage_error(CLI::App& app, const CLI::ParseError& e, int argc, char** argv) {
-  const auto subcommands = app.get_subcommands([](const CLI::App*) { return true; });
-  if (app.get_subcommands().empty() && argc > 1 && argv[1][0] != '-') {
-    std::vector<std::string> names;
-    for (const CLI::App* c : subcommands) names.push_back(c->get_name());
+  std::vector<std::string> names;
+  for (const CLI::App* c : app.get_subcommands([](const CLI::App*) { return true; }))
+    names.push_back(c->get_name());
+  // An option before any command (shpb's own, --help and --version, end the parse when they are
+  // given): a misspelt one of shpb's, or a command written as an option; whether a command
+  // follows or not.
+  if (argc > 1 && argv[1][0] == '-') {
+    std::vector<std::string> candidates = long_options(app);
+    candidates.insert(candidates.end(), names.begin(), names.end());
+    return unknown_option(argv[1], "shpb", candidates);
+  }
+  if (app.get_subcommands().empty() && argc > 1)
     return std::string(argv[1]) + ": unknown command; " + suggestion_text(argv[1], names) +
            " (see shpb --help)";
-  }
   for (const std::string& extra : app.remaining(true)) {
     if (extra.size() < 2 || extra[0] != '-' || app.get_subcommands().empty()) continue;
     const CLI::App& command = *app.get_subcommands().front();
-    const std::string word = extra.substr(0, extra.find('=')),
-                      see = " (see shpb " + command.get_name() + " --help)";
-    if (word[1] != '-') return word + ": unknown option of shpb " + command.get_name() + see;
-    std::vector<std::string> options;  // long names: a one-letter typo is not worth a guess
-    for (const CLI::Option* o : command.get_options())
-      for (const std::string& name : o->get_lnames())
-        if (name != "help") options.push_back("--" + name);
-    return word + ": unknown option of shpb " + command.get_name() + "; " +
-           suggestion_text(word, options) + see;
+    return unknown_option(extra, "shpb " + command.get_name(), long_options(command));
   }
   return std::string(e.what()) + " (see shpb --help)";
 }

@@ -26,17 +26,18 @@ def columns(f):
     rows = list(csv.reader(open(f)))
     return {n: [float(r[i]) for r in rows[1:]] for i, n in enumerate(rows[0])}
 s, i = columns(sys.argv[1] + "/specimen.csv"), columns(sys.argv[1] + "/interfaces.csv")
-R, E = float(sys.argv[2]), 0.15
+R = float(sys.argv[2])
 t, e, rate = s["time_s"], s["strain"], s["strain_rate_1_s"]
 f, b = i["incident-specimen_force_N"], i["specimen-transmitter_force_N"]
+# The loading: the rate first at a tenth of the target to the strain maximum; equilibrium judged
+# until unloading, the loading's last rate within the band.
 k0 = next(k for k, x in enumerate(rate) if x >= 0.1 * R)
-k1 = next((k for k in range(k0, len(e)) if e[k] >= E), None)
-if k1 is None:
-    k1 = max(k for k in range(k0, len(rate)) if rate[k] >= 0.1 * R)
+k1 = max(range(k0, len(e)), key=lambda k: (e[k], -k))
 band = sum(abs(x - R) <= 0.1 * R for x in rate[k0:k1 + 1]) / (k1 - k0 + 1)
+unloading = max([k for k in range(k0, k1 + 1) if abs(rate[k] - R) <= 0.1 * R], default=k0)
 peak = max(abs(x + y) for x, y in zip(f, b))
 keq = k0
-for k in range(k0, k1 + 1):
+for k in range(k0, unloading + 1):
     if 2 * abs(f[k] - b[k]) > 0.05 * max(abs(f[k] + b[k]), 0.02 * peak):
         keq = k + 1
 eq = (t[min(keq, k1)] - t[k0]) / (t[k1] - t[k0])

@@ -38,7 +38,7 @@ for mat, rate, strain in cases:
     j = json.load(open(d + '/out/summary.json')); c = j['chosen']; p = j['predicted']
     sp = np.genfromtxt(d + '/out/simulation/specimen.csv', delimiter=',', names=True)
     rr = sp['strain_rate_1_s']; e = sp['strain']
-    k0 = np.argmax(rr >= 0.1 * rate); k1 = np.argmax(e >= strain) if e.max() >= strain else len(e) - 1
+    k0 = np.argmax(rr >= 0.1 * rate); k1 = k0 + np.argmax(e[k0:])  # the loading: to the strain maximum
     med = np.median(rr[k0:k1 + 1])
     pr = subprocess.run([SHPB, 'process', d + '/out/scene.json', '--signals', d + '/out/simulation/gauges.csv', '-o', d + '/proc', '-q'], capture_output=True, text=True)
     if pr.returncode: print(mat, rate, 'process failed', pr.stderr[-200:]); continue

@@ -132,7 +132,7 @@ def simulate(scene, tolerance=None, threads=0, contact=None, stepping=None, cour
     if not isinstance(scene, Scene):
         scene = Scene.load(os.fspath(scene))
     return SimulationResult(_shpb._simulate(scene, tolerance, contact, stepping, courant,
-                                            full_model))
+                                            threads, full_model))
 
 
 @_with_help("process", """process(scene, signals=None, draws=1000, seed=1) -> ProcessResult

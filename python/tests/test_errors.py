@@ -109,7 +109,13 @@ def test_an_edit_outside_the_scene_files_range_is_refused(edit):
      "--draws"),
     (lambda: shpb.dispersion(max_a_over_lambda=0), "--max-a-over-lambda"),
     (lambda: shpb.dispersion(points=1000001), "--points"),
-], ids=["refine-0", "refine-65", "draws-1", "max-a-over-lambda-0", "points-1000001"])
+    # --threads is a whole number >= 0 (0: all cores); -1 was taken as all cores, or ignored.
+    (lambda: shpb.simulate(SOURCE / "experiments" / "striker-on-bar" / "scene.json", threads=-1),
+     "--threads"),
+    (lambda: shpb.study(SOURCE / "experiments" / "striker-on-bar" / "scene.json",
+                        sweep="stability", threads=-1), "--threads"),
+], ids=["refine-0", "refine-65", "draws-1", "max-a-over-lambda-0", "points-1000001",
+        "simulate-threads--1", "study-threads--1"])
 def test_an_option_outside_the_commands_range_is_an_input_error(call, option):
     # The range the command's option parser gives the option holds from Python too: refused before
     # any work, in one line naming the option (not a run of a grid of 0, a MemoryError, a

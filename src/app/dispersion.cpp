@@ -1,5 +1,6 @@
 // `shpb dispersion`: the first Pochhammer–Chree mode as CSV (docs/commands.md, docs/methods.md §5).
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -60,9 +61,22 @@ Command add_dispersion_command(CLI::App& app) {
       "a_over_lambda,c_over_c0,cg_over_c0,f_a_over_c0[,frequency_Hz]");
   cmd->add_option("--poisson", disp.poisson, "Poisson ratio of the bar, in [0, 0.49]")
       ->required();  // its range checked by run_dispersion (dispersion/pochhammer_chree.hpp)
+  // Each value of the list a number: an empty list ("") was read as 0, a row nobody
+  // asked for; the range is checked with the table (dispersion/mode_table.hpp).
+  static const CLI::Validator number(
+      [](std::string& text) -> std::string {
+        double v = 0;
+        const char* end = text.data() + text.size();
+        const auto [at, ec] = std::from_chars(text.data(), end, v);
+        if (text.empty() || ec != std::errc() || at != end)
+          return "\"" + text + "\": expected a list of numbers such as 0.1,0.5";
+        return {};
+      },
+      "NUMBER", "number");
   cmd->add_option("--a-over-lambda", disp.a_over_lambda,
                   "Explicit list of radius/wavelength values")
-      ->delimiter(',');
+      ->delimiter(',')
+      ->check(number);
   cmd->add_option("--max-a-over-lambda", disp.max_a_over_lambda,
                   "Largest a/Λ of an evenly spaced table (default 1.6)")
       ->check(finite_positive_check());

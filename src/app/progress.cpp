@@ -11,7 +11,8 @@ ProgressPrinter::ProgressPrinter(std::string label)
     : label_(std::move(label)), tty_(::isatty(STDERR_FILENO) != 0) {}
 
 void ProgressPrinter::operator()(double fraction, std::string_view detail) {
-  const int pct = std::clamp(static_cast<int>(fraction * 100 + 0.5), 0, 100);
+  // 100 % only when done: rounded, 16829 runs of 16913 read 100 % and the lines ended there.
+  const int pct = fraction < 1 ? std::clamp(static_cast<int>(fraction * 100 + 0.5), 0, 99) : 100;
   std::string suffix;  // built piecewise: GCC 12 warns falsely on " " + std::string(...)
   if (!detail.empty()) (suffix = " ") += detail;
   if (tty_) {

@@ -1,8 +1,16 @@
 #include "model/run_overrides.hpp"
 
+#include <string>
+
+#include "core/error.hpp"
+
 namespace shpb {
 
 ChainDiscretization apply_overrides(const RunOverrides& overrides, Scene& scene) {
+  // The command line refuses it as it parses (app/cli_options.hpp); Python passes any int.
+  if (overrides.threads < 0)
+    throw input_error("--threads", "", std::to_string(overrides.threads),
+                      "expected a whole number >= 0 (0: all cores)");
   if (overrides.contact) {
     scene.contact.method = *overrides.contact;
     for (auto& i : scene.contact.interfaces) i.method.reset();

@@ -40,11 +40,16 @@ double LoadingMetrics::slack() const {
                    (strain_limit - strain_reached) / strain_limit});
 }
 
+LoadingMetrics::Shortfalls LoadingMetrics::shortfalls() const {
+  return {std::max(0.0, target_strain - strain_reached) / target_strain,
+          std::max(0.0, strain_reached - strain_limit) / strain_limit,
+          std::max(0.0, kBandFraction - band_fraction) / kBandFraction,
+          std::max(0.0, equilibrium_fraction - kEquilibriumFraction) / (1 - kEquilibriumFraction)};
+}
+
 double LoadingMetrics::shortfall() const {
-  return std::max(0.0, kBandFraction - band_fraction) / kBandFraction +
-         std::max(0.0, equilibrium_fraction - kEquilibriumFraction) / (1 - kEquilibriumFraction) +
-         std::max(0.0, target_strain - strain_reached) / target_strain +
-         std::max(0.0, strain_reached - strain_limit) / strain_limit;
+  const Shortfalls f = shortfalls();
+  return f.strain + f.strain_limit + f.band + f.equilibrium;
 }
 
 LoadingMetrics loading_metrics(const TimeSeries& specimen, std::span<const double> front,
@@ -61,37 +66,40 @@ LoadingMetrics loading_metrics(const TimeSeries& specimen, std::span<const doubl
   std::size_t k0 = 0;
   while (k0 < t.size() && rate[k0] < kOnsetFraction * R) ++k0;
   if (k0 + 2 >= t.size()) return m;
-  std::size_t k1 = k0;
-  while (k1 + 1 < t.size() && strain[k1] < targets.strain) ++k1;
-  if (strain[k1] < targets.strain) {  // not reached: the loading ends with the rate pulse
-    k1 = t.size() - 1;
-    while (k1 > k0 && rate[k1] < kOnsetFraction * R) --k1;
-  }
+  // The loading is the test a lab reduces: to the strain maximum, where `process`'s loading ends
+  // (docs/methods.md §6), not to the target strain. The rate a lab quotes is its plateau over all
+  // of it: judged to the target strain only, a 300 mm striker at 2500 1/s took the Al specimen on
+  // to 0.29 at a mean 5 % below the target.
+  const auto k1 = static_cast<std::size_t>(
+      std::max_element(strain.begin() + static_cast<std::ptrdiff_t>(k0), strain.end()) -
+      strain.begin());
   if (k1 <= k0 + 1) return m;
   m.onset_s = t[k0];
   m.end_s = t[k1];
   std::vector<double> r(rate.begin() + k0, rate.begin() + k1 + 1);
-  double in_band = 0, sum = 0, sum2 = 0;
+  double in_band = 0, sum = 0, sum2 = 0, positive = 0, rate_sum = 0;
   for (double x : r) {
     in_band += std::abs(x - R) <= kRateBand * R;
     sum += (x - R) / R;
     sum2 += (x - R) * (x - R) / (R * R);
+    if (x > 0) ++positive, rate_sum += x;
   }
   const double n = static_cast<double>(r.size());
   m.band_fraction = in_band / n;
   m.rate_spread = std::sqrt(std::max(0.0, sum2 / n - (sum / n) * (sum / n)));
+  m.test_mean_rate_1_s = positive > 0 ? rate_sum / positive : 0;
   std::nth_element(r.begin(), r.begin() + r.size() / 2, r.end());
   m.plateau_rate_1_s = r[r.size() / 2];
-  const auto k_max = static_cast<std::size_t>(
-      std::max_element(strain.begin() + static_cast<std::ptrdiff_t>(k0), strain.end()) -
-      strain.begin());
-  double positive = 0, rate_sum = 0;
-  for (std::size_t k = k0; k <= k_max; ++k)
-    if (rate[k] > 0) ++positive, rate_sum += rate[k];
-  m.test_mean_rate_1_s = positive > 0 ? rate_sum / positive : 0;
+  // Equilibrium is judged until unloading: to the loading's last rate within the band, the end of
+  // its plateau. The pulse's falling edge after it unloads the front face first, and the faces'
+  // forces of the last samples before the strain maximum part (a 300 mm striker at 2500 1/s: 5 mm
+  // Al in equilibrium over 98 % of its loading, all but the falling edge).
+  std::size_t unloading = k0;
+  for (std::size_t k = k0; k <= k1; ++k)
+    if (std::abs(rate[k] - R) <= kRateBand * R) unloading = k;
   const std::vector<double> ratio = equilibrium_ratio(front, back);  // process's R (§6)
   std::size_t keq = k0;
-  for (std::size_t k = k0; k <= k1; ++k)
+  for (std::size_t k = k0; k <= unloading; ++k)
     if (ratio[k] > kEquilibriumRatio) keq = k + 1;
   m.equilibrium_s = t[std::min(keq, k1)] - t[k0];
   m.equilibrium_fraction = m.equilibrium_s / (m.end_s - m.onset_s);
@@ -353,6 +361,10 @@ std::string Planner::binding(const Evaluation& best) const {
   char what[700];
   const double c = in_.scene.bars[0].material.wave_speed_m_s();
   const double limit = std::min(spec_.striker_length.hi, striker_length_limit());
+  // Beyond the velocity bound, the criterion the closest set-up misses most binds: a strain
+  // missed by 0.2 % beside a band missed by a quarter was named, with a striker the bounds allow.
+  const LoadingMetrics::Shortfalls f = m.shortfalls();
+  const double worst = std::max({f.strain, f.strain_limit, f.band, f.equilibrium});
   if (m.plateau_rate_1_s < (1 - kRateBand) * R &&
       best.candidate.striker_velocity_m_s >= spec_.striker_velocity.hi) {
     std::snprintf(what, sizeof what,
@@ -360,25 +372,40 @@ std::string Planner::binding(const Evaluation& best) const {
                   "only %.3g 1/s; about %.3g m/s would be needed",
                   spec_.striker_velocity.hi, m.plateau_rate_1_s,
                   spec_.striker_velocity.hi * R / std::max(m.plateau_rate_1_s, 1e-9 * R));
-  } else if (m.strain_reached < E) {
+  } else if (f.strain == worst && worst > 0) {
     std::snprintf(what, sizeof what,
-                  "the target strain %.3g is not reached (%.3g at best): at %.4g 1/s the loading "
+                  "the target strain %.3g is not reached (%.3g): at %.4g 1/s the loading "
                   "must last %.3g us, a striker of at least %.3g m (2L/c >= strain/rate); the "
                   "longest allowed is %.3g m (plan.striker.length, and the incident gauge's "
                   "distance to the specimen so that the pulses do not overlap)",
                   E, m.strain_reached, R, 1e6 * E / R, striker_length_for(E, R, c), limit);
-  } else if (m.strain_reached > m.strain_limit) {
+  } else if (f.strain_limit == worst && worst > 0) {
     std::snprintf(what, sizeof what,
                   "the pulse takes the specimen to strain %.3g, beyond %.3g (%.0f %% of "
                   "simulation.max_strain, the strain its steps are planned for): a shorter "
                   "striker (plan.striker.length) ends the loading nearer the target strain",
                   m.strain_reached, m.strain_limit, 100 * kSimulableStrainFraction);
-  } else if (m.band_fraction < kBandFraction) {
+  } else if (f.band == worst && worst > 0) {
+    // A pulse far longer than strain/rate loads a hardening specimen on while its rate falls: a
+    // shorter striker ends the loading before; otherwise the pulse's rise or a ramp is at fault.
+    const double needed = striker_length_for(E, R, c);
+    char remedy[200];
+    if (m.strain_reached > kStrainOvershoot * E && needed < best.candidate.striker_length_m)
+      std::snprintf(remedy, sizeof remedy,
+                    "a shorter striker (about %.3g m: 2L/c = strain/rate, plan.striker.length) "
+                    "or a pulse shaper (plan.shaper)",
+                    needed);
+    else if (spec_.scene_has_shaper || !spec_.shaper_materials.empty())  // one was searched
+      std::snprintf(remedy, sizeof remedy,
+                    "a softer or thicker pulse shaper than plan.shaper allows, or a longer "
+                    "striker");
+    else
+      std::snprintf(remedy, sizeof remedy,
+                    "allow a pulse shaper (plan.shaper), or a longer striker");
     std::snprintf(what, sizeof what,
                   "the rate stays within ±%.0f %% of %.4g 1/s over only %.0f %% of the loading "
-                  "(%.0f %% needed): allow a pulse shaper (plan.shaper), a softer or thicker one, "
-                  "or a longer striker",
-                  100 * kRateBand, R, 100 * m.band_fraction, 100 * kBandFraction);
+                  "(%.0f %% needed): %s",
+                  100 * kRateBand, R, 100 * m.band_fraction, 100 * kBandFraction, remedy);
   } else {
     std::snprintf(what, sizeof what,
                   "equilibrium (|R| <= %.0f %%) only at %.0f %% of the loading (before %.0f %% "
@@ -495,6 +522,8 @@ PlanResult Planner::run() {
   out.path = std::move(path_);
   out.simulations = simulations_;
   out.wall_time_s = std::chrono::duration<double>(Clock::now() - start).count();
+  // Done: the progress ends at 100 % (on a terminal, its line then ends before what follows).
+  if (options_.progress) options_.progress(1.0);
   return out;
 }
 

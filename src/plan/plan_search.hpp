@@ -26,6 +26,8 @@ inline constexpr double kEquilibriumFraction = 0.25;
 inline double striker_length_for(double strain, double rate_1_s, double wave_speed_m_s) {
   return strain * wave_speed_m_s / (2 * rate_1_s);
 }
+// Beyond this multiple of the target strain a pulse is longer than the target needs.
+inline constexpr double kStrainOvershoot = 1.2;
 // Of simulation.max_strain, the mean strain a planned test may reach
 // (LoadingMetrics::strain_limit).
 inline constexpr double kSimulableStrainFraction = 0.9;
@@ -48,15 +50,15 @@ struct PlanCandidate {
 // (SimulationResult::specimen), and the equilibrium of the forces the bars put on its faces (the
 // forces a lab's gauges measure: incident + reflected at the front, transmitted at the back).
 struct LoadingMetrics {
-  double onset_s = 0, end_s = 0;  // the loading: rate first ≥ 10 % of the target → target strain
+  double onset_s = 0, end_s = 0;  // the loading: rate first ≥ 10 % of the target → strain maximum
   double plateau_rate_1_s = 0;    // median strain rate over the loading
   double band_fraction = 0;       // of the loading with the rate within ±kRateBand of the target
   double rate_spread = 0;         // standard deviation of the rate over the loading / the target
   double equilibrium_s = 0;       // from the onset until |R| ≤ kEquilibriumRatio to the end
   double equilibrium_fraction = 1;  // equilibrium_s over the loading's duration
   double strain_reached = 0;        // largest engineering strain of the run
-  // The mean of the positive rate from the onset to the strain maximum: the mean over the whole
-  // loading that `process` quotes (its loading ends at the strain maximum, docs/methods.md §6).
+  // The mean of the positive rate over the loading: the mean `process` quotes (its loading ends
+  // at the strain maximum too, docs/methods.md §6).
   double test_mean_rate_1_s = 0;
   double target_strain = 0.15;
   // The largest mean strain a plan may take the specimen to: kSimulableStrainFraction of the
@@ -68,6 +70,11 @@ struct LoadingMetrics {
   // The smallest relative margin by which the band, equilibrium and strain criteria are met
   // (negative: one is missed).
   double slack() const;
+  // How far from meeting each criterion, relative to its threshold (0 when met).
+  struct Shortfalls {
+    double strain = 0, strain_limit = 0, band = 0, equilibrium = 0;
+  };
+  Shortfalls shortfalls() const;
   // How far from meeting them (0 when met): the sum of the relative shortfalls.
   double shortfall() const;
 };

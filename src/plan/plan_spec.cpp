@@ -1,5 +1,6 @@
 #include "plan/plan_spec.hpp"
 
+#include "core/csv_writer.hpp"  // format_double
 #include "core/error.hpp"
 #include "core/json_document.hpp"
 #include "core/json_value.hpp"
@@ -69,6 +70,14 @@ PlanInput read_plan_input(const fs::path& scene_file) {
     throw plan.error(
         "planning needs a striker (the first bar, with a velocity), an incident bar with a gauge, "
         "the specimen and a transmitter bar with a gauge");
+  // The search plans compression tests: a striker driving the bars, the specimen's rate positive
+  // (docs/methods.md §12). A striker pulled away (a tension bar's) was planned as a compression
+  // test with its velocity's sign turned.
+  if (scene.bars[0].velocity_m_s < 0)
+    throw input_error(scene_file.string(), "bars[0].velocity",
+                      format_double(scene.bars[0].velocity_m_s) + " m/s",
+                      "plan searches compression tests (a striker moving toward the bars, "
+                      "velocity > 0); a tension test is not planned");
   PlanSpec& spec = in.spec;
   spec.scene_has_shaper = *incident == 2;
   if (*incident > 2)

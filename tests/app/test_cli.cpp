@@ -148,7 +148,16 @@ TEST_CASE("A misspelt command or option is named, with the one meant", "[app][cl
            {"plan scene.json --rat=100 -o out",
             "--rat: unknown option of shpb plan; did you mean \"--rate\"?"},
            {"validate scene.json --bogus",
-            "--bogus: unknown option of shpb validate; expected one of: --json, --contact, "}}) {
+            "--bogus: unknown option of shpb validate; expected one of: --json, --contact, "},
+           // Before any command: shpb's own options and the commands are the candidates.
+           {"--bogus", "--bogus: unknown option of shpb; expected one of: --version, simulate, "},
+           {"--versoin",
+            "--versoin: unknown option of shpb; did you mean \"--version\"? (see "
+            "shpb --help)"},
+           {"--versoin validate scene.json",
+            "--versoin: unknown option of shpb; did you mean \"--version\"?"},
+           {"--simulate scene.json",
+            "--simulate: unknown option of shpb; did you mean \"simulate\"?"}}) {
     INFO("shpb " << args);
     const auto r = shpb(args);
     CHECK(r.code == 2);

@@ -1,5 +1,6 @@
 // `shpb report DIR`: every figure of an output folder is a non-empty PNG referenced by
 // report.html, and a real browser renders the page to something that is not blank.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cstdlib>
 #include <filesystem>
@@ -111,6 +112,21 @@ TEST_CASE("A folder without shpb outputs is refused with exit 2 and nothing writ
   CHECK(r.err.rfind("error: " + dir.string() + ": ", 0) == 0);
   CHECK_FALSE(fs::exists(dir / "report.html"));
   CHECK_FALSE(fs::exists(dir / "figures"));
+}
+
+// docs/commands.md, Exit codes: one line naming the file and what was expected. A missing folder
+// was CLI11's "folder: Directory does not exist: …".
+TEST_CASE("A report of a folder that is not there names it", "[app][report]") {
+  const fs::path dir = scratch_dir("report_missing");
+  for (const fs::path& given : {dir / "nothing-here", dir / "a-file.csv"}) {
+    if (given.extension() == ".csv") std::ofstream(given) << "x\n";
+    const auto r = run_shpb({"report", given.string()});
+    INFO(r.err);
+    CHECK(r.code == 2);
+    CHECK(r.err.rfind("error: " + given.string() + ": ", 0) == 0);
+    CHECK(r.err.find("an output folder of simulate") != std::string::npos);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  }
 }
 
 TEST_CASE("Headless Chromium renders report.html to a picture that is not blank",

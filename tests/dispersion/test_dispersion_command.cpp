@@ -1,4 +1,5 @@
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cstdlib>
 #include <filesystem>
@@ -74,6 +75,20 @@ TEST_CASE("shpb dispersion writes the curve and matches the reference within 2e-
 
 TEST_CASE("shpb dispersion rejects a radius without c0 with exit code 2", "[dispersion][app]") {
   CHECK(shpb_test::run_shpb({"dispersion", "--poisson", "0.3", "--radius", "5 mm"}).code == 2);
+}
+
+// docs/commands.md#dispersion: --a-over-lambda is a list of numbers. An empty list was read as 0
+// and wrote a row nobody asked for; a word was CLI11's "Could not convert".
+TEST_CASE("shpb dispersion refuses an empty or non-numeric a/Λ in one line", "[dispersion][app]") {
+  for (const char* list : {"", "0.1,abc"}) {
+    INFO("--a-over-lambda \"" << list << "\"");
+    const auto r =
+        shpb_test::run_shpb({"dispersion", "--poisson", "0.29", "--a-over-lambda", list});
+    CHECK(r.code == 2);
+    CHECK(r.out.empty());
+    CHECK(r.err.rfind("error: --a-over-lambda: ", 0) == 0);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  }
 }
 
 }  // namespace tests_dispersion_test_dispersion_command

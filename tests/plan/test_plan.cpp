@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -42,28 +43,6 @@ fs::path classic_with_plan(const fs::path& dir, const nlohmann::json& plan,
   return file;
 }
 
-// The fraction of the loading — from the strain rate first reaching a tenth of the target to the
-// target strain — over which specimen.csv's rate is within ±10 % of the target.
-double fraction_in_band(const fs::path& specimen_csv, double rate, double strain) {
-  std::ifstream in(specimen_csv);
-  std::string line;
-  std::getline(in, line);  // time_s,strain,strain_rate_1_s,...
-  std::size_t loading = 0, in_band = 0;
-  bool started = false;
-  while (std::getline(in, line)) {
-    std::stringstream s(line);
-    std::string cell;
-    std::vector<double> v;
-    while (std::getline(s, cell, ',')) v.push_back(std::stod(cell));
-    if (!started && v[2] >= 0.1 * rate) started = true;
-    if (!started) continue;
-    if (v[1] >= strain) break;
-    ++loading;
-    in_band += std::abs(v[2] - rate) <= 0.1 * rate;
-  }
-  return loading ? double(in_band) / double(loading) : 0.0;
-}
-
 // The columns of a CSV file written by shpb, by name.
 std::map<std::string, std::vector<double>> read_columns(const fs::path& csv) {
   std::ifstream in(csv);
@@ -80,27 +59,53 @@ std::map<std::string, std::vector<double>> read_columns(const fs::path& csv) {
   return out;
 }
 
-// When, as a fraction of the loading (the rate first at a tenth of the target to the target
-// strain), the bars' forces on the specimen's faces (interfaces.csv, what the gauges measure)
-// come within 5 % of each other to stay: R = 2|P1 − P2|/|P1 + P2| ≤ 0.05, the denominator floored
+// The loading of a run (docs/methods.md §12): from the specimen's rate first reaching a tenth of
+// the target to its strain maximum, where `process`'s loading ends; [k0, k1] of specimen.csv.
+struct Loading {
+  std::map<std::string, std::vector<double>> specimen;
+  std::size_t k0 = 0, k1 = 0;
+  const std::vector<double>& rate() const { return specimen.at("strain_rate_1_s"); }
+};
+Loading loading(const fs::path& run, double rate) {
+  Loading l{read_columns(run / "specimen.csv")};
+  const auto& r = l.rate();
+  const auto& e = l.specimen.at("strain");
+  while (l.k0 + 1 < r.size() && r[l.k0] < 0.1 * rate) ++l.k0;
+  l.k1 = l.k0;
+  for (std::size_t k = l.k0; k < e.size(); ++k)
+    if (e[k] > e[l.k1]) l.k1 = k;
+  return l;
+}
+
+// The fraction of the loading over which specimen.csv's rate is within ±10 % of the target.
+double fraction_in_band(const fs::path& run, double rate) {
+  const Loading l = loading(run, rate);
+  std::size_t in_band = 0;
+  for (std::size_t k = l.k0; k <= l.k1; ++k) in_band += std::abs(l.rate()[k] - rate) <= 0.1 * rate;
+  return double(in_band) / double(l.k1 + 1 - l.k0);
+}
+
+// When, as a fraction of the loading, the bars' forces on the specimen's faces (interfaces.csv,
+// what the gauges measure) come within 5 % of each other to stay until unloading (the loading's
+// last rate within ±10 % of the target): R = 2|P1 − P2|/|P1 + P2| ≤ 0.05, the denominator floored
 // at 2 % of its peak (docs/methods.md §6).
-double equilibrium_fraction(const fs::path& run, double rate, double strain) {
+double equilibrium_fraction(const fs::path& run, double rate) {
   constexpr double kRatio = 0.05, kFloor = 0.02;
-  const auto s = read_columns(run / "specimen.csv");
+  const Loading l = loading(run, rate);
   const auto f = read_columns(run / "interfaces.csv");
   const auto& p1 = f.at("incident-specimen_force_N");
   const auto& p2 = f.at("specimen-transmitter_force_N");
-  const auto& t = s.at("time_s");
-  std::size_t k0 = 0, k1 = 0;
-  while (k0 < t.size() && s.at("strain_rate_1_s")[k0] < 0.1 * rate) ++k0;
-  for (k1 = k0; k1 + 1 < t.size() && s.at("strain")[k1] < strain;) ++k1;
+  const auto& t = l.specimen.at("time_s");
+  std::size_t unloading = l.k0;
+  for (std::size_t k = l.k0; k <= l.k1; ++k)
+    if (std::abs(l.rate()[k] - rate) <= 0.1 * rate) unloading = k;
   double peak = 0;
   for (std::size_t k = 0; k < p1.size(); ++k) peak = std::max(peak, std::abs(p1[k] + p2[k]));
-  std::size_t held_from = k0;
-  for (std::size_t k = k0; k <= k1; ++k)
+  std::size_t held_from = l.k0;
+  for (std::size_t k = l.k0; k <= unloading; ++k)
     if (2 * std::abs(p1[k] - p2[k]) > kRatio * std::max(std::abs(p1[k] + p2[k]), kFloor * peak))
       held_from = k + 1;
-  return (t[std::min(held_from, k1)] - t[k0]) / (t[k1] - t[k0]);
+  return (t[std::min(held_from, l.k1)] - t[l.k0]) / (t[l.k1] - t[l.k0]);
 }
 
 // `shpb plan` of `scene` with `args`, then `process` of the planned scene's own gauges: the two
@@ -143,7 +148,7 @@ TEST_CASE("A planned striker velocity, re-simulated on its own, holds the target
           "[app][plan][release-only]") {
   // The criterion of a usable test: the rate within ±10 % of the target over at least half of the
   // loading (docs/methods.md §12).
-  constexpr double kBandRate = 2000, kStrain = 0.15, kMinFraction = 0.5;
+  constexpr double kBandRate = 2000, kMinFraction = 0.5;
   ScratchDir dir("plan_band");
   const fs::path scene =
       classic_with_plan(dir.path(), {{"striker", {{"velocity", {"2 m/s", "40 m/s"}}}}});
@@ -157,7 +162,7 @@ TEST_CASE("A planned striker velocity, re-simulated on its own, holds the target
                              (dir.path() / "sim").string(), "--tolerance", "1 %", "-q"});
   INFO(sim.err);
   REQUIRE(sim.code == 0);
-  CHECK(fraction_in_band(dir.path() / "sim" / "specimen.csv", kBandRate, kStrain) >= kMinFraction);
+  CHECK(fraction_in_band(dir.path() / "sim", kBandRate) >= kMinFraction);
   // The velocity is what changed: a 2000 1/s rate needs more than the scene's 15 m/s
   // (rate ≈ (v − 2c·ε_T)/L_s with ε_T > 0).
   const auto summary = nlohmann::json::parse(read_text(out / "summary.json"));
@@ -166,43 +171,101 @@ TEST_CASE("A planned striker velocity, re-simulated on its own, holds the target
 
 TEST_CASE("A planned striker longer than the scene's records its whole test in the planned scene",
           "[app][plan]") {
-  // A 900 mm striker in the classic scene (800 µs, set for its 300 mm striker): the reflected
-  // pulse of a 360 µs loading passes the incident gauge ~1 ms after impact. The planned scene's
-  // own gauges, reduced by `process`, must give the strain its specimen reaches (the 1D gauges
-  // carry the faces' state exactly; 2 % allows the reduction's end-of-loading sample).
-  constexpr double kStrainAgreement = 0.02;
+  // The classic scene (800 µs, set for its 300 mm striker) at 500 1/s to strain 0.1: a pulse of
+  // strain/rate, 200 µs, needs a striker of ~500 mm, and the reflected pulse of a striker longer
+  // than 490 mm has not passed the incident gauge (1 m from the specimen: 603 µs after impact)
+  // by 800 µs. The planned scene's own gauges, reduced by `process`, must give the strain its
+  // specimen reaches (the 1D gauges carry the faces' state exactly; 2 % allows the reduction's
+  // end-of-loading sample).
+  constexpr double kStrainAgreement = 0.02, kStrikerOutlasting_m = 0.49;
   ScratchDir dir("plan_long_striker");
-  const fs::path scene =
-      classic_with_plan(dir.path(), {{"striker", {{"velocity", {"2 m/s", "40 m/s"}}}}}, "900 mm");
+  const fs::path scene = classic_with_plan(
+      dir.path(),
+      {{"striker", {{"velocity", {"2 m/s", "40 m/s"}}, {"length", {"100 mm", "1 m"}}}}});
   const auto [plan, proc, err] =
       plan_then_process(dir.path(), scene, {"--rate", "500 1/s", "--strain", "0.1"});
+  REQUIRE(plan["chosen"]["striker_length_m"].get<double>() > kStrikerOutlasting_m);
   const double reached = plan["predicted"]["strain_reached"];
   INFO("specimen " << reached << ", processed gauges " << proc["max_strain"]);
   CHECK(std::abs(proc["max_strain"].get<double>() - reached) <= kStrainAgreement * reached);
 }
 
-TEST_CASE(
-    "plan says the mean rate process will quote when the pulse loads the specimen far past the "
-    "target strain",
-    "[app][plan]") {
-  // The classic 300 mm striker on a 3 mm Al 6061-T6 specimen at 5000 1/s: the criteria, judged up
-  // to strain 0.15, are met, but the 120 µs pulse takes the specimen on to strain ~0.5 while its
-  // hardening slows it. The whole loading's mean rate is stated, equal to `process`'s mean over
-  // the loading of the planned gauges (the 1D gauges carry the faces' state; 2 % allows the
-  // reduction's first and last samples), and a mean more than the ±10 % band off is warned about.
-  // The steps are planned for strain 0.8, so that a test to ~0.5 is one the plan may propose.
-  constexpr double kRateAgreement = 0.02, kRateBand = 0.1, kTarget = 5000;
-  ScratchDir dir("plan_overshoot");
-  const auto [plan, proc, err] = plan_then_process(
-      dir.path(), classic_3mm_velocity_free(dir.path(), 0.8), {"--rate", "5000 1/s"});
-  REQUIRE(plan["predicted"].contains("test_mean_rate_1_s"));
-  const double stated = plan["predicted"]["test_mean_rate_1_s"];
+TEST_CASE("A plan's rate is the plateau of the whole test, to the strain maximum", "[app][plan]") {
+  // The classic 300 mm striker, velocity free, on the 5 mm Al 6061-T6 specimen at 2500 1/s: the
+  // 120 µs pulse takes the specimen past the target strain 0.15, and the test a lab reduces runs
+  // to the strain maximum. Its rate, in the planned scene re-simulated on its own (median over the
+  // loading) and as `process` quotes it from the planned gauges (mean over its loading), is the
+  // target within the secant's 2 % and the meshes' difference (1 %). Judged to the target strain
+  // only, the plan read the first half of a test that then slowed as the specimen hardened: 5 %
+  // below the target over all of it.
+  constexpr double kTarget = 2500, kRateAgreement = 0.03;
+  ScratchDir dir("plan_whole_test");
+  const fs::path scene =
+      classic_with_plan(dir.path(), {{"striker", {{"velocity", {"2 m/s", "40 m/s"}}}}});
+  const auto [plan, proc, err] =
+      plan_then_process(dir.path(), scene, {"--rate", "2500 1/s", "--strain", "0.15"});
+  const auto sim = run_shpb({"simulate", (dir.path() / "out" / "scene.json").string(), "-o",
+                             (dir.path() / "sim").string(), "-q"});
+  INFO(sim.err);
+  REQUIRE(sim.code == 0);
+  const Loading l = loading(dir.path() / "sim", kTarget);
+  REQUIRE(l.specimen.at("strain")[l.k1] > 0.15);
+  std::vector<double> r(l.rate().begin() + l.k0, l.rate().begin() + l.k1 + 1);
+  std::nth_element(r.begin(), r.begin() + r.size() / 2, r.end());
+  const double median = r[r.size() / 2];
   const double quoted = proc["strain_rate"]["mean_over_loading_1_s"];
-  INFO("plan's whole-loading mean " << stated << ", process " << quoted);
-  CHECK(std::abs(stated - quoted) <= kRateAgreement * quoted);
-  REQUIRE(std::abs(quoted - kTarget) > kRateBand * kTarget);
-  CHECK(err.find("warning: the pulse loads the specimen on to strain") != std::string::npos);
-  CHECK(plan["warnings"].size() == 1);
+  INFO("re-simulated median " << median << ", process's mean " << quoted);
+  CHECK(std::abs(median - kTarget) <= kRateAgreement * kTarget);
+  CHECK(std::abs(quoted - kTarget) <= kRateAgreement * kTarget);
+}
+
+TEST_CASE(
+    "A pulse that outlasts the target's hardening is no plan, and the striker it needs is named",
+    "[app][plan]") {
+  // The classic 300 mm striker on a 3 mm Al 6061-T6 specimen at 5000 1/s (steps planned for strain
+  // 0.8): its 120 µs pulse takes the specimen on to strain ~0.58 while its hardening slows it, so
+  // its rate has no plateau over the test (within ±10 % of the target over less than half of it).
+  // Exit 3 names the band and the striker whose pulse lasts strain/rate: 2L/c = 0.15/5000 s, c of
+  // the C350 bars √(200 GPa/8080 kg/m³).
+  const double c = std::sqrt(200e9 / 8080), needed = 0.15 * c / (2 * 5000);
+  ScratchDir dir("plan_overshoot");
+  const fs::path out = dir.path() / "out";
+  const auto r = run_shpb({"plan", classic_3mm_velocity_free(dir.path(), 0.8).string(), "--rate",
+                           "5000 1/s", "-o", out.string(), "--threads", "2", "-q"});
+  INFO(r.err);
+  CHECK(r.code == 3);
+  CHECK(r.err.find("the rate stays within ±10 % of 5000 1/s") != std::string::npos);
+  char striker[64];
+  std::snprintf(striker, sizeof striker, "a shorter striker (about %.3g m", needed);
+  CHECK(r.err.find(striker) != std::string::npos);
+  CHECK_FALSE(fs::exists(out));
+}
+
+TEST_CASE("The planned scene simulated is the plan's verification run; its progress ends at 100 %",
+          "[app][plan]") {
+  // docs/commands.md#plan: scene.json is the planned scene, ready for `shpb simulate`; at the
+  // verification's gauge error (--tolerance, 0.5 % by default) it is the same run as
+  // simulation/, to the last digit. Its values were rounded to four digits (18.71 m/s for
+  // 18.7124 m/s): a run of another set-up, on other meshes when a length was rounded.
+  ScratchDir dir("plan_scene_exact");
+  const fs::path scene =
+      classic_with_plan(dir.path(), {{"striker", {{"velocity", {"2 m/s", "40 m/s"}}}}});
+  const fs::path out = dir.path() / "out";
+  const auto r = run_shpb(
+      {"plan", scene.string(), "--rate", "2500 1/s", "-o", out.string(), "--threads", "2"});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  // Its progress (docs/commands.md: a plain line every 10 % and at the end) ends at 100 %: it
+  // stopped at 90 %, and on a terminal the closing line was written after the bar.
+  CHECK(r.err.find("planning: 100%\nplanned ") != std::string::npos);
+  const auto sim = run_shpb({"simulate", (out / "scene.json").string(), "-o",
+                             (dir.path() / "sim").string(), "--tolerance", "0.5 %", "-q"});
+  INFO(sim.err);
+  REQUIRE(sim.code == 0);
+  for (const char* file : {"specimen.csv", "gauges.csv"}) {
+    INFO(file);
+    CHECK(read_text(dir.path() / "sim" / file) == read_text(out / "simulation" / file));
+  }
 }
 
 TEST_CASE("A plan is never a test the simulation's planned steps cannot verify", "[app][plan]") {
@@ -234,6 +297,75 @@ TEST_CASE("A rate beyond the striker's velocity bound is exit 3 naming that boun
   CHECK_FALSE(fs::exists(out));
 }
 
+TEST_CASE("An infeasible plan names the criterion its closest set-up misses most", "[app][plan]") {
+  // The classic bars, striker 100 mm–1 m at 2–40 m/s, on a 5 mm Ti-6Al-4V specimen at 2500 1/s
+  // to strain 0.15: no unshaped set-up meets the criteria. The line names the criterion the
+  // closest set-up misses most, relative to its threshold (docs/methods.md §12, "Infeasible
+  // targets"): it named the band missed by a tenth beside equilibrium reached at two thirds of
+  // the loading, and, with the loading to the strain maximum, a strain missed by 0.2 % beside a
+  // band missed by a quarter, with a striker the bounds allow.
+  constexpr double kStrain = 0.15, kBand = 0.5, kEquilibrium = 0.25;
+  ScratchDir dir("plan_binding");
+  const fs::path scene = classic_with_plan(
+      dir.path(),
+      {{"striker", {{"velocity", {"2 m/s", "40 m/s"}}, {"length", {"100 mm", "1 m"}}}}});
+  nlohmann::json j = nlohmann::json::parse(read_text(scene));
+  j["bars"][2]["material"] =
+      (fs::path(SHPB_SOURCE_DIR) / "specimens" / "ti6al4v.json").lexically_normal().string();
+  std::ofstream(scene) << j.dump(2);
+  const auto r = run_shpb({"plan", scene.string(), "--rate", "2500", "--strain", "0.15", "-o",
+                           (dir.path() / "out").string(), "--threads", "2", "-q"});
+  INFO(r.err);
+  REQUIRE(r.code == 3);
+  // The closest set-up, as the line describes it: "rate in band over B % of the loading,
+  // equilibrium at Q %, strain S".
+  auto after = [&](const std::string& key) {
+    const auto at = r.err.find(key);
+    REQUIRE(at != std::string::npos);
+    return std::stod(r.err.substr(at + key.size()));
+  };
+  const double band = after("rate in band over ") / 100,
+               equilibrium = after("equilibrium at ") / 100, strain = after("%, strain ");
+  const double missed_strain = std::max(0.0, kStrain - strain) / kStrain,
+               missed_band = std::max(0.0, kBand - band) / kBand,
+               missed_equilibrium = std::max(0.0, equilibrium - kEquilibrium) / (1 - kEquilibrium);
+  const double worst = std::max({missed_strain, missed_band, missed_equilibrium});
+  REQUIRE(worst > 0);
+  const std::string named = r.err.substr(r.err.find("): ") + 3);
+  if (worst == missed_band) CHECK(named.rfind("the rate stays within", 0) == 0);
+  if (worst == missed_strain) CHECK(named.rfind("the target strain", 0) == 0);
+  if (worst == missed_equilibrium) CHECK(named.rfind("equilibrium", 0) == 0);
+}
+
+TEST_CASE("A band no allowed shaper meets asks for another shaper, not for one", "[app][plan]") {
+  // A 1 mm × 8 mm OFHC copper wafer on the classic bars at 3000 1/s, a 0.5–1 mm × 4 mm copper
+  // shaper allowed: the wafer's strong hardening slows its rate through the loading (rate ≈
+  // (v − 2c ε_T)/L_s), and no set-up holds the band. The shaper was searched: the line asks for
+  // one the plan block does not allow; it said "allow a pulse shaper (plan.shaper)".
+  ScratchDir dir("plan_shaper_remedy");
+  const fs::path scene = classic_with_plan(
+      dir.path(),
+      {{"striker", {{"velocity", {"2 m/s", "40 m/s"}}, {"length", {"100 mm", "1 m"}}}},
+       {"shaper",
+        {{"material",
+          (fs::path(SHPB_SOURCE_DIR) / "specimens" / "pulse-shaper-copper.json").string()},
+         {"thickness", {"0.5 mm", "1 mm"}},
+         {"diameter", "4 mm"}}}});
+  nlohmann::json j = nlohmann::json::parse(read_text(scene));
+  j["bars"][2]["material"] =
+      (fs::path(SHPB_SOURCE_DIR) / "specimens" / "ofhc-copper.json").string();
+  j["bars"][2]["length"] = "1 mm";
+  j["bars"][2]["diameter"] = "8 mm";
+  std::ofstream(scene) << j.dump(2);
+  const auto r = run_shpb({"plan", scene.string(), "--rate", "3000", "--strain", "0.1", "-o",
+                           (dir.path() / "out").string(), "--threads", "2", "-q"});
+  INFO(r.err);
+  REQUIRE(r.code == 3);
+  REQUIRE(r.err.find("the rate stays within") != std::string::npos);
+  CHECK(r.err.find("allow a pulse shaper") == std::string::npos);
+  CHECK(r.err.find("than plan.shaper allows") != std::string::npos);
+}
+
 TEST_CASE("A bad plan block is exit 2 naming its JSON path, with nothing written", "[app][plan]") {
   ScratchDir dir("plan_bad");
   const fs::path out = dir.path() / "out";
@@ -260,6 +392,25 @@ TEST_CASE("A bad plan block is exit 2 naming its JSON path, with nothing written
   }
 }
 
+TEST_CASE("A tension test is refused by plan, naming the striker's velocity", "[app][plan]") {
+  // The bonded tension experiment: its striker is pulled away (-10 m/s). plan searches
+  // compression tests only (a positive velocity bound), and planned it as one, the sign turned.
+  ScratchDir dir("plan_tension");
+  nlohmann::json j = nlohmann::json::parse(
+      read_text(fs::path(SHPB_SOURCE_DIR) / "experiments" / "tension-bonded" / "scene.json"));
+  j.erase("measurement");
+  j["plan"] = {{"striker", {{"velocity", {"2 m/s", "40 m/s"}}}}};
+  const fs::path scene = dir.path() / "scene.json", out = dir.path() / "out";
+  std::ofstream(scene) << j.dump(2);
+  const auto r =
+      run_shpb({"plan", scene.string(), "--rate", "1000", "--strain", "0.05", "-o", out.string()});
+  INFO(r.err);
+  CHECK(r.code == 2);
+  CHECK(r.err.rfind("error: " + scene.string() + ": bars[0].velocity: -10 m/s: ", 0) == 0);
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  CHECK_FALSE(fs::exists(out));
+}
+
 TEST_CASE("At a high rate a shorter specimen brings the bars' forces into equilibrium early",
           "[app][plan][release-only]") {
   // 5000 1/s on the classic Al 6061-T6 specimen from a 100 mm striker: the 5 mm specimen's faces
@@ -267,7 +418,7 @@ TEST_CASE("At a high rate a shorter specimen brings the bars' forces into equili
   // damps that ringing; a 3 mm one settles within a few microseconds. The plan may cut the
   // specimen to 3-5 mm. The criteria (docs/methods.md §12): the rate within ±10 % over at least
   // half the loading, equilibrium of the bars' forces before a quarter of it.
-  constexpr double kRate = 5000, kStrain = 0.15, kMinBand = 0.5, kMaxEquilibrium = 0.25;
+  constexpr double kRate = 5000, kMinBand = 0.5, kMaxEquilibrium = 0.25;
   ScratchDir dir("plan_equilibrium");
   const fs::path scene = classic_with_plan(dir.path(),
                                            {{"striker", {{"velocity", {"2 m/s", "40 m/s"}}}},
@@ -283,8 +434,8 @@ TEST_CASE("At a high rate a shorter specimen brings the bars' forces into equili
       {"simulate", (out / "scene.json").string(), "-o", sim.string(), "--tolerance", "1 %", "-q"});
   INFO(run.err);
   REQUIRE(run.code == 0);
-  CHECK(fraction_in_band(sim / "specimen.csv", kRate, kStrain) >= kMinBand);
-  CHECK(equilibrium_fraction(sim, kRate, kStrain) <= kMaxEquilibrium);
+  CHECK(fraction_in_band(sim, kRate) >= kMinBand);
+  CHECK(equilibrium_fraction(sim, kRate) <= kMaxEquilibrium);
   // The best unshaped set-up is reported beside the chosen one (here the chosen one itself), and
   // no shaped one: the plan allowed none.
   const auto summary = nlohmann::json::parse(read_text(out / "summary.json"));
@@ -301,7 +452,8 @@ TEST_CASE("The LANL PMMA record's striker velocity is planned back from its rate
   // (specimens/pmma-lanl-mini-kolsky-fitted.json), the striker velocity comes back within 10 %:
   // the spread of the fit's own velocity (95 % interval ±7 %) and more than a gas gun's launch
   // scatter. The record itself holds its rate within ±10 % over only a fifth of the loading (no
-  // plateau), so the plan ends with exit 3 naming the rate band and the closest set-up.
+  // plateau), so the plan ends with exit 3 naming the closest set-up, its rate in the band over
+  // less than the half of the loading a plan needs.
   constexpr double kVelocityTolerance = 0.10;
   const fs::path exp = fs::path(SHPB_SOURCE_DIR) / "experiments" / "lanl-pmma13-mini-kolsky";
   ScratchDir dir("plan_pmma");
@@ -318,7 +470,9 @@ TEST_CASE("The LANL PMMA record's striker velocity is planned back from its rate
                 std::to_string(strain), "-o", (dir.path() / "plan").string(), "-q"});
   INFO(r.err);
   CHECK(r.code == 3);
-  CHECK(r.err.find("the rate stays within ±10 %") != std::string::npos);
+  const std::string band = "rate in band over ";
+  REQUIRE(r.err.find(band) != std::string::npos);
+  CHECK(std::stod(r.err.substr(r.err.find(band) + band.size())) < 50);
   const std::string key = "no shaper";
   const auto at = r.err.rfind(" at ", r.err.find(key));
   REQUIRE(at != std::string::npos);

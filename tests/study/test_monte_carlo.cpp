@@ -187,6 +187,30 @@ TEST_CASE("A Monte Carlo study warns of its failed draws, and fails when every d
   fs::remove_all(dir);
 }
 
+// docs/commands.md: progress is a plain line every 10 % and at the end. The end is every run done:
+// 199 of 200 runs (99.5 %) rounded to 100 % and ended the lines at "199/200" (the stability
+// sweep's at 16829/16913).
+TEST_CASE("A study's progress reaches its total", "[study][monte-carlo][app]") {
+  const fs::path dir = shpb_test::scratch_dir("study_progress");
+  const fs::path dist = dir / "distributions.json";
+  std::ofstream(dist) << R"({"values": {"striker.velocity": {"normal": "5 %"}}})";
+  const auto r = shpb_test::run_shpb({"study", kStrikerOnBar, "-o", (dir / "out").string(),
+                                      "--sweep", "monte-carlo", "--distributions", dist.string(),
+                                      "--draws", "199", "--threads", "1"});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  std::vector<std::string> progress;  // the lines "study monte-carlo: P% D/T runs"
+  std::istringstream lines(r.err);
+  for (std::string line; std::getline(lines, line);)
+    if (line.rfind("study monte-carlo: ", 0) == 0) progress.push_back(line);
+  REQUIRE_FALSE(progress.empty());
+  CHECK(progress.back() == "study monte-carlo: 100% 200/200 runs");
+  CHECK(std::count_if(progress.begin(), progress.end(), [](const std::string& line) {
+          return line.find(" 100% ") != std::string::npos;
+        }) == 1);
+  fs::remove_all(dir);
+}
+
 TEST_CASE("A Monte Carlo study run in shards through parts equals the in-process study",
           "[study][monte-carlo][shards]") {
   const fs::path dir = shpb_test::scratch_dir("study_monte_carlo_shards");
