@@ -259,9 +259,12 @@ double largest_change_on_shift(const std::vector<double>& y, double shift_sample
 
 // Loaded: from the first to the last sample where the mean force is at least 20 % of its peak.
 // Among those, the fraction with R ≤ 5 %, the longest run of them, and the run that reaches the
-// end of loading (equilibrium that holds until unloading).
+// unloading (equilibrium that holds until unloading): the sample `unloading` where the incident
+// pulse's falling edge, less the specimen's ring-down, reaches the front face, or the last loaded
+// sample before it. The front face unloads first, so R rises on that edge in every test. A run
+// shorter than `ring_down` samples is not equilibrium.
 Equilibrium judge_equilibrium(const Curve& c, const std::vector<double>& t, std::size_t n,
-                              double peak_force) {
+                              double peak_force, std::size_t unloading, std::size_t ring_down) {
   Equilibrium e;
   std::size_t first = n, last = 0;
   for (std::size_t i = 0; i < n; ++i)
@@ -283,7 +286,17 @@ Equilibrium judge_equilibrium(const Curve& c, const std::vector<double>& t, std:
   }
   e.fraction = static_cast<double>(held) / static_cast<double>(last + 1 - first);
   if (best_length > 0) e.longest_s = {t[best_start], t[best_start + best_length - 1]};
-  if (run_start <= last) e.holds_from_s = t[run_start];
+  // The run of R ≤ 5 % through `until`, if it lasts a ring-down at least (forces that agree over
+  // a few transits, not at one sample the ringing passes through).
+  auto in_equilibrium = [&](std::size_t i) {
+    return c.equilibrium_ratio[i] <= kEquilibriumThreshold;
+  };
+  const std::size_t until = std::min(last, std::max(first, unloading));
+  std::size_t from = until + 1, to = until;
+  for (std::size_t i = until + 1; i-- > first && in_equilibrium(i);) from = i;
+  while (to < last && in_equilibrium(to + 1)) ++to;
+  if (from <= until && to + 1 - from >= std::max<std::size_t>(1, ring_down))
+    e.holds_from_s = t[from];
   return e;
 }
 
@@ -936,7 +949,16 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
   double peak_force = 0;
   for (std::size_t i = 0; i < r.loading_end; ++i)
     peak_force = std::max(peak_force, c.force_front_N[i] + c.force_back_N[i]);
-  r.equilibrium = judge_equilibrium(c, r.time_s, r.loading_end, peak_force);
+  // The front face starts to unload where the incident pulse leaves its plateau's band for good
+  // (not its peak's: a front that overshoots); the faces' forces part a ring-down (the ring-up's
+  // transits) before, as the unloading edge crosses the specimen.
+  const double incident_level = std::abs(r.incident_plateau_strain);
+  std::size_t unloading = 0;
+  for (std::size_t i = 0; i < r.loading_end; ++i)
+    if (std::abs(r.incident[i]) >= (1 - kPlateauBand) * incident_level) unloading = i;
+  const auto ring_down = static_cast<std::size_t>(kRingUpTransits * k.specimen_transit_s / dt);
+  r.equilibrium = judge_equilibrium(c, r.time_s, r.loading_end, peak_force,
+                                    unloading > ring_down ? unloading - ring_down : 0, ring_down);
   check_one_and_two_wave(c, r.loading_end, r, options, r.warnings);
   check_strain_resolution(c, r.time_s, r.loading_end, k, options, r);
   if (r.equilibrium.holds_from_s)
