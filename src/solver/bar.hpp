@@ -77,6 +77,8 @@ struct BarModel {
   int last_owned_node() const { return nodes - 1 - segment_elements[1]; }
   double impedance_kg_s() const { return density_kg_m3 * wave_speed_m_s * area_m2; }
   double total_mass_kg() const { return density_kg_m3 * area_m2 * element_length_m * elements(); }
+  // The Courant number c Δt/h of a step Δt on the bar's (initial) elements.
+  double courant_at(double step_s) const { return wave_speed_m_s * step_s / element_length_m; }
 };
 
 BarModel make_bar_model(std::string name, const MaterialSpec& material, double length_m,

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <sstream>
 
@@ -13,6 +14,10 @@
 namespace shpb {
 
 namespace {
+
+// The Courant number an unstable asynchronous run is advised to try (the default of
+// docs/methods.md §1), unless it ran at or below it.
+constexpr double kAdvisedCourant = 0.995;
 
 // The end of bar i that touches interface k: its last node (left side) or node 0 (right side).
 // `neighbour_dt`: the other side's step; an ahead material-law bar with the longer step carries
@@ -73,7 +78,17 @@ std::string describe_failure(const Chain& chain, double t, const char* energy, d
         << chain.interfaces[worst].name << " (" << to_string(chain.interfaces[worst].method) << ")";
   // Ties between bars on different steps near C = 1 are where the localized coupling can feed a
   // mode (docs/methods.md §3.6–3.7); a plain penalty link's stiffness is its own limit (§2).
-  if (!chain.global_stepping) out << "; compare with --stepping global or --courant 0.995";
+  // The advice names a Courant number below the run's own (one at 0.995 already was told 0.995).
+  double courant = 0;
+  for (std::size_t i = 0; i < chain.bars.size(); ++i)
+    courant = std::max(courant, chain.bars[i].courant_at(chain.states[i].dt));
+  if (!chain.global_stepping) {
+    out << "; compare with --stepping global";
+    if (courant > kAdvisedCourant)
+      out << " or --courant " << kAdvisedCourant;
+    else
+      out << " or a --courant below " << std::setprecision(3) << courant;
+  }
   return out.str();
 }
 

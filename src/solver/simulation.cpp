@@ -260,7 +260,7 @@ SimulationResult run_chain(const Scene& scene, const ChainDiscretization& d,
     st.simulated_elements = b.elements();
     st.time_step_s = s.dt;  // the last (adaptive: the smallest) step
     st.steps = s.step;
-    st.courant = b.wave_speed_m_s * s.dt / b.element_length_m;
+    st.courant = b.courant_at(s.dt);
     st.node_updates = s.node_updates;
     // An end segment's nodes step on their clock bar's instants (end_segment.hpp).
     st.node_updates_full_model = static_cast<long long>(s.step) *
@@ -362,9 +362,14 @@ class KeptRun {
       result_ = std::move(tried);
     } else {
       const double tried_s = tried.wall_time_s;
+      const std::string worse = "the run was also tried " + done + ", and kept as it was: " +
+                                (tried.stable ? "that run's energy balance was off by " +
+                                                    percent(tried.energy_error) + " %"
+                                              : "that run failed too (" + tried.failure + ")");
       tried = SimulationResult{};
       result_ = run(attempt_);
       result_.wall_time_s += wall_s + tried_s;
+      result_.warnings.insert(result_.warnings.begin(), worse);
     }
   }
 

@@ -269,6 +269,30 @@ TEST_CASE("a rigid link that kept a coarse neighbour's penetration says so, blam
   CHECK(said.find(' ', number) - number <= 5);  // e.g. "0.948"
 }
 
+TEST_CASE("an unstable run at the advised Courant number is advised a lower one",
+          "[solver][energy][warnings]") {
+  // Plain penalty links of ε_s = EA/h on the elastic classic scene at C 0.995 blow up at
+  // asynchronous steps (the strain energy at 11 × E(0) within 8 µs) and at global steps too. The
+  // failure may not advise the Courant number the run already had, and the run kept says that
+  // the repeat at global steps failed as well.
+  Scene scene = read_scene(std::filesystem::path(SHPB_SOURCE_DIR) /
+                           "tools/bench_scenes/elastic-classic.json");
+  scene.contact.method = ContactMethod::kPenalty;
+  scene.contact.penalty.stiffness_factor = 1.0;
+  scene.simulation.courant = 0.995;
+  resolve_scene(scene);
+  SimulationOptions options;
+  options.record_field = false;
+  const SimulationResult r = simulate(scene, options);
+  INFO(r.failure);
+  REQUIRE_FALSE(r.stable);
+  CHECK(r.failure.find("--courant 0.995") == std::string::npos);
+  CHECK(r.failure.find("a --courant below 0.995") != std::string::npos);
+  REQUIRE(!r.warnings.empty());
+  CHECK(r.warnings.front().find("also tried at global steps") != std::string::npos);
+  CHECK(r.warnings.front().find("failed too") != std::string::npos);
+}
+
 TEST_CASE("plain penalty beyond the central difference's limit is called unstable",
           "[solver][energy]") {
   // A plain penalty link of ε_s = EA/h on the striker and bar ends at C 0.9999 (the tolerance's
