@@ -697,13 +697,17 @@ void reduce_at_faces(const std::vector<double>& t, double dt, const FacePulses& 
   double face_end = timing.face_start + (1 + kWindowTail) * timing.duration;
   face_end = std::min(
       {face_end, timing.face_start + 2 * k.incident_distance_m / k.front.c0_m_s - dt, t.back()});
-  // The window opens at the last sample at or before the pulse's start at the faces, where the
-  // specimen is still at rest: the strain is integrated from zero there. The first sample after it
-  // already lies up to a sample interval into the loading, and a coarse record (1 MS/s) then lost
-  // what the specimen strained before it: 0.004 of a PMMA wafer's 0.053 (stress at a strain of 0.02
-  // 21 % high against the simulation's own).
-  std::size_t a = index_at(t, timing.face_start);
-  if (a > 0 && (a == t.size() || t[a] > timing.face_start)) --a;
+  // The window opens where the specimen is still at rest, and the strain is integrated from zero
+  // there: at the last sample at or before the incident pulse's last sample at rest on its gauge
+  // (the one before its onset, the first beyond the rest band) moved to the faces. The pulse
+  // started somewhere after that sample: a coarse record (500 kS/s) whose front rises between two
+  // samples puts its onset up to a sample interval after the start, and a window opened from the
+  // onset lost what the specimen strained before (0.003 of an Al 6061 specimen's 0.060 in tension,
+  // its max strain 5 % low); one opened after the start at the faces lost 0.004 of a PMMA wafer's
+  // 0.053 at 1 MS/s.
+  const double at_rest = timing.face_start - dt;
+  std::size_t a = index_at(t, at_rest);
+  if (a > 0 && (a == t.size() || t[a] > at_rest)) --a;
   const std::size_t b = std::min(index_at(t, face_end) + 1, t.size());
   if (!(b > a + 4))
     throw input_error(options.scene_file, "measurement", "gauge \"" + k.incident_gauge + "\"",
