@@ -37,6 +37,12 @@ constexpr double kPlateauMinFraction = 0.30;
 // The 1- and 2-wave stresses of a real test differ by tens of percent early in the loading (ring-
 // up); a mean ratio beyond 1.5 is not a specimen out of equilibrium but a wrong set-up.
 constexpr double kOneTwoWaveRatio = 1.5;
+// A front the record does not resolve leaves the strain the specimen took while it rose uncertain
+// by about half a sample interval times its rate: said beyond 3 % of the max strain (the few
+// percent a curve is read to), from the fastest rate of the window's first samples (the rise and
+// a thin wafer's first ring-up).
+constexpr double kUnresolvedFrontStrain = 0.03;
+constexpr std::size_t kFrontSamples = 4;
 // A specimen whose faces move relative to each other at less than this fraction of the incident
 // pulse's particle velocity c0 ε_I: a 1 % error in one pulse's amplitude (a gauge factor, a bar's
 // modulus) is then more than 20 % of its strain rate.
@@ -175,6 +181,28 @@ void check_strain_resolution(const Curve& c, const std::vector<double>& t, std::
       "of face velocities and an error of 1 % in a gauge factor or a bar's modulus is " +
       percent(0.01 / part) + " of them (its " + (o.tension ? "tensile" : "compressive") +
       " stress, from the forces, is not affected)");
+}
+
+// The incident pulse rising from the rest band to half its peak within a sample interval: the
+// record does not say where in that interval the front lies, so the strain the specimen took while
+// it rose is known to about ±½ dt × the rate (the trapezoid rule over the window, which opens at
+// rest, takes the middle; docs/methods.md §6). That offset is every strain's on the curve.
+void check_front_resolution(const std::vector<double>& rate, double dt, ProcessingResult& r) {
+  if (r.incident_rise_s > 1.5 * dt || r.loading_end < 2 || !(r.max_strain > 0)) return;
+  double fastest = 0;
+  for (std::size_t i = 0; i < std::min(r.loading_end, kFrontSamples); ++i)
+    fastest = std::max(fastest, std::abs(rate[i]));
+  const double uncertain = 0.5 * dt * fastest;
+  if (uncertain <= kUnresolvedFrontStrain * r.max_strain) return;
+  r.warnings.push_back(
+      fmt("the incident pulse rises from rest to half its peak within a sample interval (%.3g us): "
+          "the record does not resolve its front, so the strain the specimen took while it rose "
+          "(at up to %.4g 1/s) is known to about %.2g, ",
+          dt * 1e6, fastest, uncertain) +
+      percent(uncertain / r.max_strain) +
+      fmt(" of the max strain %.3g, and every strain of the curve carries that offset; record "
+          "at a higher sample rate",
+          r.max_strain));
 }
 
 // A plateau of the strain rate: the longest run of samples within ±10 % of the plateau level
@@ -942,6 +970,7 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
           : 0;
   summarize_loading(one_wave, find_loading_end(strain, ring_up, options, r), r);
   judge_strain_rate(rate, r.loading_end, r);
+  check_front_resolution(rate, dt, r);
   mean_rate_in_window(strain, rate, options, r);
   r.area_ratio = k.front.area_m2 / k.specimen.area_m2;
   const ShiftStressError stress_change(r, k, dt);

@@ -55,6 +55,18 @@ GaugeSignals gauges_of(const SimulationResult& sim) {
   return g;
 }
 
+// The gauges point-sampled every `interval_s`, as a coarse scope records them.
+GaugeSignals point_sampled(const GaugeSignals& g, double interval_s) {
+  GaugeSignals coarse{
+      {}, interval_s, g.gauges, std::vector<std::vector<double>>(g.strain.size()), {}};
+  for (double t = g.time_s.front(); t <= g.time_s.back(); t += interval_s) {
+    coarse.time_s.push_back(t);
+    for (std::size_t k = 0; k < g.strain.size(); ++k)
+      coarse.strain[k].push_back(interpolate(g.time_s, g.strain[k], t));
+  }
+  return coarse;
+}
+
 Agreement process_simulation(const Scene& scene) {
   const SimulationResult sim = simulate(scene);
   INFO(sim.failure);
@@ -368,13 +380,7 @@ TEST_CASE("A coarse record integrates the specimen's strain from rest",
   constexpr double kCoarseStress = 0.04;
   for (const double interval_s : {1e-6, 2e-6}) {
     INFO("sample interval " << interval_s * 1e6 << " us");
-    GaugeSignals g = gauges_of(v.sim);
-    GaugeSignals coarse{{}, interval_s, g.gauges, {{}, {}}, {}};
-    for (double t = g.time_s.front(); t <= g.time_s.back(); t += interval_s) {
-      coarse.time_s.push_back(t);
-      for (std::size_t k = 0; k < 2; ++k)
-        coarse.strain[k].push_back(interpolate(g.time_s, g.strain[k], t));
-    }
+    const GaugeSignals coarse = point_sampled(gauges_of(v.sim), interval_s);
     ProcessingOptions o;
     o.dispersion.correction = false;  // the 1D model does not disperse
     const ProcessingResult r = process_signals(coarse, resolve_setup(v.scene, coarse.gauges), o);
@@ -414,13 +420,7 @@ TEST_CASE("A coarse record whose front rises between two samples integrates the 
   const auto& ts = v.sim.specimen.time_s;
   const auto& strain = v.sim.specimen.column("strain");  // compression positive: here negative
   constexpr double interval_s = 2e-6;                    // 500 kS/s
-  const GaugeSignals g = gauges_of(v.sim);
-  GaugeSignals coarse{{}, interval_s, g.gauges, {{}, {}}, {}};
-  for (double t = g.time_s.front(); t <= g.time_s.back(); t += interval_s) {
-    coarse.time_s.push_back(t);
-    for (std::size_t k = 0; k < 2; ++k)
-      coarse.strain[k].push_back(interpolate(g.time_s, g.strain[k], t));
-  }
+  const GaugeSignals coarse = point_sampled(gauges_of(v.sim), interval_s);
   ProcessingOptions o = processing_options(v.scene);
   REQUIRE(o.tension);
   o.dispersion.correction = false;  // the 1D model does not disperse
@@ -435,6 +435,46 @@ TEST_CASE("A coarse record whose front rises between two samples integrates the 
   // the specimen's strain there (0.002 % measured; 5.0 % before).
   constexpr double kCoarseStrain = 0.02;
   CHECK(std::abs(r.max_strain - max_strain) < kCoarseStrain * max_strain);
+}
+
+// A 16 × 2 mm copper wafer between aluminium bars at 25 m/s, recorded at 500 kS/s: the incident
+// front rises within one sample, and the wafer strains at about 3500 /s from its first
+// microsecond, so where in that sample interval the front lies moves its strain by about
+// ½ dt × 3500 = 0.0035, 7 % of its 0.05: the max strain reads 4.5 % off the simulation's own. The
+// record cannot say better; a warning must say so (docs/commands.md, process). The simulated
+// record (10 MS/s) resolves the front: no such warning.
+TEST_CASE("A front that rises within one sample interval is said",
+          "[analysis][processing][simulation]") {
+  const Simulated v = simulated_variant("classic-al6061", [](nlohmann::json& j) {
+    j["materials"]["al"] = {{"model", "elastic"},
+                            {"density", "2700 kg/m3"},
+                            {"youngs_modulus", "70 GPa"},
+                            {"poisson_ratio", 0.33}};
+    for (const int bar : {0, 1, 3}) j["bars"][bar]["material"] = "al";
+    j["bars"][0]["velocity"] = "25 m/s";
+    j["bars"][2]["material"] = "../../specimens/ofhc-copper.json";
+    j["bars"][2]["diameter"] = "16 mm";
+    j["bars"][2]["length"] = "2 mm";
+  });
+  const auto& ts = v.sim.specimen.time_s;
+  const auto& strain = v.sim.specimen.column("strain");
+  // The few percent a curve is read to (the warning's bound).
+  constexpr double kReadTo = 0.03;
+  auto said = [](const ProcessingResult& r) {
+    return std::any_of(r.warnings.begin(), r.warnings.end(), [](const std::string& w) {
+      return w.find("does not resolve its front") != std::string::npos;
+    });
+  };
+  ProcessingOptions o;
+  o.dispersion.correction = false;  // the 1D model does not disperse
+  const GaugeSignals g = gauges_of(v.sim);
+  CHECK_FALSE(said(process_signals(g, resolve_setup(v.scene, g.gauges), o)));
+  constexpr double interval_s = 2e-6;  // 500 kS/s
+  const GaugeSignals coarse = point_sampled(g, interval_s);
+  const ProcessingResult r = process_signals(coarse, resolve_setup(v.scene, coarse.gauges), o);
+  const double own = interpolate(ts, strain, r.time_s[r.loading_end - 1]);
+  CHECK(std::abs(r.max_strain - own) > kReadTo * own);  // what the warning is for
+  CHECK(said(r));
 }
 
 }  // namespace tests_analysis_test_simulated_gauges
