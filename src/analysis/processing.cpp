@@ -37,11 +37,10 @@ constexpr double kPlateauMinFraction = 0.30;
 // The 1- and 2-wave stresses of a real test differ by tens of percent early in the loading (ring-
 // up); a mean ratio beyond 1.5 is not a specimen out of equilibrium but a wrong set-up.
 constexpr double kOneTwoWaveRatio = 1.5;
-// A front the record does not resolve leaves the strain the specimen took while it rose uncertain
-// by about half a sample interval times its rate: said beyond 3 % of the max strain (the few
-// percent a curve is read to), from the fastest rate of the window's first samples (the rise and
-// a thin wafer's first ring-up).
-constexpr double kUnresolvedFrontStrain = 0.03;
+// What a record leaves unknown (an unresolved front's strain, its noise in the stress) is said
+// beyond the few percent a curve is read to, of the max strain or the peak stress.
+constexpr double kReadTo = 0.03;
+// The fastest rate of the window's first samples (the rise and a thin wafer's first ring-up).
 constexpr std::size_t kFrontSamples = 4;
 // A specimen whose faces move relative to each other at less than this fraction of the incident
 // pulse's particle velocity c0 ε_I: a 1 % error in one pulse's amplitude (a gauge factor, a bar's
@@ -193,7 +192,7 @@ void check_front_resolution(const std::vector<double>& rate, double dt, Processi
   for (std::size_t i = 0; i < std::min(r.loading_end, kFrontSamples); ++i)
     fastest = std::max(fastest, std::abs(rate[i]));
   const double uncertain = 0.5 * dt * fastest;
-  if (uncertain <= kUnresolvedFrontStrain * r.max_strain) return;
+  if (uncertain <= kReadTo * r.max_strain) return;
   r.warnings.push_back(
       fmt("the incident pulse rises from rest to half its peak within a sample interval (%.3g us): "
           "the record does not resolve its front, so the strain the specimen took while it rose "
@@ -203,6 +202,30 @@ void check_front_resolution(const std::vector<double>& rate, double dt, Processi
       fmt(" of the max strain %.3g, and every strain of the curve carries that offset; record "
           "at a higher sample rate",
           r.max_strain));
+}
+
+// The records' noise (σ of their quiet starts, as the pulse search takes it) reaches the primary
+// stress sample by sample multiplied by the bar/specimen area ratio: the 3-wave stress carries
+// √(2 (E_f A_f σ_I)² + (E_b A_b σ_T)²) / 2A_s (the incident gauge gives the incident and the
+// reflected pulse), the 1-wave E_b A_b σ_T / A_s (docs/methods.md §6).
+void check_stress_noise(double incident_noise, double transmitted_noise, const KolskySetup& k,
+                        bool one_wave, ProcessingResult& r) {
+  const double front = k.front.youngs_modulus_Pa * k.front.area_m2 * incident_noise;
+  const double back = k.back.youngs_modulus_Pa * k.back.area_m2 * transmitted_noise;
+  const double noise = one_wave
+                           ? back / k.specimen.area_m2
+                           : std::sqrt(2 * front * front + back * back) / (2 * k.specimen.area_m2);
+  if (!(r.peak_stress_Pa > 0) || noise <= kReadTo * r.peak_stress_Pa) return;
+  r.warnings.push_back(
+      fmt("the records' noise (standard deviation %.3g on the incident gauge, %.3g on the "
+          "transmitted one, from their quiet starts) reaches the ",
+          incident_noise, transmitted_noise) +
+      (one_wave ? "1-wave" : "3-wave") +
+      fmt(" stress multiplied by the bar/specimen area ratio (%.3g): ±%.3g MPa sample by "
+          "sample, ",
+          k.front.area_m2 / k.specimen.area_m2, noise * 1e-6) +
+      percent(noise / r.peak_stress_Pa) +
+      " of its peak; read the curve smoothed, or record with less noise or a larger specimen");
 }
 
 // A plateau of the strain rate: the longest run of samples within ±10 % of the plateau level
@@ -971,6 +994,7 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
   summarize_loading(one_wave, find_loading_end(strain, ring_up, options, r), r);
   judge_strain_rate(rate, r.loading_end, r);
   check_front_resolution(rate, dt, r);
+  check_stress_noise(inc.noise, tra.noise, k, one_wave, r);
   mean_rate_in_window(strain, rate, options, r);
   r.area_ratio = k.front.area_m2 / k.specimen.area_m2;
   const ShiftStressError stress_change(r, k, dt);
