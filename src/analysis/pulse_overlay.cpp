@@ -158,6 +158,7 @@ MeasuredPulses find_measured_pulses(const Scene& scene, const GaugeSignals& sign
   // T moves by −dt/(P (b − a)) per unit of each sample between the levels: with white noise σ,
   // sd(T) = dt σ √n / (P (b − a)).
   const FrontTime front = front_time(m.incident, 0.0, m.incident_window);
+  m.incident_front_samples = front.samples;
   if (front.plateau > 0)
     m.incident_front_sd_s = m.dt_s * m.incident_baseline.noise * std::sqrt(front.samples) /
                             (front.plateau * (kFrontHigh - kFrontLow));

@@ -36,6 +36,9 @@ struct MeasuredPulses {
   // Standard deviation of the incident pulse's front time (the clock) from the baseline's noise,
   // taken as white: what the record noise alone makes of the alignment.
   double incident_front_sd_s = 0;
+  // Samples of the incident front strictly between 40 and 60 % of its plateau: none, and the
+  // record does not say where in a sample interval the clocks meet.
+  double incident_front_samples = 0;
   // A channel turned over, a pulse the record does not hold or cuts short.
   std::vector<std::string> warnings;
 };
