@@ -16,7 +16,7 @@ Set-ups, each simulated by `shpb simulate` at its defaults:
   specimens of the default in its three shapes, struck at 10 or 20 m/s (24 scenes);
 - --compare: the default's 10 × 5 mm set-ups (24 scenes), each record then given to
   `shpb compare --no-dispersion` as the scene's measurement (the simulation's record carries no
-  dispersion): the striker velocity it infers against the simulated one, and its largest NRMSE.
+  dispersion): the striker velocity it infers against the simulated one, and each pulse's NRMSE.
 Each record (10 MS/s) is re-recorded point-sampled at 1 MS/s and 500 kS/s, by an 8-bit digitizer
 of range 1.25 × the channel's peak, with white noise of 1 % of the peak, with an offset of 3 % of
 the peak, and as a "scope" (1 MS/s, 8 bits, 0.5 % noise, 2 % offset; the noise seeded, the same
@@ -32,7 +32,8 @@ Errors have a value where the specimen strains beyond 0.02 (23 of the default's 
 - rate: the same median of |strain_rate_1_s − the specimen's rate| over the specimen's median rate
   there, the specimen's as the slope of its strain over 2 µs (its end nodes ring with the contact
   interfaces);
-- max strain: summary max_strain against the specimen's largest strain within the face window;
+- max strain: summary max_strain against the specimen's largest strain until the loading ends
+  (curve.csv's last row);
 - plateau rate: summary plateau_strain_rate_1_s (none when the rate has no plateau) against the
   specimen's median rate over its own 10 to 90 % of that strain.
 Prints, per record kind and error, the median, the runs beyond 3 % and how many of those carried
@@ -145,9 +146,9 @@ def errors(curve, summary, truth):
     rows = loading(curve["strain"])
     peak = np.max(np.abs(truth["stress_Pa"]))
     out = {"3-wave": stress_error(curve, truth)}
-    for column, face in (("stress_1wave_Pa", "back_stress_Pa"),
-                         ("stress_2wave_Pa", "front_stress_Pa")):
-        out[column[7:12]] = float(np.median(np.abs(curve[column][rows] - at[face][rows]))) / peak
+    for name, column, face in (("1-wave", "stress_1wave_Pa", "back_stress_Pa"),
+                               ("2-wave", "stress_2wave_Pa", "front_stress_Pa")):
+        out[name] = float(np.median(np.abs(curve[column][rows] - at[face][rows]))) / peak
     # The specimen's end nodes ring with the contact interfaces (about one transit): its rate
     # as the slope of its strain over SMOOTH, which a reduction from the bars' motion gives.
     own = (np.interp(t + SMOOTH / 2, truth["time_s"], truth["strain"])
@@ -155,8 +156,8 @@ def errors(curve, summary, truth):
     rate = float(np.median(own[rows]))
     out["rate"] = float(np.median(np.abs(curve["strain_rate_1_s"][rows] - own[rows]))) / rate
     out["max strain"] = abs(summary["max_strain"] - np.max(strain)) / np.max(strain)
-    own = loading(strain)
-    plateau = float(np.median(truth["strain_rate_1_s"][own]))
+    flow = loading(strain)
+    plateau = float(np.median(truth["strain_rate_1_s"][flow]))
     measured = summary["plateau_strain_rate_1_s"]
     out["plateau rate"] = None if measured is None else abs(measured - plateau) / plateau
     return out
@@ -209,8 +210,10 @@ def report(results):
         for error in max((e for _, e, _ in rows), key=len, default={}):
             values = [(name, e[error], w) for name, e, w in rows if e.get(error) is not None]
             off = sorted((r for r in values if r[1] > BOUND), key=lambda r: -r[1])
-            print(f"  {error}: {len(values)} with a value, median {100 * np.median([v for _, v, _ in values]):.2f} %, "
-                  f"{len(off)} beyond {100 * BOUND:g} % ({sum(not w for _, _, w in off)} without a warning)")
+            median = 100 * np.median([v for _, v, _ in values])
+            silent = sum(not w for _, _, w in off)
+            print(f"  {error}: {len(values)} with a value, median {median:.2f} %, "
+                  f"{len(off)} beyond {100 * BOUND:g} % ({silent} without a warning)")
             for name, value, warning in off[:3]:
                 print(f"    {name}: {100 * value:.1f} % {warning[:100]}")
 
