@@ -46,13 +46,15 @@ inline constexpr double kBandQuantiles[3] = {0.025, 0.5, 0.975};
 double quantile(const std::vector<double>& sorted, double p);
 
 // band[q][j]: quantile kBandQuantiles[q] of the draws' values at point j, for j < rows (every
-// draw at least `rows` long).
+// draw at least `rows` long), over the draws that have a finite value there; NaN (no band) where
+// fewer than kBandQuantiles[2] of them do.
 void quantile_bands(const std::vector<const std::vector<double>*>& draws, std::size_t rows,
                     std::vector<double> (&band)[3]);
 
 // A reduction's 3-wave stress, 1-wave stress and primary strain rate where its primary strain
-// first reaches each of the first `rows` of `strains` (its value at its end of loading beyond
-// it). Throws std::domain_error when the reduction holds a non-finite value or no loading.
+// first reaches each of the first `rows` of `strains` (NaN beyond its largest strain: a draw whose
+// loading ends short of a strain has no state there). Throws std::domain_error when the reduction
+// holds a non-finite value or no loading.
 struct CurveAtStrains {
   std::vector<double> stress3, stress1, rate;
 };

@@ -89,7 +89,11 @@ std::vector<std::vector<double>> read_columns(const fs::path& csv,
       const std::string cell = line.substr(start, comma - start);
       char* end = nullptr;
       const double v = std::strtod(cell.c_str(), &end);
-      if (cell.empty() || end != cell.c_str() + cell.size() || !std::isfinite(v))
+      // An empty field is an undefined number (a band where too few draws reach, docs/outputs.md):
+      // refused only in the columns read.
+      const bool read = std::find(index.begin(), index.end(), row.size()) != index.end();
+      if ((cell.empty() && read) ||
+          (!cell.empty() && (end != cell.c_str() + cell.size() || !std::isfinite(v))))
         throw input_error(
             csv.string(),
             "line " + std::to_string(number) + ", column " + std::to_string(row.size() + 1),
@@ -133,7 +137,7 @@ std::vector<std::string> campaign_row(const CampaignTest& test, const fs::path& 
                                 {schema::curve::strain, schema::curve::stress_3wave_Pa});
     for (double e : flow_strains) {
       const double f = flow_stress(c[0], c[1], e);
-      cells.push_back(std::isfinite(f) ? format_double(f) : "");
+      cells.push_back(format_field(f));
     }
   }
   cells.push_back(number_cell(s.at("time_to_equilibrium_s")));

@@ -222,10 +222,18 @@ void write_process_outputs(const ProcessOutcome& o, const Scene& scene,
     std::vector<std::string> header;
     for (const auto& [name, v] : columns) header.push_back(name);
     CsvWriter w(out.file(schema::curve::kFile), header);
-    std::vector<double> row(columns.size());
+    // The band columns come last; a strain too few draws reach has none (an empty field).
+    const std::size_t nominal =
+        columns.size() - (o.uncertainty ? uncertainty_band_columns(*o.uncertainty).size() : 0);
+    std::vector<double> row(nominal);
     for (std::size_t i = 0; i < r.loading_end; ++i) {
-      for (std::size_t j = 0; j < columns.size(); ++j) row[j] = (*columns[j].second)[i];
-      w.row(row);
+      for (std::size_t j = 0; j < nominal; ++j) row[j] = (*columns[j].second)[i];
+      std::string bands;
+      for (std::size_t j = nominal; j < columns.size(); ++j) {
+        bands.push_back(',');
+        bands += format_field((*columns[j].second)[i]);
+      }
+      w.row(row, bands);
     }
     w.close();
   }

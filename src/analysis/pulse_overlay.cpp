@@ -88,12 +88,15 @@ std::size_t widen(std::size_t i, double by, bool down, std::size_t n) {
 // The rest level again, from the whole record before the first pulse rather than its first 5 %
 // (an amplifier settling after the trigger; and its error is an offset common to the hundreds of
 // samples a fit lays over each pulse, docs/validation.md "shpb fit"), and the pulse found anew.
-void settle_rest_level(RestSignal& s) {
-  if (!s.first) return;
+// Returns that level's standard deviation (rest_level_sd; 0 when the level is not settled so).
+double settle_rest_level(RestSignal& s) {
+  if (!s.first) return 0;
   const auto level = rest_level_before(s.x, s.first->half);
-  if (!level) return;
+  if (!level) return 0;
+  const double sd = rest_level_sd(s.noise, s.first->half);
   for (double& v : s.x) v -= *level;
   if (auto again = find_first_pulse(s.x, {0.0, s.noise})) s.first = again;
+  return sd;
 }
 
 // A pulse the record does not hold (it ended first, or a dead channel) is not compared, and one
@@ -146,7 +149,8 @@ MeasuredPulses find_measured_pulses(const Scene& scene, const GaugeSignals& sign
     if (s->inverted)
       m.warnings.push_back(inverted_gauge_warning(
           s == &inc ? m.setup.incident_gauge : m.setup.transmitted_gauge, tension));
-  for (auto* s : {&inc, &tra}) settle_rest_level(*s);
+  m.incident_rest_sd = settle_rest_level(inc);
+  m.transmitted_rest_sd = settle_rest_level(tra);
   m.incident = std::move(inc.x), m.transmitted = std::move(tra.x);
   m.incident_baseline = {0.0, inc.noise}, m.transmitted_baseline = {0.0, tra.noise};
   m.incident_window = *inc.first;

@@ -30,6 +30,9 @@ struct MeasuredPulses {
   // the median before the first pulse).
   std::vector<double> incident, transmitted;
   Baseline incident_baseline, transmitted_baseline;  // level 0: removed; the records' noise
+  // Standard deviation of each removed rest level (strain): an offset common to every sample of
+  // the record's pulses, that their residuals do not show.
+  double incident_rest_sd = 0, transmitted_rest_sd = 0;
   PulseWindow incident_window;
   std::optional<PulseWindow> reflected_window, transmitted_window;
   double incident_plateau = 0;  // |plateau| of the incident pulse, strain

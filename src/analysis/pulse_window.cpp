@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <tuple>
 #include <vector>
 
@@ -18,11 +19,18 @@ constexpr std::size_t kMinRestSamples = 10;    // as estimate_baseline's smalles
 
 }  // namespace
 
+std::size_t baseline_samples(std::size_t record, double fraction) {
+  return std::min(record, std::max<std::size_t>(
+                              kMinRestSamples,
+                              static_cast<std::size_t>(fraction * static_cast<double>(record))));
+}
+
+double rest_level_sd(double noise, std::size_t samples) {
+  return samples > 0 ? std::sqrt(std::numbers::pi / 2 / static_cast<double>(samples)) * noise : 0.0;
+}
+
 Baseline estimate_baseline(std::span<const double> x, double fraction) {
-  const std::size_t n = std::min(
-      x.size(),
-      std::max<std::size_t>(kMinRestSamples,
-                            static_cast<std::size_t>(fraction * static_cast<double>(x.size()))));
+  const std::size_t n = baseline_samples(x.size(), fraction);
   std::vector<double> seg(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(n));
   Baseline b;
   b.level = median(seg);

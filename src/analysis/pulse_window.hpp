@@ -12,8 +12,14 @@ struct Baseline {
   double noise = 0;  // 1.4826 × median absolute deviation (σ of Gaussian noise)
 };
 
-// Baseline from the first `fraction` of the record (at least 10 samples).
+// Baseline from the first `fraction` of the record (at least 10 samples: baseline_samples).
 Baseline estimate_baseline(std::span<const double> x, double fraction = 0.05);
+std::size_t baseline_samples(std::size_t record, double fraction = 0.05);
+
+// Standard deviation of a rest level taken as the median of `samples` samples of white noise of
+// standard deviation `noise`: √(π/2) noise/√samples (the median's asymptotic variance). Its error
+// is an offset common to every sample later read from that level.
+double rest_level_sd(double noise, std::size_t samples);
 
 // The median of x before `half` (a pulse's first half-height sample): the rest level from the
 // whole record before the pulse, whose short rise moves a median little (as find_onset takes it);

@@ -1,5 +1,6 @@
 #include "core/csv_writer.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -14,6 +15,10 @@ std::string format_double(double value) {
   char buffer[32];
   auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
   return std::string(buffer, end);
+}
+
+std::string format_field(double value) {
+  return std::isfinite(value) ? format_double(value) : std::string();
 }
 
 std::string quote_cell(const std::string& s) {
@@ -80,10 +85,21 @@ void CsvWriter::row(std::span<const std::string> cells) {
 
 void CsvWriter::row(std::string_view leading, std::size_t leading_columns,
                     std::span<const double> values) {
-  if (leading_columns + values.size() != columns_)
+  row(leading, leading_columns, values, {}, 0);
+}
+
+void CsvWriter::row(std::span<const double> values, std::string_view trailing) {
+  row({}, 0, values, trailing,
+      static_cast<std::size_t>(std::count(trailing.begin(), trailing.end(), ',')));
+}
+
+void CsvWriter::row(std::string_view leading, std::size_t leading_columns,
+                    std::span<const double> values, std::string_view trailing,
+                    std::size_t trailing_columns) {
+  if (leading_columns + values.size() + trailing_columns != columns_)
     throw std::logic_error(path_.string() + ": row has " +
-                           std::to_string(leading_columns + values.size()) + " values for " +
-                           std::to_string(columns_) + " columns");
+                           std::to_string(leading_columns + values.size() + trailing_columns) +
+                           " values for " + std::to_string(columns_) + " columns");
   if (!file_) throw std::logic_error(path_.string() + ": row written after close()");
   line_.assign(leading);
   char buffer[32];
@@ -94,6 +110,7 @@ void CsvWriter::row(std::string_view leading, std::size_t leading_columns,
     auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, values[i]);
     line_.append(buffer, end);
   }
+  line_.append(trailing);
   line_.push_back('\n');
   write(line_);
 }

@@ -23,6 +23,9 @@ class CsvWriter {
   // A row whose first `leading_columns` cells are already text (comma-separated, each from
   // format_double), then the values: a long-format file repeats its key cells on many rows.
   void row(std::string_view leading, std::size_t leading_columns, std::span<const double> values);
+  // Numbers, then `trailing` (cells already formatted, each led by its comma; its columns counted
+  // from the commas): a table whose last columns may be undefined (empty fields).
+  void row(std::span<const double> values, std::string_view trailing);
   // A row of cells already formatted (format_double, quote_cell, or empty for an undefined
   // value): files that mix text and numbers through their columns.
   void row(std::span<const std::string> cells);
@@ -34,6 +37,8 @@ class CsvWriter {
 
  private:
   void write(const std::string& text);  // checked fwrite
+  void row(std::string_view leading, std::size_t leading_columns, std::span<const double> values,
+           std::string_view trailing, std::size_t trailing_columns);
 
   std::vector<char> buffer_ = std::vector<char>(1 << 18);  // stdio buffer, outlives file_
   std::FILE* file_ = nullptr;
@@ -48,5 +53,7 @@ std::string quote_cell(const std::string& text);
 
 // Shortest text that reads back to the same double.
 std::string format_double(double value);
+// A CSV field: format_double, empty for a non-finite value (an undefined number, docs/outputs.md).
+std::string format_field(double value);
 
 }  // namespace shpb

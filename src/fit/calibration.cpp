@@ -73,12 +73,15 @@ struct Target {
   std::vector<Arrival> arrivals;
   std::vector<double> measured;
   std::vector<std::size_t> samples;  // the compared samples
+  double level_sd = 0;               // its record's removed baseline level's (rest_level_sd)
 };
 
 struct Shot {
   std::string scene, kind, source_gauge;
   std::vector<double> time_s, source;
   double dt = 0, peak = 0, cutoff_Hz = 0;
+  double source_level_sd = 0;        // the source record's removed baseline level's
+  std::size_t keep0 = 0, keep1 = 0;  // the source's kept samples (SourceWindow)
   std::vector<ShotBar> bars;
   std::vector<Target> targets;
   // A measured striker velocity: the source's plateau (as recorded) and the strain the striker
@@ -371,6 +374,8 @@ Shot prepare_shot(const CalibrationShot& cs, Parameters& params, std::string& re
   auto [source, base] = baseline_removed(signals, src.name);
   const SourceWindow w = cut_source(source, base.noise, file, src.name);
   s.source = source;
+  s.source_level_sd = rest_level_sd(base.noise, baseline_samples(source.size()));
+  s.keep0 = w.keep0, s.keep1 = w.keep1;
   s.peak = w.pulse.peak;
   striker_plateau(s, scene, gauged[0], w, base.noise);
   s.cutoff_Hz = cutoff_of(scene.measurement->dispersion, struck);
@@ -386,7 +391,9 @@ Shot prepare_shot(const CalibrationShot& cs, Parameters& params, std::string& re
           t, ways_to(k, gauged.size() == 2, bar.length_m, struck.length_m, pg, ps, &g == &src), s,
           params, w);
       if (t.arrivals.empty()) continue;
-      t.measured = baseline_removed(signals, g.name).first;
+      const auto [measured, base_g] = baseline_removed(signals, g.name);
+      t.measured = measured;
+      t.level_sd = rest_level_sd(base_g.noise, baseline_samples(measured.size()));
       if (&g != &src) channel_parameters(t, g, src.name, reference, params, file);
       s.targets.push_back(std::move(t));
     }
@@ -564,23 +571,60 @@ std::vector<double> timing_undetermined(const std::vector<Shot>& shots,
   return weight;
 }
 
+// Each record's removed baseline level is an offset common to all its samples (its median over the
+// record's first 5 %, rest_level_sd), which the residuals do not show: a target's record moves its
+// residuals by 1/peak per unit, the source's moves every modelled pulse by the model of its kept
+// window at 1 (the model is linear in the source). One error per record, over all residuals.
+std::vector<LsCommonError> rest_level_errors(const std::vector<Shot>& shots,
+                                             const std::vector<double>& theta, Tables& tables) {
+  std::size_t total = 0;
+  for (const Shot& s : shots)
+    for (const Target& t : s.targets) total += t.samples.size();
+  std::vector<LsCommonError> out;
+  std::size_t first = 0;  // the shot's first residual
+  for (const Shot& s : shots) {
+    Shot unit = s;  // the source's window at 1: the source level's effect on the model
+    std::fill(unit.source.begin(), unit.source.end(), 0.0);
+    std::fill(unit.source.begin() + static_cast<long>(s.keep0),
+              unit.source.begin() + static_cast<long>(std::min(s.keep1, s.source.size())), 1.0);
+    LsCommonError source{s.source_level_sd, std::vector<double>(total, 0.0)};
+    std::size_t row = first;
+    for (const Target& t : s.targets) {
+      const std::vector<double> m = model_of(unit, t, theta, tables);
+      LsCommonError own{t.level_sd, std::vector<double>(total, 0.0)};
+      for (std::size_t k = 0; k < t.samples.size(); ++k) {
+        source.sensitivity[row + k] -= m[t.samples[k]] / s.peak;
+        (t.gauge == s.source_gauge ? source : own).sensitivity[row + k] += 1 / s.peak;
+      }
+      if (t.gauge != s.source_gauge) out.push_back(std::move(own));
+      row += t.samples.size();
+    }
+    out.push_back(std::move(source));
+    first = row;
+  }
+  return out;
+}
+
 // Uncertainties from the Jacobian at the optimum (docs/methods.md §11, "Uncertainties"):
-// s² V S⁻² Vᵀ over the directions stronger than kWeakDirection; the weaker ones are left out and
-// named in fit.undetermined, and a parameter weighing on them, or on a combination the travel
+// s² V S⁻² Vᵀ over the directions stronger than kWeakDirection, plus each record's baseline level
+// carried through the estimator (σ² g gᵀ, g = V S⁻² Vᵀ Jᵀ d); the weaker directions are left out
+// and named in fit.undetermined, and a parameter weighing on them, or on a combination the travel
 // times leave free (`timing_weight`), gets no sd.
 void fitted_parameters(const std::vector<LsParameter>& list, const LsResult& r,
-                       const std::vector<double>& timing_weight, CalibrationFit& fit) {
+                       const std::vector<double>& timing_weight,
+                       const std::vector<LsCommonError>& levels, CalibrationFit& fit) {
   const std::size_t p = list.size();
   const ScaledSvd j = scaled_svd(r.jacobian, p);  // d r / d x, x = θ / scale
   const Eigen::VectorXd& sv = j.sv;
   fit.reciprocal_condition = sv(0) > 0 ? sv(static_cast<long>(p) - 1) / sv(0) : 0.0;
   const double dof = std::max(1.0, static_cast<double>(r.residuals) - static_cast<double>(p));
   const double s2 = 2 * r.cost / dof;
-  Eigen::MatrixXd cov = Eigen::MatrixXd::Zero(static_cast<long>(p), static_cast<long>(p));
+  // (JᵀJ)⁻¹ over the determined directions, in the columns' unit-norm scaling.
+  Eigen::MatrixXd pinv = Eigen::MatrixXd::Zero(static_cast<long>(p), static_cast<long>(p));
   std::vector<double> weak_weight = timing_weight;
   for (long i = 0; i < static_cast<long>(p); ++i) {
     if (sv(i) > kWeakDirection * sv(0)) {
-      cov += j.v.col(i) * j.v.col(i).transpose() / (sv(i) * sv(i));
+      pinv += j.v.col(i) * j.v.col(i).transpose() / (sv(i) * sv(i));
       continue;
     }
     std::string line = "the shots do not determine ";
@@ -596,12 +640,20 @@ void fitted_parameters(const std::vector<LsParameter>& list, const LsResult& r,
                                two_digits(sv(i) / sv(0)) +
                                " times as much as the best-determined one");
   }
+  Eigen::MatrixXd cov = s2 * pinv;
+  const Eigen::MatrixXd js = r.jacobian * j.norm.cwiseInverse().asDiagonal();
+  for (const LsCommonError& e : levels) {
+    if (!(e.sd > 0) || static_cast<long>(e.sensitivity.size()) != js.rows()) continue;
+    const Eigen::VectorXd g = pinv * (js.transpose() * Eigen::Map<const Eigen::VectorXd>(
+                                                           e.sensitivity.data(), js.rows()));
+    cov += e.sd * e.sd * g * g.transpose();
+  }
   for (std::size_t k = 0; k < p; ++k) {
     FittedParameter fp{list[k].name, list[k].start, r.value[k], std::nullopt};
     // A parameter with a tenth of its weight on an undetermined direction is not determined.
     constexpr double kUndeterminedShare = 0.1;
     if (weak_weight[k] < kUndeterminedShare && r.residuals > p)
-      fp.sd = std::sqrt(s2 * cov(static_cast<long>(k), static_cast<long>(k))) /
+      fp.sd = std::sqrt(cov(static_cast<long>(k), static_cast<long>(k))) /
               j.norm(static_cast<long>(k)) * list[k].scale;
     fit.parameters.push_back(fp);
   }
@@ -736,7 +788,8 @@ CalibrationFit calibrate_bars(const std::vector<CalibrationShot>& input,
   std::vector<std::string> timing_free;
   const std::vector<double> timing_weight =
       timing_undetermined(prepared.shots, list, r.value, timing_free);
-  fitted_parameters(list, r, timing_weight, fit);
+  fitted_parameters(list, r, timing_weight, rest_level_errors(prepared.shots, r.value, tables),
+                    fit);
   // The Jacobian's weak directions first, then what the travel times leave free besides.
   fit.undetermined.insert(fit.undetermined.end(), timing_free.begin(), timing_free.end());
   fit.calibration = calibration_of(input, fit.parameters, prepared.reference);

@@ -226,19 +226,29 @@ Overlay FitCase::simulate(const MaterialSpec& law, const Nuisance& nuisance) con
 
 namespace {
 
-// Calls f(sim, meas, i, c, peak) for every sample i of each fitted window, c = √(w / n_p), peak =
+// Calls f(p, i, c, peak) for every sample i of each fitted window p, c = √(w / n_p), peak =
 // max|m| over that window: the residuals' normalisation, once.
 template <class F>
-void each_fitted_sample(const std::vector<OverlaidPulse>& windows, const MeasuredPulses& m,
-                        const Overlay& o, double weight, F f) {
+void each_fitted_window_sample(const std::vector<OverlaidPulse>& windows, const MeasuredPulses& m,
+                               double weight, F f) {
   for (const OverlaidPulse& p : windows) {
     const auto& meas = p.transmitted ? m.transmitted : m.incident;
-    const auto& sim = p.transmitted ? o.transmitted : o.incident;
     double peak = 0;
     for (std::size_t i = p.begin; i < p.end; ++i) peak = std::max(peak, std::abs(meas[i]));
     const double c = std::sqrt(weight / static_cast<double>(p.end - p.begin));
-    for (std::size_t i = p.begin; i < p.end; ++i) f(sim, meas, i, c, peak);
+    for (std::size_t i = p.begin; i < p.end; ++i) f(p, i, c, peak);
   }
+}
+
+// The same with f(sim, meas, i, c, peak): the overlay's simulated and the measured strains.
+template <class F>
+void each_fitted_sample(const std::vector<OverlaidPulse>& windows, const MeasuredPulses& m,
+                        const Overlay& o, double weight, F f) {
+  each_fitted_window_sample(windows, m, weight,
+                            [&](const OverlaidPulse& p, std::size_t i, double c, double peak) {
+                              f(p.transmitted ? o.transmitted : o.incident,
+                                p.transmitted ? m.transmitted : m.incident, i, c, peak);
+                            });
 }
 
 }  // namespace
@@ -264,6 +274,23 @@ std::vector<double> FitCase::clock_sensitivity(const Overlay& o) const {
         d.push_back(peak > 0 ? -c * slope / peak : 0.0);
       });
   return d;
+}
+
+std::vector<LsCommonError> FitCase::rest_level_errors() const {
+  const MeasuredPulses& m = measured();
+  std::vector<LsCommonError> out;
+  for (const bool transmitted : {false, true}) {
+    LsCommonError e;
+    e.sd = transmitted ? m.transmitted_rest_sd : m.incident_rest_sd;
+    // r = c (s − (x − level))/peak: ∂r/∂level = c/peak on that record's windows, 0 elsewhere.
+    each_fitted_window_sample(
+        fitted_windows_, m, test_.weight,
+        [&](const OverlaidPulse& p, std::size_t, double c, double peak) {
+          e.sensitivity.push_back(p.transmitted == transmitted && peak > 0 ? c / peak : 0.0);
+        });
+    out.push_back(std::move(e));
+  }
+  return out;
 }
 
 std::vector<double> FitCase::residual_scales() const {

@@ -11,6 +11,7 @@
 #include "analysis/gauge_signals.hpp"
 #include "analysis/pulse_overlay.hpp"
 #include "fit/fit_spec.hpp"
+#include "fit/least_squares.hpp"
 #include "model/campaign.hpp"
 #include "model/scene.hpp"
 
@@ -88,6 +89,8 @@ class FitCase {
   // simulated pulses' slopes; and the measured clock's standard deviation from the record noise.
   std::vector<double> clock_sensitivity(const Overlay& o) const;
   double clock_sd_s() const { return measured().incident_front_sd_s; }
+  // The incident and transmitted records' rest-level errors over the fitted residuals.
+  std::vector<LsCommonError> rest_level_errors() const;
   // compare's figures per window (NRMSE, ratios) for the overlay.
   std::vector<PulseComparison> compare(const Overlay& o) const;
 

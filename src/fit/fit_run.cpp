@@ -144,7 +144,9 @@ std::vector<LsGroup> signal_groups(const FitRun& run, FitStageReport& report) {
       if (run.unknowns[i].test < 0 || run.unknowns[i].test == static_cast<int>(k))
         g.parameters.push_back(i);
     g.loss_scale = test.residual_scales();
+    for (const OverlaidPulse& w : test.fitted_windows()) g.blocks.push_back(w.end - w.begin);
     g.clock_sd_s = test.clock_sd_s();
+    g.common_errors = test.rest_level_errors();
     g.clock_sensitivity = [&run, &test, k](const std::vector<double>& theta) {
       return test.clock_sensitivity(
           test.simulate(run.law_with(run.law_values(theta)), run.nuisance_of(k, theta)));

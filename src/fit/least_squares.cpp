@@ -220,30 +220,62 @@ ceres::Solver::Options solver_options(const LsOptions& options) {
 // A group's clock error δt moves its residuals by δt ∂r/∂t, and the estimate by G δt with
 // G = (JᵀJ)⁻¹ Jᵀ ∂r/∂t (Gauss–Newton): its variance adds σ_c² G Gᵀ. A free time shift of the same
 // group absorbs it (G is then that parameter's unit vector).
+// The residuals' covariance term Jᵀ S J with S the variance of each block of one noise level (a
+// test's window: its own gauge's noise over its own peak), each block's s² = Σ r²/(N_b (1 − P/N)).
+// The residuals are weighted by window, not by their variance, so the estimator's covariance is
+// the sandwich (JᵀJ)⁻¹ Jᵀ S J (JᵀJ)⁻¹; with one variance for all it is s² (JᵀJ)⁻¹ (methods.md §9).
+Eigen::MatrixXd block_meat(const Model& model, const std::vector<LsGroup>& groups, std::size_t p) {
+  const Eigen::MatrixXd& jac = model.jacobian();
+  const std::vector<double>& res = model.residuals();
+  const double keep = std::max(1.0 / static_cast<double>(model.size()),
+                               1.0 - static_cast<double>(p) / static_cast<double>(model.size()));
+  Eigen::MatrixXd meat = Eigen::MatrixXd::Zero(static_cast<long>(p), static_cast<long>(p));
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    std::vector<std::size_t> blocks = groups[g].blocks;
+    if (blocks.empty()) blocks.push_back(groups[g].loss_scale.size());
+    std::size_t row = model.offset(g);
+    for (std::size_t n : blocks) {
+      if (n == 0) continue;
+      double ss = 0;
+      for (std::size_t i = row; i < row + n; ++i) ss += res[i] * res[i];
+      const auto rows = jac.middleRows(static_cast<long>(row), static_cast<long>(n));
+      meat += ss / (static_cast<double>(n) * keep) * rows.transpose() * rows;
+      row += n;
+    }
+  }
+  return meat;
+}
+
 void add_clock_errors(Model& model, const std::vector<LsGroup>& groups, std::vector<double>& x,
                       const RowMatrix& c, Eigen::MatrixXd& cov, LsResult& r,
                       long& clock_evaluations) {
   const std::size_t p = x.size();
-  if (model.ensure(x.data(), true)) {
-    const Eigen::MatrixXd& jac = model.jacobian();
-    for (std::size_t g = 0; g < groups.size(); ++g) {
-      if (!(groups[g].clock_sd_s > 0) || !groups[g].clock_sensitivity) continue;
-      std::vector<double> d;
-      try {
-        ++clock_evaluations;
-        d = groups[g].clock_sensitivity(model.theta(x.data()));
-      } catch (const NumericalError&) {
-      }
-      if (d.size() != groups[g].loss_scale.size()) {
-        r.warnings.push_back("the standard errors leave out a clock error: its evaluation failed");
-        continue;
-      }
-      Eigen::VectorXd jtd = Eigen::VectorXd::Zero(static_cast<long>(p));
-      for (std::size_t i = 0; i < d.size(); ++i)
-        jtd += d[i] * jac.row(static_cast<long>(model.offset(g) + i)).transpose();
-      const Eigen::VectorXd gain = c * jtd;
-      cov += groups[g].clock_sd_s * groups[g].clock_sd_s * gain * gain.transpose();
+  if (!model.ensure(x.data(), true)) return;
+  const Eigen::MatrixXd& jac = model.jacobian();
+  // An error of sd moving group g's residuals by sd·d moves the estimate by sd·(JᵀJ)⁻¹Jᵀd.
+  const auto add = [&](std::size_t g, double sd, const std::vector<double>& d) {
+    Eigen::VectorXd jtd = Eigen::VectorXd::Zero(static_cast<long>(p));
+    for (std::size_t i = 0; i < d.size(); ++i)
+      jtd += d[i] * jac.row(static_cast<long>(model.offset(g) + i)).transpose();
+    const Eigen::VectorXd gain = c * jtd;
+    cov += sd * sd * gain * gain.transpose();
+  };
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    for (const LsCommonError& e : groups[g].common_errors)
+      if (e.sd > 0 && e.sensitivity.size() == groups[g].loss_scale.size())
+        add(g, e.sd, e.sensitivity);
+    if (!(groups[g].clock_sd_s > 0) || !groups[g].clock_sensitivity) continue;
+    std::vector<double> d;
+    try {
+      ++clock_evaluations;
+      d = groups[g].clock_sensitivity(model.theta(x.data()));
+    } catch (const NumericalError&) {
     }
+    if (d.size() != groups[g].loss_scale.size()) {
+      r.warnings.push_back("the standard errors leave out a clock error: its evaluation failed");
+      continue;
+    }
+    add(g, groups[g].clock_sd_s, d);
   }
 }
 
@@ -351,9 +383,7 @@ LsResult solve_least_squares(const std::vector<LsParameter>& parameters,
   RowMatrix c(p, p);
   if (at_solution && covariance.Compute(blocks, &problem) &&
       covariance.GetCovarianceBlock(x.data(), x.data(), c.data())) {
-    const double dof =
-        std::max<double>(1.0, static_cast<double>(r.residuals) - static_cast<double>(p));
-    Eigen::MatrixXd cov = c * (2 * r.cost / dof);
+    Eigen::MatrixXd cov = c * block_meat(model, groups, p) * c;
     add_clock_errors(model, groups, x, c, cov, r, clock_evaluations);
     r.std_error.resize(p);
     r.correlation = Eigen::MatrixXd::Identity(static_cast<long>(p), static_cast<long>(p));

@@ -9,8 +9,9 @@
 //    parallel (each group depends on a subset of parameters: a test on the law's parameters and its
 //    own nuisances, so a nuisance column costs two simulations of its test only).
 //  - Each residual is its own Ceres residual block so that a robust loss acts per sample.
-//  - Standard errors and correlations from Ceres' covariance (JᵀJ)⁻¹ times the residual variance
-//    s² = Σr² / (N − P), plus each group's clock error carried through the estimator:
+//  - Standard errors and correlations from the sandwich (JᵀJ)⁻¹ Jᵀ S J (JᵀJ)⁻¹ (Ceres' (JᵀJ)⁻¹),
+//    S each block's own residual variance (a block: a window of one noise level), plus each
+//    group's clock error and common errors (rest levels) carried through the estimator:
 //    σ_c² G Gᵀ with G = (JᵀJ)⁻¹ Jᵀ ∂r/∂t_c.
 #include <Eigen/Dense>
 #include <atomic>
@@ -33,16 +34,27 @@ struct LsParameter {
   double to_theta(double x) const { return x * scale + offset; }
 };
 
+// An error common to many residuals that they do not show (a record's removed rest level): its
+// standard deviation and the residuals' derivative in it.
+struct LsCommonError {
+  double sd = 0;
+  std::vector<double> sensitivity;
+};
+
 // The residuals of one group (a test), from the full parameter vector θ (physical units).
 struct LsGroup {
   std::vector<std::size_t> parameters;  // indices into θ the group depends on
   std::function<std::vector<double>(const std::vector<double>& theta)> residuals;
   std::vector<double> loss_scale;  // per residual: the residual of a 1·δ error (robust loss)
+  // The residuals' blocks of one noise level, in order (their counts; empty: the group is one):
+  // each block's own variance enters the covariance.
+  std::vector<std::size_t> blocks;
   // A timing error of the group's clock that the residuals do not show (the measured reference
   // time's own noise): its standard deviation, and the residuals' derivative in it at θ (one more
   // evaluation, at the solution). Counted in the covariance when both are set.
   double clock_sd_s = 0;
   std::function<std::vector<double>(const std::vector<double>& theta)> clock_sensitivity;
+  std::vector<LsCommonError> common_errors;  // counted in the covariance as the clock's
 };
 
 struct LsOptions {

@@ -486,7 +486,7 @@ void write_curve_bands(const std::vector<MonteCarloJobResult>& results,
   for (std::size_t i = 0; i < rows; ++i) {
     std::vector<std::string> cells = {format_double(n.strain[i]), format_double(n.stress3[i]),
                                       format_double(n.stress1[i]), format_double(n.rate[i])};
-    for (const auto& [name, column] : bands) cells.push_back(format_double((*column)[i]));
+    for (const auto& [name, column] : bands) cells.push_back(format_field((*column)[i]));
     csv.row(cells);
   }
   csv.close();

@@ -25,9 +25,8 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-// A CSV field: shortest round-trip double, empty for a non-finite value (undefined, e.g. the
-// error of an unstable run).
-std::string field(double v) { return std::isfinite(v) ? format_double(v) : std::string(); }
+// A CSV field: empty for a non-finite value (undefined, e.g. the error of an unstable run).
+std::string field(double v) { return format_field(v); }
 
 // A CSV flag: 1 or 0.
 std::string flag(bool b) { return b ? "1" : "0"; }

@@ -4,6 +4,7 @@
 // either channel breaks this balance by that factor.
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -39,7 +40,10 @@ std::vector<std::vector<double>> read_columns(const fs::path& csv,
   while (std::getline(in, line)) {
     std::vector<double> row;
     std::stringstream ls(line);
-    for (std::string cell; std::getline(ls, cell, ',');) row.push_back(std::stod(cell));
+    // An empty field is an undefined number (a Monte Carlo band past the draws' reach).
+    for (std::string cell; std::getline(ls, cell, ',');)
+      row.push_back(cell.empty() ? std::nan("") : std::stod(cell));
+    row.resize(header.size(), std::nan(""));  // a trailing empty field ends the line early
     for (std::size_t k = 0; k < names.size(); ++k) columns[k].push_back(row.at(index[k]));
   }
   return columns;

@@ -78,4 +78,54 @@ TEST_CASE("Least squares: a bound holds; a parameter without effect stays put", 
   CHECK(r.value[1] == Approx(1.0));  // never moved
 }
 
+// Two blocks of residuals with different noise (a test's reflected and transmitted windows, each
+// over its own peak), and an offset common to the second block (a record's removed rest level):
+// over many noise draws the estimates' errors over their stated standard errors must have a root
+// mean square of 1 (the sandwich with each block's own variance and the common error counted).
+TEST_CASE("Least squares: standard errors hold with blocks of unequal noise and a common offset",
+          "[fit]") {
+  // 1000 draws: the RMS of 1000 unit normals is 1 within ±1/√2000 = 2.2 % (one s.d.); the
+  // per-block variance's own sampling (40 residuals a block) adds a few per cent: ±8 %.
+  constexpr int kDraws = 1000;
+  constexpr double kRmsTolerance = 0.08;
+  const int per_block = 40;
+  const double sd1 = 0.2, sd2 = 0.01, offset_sd = 0.004;  // offset_sd: √2.5 of sd2's mean's sd
+  std::vector<double> x(2 * per_block);
+  for (int i = 0; i < 2 * per_block; ++i) x[i] = i < per_block ? 0.02 * i : 1.0 + 0.02 * i;
+  std::mt19937 rng(11);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  const double truth[2] = {2.0, 0.5};
+  double z2[2] = {0, 0};
+  for (int d = 0; d < kDraws; ++d) {
+    std::vector<double> y(x.size());
+    const double offset = offset_sd * normal(rng);
+    for (std::size_t i = 0; i < x.size(); ++i)
+      y[i] = truth[0] + truth[1] * x[i] +
+             (i < static_cast<std::size_t>(per_block) ? sd1 * normal(rng)
+                                                      : sd2 * normal(rng) + offset);
+    std::vector<LsParameter> p = {{"a", 1.0, -10, 10, 1.0}, {"b", 1.0, -10, 10, 1.0}};
+    LsGroup g;
+    g.parameters = {0, 1};
+    g.loss_scale.assign(x.size(), 1.0);
+    g.blocks = {static_cast<std::size_t>(per_block), static_cast<std::size_t>(per_block)};
+    LsCommonError e;
+    e.sd = offset_sd;
+    for (std::size_t i = 0; i < x.size(); ++i)
+      e.sensitivity.push_back(i < static_cast<std::size_t>(per_block) ? 0.0 : -1.0);
+    g.common_errors = {e};
+    g.residuals = [&](const std::vector<double>& t) {
+      std::vector<double> r(x.size());
+      for (std::size_t i = 0; i < x.size(); ++i) r[i] = t[0] + t[1] * x[i] - y[i];
+      return r;
+    };
+    const LsResult r = solve_least_squares(p, {g}, LsOptions{});
+    REQUIRE(r.std_error.size() == 2);
+    for (int k = 0; k < 2; ++k) z2[k] += std::pow((r.value[k] - truth[k]) / r.std_error[k], 2);
+  }
+  for (int k = 0; k < 2; ++k) {
+    INFO("parameter " << k << ": RMS z " << std::sqrt(z2[k] / kDraws));
+    CHECK(std::abs(std::sqrt(z2[k] / kDraws) - 1) <= kRmsTolerance);
+  }
+}
+
 }  // namespace tests_fit_test_least_squares
