@@ -213,6 +213,40 @@ Simulated simulated_variant(const std::string& experiment,
   return v;
 }
 
+// Elastic bar metals for bars_and_specimen: their name in the scene and their material.
+struct BarMetal {
+  const char* name;
+  nlohmann::json material;
+};
+const BarMetal kAluminium{"al",
+                          {{"model", "elastic"},
+                           {"density", "2700 kg/m3"},
+                           {"youngs_modulus", "70 GPa"},
+                           {"poisson_ratio", 0.33}}};
+const BarMetal kTitanium{"ti",
+                         {{"model", "elastic"},
+                          {"density", "4430 kg/m3"},
+                          {"youngs_modulus", "113.8 GPa"},
+                          {"poisson_ratio", 0.342}}};
+
+// An edit for simulated_variant: the striker and bars (bars 0, 1, 3) of `metal`, the striker at
+// `velocity`, the specimen (bar 2) of the law specimens/`law`, `diameter` and `length`; an empty
+// text keeps the scene's.
+std::function<void(nlohmann::json&)> bars_and_specimen(const BarMetal& metal,
+                                                       const std::string& velocity,
+                                                       const std::string& law = "",
+                                                       const std::string& diameter = "",
+                                                       const std::string& length = "") {
+  return [=](nlohmann::json& j) {
+    j["materials"][metal.name] = metal.material;
+    for (const int bar : {0, 1, 3}) j["bars"][bar]["material"] = metal.name;
+    j["bars"][0]["velocity"] = velocity;
+    if (!law.empty()) j["bars"][2]["material"] = "../../specimens/" + law;
+    if (!diameter.empty()) j["bars"][2]["diameter"] = diameter;
+    if (!length.empty()) j["bars"][2]["length"] = length;
+  };
+}
+
 // A specimen wafer of Ti-6Al-4V (16 × 2 mm) on aluminium bars is matched to them within 6 % in
 // impedance ρ c0 A: it reflects a pulse of a few percent of the incident one, and the bars'
 // trailing edge of the incident pulse rings at about as much (at 11 % in a point-sampled record).
@@ -298,16 +332,8 @@ TEST_CASE("A shaped ramp on a thin wafer: a late reflected foot suspects no gaug
 // The curve covers the loading, not the first 3 µs up to that overshoot (docs/methods.md §6).
 TEST_CASE("An elastic specimen's early strain overshoot does not end the loading",
           "[analysis][processing][simulation]") {
-  const Simulated v = simulated_variant("classic-al6061", [](nlohmann::json& j) {
-    j["materials"]["ti"] = {{"model", "elastic"},
-                            {"density", "4430 kg/m3"},
-                            {"youngs_modulus", "113.8 GPa"},
-                            {"poisson_ratio", 0.342}};
-    for (const int bar : {0, 1, 3}) j["bars"][bar]["material"] = "ti";
-    j["bars"][0]["velocity"] = "8 m/s";
-    j["bars"][2]["diameter"] = "16 mm";
-    j["bars"][2]["length"] = "2 mm";
-  });
+  const Simulated v = simulated_variant("classic-al6061",
+                                        bars_and_specimen(kTitanium, "8 m/s", "", "16 mm", "2 mm"));
   const SimulationResult& sim = v.sim;
   const AlignmentSaid a = process_aligned(v.scene, sim);
   INFO(a.warnings);
@@ -353,17 +379,8 @@ TEST_CASE("A test in equilibrium until its unloading edge reports its time to eq
 // 0.004 (1 MS/s) and the stress at a strain of 0.02 read 21 % (1 MS/s) and 59 % (500 kS/s) high.
 TEST_CASE("A coarse record integrates the specimen's strain from rest",
           "[analysis][processing][simulation]") {
-  const Simulated v = simulated_variant("classic-al6061", [](nlohmann::json& j) {
-    j["materials"]["al"] = {{"model", "elastic"},
-                            {"density", "2700 kg/m3"},
-                            {"youngs_modulus", "70 GPa"},
-                            {"poisson_ratio", 0.33}};
-    for (const int bar : {0, 1, 3}) j["bars"][bar]["material"] = "al";
-    j["bars"][0]["velocity"] = "25 m/s";
-    j["bars"][2]["material"] = "../../specimens/pmma.json";
-    j["bars"][2]["diameter"] = "16 mm";
-    j["bars"][2]["length"] = "2 mm";
-  });
+  const Simulated v = simulated_variant(
+      "classic-al6061", bars_and_specimen(kAluminium, "25 m/s", "pmma.json", "16 mm", "2 mm"));
   const auto& ts = v.sim.specimen.time_s;
   const auto& strain = v.sim.specimen.column("strain");
   const auto& stress = v.sim.specimen.column("stress_Pa");
@@ -409,17 +426,8 @@ TEST_CASE("A coarse record integrates the specimen's strain from rest",
 // strain read 5 % low against the simulation's own (0.060 for 0.063), silently.
 TEST_CASE("A coarse record whose front rises between two samples integrates the strain from rest",
           "[analysis][processing][simulation]") {
-  const Simulated v = simulated_variant("tension-bonded", [](nlohmann::json& j) {
-    j["materials"]["al"] = {{"model", "elastic"},
-                            {"density", "2700 kg/m3"},
-                            {"youngs_modulus", "70 GPa"},
-                            {"poisson_ratio", 0.33}};
-    for (const int bar : {0, 1, 3}) j["bars"][bar]["material"] = "al";
-    j["bars"][0]["velocity"] = "-20 m/s";
-    j["bars"][2]["material"] = "../../specimens/ti6al4v.json";
-    j["bars"][2]["diameter"] = "6 mm";
-    j["bars"][2]["length"] = "6 mm";
-  });
+  const Simulated v = simulated_variant(
+      "tension-bonded", bars_and_specimen(kAluminium, "-20 m/s", "ti6al4v.json", "6 mm", "6 mm"));
   const auto& ts = v.sim.specimen.time_s;
   const auto& strain = v.sim.specimen.column("strain");  // compression positive: here negative
   constexpr double interval_s = 2e-6;                    // 500 kS/s
@@ -448,17 +456,9 @@ TEST_CASE("A coarse record whose front rises between two samples integrates the 
 // record (10 MS/s) resolves the front: no such warning.
 TEST_CASE("A front that rises within one sample interval is said",
           "[analysis][processing][simulation]") {
-  const Simulated v = simulated_variant("classic-al6061", [](nlohmann::json& j) {
-    j["materials"]["al"] = {{"model", "elastic"},
-                            {"density", "2700 kg/m3"},
-                            {"youngs_modulus", "70 GPa"},
-                            {"poisson_ratio", 0.33}};
-    for (const int bar : {0, 1, 3}) j["bars"][bar]["material"] = "al";
-    j["bars"][0]["velocity"] = "25 m/s";
-    j["bars"][2]["material"] = "../../specimens/ofhc-copper.json";
-    j["bars"][2]["diameter"] = "16 mm";
-    j["bars"][2]["length"] = "2 mm";
-  });
+  const Simulated v = simulated_variant(
+      "classic-al6061",
+      bars_and_specimen(kAluminium, "25 m/s", "ofhc-copper.json", "16 mm", "2 mm"));
   const auto& ts = v.sim.specimen.time_s;
   const auto& strain = v.sim.specimen.column("strain");
   // The few percent a curve is read to (the warning's bound).
@@ -534,15 +534,7 @@ TEST_CASE("A record's noise the area ratio makes large in the stress is said",
 // at an NRMSE of a third, by the clock alone. A warning must say so; the simulated record (10
 // MS/s) resolves the front: none, and every pulse compares within a few percent.
 TEST_CASE("compare says a clock an unresolved front cannot place", "[analysis][compare]") {
-  const auto edit = [](nlohmann::json& j) {
-    j["materials"]["ti"] = {{"model", "elastic"},
-                            {"density", "4430 kg/m3"},
-                            {"youngs_modulus", "113.8 GPa"},
-                            {"poisson_ratio", 0.342}};
-    for (const int bar : {0, 1, 3}) j["bars"][bar]["material"] = "ti";
-    j["bars"][0]["velocity"] = "25 m/s";
-    j["bars"][2]["material"] = "../../specimens/ti6al4v.json";
-  };
+  const auto edit = bars_and_specimen(kTitanium, "25 m/s", "ti6al4v.json");
   const Simulated v = simulated_variant("classic-al6061", edit);
   const shpb_test::ScratchDir dir("compare_clock");
   // The few percent a comparison is read to (the warning's bound).
