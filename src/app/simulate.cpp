@@ -21,7 +21,12 @@ int run_simulate(const SimulateArgs& args) {
   OutputFolder out(args.output, "simulate", scene_inputs(scene, false));  // measured files unread
   SimulationOptions options;
   options.full_model = args.full_model;
-  if (!args.overrides.quiet) options.progress = ProgressPrinter("simulating");
+  if (!args.overrides.quiet) {
+    options.progress = ProgressPrinter("simulating");
+    options.repeating = [](const std::string& why) {
+      std::fprintf(stderr, "simulating: %s\n", why.c_str());
+    };
+  }
   options.cancel = [] { return interrupted(); };
   SimulationResult result;
   try {

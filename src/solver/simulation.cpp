@@ -350,6 +350,7 @@ class KeptRun {
                                  ? "its energy balance was off by " + percent(was_error) + " %"
                                  : "it failed (" + result_.failure + ")";
     const double wall_s = result_.wall_time_s;
+    if (options_.repeating) options_.repeating("repeating the run " + done + ": " + lost);
     result_ = SimulationResult{};  // its records go before the next run's are made
     SimulationResult tried = run(next);
     const bool better =

@@ -27,6 +27,8 @@ struct SimulationOptions {
   // An asynchronous run that loses its energy is run again with end segments at a law specimen's
   // faces, else at global steps (simulate()); off where the methods themselves are measured.
   bool stabilize = true;
+  // Told what a repeat does and why before it runs (its progress starts again from 0).
+  std::function<void(const std::string&)> repeating;
 };
 
 // Stress along the chain on a coarse x–t grid (the wave diagram): stress_Pa[t * x_m.size() + x].

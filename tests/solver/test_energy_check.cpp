@@ -9,6 +9,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "model/scene.hpp"
 #include "model/scene_validation.hpp"
@@ -229,8 +230,12 @@ TEST_CASE("a striker of a few elements on a fine bar keeps its energy and moment
     scene.bars[0].elements = elements;
     SimulationOptions options;
     options.record_field = false;
+    std::vector<std::string> told;  // what the progress display is told before a repeat
+    options.repeating = [&told](const std::string& why) { told.push_back(why); };
     const SimulationResult r = check_keeps_energy(scene, kHalfPercent, options);
     INFO(elements << " striker elements");
+    REQUIRE(told.size() == 1);
+    CHECK(told.front().find("repeating the run at global steps") != std::string::npos);
     REQUIRE(!r.warnings.empty());
     CHECK(r.warnings.front().find("global steps") != std::string::npos);
     // Σ m v over the initial m_s V: the striker and bar share ρA, so the masses are their lengths.
