@@ -338,7 +338,6 @@ class KeptRun {
       : attempt_(std::move(first)), options_(options), result_(run(attempt_)) {}
 
   const SimulationResult& result() const { return result_; }
-  const Attempt& attempt() const { return attempt_; }
 
   // Runs `next` and keeps it if it finished with a smaller energy error (or `or_if_failed` and it
   // failed too), its warnings then leading with what was done and why; the wall time counts every
