@@ -52,13 +52,18 @@ BOUND = 0.005  # the experiments' own bound on the energy balance
 DISCS = [("3 mm", "16 mm"), ("1 mm", "10 mm"), ("0.5 mm", "6 mm")]
 
 
+def elastic_materials(names=BARS):
+    """The scene materials of the bar metals `names` (keys of BARS)."""
+    return {name: {"model": "elastic", "density": BARS[name][0], "youngs_modulus": BARS[name][1],
+                   "poisson_ratio": BARS[name][2]} for name in names}
+
+
 def bars_scenes():
     base = json.loads((ROOT / "experiments/classic-al6061/scene.json").read_text())
     for layout, specimen, shape, velocity in itertools.product(LAYOUTS, SPECIMENS, SHAPES,
                                                                VELOCITIES):
         scene = json.loads(json.dumps(base))
-        scene["materials"] = {name: {"model": "elastic", "density": rho, "youngs_modulus": e,
-                                     "poisson_ratio": nu} for name, (rho, e, nu) in BARS.items()}
+        scene["materials"] = elastic_materials()
         for bar, material in zip([0, 1, 3], layout):
             scene["bars"][bar]["material"] = material
         scene["bars"][0]["velocity"] = f"{velocity} m/s"
@@ -90,9 +95,7 @@ def tension_scenes():
     base = json.loads((ROOT / "experiments/tension-bonded/scene.json").read_text())
     base.pop("measurement", None)
     base["simulation"].pop("courant", None)
-    base["materials"].update({name: {"model": "elastic", "density": rho, "youngs_modulus": e,
-                                     "poisson_ratio": nu}
-                              for name, (rho, e, nu) in BARS.items() if name != "mg"})
+    base["materials"].update(elastic_materials([name for name in BARS if name != "mg"]))
     specimens = dict(SPECIMENS, metal=None)
     for bars, specimen, shape, velocity in itertools.product(["steel", "al", "ti"], specimens,
                                                              [SHAPES[0], ("4 mm", "8 mm"),
@@ -106,11 +109,6 @@ def tension_scenes():
         scene["bars"][2].update(diameter=shape[0], length=shape[1])
         yield (f"tension-{bars}_{specimen}_{shape[0].split()[0]}x{shape[1].split()[0]}_"
                f"{velocity}", scene)
-
-
-def elastic_materials():
-    return {name: {"model": "elastic", "density": rho, "youngs_modulus": e, "poisson_ratio": nu}
-            for name, (rho, e, nu) in BARS.items()}
 
 
 def coarse_scenes():

@@ -325,9 +325,12 @@ Equilibrium judge_equilibrium(const Curve& c, const std::vector<double>& t, std:
     }
   if (first > last) return e;
   e.loaded_s = {t[first], t[last]};
+  auto in_equilibrium = [&](std::size_t i) {
+    return c.equilibrium_ratio[i] <= kEquilibriumThreshold;
+  };
   std::size_t held = 0, run_start = first, best_start = first, best_length = 0;
   for (std::size_t i = first; i <= last; ++i) {
-    const bool ok = c.equilibrium_ratio[i] <= kEquilibriumThreshold;
+    const bool ok = in_equilibrium(i);
     held += ok;
     if (!ok) {
       run_start = i + 1;
@@ -339,9 +342,6 @@ Equilibrium judge_equilibrium(const Curve& c, const std::vector<double>& t, std:
   if (best_length > 0) e.longest_s = {t[best_start], t[best_start + best_length - 1]};
   // The run of R ≤ 5 % through `until`, if it lasts a ring-down at least (forces that agree over
   // a few transits, not at one sample the ringing passes through).
-  auto in_equilibrium = [&](std::size_t i) {
-    return c.equilibrium_ratio[i] <= kEquilibriumThreshold;
-  };
   const std::size_t until = std::min(last, std::max(first, unloading));
   std::size_t from = until + 1, to = until;
   for (std::size_t i = until + 1; i-- > first && in_equilibrium(i);) from = i;

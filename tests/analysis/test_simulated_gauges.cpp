@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "../scratch.hpp"
+#include "../solver/test_scenes.hpp"
 #include "analysis/compare_run.hpp"
 #include "analysis/processing.hpp"
 #include "analysis/test_processing.hpp"
@@ -135,10 +136,7 @@ TEST_CASE("Processing the simulator's gauges recovers the specimen truth after e
   SECTION("a magnesium transmitter on the steel bars: the 1-wave strain too") {
     // The reflected-pulse strain with the incident pulse eliminated by equilibrium
     // (analysis/reduction.cpp); its identical-bar form 2 c0 ε_R / L_s read 0.46 for 0.22.
-    MaterialSpec magnesium;
-    magnesium.name = "magnesium";
-    magnesium.density_kg_m3 = 1800;
-    magnesium.youngs_modulus_Pa = 45e9;
+    MaterialSpec magnesium = shpb::test::elastic(45e9, 1800, "magnesium");
     magnesium.poisson_ratio = 0.35;
     scene.bars.back().material = magnesium;
     const Agreement a = process_simulation(scene);
@@ -147,10 +145,7 @@ TEST_CASE("Processing the simulator's gauges recovers the specimen truth after e
     CHECK(a.strain_1wave_max < kAgreement);
   }
   SECTION("elastic aluminium specimen in the same bars") {
-    MaterialSpec aluminium;
-    aluminium.name = "elastic aluminium";
-    aluminium.density_kg_m3 = 2700;
-    aluminium.youngs_modulus_Pa = 70e9;
+    MaterialSpec aluminium = shpb::test::elastic(70e9, 2700, "elastic aluminium");
     aluminium.poisson_ratio = 0.33;
     scene.bars[*scene.specimen].material = aluminium;
     const Agreement a = process_simulation(scene);
