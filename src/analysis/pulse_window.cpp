@@ -16,6 +16,15 @@ constexpr double kBandOfPeak = 0.03;           // … and at least this fraction
 constexpr double kDetectFractionOfPeak = 0.5;  // a pulse is found at half its height
 constexpr double kMadToSigma = 1.4826;         // σ of Gaussian noise from its MAD
 constexpr std::size_t kMinRestSamples = 10;    // as estimate_baseline's smallest quiet segment
+// A grid of more levels than a 24-bit digitizer's is not told apart from floating point: its
+// q/√12 would be below 2·10⁻⁸ of the record's range, far under any gauge's noise.
+constexpr double kMaxGridLevels = 16777216.0;
+// A value on the grid is an integer number of steps from the lowest one to within this fraction
+// of a step: a channel's scale (a bridge factor, mV to strain) leaves rounding errors of ~10⁻¹⁶
+// of the range, i.e. < 10⁻⁸ of a step even on a 24-bit grid.
+constexpr double kGridTolerance = 1e-6;
+// σ of a uniform rounding error over one step (Widrow & Kollár 2008, Quantization Noise, §4.1).
+const double kQuantizationSigma = 1 / std::sqrt(12.0);
 
 }  // namespace
 
@@ -29,6 +38,54 @@ double rest_level_sd(double noise, std::size_t samples) {
   return samples > 0 ? std::sqrt(std::numbers::pi / 2 / static_cast<double>(samples)) * noise : 0.0;
 }
 
+double quantization_step(std::span<const double> x) {
+  std::vector<double> levels(x.begin(), x.end());
+  std::sort(levels.begin(), levels.end());
+  levels.erase(std::unique(levels.begin(), levels.end()), levels.end());
+  if (levels.size() < 2 || !std::isfinite(levels.front()) || !std::isfinite(levels.back()))
+    return 0;
+  const double range = levels.back() - levels.front();
+  double q = range;
+  for (std::size_t i = 1; i < levels.size(); ++i) q = std::min(q, levels[i] - levels[i - 1]);
+  // The step from the whole range: the smallest difference carries the rounding of two values.
+  const double span = std::round(range / q);
+  if (!(span <= kMaxGridLevels)) return 0;
+  q = range / span;
+  for (double v : levels) {
+    const double steps = (v - levels.front()) / q;
+    if (std::abs(steps - std::round(steps)) > kGridTolerance) return 0;
+  }
+  return q;
+}
+
+namespace {
+
+// The noise of a quiet segment most of whose samples read one level (its MAD is 0; `deviations`
+// are |x − that level|): a digitizer of step q rounds Gaussian noise of σ_n < q to that level
+// unless it exceeds q/2, so the share p of samples off it gives σ_n = q / (2√2 erfc⁻¹(p)) (a count,
+// as robust as the MAD it stands in for); each sample also carries the rounding error, q/√12
+// (Widrow & Kollár 2008, §4.1): σ² = σ_n² + q²/12. A record on no grid has no step: 0.
+double one_level_noise(std::span<const double> x, const std::vector<double>& deviations) {
+  const double q = quantization_step(x);
+  if (!(q > 0)) return 0;
+  const double off = static_cast<double>(std::count_if(deviations.begin(), deviations.end(),
+                                                       [](double d) { return d > 0; })) /
+                     static_cast<double>(deviations.size());
+  double sigma_n = 0;
+  if (off > 0) {
+    // erfc⁻¹(p) by bisection: erfc falls monotonically from 1 at 0 (p ≤ ½ here).
+    double lo = 0, hi = 6;
+    for (int i = 0; i < 60; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (std::erfc(mid) > off ? lo : hi) = mid;
+    }
+    sigma_n = q / (2 * std::numbers::sqrt2 * 0.5 * (lo + hi));
+  }
+  return std::sqrt(sigma_n * sigma_n + kQuantizationSigma * kQuantizationSigma * q * q);
+}
+
+}  // namespace
+
 Baseline estimate_baseline(std::span<const double> x, double fraction) {
   const std::size_t n = baseline_samples(x.size(), fraction);
   std::vector<double> seg(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(n));
@@ -36,6 +93,7 @@ Baseline estimate_baseline(std::span<const double> x, double fraction) {
   b.level = median(seg);
   for (double& v : seg) v = std::abs(v - b.level);
   b.noise = kMadToSigma * median(seg);
+  if (b.noise == 0) b.noise = one_level_noise(x, seg);
   return b;
 }
 

@@ -9,12 +9,20 @@ namespace shpb {
 
 struct Baseline {
   double level = 0;  // median of the quiet segment
-  double noise = 0;  // 1.4826 × median absolute deviation (σ of Gaussian noise)
+  // 1.4826 × median absolute deviation (σ of Gaussian noise); for a digitized record whose quiet
+  // segment reads mostly one level (MAD 0), from the share of samples off it and the rounding
+  // error q/√12 of its step (quantization_step).
+  double noise = 0;
 };
 
 // Baseline from the first `fraction` of the record (at least 10 samples: baseline_samples).
 Baseline estimate_baseline(std::span<const double> x, double fraction = 0.05);
 std::size_t baseline_samples(std::size_t record, double fraction = 0.05);
+
+// The step q of the grid every sample of x lies on (a digitizer's least significant bit, or an
+// export's fixed decimals, times the channel's scale), or 0 when the values lie on no grid of at
+// most 2^24 levels (a record recorded or computed in floating point).
+double quantization_step(std::span<const double> x);
 
 // Standard deviation of a rest level taken as the median of `samples` samples of white noise of
 // standard deviation `noise`: √(π/2) noise/√samples (the median's asymptotic variance). Its error

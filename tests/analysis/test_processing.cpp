@@ -1,6 +1,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
+#include <random>
 #include <vector>
 
 #include "analysis/processing.hpp"
@@ -74,6 +75,43 @@ TEST_CASE("Pulses are found with their onset and end in a noisy record", "[analy
   CHECK(std::abs(static_cast<double>(p->onset) * kDt - 100.8e-6) < kOnsetTolerance);
   CHECK(std::abs(static_cast<double>(p->end) * kDt - (100e-6 + 220e-6 - 0.8e-6)) < kOnsetTolerance);
   CHECK(plateau_level(x, p->onset, p->end, -1) == Approx(kStrain0 - 5e-6).epsilon(2e-3));
+}
+
+// A digitized record lies on a grid of one step (its least significant bit times the channel's
+// scale); a record computed or recorded in floating point lies on none, and neither does a grid
+// finer than a 24-bit digitizer's. A quiet start of one level then takes the rounding's σ = q/√12
+// as its noise (a uniform error over one step) instead of its median absolute deviation, 0.
+TEST_CASE("A digitizer's step is found and is the noise floor of a quiet start of one level",
+          "[analysis][pulse]") {
+  const double volts_to_strain = 1 / (0.25 * 2.06 * 8 * 200);  // a half bridge's scale
+  constexpr double kLsb = 2.0 / 4096;                          // a 12-bit ±1 V digitizer
+  std::vector<double> x(6000);
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double volts = -0.6 * trapezoid(static_cast<double>(i) * kDt, 100e-6, 10e-6, 200e-6);
+    x[i] = kLsb * std::round(volts / kLsb) * volts_to_strain;
+  }
+  const double step = kLsb * volts_to_strain;
+  CHECK(quantization_step(x) == Approx(step).epsilon(1e-9));
+  const Baseline b = estimate_baseline(x);
+  CHECK(b.noise == Approx(step / std::sqrt(12.0)).epsilon(1e-9));
+  // The same signal unrounded: no grid, and a quiet start at exactly 0 has no noise.
+  for (std::size_t i = 0; i < x.size(); ++i)
+    x[i] = -0.6 * trapezoid(static_cast<double>(i) * kDt, 100e-6, 10e-6, 200e-6) * volts_to_strain;
+  CHECK(quantization_step(x) == 0);
+  CHECK(estimate_baseline(x).noise == 0);
+  // Gaussian noise of half a step, rounded: 68 % of the quiet start reads one level (MAD 0), the
+  // rest its neighbours; σ = √(σ_n² + q²/12) = 0.577 q. The share off the level is counted over
+  // 1000 quiet samples (binomial standard error 2.3 % of it, 4 % of σ_n): within 4 standard errors.
+  constexpr double kCountedSigma = 0.1;
+  std::vector<double> dithered(20000);
+  std::mt19937 random(3);
+  std::normal_distribution<double> half_step(0.0, 0.5 * step);
+  for (double& v : dithered) v = step * std::round(half_step(random) / step);
+  CHECK(estimate_baseline(dithered).noise ==
+        Approx(std::sqrt(0.25 + 1.0 / 12) * step).epsilon(kCountedSigma));
+  // A grid of 2^25 levels: not told apart from floating point.
+  std::vector<double> fine = {0.0, 1.0, 33554432.0};
+  CHECK(quantization_step(fine) == 0);
 }
 
 TEST_CASE("Processing ideal 1D gauge signals recovers the face pulses, the curve and the striker",
