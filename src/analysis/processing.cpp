@@ -436,6 +436,19 @@ namespace {
 
 // The clipping warning of the record of gauge `name` (processing.hpp), if it looks clipped.
 std::optional<std::string> clipping_warning(const std::string& name, const std::vector<double>& x) {
+  const auto c = clipped_level(x);
+  if (!c) return std::nullopt;
+  return "gauge \"" + name + "\": " + std::to_string(c->run) +
+         " consecutive samples at the record's extreme " + format_double(c->level) + " (" +
+         std::to_string(c->at_level) + " samples at that level, " + std::to_string(c->at_next) +
+         " at the next one)" +
+         ": the signal looks clipped (amplifier or digitizer range); pulses and the striker "
+         "velocity inferred from it are too small";
+}
+
+}  // namespace
+
+std::optional<ClippedLevel> clipped_level(const std::vector<double>& x) {
   if (x.empty()) return std::nullopt;
   const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
   for (const double extreme : {*hi, *lo}) {
@@ -452,17 +465,10 @@ std::optional<std::string> clipping_warning(const std::string& name, const std::
     const bool piles_up =
         static_cast<double>(at_extreme) >= kClippedPileUp * static_cast<double>(at_next);
     if (longest >= kClippedRun && piles_up)
-      return "gauge \"" + name + "\": " + std::to_string(longest) +
-             " consecutive samples at the record's extreme " + format_double(extreme) + " (" +
-             std::to_string(at_extreme) + " samples at that level, " + std::to_string(at_next) +
-             " at the next one)" +
-             ": the signal looks clipped (amplifier or digitizer range); pulses and the striker "
-             "velocity inferred from it are too small";
+      return ClippedLevel{extreme, longest, at_extreme, at_next};
   }
   return std::nullopt;
 }
-
-}  // namespace
 
 std::vector<std::string> signal_warnings(const GaugeSignals& signals) {
   std::vector<std::string> warnings;

@@ -183,5 +183,12 @@ inline constexpr double kClippedPileUp = 2.0;
 inline constexpr std::size_t kMinRecordSamples = 16;
 inline constexpr double kCopiedChannelCorrelation = 1e-9;
 std::vector<std::string> signal_warnings(const GaugeSignals& signals);
+// The extreme level at which a record looks clipped by the rule above (its longest run there and
+// the counts at that level and the next one inward), or nullopt.
+struct ClippedLevel {
+  double level = 0;
+  std::size_t run = 0, at_level = 0, at_next = 0;
+};
+std::optional<ClippedLevel> clipped_level(const std::vector<double>& x);
 
 }  // namespace shpb

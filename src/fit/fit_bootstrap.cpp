@@ -38,7 +38,10 @@ std::vector<double> gauge_residuals(const FitCase& c, const Overlay& o, bool tra
     if (p.transmitted != transmitted) continue;
     const auto& meas = transmitted ? m.transmitted : m.incident;
     const auto& sim = transmitted ? o.transmitted : o.incident;
-    for (std::size_t i = p.begin; i < p.end; ++i) r.push_back(meas[i] - sim[i]);
+    // A clipped sample's difference is the cut-off pulse, not noise.
+    const auto& clipped = transmitted ? m.transmitted_clipped : m.incident_clipped;
+    for (std::size_t i = p.begin; i < p.end; ++i)
+      if (!clipped || !clipped->at[i]) r.push_back(meas[i] - sim[i]);
   }
   double mean = 0;
   for (double v : r) mean += v / static_cast<double>(r.size());
@@ -63,6 +66,12 @@ GaugeSignals synthetic_record(const FitCase& c, const Overlay& fitted,
                            g.gauges[k]);
     const std::vector<double> noise = draw_noise(noise_model, sim.size(), rng);
     for (std::size_t i = 0; i < sim.size(); ++i) g.strain[k][i] = sim[i] + noise[i];
+    // The record's channel clipped as the measured one was, at the same level.
+    const auto& clipped =
+        incident ? c.measured().incident_clipped : c.measured().transmitted_clipped;
+    if (clipped)
+      for (double& x : g.strain[k])
+        if (clipped->reaches(x)) x = clipped->level;
   }
   return g;
 }

@@ -31,6 +31,24 @@ constexpr double kMinRateFraction = 0.5;
 // before it, within the standard errors (docs/methods.md §9).
 constexpr double kTailCut = 0.05;
 
+// Whether the curve's sample at face time t is computed from a sample at a clipped channel's clip
+// level: the incident, reflected or transmitted pulse's sample there (t less each pulse's shift to
+// the faces), or its neighbour that the sub-sample shift interpolates with. Such a stress is the
+// cut-off pulse's, not the specimen's.
+bool reads_clipped(const MeasuredPulses& m, const ProcessingResult& pr, double t) {
+  const auto& time = m.time_s;
+  auto at = [&](const std::optional<MeasuredPulses::Clipped>& clipped, double shift) {
+    if (!clipped) return false;
+    const double x = (t - shift - time.front()) / m.dt_s;
+    if (!(x >= 0) || x > static_cast<double>(time.size() - 1)) return false;
+    const auto lo = static_cast<std::size_t>(std::floor(x));
+    return clipped->at[lo] || clipped->at[std::min(lo + 1, time.size() - 1)];
+  };
+  return at(m.incident_clipped, pr.shift_incident_s) ||
+         at(m.incident_clipped, pr.shift_reflected_s) ||
+         at(m.transmitted_clipped, pr.shift_transmitted_s);
+}
+
 }  // namespace
 
 FitCase::FitCase(const CampaignTest& test, const Campaign& campaign, const FitSpec& spec,
@@ -63,6 +81,15 @@ FitCase::FitCase(const CampaignTest& test, const Campaign& campaign, const FitSp
   const GaugeSignals& signals = signals_;
   for (const auto& w : signals.warnings) warnings_.push_back(test.name + ": " + w);
   MeasuredPulses found = find_measured_pulses(scene_, signals);
+  for (const auto& [clipped, gauge] :
+       {std::pair{&found.incident_clipped, found.setup.incident_gauge},
+        std::pair{&found.transmitted_clipped, found.setup.transmitted_gauge}})
+    if (*clipped)
+      warnings_.push_back(
+          test.name + ": gauge \"" + gauge + "\": its " +
+          std::to_string(std::count((*clipped)->at.begin(), (*clipped)->at.end(), char{1})) +
+          " samples at the clip level are fitted as bounds (the strain reached at least that "
+          "level), and the processed curve is not fitted where it is computed from them");
 
   // Nuisance starts: the striker as compare takes it, the scene's rise time, no shift.
   if (scene_.measurement->striker_velocity_m_s) {
@@ -125,7 +152,8 @@ FitCase::FitCase(const CampaignTest& test, const Campaign& campaign, const FitSp
     // §9).
     const bool equilibrium = c.equilibrium_ratio[i] <= kEquilibriumThreshold;
     if (equilibrium && i <= last_loading && ep >= kMinPlasticStrain &&
-        c.strain_rate_1_s[i] >= kMinRateFraction * pr.plateau_strain_rate_1_s)
+        c.strain_rate_1_s[i] >= kMinRateFraction * pr.plateau_strain_rate_1_s &&
+        !reads_clipped(found, pr, pr.time_s[i]))
       curve_.push_back({pr.time_s[i], c.true_strain[i], ep, rate, temperature, stress, i});
   }
   history_ = {pr.time_s, c.true_strain, options.tension};
@@ -255,11 +283,18 @@ void each_fitted_sample(const std::vector<OverlaidPulse>& windows, const Measure
 
 std::vector<double> FitCase::residuals(const Overlay& o) const {
   std::vector<double> r;
-  each_fitted_sample(fitted_windows_, measured(), o, test_.weight,
-                     [&](const auto& sim, const auto& meas, std::size_t i, double c, double peak) {
-                       r.push_back(peak > 0 ? c * (sim[i] - meas[i]) / peak : 0.0);
-                     });
+  each_fitted_sample(
+      fitted_windows_, measured(), o, test_.weight,
+      [&](const auto& sim, const auto& meas, std::size_t i, double c, double peak) {
+        r.push_back(peak > 0 && !bounded(meas, i, sim[i]) ? c * (sim[i] - meas[i]) / peak : 0.0);
+      });
   return r;
+}
+
+bool FitCase::bounded(const std::vector<double>& meas, std::size_t i, double simulated) const {
+  const MeasuredPulses& m = measured();
+  const auto& clipped = &meas == &m.transmitted ? m.transmitted_clipped : m.incident_clipped;
+  return clipped && clipped->bounds(i, simulated);
 }
 
 std::vector<double> FitCase::clock_sensitivity(const Overlay& o) const {
@@ -267,11 +302,11 @@ std::vector<double> FitCase::clock_sensitivity(const Overlay& o) const {
   std::vector<double> d;
   each_fitted_sample(
       fitted_windows_, measured(), o, test_.weight,
-      [&](const auto& sim, const auto&, std::size_t i, double c, double peak) {
+      [&](const auto& sim, const auto& meas, std::size_t i, double c, double peak) {
         // r = c (s(t − offset) − m)/peak: ∂r/∂offset = −c ṡ/peak (central difference on the grid).
         const std::size_t lo = i > 0 ? i - 1 : i, hi = std::min(i + 1, sim.size() - 1);
         const double slope = (sim[hi] - sim[lo]) / (static_cast<double>(hi - lo) * dt);
-        d.push_back(peak > 0 ? -c * slope / peak : 0.0);
+        d.push_back(peak > 0 && !bounded(meas, i, sim[i]) ? -c * slope / peak : 0.0);
       });
   return d;
 }
