@@ -436,11 +436,12 @@ namespace {
 
 // The clipping warning of the record of gauge `name` (processing.hpp), if it looks clipped.
 std::optional<std::string> clipping_warning(const std::string& name, const std::vector<double>& x) {
-  const auto c = clipped_level(x);
-  if (!c) return std::nullopt;
-  return "gauge \"" + name + "\": " + std::to_string(c->run) +
-         " consecutive samples at the record's extreme " + format_double(c->level) + " (" +
-         std::to_string(c->at_level) + " samples at that level, " + std::to_string(c->at_next) +
+  const std::vector<ClippedLevel> levels = clipped_levels(x);
+  if (levels.empty()) return std::nullopt;
+  const ClippedLevel& c = levels.front();
+  return "gauge \"" + name + "\": " + std::to_string(c.run) +
+         " consecutive samples at the record's extreme " + format_double(c.level) + " (" +
+         std::to_string(c.at_level) + " samples at that level, " + std::to_string(c.at_next) +
          " at the next one)" +
          ": the signal looks clipped (amplifier or digitizer range); pulses and the striker "
          "velocity inferred from it are too small";
@@ -448,11 +449,12 @@ std::optional<std::string> clipping_warning(const std::string& name, const std::
 
 }  // namespace
 
-std::optional<ClippedLevel> clipped_level(const std::vector<double>& x) {
-  if (x.empty()) return std::nullopt;
+std::vector<ClippedLevel> clipped_levels(const std::vector<double>& x) {
+  std::vector<ClippedLevel> out;
+  if (x.empty()) return out;
   const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
   for (const double extreme : {*hi, *lo}) {
-    if (extreme == 0) continue;
+    if (extreme == 0 || (!out.empty() && extreme == out.front().level)) continue;
     // The level histogram at the extreme: its count, and that of the next level inward.
     std::size_t run = 0, longest = 0, at_extreme = 0, at_next = 0;
     double next = extreme == *hi ? *lo : *hi;
@@ -465,9 +467,54 @@ std::optional<ClippedLevel> clipped_level(const std::vector<double>& x) {
     const bool piles_up =
         static_cast<double>(at_extreme) >= kClippedPileUp * static_cast<double>(at_next);
     if (longest >= kClippedRun && piles_up)
-      return ClippedLevel{extreme, longest, at_extreme, at_next};
+      out.push_back(ClippedLevel{extreme, longest, at_extreme, at_next});
   }
-  return std::nullopt;
+  return out;
+}
+
+std::optional<ClippedSamples> clipped_samples(const std::vector<double>& raw,
+                                              const std::vector<double>& from_rest) {
+  const std::vector<ClippedLevel> levels = clipped_levels(raw);
+  if (levels.empty()) return std::nullopt;
+  // Whether from_rest runs with raw or against it (a turned channel): from the record's extremes.
+  const auto [lo, hi] = std::minmax_element(raw.begin(), raw.end());
+  const bool turned = from_rest[static_cast<std::size_t>(hi - raw.begin())] <
+                      from_rest[static_cast<std::size_t>(lo - raw.begin())];
+  ClippedSamples out;
+  out.at.assign(raw.size(), 0);
+  for (const ClippedLevel& c : levels) {
+    // The raw record's upper level bounds from below; turned over, from above.
+    const signed char side = (c.level == *hi) != turned ? 1 : -1;
+    for (std::size_t i = 0; i < raw.size(); ++i)
+      if (raw[i] == c.level) {
+        out.at[i] = side;
+        (side > 0 ? out.upper : out.lower) = from_rest[i];
+      }
+  }
+  return out;
+}
+
+ClippedSamples::Residual ClippedSamples::residual(std::size_t i, double model,
+                                                  double measured) const {
+  if (at[i] == 0) return {model - measured, 1};
+  const double level = at[i] > 0 ? *upper : *lower;
+  const double beyond = at[i] * (model - level);  // > 0: the model reaches the level
+  if (!(noise > 0)) return beyond >= 0 ? Residual{0, 0} : Residual{model - level, 1};
+  const double z = beyond / noise;
+  // −2 ln Φ(z), from the tail that keeps its digits: Φ(z) = 1 − ½ erfc(z/√2) above 0, and below
+  // −30 (erfc underflows) the Mills-ratio limit z² + 2 ln(−z √(2π)).
+  const double tail = 0.5 * std::erfc(std::abs(z) / std::numbers::sqrt2);
+  const double loss = z >= 0    ? -2 * std::log1p(-tail)
+                      : z > -30 ? -2 * std::log(tail)
+                                : z * z + 2 * std::log(-z * std::sqrt(2 * std::numbers::pi));
+  const double root = std::sqrt(loss);
+  if (!(root > 0)) return {0, 0};
+  // dr/dmodel = φ(z)/(Φ(z) √loss) for r = −σ √loss, signed by the side (the level bounds from
+  // below at +1: a larger model helps).
+  const double density = std::exp(-0.5 * z * z) / std::sqrt(2 * std::numbers::pi);
+  const double cdf = z >= 0 ? 1 - tail : tail;
+  const double ratio = cdf > 0 ? density / cdf : -z;  // Mills ratio where Φ underflows
+  return {-at[i] * noise * root, ratio / root};
 }
 
 std::vector<std::string> signal_warnings(const GaugeSignals& signals) {

@@ -183,12 +183,39 @@ inline constexpr double kClippedPileUp = 2.0;
 inline constexpr std::size_t kMinRecordSamples = 16;
 inline constexpr double kCopiedChannelCorrelation = 1e-9;
 std::vector<std::string> signal_warnings(const GaugeSignals& signals);
-// The extreme level at which a record looks clipped by the rule above (its longest run there and
-// the counts at that level and the next one inward), or nullopt.
+// The extreme levels at which a record looks clipped by the rule above (the upper one first; each
+// with its longest run there and the counts at that level and the next one inward): none, one or
+// both (a range exceeded both ways, by pulses of both signs).
 struct ClippedLevel {
   double level = 0;
   std::size_t run = 0, at_level = 0, at_next = 0;
 };
-std::optional<ClippedLevel> clipped_level(const std::vector<double>& x);
+std::vector<ClippedLevel> clipped_levels(const std::vector<double>& x);
+// A clipped record's samples at its clip levels, and those levels in the units of the record as it
+// is used (`from_rest`: the same record less its rest level, turned as its pulses are). The strain
+// there reached at least the level: a bound, not a value (fit and calibrate read it so: a
+// censored measurement, Tobit 1958).
+struct ClippedSamples {
+  std::optional<double> upper, lower;  // from rest: the strain reached at least / at most these
+  std::vector<signed char> at;         // +1 at the upper level, −1 at the lower, 0 a value
+  double noise = 0;  // the record's noise σ (its quiet start's, estimate_baseline)
+  // Sample i's residual, model − measured for a value; at a clip level the censored one whose
+  // square is −2 ln P(the strain reached the level | the model), P = Φ(±(model − level)/σ)
+  // (Tobit 1958): −σ √(−2 ln P), 0 well beyond the level, model − level well short of it (the
+  // noiseless limit: 0 beyond, model − level short). With the derivative by the model.
+  struct Residual {
+    double value = 0, slope = 1;
+  };
+  Residual residual(std::size_t i, double model, double measured) const;
+  // x as the clipped channel records it.
+  double clip(double x) const {
+    if (upper && x > *upper) return *upper;
+    if (lower && x < *lower) return *lower;
+    return x;
+  }
+};
+// nullopt when `raw` does not look clipped.
+std::optional<ClippedSamples> clipped_samples(const std::vector<double>& raw,
+                                              const std::vector<double>& from_rest);
 
 }  // namespace shpb

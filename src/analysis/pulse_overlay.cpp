@@ -131,20 +131,6 @@ void report_missing_pulses(MeasuredPulses& m) {
     }
 }
 
-// The samples of a record at its clip level, if it looks clipped, and that level from rest
-// (`from_rest`: the same record with its rest level removed and turned as the pulses are).
-std::optional<MeasuredPulses::Clipped> clipped_samples(const std::vector<double>& raw,
-                                                       const std::vector<double>& from_rest) {
-  const auto c = clipped_level(raw);
-  if (!c) return std::nullopt;
-  MeasuredPulses::Clipped out;
-  out.at.resize(raw.size());
-  for (std::size_t i = 0; i < raw.size(); ++i) out.at[i] = raw[i] == c->level;
-  out.level = from_rest[static_cast<std::size_t>(std::find(out.at.begin(), out.at.end(), char{1}) -
-                                                 out.at.begin())];
-  return out;
-}
-
 }  // namespace
 
 MeasuredPulses find_measured_pulses(const Scene& scene, const GaugeSignals& signals) {
@@ -168,6 +154,8 @@ MeasuredPulses find_measured_pulses(const Scene& scene, const GaugeSignals& sign
   m.incident = std::move(inc.x), m.transmitted = std::move(tra.x);
   m.incident_clipped = clipped_samples(*signals.find(m.setup.incident_gauge), m.incident);
   m.transmitted_clipped = clipped_samples(*signals.find(m.setup.transmitted_gauge), m.transmitted);
+  if (m.incident_clipped) m.incident_clipped->noise = inc.noise;
+  if (m.transmitted_clipped) m.transmitted_clipped->noise = tra.noise;
   m.incident_baseline = {0.0, inc.noise}, m.transmitted_baseline = {0.0, tra.noise};
   m.incident_window = *inc.first;
   m.reflected_window = find_first_pulse(m.incident, m.incident_baseline, inc.first->end);

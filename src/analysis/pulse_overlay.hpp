@@ -42,18 +42,9 @@ struct MeasuredPulses {
   // Samples of the incident front strictly between 40 and 60 % of its plateau: none, and the
   // record does not say where in a sample interval the clocks meet.
   double incident_front_samples = 0;
-  // A channel clipped by its amplifier or digitizer (clipped_level, processing.hpp): which samples
-  // sit at the clip level, and that level in the units of `incident` and `transmitted`. The
-  // strain there reached at least the level: a bound, not a value (fit reads it so).
-  struct Clipped {
-    double level = 0;
-    std::vector<char> at;
-    // x at or beyond the level, away from rest.
-    bool reaches(double x) const { return (x - level) * (level < 0 ? -1.0 : 1.0) >= 0; }
-    // Sample i is at the clip level and `simulated` reaches it: no residual there.
-    bool bounds(std::size_t i, double simulated) const { return at[i] && reaches(simulated); }
-  };
-  std::optional<Clipped> incident_clipped, transmitted_clipped;
+  // A clipped channel's samples at its clip level (ClippedSamples, processing.hpp), in the units
+  // of `incident` and `transmitted`.
+  std::optional<ClippedSamples> incident_clipped, transmitted_clipped;
   // A channel turned over, a pulse the record does not hold or cuts short.
   std::vector<std::string> warnings;
 };

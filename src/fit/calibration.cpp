@@ -72,8 +72,15 @@ struct Target {
   std::optional<std::size_t> gain, delay;
   std::vector<Arrival> arrivals;
   std::vector<double> measured;
-  std::vector<std::size_t> samples;  // the compared samples
-  double level_sd = 0;               // its record's removed baseline level's (rest_level_sd)
+  std::vector<std::size_t> samples;       // the compared samples
+  double level_sd = 0;                    // its record's removed baseline level's (rest_level_sd)
+  std::optional<ClippedSamples> clipped;  // a clipped channel's samples at its clip level
+
+  // The residual of compared sample i over the shot's peak; at a clip level the censored one (the
+  // strain there reached at least that level: a bound, not a value).
+  double residual(std::size_t i, double model, double peak) const {
+    return (clipped ? clipped->residual(i, model, measured[i]).value : model - measured[i]) / peak;
+  }
 };
 
 struct Shot {
@@ -393,6 +400,8 @@ Shot prepare_shot(const CalibrationShot& cs, Parameters& params, std::string& re
       if (t.arrivals.empty()) continue;
       const auto [measured, base_g] = baseline_removed(signals, g.name);
       t.measured = measured;
+      t.clipped = clipped_samples(*signals.find(g.name), t.measured);
+      if (t.clipped) t.clipped->noise = base_g.noise;
       t.level_sd = rest_level_sd(base_g.noise, baseline_samples(measured.size()));
       if (&g != &src) channel_parameters(t, g, src.name, reference, params, file);
       s.targets.push_back(std::move(t));
@@ -411,7 +420,7 @@ std::vector<double> shot_residuals(const Shot& s, const std::vector<double>& the
   std::vector<double> r;
   for (const Target& t : s.targets) {
     const auto m = model_of(s, t, theta, tables);
-    for (std::size_t i : t.samples) r.push_back((m[i] - t.measured[i]) / s.peak);
+    for (std::size_t i : t.samples) r.push_back(t.residual(i, m[i], s.peak));
   }
   return r;
 }
@@ -749,8 +758,8 @@ std::vector<ShotSignals> shot_signals(const std::vector<Shot>& shots,
       std::vector<char> mask(s.time_s.size(), 0);
       for (std::size_t i : t.samples) {
         mask[i] = 1;
-        rn.push_back((out.nominal.back()[i] - t.measured[i]) / s.peak);
-        rf.push_back((out.fitted.back()[i] - t.measured[i]) / s.peak);
+        rn.push_back(t.residual(i, out.nominal.back()[i], s.peak));
+        rf.push_back(t.residual(i, out.fitted.back()[i], s.peak));
       }
       out.fitted_window.push_back(std::move(mask));
     }

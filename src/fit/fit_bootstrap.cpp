@@ -70,8 +70,7 @@ GaugeSignals synthetic_record(const FitCase& c, const Overlay& fitted,
     const auto& clipped =
         incident ? c.measured().incident_clipped : c.measured().transmitted_clipped;
     if (clipped)
-      for (double& x : g.strain[k])
-        if (clipped->reaches(x)) x = clipped->level;
+      for (double& x : g.strain[k]) x = clipped->clip(x);
   }
   return g;
 }

@@ -37,7 +37,7 @@ constexpr double kTailCut = 0.05;
 // cut-off pulse's, not the specimen's.
 bool reads_clipped(const MeasuredPulses& m, const ProcessingResult& pr, double t) {
   const auto& time = m.time_s;
-  auto at = [&](const std::optional<MeasuredPulses::Clipped>& clipped, double shift) {
+  auto at = [&](const std::optional<ClippedSamples>& clipped, double shift) {
     if (!clipped) return false;
     const double x = (t - shift - time.front()) / m.dt_s;
     if (!(x >= 0) || x > static_cast<double>(time.size() - 1)) return false;
@@ -87,7 +87,8 @@ FitCase::FitCase(const CampaignTest& test, const Campaign& campaign, const FitSp
     if (*clipped)
       warnings_.push_back(
           test.name + ": gauge \"" + gauge + "\": its " +
-          std::to_string(std::count((*clipped)->at.begin(), (*clipped)->at.end(), char{1})) +
+          std::to_string(std::count_if((*clipped)->at.begin(), (*clipped)->at.end(),
+                                       [](signed char a) { return a != 0; })) +
           " samples at the clip level are fitted as bounds (the strain reached at least that "
           "level), and the processed curve is not fitted where it is computed from them");
 
@@ -283,18 +284,19 @@ void each_fitted_sample(const std::vector<OverlaidPulse>& windows, const Measure
 
 std::vector<double> FitCase::residuals(const Overlay& o) const {
   std::vector<double> r;
-  each_fitted_sample(
-      fitted_windows_, measured(), o, test_.weight,
-      [&](const auto& sim, const auto& meas, std::size_t i, double c, double peak) {
-        r.push_back(peak > 0 && !bounded(meas, i, sim[i]) ? c * (sim[i] - meas[i]) / peak : 0.0);
-      });
+  each_fitted_sample(fitted_windows_, measured(), o, test_.weight,
+                     [&](const auto& sim, const auto& meas, std::size_t i, double c, double peak) {
+                       r.push_back(peak > 0 ? c * residual_at(meas, i, sim[i]).value / peak : 0.0);
+                     });
   return r;
 }
 
-bool FitCase::bounded(const std::vector<double>& meas, std::size_t i, double simulated) const {
+ClippedSamples::Residual FitCase::residual_at(const std::vector<double>& meas, std::size_t i,
+                                              double simulated) const {
   const MeasuredPulses& m = measured();
   const auto& clipped = &meas == &m.transmitted ? m.transmitted_clipped : m.incident_clipped;
-  return clipped && clipped->bounds(i, simulated);
+  return clipped ? clipped->residual(i, simulated, meas[i])
+                 : ClippedSamples::Residual{simulated - meas[i], 1};
 }
 
 std::vector<double> FitCase::clock_sensitivity(const Overlay& o) const {
@@ -306,7 +308,7 @@ std::vector<double> FitCase::clock_sensitivity(const Overlay& o) const {
         // r = c (s(t − offset) − m)/peak: ∂r/∂offset = −c ṡ/peak (central difference on the grid).
         const std::size_t lo = i > 0 ? i - 1 : i, hi = std::min(i + 1, sim.size() - 1);
         const double slope = (sim[hi] - sim[lo]) / (static_cast<double>(hi - lo) * dt);
-        d.push_back(peak > 0 && !bounded(meas, i, sim[i]) ? -c * slope / peak : 0.0);
+        d.push_back(peak > 0 ? -c * residual_at(meas, i, sim[i]).slope * slope / peak : 0.0);
       });
   return d;
 }

@@ -83,10 +83,11 @@ class FitCase {
   // One simulation with `law` as the specimen and the nuisance values. NumericalError if unstable.
   Overlay simulate(const MaterialSpec& law, const Nuisance& nuisance) const;
   // √(w / n_p) (s − m) / max|m| over each fitted window: Σ r² = w Σ_pulses NRMSE².
-  // A sample of a clipped channel at its clip level, where the simulation reaches the level, says
-  // only that the strain reached it (MeasuredPulses::Clipped): its residual is 0 (Tobit 1958).
+  // A sample of a clipped channel at its clip level says only that the strain reached it: its
+  // residual is the censored one (ClippedSamples, analysis/processing.hpp; Tobit 1958).
   std::vector<double> residuals(const Overlay& o) const;
-  bool bounded(const std::vector<double>& measured_strain, std::size_t i, double simulated) const;
+  ClippedSamples::Residual residual_at(const std::vector<double>& measured_strain, std::size_t i,
+                                       double simulated) const;
   std::vector<double> residual_scales() const;  // √(w / n_p) per residual
   // ∂r/∂t of the residuals in the clock offset (the simulation later by t), from the compared
   // simulated pulses' slopes; and the measured clock's standard deviation from the record noise.
