@@ -62,6 +62,24 @@ double volts_to_strain(const BridgeSpec& b) {
   return (4.0 / b.arms) / (b.gauge_factor * b.gain * b.excitation_V);
 }
 
+double strain_per_unit(const ChannelSpec& ch) {
+  switch (ch.unit) {
+    case SignalUnit::kVolt:
+    case SignalUnit::kMillivolt:
+      if (!ch.scale && !ch.bridge)
+        throw input_error("measurement", "channels[].bridge", "missing",
+                          "a channel in volts needs a bridge (arms, gauge_factor, excitation, "
+                          "gain) or a scale");
+      return (ch.unit == SignalUnit::kMillivolt ? 1e-3 : 1.0) *
+             (ch.scale ? *ch.scale : volts_to_strain(*ch.bridge));
+    case SignalUnit::kMicrostrain:
+      return 1e-6;
+    case SignalUnit::kStrain:
+      break;
+  }
+  return 1.0;
+}
+
 GaugeSignals read_gauge_signals(const MeasurementSpec& m, const std::filesystem::path& base_dir) {
   auto resolve = [&](const std::filesystem::path& p) {
     if (p.is_absolute() || base_dir.empty()) return p;
@@ -90,7 +108,10 @@ GaugeSignals read_gauge_signals(const MeasurementSpec& m, const std::filesystem:
     req.time_unit_s = m.time_unit_s;
     req.sheet = m.sheet;
     req.resample = m.time_resample;
-    for (std::size_t c : channels) req.columns.push_back(m.channels[c].column);
+    for (std::size_t c : channels) {
+      req.columns.push_back(m.channels[c].column);
+      req.column_units.push_back(m.channels[c].unit);
+    }
     SignalColumns cols = read_signal_columns(req);
     check_sample_interval(cols, m);
     out.warnings.insert(out.warnings.end(), cols.warnings.begin(), cols.warnings.end());
@@ -111,26 +132,7 @@ GaugeSignals read_gauge_signals(const MeasurementSpec& m, const std::filesystem:
       const ChannelSpec& ch = m.channels[channels[k]];
       std::vector<double> v = same_clock ? std::move(cols.values[k])
                                          : resample(cols.time_s, cols.values[k], out.time_s);
-      double factor = 1.0;
-      switch (ch.unit) {
-        case SignalUnit::kVolt:
-          if (ch.scale) {
-            factor = *ch.scale;
-            break;
-          }
-          if (!ch.bridge)
-            throw input_error(
-                "measurement", "channels[" + std::to_string(channels[k]) + "].bridge", "missing",
-                "a channel in volts needs a bridge (arms, gauge_factor, excitation, gain)");
-          factor = volts_to_strain(*ch.bridge);
-          break;
-        case SignalUnit::kMicrostrain:
-          factor = 1e-6;
-          break;
-        case SignalUnit::kStrain:
-          factor = 1.0;
-          break;
-      }
+      double factor = strain_per_unit(ch);
       if (ch.invert) factor = -factor;
       factor /= ch.calibrated_gain;  // model/calibration.hpp
       for (double& x : v) x *= factor;

@@ -40,8 +40,7 @@ json process_setup(const Scene& scene) {
               {"column", column_json(ch.column)},
               {"unit", std::string(enum_name(kSignalUnitNames, ch.unit))},
               {"invert", ch.invert}};
-    double per_unit = ch.unit == SignalUnit::kMicrostrain ? 1e-6 : 1.0;
-    if (ch.unit == SignalUnit::kVolt) per_unit = ch.scale ? *ch.scale : volts_to_strain(*ch.bridge);
+    const double per_unit = strain_per_unit(ch);
     if (ch.bridge)
       c["bridge"] = {{"arms", ch.bridge->arms},
                      {"gauge_factor", ch.bridge->gauge_factor},

@@ -4,6 +4,7 @@
 #include <exception>
 #include <stdexcept>
 #include <thread>
+#include <type_traits>
 
 #include "core/error.hpp"
 #include "core/number_format.hpp"
@@ -202,30 +203,103 @@ RawSignalColumns read_columns(const DelimitedText& text, std::size_t first_data,
   return raw;
 }
 
-// The time unit a header field names, as scopes and spreadsheets write it: "Time (ms)",
-// "Zeit [us]", "Time/s", "time_s", or a unit row's "(ms)", "second"; nothing for a name without
-// one ("Time", "Sample"). The unit is read as a scene's quantities are (core/units.hpp).
-std::optional<std::pair<std::string, double>> header_time_unit(std::string_view field) {
-  std::string_view unit = field;
+// The unit a header field names, as scopes and spreadsheets write it: "Time (ms)", "Zeit [us]",
+// "CH1 (mV)", a unit row's "(ms)", "second", "Volt" or "µm/m", "Time/s", "time_s"; nothing for a
+// name without one ("Time", "Sample"). `value` reads a unit's name (µ written u) as the kind of
+// unit sought, or gives nothing; the unit is returned as written with that value.
+template <class Read, class Value = typename std::invoke_result_t<Read, std::string>::value_type>
+std::optional<std::pair<std::string, Value>> header_unit(std::string_view field, Read value) {
+  const auto read = [&](std::string_view unit) -> std::optional<std::pair<std::string, Value>> {
+    while (!unit.empty() && unit.front() == ' ') unit.remove_prefix(1);
+    while (!unit.empty() && unit.back() == ' ') unit.remove_suffix(1);
+    std::string name(unit);
+    // A unit starts with a letter or µ (UTF-8 C2 B5, Greek μ CE BC, Latin-1 B5): not a number.
+    const auto first = static_cast<unsigned char>(name.empty() ? '0' : name.front());
+    if (!std::isalpha(first) && first != 0xC2 && first != 0xCE && first != 0xB5)
+      return std::nullopt;
+    for (const std::string_view micro : {"\xC2\xB5", "\xCE\xBC", "\xB5"})
+      if (name.rfind(micro, 0) == 0) name = "u" + name.substr(micro.size());
+    if (const auto v = value(name)) return std::make_pair(std::string(unit), *v);
+    return std::nullopt;
+  };
   if (const auto open = field.find_last_of("(["); open != std::string_view::npos) {
     const auto close = field.find_first_of(")]", open);
-    unit = field.substr(open + 1, close == std::string_view::npos ? close : close - open - 1);
-  } else if (const auto cut = field.find_last_of("/_ "); cut != std::string_view::npos) {
-    unit = field.substr(cut + 1);
+    return read(field.substr(open + 1, close == std::string_view::npos ? close : close - open - 1));
   }
-  while (!unit.empty() && unit.front() == ' ') unit.remove_prefix(1);
-  while (!unit.empty() && unit.back() == ' ') unit.remove_suffix(1);
-  std::string name(unit);
+  if (const auto whole = read(field)) return whole;  // a unit row's cell
+  if (const auto cut = field.find_last_of("/_ "); cut != std::string_view::npos)
+    return read(field.substr(cut + 1));
+  return std::nullopt;
+}
+
+// A time unit's name in seconds, read as a scene's quantities are (core/units.hpp).
+std::optional<double> time_unit(std::string name) {
   if (name == "second" || name == "seconds" || name == "sec") name = "s";
-  // A unit starts with a letter or µ (UTF-8 C2 B5, Greek μ CE BC, Latin-1 B5): not a number.
-  const auto first = static_cast<unsigned char>(name.empty() ? '0' : name.front());
-  if (!std::isalpha(first) && first != 0xC2 && first != 0xCE && first != 0xB5) return std::nullopt;
-  if (first == 0xB5) name = "u" + name.substr(1);
   try {
-    return std::make_pair(std::string(unit), parse_quantity("1 " + name, Dimension::kTime));
+    return parse_quantity("1 " + name, Dimension::kTime);
   } catch (const std::invalid_argument&) {
     return std::nullopt;
   }
+}
+
+// A value column's unit: a voltage ("V", "mV", "Volt") or a strain ("ε", "µε", "µm/m",
+// "microstrain"), with its size in volts or in strain.
+struct ValueUnit {
+  bool volts = false;
+  double size = 1;
+};
+std::optional<ValueUnit> value_unit(std::string name) {
+  if (name == "Volt" || name == "Volts" || name == "volt" || name == "volts") name = "V";
+  if (name == "\xCE\xB5") return ValueUnit{false, 1};  // ε
+  if (name == "u\xCE\xB5" || name == "ue" || name == "ustrain" || name == "microstrain")
+    return ValueUnit{false, 1e-6};
+  try {
+    if (name.find('/') != std::string::npos)  // m/m, mm/m, µm/m
+      return ValueUnit{false, parse_quantity("1 " + name, Dimension::kDimensionless)};
+    return ValueUnit{true, parse_quantity("1 " + name, Dimension::kVoltage)};
+  } catch (const std::invalid_argument&) {
+    return std::nullopt;
+  }
+}
+
+// Two units are the same when their sizes agree to round-off.
+constexpr double kSameUnit = 1e-9;
+
+ValueUnit read_as(SignalUnit u) {
+  switch (u) {
+    case SignalUnit::kVolt:
+      return {true, 1};
+    case SignalUnit::kMillivolt:
+      return {true, 1e-3};
+    case SignalUnit::kMicrostrain:
+      return {false, 1e-6};
+    case SignalUnit::kStrain:
+      break;
+  }
+  return {false, 1};
+}
+
+// A header that names a value column's unit must name the one the channel reads it in: a column
+// in mV read as V is 1000 times the strain, µm/m read as strain a million times.
+void check_value_unit(const DelimitedText& text, const TextRow& header, std::size_t column,
+                      SignalUnit unit) {
+  if (column >= header.fields.size()) return;
+  const auto named = header_unit(header.fields[column], value_unit);
+  const ValueUnit read = read_as(unit);
+  if (!named || (named->second.volts == read.volts &&
+                 std::abs(named->second.size / read.size - 1) <= kSameUnit))
+    return;
+  std::string hint = "convert the column to V, mV, strain or microstrain";
+  for (const auto& [name, u] : kSignalUnitNames)
+    if (read_as(u).volts == named->second.volts &&
+        std::abs(named->second.size / read_as(u).size - 1) <= kSameUnit)
+      hint = "set \"unit\": \"" + std::string(name) + "\"";
+  throw input_error(text.file.string(), text_place(header.line, column),
+                    "\"" + std::string(header.fields[column]) + "\"",
+                    "the header gives the values in " + named->first +
+                        ", but the channel reads them in " +
+                        std::string(enum_name(kSignalUnitNames, unit)) +
+                        " (measurement.channels[].unit): " + hint + " or correct the header");
 }
 
 }  // namespace
@@ -326,8 +400,8 @@ RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest
   // A header that names the time column's unit must agree with the unit it is read in: a column
   // in ms read as seconds passes the sample-interval check at 10 MHz and above (0.1 ms -> 1e-4 s).
   if (header && time_index < header->fields.size())
-    if (const auto unit = header_time_unit(header->fields[time_index]);
-        unit && std::abs(unit->second / request.time_unit_s - 1) > 1e-9)
+    if (const auto unit = header_unit(header->fields[time_index], time_unit);
+        unit && std::abs(unit->second / request.time_unit_s - 1) > kSameUnit)
       throw input_error(text.file.string(), text_place(header->line, time_index),
                         "\"" + std::string(header->fields[time_index]) + "\"",
                         "the header gives the time in " + unit->first +
@@ -344,6 +418,9 @@ RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest
                         ? std::string(header->fields[indices.back()])
                         : "column " + std::to_string(indices.back()));
   }
+  if (header)
+    for (std::size_t k = 0; k < request.column_units.size(); ++k)
+      check_value_unit(text, *header, indices[k], request.column_units[k]);
   return read_columns(text, first, header, time_index, indices, names);
 }
 

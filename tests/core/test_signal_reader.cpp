@@ -442,6 +442,73 @@ TEST_CASE("Volts become strain through the bridge and opposite gauges are averag
   CHECK(g.warnings.empty());                        // peak 2e-3 is a plausible strain
 }
 
+TEST_CASE("A value column's unit in the header must be the unit its channel reads",
+          "[core][signal]") {
+  // Scopes name a column's unit in its header ("CH1 (mV)", PicoScope's unit row "(mV)",
+  // Keysight's "Volt", catman's "µm/m"): read in another unit the strain is 1000 or 10^6 times
+  // off, which only a plausibility warning would hint at. A name without a unit says nothing.
+  struct Case {
+    std::string head;
+    SignalUnit unit;
+    std::string refused;  // the hint of the refusal ("": read)
+  };
+  const Case cases[] = {
+      {"t,v (mV)", SignalUnit::kVolt, "set \"unit\": \"mV\""},
+      {"t,v (mV)", SignalUnit::kMillivolt, ""},
+      {"Time,Channel A\n(us),(mV)", SignalUnit::kVolt, "set \"unit\": \"mV\""},
+      {"x-axis,1\nus,Volt", SignalUnit::kMillivolt, "set \"unit\": \"V\""},
+      {"x-axis,1\nus,Volt", SignalUnit::kVolt, ""},
+      {"t,inc [\xc2\xb5\xce\xb5]", SignalUnit::kStrain, "set \"unit\": \"microstrain\""},
+      {"t,inc [\xb5\xce\xb5]", SignalUnit::kMicrostrain, ""},
+      {"Zeit,DMS\nus,\xb5m/m", SignalUnit::kStrain, "set \"unit\": \"microstrain\""},
+      {"t,v (V)", SignalUnit::kMicrostrain, "set \"unit\": \"V\""},
+      {"t,v (kV)", SignalUnit::kVolt, "convert the column to V, mV, strain or microstrain"},
+      {"t,v_A", SignalUnit::kVolt, ""},
+      {"t,incident_bar_signal/voltage", SignalUnit::kVolt, ""},
+      {"t,strain", SignalUnit::kVolt, ""},
+  };
+  // Strain per volt of the volt channels: 2e-3 at a 0.5 V or 500 mV plateau gives 1e-3.
+  constexpr double kScale = 2e-3;
+  for (const auto& c : cases) {
+    DYNAMIC_SECTION(c.head << " read in " << enum_name(kSignalUnitNames, c.unit)) {
+      const auto p = write_file("value_unit.csv", c.head + "\n0,0\n1,500\n2,500\n3,0\n");
+      MeasurementSpec m;
+      m.time_unit_s = 1e-6;  // a 1 MHz record
+      ChannelSpec ch;
+      ch.gauge = "incident";
+      ch.file = p;
+      ch.column = by_index(1);
+      ch.unit = c.unit;
+      if (c.unit == SignalUnit::kVolt || c.unit == SignalUnit::kMillivolt) ch.scale = kScale;
+      m.channels.push_back(ch);
+      const std::string error = error_of([&] { read_gauge_signals(m, {}); });
+      INFO(error);
+      if (c.refused.empty()) {
+        CHECK(error.empty());
+      } else {
+        CHECK(error.find("value_unit.csv: line ") != std::string::npos);
+        CHECK(error.find("the header gives the values in") != std::string::npos);
+        CHECK(error.find(c.refused) != std::string::npos);
+      }
+    }
+  }
+  SECTION("a column in mV is read as thousandths of a volt") {
+    const auto p = write_file("millivolt.csv", "t,v (mV)\n0,0\n1,500\n2,500\n3,0\n");
+    MeasurementSpec m;
+    m.time_unit_s = 1e-6;
+    ChannelSpec ch;
+    ch.gauge = "incident";
+    ch.file = p;
+    ch.column = by_index(1);
+    ch.unit = SignalUnit::kMillivolt;
+    ch.scale = kScale;
+    m.channels.push_back(ch);
+    const GaugeSignals g = read_gauge_signals(m, {});
+    REQUIRE(g.find("incident"));
+    CHECK((*g.find("incident"))[1] == Approx(0.5 * kScale));  // 500 mV = 0.5 V
+  }
+}
+
 TEST_CASE("The real files import: LANL raw, Tektronix channels, and the messy epoxy file",
           "[core][signal]") {
   SECTION("LANL copper raw") {
