@@ -40,6 +40,48 @@ std::size_t filled_width(const TextRow& row) {
   return n;
 }
 
+// The first decimal-comma number of a row of a comma-separated file whose fields read as exactly
+// `names` numbers once each integer followed by a field of digits is joined into one ("-0",
+// "0002" as -0,0002): the row is numbers with decimal commas split in two. Nothing otherwise.
+std::optional<std::string> decimal_commas_split(const TextRow& row, std::size_t names) {
+  const auto integer = [](std::string_view f) {
+    if (!f.empty() && (f.front() == '-' || f.front() == '+')) f.remove_prefix(1);
+    return !f.empty() && std::all_of(f.begin(), f.end(), [](char c) { return std::isdigit(c); });
+  };
+  std::optional<std::string> first;
+  std::size_t numbers = 0;
+  for (std::size_t i = 0, n = filled_width(row); i < n; ++numbers) {
+    const std::string joined =
+        i + 1 < n ? std::string(row.fields[i]) + "," + std::string(row.fields[i + 1]) : "";
+    if (i + 1 < n && integer(row.fields[i]) && std::isdigit(row.fields[i + 1].front()) &&
+        parse_number(joined, true)) {
+      if (!first) first = joined;
+      i += 2;
+    } else {
+      ++i;
+    }
+  }
+  return numbers == names ? first : std::nullopt;
+}
+
+// Decimal commas in a comma-separated file split every number in two: columns by index land on
+// the halves as names would (refused by resolve), and the integer parts of the times pass for a
+// rounded time column. A header of one name is too little to judge the split by.
+void refuse_split_decimal_commas(const DelimitedText& text, const TextRow* header,
+                                 const TextRow* wider) {
+  constexpr std::size_t kNamesToJudgeBy = 2;
+  if (!header || !wider || text.delimiter != ',' || filled_width(*header) < kNamesToJudgeBy) return;
+  if (const auto number = decimal_commas_split(*wider, filled_width(*header)))
+    throw input_error(
+        text.file.string(), "line " + std::to_string(wider->line), "\"" + *number + "\"",
+        "a number with a decimal comma in a comma-separated file: the line's " +
+            std::to_string(filled_width(*wider)) + " fields read as the " +
+            std::to_string(filled_width(*header)) + " columns the header (line " +
+            std::to_string(header->line) +
+            ") names only with decimal commas, which split every number in two; export with a "
+            "semicolon or tab separator");
+}
+
 // Column index of a reference: by 0-based index, or by exact (then case-insensitive) header name.
 // `wider`: the first data row holding more filled fields than the header names, if any.
 std::size_t resolve(const DelimitedText& text, const TextRow* header, const ColumnRef& ref,
@@ -396,6 +438,9 @@ RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest
   if (header)
     for (std::size_t i = first; i < text.rows.size() && !wider; ++i)
       if (filled_width(text.rows[i]) > filled_width(*header)) wider = &text.rows[i];
+  if (time_ref.index && std::all_of(request.columns.begin(), request.columns.end(),
+                                    [](const ColumnRef& c) { return c.index.has_value(); }))
+    refuse_split_decimal_commas(text, header, wider);
   const std::size_t time_index = resolve(text, header, time_ref, width, wider);
   // A header that names the time column's unit must agree with the unit it is read in: a column
   // in ms read as seconds passes the sample-interval check at 10 MHz and above (0.1 ms -> 1e-4 s).

@@ -240,6 +240,31 @@ TEST_CASE("Names are refused where the data rows hold more columns than the head
   const std::string error = error_of([&] { read_signal_columns(r); });
   CHECK(error.find("split.csv: line 1: column \"transmitted\": the header names 3 columns but "
                    "line 3 holds 5") != std::string::npos);
+  // By index, the same split file is refused at its first split number: index 2 would read the
+  // decimals of the incident strain, and times in µs written "-200,5" pass for rounded stamps.
+  auto by_position = csv_request(write_file("split.csv", split), {by_index(2)});
+  by_position.time_unit_s = 1e-9;
+  const std::string by_index_error = error_of([&] { read_signal_columns(by_position); });
+  INFO(by_index_error);
+  CHECK(by_index_error.find("split.csv: line 3: \"-990,5\": a number with a decimal comma in a "
+                            "comma-separated file") != std::string::npos);
+  auto rounded = csv_request(write_file("split_us.csv",
+                                        "t_us,incident,transmitted\n"
+                                        "-200,0,1,5E-04,2,5E-05\n"
+                                        "-199,9,1,6E-04,2,6E-05\n"
+                                        "-199,8,1,7E-04,2,7E-05\n"),
+                             {by_index(1), by_index(2)});
+  rounded.time_unit_s = 1e-6;
+  CHECK(error_of([&] {
+          read_signal_columns(rounded);
+        }).find("split_us.csv: line 2: \"-200,0\": a number with a decimal comma") !=
+        std::string::npos);
+  // Numbers with decimal points under a shorter metadata line are read by index as before.
+  const auto metadata = write_file("metadata.csv",
+                                   "Sample interval,1e-7\n0,0.5,0.25\n"
+                                   "1e-7,1.5,1.25\n2e-7,2.5,2.25\n");
+  CHECK(read_signal_columns(csv_request(metadata, {by_index(2)})).values[0] ==
+        std::vector<double>{0.25, 1.25, 2.25});
   // A trailing separator adds no column.
   const auto trailing = write_file("trailing.csv", "t,a,b\n0,1,2,\n1,3,4,\n2,5,6,\n");
   CHECK(read_signal_columns(csv_request(trailing, {by_name("b")})).values[0] ==
