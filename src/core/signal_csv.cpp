@@ -361,6 +361,17 @@ double number_at(const DelimitedText& text, const TextRow& row, std::size_t colu
   if (f.empty()) throw input_error(text.file.string(), where, "empty field", "expected a number");
   const bool nan = f.find("nan") != std::string::npos || f.find("NaN") != std::string::npos ||
                    f.find("NAN") != std::string::npos;
+  // German spreadsheets write 1234 as "1.234", English ones as "1,234": in a file of the other
+  // decimal mark, read as a decimal it would be a thousand times too small.
+  if (parse_number(f, !text.decimal_comma)) {
+    const std::string mark = text.decimal_comma ? "comma" : "point";
+    throw input_error(text.file.string(), where, "\"" + f + "\"",
+                      std::string(text.decimal_comma ? "a point" : "a comma") +
+                          " in a file whose decimal mark is the " + mark +
+                          ": a thousands separator or the other decimal mark; expected numbers "
+                          "with a decimal " +
+                          mark + " and no thousands separator");
+  }
   throw input_error(
       text.file.string(), where, "\"" + f + "\"",
       nan ? "not a number (NaN) where a finite sample was expected" : "expected a finite number");

@@ -118,6 +118,9 @@ bool looks_like_decimal_comma_number(std::string_view f) {
 }  // namespace
 
 std::optional<double> parse_number(std::string_view field, bool decimal_comma) {
+  // Where the decimal mark is the comma, a point is a thousands separator (German spreadsheets
+  // write 1234 as "1.234") or the other mark: either way not a number that can be read.
+  if (decimal_comma && field.find('.') != std::string_view::npos) return std::nullopt;
   // Numbers are parsed where they lie; only a decimal comma needs a copy with a point.
   std::string copy;
   if (decimal_comma && field.find(',') != std::string_view::npos) {

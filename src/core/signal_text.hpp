@@ -33,8 +33,9 @@ struct DelimitedText {
 // Reads and splits a file; throws InputError if it cannot be read or holds no non-blank line.
 DelimitedText read_delimited_text(const std::filesystem::path& file);
 
-// Strict number parsing of one field (the whole field must be a finite number; decimal comma
-// accepted when `decimal_comma`). Returns nullopt for anything else, including NaN and inf.
+// Strict number parsing of one field (the whole field must be a finite number; with
+// `decimal_comma`, a decimal comma and no point). Returns nullopt for anything else, including
+// NaN and inf.
 std::optional<double> parse_number(std::string_view field, bool decimal_comma);
 
 // "line 12, column 3" — the place of a field in messages (columns 1-based, as editors count).

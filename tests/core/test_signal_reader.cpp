@@ -79,6 +79,27 @@ TEST_CASE("Semicolon and tab files with decimal commas are detected", "[core][si
     CHECK(s.values[0][1] == Approx(2.5e-3));
     CHECK(s.dt_s == Approx(1e-6));
   }
+  SECTION("a point where the decimal mark is the comma is refused, never read as a decimal") {
+    // German spreadsheets write the thousands with a point: "1.140" µε is 1140, not 1.14.
+    const auto p = write_file("thousands.csv",
+                              "Zeit [ms];inc [\xb5\xce\xb5]\n0,0000;0\n0,0001;987\n0,0002;1.140\n"
+                              "0,0003;-5\n");
+    auto r = csv_request(p, {by_index(1)});
+    r.time_unit_s = 1e-3;
+    const std::string error = error_of([&] { read_signal_columns(r); });
+    INFO(error);
+    CHECK(error.find(
+              "thousands.csv: line 4, column 2 (\"inc [\xb5\xce\xb5]\"): \"1.140\": a point in "
+              "a file whose decimal mark is the comma: a thousands separator") !=
+          std::string::npos);
+    // The other way round, "1,012" in a file of decimal points.
+    const auto q = write_file("thousands.tsv", "t\tinc\n0.0000\t987\n0.0001\t1,012\n0.0002\t5\n");
+    r = csv_request(q, {by_index(1)});
+    r.time_unit_s = 1e-3;
+    CHECK(error_of([&] { read_signal_columns(r); })
+              .find("thousands.tsv: line 3, column 2 (\"inc\"): \"1,012\": a comma in a file "
+                    "whose decimal mark is the point") != std::string::npos);
+  }
   SECTION("tab, Latin-1 header") {
     const auto p = write_file("tab.tsv", "Zeit\tDehnung \xb5\xe9\n0\t1,25\n1\t2,5\n2\t3,75\n");
     const auto s = read_signal_columns(csv_request(p, {by_index(1)}));
