@@ -528,27 +528,6 @@ void require_delays_fit(const KolskySetup& k, double dt, const std::string& scen
     }
 }
 
-// An incident pulse lasting this many round trips of its gauge to the specimen and back (2d/c0,
-// when its reflection reaches the gauge) would be overlapped by its own reflection many times
-// over: no Kolsky record, but a clock read in the wrong unit (a column in ms read as s makes every
-// pulse 1000 times longer, which the sample-interval range lets through at 10 MS/s).
-constexpr double kMaxPulseRoundTrips = 10;
-
-void require_pulse_fits_round_trip(const KolskySetup& k, double pulse_s,
-                                   const std::string& scene_file) {
-  const double round_trip = 2 * k.incident_distance_m / k.front.c0_m_s;
-  if (!(round_trip > 0) || pulse_s <= kMaxPulseRoundTrips * round_trip) return;
-  char value[200];
-  std::snprintf(value, sizeof value,
-                "gauge \"%s\": incident pulse %.3g s long, %.3g round trips 2d/c0 = %.3g s of "
-                "its gauge to the specimen and back",
-                k.incident_gauge.c_str(), pulse_s, pulse_s / round_trip, round_trip);
-  throw input_error(scene_file, "measurement.time.unit", value,
-                    "expected a pulse shorter than its round trip (its reflection would overlap "
-                    "it): is the time unit right? (a column in ms read as s makes every pulse "
-                    "1000 times longer)");
-}
-
 // A gauge's signal from its rest level, and its noise; polarity checked (the first large
 // excursion of each gauge is compressive, in the reduction's sign convention).
 struct PreparedSignal {
@@ -976,6 +955,21 @@ void warn_window_shift(const ShiftStressError& stress_change, const std::vector<
 }
 
 }  // namespace
+
+void require_pulse_fits_round_trip(const KolskySetup& k, double pulse_s,
+                                   const std::string& scene_file) {
+  const double round_trip = 2 * k.incident_distance_m / k.front.c0_m_s;
+  if (!(round_trip > 0) || pulse_s <= kMaxPulseRoundTrips * round_trip) return;
+  char value[200];
+  std::snprintf(value, sizeof value,
+                "gauge \"%s\": incident pulse %.3g s long, %.3g round trips 2d/c0 = %.3g s of "
+                "its gauge to the specimen and back",
+                k.incident_gauge.c_str(), pulse_s, pulse_s / round_trip, round_trip);
+  throw input_error(scene_file, "measurement.time.unit", value,
+                    "expected a pulse shorter than its round trip (its reflection would overlap "
+                    "it): is the time unit right? (a column in ms read as s makes every pulse "
+                    "1000 times longer)");
+}
 
 ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup& k,
                                  const ProcessingOptions& options) {
