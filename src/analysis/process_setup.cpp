@@ -58,6 +58,13 @@ json process_setup(const Scene& scene) {
   warnings.insert(warnings.end(), record.begin(), record.end());
   if (scene.specimen) {
     const KolskySetup k = resolve_setup(scene, signals.gauges);
+    // A time base process would refuse is refused here too (docs/scene-format.md `measurement`).
+    if (const RestSignal inc =
+            signal_from_rest(*signals.find(k.incident_gauge), m.tension ? 1.0 : -1.0);
+        inc.first)
+      require_pulse_fits_round_trip(
+          k, signals.dt_s * static_cast<double>(inc.first->end - 1 - inc.first->onset),
+          scene.file.string());
     p["reduction"] = "specimen";
     p["test"] = m.tension ? "tension" : "compression";
     p["incident_gauge"] = {{"name", k.incident_gauge},

@@ -165,11 +165,15 @@ TEST_CASE("A time unit that does not match the column exits 2 before anything is
   CHECK(ms.err.find("is the time unit right?") != std::string::npos);
   CHECK(ms.err.find('\n') == ms.err.size() - 1);
   CHECK_FALSE(fs::exists(m / "out"));
-  // compare finds the measured pulses by the same rule.
+  // compare finds the measured pulses by the same rule, and validate refuses what they refuse.
   const auto cmp = run_shpb({"compare", (m / "scene.json").string(), "-o", (m / "cmp").string()});
   INFO(cmp.err);
   CHECK(cmp.code == 2);
   CHECK(cmp.err.find("is the time unit right?") != std::string::npos);
+  const auto val = run_shpb({"validate", (m / "scene.json").string()});
+  INFO(val.err);
+  CHECK(val.code == 2);
+  CHECK(val.err.find("is the time unit right?") != std::string::npos);
 }
 
 TEST_CASE(
