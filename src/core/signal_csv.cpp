@@ -344,6 +344,17 @@ void check_value_unit(const DelimitedText& text, const TextRow& header, std::siz
                         " (measurement.channels[].unit): " + hint + " or correct the header");
 }
 
+// A number written with the file's other mark. German spreadsheets write 1234 as "1.234",
+// English ones as "1,234": in a file of the other decimal mark, read as a decimal it would be a
+// thousand times too small.
+std::string other_mark(const DelimitedText& text) {
+  const std::string mark = text.decimal_comma ? "comma" : "point";
+  return std::string(text.decimal_comma ? "a point" : "a comma") +
+         " in a file whose decimal mark is the " + mark +
+         ": a thousands separator or the other decimal mark; expected numbers with a decimal " +
+         mark + " and no thousands separator";
+}
+
 }  // namespace
 
 double number_at(const DelimitedText& text, const TextRow& row, std::size_t column,
@@ -361,17 +372,8 @@ double number_at(const DelimitedText& text, const TextRow& row, std::size_t colu
   if (f.empty()) throw input_error(text.file.string(), where, "empty field", "expected a number");
   const bool nan = f.find("nan") != std::string::npos || f.find("NaN") != std::string::npos ||
                    f.find("NAN") != std::string::npos;
-  // German spreadsheets write 1234 as "1.234", English ones as "1,234": in a file of the other
-  // decimal mark, read as a decimal it would be a thousand times too small.
-  if (parse_number(f, !text.decimal_comma)) {
-    const std::string mark = text.decimal_comma ? "comma" : "point";
-    throw input_error(text.file.string(), where, "\"" + f + "\"",
-                      std::string(text.decimal_comma ? "a point" : "a comma") +
-                          " in a file whose decimal mark is the " + mark +
-                          ": a thousands separator or the other decimal mark; expected numbers "
-                          "with a decimal " +
-                          mark + " and no thousands separator");
-  }
+  if (parse_number(f, !text.decimal_comma))
+    throw input_error(text.file.string(), where, "\"" + f + "\"", other_mark(text));
   throw input_error(
       text.file.string(), where, "\"" + f + "\"",
       nan ? "not a number (NaN) where a finite sample was expected" : "expected a finite number");
@@ -393,10 +395,7 @@ std::string no_numbers_cause(const DelimitedText& text) {
   for (const auto& f : row.fields) {
     if (f.empty() || parse_number(f, text.decimal_comma)) continue;
     const std::string field = "\"" + std::string(f.substr(0, 40)) + "\"";
-    if (parse_number(f, !text.decimal_comma))
-      return read + ": " + field + " is a number with a decimal " +
-             (text.decimal_comma ? "point" : "comma") +
-             " where the file's other numbers use the other mark; export with one decimal mark";
+    if (parse_number(f, !text.decimal_comma)) return read + ": " + field + ": " + other_mark(text);
     if (text.delimiter == ',' && f.find_first_of(" \t") != std::string_view::npos)
       return read + ": " + field +
              " looks like blank-separated numbers with decimal commas, the comma taken as the "

@@ -115,6 +115,21 @@ bool looks_like_decimal_comma_number(std::string_view f) {
   return parse_number(f, true).has_value();
 }
 
+// "1,234" or "-12,345,678": an integer in groups of three digits (English thousands).
+bool maybe_thousands(std::string_view f) {
+  if (!f.empty() && (f.front() == '-' || f.front() == '+')) f.remove_prefix(1);
+  const auto digits = [](std::string_view d) {
+    return std::all_of(d.begin(), d.end(), [](char c) { return c >= '0' && c <= '9'; });
+  };
+  const auto comma = f.find(',');
+  if (comma == std::string_view::npos || comma == 0 || comma > 3 || f.front() == '0' ||
+      !digits(f.substr(0, comma)))
+    return false;
+  for (f.remove_prefix(comma); !f.empty(); f.remove_prefix(4))
+    if (f.size() < 4 || f[0] != ',' || !digits(f.substr(1, 3))) return false;
+  return true;
+}
+
 }  // namespace
 
 std::optional<double> parse_number(std::string_view field, bool decimal_comma) {
@@ -254,20 +269,20 @@ DelimitedText read_delimited_text(const std::filesystem::path& file) {
   text.bytes = std::move(owned);
   text.all_fields = std::move(fields);
 
-  // Decimal comma: only possible when the comma is not the delimiter; decided on the last
-  // sniffed rows (data, not header) by numbers with a comma against numbers with a point.
-  if (text.delimiter != ',') {
-    std::size_t with_comma = 0, numbers = 0;
-    const std::size_t from = text.rows.size() > sniff ? text.rows.size() - sniff : 0;
-    for (std::size_t i = from; i < text.rows.size(); ++i)
-      for (const auto& f : text.rows[i].fields) {
-        if (looks_like_decimal_comma_number(f))
-          ++with_comma;
-        else if (f.find('.') != std::string_view::npos && parse_number(f, false))
-          ++numbers;
-      }
-    text.decimal_comma = with_comma > numbers;
-  }
+  // Decimal comma: decided on the last sniffed rows (data, not header) by numbers with a comma
+  // against numbers with a point. In a comma-separated file only a quoted field holds a comma:
+  // "-0,25" as pandas and LibreOffice quote decimal commas there, but also "1,234" as English
+  // spreadsheets quote thousands, so a field that may be thousands is no evidence there.
+  std::size_t with_comma = 0, numbers = 0;
+  const std::size_t from = text.rows.size() > sniff ? text.rows.size() - sniff : 0;
+  for (std::size_t i = from; i < text.rows.size(); ++i)
+    for (const auto& f : text.rows[i].fields) {
+      if (looks_like_decimal_comma_number(f))
+        with_comma += text.delimiter != ',' || !maybe_thousands(f);
+      else if (f.find('.') != std::string_view::npos && parse_number(f, false))
+        ++numbers;
+    }
+  text.decimal_comma = with_comma > numbers;
   return text;
 }
 

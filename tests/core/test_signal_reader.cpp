@@ -100,6 +100,24 @@ TEST_CASE("Semicolon and tab files with decimal commas are detected", "[core][si
               .find("thousands.tsv: line 3, column 2 (\"inc\"): \"1,012\": a comma in a file "
                     "whose decimal mark is the point") != std::string::npos);
   }
+  SECTION("comma-separated, decimal commas in quoted fields") {
+    // pandas' to_csv(decimal=",") and LibreOffice quote a field holding the separator.
+    const auto p =
+        write_file("quoted.csv", "t,eps\n\"-0,0001\",0\n0,\"1,5E-03\"\n\"0,0001\",\"-2,25\"\n");
+    const auto s = read_signal_columns(csv_request(p, {by_name("eps")}));
+    CHECK(s.values[0] == std::vector<double>{0, 1.5e-3, -2.25});
+    CHECK(s.time_s == std::vector<double>{-1e-4, 0, 1e-4});
+    // English spreadsheets quote thousands the same way: "1,250" is no decimal comma.
+    const auto q =
+        write_file("quoted_thousands.csv", "t,eps\n0,\"1,250\"\n1,\"2,500\"\n2,\"3,750\"\n");
+    auto r = csv_request(q, {by_name("eps")});
+    r.time_unit_s = 1e-6;
+    CHECK(error_of([&] { read_signal_columns(r); })
+              .find("quoted_thousands.csv: line 4: no numeric rows: expected rows of numbers after "
+                    "the header; line 4 was read as 2 field(s) separated by commas, decimal point: "
+                    "\"3,750\": a comma in a file whose decimal mark is the point") !=
+          std::string::npos);
+  }
   SECTION("tab, Latin-1 header") {
     const auto p = write_file("tab.tsv", "Zeit\tDehnung \xb5\xe9\n0\t1,25\n1\t2,5\n2\t3,75\n");
     const auto s = read_signal_columns(csv_request(p, {by_index(1)}));
