@@ -83,9 +83,10 @@ void refuse_split_decimal_commas(const DelimitedText& text, const TextRow* heade
 }
 
 // Column index of a reference: by 0-based index, or by exact (then case-insensitive) header name.
-// `wider`: the first data row holding more filled fields than the header names, if any.
-std::size_t resolve(const DelimitedText& text, const TextRow* header, const ColumnRef& ref,
-                    std::size_t columns_in_data, const TextRow* wider) {
+// `wider`: the first data row holding more filled fields than the header names, if any. `names`:
+// the row above a header of units (PicoScope's "Time,Channel A" over "(ms),(mV)"), searched first.
+std::size_t resolve(const DelimitedText& text, const TextRow* header, const TextRow* names,
+                    const ColumnRef& ref, std::size_t columns_in_data, const TextRow* wider) {
   if (ref.index) {
     if (*ref.index < 0 || static_cast<std::size_t>(*ref.index) >= columns_in_data)
       throw input_error(text.file.string(), "", describe(ref),
@@ -105,7 +106,6 @@ std::size_t resolve(const DelimitedText& text, const TextRow* header, const Colu
               ": a name cannot say which column it means; decimal commas in a comma-separated "
               "file split every number in two (export with a semicolon or tab separator), else "
               "give the column as an index");
-    const auto& f = header->fields;
     auto lower = [](std::string s) {
       std::transform(s.begin(), s.end(), s.begin(),
                      [](unsigned char c) { return std::tolower(c); });
@@ -113,21 +113,29 @@ std::size_t resolve(const DelimitedText& text, const TextRow* header, const Colu
     };
     // Exact first; the case-insensitive match only if it is the only one. Two candidates are
     // refused, never one picked silently.
-    auto exact = [&](std::string_view h) { return h == ref.name; };
-    auto folded = [&](std::string_view h) { return lower(std::string(h)) == lower(ref.name); };
-    const auto n_exact = std::count_if(f.begin(), f.end(), exact);
-    const auto n_folded = std::count_if(f.begin(), f.end(), folded);
-    if (n_exact > 1 || (n_exact == 0 && n_folded > 1))
-      throw input_error(text.file.string(), "line " + std::to_string(header->line), describe(ref),
-                        "several header columns match this name; rename them so that each is "
-                        "unique");
-    auto it = n_exact ? std::find_if(f.begin(), f.end(), exact)
-                      : std::find_if(f.begin(), f.end(), folded);
-    if (it != f.end()) return static_cast<std::size_t>(it - f.begin());
-    std::string names;
-    for (const auto& h : f) (names += names.empty() ? "\"" : ", \"").append(h) += '"';
-    throw input_error(text.file.string(), "line " + std::to_string(header->line), describe(ref),
-                      "no such column; the header has " + names);
+    const auto find = [&](const TextRow& row) -> std::optional<std::size_t> {
+      const auto& f = row.fields;
+      auto exact = [&](std::string_view h) { return h == ref.name; };
+      auto folded = [&](std::string_view h) { return lower(std::string(h)) == lower(ref.name); };
+      const auto n_exact = std::count_if(f.begin(), f.end(), exact);
+      const auto n_folded = std::count_if(f.begin(), f.end(), folded);
+      if (n_exact > 1 || (n_exact == 0 && n_folded > 1))
+        throw input_error(text.file.string(), "line " + std::to_string(row.line), describe(ref),
+                          "several header columns match this name; rename them so that each is "
+                          "unique");
+      auto it = n_exact ? std::find_if(f.begin(), f.end(), exact)
+                        : std::find_if(f.begin(), f.end(), folded);
+      if (it == f.end()) return std::nullopt;
+      return static_cast<std::size_t>(it - f.begin());
+    };
+    if (names)
+      if (const auto c = find(*names)) return *c;
+    if (const auto c = find(*header)) return *c;
+    const TextRow& listed = names ? *names : *header;
+    std::string list;
+    for (const auto& h : listed.fields) (list += list.empty() ? "\"" : ", \"").append(h) += '"';
+    throw input_error(text.file.string(), "line " + std::to_string(listed.line), describe(ref),
+                      "no such column; the header has " + list);
   }
   throw input_error(text.file.string(), "", describe(ref),
                     "no such column: the file has no header row (give the column as an index)");
@@ -321,6 +329,23 @@ ValueUnit read_as(SignalUnit u) {
   return {false, 1};
 }
 
+// A row of units only, under the row of names (PicoScope "(ms),(mV)", Keysight "second,Volt"):
+// every filled field, without its brackets, a time or value unit.
+bool unit_row(const TextRow& row) {
+  std::size_t units = 0;
+  for (std::string_view f : row.fields) {
+    if (f.empty()) continue;
+    if (f.size() >= 2 && (f.front() == '(' || f.front() == '[') &&
+        (f.back() == ')' || f.back() == ']'))
+      f = f.substr(1, f.size() - 2);
+    if (f.find_first_of("([/_ ") != std::string_view::npos && !value_unit(std::string(f)))
+      return false;  // a name with a unit ("Time (ms)", "t_s"), not a unit
+    if (!header_unit(f, time_unit) && !header_unit(f, value_unit)) return false;
+    ++units;
+  }
+  return units > 0;
+}
+
 // A header that names a value column's unit must name the one the channel reads it in: a column
 // in mV read as V is 1000 times the strain, µm/m read as strain a million times.
 void check_value_unit(const DelimitedText& text, const TextRow& header, std::size_t column,
@@ -451,7 +476,12 @@ RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest
   if (time_ref.index && std::all_of(request.columns.begin(), request.columns.end(),
                                     [](const ColumnRef& c) { return c.index.has_value(); }))
     refuse_split_decimal_commas(text, header, wider);
-  const std::size_t time_index = resolve(text, header, time_ref, width, wider);
+  const TextRow* names_row = header && first >= 2 && unit_row(*header) &&
+                                     filled_width(text.rows[first - 2]) == filled_width(*header)
+                                 ? &text.rows[first - 2]
+                                 : nullptr;
+  const TextRow* named = names_row ? names_row : header;  // what names each column
+  const std::size_t time_index = resolve(text, header, names_row, time_ref, width, wider);
   // A header that names the time column's unit must agree with the unit it is read in: a column
   // in ms read as seconds passes the sample-interval check at 10 MHz and above (0.1 ms -> 1e-4 s).
   if (header && time_index < header->fields.size())
@@ -468,15 +498,15 @@ RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest
   std::vector<std::size_t> indices;
   std::vector<std::string> names;
   for (const auto& c : request.columns) {
-    indices.push_back(resolve(text, header, c, width, wider));
-    names.push_back(header && indices.back() < header->fields.size()
-                        ? std::string(header->fields[indices.back()])
+    indices.push_back(resolve(text, header, names_row, c, width, wider));
+    names.push_back(named && indices.back() < named->fields.size()
+                        ? std::string(named->fields[indices.back()])
                         : "column " + std::to_string(indices.back()));
   }
   if (header)
     for (std::size_t k = 0; k < request.column_units.size(); ++k)
       check_value_unit(text, *header, indices[k], request.column_units[k]);
-  return read_columns(text, first, header, time_index, indices, names);
+  return read_columns(text, first, named, time_index, indices, names);
 }
 
 RawSignalColumns read_tektronix_columns(const DelimitedText& text, const SignalRequest& request) {

@@ -70,6 +70,36 @@ TEST_CASE("A CSV file with metadata lines is read by column name and index", "[c
   CHECK(s.warnings.empty());
 }
 
+TEST_CASE("Columns are named by the row above a row of units", "[core][signal]") {
+  // PicoScope writes the names, then their units, then a blank line; Keysight "x-axis,1,2" over
+  // "second,Volt,Volt". The units row is the header the data rows follow; the names are above.
+  const auto pico = write_file("pico.csv",
+                               "Time,Channel A,Channel B\r\n(ms),(mV),(mV)\r\n\r\n"
+                               "-0.0001,1.5,-2\r\n0.0000,2.5,-3\r\n0.0001,3.5,-4\r\n");
+  auto r = csv_request(pico, {by_name("Channel B"), by_name("channel a")});
+  r.time_column = by_name("Time");
+  r.time_unit_s = 1e-3;
+  const SignalColumns s = read_signal_columns(r);
+  CHECK(s.values[0] == std::vector<double>{-2, -3, -4});
+  CHECK(s.values[1] == std::vector<double>{1.5, 2.5, 3.5});
+  CHECK(s.names[0] == "Channel B");
+  CHECK(s.time_s.front() == Approx(-1e-7));
+  // A name the names row lacks is refused with the names listed.
+  r.columns = {by_name("Channel C")};
+  CHECK(error_of([&] { read_signal_columns(r); })
+            .find("pico.csv: line 1: column \"Channel C\": no such column; the header has "
+                  "\"Time\", \"Channel A\", \"Channel B\"") != std::string::npos);
+  const auto keysight =
+      write_file("scope_1.csv", "x-axis,1,2\nsecond,Volt,Volt\n-1e-7,0.5,1\n0,0.25,2\n1e-7,0,3\n");
+  CHECK(read_signal_columns(csv_request(keysight, {by_name("2")})).values[0] ==
+        std::vector<double>{1, 2, 3});
+  // A unit that names one column alone still names it.
+  const auto single =
+      write_file("single.csv", "x-axis,1\nsecond,Volt\n-1e-7,0.5\n0,0.25\n1e-7,0\n");
+  CHECK(read_signal_columns(csv_request(single, {by_name("Volt")})).values[0] ==
+        std::vector<double>{0.5, 0.25, 0});
+}
+
 TEST_CASE("Semicolon and tab files with decimal commas are detected", "[core][signal]") {
   SECTION("semicolon") {
     const auto p = write_file("semi.csv", "t [ms];eps\n0,000;1,5\n0,001;2,5E-03\n0,002;-3,0\n");
