@@ -399,6 +399,11 @@ double number_at(const DelimitedText& text, const TextRow& row, std::size_t colu
                    f.find("NAN") != std::string::npos;
   if (parse_number(f, !text.decimal_comma))
     throw input_error(text.file.string(), where, "\"" + f + "\"", other_mark(text));
+  if (f.front() == '=')
+    throw input_error(text.file.string(), where, "\"" + f + "\"",
+                      "a formula whose value the workbook does not hold (written by a program "
+                      "that does not compute formulas); expected a number: open and save the "
+                      "workbook in a spreadsheet program");
   throw input_error(
       text.file.string(), where, "\"" + f + "\"",
       nan ? "not a number (NaN) where a finite sample was expected" : "expected a finite number");

@@ -6,6 +6,7 @@
 #include <string>
 #include <tuple>
 
+#include "../app/write_xlsx.hpp"
 #include "../scratch.hpp"
 #include "analysis/gauge_signals.hpp"
 #include "core/error.hpp"
@@ -98,6 +99,38 @@ TEST_CASE("Columns are named by the row above a row of units", "[core][signal]")
       write_file("single.csv", "x-axis,1\nsecond,Volt\n-1e-7,0.5\n0,0.25\n1e-7,0\n");
   CHECK(read_signal_columns(csv_request(single, {by_name("Volt")})).values[0] ==
         std::vector<double>{0.5, 0.25, 0});
+}
+
+TEST_CASE("A workbook formula is read by the value it holds, and named when it holds none",
+          "[core][signal][excel]") {
+  // Spreadsheet programs store a formula's value beside it; programs that write workbooks
+  // without computing formulas (e.g. Python's openpyxl) store the formula alone.
+  const auto workbook = [](const std::string& time_cell) {
+    const fs::path p = scratch.path() / "formula.xlsx";
+    std::vector<std::string> shared{"t", "v"};
+    shpb_test::write_zip(
+        p,
+        shpb_test::xlsx_parts("<row r=\"1\"><c r=\"A1\" t=\"s\"><v>0</v></c>"
+                              "<c r=\"B1\" t=\"s\"><v>1</v></c></row>"
+                              "<row r=\"2\"><c r=\"A2\"><v>0</v></c><c r=\"B2\"><v>1</v></c></row>"
+                              "<row r=\"3\">" +
+                                  time_cell +
+                                  "<c r=\"B3\"><v>2</v></c></row>"
+                                  "<row r=\"4\"><c r=\"A4\"><v>2E-6</v></c><c r=\"B4\"><v>3</v>"
+                                  "</c></row>",
+                              shared));
+    auto r = csv_request(p, {by_name("v")});
+    r.sheet = "signals";
+    return r;
+  };
+  const SignalColumns s =
+      read_signal_columns(workbook("<c r=\"A3\"><f>A2+1E-6</f><v>1E-6</v></c>"));
+  CHECK(s.time_s == std::vector<double>{0, 1e-6, 2e-6});
+  const std::string error =
+      error_of([&] { read_signal_columns(workbook("<c r=\"A3\"><f>A2+1E-6</f></c>")); });
+  INFO(error);
+  CHECK(error.find("formula.xlsx: line 3, column 1 (\"t\"): \"=A2+1E-6\": a formula whose value "
+                   "the workbook does not hold") != std::string::npos);
 }
 
 TEST_CASE("Semicolon and tab files with decimal commas are detected", "[core][signal]") {
