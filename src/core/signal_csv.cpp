@@ -10,6 +10,7 @@
 #include "core/number_format.hpp"
 #include "core/output_folder.hpp"
 #include "core/signal_formats.hpp"
+#include "core/signal_spreadsheet.hpp"
 #include "core/units.hpp"
 
 namespace shpb {
@@ -394,7 +395,9 @@ double number_at(const DelimitedText& text, const TextRow& row, std::size_t colu
         text.file.string(), where, "missing value",
         "the row has only " + std::to_string(row.fields.size()) + " fields (truncated line?)");
   const std::string f(row.fields[column]);
-  if (f.empty()) throw input_error(text.file.string(), where, "empty field", "expected a number");
+  if (f.empty())
+    throw input_error(text.file.string(), where, "empty field",
+                      "expected a number" + empty_cell_cause(text.file));
   const bool nan = f.find("nan") != std::string::npos || f.find("NaN") != std::string::npos ||
                    f.find("NAN") != std::string::npos;
   if (parse_number(f, !text.decimal_comma))

@@ -311,6 +311,13 @@ bool is_spreadsheet(const std::filesystem::path& file) {
   return e == ".xlsx" || e == ".xls";
 }
 
+std::string empty_cell_cause(const std::filesystem::path& file) {
+  return lower_extension(file) == ".xls"
+             ? " (the .xls reader gives no formula's value: a cell holding a formula reads "
+               "empty; save the workbook as .xlsx, or paste its values)"
+             : "";
+}
+
 DelimitedText read_spreadsheet(const std::filesystem::path& file, const std::string& sheet) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec))

@@ -131,6 +131,14 @@ TEST_CASE("A workbook formula is read by the value it holds, and named when it h
   INFO(error);
   CHECK(error.find("formula.xlsx: line 3, column 1 (\"t\"): \"=A2+1E-6\": a formula whose value "
                    "the workbook does not hold") != std::string::npos);
+  // An .xls holds the value too, but its reader (FreeXL) gives none: the cell reads empty, and
+  // the message says what it may be (tests/data/make_formula_xls.pl).
+  auto xls = csv_request(fs::path(SHPB_SOURCE_DIR) / "tests/data/formula.xls", {by_name("v")});
+  xls.sheet = "signals";
+  const std::string xls_error = error_of([&] { read_signal_columns(xls); });
+  INFO(xls_error);
+  CHECK(xls_error.find("formula.xls: line 3, column 1 (\"t\"): empty field: expected a number (the "
+                       ".xls reader gives no formula's value") != std::string::npos);
 }
 
 TEST_CASE("Semicolon and tab files with decimal commas are detected", "[core][signal]") {
