@@ -74,9 +74,14 @@ void drop_repeated_rows(const std::filesystem::path& file, std::vector<std::size
   }
   t.resize(kept), lines.resize(kept);
   for (auto& v : out.values) v.resize(kept);
+  // The first lines by number, then how many more: a file exported with every row twice has
+  // thousands.
+  constexpr std::size_t kLinesNamed = 10;
   std::string which;
-  for (const std::size_t line : skipped)
-    which += (which.empty() ? "" : ", ") + std::to_string(line);
+  for (std::size_t k = 0; k < std::min(skipped.size(), kLinesNamed); ++k)
+    which += (which.empty() ? "" : ", ") + std::to_string(skipped[k]);
+  if (skipped.size() > kLinesNamed)
+    which += " and " + std::to_string(skipped.size() - kLinesNamed) + " more";
   out.warnings.push_back(file.string() + ": line" + (skipped.size() > 1 ? "s " : " ") + which +
                          " repeat" + (skipped.size() > 1 ? "" : "s") +
                          " the row before (the same time and values: a row exported twice); "
@@ -105,9 +110,19 @@ void check_time_base(const std::filesystem::path& file, const RawSignalColumns& 
                             "); expected increasing time");
     repeats += t[i] == t[i - 1];
   }
+  // Repeats that all repeat every value of the row before are rows exported twice however many
+  // there are: a rounded column repeats the time of other samples, whose values differ somewhere.
+  const auto all_rows_twice = [&] {
+    for (std::size_t i = 1; i < t.size(); ++i)
+      if (t[i] == t[i - 1])
+        for (const auto& v : out.values)
+          if (v[i] != v[i - 1]) return false;
+    return true;
+  };
   std::vector<std::size_t> kept_lines;  // the line of each sample, once repeated rows are skipped
   if (repeats > 0 &&
-      static_cast<double>(repeats) <= kUniformStepTolerance * static_cast<double>(t.size() - 1)) {
+      (static_cast<double>(repeats) <= kUniformStepTolerance * static_cast<double>(t.size() - 1) ||
+       all_rows_twice())) {
     kept_lines = raw.lines;
     drop_repeated_rows(file, kept_lines, out);
     repeats = 0;
