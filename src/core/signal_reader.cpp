@@ -88,6 +88,18 @@ void drop_repeated_rows(const std::filesystem::path& file, std::vector<std::size
                          "skipped, so the samples after keep their times");
 }
 
+// Whether every repeated time repeats every value of the row before: rows exported twice however
+// many there are, since a rounded column repeats the time of other samples, whose values differ
+// somewhere.
+bool every_repeat_twice(const SignalColumns& out) {
+  const std::vector<double>& t = out.time_s;
+  for (std::size_t i = 1; i < t.size(); ++i)
+    if (t[i] == t[i - 1])
+      for (const auto& v : out.values)
+        if (v[i] != v[i - 1]) return false;
+  return true;
+}
+
 // Checks the time stamps: increasing and uniform. Repeated stamps throughout (rounded to fewer
 // digits than the sampling needs) are not an error: the base is rebuilt from a least-squares fit
 // of t against the sample index, with a warning; a few are repeated rows (drop_repeated_rows).
@@ -110,19 +122,10 @@ void check_time_base(const std::filesystem::path& file, const RawSignalColumns& 
                             "); expected increasing time");
     repeats += t[i] == t[i - 1];
   }
-  // Repeats that all repeat every value of the row before are rows exported twice however many
-  // there are: a rounded column repeats the time of other samples, whose values differ somewhere.
-  const auto all_rows_twice = [&] {
-    for (std::size_t i = 1; i < t.size(); ++i)
-      if (t[i] == t[i - 1])
-        for (const auto& v : out.values)
-          if (v[i] != v[i - 1]) return false;
-    return true;
-  };
   std::vector<std::size_t> kept_lines;  // the line of each sample, once repeated rows are skipped
   if (repeats > 0 &&
       (static_cast<double>(repeats) <= kUniformStepTolerance * static_cast<double>(t.size() - 1) ||
-       all_rows_twice())) {
+       every_repeat_twice(out))) {
     kept_lines = raw.lines;
     drop_repeated_rows(file, kept_lines, out);
     repeats = 0;
