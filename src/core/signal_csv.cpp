@@ -45,17 +45,18 @@ std::size_t filled_width(const TextRow& row) {
 // `names` numbers once each integer followed by a field of digits is joined into one ("-0",
 // "0002" as -0,0002): the row is numbers with decimal commas split in two. Nothing otherwise.
 std::optional<std::string> decimal_commas_split(const TextRow& row, std::size_t names) {
-  const auto integer = [](std::string_view f) {
+  const auto digit = [](char c) { return c >= '0' && c <= '9'; };
+  const auto integer = [&](std::string_view f) {
     if (!f.empty() && (f.front() == '-' || f.front() == '+')) f.remove_prefix(1);
-    return !f.empty() && std::all_of(f.begin(), f.end(), [](char c) { return std::isdigit(c); });
+    return !f.empty() && std::all_of(f.begin(), f.end(), digit);
   };
   std::optional<std::string> first;
   std::size_t numbers = 0;
   for (std::size_t i = 0, n = filled_width(row); i < n; ++numbers) {
     const std::string joined =
         i + 1 < n ? std::string(row.fields[i]) + "," + std::string(row.fields[i + 1]) : "";
-    if (i + 1 < n && integer(row.fields[i]) && std::isdigit(row.fields[i + 1].front()) &&
-        parse_number(joined, true)) {
+    if (i + 1 < n && integer(row.fields[i]) && !row.fields[i + 1].empty() &&
+        digit(row.fields[i + 1].front()) && parse_number(joined, true)) {
       if (!first) first = joined;
       i += 2;
     } else {
