@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <map>
 
+#include "analysis/processing.hpp"
 #include "core/error.hpp"
 #include "core/interpolation.hpp"
 #include "core/median.hpp"
@@ -125,9 +126,30 @@ GaugeSignals read_gauge_signals(const MeasurementSpec& m, const std::filesystem:
         std::abs(cols.time_s.front() - out.time_s.front()) < kSameClock * out.dt_s &&
         std::abs(cols.dt_s - out.dt_s) * static_cast<double>(out.time_s.size()) <
             kSameClock * out.dt_s;
-    if (!same_clock)
+    if (!same_clock) {
+      // Files of one test record it over the same time: a file with next to no samples within
+      // the first's record (its time in another unit, or its own trigger's clock) holds no pulse
+      // there, and resampled it would be a flat line.
+      const auto within = std::count_if(cols.time_s.begin(), cols.time_s.end(), [&](double t) {
+        return t >= out.time_s.front() && t <= out.time_s.back();
+      });
+      if (static_cast<std::size_t>(within) < kMinRecordSamples) {
+        char value[200];
+        std::snprintf(value, sizeof value,
+                      "%td samples (record %.6g s to %.6g s, interval %.3g s) within %s's "
+                      "record (%.6g s to %.6g s)",
+                      within, cols.time_s.front(), cols.time_s.back(), cols.dt_s,
+                      order.front().filename().string().c_str(), out.time_s.front(),
+                      out.time_s.back());
+        throw input_error(file.string(), "time column", value,
+                          "expected the files of one test to record the same time, at least " +
+                              std::to_string(kMinRecordSamples) +
+                              " samples: is the time unit the same in both files "
+                              "(measurement.time.unit applies to every file)?");
+      }
       out.warnings.push_back(file.string() + ": time base differs from " + order.front().string() +
                              "; its channels were resampled onto the first file's clock (linear)");
+    }
     for (std::size_t k = 0; k < channels.size(); ++k) {
       const ChannelSpec& ch = m.channels[channels[k]];
       std::vector<double> v = same_clock ? std::move(cols.values[k])

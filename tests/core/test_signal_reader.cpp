@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <tuple>
 
@@ -588,6 +589,44 @@ TEST_CASE("Volts become strain through the bridge and opposite gauges are averag
   REQUIRE(g.find("incident"));
   CHECK((*g.find("incident"))[1] == Approx(2e-3));  // mean of 1 and 3 V, inverted
   CHECK(g.warnings.empty());                        // peak 2e-3 is a plausible strain
+}
+
+TEST_CASE("A channel file that records next to nothing of the first file's time is refused",
+          "[core][signal]") {
+  // Two scopes' files of one test: the second written in ms where the first is in s. Read in s it
+  // spans 1000 times the time, with a sample or two inside the first's record, and resampled onto
+  // the first's clock it would be a flat line.
+  // 10 MHz records; the second file's 1e-4 ms interval, read as s, is a digitizer's 10 kHz.
+  std::string first = "t,v\n", other = "t,v\n", later = "t,v\n";
+  const auto row = [](double t) {
+    std::ostringstream s;
+    s << t << ",1\n";
+    return s.str();
+  };
+  for (int i = 0; i < 100; ++i) {
+    first += row(i * 1e-7);
+    other += row(i * 1e-4);
+    later += row((i + 50) * 1e-7);  // the same clock, from sample 50 on
+  }
+  MeasurementSpec m;
+  for (const auto& [gauge, text] :
+       {std::pair{"incident", first}, std::pair{"transmitted", other}}) {
+    ChannelSpec c;
+    c.gauge = gauge;
+    c.file = write_file(std::string(gauge) + ".csv", text);
+    c.column = by_index(1);
+    c.unit = SignalUnit::kStrain;
+    m.channels.push_back(c);
+  }
+  const std::string error = error_of([&] { read_gauge_signals(m, {}); });
+  INFO(error);
+  CHECK(error.find("transmitted.csv: time column: 1 samples") != std::string::npos);
+  CHECK(error.find("is the time unit the same in both files") != std::string::npos);
+  // A file that starts later on the same clock is resampled, with a warning.
+  m.channels[1].file = write_file("later.csv", later);
+  const GaugeSignals g = read_gauge_signals(m, {});
+  REQUIRE(g.warnings.size() >= 1);
+  CHECK(g.warnings[0].find("later.csv: time base differs") != std::string::npos);
 }
 
 TEST_CASE("A value column's unit in the header must be the unit its channel reads",
