@@ -72,7 +72,9 @@ std::optional<std::string> decimal_commas_split(const TextRow& row, std::size_t 
 void refuse_split_decimal_commas(const DelimitedText& text, const TextRow* header,
                                  const TextRow* wider) {
   constexpr std::size_t kNamesToJudgeBy = 2;
-  if (!header || !wider || text.delimiter != ',' || filled_width(*header) < kNamesToJudgeBy) return;
+  if (!header || !wider || text.delimiter != ',' || is_spreadsheet(text.file) ||
+      filled_width(*header) < kNamesToJudgeBy)
+    return;
   if (const auto number = decimal_commas_split(*wider, filled_width(*header)))
     throw input_error(
         text.file.string(), "line " + std::to_string(wider->line), "\"" + *number + "\"",
@@ -423,9 +425,11 @@ std::string no_numbers_cause(const DelimitedText& text) {
                           : text.delimiter == ';' ? "semicolons"
                           : text.delimiter == ',' ? "commas"
                                                   : "blanks";
-  std::string read = "line " + std::to_string(row.line) + " was read as " +
-                     std::to_string(row.fields.size()) + " field(s) separated by " + separator +
-                     ", decimal " + (text.decimal_comma ? "comma" : "point");
+  std::string read =
+      "line " + std::to_string(row.line) + " was read as " + std::to_string(row.fields.size()) +
+      (is_spreadsheet(text.file) ? std::string(" cell(s)")
+                                 : std::string(" field(s) separated by ") + separator) +
+      ", decimal " + (text.decimal_comma ? "comma" : "point");
   for (const auto& f : row.fields) {
     if (f.empty() || parse_number(f, text.decimal_comma)) continue;
     const std::string field = "\"" + std::string(f.substr(0, 40)) + "\"";

@@ -96,6 +96,7 @@ DelimitedText Sheet::text() && {
   }
   t.bytes = std::move(bytes);
   t.all_fields = std::move(all);
+  detect_decimal_comma(t);  // text cells such as "0,25" (a German CSV pasted as text)
   if (t.rows.empty())
     throw input_error(file_.string(), "", "empty sheet", "expected rows of numbers after a header");
   return t;

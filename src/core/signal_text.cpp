@@ -178,6 +178,23 @@ void drop_bom_or_refuse_binary(const std::filesystem::path& file, std::string& b
 }
 }  // namespace
 
+void detect_decimal_comma(DelimitedText& text) {
+  // Decided on the last sniffed rows (data, not header) by numbers with a comma against numbers
+  // with a point. In a comma-separated file only a quoted field holds a comma: "-0,25" as pandas
+  // and LibreOffice quote decimal commas there, but also "1,234" as English spreadsheets quote
+  // thousands, so a field that may be thousands is no evidence there (nor a workbook's text cell).
+  std::size_t with_comma = 0, numbers = 0;
+  const std::size_t from = text.rows.size() > kSniffLines ? text.rows.size() - kSniffLines : 0;
+  for (std::size_t i = from; i < text.rows.size(); ++i)
+    for (const auto& f : text.rows[i].fields) {
+      if (looks_like_decimal_comma_number(f))
+        with_comma += text.delimiter != ',' || !maybe_thousands(f);
+      else if (f.find('.') != std::string_view::npos && parse_number(f, false))
+        ++numbers;
+    }
+  text.decimal_comma = with_comma > numbers;
+}
+
 DelimitedText read_delimited_text(const std::filesystem::path& file) {
   // Type (no FIFO or device) and size checked before reading: 1 GiB is far beyond any record.
   auto owned = std::make_shared<std::string>(
@@ -269,20 +286,7 @@ DelimitedText read_delimited_text(const std::filesystem::path& file) {
   text.bytes = std::move(owned);
   text.all_fields = std::move(fields);
 
-  // Decimal comma: decided on the last sniffed rows (data, not header) by numbers with a comma
-  // against numbers with a point. In a comma-separated file only a quoted field holds a comma:
-  // "-0,25" as pandas and LibreOffice quote decimal commas there, but also "1,234" as English
-  // spreadsheets quote thousands, so a field that may be thousands is no evidence there.
-  std::size_t with_comma = 0, numbers = 0;
-  const std::size_t from = text.rows.size() > sniff ? text.rows.size() - sniff : 0;
-  for (std::size_t i = from; i < text.rows.size(); ++i)
-    for (const auto& f : text.rows[i].fields) {
-      if (looks_like_decimal_comma_number(f))
-        with_comma += text.delimiter != ',' || !maybe_thousands(f);
-      else if (f.find('.') != std::string_view::npos && parse_number(f, false))
-        ++numbers;
-    }
-  text.decimal_comma = with_comma > numbers;
+  detect_decimal_comma(text);
   return text;
 }
 

@@ -30,6 +30,10 @@ struct DelimitedText {
   std::shared_ptr<const std::vector<std::string_view>> all_fields;
 };
 
+// Sets `text.decimal_comma` from its last rows' numbers (read_delimited_text does it for a file;
+// a workbook's sheet, whose cells may be text with decimal commas, after its rows are made).
+void detect_decimal_comma(DelimitedText& text);
+
 // Reads and splits a file; throws InputError if it cannot be read or holds no non-blank line.
 DelimitedText read_delimited_text(const std::filesystem::path& file);
 

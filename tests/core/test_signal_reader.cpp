@@ -142,6 +142,27 @@ TEST_CASE("A workbook formula is read by the value it holds, and named when it h
                        ".xls reader gives no formula's value") != std::string::npos);
 }
 
+TEST_CASE("Workbook text cells with decimal commas are read as numbers", "[core][signal][excel]") {
+  // A German CSV pasted into a spreadsheet of another locale leaves its numbers as text cells.
+  const auto cell = [](const std::string& ref, const std::string& text) {
+    return "<c r=\"" + ref + "\" t=\"inlineStr\"><is><t>" + text + "</t></is></c>";
+  };
+  std::string rows = "<row r=\"1\">" + cell("A1", "Zeit") + cell("B1", "DMS") + "</row>";
+  const char* samples[][2] = {{"0,000000", "0,5"}, {"0,000001", "1,5E-03"}, {"0,000002", "-2,25"}};
+  for (int i = 0; i < 3; ++i) {
+    const std::string r = std::to_string(i + 2);
+    rows += "<row r=\"" + r + "\">" + cell("A" + r, samples[i][0]) + cell("B" + r, samples[i][1]) +
+            "</row>";
+  }
+  const fs::path p = scratch.path() / "text_cells.xlsx";
+  shpb_test::write_zip(p, shpb_test::xlsx_parts(rows, {}));
+  auto r = csv_request(p, {by_name("DMS")});
+  r.sheet = "signals";
+  const SignalColumns s = read_signal_columns(r);
+  CHECK(s.values[0] == std::vector<double>{0.5, 1.5e-3, -2.25});
+  CHECK(s.dt_s == Approx(1e-6));
+}
+
 TEST_CASE("Semicolon and tab files with decimal commas are detected", "[core][signal]") {
   SECTION("semicolon") {
     const auto p = write_file("semi.csv", "t [ms];eps\n0,000;1,5\n0,001;2,5E-03\n0,002;-3,0\n");
