@@ -267,9 +267,10 @@ std::optional<std::pair<std::string, Value>> header_unit(std::string_view field,
     while (!unit.empty() && unit.front() == ' ') unit.remove_prefix(1);
     while (!unit.empty() && unit.back() == ' ') unit.remove_suffix(1);
     std::string name(unit);
-    // A unit starts with a letter or µ (UTF-8 C2 B5, Greek μ CE BC, Latin-1 B5): not a number.
+    // A unit starts with a letter, µ (UTF-8 C2 B5, Greek μ CE BC, Latin-1 B5) or is "%": not a
+    // number.
     const auto first = static_cast<unsigned char>(name.empty() ? '0' : name.front());
-    if (!std::isalpha(first) && first != 0xC2 && first != 0xCE && first != 0xB5)
+    if (!std::isalpha(first) && first != 0xC2 && first != 0xCE && first != 0xB5 && name != "%")
       return std::nullopt;
     for (const std::string_view micro : {"\xC2\xB5", "\xCE\xBC", "\xB5"})
       if (name.rfind(micro, 0) == 0) name = "u" + name.substr(micro.size());
@@ -297,7 +298,7 @@ std::optional<double> time_unit(std::string name) {
 }
 
 // A value column's unit: a voltage ("V", "mV", "Volt") or a strain ("ε", "µε", "µm/m",
-// "microstrain"), with its size in volts or in strain.
+// "microstrain", "%"), with its size in volts or in strain.
 struct ValueUnit {
   bool volts = false;
   double size = 1;
@@ -305,6 +306,7 @@ struct ValueUnit {
 std::optional<ValueUnit> value_unit(std::string name) {
   if (name == "Volt" || name == "Volts" || name == "volt" || name == "volts") name = "V";
   if (name == "\xCE\xB5") return ValueUnit{false, 1};  // ε
+  if (name == "%") return ValueUnit{false, 0.01};      // a strain in percent
   if (name == "u\xCE\xB5" || name == "ue" || name == "ustrain" || name == "microstrain")
     return ValueUnit{false, 1e-6};
   try {

@@ -671,6 +671,7 @@ TEST_CASE("A value column's unit in the header must be the unit its channel read
       {"Zeit,DMS\nus,\xb5m/m", SignalUnit::kStrain, "set \"unit\": \"microstrain\""},
       {"t,v (V)", SignalUnit::kMicrostrain, "set \"unit\": \"V\""},
       {"t,v (kV)", SignalUnit::kVolt, "convert the column to V, mV, strain or microstrain"},
+      {"t,Dehnung [%]", SignalUnit::kStrain, "convert the column to V, mV, strain or microstrain"},
       {"t,v_A", SignalUnit::kVolt, ""},
       {"t,incident_bar_signal/voltage", SignalUnit::kVolt, ""},
       {"t,strain", SignalUnit::kVolt, ""},
