@@ -258,11 +258,13 @@ RawSignalColumns read_columns(const DelimitedText& text, std::size_t first_data,
 }
 
 // The unit a header field names, as scopes and spreadsheets write it: "Time (ms)", "Zeit [us]",
-// "CH1 (mV)", a unit row's "(ms)", "second", "Volt" or "µm/m", "Time/s", "time_s"; nothing for a
-// name without one ("Time", "Sample"). `value` reads a unit's name (µ written u) as the kind of
-// unit sought, or gives nothing; the unit is returned as written with that value.
+// "CH1 (mV)", a unit row's "(ms)", "second", "Volt" or "µm/m", or after the last of `cuts`
+// ("Time/s", "time_s"); nothing for a name without one ("Time", "Sample"). `value` reads a unit's
+// name (µ written u) as the kind of unit sought, or gives nothing; the unit is returned as written
+// with that value.
 template <class Read, class Value = typename std::invoke_result_t<Read, std::string>::value_type>
-std::optional<std::pair<std::string, Value>> header_unit(std::string_view field, Read value) {
+std::optional<std::pair<std::string, Value>> header_unit(std::string_view field, Read value,
+                                                         std::string_view cuts) {
   const auto read = [&](std::string_view unit) -> std::optional<std::pair<std::string, Value>> {
     while (!unit.empty() && unit.front() == ' ') unit.remove_prefix(1);
     while (!unit.empty() && unit.back() == ' ') unit.remove_suffix(1);
@@ -282,10 +284,14 @@ std::optional<std::pair<std::string, Value>> header_unit(std::string_view field,
     return read(field.substr(open + 1, close == std::string_view::npos ? close : close - open - 1));
   }
   if (const auto whole = read(field)) return whole;  // a unit row's cell
-  if (const auto cut = field.find_last_of("/_ "); cut != std::string_view::npos)
+  if (const auto cut = field.find_last_of(cuts); cut != std::string_view::npos)
     return read(field.substr(cut + 1));
   return std::nullopt;
 }
+
+// Where a name ends and its unit begins: "Time/s", "time_s", "t s" for the time; only "CH1/mV"
+// for a value, whose names (a gauge's "inc_V") may end in a unit's letters.
+constexpr std::string_view kTimeUnitCuts = "/_ ", kValueUnitCuts = "/";
 
 // A time unit's name in seconds, read as a scene's quantities are (core/units.hpp).
 std::optional<double> time_unit(std::string name) {
@@ -346,7 +352,8 @@ bool unit_row(const TextRow& row) {
       f = f.substr(1, f.size() - 2);
     if (f.find_first_of("([/_ ") != std::string_view::npos && !value_unit(std::string(f)))
       return false;  // a name with a unit ("Time (ms)", "t_s"), not a unit
-    if (!header_unit(f, time_unit) && !header_unit(f, value_unit)) return false;
+    if (!header_unit(f, time_unit, kTimeUnitCuts) && !header_unit(f, value_unit, kValueUnitCuts))
+      return false;
     ++units;
   }
   return units > 0;
@@ -357,7 +364,7 @@ bool unit_row(const TextRow& row) {
 void check_value_unit(const DelimitedText& text, const TextRow& header, std::size_t column,
                       SignalUnit unit) {
   if (column >= header.fields.size()) return;
-  const auto named = header_unit(header.fields[column], value_unit);
+  const auto named = header_unit(header.fields[column], value_unit, kValueUnitCuts);
   const ValueUnit read = read_as(unit);
   if (!named || (named->second.volts == read.volts &&
                  std::abs(named->second.size / read.size - 1) <= kSameUnit))
@@ -500,7 +507,7 @@ RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest
   // A header that names the time column's unit must agree with the unit it is read in: a column
   // in ms read as seconds passes the sample-interval check at 10 MHz and above (0.1 ms -> 1e-4 s).
   if (header && time_index < header->fields.size())
-    if (const auto unit = header_unit(header->fields[time_index], time_unit);
+    if (const auto unit = header_unit(header->fields[time_index], time_unit, kTimeUnitCuts);
         unit && std::abs(unit->second / request.time_unit_s - 1) > kSameUnit)
       throw input_error(text.file.string(), text_place(header->line, time_index),
                         "\"" + std::string(header->fields[time_index]) + "\"",

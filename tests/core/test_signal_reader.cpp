@@ -673,6 +673,7 @@ TEST_CASE("A value column's unit in the header must be the unit its channel read
       {"t,v (kV)", SignalUnit::kVolt, "convert the column to V, mV, strain or microstrain"},
       {"t,Dehnung [%]", SignalUnit::kStrain, "convert the column to V, mV, strain or microstrain"},
       {"t,v_A", SignalUnit::kVolt, ""},
+      {"t,inc_mV", SignalUnit::kStrain, ""},  // a name (a simulated gauge's), not a unit
       {"t,incident_bar_signal/voltage", SignalUnit::kVolt, ""},
       {"t,strain", SignalUnit::kVolt, ""},
   };
