@@ -16,6 +16,10 @@
 namespace shpb {
 namespace {
 
+// IEEE 488.2 instruments (SCPI scopes) write ±9.9E37 for an overrange (±∞) and 9.91E37 for not a
+// number: no time, voltage or strain of a record comes near them.
+bool instrument_marker(double v) { return std::abs(v) >= 9.9e37 && std::abs(v) <= 9.91e37; }
+
 // Records of at least this many rows are parsed on two threads (a thread's start-up, ~50 µs, is
 // then below 1 % of the parsing).
 constexpr std::size_t kParallelParseRows = 100000;
@@ -398,10 +402,18 @@ std::string other_mark(const DelimitedText& text) {
 double number_at(const DelimitedText& text, const TextRow& row, std::size_t column,
                  std::string_view column_name) {
   if (column < row.fields.size())
-    if (const auto v = parse_number(row.fields[column], text.decimal_comma)) return *v;
+    if (const auto v = parse_number(row.fields[column], text.decimal_comma);
+        v && !instrument_marker(*v))
+      return *v;
   // Not a number: the message (and its place) is only built now.
   const std::string where = text_place(row.line, column) +
                             (column_name.empty() ? "" : " (\"" + std::string(column_name) + "\")");
+  if (const auto v = column < row.fields.size()
+                         ? parse_number(row.fields[column], text.decimal_comma)
+                         : std::nullopt)
+    throw input_error(text.file.string(), where, "\"" + std::string(row.fields[column]) + "\"",
+                      "an instrument's overrange or not-a-number marker (IEEE 488.2: 9.9E37, "
+                      "9.91E37), not a sample; expected a finite sample");
   if (column >= row.fields.size())
     throw input_error(
         text.file.string(), where, "missing value",

@@ -239,6 +239,16 @@ TEST_CASE("Broken signal files are rejected naming file, line and column", "[cor
     CHECK(msg.find("line 3, column 2") != std::string::npos);
     CHECK(msg.find("NaN") != std::string::npos);
   }
+  SECTION("an instrument's overrange or not-a-number marker") {
+    // SCPI scopes write IEEE 488.2's 9.9E37 (overrange) and 9.91E37 (not a number) as numbers.
+    const auto p = write_file("scpi.csv", head + "0,1,2\n1,9.91E+37,2\n2,1,2\n3,1,-9.9E37\n");
+    const auto msg = error_of([&] { read_signal_columns(csv_request(p, {by_name("incident")})); });
+    CHECK(msg.find("scpi.csv: line 3, column 2 (\"incident\"): \"9.91E+37\": an instrument's "
+                   "overrange or not-a-number marker") != std::string::npos);
+    const auto low =
+        error_of([&] { read_signal_columns(csv_request(p, {by_name("transmitted")})); });
+    CHECK(low.find("scpi.csv: line 5, column 3") != std::string::npos);
+  }
   SECTION("non-monotonic time") {
     const auto p = write_file("back.csv", head + "0,1,2\n2,1,2\n1,1,2\n3,1,2\n");
     const auto msg = error_of([&] { read_signal_columns(csv_request(p, {by_name("incident")})); });
