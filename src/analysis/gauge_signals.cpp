@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <map>
 
+#include "analysis/processing.hpp"
 #include "core/error.hpp"
 #include "core/interpolation.hpp"
 #include "core/median.hpp"
@@ -62,6 +63,24 @@ double volts_to_strain(const BridgeSpec& b) {
   return (4.0 / b.arms) / (b.gauge_factor * b.gain * b.excitation_V);
 }
 
+double strain_per_unit(const ChannelSpec& ch) {
+  switch (ch.unit) {
+    case SignalUnit::kVolt:
+    case SignalUnit::kMillivolt:
+      if (!ch.scale && !ch.bridge)
+        throw input_error("measurement", "channels[].bridge", "missing",
+                          "a channel in volts needs a bridge (arms, gauge_factor, excitation, "
+                          "gain) or a scale");
+      return (ch.unit == SignalUnit::kMillivolt ? 1e-3 : 1.0) *
+             (ch.scale ? *ch.scale : volts_to_strain(*ch.bridge));
+    case SignalUnit::kMicrostrain:
+      return 1e-6;
+    case SignalUnit::kStrain:
+      break;
+  }
+  return 1.0;
+}
+
 GaugeSignals read_gauge_signals(const MeasurementSpec& m, const std::filesystem::path& base_dir) {
   auto resolve = [&](const std::filesystem::path& p) {
     if (p.is_absolute() || base_dir.empty()) return p;
@@ -90,7 +109,10 @@ GaugeSignals read_gauge_signals(const MeasurementSpec& m, const std::filesystem:
     req.time_unit_s = m.time_unit_s;
     req.sheet = m.sheet;
     req.resample = m.time_resample;
-    for (std::size_t c : channels) req.columns.push_back(m.channels[c].column);
+    for (std::size_t c : channels) {
+      req.columns.push_back(m.channels[c].column);
+      req.column_units.push_back(m.channels[c].unit);
+    }
     SignalColumns cols = read_signal_columns(req);
     check_sample_interval(cols, m);
     out.warnings.insert(out.warnings.end(), cols.warnings.begin(), cols.warnings.end());
@@ -104,33 +126,35 @@ GaugeSignals read_gauge_signals(const MeasurementSpec& m, const std::filesystem:
         std::abs(cols.time_s.front() - out.time_s.front()) < kSameClock * out.dt_s &&
         std::abs(cols.dt_s - out.dt_s) * static_cast<double>(out.time_s.size()) <
             kSameClock * out.dt_s;
-    if (!same_clock)
+    if (!same_clock) {
+      // Files of one test record it over the same time: a file with next to no samples within
+      // the first's record (its time in another unit, or its own trigger's clock) holds no pulse
+      // there, and resampled it would be a flat line.
+      const auto within = std::count_if(cols.time_s.begin(), cols.time_s.end(), [&](double t) {
+        return t >= out.time_s.front() && t <= out.time_s.back();
+      });
+      if (static_cast<std::size_t>(within) < kMinRecordSamples) {
+        char value[200];
+        std::snprintf(value, sizeof value,
+                      "%td samples (record %.6g s to %.6g s, interval %.3g s) within %s's "
+                      "record (%.6g s to %.6g s)",
+                      within, cols.time_s.front(), cols.time_s.back(), cols.dt_s,
+                      order.front().filename().string().c_str(), out.time_s.front(),
+                      out.time_s.back());
+        throw input_error(file.string(), "time column", value,
+                          "expected the files of one test to record the same time, at least " +
+                              std::to_string(kMinRecordSamples) +
+                              " samples: is the time unit the same in both files "
+                              "(measurement.time.unit applies to every file)?");
+      }
       out.warnings.push_back(file.string() + ": time base differs from " + order.front().string() +
                              "; its channels were resampled onto the first file's clock (linear)");
+    }
     for (std::size_t k = 0; k < channels.size(); ++k) {
       const ChannelSpec& ch = m.channels[channels[k]];
       std::vector<double> v = same_clock ? std::move(cols.values[k])
                                          : resample(cols.time_s, cols.values[k], out.time_s);
-      double factor = 1.0;
-      switch (ch.unit) {
-        case SignalUnit::kVolt:
-          if (ch.scale) {
-            factor = *ch.scale;
-            break;
-          }
-          if (!ch.bridge)
-            throw input_error(
-                "measurement", "channels[" + std::to_string(channels[k]) + "].bridge", "missing",
-                "a channel in volts needs a bridge (arms, gauge_factor, excitation, gain)");
-          factor = volts_to_strain(*ch.bridge);
-          break;
-        case SignalUnit::kMicrostrain:
-          factor = 1e-6;
-          break;
-        case SignalUnit::kStrain:
-          factor = 1.0;
-          break;
-      }
+      double factor = strain_per_unit(ch);
       if (ch.invert) factor = -factor;
       factor /= ch.calibrated_gain;  // model/calibration.hpp
       for (double& x : v) x *= factor;

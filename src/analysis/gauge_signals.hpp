@@ -25,6 +25,10 @@ struct GaugeSignals {
 // ε = (4/arms)·V / (GF · gain · V_ex): quarter bridge arms = 1, half 2, full 4.
 double volts_to_strain(const BridgeSpec& bridge);
 
+// Strain per unit of the channel's column (its bridge or scale for volts, a thousandth of that
+// for millivolts), before its polarity and calibrated gain.
+double strain_per_unit(const ChannelSpec& channel);
+
 // Peak strains outside [1e-5, 5e-2] are not what a Kolsky bar produces: a warning names the
 // gauge and its peak (the unit or the bridge is probably wrong).
 inline constexpr double kPlausibleStrainMin = 1e-5;

@@ -40,8 +40,7 @@ json process_setup(const Scene& scene) {
               {"column", column_json(ch.column)},
               {"unit", std::string(enum_name(kSignalUnitNames, ch.unit))},
               {"invert", ch.invert}};
-    double per_unit = ch.unit == SignalUnit::kMicrostrain ? 1e-6 : 1.0;
-    if (ch.unit == SignalUnit::kVolt) per_unit = ch.scale ? *ch.scale : volts_to_strain(*ch.bridge);
+    const double per_unit = strain_per_unit(ch);
     if (ch.bridge)
       c["bridge"] = {{"arms", ch.bridge->arms},
                      {"gauge_factor", ch.bridge->gauge_factor},
@@ -59,6 +58,13 @@ json process_setup(const Scene& scene) {
   warnings.insert(warnings.end(), record.begin(), record.end());
   if (scene.specimen) {
     const KolskySetup k = resolve_setup(scene, signals.gauges);
+    // A time base process would refuse is refused here too (docs/scene-format.md `measurement`).
+    if (const RestSignal inc =
+            signal_from_rest(*signals.find(k.incident_gauge), m.tension ? 1.0 : -1.0);
+        inc.first)
+      require_pulse_fits_round_trip(
+          k, signals.dt_s * static_cast<double>(inc.first->end - 1 - inc.first->onset),
+          scene.file.string());
     p["reduction"] = "specimen";
     p["test"] = m.tension ? "tension" : "compression";
     p["incident_gauge"] = {{"name", k.incident_gauge},

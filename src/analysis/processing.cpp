@@ -1009,6 +1009,21 @@ void warn_window_shift(const ShiftStressError& stress_change, const std::vector<
 
 }  // namespace
 
+void require_pulse_fits_round_trip(const KolskySetup& k, double pulse_s,
+                                   const std::string& scene_file) {
+  const double round_trip = 2 * k.incident_distance_m / k.front.c0_m_s;
+  if (!(round_trip > 0) || pulse_s <= kMaxPulseRoundTrips * round_trip) return;
+  char value[200];
+  std::snprintf(value, sizeof value,
+                "gauge \"%s\": incident pulse %.3g s long, %.3g round trips 2d/c0 = %.3g s of "
+                "its gauge to the specimen and back",
+                k.incident_gauge.c_str(), pulse_s, pulse_s / round_trip, round_trip);
+  throw input_error(scene_file, "measurement.time.unit", value,
+                    "expected a pulse shorter than its round trip (its reflection would overlap "
+                    "it): is the time unit right? (a column in ms read as s makes every pulse "
+                    "1000 times longer)");
+}
+
 ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup& k,
                                  const ProcessingOptions& options) {
   ProcessingResult r;
@@ -1022,6 +1037,7 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
   const PreparedSignal inc = prepared_signal(*inc_raw, k.incident_gauge, options, r);
   const PreparedSignal tra = prepared_signal(*tra_raw, k.transmitted_gauge, options, r);
   const auto [on, end] = incident_samples(t, inc, options, r);
+  require_pulse_fits_round_trip(k, t[end - 1] - t[on], options.scene_file);
   r.incident_window = {k.incident_gauge, t[on], t[end - 1], r.incident_window.detected};
   const PulseTiming timing = time_the_pulses(t, dt, on, end, inc, tra, k, options, r);
   reduce_at_faces(t, dt, pulses_at_faces(inc, tra, dt, timing, k, options, r), timing, k, options,

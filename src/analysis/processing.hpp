@@ -164,6 +164,16 @@ struct ProcessingResult {
 // above 20 % of its peak; it is reached where it then holds until unloading.
 inline constexpr double kEquilibriumThreshold = 0.05;
 
+// An incident pulse lasting more than this many round trips of its gauge to the specimen and back
+// (2d/c0, when its reflection reaches the gauge) would be overlapped by its own reflection many
+// times over: no Kolsky record, but a clock read in the wrong unit (a column in ms read as s makes
+// every pulse 1000 times longer, which the sample-interval range lets through at 10 MS/s).
+inline constexpr double kMaxPulseRoundTrips = 10;
+// Refuses (InputError at measurement.time.unit) an incident pulse of `pulse_s` at its gauge longer
+// than that. Used by `process`, `compare` and `fit`.
+void require_pulse_fits_round_trip(const KolskySetup& setup, double pulse_s,
+                                   const std::string& scene_file);
+
 ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup& setup,
                                  const ProcessingOptions& options);
 

@@ -158,6 +158,9 @@ MeasuredPulses find_measured_pulses(const Scene& scene, const GaugeSignals& sign
   if (m.transmitted_clipped) m.transmitted_clipped->noise = tra.noise;
   m.incident_baseline = {0.0, inc.noise}, m.transmitted_baseline = {0.0, tra.noise};
   m.incident_window = *inc.first;
+  require_pulse_fits_round_trip(m.setup,
+                                m.dt_s * static_cast<double>(inc.first->end - 1 - inc.first->onset),
+                                scene.file.string());
   m.reflected_window = find_first_pulse(m.incident, m.incident_baseline, inc.first->end);
   m.transmitted_window = tra.first;
   report_missing_pulses(m);

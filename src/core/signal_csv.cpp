@@ -4,15 +4,21 @@
 #include <exception>
 #include <stdexcept>
 #include <thread>
+#include <type_traits>
 
 #include "core/error.hpp"
 #include "core/number_format.hpp"
 #include "core/output_folder.hpp"
 #include "core/signal_formats.hpp"
+#include "core/signal_spreadsheet.hpp"
 #include "core/units.hpp"
 
 namespace shpb {
 namespace {
+
+// IEEE 488.2 instruments (SCPI scopes) write ±9.9E37 for an overrange (±∞) and 9.91E37 for not a
+// number: no time, voltage or strain of a record comes near them.
+bool instrument_marker(double v) { return std::abs(v) >= 9.9e37 && std::abs(v) <= 9.91e37; }
 
 // Records of at least this many rows are parsed on two threads (a thread's start-up, ~50 µs, is
 // then below 1 % of the parsing).
@@ -39,10 +45,56 @@ std::size_t filled_width(const TextRow& row) {
   return n;
 }
 
+// The first decimal-comma number of a row of a comma-separated file whose fields read as exactly
+// `names` numbers once each integer followed by a field of digits is joined into one ("-0",
+// "0002" as -0,0002): the row is numbers with decimal commas split in two. Nothing otherwise.
+std::optional<std::string> decimal_commas_split(const TextRow& row, std::size_t names) {
+  const auto digit = [](char c) { return c >= '0' && c <= '9'; };
+  const auto integer = [&](std::string_view f) {
+    if (!f.empty() && (f.front() == '-' || f.front() == '+')) f.remove_prefix(1);
+    return !f.empty() && std::all_of(f.begin(), f.end(), digit);
+  };
+  std::optional<std::string> first;
+  std::size_t numbers = 0;
+  for (std::size_t i = 0, n = filled_width(row); i < n; ++numbers) {
+    const std::string joined =
+        i + 1 < n ? std::string(row.fields[i]) + "," + std::string(row.fields[i + 1]) : "";
+    if (i + 1 < n && integer(row.fields[i]) && !row.fields[i + 1].empty() &&
+        digit(row.fields[i + 1].front()) && parse_number(joined, true)) {
+      if (!first) first = joined;
+      i += 2;
+    } else {
+      ++i;
+    }
+  }
+  return numbers == names ? first : std::nullopt;
+}
+
+// Decimal commas in a comma-separated file split every number in two: columns by index land on
+// the halves as names would (refused by resolve), and the integer parts of the times pass for a
+// rounded time column. A header of one name is too little to judge the split by.
+void refuse_split_decimal_commas(const DelimitedText& text, const TextRow* header,
+                                 const TextRow* wider) {
+  constexpr std::size_t kNamesToJudgeBy = 2;
+  if (!header || !wider || text.delimiter != ',' || is_spreadsheet(text.file) ||
+      filled_width(*header) < kNamesToJudgeBy)
+    return;
+  if (const auto number = decimal_commas_split(*wider, filled_width(*header)))
+    throw input_error(
+        text.file.string(), "line " + std::to_string(wider->line), "\"" + *number + "\"",
+        "a number with a decimal comma in a comma-separated file: the line's " +
+            std::to_string(filled_width(*wider)) + " fields read as the " +
+            std::to_string(filled_width(*header)) + " columns the header (line " +
+            std::to_string(header->line) +
+            ") names only with decimal commas, which split every number in two; export with a "
+            "semicolon or tab separator");
+}
+
 // Column index of a reference: by 0-based index, or by exact (then case-insensitive) header name.
-// `wider`: the first data row holding more filled fields than the header names, if any.
-std::size_t resolve(const DelimitedText& text, const TextRow* header, const ColumnRef& ref,
-                    std::size_t columns_in_data, const TextRow* wider) {
+// `wider`: the first data row holding more filled fields than the header names, if any. `names`:
+// the row above a header of units (PicoScope's "Time,Channel A" over "(ms),(mV)"), searched first.
+std::size_t resolve(const DelimitedText& text, const TextRow* header, const TextRow* names,
+                    const ColumnRef& ref, std::size_t columns_in_data, const TextRow* wider) {
   if (ref.index) {
     if (*ref.index < 0 || static_cast<std::size_t>(*ref.index) >= columns_in_data)
       throw input_error(text.file.string(), "", describe(ref),
@@ -62,7 +114,6 @@ std::size_t resolve(const DelimitedText& text, const TextRow* header, const Colu
               ": a name cannot say which column it means; decimal commas in a comma-separated "
               "file split every number in two (export with a semicolon or tab separator), else "
               "give the column as an index");
-    const auto& f = header->fields;
     auto lower = [](std::string s) {
       std::transform(s.begin(), s.end(), s.begin(),
                      [](unsigned char c) { return std::tolower(c); });
@@ -70,21 +121,29 @@ std::size_t resolve(const DelimitedText& text, const TextRow* header, const Colu
     };
     // Exact first; the case-insensitive match only if it is the only one. Two candidates are
     // refused, never one picked silently.
-    auto exact = [&](std::string_view h) { return h == ref.name; };
-    auto folded = [&](std::string_view h) { return lower(std::string(h)) == lower(ref.name); };
-    const auto n_exact = std::count_if(f.begin(), f.end(), exact);
-    const auto n_folded = std::count_if(f.begin(), f.end(), folded);
-    if (n_exact > 1 || (n_exact == 0 && n_folded > 1))
-      throw input_error(text.file.string(), "line " + std::to_string(header->line), describe(ref),
-                        "several header columns match this name; rename them so that each is "
-                        "unique");
-    auto it = n_exact ? std::find_if(f.begin(), f.end(), exact)
-                      : std::find_if(f.begin(), f.end(), folded);
-    if (it != f.end()) return static_cast<std::size_t>(it - f.begin());
-    std::string names;
-    for (const auto& h : f) (names += names.empty() ? "\"" : ", \"").append(h) += '"';
-    throw input_error(text.file.string(), "line " + std::to_string(header->line), describe(ref),
-                      "no such column; the header has " + names);
+    const auto find = [&](const TextRow& row) -> std::optional<std::size_t> {
+      const auto& f = row.fields;
+      auto exact = [&](std::string_view h) { return h == ref.name; };
+      auto folded = [&](std::string_view h) { return lower(std::string(h)) == lower(ref.name); };
+      const auto n_exact = std::count_if(f.begin(), f.end(), exact);
+      const auto n_folded = std::count_if(f.begin(), f.end(), folded);
+      if (n_exact > 1 || (n_exact == 0 && n_folded > 1))
+        throw input_error(text.file.string(), "line " + std::to_string(row.line), describe(ref),
+                          "several header columns match this name; rename them so that each is "
+                          "unique");
+      auto it = n_exact ? std::find_if(f.begin(), f.end(), exact)
+                        : std::find_if(f.begin(), f.end(), folded);
+      if (it == f.end()) return std::nullopt;
+      return static_cast<std::size_t>(it - f.begin());
+    };
+    if (names)
+      if (const auto c = find(*names)) return *c;
+    if (const auto c = find(*header)) return *c;
+    const TextRow& listed = names ? *names : *header;
+    std::string list;
+    for (const auto& h : listed.fields) (list += list.empty() ? "\"" : ", \"").append(h) += '"';
+    throw input_error(text.file.string(), "line " + std::to_string(listed.line), describe(ref),
+                      "no such column; the header has " + list);
   }
   throw input_error(text.file.string(), "", describe(ref),
                     "no such column: the file has no header row (give the column as an index)");
@@ -202,30 +261,140 @@ RawSignalColumns read_columns(const DelimitedText& text, std::size_t first_data,
   return raw;
 }
 
-// The time unit a header field names, as scopes and spreadsheets write it: "Time (ms)",
-// "Zeit [us]", "Time/s", "time_s", or a unit row's "(ms)", "second"; nothing for a name without
-// one ("Time", "Sample"). The unit is read as a scene's quantities are (core/units.hpp).
-std::optional<std::pair<std::string, double>> header_time_unit(std::string_view field) {
-  std::string_view unit = field;
+// The unit a header field names, as scopes and spreadsheets write it: "Time (ms)", "Zeit [us]",
+// "CH1 (mV)", a unit row's "(ms)", "second", "Volt" or "µm/m", or after the last of `cuts`
+// ("Time/s", "time_s"); nothing for a name without one ("Time", "Sample"). `value` reads a unit's
+// name (µ written u) as the kind of unit sought, or gives nothing; the unit is returned as written
+// with that value.
+template <class Read, class Value = typename std::invoke_result_t<Read, std::string>::value_type>
+std::optional<std::pair<std::string, Value>> header_unit(std::string_view field, Read value,
+                                                         std::string_view cuts) {
+  const auto read = [&](std::string_view unit) -> std::optional<std::pair<std::string, Value>> {
+    while (!unit.empty() && unit.front() == ' ') unit.remove_prefix(1);
+    while (!unit.empty() && unit.back() == ' ') unit.remove_suffix(1);
+    std::string name(unit);
+    // A unit starts with a letter, µ (UTF-8 C2 B5, Greek μ CE BC, Latin-1 B5) or is "%": not a
+    // number.
+    const auto first = static_cast<unsigned char>(name.empty() ? '0' : name.front());
+    if (!std::isalpha(first) && first != 0xC2 && first != 0xCE && first != 0xB5 && name != "%")
+      return std::nullopt;
+    for (const std::string_view micro : {"\xC2\xB5", "\xCE\xBC", "\xB5"})
+      if (name.rfind(micro, 0) == 0) name = "u" + name.substr(micro.size());
+    if (const auto v = value(name)) return std::make_pair(std::string(unit), *v);
+    return std::nullopt;
+  };
   if (const auto open = field.find_last_of("(["); open != std::string_view::npos) {
     const auto close = field.find_first_of(")]", open);
-    unit = field.substr(open + 1, close == std::string_view::npos ? close : close - open - 1);
-  } else if (const auto cut = field.find_last_of("/_ "); cut != std::string_view::npos) {
-    unit = field.substr(cut + 1);
+    return read(field.substr(open + 1, close == std::string_view::npos ? close : close - open - 1));
   }
-  while (!unit.empty() && unit.front() == ' ') unit.remove_prefix(1);
-  while (!unit.empty() && unit.back() == ' ') unit.remove_suffix(1);
-  std::string name(unit);
+  if (const auto whole = read(field)) return whole;  // a unit row's cell
+  if (const auto cut = field.find_last_of(cuts); cut != std::string_view::npos)
+    return read(field.substr(cut + 1));
+  return std::nullopt;
+}
+
+// Where a name ends and its unit begins: "Time/s", "time_s", "t s" for the time; only "CH1/mV"
+// for a value, whose names (a gauge's "inc_V") may end in a unit's letters.
+constexpr std::string_view kTimeUnitCuts = "/_ ", kValueUnitCuts = "/";
+
+// A time unit's name in seconds, read as a scene's quantities are (core/units.hpp).
+std::optional<double> time_unit(std::string name) {
   if (name == "second" || name == "seconds" || name == "sec") name = "s";
-  // A unit starts with a letter or µ (UTF-8 C2 B5, Greek μ CE BC, Latin-1 B5): not a number.
-  const auto first = static_cast<unsigned char>(name.empty() ? '0' : name.front());
-  if (!std::isalpha(first) && first != 0xC2 && first != 0xCE && first != 0xB5) return std::nullopt;
-  if (first == 0xB5) name = "u" + name.substr(1);
   try {
-    return std::make_pair(std::string(unit), parse_quantity("1 " + name, Dimension::kTime));
+    return parse_quantity("1 " + name, Dimension::kTime);
   } catch (const std::invalid_argument&) {
     return std::nullopt;
   }
+}
+
+// A value column's unit: a voltage ("V", "mV", "Volt") or a strain ("ε", "µε", "µm/m",
+// "microstrain", "%"), with its size in volts or in strain.
+struct ValueUnit {
+  bool volts = false;
+  double size = 1;
+};
+std::optional<ValueUnit> value_unit(std::string name) {
+  if (name == "Volt" || name == "Volts" || name == "volt" || name == "volts") name = "V";
+  if (name == "\xCE\xB5") return ValueUnit{false, 1};  // ε
+  if (name == "%") return ValueUnit{false, 0.01};      // a strain in percent
+  if (name == "u\xCE\xB5" || name == "ue" || name == "ustrain" || name == "microstrain")
+    return ValueUnit{false, 1e-6};
+  try {
+    if (name.find('/') != std::string::npos)  // m/m, mm/m, µm/m
+      return ValueUnit{false, parse_quantity("1 " + name, Dimension::kDimensionless)};
+    return ValueUnit{true, parse_quantity("1 " + name, Dimension::kVoltage)};
+  } catch (const std::invalid_argument&) {
+    return std::nullopt;
+  }
+}
+
+// Two units are the same when their sizes agree to round-off.
+constexpr double kSameUnit = 1e-9;
+
+ValueUnit read_as(SignalUnit u) {
+  switch (u) {
+    case SignalUnit::kVolt:
+      return {true, 1};
+    case SignalUnit::kMillivolt:
+      return {true, 1e-3};
+    case SignalUnit::kMicrostrain:
+      return {false, 1e-6};
+    case SignalUnit::kStrain:
+      break;
+  }
+  return {false, 1};
+}
+
+// A row of units only, under the row of names (PicoScope "(ms),(mV)", Keysight "second,Volt"):
+// every filled field, without its brackets, a time or value unit.
+bool unit_row(const TextRow& row) {
+  std::size_t units = 0;
+  for (std::string_view f : row.fields) {
+    if (f.empty()) continue;
+    if (f.size() >= 2 && (f.front() == '(' || f.front() == '[') &&
+        (f.back() == ')' || f.back() == ']'))
+      f = f.substr(1, f.size() - 2);
+    if (f.find_first_of("([/_ ") != std::string_view::npos && !value_unit(std::string(f)))
+      return false;  // a name with a unit ("Time (ms)", "t_s"), not a unit
+    if (!header_unit(f, time_unit, kTimeUnitCuts) && !header_unit(f, value_unit, kValueUnitCuts))
+      return false;
+    ++units;
+  }
+  return units > 0;
+}
+
+// A header that names a value column's unit must name the one the channel reads it in: a column
+// in mV read as V is 1000 times the strain, µm/m read as strain a million times.
+void check_value_unit(const DelimitedText& text, const TextRow& header, std::size_t column,
+                      SignalUnit unit) {
+  if (column >= header.fields.size()) return;
+  const auto named = header_unit(header.fields[column], value_unit, kValueUnitCuts);
+  const ValueUnit read = read_as(unit);
+  if (!named || (named->second.volts == read.volts &&
+                 std::abs(named->second.size / read.size - 1) <= kSameUnit))
+    return;
+  std::string hint = "convert the column to V, mV, strain or microstrain";
+  for (const auto& [name, u] : kSignalUnitNames)
+    if (read_as(u).volts == named->second.volts &&
+        std::abs(named->second.size / read_as(u).size - 1) <= kSameUnit)
+      hint = "set \"unit\": \"" + std::string(name) + "\"";
+  throw input_error(text.file.string(), text_place(header.line, column),
+                    "\"" + std::string(header.fields[column]) + "\"",
+                    "the header gives the values in " + named->first +
+                        ", but the channel reads them in " +
+                        std::string(enum_name(kSignalUnitNames, unit)) +
+                        " (measurement.channels[].unit): " + hint + " or correct the header");
+}
+
+// A number written with the file's other mark. German spreadsheets write 1234 as "1.234",
+// English ones as "1,234": in a file of the other decimal mark, read as a decimal it would be a
+// thousand times too small.
+std::string other_mark(const DelimitedText& text) {
+  const std::string mark = text.decimal_comma ? "comma" : "point";
+  return std::string(text.decimal_comma ? "a point" : "a comma") +
+         " in a file whose decimal mark is the " + mark +
+         ": a thousands separator or the other decimal mark; expected numbers with a decimal " +
+         mark + " and no thousands separator";
 }
 
 }  // namespace
@@ -233,18 +402,35 @@ std::optional<std::pair<std::string, double>> header_time_unit(std::string_view 
 double number_at(const DelimitedText& text, const TextRow& row, std::size_t column,
                  std::string_view column_name) {
   if (column < row.fields.size())
-    if (const auto v = parse_number(row.fields[column], text.decimal_comma)) return *v;
+    if (const auto v = parse_number(row.fields[column], text.decimal_comma);
+        v && !instrument_marker(*v))
+      return *v;
   // Not a number: the message (and its place) is only built now.
   const std::string where = text_place(row.line, column) +
                             (column_name.empty() ? "" : " (\"" + std::string(column_name) + "\")");
+  if (const auto v = column < row.fields.size()
+                         ? parse_number(row.fields[column], text.decimal_comma)
+                         : std::nullopt)
+    throw input_error(text.file.string(), where, "\"" + std::string(row.fields[column]) + "\"",
+                      "an instrument's overrange or not-a-number marker (IEEE 488.2: 9.9E37, "
+                      "9.91E37), not a sample; expected a finite sample");
   if (column >= row.fields.size())
     throw input_error(
         text.file.string(), where, "missing value",
         "the row has only " + std::to_string(row.fields.size()) + " fields (truncated line?)");
   const std::string f(row.fields[column]);
-  if (f.empty()) throw input_error(text.file.string(), where, "empty field", "expected a number");
+  if (f.empty())
+    throw input_error(text.file.string(), where, "empty field",
+                      "expected a number" + empty_cell_cause(text.file));
   const bool nan = f.find("nan") != std::string::npos || f.find("NaN") != std::string::npos ||
                    f.find("NAN") != std::string::npos;
+  if (parse_number(f, !text.decimal_comma))
+    throw input_error(text.file.string(), where, "\"" + f + "\"", other_mark(text));
+  if (f.front() == '=')
+    throw input_error(text.file.string(), where, "\"" + f + "\"",
+                      "a formula whose value the workbook does not hold (written by a program "
+                      "that does not compute formulas); expected a number: open and save the "
+                      "workbook in a spreadsheet program");
   throw input_error(
       text.file.string(), where, "\"" + f + "\"",
       nan ? "not a number (NaN) where a finite sample was expected" : "expected a finite number");
@@ -260,16 +446,15 @@ std::string no_numbers_cause(const DelimitedText& text) {
                           : text.delimiter == ';' ? "semicolons"
                           : text.delimiter == ',' ? "commas"
                                                   : "blanks";
-  std::string read = "line " + std::to_string(row.line) + " was read as " +
-                     std::to_string(row.fields.size()) + " field(s) separated by " + separator +
-                     ", decimal " + (text.decimal_comma ? "comma" : "point");
+  std::string read =
+      "line " + std::to_string(row.line) + " was read as " + std::to_string(row.fields.size()) +
+      (is_spreadsheet(text.file) ? std::string(" cell(s)")
+                                 : std::string(" field(s) separated by ") + separator) +
+      ", decimal " + (text.decimal_comma ? "comma" : "point");
   for (const auto& f : row.fields) {
     if (f.empty() || parse_number(f, text.decimal_comma)) continue;
     const std::string field = "\"" + std::string(f.substr(0, 40)) + "\"";
-    if (parse_number(f, !text.decimal_comma))
-      return read + ": " + field + " is a number with a decimal " +
-             (text.decimal_comma ? "point" : "comma") +
-             " where the file's other numbers use the other mark; export with one decimal mark";
+    if (parse_number(f, !text.decimal_comma)) return read + ": " + field + ": " + other_mark(text);
     if (text.delimiter == ',' && f.find_first_of(" \t") != std::string_view::npos)
       return read + ": " + field +
              " looks like blank-separated numbers with decimal commas, the comma taken as the "
@@ -322,12 +507,20 @@ RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest
   if (header)
     for (std::size_t i = first; i < text.rows.size() && !wider; ++i)
       if (filled_width(text.rows[i]) > filled_width(*header)) wider = &text.rows[i];
-  const std::size_t time_index = resolve(text, header, time_ref, width, wider);
+  if (time_ref.index && std::all_of(request.columns.begin(), request.columns.end(),
+                                    [](const ColumnRef& c) { return c.index.has_value(); }))
+    refuse_split_decimal_commas(text, header, wider);
+  const TextRow* names_row = header && first >= 2 && unit_row(*header) &&
+                                     filled_width(text.rows[first - 2]) == filled_width(*header)
+                                 ? &text.rows[first - 2]
+                                 : nullptr;
+  const TextRow* named = names_row ? names_row : header;  // what names each column
+  const std::size_t time_index = resolve(text, header, names_row, time_ref, width, wider);
   // A header that names the time column's unit must agree with the unit it is read in: a column
   // in ms read as seconds passes the sample-interval check at 10 MHz and above (0.1 ms -> 1e-4 s).
   if (header && time_index < header->fields.size())
-    if (const auto unit = header_time_unit(header->fields[time_index]);
-        unit && std::abs(unit->second / request.time_unit_s - 1) > 1e-9)
+    if (const auto unit = header_unit(header->fields[time_index], time_unit, kTimeUnitCuts);
+        unit && std::abs(unit->second / request.time_unit_s - 1) > kSameUnit)
       throw input_error(text.file.string(), text_place(header->line, time_index),
                         "\"" + std::string(header->fields[time_index]) + "\"",
                         "the header gives the time in " + unit->first +
@@ -339,12 +532,15 @@ RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest
   std::vector<std::size_t> indices;
   std::vector<std::string> names;
   for (const auto& c : request.columns) {
-    indices.push_back(resolve(text, header, c, width, wider));
-    names.push_back(header && indices.back() < header->fields.size()
-                        ? std::string(header->fields[indices.back()])
+    indices.push_back(resolve(text, header, names_row, c, width, wider));
+    names.push_back(named && indices.back() < named->fields.size()
+                        ? std::string(named->fields[indices.back()])
                         : "column " + std::to_string(indices.back()));
   }
-  return read_columns(text, first, header, time_index, indices, names);
+  if (header)
+    for (std::size_t k = 0; k < request.column_units.size(); ++k)
+      check_value_unit(text, *header, indices[k], request.column_units[k]);
+  return read_columns(text, first, named, time_index, indices, names);
 }
 
 RawSignalColumns read_tektronix_columns(const DelimitedText& text, const SignalRequest& request) {

@@ -74,13 +74,30 @@ void drop_repeated_rows(const std::filesystem::path& file, std::vector<std::size
   }
   t.resize(kept), lines.resize(kept);
   for (auto& v : out.values) v.resize(kept);
+  // The first lines by number, then how many more: a file exported with every row twice has
+  // thousands.
+  constexpr std::size_t kLinesNamed = 10;
   std::string which;
-  for (const std::size_t line : skipped)
-    which += (which.empty() ? "" : ", ") + std::to_string(line);
+  for (std::size_t k = 0; k < std::min(skipped.size(), kLinesNamed); ++k)
+    which += (which.empty() ? "" : ", ") + std::to_string(skipped[k]);
+  if (skipped.size() > kLinesNamed)
+    which += " and " + std::to_string(skipped.size() - kLinesNamed) + " more";
   out.warnings.push_back(file.string() + ": line" + (skipped.size() > 1 ? "s " : " ") + which +
                          " repeat" + (skipped.size() > 1 ? "" : "s") +
                          " the row before (the same time and values: a row exported twice); "
                          "skipped, so the samples after keep their times");
+}
+
+// Whether every repeated time repeats every value of the row before: rows exported twice however
+// many there are, since a rounded column repeats the time of other samples, whose values differ
+// somewhere.
+bool every_repeat_twice(const SignalColumns& out) {
+  const std::vector<double>& t = out.time_s;
+  for (std::size_t i = 1; i < t.size(); ++i)
+    if (t[i] == t[i - 1])
+      for (const auto& v : out.values)
+        if (v[i] != v[i - 1]) return false;
+  return true;
 }
 
 // Checks the time stamps: increasing and uniform. Repeated stamps throughout (rounded to fewer
@@ -107,7 +124,8 @@ void check_time_base(const std::filesystem::path& file, const RawSignalColumns& 
   }
   std::vector<std::size_t> kept_lines;  // the line of each sample, once repeated rows are skipped
   if (repeats > 0 &&
-      static_cast<double>(repeats) <= kUniformStepTolerance * static_cast<double>(t.size() - 1)) {
+      (static_cast<double>(repeats) <= kUniformStepTolerance * static_cast<double>(t.size() - 1) ||
+       every_repeat_twice(out))) {
     kept_lines = raw.lines;
     drop_repeated_rows(file, kept_lines, out);
     repeats = 0;

@@ -19,6 +19,9 @@ struct SignalRequest {
       time_column;  // empty: the format's own (CSV: first column; Tektronix: 4th; LANL: header)
   double time_unit_s = 1.0;  // seconds per unit of the time column
   std::vector<ColumnRef> columns;
+  // The unit each column is read in, one per column (empty: none checked). A CSV or workbook
+  // header naming a column's unit ("CH1 (mV)", a unit row's "µm/m") must name this one.
+  std::vector<SignalUnit> column_units;
   std::string sheet;  // .xlsx/.xls: the sheet by name (empty: the first)
   TimeResampling resample;
 };

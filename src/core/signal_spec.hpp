@@ -27,6 +27,15 @@ struct TimeResampling {
   bool operator==(const TimeResampling&) const = default;
 };
 
+// measurement.channels[].unit: what a column's values are in (volts become strain through a bridge
+// or a scale). A header naming a column's unit must agree with it (signal_csv.cpp).
+enum class SignalUnit { kVolt, kMillivolt, kStrain, kMicrostrain };
+inline constexpr EnumName<SignalUnit> kSignalUnitNames[] = {
+    {"V", SignalUnit::kVolt},
+    {"mV", SignalUnit::kMillivolt},
+    {"strain", SignalUnit::kStrain},
+    {"microstrain", SignalUnit::kMicrostrain}};
+
 struct ColumnRef {
   std::string name;          // column by header name, or
   std::optional<int> index;  // by 0-based index

@@ -96,6 +96,7 @@ DelimitedText Sheet::text() && {
   }
   t.bytes = std::move(bytes);
   t.all_fields = std::move(all);
+  detect_decimal_comma(t);  // text cells such as "0,25" (a German CSV pasted as text)
   if (t.rows.empty())
     throw input_error(file_.string(), "", "empty sheet", "expected rows of numbers after a header");
   return t;
@@ -309,6 +310,13 @@ DelimitedText read_xls(const std::filesystem::path& file, const std::string& she
 bool is_spreadsheet(const std::filesystem::path& file) {
   const auto e = lower_extension(file);
   return e == ".xlsx" || e == ".xls";
+}
+
+std::string empty_cell_cause(const std::filesystem::path& file) {
+  return lower_extension(file) == ".xls"
+             ? " (the .xls reader gives no formula's value: a cell holding a formula reads "
+               "empty; save the workbook as .xlsx, or paste its values)"
+             : "";
 }
 
 DelimitedText read_spreadsheet(const std::filesystem::path& file, const std::string& sheet) {

@@ -13,6 +13,10 @@ namespace shpb {
 // True for the extensions .xlsx and .xls (any case).
 bool is_spreadsheet(const std::filesystem::path& file);
 
+// What an empty cell of `file` may be beyond an empty cell, for messages: in an .xls, a formula
+// (FreeXL, its reader, gives no formula's value); "" for any other file.
+std::string empty_cell_cause(const std::filesystem::path& file);
+
 // Reads `sheet` (empty: the first) of a workbook. InputError naming the file for a broken
 // workbook, a missing sheet (with the names it has) or a sheet beyond Excel's limits.
 DelimitedText read_spreadsheet(const std::filesystem::path& file, const std::string& sheet);

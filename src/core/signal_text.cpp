@@ -115,9 +115,27 @@ bool looks_like_decimal_comma_number(std::string_view f) {
   return parse_number(f, true).has_value();
 }
 
+// "1,234" or "-12,345,678": an integer in groups of three digits (English thousands).
+bool maybe_thousands(std::string_view f) {
+  if (!f.empty() && (f.front() == '-' || f.front() == '+')) f.remove_prefix(1);
+  const auto digits = [](std::string_view d) {
+    return std::all_of(d.begin(), d.end(), [](char c) { return c >= '0' && c <= '9'; });
+  };
+  const auto comma = f.find(',');
+  if (comma == std::string_view::npos || comma == 0 || comma > 3 || f.front() == '0' ||
+      !digits(f.substr(0, comma)))
+    return false;
+  for (f.remove_prefix(comma); !f.empty(); f.remove_prefix(4))
+    if (f.size() < 4 || f[0] != ',' || !digits(f.substr(1, 3))) return false;
+  return true;
+}
+
 }  // namespace
 
 std::optional<double> parse_number(std::string_view field, bool decimal_comma) {
+  // Where the decimal mark is the comma, a point is a thousands separator (German spreadsheets
+  // write 1234 as "1.234") or the other mark: either way not a number that can be read.
+  if (decimal_comma && field.find('.') != std::string_view::npos) return std::nullopt;
   // Numbers are parsed where they lie; only a decimal comma needs a copy with a point.
   std::string copy;
   if (decimal_comma && field.find(',') != std::string_view::npos) {
@@ -159,6 +177,23 @@ void drop_bom_or_refuse_binary(const std::filesystem::path& file, std::string& b
   }
 }
 }  // namespace
+
+void detect_decimal_comma(DelimitedText& text) {
+  // Decided on the last sniffed rows (data, not header) by numbers with a comma against numbers
+  // with a point. In a comma-separated file only a quoted field holds a comma: "-0,25" as pandas
+  // and LibreOffice quote decimal commas there, but also "1,234" as English spreadsheets quote
+  // thousands, so a field that may be thousands is no evidence there (nor a workbook's text cell).
+  std::size_t with_comma = 0, numbers = 0;
+  const std::size_t from = text.rows.size() > kSniffLines ? text.rows.size() - kSniffLines : 0;
+  for (std::size_t i = from; i < text.rows.size(); ++i)
+    for (const auto& f : text.rows[i].fields) {
+      if (looks_like_decimal_comma_number(f))
+        with_comma += text.delimiter != ',' || !maybe_thousands(f);
+      else if (f.find('.') != std::string_view::npos && parse_number(f, false))
+        ++numbers;
+    }
+  text.decimal_comma = with_comma > numbers;
+}
 
 DelimitedText read_delimited_text(const std::filesystem::path& file) {
   // Type (no FIFO or device) and size checked before reading: 1 GiB is far beyond any record.
@@ -251,20 +286,7 @@ DelimitedText read_delimited_text(const std::filesystem::path& file) {
   text.bytes = std::move(owned);
   text.all_fields = std::move(fields);
 
-  // Decimal comma: only possible when the comma is not the delimiter; decided on the last
-  // sniffed rows (data, not header) by numbers with a comma against numbers with a point.
-  if (text.delimiter != ',') {
-    std::size_t with_comma = 0, numbers = 0;
-    const std::size_t from = text.rows.size() > sniff ? text.rows.size() - sniff : 0;
-    for (std::size_t i = from; i < text.rows.size(); ++i)
-      for (const auto& f : text.rows[i].fields) {
-        if (looks_like_decimal_comma_number(f))
-          ++with_comma;
-        else if (f.find('.') != std::string_view::npos && parse_number(f, false))
-          ++numbers;
-      }
-    text.decimal_comma = with_comma > numbers;
-  }
+  detect_decimal_comma(text);
   return text;
 }
 

@@ -30,11 +30,16 @@ struct DelimitedText {
   std::shared_ptr<const std::vector<std::string_view>> all_fields;
 };
 
+// Sets `text.decimal_comma` from its last rows' numbers (read_delimited_text does it for a file;
+// a workbook's sheet, whose cells may be text with decimal commas, after its rows are made).
+void detect_decimal_comma(DelimitedText& text);
+
 // Reads and splits a file; throws InputError if it cannot be read or holds no non-blank line.
 DelimitedText read_delimited_text(const std::filesystem::path& file);
 
-// Strict number parsing of one field (the whole field must be a finite number; decimal comma
-// accepted when `decimal_comma`). Returns nullopt for anything else, including NaN and inf.
+// Strict number parsing of one field (the whole field must be a finite number; with
+// `decimal_comma`, a decimal comma and no point). Returns nullopt for anything else, including
+// NaN and inf.
 std::optional<double> parse_number(std::string_view field, bool decimal_comma);
 
 // "line 12, column 3" — the place of a field in messages (columns 1-based, as editors count).

@@ -276,7 +276,7 @@ DelimitedText read_xlsx(const fs::path& file, const std::string& sheet) {
 
   Sheet out(file);
   std::size_t row = 0, column = 0, next_row = 1;
-  std::string type, value;
+  std::string type, value, formula;
   bool in_cell = false;
   Xml x;
   x.keep_text = true;
@@ -295,6 +295,7 @@ DelimitedText read_xlsx(const fs::path& file, const std::string& sheet) {
       const char* t = attribute(a, "t");
       type = t ? t : "n";
       value.clear();
+      formula.clear();
       in_cell = true;
     }
   };
@@ -305,7 +306,12 @@ DelimitedText read_xlsx(const fs::path& file, const std::string& sheet) {
         throw std::length_error("a text of more than 32767 characters");
       value += x.text;
     }
+    // A formula's text, kept for a cell whose value the workbook does not hold (a program that
+    // writes formulas without computing them): "=A2+1E-7" is then what the cell reads as, named
+    // by the reader, never an empty field.
+    if (el == "f") formula = "=" + (x.text.empty() ? std::string("(shared formula)") : x.text);
     if (el == "c") {
+      if (value.empty()) value = formula;
       if (type == "s") {
         char* end = nullptr;
         const unsigned long i = std::strtoul(value.c_str(), &end, 10);

@@ -79,24 +79,27 @@ ChannelSpec read_channel(const JsonValue& v, const std::filesystem::path& scene_
                                      : "no such gauge; " + suggestion_text(c.gauge, gauges));
   if (auto f = o.get("file")) c.file = (scene_dir / f->name()).lexically_normal();
   if (auto col = o.get("column")) c.column = read_column(*col);
-  const auto unit = o.require("unit", "\"V\", \"strain\" or \"microstrain\"");
+  const auto unit = o.require("unit", "\"V\", \"mV\", \"strain\" or \"microstrain\"");
   c.unit = enum_from(unit, kSignalUnitNames);
+  const bool volts = c.unit == SignalUnit::kVolt || c.unit == SignalUnit::kMillivolt;
   if (auto sc = o.get("scale")) {
-    if (c.unit != SignalUnit::kVolt)
+    if (!volts)
       throw sc->error(
-          "a scale (strain per volt) converts volts; it applies only to \"unit\": \"V\"");
+          "a scale (strain per volt) converts volts; it applies only to \"unit\": \"V\" or "
+          "\"mV\"");
     if (o.get("bridge")) throw sc->error("give either scale (strain per volt) or bridge, not both");
     c.scale = sc->quantity(Dimension::kDimensionless);
     if (!(*c.scale != 0)) throw sc->error("expected a non-zero strain per volt, e.g. 1.2e-3");
   }
   if (auto b = o.get("bridge")) {
-    if (c.unit != SignalUnit::kVolt)
-      throw b->error("a bridge converts volts; it applies only to \"unit\": \"V\"");
+    if (!volts)
+      throw b->error("a bridge converts volts; it applies only to \"unit\": \"V\" or \"mV\"");
     c.bridge = read_bridge(*b);
-  } else if (c.unit == SignalUnit::kVolt && !c.scale) {
+  } else if (volts && !c.scale) {
     throw input_error(v.file(), json_child_path(v.path(), "bridge"), "(missing)",
-                      "required for \"unit\": \"V\": {\"arms\", \"gauge_factor\", \"excitation\", "
-                      "\"gain\"} (or \"scale\": strain per volt)");
+                      "required for \"unit\": \"" + unit.string() +
+                          "\": {\"arms\", \"gauge_factor\", \"excitation\", "
+                          "\"gain\"} (or \"scale\": strain per volt)");
   }
   if (auto i = o.get("invert")) c.invert = i->boolean();
   return c;

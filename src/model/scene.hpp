@@ -139,12 +139,6 @@ inline bool gauges_filtered(const SimulationSpec& s) { return s.tolerance.has_va
 
 // ---- measured signals -------------------------------------------------------------------------
 
-enum class SignalUnit { kVolt, kStrain, kMicrostrain };
-inline constexpr EnumName<SignalUnit> kSignalUnitNames[] = {
-    {"V", SignalUnit::kVolt},
-    {"strain", SignalUnit::kStrain},
-    {"microstrain", SignalUnit::kMicrostrain}};
-
 // Wheatstone bridge: ε = k·V / (GF · gain · V_ex) with k = 4/arms (quarter 4, half 2, full 1).
 struct BridgeSpec {
   int arms = 1;

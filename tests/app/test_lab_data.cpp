@@ -143,6 +143,37 @@ TEST_CASE("A time unit that does not match the column exits 2 before anything is
   const auto r = run_shpb({"process", write(d, scene, micro).string(), "-o", (d / "out").string()});
   CHECK(r.code == 2);
   CHECK(r.err.find("sample interval 0.1 s") != std::string::npos);
+  // Seconds declared on a column in milliseconds at 10 MS/s: a 100 µs interval, which a digitizer
+  // may have, but the 100 µs incident pulse becomes 0.1 s, 250 round trips 2d/c0 = 0.4 ms of the
+  // incident gauge 1 m from the specimen: it would overlap its own reflection.
+  const fs::path m = scratch_dir("labdata_unit_ms");
+  std::string milli = "t,incident,transmitted\n";
+  const Record rec = clean();
+  for (int i = 0; i < kSamples; ++i) {
+    std::ostringstream row;
+    row.precision(17);
+    row << i * kDt * 1e3 << "," << rec.incident_gauge(i * kDt) << ","
+        << rec.transmitted_gauge(i * kDt) << "\n";
+    milli += row.str();
+  }
+  const auto ms =
+      run_shpb({"process", write(m, scene, milli).string(), "-o", (m / "out").string()});
+  INFO(ms.err);
+  CHECK(ms.code == 2);
+  CHECK(ms.err.find("measurement.time.unit: gauge \"incident\": incident pulse") !=
+        std::string::npos);
+  CHECK(ms.err.find("is the time unit right?") != std::string::npos);
+  CHECK(ms.err.find('\n') == ms.err.size() - 1);
+  CHECK_FALSE(fs::exists(m / "out"));
+  // compare finds the measured pulses by the same rule, and validate refuses what they refuse.
+  const auto cmp = run_shpb({"compare", (m / "scene.json").string(), "-o", (m / "cmp").string()});
+  INFO(cmp.err);
+  CHECK(cmp.code == 2);
+  CHECK(cmp.err.find("is the time unit right?") != std::string::npos);
+  const auto val = run_shpb({"validate", (m / "scene.json").string()});
+  INFO(val.err);
+  CHECK(val.code == 2);
+  CHECK(val.err.find("is the time unit right?") != std::string::npos);
 }
 
 TEST_CASE(

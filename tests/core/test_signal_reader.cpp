@@ -3,9 +3,11 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <tuple>
 
+#include "../app/write_xlsx.hpp"
 #include "../scratch.hpp"
 #include "analysis/gauge_signals.hpp"
 #include "core/error.hpp"
@@ -70,6 +72,97 @@ TEST_CASE("A CSV file with metadata lines is read by column name and index", "[c
   CHECK(s.warnings.empty());
 }
 
+TEST_CASE("Columns are named by the row above a row of units", "[core][signal]") {
+  // PicoScope writes the names, then their units, then a blank line; Keysight "x-axis,1,2" over
+  // "second,Volt,Volt". The units row is the header the data rows follow; the names are above.
+  const auto pico = write_file("pico.csv",
+                               "Time,Channel A,Channel B\r\n(ms),(mV),(mV)\r\n\r\n"
+                               "-0.0001,1.5,-2\r\n0.0000,2.5,-3\r\n0.0001,3.5,-4\r\n");
+  auto r = csv_request(pico, {by_name("Channel B"), by_name("channel a")});
+  r.time_column = by_name("Time");
+  r.time_unit_s = 1e-3;
+  const SignalColumns s = read_signal_columns(r);
+  CHECK(s.values[0] == std::vector<double>{-2, -3, -4});
+  CHECK(s.values[1] == std::vector<double>{1.5, 2.5, 3.5});
+  CHECK(s.names[0] == "Channel B");
+  CHECK(s.time_s.front() == Approx(-1e-7));
+  // A name the names row lacks is refused with the names listed.
+  r.columns = {by_name("Channel C")};
+  CHECK(error_of([&] { read_signal_columns(r); })
+            .find("pico.csv: line 1: column \"Channel C\": no such column; the header has "
+                  "\"Time\", \"Channel A\", \"Channel B\"") != std::string::npos);
+  const auto keysight =
+      write_file("scope_1.csv", "x-axis,1,2\nsecond,Volt,Volt\n-1e-7,0.5,1\n0,0.25,2\n1e-7,0,3\n");
+  CHECK(read_signal_columns(csv_request(keysight, {by_name("2")})).values[0] ==
+        std::vector<double>{1, 2, 3});
+  // A unit that names one column alone still names it.
+  const auto single =
+      write_file("single.csv", "x-axis,1\nsecond,Volt\n-1e-7,0.5\n0,0.25\n1e-7,0\n");
+  CHECK(read_signal_columns(csv_request(single, {by_name("Volt")})).values[0] ==
+        std::vector<double>{0.5, 0.25, 0});
+}
+
+TEST_CASE("A workbook formula is read by the value it holds, and named when it holds none",
+          "[core][signal][excel]") {
+  // Spreadsheet programs store a formula's value beside it; programs that write workbooks
+  // without computing formulas (e.g. Python's openpyxl) store the formula alone.
+  const auto workbook = [](const std::string& time_cell) {
+    const fs::path p = scratch.path() / "formula.xlsx";
+    std::vector<std::string> shared{"t", "v"};
+    shpb_test::write_zip(
+        p,
+        shpb_test::xlsx_parts("<row r=\"1\"><c r=\"A1\" t=\"s\"><v>0</v></c>"
+                              "<c r=\"B1\" t=\"s\"><v>1</v></c></row>"
+                              "<row r=\"2\"><c r=\"A2\"><v>0</v></c><c r=\"B2\"><v>1</v></c></row>"
+                              "<row r=\"3\">" +
+                                  time_cell +
+                                  "<c r=\"B3\"><v>2</v></c></row>"
+                                  "<row r=\"4\"><c r=\"A4\"><v>2E-6</v></c><c r=\"B4\"><v>3</v>"
+                                  "</c></row>",
+                              shared));
+    auto r = csv_request(p, {by_name("v")});
+    r.sheet = "signals";
+    return r;
+  };
+  const SignalColumns s =
+      read_signal_columns(workbook("<c r=\"A3\"><f>A2+1E-6</f><v>1E-6</v></c>"));
+  CHECK(s.time_s == std::vector<double>{0, 1e-6, 2e-6});
+  const std::string error =
+      error_of([&] { read_signal_columns(workbook("<c r=\"A3\"><f>A2+1E-6</f></c>")); });
+  INFO(error);
+  CHECK(error.find("formula.xlsx: line 3, column 1 (\"t\"): \"=A2+1E-6\": a formula whose value "
+                   "the workbook does not hold") != std::string::npos);
+  // An .xls holds the value too, but its reader (FreeXL) gives none: the cell reads empty, and
+  // the message says what it may be (tests/data/make_formula_xls.pl).
+  auto xls = csv_request(fs::path(SHPB_SOURCE_DIR) / "tests/data/formula.xls", {by_name("v")});
+  xls.sheet = "signals";
+  const std::string xls_error = error_of([&] { read_signal_columns(xls); });
+  INFO(xls_error);
+  CHECK(xls_error.find("formula.xls: line 3, column 1 (\"t\"): empty field: expected a number (the "
+                       ".xls reader gives no formula's value") != std::string::npos);
+}
+
+TEST_CASE("Workbook text cells with decimal commas are read as numbers", "[core][signal][excel]") {
+  // A German CSV pasted into a spreadsheet of another locale leaves its numbers as text cells.
+  const auto cell = [](const std::string& ref, const std::string& text) {
+    return "<c r=\"" + ref + "\" t=\"inlineStr\"><is><t>" + text + "</t></is></c>";
+  };
+  std::string rows = "<row r=\"1\">" + cell("A1", "Zeit") + cell("B1", "DMS") + "</row>";
+  const char* samples[][2] = {{"0,000000", "0,5"}, {"0,000001", "1,5E-03"}, {"0,000002", "-2,25"}};
+  for (int i = 0; i < 3; ++i) {
+    const std::string r = std::to_string(i + 2);
+    rows += "<row r=\"" + r + "\">" + cell("A" + r, samples[i][0]) + cell("B" + r, samples[i][1]) +
+            "</row>";
+  }
+  const fs::path p = scratch.path() / "text_cells.xlsx";
+  shpb_test::write_zip(p, shpb_test::xlsx_parts(rows, {}));
+  auto r = csv_request(p, {by_name("DMS")});
+  r.sheet = "signals";
+  const SignalColumns s = read_signal_columns(r);
+  CHECK(s.values[0] == std::vector<double>{0.5, 1.5e-3, -2.25});
+  CHECK(s.dt_s == Approx(1e-6));
+}
+
 TEST_CASE("Semicolon and tab files with decimal commas are detected", "[core][signal]") {
   SECTION("semicolon") {
     const auto p = write_file("semi.csv", "t [ms];eps\n0,000;1,5\n0,001;2,5E-03\n0,002;-3,0\n");
@@ -78,6 +171,45 @@ TEST_CASE("Semicolon and tab files with decimal commas are detected", "[core][si
     const auto s = read_signal_columns(r);
     CHECK(s.values[0][1] == Approx(2.5e-3));
     CHECK(s.dt_s == Approx(1e-6));
+  }
+  SECTION("a point where the decimal mark is the comma is refused, never read as a decimal") {
+    // German spreadsheets write the thousands with a point: "1.140" µε is 1140, not 1.14.
+    const auto p = write_file("thousands.csv",
+                              "Zeit [ms];inc [\xb5\xce\xb5]\n0,0000;0\n0,0001;987\n0,0002;1.140\n"
+                              "0,0003;-5\n");
+    auto r = csv_request(p, {by_index(1)});
+    r.time_unit_s = 1e-3;
+    const std::string error = error_of([&] { read_signal_columns(r); });
+    INFO(error);
+    CHECK(error.find(
+              "thousands.csv: line 4, column 2 (\"inc [\xb5\xce\xb5]\"): \"1.140\": a point in "
+              "a file whose decimal mark is the comma: a thousands separator") !=
+          std::string::npos);
+    // The other way round, "1,012" in a file of decimal points.
+    const auto q = write_file("thousands.tsv", "t\tinc\n0.0000\t987\n0.0001\t1,012\n0.0002\t5\n");
+    r = csv_request(q, {by_index(1)});
+    r.time_unit_s = 1e-3;
+    CHECK(error_of([&] { read_signal_columns(r); })
+              .find("thousands.tsv: line 3, column 2 (\"inc\"): \"1,012\": a comma in a file "
+                    "whose decimal mark is the point") != std::string::npos);
+  }
+  SECTION("comma-separated, decimal commas in quoted fields") {
+    // pandas' to_csv(decimal=",") and LibreOffice quote a field holding the separator.
+    const auto p =
+        write_file("quoted.csv", "t,eps\n\"-0,0001\",0\n0,\"1,5E-03\"\n\"0,0001\",\"-2,25\"\n");
+    const auto s = read_signal_columns(csv_request(p, {by_name("eps")}));
+    CHECK(s.values[0] == std::vector<double>{0, 1.5e-3, -2.25});
+    CHECK(s.time_s == std::vector<double>{-1e-4, 0, 1e-4});
+    // English spreadsheets quote thousands the same way: "1,250" is no decimal comma.
+    const auto q =
+        write_file("quoted_thousands.csv", "t,eps\n0,\"1,250\"\n1,\"2,500\"\n2,\"3,750\"\n");
+    auto r = csv_request(q, {by_name("eps")});
+    r.time_unit_s = 1e-6;
+    CHECK(error_of([&] { read_signal_columns(r); })
+              .find("quoted_thousands.csv: line 4: no numeric rows: expected rows of numbers after "
+                    "the header; line 4 was read as 2 field(s) separated by commas, decimal point: "
+                    "\"3,750\": a comma in a file whose decimal mark is the point") !=
+          std::string::npos);
   }
   SECTION("tab, Latin-1 header") {
     const auto p = write_file("tab.tsv", "Zeit\tDehnung \xb5\xe9\n0\t1,25\n1\t2,5\n2\t3,75\n");
@@ -106,6 +238,16 @@ TEST_CASE("Broken signal files are rejected naming file, line and column", "[cor
     const auto msg = error_of([&] { read_signal_columns(csv_request(p, {by_name("incident")})); });
     CHECK(msg.find("line 3, column 2") != std::string::npos);
     CHECK(msg.find("NaN") != std::string::npos);
+  }
+  SECTION("an instrument's overrange or not-a-number marker") {
+    // SCPI scopes write IEEE 488.2's 9.9E37 (overrange) and 9.91E37 (not a number) as numbers.
+    const auto p = write_file("scpi.csv", head + "0,1,2\n1,9.91E+37,2\n2,1,2\n3,1,-9.9E37\n");
+    const auto msg = error_of([&] { read_signal_columns(csv_request(p, {by_name("incident")})); });
+    CHECK(msg.find("scpi.csv: line 3, column 2 (\"incident\"): \"9.91E+37\": an instrument's "
+                   "overrange or not-a-number marker") != std::string::npos);
+    const auto low =
+        error_of([&] { read_signal_columns(csv_request(p, {by_name("transmitted")})); });
+    CHECK(low.find("scpi.csv: line 5, column 3") != std::string::npos);
   }
   SECTION("non-monotonic time") {
     const auto p = write_file("back.csv", head + "0,1,2\n2,1,2\n1,1,2\n3,1,2\n");
@@ -240,6 +382,31 @@ TEST_CASE("Names are refused where the data rows hold more columns than the head
   const std::string error = error_of([&] { read_signal_columns(r); });
   CHECK(error.find("split.csv: line 1: column \"transmitted\": the header names 3 columns but "
                    "line 3 holds 5") != std::string::npos);
+  // By index, the same split file is refused at its first split number: index 2 would read the
+  // decimals of the incident strain, and times in µs written "-200,5" pass for rounded stamps.
+  auto by_position = csv_request(write_file("split.csv", split), {by_index(2)});
+  by_position.time_unit_s = 1e-9;
+  const std::string by_index_error = error_of([&] { read_signal_columns(by_position); });
+  INFO(by_index_error);
+  CHECK(by_index_error.find("split.csv: line 3: \"-990,5\": a number with a decimal comma in a "
+                            "comma-separated file") != std::string::npos);
+  auto rounded = csv_request(write_file("split_us.csv",
+                                        "t_us,incident,transmitted\n"
+                                        "-200,0,1,5E-04,2,5E-05\n"
+                                        "-199,9,1,6E-04,2,6E-05\n"
+                                        "-199,8,1,7E-04,2,7E-05\n"),
+                             {by_index(1), by_index(2)});
+  rounded.time_unit_s = 1e-6;
+  CHECK(error_of([&] {
+          read_signal_columns(rounded);
+        }).find("split_us.csv: line 2: \"-200,0\": a number with a decimal comma") !=
+        std::string::npos);
+  // Numbers with decimal points under a shorter metadata line are read by index as before.
+  const auto metadata = write_file("metadata.csv",
+                                   "Sample interval,1e-7\n0,0.5,0.25\n"
+                                   "1e-7,1.5,1.25\n2e-7,2.5,2.25\n");
+  CHECK(read_signal_columns(csv_request(metadata, {by_index(2)})).values[0] ==
+        std::vector<double>{0.25, 1.25, 2.25});
   // A trailing separator adds no column.
   const auto trailing = write_file("trailing.csv", "t,a,b\n0,1,2,\n1,3,4,\n2,5,6,\n");
   CHECK(read_signal_columns(csv_request(trailing, {by_name("b")})).values[0] ==
@@ -327,6 +494,19 @@ TEST_CASE(
     CHECK(s.values[0][static_cast<std::size_t>(i)] == Approx(-1e-6 * i).epsilon(kStampDigits));
   }
   CHECK(s.dt_s == Approx(1e-7).epsilon(kStampDigits));
+
+  // Rows exported twice however many: every 20th (5 %, beyond the 2 % a rounding step may
+  // repeat) is still skipped, not taken for a rounded column whose base is rebuilt at 10.5 MHz.
+  auto often = fixed_format_rows(1000);
+  for (int i = 990; i >= 10; i -= 20)
+    often.insert(often.begin() + i, often[static_cast<std::size_t>(i)]);
+  const auto o =
+      read_signal_columns(csv_request(write_file("often.csv", lines_of(often)), {by_index(1)}));
+  REQUIRE(o.warnings.size() == 1);
+  CHECK(o.warnings[0].find("often.csv: lines 13, 34, ") != std::string::npos);
+  CHECK(o.warnings[0].find(" and 40 more repeat the row before") != std::string::npos);
+  CHECK(o.time_s.size() == 1000);
+  CHECK(o.dt_s == Approx(1e-7).epsilon(kStampDigits));
 
   rows[501] = rows[500].substr(0, rows[500].find(',')) + ",1.000000e-03";
   const auto msg = error_of([&] {
@@ -440,6 +620,113 @@ TEST_CASE("Volts become strain through the bridge and opposite gauges are averag
   REQUIRE(g.find("incident"));
   CHECK((*g.find("incident"))[1] == Approx(2e-3));  // mean of 1 and 3 V, inverted
   CHECK(g.warnings.empty());                        // peak 2e-3 is a plausible strain
+}
+
+TEST_CASE("A channel file that records next to nothing of the first file's time is refused",
+          "[core][signal]") {
+  // Two scopes' files of one test: the second written in ms where the first is in s. Read in s it
+  // spans 1000 times the time, with a sample or two inside the first's record, and resampled onto
+  // the first's clock it would be a flat line.
+  // 10 MHz records; the second file's 1e-4 ms interval, read as s, is a digitizer's 10 kHz.
+  std::string first = "t,v\n", other = "t,v\n", later = "t,v\n";
+  const auto row = [](double t) {
+    std::ostringstream s;
+    s << t << ",1\n";
+    return s.str();
+  };
+  for (int i = 0; i < 100; ++i) {
+    first += row(i * 1e-7);
+    other += row(i * 1e-4);
+    later += row((i + 50) * 1e-7);  // the same clock, from sample 50 on
+  }
+  MeasurementSpec m;
+  for (const auto& [gauge, text] :
+       {std::pair{"incident", first}, std::pair{"transmitted", other}}) {
+    ChannelSpec c;
+    c.gauge = gauge;
+    c.file = write_file(std::string(gauge) + ".csv", text);
+    c.column = by_index(1);
+    c.unit = SignalUnit::kStrain;
+    m.channels.push_back(c);
+  }
+  const std::string error = error_of([&] { read_gauge_signals(m, {}); });
+  INFO(error);
+  CHECK(error.find("transmitted.csv: time column: 1 samples") != std::string::npos);
+  CHECK(error.find("is the time unit the same in both files") != std::string::npos);
+  // A file that starts later on the same clock is resampled, with a warning.
+  m.channels[1].file = write_file("later.csv", later);
+  const GaugeSignals g = read_gauge_signals(m, {});
+  REQUIRE(g.warnings.size() >= 1);
+  CHECK(g.warnings[0].find("later.csv: time base differs") != std::string::npos);
+}
+
+TEST_CASE("A value column's unit in the header must be the unit its channel reads",
+          "[core][signal]") {
+  // Scopes name a column's unit in its header ("CH1 (mV)", PicoScope's unit row "(mV)",
+  // Keysight's "Volt", catman's "µm/m"): read in another unit the strain is 1000 or 10^6 times
+  // off, which only a plausibility warning would hint at. A name without a unit says nothing.
+  struct Case {
+    std::string head;
+    SignalUnit unit;
+    std::string refused;  // the hint of the refusal ("": read)
+  };
+  const Case cases[] = {
+      {"t,v (mV)", SignalUnit::kVolt, "set \"unit\": \"mV\""},
+      {"t,v (mV)", SignalUnit::kMillivolt, ""},
+      {"Time,Channel A\n(us),(mV)", SignalUnit::kVolt, "set \"unit\": \"mV\""},
+      {"x-axis,1\nus,Volt", SignalUnit::kMillivolt, "set \"unit\": \"V\""},
+      {"x-axis,1\nus,Volt", SignalUnit::kVolt, ""},
+      {"t,inc [\xc2\xb5\xce\xb5]", SignalUnit::kStrain, "set \"unit\": \"microstrain\""},
+      {"t,inc [\xb5\xce\xb5]", SignalUnit::kMicrostrain, ""},
+      {"Zeit,DMS\nus,\xb5m/m", SignalUnit::kStrain, "set \"unit\": \"microstrain\""},
+      {"t,v (V)", SignalUnit::kMicrostrain, "set \"unit\": \"V\""},
+      {"t,v (kV)", SignalUnit::kVolt, "convert the column to V, mV, strain or microstrain"},
+      {"t,Dehnung [%]", SignalUnit::kStrain, "convert the column to V, mV, strain or microstrain"},
+      {"t,v_A", SignalUnit::kVolt, ""},
+      {"t,inc_mV", SignalUnit::kStrain, ""},  // a name (a simulated gauge's), not a unit
+      {"t,incident_bar_signal/voltage", SignalUnit::kVolt, ""},
+      {"t,strain", SignalUnit::kVolt, ""},
+  };
+  // Strain per volt of the volt channels: 2e-3 at a 0.5 V or 500 mV plateau gives 1e-3.
+  constexpr double kScale = 2e-3;
+  for (const auto& c : cases) {
+    DYNAMIC_SECTION(c.head << " read in " << enum_name(kSignalUnitNames, c.unit)) {
+      const auto p = write_file("value_unit.csv", c.head + "\n0,0\n1,500\n2,500\n3,0\n");
+      MeasurementSpec m;
+      m.time_unit_s = 1e-6;  // a 1 MHz record
+      ChannelSpec ch;
+      ch.gauge = "incident";
+      ch.file = p;
+      ch.column = by_index(1);
+      ch.unit = c.unit;
+      if (c.unit == SignalUnit::kVolt || c.unit == SignalUnit::kMillivolt) ch.scale = kScale;
+      m.channels.push_back(ch);
+      const std::string error = error_of([&] { read_gauge_signals(m, {}); });
+      INFO(error);
+      if (c.refused.empty()) {
+        CHECK(error.empty());
+      } else {
+        CHECK(error.find("value_unit.csv: line ") != std::string::npos);
+        CHECK(error.find("the header gives the values in") != std::string::npos);
+        CHECK(error.find(c.refused) != std::string::npos);
+      }
+    }
+  }
+  SECTION("a column in mV is read as thousandths of a volt") {
+    const auto p = write_file("millivolt.csv", "t,v (mV)\n0,0\n1,500\n2,500\n3,0\n");
+    MeasurementSpec m;
+    m.time_unit_s = 1e-6;
+    ChannelSpec ch;
+    ch.gauge = "incident";
+    ch.file = p;
+    ch.column = by_index(1);
+    ch.unit = SignalUnit::kMillivolt;
+    ch.scale = kScale;
+    m.channels.push_back(ch);
+    const GaugeSignals g = read_gauge_signals(m, {});
+    REQUIRE(g.find("incident"));
+    CHECK((*g.find("incident"))[1] == Approx(0.5 * kScale));  // 500 mV = 0.5 V
+  }
 }
 
 TEST_CASE("The real files import: LANL raw, Tektronix channels, and the messy epoxy file",

@@ -53,6 +53,8 @@ TEST_CASE("Numbers parse to the correctly rounded value, fast path or not", "[si
   }
   CHECK(parse_number("+2.5", false) == 2.5);
   CHECK(parse_number("2,5", true) == 2.5);
+  // With a decimal comma a point is a thousands separator or the other mark: no number.
+  CHECK_FALSE(parse_number("1.234", true).has_value());
   for (const std::string bad :
        {"", "-", "1e", "1e+", "e5", "1.2.3", "1,5", "nan", "inf", "1e400", "0x10", "1 2", "--1"}) {
     CAPTURE(bad);
