@@ -309,7 +309,13 @@ DelimitedText read_xlsx(const fs::path& file, const std::string& sheet) {
     // A formula's text, kept for a cell whose value the workbook does not hold (a program that
     // writes formulas without computing them): "=A2+1E-7" is then what the cell reads as, named
     // by the reader, never an empty field.
-    if (el == "f") formula = "=" + (x.text.empty() ? std::string("(shared formula)") : x.text);
+    // Built by push_back and append of a view: GCC 12 warns falsely (-Wrestrict) on "=" + text.
+    if (el == "f") {
+      formula.clear();
+      formula.push_back('=');
+      formula.append(x.text.empty() ? std::string_view("(shared formula)")
+                                    : std::string_view(x.text));
+    }
     if (el == "c") {
       if (value.empty()) value = formula;
       if (type == "s") {
