@@ -22,6 +22,11 @@ constexpr double kUniformStepTolerance = 0.02;
 // A least-squares interval within this fraction of a round value (1, 2, 2.5, 4, 5, 8 × 10^k s)
 // is snapped to it: the stamps were rounded, the clock was not.
 constexpr double kRoundIntervalTolerance = 5e-3;
+// Stamps within this fraction of the interval of their least-squares line are a uniform clock
+// printed with too few digits (a 3 MHz record in µs to one decimal steps 0.3, 0.3, 0.4 µs): a
+// rounding to q moves a stamp by at most q/2, a quarter of the interval for q up to half of it,
+// while a missing or extra sample leaves stamps half an interval or more off any line.
+constexpr double kRoundedStampFraction = 0.25;
 
 SignalFormat detect(const DelimitedText& text) {
   auto ext = text.file.extension().string();
@@ -41,6 +46,28 @@ double round_interval(double dt) {
 }
 
 std::string seconds(double s) { return format_number(s) + " s"; }
+
+// The least-squares line t ≈ t0 + i·dt through the stamps, its interval snapped to a round value
+// (round_interval), and the largest distance of a stamp from it.
+struct ClockFit {
+  double t0 = 0, dt = 0, fitted_dt = 0, largest_off = 0;
+};
+ClockFit fit_clock(const std::vector<double>& t) {
+  const std::size_t n = t.size();
+  double si = 0, st = 0, sii = 0, sit = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double x = static_cast<double>(i);
+    si += x, st += t[i], sii += x * x, sit += x * t[i];
+  }
+  const double dn = static_cast<double>(n);
+  ClockFit c;
+  c.fitted_dt = (dn * sit - si * st) / (dn * sii - si * si);
+  c.dt = round_interval(c.fitted_dt);
+  c.t0 = (st - c.dt * si) / dn;
+  for (std::size_t i = 0; i < n; ++i)
+    c.largest_off = std::max(c.largest_off, std::abs(t[i] - c.t0 - static_cast<double>(i) * c.dt));
+  return c;
+}
 
 // A few repeated time stamps are repeated rows, not a rounded column: stamps rounded to a step q
 // coarser than the sampling interval repeat in a fraction 1 − dt/q of the rows, which is more than
@@ -136,29 +163,23 @@ void check_time_base(const std::filesystem::path& file, const RawSignalColumns& 
   if (!(span > 0))
     throw input_error(file.string(), "line " + std::to_string(lines.back()) + " (time column)",
                       seconds(t.back()), "time does not advance");
+  // The base rebuilt on the stamps' least-squares line, with a warning saying why.
+  auto rebuild = [&](const ClockFit& c, const std::string& why) {
+    for (std::size_t i = 0; i < n; ++i) out.time_s[i] = c.t0 + static_cast<double>(i) * c.dt;
+    out.dt_s = c.dt;
+    char msg[500];
+    std::snprintf(msg, sizeof msg,
+                  "%s: %s; time base rebuilt from the sample interval %.6g s (%.6g MHz, "
+                  "least-squares fit %.6g s) starting at %.6g s",
+                  file.string().c_str(), why.c_str(), c.dt, 1e-6 / c.dt, c.fitted_dt, c.t0);
+    out.warnings.push_back(msg);
+  };
   if (repeats > 0) {
-    // Least-squares line t ≈ t0 + i·dt.
-    double si = 0, st = 0, sii = 0, sit = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      const double x = static_cast<double>(i);
-      si += x, st += t[i], sii += x * x, sit += x * t[i];
-    }
-    const double dn = static_cast<double>(n);
-    const double fit = (dn * sit - si * st) / (dn * sii - si * si);
-    const double dt = round_interval(fit);
-    const double t0 = (st - dt * si) / dn;
     std::size_t distinct = 1;
     for (std::size_t i = 1; i < n; ++i) distinct += t[i] != t[i - 1];
-    for (std::size_t i = 0; i < n; ++i) out.time_s[i] = t0 + static_cast<double>(i) * dt;
-    out.dt_s = dt;
-    char msg[400];
-    std::snprintf(
-        msg, sizeof msg,
-        "%s: time stamps repeat (%zu distinct values in %zu rows: the column was rounded); "
-        "time base rebuilt from the sample interval %.6g s (%.6g MHz, least-squares fit "
-        "%.6g s) starting at %.6g s",
-        file.string().c_str(), distinct, n, dt, 1e-6 / dt, fit, t0);
-    out.warnings.push_back(msg);
+    rebuild(fit_clock(t), "time stamps repeat (" + std::to_string(distinct) +
+                              " distinct values in " + std::to_string(n) +
+                              " rows: the column was rounded)");
     return;
   }
   // The median step is the sampling interval; a gap or jump stands out against it.
@@ -182,6 +203,21 @@ void check_time_base(const std::filesystem::path& file, const RawSignalColumns& 
       r.mode == TimeResample::kAlways
           ? first_off || r.interval_s
           : first_off && r.mode == TimeResample::kAuto && jitter <= kAutoResampleJitter;
+  if (first_off && !resample && r.mode == TimeResample::kAuto) {
+    // Steps too uneven to resample that differ only because the stamps were printed with too few
+    // digits: the clock was uniform (a digitizer's crystal), its stamps were not.
+    const ClockFit c = fit_clock(t);
+    if (c.largest_off <= kRoundedStampFraction * c.dt) {
+      char why[200];
+      std::snprintf(why, sizeof why,
+                    "time steps vary (%s to %s) but every stamp lies within %s of a uniform "
+                    "clock: the column was rounded",
+                    seconds(shortest).c_str(), seconds(longest).c_str(),
+                    seconds(c.largest_off).c_str());
+      rebuild(c, why);
+      return;
+    }
+  }
   if (first_off && !resample) {
     const std::size_t i = first_off;
     char hint[200];

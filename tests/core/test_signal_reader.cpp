@@ -459,6 +459,40 @@ TEST_CASE("Repeated time stamps are detected and the time base rebuilt with a wa
   CHECK(std::abs(s.time_s[0] - -1.98e-4) < 1e-6);
 }
 
+// A 3 MHz record exported with its time in µs to one decimal: the steps read 0.3, 0.3, 0.4 µs
+// (20 % apart, beyond what resampling takes for export jitter), yet every stamp lies within
+// 0.05 µs of the uniform clock it was printed from. The base is rebuilt on the least-squares line
+// (stamps off it by at most half the 0.1 µs quantum); with one sample missing (a real gap) the
+// stamps lie a whole interval off any line and the record is still refused.
+TEST_CASE("Stamps printed with too few digits for the sample rate are read on their uniform clock",
+          "[core][signal]") {
+  constexpr double kInterval = 1e-6 / 3;  // 3 MHz
+  constexpr double kQuantum = 1e-7;       // one decimal in µs
+  auto text = [&](std::size_t skipped) {
+    std::string out = "t_us,a\n";
+    for (std::size_t i = 0; i < 3000; ++i) {
+      if (i == skipped) continue;
+      char line[64];
+      std::snprintf(line, sizeof line, "%.1f,%zu\n",
+                    -100 + static_cast<double>(i) * 1e6 * kInterval, i);
+      out += line;
+    }
+    return out;
+  };
+  auto request = csv_request(write_file("rounded_3mhz.csv", text(3000)), {by_index(1)});
+  request.time_unit_s = 1e-6;
+  const auto s = read_signal_columns(request);
+  REQUIRE(s.warnings.size() == 1);
+  CHECK(s.warnings[0].find("the column was rounded") != std::string::npos);
+  // The least-squares interval of 3000 stamps each within q/2: to 10^-6 of itself.
+  CHECK(s.dt_s == Approx(kInterval).epsilon(1e-6));
+  for (std::size_t i = 0; i < s.time_s.size(); i += 499)
+    CHECK(std::abs(s.time_s[i] - (-100e-6 + static_cast<double>(i) * kInterval)) <= kQuantum / 2);
+  auto gap = csv_request(write_file("gap_3mhz.csv", text(1500)), {by_index(1)});
+  gap.time_unit_s = 1e-6;
+  CHECK(error_of([&] { read_signal_columns(gap); }).find("gap or jump") != std::string::npos);
+}
+
 // A scope export at 10 MHz written in a fixed format: row i holds t = i·0.1 µs and the value i.
 std::vector<std::string> fixed_format_rows(int n) {
   std::vector<std::string> rows;
