@@ -207,6 +207,13 @@ fs::path absolute_output(const fs::path& given, const std::string& what) {
   fs::path absolute = fs::absolute(given, ec);
   if (ec) throw input_error(given.string(), "", "", "cannot resolve the output " + what);
   if (!absolute.has_filename()) absolute = absolute.parent_path();
+  // "-o .", "-o dir/..": the folder itself by its real name, so that its temporary is made
+  // beside it, not inside it (the exchange of a folder with its own child fails after the run).
+  if (absolute.filename() == "." || absolute.filename() == "..") {
+    absolute = fs::weakly_canonical(absolute, ec);
+    if (ec) throw input_error(given.string(), "", "", "cannot resolve the output " + what);
+    if (!absolute.has_filename()) absolute = absolute.parent_path();
+  }
   // A symbolic link is written through: the link stays, its target receives the result (replaced
   // atomically beside the target, docs/commands.md); a link to nothing is refused.
   if (fs::is_symlink(absolute, ec)) {

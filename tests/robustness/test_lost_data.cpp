@@ -511,4 +511,29 @@ TEST_CASE("An -o that is a symbolic link to a folder is written through: the lin
   CHECK_FALSE(fs::exists(scratch.path() / "nowhere"));
 }
 
+TEST_CASE("An -o ending in . or .. names that folder, written as any other -o",
+          "[robustness][lost-data]") {
+  ScratchFolder scratch("lost");
+  write_bytes(scratch.path() / "scene.json", striker_on_bar_scene("50 us"));
+  const fs::path out = scratch.path() / "out";
+  fs::create_directories(out / "sub");
+  // "-o out/sub/.." (out holds only the empty sub/: refused, it is not shpb's), then "-o out/."
+  // (as "-o ." in an empty current folder) into the empty out/, then over that result.
+  const auto simulate = [&](const fs::path& given) {
+    return run({"simulate", (scratch.path() / "scene.json").string(), "-o", given.string(), "-q"},
+               scratch.path(), kLimit_s);
+  };
+  check_refused(simulate(out / "sub" / ".."), ".shpb-output");
+  CHECK(fs::is_directory(out / "sub"));
+  fs::remove(out / "sub");
+  for (int run_number = 0; run_number < 2; ++run_number) {
+    const Outcome o = simulate(out / ".");
+    INFO(o.err);
+    CHECK(o.code == 0);
+    CHECK(fs::is_regular_file(out / "gauges.csv"));
+    CHECK(litter(scratch.path()).empty());
+    CHECK(litter(out).empty());
+  }
+}
+
 }  // namespace tests_robustness_test_lost_data
