@@ -94,47 +94,6 @@ std::string temporary_marker_text(pid_t pid) {
          "\npid: " + std::to_string(pid) + "\n";
 }
 
-// The folder is provably a temporary of process `pid` on this host: its marker names this host
-// and that pid; or the process was killed while creating it (make_temporary: the folder, then its
-// marker in one write), so it holds nothing, or only a marker cut short — a prefix of that text.
-bool provably_temporary(const fs::path& folder, pid_t pid) {
-  const std::string expected = temporary_marker_text(pid);
-  std::error_code ec;
-  std::size_t entries = 0;
-  for (auto it = fs::directory_iterator(folder, ec); !ec && it != fs::directory_iterator();
-       it.increment(ec))
-    ++entries;
-  if (ec) return false;
-  if (entries == 0) return true;
-  const fs::path marker = folder / kTemporaryMarker;
-  if (!fs::is_regular_file(fs::symlink_status(marker, ec))) return false;
-  std::ifstream in(marker);
-  std::ostringstream text;
-  text << in.rdbuf();
-  const std::string found = text.str();
-  return found == expected || (entries == 1 && expected.rfind(found, 0) == 0);
-}
-
-// Temporaries left by a run that was killed outright (SIGKILL, power loss) are removed when the
-// next run starts, and only what is provably shpb's: the exact name of the scheme with this
-// host's tag, a pid no process has now, and for a folder the marker naming this host and that pid
-// (or, killed while the folder was being made, nothing but a marker cut short).
-// Anything else (".res.tmp-2024-05-01.tar", a backup) is the user's and stays.
-void remove_stale_temporaries(const fs::path& final_path) {
-  const std::string prefix = temp_prefix(final_path);
-  std::error_code ec;
-  for (const auto& e : fs::directory_iterator(final_path.parent_path(), ec)) {
-    const auto pid = temp_owner(e.path().filename().string(), prefix);
-    if (!pid || ::kill(*pid, 0) == 0 || errno != ESRCH) continue;
-    std::error_code rm;
-    const auto type = fs::symlink_status(e.path(), rm).type();
-    if (type == fs::file_type::regular)
-      fs::remove(e.path(), rm);
-    else if (type == fs::file_type::directory && provably_temporary(e.path(), *pid))
-      fs::remove_all(e.path(), rm);
-  }
-}
-
 // Why shpb may not replace `dir`, or "" if it may: it is empty, or its marker starts with the
 // signature and lists every entry the folder holds.
 std::string refusal(const fs::path& dir) {
@@ -161,6 +120,72 @@ std::string refusal(const fs::path& dir) {
   }
   if (ec) return "cannot be listed: " + ec.message();
   return "";
+}
+
+// The folder is provably a temporary of process `pid` on this host: its marker names this host
+// and that pid; or the process was killed while creating it (make_temporary: the folder, then its
+// marker in one write), so it holds nothing, or only a marker cut short — a prefix of that text;
+// or it was killed while committing (OutputFolder::commit), and the folder is a whole shpb result
+// (the new one before the exchange, the previous one after it), one shpb may replace.
+bool provably_temporary(const fs::path& folder, pid_t pid) {
+  const std::string expected = temporary_marker_text(pid);
+  std::error_code ec;
+  if (refusal(folder).empty()) return true;
+  std::size_t entries = 0;
+  for (auto it = fs::directory_iterator(folder, ec); !ec && it != fs::directory_iterator();
+       it.increment(ec))
+    ++entries;
+  if (ec) return false;
+  const fs::path marker = folder / kTemporaryMarker;
+  if (!fs::is_regular_file(fs::symlink_status(marker, ec))) return false;
+  std::ifstream in(marker);
+  std::ostringstream text;
+  text << in.rdbuf();
+  const std::string found = text.str();
+  return found == expected || (entries == 1 && expected.rfind(found, 0) == 0);
+}
+
+// Removes a temporary folder (this run's, or one provably_temporary), its marker last: a run
+// killed in the middle (a second Ctrl-C) leaves a folder the next run still knows as a temporary.
+void remove_temporary(const fs::path& folder) {
+  std::error_code ec;
+  std::vector<fs::path> entries;
+  for (const auto& e : fs::directory_iterator(folder, ec))
+    if (e.path().filename() != kTemporaryMarker) entries.push_back(e.path());
+  for (const auto& e : entries) fs::remove_all(e, ec);
+  fs::remove_all(folder, ec);
+}
+
+// Removes the previous result once replaced, marked first as this run's temporary, so that a run
+// killed while removing it leaves a folder the next run removes (whole, it is shpb's anyway).
+void mark_and_remove(const fs::path& folder) {
+  try {
+    write_text_file(folder / kTemporaryMarker, temporary_marker_text(::getpid()));
+  } catch (const WriteError&) {  // unmarked, it is left for the user: nothing is lost
+    return;
+  }
+  remove_temporary(folder);
+}
+
+// Temporaries left by a run that was killed outright (SIGKILL, power loss) are removed when the
+// next run starts, and only what is provably shpb's: the exact name of the scheme with this
+// host's tag, a pid no process has now, and for a folder the marker naming this host and that pid
+// (or, killed while the folder was being made, nothing but a marker cut short; killed while
+// committing, a whole shpb result).
+// Anything else (".res.tmp-2024-05-01.tar", a backup) is the user's and stays.
+void remove_stale_temporaries(const fs::path& final_path) {
+  const std::string prefix = temp_prefix(final_path);
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(final_path.parent_path(), ec)) {
+    const auto pid = temp_owner(e.path().filename().string(), prefix);
+    if (!pid || ::kill(*pid, 0) == 0 || errno != ESRCH) continue;
+    std::error_code rm;
+    const auto type = fs::symlink_status(e.path(), rm).type();
+    if (type == fs::file_type::regular)
+      fs::remove(e.path(), rm);
+    else if (type == fs::file_type::directory && provably_temporary(e.path(), *pid))
+      remove_temporary(e.path());
+  }
 }
 
 // `inner` is `outer` or lies inside it (both canonical).
@@ -283,10 +308,7 @@ OutputFolder::OutputFolder(fs::path final_dir, std::string command,
 }
 
 OutputFolder::~OutputFolder() {
-  if (!committed_ && !temp_.empty()) {
-    std::error_code ec;
-    fs::remove_all(temp_, ec);
-  }
+  if (!committed_ && !temp_.empty()) remove_temporary(temp_);
 }
 
 void OutputFolder::commit() {
@@ -294,11 +316,14 @@ void OutputFolder::commit() {
   std::string marker = std::string(kOutputMarkerSignature) + "\ncommand: " + command_ + "\n";
   std::error_code ec;
   std::set<std::string> names;
-  fs::remove(temp_ / kTemporaryMarker, ec);  // the result holds only what the command wrote
   for (const auto& e : fs::directory_iterator(temp_, ec))
     names.insert(e.path().filename().string());
+  names.erase(kTemporaryMarker);  // the result holds only what the command wrote
   for (const auto& name : names) marker += "file: " + name + "\n";
+  // The output marker before the temporary's is removed: a run killed from here on leaves a
+  // folder that is provably shpb's either way, which the next run removes.
   write_text_file(temp_ / kOutputMarker, marker);
+  fs::remove(temp_ / kTemporaryMarker, ec);
   sync_tree(temp_);  // durable before it becomes the result
   if (fs::exists(final_, ec)) {
     // One atomic exchange where the file system offers it: DIR is never missing, not even for
@@ -306,7 +331,7 @@ void OutputFolder::commit() {
     if (::renameat2(AT_FDCWD, temp_.c_str(), AT_FDCWD, final_.c_str(), RENAME_EXCHANGE) == 0) {
       committed_ = true;
       sync_path(final_.parent_path());
-      fs::remove_all(temp_, ec);
+      mark_and_remove(temp_);
       return;
     }
   }
@@ -317,11 +342,6 @@ void OutputFolder::commit() {
     if (ec)
       throw input_error(final_.string(), "", "",
                         "cannot replace the previous result: " + ec.message());
-    // Marked as this run's: a run killed from here on leaves a twin the next one may remove.
-    try {
-      write_text_file(old / kTemporaryMarker, temporary_marker_text(::getpid()));
-    } catch (const WriteError&) {  // unmarked, the twin is left for the user: nothing is lost
-    }
   }
   fs::rename(temp_, final_, ec);
   if (ec) {
@@ -330,7 +350,7 @@ void OutputFolder::commit() {
   }
   committed_ = true;
   sync_path(final_.parent_path());
-  if (!old.empty()) fs::remove_all(old, ec);
+  if (!old.empty()) mark_and_remove(old);
 }
 
 OutputFile::OutputFile(fs::path final_file, const std::string& header) {

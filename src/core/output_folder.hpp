@@ -8,7 +8,8 @@
 // written through (the link stays, its target is replaced). Every file is fsync'ed before the one
 // atomic exchange of the two folders; temporaries of runs that were killed outright are removed by
 // the next run into the same DIR when they are provably shpb's (exact name with this host's tag,
-// dead pid, and for a folder its marker naming host and pid).
+// dead pid, and for a folder its marker naming host and pid, or a whole shpb result: killed while
+// committing).
 #include <filesystem>
 #include <string>
 #include <vector>
