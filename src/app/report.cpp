@@ -10,6 +10,7 @@
 #include "app/commands.hpp"
 #include "core/error.hpp"
 #include "core/external_program.hpp"
+#include "core/output_folder.hpp"  // interrupted()
 
 namespace shpb {
 
@@ -29,6 +30,9 @@ int run_report(const ReportArgs& args) {
     throw input_error("report", "python3", "matplotlib/numpy not importable",
                       "install python3-matplotlib and python3-numpy (bash tools/install-deps.sh)");
   const int rc = run_program({*python, script->string(), args.folder.string()}, false);
+  // 130: the script stopped on SIGINT/SIGTERM and left the previous report; a script that was
+  // signalled but had already put its report in place finished (0).
+  if (rc == 130 || (rc != 0 && interrupted())) throw Interrupted();
   // 2 bad input, 3 not written, 4 a bug of the script: it printed its own `error:` line.
   if (rc == 0 || rc == 2 || rc == 3 || rc == 4) return rc;
   std::fprintf(stderr, "error: internal: %s %s exited with status %d\n", python->c_str(),

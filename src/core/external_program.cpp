@@ -1,8 +1,15 @@
 #include "core/external_program.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
+
+#include <cerrno>
+#include <chrono>
+#include <thread>
+
+#include "core/output_folder.hpp"  // interrupted()
 
 extern char** environ;
 
@@ -24,9 +31,26 @@ int run_program(const std::vector<std::string>& argv, bool quiet) {
   const int rc = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   if (rc != 0) return -1;
+  // SIGINT/SIGTERM to shpb alone (kill PID) would not reach the program: it is passed on once,
+  // and the program is ended outright if it has not stopped within kGrace (a Ctrl-C on a
+  // terminal reaches both: the program stops on its own).
+  constexpr auto kGrace = std::chrono::milliseconds(500);
+  constexpr auto kPoll = std::chrono::milliseconds(5);
   int status = 0;
-  if (waitpid(pid, &status, 0) < 0 || !WIFEXITED(status)) return -1;
-  return WEXITSTATUS(status);
+  std::optional<std::chrono::steady_clock::time_point> told;
+  for (;;) {
+    const pid_t done = waitpid(pid, &status, WNOHANG);
+    if (done == pid) break;
+    if (done < 0 && errno != EINTR) return -1;
+    if (interrupted() && !told) {
+      ::kill(pid, SIGTERM);
+      told = std::chrono::steady_clock::now();
+    } else if (told && std::chrono::steady_clock::now() - *told > kGrace) {
+      ::kill(pid, SIGKILL);
+    }
+    std::this_thread::sleep_for(kPoll);
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 std::optional<fs::path> find_installed(const std::string& name) {
@@ -40,8 +64,10 @@ std::optional<fs::path> find_installed(const std::string& name) {
 }
 
 std::optional<std::string> find_python(const std::string& check) {
-  for (const std::string python : {"/usr/bin/python3", "python3"})
+  for (const std::string python : {"/usr/bin/python3", "python3"}) {
     if (run_program({python, "-c", check}, true) == 0) return python;
+    throw_if_interrupted();  // the check was stopped, not failed
+  }
   return std::nullopt;
 }
 

@@ -536,4 +536,78 @@ TEST_CASE("An -o ending in . or .. names that folder, written as any other -o",
   }
 }
 
+TEST_CASE("report stopped by SIGINT or SIGTERM exits 130 promptly and keeps the previous report",
+          "[robustness][lost-data]") {
+  if (!shpb_test::have_matplotlib()) {
+    WARN("SKIPPED: python3 with matplotlib and numpy is not installed");
+    return;
+  }
+  // The signal goes to shpb alone (kill PID), not to its Python: it was not passed on, and the
+  // report was drawn and put in place, exit 0 (docs/commands.md, Exit codes: 130).
+  ScratchFolder scratch("lost");
+  const fs::path out = scratch.path() / "out";
+  write_bytes(scratch.path() / "scene.json", striker_on_bar_scene("50 us"));
+  REQUIRE(run({"simulate", (scratch.path() / "scene.json").string(), "-o", out.string(), "-q"},
+              scratch.path(), kLimit_s)
+              .code == 0);
+  const std::vector<std::string> args = {"report", out.string()};
+  REQUIRE(run(args, scratch.path(), kLimit_s).code == 0);
+  const auto before = snapshot(out);
+  const double whole_s = seconds_after_startup(args, scratch.path(), kLimit_s);
+  REQUIRE(run(args, scratch.path(), kLimit_s).code == 0);  // the timed run replaced the report
+  const auto report = snapshot(out);
+  CHECK(report.size() == before.size());
+  for (const int sig : {SIGINT, SIGTERM}) {
+    double delay_s = 0.6 * whole_s;  // within the drawing
+    const Outcome o = interrupted_run(args, scratch.path(), sig, delay_s, kLimit_s);
+    INFO("signal " << sig << " after " << delay_s << " s of " << whole_s << " s: " << o.err);
+    CHECK(o.code == 130);
+    CHECK(o.seconds < prompt_exit_s());
+    CHECK(snapshot(out) == report);
+    for (const auto& e : fs::directory_iterator(out))
+      CHECK(e.path().filename().string().rfind(".report-", 0) == std::string::npos);
+  }
+}
+
+TEST_CASE("report removes the temporaries of a report that was killed, and only those",
+          "[robustness][lost-data]") {
+  if (!shpb_test::have_matplotlib()) {
+    WARN("SKIPPED: python3 with matplotlib and numpy is not installed");
+    return;
+  }
+  // A report killed outright (SIGKILL, a closed terminal) left its temporary figures folder in
+  // DIR for ever, and DIR, holding an entry its marker does not list, could no longer be replaced
+  // by the command that wrote it (exit 2, "holds .report-…, which shpb did not write").
+  ScratchFolder scratch("lost");
+  const fs::path out = scratch.path() / "out";
+  write_bytes(scratch.path() / "scene.json", striker_on_bar_scene("50 us"));
+  const std::vector<std::string> simulate = {"simulate", (scratch.path() / "scene.json").string(),
+                                             "-o", out.string(), "-q"};
+  REQUIRE(run(simulate, scratch.path(), kLimit_s).code == 0);
+  char host[256] = {};
+  ::gethostname(host, sizeof host - 1);
+  // The names of tools/shpb_report/main.py: ".report-<host>-<pid>-<8 random>" and its twins.
+  const auto temporary = [&](pid_t pid) {
+    return out / (".report-" + std::string(host) + "-" + std::to_string(pid) + "-abcd_123");
+  };
+  const fs::path killed = temporary(dead_pid()), running = temporary(::getpid());
+  for (const fs::path& d : {killed, running}) {
+    fs::create_directory(d);
+    write_bytes(d / ".shpb-report",
+                "figures written by shpb report; replaced only by shpb report\n");
+    write_bytes(d / "gauges.png", "\x89PNG");
+  }
+  write_bytes(killed.string() + ".html", "<html></html>");
+  const Outcome o = run({"report", out.string()}, scratch.path(), kLimit_s);
+  INFO(o.err);
+  CHECK(o.code == 0);
+  CHECK_FALSE(fs::exists(killed));
+  CHECK_FALSE(fs::exists(killed.string() + ".html"));
+  CHECK(fs::exists(running / "gauges.png"));  // a report running now: not ours to remove
+  fs::remove_all(running);
+  const Outcome again = run(simulate, scratch.path(), kLimit_s);
+  INFO(again.err);
+  CHECK(again.code == 0);
+}
+
 }  // namespace tests_robustness_test_lost_data

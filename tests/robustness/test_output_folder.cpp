@@ -18,14 +18,6 @@ namespace tests_robustness_test_output_folder {
 namespace {
 using namespace shpb_robust;
 
-// The pid of a process that has just exited (and been reaped): no process has it now.
-pid_t dead_pid() {
-  const pid_t pid = ::fork();
-  if (pid == 0) ::_exit(0);
-  ::waitpid(pid, nullptr, 0);
-  return pid;
-}
-
 // The marker of a temporary folder of process `pid` on this host (core/output_folder.cpp).
 std::string marker(pid_t pid) {
   char host[256] = {};
