@@ -122,6 +122,15 @@ std::string refusal(const fs::path& dir) {
   return "";
 }
 
+// Throws unless shpb may replace `dir` (refusal): a folder, empty or a whole shpb result.
+void refuse_to_replace(const fs::path& dir) {
+  std::error_code ec;
+  if (!fs::is_directory(fs::symlink_status(dir, ec)))
+    throw input_error(dir.string(), "", "", "exists and is not a folder");
+  if (const std::string why = refusal(dir); !why.empty())
+    throw input_error(dir.string(), "", "", why);
+}
+
 // The folder is provably a temporary of process `pid` on this host: its marker names this host
 // and that pid; or the process was killed while creating it (make_temporary: the folder, then its
 // marker in one write), so it holds nothing, or only a marker cut short — a prefix of that text;
@@ -283,7 +292,7 @@ OutputFolder::OutputFolder(fs::path final_dir, std::string command,
   std::error_code ec;
   final_ = absolute_output(final_dir, "folder");
   if (fs::exists(final_, ec) && !fs::is_directory(final_, ec))
-    throw input_error(final_.string(), "", "", "exists and is not a folder");
+    refuse_to_replace(final_);  // names what it is
   // An input of the run inside DIR would be deleted by the exchange (or DIR is one); DIR inside
   // an input folder (a plan's parts) would change what the run reads.
   const fs::path real_dir = fs::weakly_canonical(final_, ec);
@@ -299,9 +308,7 @@ OutputFolder::OutputFolder(fs::path final_dir, std::string command,
                             " an input of this run (" + input.string() +
                             "): choose an output folder apart from the run's inputs");
   }
-  if (fs::exists(final_, ec))
-    if (const std::string why = refusal(final_); !why.empty())
-      throw input_error(final_.string(), "", "", why);
+  if (fs::exists(final_, ec)) refuse_to_replace(final_);
   prepare_parent(final_);
   remove_stale_temporaries(final_);
   temp_ = make_temporary(final_, true);
@@ -325,32 +332,54 @@ void OutputFolder::commit() {
   write_text_file(temp_ / kOutputMarker, marker);
   fs::remove(temp_ / kTemporaryMarker, ec);
   sync_tree(temp_);  // durable before it becomes the result
-  if (fs::exists(final_, ec)) {
+  // Two runs into a new DIR at once: the other may put its result there between the look and the
+  // move; this one then replaces it (both are whole results; the last one stays).
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    if (!fs::exists(final_, ec)) {
+      if (::renameat2(AT_FDCWD, temp_.c_str(), AT_FDCWD, final_.c_str(), RENAME_NOREPLACE) == 0)
+        return placed(std::nullopt);
+      if (errno == EEXIST || errno == ENOTEMPTY) continue;
+      if (errno != EINVAL && errno != ENOSYS) throw_write_error(final_, errno);
+      fs::rename(temp_, final_, ec);  // a file system without renameat2's flags
+      if (ec) throw_write_error(final_, ec.value());
+      return placed(std::nullopt);
+    }
+    // DIR was checked when the run started; the user may have put a file into it since (a
+    // long study): checked again, and the folder it swapped out once more, so that it is never
+    // the user's that is removed.
+    refuse_to_replace(final_);
     // One atomic exchange where the file system offers it: DIR is never missing, not even for
     // an instant; the previous result ends up in the temporary folder and is removed with it.
     if (::renameat2(AT_FDCWD, temp_.c_str(), AT_FDCWD, final_.c_str(), RENAME_EXCHANGE) == 0) {
-      committed_ = true;
-      sync_path(final_.parent_path());
-      mark_and_remove(temp_);
-      return;
+      if (const std::string why = refusal(temp_); !why.empty()) {
+        ::renameat2(AT_FDCWD, temp_.c_str(), AT_FDCWD, final_.c_str(), RENAME_EXCHANGE);
+        throw input_error(final_.string(), "", "", why);
+      }
+      return placed(temp_);
     }
-  }
-  fs::path old;
-  if (fs::exists(final_, ec)) {
-    old = temp_.string() + ".old";
+    const fs::path old = temp_.string() + ".old";
     fs::rename(final_, old, ec);
-    if (ec)
-      throw input_error(final_.string(), "", "",
-                        "cannot replace the previous result: " + ec.message());
+    if (ec) throw_write_error(final_, ec.value());
+    if (const std::string why = refusal(old); !why.empty()) {
+      fs::rename(old, final_, ec);
+      throw input_error(final_.string(), "", "", why);
+    }
+    fs::rename(temp_, final_, ec);
+    if (ec) {
+      const int error = ec.value();
+      fs::rename(old, final_, ec);
+      throw_write_error(final_, error);
+    }
+    return placed(old);
   }
-  fs::rename(temp_, final_, ec);
-  if (ec) {
-    if (!old.empty()) fs::rename(old, final_, ec);
-    throw input_error(final_.string(), "", "", "cannot move the result into place");
-  }
+  throw_write_error(final_, EBUSY);  // 100 other runs in between: give up, nothing replaced
+}
+
+// The result is in place; `previous`, the folder holding the previous result, is removed.
+void OutputFolder::placed(const std::optional<fs::path>& previous) {
   committed_ = true;
   sync_path(final_.parent_path());
-  if (!old.empty()) mark_and_remove(old);
+  if (previous) mark_and_remove(*previous);
 }
 
 OutputFile::OutputFile(fs::path final_file, const std::string& header) {

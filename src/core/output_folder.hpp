@@ -11,6 +11,7 @@
 // dead pid, and for a folder its marker naming host and pid, or a whole shpb result: killed while
 // committing).
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,8 @@ class OutputFolder {
   void commit();
 
  private:
+  void placed(const std::optional<std::filesystem::path>& previous);
+
   std::filesystem::path final_;
   std::filesystem::path temp_;
   std::string command_;

@@ -158,4 +158,23 @@ TEST_CASE("A run killed while committing leaves nothing the next run keeps",
   CHECK_FALSE(fs::exists(both_markers));
 }
 
+TEST_CASE("A file the user adds to the previous result while a run is going is kept",
+          "[robustness][output]") {
+  // DIR is checked when the run starts; a study runs for hours, and the user may meanwhile put
+  // notes into the previous result: the commit's exchange then removed them with it.
+  ScratchFolder scratch("folder");
+  const fs::path out = scratch.path() / "out";
+  {
+    shpb::OutputFolder first(out);
+    write_bytes(first.file("summary.json"), "first");
+    first.commit();
+  }
+  shpb::OutputFolder second(out);
+  write_bytes(second.file("summary.json"), "second");
+  write_bytes(out / "notes.txt", "the user's notes");  // while the second run works
+  CHECK_THROWS_AS(second.commit(), shpb::InputError);
+  CHECK(read_all(out / "notes.txt") == "the user's notes");
+  CHECK(read_all(out / "summary.json") == "first");
+}
+
 }  // namespace tests_robustness_test_output_folder
