@@ -263,15 +263,31 @@ fs::path absolute_output(const fs::path& given, const std::string& what) {
 }
 
 // Creates the output's parent folder if needed and checks that it is writable.
-void prepare_parent(const fs::path& output) {
+// Returns the outermost folder it created ("" if none), for remove_created_parents.
+fs::path prepare_parent(const fs::path& output) {
   std::error_code ec;
   const fs::path parent = output.parent_path();
+  fs::path created;
   if (!fs::is_directory(parent, ec)) {
+    for (fs::path p = parent; !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
+      created = p;
+      if (p == p.parent_path()) break;
+    }
     fs::create_directories(parent, ec);
     if (ec) throw input_error(parent.string(), "", "", "output parent folder cannot be created");
   }
   if (::access(parent.c_str(), W_OK) != 0)
     throw input_error(parent.string(), "", "", "output parent folder is not writable");
+  return created;
+}
+
+// A run that writes nothing leaves nothing, not even the parent folders it made for its output
+// (those still empty: another run's temporary in one keeps it).
+void remove_created_parents(const fs::path& output, const fs::path& created) {
+  if (created.empty()) return;
+  std::error_code ec;
+  for (fs::path p = output.parent_path(); fs::remove(p, ec) && p != created; p = p.parent_path()) {
+  }
 }
 }  // namespace
 
@@ -309,13 +325,15 @@ OutputFolder::OutputFolder(fs::path final_dir, std::string command,
                             "): choose an output folder apart from the run's inputs");
   }
   if (fs::exists(final_, ec)) refuse_to_replace(final_);
-  prepare_parent(final_);
+  created_ = prepare_parent(final_);
   remove_stale_temporaries(final_);
   temp_ = make_temporary(final_, true);
 }
 
 OutputFolder::~OutputFolder() {
-  if (!committed_ && !temp_.empty()) remove_temporary(temp_);
+  if (committed_) return;
+  if (!temp_.empty()) remove_temporary(temp_);
+  remove_created_parents(final_, created_);
 }
 
 void OutputFolder::commit() {
@@ -399,16 +417,16 @@ OutputFile::OutputFile(fs::path final_file, const std::string& header) {
                             "\": shpb replaces only a file it wrote (move it away or choose "
                             "another file)");
   }
-  prepare_parent(final_);
+  created_ = prepare_parent(final_);
   remove_stale_temporaries(final_);
   temp_ = make_temporary(final_, false);
 }
 
 OutputFile::~OutputFile() {
-  if (!committed_ && !temp_.empty()) {
-    std::error_code ec;
-    fs::remove(temp_, ec);
-  }
+  if (committed_) return;
+  std::error_code ec;
+  if (!temp_.empty()) fs::remove(temp_, ec);
+  remove_created_parents(final_, created_);
 }
 
 void OutputFile::commit() {

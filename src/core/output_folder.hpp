@@ -49,6 +49,7 @@ class OutputFolder {
 
   std::filesystem::path final_;
   std::filesystem::path temp_;
+  std::filesystem::path created_;  // the outermost parent folder this run made, if any
   std::string command_;
   bool committed_ = false;
 };
@@ -71,6 +72,7 @@ class OutputFile {
  private:
   std::filesystem::path final_;
   std::filesystem::path temp_;
+  std::filesystem::path created_;  // the outermost parent folder this run made, if any
   bool committed_ = false;
 };
 

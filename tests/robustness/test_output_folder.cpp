@@ -177,4 +177,28 @@ TEST_CASE("A file the user adds to the previous result while a run is going is k
   CHECK(read_all(out / "summary.json") == "first");
 }
 
+TEST_CASE("A run that writes nothing leaves no parent folder it made for its output",
+          "[robustness][output]") {
+  // -o new/a/out: the run makes new/ and new/a/ for its temporary; interrupted or failed, it
+  // left them behind, empty (docs/commands.md, Exit codes: "nothing").
+  ScratchFolder scratch("folder");
+  const fs::path made = scratch.path() / "new";
+  { shpb::OutputFolder folder(made / "a" / "out"); }
+  CHECK_FALSE(fs::exists(made));
+  { shpb::OutputFile file(made / "a" / "table.csv"); }
+  CHECK_FALSE(fs::exists(made));
+  {  // a folder that was there stays, and so does one holding another entry
+    fs::create_directories(made / "a");
+    write_bytes(made / "notes.txt", "mine");
+    shpb::OutputFolder folder(made / "a" / "b" / "out");
+  }
+  CHECK(fs::exists(made / "a"));
+  CHECK_FALSE(fs::exists(made / "a" / "b"));
+  {
+    shpb::OutputFolder folder(made / "c" / "out");
+    folder.commit();
+  }
+  CHECK(fs::is_directory(made / "c" / "out"));
+}
+
 }  // namespace tests_robustness_test_output_folder
