@@ -401,6 +401,9 @@ void OutputFolder::placed(const std::optional<fs::path>& previous) {
 }
 
 OutputFile::OutputFile(fs::path final_file, const std::string& header) {
+  // "-o table/" names a folder: not a file "table" made in its stead.
+  if (!final_file.empty() && !final_file.has_filename())
+    throw input_error(final_file.string(), "", "", "names a folder: a file name was expected");
   final_ = absolute_output(final_file, "file");
   std::error_code ec;
   if (fs::is_directory(final_, ec))

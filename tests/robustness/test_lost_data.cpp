@@ -315,6 +315,12 @@ TEST_CASE("dispersion -o replaces only a table it wrote, never a file of the use
     CHECK(o.code == 0);
     CHECK(read_all(table).rfind("a_over_lambda,c_over_c0,cg_over_c0,f_a_over_c0", 0) == 0);
   }
+  // "-o tables/" names a folder: refused, not a file "tables" made in its stead.
+  check_refused(
+      run({"dispersion", "--poisson", "0.29", "-o", (scratch.path() / "tables/").string()},
+          scratch.path(), kLimit_s),
+      "a file name was expected");
+  CHECK_FALSE(fs::exists(scratch.path() / "tables"));
 }
 
 TEST_CASE("A stray temporary-looking folder with a huge number is left alone, not a crash",
