@@ -1,8 +1,11 @@
 // `shpb report DIR`: figures and a one-page HTML report of an output folder. The plotting lives in
 // the Python package tools/shpb_report/ (matplotlib) behind the entry script tools/report.py; this
 // file finds the script and a Python that can import matplotlib and numpy, and runs it.
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <cstdlib>  // setenv
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -29,6 +32,8 @@ int run_report(const ReportArgs& args) {
   if (!python)
     throw input_error("report", "python3", "matplotlib/numpy not importable",
                       "install python3-matplotlib and python3-numpy (bash tools/install-deps.sh)");
+  // The script stops if shpb is killed outright; it knows shpb by its pid (tools/report.py).
+  ::setenv("SHPB_PARENT_PID", std::to_string(::getpid()).c_str(), 1);
   const int rc = run_program({*python, script->string(), args.folder.string()}, false);
   // 130: the script stopped on SIGINT/SIGTERM and left the previous report; a script that was
   // signalled but had already put its report in place finished (0).

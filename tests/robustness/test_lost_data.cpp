@@ -575,6 +575,35 @@ TEST_CASE("report stopped by SIGINT or SIGTERM exits 130 promptly and keeps the 
   }
 }
 
+TEST_CASE("report killed outright puts no report in place after it is gone",
+          "[robustness][lost-data]") {
+  if (!shpb_test::have_matplotlib()) {
+    WARN("SKIPPED: python3 with matplotlib and numpy is not installed");
+    return;
+  }
+  // SIGKILL to shpb cannot be passed on: its Python went on alone and put the report in place
+  // after shpb was gone. It now stops with its parent (tools/report.py, PR_SET_PDEATHSIG).
+  ScratchFolder scratch("lost");
+  const fs::path out = scratch.path() / "out";
+  write_bytes(scratch.path() / "scene.json", striker_on_bar_scene("50 us"));
+  REQUIRE(run({"simulate", (scratch.path() / "scene.json").string(), "-o", out.string(), "-q"},
+              scratch.path(), kLimit_s)
+              .code == 0);
+  const std::vector<std::string> args = {"report", out.string()};
+  const double whole_s = seconds_after_startup(args, scratch.path(), kLimit_s);
+  fs::remove_all(out / "figures");  // the timed run's report
+  fs::remove(out / "report.html");
+  Child child(args, scratch.path());
+  REQUIRE(child.wait_until_interruptible(kLimit_s));
+  std::this_thread::sleep_for(std::chrono::duration<double>(0.5 * whole_s));
+  child.signal(SIGKILL);
+  CHECK(child.wait(kLimit_s).signal == SIGKILL);
+  // Time for the script to have finished its report, had it gone on alone.
+  std::this_thread::sleep_for(std::chrono::duration<double>(1.5 * whole_s));
+  CHECK_FALSE(fs::exists(out / "report.html"));
+  CHECK_FALSE(fs::exists(out / "figures"));
+}
+
 TEST_CASE("report removes the temporaries of a report that was killed, and only those",
           "[robustness][lost-data]") {
   if (!shpb_test::have_matplotlib()) {
