@@ -31,10 +31,11 @@ int run_program(const std::vector<std::string>& argv, bool quiet) {
   const int rc = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   if (rc != 0) return -1;
-  // SIGINT/SIGTERM to shpb alone (kill PID) would not reach the program: it is passed on once,
-  // and the program is ended outright if it has not stopped within kGrace (a Ctrl-C on a
-  // terminal reaches both: the program stops on its own).
-  constexpr auto kGrace = std::chrono::milliseconds(500);
+  // SIGINT/SIGTERM to shpb alone (kill PID) would not reach the program: it is passed on once
+  // (a Ctrl-C on a terminal reaches both). The program stops on it within milliseconds, or puts
+  // its result in place if it was doing so: ended outright only if it hangs (kGrace), not in the
+  // middle of its few renames (the report's figures/ would be left missing).
+  constexpr auto kGrace = std::chrono::seconds(10);
   constexpr auto kPoll = std::chrono::milliseconds(5);
   int status = 0;
   std::optional<std::chrono::steady_clock::time_point> told;

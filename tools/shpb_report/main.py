@@ -219,7 +219,8 @@ def build(folder: str) -> tuple[str, int]:
         for leftover in (tmp + ".html", tmp + ".marker"):
             if os.path.isfile(leftover):
                 os.remove(leftover)
-        _committing = False
+        # _committing stays set once the renames began: a signal now is too late, and raised
+        # here it would say "interrupted" of a report that was put in place.
 
 
 def main(argv: list[str]) -> int:
