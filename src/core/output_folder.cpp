@@ -3,6 +3,7 @@
 #include <fcntl.h>  // AT_FDCWD
 #include <signal.h>
 #include <stdio.h>  // renameat2
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -324,7 +325,19 @@ OutputFolder::OutputFolder(fs::path final_dir, std::string command,
                             " an input of this run (" + input.string() +
                             "): choose an output folder apart from the run's inputs");
   }
-  if (fs::exists(final_, ec)) refuse_to_replace(final_);
+  if (fs::exists(final_, ec)) {
+    refuse_to_replace(final_);
+    // The result is renamed into place beside DIR: a mount point cannot be renamed (the run
+    // failed after all its work, "Device or resource busy").
+    struct stat dir_stat {
+    }, parent_stat{};
+    if (::stat(final_.c_str(), &dir_stat) == 0 &&
+        ::stat(final_.parent_path().c_str(), &parent_stat) == 0 &&
+        dir_stat.st_dev != parent_stat.st_dev)
+      throw input_error(final_.string(), "", "",
+                        "is a mount point, which cannot be replaced: write into a folder inside "
+                        "it");
+  }
   created_ = prepare_parent(final_);
   remove_stale_temporaries(final_);
   temp_ = make_temporary(final_, true);

@@ -675,4 +675,29 @@ TEST_CASE("Two runs at once into the same new -o both succeed and leave one whol
   }
 }
 
+TEST_CASE("An -o that is a mount point is refused before the run", "[robustness][lost-data]") {
+  // The result is renamed into place, which a mount point refuses: the run did all its work and
+  // then failed ("Device or resource busy"). A folder inside it is written as any other.
+  ScratchFolder scratch("lost");
+  const fs::path disk = scratch.path() / "disk";
+  fs::create_directory(disk);
+  if (::mount("tmpfs", disk.c_str(), "tmpfs", 0, "size=4m") != 0) {
+    WARN("SKIPPED: mounting a small tmpfs is not permitted here (needs root or CAP_SYS_ADMIN)");
+    return;
+  }
+  struct Unmount {
+    fs::path p;
+    ~Unmount() { ::umount2(p.c_str(), MNT_DETACH); }
+  } unmount{disk};
+  write_bytes(scratch.path() / "scene.json", striker_on_bar_scene("50 us"));
+  const auto simulate = [&](const fs::path& out) {
+    return run({"simulate", (scratch.path() / "scene.json").string(), "-o", out.string(), "-q"},
+               scratch.path(), kLimit_s);
+  };
+  check_refused(simulate(disk), "mount point");
+  CHECK(fs::is_empty(disk));
+  CHECK(litter(scratch.path()).empty());
+  CHECK(simulate(disk / "out").code == 0);
+}
+
 }  // namespace tests_robustness_test_lost_data
