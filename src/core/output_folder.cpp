@@ -37,7 +37,6 @@ extern "C" void on_signal(int sig) {
 // of the FNV-1a of this host's name (core/file_digest.hpp) so that a folder shared between
 // machines never has its pids judged by the wrong host; a folder also holds kTemporaryMarker
 // (signature, host, pid), and ".old" is the twin holding a previous result while it is replaced.
-constexpr const char* kTemporaryMarker = ".shpb-temporary";
 constexpr const char* kTemporarySignature =
     "shpb temporary output: removed once its process is gone";
 constexpr std::size_t kRandomDigits = 5;

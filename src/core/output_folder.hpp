@@ -21,6 +21,8 @@ namespace shpb {
 inline constexpr const char* kOutputMarker = ".shpb-output";
 inline constexpr const char* kOutputMarkerSignature =
     "shpb output folder: written by shpb, replaced only by shpb";
+// The marker of a temporary folder while a run writes it (host and pid; never in a result).
+inline constexpr const char* kTemporaryMarker = ".shpb-temporary";
 
 class OutputFolder {
  public:

@@ -376,7 +376,7 @@ TEST_CASE("Campaign test names are folder names: no path, no '.', '..', no campa
   const auto before = snapshot(scratch.path());
   for (const std::string& name :
        std::vector<std::string>{"../x", elsewhere.string(), "a/b", "a\\\\b", ".", "..",
-                                "campaign.csv", "Summary.json", "parts"}) {
+                                "campaign.csv", "Summary.json", "parts", ".shpb-temporary"}) {
     INFO("test name " << name);
     write_bytes(dir / "c.json",
                 R"({"tests": [{"scene": "measured.json", "name": ")" + name + R"("}]})");
