@@ -6,6 +6,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <charconv>
@@ -290,6 +291,26 @@ void remove_created_parents(const fs::path& output, const fs::path& created) {
   }
 }
 }  // namespace
+
+std::string final_names(const std::string& text) {
+  // Each "/.<name>.tmp-<pid>-<host>-<random>" of this process becomes "/<name>"; a segment of
+  // the path ends at "/" or at the ":" that follows a path in a message.
+  std::string out;
+  std::size_t at = 0;
+  while (at < text.size()) {
+    const std::size_t end = std::min(text.find_first_of("/:", at), text.size());
+    const std::string segment = text.substr(at, end - at);
+    const std::size_t tmp = segment.rfind(".tmp-");
+    if (segment.size() > 1 && segment[0] == '.' && tmp != std::string::npos && tmp > 1 &&
+        temp_owner(segment, segment.substr(0, tmp + 5)) == ::getpid())
+      out += segment.substr(1, tmp - 1);
+    else
+      out += segment;
+    if (end < text.size()) out += text[end];
+    at = end + 1;
+  }
+  return out;
+}
 
 void install_interrupt_handlers() {
   std::signal(SIGINT, on_signal);

@@ -78,6 +78,10 @@ class OutputFile {
   bool committed_ = false;
 };
 
+// `text` (an error message) with every temporary folder or file of this process named by the
+// output it stands for: "DIR/field.csv: cannot be written", not ".DIR.tmp-…/field.csv".
+std::string final_names(const std::string& text);
+
 // Interruption (SIGINT, SIGTERM): install once in main; long loops poll interrupted() and throw
 // shpb::Interrupted so that OutputFolder's destructor cleans up. A second signal ends the
 // process at once.
