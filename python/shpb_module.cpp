@@ -335,7 +335,7 @@ PYBIND11_MODULE(_shpb, m) {
     } catch (const NumericalError& e) {
       numerical_error_type(e.what());
     } catch (const WriteError& e) {
-      write_error_type(e.what());
+      write_error_type(final_names(e.what()).c_str());  // the output, not its temporary
     } catch (const Interrupted&) {
       PyErr_SetNone(PyExc_KeyboardInterrupt);
     }
