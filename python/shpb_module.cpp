@@ -335,7 +335,7 @@ PYBIND11_MODULE(_shpb, m) {
     } catch (const NumericalError& e) {
       numerical_error_type(e.what());
     } catch (const WriteError& e) {
-      write_error_type(e.what());
+      write_error_type(final_names(e.what()).c_str());  // the output, not its temporary
     } catch (const Interrupted&) {
       PyErr_SetNone(PyExc_KeyboardInterrupt);
     }
@@ -767,14 +767,28 @@ PYBIND11_MODULE(_shpb, m) {
       },
       py::arg("poisson"), py::arg("a_over_lambda"), py::arg("max_a_over_lambda"), py::arg("points"),
       py::arg("radius_m"), py::arg("c0_m_s"), py::arg("output"));
+  // The files a run of compare, study or fit read, as the command declares them to its output
+  // folder: result.save(dir) refuses a dir that is or holds one, as the command does (a study of
+  // a plan's scene.json saved over the plan deleted the scene).
+  m.def(
+      "_inputs",
+      [](const std::string& command, const std::filesystem::path& file,
+         const std::filesystem::path& distributions) {
+        return run_released([&] {
+          if (command == "fit") return fit_inputs(prepare_fit(file, FitOptions{}));
+          const Scene scene = read_scene(file);
+          return command == "study" ? study_inputs(scene, distributions) : scene_inputs(scene);
+        });
+      },
+      py::arg("command"), py::arg("file"), py::arg("distributions"));
   // result.save(dir) of those: the command's folder copied with the output folder's own rules
   // (checks, marker, atomic replacement; core/output_folder.hpp).
   m.def(
       "_save_folder",
       [](const std::filesystem::path& from, const std::filesystem::path& dir,
-         const std::string& command) {
+         const std::string& command, const std::vector<std::filesystem::path>& inputs) {
         run_released([&] {
-          OutputFolder out(dir, command);
+          OutputFolder out(dir, command, inputs);
           for (const auto& e : std::filesystem::directory_iterator(from))
             if (e.path().filename() != kOutputMarker)
               std::filesystem::copy(e.path(), out.file(e.path().filename().string()),
@@ -783,5 +797,5 @@ PYBIND11_MODULE(_shpb, m) {
           return 0;
         });
       },
-      py::arg("from"), py::arg("dir"), py::arg("command"));
+      py::arg("from"), py::arg("dir"), py::arg("command"), py::arg("inputs"));
 }

@@ -28,7 +28,7 @@ int run_command(const Command& command) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 3;
   } catch (const WriteError& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
+    std::fprintf(stderr, "error: %s\n", final_names(e.what()).c_str());
     return 3;
   } catch (const std::bad_alloc&) {
     // The estimate (validate) was passed but the machine could not give the memory: a failed

@@ -161,9 +161,10 @@ class FolderResult:
     command wrote them. exit_code: 0, or 3 when the command wrote its result with a numerical
     failure said in its summary. save(dir) writes the very files into `dir`."""
 
-    def __init__(self, command, folder, exit_code):
+    def __init__(self, command, folder, exit_code, inputs=()):
         import weakref
         self.command, self.exit_code, self._folder = command, exit_code, folder
+        self._inputs = list(inputs)  # the files the run read: save(dir) may hold none of them
         weakref.finalize(self, shutil.rmtree, os.path.dirname(folder), True)
         self.tables, self.json = {}, {}
         for name in sorted(os.listdir(folder)):
@@ -182,7 +183,7 @@ class FolderResult:
     def save(self, dir):
         """Writes the command's folder into `dir` (replaced atomically; a folder shpb did not
         write is refused)."""
-        _shpb._save_folder(self._folder, os.fspath(dir), self.command)
+        _shpb._save_folder(self._folder, os.fspath(dir), self.command, self._inputs)
 
     def __repr__(self):
         return f"<shpb.FolderResult of {self.command}: {', '.join(self.tables) or 'no tables'}>"
@@ -206,15 +207,17 @@ def _read_csv(path):
     return columns
 
 
-def _folder_run(command, run):
+def _folder_run(command, run, file, distributions=None):
+    """Runs `command` on its scene or campaign `file` into a temporary folder."""
     tmp = tempfile.mkdtemp(prefix=f"shpb-{command}-")
     folder = os.path.join(tmp, "out")
     try:
         code = run(folder)
+        inputs = _shpb._inputs(command, file, distributions or "")
     except BaseException:
         shutil.rmtree(tmp, True)
         raise
-    return FolderResult(command, folder, code)
+    return FolderResult(command, folder, code, inputs)
 
 
 def _scene_file(scene):
@@ -235,7 +238,7 @@ def compare(scene, tolerance=None, threads=0, contact=None, stepping=None, coura
     scene = _scene_file(scene)
     return _folder_run("compare", lambda out: _shpb._compare(
         scene, out, tolerance, contact, stepping, courant, threads, dispersion,
-        striker_velocity))
+        striker_velocity), scene)
 
 
 @_with_help("study", """study(scene, sweep="pareto", refine=1, tolerance=None, threads=0,
@@ -252,7 +255,7 @@ def study(scene, sweep="pareto", refine=1, tolerance=None, threads=0, contact=No
     distributions = None if distributions is None else os.fspath(distributions)
     return _folder_run("study", lambda out: _shpb._study(
         scene, out, sweep, refine, tolerance, contact, stepping, courant, threads,
-        distributions, 0 if draws is None else draws, seed))
+        distributions, 0 if draws is None else draws, seed), scene, distributions)
 
 
 @_with_help("fit", """fit(campaign, threads=0, max_iterations=40, relative_step=0.05, bootstrap=30,
@@ -264,7 +267,7 @@ result.json["fit"] is fit.json (a material file), result.tables the command's CS
 def fit(campaign, threads=0, max_iterations=40, relative_step=0.05, bootstrap=30, seed=1):
     campaign = os.fspath(campaign)
     return _folder_run("fit", lambda out: _shpb._fit(campaign, out, threads, max_iterations,
-                                                     relative_step, bootstrap, seed))
+                                                     relative_step, bootstrap, seed), campaign)
 
 
 @_with_help("dispersion", """dispersion(poisson=0.29, a_over_lambda=None, max_a_over_lambda=1.6,

@@ -93,3 +93,29 @@ def test_a_monte_carlo_study_is_the_commands(tmp_path):
     assert result.exit_code == 0
     result.save(tmp_path / "py")
     assert "draws.csv" in same_folder(tmp_path / "cmd", tmp_path / "py", result)
+
+
+def test_save_refuses_a_folder_holding_an_input_as_the_command_does(tmp_path):
+    # A fit started from a previous fit.json (the documented way to refine one), saved over that
+    # fit's folder: the command refuses it (exit 2), result.save replaced the folder and so
+    # deleted the starting material.
+    lanl = SOURCE / "experiments" / "lanl-cu-ofe-273k"
+    first = tmp_path / "first"
+    fast = ("--max-iterations", "1", "--bootstrap", "0", "--quiet")
+    assert run_command("fit", lanl / "campaign.json", "-o", first, *fast)[0] == 0
+    campaign = json.loads((lanl / "campaign.json").read_text(encoding="utf-8"))
+    campaign["material"] = str(first / "fit.json")
+    campaign["tests"][0]["scene"] = str(lanl / "scene.json")
+    again = tmp_path / "again.json"
+    again.write_text(json.dumps(campaign), encoding="utf-8")
+    before = {p.name: p.read_bytes() for p in first.iterdir()}
+    code, _, err = run_command("fit", again, "-o", first, *fast)
+    assert code == 2 and "input" in err
+    result = shpb.fit(again, max_iterations=1, bootstrap=0)
+    try:
+        result.save(first)
+    except shpb.InputError as e:
+        assert "error: " + str(e) == err.strip()
+    else:
+        raise AssertionError("saved over the folder holding the starting material")
+    assert {p.name: p.read_bytes() for p in first.iterdir()} == before

@@ -210,7 +210,6 @@ void process_shard(const CampaignOptions& args, const Campaign& c,
     say(args, part.string() + " exists, shard skipped");
     return;
   }
-  fs::create_directories(part.parent_path());
   OutputFolder out(part, "process", inputs);
   const auto runs = shard_runs(n, shard);
   for (std::size_t i : runs) process_test(c.tests[i], out.path() / c.tests[i].name, i, n, args);

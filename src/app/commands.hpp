@@ -80,6 +80,9 @@ struct DispersionArgs {
 int run_dispersion(const DispersionArgs& args);
 
 int run_study(const StudyArgs& args);
+// The files a study of `scene` reads (its output folder may hold none of them).
+std::vector<std::filesystem::path> study_inputs(const Scene& scene,
+                                                const std::filesystem::path& distributions);
 
 struct ValidateArgs {
   std::filesystem::path scene;

@@ -1,8 +1,11 @@
 // `shpb report DIR`: figures and a one-page HTML report of an output folder. The plotting lives in
 // the Python package tools/shpb_report/ (matplotlib) behind the entry script tools/report.py; this
 // file finds the script and a Python that can import matplotlib and numpy, and runs it.
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <cstdlib>  // setenv
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -10,6 +13,7 @@
 #include "app/commands.hpp"
 #include "core/error.hpp"
 #include "core/external_program.hpp"
+#include "core/output_folder.hpp"  // interrupted()
 
 namespace shpb {
 
@@ -28,7 +32,12 @@ int run_report(const ReportArgs& args) {
   if (!python)
     throw input_error("report", "python3", "matplotlib/numpy not importable",
                       "install python3-matplotlib and python3-numpy (bash tools/install-deps.sh)");
+  // The script stops if shpb is killed outright; it knows shpb by its pid (tools/report.py).
+  ::setenv("SHPB_PARENT_PID", std::to_string(::getpid()).c_str(), 1);
   const int rc = run_program({*python, script->string(), args.folder.string()}, false);
+  // 130: the script stopped on SIGINT/SIGTERM and left the previous report; a script that was
+  // signalled but had already put its report in place finished (0).
+  if (rc == 130 || (rc != 0 && interrupted())) throw Interrupted();
   // 2 bad input, 3 not written, 4 a bug of the script: it printed its own `error:` line.
   if (rc == 0 || rc == 2 || rc == 3 || rc == 4) return rc;
   std::fprintf(stderr, "error: internal: %s %s exited with status %d\n", python->c_str(),

@@ -94,6 +94,13 @@ int merge_study(const StudyArgs& args) {
 
 }  // namespace
 
+std::vector<std::filesystem::path> study_inputs(const Scene& scene,
+                                                const std::filesystem::path& distributions) {
+  std::vector<std::filesystem::path> inputs = scene_inputs(scene, false);  // measured files unread
+  if (!distributions.empty()) inputs.push_back(distributions);
+  return inputs;
+}
+
 int run_study(const StudyArgs& args) {
   require_valid(args);
   if (args.run) return run_study_shard(args);
@@ -105,9 +112,7 @@ int run_study(const StudyArgs& args) {
   const auto start = std::chrono::steady_clock::now();
   const StudyPlan plan =
       make_study_plan(study_options(args), scene);  // a bad file: nothing written
-  std::vector<std::filesystem::path> inputs = scene_inputs(scene, false);  // measured files unread
-  if (!args.distributions.empty()) inputs.push_back(args.distributions);
-  OutputFolder out(args.output, "study", inputs);
+  OutputFolder out(args.output, "study", study_inputs(scene, args.distributions));
   const int threads = resolve_threads(args.overrides.threads);
   StudyResults results;
   run_plan(plan, scene, all_runs(plan.runs()), threads,

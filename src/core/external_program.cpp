@@ -1,8 +1,15 @@
 #include "core/external_program.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
+
+#include <cerrno>
+#include <chrono>
+#include <thread>
+
+#include "core/output_folder.hpp"  // interrupted()
 
 extern char** environ;
 
@@ -24,9 +31,27 @@ int run_program(const std::vector<std::string>& argv, bool quiet) {
   const int rc = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   if (rc != 0) return -1;
+  // SIGINT/SIGTERM to shpb alone (kill PID) would not reach the program: it is passed on once
+  // (a Ctrl-C on a terminal reaches both). The program stops on it within milliseconds, or puts
+  // its result in place if it was doing so: ended outright only if it hangs (kGrace), not in the
+  // middle of its few renames (the report's figures/ would be left missing).
+  constexpr auto kGrace = std::chrono::seconds(10);
+  constexpr auto kPoll = std::chrono::milliseconds(5);
   int status = 0;
-  if (waitpid(pid, &status, 0) < 0 || !WIFEXITED(status)) return -1;
-  return WEXITSTATUS(status);
+  std::optional<std::chrono::steady_clock::time_point> told;
+  for (;;) {
+    const pid_t done = waitpid(pid, &status, WNOHANG);
+    if (done == pid) break;
+    if (done < 0 && errno != EINTR) return -1;
+    if (interrupted() && !told) {
+      ::kill(pid, SIGTERM);
+      told = std::chrono::steady_clock::now();
+    } else if (told && std::chrono::steady_clock::now() - *told > kGrace) {
+      ::kill(pid, SIGKILL);
+    }
+    std::this_thread::sleep_for(kPoll);
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 std::optional<fs::path> find_installed(const std::string& name) {
@@ -40,8 +65,10 @@ std::optional<fs::path> find_installed(const std::string& name) {
 }
 
 std::optional<std::string> find_python(const std::string& check) {
-  for (const std::string python : {"/usr/bin/python3", "python3"})
+  for (const std::string python : {"/usr/bin/python3", "python3"}) {
     if (run_program({python, "-c", check}, true) == 0) return python;
+    throw_if_interrupted();  // the check was stopped, not failed
+  }
   return std::nullopt;
 }
 

@@ -3,8 +3,10 @@
 #include <fcntl.h>  // AT_FDCWD
 #include <signal.h>
 #include <stdio.h>  // renameat2
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <charconv>
@@ -36,7 +38,6 @@ extern "C" void on_signal(int sig) {
 // of the FNV-1a of this host's name (core/file_digest.hpp) so that a folder shared between
 // machines never has its pids judged by the wrong host; a folder also holds kTemporaryMarker
 // (signature, host, pid), and ".old" is the twin holding a previous result while it is replaced.
-constexpr const char* kTemporaryMarker = ".shpb-temporary";
 constexpr const char* kTemporarySignature =
     "shpb temporary output: removed once its process is gone";
 constexpr std::size_t kRandomDigits = 5;
@@ -94,47 +95,6 @@ std::string temporary_marker_text(pid_t pid) {
          "\npid: " + std::to_string(pid) + "\n";
 }
 
-// The folder is provably a temporary of process `pid` on this host: its marker names this host
-// and that pid; or the process was killed while creating it (make_temporary: the folder, then its
-// marker in one write), so it holds nothing, or only a marker cut short — a prefix of that text.
-bool provably_temporary(const fs::path& folder, pid_t pid) {
-  const std::string expected = temporary_marker_text(pid);
-  std::error_code ec;
-  std::size_t entries = 0;
-  for (auto it = fs::directory_iterator(folder, ec); !ec && it != fs::directory_iterator();
-       it.increment(ec))
-    ++entries;
-  if (ec) return false;
-  if (entries == 0) return true;
-  const fs::path marker = folder / kTemporaryMarker;
-  if (!fs::is_regular_file(fs::symlink_status(marker, ec))) return false;
-  std::ifstream in(marker);
-  std::ostringstream text;
-  text << in.rdbuf();
-  const std::string found = text.str();
-  return found == expected || (entries == 1 && expected.rfind(found, 0) == 0);
-}
-
-// Temporaries left by a run that was killed outright (SIGKILL, power loss) are removed when the
-// next run starts, and only what is provably shpb's: the exact name of the scheme with this
-// host's tag, a pid no process has now, and for a folder the marker naming this host and that pid
-// (or, killed while the folder was being made, nothing but a marker cut short).
-// Anything else (".res.tmp-2024-05-01.tar", a backup) is the user's and stays.
-void remove_stale_temporaries(const fs::path& final_path) {
-  const std::string prefix = temp_prefix(final_path);
-  std::error_code ec;
-  for (const auto& e : fs::directory_iterator(final_path.parent_path(), ec)) {
-    const auto pid = temp_owner(e.path().filename().string(), prefix);
-    if (!pid || ::kill(*pid, 0) == 0 || errno != ESRCH) continue;
-    std::error_code rm;
-    const auto type = fs::symlink_status(e.path(), rm).type();
-    if (type == fs::file_type::regular)
-      fs::remove(e.path(), rm);
-    else if (type == fs::file_type::directory && provably_temporary(e.path(), *pid))
-      fs::remove_all(e.path(), rm);
-  }
-}
-
 // Why shpb may not replace `dir`, or "" if it may: it is empty, or its marker starts with the
 // signature and lists every entry the folder holds.
 std::string refusal(const fs::path& dir) {
@@ -161,6 +121,81 @@ std::string refusal(const fs::path& dir) {
   }
   if (ec) return "cannot be listed: " + ec.message();
   return "";
+}
+
+// Throws unless shpb may replace `dir` (refusal): a folder, empty or a whole shpb result.
+void refuse_to_replace(const fs::path& dir) {
+  std::error_code ec;
+  if (!fs::is_directory(fs::symlink_status(dir, ec)))
+    throw input_error(dir.string(), "", "", "exists and is not a folder");
+  if (const std::string why = refusal(dir); !why.empty())
+    throw input_error(dir.string(), "", "", why);
+}
+
+// The folder is provably a temporary of process `pid` on this host: its marker names this host
+// and that pid; or the process was killed while creating it (make_temporary: the folder, then its
+// marker in one write), so it holds nothing, or only a marker cut short — a prefix of that text;
+// or it was killed while committing (OutputFolder::commit), and the folder is a whole shpb result
+// (the new one before the exchange, the previous one after it), one shpb may replace.
+bool provably_temporary(const fs::path& folder, pid_t pid) {
+  const std::string expected = temporary_marker_text(pid);
+  std::error_code ec;
+  if (refusal(folder).empty()) return true;
+  std::size_t entries = 0;
+  for (auto it = fs::directory_iterator(folder, ec); !ec && it != fs::directory_iterator();
+       it.increment(ec))
+    ++entries;
+  if (ec) return false;
+  const fs::path marker = folder / kTemporaryMarker;
+  if (!fs::is_regular_file(fs::symlink_status(marker, ec))) return false;
+  std::ifstream in(marker);
+  std::ostringstream text;
+  text << in.rdbuf();
+  const std::string found = text.str();
+  return found == expected || (entries == 1 && expected.rfind(found, 0) == 0);
+}
+
+// Removes a temporary folder (this run's, or one provably_temporary), its marker last: a run
+// killed in the middle (a second Ctrl-C) leaves a folder the next run still knows as a temporary.
+void remove_temporary(const fs::path& folder) {
+  std::error_code ec;
+  std::vector<fs::path> entries;
+  for (const auto& e : fs::directory_iterator(folder, ec))
+    if (e.path().filename() != kTemporaryMarker) entries.push_back(e.path());
+  for (const auto& e : entries) fs::remove_all(e, ec);
+  fs::remove_all(folder, ec);
+}
+
+// Removes the previous result once replaced, marked first as this run's temporary, so that a run
+// killed while removing it leaves a folder the next run removes (whole, it is shpb's anyway).
+void mark_and_remove(const fs::path& folder) {
+  try {
+    write_text_file(folder / kTemporaryMarker, temporary_marker_text(::getpid()));
+  } catch (const WriteError&) {  // unmarked, it is left for the user: nothing is lost
+    return;
+  }
+  remove_temporary(folder);
+}
+
+// Temporaries left by a run that was killed outright (SIGKILL, power loss) are removed when the
+// next run starts, and only what is provably shpb's: the exact name of the scheme with this
+// host's tag, a pid no process has now, and for a folder the marker naming this host and that pid
+// (or, killed while the folder was being made, nothing but a marker cut short; killed while
+// committing, a whole shpb result).
+// Anything else (".res.tmp-2024-05-01.tar", a backup) is the user's and stays.
+void remove_stale_temporaries(const fs::path& final_path) {
+  const std::string prefix = temp_prefix(final_path);
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(final_path.parent_path(), ec)) {
+    const auto pid = temp_owner(e.path().filename().string(), prefix);
+    if (!pid || ::kill(*pid, 0) == 0 || errno != ESRCH) continue;
+    std::error_code rm;
+    const auto type = fs::symlink_status(e.path(), rm).type();
+    if (type == fs::file_type::regular)
+      fs::remove(e.path(), rm);
+    else if (type == fs::file_type::directory && provably_temporary(e.path(), *pid))
+      remove_temporary(e.path());
+  }
 }
 
 // `inner` is `outer` or lies inside it (both canonical).
@@ -207,6 +242,13 @@ fs::path absolute_output(const fs::path& given, const std::string& what) {
   fs::path absolute = fs::absolute(given, ec);
   if (ec) throw input_error(given.string(), "", "", "cannot resolve the output " + what);
   if (!absolute.has_filename()) absolute = absolute.parent_path();
+  // "-o .", "-o dir/..": the folder itself by its real name, so that its temporary is made
+  // beside it, not inside it (the exchange of a folder with its own child fails after the run).
+  if (absolute.filename() == "." || absolute.filename() == "..") {
+    absolute = fs::weakly_canonical(absolute, ec);
+    if (ec) throw input_error(given.string(), "", "", "cannot resolve the output " + what);
+    if (!absolute.has_filename()) absolute = absolute.parent_path();
+  }
   // A symbolic link is written through: the link stays, its target receives the result (replaced
   // atomically beside the target, docs/commands.md); a link to nothing is refused.
   if (fs::is_symlink(absolute, ec)) {
@@ -222,17 +264,53 @@ fs::path absolute_output(const fs::path& given, const std::string& what) {
 }
 
 // Creates the output's parent folder if needed and checks that it is writable.
-void prepare_parent(const fs::path& output) {
+// Returns the outermost folder it created ("" if none), for remove_created_parents.
+fs::path prepare_parent(const fs::path& output) {
   std::error_code ec;
   const fs::path parent = output.parent_path();
+  fs::path created;
   if (!fs::is_directory(parent, ec)) {
+    for (fs::path p = parent; !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
+      created = p;
+      if (p == p.parent_path()) break;
+    }
     fs::create_directories(parent, ec);
     if (ec) throw input_error(parent.string(), "", "", "output parent folder cannot be created");
   }
   if (::access(parent.c_str(), W_OK) != 0)
     throw input_error(parent.string(), "", "", "output parent folder is not writable");
+  return created;
+}
+
+// A run that writes nothing leaves nothing, not even the parent folders it made for its output
+// (those still empty: another run's temporary in one keeps it).
+void remove_created_parents(const fs::path& output, const fs::path& created) {
+  if (created.empty()) return;
+  std::error_code ec;
+  for (fs::path p = output.parent_path(); fs::remove(p, ec) && p != created; p = p.parent_path()) {
+  }
 }
 }  // namespace
+
+std::string final_names(const std::string& text) {
+  // Each "/.<name>.tmp-<pid>-<host>-<random>" of this process becomes "/<name>"; a segment of
+  // the path ends at "/" or at the ":" that follows a path in a message.
+  std::string out;
+  std::size_t at = 0;
+  while (at < text.size()) {
+    const std::size_t end = std::min(text.find_first_of("/:", at), text.size());
+    const std::string segment = text.substr(at, end - at);
+    const std::size_t tmp = segment.rfind(".tmp-");
+    if (segment.size() > 1 && segment[0] == '.' && tmp != std::string::npos && tmp > 1 &&
+        temp_owner(segment, segment.substr(0, tmp + 5)) == ::getpid())
+      out += segment.substr(1, tmp - 1);
+    else
+      out += segment;
+    if (end < text.size()) out += text[end];
+    at = end + 1;
+  }
+  return out;
+}
 
 void install_interrupt_handlers() {
   std::signal(SIGINT, on_signal);
@@ -251,7 +329,7 @@ OutputFolder::OutputFolder(fs::path final_dir, std::string command,
   std::error_code ec;
   final_ = absolute_output(final_dir, "folder");
   if (fs::exists(final_, ec) && !fs::is_directory(final_, ec))
-    throw input_error(final_.string(), "", "", "exists and is not a folder");
+    refuse_to_replace(final_);  // names what it is
   // An input of the run inside DIR would be deleted by the exchange (or DIR is one); DIR inside
   // an input folder (a plan's parts) would change what the run reads.
   const fs::path real_dir = fs::weakly_canonical(final_, ec);
@@ -267,19 +345,28 @@ OutputFolder::OutputFolder(fs::path final_dir, std::string command,
                             " an input of this run (" + input.string() +
                             "): choose an output folder apart from the run's inputs");
   }
-  if (fs::exists(final_, ec))
-    if (const std::string why = refusal(final_); !why.empty())
-      throw input_error(final_.string(), "", "", why);
-  prepare_parent(final_);
+  if (fs::exists(final_, ec)) {
+    refuse_to_replace(final_);
+    // The result is renamed into place beside DIR: a mount point cannot be renamed (the run
+    // failed after all its work, "Device or resource busy").
+    struct stat dir_stat {
+    }, parent_stat{};
+    if (::stat(final_.c_str(), &dir_stat) == 0 &&
+        ::stat(final_.parent_path().c_str(), &parent_stat) == 0 &&
+        dir_stat.st_dev != parent_stat.st_dev)
+      throw input_error(final_.string(), "", "",
+                        "is a mount point, which cannot be replaced: write into a folder inside "
+                        "it");
+  }
+  created_ = prepare_parent(final_);
   remove_stale_temporaries(final_);
   temp_ = make_temporary(final_, true);
 }
 
 OutputFolder::~OutputFolder() {
-  if (!committed_ && !temp_.empty()) {
-    std::error_code ec;
-    fs::remove_all(temp_, ec);
-  }
+  if (committed_) return;
+  if (!temp_.empty()) remove_temporary(temp_);
+  remove_created_parents(final_, created_);
 }
 
 void OutputFolder::commit() {
@@ -287,46 +374,69 @@ void OutputFolder::commit() {
   std::string marker = std::string(kOutputMarkerSignature) + "\ncommand: " + command_ + "\n";
   std::error_code ec;
   std::set<std::string> names;
-  fs::remove(temp_ / kTemporaryMarker, ec);  // the result holds only what the command wrote
   for (const auto& e : fs::directory_iterator(temp_, ec))
     names.insert(e.path().filename().string());
+  names.erase(kTemporaryMarker);  // the result holds only what the command wrote
   for (const auto& name : names) marker += "file: " + name + "\n";
+  // The output marker before the temporary's is removed: a run killed from here on leaves a
+  // folder that is provably shpb's either way, which the next run removes.
   write_text_file(temp_ / kOutputMarker, marker);
+  fs::remove(temp_ / kTemporaryMarker, ec);
   sync_tree(temp_);  // durable before it becomes the result
-  if (fs::exists(final_, ec)) {
+  // Two runs into a new DIR at once: the other may put its result there between the look and the
+  // move; this one then replaces it (both are whole results; the last one stays).
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    if (!fs::exists(final_, ec)) {
+      if (::renameat2(AT_FDCWD, temp_.c_str(), AT_FDCWD, final_.c_str(), RENAME_NOREPLACE) == 0)
+        return placed(std::nullopt);
+      if (errno == EEXIST || errno == ENOTEMPTY) continue;
+      if (errno != EINVAL && errno != ENOSYS) throw_write_error(final_, errno);
+      fs::rename(temp_, final_, ec);  // a file system without renameat2's flags
+      if (ec) throw_write_error(final_, ec.value());
+      return placed(std::nullopt);
+    }
+    // DIR was checked when the run started; the user may have put a file into it since (a
+    // long study): checked again, and the folder it swapped out once more, so that it is never
+    // the user's that is removed.
+    refuse_to_replace(final_);
     // One atomic exchange where the file system offers it: DIR is never missing, not even for
     // an instant; the previous result ends up in the temporary folder and is removed with it.
     if (::renameat2(AT_FDCWD, temp_.c_str(), AT_FDCWD, final_.c_str(), RENAME_EXCHANGE) == 0) {
-      committed_ = true;
-      sync_path(final_.parent_path());
-      fs::remove_all(temp_, ec);
-      return;
+      if (const std::string why = refusal(temp_); !why.empty()) {
+        ::renameat2(AT_FDCWD, temp_.c_str(), AT_FDCWD, final_.c_str(), RENAME_EXCHANGE);
+        throw input_error(final_.string(), "", "", why);
+      }
+      return placed(temp_);
     }
-  }
-  fs::path old;
-  if (fs::exists(final_, ec)) {
-    old = temp_.string() + ".old";
+    const fs::path old = temp_.string() + ".old";
     fs::rename(final_, old, ec);
-    if (ec)
-      throw input_error(final_.string(), "", "",
-                        "cannot replace the previous result: " + ec.message());
-    // Marked as this run's: a run killed from here on leaves a twin the next one may remove.
-    try {
-      write_text_file(old / kTemporaryMarker, temporary_marker_text(::getpid()));
-    } catch (const WriteError&) {  // unmarked, the twin is left for the user: nothing is lost
+    if (ec) throw_write_error(final_, ec.value());
+    if (const std::string why = refusal(old); !why.empty()) {
+      fs::rename(old, final_, ec);
+      throw input_error(final_.string(), "", "", why);
     }
+    fs::rename(temp_, final_, ec);
+    if (ec) {
+      const int error = ec.value();
+      fs::rename(old, final_, ec);
+      throw_write_error(final_, error);
+    }
+    return placed(old);
   }
-  fs::rename(temp_, final_, ec);
-  if (ec) {
-    if (!old.empty()) fs::rename(old, final_, ec);
-    throw input_error(final_.string(), "", "", "cannot move the result into place");
-  }
+  throw_write_error(final_, EBUSY);  // 100 other runs in between: give up, nothing replaced
+}
+
+// The result is in place; `previous`, the folder holding the previous result, is removed.
+void OutputFolder::placed(const std::optional<fs::path>& previous) {
   committed_ = true;
   sync_path(final_.parent_path());
-  if (!old.empty()) fs::remove_all(old, ec);
+  if (previous) mark_and_remove(*previous);
 }
 
 OutputFile::OutputFile(fs::path final_file, const std::string& header) {
+  // "-o table/" names a folder: not a file "table" made in its stead.
+  if (!final_file.empty() && !final_file.has_filename())
+    throw input_error(final_file.string(), "", "", "names a folder: a file name was expected");
   final_ = absolute_output(final_file, "file");
   std::error_code ec;
   if (fs::is_directory(final_, ec))
@@ -343,16 +453,16 @@ OutputFile::OutputFile(fs::path final_file, const std::string& header) {
                             "\": shpb replaces only a file it wrote (move it away or choose "
                             "another file)");
   }
-  prepare_parent(final_);
+  created_ = prepare_parent(final_);
   remove_stale_temporaries(final_);
   temp_ = make_temporary(final_, false);
 }
 
 OutputFile::~OutputFile() {
-  if (!committed_ && !temp_.empty()) {
-    std::error_code ec;
-    fs::remove(temp_, ec);
-  }
+  if (committed_) return;
+  std::error_code ec;
+  if (!temp_.empty()) fs::remove(temp_, ec);
+  remove_created_parents(final_, created_);
 }
 
 void OutputFile::commit() {

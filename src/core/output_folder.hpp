@@ -8,8 +8,10 @@
 // written through (the link stays, its target is replaced). Every file is fsync'ed before the one
 // atomic exchange of the two folders; temporaries of runs that were killed outright are removed by
 // the next run into the same DIR when they are provably shpb's (exact name with this host's tag,
-// dead pid, and for a folder its marker naming host and pid).
+// dead pid, and for a folder its marker naming host and pid, or a whole shpb result: killed while
+// committing).
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,6 +21,8 @@ namespace shpb {
 inline constexpr const char* kOutputMarker = ".shpb-output";
 inline constexpr const char* kOutputMarkerSignature =
     "shpb output folder: written by shpb, replaced only by shpb";
+// The marker of a temporary folder while a run writes it (host and pid; never in a result).
+inline constexpr const char* kTemporaryMarker = ".shpb-temporary";
 
 class OutputFolder {
  public:
@@ -43,8 +47,11 @@ class OutputFolder {
   void commit();
 
  private:
+  void placed(const std::optional<std::filesystem::path>& previous);
+
   std::filesystem::path final_;
   std::filesystem::path temp_;
+  std::filesystem::path created_;  // the outermost parent folder this run made, if any
   std::string command_;
   bool committed_ = false;
 };
@@ -67,8 +74,13 @@ class OutputFile {
  private:
   std::filesystem::path final_;
   std::filesystem::path temp_;
+  std::filesystem::path created_;  // the outermost parent folder this run made, if any
   bool committed_ = false;
 };
+
+// `text` (an error message) with every temporary folder or file of this process named by the
+// output it stands for: "DIR/field.csv: cannot be written", not ".DIR.tmp-…/field.csv".
+std::string final_names(const std::string& text);
 
 // Interruption (SIGINT, SIGTERM): install once in main; long loops poll interrupted() and throw
 // shpb::Interrupted so that OutputFolder's destructor cleans up. A second signal ends the

@@ -17,8 +17,9 @@ const std::vector<std::string>& campaign_keys() {
 }
 
 const std::vector<std::string>& campaign_output_names() {
-  static const std::vector<std::string> names = {"campaign.csv", "summary.json", "part.json",
-                                                 "parts",        "result",       kOutputMarker};
+  static const std::vector<std::string> names = {"campaign.csv",  "summary.json", "part.json",
+                                                 "parts",         "result",       kOutputMarker,
+                                                 kTemporaryMarker};
   return names;
 }
 

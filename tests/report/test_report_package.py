@@ -89,15 +89,17 @@ def test_a_foreign_figures_folder_is_never_replaced(tmp_path):
 def test_the_output_marker_learns_the_report_files_only_if_it_is_shpbs(tmp_path):
     marker = tmp_path / ".shpb-output"
     marker.write_text(report_main.OUTPUT_SIGNATURE + "\nfile: gauges.csv\n", encoding="utf-8")
-    report_main.tell_output_marker(str(tmp_path), ["figures", "report.html"])
+    report_main.tell_output_marker(str(tmp_path), ["figures", "report.html"],
+                                   str(tmp_path / ".report-host-1-abcd_123.marker"))
     lines = marker.read_text(encoding="utf-8").splitlines()
     assert "file: figures" in lines and "file: report.html" in lines
     foreign = tmp_path / "other"
     foreign.mkdir()
     (foreign / ".shpb-output").write_text("not ours\n", encoding="utf-8")
-    report_main.tell_output_marker(str(foreign), ["figures"])
+    report_main.tell_output_marker(str(foreign), ["figures"],
+                                   str(foreign / ".report-host-1-abcd_123.marker"))
     assert (foreign / ".shpb-output").read_text(encoding="utf-8") == "not ours\n"
-    assert not [n for n in os.listdir(foreign) if n.startswith(".shpb-output.tmp")]
+    assert os.listdir(foreign) == [".shpb-output"]
 
 
 def test_column_names_come_from_the_output_schema():

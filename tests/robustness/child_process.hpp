@@ -176,6 +176,14 @@ inline void write_bytes(const fs::path& file, const std::string& bytes) {
   std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
 }
 
+// The pid of a process that has just exited (and been reaped): no process has it now.
+inline pid_t dead_pid() {
+  const pid_t pid = ::fork();
+  if (pid == 0) ::_exit(0);
+  ::waitpid(pid, nullptr, 0);
+  return pid;
+}
+
 // Entries of `dir` whose names hold ".tmp" (temporary output folders left behind).
 inline std::vector<std::string> litter(const fs::path& dir) {
   std::vector<std::string> found;

@@ -74,4 +74,23 @@ TEST_CASE("An interrupted simulation exits promptly and leaves the previous resu
   CHECK(litter(dir).empty());
 }
 
+TEST_CASE("An interrupted campaign shard leaves nothing, not even the parts folder",
+          "[robustness][interrupt]") {
+  // --shard K/N writes DIR/parts/K-of-N/; the run made DIR/parts/ before its output folder, and
+  // an interrupted (or failed) shard left it, with DIR, behind, empty.
+  ScratchFolder scratch("interrupt");
+  const fs::path out = scratch.path() / "campaign";
+  const fs::path scene =
+      fs::path(SHPB_SOURCE_DIR) / "experiments" / "lanl-cu-ofe-273k" / "scene.json";
+  // 20 000 draws of the scene's measurement.uncertainty: seconds of work to land a signal in.
+  double delay_s = kRunBeforeSignal_s;
+  const Outcome o = interrupted_run({"process", scene.string(), "--shard", "0/1", "--draws",
+                                     "20000", "-o", out.string(), "--quiet"},
+                                    scratch.path(), SIGINT, delay_s, kHangLimit_s);
+  INFO(o.err);
+  CHECK(o.code == 130);
+  CHECK(o.seconds < prompt_exit_s());
+  CHECK_FALSE(fs::exists(out));
+}
+
 }  // namespace tests_robustness_test_interrupt

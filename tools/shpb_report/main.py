@@ -5,7 +5,8 @@ any previous report intact (docs/outputs.md, conventions). Exit codes: 0 report 
 input (DIR holds no output file this package knows, a file is malformed — message "error: <file>:
 <line/column>: <value>: <what was expected>" —, or DIR holds a figures/ folder or a report.html
 this package did not write: they are never replaced); 3 the report cannot be written (read-only
-folder, full disk); 4 a bug of this package (one line naming the exception and where).
+folder, full disk); 4 a bug of this package (one line naming the exception and where); 130
+interrupted by SIGINT or SIGTERM (nothing printed: shpb says it), the previous report intact.
 
 Ownership: figures/ is this package's only if it holds the marker file .shpb-report, report.html
 only if it carries the page's generator line; the output folder's own marker (.shpb-output, see
@@ -13,7 +14,10 @@ core/output_folder.hpp) is told about both so that shpb may later replace the fo
 """
 import logging
 import os
+import re
 import shutil
+import signal
+import socket
 import sys
 import tempfile
 import traceback
@@ -59,8 +63,9 @@ def sync(path: str) -> None:
         os.close(fd)
 
 
-def tell_output_marker(folder: str, names: list[str]) -> None:
-    """Lists `names` in the folder's .shpb-output marker (if it is shpb's), atomically."""
+def tell_output_marker(folder: str, names: list[str], tmp: str) -> None:
+    """Lists `names` in the folder's .shpb-output marker (if it is shpb's), atomically (through
+    the temporary file `tmp`)."""
     marker = os.path.join(folder, OUTPUT_MARKER)
     text = read_text(marker)
     if not text.startswith(OUTPUT_SIGNATURE + "\n"):
@@ -69,12 +74,59 @@ def tell_output_marker(folder: str, names: list[str]) -> None:
     added = [f"file: {n}" for n in names if f"file: {n}" not in lines]
     if not added:
         return
-    tmp = marker + f".tmp-{os.getpid()}"
     with open(tmp, "w", encoding="utf-8") as f:
         f.write("\n".join(lines + added) + "\n")
         f.flush()
         os.fsync(f.fileno())
     os.replace(tmp, marker)
+
+
+# This run's temporaries in DIR: ".report-<host>-<pid>-<random>" (the figures), and beside it the
+# same name + ".html" (the page), ".marker" (the new .shpb-output) and ".old" (the previous
+# figures while they are replaced). A run killed outright leaves them, and DIR, holding files its
+# marker does not list, could no longer be replaced by shpb: the next report removes those of
+# runs that are gone (this host, no such pid), as core/output_folder.cpp does for shpb's own.
+def temporary_prefix() -> str:
+    return f".report-{socket.gethostname()}-{os.getpid()}-"
+
+
+def remove_stale_temporaries(folder: str) -> None:
+    pattern = re.compile(r"\.report-" + re.escape(socket.gethostname()) +
+                         r"-(\d{1,9})-[A-Za-z0-9_]{8}(\.html|\.marker|\.old)?")
+    for name in os.listdir(folder):
+        match = pattern.fullmatch(name)
+        if not match:
+            continue
+        try:
+            os.kill(int(match.group(1)), 0)
+            continue  # a report running now
+        except ProcessLookupError:
+            pass
+        except OSError:
+            continue
+        path = os.path.join(folder, name)
+        if os.path.islink(path):
+            continue
+        if not os.path.isdir(path):
+            os.remove(path)
+        elif (not os.listdir(path)
+              or read_text(os.path.join(path, FIGURES_MARKER)) == FIGURES_SIGNATURE):
+            shutil.rmtree(path, ignore_errors=True)
+
+
+# SIGINT and SIGTERM stop the drawing at once (KeyboardInterrupt; the temporaries are removed),
+# but not the few renames that put the report in place: a signal then is too late and ignored.
+# Only the first one is raised: a Ctrl-C reaches this script and shpb, which passes it on again,
+# and a second exception would cut the removal of the temporaries short.
+_committing = False
+_stopping = False
+
+
+def _on_signal(signum, frame):
+    global _stopping
+    if not _committing and not _stopping:
+        _stopping = True
+        raise KeyboardInterrupt
 
 
 def _pulses_with(column: str) -> Callable[[Source], bool]:
@@ -125,9 +177,11 @@ def build(folder: str) -> tuple[str, int]:
                           "other shpb output: an output folder of simulate, process, compare, "
                           "study, fit, calibrate or plan was expected")
     check_ownership(folder)
+    remove_stale_temporaries(folder)
     # Figures are drawn into a temporary folder and moved into place at the end, so a failure
     # leaves any previous report intact (docs/outputs.md (conventions)).
-    tmp = tempfile.mkdtemp(prefix=".report-", dir=folder)
+    global _committing
+    tmp = tempfile.mkdtemp(prefix=temporary_prefix(), dir=folder)
     os.chmod(tmp, 0o755)
     old = None
     try:
@@ -147,13 +201,14 @@ def build(folder: str) -> tuple[str, int]:
         sync(tmp)
         fig_dir = os.path.join(folder, "figures")
         final_html = os.path.join(folder, "report.html")
-        os.replace(html_tmp, os.path.join(folder, ".report.html.tmp"))
-        tell_output_marker(folder, ["figures", "report.html"])
+        _committing = True
+        os.replace(html_tmp, tmp + ".html")
+        tell_output_marker(folder, ["figures", "report.html"], tmp + ".marker")
         if os.path.isdir(fig_dir):  # ours (check_ownership): set aside, removed below
             old = tmp + ".old"
             os.replace(fig_dir, old)
         os.replace(tmp, fig_dir)
-        os.replace(os.path.join(folder, ".report.html.tmp"), final_html)
+        os.replace(tmp + ".html", final_html)
         sync(folder)
         return final_html, len(figs.items)
     finally:
@@ -161,6 +216,11 @@ def build(folder: str) -> tuple[str, int]:
         for leftover in (tmp, old):
             if leftover and os.path.isdir(leftover):
                 shutil.rmtree(leftover, ignore_errors=True)
+        for leftover in (tmp + ".html", tmp + ".marker"):
+            if os.path.isfile(leftover):
+                os.remove(leftover)
+        # _committing stays set once the renames began: a signal now is too late, and raised
+        # here it would say "interrupted" of a report that was put in place.
 
 
 def main(argv: list[str]) -> int:
@@ -171,8 +231,12 @@ def main(argv: list[str]) -> int:
     if len(argv) != 2 or argv[1] in ("-h", "--help"):
         print(USAGE, file=sys.stderr if len(argv) != 2 else sys.stdout)
         return 0 if len(argv) == 2 else 2
+    signal.signal(signal.SIGINT, _on_signal)
+    signal.signal(signal.SIGTERM, _on_signal)
     try:
         path, count = build(argv[1])
+    except KeyboardInterrupt:  # shpb says so (exit 130), the previous report is left intact
+        return 130
     except ReportError as e:  # a file of the folder is not what its producer writes
         print(f"error: {e}", file=sys.stderr)
         return 2
