@@ -127,6 +127,33 @@ bool every_repeat_twice(const SignalColumns& out) {
   return true;
 }
 
+// The steps of increasing stamps: the median one is the sampling interval, against which a gap or
+// jump stands out.
+struct StepSurvey {
+  double median_step = 0, mean_step = 0;
+  std::size_t first_off = 0;  // first sample whose step is off the median (0: none)
+  double jitter = 0;          // largest |step − mean| / mean
+  double shortest = 0, longest = 0;
+};
+StepSurvey survey_steps(const std::vector<double>& t) {
+  const std::size_t n = t.size();
+  std::vector<double> steps(n - 1);
+  for (std::size_t i = 1; i < n; ++i) steps[i - 1] = t[i] - t[i - 1];
+  StepSurvey s;
+  s.median_step = median(std::move(steps));
+  s.mean_step = (t.back() - t.front()) / static_cast<double>(n - 1);
+  s.shortest = t.back() - t.front();
+  for (std::size_t i = 1; i < n; ++i) {
+    const double step = t[i] - t[i - 1];
+    s.shortest = std::min(s.shortest, step);
+    s.longest = std::max(s.longest, step);
+    if (!s.first_off && std::abs(step - s.median_step) > kUniformStepTolerance * s.median_step)
+      s.first_off = i;
+    s.jitter = std::max(s.jitter, std::abs(step - s.mean_step) / s.mean_step);
+  }
+  return s;
+}
+
 // Checks the time stamps: increasing and uniform. Repeated stamps throughout (rounded to fewer
 // digits than the sampling needs) are not an error: the base is rebuilt from a least-squares fit
 // of t against the sample index, with a warning; a few are repeated rows (drop_repeated_rows).
@@ -182,22 +209,7 @@ void check_time_base(const std::filesystem::path& file, const RawSignalColumns& 
                               " rows: the column was rounded)");
     return;
   }
-  // The median step is the sampling interval; a gap or jump stands out against it.
-  std::vector<double> steps(n - 1);
-  for (std::size_t i = 1; i < n; ++i) steps[i - 1] = t[i] - t[i - 1];
-  const double median_step = median(std::move(steps));
-  const double mean_step = span / static_cast<double>(n - 1);
-  std::size_t first_off = 0;  // first sample whose step is off the median (0: none)
-  double jitter = 0;          // largest |step − mean| / mean
-  double shortest = span, longest = 0;
-  for (std::size_t i = 1; i < n; ++i) {
-    const double step = t[i] - t[i - 1];
-    shortest = std::min(shortest, step);
-    longest = std::max(longest, step);
-    if (!first_off && std::abs(step - median_step) > kUniformStepTolerance * median_step)
-      first_off = i;
-    jitter = std::max(jitter, std::abs(step - mean_step) / mean_step);
-  }
+  const auto [median_step, mean_step, first_off, jitter, shortest, longest] = survey_steps(t);
   const TimeResampling& r = request.resample;
   const bool resample =
       r.mode == TimeResample::kAlways
