@@ -75,7 +75,7 @@ struct DispersionArgs {
   int points = 321;
   std::optional<double> radius_m;
   std::optional<double> c0_m_s;
-  std::optional<std::filesystem::path> output;  // CSV file; stdout when absent
+  std::optional<std::filesystem::path> output;  // CSV file; stdout when absent or "-"
 };
 int run_dispersion(const DispersionArgs& args);
 

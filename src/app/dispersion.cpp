@@ -25,7 +25,7 @@ int run_dispersion(const DispersionArgs& args) {
   // The file is written atomically: FILE keeps its previous content until the table is complete.
   // It replaces only a table of this command: a first line that starts with the columns every
   // table has (those without frequency_Hz).
-  if (args.output) {
+  if (args.output && *args.output != "-") {  // "-": stdout, as the shell convention has it
     std::string columns;
     for (const std::string& name : mode_table_header(ModeTableOptions{}))
       columns += (columns.empty() ? "" : ",") + name;
@@ -84,7 +84,7 @@ Command add_dispersion_command(CLI::App& app) {
       ->check(CLI::Range(2, kMaxTablePoints));
   cmd->add_option("--radius", o->radius, "Bar radius, e.g. \"9.525 mm\" (adds frequency_Hz)");
   cmd->add_option("--c0", o->c0, "Bar wave speed sqrt(E/ρ), e.g. \"4975 m/s\"");
-  cmd->add_option("-o,--output", disp.output, "CSV file to write (default: stdout)");
+  cmd->add_option("-o,--output", disp.output, "CSV file to write (default, or -: stdout)");
   return {cmd, [o] {
             if (!o->radius.empty())
               o->args.radius_m = quantity_option("--radius", o->radius, Dimension::kLength);

@@ -91,4 +91,17 @@ TEST_CASE("shpb dispersion refuses an empty or non-numeric a/Λ in one line", "[
   }
 }
 
+// `-o -` is standard output, as the shell convention has it (it wrote a file named "-"): the same
+// table as with no -o, and no file made in the working folder.
+TEST_CASE("shpb dispersion -o - prints the table", "[dispersion][app]") {
+  const std::filesystem::path dash_file = std::filesystem::current_path() / "-";
+  const bool there_before = std::filesystem::exists(dash_file);
+  const auto to_stdout = shpb_test::run_shpb({"dispersion", "--poisson", "0.29"});
+  const auto dash = shpb_test::run_shpb({"dispersion", "--poisson", "0.29", "-o", "-"});
+  REQUIRE(dash.code == 0);
+  CHECK(!dash.out.empty());
+  CHECK(dash.out == to_stdout.out);
+  CHECK(std::filesystem::exists(dash_file) == there_before);
+}
+
 }  // namespace tests_dispersion_test_dispersion_command
