@@ -195,9 +195,9 @@ CompareOutcome compare_simulation(const ComparePlan& plan, const TimeSeries& sim
   const double t_meas0 = plan.measured.time_s.front();
   for (const OverlaidPulse& p : o.pulses) {
     const bool tr = p.transmitted;
-    PulseComparison r =
-        compare_pulse(tr ? plan.found.transmitted : plan.found.incident,
-                      tr ? o.transmitted : o.incident, plan.measured.dt_s, p.begin, p.end);
+    PulseComparison r = compare_pulse(tr ? plan.found.transmitted : plan.found.incident,
+                                      tr ? o.transmitted : o.incident, plan.measured.dt_s, p.begin,
+                                      p.end, clipped_channel(plan.found, tr));
     r.gauge = p.gauge, r.pulse = p.name;
     r.window_start_s += t_meas0, r.window_end_s += t_meas0;
     c.results.push_back(r);

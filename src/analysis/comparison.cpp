@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "analysis/processing.hpp"
 #include "analysis/pulse_window.hpp"
 #include "core/correlation.hpp"
 
@@ -70,7 +71,8 @@ double half_peak_width_samples(std::span<const double> x, std::size_t begin, std
 }
 
 PulseComparison compare_pulse(std::span<const double> measured, std::span<const double> simulated,
-                              double dt_s, std::size_t begin, std::size_t end) {
+                              double dt_s, std::size_t begin, std::size_t end,
+                              const ClippedSamples* clipped) {
   PulseComparison c;
   end = std::min({end, measured.size(), simulated.size()});
   if (begin + 2 >= end) return c;
@@ -112,7 +114,8 @@ PulseComparison compare_pulse(std::span<const double> measured, std::span<const 
   const double unit_e = std::max({peak_m, peak_s, 1e-300});
   double se = 0;
   for (std::size_t i = begin; i < end; ++i) {
-    const double e = simulated[i] / unit_e - measured[i] / unit_e;
+    const double e = clipped ? clipped->residual(i, simulated[i], measured[i]).value / unit_e
+                             : simulated[i] / unit_e - measured[i] / unit_e;
     se += e * e;
   }
   c.nrmse = peak_m > 0 ? std::sqrt(se / n) * (unit_e / peak_m) : 0;

@@ -21,10 +21,16 @@ struct PulseComparison {
   double correlation = 1;                                      // Pearson coefficient in the window
 };
 
+struct ClippedSamples;  // analysis/processing.hpp
+
 // Compares simulated with measured over samples [begin, end) of a grid of step dt_s. The
-// cross-correlation lag is searched within ± half the window.
+// cross-correlation lag is searched within ± half the window. A clipped measured channel's samples
+// at its clip level (`clipped`) count in the NRMSE by their censored residual, 0 where the
+// simulation reaches the level (as fit's residuals take them): the cut plateau is not an error of
+// the simulation.
 PulseComparison compare_pulse(std::span<const double> measured, std::span<const double> simulated,
-                              double dt_s, std::size_t begin, std::size_t end);
+                              double dt_s, std::size_t begin, std::size_t end,
+                              const ClippedSamples* clipped = nullptr);
 
 // 10 % → 90 % rise time of the first excursion to the peak of |x| in [begin, end), in samples
 // (linear interpolation between samples).

@@ -49,6 +49,12 @@ struct MeasuredPulses {
   std::vector<std::string> warnings;
 };
 
+// The clipped samples of the transmitted or the incident channel, or null when it is not clipped.
+inline const ClippedSamples* clipped_channel(const MeasuredPulses& m, bool transmitted) {
+  const auto& c = transmitted ? m.transmitted_clipped : m.incident_clipped;
+  return c ? &*c : nullptr;
+}
+
 // Finds the pulses in `signals`, each record from its rest level before its first pulse and
 // turned over when that pulse has the other sign than the test's (as `process` turns it);
 // InputError (naming the scene) when there is no incident pulse.

@@ -39,7 +39,7 @@ std::vector<double> gauge_residuals(const FitCase& c, const Overlay& o, bool tra
     const auto& meas = transmitted ? m.transmitted : m.incident;
     const auto& sim = transmitted ? o.transmitted : o.incident;
     // A clipped sample's difference is the cut-off pulse, not noise.
-    const auto& clipped = transmitted ? m.transmitted_clipped : m.incident_clipped;
+    const ClippedSamples* clipped = clipped_channel(m, transmitted);
     for (std::size_t i = p.begin; i < p.end; ++i)
       if (!clipped || !clipped->at[i]) r.push_back(meas[i] - sim[i]);
   }
@@ -67,8 +67,7 @@ GaugeSignals synthetic_record(const FitCase& c, const Overlay& fitted,
     const std::vector<double> noise = draw_noise(noise_model, sim.size(), rng);
     for (std::size_t i = 0; i < sim.size(); ++i) g.strain[k][i] = sim[i] + noise[i];
     // The record's channel clipped as the measured one was, at the same level.
-    const auto& clipped =
-        incident ? c.measured().incident_clipped : c.measured().transmitted_clipped;
+    const ClippedSamples* clipped = clipped_channel(c.measured(), !incident);
     if (clipped)
       for (double& x : g.strain[k]) x = clipped->clip(x);
   }

@@ -294,7 +294,7 @@ std::vector<double> FitCase::residuals(const Overlay& o) const {
 ClippedSamples::Residual FitCase::residual_at(const std::vector<double>& meas, std::size_t i,
                                               double simulated) const {
   const MeasuredPulses& m = measured();
-  const auto& clipped = &meas == &m.transmitted ? m.transmitted_clipped : m.incident_clipped;
+  const ClippedSamples* clipped = clipped_channel(m, &meas == &m.transmitted);
   return clipped ? clipped->residual(i, simulated, meas[i])
                  : ClippedSamples::Residual{simulated - meas[i], 1};
 }
@@ -342,9 +342,9 @@ std::vector<PulseComparison> FitCase::compare(const Overlay& o) const {
   const MeasuredPulses& m = measured();
   std::vector<PulseComparison> out;
   for (const OverlaidPulse& p : windows_) {
-    PulseComparison c =
-        compare_pulse(p.transmitted ? m.transmitted : m.incident,
-                      p.transmitted ? o.transmitted : o.incident, m.dt_s, p.begin, p.end);
+    PulseComparison c = compare_pulse(p.transmitted ? m.transmitted : m.incident,
+                                      p.transmitted ? o.transmitted : o.incident, m.dt_s, p.begin,
+                                      p.end, clipped_channel(m, p.transmitted));
     c.gauge = p.gauge, c.pulse = p.name;
     out.push_back(c);
   }
