@@ -379,6 +379,13 @@ Shot prepare_shot(const CalibrationShot& cs, Parameters& params, std::string& re
   s.dt = signals.dt_s;
   s.time_s = signals.time_s;
   auto [source, base] = baseline_removed(signals, src.name);
+  // The model propagates the source record: a clipped source cuts every modelled pulse, which no
+  // reading of the targets can undo (a clipped target is read as bounds).
+  if (!clipped_levels(*signals.find(src.name)).empty())
+    s.warnings.push_back(file + ": gauge \"" + src.name +
+                         "\" is this shot's source and its record is clipped: every pulse the "
+                         "calibration models from it is cut too, so its values are biased; fire "
+                         "the shot again within the channel's range");
   const SourceWindow w = cut_source(source, base.noise, file, src.name);
   s.source = source;
   s.source_level_sd = rest_level_sd(base.noise, baseline_samples(source.size()));
