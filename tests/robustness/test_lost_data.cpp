@@ -546,6 +546,16 @@ TEST_CASE("An -o ending in . or .. names that folder, written as any other -o",
   }
 }
 
+// A striker-on-bar result simulated into scratch/out, for the report tests to draw; returns the
+// command, which run again replaces it.
+std::vector<std::string> simulated_result(const ScratchFolder& scratch) {
+  write_bytes(scratch.path() / "scene.json", striker_on_bar_scene("50 us"));
+  std::vector<std::string> simulate = {"simulate", (scratch.path() / "scene.json").string(), "-o",
+                                       (scratch.path() / "out").string(), "-q"};
+  REQUIRE(run(simulate, scratch.path(), kLimit_s).code == 0);
+  return simulate;
+}
+
 TEST_CASE("report stopped by SIGINT or SIGTERM exits 130 promptly and keeps the previous report",
           "[robustness][lost-data]") {
   if (!shpb_test::have_matplotlib()) {
@@ -556,10 +566,7 @@ TEST_CASE("report stopped by SIGINT or SIGTERM exits 130 promptly and keeps the 
   // report was drawn and put in place, exit 0 (docs/commands.md, Exit codes: 130).
   ScratchFolder scratch("lost");
   const fs::path out = scratch.path() / "out";
-  write_bytes(scratch.path() / "scene.json", striker_on_bar_scene("50 us"));
-  REQUIRE(run({"simulate", (scratch.path() / "scene.json").string(), "-o", out.string(), "-q"},
-              scratch.path(), kLimit_s)
-              .code == 0);
+  simulated_result(scratch);
   const std::vector<std::string> args = {"report", out.string()};
   REQUIRE(run(args, scratch.path(), kLimit_s).code == 0);
   const auto before = snapshot(out);
@@ -594,10 +601,7 @@ TEST_CASE("report killed outright puts no report in place after it is gone",
   // after shpb was gone. It now stops with its parent (tools/report.py, PR_SET_PDEATHSIG).
   ScratchFolder scratch("lost");
   const fs::path out = scratch.path() / "out";
-  write_bytes(scratch.path() / "scene.json", striker_on_bar_scene("50 us"));
-  REQUIRE(run({"simulate", (scratch.path() / "scene.json").string(), "-o", out.string(), "-q"},
-              scratch.path(), kLimit_s)
-              .code == 0);
+  simulated_result(scratch);
   const std::vector<std::string> args = {"report", out.string()};
   const double whole_s = seconds_after_startup(args, scratch.path(), kLimit_s);
   fs::remove_all(out / "figures");  // the timed run's report
@@ -624,10 +628,7 @@ TEST_CASE("report removes the temporaries of a report that was killed, and only 
   // by the command that wrote it (exit 2, "holds .report-…, which shpb did not write").
   ScratchFolder scratch("lost");
   const fs::path out = scratch.path() / "out";
-  write_bytes(scratch.path() / "scene.json", striker_on_bar_scene("50 us"));
-  const std::vector<std::string> simulate = {"simulate", (scratch.path() / "scene.json").string(),
-                                             "-o", out.string(), "-q"};
-  REQUIRE(run(simulate, scratch.path(), kLimit_s).code == 0);
+  const std::vector<std::string> simulate = simulated_result(scratch);
   char host[256] = {};
   ::gethostname(host, sizeof host - 1);
   // The names of tools/shpb_report/main.py: ".report-<host>-<pid>-<8 random>" and its twins.
