@@ -47,7 +47,8 @@ constexpr double kDurationMargin = 0.1;
 // striker pulls: − to the left).
 void set_striker_velocity(ComparePlan& p, std::optional<double> given) {
   Scene& scene = p.scene;
-  p.inferred_velocity_m_s = striker_velocity_from_plateau(p.found.setup, p.found.incident_plateau);
+  p.inferred_velocity_m_s =
+      striker_velocity_from_plateau(p.found.setup, p.found.struck_end_plateau);
   if (given) {
     p.velocity_m_s = *given, p.velocity_source = "given (--striker-velocity)";
   } else if (scene.measurement->striker_velocity_m_s) {

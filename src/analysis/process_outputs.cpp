@@ -93,6 +93,9 @@ nlohmann::json striker_json(const ProcessOutcome& o) {
                   ? "not inferred: a pulse shaper lies between the striker and the incident bar, "
                     "so the incident plateau is set by the shaper's flow, not by the striker's "
                     "impedance"
+              : setup.front_waveguide.viscoelastic()
+                  ? "incident plateau moved back to the struck end through the viscoelastic "
+                    "bar's law, as a velocity: V = c0 eps (Z_s + Z_b)/Z_s"
                   : "incident plateau at the front face: V = E A eps (Z_s + Z_b)/(Z_s Z_b)"}};
 }
 

@@ -51,7 +51,14 @@ BarSide side_of(const BarSpec& b) {
   return {b.material.youngs_modulus_Pa, b.area_m2, b.material.wave_speed_m_s()};
 }
 BarWaveguide waveguide_of(const BarSpec& b) {
-  return {0.5 * b.diameter_m, b.material.wave_speed_m_s(), b.material.poisson_ratio};
+  BarWaveguide w{0.5 * b.diameter_m, b.material.wave_speed_m_s(), b.material.poisson_ratio};
+  if (b.material.model == MaterialModel::kViscoelastic) {  // a polymer bar (methods.md §5.1)
+    const double e0 = b.material.youngs_modulus_Pa;
+    w.long_term_fraction = b.material.viscoelastic.long_term_modulus_Pa / e0;
+    for (const MaxwellArm& a : b.material.viscoelastic.arms)
+      w.arms.push_back({a.modulus_Pa / e0, a.relaxation_time_s});
+  }
+  return w;
 }
 
 std::size_t index_at(const std::vector<double>& t, double time) {
@@ -359,6 +366,22 @@ double striker_velocity_from_plateau(const KolskySetup& setup, double incident_p
   return setup.front.c0_m_s * incident_plateau_strain * (z_s + z_b) / z_s;
 }
 
+double struck_end_plateau(const KolskySetup& setup, std::span<const double> record, double dt,
+                          const PulseWindow& w) {
+  if (!setup.front_waveguide.viscoelastic()) return plateau_level(record, w.onset, w.end, w.sign);
+  // Moved back by the gauge's distance, the pulse starts that much earlier: the record is put
+  // behind as many samples at rest, so that it keeps its window.
+  const double distance = setup.incident_gauge_position_m;
+  const auto lead = static_cast<std::size_t>(std::ceil(distance / (setup.front.c0_m_s * dt)));
+  std::vector<double> padded(lead + record.size(), 0.0);
+  std::copy(record.begin(), record.end(), padded.begin() + static_cast<std::ptrdiff_t>(lead));
+  PropagationOptions o;
+  o.dispersion = false;
+  o.quantity = WaveQuantity::kVelocity;
+  const auto moved = Propagator(setup.front_waveguide, o).propagate(padded, dt, -distance);
+  return plateau_level(moved, w.onset, w.end, w.sign);
+}
+
 KolskySetup resolve_setup(const Scene& scene, const std::vector<std::string>& available) {
   const std::string file = scene.file.string();
   if (!scene.specimen)
@@ -377,6 +400,7 @@ KolskySetup resolve_setup(const Scene& scene, const std::vector<std::string>& av
     if (has(g.name)) {
       k.incident_gauge = g.name;
       k.incident_distance_m = *distance_to_specimen_m(scene, s - 1, g.position_m);
+      k.incident_gauge_position_m = g.position_m;
       break;
     }
   for (const auto& g : tra.gauges)
@@ -724,6 +748,10 @@ FacePulses pulses_at_faces(const PreparedSignal& inc, const PreparedSignal& tra,
     if (ds.cutoff_fa_c0) return *ds.cutoff_fa_c0;
     return ds.cutoff_Hz ? *ds.cutoff_Hz * w.radius_m / w.c0_m_s : kDefaultCutoffFaOverC0;
   };
+  auto table_reach = [&](const BarWaveguide& w) {
+    return cutoff_fa(w) / w.slowest_speed_fraction();
+  };
+
   // The mode is tabulated only for a correction, and only up to the highest cut-off asked of its
   // Poisson ratio; the corrections share their FFT plans (one per padded length).
   std::optional<DispersionTable> front_table, back_own;
@@ -731,7 +759,7 @@ FacePulses pulses_at_faces(const PreparedSignal& inc, const PreparedSignal& tra,
   const DispersionTable* back = nullptr;
   if (ds.correction) {
     const bool shared = k.back_waveguide.poisson == k.front_waveguide.poisson;
-    const double fa_front = cutoff_fa(k.front_waveguide), fa_back = cutoff_fa(k.back_waveguide);
+    const double fa_front = table_reach(k.front_waveguide), fa_back = table_reach(k.back_waveguide);
     const double fa_shared = shared ? std::max(fa_front, fa_back) : fa_front;
     if (options.tables) {
       front = &options.tables->up_to(k.front_waveguide.poisson, fa_shared);
@@ -752,9 +780,11 @@ FacePulses pulses_at_faces(const PreparedSignal& inc, const PreparedSignal& tra,
     return z;
   };
   auto moved = [&](const std::vector<double>& x, const BarWaveguide& w,
-                   const DispersionTable* table, double distance, double extra, AmplitudeFactor a) {
+                   const DispersionTable* table, double distance, double extra, AmplitudeFactor a,
+                   WaveQuantity q) {
     PropagationOptions o = po;
     o.amplitude = a;
+    o.quantity = q;
     o.cutoff_fa_over_c0 = cutoff_fa(w);
     if (!ds.correction) {
       Propagator p(w, o);
@@ -763,10 +793,10 @@ FacePulses pulses_at_faces(const PreparedSignal& inc, const PreparedSignal& tra,
     const DispersionTable& tab = *table;
     const std::string key =
         ds.cutoff_fa_c0 ? "measurement.dispersion.cutoff_fa_c0" : "measurement.dispersion.cutoff";
-    if (o.cutoff_fa_over_c0 > tab.max_normalized_frequency())
+    if (table_reach(w) > tab.max_normalized_frequency())
       throw input_error(options.scene_file, key, "f·a/c0 = " + format_double(o.cutoff_fa_over_c0),
                         "cut-off beyond the tabulated mode");
-    if (a != AmplitudeFactor::kNone && o.cutoff_fa_over_c0 >= tab.m1_pole_normalized_frequency())
+    if (a != AmplitudeFactor::kNone && table_reach(w) >= tab.m1_pole_normalized_frequency())
       throw input_error(options.scene_file, key, "f·a/c0 = " + format_double(o.cutoff_fa_over_c0),
                         "with amplitude factors the cut-off must lie below the m1 pole (f·a/c0 = " +
                             std::to_string(tab.m1_pole_normalized_frequency()) + ")");
@@ -775,14 +805,19 @@ FacePulses pulses_at_faces(const PreparedSignal& inc, const PreparedSignal& tra,
   };
   const double d_i = k.incident_distance_m, d_t = k.transmitted_distance_m;
   const auto kin = ds.amplitude_factors ? AmplitudeFactor::kStrain : AmplitudeFactor::kNone;
+  // The kinematic pulses give the faces' velocities, the force pulses their forces: one pulse in
+  // an elastic bar without amplitude factors, two in a viscoelastic one (methods.md §5.1).
+  constexpr auto kVelocity = WaveQuantity::kVelocity, kForce = WaveQuantity::kForce;
   FacePulses f;
-  f.ei = moved(inc.x, k.front_waveguide, front, d_i, 0, kin);
-  f.er = moved(inc.x, k.front_waveguide, front, -d_i, timing.extra_r, kin);
-  f.et = moved(tra.x, k.back_waveguide, back, -d_t, timing.extra_t, kin);
-  if (ds.amplitude_factors) {
-    f.fi = moved(inc.x, k.front_waveguide, front, d_i, 0, AmplitudeFactor::kStress);
-    f.fr = moved(inc.x, k.front_waveguide, front, -d_i, timing.extra_r, AmplitudeFactor::kStress);
-    f.ft = moved(tra.x, k.back_waveguide, back, -d_t, timing.extra_t, AmplitudeFactor::kStress);
+  f.ei = moved(inc.x, k.front_waveguide, front, d_i, 0, kin, kVelocity);
+  f.er = moved(inc.x, k.front_waveguide, front, -d_i, timing.extra_r, kin, kVelocity);
+  f.et = moved(tra.x, k.back_waveguide, back, -d_t, timing.extra_t, kin, kVelocity);
+  constexpr auto kStress = AmplitudeFactor::kStress;
+  if (ds.amplitude_factors || k.front_waveguide.viscoelastic() || k.back_waveguide.viscoelastic()) {
+    const auto force = ds.amplitude_factors ? kStress : AmplitudeFactor::kNone;
+    f.fi = moved(inc.x, k.front_waveguide, front, d_i, 0, force, kForce);
+    f.fr = moved(inc.x, k.front_waveguide, front, -d_i, timing.extra_r, force, kForce);
+    f.ft = moved(tra.x, k.back_waveguide, back, -d_t, timing.extra_t, force, kForce);
   } else {
     f.fi = f.ei, f.fr = f.er, f.ft = f.et;
   }
@@ -1047,7 +1082,11 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
   const std::size_t inc_end =
       std::min(r.time_s.size(), index_at(r.time_s, timing.face_start + timing.duration));
   r.incident_plateau_strain = plateau_level(r.incident, 0, inc_end, -1.0);
-  r.inferred_striker_velocity_m_s = striker_velocity_from_plateau(k, r.incident_plateau_strain);
+  PulseWindow incident_pulse;
+  incident_pulse.onset = on, incident_pulse.end = end, incident_pulse.sign = -1;
+  r.inferred_striker_velocity_m_s = striker_velocity_from_plateau(
+      k, k.front_waveguide.viscoelastic() ? struck_end_plateau(k, inc.x, dt, incident_pulse)
+                                          : r.incident_plateau_strain);
   const Curve& c = r.curve;
   const bool one_wave = options.primary == PrimaryReduction::kOneWave;
   r.primary = options.primary;

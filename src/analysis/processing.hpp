@@ -18,8 +18,9 @@ namespace shpb {
 // What processing needs to know about the bars and gauges, resolved from a scene.
 struct KolskySetup {
   std::string incident_gauge, transmitted_gauge;
-  double incident_distance_m = 0;     // incident gauge → specimen front face
-  double transmitted_distance_m = 0;  // specimen back face → transmitted gauge
+  double incident_distance_m = 0;        // incident gauge → specimen front face
+  double incident_gauge_position_m = 0;  // incident gauge ← the incident bar's struck end
+  double transmitted_distance_m = 0;     // specimen back face → transmitted gauge
   BarSide front, back;
   BarWaveguide front_waveguide, back_waveguide;
   SpecimenGeometry specimen;
@@ -40,8 +41,15 @@ struct KolskySetup {
 // The striker velocity an incident plateau ε_I implies, striker on the incident bar
 // (docs/methods.md §4): the bar's particle velocity v = c0 ε_I = V Z_s/(Z_s + Z_b), so
 // V = c0 ε_I (Z_s + Z_b)/Z_s; the striker's impedance Z_s is the incident bar's Z_b when the set-up
-// has none. Used by `process`, `compare` and `fit`.
+// has none. Used by `process`, `compare` and `fit`, with the plateau at the struck end.
 double striker_velocity_from_plateau(const KolskySetup& setup, double incident_plateau_strain);
+
+// The incident pulse's plateau (pulse_window.hpp plateau_level) where the striker struck: an
+// elastic bar's is the gauge's; a viscoelastic bar's pulse has decayed on its way to the gauge and
+// is moved back to the struck end as a velocity first (docs/methods.md §5.1). `record` is the
+// rest-levelled gauge strain, `w` its incident pulse.
+double struck_end_plateau(const KolskySetup& setup, std::span<const double> record, double dt,
+                          const PulseWindow& w);
 
 // A gauge record from its rest level: less its baseline (estimate_baseline: a bridge's offset is no
 // strain), with its first pulse (find_first_pulse). A record whose first pulse has the other sign

@@ -166,6 +166,7 @@ MeasuredPulses find_measured_pulses(const Scene& scene, const GaugeSignals& sign
   report_missing_pulses(m);
   m.incident_plateau =
       std::abs(plateau_level(m.incident, inc.first->onset, inc.first->end, inc.first->sign));
+  m.struck_end_plateau = std::abs(struck_end_plateau(m.setup, m.incident, m.dt_s, *inc.first));
   // T moves by −dt/(P (b − a)) per unit of each sample between the levels: with white noise σ,
   // sd(T) = dt σ √n / (P (b − a)).
   const FrontTime front = front_time(m.incident, 0.0, m.incident_window);
@@ -235,6 +236,9 @@ Overlay PulseOverlay::overlay(const Scene& scene, const TimeSeries& simulated_ga
   BarWaveguide front = setup.front_waveguide, back = setup.back_waveguide;
   front.c0_m_s = scene.bars[incident_bar].material.wave_speed_m_s();
   back.c0_m_s = scene.bars[incident_bar + 2].material.wave_speed_m_s();
+  // A viscoelastic bar's law already acts in the simulation: only the geometry's dispersion is
+  // added.
+  for (BarWaveguide* w : {&front, &back}) w->arms.clear(), w->long_term_fraction = 1;
   Overlay o;
   // The two clocks meet at the incident pulses' front times (the trigger time of a measurement is
   // unknown): a time averaged over the whole front, so the record noise moves it little, and that

@@ -35,7 +35,8 @@ struct MeasuredPulses {
   double incident_rest_sd = 0, transmitted_rest_sd = 0;
   PulseWindow incident_window;
   std::optional<PulseWindow> reflected_window, transmitted_window;
-  double incident_plateau = 0;  // |plateau| of the incident pulse, strain
+  double incident_plateau = 0;    // |plateau| of the incident pulse, strain
+  double struck_end_plateau = 0;  // the same where the striker struck (processing.hpp)
   // Standard deviation of the incident pulse's front time (the clock) from the baseline's noise,
   // taken as white: what the record noise alone makes of the alignment.
   double incident_front_sd_s = 0;

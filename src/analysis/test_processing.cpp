@@ -35,19 +35,18 @@ ProcessedTest process_test(const Scene& scene, const GaugeSignals& signals,
   } else {
     r = process_signals(signals, setup, options);
   }
-  // The move to the faces (docs/methods.md §5) and the reduction (§6) are those of elastic bars.
-  // A bar with a material law (a polymer bar) attenuates and disperses a pulse on its way from the
-  // gauge to the face; the reduction takes its instantaneous modulus for E and c0 and corrects
-  // nothing of the rest, so the face strains, rates and forces are off by it.
+  // The move to the faces (docs/methods.md §5) and the reduction (§6) know elastic bars and
+  // viscoelastic ones (§5.1). A bar with another law (bilinear, Johnson–Cook) is reduced as an
+  // elastic bar of its Young's modulus, which holds while it does not yield.
   for (const std::size_t b : {*scene.specimen + 1, *scene.specimen - 1})  // incident first
-    if (!scene.bars[b].material.is_elastic())
-      r.warnings.insert(
-          r.warnings.begin(),
-          "bar \"" + scene.bars[b].name + "\" has a " +
-              std::string(enum_name(kMaterialModelNames, scene.bars[b].material.model)) +
-              " law: its pulses are moved to the specimen and reduced as in an elastic bar of its "
-              "instantaneous modulus, without the attenuation and dispersion the law gives them "
-              "over the gauge distance; the strains, rates and stresses are off by those");
+    if (const MaterialSpec& m = scene.bars[b].material;
+        !m.is_elastic() && m.model != MaterialModel::kViscoelastic)
+      r.warnings.insert(r.warnings.begin(),
+                        "bar \"" + scene.bars[b].name + "\" has a " +
+                            std::string(enum_name(kMaterialModelNames, m.model)) +
+                            " law: its pulses are moved to the specimen and reduced as in an "
+                            "elastic bar of its Young's modulus, which holds only while the bar "
+                            "does not yield");
   if (scene.measurement)
     t.corrections = {scene.measurement->corrections.friction,
                      scene.measurement->corrections.inertia};

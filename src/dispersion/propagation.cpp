@@ -13,8 +13,26 @@ namespace {
 
 // The end taper spans at most this many periods of the low-pass cut-off (docs/methods.md §5).
 constexpr double kTaperPeriods = 4;
+// A viscoelastic bar's transform is padded by this many of its slowest relaxation times (the
+// wrapped tail of its kernel then weighs e^−7 < 0.1 % of that arm), up to a padding of 2^23 samples
+// (0.84 s at 10 MS/s: an arm slower than 0.12 s there, elastic over any pulse, is wrapped).
+constexpr double kLawMemorySpans = 7;
+constexpr std::size_t kMaxLawPadding = std::size_t{1} << 23;
 
 }  // namespace
+
+std::complex<double> BarWaveguide::relative_modulus(double omega) const {
+  std::complex<double> e = long_term_fraction;
+  for (const RelaxationArm& a : arms) {
+    const std::complex<double> iwt(0, omega * a.relaxation_time_s);
+    e += a.fraction * iwt / (1.0 + iwt);
+  }
+  return e;
+}
+
+double BarWaveguide::slowest_speed_fraction() const {
+  return viscoelastic() ? std::sqrt(long_term_fraction) : 1.0;
+}
 
 Propagator::Propagator(const DispersionTable& table, const BarWaveguide& bar,
                        const PropagationOptions& options, FftPlans* plans)
@@ -22,10 +40,11 @@ Propagator::Propagator(const DispersionTable& table, const BarWaveguide& bar,
   if (!(bar.radius_m > 0) || !(bar.c0_m_s > 0))
     throw std::invalid_argument("Propagator: bar radius and c0 must be > 0");
   const double pole = table.m1_pole_normalized_frequency();
+  const double reach = options_.cutoff_fa_over_c0 / bar.slowest_speed_fraction();
   if (options_.dispersion && options_.amplitude != AmplitudeFactor::kNone && pole > 0 &&
-      options_.cutoff_fa_over_c0 >= pole)
+      reach >= pole)
     throw std::invalid_argument("Propagator: the cut-off must lie below the pole of m1");
-  if (options_.cutoff_fa_over_c0 > table.max_normalized_frequency())
+  if (reach > table.max_normalized_frequency())
     throw std::invalid_argument("Propagator: cut-off beyond the dispersion table");
 }
 
@@ -47,20 +66,56 @@ double Propagator::lowpass_gain(double f) const {
   return 0.5 * (1 + std::cos(std::numbers::pi * s));
 }
 
+// A harmonic wave e^{i(ωt − kz)} in a 1D bar of complex modulus E*(ω): k = ω/c*, c* = sqrt(E*/ρ)
+// = c0 sqrt(E*/E0), so moving it by Δz multiplies it by exp(−iωΔz/c*) (attenuated by Im(1/c*) < 0
+// going forward, grown going back: at most by exp(α∞|Δz|), α∞ the attenuation's high-frequency
+// limit, so the inverse needs no cut-off). Its particle velocity is −c* ε and its stress E* ε
+// (Bacon 1998; Zhao & Gary 1995). With the Pochhammer–Chree correction the phase velocity is also
+// scaled by the first mode's c/c0 at f·a over the law's phase velocity.
+std::complex<double> Propagator::viscoelastic_transfer(double f, double distance_m) const {
+  const double omega = 2 * std::numbers::pi * f;
+  const std::complex<double> e = bar_.relative_modulus(omega);
+  const std::complex<double> s = std::sqrt(e);  // c*/c0, Im ≥ 0: a passive law attenuates
+  std::complex<double> slowness = 1.0 / (bar_.c0_m_s * s);
+  double amplitude = 1;
+  if (options_.dispersion) {
+    amplitude = lowpass_gain(f);
+    const double fa = f * bar_.radius_m * slowness.real();
+    slowness = {slowness.real() / table_->phase_velocity(fa), slowness.imag()};
+    if (options_.amplitude == AmplitudeFactor::kStrain) amplitude *= table_->m1(fa);
+    if (options_.amplitude == AmplitudeFactor::kStress) amplitude *= table_->m1_m2(fa);
+  }
+  std::complex<double> factor = amplitude;
+  if (options_.quantity == WaveQuantity::kVelocity) factor *= s;
+  if (options_.quantity == WaveQuantity::kForce) factor *= e;
+  return factor * std::exp(std::complex<double>(0, -omega * distance_m) * slowness);
+}
+
 void Propagator::propagate(std::span<const double> signal, double dt, double distance_m,
                            std::span<double> out) {
   const std::size_t n = signal.size();
   if (out.size() != n) throw std::invalid_argument("propagate: output length differs");
   if (n == 0) return;
-  if (!options_.dispersion) {
+  const bool law = bar_.viscoelastic();
+  if (!options_.dispersion && !law) {
     delay_by_interpolation(signal, distance_m / (bar_.c0_m_s * dt), out);
     return;
   }
   // Padding: room for the largest delay of any passed component (slowest phase velocity below
-  // the cut-off) plus a quarter record, so nothing wraps into the kept samples.
-  const double c_min = table_->phase_velocity(options_.cutoff_fa_over_c0) * bar_.c0_m_s;
+  // the cut-off; a viscoelastic bar's is its static one) plus a quarter record, so nothing wraps
+  // into the kept samples.
+  double c_min = options_.dispersion
+                     ? table_->phase_velocity(options_.cutoff_fa_over_c0) * bar_.c0_m_s
+                     : bar_.c0_m_s;
+  c_min *= bar_.slowest_speed_fraction();
   const auto shift = static_cast<std::size_t>(std::ceil(std::abs(distance_m) / (c_min * dt)));
-  const std::size_t size = fast_fft_size(n + shift + n / 4 + 16);
+  // A law's transfer remembers as long as its slowest arm: its kernel's tail, wrapped around the
+  // transform, falls to e^−kLawMemorySpans of the arm within this much padding.
+  double memory_s = 0;
+  for (const RelaxationArm& a : bar_.arms) memory_s = std::max(memory_s, a.relaxation_time_s);
+  const auto memory = static_cast<std::size_t>(
+      std::min(kLawMemorySpans * memory_s / dt, static_cast<double>(kMaxLawPadding)));
+  const std::size_t size = fast_fft_size(n + shift + n / 4 + 16 + memory);
   RealFft& fft = (shared_plans_ ? *shared_plans_ : own_plans_).of_size(size);
 
   std::span<double> x = fft.samples();
@@ -86,7 +141,17 @@ void Propagator::propagate(std::span<const double> signal, double dt, double dis
   std::span<std::complex<double>> spec = fft.spectrum();
   const double df = 1.0 / (static_cast<double>(size) * dt);
   const double fa_per_hz = bar_.radius_m / bar_.c0_m_s;
-  for (std::size_t j = 1; j < spec.size(); ++j) {
+  if (law) {  // every bin, the static one too: the law's static modulus scales a velocity or force
+    for (std::size_t j = 0; j < spec.size(); ++j) {
+      const double f = static_cast<double>(j) * df;
+      if (options_.dispersion && lowpass_gain(f) == 0) {
+        std::fill(spec.begin() + static_cast<std::ptrdiff_t>(j), spec.end(), 0.0);
+        break;
+      }
+      spec[j] *= viscoelastic_transfer(f, distance_m);
+    }
+  }
+  for (std::size_t j = 1; j < spec.size() && !law; ++j) {
     const double f = static_cast<double>(j) * df;
     const double gain = lowpass_gain(f);
     if (gain == 0) {  // at the cut-off: this bin and every one above it

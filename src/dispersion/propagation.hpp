@@ -2,8 +2,9 @@
 // Moving a strain-gauge signal along its bar with Pochhammer–Chree dispersion (Follansbee & Frantz
 // 1983; Gong et al. 1990; Tyas & Watson 2001; Tyas & Pope 2005; docs/methods.md §5):
 // X(f) → X(f)·H(f)·exp(−i 2π f Δz / c(f)), real-to-complex FFT with zero padding; Δz > 0 moves
-// the pulse forward (later, downstream), Δz < 0 backward. DC is untouched. H is a low-pass with a
-// smooth raised-cosine roll-off that ends at the cut-off, below the pole of m1.
+// the pulse forward (later, downstream), Δz < 0 backward. DC is untouched (an elastic bar's). H is
+// a low-pass with a smooth raised-cosine roll-off that ends at the cut-off, below the pole of m1.
+#include <complex>
 #include <memory>
 #include <span>
 #include <vector>
@@ -13,11 +14,27 @@
 
 namespace shpb {
 
-// The part of a bar the correction needs.
+// One Maxwell arm of a viscoelastic bar, its modulus as a fraction of the instantaneous one.
+struct RelaxationArm {
+  double fraction = 0;  // E_k / E0
+  double relaxation_time_s = 0;
+};
+
+// The part of a bar the correction needs. A viscoelastic (polymer) bar also carries its
+// relaxation spectrum relative to its instantaneous modulus E0 = ρ c0² (generalized Maxwell,
+// docs/methods.md §5.1): E*(ω)/E0 = e∞ + Σ e_k iωτ_k/(1 + iωτ_k); no arms: an elastic bar.
 struct BarWaveguide {
   double radius_m = 0;
-  double c0_m_s = 0;  // sqrt(E/ρ)
+  double c0_m_s = 0;  // sqrt(E/ρ), E the instantaneous modulus
   double poisson = 0.3;
+  double long_term_fraction = 1;  // e∞ = E∞ / E0
+  std::vector<RelaxationArm> arms;
+
+  bool viscoelastic() const { return !arms.empty(); }
+  // The slowest phase velocity over c0: √e∞, the law's static speed (1 in an elastic bar). f·a over
+  // the phase velocity reaches a cut-off's f·a/c0 over this.
+  double slowest_speed_fraction() const;
+  std::complex<double> relative_modulus(double omega) const;  // E*(ω)/E0
 };
 
 enum class AmplitudeFactor {
@@ -29,9 +46,16 @@ enum class AmplitudeFactor {
 // f·a/c0 = 0.2619 (d/Λ ≈ 0.6): a common cut-off below the m1 pole (docs/methods.md §5).
 inline constexpr double kDefaultCutoffFaOverC0 = 0.2619;
 
+// What a pulse moved along a viscoelastic bar is returned as (docs/methods.md §5.1): its strain, or
+// the strain an elastic bar of modulus E0 would have at the same particle velocity (c*(ω)/c0 × ε,
+// for the faces' velocities) or at the same stress (E*(ω)/E0 × ε, for their forces). In an elastic
+// bar the three are one.
+enum class WaveQuantity { kStrain, kVelocity, kForce };
+
 struct PropagationOptions {
   bool dispersion = true;  // false: pure delay Δz/c0 (a 1D, non-dispersive bar)
   AmplitudeFactor amplitude = AmplitudeFactor::kNone;
+  WaveQuantity quantity = WaveQuantity::kStrain;      // a viscoelastic bar's only
   double cutoff_fa_over_c0 = kDefaultCutoffFaOverC0;  // low-pass cut-off (dispersion only)
   double rolloff_fraction = 0.25;  // raised cosine from (1 − this)·cut-off to the cut-off
   double taper_fraction = 0.02;    // cosine taper of each end of the record before padding
@@ -44,7 +68,8 @@ class Propagator {
  public:
   Propagator(const DispersionTable& table, const BarWaveguide& bar,
              const PropagationOptions& options, FftPlans* plans = nullptr);
-  // Without dispersion (options.dispersion false): the pure delay, no table needed.
+  // Without dispersion (options.dispersion false): the pure delay, no table needed (a viscoelastic
+  // bar: its law's propagation alone).
   Propagator(const BarWaveguide& bar, const PropagationOptions& options);
 
   // Propagates `signal` (uniform step dt) by `distance_m`; out has the signal's length and the
@@ -57,6 +82,9 @@ class Propagator {
   double lowpass_gain(double frequency_Hz) const;
 
  private:
+  // The transfer function of a viscoelastic bar at ω > 0 (docs/methods.md §5.1).
+  std::complex<double> viscoelastic_transfer(double frequency_Hz, double distance_m) const;
+
   const DispersionTable* table_;
   BarWaveguide bar_;
   PropagationOptions options_;

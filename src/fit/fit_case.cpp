@@ -98,7 +98,7 @@ FitCase::FitCase(const CampaignTest& test, const Campaign& campaign, const FitSp
     velocity_source_ = "scene (measurement.striker_velocity)";
   } else {
     start_.striker_velocity_m_s =
-        striker_velocity_from_plateau(found.setup, found.incident_plateau);
+        striker_velocity_from_plateau(found.setup, found.struck_end_plateau);
     velocity_source_ = "inferred from the measured incident plateau";
   }
   scene_.bars[striker].velocity_m_s = striker_direction_ * start_.striker_velocity_m_s;

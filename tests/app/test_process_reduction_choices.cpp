@@ -130,11 +130,15 @@ TEST_CASE("A 1-/2-wave disagreement names a cause only where the record shows on
   CHECK(has_warning(w, "gauge \"transmitted\"'s first pulse was tensile and was inverted"));
 }
 
-TEST_CASE("Polymer (viscoelastic) bars: process says their pulses are reduced as in elastic bars",
-          "[app][process][warnings]") {
-  // PMMA bars of 20 mm (E(t) = 3 GPa + 1.5 GPa e^{-t/1 ms} + 1.2 GPa e^{-t/20 us}): a pulse's
-  // front decays as exp(-x ΣE_k/τ_k / (2 E0 c0)), to 0.48 over the incident gauge's 0.3 m, and
-  // the reduction, which knows elastic bars only, moves and reduces it as if it did not.
+TEST_CASE("Polymer (viscoelastic) bars: their law moves and reduces the pulses",
+          "[app][process][polymer]") {
+  // PMMA bars of 20 mm (E(t) = 3 GPa + 1.5 GPa e^{-t/1 ms} + 1.2 GPa e^{-t/20 us}) on a soft
+  // specimen, as a lab tests a foam or rubber: a pulse's front decays over the incident gauge's
+  // 1 m to exp(-x ΣE_k/τ_k / (2 E0 c0)) = 0.09 of itself and the pulse trails a creep tail.
+  // Reduced as in an elastic bar of the instantaneous modulus the stress came out 48 % high and
+  // the strain 21 %; with the law's propagation, velocity and stress (methods.md §5.1) the curve
+  // must follow the simulated specimen, whose law the solver integrates in time, not by a transfer
+  // function.
   const fs::path d = scratch_dir("reduction_polymer_bars");
   const json pmma = {{"model", "viscoelastic"},
                      {"density", "1190 kg/m3"},
@@ -152,27 +156,25 @@ TEST_CASE("Polymer (viscoelastic) bars: process says their pulses are reduced as
          {"velocity", "2 m/s"}},
         {{"name", "incident"},
          {"material", "pmma"},
-         {"length", "0.6 m"},
+         {"length", "2 m"},
          {"diameter", "20 mm"},
-         {"gauges", {{{"name", "incident"}, {"distance_to_specimen", "0.3 m"}}}}},
+         {"gauges", {{{"name", "incident"}, {"distance_to_specimen", "1 m"}}}}},
         {{"name", "specimen"},
          {"material",
           {{"model", "elastic"},
            {"density", "1100 kg/m3"},
-           {"youngs_modulus", "0.5 GPa"},
+           {"youngs_modulus", "50 MPa"},
            {"poisson_ratio", 0.45}}},
          {"length", "5 mm"},
          {"diameter", "15 mm"}},
         {{"name", "transmitter"},
          {"material", "pmma"},
-         {"length", "0.6 m"},
+         {"length", "1 m"},
          {"diameter", "20 mm"},
          {"gauges", {{{"name", "transmitted"}, {"distance_to_specimen", "0.1 m"}}}}}}},
       {"specimen", "specimen"},
       {"materials", {{"pmma", pmma}}},
-      // Global stepping: at asynchronous steps this chain's specimen faces chatter (energy off by
-      // 400 %), which is not what this test is about.
-      {"simulation", {{"duration", "600 us"}, {"stepping", "global"}}}};
+      {"simulation", {{"duration", "1.8 ms"}, {"stepping", "global"}}}};
   fs::create_directories(d);
   std::ofstream(d / "scene.json") << scene.dump(2);
   const auto sim =
@@ -184,8 +186,43 @@ TEST_CASE("Polymer (viscoelastic) bars: process says their pulses are reduced as
   INFO(r.err);
   REQUIRE(r.code == 0);
   const json s = summary(d / "out");
-  CHECK(has_warning(s, "bar \"incident\" has a viscoelastic law"));
-  CHECK(has_warning(s, "bar \"transmitter\" has a viscoelastic law"));
+  CHECK(!has_warning(s, "law: its pulses"));
+  // The struck end moves at V/2 between a striker and a bar of one law (symmetry), whatever the
+  // law does to the pulse on its way to the gauge: the plateau moved back there gives V.
+  constexpr double kVelocityTolerance = 0.02;  // the plateau's ramps and ringing
+  CHECK(s["striker_velocity_m_s"]["inferred"].get<double>() ==
+        Approx(2.0).epsilon(kVelocityTolerance));
+
+  const Table specimen = read_table(d / "sim" / "specimen.csv");
+  const Table curve = read_table(d / "out" / "curve.csv");
+  // The specimen's own stress at the curve's times (specimen.csv is compression positive).
+  const std::vector<double>& ts = specimen["time_s"];
+  auto at = [&](const std::vector<double>& v, double t) {
+    const auto i = static_cast<std::size_t>(std::lower_bound(ts.begin(), ts.end(), t) - ts.begin());
+    if (i == 0 || i >= ts.size()) return v[std::min(i, ts.size() - 1)];
+    const double w = (t - ts[i - 1]) / (ts[i] - ts[i - 1]);
+    return (1 - w) * v[i - 1] + w * v[i];
+  };
+  double peak_stress = 0, peak_strain = 0, sum_sq = 0, strain_max = 0;
+  std::size_t n = 0;
+  for (const double s : specimen["stress_Pa"]) peak_stress = std::max(peak_stress, s);
+  for (const double e : specimen["strain"]) peak_strain = std::max(peak_strain, e);
+  for (std::size_t i = 0; i < curve.columns[0].size(); ++i) {
+    const double t = curve["time_s"][i], truth = at(specimen["stress_Pa"], t);
+    strain_max = std::max(strain_max, curve["strain"][i]);
+    if (truth < 0.1 * peak_stress) continue;  // the loading, past the first tenth
+    sum_sq += std::pow(curve["stress_3wave_Pa"][i] - truth, 2);
+    ++n;
+  }
+  REQUIRE(n > 100);
+  // The 1D meshes' own error (1 mm elements, the pulse's shortest wavelengths some 100 mm).
+  constexpr double kStressTolerance = 0.01;  // RMS over the loading, of the peak
+  CHECK(std::sqrt(sum_sq / static_cast<double>(n)) < kStressTolerance * peak_stress);
+  // The incident pulse's creep tail (the 1 ms arm) still lies under the reflected pulse at the
+  // gauge, 2·10⁻⁵ of the 5·10⁻⁴ pulse, and a single gauge cannot tell them apart: the strain
+  // integrates it (2.7 % low, measured; 21 % high before).
+  constexpr double kStrainTolerance = 0.04;
+  CHECK(std::abs(strain_max / peak_strain - 1) < kStrainTolerance);
 }
 
 TEST_CASE("A hand-set window far from the pulse's onset is a time shift and is warned about",

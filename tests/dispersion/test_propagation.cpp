@@ -2,6 +2,8 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "dispersion/pochhammer_chree.hpp"
@@ -193,6 +195,98 @@ TEST_CASE("Corrections sharing their FFT plans give the same pulses as with plan
     o.amplitude = AmplitudeFactor::kStrain;
     Propagator own(table, kBar, o), sharing(table, kBar, o, &shared);
     CHECK(own.propagate(x, kDt, d) == sharing.propagate(x, kDt, d));
+  }
+}
+
+}  // namespace tests_dispersion_test_propagation
+
+namespace tests_dispersion_test_propagation {
+
+// A PMMA-like bar, 20 mm, instantaneous modulus E0 = 5.7 GPa at 1190 kg/m³, with one Maxwell arm.
+BarWaveguide polymer_bar(double relaxed_fraction, double relaxation_time_s) {
+  BarWaveguide w{0.01, std::sqrt(5.7e9 / 1190), 0.35};
+  w.long_term_fraction = relaxed_fraction;
+  w.arms = {{1 - relaxed_fraction, relaxation_time_s}};
+  return w;
+}
+
+double peak(const std::vector<double>& x) {
+  double p = 0;
+  for (double v : x) p = std::max(p, std::abs(v));
+  return p;
+}
+
+TEST_CASE(
+    "A viscoelastic bar's pulse: its front at c0, back where it came from, and the relaxed "
+    "and unrelaxed limits of its velocity and stress",
+    "[dispersion][polymer]") {
+  PropagationOptions o;
+  o.dispersion = false;  // the law's own propagation only
+  SECTION("causal at the instantaneous wave speed, and back again") {
+    const BarWaveguide bar = polymer_bar(0.5, 20e-6);
+    Propagator p(bar, o);
+    const auto x = smooth_pulse(20000, 100e-6, 5e-6, 60e-6);
+    const double d = 0.5;
+    const auto there = p.propagate(x, kDt, d);
+    // Nothing arrives before the front, which travels at c0 (the transform's leakage aside).
+    const auto front = static_cast<std::size_t>((100e-6 + d / bar.c0_m_s) / kDt) - 20;
+    double before = 0;
+    for (std::size_t i = 0; i < front; ++i) before = std::max(before, std::abs(there[i]));
+    constexpr double kLeakage = 1e-3;  // of the pulse's peak
+    CHECK(before < kLeakage * peak(x));
+    CHECK(peak(there) < 0.9 * peak(x));  // attenuated: the test can fail
+    const auto back = p.propagate(there, kDt, -d);
+    std::vector<double> err(x.size());
+    for (std::size_t i = 0; i < x.size(); ++i) err[i] = back[i] - x[i];
+    constexpr double kRoundTrip = 1e-6;  // no cut-off: only round-off and the end tapers
+    CHECK(rms(err) / rms(x) < kRoundTrip);
+  }
+  SECTION("a pulse slow against the arm meets the relaxed modulus, a fast one the instantaneous") {
+    constexpr double kRelaxed = 0.5;
+    // Slow: 200 µs ramps and a 600 µs plateau against τ = 2 µs: stress E∞ ε, velocity c∞ ε.
+    // Fast: a 40 µs pulse against τ = 1 s: the law has no time to relax, E0 ε and c0 ε.
+    for (const auto& [tau, expected_stress, expected_velocity] :
+         {std::tuple{2e-6, kRelaxed, std::sqrt(kRelaxed)}, std::tuple{1.0, 1.0, 1.0}}) {
+      const bool slow = tau < 1e-3;
+      const auto x = slow ? smooth_pulse(20000, 100e-6, 200e-6, 600e-6)
+                          : smooth_pulse(4000, 50e-6, 5e-6, 30e-6);
+      for (const auto& [quantity, expected] :
+           {std::pair{WaveQuantity::kForce, expected_stress},
+            std::pair{WaveQuantity::kVelocity, expected_velocity}}) {
+        PropagationOptions q = o;
+        q.quantity = quantity;
+        Propagator p(polymer_bar(kRelaxed, tau), q);
+        const auto y = p.propagate(x, kDt, 0.0);
+        constexpr double kLimit = 0.01;  // the limits hold to the ratio of the times, ≤ 1 %
+        INFO("tau " << tau << " quantity " << static_cast<int>(quantity));
+        CHECK(peak(y) / peak(x) == Approx(expected).epsilon(kLimit));
+      }
+    }
+  }
+}
+
+}  // namespace tests_dispersion_test_propagation
+
+namespace tests_dispersion_test_propagation {
+
+TEST_CASE("A viscoelastic bar whose arms vanish disperses as the elastic bar",
+          "[dispersion][polymer]") {
+  // The law's path with the Pochhammer–Chree correction: arms of 10⁻⁹ of the modulus leave the
+  // geometry's dispersion alone, which the elastic path computes on its own.
+  BarWaveguide polymer = kBar;
+  polymer.long_term_fraction = 1 - 1e-9;
+  polymer.arms = {{1e-9, 20e-6}};
+  const DispersionTable table(kBar.poisson);
+  const auto x = smooth_pulse(4000, 60e-6, 8e-6, 40e-6);
+  for (const auto amplitude : {AmplitudeFactor::kNone, AmplitudeFactor::kStress}) {
+    PropagationOptions o;
+    o.amplitude = amplitude;
+    const auto elastic = Propagator(table, kBar, o).propagate(x, kDt, 1.0);
+    const auto law = Propagator(table, polymer, o).propagate(x, kDt, 1.0);
+    std::vector<double> err(x.size());
+    for (std::size_t i = 0; i < x.size(); ++i) err[i] = law[i] - elastic[i];
+    constexpr double kSame = 1e-6;  // the arms' 10⁻⁹ and round-off
+    CHECK(rms(err) / rms(x) < kSame);
   }
 }
 
