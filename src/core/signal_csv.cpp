@@ -545,6 +545,10 @@ std::optional<HeaderClock> header_clock(const DelimitedText& text, std::size_t f
     unit_s = *u;
   }
   h.clock.interval_s = header_value(text, *h.interval_row, unit_s);
+  if (!(h.clock.interval_s > 0))
+    throw input_error(text.file.string(), row_place(*h.interval_row),
+                      format_number(h.clock.interval_s) + " s",
+                      "expected a sample interval > 0; or give it as measurement.time.interval");
   if (h.start_row && !h.labview) h.clock.start_s = header_value(text, *h.start_row, unit_s);
   return h;
 }
@@ -698,9 +702,17 @@ RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest
     for (std::size_t k = 0; k < request.column_units.size(); ++k)
       check_value_unit(text, *header, indices[k], request.column_units[k]);
   RawSignalColumns raw = read_columns(text, first, named, time_index, indices, names);
-  if (clock) {  // sample i at start + i·interval, nothing to check
-    for (std::size_t i = 0; i < raw.time.size(); ++i)
+  if (clock) {  // sample i at start + i·interval
+    for (std::size_t i = 0; i < raw.time.size(); ++i) {
       raw.time[i] = clock->start_s + static_cast<double>(i) * clock->interval_s;
+      // A start so far from 0 that a double cannot tell its samples' times apart.
+      if (i > 0 && !(raw.time[i] > raw.time[i - 1]))
+        throw input_error(text.file.string(), "measurement.time.start (or the header's HOffset)",
+                          format_number(clock->start_s) + " s",
+                          "too far from 0 for samples " + format_number(clock->interval_s) +
+                              " s apart to have distinct times; expected the first sample's "
+                              "time, e.g. a pre-trigger \"-20 us\"");
+    }
     raw.time_from_header = true;
     raw.header_dt = clock->interval_s;
     raw.warnings = std::move(clock_warnings);
