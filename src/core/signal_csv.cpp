@@ -500,9 +500,7 @@ double header_value(const DelimitedText& text, const TextRow& row, double unit_s
     const auto v = parse_number(row.fields[c], text.decimal_comma);
     if (!v || !std::isfinite(*v))
       throw input_error(text.file.string(), text_place(row.line, c),
-                        ""
-                        " + std::string(row.fields[c]) + "
-                        "",
+                        "\"" + std::string(row.fields[c]) + "\"",
                         "expected a number (the header's time base); or give it as "
                         "measurement.time.interval");
     if (value && std::abs(*v - *value) > kHeaderIntervalDigits * std::abs(*value))
@@ -537,9 +535,7 @@ std::optional<HeaderClock> header_clock(const DelimitedText& text, std::size_t f
     const auto u = time_unit(std::string(unit_row->fields[1]));
     if (!u)
       throw input_error(text.file.string(), row_place(*unit_row),
-                        ""
-                        " + std::string(unit_row->fields[1]) + "
-                        "",
+                        "\"" + std::string(unit_row->fields[1]) + "\"",
                         "expected a time unit (the header's HResolution is not a sample "
                         "interval); a record of time");
     unit_s = *u;
@@ -612,8 +608,7 @@ FileClock file_clock(const DelimitedText& text, std::size_t first_data,
   std::string start = header->start_row ? ", start " + format_number(h.start_s) + " s from " +
                                               row_place(*header->start_row)
                                         : ", start 0 s (the header gives no HOffset)";
-  warnings.push_back(text.file.string() +
-                     ": no time column; time base from the header: " + "interval " +
+  warnings.push_back(text.file.string() + ": no time column; time base from the header: interval " +
                      format_number(h.interval_s) + " s from " + row_place(*header->interval_row) +
                      start + " (measurement.time.interval would set it)");
   return {h, header->trace_names};

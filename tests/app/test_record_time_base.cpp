@@ -286,6 +286,39 @@ TEST_CASE("LabVIEW's Delta_X is not read: a .lvm without a time column names the
   CHECK(ok.code == 0);
 }
 
+TEST_CASE("A Yokogawa header without one usable time base is refused naming its row",
+          "[app][process][timebase]") {
+  const fs::path d = scratch_dir("timebase_yokogawa_bad");
+  const shpb_test::Record r;
+  json scene = shpb_test::steel_scene();
+  scene["measurement"]["file"] = "yokogawa.csv";
+  scene["measurement"].erase("time");
+  scene["measurement"]["channels"][0]["column"] = "CH1";
+  scene["measurement"]["channels"][1]["column"] = "CH2";
+  std::ofstream(d / "scene.json") << scene.dump(2);
+  const auto refused = [&](const std::string& rows, const std::vector<std::string>& said) {
+    std::ostringstream s;
+    s.precision(17);
+    s << "Model,DL850\nTraceName,CH1,CH2\n" << rows << "Time,10:11:12.000,10:11:12.000\n";
+    for (int i = 0; i < shpb_test::kSamples; ++i)
+      s << "," << r.incident_gauge(i * shpb_test::kDt) << ","
+        << r.transmitted_gauge(i * shpb_test::kDt) << "\n";
+    std::ofstream(d / "yokogawa.csv") << s.str();
+    CAPTURE(rows);
+    check_refused(process(d / "scene.json", d / "out"), said);
+  };
+  // Traces of one file at two sample rates: no one time base.
+  refused("HResolution,1.0000E-07,2.0000E-07\nHOffset,0,0\n",
+          {"yokogawa.csv", "line 3 (HResolution)", "one time base"});
+  // HUnit Hz: a spectrum's axis, not a record of time.
+  refused("HResolution,1.0000E-07,1.0000E-07\nHOffset,0,0\nHUnit,Hz,Hz\n",
+          {"yokogawa.csv", "line 5 (HUnit)", "expected a time unit"});
+  refused("HResolution,0,0\nHOffset,0,0\n",
+          {"yokogawa.csv", "line 3 (HResolution)", "expected a sample interval > 0"});
+  refused("HResolution,1.0000E-07,1.0000E-07\nHOffset,soon,soon\n",
+          {"yokogawa.csv", "line 4, column 2", "\"soon\""});
+}
+
 TEST_CASE("A time base given twice, or out of range, is refused naming its JSON path",
           "[app][validate][timebase]") {
   const fs::path d = scratch_dir("timebase_refusals");
