@@ -286,6 +286,29 @@ TEST_CASE("LabVIEW's Delta_X is not read: a .lvm without a time column names the
   CHECK(ok.code == 0);
 }
 
+TEST_CASE("An .xls workbook is read on the scene's interval, its time column left unread",
+          "[app][process][timebase][excel]") {
+  // tests/data/signals.xls: the clean record of lab_record.hpp at 1 MHz (800 samples) beside its
+  // time column, doubles computed by Perl from the same formula as the CSV's, equal to the last
+  // bit or two.
+  constexpr double kSameDoubles = 1e-12;
+  const fs::path d = scratch_dir("timebase_xls");
+  const double dt = 1e-6;
+  json scene = shpb_test::steel_scene();
+  shpb_test::write(d, scene, shpb_test::csv(shpb_test::clean(), 1.0, dt, 800));
+  processed(d / "scene.json", d / "csv");
+  fs::copy_file(kSource / "tests/data/signals.xls", d / "signals.xls");
+  scene["measurement"]["file"] = "signals.xls";
+  scene["measurement"]["sheet"] = "signals";
+  scene["measurement"]["time"] = {{"interval", "1 us"}};
+  std::ofstream(d / "scene.json") << scene.dump(2);
+  processed(d / "scene.json", d / "xls");
+  const json ref = summary(d / "csv"), s = summary(d / "xls");
+  for (const char* key : {"peak_stress_Pa", "max_strain"})
+    CHECK(s[key].get<double>() == Approx(ref[key].get<double>()).epsilon(kSameDoubles));
+  CHECK(s["windows"] == ref["windows"]);
+}
+
 TEST_CASE("A Yokogawa header without one usable time base is refused naming its row",
           "[app][process][timebase]") {
   const fs::path d = scratch_dir("timebase_yokogawa_bad");
