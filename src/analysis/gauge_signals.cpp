@@ -109,6 +109,7 @@ GaugeSignals read_gauge_signals(const MeasurementSpec& m, const std::filesystem:
     req.time_unit_s = m.time_unit_s;
     req.sheet = m.sheet;
     req.resample = m.time_resample;
+    req.clock = m.time_clock;
     for (std::size_t c : channels) {
       req.columns.push_back(m.channels[c].column);
       req.column_units.push_back(m.channels[c].unit);

@@ -34,10 +34,6 @@ double strain_per_unit(const ChannelSpec& channel);
 inline constexpr double kPlausibleStrainMin = 1e-5;
 inline constexpr double kPlausibleStrainMax = 5e-2;
 
-// Sample intervals outside [1 ps, 100 µs] are no digitizer's record of a Kolsky bar pulse
-// (tens of µs long): the time unit does not match the column. Refused with an InputError.
-inline constexpr double kMinSampleInterval_s = 1e-12;
-inline constexpr double kMaxSampleInterval_s = 1e-4;
 // No record holds more samples than this between two places it is moved (16.8 M: 1.7 s at
 // 10 MHz); a larger delay means a wrong time unit and would pad the FFT beyond memory.
 inline constexpr double kMaxDelaySamples = 1 << 24;

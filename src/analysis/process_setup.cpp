@@ -27,7 +27,8 @@ json process_setup(const Scene& scene) {
   p["file"] = m.file.empty() ? json(nullptr) : json(m.file.string());
   p["format"] = std::string(enum_name(kSignalFormatNames, m.format));
   if (!m.sheet.empty()) p["sheet"] = m.sheet;
-  p["time_column"] = m.time_column.name.empty() && !m.time_column.index
+  p["time_column"] = m.time_clock ? json("none (measurement.time.interval)")
+                     : m.time_column.name.empty() && !m.time_column.index
                          ? json("the format's own")
                          : column_json(m.time_column);
   p["time_unit"] = m.time_unit;

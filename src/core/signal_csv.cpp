@@ -200,8 +200,10 @@ void refuse_cut_last_line(const DelimitedText& text, std::size_t first_data,
   }
 }
 
+// The rows from `first_data` on: the time column's stamps (none without one: a clock fills
+// them) and the columns `indices`.
 RawSignalColumns read_columns(const DelimitedText& text, std::size_t first_data,
-                              const TextRow* header, std::size_t time_index,
+                              const TextRow* header, std::optional<std::size_t> time_index,
                               const std::vector<std::size_t>& indices,
                               const std::vector<std::string>& names) {
   RawSignalColumns raw;
@@ -213,7 +215,7 @@ RawSignalColumns read_columns(const DelimitedText& text, std::size_t first_data,
   auto header_name = [&](std::size_t c) {
     return header && c < header->fields.size() ? header->fields[c] : std::string_view();
   };
-  const std::string_view time_name = header_name(time_index);
+  const std::string_view time_name = time_index ? header_name(*time_index) : std::string_view();
   std::vector<std::string_view> column_names;
   for (std::size_t c : indices) column_names.push_back(header_name(c));
   // Samples [a, b) into their places; the first bad field of the range throws.
@@ -221,7 +223,7 @@ RawSignalColumns read_columns(const DelimitedText& text, std::size_t first_data,
     for (std::size_t i = a; i < b; ++i) {
       if (i % 65536 == 0) throw_if_interrupted();  // a long record stops within a second
       const TextRow& row = text.rows[first_data + i];
-      raw.time[i] = number_at(text, row, time_index, time_name);
+      if (time_index) raw.time[i] = number_at(text, row, *time_index, time_name);
       for (std::size_t k = 0; k < indices.size(); ++k)
         raw.values[k][i] = number_at(text, row, indices[k], column_names[k]);
       raw.lines[i] = row.line;
@@ -230,9 +232,10 @@ RawSignalColumns read_columns(const DelimitedText& text, std::size_t first_data,
   // A long record is parsed in two halves at once (the process's largest single cost on a
   // million rows); an error in the first half is reported before one in the second, so the
   // message names the first bad field either way.
-  std::vector<std::size_t> columns{time_index};
+  std::vector<std::size_t> columns;
+  std::vector<std::string_view> names_read;
+  if (time_index) columns.push_back(*time_index), names_read.push_back(time_name);
   columns.insert(columns.end(), indices.begin(), indices.end());
-  std::vector<std::string_view> names_read{time_name};
   names_read.insert(names_read.end(), column_names.begin(), column_names.end());
   if (n < kParallelParseRows) {
     parse(0, n);
@@ -468,6 +471,149 @@ std::string no_numbers_cause(const DelimitedText& text) {
   return read;
 }
 
+// A time base stated in the metadata rows above the data: Yokogawa's ASCII export
+// (HResolution, HOffset, HUnit rows: sample i at HOffset + i·HResolution) or LabVIEW's .lvm
+// (Delta_X, X0 rows). Each row holds one value per trace.
+struct HeaderClock {
+  bool labview = false;  // Delta_X/X0: never read (below)
+  const TextRow* interval_row = nullptr;
+  const TextRow* start_row = nullptr;
+  const TextRow* trace_names = nullptr;  // Yokogawa's TraceName row: the channels' names
+  SampleClock clock;
+};
+
+// Where a header states the sample interval so that reading it cannot mislead: the header's own
+// digits. Yokogawa prints it to 5 significant digits (a rounding up to 5e-5 of it).
+constexpr double kHeaderIntervalDigits = 1e-4;
+
+// "line 7 (HResolution)"
+std::string row_place(const TextRow& row) {
+  return "line " + std::to_string(row.line) + " (" + std::string(row.fields[0]) + ")";
+}
+
+// The one value a header row gives every trace, in seconds per `unit_s`; refused when the traces
+// differ (one file, one time base) or a value is not a number.
+double header_value(const DelimitedText& text, const TextRow& row, double unit_s) {
+  std::optional<double> value;
+  for (std::size_t c = 1; c < row.fields.size(); ++c) {
+    if (row.fields[c].empty()) continue;
+    const auto v = parse_number(row.fields[c], text.decimal_comma);
+    if (!v || !std::isfinite(*v))
+      throw input_error(text.file.string(), text_place(row.line, c),
+                        "\"" + std::string(row.fields[c]) + "\"",
+                        "expected a number (the header's time base); or give it as "
+                        "measurement.time.interval");
+    if (value && std::abs(*v - *value) > kHeaderIntervalDigits * std::abs(*value))
+      throw input_error(text.file.string(), row_place(row),
+                        format_number(*value) + " and " + format_number(*v),
+                        "one time base for every trace of a file; export the traces of one "
+                        "sample rate together");
+    if (!value) value = *v;
+  }
+  if (!value)
+    throw input_error(text.file.string(), row_place(row), "(empty)",
+                      "expected the header's time base; or give it as measurement.time.interval");
+  return *value * unit_s;
+}
+
+std::optional<HeaderClock> header_clock(const DelimitedText& text, std::size_t first_data) {
+  HeaderClock h;
+  const TextRow* unit_row = nullptr;
+  for (std::size_t i = 0; i < first_data; ++i) {
+    const TextRow& row = text.rows[i];
+    if (row.fields.empty()) continue;
+    const std::string_view key = row.fields[0];
+    if (key == "HResolution" || key == "Delta_X")
+      h.interval_row = &row, h.labview = key == "Delta_X";
+    if (key == "HOffset" || key == "X0") h.start_row = &row;
+    if (key == "HUnit") unit_row = &row;
+    if (key == "TraceName") h.trace_names = &row;
+  }
+  if (!h.interval_row) return std::nullopt;
+  double unit_s = 1;  // Yokogawa's HUnit: "s" for a time record
+  if (unit_row && unit_row->fields.size() > 1) {
+    const auto u = time_unit(std::string(unit_row->fields[1]));
+    if (!u)
+      throw input_error(text.file.string(), row_place(*unit_row),
+                        "\"" + std::string(unit_row->fields[1]) + "\"",
+                        "expected a time unit (the header's HResolution is not a sample "
+                        "interval); a record of time");
+    unit_s = *u;
+  }
+  h.clock.interval_s = header_value(text, *h.interval_row, unit_s);
+  if (!(h.clock.interval_s > 0))
+    throw input_error(text.file.string(), row_place(*h.interval_row),
+                      format_number(h.clock.interval_s) + " s",
+                      "expected a sample interval > 0; or give it as measurement.time.interval");
+  if (h.start_row && !h.labview) h.clock.start_s = header_value(text, *h.start_row, unit_s);
+  return h;
+}
+
+// Whether the data's first column holds the header's clock (a time column exported beside the
+// header's time base): its first stamps within a quarter interval of start + i·interval (of the
+// first stamp + i·interval where the header's start is not read), where a channel's values are
+// nowhere near.
+bool stamps_follow(const DelimitedText& text, std::size_t first_data, const HeaderClock& h,
+                   double unit_s) {
+  constexpr std::size_t kStampsJudged = 3;
+  constexpr double kOffClock = 0.25;  // of the interval
+  if (text.rows.size() < first_data + kStampsJudged) return false;
+  std::optional<double> start = h.labview ? std::nullopt : std::optional(h.clock.start_s);
+  for (std::size_t i = 0; i < kStampsJudged; ++i) {
+    const TextRow& row = text.rows[first_data + i];
+    const auto t =
+        row.fields.empty() ? std::nullopt : parse_number(row.fields[0], text.decimal_comma);
+    if (!t) return false;
+    if (!start) start = *t * unit_s;
+    if (std::abs(*t * unit_s - *start - static_cast<double>(i) * h.clock.interval_s) >
+        kOffClock * h.clock.interval_s)
+      return false;
+  }
+  return true;
+}
+
+// The time base of a file without a time column: the scene's (measurement.time.interval), checked
+// against a header that states one, or the header's (Yokogawa), with a warning naming its rows.
+// LabVIEW's X0 may be an absolute time (seconds since 1904) and its Delta_X one segment's of
+// several: refused, naming the row, for the scene to state the interval.
+// Its TraceName row names the channels.
+struct FileClock {
+  std::optional<SampleClock> clock;
+  const TextRow* trace_names = nullptr;
+};
+FileClock file_clock(const DelimitedText& text, std::size_t first_data,
+                     const SignalRequest& request, std::vector<std::string>& warnings) {
+  const bool default_time = request.time_column.name.empty() && !request.time_column.index;
+  if (!default_time) return {};  // a time column named by the scene
+  const auto header = header_clock(text, first_data);
+  if (!header) return {request.clock};
+  const SampleClock& h = header->clock;
+  if (request.clock) {
+    if (std::abs(request.clock->interval_s / h.interval_s - 1) > kHeaderIntervalDigits)
+      throw input_error(
+          text.file.string(), row_place(*header->interval_row), format_number(h.interval_s) + " s",
+          "the header's sample interval, but measurement.time.interval gives " +
+              format_number(request.clock->interval_s) + " s: correct the one that is wrong");
+    return {request.clock, header->trace_names};
+  }
+  if (stamps_follow(text, first_data, *header, request.time_unit_s))
+    return {std::nullopt, header->trace_names};
+  if (header->labview)
+    throw input_error(text.file.string(), row_place(*header->interval_row),
+                      format_number(h.interval_s),
+                      "the first column does not follow it as a time column would, and LabVIEW's "
+                      "Delta_X is not read (its X0 may be an absolute time, and each segment has "
+                      "its own): give the record's time base as measurement.time.interval (and "
+                      "start), or name its time column (measurement.time.column)");
+  std::string start = header->start_row ? ", start " + format_number(h.start_s) + " s from " +
+                                              row_place(*header->start_row)
+                                        : ", start 0 s (the header gives no HOffset)";
+  warnings.push_back(text.file.string() + ": no time column; time base from the header: interval " +
+                     format_number(h.interval_s) + " s from " + row_place(*header->interval_row) +
+                     start + " (measurement.time.interval would set it)");
+  return {h, header->trace_names};
+}
+
 }  // namespace
 
 RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest& request) {
@@ -479,8 +625,10 @@ RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest
                       "no numeric rows",
                       "expected rows of numbers after the header; " + no_numbers_cause(text));
   const std::size_t width = text.rows[first].fields.size();
+  std::vector<std::string> clock_warnings;
+  const auto [clock, trace_names] = file_clock(text, first, request, clock_warnings);
   ColumnRef time_ref = request.time_column;
-  if (time_ref.name.empty() && !time_ref.index) time_ref.index = 0;
+  if (time_ref.name.empty() && !time_ref.index && !clock) time_ref.index = 0;
   // Rows just above that are shaped as data are data rows with a text in some field (a scope's
   // "OVER", "NaN" or "∞" in its first samples), never the header: taken as the header they
   // would drop those samples unseen, or hide the real header. Such a row has the data rows'
@@ -495,7 +643,9 @@ RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest
                           text.decimal_comma);
     std::size_t numbers = 0, filled = 0;
     for (const auto& f : row.fields) {
-      if (f == time_ref.name) return false;
+      if (!clock && f == time_ref.name) return false;
+      for (const auto& c : request.columns)
+        if (clock && !c.name.empty() && f == c.name) return false;
       filled += !f.empty();
       numbers += parse_number(f, text.decimal_comma).has_value();
     }
@@ -507,22 +657,28 @@ RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest
   if (header)
     for (std::size_t i = first; i < text.rows.size() && !wider; ++i)
       if (filled_width(text.rows[i]) > filled_width(*header)) wider = &text.rows[i];
-  if (time_ref.index && std::all_of(request.columns.begin(), request.columns.end(),
-                                    [](const ColumnRef& c) { return c.index.has_value(); }))
+  if ((time_ref.index || clock) &&
+      std::all_of(request.columns.begin(), request.columns.end(),
+                  [](const ColumnRef& c) { return c.index.has_value(); }))
     refuse_split_decimal_commas(text, header, wider);
-  const TextRow* names_row = header && first >= 2 && unit_row(*header) &&
+  // Yokogawa's trace names stand over their samples when the data rows keep the key column (empty,
+  // or the time): as wide as the names row.
+  const TextRow* names_row = trace_names && filled_width(*trace_names) <= width ? trace_names
+                             : header && first >= 2 && unit_row(*header) &&
                                      filled_width(text.rows[first - 2]) == filled_width(*header)
                                  ? &text.rows[first - 2]
                                  : nullptr;
   const TextRow* named = names_row ? names_row : header;  // what names each column
-  const std::size_t time_index = resolve(text, header, names_row, time_ref, width, wider);
+  const std::optional<std::size_t> time_index =
+      clock ? std::nullopt
+            : std::optional(resolve(text, header, names_row, time_ref, width, wider));
   // A header that names the time column's unit must agree with the unit it is read in: a column
   // in ms read as seconds passes the sample-interval check at 10 MHz and above (0.1 ms -> 1e-4 s).
-  if (header && time_index < header->fields.size())
-    if (const auto unit = header_unit(header->fields[time_index], time_unit, kTimeUnitCuts);
+  if (header && time_index && *time_index < header->fields.size())
+    if (const auto unit = header_unit(header->fields[*time_index], time_unit, kTimeUnitCuts);
         unit && std::abs(unit->second / request.time_unit_s - 1) > kSameUnit)
-      throw input_error(text.file.string(), text_place(header->line, time_index),
-                        "\"" + std::string(header->fields[time_index]) + "\"",
+      throw input_error(text.file.string(), text_place(header->line, *time_index),
+                        "\"" + std::string(header->fields[*time_index]) + "\"",
                         "the header gives the time in " + unit->first +
                             ", but the column is read "
                             "in units of " +
@@ -540,7 +696,23 @@ RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest
   if (header)
     for (std::size_t k = 0; k < request.column_units.size(); ++k)
       check_value_unit(text, *header, indices[k], request.column_units[k]);
-  return read_columns(text, first, named, time_index, indices, names);
+  RawSignalColumns raw = read_columns(text, first, named, time_index, indices, names);
+  if (clock) {  // sample i at start + i·interval
+    for (std::size_t i = 0; i < raw.time.size(); ++i) {
+      raw.time[i] = clock->start_s + static_cast<double>(i) * clock->interval_s;
+      // A start so far from 0 that a double cannot tell its samples' times apart.
+      if (i > 0 && !(raw.time[i] > raw.time[i - 1]))
+        throw input_error(text.file.string(), "measurement.time.start (or the header's HOffset)",
+                          format_number(clock->start_s) + " s",
+                          "too far from 0 for samples " + format_number(clock->interval_s) +
+                              " s apart to have distinct times; expected the first sample's "
+                              "time, e.g. a pre-trigger \"-20 us\"");
+    }
+    raw.time_from_header = true;
+    raw.header_dt = clock->interval_s;
+    raw.warnings = std::move(clock_warnings);
+  }
+  return raw;
 }
 
 RawSignalColumns read_tektronix_columns(const DelimitedText& text, const SignalRequest& request) {

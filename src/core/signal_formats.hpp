@@ -14,6 +14,7 @@ struct RawSignalColumns {
   std::vector<std::size_t> lines;  // line of each sample
   std::vector<std::string> names;
   std::vector<std::vector<double>> values;
+  std::vector<std::string> warnings;  // a time base read from the file's header
 };
 
 // Plain CSV/TSV: header lines skipped, columns by name or index.

@@ -154,6 +154,14 @@ StepSurvey survey_steps(const std::vector<double>& t) {
   return s;
 }
 
+// What a refusal of the time stamps adds when the first column was taken as the time column by
+// default: a file without a time column reads its first channel there.
+std::string no_time_column_hint(const SignalRequest& request) {
+  if (!request.time_column.name.empty() || request.time_column.index) return "";
+  return "; a file without a time column needs its time base: measurement.time.interval (and "
+         "start)";
+}
+
 // Checks the time stamps: increasing and uniform. Repeated stamps throughout (rounded to fewer
 // digits than the sampling needs) are not an error: the base is rebuilt from a least-squares fit
 // of t against the sample index, with a warning; a few are repeated rows (drop_repeated_rows).
@@ -173,7 +181,7 @@ void check_time_base(const std::filesystem::path& file, const RawSignalColumns& 
       throw input_error(file.string(), "line " + std::to_string(raw.lines[i]) + " (time column)",
                         seconds(t[i]),
                         "time goes backwards (previous sample " + seconds(t[i - 1]) +
-                            "); expected increasing time");
+                            "); expected increasing time" + no_time_column_hint(request));
     repeats += t[i] == t[i - 1];
   }
   std::vector<std::size_t> kept_lines;  // the line of each sample, once repeated rows are skipped
@@ -189,7 +197,7 @@ void check_time_base(const std::filesystem::path& file, const RawSignalColumns& 
   const double span = t.back() - t.front();
   if (!(span > 0))
     throw input_error(file.string(), "line " + std::to_string(lines.back()) + " (time column)",
-                      seconds(t.back()), "time does not advance");
+                      seconds(t.back()), "time does not advance" + no_time_column_hint(request));
   // The base rebuilt on the stamps' least-squares line, with a warning saying why.
   auto rebuild = [&](const ClockFit& c, const std::string& why) {
     for (std::size_t i = 0; i < n; ++i) out.time_s[i] = c.t0 + static_cast<double>(i) * c.dt;
@@ -240,7 +248,7 @@ void check_time_base(const std::filesystem::path& file, const RawSignalColumns& 
     throw input_error(file.string(), "line " + std::to_string(lines[i]) + " (time column)",
                       "step " + seconds(t[i] - t[i - 1]),
                       "expected uniform sampling at " + seconds(median_step) +
-                          " (gap or jump in the record)" + hint);
+                          " (gap or jump in the record)" + hint + no_time_column_hint(request));
   }
   if (!resample) {
     out.dt_s = mean_step;
@@ -280,6 +288,15 @@ SignalColumns read_signal_columns(const SignalRequest& request) {
   SignalColumns out;
   out.file = request.file;
   out.format = request.format == SignalFormat::kAuto ? detect(text) : request.format;
+  // A format whose files carry their own time base has no use for the scene's.
+  if (request.clock && out.format != SignalFormat::kCsv)
+    throw input_error(
+        request.file.string(), "measurement.time.interval",
+        format_number(request.clock->interval_s) + " s",
+        "a " + std::string(to_string(out.format)) + " file carries its own time base (" +
+            (out.format == SignalFormat::kLanlRaw ? "each signal's start time and sample interval"
+                                                  : "its time column") +
+            "); drop measurement.time.interval, which is for files without one");
   RawSignalColumns raw;
   switch (out.format) {
     case SignalFormat::kLanlRaw:
@@ -296,6 +313,7 @@ SignalColumns read_signal_columns(const SignalRequest& request) {
   if (!raw.time_from_header)
     for (double& v : out.time_s) v *= request.time_unit_s;
   out.names = raw.names;
+  out.warnings = std::move(raw.warnings);
   out.values = std::move(raw.values);
   check_time_base(request.file, raw, request, out);
   return out;

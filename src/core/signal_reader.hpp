@@ -4,6 +4,7 @@
 // Problems in the file are InputErrors naming file, line and column; things a person should
 // know but that do not stop the work (a rebuilt time base) are returned as warnings.
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -24,6 +25,7 @@ struct SignalRequest {
   std::vector<SignalUnit> column_units;
   std::string sheet;  // .xlsx/.xls: the sheet by name (empty: the first)
   TimeResampling resample;
+  std::optional<SampleClock> clock;  // a file without a time column: its time base
 };
 
 // Steps within this fraction of the mean interval are a jittered clock (time stamps written with

@@ -27,6 +27,20 @@ struct TimeResampling {
   bool operator==(const TimeResampling&) const = default;
 };
 
+// Sample intervals outside [1 ps, 100 µs] are no digitizer's record of a Kolsky bar pulse
+// (tens of µs long): a time column in another unit than it is read in, or a scene's interval
+// (measurement.time.interval) mistyped. Refused with an InputError.
+inline constexpr double kMinSampleInterval_s = 1e-12;
+inline constexpr double kMaxSampleInterval_s = 1e-4;
+
+// measurement.time.interval / rate and start (docs/scene-format.md): the time base of a file that
+// has no time column, sample i at start_s + i·interval_s. Every column is then a channel column.
+struct SampleClock {
+  double interval_s = 0;
+  double start_s = 0;
+  bool operator==(const SampleClock&) const = default;
+};
+
 // measurement.channels[].unit: what a column's values are in (volts become strain through a bridge
 // or a scale). A header naming a column's unit must agree with it (signal_csv.cpp).
 enum class SignalUnit { kVolt, kMillivolt, kStrain, kMicrostrain };

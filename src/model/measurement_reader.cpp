@@ -19,6 +19,32 @@ ColumnRef read_column(const JsonValue& v) {
   return c;
 }
 
+// measurement.time.interval (or rate) and start: the time base of a file without a time column,
+// whose every column is then a channel. With a time column, its unit or its resampling it would say
+// two things about the clock: refused. The interval is held to a digitizer's range
+// (kMinSampleInterval_s … kMaxSampleInterval_s, as a time column's), the rate to its inverse.
+std::optional<SampleClock> read_sample_clock(const JsonObject& to) {
+  const auto interval = to.get("interval"), rate = to.get("rate"), start = to.get("start");
+  if (!interval && !rate) {
+    if (start) throw start->error("a start needs measurement.time.interval (or rate)");
+    return std::nullopt;
+  }
+  if (interval && rate) throw rate->error("give the sample interval or the sample rate, not both");
+  const JsonValue& given = interval ? *interval : *rate;
+  for (const char* key : {"column", "unit", "resample"})
+    if (to.get(key))
+      throw given.error(std::string("a time base for a file without a time column; not with "
+                                    "measurement.time.") +
+                        key + " (which are of a time column)");
+  SampleClock c;
+  c.interval_s = interval ? interval->quantity_in(Dimension::kTime, kMinSampleInterval_s,
+                                                  kMaxSampleInterval_s, false, false)
+                          : 1 / rate->quantity_in(Dimension::kFrequency, 1 / kMaxSampleInterval_s,
+                                                  1 / kMinSampleInterval_s, false, false);
+  if (start) c.start_s = start->quantity(Dimension::kTime);
+  return c;
+}
+
 BridgeSpec read_bridge(const JsonValue& v) {
   const auto o = v.object({"arms", "gauge_factor", "excitation", "gain"});
   BridgeSpec b;
@@ -181,7 +207,8 @@ MeasurementSpec read_measurement(const JsonValue& value, const std::filesystem::
   if (auto f = o.get("file")) m.file = (scene_dir / f->name()).lexically_normal();
   if (auto f = o.get("format")) m.format = enum_from(*f, kSignalFormatNames);
   if (auto t = o.get("time")) {
-    const auto to = t->object({"column", "unit", "resample"});
+    const auto to = t->object({"column", "unit", "resample", "interval", "rate", "start"});
+    m.time_clock = read_sample_clock(to);
     if (auto c = to.get("column")) m.time_column = read_column(*c);
     if (auto r = to.get("resample")) {
       if (r->json().is_boolean()) {

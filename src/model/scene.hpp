@@ -244,9 +244,10 @@ struct UncertaintySpec {
 struct MeasurementSpec {
   std::filesystem::path file;  // resolved relative to the scene
   SignalFormat format = SignalFormat::kAuto;
-  ColumnRef time_column;         // empty name and index: the format's own time base
-  double time_unit_s = 1.0;      // seconds per unit of the time column
-  TimeResampling time_resample;  // measurement.time.resample
+  ColumnRef time_column;                  // empty name and index: the format's own time base
+  double time_unit_s = 1.0;               // seconds per unit of the time column
+  TimeResampling time_resample;           // measurement.time.resample
+  std::optional<SampleClock> time_clock;  // measurement.time.interval (or rate) and start
   std::vector<ChannelSpec> channels;
   DispersionSpec dispersion;
   PulseWindows windows;
