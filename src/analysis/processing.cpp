@@ -284,6 +284,10 @@ void check_one_and_two_wave(const Curve& c, std::size_t n, const ProcessingResul
     evidence += (evidence.empty() ? "" : "; ") + ("gauge \"" + g + "\"'s first pulse was ") +
                 (o.tension ? "compressive" : "tensile") + " and was inverted (a " +
                 (o.tension ? "compressive" : "tensile") + " record, or its channel's `invert`?)";
+  if (r.incident_overlap_s > 0)
+    evidence += (evidence.empty() ? "" : "; ") +
+                fmt("the incident pulse overlaps the reflected one at its gauge for %.3g us",
+                    r.incident_overlap_s * 1e6);
   if (r.reflected_onset_offset_s && !r.reflected_at_onset && !r.reflected_offset_is_shape &&
       r.reflected_offset_stress_error && *r.reflected_offset_stress_error > kShiftStressError)
     evidence += (evidence.empty() ? "" : "; ") +
@@ -301,6 +305,27 @@ void check_one_and_two_wave(const Curve& c, std::size_t n, const ProcessingResul
             "faces differ (bar areas or moduli, a channel's scale or bridge factor, which gauge "
             "is which)";
   warnings.push_back(text);
+}
+
+// One gauge sees the incident and the reflected pulse pass in turn. A pulse longer than its round
+// trip 2d/c0 to the specimen and back (a long striker, a gauge near the specimen, a polymer bar's
+// creep tail) still passes when its reflection arrives, and the record holds their sum: the
+// reflected pulse, the 2-wave stress and the strain carry what overlaps (docs/methods.md §6).
+// Overlapping by more than this many samples is said.
+constexpr double kOverlapSamples = 2;
+void warn_incident_overlap(const KolskySetup& k, double dt, ProcessingResult& r) {
+  const double overlap = r.incident_window.end_s - r.reflected_window.start_s;
+  if (!(overlap > kOverlapSamples * dt)) return;
+  r.incident_overlap_s = overlap;
+  const double length = r.incident_window.end_s - r.incident_window.start_s;
+  r.warnings.push_back(
+      "gauge \"" + k.incident_gauge + "\": " +
+      fmt("the incident pulse still passes it %.3g us after the reflected pulse arrives (round "
+          "trip 2d/c0 %.3g us, the pulse %.3g us long there), and one gauge records their sum: ",
+          overlap * 1e6, 2 * k.incident_distance_m / k.front.c0_m_s * 1e6, length * 1e6) +
+      fmt("the reflected pulse, the 2-wave stress, the strain and its rate carry the overlap; a "
+          "gauge at least c0 T/2 = %.3g m from the specimen separates them",
+          0.5 * k.front.c0_m_s * length));
 }
 
 // Largest |y(t + shift) − y(t)| over the flagged samples: how much a pulse at the faces changes
@@ -1075,6 +1100,7 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
   require_pulse_fits_round_trip(k, t[end - 1] - t[on], options.scene_file);
   r.incident_window = {k.incident_gauge, t[on], t[end - 1], r.incident_window.detected};
   const PulseTiming timing = time_the_pulses(t, dt, on, end, inc, tra, k, options, r);
+  warn_incident_overlap(k, dt, r);
   reduce_at_faces(t, dt, pulses_at_faces(inc, tra, dt, timing, k, options, r), timing, k, options,
                   r);
 

@@ -138,6 +138,9 @@ struct ProcessingResult {
   // transmitted onset on time: the reflected pulse's own shape (its foot), not a mistiming.
   bool reflected_offset_is_shape = false;
   bool reflected_at_onset = false, transmitted_at_onset = false;  // align "onsets" applied
+  // How long the incident pulse still passes its gauge after the reflected pulse arrives there
+  // (0: they are apart); one gauge records their sum.
+  double incident_overlap_s = 0;
   // Largest change of the 3-wave stress over the loading, as a fraction of the 1-wave peak, that
   // moving the reflected pulse by its onset offset makes (docs/methods.md §6); null without one.
   std::optional<double> reflected_offset_stress_error;
