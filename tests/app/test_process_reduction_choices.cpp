@@ -54,6 +54,21 @@ json gauges_measurement(const fs::path& file) {
           {"dispersion", {{"correction", "none"}}}};
 }
 
+// The scene written to d, simulated into d/sim and its gauges processed into d/out: the summary.
+json simulate_and_process(const fs::path& d, const json& scene) {
+  fs::create_directories(d);
+  std::ofstream(d / "scene.json") << scene.dump(2);
+  const auto sim =
+      run_shpb({"simulate", (d / "scene.json").string(), "-o", (d / "sim").string(), "-q"});
+  INFO(sim.err);
+  REQUIRE(sim.code == 0);
+  const auto r = run_shpb({"process", (d / "scene.json").string(), "--signals",
+                           (d / "sim/gauges.csv").string(), "-o", (d / "out").string(), "-q"});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  return summary(d / "out");
+}
+
 }  // namespace
 
 TEST_CASE(
@@ -175,17 +190,7 @@ TEST_CASE("Polymer (viscoelastic) bars: their law moves and reduces the pulses",
       {"specimen", "specimen"},
       {"materials", {{"pmma", pmma}}},
       {"simulation", {{"duration", "1.8 ms"}, {"stepping", "global"}}}};
-  fs::create_directories(d);
-  std::ofstream(d / "scene.json") << scene.dump(2);
-  const auto sim =
-      run_shpb({"simulate", (d / "scene.json").string(), "-o", (d / "sim").string(), "-q"});
-  INFO(sim.err);
-  REQUIRE(sim.code == 0);
-  const auto r = run_shpb({"process", (d / "scene.json").string(), "--signals",
-                           (d / "sim/gauges.csv").string(), "-o", (d / "out").string(), "-q"});
-  INFO(r.err);
-  REQUIRE(r.code == 0);
-  const json s = summary(d / "out");
+  const json s = simulate_and_process(d, scene);
   CHECK(!has_warning(s, "law: its pulses"));
   CHECK(has_warning(s, "the incident pulse still passes it"));  // the creep tail, below
   // The struck end moves at V/2 between a striker and a bar of one law (symmetry), whatever the
@@ -236,17 +241,7 @@ TEST_CASE("An incident pulse longer than its round trip to the specimen is said 
   json scene = json::parse(read_text(kSource / "experiments/classic-al6061/scene.json"));
   scene["bars"][2]["material"] = (kSource / "specimens/al6061-t6.json").string();
   scene["bars"][1]["gauges"] = {{{"name", "incident"}, {"distance_to_specimen", "0.2 m"}}};
-  fs::create_directories(d);
-  std::ofstream(d / "scene.json") << scene.dump(2);
-  const auto sim =
-      run_shpb({"simulate", (d / "scene.json").string(), "-o", (d / "sim").string(), "-q"});
-  INFO(sim.err);
-  REQUIRE(sim.code == 0);
-  const auto r = run_shpb({"process", (d / "scene.json").string(), "--signals",
-                           (d / "sim/gauges.csv").string(), "-o", (d / "out").string(), "-q"});
-  INFO(r.err);
-  REQUIRE(r.code == 0);
-  const json s = summary(d / "out");
+  const json s = simulate_and_process(d, scene);
   CHECK(has_warning(s, "gauge \"incident\": the incident pulse still passes it"));
   CHECK(has_warning(s, "the incident pulse overlaps the reflected one at its gauge"));
   CHECK(!has_warning(s, "the forces of the two faces differ"));
