@@ -14,10 +14,12 @@ namespace {
 // The end taper spans at most this many periods of the low-pass cut-off (docs/methods.md §5).
 constexpr double kTaperPeriods = 4;
 // A viscoelastic bar's transform is padded by this many of its slowest relaxation times (the
-// wrapped tail of its kernel then weighs e^−7 < 0.1 % of that arm), up to a padding of 2^23 samples
-// (0.84 s at 10 MS/s: an arm slower than 0.12 s there, elastic over any pulse, is wrapped).
+// wrapped tail of its kernel then weighs e^−7 < 0.1 % of that arm), but by at most this many record
+// lengths: an arm slower than that is nearly flat over the transform's period P, and its wrapped
+// tail adds about E_k/E0 × (the pulse's length over P) ≤ 1 % of that arm to the pulse, where
+// padding by 7 τ would cost seconds per move of a 1 s arm (docs/methods.md §5.1).
 constexpr double kLawMemorySpans = 7;
-constexpr std::size_t kMaxLawPadding = std::size_t{1} << 23;
+constexpr double kLawMemoryRecords = 8;
 
 }  // namespace
 
@@ -113,8 +115,8 @@ void Propagator::propagate(std::span<const double> signal, double dt, double dis
   // transform, falls to e^−kLawMemorySpans of the arm within this much padding.
   double memory_s = 0;
   for (const RelaxationArm& a : bar_.arms) memory_s = std::max(memory_s, a.relaxation_time_s);
-  const auto memory = static_cast<std::size_t>(
-      std::min(kLawMemorySpans * memory_s / dt, static_cast<double>(kMaxLawPadding)));
+  const auto memory = static_cast<std::size_t>(std::min(
+      kLawMemorySpans * memory_s / dt, kLawMemoryRecords * static_cast<double>(n + shift)));
   const std::size_t size = fast_fft_size(n + shift + n / 4 + 16 + memory);
   RealFft& fft = (shared_plans_ ? *shared_plans_ : own_plans_).of_size(size);
 
