@@ -315,6 +315,13 @@ std::string final_names(const std::string& text) {
 void install_interrupt_handlers() {
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
+  // Started with them blocked (a parent's thread that blocks them, as runtimes do), SIGTERM from
+  // scancel or timeout would never arrive: taken from now on, one already pending at once.
+  sigset_t signals;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGINT);
+  sigaddset(&signals, SIGTERM);
+  ::sigprocmask(SIG_UNBLOCK, &signals, nullptr);
 }
 bool interrupted() { return g_interrupted.load(std::memory_order_relaxed); }
 void throw_if_interrupted() {
