@@ -13,6 +13,7 @@
 #include <string>
 #include <thread>
 
+#include "../skip.hpp"
 #include "child_process.hpp"
 #include "measured_test.hpp"
 #include "striker_on_bar_scene.hpp"
@@ -703,6 +704,41 @@ TEST_CASE("An -o that is a mount point is refused before the run", "[robustness]
   CHECK(fs::is_empty(disk));
   CHECK(litter(scratch.path()).empty());
   CHECK(simulate(disk / "out").code == 0);
+}
+
+TEST_CASE("An -o that is a bind mount on the same device is refused before the run",
+          "[robustness][lost-data]") {
+  // A bind mount is on its parent's device, so the device check missed it: the run did all its
+  // work, then failed renaming over it (exit 2 or 3, "Device or resource busy"). Its name holds
+  // a space, which /proc/self/mountinfo writes as \040. `dispersion -o FILE` onto a bind-mounted
+  // file likewise.
+  ScratchFolder scratch("lost");
+  const fs::path data = scratch.path() / "data", mounted = scratch.path() / "bound here";
+  fs::create_directory(data);
+  fs::create_directory(mounted);
+  const fs::path table = scratch.path() / "table.csv", bound_table = scratch.path() / "bound.csv";
+  const std::string header = "a_over_lambda,c_over_c0,cg_over_c0,f_a_over_c0\n";
+  write_bytes(table, header);
+  write_bytes(bound_table, "");
+  if (::mount(data.c_str(), mounted.c_str(), nullptr, MS_BIND, nullptr) != 0)
+    SHPB_SKIP("a bind mount is not permitted here (needs root or CAP_SYS_ADMIN)");
+  struct Unmount {
+    fs::path p;
+    ~Unmount() { ::umount2(p.c_str(), MNT_DETACH); }
+  } unmount{mounted};
+  REQUIRE(::mount(table.c_str(), bound_table.c_str(), nullptr, MS_BIND, nullptr) == 0);
+  const Unmount unmount_file{bound_table};
+  write_bytes(scratch.path() / "scene.json", striker_on_bar_scene("50 us"));
+  check_refused(
+      run({"simulate", (scratch.path() / "scene.json").string(), "-o", mounted.string(), "-q"},
+          scratch.path(), kLimit_s),
+      "mount point");
+  CHECK(fs::is_empty(data));
+  check_refused(
+      run({"dispersion", "--poisson", "0.3", "-o", bound_table.string()}, scratch.path(), kLimit_s),
+      "mount point");
+  CHECK(read_all(table) == header);
+  CHECK(litter(scratch.path()).empty());
 }
 
 }  // namespace tests_robustness_test_lost_data
