@@ -9,7 +9,8 @@
 # refine 2 instead (all methods, minutes on 2 cores). Then submit.sh's own contract: a second
 # submission into a plan keeps the first's logs; a logs folder of the user's is refused, nothing
 # queued; an OUT_DIR that is a link to nothing is not created; stopped by SIGTERM while it queues
-# the merge, it leaves no job to run. Exit 77: skipped (not root, no packages).
+# the merge, it leaves no job to run. local-slurm.sh start stopped by SIGTERM once slurmctld runs
+# stops the daemons it started and removes its folder. Exit 77: skipped (not root, no packages).
 set -euo pipefail
 shpb=$(realpath "$1")
 root=$(cd "$(dirname "$0")/../.." && pwd)
@@ -18,7 +19,10 @@ sweep=(--sweep stability --refine 2 --contact penalty)
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/shpb_test_slurm.XXXXXX")
 cluster=$tmp/cluster
 cleanup() {
-  [ -f "$cluster/slurm.conf" ] && bash "$root/tools/cluster/local-slurm.sh" stop "$cluster"
+  local c
+  for c in "$cluster" "$tmp/cluster2"; do
+    [ -f "$c/slurm.conf" ] && bash "$root/tools/cluster/local-slurm.sh" stop "$c"
+  done
   rm -rf "$tmp"
 }
 trap cleanup EXIT
@@ -136,4 +140,16 @@ for _ in $(seq 600); do [ -e "$tmp/merge-queued" ] && break; sleep 0.05; done
 for _ in $(seq 300); do [ -z "$(squeue -h)" ] && break; sleep 0.1; done
 [ -z "$(squeue -h)" ] || fail "jobs left by a stopped submit.sh: $(squeue)"
 [ -z "$(ls -A "$tmp/plan3/parts")" ] || fail "a stopped submission ran shards: $(ls "$tmp/plan3/parts")"
-echo "ok: an 8-task Slurm array and its merge equal the in-process stability sweep; a killed task resubmitted completes the set; submit.sh keeps logs, refuses a user's logs folder and a dangling link's target, and leaves nothing when stopped"
+# A second cluster's start stopped by SIGTERM once slurmctld is up: no daemon of it left running.
+bash "$root/tools/cluster/local-slurm.sh" start "$tmp/cluster2" >/dev/null &
+starting=$!
+for _ in $(seq 600); do [ -s "$tmp/cluster2/slurmctld.pid" ] && break; sleep 0.05; done
+kill -TERM $starting
+set +e
+wait $starting
+code=$?
+set -e
+[ $code -eq 143 ] || fail "local-slurm.sh start stopped by SIGTERM: exit $code"
+[ -z "$(pgrep -af "$tmp/cluster2")" ] || fail "daemons left running: $(pgrep -af "$tmp/cluster2")"
+[ ! -e "$tmp/cluster2" ] || fail "the stopped cluster's folder was left: $(ls -A "$tmp/cluster2")"
+echo "ok: an 8-task Slurm array and its merge equal the in-process stability sweep; a killed task resubmitted completes the set; submit.sh keeps logs, refuses a user's logs folder and a dangling link's target, and leaves nothing when stopped; a stopped cluster start leaves no daemon"
