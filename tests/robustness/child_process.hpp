@@ -71,6 +71,7 @@ class Child {
   }
 
   bool started() const { return pid_ > 0; }
+  pid_t pid() const { return pid_; }
   // The file the process's stderr goes to (read while it runs: its progress lines).
   const fs::path& err_file() const { return err_; }
 

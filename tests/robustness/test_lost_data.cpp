@@ -618,6 +618,45 @@ TEST_CASE("report killed outright puts no report in place after it is gone",
   CHECK_FALSE(fs::exists(out / "figures"));
 }
 
+TEST_CASE("report whose Python is killed outright fails with exit 3 and leaves no temporary",
+          "[robustness][lost-data]") {
+  if (!shpb_test::have_matplotlib())
+    SHPB_SKIP("python3 with matplotlib and numpy is not installed");
+  // The out-of-memory killer picks the largest process, the drawing Python: shpb said "internal
+  // error" (exit 4, a bug) and left the script's temporary folder in DIR, for which the next
+  // simulate -o DIR refused DIR (a file shpb did not write). The run failed (exit 3, one line
+  // naming the signal), its temporaries are removed and DIR stays shpb's to replace.
+  ScratchFolder scratch("lost");
+  const fs::path out = scratch.path() / "out";
+  const std::vector<std::string> simulate = simulated_result(scratch);
+  Child child({"report", out.string()}, scratch.path());
+  REQUIRE(child.started());
+  const auto drawing = [&] {  // the script's temporary folder exists
+    for (const auto& e : fs::directory_iterator(out))
+      if (e.path().filename().string().rfind(".report-", 0) == 0) return true;
+    return false;
+  };
+  const auto start = std::chrono::steady_clock::now();
+  while (!drawing() && std::chrono::steady_clock::now() - start < std::chrono::seconds(60))
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  REQUIRE(drawing());
+  const fs::path children = fs::path("/proc") / std::to_string(child.pid()) / "task" /
+                            std::to_string(child.pid()) / "children";
+  pid_t python = 0;
+  std::ifstream(children) >> python;
+  REQUIRE(python > 0);
+  ::kill(python, SIGKILL);
+  const Outcome o = child.wait(kLimit_s);
+  INFO(o.err);
+  CHECK(o.code == 3);
+  CHECK(std::count(o.err.begin(), o.err.end(), '\n') == 1);
+  CHECK(o.err.find("killed by signal 9") != std::string::npos);
+  CHECK_FALSE(drawing());
+  const Outcome again = run(simulate, scratch.path(), kLimit_s);
+  INFO(again.err);
+  CHECK(again.code == 0);
+}
+
 TEST_CASE("report removes the temporaries of a report that was killed, and only those",
           "[robustness][lost-data]") {
   if (!shpb_test::have_matplotlib()) {
