@@ -9,8 +9,8 @@
 # refine 2 instead (all methods, minutes on 2 cores). Then submit.sh's own contract: a second
 # submission into a plan keeps the first's logs; a logs folder of the user's is refused, nothing
 # queued; an OUT_DIR that is a link to nothing is not created; stopped by SIGTERM while it queues
-# the merge, it leaves no job to run. local-slurm.sh start stopped by SIGTERM once slurmctld runs
-# stops the daemons it started and removes its folder. Exit 77: skipped (not root, no packages).
+# the merge, it leaves no job to run. local-slurm.sh start stopped by SIGTERM once its daemons run
+# stops them and removes its folder. Exit 77: skipped (not root, no packages).
 set -euo pipefail
 shpb=$(realpath "$1")
 root=$(cd "$(dirname "$0")/../.." && pwd)
@@ -140,10 +140,18 @@ for _ in $(seq 600); do [ -e "$tmp/merge-queued" ] && break; sleep 0.05; done
 for _ in $(seq 300); do [ -z "$(squeue -h)" ] && break; sleep 0.1; done
 [ -z "$(squeue -h)" ] || fail "jobs left by a stopped submit.sh: $(squeue)"
 [ -z "$(ls -A "$tmp/plan3/parts")" ] || fail "a stopped submission ran shards: $(ls "$tmp/plan3/parts")"
-# A second cluster's start stopped by SIGTERM once slurmctld is up: no daemon of it left running.
-bash "$root/tools/cluster/local-slurm.sh" start "$tmp/cluster2" >/dev/null &
+# A second cluster's start stopped by SIGTERM once its three daemons run, while it waits for the
+# node (a sinfo that never says idle, here): no daemon of it left running, no folder.
+cat >"$tmp/bin/sinfo" <<SINFO
+#!/usr/bin/env bash
+touch "$tmp/waiting-for-node"
+echo down
+SINFO
+chmod +x "$tmp/bin/sinfo"
+PATH=$tmp/bin:$PATH bash "$root/tools/cluster/local-slurm.sh" start "$tmp/cluster2" >/dev/null &
 starting=$!
-for _ in $(seq 600); do [ -s "$tmp/cluster2/slurmctld.pid" ] && break; sleep 0.05; done
+for _ in $(seq 600); do [ -e "$tmp/waiting-for-node" ] && break; sleep 0.05; done
+[ -e "$tmp/waiting-for-node" ] || fail "the second cluster did not start its daemons"
 kill -TERM $starting
 set +e
 wait $starting
