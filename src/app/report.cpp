@@ -35,11 +35,24 @@ int run_report(const ReportArgs& args) {
   // The script stops if shpb is killed outright; it knows shpb by its pid (tools/report.py).
   ::setenv("SHPB_PARENT_PID", std::to_string(::getpid()).c_str(), 1);
   const int rc = run_program({*python, script->string(), args.folder.string()}, false);
+  // Killed outright (the out-of-memory killer, kill -9; 128 + its signal), the script left its
+  // temporaries in DIR, where they kept shpb from replacing DIR until the next report: the script
+  // removes those of processes that are gone (docs/outputs.md, Conventions).
+  const bool killed = rc > 128 && rc != 130;
+  if (killed)
+    run_program({*python, script->string(), "--remove-temporaries", args.folder.string()}, true);
   // 130: the script stopped on SIGINT/SIGTERM and left the previous report; a script that was
   // signalled but had already put its report in place finished (0).
   if (rc == 130 || (rc != 0 && interrupted())) throw Interrupted();
   // 2 bad input, 3 not written, 4 a bug of the script: it printed its own `error:` line.
   if (rc == 0 || rc == 2 || rc == 3 || rc == 4) return rc;
+  if (killed) {
+    std::fprintf(stderr,
+                 "error: %s: the report script was killed by signal %d (out of memory?); the "
+                 "report was not finished: run shpb report again\n",
+                 args.folder.c_str(), rc - 128);
+    return 3;
+  }
   std::fprintf(stderr, "error: internal: %s %s exited with status %d\n", python->c_str(),
                script->c_str(), rc);
   return 4;

@@ -51,6 +51,7 @@ int run_program(const std::vector<std::string>& argv, bool quiet) {
     }
     std::this_thread::sleep_for(kPoll);
   }
+  if (WIFSIGNALED(status)) return 128 + WTERMSIG(status);
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 

@@ -8,9 +8,10 @@
 
 namespace shpb {
 
-// Runs `argv` (argv[0] looked up on PATH) and returns its exit status, or -1 if it could not be
-// started or died from a signal. With `quiet`, its stdout and stderr go to /dev/null. SIGINT or
-// SIGTERM arriving meanwhile is passed on to it (interrupted() then tells the caller).
+// Runs `argv` (argv[0] looked up on PATH) and returns its exit status, 128 + N if it died from
+// signal N (as a shell says), or -1 if it could not be started. With `quiet`, its stdout and
+// stderr go to /dev/null. SIGINT or SIGTERM arriving meanwhile is passed on to it (interrupted()
+// then tells the caller).
 int run_program(const std::vector<std::string>& argv, bool quiet);
 
 // A file installed under share/shpb/, found from the executable alone, so an installed shpb works

@@ -198,6 +198,45 @@ void remove_stale_temporaries(const fs::path& final_path) {
   }
 }
 
+// A field of /proc/self/mountinfo as written: space, tab, newline and backslash as "\ooo".
+std::string mountinfo_field(const std::string& field) {
+  std::string text;
+  for (std::size_t i = 0; i < field.size(); ++i) {
+    if (field[i] == '\\' && i + 3 < field.size() && all_digits(field.substr(i + 1, 3), 3)) {
+      text += static_cast<char>(std::stoi(field.substr(i + 1, 3), nullptr, 8));
+      i += 3;
+    } else {
+      text += field[i];
+    }
+  }
+  return text;
+}
+
+// An existing output is renamed over at the end, which a mount point refuses ("Device or resource
+// busy", after all the work): true if `output` is one. /proc/self/mountinfo lists every mount
+// point (its fifth field), a bind mount of a folder of the same device too; without it, a mount
+// point is on another device than its parent.
+bool is_mount_point(const fs::path& output) {
+  std::error_code ec;
+  const fs::path real = fs::canonical(output, ec);
+  if (ec) return false;
+  if (std::ifstream mounts("/proc/self/mountinfo"); mounts) {
+    for (std::string line; std::getline(mounts, line);) {
+      std::istringstream fields(line);
+      std::string id, parent, device, root, mount_point;
+      if (fields >> id >> parent >> device >> root >> mount_point &&
+          fs::path(mountinfo_field(mount_point)) == real)
+        return true;
+    }
+    return false;
+  }
+  struct stat output_stat {
+  }, parent_stat{};
+  return ::stat(real.c_str(), &output_stat) == 0 &&
+         ::stat(real.parent_path().c_str(), &parent_stat) == 0 &&
+         output_stat.st_dev != parent_stat.st_dev;
+}
+
 // `inner` is `outer` or lies inside it (both canonical).
 bool contains(const fs::path& outer, const fs::path& inner) {
   auto o = outer.begin(), i = inner.begin();
@@ -315,6 +354,13 @@ std::string final_names(const std::string& text) {
 void install_interrupt_handlers() {
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
+  // Started with them blocked (a parent's thread that blocks them, as runtimes do), SIGTERM from
+  // scancel or timeout would never arrive: taken from now on, one already pending at once.
+  sigset_t signals;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGINT);
+  sigaddset(&signals, SIGTERM);
+  ::sigprocmask(SIG_UNBLOCK, &signals, nullptr);
 }
 bool interrupted() { return g_interrupted.load(std::memory_order_relaxed); }
 void throw_if_interrupted() {
@@ -347,13 +393,7 @@ OutputFolder::OutputFolder(fs::path final_dir, std::string command,
   }
   if (fs::exists(final_, ec)) {
     refuse_to_replace(final_);
-    // The result is renamed into place beside DIR: a mount point cannot be renamed (the run
-    // failed after all its work, "Device or resource busy").
-    struct stat dir_stat {
-    }, parent_stat{};
-    if (::stat(final_.c_str(), &dir_stat) == 0 &&
-        ::stat(final_.parent_path().c_str(), &parent_stat) == 0 &&
-        dir_stat.st_dev != parent_stat.st_dev)
+    if (is_mount_point(final_))
       throw input_error(final_.string(), "", "",
                         "is a mount point, which cannot be replaced: write into a folder inside "
                         "it");
@@ -443,6 +483,9 @@ OutputFile::OutputFile(fs::path final_file, const std::string& header) {
     throw input_error(final_.string(), "", "", "is a folder: a file name was expected");
   if (fs::exists(final_, ec) && !fs::is_regular_file(final_, ec))
     throw input_error(final_.string(), "", "", "exists and is not a regular file");
+  if (fs::exists(final_, ec) && is_mount_point(final_))
+    throw input_error(final_.string(), "", "",
+                      "is a mount point, which cannot be replaced: choose another file");
   if (!header.empty() && fs::exists(final_, ec) && fs::file_size(final_, ec) > 0) {
     std::ifstream in(final_, std::ios::binary);
     std::string first(header.size(), '\0');

@@ -82,9 +82,9 @@ class OutputFile {
 // output it stands for: "DIR/field.csv: cannot be written", not ".DIR.tmp-…/field.csv".
 std::string final_names(const std::string& text);
 
-// Interruption (SIGINT, SIGTERM): install once in main; long loops poll interrupted() and throw
-// shpb::Interrupted so that OutputFolder's destructor cleans up. A second signal ends the
-// process at once.
+// Interruption (SIGINT, SIGTERM): installed once, before main (main.cpp), and unblocked; long
+// loops poll interrupted() and throw shpb::Interrupted so that OutputFolder's destructor cleans
+// up. A second signal ends the process at once.
 void install_interrupt_handlers();
 bool interrupted();
 // Throws Interrupted if a signal arrived: the one-line poll of a loop.

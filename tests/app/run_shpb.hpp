@@ -2,6 +2,7 @@
 // Runs the real `shpb` executable (shpb_exe()) as a user would, without a shell in between, and
 // returns its exit code with stdout and stderr. spawn_shpb is the one way every test starts it.
 #include <fcntl.h>
+#include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -52,9 +53,10 @@ extern "C" void __asan_init() __attribute__((weak));
 inline bool running_sanitized() { return &__asan_init != nullptr; }
 
 // Starts `shpb args...` with stdout and stderr written to the files `out` and `err` (truncated;
-// "/dev/null" discards). Returns the child's pid, or -1 if it could not be started.
+// "/dev/null" discards), and the signals of `blocked` blocked, if given, from before its first
+// instruction. Returns the child's pid, or -1 if it could not be started.
 inline pid_t spawn_shpb(const std::vector<std::string>& args, const std::filesystem::path& out,
-                        const std::filesystem::path& err) {
+                        const std::filesystem::path& err, const sigset_t* blocked = nullptr) {
   std::vector<std::string> argv_text = {shpb_exe()};
   argv_text.insert(argv_text.end(), args.begin(), args.end());
   std::vector<char*> argv;
@@ -64,8 +66,15 @@ inline pid_t spawn_shpb(const std::vector<std::string>& args, const std::filesys
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  if (blocked) {
+    posix_spawnattr_setsigmask(&attributes, blocked);
+    posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGMASK);
+  }
   pid_t pid = 0;
-  if (posix_spawn(&pid, shpb_exe(), &actions, nullptr, argv.data(), environ) != 0) pid = -1;
+  if (posix_spawn(&pid, shpb_exe(), &actions, &attributes, argv.data(), environ) != 0) pid = -1;
+  posix_spawnattr_destroy(&attributes);
   posix_spawn_file_actions_destroy(&actions);
   return pid;
 }

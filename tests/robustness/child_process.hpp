@@ -53,10 +53,12 @@ inline std::string read_all(const fs::path& file) {
 
 class Child {
  public:
-  // Starts `shpb args...`; stdout and stderr go to files in `scratch`.
-  Child(const std::vector<std::string>& args, const fs::path& scratch)
+  // Starts `shpb args...`; stdout and stderr go to files in `scratch`; the signals of `blocked`
+  // blocked from its first instruction, if given.
+  Child(const std::vector<std::string>& args, const fs::path& scratch,
+        const sigset_t* blocked = nullptr)
       : out_(scratch / ".child.out"), err_(scratch / ".child.err") {
-    pid_ = shpb_test::spawn_shpb(args, out_, err_);
+    pid_ = shpb_test::spawn_shpb(args, out_, err_, blocked);
     start_ = std::chrono::steady_clock::now();
   }
   Child(const Child&) = delete;
@@ -69,6 +71,7 @@ class Child {
   }
 
   bool started() const { return pid_ > 0; }
+  pid_t pid() const { return pid_; }
   // The file the process's stderr goes to (read while it runs: its progress lines).
   const fs::path& err_file() const { return err_; }
 

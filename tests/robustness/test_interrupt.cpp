@@ -93,4 +93,48 @@ TEST_CASE("An interrupted campaign shard leaves nothing, not even the parts fold
   CHECK_FALSE(fs::exists(out));
 }
 
+TEST_CASE("A signal before shpb's own code runs ends every command with exit 130, nothing written",
+          "[robustness][interrupt]") {
+  // A signal in the first milliseconds (while the options were parsed) killed shpb outright, or,
+  // pending while its parent kept it blocked across the exec, was never taken: the run went on
+  // and wrote its result. The handlers are installed before anything of shpb runs and unblock
+  // the two signals (main.cpp): the signal, pending from before the first instruction, must end
+  // each command with 130 (docs/commands.md, Exit codes), nothing written, no temporary left.
+  const int sig = GENERATE(SIGINT, SIGTERM);
+  const fs::path experiments = fs::path(SHPB_SOURCE_DIR) / "experiments";
+  const std::string classic = (experiments / "classic-al6061" / "scene.json").string();
+  const std::string copper = (experiments / "lanl-cu-ofe-273k" / "scene.json").string();
+  const std::string campaign = (experiments / "lanl-cu-ofe-273k" / "campaign.json").string();
+  const std::string planned = (experiments / "plan-al6061" / "scene.json").string();
+  ScratchFolder scratch("early_signal");
+  const std::string out = (scratch.path() / "out").string();
+  const std::vector<std::vector<std::string>> commands = {
+      {"simulate", classic, "-o", out},
+      {"process", copper, "-o", out},
+      {"compare", copper, "-o", out},
+      {"dispersion", "--poisson", "0.33", "-o", out},
+      {"study", classic, "-o", out, "--sweep", "stability", "--contact", "penalty"},
+      {"validate", classic},
+      {"report", out},
+      {"fit", campaign, "-o", out, "--max-iterations", "1"},
+      {"calibrate", classic, "-o", out},
+      {"plan", planned, "--rate", "1000", "-o", out}};
+  sigset_t blocked;
+  sigemptyset(&blocked);
+  sigaddset(&blocked, sig);
+  for (const auto& command : commands) {
+    INFO("signal " << sig << ", shpb " << command.front());
+    Child child(command, scratch.path(), &blocked);
+    REQUIRE(child.started());
+    child.signal(sig);
+    const Outcome o = child.wait(kHangLimit_s);
+    INFO(o.err);
+    CHECK(o.signal == 0);
+    CHECK(o.code == 130);
+    CHECK(o.out.empty());  // validate printed no set-up
+    CHECK_FALSE(fs::exists(out));
+    CHECK(litter(scratch.path()).empty());
+  }
+}
+
 }  // namespace tests_robustness_test_interrupt

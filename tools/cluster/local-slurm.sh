@@ -24,13 +24,21 @@ daemon_pid() {
   return 0
 }
 
+# The process has ended: gone, or a zombie its parent has not reaped yet (a container whose first
+# process reaps nothing keeps one for ever).
+ended() {
+  local state
+  state=$(ps -o stat= -p "$1" 2>/dev/null) || return 0
+  [[ $state == Z* ]]
+}
+
 # SIGTERM to the daemons' pids, then waits up to 10 s for them to end (SIGKILL after that).
 stop_pids() {
   local pid
   [ $# -gt 0 ] || return 0
   kill -TERM "$@" 2>/dev/null || true
   for _ in $(seq 200); do
-    for pid in "$@"; do [ -d "/proc/$pid" ] && break; pid=; done
+    for pid in "$@"; do ended "$pid" || break; pid=; done
     [ -z "$pid" ] && return 0
     sleep 0.05
   done
@@ -51,6 +59,9 @@ start() {
   [ ! -e "$dir" ] || [ -z "$(ls -A "$dir")" ] || die "$dir exists and is not empty"
   mkdir -p "$dir"/{state,spool,log}
   dir=$(cd "$dir" && pwd)
+  # Stopped before the node is up (Ctrl-C, SIGTERM), it stops the daemons it started so far.
+  trap 'abort_start "$dir" 130' INT
+  trap 'abort_start "$dir" 143' TERM
   local host ctld_port node_port
   host=$(hostname -s)
   ctld_port=$(free_port)
@@ -94,6 +105,7 @@ CONF
   slurmd -f "$dir/slurm.conf" || { stop "$dir"; die "slurmd did not start: $(tail -3 "$dir/log/slurmd.log" 2>/dev/null)"; }
   for _ in $(seq 300); do
     if [ "$(SLURM_CONF=$dir/slurm.conf sinfo -h -o %T 2>/dev/null)" = idle ]; then
+      trap - INT TERM
       echo "export SLURM_CONF=$dir/slurm.conf"
       return 0
     fi
@@ -103,6 +115,11 @@ CONF
   why=$(tail -3 "$dir/log/slurmctld.log" "$dir/log/slurmd.log" 2>/dev/null || true)
   stop "$dir"
   die "the node did not become idle within 30 s: $why"
+}
+
+abort_start() {
+  if [ -f "$1/slurm.conf" ]; then stop "$1"; else rm -rf "$1"; fi
+  exit "$2"
 }
 
 stop() {

@@ -22,7 +22,7 @@ case $kind in
     ;;
   process)
     [ $# -ge 2 ] || usage
-    campaign=$(realpath "$1") dir=$(realpath -m "$2"); shift 2
+    campaign=$(realpath "$1") dir=$(realpath -m -s "$2"); shift 2  # a link stays one (submit.sh)
     shard=(process --campaign "$campaign" -o "$dir")
     merge=(process --campaign "$campaign" -o "$dir" --merge)
     ;;

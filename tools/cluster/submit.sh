@@ -9,6 +9,12 @@
 # sbatch options (e.g. --partition=short --time=1:00:00 --cpus-per-task=4) go to both jobs.
 # Prints "<array job id> <merge job id>". SHPB (default: shpb on PATH) must be the same build on
 # every node, and the folders must be on a file system every node sees at the same path.
+# The jobs' logs go to PLAN_DIR/logs (OUT_DIR.logs), named by job id (shard-<array>_<K>.out,
+# merge-<job>.out), so a second submission keeps the first's; a logs folder is used only if it is
+# new, empty or one this script made (its marker .shpb-logs), never one holding the user's files.
+# The array is submitted held and released once the merge is queued; stopped by SIGINT or SIGTERM
+# before that, the script cancels what it submitted (the merge then has no array to wait for, and
+# Slurm cancels it): both run or neither. Given --hold (-H), it leaves both held for the user.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 usage() { echo "usage: $0 N study PLAN_DIR [sbatch options] | N process CAMPAIGN OUT_DIR [sbatch options]" >&2; exit 2; }
@@ -26,19 +32,40 @@ case $kind in
     ;;
   process)
     [ $# -ge 2 ] || usage
-    campaign=$(realpath "$1") dir=$(realpath -m "$2"); shift 2
+    # An OUT_DIR that is a symbolic link stays one: shpb writes through it or refuses a link to
+    # nothing (docs/outputs.md), which resolving it here would create.
+    campaign=$(realpath "$1") dir=$(realpath -m -s "$2"); shift 2
     logs=$dir.logs
     shard_args=(process --campaign "$campaign" -o "$dir")
     merge_args=(process --campaign "$campaign" -o "$dir" --merge)
     ;;
   *) usage ;;
 esac
+marker=.shpb-logs
+if [ -e "$logs" ] && [ -n "$(ls -A "$logs")" ] && [ ! -f "$logs/$marker" ]; then
+  echo "error: $logs: holds files this script did not write (no $marker marker): move them away or choose another output folder" >&2
+  exit 2
+fi
 mkdir -p "$logs"
+echo "logs of shpb's cluster jobs (tools/cluster/submit.sh)" >"$logs/$marker"
 export SHPB=${SHPB:-$(command -v shpb || echo shpb)}
-array=$(sbatch --parsable --array="0-$((n - 1))" --output="$logs/shard-%a.out" "$@" \
+submitted=()
+cancel() {
+  [ ${#submitted[@]} -eq 0 ] || scancel "${submitted[@]}" 2>/dev/null || true
+  exit "$1"
+}
+trap 'cancel 130' INT
+trap 'cancel 143' TERM
+held_by_user=0
+for option in "$@"; do [[ $option == --hold || $option == -H ]] && held_by_user=1; done
+array=$(sbatch --parsable --hold --array="0-$((n - 1))" --output="$logs/shard-%A_%a.out" "$@" \
   "$here/shard.sbatch" "$n" "${shard_args[@]}")
 array=${array%%;*}
+submitted+=("$array")
 merge=$(sbatch --parsable --dependency="afterok:$array" --kill-on-invalid-dep=yes \
-  --output="$logs/merge.out" "$@" "$here/merge.sbatch" "${merge_args[@]}")
+  --output="$logs/merge-%j.out" "$@" "$here/merge.sbatch" "${merge_args[@]}")
 merge=${merge%%;*}
+submitted+=("$merge")
+[ $held_by_user = 1 ] || scontrol release "$array"
+trap - INT TERM
 echo "$array $merge"

@@ -228,6 +228,11 @@ def main(argv: list[str]) -> int:
     # no matplotlib or numpy chatter on stderr, where only the one result or error line goes.
     logging.getLogger("matplotlib").setLevel(logging.ERROR)
     warnings.simplefilter("ignore", RuntimeWarning)
+    # shpb runs this after the script was killed outright (src/app/report.cpp): its temporaries
+    # would keep DIR from being replaced.
+    if len(argv) == 3 and argv[1] == "--remove-temporaries":
+        remove_stale_temporaries(argv[2])
+        return 0
     if len(argv) != 2 or argv[1] in ("-h", "--help"):
         print(USAGE, file=sys.stderr if len(argv) != 2 else sys.stdout)
         return 0 if len(argv) == 2 else 2
