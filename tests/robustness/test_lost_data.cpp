@@ -609,7 +609,18 @@ TEST_CASE("report killed outright puts no report in place after it is gone",
   fs::remove(out / "report.html");
   Child child(args, scratch.path());
   REQUIRE(child.wait_until_interruptible(kLimit_s));
-  std::this_thread::sleep_for(std::chrono::duration<double>(0.5 * whole_s));
+  // Killed while the script draws into its temporary folder: a kill at a fixed share of a timed
+  // run came after the whole report when the timed run was the slower one (a loaded machine).
+  auto drawing = [&] {
+    for (const auto& e : fs::directory_iterator(out))
+      if (e.path().filename().string().rfind(".report-", 0) == 0) return true;
+    return false;
+  };
+  const auto start = std::chrono::steady_clock::now();
+  while (!drawing() &&
+         std::chrono::steady_clock::now() - start < std::chrono::duration<double>(kLimit_s))
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  REQUIRE(drawing());
   child.signal(SIGKILL);
   CHECK(child.wait(kLimit_s).signal == SIGKILL);
   // Time for the script to have finished its report, had it gone on alone.
