@@ -2,6 +2,7 @@
 // Runs the real `shpb` executable (shpb_exe()) with a time limit, or starts it and lets the test
 // signal it: a robustness test must see a crash (killed by a signal) or a hang (time limit) as a
 // result, not hang or die itself.
+#include <fcntl.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -59,6 +60,32 @@ class Child {
         const sigset_t* blocked = nullptr)
       : out_(scratch / ".child.out"), err_(scratch / ".child.err") {
     pid_ = shpb_test::spawn_shpb(args, out_, err_, blocked);
+    start_ = std::chrono::steady_clock::now();
+  }
+  // The same with `pending` raised (and blocked) in the process before it executes shpb: pending
+  // at shpb's first instruction, whatever the machine's load (a signal sent after the start can
+  // come after shpb's own code has begun).
+  Child(const std::vector<std::string>& args, const fs::path& scratch, int pending)
+      : out_(scratch / ".child.out"), err_(scratch / ".child.err") {
+    std::vector<std::string> text = {shpb_test::shpb_exe()};
+    text.insert(text.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (auto& a : text) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    sigset_t blocked;
+    sigemptyset(&blocked);
+    sigaddset(&blocked, pending);
+    const std::string out = out_.string(), err = err_.string();
+    pid_ = ::fork();  // after it, only async-signal-safe calls until the exec
+    if (pid_ == 0) {
+      const int o = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      const int e = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      if (o < 0 || e < 0 || ::dup2(o, 1) < 0 || ::dup2(e, 2) < 0) ::_exit(127);
+      ::sigprocmask(SIG_SETMASK, &blocked, nullptr);
+      ::kill(::getpid(), pending);
+      ::execv(argv[0], argv.data());
+      ::_exit(127);
+    }
     start_ = std::chrono::steady_clock::now();
   }
   Child(const Child&) = delete;

@@ -119,14 +119,10 @@ TEST_CASE("A signal before shpb's own code runs ends every command with exit 130
       {"fit", campaign, "-o", out, "--max-iterations", "1"},
       {"calibrate", classic, "-o", out},
       {"plan", planned, "--rate", "1000", "-o", out}};
-  sigset_t blocked;
-  sigemptyset(&blocked);
-  sigaddset(&blocked, sig);
   for (const auto& command : commands) {
     INFO("signal " << sig << ", shpb " << command.front());
-    Child child(command, scratch.path(), &blocked);
+    Child child(command, scratch.path(), sig);
     REQUIRE(child.started());
-    child.signal(sig);
     const Outcome o = child.wait(kHangLimit_s);
     INFO(o.err);
     CHECK(o.signal == 0);
