@@ -52,16 +52,25 @@ inline const char* shpb_exe() {
 extern "C" void __asan_init() __attribute__((weak));
 inline bool running_sanitized() { return &__asan_init != nullptr; }
 
+// `shpb args...` as an exec's argument vector: `text` holds the strings, `argv` points into them.
+struct ShpbArgv {
+  std::vector<std::string> text;
+  std::vector<char*> argv;
+  explicit ShpbArgv(const std::vector<std::string>& args) : text{shpb_exe()} {
+    text.insert(text.end(), args.begin(), args.end());
+    for (auto& a : text) argv.push_back(a.data());
+    argv.push_back(nullptr);
+  }
+  ShpbArgv(const ShpbArgv&) = delete;  // argv points into text
+  ShpbArgv& operator=(const ShpbArgv&) = delete;
+};
+
 // Starts `shpb args...` with stdout and stderr written to the files `out` and `err` (truncated;
 // "/dev/null" discards), and the signals of `blocked` blocked, if given, from before its first
 // instruction. Returns the child's pid, or -1 if it could not be started.
 inline pid_t spawn_shpb(const std::vector<std::string>& args, const std::filesystem::path& out,
                         const std::filesystem::path& err, const sigset_t* blocked = nullptr) {
-  std::vector<std::string> argv_text = {shpb_exe()};
-  argv_text.insert(argv_text.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& a : argv_text) argv.push_back(a.data());
-  argv.push_back(nullptr);
+  ShpbArgv command(args);
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
@@ -73,7 +82,8 @@ inline pid_t spawn_shpb(const std::vector<std::string>& args, const std::filesys
     posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGMASK);
   }
   pid_t pid = 0;
-  if (posix_spawn(&pid, shpb_exe(), &actions, &attributes, argv.data(), environ) != 0) pid = -1;
+  if (posix_spawn(&pid, shpb_exe(), &actions, &attributes, command.argv.data(), environ) != 0)
+    pid = -1;
   posix_spawnattr_destroy(&attributes);
   posix_spawn_file_actions_destroy(&actions);
   return pid;

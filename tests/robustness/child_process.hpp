@@ -67,11 +67,7 @@ class Child {
   // come after shpb's own code has begun).
   Child(const std::vector<std::string>& args, const fs::path& scratch, int pending)
       : out_(scratch / ".child.out"), err_(scratch / ".child.err") {
-    std::vector<std::string> text = {shpb_test::shpb_exe()};
-    text.insert(text.end(), args.begin(), args.end());
-    std::vector<char*> argv;
-    for (auto& a : text) argv.push_back(a.data());
-    argv.push_back(nullptr);
+    shpb_test::ShpbArgv command(args);
     sigset_t blocked;
     sigemptyset(&blocked);
     sigaddset(&blocked, pending);
@@ -83,7 +79,7 @@ class Child {
       if (o < 0 || e < 0 || ::dup2(o, 1) < 0 || ::dup2(e, 2) < 0) ::_exit(127);
       ::sigprocmask(SIG_SETMASK, &blocked, nullptr);
       ::kill(::getpid(), pending);
-      ::execv(argv[0], argv.data());
+      ::execv(command.argv[0], command.argv.data());
       ::_exit(127);
     }
     start_ = std::chrono::steady_clock::now();
