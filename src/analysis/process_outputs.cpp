@@ -293,8 +293,12 @@ nlohmann::json process_summary(const ProcessOutcome& o, const std::string& scene
       {"correction", std::string(enum_name(kCorrectionNames, options.dispersion.correction))},
       {"amplitude_factors", options.dispersion.amplitude_factors}};
   if (options.dispersion.correction) disp["cutoff_Hz"] = r.cutoff_Hz;
+  const bool law = o.setup.front_waveguide.viscoelastic() || o.setup.back_waveguide.viscoelastic();
   if (simulated)
-    disp["reason"] = "signals of the 1D bar model do not disperse: pure delay by distance/c0";
+    disp["reason"] = law ? "signals of the 1D bar model have no geometric dispersion: a "
+                           "viscoelastic bar's pulses move through its law alone, an elastic "
+                           "bar's by a pure delay distance/c0"
+                         : "signals of the 1D bar model do not disperse: pure delay by distance/c0";
   s["dispersion"] = disp;
   s["windows"] = {{"incident", r.incident_window},
                   {"reflected", r.reflected_window},
