@@ -254,9 +254,9 @@ TEST_CASE("calibrate's standard uncertainty of a channel gain holds over noise d
 
 // The records hold what the bars do: the pulse's dispersive tail trailing it at the source gauge
 // and the bars' response above the model's low-pass. Without the tail in the source, and with the
-// model low-passed but the record not, the fit bent the Poisson ratios to make up for them: the
-// transmitter's 0.0008 high on noise-free shots, twice the sd a pair of shots with 0.5 % noise
-// states (docs/methods.md §11; tools/check_calibrate_recovery.py).
+// model low-passed but the record not, the fit bent the Poisson ratios to make up for them: here
+// the incident bar's came out 0.0003 high, and the transmitter's 0.0008 in
+// tools/check_calibrate_recovery.py, over twice the sd 0.5 % noise states (docs/methods.md §11).
 TEST_CASE("calibrate's Poisson ratios are unbiased by the pulse's dispersive tail and the low-pass",
           "[fit][calibrate]") {
   // Records 30 times quieter than the first test's: ν's scatter (≈ 1e-5) is far below kBias.
