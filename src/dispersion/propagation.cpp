@@ -94,13 +94,13 @@ std::complex<double> Propagator::viscoelastic_transfer(double f, double distance
 }
 
 void Propagator::propagate(std::span<const double> signal, double dt, double distance_m,
-                           std::span<double> out) {
+                           std::span<double> out, double delay_s) {
   const std::size_t n = signal.size();
   if (out.size() != n) throw std::invalid_argument("propagate: output length differs");
   if (n == 0) return;
   const bool law = bar_.viscoelastic();
   if (!options_.dispersion && !law) {
-    delay_by_interpolation(signal, distance_m / (bar_.c0_m_s * dt), out);
+    delay_by_interpolation(signal, distance_m / (bar_.c0_m_s * dt) + delay_s / dt, out);
     return;
   }
   // Padding: room for the largest delay of any passed component (slowest phase velocity below
@@ -110,7 +110,8 @@ void Propagator::propagate(std::span<const double> signal, double dt, double dis
                      ? table_->phase_velocity(options_.cutoff_fa_over_c0) * bar_.c0_m_s
                      : bar_.c0_m_s;
   c_min *= bar_.slowest_speed_fraction();
-  const auto shift = static_cast<std::size_t>(std::ceil(std::abs(distance_m) / (c_min * dt)));
+  const auto shift = static_cast<std::size_t>(
+      std::ceil(std::abs(distance_m) / (c_min * dt) + std::abs(delay_s) / dt));
   // A law's transfer remembers as long as its slowest arm: its kernel's tail, wrapped around the
   // transform, falls to e^−kLawMemorySpans of the arm within this much padding.
   double memory_s = 0;
@@ -151,6 +152,7 @@ void Propagator::propagate(std::span<const double> signal, double dt, double dis
         break;
       }
       spec[j] *= viscoelastic_transfer(f, distance_m);
+      if (delay_s != 0) spec[j] *= std::polar(1.0, -2 * std::numbers::pi * f * delay_s);
     }
   }
   for (std::size_t j = 1; j < spec.size() && !law; ++j) {
@@ -165,7 +167,8 @@ void Propagator::propagate(std::span<const double> signal, double dt, double dis
     double amplitude = gain;
     if (options_.amplitude == AmplitudeFactor::kStrain) amplitude *= table_->m1(fa);
     if (options_.amplitude == AmplitudeFactor::kStress) amplitude *= table_->m1_m2(fa);
-    const double phase = -2 * std::numbers::pi * f * distance_m / c;
+    const double phase =
+        -2 * std::numbers::pi * f * distance_m / c - 2 * std::numbers::pi * f * delay_s;
     spec[j] *= std::polar(amplitude, phase);
   }
   fft.inverse();

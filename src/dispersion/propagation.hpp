@@ -73,9 +73,11 @@ class Propagator {
   Propagator(const BarWaveguide& bar, const PropagationOptions& options);
 
   // Propagates `signal` (uniform step dt) by `distance_m`; out has the signal's length and the
-  // same time grid. Reuses the FFT plan while the padded length does not change.
+  // same time grid. Reuses the FFT plan while the padded length does not change. `delay_s` delays
+  // the result further by that time, as a phase (exact for the band passed, where interpolating
+  // between samples low-passes: a channel's delay, docs/methods.md §11).
   void propagate(std::span<const double> signal, double dt, double distance_m,
-                 std::span<double> out);
+                 std::span<double> out, double delay_s = 0);
   std::vector<double> propagate(std::span<const double> signal, double dt, double distance_m);
 
   // Low-pass gain H at frequency f (1 below the roll-off, 0 above the cut-off).

@@ -10,9 +10,10 @@
 // gain, delayed by the channel's delay; the unknowns (each gauged bar's wave speed and Poisson
 // ratio, each gauge's position, each other channel's gain and delay relative to the source's) are
 // fitted by least squares (fit/least_squares.hpp, Ceres). Standard uncertainties come from the
-// Jacobian J at the optimum, s² (JᵀJ)⁻¹ with s² = Σr²/(N − P); directions of J whose singular value
-// (columns scaled to unit norm) is below kWeakDirection of the largest are what the shots cannot
-// determine: they are named and their parameters get no uncertainty.
+// Jacobian J at the optimum, s² (JᵀJ)⁻¹ with s² = Σr²/(N' − P), N' the low-passed residuals'
+// independent count (each record is low-passed as its model is); directions of J whose singular
+// value (columns scaled to unit norm) is below kWeakDirection of the largest are what the shots
+// cannot determine: they are named and their parameters get no uncertainty.
 #include <functional>
 #include <optional>
 #include <string>
