@@ -403,8 +403,16 @@ double struck_end_plateau(const KolskySetup& setup, std::span<const double> reco
   PropagationOptions o;
   o.dispersion = false;
   o.quantity = WaveQuantity::kVelocity;
+  o.law_cutoff_Hz = law_band_limit_Hz(setup.front_waveguide, distance);
   const auto moved = Propagator(setup.front_waveguide, o).propagate(padded, dt, -distance);
-  return plateau_level(moved, w.onset, w.end, w.sign);
+  // At the struck end the pulse is the striker's, shorter than the gauge's window, which holds the
+  // law's creep tail too: its level is taken over the pulse found there.
+  Baseline rest;
+  rest.noise = estimate_baseline(record).noise;
+  const std::span<const double> head(moved.data(), std::min(w.end, moved.size()));
+  const auto pulse = find_first_pulse(head, rest, w.onset);
+  return pulse ? plateau_level(moved, pulse->onset, pulse->end, w.sign)
+               : plateau_level(moved, w.onset, w.end, w.sign);
 }
 
 KolskySetup resolve_setup(const Scene& scene, const std::vector<std::string>& available) {
@@ -773,8 +781,28 @@ FacePulses pulses_at_faces(const PreparedSignal& inc, const PreparedSignal& tra,
     if (ds.cutoff_fa_c0) return *ds.cutoff_fa_c0;
     return ds.cutoff_Hz ? *ds.cutoff_Hz * w.radius_m / w.c0_m_s : kDefaultCutoffFaOverC0;
   };
+  // One band for every pulse of a viscoelastic bar: the law's inverse grows what lies above it by
+  // more than kMaxLawGain (methods.md §5.1).
+  po.law_cutoff_Hz = std::min(law_band_limit_Hz(k.front_waveguide, k.incident_distance_m),
+                              law_band_limit_Hz(k.back_waveguide, k.transmitted_distance_m));
+  if (std::isfinite(po.law_cutoff_Hz))
+    r.warnings.push_back(
+        fmt("the polymer bars' law attenuates a pulse between its gauge and the specimen by more "
+            "than %g x above %.3g kHz, and moving it back would grow it (and the noise) as much: "
+            "the pulses at the faces are low-passed there, their fronts smeared over about "
+            "%.3g us; gauges nearer the specimen keep more of the band",
+            kMaxLawGain, po.law_cutoff_Hz / 1e3, 1e6 / po.law_cutoff_Hz));
   auto table_reach = [&](const BarWaveguide& w) {
-    return cutoff_fa(w) / w.slowest_speed_fraction();
+    PropagationOptions o = po;
+    o.cutoff_fa_over_c0 = cutoff_fa(w);
+    return mode_reach(w, o);
+  };
+  // A cut-off read through a viscoelastic bar's law: f·a over its phase velocity, not over c0.
+  auto cutoff_text = [&](const BarWaveguide& w) {
+    std::string text = "f·a/c0 = " + format_double(cutoff_fa(w));
+    if (w.viscoelastic())
+      text += " (f·a over the law's phase velocity up to " + format_double(table_reach(w)) + ")";
+    return text;
   };
 
   // The mode is tabulated only for a correction, and only up to the highest cut-off asked of its
@@ -819,10 +847,10 @@ FacePulses pulses_at_faces(const PreparedSignal& inc, const PreparedSignal& tra,
     const std::string key =
         ds.cutoff_fa_c0 ? "measurement.dispersion.cutoff_fa_c0" : "measurement.dispersion.cutoff";
     if (table_reach(w) > tab.max_normalized_frequency())
-      throw input_error(options.scene_file, key, "f·a/c0 = " + format_double(o.cutoff_fa_over_c0),
+      throw input_error(options.scene_file, key, cutoff_text(w),
                         "cut-off beyond the tabulated mode");
     if (a != AmplitudeFactor::kNone && table_reach(w) >= tab.m1_pole_normalized_frequency())
-      throw input_error(options.scene_file, key, "f·a/c0 = " + format_double(o.cutoff_fa_over_c0),
+      throw input_error(options.scene_file, key, cutoff_text(w),
                         "with amplitude factors the cut-off must lie below the m1 pole (f·a/c0 = " +
                             std::to_string(tab.m1_pole_normalized_frequency()) + ")");
     Propagator p(tab, w, o, &plans);
