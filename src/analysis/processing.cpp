@@ -403,8 +403,16 @@ double struck_end_plateau(const KolskySetup& setup, std::span<const double> reco
   PropagationOptions o;
   o.dispersion = false;
   o.quantity = WaveQuantity::kVelocity;
+  o.law_cutoff_Hz = law_band_limit_Hz(setup.front_waveguide, distance);
   const auto moved = Propagator(setup.front_waveguide, o).propagate(padded, dt, -distance);
-  return plateau_level(moved, w.onset, w.end, w.sign);
+  // At the struck end the pulse is the striker's, shorter than the gauge's window, which holds the
+  // law's creep tail too: its level is taken over the pulse found there.
+  Baseline rest;
+  rest.noise = estimate_baseline(record).noise;
+  const std::span<const double> head(moved.data(), std::min(w.end, moved.size()));
+  const auto pulse = find_first_pulse(head, rest, w.onset);
+  return pulse ? plateau_level(moved, pulse->onset, pulse->end, w.sign)
+               : plateau_level(moved, w.onset, w.end, w.sign);
 }
 
 KolskySetup resolve_setup(const Scene& scene, const std::vector<std::string>& available) {
@@ -688,6 +696,28 @@ struct PulseTiming {
   double extra_r = 0, extra_t = 0;
   std::optional<double> reflected_onset_s, transmitted_onset_s;  // gauge clocks
 };
+// How much later than Σd/c0 a polymer bar's law puts the foot of the incident pulse moved along
+// `legs` (bar, distance): its front travels at c0 but attenuated by e^{−α∞ d} below the band an
+// onset is picked above, so the foot arrives later (methods.md §5.1); 0 through elastic bars.
+double law_foot_delay_s(const PreparedSignal& inc, std::size_t on, std::size_t end, double dt,
+                        std::initializer_list<std::pair<const BarWaveguide*, double>> legs) {
+  double travel = 0;
+  bool law = false;
+  for (const auto& [w, d] : legs) travel += d / w->c0_m_s, law = law || w->viscoelastic();
+  if (!law || end <= on) return 0;
+  const auto lead = static_cast<std::size_t>(std::ceil(travel / dt));
+  std::vector<double> x(end + lead + (end - on), 0.0);
+  std::copy(inc.x.begin(), inc.x.begin() + static_cast<std::ptrdiff_t>(end), x.begin());
+  PropagationOptions o;
+  o.dispersion = false;
+  for (const auto& [w, d] : legs) x = Propagator(*w, o).propagate(x, dt, d);
+  const auto peak = std::max_element(inc.x.begin() + static_cast<std::ptrdiff_t>(on),
+                                     inc.x.begin() + static_cast<std::ptrdiff_t>(end),
+                                     [](double a, double b) { return std::abs(a) < std::abs(b); });
+  const auto foot = find_onset(x, {0.0, inc.noise}, *peak < 0 ? -1.0 : 1.0, lead, x.size(), 0.0);
+  return foot ? (static_cast<double>(foot->onset) - static_cast<double>(on + lead)) * dt : 0.0;
+}
+
 PulseTiming time_the_pulses(const std::vector<double>& t, double dt, std::size_t on,
                             std::size_t end, const PreparedSignal& inc, const PreparedSignal& tra,
                             const KolskySetup& k, const ProcessingOptions& options,
@@ -697,8 +727,11 @@ PulseTiming time_the_pulses(const std::vector<double>& t, double dt, std::size_t
   const double d_i = k.incident_distance_m, d_t = k.transmitted_distance_m;
   p.duration = t[end - 1] - t[on];
   p.face_start = t[on] + d_i / c_front;
-  const double expected_r = t[on] + 2 * d_i / c_front;
-  const double expected_t = t[on] + d_i / c_front + k.specimen_transit_s + d_t / c_back;
+  const BarWaveguide *front = &k.front_waveguide, *back = &k.back_waveguide;
+  const double expected_r =
+      t[on] + 2 * d_i / c_front + law_foot_delay_s(inc, on, end, dt, {{front, 2 * d_i}});
+  const double expected_t = t[on] + d_i / c_front + k.specimen_transit_s + d_t / c_back +
+                            law_foot_delay_s(inc, on, end, dt, {{front, d_i}, {back, d_t}});
   // Alignment check: where the reflected and transmitted pulses really start against where
   // geometry puts them.
   std::size_t inc_half = on;  // first half-peak sample of the incident pulse: its front's rise
@@ -712,7 +745,7 @@ PulseTiming time_the_pulses(const std::vector<double>& t, double dt, std::size_t
   // twice the band the incident pulse ended within is one: a smaller one (a specimen matched to
   // the bar reflects next to nothing, docs/methods.md §6) cannot be told from the incident's tail.
   const double travel_r = 2 * d_i / c_front;
-  const bool apart = t[end - 1] < expected_r - alignment_tolerance_s(dt, travel_r);
+  const bool apart = t[end - 1] < t[on] + travel_r - alignment_tolerance_s(dt, travel_r);
   const auto i1 = index_at(t, expected_r + p.duration);
   const double min_peak = 2 * rest_band(inc.noise, incident_peak);
   if (const auto o = apart
@@ -752,8 +785,10 @@ PulseTiming time_the_pulses(const std::vector<double>& t, double dt, std::size_t
   r.shift_incident_s = d_i / c_front;
   r.shift_reflected_s = -d_i / c_front - p.extra_r;
   r.shift_transmitted_s = -d_t / c_back - p.extra_t;
-  r.reflected_window = {k.incident_gauge, expected_r + p.extra_r,
-                        expected_r + p.extra_r + p.duration, !options.windows.reflected};
+  // The stretch of record moved to the faces: its front's time at c0, plus the extra shift.
+  const double reflected_start = t[on] + travel_r + p.extra_r;
+  r.reflected_window = {k.incident_gauge, reflected_start, reflected_start + p.duration,
+                        !options.windows.reflected};
   return p;
 }
 
@@ -773,8 +808,28 @@ FacePulses pulses_at_faces(const PreparedSignal& inc, const PreparedSignal& tra,
     if (ds.cutoff_fa_c0) return *ds.cutoff_fa_c0;
     return ds.cutoff_Hz ? *ds.cutoff_Hz * w.radius_m / w.c0_m_s : kDefaultCutoffFaOverC0;
   };
+  // One band for every pulse of a viscoelastic bar: the law's inverse grows what lies above it by
+  // more than kMaxLawGain (methods.md §5.1).
+  po.law_cutoff_Hz = std::min(law_band_limit_Hz(k.front_waveguide, k.incident_distance_m),
+                              law_band_limit_Hz(k.back_waveguide, k.transmitted_distance_m));
+  if (std::isfinite(po.law_cutoff_Hz))
+    r.warnings.push_back(
+        fmt("the polymer bars' law attenuates a pulse between its gauge and the specimen by more "
+            "than %g x above %.3g kHz, and moving it back would grow it (and the noise) as much: "
+            "the pulses at the faces are low-passed there, their fronts smeared over about "
+            "%.3g us; gauges nearer the specimen keep more of the band",
+            kMaxLawGain, po.law_cutoff_Hz / 1e3, 1e6 / po.law_cutoff_Hz));
   auto table_reach = [&](const BarWaveguide& w) {
-    return cutoff_fa(w) / w.slowest_speed_fraction();
+    PropagationOptions o = po;
+    o.cutoff_fa_over_c0 = cutoff_fa(w);
+    return mode_reach(w, o);
+  };
+  // A cut-off read through a viscoelastic bar's law: f·a over its phase velocity, not over c0.
+  auto cutoff_text = [&](const BarWaveguide& w) {
+    std::string text = "f·a/c0 = " + format_double(cutoff_fa(w));
+    if (w.viscoelastic())
+      text += " (f·a over the law's phase velocity up to " + format_double(table_reach(w)) + ")";
+    return text;
   };
 
   // The mode is tabulated only for a correction, and only up to the highest cut-off asked of its
@@ -819,10 +874,10 @@ FacePulses pulses_at_faces(const PreparedSignal& inc, const PreparedSignal& tra,
     const std::string key =
         ds.cutoff_fa_c0 ? "measurement.dispersion.cutoff_fa_c0" : "measurement.dispersion.cutoff";
     if (table_reach(w) > tab.max_normalized_frequency())
-      throw input_error(options.scene_file, key, "f·a/c0 = " + format_double(o.cutoff_fa_over_c0),
+      throw input_error(options.scene_file, key, cutoff_text(w),
                         "cut-off beyond the tabulated mode");
     if (a != AmplitudeFactor::kNone && table_reach(w) >= tab.m1_pole_normalized_frequency())
-      throw input_error(options.scene_file, key, "f·a/c0 = " + format_double(o.cutoff_fa_over_c0),
+      throw input_error(options.scene_file, key, cutoff_text(w),
                         "with amplitude factors the cut-off must lie below the m1 pole (f·a/c0 = " +
                             std::to_string(tab.m1_pole_normalized_frequency()) + ")");
     Propagator p(tab, w, o, &plans);

@@ -131,7 +131,7 @@ void add_bar_inputs(InputList& in, const BarUncertainty& b, const BarSpec& bar) 
     in.add(name + "youngs_modulus", bar.material.youngs_modulus_Pa,
            absolute(*b.youngs_modulus, bar.material.youngs_modulus_Pa), Dimension::kPressure,
            b.youngs_modulus->path, true,
-           [i](double x, DrawState& d) { d.scene.bars[i].material.youngs_modulus_Pa = x; });
+           [i](double x, DrawState& d) { set_instantaneous_modulus(d.scene.bars[i].material, x); });
   if (b.density)
     in.add(name + "density", bar.material.density_kg_m3,
            absolute(*b.density, bar.material.density_kg_m3), Dimension::kDensity, b.density->path,
@@ -146,7 +146,7 @@ void add_bar_inputs(InputList& in, const BarUncertainty& b, const BarSpec& bar) 
            b.wave_speed->path, true, [i, keep_density](double x, DrawState& d) {
              MaterialSpec& mat = d.scene.bars[i].material;
              if (keep_density)
-               mat.youngs_modulus_Pa = mat.density_kg_m3 * x * x;
+               set_instantaneous_modulus(mat, mat.density_kg_m3 * x * x);
              else
                mat.density_kg_m3 = mat.youngs_modulus_Pa / (x * x);
            });

@@ -20,6 +20,18 @@ constexpr double kTaperPeriods = 4;
 // padding by 7 τ would cost seconds per move of a 1 s arm (docs/methods.md §5.1).
 constexpr double kLawMemorySpans = 7;
 constexpr double kLawMemoryRecords = 8;
+// The frequencies up to a cut-off at which a law's mode reach is bounded: its phase velocity rises
+// with frequency (a completely monotone relaxation), so each interval's f·a over the phase velocity
+// is at most its upper frequency's f·a over its lower frequency's phase velocity.
+constexpr int kReachIntervals = 256;
+
+// 1 below `start`, 0 from `end`, a raised cosine between.
+double raised_cosine(double x, double start, double end) {
+  if (x <= start) return 1.0;
+  if (x >= end) return 0.0;
+  const double s = (x - start) / (end - start);
+  return 0.5 * (1 + std::cos(std::numbers::pi * s));
+}
 
 }  // namespace
 
@@ -36,13 +48,60 @@ double BarWaveguide::slowest_speed_fraction() const {
   return viscoelastic() ? std::sqrt(long_term_fraction) : 1.0;
 }
 
+double BarWaveguide::mode_reach(double cutoff_fa_over_c0) const {
+  if (!viscoelastic()) return cutoff_fa_over_c0;
+  // c0/c_phase at f·a/c0 = x: Re(1/√(E*/E0)).
+  auto slowness = [&](double x) {
+    return (1.0 / std::sqrt(relative_modulus(2 * std::numbers::pi * x * c0_m_s / radius_m))).real();
+  };
+  double reach = 0;
+  for (int j = 0; j < kReachIntervals; ++j) {
+    const double lo = cutoff_fa_over_c0 * j / kReachIntervals;
+    reach = std::max(reach, cutoff_fa_over_c0 * (j + 1) / kReachIntervals * slowness(lo));
+  }
+  return reach;
+}
+
+double BarWaveguide::attenuation_per_m(double omega) const {
+  if (!viscoelastic()) return 0;
+  return -omega * (1.0 / (c0_m_s * std::sqrt(relative_modulus(omega)))).imag();
+}
+
+double law_band_limit_Hz(const BarWaveguide& bar, double distance_m) {
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  if (!bar.viscoelastic() || distance_m == 0) return kInfinity;
+  // The attenuation rises with frequency to α∞ = Σ(E_k/τ_k)/(2 E0 c0), reached well above the
+  // fastest arm's 1/τ: a growth that stays within the limit there never passes it.
+  const double exponent = std::log(kMaxLawGain) / std::abs(distance_m);
+  double tau_min = kInfinity;
+  for (const RelaxationArm& a : bar.arms) tau_min = std::min(tau_min, a.relaxation_time_s);
+  auto beyond = [&](double f) {
+    return bar.attenuation_per_m(2 * std::numbers::pi * f) > exponent;
+  };
+  constexpr double kFarAboveFastestArm = 1e6;  // ωτ: α within 10⁻¹² of α∞
+  double hi = 1 / (2 * std::numbers::pi * tau_min);
+  while (!beyond(hi)) {
+    if (hi * 2 * std::numbers::pi * tau_min > kFarAboveFastestArm) return kInfinity;
+    hi *= 2;
+  }
+  double lo = 0;
+  for (int i = 0; i < 100 && hi - lo > 1e-9 * hi; ++i)
+    (beyond(0.5 * (lo + hi)) ? hi : lo) = 0.5 * (lo + hi);
+  return hi;
+}
+
+double mode_reach(const BarWaveguide& bar, const PropagationOptions& options) {
+  return bar.mode_reach(
+      std::min(options.cutoff_fa_over_c0, options.law_cutoff_Hz * bar.radius_m / bar.c0_m_s));
+}
+
 Propagator::Propagator(const DispersionTable& table, const BarWaveguide& bar,
                        const PropagationOptions& options, FftPlans* plans)
     : table_(&table), bar_(bar), options_(options), shared_plans_(plans) {
   if (!(bar.radius_m > 0) || !(bar.c0_m_s > 0))
     throw std::invalid_argument("Propagator: bar radius and c0 must be > 0");
   const double pole = table.m1_pole_normalized_frequency();
-  const double reach = options_.cutoff_fa_over_c0 / bar.slowest_speed_fraction();
+  const double reach = mode_reach(bar, options_);
   if (options_.dispersion && options_.amplitude != AmplitudeFactor::kNone && pole > 0 &&
       reach >= pole)
     throw std::invalid_argument("Propagator: the cut-off must lie below the pole of m1");
@@ -61,11 +120,12 @@ Propagator::Propagator(const BarWaveguide& bar, const PropagationOptions& option
 double Propagator::lowpass_gain(double f) const {
   const double fa = f * bar_.radius_m / bar_.c0_m_s;
   const double cut = options_.cutoff_fa_over_c0;
-  const double start = (1 - options_.rolloff_fraction) * cut;
-  if (fa <= start) return 1.0;
-  if (fa >= cut) return 0.0;
-  const double s = (fa - start) / (cut - start);
-  return 0.5 * (1 + std::cos(std::numbers::pi * s));
+  return raised_cosine(fa, (1 - options_.rolloff_fraction) * cut, cut);
+}
+
+double Propagator::law_gain(double f) const {
+  const double cut = options_.law_cutoff_Hz;
+  return raised_cosine(f, (1 - options_.rolloff_fraction) * cut, cut);
 }
 
 // A harmonic wave e^{i(ωt − kz)} in a 1D bar of complex modulus E*(ω): k = ω/c*, c* = sqrt(E*/ρ)
@@ -79,9 +139,9 @@ std::complex<double> Propagator::viscoelastic_transfer(double f, double distance
   const std::complex<double> e = bar_.relative_modulus(omega);
   const std::complex<double> s = std::sqrt(e);  // c*/c0, Im ≥ 0: a passive law attenuates
   std::complex<double> slowness = 1.0 / (bar_.c0_m_s * s);
-  double amplitude = 1;
+  double amplitude = law_gain(f);
   if (options_.dispersion) {
-    amplitude = lowpass_gain(f);
+    amplitude *= lowpass_gain(f);
     const double fa = f * bar_.radius_m * slowness.real();
     slowness = {slowness.real() / table_->phase_velocity(fa), slowness.imag()};
     if (options_.amplitude == AmplitudeFactor::kStrain) amplitude *= table_->m1(fa);
@@ -147,7 +207,7 @@ void Propagator::propagate(std::span<const double> signal, double dt, double dis
   if (law) {  // every bin, the static one too: the law's static modulus scales a velocity or force
     for (std::size_t j = 0; j < spec.size(); ++j) {
       const double f = static_cast<double>(j) * df;
-      if (options_.dispersion && lowpass_gain(f) == 0) {
+      if ((options_.dispersion && lowpass_gain(f) == 0) || law_gain(f) == 0) {
         std::fill(spec.begin() + static_cast<std::ptrdiff_t>(j), spec.end(), 0.0);
         break;
       }

@@ -5,6 +5,7 @@
 // the pulse forward (later, downstream), Δz < 0 backward. DC is untouched (an elastic bar's). H is
 // a low-pass with a smooth raised-cosine roll-off that ends at the cut-off, below the pole of m1.
 #include <complex>
+#include <limits>
 #include <memory>
 #include <span>
 #include <vector>
@@ -31,11 +32,26 @@ struct BarWaveguide {
   std::vector<RelaxationArm> arms;
 
   bool viscoelastic() const { return !arms.empty(); }
-  // The slowest phase velocity over c0: √e∞, the law's static speed (1 in an elastic bar). f·a over
-  // the phase velocity reaches a cut-off's f·a/c0 over this.
+  // The slowest phase velocity over c0: √e∞, the law's static speed (1 in an elastic bar).
   double slowest_speed_fraction() const;
   std::complex<double> relative_modulus(double omega) const;  // E*(ω)/E0
+  // The highest f·a over the law's phase velocity at the frequencies up to a cut-off of f·a/c0 =
+  // `cutoff_fa_over_c0`: how far the first mode's table is read (the cut-off itself in an
+  // elastic bar).
+  double mode_reach(double cutoff_fa_over_c0) const;
+  // The attenuation of a harmonic wave at ω, −ω Im(1/c*) [1/m] (0 in an elastic bar).
+  double attenuation_per_m(double omega) const;
 };
+
+// Moving a pulse back through a viscoelastic bar grows each component by exp(α(f)|Δz|), up to
+// exp(α∞|Δz|): this much at most before it is cut (docs/methods.md §5.1): a record's noise, 10⁻⁴ to
+// 10⁻³ of its pulse (a 12–16 bit digitizer), then stays below a tenth of the pulse.
+inline constexpr double kMaxLawGain = 100;
+
+// The frequency at which moving a pulse by `distance_m` through the bar's law grows it by
+// kMaxLawGain: the law's band limit for that move; infinity when it never does (an elastic bar,
+// a law of small α∞|Δz|).
+double law_band_limit_Hz(const BarWaveguide& bar, double distance_m);
 
 enum class AmplitudeFactor {
   kNone,    // surface strain stays surface strain (phase only)
@@ -57,9 +73,16 @@ struct PropagationOptions {
   AmplitudeFactor amplitude = AmplitudeFactor::kNone;
   WaveQuantity quantity = WaveQuantity::kStrain;      // a viscoelastic bar's only
   double cutoff_fa_over_c0 = kDefaultCutoffFaOverC0;  // low-pass cut-off (dispersion only)
+  // A viscoelastic bar's low-pass (law_band_limit_Hz), with or without dispersion; its roll-off
+  // as the cut-off's.
+  double law_cutoff_Hz = std::numeric_limits<double>::infinity();
   double rolloff_fraction = 0.25;  // raised cosine from (1 − this)·cut-off to the cut-off
   double taper_fraction = 0.02;    // cosine taper of each end of the record before padding
 };
+
+// How far a correction with `options` reads the first mode's table: f·a over the law's phase
+// velocity up to the lower of the cut-off and the law's band limit (BarWaveguide::mode_reach).
+double mode_reach(const BarWaveguide& bar, const PropagationOptions& options);
 
 // The correction for one bar: its dispersion table, options and FFT workspace (planned once per
 // padded length; give `plans` to share them with the other corrections of a record).
@@ -82,6 +105,8 @@ class Propagator {
 
   // Low-pass gain H at frequency f (1 below the roll-off, 0 above the cut-off).
   double lowpass_gain(double frequency_Hz) const;
+  // A viscoelastic bar's low-pass at options.law_cutoff_Hz (1 below its roll-off).
+  double law_gain(double frequency_Hz) const;
 
  private:
   // The transfer function of a viscoelastic bar at ω > 0 (docs/methods.md §5.1).

@@ -173,6 +173,18 @@ std::vector<std::size_t> gauged_bars(const Scene& scene, const GaugeSignals& sig
     throw input_error(file, "measurement.channels", std::to_string(gauged.size()) + " gauged bars",
                       "a calibration shot records one bar (bars apart) or two bars in contact "
                       "(bars together)");
+  // The returns are modelled by an elastic bar's dispersion (methods.md §11): a polymer bar's law
+  // would be fitted as a wrong wave speed and Poisson ratio.
+  for (std::size_t b : gauged)
+    if (!scene.bars[b].material.is_elastic())
+      throw input_error(
+          file, "bars",
+          "\"" + scene.bars[b].name + "\" of a " +
+              std::string(enum_name(kMaterialModelNames, scene.bars[b].material.model)) +
+              " material",
+          "an elastic gauged bar: calibrate fits an elastic bar's wave speed and "
+          "Poisson ratio; a polymer bar's law is given in the scene (its relaxation "
+          "spectrum measured apart, e.g. by DMA), not calibrated from shots");
   if (gauged.size() == 2 && gauged[1] != gauged[0] + 1)
     throw input_error(file, "bars", "\"" + scene.bars[gauged[1]].name + "\"",
                       "bars together: the two gauged bars must be neighbours");

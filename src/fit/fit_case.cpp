@@ -231,7 +231,8 @@ Overlay FitCase::simulate(const MaterialSpec& law, const Nuisance& nuisance) con
   for (const auto& [bar, c0] : {std::pair{s - 1, nuisance.incident_wave_speed_m_s},
                                 std::pair{s + 1, nuisance.transmitter_wave_speed_m_s}})
     if (c0 != scene.bars[bar].material.wave_speed_m_s())
-      scene.bars[bar].material.youngs_modulus_Pa = scene.bars[bar].material.density_kg_m3 * c0 * c0;
+      set_instantaneous_modulus(scene.bars[bar].material,
+                                scene.bars[bar].material.density_kg_m3 * c0 * c0);
   if (nuisance.rise_time_s > 0 || start_.rise_time_s > 0) {
     auto it = std::find_if(scene.contact.interfaces.begin(), scene.contact.interfaces.end(),
                            [&](const InterfaceOverride& o) { return o.left_bar == striker; });

@@ -100,7 +100,7 @@ void apply_calibration(Scene& scene, const Calibration& c, const std::filesystem
                             "\", which the scene does not have (with a material): a calibration "
                             "of other bars");
     MaterialSpec& m = bar->material;
-    m.youngs_modulus_Pa = m.density_kg_m3 * b.wave_speed_m_s.value * b.wave_speed_m_s.value;
+    set_instantaneous_modulus(m, m.density_kg_m3 * b.wave_speed_m_s.value * b.wave_speed_m_s.value);
     m.poisson_ratio = b.poisson_ratio.value;
   }
   for (const auto& g : c.gauges) {

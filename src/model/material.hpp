@@ -71,4 +71,16 @@ struct MaterialSpec {
   bool operator==(const MaterialSpec&) const = default;
 };
 
+// Sets a material's (instantaneous) modulus E0, as a measured, calibrated or drawn wave speed
+// √(E0/ρ) does: a viscoelastic law's moduli scale with it, the shape of its relaxation spectrum
+// kept, so that E0 stays E∞ + ΣE_k (docs/methods.md §5.1) and the law's every speed moves with c0.
+inline void set_instantaneous_modulus(MaterialSpec& m, double modulus_Pa) {
+  if (m.model == MaterialModel::kViscoelastic && m.youngs_modulus_Pa > 0) {
+    const double scale = modulus_Pa / m.youngs_modulus_Pa;
+    m.viscoelastic.long_term_modulus_Pa *= scale;
+    for (MaxwellArm& a : m.viscoelastic.arms) a.modulus_Pa *= scale;
+  }
+  m.youngs_modulus_Pa = modulus_Pa;
+}
+
 }  // namespace shpb

@@ -125,9 +125,12 @@ std::string default_tolerance_withheld(const Scene& scene) {
     const BarSpec& b = scene.bars[i];
     free = free || b.elements == 0;
     if (!(scene.specimen && *scene.specimen == i) && !b.material.is_elastic())
-      return "bar \"" + b.name +
-             "\" has a material law besides the specimen's, a pulse shaper whose ramp the model "
-             "takes for a step (docs/methods.md §1.1)";
+      return "bar \"" + b.name + "\" has a material law besides the specimen's" +
+             (b.material.model == MaterialModel::kViscoelastic
+                  ? ": a polymer bar, whose attenuation the model, calibrated on elastic bars, "
+                    "does not predict"
+                  : ", a pulse shaper whose ramp the model takes for a step") +
+             " (docs/methods.md §1.1)";
   }
   if (!free) return "every bar has its own elements";
   // A Courant number the user sets chooses the numerics: measured with the default's meshes at

@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <complex>
 #include <numbers>
 #include <tuple>
 #include <utility>
@@ -309,6 +310,47 @@ TEST_CASE("A viscoelastic bar whose arms vanish disperses as the elastic bar",
     constexpr double kSame = 1e-6;  // the arms' 10⁻⁹ and round-off
     CHECK(rms(err) / rms(x) < kSame);
   }
+}
+
+}  // namespace tests_dispersion_test_propagation
+
+namespace tests_dispersion_test_propagation {
+
+TEST_CASE("A polymer bar's law is read up to its phase velocity at the cut-off",
+          "[dispersion][polymer]") {
+  // f·a over the phase velocity is what the first mode's table is read at: an elastic bar's
+  // cut-off itself; a law relaxed over the whole band (τ = 1 ns) at its static speed c0 √e∞; a
+  // law glassy over it (τ = 1 s) at c0, however soft its static modulus.
+  constexpr double kCut = kDefaultCutoffFaOverC0;
+  CHECK(kBar.mode_reach(kCut) == kCut);
+  constexpr double kBandEdge = 1e-3;  // ωτ at the cut-off, 4·10⁻⁴ and 1/(4·10⁵): e within that
+  CHECK(polymer_bar(0.5, 1e-9).mode_reach(kCut) ==
+        Approx(kCut / std::sqrt(0.5)).epsilon(kBandEdge));
+  CHECK(polymer_bar(0.5, 1.0).mode_reach(kCut) == Approx(kCut).epsilon(kBandEdge));
+}
+
+TEST_CASE("A polymer bar's band limit is where moving a pulse back grows it kMaxLawGain times",
+          "[dispersion][polymer]") {
+  // One Maxwell arm (a standard linear solid): a harmonic wave e^{i(ωt − kz)}, k = ω/c*,
+  // c* = c0 √(e∞ + e1 iωτ/(1 + iωτ)), grows by e^{−Im k |Δz|} moved back by Δz; its limit
+  // −Im k → α∞ = e1/(2 τ c0) = 5.7 /m for e1 = 0.5, τ = 20 µs.
+  const BarWaveguide bar = polymer_bar(0.5, 20e-6);
+  const double alpha_inf = 0.5 / (2 * 20e-6 * bar.c0_m_s);
+  auto growth = [&](double f, double d) {
+    const std::complex<double> iwt(0, 2 * std::numbers::pi * f * 20e-6);
+    const auto c = bar.c0_m_s * std::sqrt(0.5 + 0.5 * iwt / (1.0 + iwt));
+    return std::exp(-(2 * std::numbers::pi * f / c).imag() * d);
+  };
+  // 0.5 m: at most e^{α∞ 0.5} = 17: nothing is cut.
+  CHECK(std::exp(alpha_inf * 0.5) < kMaxLawGain);
+  CHECK(std::isinf(law_band_limit_Hz(bar, -0.5)));
+  // 2 m: up to e^{11.4}; the limit lies where the growth reaches kMaxLawGain.
+  const double f = law_band_limit_Hz(bar, -2.0);
+  REQUIRE(std::isfinite(f));
+  constexpr double kBisection = 1e-6;  // the search stops within 10⁻⁹ of the frequency
+  CHECK(growth(f, 2.0) == Approx(kMaxLawGain).epsilon(kBisection));
+  // An elastic bar grows nothing.
+  CHECK(std::isinf(law_band_limit_Hz(kBar, -2.0)));
 }
 
 }  // namespace tests_dispersion_test_propagation
