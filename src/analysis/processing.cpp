@@ -440,6 +440,7 @@ KolskySetup resolve_setup(const Scene& scene, const std::vector<std::string>& av
     if (has(g.name)) {
       k.transmitted_gauge = g.name;
       k.transmitted_distance_m = *distance_to_specimen_m(scene, s + 1, g.position_m);
+      if (s + 2 == scene.bars.size()) k.transmitted_far_end_m = tra.length_m - g.position_m;
       break;
     }
   std::string names;
@@ -992,6 +993,28 @@ bool find_loading_end(const std::vector<double>& strain, std::size_t ring_up,
   return false;
 }
 
+// The transmitter's far end, when it closes the chain, reflects the transmitted pulse back to the
+// gauge 2(L − x)/c0 after it arrived; a transmitter that short records the pulse and its
+// reflection (of the other sign) together from then on, which the 1-wave stress and the strain
+// take for the specimen's (a momentum trap or an absorber at that end aside).
+void warn_transmitted_echo(const KolskySetup& k, const PulseTiming& timing, double dt,
+                           ProcessingResult& r) {
+  if (!k.transmitted_far_end_m) return;
+  const double arrival = timing.transmitted_onset_s.value_or(r.transmitted_window.start_s);
+  const double echo = arrival + 2 * *k.transmitted_far_end_m / k.back.c0_m_s;
+  if (!(echo < r.transmitted_window.end_s - kOverlapSamples * dt)) return;
+  r.transmitted_echo_s = echo + r.shift_transmitted_s;
+  r.warnings.push_back(
+      "gauge \"" + k.transmitted_gauge + "\": " +
+      fmt("the transmitter's far end, %.3g m beyond it, reflects the transmitted pulse back to it "
+          "%.3g us after its onset, %.3g us before the window the curve uses ends: ",
+          *k.transmitted_far_end_m, (echo - arrival) * 1e6,
+          (r.transmitted_window.end_s - echo) * 1e6) +
+      fmt("from there it records the pulse and its reflection together (a momentum trap or an "
+          "absorber at that end aside); a transmitter at least %.3g m longer keeps them apart",
+          0.5 * k.back.c0_m_s * (r.transmitted_window.end_s - echo)));
+}
+
 // Peaks and strains over the loading, and a warning when a load drop ended the curve well short
 // of the record's strain maximum.
 void summarize_loading(bool one_wave, bool dropped, ProcessingResult& r) {
@@ -1008,11 +1031,16 @@ void summarize_loading(bool one_wave, bool dropped, ProcessingResult& r) {
   r.max_strain = one_wave ? r.max_strain_1wave : r.max_strain_3wave;
   if (dropped && r.max_strain < (1 - kLoadDropStrainShortfall) * r.record_max_strain) {
     r.loading_cut_short = true;
+    // A drop where the transmitter's far-end reflection reaches its gauge has that cause.
+    const bool echo = r.transmitted_echo_s && r.time_s[loaded - 1] >= *r.transmitted_echo_s;
     r.warnings.push_back(
         fmt("the curve ends at a load drop at strain %.3g, short of the record's strain maximum "
-            "%.3g (%.3g us after the window start): a specimen that broke there, or set "
-            "measurement.load_drop to false to keep the whole loading",
-            r.max_strain, r.record_max_strain, (r.time_s[loaded - 1] - r.time_s[0]) * 1e6));
+            "%.3g (%.3g us after the window start): ",
+            r.max_strain, r.record_max_strain, (r.time_s[loaded - 1] - r.time_s[0]) * 1e6) +
+        (echo ? "it comes after the transmitter's far-end reflection reached its gauge (above), "
+                "which the 1-wave stress takes for a drop: use a longer transmitter, or set "
+              : "a specimen that broke there, or set ") +
+        "measurement.load_drop to false to keep the whole loading");
   }
 }
 
@@ -1158,6 +1186,7 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
   warn_incident_overlap(k, dt, r);
   reduce_at_faces(t, dt, pulses_at_faces(inc, tra, dt, timing, k, options, r), timing, k, options,
                   r);
+  warn_transmitted_echo(k, timing, dt, r);
 
   // Summary numbers.
   const std::size_t inc_end =

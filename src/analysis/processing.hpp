@@ -20,7 +20,10 @@ struct KolskySetup {
   std::string incident_gauge, transmitted_gauge;
   double incident_distance_m = 0;        // incident gauge → specimen front face
   double incident_gauge_position_m = 0;  // incident gauge ← the incident bar's struck end
-  double transmitted_distance_m = 0;     // specimen back face → transmitted gauge
+  // Transmitted gauge → the transmitter's far end, when that end closes the chain (a free end that
+  // reflects the transmitted pulse back to the gauge).
+  std::optional<double> transmitted_far_end_m;
+  double transmitted_distance_m = 0;  // specimen back face → transmitted gauge
   BarSide front, back;
   BarWaveguide front_waveguide, back_waveguide;
   SpecimenGeometry specimen;
@@ -141,6 +144,9 @@ struct ProcessingResult {
   // How long the incident pulse still passes its gauge after the reflected pulse arrives there
   // (0: they are apart); one gauge records their sum.
   double incident_overlap_s = 0;
+  // When the transmitter's far end reflects the transmitted pulse back to its gauge inside the
+  // window the curve uses: that instant on the faces' clock.
+  std::optional<double> transmitted_echo_s;
   // Largest change of the 3-wave stress over the loading, as a fraction of the 1-wave peak, that
   // moving the reflected pulse by its onset offset makes (docs/methods.md §6); null without one.
   std::optional<double> reflected_offset_stress_error;
