@@ -178,7 +178,15 @@ class Planner {
   Evaluation evaluate(const PlanCandidate& c, double tolerance, bool full) {
     throw_if_interrupted();
     Scene s = planned_scene(in_, c);
-    s.simulation.tolerance = tolerance;
+    // A polymer (viscoelastic) bar's attenuation is outside the gauge-error model (docs/methods.md
+    // §1.1): asked for 3 % it meshed the PMMA bars of a 2 m incident bar with 98 802 elements,
+    // 2430 x the automatic meshes' node updates, and no plan finished. Such a set-up runs on the
+    // automatic meshes, as it does by default.
+    bool polymer = false;
+    for (std::size_t i = 0; i < s.bars.size(); ++i)
+      polymer =
+          polymer || (i != s.specimen && s.bars[i].material.model == MaterialModel::kViscoelastic);
+    if (!polymer) s.simulation.tolerance = tolerance;
     if (!full) {  // long enough for the loading: the incident bar's transit, then the pulse
       const BarSpec& striker = s.bars[0];
       const BarSpec& incident = s.bars[*s.incident_bar()];
