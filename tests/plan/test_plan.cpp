@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "../app/polymer_bars.hpp"
 #include "../app/run_shpb.hpp"
 
 // This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
@@ -373,42 +374,8 @@ TEST_CASE("A plan on polymer bars runs on the meshes a polymer bar's run gets", 
   // 2430 x the automatic meshes' node updates, and the plan did not end in 25 CPU-minutes. It now
   // runs its candidates on the automatic meshes and ends with a plan or the closest set-up.
   ScratchDir dir("plan_polymer");
-  const nlohmann::json pmma = {{"model", "viscoelastic"},
-                               {"density", "1190 kg/m3"},
-                               {"poisson_ratio", 0.35},
-                               {"long_term_modulus", "3 GPa"},
-                               {"arms",
-                                {{{"modulus", "1.5 GPa"}, {"relaxation_time", "1 ms"}},
-                                 {{"modulus", "1.2 GPa"}, {"relaxation_time", "20 us"}}}}};
-  const nlohmann::json scene = {
-      {"bars",
-       {{{"name", "striker"},
-         {"material", "pmma"},
-         {"length", "0.15 m"},
-         {"diameter", "20 mm"},
-         {"velocity", "2 m/s"}},
-        {{"name", "incident"},
-         {"material", "pmma"},
-         {"length", "2 m"},
-         {"diameter", "20 mm"},
-         {"gauges", {{{"name", "incident"}, {"distance_to_specimen", "1 m"}}}}},
-        {{"name", "specimen"},
-         {"material",
-          {{"model", "elastic"},
-           {"density", "1100 kg/m3"},
-           {"youngs_modulus", "50 MPa"},
-           {"poisson_ratio", 0.45}}},
-         {"length", "5 mm"},
-         {"diameter", "15 mm"}},
-        {{"name", "transmitter"},
-         {"material", "pmma"},
-         {"length", "1 m"},
-         {"diameter", "20 mm"},
-         {"gauges", {{{"name", "transmitted"}, {"distance_to_specimen", "0.1 m"}}}}}}},
-      {"specimen", "specimen"},
-      {"materials", {{"pmma", pmma}}},
-      {"simulation", {{"duration", "1.8 ms"}}},
-      {"plan", {{"striker", {{"velocity", {"1 m/s", "20 m/s"}}}}}}};
+  nlohmann::json scene = shpb_test::polymer_bar_scene();
+  scene["plan"] = {{"striker", {{"velocity", {"1 m/s", "20 m/s"}}}}};
   const fs::path file = dir.path() / "scene.json";
   std::ofstream(file) << scene.dump(2);
   const auto r = run_shpb({"plan", file.string(), "--rate", "400", "-o",

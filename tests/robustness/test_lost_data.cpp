@@ -547,6 +547,22 @@ TEST_CASE("An -o ending in . or .. names that folder, written as any other -o",
   }
 }
 
+// Whether `shpb report DIR`'s script is drawing: its temporary folder ".report-…" exists in DIR.
+bool report_drawing(const fs::path& dir) {
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().filename().string().rfind(".report-", 0) == 0) return true;
+  return false;
+}
+
+// Waits (at most kLimit_s) until the script draws.
+bool wait_until_drawing(const fs::path& dir) {
+  const auto start = std::chrono::steady_clock::now();
+  while (!report_drawing(dir) &&
+         std::chrono::steady_clock::now() - start < std::chrono::duration<double>(kLimit_s))
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  return report_drawing(dir);
+}
+
 // A striker-on-bar result simulated into scratch/out, for the report tests to draw; returns the
 // command, which run again replaces it.
 std::vector<std::string> simulated_result(const ScratchFolder& scratch) {
@@ -611,16 +627,7 @@ TEST_CASE("report killed outright puts no report in place after it is gone",
   REQUIRE(child.wait_until_interruptible(kLimit_s));
   // Killed while the script draws into its temporary folder: a kill at a fixed share of a timed
   // run came after the whole report when the timed run was the slower one (a loaded machine).
-  auto drawing = [&] {
-    for (const auto& e : fs::directory_iterator(out))
-      if (e.path().filename().string().rfind(".report-", 0) == 0) return true;
-    return false;
-  };
-  const auto start = std::chrono::steady_clock::now();
-  while (!drawing() &&
-         std::chrono::steady_clock::now() - start < std::chrono::duration<double>(kLimit_s))
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  REQUIRE(drawing());
+  REQUIRE(wait_until_drawing(out));
   child.signal(SIGKILL);
   CHECK(child.wait(kLimit_s).signal == SIGKILL);
   // Time for the script to have finished its report, had it gone on alone.
@@ -642,16 +649,7 @@ TEST_CASE("report whose Python is killed outright fails with exit 3 and leaves n
   const std::vector<std::string> simulate = simulated_result(scratch);
   Child child({"report", out.string()}, scratch.path());
   REQUIRE(child.started());
-  const auto drawing = [&] {  // the script's temporary folder exists
-    for (const auto& e : fs::directory_iterator(out))
-      if (e.path().filename().string().rfind(".report-", 0) == 0) return true;
-    return false;
-  };
-  const auto start = std::chrono::steady_clock::now();
-  while (!drawing() &&
-         std::chrono::steady_clock::now() - start < std::chrono::duration<double>(kLimit_s))
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  REQUIRE(drawing());
+  REQUIRE(wait_until_drawing(out));
   const fs::path children = fs::path("/proc") / std::to_string(child.pid()) / "task" /
                             std::to_string(child.pid()) / "children";
   pid_t python = 0;
@@ -663,7 +661,7 @@ TEST_CASE("report whose Python is killed outright fails with exit 3 and leaves n
   CHECK(o.code == 3);
   CHECK(std::count(o.err.begin(), o.err.end(), '\n') == 1);
   CHECK(o.err.find("killed by signal 9") != std::string::npos);
-  CHECK_FALSE(drawing());
+  CHECK_FALSE(report_drawing(out));
   const Outcome again = run(simulate, scratch.path(), kLimit_s);
   INFO(again.err);
   CHECK(again.code == 0);
