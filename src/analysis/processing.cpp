@@ -391,9 +391,29 @@ double striker_velocity_from_plateau(const KolskySetup& setup, double incident_p
   return setup.front.c0_m_s * incident_plateau_strain * (z_s + z_b) / z_s;
 }
 
+namespace {
+
+// A striker this much stiffer than the bar has its pulse's level taken over the first step: each
+// later step is q = (Z_s − Z_b)/(Z_s + Z_b) ≥ 1/3 of the one before, and from q = 1/2 on the second
+// passes plateau_level's half-height and enters the level. A ratio far from 1 keeps the
+// uncertainty draws of a striker of the bar's own impedance on one side of the rule.
+constexpr double kStaircaseImpedanceRatio = 2.0;
+
+// The end of the plateau of the pulse that starts at `onset` and ends at `end`: a staircase's
+// first step ends after the striker's round trip.
+std::size_t first_step_end(const KolskySetup& setup, std::size_t onset, std::size_t end,
+                           double dt) {
+  if (!setup.striker_first_step_s) return end;
+  return std::min(end,
+                  onset + static_cast<std::size_t>(std::ceil(*setup.striker_first_step_s / dt)));
+}
+
+}  // namespace
+
 double struck_end_plateau(const KolskySetup& setup, std::span<const double> record, double dt,
                           const PulseWindow& w) {
-  if (!setup.front_waveguide.viscoelastic()) return plateau_level(record, w.onset, w.end, w.sign);
+  if (!setup.front_waveguide.viscoelastic())
+    return plateau_level(record, w.onset, first_step_end(setup, w.onset, w.end, dt), w.sign);
   // Moved back by the gauge's distance, the pulse starts that much earlier: the record is put
   // behind as many samples at rest, so that it keeps its window.
   const double distance = setup.incident_gauge_position_m;
@@ -411,8 +431,8 @@ double struck_end_plateau(const KolskySetup& setup, std::span<const double> reco
   rest.noise = estimate_baseline(record).noise;
   const std::span<const double> head(moved.data(), std::min(w.end, moved.size()));
   const auto pulse = find_first_pulse(head, rest, w.onset);
-  return pulse ? plateau_level(moved, pulse->onset, pulse->end, w.sign)
-               : plateau_level(moved, w.onset, w.end, w.sign);
+  const std::size_t onset = pulse ? pulse->onset : w.onset, end = pulse ? pulse->end : w.end;
+  return plateau_level(moved, onset, first_step_end(setup, onset, end, dt), w.sign);
 }
 
 KolskySetup resolve_setup(const Scene& scene, const std::vector<std::string>& available) {
@@ -485,7 +505,12 @@ KolskySetup resolve_setup(const Scene& scene, const std::vector<std::string>& av
   }
   const TestRoles roles = test_roles(scene);
   k.pulse_shaper = !roles.shapers.empty();
-  if (roles.striker) k.striker_impedance_kg_s = scene.bars[*roles.striker].impedance_kg_s();
+  if (roles.striker) {
+    const BarSpec& striker = scene.bars[*roles.striker];
+    k.striker_impedance_kg_s = striker.impedance_kg_s();
+    if (*k.striker_impedance_kg_s >= kStaircaseImpedanceRatio * k.incident_impedance_kg_s)
+      k.striker_first_step_s = 2 * striker.length_m / striker.material.wave_speed_m_s();
+  }
   k.striker_velocity_m_s = scene_striker_speed_m_s(scene);
   return k;
 }
@@ -1191,7 +1216,7 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
   // Summary numbers.
   const std::size_t inc_end =
       std::min(r.time_s.size(), index_at(r.time_s, timing.face_start + timing.duration));
-  r.incident_plateau_strain = plateau_level(r.incident, 0, inc_end, -1.0);
+  r.incident_plateau_strain = plateau_level(r.incident, 0, first_step_end(k, 0, inc_end, dt), -1.0);
   PulseWindow incident_pulse;
   incident_pulse.onset = on, incident_pulse.end = end, incident_pulse.sign = -1;
   r.inferred_striker_velocity_m_s = striker_velocity_from_plateau(
