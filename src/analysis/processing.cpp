@@ -189,6 +189,28 @@ void check_strain_resolution(const Curve& c, const std::vector<double>& t, std::
       " stress, from the forces, is not affected)");
 }
 
+// A polymer bar's pulse moved back to the struck end (struck_end_plateau) is low-passed where the
+// law would grow it more than kMaxLawGain (law_band_limit_Hz). Below kStrikerPulseCycles cycles
+// over the striker's pulse the low-passed rise, about half a period, takes a quarter of the pulse
+// or more and the plateau read is too low (0.84 of V with 0.9 cycles: a 0.2 GPa long-term
+// modulus, the gauge 1.5 m from the struck end).
+constexpr double kStrikerPulseCycles = 2.0;
+void check_struck_end_band(const KolskySetup& k, ProcessingResult& r) {
+  if (!k.striker_round_trip_s || k.pulse_shaper) return;
+  const double cutoff_Hz = law_band_limit_Hz(k.front_waveguide, k.incident_gauge_position_m);
+  if (cutoff_Hz * *k.striker_round_trip_s >= kStrikerPulseCycles) return;
+  r.warnings.push_back(
+      "the inferred striker velocity, " + fmt("%.4g m/s", r.inferred_striker_velocity_m_s) +
+      ", reads low: moved back to the struck end, " +
+      fmt("%.4g m from the incident gauge", k.incident_gauge_position_m) +
+      ", the incident pulse is low-passed at " + fmt("%.3g kHz", cutoff_Hz * 1e-3) +
+      " (the bar's law would grow it more than " + fmt("%.0f", kMaxLawGain) + " x above), " +
+      fmt("%.2g cycles", cutoff_Hz * *k.striker_round_trip_s) + " over the striker's " +
+      fmt("%.4g us", *k.striker_round_trip_s * 1e6) +
+      " pulse, and its rise does not reach the plateau: set measurement.striker_velocity, or put " +
+      "a gauge nearer the struck end");
+}
+
 // The incident pulse rising from the rest band to half its peak within a sample interval: the
 // record does not say where in that interval the front lies, so the strain the specimen took while
 // it rose is known to about ±½ dt × the rate (the trapezoid rule over the window, which opens at
@@ -403,9 +425,9 @@ constexpr double kStaircaseImpedanceRatio = 2.0;
 // first step ends after the striker's round trip.
 std::size_t first_step_end(const KolskySetup& setup, std::size_t onset, std::size_t end,
                            double dt) {
-  if (!setup.striker_first_step_s) return end;
+  if (!setup.striker_staircase) return end;
   return std::min(end,
-                  onset + static_cast<std::size_t>(std::ceil(*setup.striker_first_step_s / dt)));
+                  onset + static_cast<std::size_t>(std::ceil(*setup.striker_round_trip_s / dt)));
 }
 
 }  // namespace
@@ -508,8 +530,9 @@ KolskySetup resolve_setup(const Scene& scene, const std::vector<std::string>& av
   if (roles.striker) {
     const BarSpec& striker = scene.bars[*roles.striker];
     k.striker_impedance_kg_s = striker.impedance_kg_s();
-    if (*k.striker_impedance_kg_s >= kStaircaseImpedanceRatio * k.incident_impedance_kg_s)
-      k.striker_first_step_s = 2 * striker.length_m / striker.material.wave_speed_m_s();
+    k.striker_round_trip_s = 2 * striker.length_m / striker.material.wave_speed_m_s();
+    k.striker_staircase =
+        *k.striker_impedance_kg_s >= kStaircaseImpedanceRatio * k.incident_impedance_kg_s;
   }
   k.striker_velocity_m_s = scene_striker_speed_m_s(scene);
   return k;
@@ -1237,6 +1260,7 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
   summarize_loading(one_wave, find_loading_end(strain, ring_up, options, r), r);
   judge_strain_rate(rate, r.loading_end, r);
   check_front_resolution(rate, dt, r);
+  check_struck_end_band(k, r);
   check_stress_noise(inc.noise, tra.noise, k, one_wave, r);
   mean_rate_in_window(strain, rate, options, r);
   r.area_ratio = k.front.area_m2 / k.specimen.area_m2;

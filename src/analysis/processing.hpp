@@ -31,9 +31,11 @@ struct KolskySetup {
   std::optional<double> specimen_impedance_kg_s;  // ρ c0 A_s, when its modulus is given
   // Striker (the bar left of the incident bar), for the inferred velocity: impedance ratio.
   std::optional<double> striker_impedance_kg_s;
-  // A striker much stiffer than the incident bar (Z_s ≥ 2 Z_b) gives a decaying staircase, not a
-  // plateau (docs/methods.md §4): its first step, the striker's round trip 2 L_s/c_s, sets V.
-  std::optional<double> striker_first_step_s;
+  // The striker's round trip 2 L_s/c_s, its pulse's length. A striker much stiffer than the
+  // incident bar (Z_s ≥ 2 Z_b) gives a decaying staircase, not a plateau (docs/methods.md §4):
+  // its first step, one round trip long, sets V.
+  std::optional<double> striker_round_trip_s;
+  bool striker_staircase = false;
   double incident_impedance_kg_s = 0;
   std::optional<double> striker_velocity_m_s;  // as the scene gives it
   // Travel time per metre of bar beyond 1/c0, from the lab's calibrated reflected time
@@ -53,7 +55,7 @@ double striker_velocity_from_plateau(const KolskySetup& setup, double incident_p
 // The incident pulse's plateau (pulse_window.hpp plateau_level) where the striker struck: an
 // elastic bar's is the gauge's; a viscoelastic bar's pulse has decayed on its way to the gauge and
 // is moved back to the struck end as a velocity first (docs/methods.md §5.1). Of a staircase, the
-// level of its first step (striker_first_step_s). `record` is the rest-levelled gauge strain, `w`
+// level of its first step (striker_staircase). `record` is the rest-levelled gauge strain, `w`
 // its incident pulse.
 double struck_end_plateau(const KolskySetup& setup, std::span<const double> record, double dt,
                           const PulseWindow& w);
