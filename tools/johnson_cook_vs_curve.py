@@ -16,7 +16,8 @@ import math
 import re
 
 SCALE = {"": 1.0, "Pa": 1.0, "kPa": 1e3, "MPa": 1e6, "GPa": 1e9, "K": 1.0, "kg/m3": 1.0,
-         "g/cm3": 1e3, "J/(kg K)": 1.0, "J/kgK": 1.0, "1/s": 1.0, "1 1/s": 1.0}
+         "g/cm3": 1e3, "J/(kg K)": 1.0, "J/kgK": 1.0, "1/s": 1.0, "1 1/s": 1.0, "s": 1.0,
+         "ms": 1e-3, "us": 1e-6}
 
 
 def quantity(value):

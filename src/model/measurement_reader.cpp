@@ -186,6 +186,14 @@ MeasurementSpec read_measurement(const JsonValue& value, const std::filesystem::
     if (auto f = co.get("friction"))
       m.corrections.friction = f->quantity_in(Dimension::kDimensionless, 0, 1, false, true);
     if (auto i = co.get("inertia")) m.corrections.inertia = i->boolean();
+    // Closed forms of a compression specimen that widens between sliding faces (docs/methods.md
+    // §8): a tension specimen is bonded to its bars and narrows.
+    if (m.tension && (m.corrections.friction || m.corrections.inertia))
+      throw(m.corrections.friction ? *co.get("friction") : *co.get("inertia"))
+          .error(
+              "the friction and inertia corrections are those of a compression specimen "
+              "(docs/methods.md §8), not of a bonded tension specimen: drop them for "
+              "\"test\": \"tension\"");
   }
   // An uncertainty of a value the scene does not use would be propagated as zero: refused.
   if (uncertainty && m.uncertainty->friction && !m.corrections.friction)

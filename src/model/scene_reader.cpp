@@ -68,6 +68,7 @@ class SceneReader {
                 "specimen or a pulse shaper)");
     if (auto v = o.get("contact")) scene.contact = read_contact(*v, scene);
     if (auto v = o.get("simulation")) scene.simulation = read_simulation(*v);
+    if (auto v = o.get("contact")) check_face_friction(scene, *v);
     if (auto v = o.get("measurement")) {
       std::vector<std::string> gauges;
       for (const auto& b : scene.bars)
@@ -323,6 +324,39 @@ class SceneReader {
       }
     }
     return c;
+  }
+
+  // Face friction is the Dharan–Hauser factor of faces that slide over a flowing bar of its
+  // current diameter and length (docs/methods.md §8.2): a bonded (glued) face does not slide, and
+  // small kinematics keeps the bar's original section. Checked where it acts: the faces of the
+  // specimen or a pulse shaper with a material law.
+  static void check_face_friction(const Scene& scene, const JsonValue& contact) {
+    const auto o = JsonObject(contact);
+    for (std::size_t k = 0; k + 1 < scene.bars.size(); ++k) {
+      if (interface_friction(scene.contact, k) <= 0) continue;
+      bool acts = false;
+      for (const std::size_t b : {k, k + 1}) {
+        const BarSpec& bar = scene.bars[b];
+        acts |= (scene.specimen == b || squeezed_bar(b, scene.bars.size())) && bar.has_material &&
+                !bar.material.is_elastic();
+      }
+      if (!acts) continue;
+      // The value that gives this face its μ: its own override, else contact.friction.
+      std::optional<JsonValue> given = o.get("friction");
+      for (std::size_t j = 0; j < scene.contact.interfaces.size(); ++j)
+        if (scene.contact.interfaces[j].left_bar == k && scene.contact.interfaces[j].friction)
+          given = JsonObject(o.get("interfaces")->array()[j]).get("friction");
+      const std::string face = scene.bars[k].name + "|" + scene.bars[k + 1].name;
+      if (interface_method(scene.contact, k) == ContactMethod::kBonded)
+        throw given->error("the face " + face +
+                           " is bonded and does not slide; face friction (docs/methods.md §8.2) "
+                           "acts on sliding faces: give it 0 there");
+      if (!scene.simulation.finite_strain)
+        throw given->error("face friction on " + face +
+                           " follows the current diameter and length of the squeezed bar "
+                           "(docs/methods.md §8.2), which \"kinematics\": \"small\" does not "
+                           "model; use finite kinematics (the default)");
+    }
   }
 
   static SimulationSpec read_simulation(const JsonValue& v) {

@@ -242,6 +242,26 @@ const std::vector<BadScene>& cases() {
          s["contact"]["interfaces"] = {{{"between", {"incident", "specimen"}}, {"friction", -0.1}}};
        },
        "contact.interfaces[0].friction: -0.1"},
+      // Face friction is the Dharan–Hauser factor of sliding faces over the flowing specimen at
+      // its current shape (docs/methods.md §8.2): a glued face does not slide, and small
+      // kinematics keeps the specimen's original section. Both ran silently before.
+      {"friction on a bonded specimen face",
+       [](json& s, json&) {
+         s["contact"]["interfaces"] = {
+             {{"between", {"specimen", "transmitter"}}, {"method", "bonded"}, {"friction", 0.1}}};
+       },
+       "contact.interfaces[0].friction: 0.1: the face specimen|transmitter is bonded"},
+      {"friction on every face of a bonded chain",
+       [](json& s, json&) {
+         s["contact"] = {{"method", "bonded"}, {"friction", 0.1}};
+       },
+       "contact.friction: 0.1: the face incident|specimen is bonded"},
+      {"friction with small kinematics",
+       [](json& s, json&) {
+         s["contact"]["friction"] = 0.1;
+         s["simulation"]["kinematics"] = "small";
+       },
+       "contact.friction: 0.1: face friction on incident|specimen follows the current diameter"},
       {"inertia on a bar that is not squeezed between two others",
        [](json& s, json& m) {
          s["bars"][0]["material"] = "specimen.json";
@@ -256,6 +276,21 @@ const std::vector<BadScene>& cases() {
          s["measurement"]["corrections"] = {{"friction", 2}};
        },
        "measurement.corrections.friction: 2"},
+      // The corrections widen the specimen between sliding faces; a tension specimen is glued
+      // and narrows. `process` divided its curve by the compression φ silently before.
+      {"a friction correction of a tension test",
+       [](json& s, json&) {
+         s["measurement"]["test"] = "tension";
+         s["measurement"]["corrections"] = {{"friction", 0.1}};
+       },
+       "measurement.corrections.friction: 0.1: the friction and inertia corrections are those of "
+       "a compression specimen"},
+      {"an inertia correction of a tension test",
+       [](json& s, json&) {
+         s["measurement"]["test"] = "tension";
+         s["measurement"]["corrections"] = {{"inertia", true}};
+       },
+       "measurement.corrections.inertia: true: the friction and inertia corrections"},
       {"a negative duration", [](json& s, json&) { s["simulation"]["duration"] = "-800 us"; },
        "simulation.duration"},
       {"a sample rate in seconds", [](json& s, json&) { s["simulation"]["sample_rate"] = "10 us"; },
