@@ -151,3 +151,32 @@ TEST_CASE(
 }
 
 }  // namespace tests_model_test_mesh_choice
+
+namespace tests_model_test_mesh_choice {
+
+TEST_CASE(
+    "A record that holds the pulses' later passes over a gauge is predicted a larger error: their "
+    "fronts have travelled further",
+    "[model][mesh-choice]") {
+  // The striker-on-bar: its gauge at 0.75 m of a 1.5 m bar sees the pulse again after the far
+  // end's reflection at (1.5 + 0.75) m / c ≈ 446 µs, and again after the struck end's.
+  Scene s =
+      read_scene(std::filesystem::path(SHPB_SOURCE_DIR) / "experiments/striker-on-bar/scene.json");
+  s.simulation.courant = 0.995;
+  s.bars[0].elements = 60;  // 5 mm elements: a coarse mesh, where dispersion shows
+  s.bars[1].elements = 300;
+  const auto predicted = [&](double duration_s) {
+    Scene d = s;
+    d.simulation.duration_s = duration_s;
+    return predict_gauge_error(d, discretize(d)).bars;
+  };
+  // Records that end before the first later pass hold the same fronts: the same prediction.
+  REQUIRE(predicted(400e-6) == predicted(300e-6));
+  // The phase error Σ x_i (k_i − ω/c_i) accumulates along the path (docs/methods.md §1.1): each
+  // later pass adds fronts dispersed over a longer path than the first one's.
+  const double one_more = predicted(600e-6), several = predicted(2e-3);
+  REQUIRE(one_more > predicted(400e-6));
+  REQUIRE(several > one_more);
+}
+
+}  // namespace tests_model_test_mesh_choice
