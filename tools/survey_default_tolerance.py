@@ -8,11 +8,12 @@ choice, solve wall and CPU time, node updates, recorded gauge error, the model's
 Usage: tools/survey_default_tolerance.py BUILD-DIR [WORK-DIR]
 
 The set-ups are edits of experiments/classic-al6061 (unless named otherwise): bars of 0.5 and 1 m,
-strikers of 50 mm, 0.6 and 1 m, aluminium, titanium, magnesium and PMMA (viscoelastic) bars, a steel
+strikers of 50 mm–1 m, aluminium, titanium, magnesium (0.3–1 m strikers) and PMMA (viscoelastic) bars, a steel
 striker on aluminium bars, bars of 8 and 40 mm, a 25 mm striker, specimens of L/D 0.3–2 and of
-copper, Ti-6Al-4V and PMMA (specimens/), gauges 0.2 and 0.3 m from the specimen and 0.1 m from the
-struck end, 5 and 30 m/s, global stepping, records of 1.2 and 2 ms; the tension test without its
-Courant number, the pulse shaper with its disc and a 1 mm one, the striker-on-bar, LANL copper and
+copper, Ti-6Al-4V and PMMA (specimens/), gauges 0.1–0.3 m from the specimen and 0.05–0.1 m from
+the struck end, 5 and 30 m/s, global stepping, records of 1.2 and 2 ms and of 2 and 50 MHz, two
+gauges on the incident bar; the tension test without its Courant number (gauges 0.1 and 0.2 m from
+the specimen too), the pulse shaper with its disc and a 1 mm one, the striker-on-bar, LANL copper and
 the mini-Kolsky bar edited likewise. Each scene is written to WORK-DIR/<set-up>/scene.json
 (default /tmp/survey-default-tolerance), its material files named by their full paths.
 """
@@ -126,6 +127,7 @@ def setups():
     v('ti-bars', lambda s: bar_material(s, TI))
     v('mg-bars', lambda s: bar_material(s, MG))
     v('mg-bars-striker-0.6m', lambda s: (bar_material(s, MG), striker('600 mm')(s)))
+    v('mg-bars-striker-1m', lambda s: (bar_material(s, MG), striker('1 m')(s)))
     v('steel-striker-al-bars', lambda s: bar_material(s, AL, ('incident', 'transmitter')))
     v('pmma-bars', lambda s: (bar_material(s, PMMA), striker(velocity='5 m/s')(s),
                               s['simulation'].pop('duration')))
@@ -136,9 +138,17 @@ def setups():
     v('copper-L/D-1', spec('ofhc-copper', '10 mm'))
     v('ti6al4v-L/D-0.5-25m/s', spec('ti6al4v', velocity='25 m/s'))
     v('pmma-L/D-1-8m/s', spec('pmma', '10 mm', velocity='8 m/s'))
+    v('gauges-0.1m-from-specimen', gauges('1.9 m', '0.1 m'))
     v('gauges-0.2m-from-specimen', gauges('1.8 m', '0.2 m'))
     v('gauges-0.3m-from-specimen', gauges('1.7 m', '0.3 m'))
     v('gauge-0.1m-from-struck-end', gauges('0.1 m', '1 m'))
+    v('gauge-0.05m-from-struck-end-striker-0.6m', lambda s: (gauges('0.05 m', '1 m')(s),
+                                                             striker('600 mm')(s)))
+    v('striker-1m-gauges-0.2m', lambda s: (gauges('1.8 m', '0.2 m')(s), striker('1 m')(s)))
+    v('two-incident-gauges', lambda s: bars(s)['incident']['gauges'].append(
+        {'name': 'incident2', 'position': '0.5 m'}))
+    v('record-2MHz', lambda s: s['simulation'].update(sample_rate='2 MHz'))
+    v('record-50MHz', lambda s: s['simulation'].update(sample_rate='50 MHz'))
     v('5m/s', striker(velocity='5 m/s'))
     v('30m/s', striker(velocity='30 m/s'))
     v('global', lambda s: s['simulation'].update(stepping='global'))
@@ -155,10 +165,11 @@ def setups():
         spec('ofhc-copper')(s), striker('600 mm')(s)))
     tension = load('tension-bonded')
     v('tension', lambda s: s['simulation'].pop('courant'), tension)
-    v('tension-gauges-0.2m', lambda s: (
-        s['simulation'].pop('courant'),
-        [g.update(distance_to_specimen='0.2 m') for b in s['bars'] for g in b.get('gauges', [])]),
-      tension)
+    for d in ('0.1', '0.2'):
+        v(f'tension-gauges-{d}m', lambda s, d=d: (
+            s['simulation'].pop('courant'),
+            [g.update(distance_to_specimen=f'{d} m') for b in s['bars']
+             for g in b.get('gauges', [])]), tension)
     shaper = load('pulse-shaper')
     v('pulse-shaper', lambda s: None, shaper)
     v('pulse-shaper-1mm', lambda s: bars(s)['shaper'].update(length='1 mm'), shaper)

@@ -171,27 +171,53 @@ std::vector<Pass> later_passes(const Scene& scene, std::size_t striker, std::siz
   return passes;
 }
 
-// Whether some gauge's record holds a later pass (later_passes()) in a chain with a specimen. Near
-// C = 1, where the bars carry fronts almost exactly, what the specimen's faces do to a front is
-// left (the model has no term for it): measured/predicted 1.15–1.27 on the classic and tension
-// experiments, whose records meet the specimen once; 1.3–1.8 with later passes that met it again (a
-// 2 ms record of the classic set-up, 0.5 m bars under a 0.3 m striker); at C = 0.995 0.93–1.07;
-// without a specimen 0.98 (a 2 ms record of the striker-on-bar) (docs/methods.md §1.1).
-bool later_passes_recorded(const Scene& scene) {
+// The share of its norm the record of a gauge left of the specimen keeps where the reflected pulse
+// reaches it before the incident one has passed (overlap o of the pulse T_p: the gauge closer to
+// the specimen than half the pulse, which validate warns of). Of opposite sign (a specimen of lower
+// impedance), the two cancel over the overlap, while their fronts stay whole: with the reflection
+// coefficient r of the specimen's face, the record's norm A²[(T_p − o)(1 + r²) + o(1 + r)²] against
+// the A²T_p(1 + r²) of two pulses apart. r from the elastic impedances ρcA of the specimen and the
+// gauge's bar; a specimen that flows reflects less than that r says (it carries its flow stress:
+// the classic set-up's reflected pulse 0.67 of the incident, r −0.83), so the share is taken no
+// larger than it is. 1 without a specimen, right of it or without an overlap of more than a sample
+// interval.
+double overlap_norm_share(const Scene& scene, std::size_t striker, std::size_t bar,
+                          double position) {
+  if (!scene.specimen || bar >= *scene.specimen) return 1;
+  const double pulse = striker_pulse_s(scene, striker);
+  const double overlap = pulse - 2 * travel_time_s(scene, bar, position, *scene.specimen, 0);
+  if (!(overlap > 1 / scene.simulation.sample_rate_Hz)) return 1;  // none the record resolves
+  const double zs = scene.bars[*scene.specimen].impedance_kg_s(),
+               zb = scene.bars[bar].impedance_kg_s();
+  const double r = (zs - zb) / (zs + zb);
+  return 1 + 2 * r * overlap / ((1 + r * r) * pulse);
+}
+
+// Whether some gauge's record weighs what the specimen's faces do to a front more than the
+// experiments the model was calibrated on do: it holds a later pass (later_passes()) that met the
+// specimen again, or the reflected pulse overlaps the incident one (overlap_norm_share()). Near
+// C = 1, where the bars carry fronts almost exactly, that is what is left, and the model has no
+// term for it: measured/predicted 1.15–1.27 on the classic and tension experiments; 1.3–1.8 on a
+// 2 ms record of the classic set-up, on 0.5 m bars under its 0.3 m striker, and on the tension
+// test with its gauges 0.1 m from the specimen; at C = 0.995 0.80–1.09 on those; without a
+// specimen 0.98 (a 2 ms record of the striker-on-bar) (docs/methods.md §1.1).
+bool faces_weighed_more(const Scene& scene) {
   const auto striker = striker_bar(scene);
   if (!striker || !scene.specimen) return false;
   const double duration_s = scene.simulation.duration_s.value_or(default_duration_s(scene));
   for (std::size_t b = *striker + 1; b < scene.bars.size(); ++b)
     for (const GaugeSpec& g : scene.bars[b].gauges)
-      if (!later_passes(scene, *striker, b, g.position_m, duration_s).empty()) return true;
+      if (!later_passes(scene, *striker, b, g.position_m, duration_s).empty() ||
+          overlap_norm_share(scene, *striker, b, g.position_m) < 1)
+        return true;
   return false;
 }
 
 // The common transit of the bars meshed close to C = 1: only where they can step together
-// (common_transit_s) and the record holds no later pass over a specimen, where the model's
-// prediction there falls short (later_passes_recorded).
+// (common_transit_s) and no record weighs the specimen's faces more than the calibration's,
+// where the model's prediction there falls short (faces_weighed_more).
 std::optional<double> near_exact_transit_s(const Scene& scene, const std::vector<bool>& free) {
-  return later_passes_recorded(scene) ? std::nullopt : common_transit_s(scene, free);
+  return faces_weighed_more(scene) ? std::nullopt : common_transit_s(scene, free);
 }
 
 // The path of the fronts a gauge at `position` on `bar` records, the chain meshed as `d`: the
@@ -276,26 +302,27 @@ struct Gauge {
 
 // Every gauge's paths: the pulses path_lengths() counts, one pulse (two fronts, norm A² T_p) per
 // gauge as the model was calibrated, and the later passes its record holds (later_passes()), each
-// counted by the fronts recorded and its norm by the time recorded. Weighed so that the sum of
-// weight × I over them, in the bars' share √(front · 2 Σ / (gauges T_p)), is the fronts' error
-// over the whole norm recorded: every weight is 1 where no later pass is recorded.
+// counted by the fronts recorded and its norm by the time recorded, the first pulse's norm by the
+// share overlap_norm_share() leaves. Weighed so that the sum of weight × I over them, in the bars'
+// share √(front · 2 Σ / (gauges T_p)), averages the gauges' fronts' error over their norms: every
+// weight is 1 where no later pass is recorded and no pulses overlap.
 std::vector<Gauge> gauge_paths(const Scene& scene, const ChainDiscretization& d,
-                               std::size_t striker, int gauges, double aliasing) {
+                               std::size_t striker, double aliasing) {
   const double duration_s = scene.simulation.duration_s.value_or(default_duration_s(scene));
   const double pulse = striker_pulse_s(scene, striker);
   std::vector<Gauge> path;
-  double later_s = 0;  // the later passes' time recorded, over every gauge
   for (std::size_t b = striker + 1; b < scene.bars.size(); ++b)
     for (const GaugeSpec& g : scene.bars[b].gauges) {
+      const std::size_t first = path.size();
       const std::vector<double> x = path_lengths(scene, striker, b, g.position_m);
       path.push_back({front_path(d, x, b, g.position_m, aliasing), 1.0});
+      double norm = overlap_norm_share(scene, striker, b, g.position_m);  // in A² T_p
       for (const Pass& p : later_passes(scene, striker, b, g.position_m, duration_s)) {
         path.push_back({front_path(d, p.x, b, g.position_m, aliasing), p.fronts / 2});
-        later_s += p.recorded_s;
+        norm += p.recorded_s / pulse;
       }
+      for (std::size_t j = first; j < path.size(); ++j) path[j].weight /= norm;
     }
-  const double norm = 1 + later_s / (gauges * pulse);  // the norm recorded, in gauges × A² T_p
-  for (Gauge& g : path) g.weight /= norm;
   return path;
 }
 
@@ -348,7 +375,7 @@ Predicted predict(const Scene& scene, const ChainDiscretization& d, const MeshEr
                             : (above * above - p.specimen * p.specimen - others) * scale;
   auto hit = c.bars.find(key);
   if (hit == c.bars.end() || (!hit->second.exact && !(hit->second.sum > misses))) {
-    const std::vector<Gauge> path = gauge_paths(scene, d, *striker, gauges, aliasing);
+    const std::vector<Gauge> path = gauge_paths(scene, d, *striker, aliasing);
     // First against the bounds, then integrating and stopping where the sum so far passes the
     // sum that misses whatever the specimen.
     SearchCache::Bars found{0.0, false};
