@@ -194,8 +194,8 @@ double overlap_norm_share(const Scene& scene, std::size_t striker, std::size_t b
 }
 
 // Whether some gauge's record weighs what the specimen's faces do to a front more than the
-// experiments the model was calibrated on do: it holds a later pass (later_passes()) that met the
-// specimen again, or the reflected pulse overlaps the incident one (overlap_norm_share()). Near
+// experiments the model was calibrated on do: it holds a later pass (later_passes()), or the
+// reflected pulse overlaps the incident one (overlap_norm_share()). Near
 // C = 1, where the bars carry fronts almost exactly, that is what is left, and the model has no
 // term for it: measured/predicted 1.15–1.27 on the classic and tension experiments; 1.3–1.8 on a
 // 2 ms record of the classic set-up, on 0.5 m bars under its 0.3 m striker, and on the tension
