@@ -23,10 +23,12 @@ namespace shpb {
 // between centres), the front's squared error is
 //   I = (A²/π) ∫₀^∞ e^{−ω² Δs²} / (1 + ω² τ²) · |F(ω) H(ω) − 1|² / ω² dω,
 // and a pulse of duration T_p (2 fronts, norm A² T_p) has e_bars² = front · 2 I / (A² T_p),
-// averaged over the gauges. The specimen's mesh adds e_specimen = specimen · (δ_s/Δs)^order,
-// δ_s = h_s/c_s its element transit, and so does every other bar with a material law (a pulse
-// shaper, whose plastic front shapes the pulse: first order in its element like the specimen's).
-// The measured constants (tools/calibrate_tolerance.cpp re-measures them and prints these values):
+// averaged over the gauges (a record that holds the pulses again after a round trip adds their
+// fronts and norm; overlapping pulses cancel part of it: docs/methods.md §1.1). The specimen's mesh
+// adds e_specimen = specimen · (δ_s/Δs)^order, δ_s = h_s/c_s its element transit, and so does every
+// other bar with a material law (a pulse shaper, whose plastic front shapes the pulse: first order
+// in its element like the specimen's). The measured constants (tools/calibrate_tolerance.cpp
+// re-measures them and prints these values):
 struct MeshErrorConstants {
   double front = 1.0;
   double specimen = 0.0;
@@ -60,7 +62,8 @@ GaugeErrorPrediction predict_gauge_error(const Scene& scene, const ChainDiscreti
 // the rise time of a compliant link, whose energy the bars' steps must carry), the specimen
 // searched on its own — written into the scene's bars; returns the prediction. Where the scene sets
 // no Courant number and its bars can be meshed to step together, C = 0.9999 at whole divisions of
-// their common transit is tried too, and the cheaper choice written into simulation.courant
+// their common transit is tried too (not where a record with a specimen holds later passes or
+// overlapping pulses), and the cheaper choice written into simulation.courant
 // (docs/methods.md §1.1). If no affordable mesh meets the tolerance, the most accurate affordable
 // one is kept and its prediction returned (resolve_scene() then refuses the tolerance); a scene
 // without a striker is left as it is, its prediction NaN.

@@ -7,9 +7,11 @@
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "model/scene.hpp"
 #include "run_shpb.hpp"
@@ -59,15 +61,19 @@ shpb::TimeSeries read_gauges(const fs::path& file) {
   return ts;
 }
 
-void check_tolerance_met(const std::string& experiment, fs::path scene_file = {}) {
+// `by_default`: the run without --tolerance, which is to meet the default tolerance.
+void check_tolerance_met(const std::string& experiment, fs::path scene_file = {},
+                         bool by_default = false) {
   if (scene_file.empty()) scene_file = kExperiments / experiment / "scene.json";
   const fs::path dir = scratch_dir("tolerance_" + experiment) / "out";
-  const auto r = run_shpb(
-      {"simulate", scene_file.string(), "-o", dir.string(), "--tolerance", "1 %", "--quiet"});
+  std::vector<std::string> args = {"simulate", scene_file.string(), "-o", dir.string(), "--quiet"};
+  if (!by_default) args.insert(args.end(), {"--tolerance", "1 %"});
+  const auto r = run_shpb(args);
   REQUIRE(r.code == 0);
+  const double tolerance = by_default ? shpb::kDefaultTolerance : kTolerance;
   const auto summary = nlohmann::json::parse(read_text(dir / "summary.json"));
   REQUIRE(summary.contains("predicted_gauge_error"));
-  CHECK(summary["tolerance"].get<double>() == Approx(kTolerance));
+  CHECK(summary["tolerance"].get<double>() == Approx(tolerance));
   const double predicted = summary["predicted_gauge_error"].get<double>();
 
   // The study's reference of the scene as written (its automatic meshes refined 8 x).
@@ -82,7 +88,7 @@ void check_tolerance_met(const std::string& experiment, fs::path scene_file = {}
       shpb::recorded_gauge_error(read_gauges(dir / "gauges.csv"), reference, /*filtered=*/true);
   INFO(experiment << ": measured " << 100 * measured << " %, predicted " << 100 * predicted
                   << " %");
-  CHECK(measured <= kTolerance);
+  CHECK(measured <= tolerance);
   CHECK(predicted <= kPredictionFactor * measured);
   CHECK(measured <= kPredictionFactor * predicted);
   fs::remove_all(dir.parent_path());
@@ -130,6 +136,53 @@ TEST_CASE("A tolerance of 1 % meets 1 % on the pulse shaper, as predicted",
   // Its disc's plastic front is first order in the disc's element, as the specimen's, and its ties
   // converge with the mesh through the end segments (docs/methods.md §1.1, §3.6).
   check_tolerance_met("pulse-shaper");
+}
+
+// The classic experiment edited (scene.json's keys), in a scratch folder, its specimen's law
+// named by its full path.
+fs::path classic_variant(const std::string& name,
+                         const std::function<void(nlohmann::json&)>& edit) {
+  nlohmann::json scene =
+      nlohmann::json::parse(read_text(kExperiments / "classic-al6061/scene.json"));
+  scene["bars"][2]["material"] = (kExperiments.parent_path() / "specimens/al6061-t6.json").string();
+  edit(scene);
+  const fs::path copy = scratch_dir("tolerance_scene_" + name) / "scene.json";
+  std::ofstream(copy) << scene.dump(1);
+  return copy;
+}
+
+TEST_CASE("The default run meets the default tolerance on a record that holds later passes",
+          "[release-only][tolerance]") {
+  // A lab records past the pulses: the classic set-up for 2 ms holds the reflected pulse again off
+  // the struck end and the transmitted one off the far end, twice each; main measured 3.9 % for a
+  // predicted 2.3 %. On 0.5 m bars under the 0.3 m striker (a 120 µs pulse, a 100 µs round trip to
+  // the specimen) its default record holds them too: 4.4 % for 2.3 %. Both at C ≈ 1, where the
+  // model has no term for what the specimen's faces do to a front (docs/methods.md §1.1).
+  const fs::path long_record = classic_variant(
+      "long-record", [](nlohmann::json& s) { s["simulation"]["duration"] = "2 ms"; });
+  check_tolerance_met("classic-long-record", long_record, true);
+  const fs::path short_bars = classic_variant("short-bars", [](nlohmann::json& s) {
+    for (int b : {1, 3}) {
+      s["bars"][b]["length"] = "0.5 m";
+      s["bars"][b]["gauges"][0]["position"] = "0.25 m";
+    }
+    s["simulation"].erase("duration");
+  });
+  check_tolerance_met("classic-short-bars", short_bars, true);
+}
+
+TEST_CASE(
+    "The default run meets the default tolerance where the reflected pulse overlaps the incident "
+    "one at its gauge",
+    "[release-only][tolerance]") {
+  // Gauges 0.1 m from the specimen under the 0.3 m striker: the pulses overlap for two thirds of
+  // the pulse and, of opposite sign, cancel there; main measured 3.9 % for a predicted 2.3 %
+  // (docs/methods.md §1.1, "Overlapping pulses").
+  const fs::path near = classic_variant("gauges-near", [](nlohmann::json& s) {
+    s["bars"][1]["gauges"][0]["position"] = "1.9 m";
+    s["bars"][3]["gauges"][0]["position"] = "0.1 m";
+  });
+  check_tolerance_met("classic-gauges-near", near, true);
 }
 
 TEST_CASE("Bad tolerances exit 2 with one line naming the option or the JSON path", "[tolerance]") {

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
+#include <numbers>
 #include <string>
 #include <utility>
 #include <vector>
@@ -148,6 +149,60 @@ TEST_CASE(
     REQUIRE(p2.total == p.total);
     REQUIRE(q2.total == q.total);
   }
+}
+
+}  // namespace tests_model_test_mesh_choice
+
+namespace tests_model_test_mesh_choice {
+
+TEST_CASE(
+    "A record that holds the pulses' later passes over a gauge is predicted a larger error: their "
+    "fronts have travelled further",
+    "[model][mesh-choice]") {
+  // The striker-on-bar: its gauge at 0.75 m of a 1.5 m bar sees the pulse again after the far
+  // end's reflection at (1.5 + 0.75) m / c ≈ 446 µs, and again after the struck end's.
+  Scene s =
+      read_scene(std::filesystem::path(SHPB_SOURCE_DIR) / "experiments/striker-on-bar/scene.json");
+  s.simulation.courant = 0.995;
+  s.bars[0].elements = 60;  // 5 mm elements: a coarse mesh, where dispersion shows
+  s.bars[1].elements = 300;
+  const auto predicted = [&](double duration_s) {
+    Scene d = s;
+    d.simulation.duration_s = duration_s;
+    return predict_gauge_error(d, discretize(d)).bars;
+  };
+  // Records that end before the first later pass hold the same fronts: the same prediction.
+  REQUIRE(predicted(400e-6) == predicted(300e-6));
+  // The phase error Σ x_i (k_i − ω/c_i) accumulates along the path (docs/methods.md §1.1): each
+  // later pass adds fronts dispersed over a longer path than the first one's.
+  const double one_more = predicted(600e-6), several = predicted(2e-3);
+  REQUIRE(one_more > predicted(400e-6));
+  REQUIRE(several > one_more);
+}
+
+}  // namespace tests_model_test_mesh_choice
+
+namespace tests_model_test_mesh_choice {
+
+TEST_CASE(
+    "Where the reflected pulse overlaps the incident one at its gauge, a softer specimen is "
+    "predicted a larger error: the two cancel over the overlap, their fronts stay whole",
+    "[model][mesh-choice]") {
+  // The classic bars meshed by hand at 5 mm (the specimen's mesh too): only its diameter changes.
+  Scene s = with_meshes(classic(), 0.995, 60, 400, 20);
+  const auto predicted = [&](double incident_gauge_m, double specimen_diameter_m) {
+    Scene d = s;
+    d.bars[1].gauges[0].position_m = incident_gauge_m;
+    d.bars[kSpecimen].diameter_m = specimen_diameter_m;
+    d.bars[kSpecimen].area_m2 = std::numbers::pi / 4 * specimen_diameter_m * specimen_diameter_m;
+    return predict_gauge_error(d, discretize(d)).bars;
+  };
+  // 1 m from the specimen the 0.3 m striker's pulse (0.6 m long) has passed before the reflected
+  // one arrives: the specimen is on no pulse's path, the bars' share does not see it.
+  REQUIRE(predicted(1.0, 5e-3) == predicted(1.0, 10e-3));
+  // 0.1 m from it they overlap for two thirds of the pulse: the thinner specimen reflects more of
+  // it (r nearer −1), so more of the record's norm cancels under the same fronts.
+  REQUIRE(predicted(1.9, 5e-3) > predicted(1.9, 10e-3));
 }
 
 }  // namespace tests_model_test_mesh_choice
