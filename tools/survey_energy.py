@@ -2,8 +2,8 @@
 """Energy balance of ordinary set-ups the experiments do not hold (docs/methods.md §3.7,
 docs/validation.md "A law specimen that stays elastic").
 
-Usage: tools/survey_energy.py SHPB [--shapers | --tension | --friction | --inertia | --coarse]
-       [other simulate options, e.g. --stepping global]
+Usage: tools/survey_energy.py SHPB [--shapers | --tension | --friction | --inertia | --coarse |
+       --polymer] [other simulate options, e.g. --stepping global]
 
 The classic experiment's layout (300 mm striker, 2 m bars of Ø19.05 mm, gauges at mid-length) with
 its bars made of steel, aluminium or titanium (or a magnesium transmitter on steel, or an aluminium
@@ -11,7 +11,8 @@ striker on steel), a specimen of Al 6061-T6, OFHC copper, Ti-6Al-4V or PMMA (spe
 10 × 5, 16 × 2 or 6 × 6 mm (diameter × length), struck at 8 or 25 m/s: 144 scenes, each run by
 `shpb simulate` at its defaults. Prints one line per run whose energy balance is off by more than
 0.5 % or that did not exit 0 (exit code, energy error, closings per interface, stepping kept, first
-warning), then the counts.
+warning), then the counts (and of the runs kept at global steps, repeated so: docs/methods.md
+§3.7).
 
 --shapers: instead, experiments/pulse-shaper (steel striker and bars, a copper disc) with discs of
 3 × 16, 1 × 10 and 0.5 × 6 mm (length × diameter), the four specimens of 10 × 5 and 16 × 2 mm, at 10
@@ -25,6 +26,11 @@ specimens or the scene's bilinear metal, of 10 × 5, 4 × 8 and 16 × 2 mm: 90 s
 experiments/striker-on-bar with a steel, aluminium or titanium striker of 100 or 300 mm meshed by
 1, 2, 3, 5, 10 or 20 elements on its steel bar (36 scenes), and tools/bench_scenes/elastic-classic
 with an aluminium, titanium, steel or polycarbonate specimen of 1, 2 or 4 elements (12 scenes).
+--polymer: instead, the polymer bars of tests/app/polymer_bars.hpp (viscoelastic PMMA, Ø20 mm, 2 m
+incident and 1 m transmitter, gauges 1 m and 0.1 m from the specimen) struck by a 150 mm steel,
+aluminium or PMMA striker at 2 or 10 m/s, a 5 × 15 mm specimen (length × diameter) soft elastic
+(50 MPa), PMMA, viscoelastic or Al 6061-T6, 1.5 ms: 24 scenes (docs/methods.md §3.6, a metal
+striker on polymer bars).
 """
 import itertools
 import json
@@ -36,7 +42,8 @@ import tempfile
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 SHPB = sys.argv[1]
 MODE = next((a for a in sys.argv[2:]
-             if a in ("--shapers", "--tension", "--friction", "--inertia", "--coarse")), "")
+             if a in ("--shapers", "--tension", "--friction", "--inertia", "--coarse",
+                      "--polymer")), "")
 EXTRA = [a for a in sys.argv[2:] if a != MODE]
 BARS = {"steel": ("8080 kg/m3", "200 GPa", 0.29), "al": ("2700 kg/m3", "70 GPa", 0.33),
         "ti": ("4430 kg/m3", "113.8 GPa", 0.342), "mg": ("1800 kg/m3", "45 GPa", 0.35),
@@ -129,9 +136,38 @@ def coarse_scenes():
         yield f"elastic-classic-{material}-{elements}el", scene
 
 
+def polymer_scenes():
+    pmma = {"model": "viscoelastic", "density": "1190 kg/m3", "poisson_ratio": 0.35,
+            "long_term_modulus": "3 GPa",
+            "arms": [{"modulus": "1.5 GPa", "relaxation_time": "1 ms"},
+                     {"modulus": "1.2 GPa", "relaxation_time": "20 us"}]}
+    specimens = {"soft": {"model": "elastic", "density": "1100 kg/m3", "youngs_modulus": "50 MPa",
+                          "poisson_ratio": 0.45},
+                 "pmma": str(ROOT / "specimens/pmma.json"),
+                 "visco": {"model": "viscoelastic", "density": "1190 kg/m3", "poisson_ratio": 0.35,
+                           "long_term_modulus": "1 GPa",
+                           "arms": [{"modulus": "2 GPa", "relaxation_time": "30 us"}]},
+                 "al6061": str(ROOT / "specimens/al6061-t6.json")}
+    for striker, specimen, velocity in itertools.product(["steel", "al", "pmma"], specimens,
+                                                         [2, 10]):
+        bar = {"material": "pmma", "diameter": "20 mm"}
+        scene = {"bars": [dict(bar, name="striker", material=striker, length="0.15 m",
+                               velocity=f"{velocity} m/s"),
+                          dict(bar, name="incident", length="2 m",
+                               gauges=[{"name": "incident", "distance_to_specimen": "1 m"}]),
+                          {"name": "specimen", "material": specimens[specimen], "length": "5 mm",
+                           "diameter": "15 mm"},
+                          dict(bar, name="transmitter", length="1 m",
+                               gauges=[{"name": "transmitted", "distance_to_specimen": "0.1 m"}])],
+                 "specimen": "specimen",
+                 "materials": dict(elastic_materials(["steel", "al"]), pmma=pmma),
+                 "simulation": {"duration": "1.5 ms"}}
+        yield f"polymer-{striker}_{specimen}_{velocity}", scene
+
+
 SCENES = {"--shapers": shaper_scenes, "--tension": tension_scenes,
-          "--coarse": coarse_scenes}.get(MODE, bars_scenes)
-off = failed = runs = 0
+          "--coarse": coarse_scenes, "--polymer": polymer_scenes}.get(MODE, bars_scenes)
+off = failed = runs = repeated = 0
 with tempfile.TemporaryDirectory() as tmp:
     for name, scene in SCENES():
         runs += 1
@@ -149,9 +185,11 @@ with tempfile.TemporaryDirectory() as tmp:
         bad = run.returncode != 0 or abs(s["energy_error"]) > BOUND
         off += abs(s["energy_error"]) > BOUND
         failed += run.returncode != 0
+        repeated += s["stepping"] != "asynchronous"
         if bad:
             closings = "/".join(str(i["activations"]) for i in s["interfaces"])
             warning = s["warnings"][0][:120] if s["warnings"] else ""
             print(f"{name}: exit {run.returncode}, energy error {s['energy_error']:.2e}, "
                   f"closings {closings}, {s['stepping']}; {warning}")
-print(f"{off} runs off by more than {100 * BOUND:g} %, {failed} not exit 0, of {runs}")
+print(f"{off} runs off by more than {100 * BOUND:g} %, {failed} not exit 0, of {runs} "
+      f"({repeated} kept at global steps)")

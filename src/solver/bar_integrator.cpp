@@ -129,11 +129,12 @@ bool finite_strain_forces(BarState& s, double kappa, double inertia, double A0, 
                               &s.smallest_stretch, &s.largest_stress_Pa);
 }
 
-// Material-law kernel: element strains → one law update for the range → axial forces N_e →
-// nodal forces f_i = N_i − N_{i−1}. Finite strain, friction and radial inertia as in bar.hpp.
-void law_forces(const BarModel& bar, BarState& s, int lo, int hi, double dt) {
+}  // namespace
+
+// Material-law kernel, elements [e0, e1]: strains → one law update → axial forces N_e. Finite
+// strain, friction and radial inertia as in bar.hpp.
+void law_element_forces(const BarModel& bar, BarState& s, int e0, int e1, double dt) {
   const int last = bar.nodes - 1;
-  const int e0 = std::max(lo - 1, 0), e1 = std::min(hi, last - 1);
   const double h0 = bar.element_length_m, inv_h = 1.0 / h0;
   if (bar.finite_strain) {
     logarithmic_strains(s, inv_h, e0, e1);
@@ -222,10 +223,18 @@ void law_forces(const BarModel& bar, BarState& s, int lo, int hi, double dt) {
       s.stress_Pa[e] = axial;
     }
   }
+}
+
+namespace {
+// Nodal forces f_i = N_i − N_{i−1} of a material-law bar over [lo, hi] within its owned nodes
+// [first, last], whose ends are free (a joint's force is its owned element's alone).
+void law_forces(const BarModel& bar, BarState& s, int lo, int hi, double dt) {
+  const int first = bar.first_owned_node(), last = bar.last_owned_node();
+  law_element_forces(bar, s, std::max(lo - 1, first), std::min(hi, last - 1), dt);
   const double* N = s.axial_force_N.data();
   double* f = s.force.data();
   int a = lo, b = hi;
-  if (a == 0) f[a++] = N[0] - 0.0;                      // free left end
+  if (a == first) f[a++] = N[first] - 0.0;              // free left end
   if (b == last && b >= a) f[b--] = 0.0 - N[last - 1];  // free right end
   for (int i = a; i <= b; ++i) f[i] = N[i] - N[i - 1];
 }
@@ -394,8 +403,10 @@ BarEnergy bar_energy(const BarModel& bar, const BarState& s) {
     const int e1 = std::min(s.hi, bar.last_owned_node() - 1);
     if (bar.law) {
       const double volume = bar.area_m2 * bar.element_length_m;
+      // A segment's stored energy is recorded with its tie, on its clock (end_segment.hpp).
       for (int k = 0; k < bar.elements(); ++k) {
-        e.strain_J += volume * bar.law->stored_energy_J_m3(s.points[k]);
+        if (k >= bar.first_owned_node() && k < bar.last_owned_node())
+          e.strain_J += volume * bar.law->stored_energy_J_m3(s.points[k]);
         e.dissipated_J += volume * s.points[k].dissipated_J_m3;
       }
       if (bar.radial_inertia_density_kg_m3 > 0) {

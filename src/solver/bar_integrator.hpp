@@ -24,6 +24,11 @@ void logarithmic_strains(BarState& s, double inv_h, int e0, int e1);
 // J = exp(x) of the elastic volume change x = (1 − 2ν)τ/E, by its series for small x.
 double volume_ratio(double x);
 
+// A material-law bar's elements [e0, e1] from its displacements: strains, one law update over a
+// step `dt` that led to them, axial forces (and stresses) N_e; what assemble_internal_forces does
+// to its elements, for an end segment's on its own clock too (end_segment.hpp).
+void law_element_forces(const BarModel& bar, BarState& s, int e0, int e1, double dt);
+
 // Makes node i part of the active range (an interface starts loading it).
 void activate_node(const BarModel& bar, BarState& s, int i);
 

@@ -50,7 +50,13 @@ void plan_end_segments(Chain& chain, const Scene& scene, bool law_specimen) {
     // joint's result changes slope at each crossing) and the loading moves by up to 5 % of the
     // peak, while that coupling holds the energy of every shipped experiment.
     const bool specimen_face = scene.specimen && *scene.specimen == fast && f.law;
-    if ((specimen_face && !law_specimen) || s.law || s.adaptive_step ||
+    // A slow bar with a law of its own (polymer bars) steps its segment's law on the fast clock;
+    // not a specimen (its faces' coupling is §3.7's), nor a bar with friction or radial inertia
+    // (laws of the whole bar's shape).
+    const bool slow_law_ok =
+        !s.law || (!(scene.specimen && *scene.specimen == slow) &&
+                   s.friction_factor_per_aspect == 0 && s.radial_inertia_density_kg_m3 == 0);
+    if ((specimen_face && !law_specimen) || !slow_law_ok || s.adaptive_step ||
         (end == 1 && s.dashpot_right))
       continue;
     if (s.elements() < 2 * kSegmentElements + 2 + s.segment_elements[1 - end]) continue;
@@ -91,11 +97,23 @@ void prepare_segment(Chain& chain, EndSegment& seg, double tau, bool bar_steppin
   // Element forces, and the segment's strain energy at τ recorded with the tie (finish_segment).
   InterfaceState& is = chain.interface_states[seg.interface];
   is.segment_strain_J = 0;
-  for (int e = sp.element; e < sp.element + seg.elements; ++e) {
-    const double stretch = w(e + 1) - w(e), tension = b.stiffness_N_m * stretch;
+  const int e_end = sp.element + seg.elements;
+  if (b.law) {
+    // The law advances its elements over the clock's step that led to τ, the joint on its path.
+    const BarState& clock = chain.states[seg.clock_bar];
+    const double pending = s.w[sp.joint];
+    s.w[sp.joint] = seg.joint_w;
+    law_element_forces(b, s, sp.element, e_end - 1, clock.step > 0 ? clock.dt_prev : clock.dt);
+    s.w[sp.joint] = pending;
+  }
+  const double volume = b.area_m2 * b.element_length_m;
+  for (int e = sp.element; e < e_end; ++e) {
+    const double stretch = w(e + 1) - w(e);
+    const double tension = b.law ? s.axial_force_N[e] : b.stiffness_N_m * stretch;
     (e == sp.joint ? seg.joint_force_N : s.force[e]) += tension;
     (e + 1 == sp.joint ? seg.joint_force_N : s.force[e + 1]) -= tension;
-    is.segment_strain_J += 0.5 * b.stiffness_N_m * stretch * stretch;
+    is.segment_strain_J += b.law ? volume * b.law->stored_energy_J_m3(s.points[e])
+                                 : 0.5 * b.stiffness_N_m * stretch * stretch;
   }
 }
 

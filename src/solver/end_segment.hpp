@@ -30,8 +30,10 @@ inline constexpr double kLightStiffEnd = 1.2;
 // Gives the slow bar of each asynchronous localized tie (rigid links; finite links where the fast
 // bar is squeezed between two others, a pulse shaper or a specimen) with a light, stiff
 // fast end (its pair's (k1 + k2)/(m1 + m2) above kLightStiffEnd × k1/m1) an end segment on the fast
-// bar's clock, where that is supported: an elastic slow bar with fixed steps, a fast bar with fixed
-// steps (an elastic specimen too), no gauge and no cut end within the segment. `law_specimen`:
+// bar's clock, where that is supported: a slow bar with fixed steps, elastic or a law bar that is
+// not the specimen (its segment's law steps on the fast clock; not with friction or radial
+// inertia), a fast bar with fixed steps (an elastic specimen too), no gauge and no cut end within
+// the segment. `law_specimen`:
 // a specimen with a material law (on its adaptive step too) takes them as well (simulation.cpp
 // says when).
 void plan_end_segments(Chain& chain, const Scene& scene, bool law_specimen);
