@@ -180,3 +180,22 @@ def test_the_rigid_link_limit_of_a_stability_map_is_drawn(tmp_path):
     shown = [xy for points in rigid[0].collections for xy in points.get_offsets()
              if low <= xy[0] <= high]
     assert len(shown) == len(courants)
+
+
+def test_a_killed_reports_folder_with_its_marker_cut_short_is_removed(tmp_path):
+    # Killed between making its figures folder and finishing the marker's line (the out-of-memory
+    # killer, kill -9): the folder holds the marker alone, cut short, and is that run's; the next
+    # report removes it. A folder with anything else in it stays (it may be the user's).
+    import socket
+    dead = 2 ** 22 + 7  # above the largest pid_max a kernel allows (2**22): no process has it
+    prefix = f".report-{socket.gethostname()}-{dead}-"
+    for cut in ("", report_main.FIGURES_SIGNATURE[:17]):
+        folder = tmp_path / (prefix + ("a" * 8 if cut == "" else "b" * 8))
+        folder.mkdir()
+        write(folder, report_main.FIGURES_MARKER, cut)
+    kept = tmp_path / (prefix + "c" * 8)
+    kept.mkdir()
+    write(kept, report_main.FIGURES_MARKER, report_main.FIGURES_SIGNATURE[:17])
+    write(kept, "notes.txt", "the user's")
+    report_main.remove_stale_temporaries(str(tmp_path))
+    assert sorted(p.name for p in tmp_path.iterdir()) == [kept.name]

@@ -7,7 +7,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -24,8 +26,17 @@ namespace shpb_robust {
 // at -O1, about three times slower than the optimised one, and allows that factor.
 constexpr double kPromptExit_s = 1.0;
 constexpr double kSanitizerSlowdown = 3.0;
+// On a machine with more runnable processes than cores (the 1-minute load average over the
+// cores) a process gets that share of one, and a second of its work takes that much longer.
+inline double load_slowdown() {
+  double load = 0;
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  if (::getloadavg(&load, 1) != 1) return 1.0;
+  return std::max(1.0, load / cores);
+}
 inline double prompt_exit_s() {
-  return kPromptExit_s * (shpb_test::running_sanitized() ? kSanitizerSlowdown : 1.0);
+  return kPromptExit_s * (shpb_test::running_sanitized() ? kSanitizerSlowdown : 1.0) *
+         load_slowdown();
 }
 // The size of an input that keeps a run as long in either build: the sanitized executable reads a
 // third of it in the time the optimised one reads all (an interruption test needs a run long

@@ -110,8 +110,16 @@ def remove_stale_temporaries(folder: str) -> None:
         if not os.path.isdir(path):
             os.remove(path)
         elif (not os.listdir(path)
-              or read_text(os.path.join(path, FIGURES_MARKER)) == FIGURES_SIGNATURE):
+              or read_text(os.path.join(path, FIGURES_MARKER)) == FIGURES_SIGNATURE
+              or marker_cut_short(path)):
             shutil.rmtree(path, ignore_errors=True)
+
+
+# A run killed between making its folder and finishing the marker's line leaves the marker alone
+# in it, cut short (empty when killed at its opening): the folder is that run's all the same.
+def marker_cut_short(path: str) -> bool:
+    return (os.listdir(path) == [FIGURES_MARKER]
+            and FIGURES_SIGNATURE.startswith(read_text(os.path.join(path, FIGURES_MARKER))))
 
 
 # SIGINT and SIGTERM stop the drawing at once (KeyboardInterrupt; the temporaries are removed),
