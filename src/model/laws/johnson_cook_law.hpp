@@ -30,7 +30,7 @@ double johnson_cook_thermal_factor(const JohnsonCookParams& jc, double temperatu
 // own `strain_rate_filter` gets τ = L/(2 c0), half the specimen's elastic transit. Its rate term
 // then follows the specimen's mean strain rate (what Johnson–Cook constants are fitted to in
 // Kolsky tests) instead of the ringing at and below the transit, which the concave log turns
-// into a bias that depends on the step plan and the mesh (docs/methods.md §9).
+// into a bias that depends on the step plan and the mesh (docs/methods.md §8).
 MaterialSpec specimen_law_material(const MaterialSpec& material, double length_m);
 
 class JohnsonCookLaw final : public MaterialLaw {
