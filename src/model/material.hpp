@@ -2,6 +2,7 @@
 // A material as read from a scene or a specimens/*.json file: plain data, SI units, validated by
 // the scene reader. The behaviour (stress update) lives in model/material_law.hpp.
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,8 +39,8 @@ struct JohnsonCookParams {
   double taylor_quinney = 0.9;  // β, fraction of plastic work turned into heat
   bool adiabatic = true;
   // τ of a first-order low-pass filter on the rate of the rate term (0: off, the step's rate);
-  // see model/laws/johnson_cook_law.hpp.
-  double strain_rate_filter_s = 0;
+  // not given: the scene's specimen's default, off elsewhere (model/laws/johnson_cook_law.hpp).
+  std::optional<double> strain_rate_filter_s;
   bool operator==(const JohnsonCookParams&) const = default;
 };
 

@@ -11,6 +11,7 @@
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
 #include "model/calibration.hpp"
+#include "model/laws/johnson_cook_law.hpp"
 #include "model/mesh_error_model.hpp"
 #include "model/scene_checks.hpp"
 #include "model/specimen_response.hpp"
@@ -62,6 +63,14 @@ void configure_bar(BarModel& bar, const Scene& scene, std::size_t i, bool adapti
                       bar.friction_factor_per_aspect == 0 && bar.radial_inertia_density_kg_m3 == 0;
 }
 
+// The material bar i gives its law: the scene's specimen's, with its default Johnson–Cook rate
+// filter (model/laws/johnson_cook_law.hpp).
+MaterialSpec law_material(const Scene& scene, std::size_t i) {
+  const BarSpec& spec = scene.bars[i];
+  const bool specimen = scene.specimen && *scene.specimen == i;
+  return specimen ? specimen_law_material(spec.material, spec.length_m) : spec.material;
+}
+
 // docs/methods.md §7: lumped central difference moves information by exactly one node per step, and
 // every disturbance of the last bar enters at its left end. A node j right of the rightmost node
 // k that is recorded (gauges) or coupled (node 0) is first disturbed at step ≥ s_k + (j − k) and
@@ -80,8 +89,9 @@ void cut_last_bar(Chain& c, const Scene& scene, bool adaptive) {
   if (keep >= bar.nodes) return;
   const int elements = static_cast<int>(keep - 1);
   const int full_nodes = bar.nodes;
-  bar = make_bar_model(spec.name, spec.material, bar.element_length_m * elements, spec.area_m2,
-                       elements, bar.time_step_s, spec.velocity_m_s);
+  bar = make_bar_model(spec.name, law_material(scene, scene.bars.size() - 1),
+                       bar.element_length_m * elements, spec.area_m2, elements, bar.time_step_s,
+                       spec.velocity_m_s);
   bar.full_nodes = full_nodes;
   bar.dashpot_right = true;
   configure_bar(bar, scene, scene.bars.size() - 1, adaptive);
@@ -93,7 +103,7 @@ Chain build_chain(const Scene& scene, const ChainDiscretization& d, bool full_mo
   Chain c;
   for (std::size_t i = 0; i < scene.bars.size(); ++i) {
     const BarSpec& spec = scene.bars[i];
-    c.bars.push_back(make_bar_model(spec.name, spec.material, spec.length_m, spec.area_m2,
+    c.bars.push_back(make_bar_model(spec.name, law_material(scene, i), spec.length_m, spec.area_m2,
                                     d.bars[i].elements, d.bars[i].time_step_s, spec.velocity_m_s));
     configure_bar(c.bars.back(), scene, i, adaptive);
     c.states.push_back(make_bar_state(c.bars.back(), full_model));

@@ -19,6 +19,8 @@ namespace {
 constexpr double kClosedFormTolerance = 1e-3;
 // Energy bookkeeping is exact algebra (trapezoidal work = stored + dissipated), up to round-off.
 constexpr double kEnergyTolerance = 1e-10;
+// τ = L/(2 c0) is a product, a quotient and a square root: equal to round-off.
+constexpr double kTransitRoundOff = 1e-14;
 // Fine reference for the adiabatic ODE: RK4 steps in plastic strain (error ≪ 1e-6 relative).
 constexpr double kReferenceStep = 2e-6;
 
@@ -145,7 +147,7 @@ TEST_CASE("The Johnson-Cook strain-rate filter follows the first-order response 
     if (k == steps1 + 1) phase_step = steps1, phase_value = filtered;
     eps += rate * dt;
     filtered =
-        rate + (phase_value - rate) * std::exp(-(k - phase_step) * dt / jc.strain_rate_filter_s);
+        rate + (phase_value - rate) * std::exp(-(k - phase_step) * dt / *jc.strain_rate_filter_s);
     const double p_before = point.state().plastic_strain;
     const double sigma = -point.strain_to(-eps, dt);
     if (point.state().plastic_strain > p_before) {
@@ -170,6 +172,23 @@ TEST_CASE("The Johnson-Cook strain-rate filter follows the first-order response 
     sigma = -unfiltered.strain_to(-eps, dt);
   }
   REQUIRE(sigma == Approx(jc.A_Pa * (1 + jc.C * std::log(r2))).epsilon(kRoundOff));
+}
+
+TEST_CASE(
+    "The specimen's Johnson-Cook law sees the rate through half its elastic transit unless "
+    "the material gives a filter",
+    "[material][johnson-cook]") {
+  // docs/scene-format.md, strain_rate_filter: the scene's specimen defaults to L/(2 c0); a filter
+  // the material gives, 0 s (off) included, is kept.
+  const double length = 5e-3;
+  MaterialSpec spec = ofhc_copper(true);
+  const double half_transit = 0.5 * length / std::sqrt(spec.youngs_modulus_Pa / spec.density_kg_m3);
+  REQUIRE(*specimen_law_material(spec, length).johnson_cook.strain_rate_filter_s ==
+          Approx(half_transit).epsilon(kTransitRoundOff));
+  for (const double given : {0.0, 1e-6}) {
+    spec.johnson_cook.strain_rate_filter_s = given;
+    REQUIRE(*specimen_law_material(spec, length).johnson_cook.strain_rate_filter_s == given);
+  }
 }
 
 TEST_CASE("Adiabatic heating of a Johnson-Cook point turns beta of the plastic work into heat",

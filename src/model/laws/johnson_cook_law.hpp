@@ -8,12 +8,13 @@
 // Adiabatic heating dT = β σ dε_p / (ρ c_p) (Taylor–Quinney β); the temperature of a step is the
 // one at its start (explicit in T, error O(Δε_p) per step and negligible at specimen step sizes).
 // Return mapping: backward Euler on p at the step's rate and temperature, safeguarded Newton.
-// Optional strain-rate filter (`strain_rate_filter` τ > 0, off by default; explicit codes offer
-// the same, e.g. OpenRadioss /MAT/LAW2's Fsmooth/Fcut): the rate term then sees |ε̇| through a
-// first-order low-pass filter τ dε̇_f/dt = |ε̇| − ε̇_f, integrated exactly for a rate held over
-// the step: ε̇_f ← ε̇_f + (1 − e^{−Δt/τ})(|ε̇| − ε̇_f), from ε̇_f = 0 at rest. It removes the
-// specimen's ringing (periods of a few wave transits, ~1 µs) from the rate term while following
-// the loading's rise (tens of µs): docs/methods.md §9.
+// Strain-rate filter (`strain_rate_filter` τ > 0; explicit codes offer the same, e.g. OpenRadioss
+// /MAT/LAW2's Fsmooth/Fcut): the rate term then sees |ε̇| through a first-order low-pass filter
+// τ dε̇_f/dt = |ε̇| − ε̇_f, integrated exactly for a rate held over the step:
+// ε̇_f ← ε̇_f + (1 − e^{−Δt/τ})(|ε̇| − ε̇_f), from ε̇_f = 0 at rest. It removes the specimen's
+// ringing (periods of a few wave transits, ~1 µs) from the rate term while following the
+// loading's rise (tens of µs): docs/methods.md §9. Off unless given, except in the scene's
+// specimen (specimen_law_material).
 #include "model/material_law.hpp"
 
 namespace shpb {
@@ -24,6 +25,13 @@ double johnson_cook_flow_stress(const JohnsonCookParams& jc, double plastic_stra
 // The rate factor 1 + C ln ε̇* (floored) and the thermal factor 1 − T*^m (clamped to [0, 1]).
 double johnson_cook_rate_factor(const JohnsonCookParams& jc, double strain_rate_1_s);
 double johnson_cook_thermal_factor(const JohnsonCookParams& jc, double temperature_K);
+
+// The material the scene's specimen, of length L, gives its law: a Johnson–Cook law without its
+// own `strain_rate_filter` gets τ = L/(2 c0), half the specimen's elastic transit. Its rate term
+// then follows the specimen's mean strain rate (what Johnson–Cook constants are fitted to in
+// Kolsky tests) instead of the ringing at and below the transit, which the concave log turns
+// into a bias that depends on the step plan and the mesh (docs/methods.md §8).
+MaterialSpec specimen_law_material(const MaterialSpec& material, double length_m);
 
 class JohnsonCookLaw final : public MaterialLaw {
  public:
