@@ -9,7 +9,6 @@
 
 #include "core/error.hpp"
 #include "core/json_value.hpp"
-#include "model/specimen_response.hpp"
 #include "model/wave_travel.hpp"
 
 namespace shpb {
@@ -246,16 +245,8 @@ double bar_courant(const Scene& scene, std::size_t bar, double courant) {
   const double e_max = scene.simulation.finite_strain
                            ? scene.simulation.max_strain.value_or(kDefaultMaxStrain)
                            : 0.0;
-  // Face friction stiffens the bar by φ = 1 + μ d/(3√3 L) (model/specimen_response.hpp), largest
-  // at the shortest, widest (volume-conserving) shape the step is planned for: Δt ∝ 1/√φ. It acts
-  // on the specimen's faces only.
-  const double left = specimen && bar > 0 ? interface_friction(scene.contact, bar - 1) : 0.0;
-  const double right =
-      specimen && bar + 1 < scene.bars.size() ? interface_friction(scene.contact, bar) : 0.0;
-  const double stretch = 1 - e_max;
-  const double phi = friction_factor(0.5 * (left + right), b.diameter_m / std::sqrt(stretch),
-                                     b.length_m * stretch);
-  return courant * stretch / std::sqrt(phi);
+  // Face friction does not stiffen the elements: it acts at the faces (solver/bar_integrator.cpp).
+  return courant * (1 - e_max);
 }
 
 double first_contact_delay_s(const Scene& scene) {

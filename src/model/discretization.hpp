@@ -30,8 +30,7 @@ inline constexpr int kMinSpecimenElements = 50;
 // run again for more, solver/simulation.cpp). The geometric stiffening of a stressed element,
 // 1 + |τ|/E, raises the effective Courant number by |τ|/(2E) < 0.5 % for |τ|/E < 1 %, which the
 // default C = 0.995 leaves room for (the adaptive step takes it beyond, step_control.hpp). Face
-// friction scales the axial stiffness by its factor φ (largest at e_max): the step is divided by
-// √φ there too, small strain included.
+// friction acts at the faces and leaves the elements' stiffness and the step alone.
 //
 // An elastic specimen steps at no more than kElasticSpecimenCourant, whatever the bars take
 // (docs/methods.md §3.7): its faces close and open on its clock, and each closing of two ends that

@@ -43,8 +43,6 @@ BarState make_bar_state(const BarModel& bar, bool full_model) {
     s.strain_next.assign(bar.elements(), 0.0);
     s.law_stress.assign(bar.elements(), 0.0);
     s.axial_force_N.assign(bar.elements(), 0.0);
-    s.friction_stress_Pa.assign(bar.elements(), 0.0);
-    s.strain_step.assign(bar.elements(), 0.0);
     s.log_anchor_d.assign(bar.elements(), 0.0);
     s.log_anchor_value.assign(bar.elements(), 0.0);
     s.log_anchor_inverse.assign(bar.elements(), 1.0);

@@ -51,8 +51,8 @@ struct BarModel {
   double reference_step_s = 0;
   double own_step_s = 0;
   // Interface friction on the specimen's faces (docs/methods.md §8.2): while the bar shortens
-  // (its faces slide), the axial stress of an element that has entered flow (its law has
-  // dissipated) and is in compression is raised by the factor
+  // (its faces slide), its two end nodes take the axial force (φ − 1) N̄, N̄ the mean law axial
+  // force of its elements that have entered flow (their law has dissipated) under compression,
   // φ = 1 + friction_factor_per_aspect · d/L of the whole bar's current diameter and length.
   double friction_factor_per_aspect = 0;  // μ/(3√3), μ the mean of the two faces' coefficients
   double diameter_m = 0;
@@ -92,11 +92,11 @@ struct BarState {
   std::vector<double> force;          // nodal force at t_n [N]
   std::vector<double> stress_Pa;      // element true (Cauchy) stress at t_n (material-law bars)
   std::vector<double> axial_force_N;  // element axial force N = A σ at t_n (material-law bars)
-  std::vector<double> friction_stress_Pa;  // (φ − 1) τ of the last step (friction work)
-  std::vector<double> strain_step;         // scratch: Δε of the step (friction work)
-  double smallest_stretch = 1;             // smallest element λ reached so far (finite strain)
-  double largest_stress_Pa = 0;            // largest element |τ| reached so far (finite strain)
-  double inertia_rate_1_s = 0;  // whole-bar true strain rate at t_{n−1/2} (compression +)
+  double friction_force_N = 0;        // face friction X of the last step (bar_integrator.cpp)
+  double friction_length_m = 0;       // w_last − w_0 at that step (friction work X ΔL)
+  double smallest_stretch = 1;        // smallest element λ reached so far (finite strain)
+  double largest_stress_Pa = 0;       // largest element |τ| reached so far (finite strain)
+  double inertia_rate_1_s = 0;        // whole-bar true strain rate at t_{n−1/2} (compression +)
   double inertia_acceleration_1_s2 = 0;  // its low-passed derivative
   double inertia_stress_Pa = 0;          // the radial-inertia stress applied at t_n (compression +)
   bool inertia_flowing = false;          // the radial-inertia stress is on (bar_integrator.cpp)

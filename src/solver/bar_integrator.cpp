@@ -134,22 +134,21 @@ bool finite_strain_forces(BarState& s, double kappa, double inertia, double A0, 
 // Material-law kernel, elements [e0, e1]: strains → one law update → axial forces N_e. Finite
 // strain, friction and radial inertia as in bar.hpp.
 void law_element_forces(const BarModel& bar, BarState& s, int e0, int e1, double dt) {
-  const int last = bar.nodes - 1;
   const double h0 = bar.element_length_m, inv_h = 1.0 / h0;
   if (bar.finite_strain) {
     logarithmic_strains(s, inv_h, e0, e1);
   } else {
     for (int e = e0; e <= e1; ++e) s.strain_next[e] = (s.w[e + 1] - s.w[e]) * inv_h;
   }
-  // Friction work ½((φ−1)τ)_n Δε + ½((φ−1)τ)_{n+1} Δε per reference volume, trapezoidal like
-  // the laws' own (material_law.hpp, energy contract): first half here, before the update.
+  // Friction work ½ X_n ΔL + ½ X_{n+1} ΔL of the face force X over the bar's change of length,
+  // trapezoidal like the laws' own (material_law.hpp, energy contract): first half here.
   const bool friction = bar.friction_factor_per_aspect > 0;
-  const double V0 = bar.area_m2 * h0;
-  if (friction)
-    for (int e = e0; e <= e1; ++e) {
-      s.strain_step[e] = s.strain_next[e] - s.points[e].strain;
-      s.dissipated_J += 0.5 * V0 * s.friction_stress_Pa[e] * s.strain_step[e];
-    }
+  const int last = bar.nodes - 1;
+  const double length_change = friction ? (s.w[last] - s.w[0]) - s.friction_length_m : 0.0;
+  if (friction) {
+    s.dissipated_J += 0.5 * s.friction_force_N * length_change;
+    s.friction_length_m = s.w[last] - s.w[0];
+  }
   const std::size_t n = static_cast<std::size_t>(e1 - e0 + 1);
   bar.law->update(std::span<const double>(s.strain_next.data() + e0, n), dt,
                   std::span<MaterialPointState>(s.points.data() + e0, n),
@@ -196,32 +195,44 @@ void law_element_forces(const BarModel& bar, BarState& s, int e0, int e1, double
   const bool plain_finite =
       bar.finite_strain && !friction &&
       finite_strain_forces(s, bar.volume_change_per_stress, inertia, A0, inv_h, e0, e1);
-  for (int e = e0; e <= e1 && !plain_finite; ++e) {
+  if (plain_finite) return;
+  for (int e = e0; e <= e1; ++e) {
     const double tau = s.law_stress[e];
-    // Friction raises the pressure needed for flow (Dharan & Hauser), a property of the flowing
-    // specimen whatever its law (docs/methods.md §8.2): it acts on an element that has entered
-    // flow (its law has dissipated), under face pressure (compressive stress), while the faces
-    // slide. Not step by step on the law's dissipation: a rate-independent element alternates
-    // between elastic and plastic steps, and the friction stress would with it.
-    const bool flows = sliding && tau < 0 && s.points[e].dissipated_J_m3 > 0;
-    const double excess = flows ? (phi - 1) * tau : 0.0;
-    if (friction) {
-      s.friction_stress_Pa[e] = excess;
-      s.dissipated_J += 0.5 * V0 * excess * s.strain_step[e];
-    }
     if (bar.finite_strain) {
       const double stretch = 1 + (s.w[e + 1] - s.w[e]) * inv_h;
       const double J = volume_ratio(bar.volume_change_per_stress * tau);
-      const double axial = tau + excess - inertia * J;  // Kirchhoff: the true inertia stress × J
+      const double axial = tau - inertia * J;  // Kirchhoff: the true inertia stress × J
       s.axial_force_N[e] = axial * A0 / stretch;
       s.stress_Pa[e] = axial / J;
       s.smallest_stretch = std::min(s.smallest_stretch, stretch);
       s.largest_stress_Pa = std::max(s.largest_stress_Pa, std::abs(tau));
     } else {
-      const double axial = tau + excess - inertia;
-      s.axial_force_N[e] = axial * A0;
-      s.stress_Pa[e] = axial;
+      s.axial_force_N[e] = (tau - inertia) * A0;
+      s.stress_Pa[e] = tau - inertia;
     }
+  }
+  if (!friction) return;
+  // Friction raises the pressure needed for flow (Dharan & Hauser), a property of the flowing
+  // specimen whatever its law (docs/methods.md §8.2). It acts at the faces, where they slide: a
+  // pair of axial forces X = (φ − 1) N̄ on the two end nodes, N̄ the mean over the bar's elements of
+  // the law's axial force of an element that has entered flow (its law has dissipated) under face
+  // pressure (compressive stress), 0 for the others; X is on while the faces slide. Added to every
+  // element's axial force it cancels at the inner nodes. Its work is X ΔL, ΔL ≤ 0 while it acts:
+  // it only dissipates, where a stress (φ − 1) τ_e per element did work on every element that
+  // lengthened while the bar shortened (a ringing element after unloading) and fed its ringing.
+  double flowing_force = 0;
+  for (int e = 0; e < last; ++e)
+    if (s.law_stress[e] < 0 && s.points[e].dissipated_J_m3 > 0)
+      flowing_force +=
+          s.law_stress[e] * A0 / (bar.finite_strain ? 1 + (s.w[e + 1] - s.w[e]) * inv_h : 1.0);
+  s.friction_force_N = sliding ? (phi - 1) * flowing_force / last : 0.0;
+  s.dissipated_J += 0.5 * s.friction_force_N * length_change;
+  for (int e = e0; e <= e1; ++e) {
+    const double stretch = bar.finite_strain ? 1 + (s.w[e + 1] - s.w[e]) * inv_h : 1.0;
+    const double J =
+        bar.finite_strain ? volume_ratio(bar.volume_change_per_stress * s.law_stress[e]) : 1.0;
+    s.axial_force_N[e] += s.friction_force_N;
+    s.stress_Pa[e] = s.axial_force_N[e] * stretch / (A0 * J);
   }
 }
 

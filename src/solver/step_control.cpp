@@ -12,14 +12,8 @@ double geometric_stiffening(const BarModel& bar, double stress_Pa) {
 
 double planned_step_s(const BarModel& bar, double stretch, double stress_Pa) {
   if (!bar.adaptive_step) return bar.own_step_s;
-  double phi = 1;
-  if (bar.friction_factor_per_aspect > 0) {
-    // The whole bar at stretch λ, volume kept: d0/√λ over L0 λ (discretization.cpp).
-    const double length = bar.element_length_m * bar.elements() * stretch;
-    phi = 1 + bar.friction_factor_per_aspect * bar.diameter_m / std::sqrt(stretch) / length;
-  }
-  return std::max(bar.time_step_s, bar.reference_step_s * stretch /
-                                       (std::sqrt(phi) * geometric_stiffening(bar, stress_Pa)));
+  return std::max(bar.time_step_s,
+                  bar.reference_step_s * stretch / geometric_stiffening(bar, stress_Pa));
 }
 
 void start_phase(Chain& chain, std::size_t i, double dt) {

@@ -10,15 +10,14 @@
 // stress the current step was planned for, the step stays. Otherwise a new phase of constant step
 // starts at this instant (rule 1) with
 //   λ_p = max(1 − e_max, λ_min − kStepPlanMargin),   τ_p = (1 + kStressPlanMargin) τ_max,
-//   Δt = C h0 λ_p / (c √φ(λ_p) g(τ_p)),
-// φ the face-friction factor at the volume-conserving shape of stretch λ_p (1 without friction), g
-// the geometric stiffening (below; 1 while τ_p is within 1 % of ρc²), and never below the fixed
+//   Δt = C h0 λ_p / (c g(τ_p)),
+// g the geometric stiffening (below; 1 while τ_p is within 1 % of ρc²), and never below the fixed
 // plan's step. The first phase is planned for λ_p = 1, τ_p = 0.
 //
 // Why it is stable. (i) Per instant: the step taken from t_n is planned for a stretch no larger
 // than any element's at t_n, so it is within the critical step h0 λ/c of the state it starts from:
 // the criterion of the fixed plan (which holds it for every λ ≥ 1 − e_max), evaluated where the bar
-// is instead of where it might end; geometric stiffening and friction as there. (ii) Across a
+// is instead of where it might end; geometric stiffening as there. (ii) Across a
 // change: the variable-step central difference, v_{n+1/2} = v_{n−1/2} + ½(Δt_{n−1} + Δt_n) a_n,
 // u_{n+1} = u_n + Δt_n v_{n+1/2}, is a sequence of velocity-Verlet phases joined at the full-step
 // state (u_n, v_n = v_{n−1/2} + ½Δt_{n−1} a_n), which passes unchanged from one phase to the next.
