@@ -264,6 +264,10 @@ double default_duration_s(const Scene& scene) {
   return 2.0 * longest_transit_s(scene) * kDurationMargin;
 }
 
+double run_duration_s(const Scene& scene) {
+  return scene.simulation.duration_s.value_or(default_duration_s(scene));
+}
+
 bool affordable(const ChainDiscretization& d) {
   return d.memory_estimate_bytes <= kMaxMemoryBytes && d.node_updates_estimate <= kMaxNodeUpdates;
 }
@@ -324,7 +328,7 @@ ChainDiscretization discretize(const Scene& scene) {
                         "(missing)",
                         "a simulation needs every bar's material (only `process` works without "
                         "the specimen's)");
-  const double duration_s = scene.simulation.duration_s.value_or(default_duration_s(scene));
+  const double duration_s = run_duration_s(scene);
   const double courant = scene.simulation.courant.value_or(kDefaultCourant);
   const double run_s = duration_s + first_contact_delay_s(scene);  // free flight included
   const std::vector<BarCost> costs = bar_costs(scene, run_s, courant);

@@ -89,6 +89,8 @@ ChainEstimates estimates_with_bar(const ChainDiscretization& d, std::size_t i,
 // incident pulse, and left of the specimen the reflected one; model/wave_travel.hpp), plus 10 %.
 // Without a striker or gauges: two transits of the longest bar.
 double default_duration_s(const Scene& scene);
+// The run's duration: the scene's simulation.duration, else default_duration_s.
+double run_duration_s(const Scene& scene);
 
 // Time zero is the first contact (docs/outputs.md (conventions)): with initial gaps the run starts
 // earlier by the flight time of the first interface to close under the bars' rigid motions.

@@ -204,7 +204,7 @@ double overlap_norm_share(const Scene& scene, std::size_t striker, std::size_t b
 bool faces_weighed_more(const Scene& scene) {
   const auto striker = striker_bar(scene);
   if (!striker || !scene.specimen) return false;
-  const double duration_s = scene.simulation.duration_s.value_or(default_duration_s(scene));
+  const double duration_s = run_duration_s(scene);
   for (std::size_t b = *striker + 1; b < scene.bars.size(); ++b)
     for (const GaugeSpec& g : scene.bars[b].gauges)
       if (!later_passes(scene, *striker, b, g.position_m, duration_s).empty() ||
@@ -308,7 +308,7 @@ struct Gauge {
 // weight is 1 where no later pass is recorded and no pulses overlap.
 std::vector<Gauge> gauge_paths(const Scene& scene, const ChainDiscretization& d,
                                std::size_t striker, double aliasing) {
-  const double duration_s = scene.simulation.duration_s.value_or(default_duration_s(scene));
+  const double duration_s = run_duration_s(scene);
   const double pulse = striker_pulse_s(scene, striker);
   std::vector<Gauge> path;
   for (std::size_t b = striker + 1; b < scene.bars.size(); ++b)
@@ -456,7 +456,7 @@ class Candidates {
  public:
   Candidates(const Scene& scene, SearchCache& cache)
       : cache_(cache),
-        duration_s_(scene.simulation.duration_s.value_or(default_duration_s(scene))),
+        duration_s_(run_duration_s(scene)),
         sample_s_(1 / scene.simulation.sample_rate_Hz),
         separable_(scene.simulation.stepping == Stepping::kAsynchronous),
         specimen_(scene.specimen) {}

@@ -220,19 +220,22 @@ void law_element_forces(const BarModel& bar, BarState& s, int e0, int e1, double
   // element's axial force it cancels at the inner nodes. Its work is X ΔL, ΔL ≤ 0 while it acts:
   // it only dissipates, where a stress (φ − 1) τ_e per element did work on every element that
   // lengthened while the bar shortened (a ringing element after unloading) and fed its ringing.
+  // Element e's stretch λ and volume ratio J (1 and 1 at small strain): N = τ A0/λ, σ = N λ/(A0 J).
+  const auto stretch = [&](int e) {
+    return bar.finite_strain ? 1 + (s.w[e + 1] - s.w[e]) * inv_h : 1.0;
+  };
+  const auto volume = [&](int e) {
+    return bar.finite_strain ? volume_ratio(bar.volume_change_per_stress * s.law_stress[e]) : 1.0;
+  };
   double flowing_force = 0;
   for (int e = 0; e < last; ++e)
     if (s.law_stress[e] < 0 && s.points[e].dissipated_J_m3 > 0)
-      flowing_force +=
-          s.law_stress[e] * A0 / (bar.finite_strain ? 1 + (s.w[e + 1] - s.w[e]) * inv_h : 1.0);
+      flowing_force += s.law_stress[e] * A0 / stretch(e);
   s.friction_force_N = sliding ? (phi - 1) * flowing_force / last : 0.0;
   s.dissipated_J += 0.5 * s.friction_force_N * length_change;
   for (int e = e0; e <= e1; ++e) {
-    const double stretch = bar.finite_strain ? 1 + (s.w[e + 1] - s.w[e]) * inv_h : 1.0;
-    const double J =
-        bar.finite_strain ? volume_ratio(bar.volume_change_per_stress * s.law_stress[e]) : 1.0;
     s.axial_force_N[e] += s.friction_force_N;
-    s.stress_Pa[e] = s.axial_force_N[e] * stretch / (A0 * J);
+    s.stress_Pa[e] = s.axial_force_N[e] * stretch(e) / (A0 * volume(e));
   }
 }
 

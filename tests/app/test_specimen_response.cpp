@@ -84,14 +84,24 @@ struct Processed {
   json simulation, process;
 };
 
-// simulate + process --signals in `dir`; the scene is written there as scene.json.
-Processed simulate_and_process(const json& scene, const fs::path& dir) {
+// `simulate` of `scene` (written as DIR/scene.json) into DIR/`out` with `options`, which must
+// succeed; returns DIR/`out`.
+fs::path simulate_in(const json& scene, const fs::path& dir, const std::string& out = "sim",
+                     const std::vector<std::string>& options = {}) {
   fs::create_directories(dir);
   std::ofstream(dir / "scene.json") << scene.dump(2);
-  const auto sim = run_shpb(
-      {"simulate", (dir / "scene.json").string(), "-o", (dir / "sim").string(), "--quiet"});
-  INFO(sim.err);
+  std::vector<std::string> args = {"simulate", (dir / "scene.json").string(), "-o",
+                                   (dir / out).string(), "--quiet"};
+  args.insert(args.end(), options.begin(), options.end());
+  const auto sim = run_shpb(args);
+  INFO(out << ": " << sim.err);
   REQUIRE(sim.code == 0);
+  return dir / out;
+}
+
+// simulate + process --signals in `dir`; the scene is written there as scene.json.
+Processed simulate_and_process(const json& scene, const fs::path& dir) {
+  simulate_in(scene, dir);
   const auto proc =
       run_shpb({"process", (dir / "scene.json").string(), "--signals",
                 (dir / "sim" / "gauges.csv").string(), "-o", (dir / "proc").string(), "--quiet"});
@@ -417,14 +427,7 @@ TEST_CASE("A Johnson-Cook specimen's flow stress over its law does not depend on
     scene["bars"][2]["material"] = file.string();
     scene["contact"]["friction"] = mu;
     scene["simulation"]["max_strain"] = max_strain;
-    const fs::path run = dir / name;
-    fs::create_directories(run);
-    std::ofstream(run / "scene.json") << scene.dump(2);
-    const auto sim = run_shpb(
-        {"simulate", (run / "scene.json").string(), "-o", (run / "sim").string(), "--quiet"});
-    INFO(sim.err);
-    REQUIRE(sim.code == 0);
-    const Table sp = specimen_loading(run / "sim", copper);
+    const Table sp = specimen_loading(simulate_in(scene, dir / name), copper);
     const Ratios r = flow_ratios(sp, johnson_cook_along(sp, copper), [](double) { return 1.0; });
     REQUIRE(r.all.size() > 200);  // 20 µs of flow at 10 MHz at least
     INFO(name << ": median specimen/law " << median(r.all));
@@ -487,16 +490,11 @@ TEST_CASE("Face friction only dissipates: a ringing thin wafer gets no energy fr
   scene["bars"][2]["length"] = "2 mm";
   scene["contact"]["friction"] = 0.1;
   const auto dir = scratch_dir("friction_wafer");
-  fs::create_directories(dir);
-  std::ofstream(dir / "scene.json") << scene.dump(2);
   for (const std::string tolerance : {"", "1%"}) {
-    const fs::path out = dir / ("sim" + tolerance);
-    std::vector<std::string> args = {"simulate", (dir / "scene.json").string(), "-o", out.string(),
-                                     "--quiet"};
-    if (!tolerance.empty()) args.insert(args.end(), {"--tolerance", tolerance});
-    const auto sim = run_shpb(args);
-    INFO("--tolerance '" << tolerance << "': " << sim.err);
-    REQUIRE(sim.code == 0);
+    const fs::path out = tolerance.empty()
+                             ? simulate_in(scene, dir, "default")
+                             : simulate_in(scene, dir, "tolerance", {"--tolerance", tolerance});
+    INFO("--tolerance '" << tolerance << "'");
     const json summary = json::parse(std::ifstream(out / "summary.json"));
     CHECK(std::abs(summary["energy_error"].get<double>()) < kEnergyTolerance);
     CHECK(summary["stepping"] == "asynchronous");

@@ -46,7 +46,7 @@ TEST_CASE(
     "costs what discretize() says",
     "[model][mesh-choice]") {
   const Scene base = classic();
-  const double duration = base.simulation.duration_s.value_or(default_duration_s(base));
+  const double duration = run_duration_s(base);
   for (const int bars : {200, 1300}) {
     const ChainDiscretization planned =
         plan_chain(with_meshes(base, 0.995, bars / 6, bars, 7), duration);
