@@ -17,6 +17,90 @@ namespace {
 
 // Two files' time bases count as the same if they agree to this fraction of a sample.
 constexpr double kSameClock = 1e-3;
+// Opposite gauges of one section read the axial strain plus and minus the bending strain, which
+// their mean cancels. Bending of half the axial strain (RMS over the record) is a bar far out of
+// line (the LANL PMMA record's pairs: 12 % and 9 %, noise included); a dead, flat or mis-scaled
+// channel deviates from the mean by 100 %, one of another gauge or test by more.
+constexpr double kTwinChannelDisagreement = 0.5;
+
+// "column index 4 (measurement.channels[0], gauge "incident")": where a channel's message points.
+std::string channel_label(const MeasurementSpec& m, std::size_t channel) {
+  const ChannelSpec& ch = m.channels[channel];
+  return (ch.column.index ? "column index " + std::to_string(*ch.column.index)
+                          : "column \"" + ch.column.name + "\"") +
+         " (measurement.channels[" + std::to_string(channel) + "], gauge \"" + ch.gauge + "\")";
+}
+
+// The largest strain a column can read in the wrong unit: a plausible strain (below
+// kPlausibleStrainMax) in microstrain declared as strain. That slip is warned about and reduced
+// (docs/scene-format.md); a sample beyond it has no unit that explains it (a value scaled by
+// 1e300 overflowed to inf in the reduction), and is refused where it is: by its line when the
+// record was not resampled onto another clock, else by its time.
+constexpr double kMaxReadStrain = kPlausibleStrainMax * 1e6;
+
+void check_strain_magnitude(const std::filesystem::path& file, const MeasurementSpec& m,
+                            std::size_t channel, const SignalColumns& cols,
+                            const std::vector<double>& strain, const std::vector<double>& raw,
+                            const std::vector<double>& time_s) {
+  for (std::size_t i = 0; i < strain.size(); ++i) {
+    if (std::abs(strain[i]) <= kMaxReadStrain) continue;
+    const std::string where = i < cols.lines.size() && raw.size() == strain.size()
+                                  ? "line " + std::to_string(cols.lines[i]) + ", "
+                                  : "at " + format_number(time_s[i]) + " s, ";
+    const std::string value =
+        raw.size() == strain.size() ? format_number(raw[i]) + " read as " : std::string();
+    throw input_error(file.string(), where + channel_label(m, channel),
+                      value + "strain " + format_number(strain[i]),
+                      "expected |strain| within " + format_number(kMaxReadStrain) +
+                          " (a bar's record stays within " + format_number(kPlausibleStrainMax) +
+                          ", microstrain read as strain within " + format_number(kMaxReadStrain) +
+                          "); check the value, the channel's unit and bridge or scale");
+  }
+}
+
+// The channels of one gauge agree within kTwinChannelDisagreement; `channels` are their indices.
+void check_twin_channels(const MeasurementSpec& m, const std::vector<std::size_t>& channels,
+                         const std::vector<std::vector<double>>& channel_strain,
+                         const std::vector<std::filesystem::path>& files) {
+  const std::size_t n = channel_strain[channels.front()].size();
+  std::vector<std::vector<double>> level;  // each channel from its own median baseline
+  std::vector<double> mean(n, 0.0);
+  for (std::size_t c : channels) {
+    const double med = median(channel_strain[c]);
+    level.emplace_back(channel_strain[c]);
+    for (std::size_t i = 0; i < n; ++i)
+      level.back()[i] -= med, mean[i] += level.back()[i] / static_cast<double>(channels.size());
+  }
+  double mean_ss = 0;
+  for (double x : mean) mean_ss += x * x;
+  std::size_t worst = 0;  // the channel furthest from the mean (of two: the first)
+  double worst_ss = 0;
+  for (std::size_t k = 0; k < channels.size(); ++k) {
+    double dev_ss = 0;
+    for (std::size_t i = 0; i < n; ++i) dev_ss += (level[k][i] - mean[i]) * (level[k][i] - mean[i]);
+    if (dev_ss > worst_ss) worst = k, worst_ss = dev_ss;
+  }
+  if (worst_ss <= kTwinChannelDisagreement * kTwinChannelDisagreement * mean_ss) return;
+  // Two channels deviate from their mean alike: both are named, either may be the wrong one.
+  if (channels.size() == 2) worst = 0;
+  const std::string with = channels.size() == 2 ? "with " + files[channels[1]].string() + ", " +
+                                                      channel_label(m, channels[1]) + ": each"
+                                                : "";
+  char value[160];
+  if (mean_ss > 0)
+    std::snprintf(value, sizeof value,
+                  "deviates from the mean of the gauge's %zu channels by %.3g %% RMS",
+                  channels.size(), 100 * std::sqrt(worst_ss / mean_ss));
+  else
+    std::snprintf(value, sizeof value, "cancels the gauge's other channels (a flat mean)");
+  throw input_error(files[channels[worst]].string(), channel_label(m, channels[worst]),
+                    with + (with.empty() ? "" : " ") + value,
+                    "expected the channels of one gauge (opposite gauges of one section, "
+                    "averaged to cancel bending) to agree within " +
+                        format_number(100 * kTwinChannelDisagreement) +
+                        " %: a dead, flat, inverted or mis-scaled channel, or one of another "
+                        "gauge?");
+}
 
 std::vector<double> resample(const std::vector<double>& t, const std::vector<double>& y,
                              const std::vector<double>& onto) {
@@ -93,6 +177,7 @@ GaugeSignals read_gauge_signals(const MeasurementSpec& m, const std::filesystem:
 
   GaugeSignals out;
   std::vector<std::vector<double>> channel_strain(m.channels.size());
+  std::vector<std::filesystem::path> channel_file(m.channels.size());
   bool first_file = true;
   // Files in channel order, so the first channel's file sets the common clock.
   std::vector<std::filesystem::path> order;
@@ -158,7 +243,9 @@ GaugeSignals read_gauge_signals(const MeasurementSpec& m, const std::filesystem:
       double factor = strain_per_unit(ch);
       if (ch.invert) factor = -factor;
       factor /= ch.calibrated_gain;  // model/calibration.hpp
+      const std::vector<double> read = same_clock ? v : std::vector<double>();
       for (double& x : v) x *= factor;
+      check_strain_magnitude(file, m, channels[k], cols, v, read, out.time_s);
       if (ch.calibrated_delay_s != 0) {  // its record on the reference channel's clock
         const std::vector<double> late = v;
         const double shift = ch.calibrated_delay_s / out.dt_s;
@@ -166,6 +253,7 @@ GaugeSignals read_gauge_signals(const MeasurementSpec& m, const std::filesystem:
           v[i] = sample_at(late, static_cast<double>(i) + shift, late.front(), late.back());
       }
       channel_strain[channels[k]] = std::move(v);
+      channel_file[channels[k]] = file;
     }
   }
   // Average the channels of each gauge, in order of first appearance.
@@ -173,13 +261,14 @@ GaugeSignals read_gauge_signals(const MeasurementSpec& m, const std::filesystem:
     const std::string& g = m.channels[c].gauge;
     if (out.find(g)) continue;
     std::vector<double> sum(out.time_s.size(), 0.0);
-    int count = 0;
+    std::vector<std::size_t> twins;
     for (std::size_t d = c; d < m.channels.size(); ++d)
       if (m.channels[d].gauge == g) {
         for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += channel_strain[d][i];
-        ++count;
+        twins.push_back(d);
       }
-    for (double& x : sum) x /= count;
+    if (twins.size() > 1) check_twin_channels(m, twins, channel_strain, channel_file);
+    for (double& x : sum) x /= static_cast<double>(twins.size());
     out.gauges.push_back(g);
     out.strain.push_back(std::move(sum));
   }

@@ -2,6 +2,7 @@
 // Errors that cross the program's boundary. Every message starts with "error:" when printed by
 // main, and names the file, the place (JSON path or CSV line/column), the value and the constraint
 // (docs/commands.md): "scene.json: bars[2].length: -0.005 m: must be > 0".
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 
@@ -32,12 +33,24 @@ class Interrupted : public std::runtime_error {
   Interrupted() : std::runtime_error("interrupted") {}
 };
 
+// A place or value quoted from an input is cut to this many bytes: a field or header of
+// megabytes (a line without separators) would otherwise be the whole message.
+inline constexpr std::size_t kMaxQuoted = 200;
+
+// `s` cut to kMaxQuoted bytes (at a UTF-8 character's start), saying how long it was.
+inline std::string shorten_quoted(const std::string& s) {
+  if (s.size() <= kMaxQuoted) return s;
+  std::size_t cut = kMaxQuoted;
+  while (cut > 0 && (static_cast<unsigned char>(s[cut]) & 0xC0) == 0x80) --cut;
+  return s.substr(0, cut) + "... (" + std::to_string(s.size()) + " bytes)";
+}
+
 // "<file>: <where>: <value>: <constraint>", the one shape of every input error.
 inline InputError input_error(const std::string& file, const std::string& where,
                               const std::string& value, const std::string& constraint) {
   std::string msg = file;
-  if (!where.empty()) msg += ": " + where;
-  if (!value.empty()) msg += ": " + value;
+  if (!where.empty()) msg += ": " + shorten_quoted(where);
+  if (!value.empty()) msg += ": " + shorten_quoted(value);
   msg += ": " + constraint;
   return InputError(msg);
 }

@@ -149,19 +149,24 @@ std::size_t resolve(const DelimitedText& text, const TextRow* header, const Text
                     "no such column: the file has no header row (give the column as an index)");
 }
 
-// How a number is written: its decimals and whether it has an exponent. A column exported in a
-// fixed format ("%.6e", "%.4f") writes every value the same way.
+// How a number is written: its decimals and its exponent's digits (0: none). A column exported
+// in a fixed format ("%.6e", "%.4f", Tektronix's "e-005") writes every value the same way.
 struct NumberShape {
   std::size_t decimals = 0;
-  bool exponent = false;
+  std::size_t exponent = 0;
   bool operator==(const NumberShape&) const = default;
 };
 NumberShape shape_of(std::string_view field, char decimal_mark) {
   const auto e = field.find_first_of("eE");
   const std::string_view mantissa = field.substr(0, e);
   const auto mark = mantissa.find(decimal_mark);
+  const std::string_view exponent =
+      e == std::string_view::npos ? std::string_view() : field.substr(e + 1);
   return {mark == std::string_view::npos ? 0 : mantissa.size() - mark - 1,
-          e != std::string_view::npos};
+          e == std::string_view::npos ? 0
+                                      : static_cast<std::size_t>(std::count_if(
+                                            exponent.begin(), exponent.end(),
+                                            [](char ch) { return ch >= '0' && ch <= '9'; }))};
 }
 
 // A file that ends inside its last line (no line end after it) may have been cut there. When
@@ -181,14 +186,18 @@ void refuse_cut_last_line(const DelimitedText& text, std::size_t first_data,
     const std::size_t c = columns[k];
     const NumberShape cut = shape_of(last.fields[c], mark);
     const NumberShape fixed = shape_of(text.rows[first_data].fields[c], mark);
-    if (cut.decimals >= fixed.decimals && cut.exponent == fixed.exponent) continue;
+    if (cut.decimals >= fixed.decimals && cut.exponent >= fixed.exponent &&
+        (cut.exponent > 0) == (fixed.exponent > 0))
+      continue;
     bool uniform = true;
     for (std::size_t i = first_data + 1; uniform && i + 1 < text.rows.size(); ++i)
       uniform = shape_of(text.rows[i].fields[c], mark) == fixed;
     if (!uniform) continue;
     const auto written = [](const NumberShape& n) {
       return std::to_string(n.decimals) + (n.decimals == 1 ? " decimal" : " decimals") +
-             (n.exponent ? " and an exponent" : "");
+             (n.exponent ? " and an exponent of " + std::to_string(n.exponent) +
+                               (n.exponent == 1 ? " digit" : " digits")
+                         : "");
     };
     throw input_error(
         text.file.string(),
@@ -200,12 +209,29 @@ void refuse_cut_last_line(const DelimitedText& text, std::size_t first_data,
   }
 }
 
+// A data row with more filled fields than the first data row holds has had its columns shifted
+// (a decimal comma or a stray separator splits a field in two): read by index, the columns after
+// the split would take their neighbours' values. Refused by line; a file with a header and
+// columns by name is refused earlier (resolve), with the header to judge by.
+void refuse_wider_rows(const DelimitedText& text, std::size_t first_data) {
+  const std::size_t width = text.rows[first_data].fields.size();
+  for (std::size_t i = first_data + 1; i < text.rows.size(); ++i)
+    if (const std::size_t filled = filled_width(text.rows[i]); filled > width)
+      throw input_error(text.file.string(), "line " + std::to_string(text.rows[i].line),
+                        std::to_string(filled) + " fields",
+                        "expected at most the " + std::to_string(width) + " of line " +
+                            std::to_string(text.rows[first_data].line) +
+                            ", the first data row: a decimal comma or a stray separator splits a "
+                            "field and shifts the columns after it");
+}
+
 // The rows from `first_data` on: the time column's stamps (none without one: a clock fills
 // them) and the columns `indices`.
 RawSignalColumns read_columns(const DelimitedText& text, std::size_t first_data,
                               const TextRow* header, std::optional<std::size_t> time_index,
                               const std::vector<std::size_t>& indices,
                               const std::vector<std::string>& names) {
+  refuse_wider_rows(text, first_data);
   RawSignalColumns raw;
   raw.names = names;
   const std::size_t n = text.rows.size() - first_data;

@@ -173,6 +173,7 @@ void check_time_base(const std::filesystem::path& file, const RawSignalColumns& 
                       "expected at least 2");
   if (raw.time_from_header) {
     out.dt_s = raw.header_dt;
+    out.lines = raw.lines;
     return;
   }
   std::size_t repeats = 0;
@@ -193,6 +194,7 @@ void check_time_base(const std::filesystem::path& file, const RawSignalColumns& 
     repeats = 0;
   }
   const std::vector<std::size_t>& lines = kept_lines.empty() ? raw.lines : kept_lines;
+  out.lines = lines;
   const std::size_t n = t.size();
   const double span = t.back() - t.front();
   if (!(span > 0))
@@ -275,6 +277,7 @@ void check_time_base(const std::filesystem::path& file, const RawSignalColumns& 
   out.warnings.push_back(msg);
   out.time_s = std::move(grid);
   out.dt_s = dt;
+  out.lines.clear();
 }
 
 }  // namespace

@@ -40,6 +40,8 @@ struct SignalColumns {
   double dt_s = 0;
   std::vector<std::string> names;           // resolved name of each requested column
   std::vector<std::vector<double>> values;  // one per requested column, time_s.size() each
+  std::vector<std::size_t> lines;  // the file's line (a sheet's row) of each sample; empty once
+                                   // resampled onto another grid
   std::vector<std::string> warnings;
 };
 

@@ -571,6 +571,67 @@ TEST_CASE("A last line cut inside a number that still parses is refused where th
       write_file("whole.csv", lines_of(fixed_format_rows(100), false)), {by_name("incident")})));
 }
 
+TEST_CASE("A data row with more fields than the first is refused: its columns are shifted",
+          "[core][signal]") {
+  // "1,5" in a comma-separated file without a header, or in a Tektronix channel file, splits a
+  // sample in two: the columns after it would be read from their neighbours ("1" as the sample).
+  const auto plain = write_file("split.csv", "0,0,0\n1e-07,-1e-06,0\n2e-07,1,5,0\n3e-07,0,0\n");
+  CHECK(error_of([&] {
+          read_signal_columns(csv_request(plain, {by_index(1)}));
+        }).find("split.csv: line 3: 4 fields: expected at most the 3 of line 1") !=
+        std::string::npos);
+  const auto tek = write_file("tek_split.csv",
+                              "\"Record Length\",4,\"Points\",-8.0e-005,-0.5\r\n"
+                              "\"Sample Interval\",8.0e-009,s,-7.9992e-005,-0.25\r\n"
+                              ",,,-7.9984e-005,0,25\r\n,,,-7.9976e-005,0.25\r\n");
+  CHECK(error_of([&] {
+          read_signal_columns(csv_request(tek, {by_index(4)}));
+        }).find("tek_split.csv: line 3: 6 fields: expected at most the 5 of line 1") !=
+        std::string::npos);
+  // Trailing separators add no field.
+  CHECK_NOTHROW(read_signal_columns(csv_request(
+      write_file("trail.csv", "0,0,0\n1e-07,-1e-06,0,\n2e-07,0,0,,\n"), {by_index(1)})));
+}
+
+TEST_CASE("A last line cut inside the exponent of a fixed-format column is refused",
+          "[core][signal]") {
+  // Tektronix writes "-1.16812501e-001"; cut to "-1.16812501e-0" it still parses, ten times the
+  // sample.
+  std::string text =
+      "\"Record Length\",4,\"Points\",-8.00000000e-005,-1.15562501e-001\r\n"
+      "\"Sample Interval\",8.00000000e-009,s,-7.99920000e-005,-1.15875001e-001\r\n"
+      ",,,-7.99840000e-005,-1.18437501e-001\r\n,,,-7.99760000e-005,-1.16812501e-0";
+  const std::string msg = error_of(
+      [&] { read_signal_columns(csv_request(write_file("tek_cut.csv", text), {by_index(4)})); });
+  CHECK(msg.find("tek_cut.csv: line 4, column 5: \"-1.16812501e-0\"") != std::string::npos);
+  CHECK(msg.find("an exponent of 1 digit where every other value of the column has 8 decimals and "
+                 "an exponent of 3 digits") != std::string::npos);
+}
+
+TEST_CASE("A value of megabytes is quoted in a message by its start and its length",
+          "[core][signal]") {
+  const std::string junk(1 << 20, 'x');
+  const auto p = write_file("long.csv", "time_s,incident\n0,0\n1e-07," + junk + "\n2e-07,0\n");
+  const std::string msg =
+      error_of([&] { read_signal_columns(csv_request(p, {by_name("incident")})); });
+  CHECK(msg.find("long.csv: line 3, column 2 (\"incident\"): \"xxx") != std::string::npos);
+  CHECK(msg.find("... (1048578 bytes)") != std::string::npos);
+  constexpr std::size_t kShortMessage = 1000;  // a line a terminal shows, whatever the field
+  CHECK(msg.size() < kShortMessage);
+}
+
+TEST_CASE("A header naming many more columns than the rows hold is read", "[core][signal]") {
+  // Its fields are counted by the file's bytes, not by the header's names times the rows: a
+  // million names over 20 000 rows reserved 320 GB (exit 3, out of memory).
+  std::string text = "time_s,incident";
+  for (int i = 0; i < 1000000; ++i) text += ",c";
+  text += "\n";
+  for (int i = 0; i < 20000; ++i) text += std::to_string(i) + "e-07,0\n";
+  const auto s =
+      read_signal_columns(csv_request(write_file("wide_header.csv", text), {by_name("incident")}));
+  CHECK(s.values[0].size() == 20000);
+}
+
 TEST_CASE("Tektronix and LANL raw files are read with their own time bases", "[core][signal]") {
   SECTION("Tektronix") {
     const auto p = write_file("tek.csv",
@@ -654,6 +715,71 @@ TEST_CASE("Volts become strain through the bridge and opposite gauges are averag
   REQUIRE(g.find("incident"));
   CHECK((*g.find("incident"))[1] == Approx(2e-3));  // mean of 1 and 3 V, inverted
   CHECK(g.warnings.empty());                        // peak 2e-3 is a plausible strain
+}
+
+namespace {
+// A pulse of strain -1e-3 over samples [30, 70) of 100 at 10 MHz, with `bending` of the other
+// sign on the channel's opposite gauge, times `scale` (a channel's own gain).
+std::string pulse_csv(double bending, double scale) {
+  std::ostringstream s;
+  s.precision(17);
+  s << "t,v\n";
+  for (int i = 0; i < 100; ++i)
+    s << i * 1e-7 << "," << (i >= 30 && i < 70 ? -1e-3 * (1 + bending) * scale : 0.0) << "\n";
+  return s.str();
+}
+
+// One gauge read from two files, each a channel in strain.
+MeasurementSpec twin_channels(const fs::path& a, const fs::path& b) {
+  MeasurementSpec m;
+  for (const auto& f : {a, b}) {
+    ChannelSpec c;
+    c.gauge = "incident";
+    c.file = f;
+    c.column = by_index(1);
+    c.unit = SignalUnit::kStrain;
+    m.channels.push_back(c);
+  }
+  return m;
+}
+}  // namespace
+
+TEST_CASE("Two channels of one gauge that disagree are refused, never averaged", "[core][signal]") {
+  // Opposite gauges of one section read the axial strain plus and minus the bending strain: with
+  // 10 % bending (a fairly misaligned bar) the mean is the axial strain.
+  const auto good = write_file("ch1.csv", pulse_csv(0.1, 1));
+  const auto other = write_file("ch2.csv", pulse_csv(-0.1, 1));
+  const GaugeSignals g = read_gauge_signals(twin_channels(good, other), {});
+  CHECK((*g.find("incident"))[50] == Approx(-1e-3));
+  // A dead channel (zeros), one whose gain is a million times off and one wired the other way
+  // would halve, or cancel, the gauge's strain: each is refused naming its file and channel.
+  for (const auto& [name, text] :
+       {std::pair{"dead.csv", pulse_csv(0, 0)}, std::pair{"micro.csv", pulse_csv(0, 1e-6)},
+        std::pair{"inverted.csv", pulse_csv(0, -1)}}) {
+    const auto bad = write_file(name, text);
+    const std::string msg = error_of([&] { read_gauge_signals(twin_channels(good, bad), {}); });
+    INFO(msg);
+    CHECK(msg.find("ch1.csv: column index 1 (measurement.channels[0], gauge \"incident\"): with " +
+                   bad.string() +
+                   ", column index 1 (measurement.channels[1], gauge \"incident\"): "
+                   "each ") != std::string::npos);
+    CHECK(msg.find("expected the channels of one gauge") != std::string::npos);
+  }
+}
+
+TEST_CASE("A sample no unit slip explains is refused by its line and column", "[core][signal]") {
+  // Beyond 5e4, what a plausible strain (5e-2) in microstrain declared as strain reads: carried
+  // into the reduction (a column scaled by 1e300) it overflowed to inf in summary.json.
+  std::string text = "t,v\n";
+  for (int i = 0; i < 100; ++i)
+    text += std::to_string(i) + "e-07," + (i == 50 ? "-2.5e+293" : "0") + "\n";
+  MeasurementSpec m = twin_channels(write_file("huge.csv", text), {});
+  m.channels.resize(1);
+  const std::string msg = error_of([&] { read_gauge_signals(m, {}); });
+  CHECK(msg.find(
+            "huge.csv: line 52, column index 1 (measurement.channels[0], gauge "
+            "\"incident\"): -2.5e+293 read as strain -2.5e+293: expected |strain| within 50000") !=
+        std::string::npos);
 }
 
 TEST_CASE("A channel file that records next to nothing of the first file's time is refused",
