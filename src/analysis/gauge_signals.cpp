@@ -18,10 +18,12 @@ namespace {
 // Two files' time bases count as the same if they agree to this fraction of a sample.
 constexpr double kSameClock = 1e-3;
 // Opposite gauges of one section read the axial strain plus and minus the bending strain, which
-// their mean cancels. Bending of half the axial strain (RMS over the record) is a bar far out of
-// line (the LANL PMMA record's pairs: 12 % and 9 %, noise included); a dead, flat or mis-scaled
-// channel deviates from the mean by 100 %, one of another gauge or test by more.
+// their mean cancels. Bending of half the axial strain (RMS where the mean reaches half its peak:
+// the pulses, the quiet record's noise says nothing of bending) is a bar far out of line (the
+// LANL PMMA record's pairs: 4 % and 3 %); a dead, flat or mis-scaled channel deviates from the
+// mean by 100 %, an inverted one or one of another gauge or test by more.
 constexpr double kTwinChannelDisagreement = 0.5;
+constexpr double kTwinPulseLevel = 0.5;  // of the mean's peak: the samples compared
 
 // "column index 4 (measurement.channels[0], gauge "incident")": where a channel's message points.
 std::string channel_label(const MeasurementSpec& m, std::size_t channel) {
@@ -39,18 +41,16 @@ std::string channel_label(const MeasurementSpec& m, std::size_t channel) {
 constexpr double kMaxReadStrain = kPlausibleStrainMax * 1e6;
 
 void check_strain_magnitude(const std::filesystem::path& file, const MeasurementSpec& m,
-                            std::size_t channel, const SignalColumns& cols,
-                            const std::vector<double>& strain, const std::vector<double>& raw,
+                            std::size_t channel, const std::vector<double>& read, double factor,
+                            const std::vector<std::size_t>& lines,
                             const std::vector<double>& time_s) {
-  for (std::size_t i = 0; i < strain.size(); ++i) {
-    if (std::abs(strain[i]) <= kMaxReadStrain) continue;
-    const std::string where = i < cols.lines.size() && raw.size() == strain.size()
-                                  ? "line " + std::to_string(cols.lines[i]) + ", "
-                                  : "at " + format_number(time_s[i]) + " s, ";
-    const std::string value =
-        raw.size() == strain.size() ? format_number(raw[i]) + " read as " : std::string();
-    throw input_error(file.string(), where + channel_label(m, channel),
-                      value + "strain " + format_number(strain[i]),
+  for (std::size_t i = 0; i < read.size(); ++i) {
+    if (std::abs(read[i] * factor) <= kMaxReadStrain) continue;
+    throw input_error(file.string(),
+                      (i < lines.size() ? "line " + std::to_string(lines[i])
+                                        : "at " + format_number(time_s[i]) + " s") +
+                          ", " + channel_label(m, channel),
+                      format_number(read[i]) + " read as strain " + format_number(read[i] * factor),
                       "expected |strain| within " + format_number(kMaxReadStrain) +
                           " (a bar's record stays within " + format_number(kPlausibleStrainMax) +
                           ", microstrain read as strain within " + format_number(kMaxReadStrain) +
@@ -71,13 +71,17 @@ void check_twin_channels(const MeasurementSpec& m, const std::vector<std::size_t
     for (std::size_t i = 0; i < n; ++i)
       level.back()[i] -= med, mean[i] += level.back()[i] / static_cast<double>(channels.size());
   }
+  double peak = 0;
+  for (double x : mean) peak = std::max(peak, std::abs(x));
   double mean_ss = 0;
-  for (double x : mean) mean_ss += x * x;
+  for (double x : mean) mean_ss += std::abs(x) >= kTwinPulseLevel * peak ? x * x : 0;
   std::size_t worst = 0;  // the channel furthest from the mean (of two: the first)
   double worst_ss = 0;
   for (std::size_t k = 0; k < channels.size(); ++k) {
     double dev_ss = 0;
-    for (std::size_t i = 0; i < n; ++i) dev_ss += (level[k][i] - mean[i]) * (level[k][i] - mean[i]);
+    for (std::size_t i = 0; i < n; ++i)
+      if (std::abs(mean[i]) >= kTwinPulseLevel * peak)
+        dev_ss += (level[k][i] - mean[i]) * (level[k][i] - mean[i]);
     if (dev_ss > worst_ss) worst = k, worst_ss = dev_ss;
   }
   if (worst_ss <= kTwinChannelDisagreement * kTwinChannelDisagreement * mean_ss) return;
@@ -133,6 +137,27 @@ void check_sample_interval(const SignalColumns& cols, const MeasurementSpec& m) 
                 "than measurement.time.unit says?",
                 kMinSampleInterval_s, kMaxSampleInterval_s);
   throw input_error(cols.file.string(), "", value, expected);
+}
+
+// Each gauge's strain, the mean of its channels (checked to agree), in order of first appearance.
+void average_channels(const MeasurementSpec& m,
+                      const std::vector<std::vector<double>>& channel_strain,
+                      const std::vector<std::filesystem::path>& channel_file, GaugeSignals& out) {
+  for (std::size_t c = 0; c < m.channels.size(); ++c) {
+    const std::string& g = m.channels[c].gauge;
+    if (out.find(g)) continue;
+    std::vector<double> sum(out.time_s.size(), 0.0);
+    std::vector<std::size_t> twins;
+    for (std::size_t d = c; d < m.channels.size(); ++d)
+      if (m.channels[d].gauge == g) {
+        for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += channel_strain[d][i];
+        twins.push_back(d);
+      }
+    if (twins.size() > 1) check_twin_channels(m, twins, channel_strain, channel_file);
+    for (double& x : sum) x /= static_cast<double>(twins.size());
+    out.gauges.push_back(g);
+    out.strain.push_back(std::move(sum));
+  }
 }
 
 }  // namespace
@@ -242,10 +267,11 @@ GaugeSignals read_gauge_signals(const MeasurementSpec& m, const std::filesystem:
                                          : resample(cols.time_s, cols.values[k], out.time_s);
       double factor = strain_per_unit(ch);
       if (ch.invert) factor = -factor;
-      factor /= ch.calibrated_gain;  // model/calibration.hpp
-      const std::vector<double> read = same_clock ? v : std::vector<double>();
+      factor /= ch.calibrated_gain;                    // model/calibration.hpp
+      static const std::vector<std::size_t> kNoLines;  // resampled: samples named by time
+      check_strain_magnitude(file, m, channels[k], v, factor, same_clock ? cols.lines : kNoLines,
+                             out.time_s);
       for (double& x : v) x *= factor;
-      check_strain_magnitude(file, m, channels[k], cols, v, read, out.time_s);
       if (ch.calibrated_delay_s != 0) {  // its record on the reference channel's clock
         const std::vector<double> late = v;
         const double shift = ch.calibrated_delay_s / out.dt_s;
@@ -256,22 +282,7 @@ GaugeSignals read_gauge_signals(const MeasurementSpec& m, const std::filesystem:
       channel_file[channels[k]] = file;
     }
   }
-  // Average the channels of each gauge, in order of first appearance.
-  for (std::size_t c = 0; c < m.channels.size(); ++c) {
-    const std::string& g = m.channels[c].gauge;
-    if (out.find(g)) continue;
-    std::vector<double> sum(out.time_s.size(), 0.0);
-    std::vector<std::size_t> twins;
-    for (std::size_t d = c; d < m.channels.size(); ++d)
-      if (m.channels[d].gauge == g) {
-        for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += channel_strain[d][i];
-        twins.push_back(d);
-      }
-    if (twins.size() > 1) check_twin_channels(m, twins, channel_strain, channel_file);
-    for (double& x : sum) x /= static_cast<double>(twins.size());
-    out.gauges.push_back(g);
-    out.strain.push_back(std::move(sum));
-  }
+  average_channels(m, channel_strain, channel_file, out);
   for (std::size_t g = 0; g < out.gauges.size(); ++g) {
     const double peak = median_abs_peak(out.strain[g]);
     if (peak < kPlausibleStrainMin || peak > kPlausibleStrainMax) {
