@@ -1200,19 +1200,25 @@ void warn_window_shift(const ShiftStressError& stress_change, const std::vector<
 
 }  // namespace
 
-void require_pulse_fits_round_trip(const KolskySetup& k, double pulse_s,
-                                   const std::string& scene_file) {
-  const double round_trip = 2 * k.incident_distance_m / k.front.c0_m_s;
-  if (!(round_trip > 0) || pulse_s <= kMaxPulseRoundTrips * round_trip) return;
-  char value[200];
-  std::snprintf(value, sizeof value,
-                "gauge \"%s\": incident pulse %.3g s long, %.3g round trips 2d/c0 = %.3g s of "
-                "its gauge to the specimen and back",
-                k.incident_gauge.c_str(), pulse_s, pulse_s / round_trip, round_trip);
+void require_pulse_fits_round_trip(const std::string& gauge, const std::string& pulse,
+                                   double pulse_s, double round_trip_s,
+                                   const std::string& round_trip, const std::string& scene_file) {
+  if (!(round_trip_s > 0) || pulse_s <= kMaxPulseRoundTrips * round_trip_s) return;
+  char value[300];
+  std::snprintf(value, sizeof value, "gauge \"%s\": %s %.3g s long, %.3g round trips %s",
+                gauge.c_str(), pulse.c_str(), pulse_s, pulse_s / round_trip_s,
+                fmt(round_trip.c_str(), round_trip_s).c_str());
   throw input_error(scene_file, "measurement.time.unit", value,
                     "expected a pulse shorter than its round trip (its reflection would overlap "
                     "it): is the time unit right? (a column in ms read as s makes every pulse "
                     "1000 times longer)");
+}
+
+void require_pulse_fits_round_trip(const KolskySetup& k, double pulse_s,
+                                   const std::string& scene_file) {
+  require_pulse_fits_round_trip(k.incident_gauge, "incident pulse", pulse_s,
+                                2 * k.incident_distance_m / k.front.c0_m_s,
+                                "2d/c0 = %.3g s of its gauge to the specimen and back", scene_file);
 }
 
 ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup& k,

@@ -196,6 +196,12 @@ inline constexpr double kMaxPulseRoundTrips = 10;
 // than that. Used by `process`, `compare` and `fit`.
 void require_pulse_fits_round_trip(const KolskySetup& setup, double pulse_s,
                                    const std::string& scene_file);
+// The same rule for any `pulse` of `gauge` against a round trip of `round_trip_s`, described by
+// `round_trip` (a printf format of that time, e.g. "2L/c0 = %.3g s of its bar"): `calibrate`'s
+// first pulse against its struck bar's round trip.
+void require_pulse_fits_round_trip(const std::string& gauge, const std::string& pulse,
+                                   double pulse_s, double round_trip_s,
+                                   const std::string& round_trip, const std::string& scene_file);
 
 ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup& setup,
                                  const ProcessingOptions& options);

@@ -448,6 +448,11 @@ Shot prepare_shot(const CalibrationShot& cs, Parameters& params, std::string& re
   const SourceWindow w =
       cut_source(source, base.noise,
                  static_cast<std::size_t>(std::max(0.0, return_s / signals.dt_s)), file, src.name);
+  // A striker pulse lasts 2 L_s/c0: ten times the struck bar's own round trip is no striker's,
+  // but a clock read in the wrong unit (the rule of process, analysis/processing.hpp).
+  require_pulse_fits_round_trip(
+      src.name, "first pulse", static_cast<double>(w.pulse.end - w.pulse.onset) * signals.dt_s,
+      2 * struck.length_m / struck.material.wave_speed_m_s(), "2L/c0 = %.3g s of its bar", file);
   s.source = source;
   s.source_level_sd = rest_level_sd(base.noise, baseline_samples(source.size()));
   s.keep0 = w.keep0, s.keep1 = w.end;

@@ -336,6 +336,37 @@ TEST_CASE("calibrate and a scene's calibration refuse bad input with one line an
   CHECK(one_line(r));
   CHECK(r.err.find("\"incident\" of a viscoelastic material") != std::string::npos);
   CHECK(!fs::exists(dir / "o3"));
+  // The bars-apart record at 10 MS/s (its samples and their midpoints), its time column in ms
+  // read as s (the default): the 1e-4 s interval passes the digitizer range, and calibrate
+  // fitted the 1000-times-slow record (exit 0, a wave speed of metres per second). Its pulse
+  // lasts about 170 of the bar's round trips 2L/c0.
+  {
+    std::istringstream in(shpb_test::read_text(dir / "apart.csv"));
+    std::string line, text;
+    std::getline(in, line);
+    text = line + "\n";
+    const auto row = [](double t, double v) {
+      char out[64];
+      std::snprintf(out, sizeof out, "%.10g,%.10g\n", t, v);
+      return std::string(out);
+    };
+    double previous = 0;
+    for (std::size_t i = 0; std::getline(in, line); ++i) {
+      const double v = std::stod(line.substr(line.find(',') + 1));
+      if (i > 0) text += row((static_cast<double>(i) - 0.5) * kDt * 1e3, 0.5 * (previous + v));
+      text += row(static_cast<double>(i) * kDt * 1e3, v);
+      previous = v;
+    }
+    std::ofstream(dir / "apart_ms.csv") << text;
+    write_json(dir / "apart_ms.json", scene(false, "apart_ms.csv"));
+    r = run_shpb({"calibrate", (dir / "apart_ms.json").string(), "-o", (dir / "o4").string()});
+    INFO(r.err);
+    CHECK(one_line(r));
+    CHECK(r.err.find("apart_ms.json: measurement.time.unit: gauge \"inc\": first pulse ") !=
+          std::string::npos);
+    CHECK(r.err.find("round trips 2L/c0") != std::string::npos);
+    CHECK(!fs::exists(dir / "o4"));
+  }
   // A calibration file that is not one.
   write_json(dir / "bad.json", {{"format", "something else"}, {"bars", nlohmann::json::array()}});
   nlohmann::json s = scene(true, "together.csv");
