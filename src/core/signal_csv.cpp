@@ -209,20 +209,29 @@ void refuse_cut_last_line(const DelimitedText& text, std::size_t first_data,
   }
 }
 
-// A data row with more filled fields than the first data row holds has had its columns shifted
-// (a decimal comma or a stray separator splits a field in two): read by index, the columns after
-// the split would take their neighbours' values. Refused by line; a file with a header and
-// columns by name is refused earlier (resolve), with the header to judge by.
+// A data row of numbers with more filled fields than the first data row holds has had its columns
+// shifted (a decimal comma or a stray separator splits a field in two): read by index, the
+// columns after the split would take their neighbours' values. Refused by line; a file with a
+// header and columns by name is refused earlier (resolve), with the header to judge by. A row
+// with a text beside its numbers (a scope's marker or a note) shifts nothing, and a sheet's
+// cells are cells.
 void refuse_wider_rows(const DelimitedText& text, std::size_t first_data) {
+  if (is_spreadsheet(text.file)) return;
   const std::size_t width = text.rows[first_data].fields.size();
-  for (std::size_t i = first_data + 1; i < text.rows.size(); ++i)
-    if (const std::size_t filled = filled_width(text.rows[i]); filled > width)
-      throw input_error(text.file.string(), "line " + std::to_string(text.rows[i].line),
+  const auto number_or_empty = [&](std::string_view f) {
+    return f.empty() || parse_number(f, text.decimal_comma).has_value();
+  };
+  for (std::size_t i = first_data + 1; i < text.rows.size(); ++i) {
+    const TextRow& row = text.rows[i];
+    if (const std::size_t filled = filled_width(row);
+        filled > width && std::all_of(row.fields.begin(), row.fields.end(), number_or_empty))
+      throw input_error(text.file.string(), "line " + std::to_string(row.line),
                         std::to_string(filled) + " fields",
                         "expected at most the " + std::to_string(width) + " of line " +
                             std::to_string(text.rows[first_data].line) +
                             ", the first data row: a decimal comma or a stray separator splits a "
                             "field and shifts the columns after it");
+  }
 }
 
 // The rows from `first_data` on: the time column's stamps (none without one: a clock fills

@@ -588,9 +588,17 @@ TEST_CASE("A data row with more fields than the first is refused: its columns ar
           read_signal_columns(csv_request(tek, {by_index(4)}));
         }).find("tek_split.csv: line 3: 6 fields: expected at most the 5 of line 1") !=
         std::string::npos);
-  // Trailing separators add no field.
+  // Trailing separators add no field; a text beside the numbers (a scope's marker) shifts none,
+  // and a workbook's cells are cells.
   CHECK_NOTHROW(read_signal_columns(csv_request(
       write_file("trail.csv", "0,0,0\n1e-07,-1e-06,0,\n2e-07,0,0,,\n"), {by_index(1)})));
+  CHECK_NOTHROW(read_signal_columns(csv_request(
+      write_file("marker.csv", "0,0,0\n1e-07,-1e-06,0,TRIGGER\n2e-07,0,0\n"), {by_index(1)})));
+  const auto sheet = scratch.path() / "note.xlsx";
+  shpb_test::write_xlsx(sheet, "t,a,b\n0,0,0\n1e-07,-1e-06,0,7\n2e-07,0,0\n");
+  SignalRequest from_sheet = csv_request(sheet, {by_index(1)});
+  from_sheet.sheet = "signals";
+  CHECK_NOTHROW(read_signal_columns(from_sheet));
 }
 
 TEST_CASE("A last line cut inside the exponent of a fixed-format column is refused",
