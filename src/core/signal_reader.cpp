@@ -154,6 +154,60 @@ StepSurvey survey_steps(const std::vector<double>& t) {
   return s;
 }
 
+// The rounding step of each stamp as printed: the larger of the steps of the two ways a column
+// is printed, to D significant digits ("%.2E": 1e-5 at 1.23E-03, 1e-8 at 4.56E-06) and to d
+// decimals ("%.1f": 0.1 throughout), D and d the fewest that write every stamp exactly.
+std::vector<double> stamp_rounding(const std::vector<double>& t) {
+  constexpr int kMaxDigits = 17;     // a double's
+  constexpr int kMaxDecimals = 330;  // beyond a double's smallest
+  constexpr double kExactly = 1e-9;  // of the step: the stamp is that multiple of it
+  const auto exact = [&](double v, double step) {
+    return std::abs(v / step - std::round(v / step)) <= kExactly;
+  };
+  int digits = 1, decimals = -kMaxDigits;
+  for (double v : t) {
+    if (v == 0) continue;
+    const int magnitude = static_cast<int>(std::floor(std::log10(std::abs(v))));
+    while (digits < kMaxDigits && !exact(v, std::pow(10.0, magnitude - digits + 1))) ++digits;
+    while (decimals < kMaxDecimals &&
+           (std::pow(10.0, -decimals) > std::abs(v) || !exact(v, std::pow(10.0, -decimals))))
+      ++decimals;
+  }
+  std::vector<double> step(t.size());
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const double fixed = std::pow(10.0, -decimals);
+    step[i] =
+        t[i] == 0
+            ? fixed
+            : std::max(fixed, std::pow(10.0, std::floor(std::log10(std::abs(t[i]))) - digits + 1));
+  }
+  return step;
+}
+
+// Rounded stamps lie within half their rounding step of the sampling clock (their least-squares
+// line); one further off by more than kRoundedStampFraction of the interval has samples missing
+// before it (a gap) or extra ones, which the rebuilt clock would spread over the record: a gap
+// of 200 samples in the epoxy record's 3-digit stamps put them 98 intervals off, 1 sample 0.48.
+void refuse_gap_in_rounded_stamps(const std::filesystem::path& file,
+                                  const std::vector<std::size_t>& lines,
+                                  const std::vector<double>& t, const ClockFit& c,
+                                  const std::string& hint) {
+  const std::vector<double> step = stamp_rounding(t);
+  std::size_t worst = 0;
+  double worst_off = 0;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const double off = std::abs(t[i] - c.t0 - static_cast<double>(i) * c.dt) - step[i] / 2;
+    if (off > worst_off) worst = i, worst_off = off;
+  }
+  if (worst_off <= kRoundedStampFraction * c.dt) return;
+  throw input_error(
+      file.string(), "line " + std::to_string(lines[worst]) + " (time column)", seconds(t[worst]),
+      seconds(worst_off) + " off the sampling clock of the rounded stamps (" + seconds(c.dt) +
+          " per row) beyond its rounding: expected uniform sampling (samples "
+          "missing or repeated: a gap or jump in the record)" +
+          hint);
+}
+
 // What a refusal of the time stamps adds when the first column was taken as the time column by
 // default: a file without a time column reads its first channel there.
 std::string no_time_column_hint(const SignalRequest& request) {
@@ -214,9 +268,10 @@ void check_time_base(const std::filesystem::path& file, const RawSignalColumns& 
   if (repeats > 0) {
     std::size_t distinct = 1;
     for (std::size_t i = 1; i < n; ++i) distinct += t[i] != t[i - 1];
-    rebuild(fit_clock(t), "time stamps repeat (" + std::to_string(distinct) +
-                              " distinct values in " + std::to_string(n) +
-                              " rows: the column was rounded)");
+    const ClockFit c = fit_clock(t);
+    refuse_gap_in_rounded_stamps(file, lines, t, c, no_time_column_hint(request));
+    rebuild(c, "time stamps repeat (" + std::to_string(distinct) + " distinct values in " +
+                   std::to_string(n) + " rows: the column was rounded)");
     return;
   }
   const auto [median_step, mean_step, first_off, jitter, shortest, longest] = survey_steps(t);

@@ -459,6 +459,40 @@ TEST_CASE("Repeated time stamps are detected and the time base rebuilt with a wa
   CHECK(std::abs(s.time_s[0] - -1.98e-4) < 1e-6);
 }
 
+TEST_CASE("Rounded stamps with samples missing are refused, not spread over the record",
+          "[core][signal]") {
+  // The epoxy file's 3-digit stamps of an 80 ns clock, through zero (where they are finest),
+  // with 20 samples missing (a DAQ's dropped buffer) or one row twice with other values: the
+  // rebuilt clock spread the gap over the record (every time 0.1 % off, its loading 1.6 us
+  // short), exit 0. Read whole (and in µs to one decimal, "%.1f") the base is rebuilt.
+  const auto rows = [](int skip_from, int skipped, int twice, const char* format, double unit) {
+    std::string text = "t,a\n";
+    for (int i = 0; i < 4000; ++i) {
+      if (i >= skip_from && i < skip_from + skipped) continue;
+      char line[64];
+      std::snprintf(line, sizeof line, format, (-1.6e-4 + i * 8e-8) / unit, i);
+      text += line;
+      if (i == twice) text += std::string(line).substr(0, std::string(line).find(',')) + ",-1\n";
+    }
+    return text;
+  };
+  const auto read = [&](const std::string& name, const std::string& text, double unit) {
+    SignalRequest r = csv_request(write_file(name, text), {by_index(1)});
+    r.time_unit_s = unit;
+    return read_signal_columns(r);
+  };
+  const auto whole = read("whole.csv", rows(0, 0, -1, "%.2E,%d\n", 1), 1);
+  CHECK(whole.dt_s == Approx(8e-8).epsilon(1e-12));
+  CHECK_NOTHROW(read("whole_us.csv", rows(0, 0, -1, "%.1f,%d\n", 1e-6), 1e-6));
+  const std::string gap = error_of([&] { read("gap.csv", rows(3000, 20, -1, "%.2E,%d\n", 1), 1); });
+  CHECK(gap.find("gap.csv: line ") != std::string::npos);
+  CHECK(gap.find("off the sampling clock of the rounded stamps") != std::string::npos);
+  const std::string twice =
+      error_of([&] { read("twice.csv", rows(0, 0, 2500, "%.2E,%d\n", 1), 1); });
+  CHECK(twice.find("twice.csv: line ") != std::string::npos);
+  CHECK(twice.find("samples missing or repeated") != std::string::npos);
+}
+
 // A 3 MHz record exported with its time in µs to one decimal: the steps read 0.3, 0.3, 0.4 µs
 // (20 % apart, beyond what resampling takes for export jitter), yet every stamp lies within
 // 0.05 µs of the uniform clock it was printed from. The base is rebuilt on the least-squares line
