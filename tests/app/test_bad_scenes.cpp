@@ -323,6 +323,9 @@ const std::vector<BadScene>& cases() {
        "measurement.windows.incident"},
       {"a channel without any file", [](json& s, json&) { s["measurement"].erase("file"); },
        "measurement.channels[0].file: (missing)"},
+      {"an empty time unit (not seconds by default)",
+       [](json& s, json&) { s["measurement"]["time"]["unit"] = ""; },
+       "measurement.time.unit: \"\": expected a time unit"},
   };
   return table;
 }
