@@ -13,6 +13,7 @@
 #include "core/error.hpp"
 #include "core/interpolation.hpp"
 #include "dispersion/pochhammer_chree.hpp"  // the supported Poisson ratios
+#include "model/computable.hpp"
 #include "model/test_setup.hpp"
 
 namespace shpb {
@@ -465,6 +466,7 @@ KolskySetup resolve_setup(const Scene& scene, const std::vector<std::string>& av
   if (s == 0 || s + 1 >= scene.bars.size())
     throw input_error(file, "specimen", scene.bars[s].name,
                       "needs a bar on each side (incident and transmitter)");
+  check_reduction_computable(scene);
   const BarSpec& inc = scene.bars[s - 1];
   const BarSpec& tra = scene.bars[s + 1];
   auto has = [&](const std::string& g) {
