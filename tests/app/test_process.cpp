@@ -7,6 +7,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <tuple>
+#include <vector>
 
 #include "lab_record.hpp"
 #include "run_shpb.hpp"
@@ -147,6 +149,41 @@ TEST_CASE("process refuses an uncertainty that would draw a positive quantity <=
                          ": measurement.uncertainty.bars.incident.youngs_modulus: ",
                      0) == 0);
     CHECK(last.find("on a value of 2e+11 Pa that must stay > 0") != std::string::npos);
+    CHECK(std::count(last.begin(), last.end(), '\n') == 1);
+    CHECK_FALSE(fs::exists(dir / "out"));
+  }
+}
+
+// A trigger delay or window start is drawn as a time shift of a pulse: a standard uncertainty of
+// a sixth of the record or more moves pulses off the record (before this check: 1e300 samples ran
+// to exit 0 with bands and no warning). Refused before any draw, naming the JSON path and value.
+TEST_CASE("process refuses a time-shift uncertainty that would move pulses off the record",
+          "[app][process][uncertainty]") {
+  const fs::path dir = temp_dir("uncertainty_shift");
+  // The record (lab_record.hpp) holds kSamples samples kDt apart: 799.9 us, a sixth 133.3 us.
+  const std::vector<std::tuple<std::string, nlohmann::json, std::string>> cases = {
+      {"window_start", 1e300, "measurement.uncertainty.window_start: 1e+300 samples: "},
+      {"window_start", 1334, "measurement.uncertainty.window_start: 1334 samples: "},
+      {"trigger_delay", "1 ms", "measurement.uncertainty.trigger_delay: 0.001 s: "},
+      {"trigger_delay", "0.1 us", ""},
+      {"window_start", 1, ""}};
+  for (const auto& [key, given, refused] : cases) {
+    CAPTURE(key, given.dump());
+    nlohmann::json scene = shpb_test::steel_scene();
+    scene["measurement"]["uncertainty"] = {{key, given}};
+    const fs::path file = shpb_test::write(dir, scene, good_signals());
+    fs::remove_all(dir / "out");
+    const auto r = run_shpb(
+        {"process", file.string(), "-o", (dir / "out").string(), "--draws", "20", "--quiet"});
+    INFO(r.err);
+    if (refused.empty()) {
+      CHECK(r.code == 0);
+      continue;
+    }
+    CHECK(r.code == 2);
+    const std::string last = r.err.substr(r.err.rfind("error: "));
+    CHECK(last.rfind("error: " + file.string() + ": " + refused, 0) == 0);
+    CHECK(last.find("would move its pulse off the record") != std::string::npos);
     CHECK(std::count(last.begin(), last.end(), '\n') == 1);
     CHECK_FALSE(fs::exists(dir / "out"));
   }
