@@ -10,6 +10,7 @@
 #include "core/json_value.hpp"
 #include "model/interface_name.hpp"
 #include "model/penalty_links.hpp"
+#include "model/scene_inputs.hpp"
 
 namespace shpb {
 
@@ -93,13 +94,8 @@ class Inputs {
 
   // A material of the scene's `materials`, of a file, or given inline in the bar.
   Input material_input(std::size_t i, const char* key, double si, Dimension dim) const {
-    const std::string& name = scene_.bars[i].material.name;
-    const std::string value = JsonValue::format(si, dim);
-    if (std::find(scene_.material_files.begin(), scene_.material_files.end(),
-                  std::filesystem::path(name)) != scene_.material_files.end())
-      return {name, key, value, si};
-    if (name == "inline") return {file_, bar(i) + ".material." + key, value, si};
-    return {file_, "materials." + name + "." + key, value, si};
+    const InputLocation at = material_key_location(scene_, i, key);
+    return {at.file, at.path, JsonValue::format(si, dim), si};
   }
 
   const Scene& scene_;

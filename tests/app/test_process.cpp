@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -185,6 +186,50 @@ TEST_CASE("process refuses a time-shift uncertainty that would move pulses off t
     CHECK(last.rfind("error: " + file.string() + ": " + refused, 0) == 0);
     CHECK(last.find("would move its pulse off the record") != std::string::npos);
     CHECK(std::count(last.begin(), last.end(), '\n') == 1);
+    CHECK_FALSE(fs::exists(dir / "out"));
+  }
+}
+
+// An auxetic bar is a valid material (-1 < nu < 0.5) but not a processed bar (the dispersion
+// tables cover 0 ... 0.49): the refusal names where the ratio was given — a key of `materials`, a
+// material file, or the bar's inline material — not a path the file does not have (before:
+// "bars[1].material.poisson_ratio" for a ratio given in materials.steel).
+TEST_CASE("process names where a processed bar's unsupported Poisson ratio was given",
+          "[app][process]") {
+  const fs::path dir = temp_dir("poisson_path");
+  fs::create_directories(dir / "m");
+  const nlohmann::json steel = shpb_test::steel_scene()["materials"]["steel"];
+  struct Case {
+    std::string what, file, where;
+    std::function<void(nlohmann::json&)> edit;
+  };
+  const std::vector<Case> cases = {
+      {"a key of materials", "scene.json", "materials.steel.poisson_ratio",
+       [](nlohmann::json& s) { s["materials"]["steel"]["poisson_ratio"] = -0.2; }},
+      {"a material file", "m/bar.json", "poisson_ratio",
+       [&](nlohmann::json& s) {
+         nlohmann::json m = steel;
+         m["poisson_ratio"] = -0.2;
+         std::ofstream(dir / "m/bar.json") << m.dump();
+         s["bars"][3]["material"] = "m/bar.json";
+       }},
+      {"an inline material", "scene.json", "bars[1].material.poisson_ratio",
+       [&](nlohmann::json& s) {
+         s["bars"][1]["material"] = steel;
+         s["bars"][1]["material"]["poisson_ratio"] = -0.2;
+       }}};
+  for (const Case& c : cases) {
+    INFO(c.what);
+    nlohmann::json scene = shpb_test::steel_scene();
+    c.edit(scene);
+    const fs::path file = shpb_test::write(dir, scene, good_signals());
+    fs::remove_all(dir / "out");
+    const auto r = run_shpb({"process", file.string(), "-o", (dir / "out").string(), "--quiet"});
+    INFO(r.err);
+    CHECK(r.code == 2);
+    const std::string last = r.err.substr(std::min(r.err.rfind("error: "), r.err.size()));
+    const std::string named = (dir / c.file).string();
+    CHECK(last.rfind("error: " + named + ": " + c.where + ": -0.2: must be in [0, 0.49]", 0) == 0);
     CHECK_FALSE(fs::exists(dir / "out"));
   }
 }
