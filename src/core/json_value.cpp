@@ -120,6 +120,11 @@ std::string file_name_problem(std::string_view s, const std::vector<std::string>
   if (s.find_first_of("/\\") != std::string_view::npos)
     return "must not contain a path separator (the name is a folder name)";
   if (s == "." || s == "..") return "must not be \".\" or \"..\" (the name is a folder name)";
+  // NAME_MAX of Linux, macOS and Windows file systems: a longer folder cannot be created.
+  constexpr std::size_t kMaxFolderNameBytes = 255;
+  if (s.size() > kMaxFolderNameBytes)
+    return "must be at most " + std::to_string(kMaxFolderNameBytes) + " bytes (" +
+           std::to_string(s.size()) + " given; the name is a folder name)";
   const auto lower = [](std::string_view t) {
     std::string l(t);
     for (char& c : l) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));

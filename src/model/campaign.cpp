@@ -58,11 +58,10 @@ Campaign read_campaign(const fs::path& file) {
     if (written.empty()) throw scene.error("expected a scene file name");
     test.scene = written.is_absolute() ? written : file.parent_path() / written;
     std::error_code ec;
+    // The path as JSON text: a line break or control character in it stays on the one line.
     if (!fs::exists(test.scene, ec))
-      throw scene.error_with_value("\"" + written.string() + "\"",
-                                   "no such file (" + test.scene.string() + ")");
-    if (!fs::is_regular_file(test.scene, ec))
-      throw scene.error_with_value("\"" + written.string() + "\"", "is not a regular file");
+      throw scene.error("no such file (" + nlohmann::json(test.scene.string()).dump() + ")");
+    if (!fs::is_regular_file(test.scene, ec)) throw scene.error("is not a regular file");
     test.name = name_of_scene(test.scene);
     if (auto v = t.get("name")) {
       test.name = v->file_name(campaign_output_names());
