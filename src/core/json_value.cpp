@@ -16,7 +16,12 @@ std::string json_child_path(const std::string& parent, std::string_view key) {
   for (const char c : key)
     if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-')) plain = false;
   if (plain) return parent.empty() ? std::string(key) : parent + "." + std::string(key);
-  return parent + "[" + nlohmann::json(std::string(key)).dump() + "]";
+  return parent + "[" + json_quoted(key) + "]";
+}
+
+std::string json_quoted(std::string_view s) {
+  return nlohmann::json(std::string(s))
+      .dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
 std::string json_element_path(const std::string& parent, std::size_t index) {

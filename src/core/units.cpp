@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/json_value.hpp"
+
 // A unit expression is a product of powers of symbols with optional SI prefixes, e.g. "g/cm3",
 // "J/(kg K)", "m·s^-1", "1/s". Each symbol carries a factor to SI and a dimension vector over the
 // base quantities (length, mass, time, temperature, current); a quantity is accepted when its
@@ -125,7 +127,7 @@ class UnitParser {
   UnitValue parse() {
     UnitValue u = expression();
     skip_spaces();
-    if (pos_ != text_.size()) fail("unexpected \"" + std::string(text_.substr(pos_)) + "\"");
+    if (pos_ != text_.size()) fail("unexpected " + json_quoted(text_.substr(pos_)));
     return u;
   }
 
