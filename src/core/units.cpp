@@ -207,7 +207,15 @@ class UnitParser {
       if (pos_ >= text_.size() || text_[pos_] != ')') fail("a closing parenthesis is missing");
       ++pos_;
     } else if (pos_ < text_.size() && text_[pos_] == '1') {
+      // Only the numerator of a quotient ("1/s"): a "1" with digits or a unit after it is a
+      // second number ("5 12 mm" would read as 5 mm, its "12" as 1 to the power 2).
       ++pos_;
+      skip_spaces();
+      if (pos_ >= text_.size() || text_[pos_] != '/')
+        fail(
+            "\"1\" is a unit only as the numerator of a quotient, as in \"1/s\": a second "
+            "number?");
+      return u;
     } else {
       const std::size_t start = pos_;
       while (pos_ < text_.size() && is_symbol_byte(text_[pos_]) && !at_superscript() &&
