@@ -13,6 +13,8 @@
 #include "core/error.hpp"
 #include "core/interpolation.hpp"
 #include "dispersion/pochhammer_chree.hpp"  // the supported Poisson ratios
+#include "model/computable.hpp"
+#include "model/scene_inputs.hpp"
 #include "model/test_setup.hpp"
 
 namespace shpb {
@@ -465,6 +467,7 @@ KolskySetup resolve_setup(const Scene& scene, const std::vector<std::string>& av
   if (s == 0 || s + 1 >= scene.bars.size())
     throw input_error(file, "specimen", scene.bars[s].name,
                       "needs a bar on each side (incident and transmitter)");
+  check_reduction_computable(scene);
   const BarSpec& inc = scene.bars[s - 1];
   const BarSpec& tra = scene.bars[s + 1];
   auto has = [&](const std::string& g) {
@@ -500,13 +503,14 @@ KolskySetup resolve_setup(const Scene& scene, const std::vector<std::string>& av
   // Pochhammer–Chree tables are computed for 0 ≤ ν ≤ 0.49 (docs/methods.md §5): bar steels,
   // aluminium, titanium and PMMA lie well inside; auxetic (ν < 0) bars are not supported.
   for (const std::size_t b : {s - 1, s + 1})
-    if (const double nu = scene.bars[b].material.poisson_ratio; !poisson_ratio_supported(nu))
-      throw input_error(file, "bars[" + std::to_string(b) + "].material.poisson_ratio",
-                        format_double(nu),
+    if (const double nu = scene.bars[b].material.poisson_ratio; !poisson_ratio_supported(nu)) {
+      const InputLocation at = material_key_location(scene, b, "poisson_ratio");
+      throw input_error(at.file, at.path, format_double(nu),
                         "must be in [" + format_double(kMinPoissonRatio) + ", " +
                             format_double(kMaxPoissonRatio) +
                             "] for a bar whose pulses are processed (dispersion "
                             "tables cover that range; auxetic bars are not supported)");
+    }
   k.specimen = {scene.bars[s].length_m, scene.bars[s].area_m2};
   if (const double c = scene.bars[s].material.wave_speed_m_s(); c > 0) {
     k.specimen_transit_s = scene.bars[s].length_m / c;

@@ -12,6 +12,7 @@
 #include <tuple>
 
 #include "analysis/test_processing.hpp"
+#include "core/csv_writer.hpp"  // format_double
 #include "core/error.hpp"
 #include "core/output_folder.hpp"
 #include "core/parallel_runner.hpp"
@@ -190,10 +191,38 @@ void add_gauge_position_inputs(InputList& in, const StandardUncertainty& positio
   }
 }
 
+// A time shift drawn beyond the record moves its pulse off it, onto samples the record does not
+// hold: its draws must stay within the record's span as a positive value's keep their sign
+// (kSignKeepingSigmas standard deviations: beyond, with probability below 1e-9 per draw).
+void require_shift_within_record(const std::string& file, const std::string& path,
+                                 const std::string& given, double sigma_s,
+                                 const GaugeSignals& signals) {
+  const double span = signals.time_s.back() - signals.time_s.front();
+  if (sigma_s < span / kSignKeepingSigmas) return;
+  char what[300];
+  std::snprintf(what, sizeof what,
+                "a time shift of standard deviation %s would move its pulse off the record "
+                "(%s long); expected one below %s (the record / %g)",
+                JsonValue::format(sigma_s, Dimension::kTime).c_str(),
+                JsonValue::format(span, Dimension::kTime).c_str(),
+                JsonValue::format(span / kSignKeepingSigmas, Dimension::kTime).c_str(),
+                kSignKeepingSigmas);
+  throw input_error(file, path, given, what);
+}
+
 // Timing (trigger delay, window starts), the dispersion cut-off and the friction coefficient.
 void add_analysis_inputs(InputList& in, const Scene& scene, const UncertaintySpec& u,
                          const GaugeSignals& signals, const ProcessingOptions& options,
                          const ProcessingResult& nominal) {
+  const std::string file = scene.file.string();
+  if (u.trigger_delay)
+    require_shift_within_record(file, u.trigger_delay->path,
+                                JsonValue::format(u.trigger_delay->value, Dimension::kTime),
+                                u.trigger_delay->value, signals);
+  if (u.window_start)
+    require_shift_within_record(file, u.window_start->path,
+                                format_double(u.window_start->value) + " samples",
+                                u.window_start->value * signals.dt_s, signals);
   if (u.trigger_delay)
     in.add("trigger_delay", 0, u.trigger_delay->value, Dimension::kTime, u.trigger_delay->path,
            false, [](double x, DrawState& d) { d.options.transmitted_shift_s += x; });

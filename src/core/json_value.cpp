@@ -16,7 +16,12 @@ std::string json_child_path(const std::string& parent, std::string_view key) {
   for (const char c : key)
     if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-')) plain = false;
   if (plain) return parent.empty() ? std::string(key) : parent + "." + std::string(key);
-  return parent + "[" + nlohmann::json(std::string(key)).dump() + "]";
+  return parent + "[" + json_quoted(key) + "]";
+}
+
+std::string json_quoted(std::string_view s) {
+  return nlohmann::json(std::string(s))
+      .dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
 std::string json_element_path(const std::string& parent, std::size_t index) {
@@ -120,6 +125,11 @@ std::string file_name_problem(std::string_view s, const std::vector<std::string>
   if (s.find_first_of("/\\") != std::string_view::npos)
     return "must not contain a path separator (the name is a folder name)";
   if (s == "." || s == "..") return "must not be \".\" or \"..\" (the name is a folder name)";
+  // NAME_MAX of Linux, macOS and Windows file systems: a longer folder cannot be created.
+  constexpr std::size_t kMaxFolderNameBytes = 255;
+  if (s.size() > kMaxFolderNameBytes)
+    return "must be at most " + std::to_string(kMaxFolderNameBytes) + " bytes (" +
+           std::to_string(s.size()) + " given; the name is a folder name)";
   const auto lower = [](std::string_view t) {
     std::string l(t);
     for (char& c : l) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));

@@ -63,6 +63,10 @@ class JsonValue {
   std::string path_;
 };
 
+// `s` as a JSON string, quotes included: a line break, a control character or a byte that is not
+// UTF-8 in a path or key the user gave stays within a message's one line.
+std::string json_quoted(std::string_view s);
+
 // Why `s` is not a name (bars, gauges, tests: they become CSV columns and rows), or "": not empty,
 // no comma, quote, line break or control character, no white space at either end.
 std::string name_problem(std::string_view s);

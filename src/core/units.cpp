@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/json_value.hpp"
+
 // A unit expression is a product of powers of symbols with optional SI prefixes, e.g. "g/cm3",
 // "J/(kg K)", "m·s^-1", "1/s". Each symbol carries a factor to SI and a dimension vector over the
 // base quantities (length, mass, time, temperature, current); a quantity is accepted when its
@@ -125,7 +127,7 @@ class UnitParser {
   UnitValue parse() {
     UnitValue u = expression();
     skip_spaces();
-    if (pos_ != text_.size()) fail("unexpected \"" + std::string(text_.substr(pos_)) + "\"");
+    if (pos_ != text_.size()) fail("unexpected " + json_quoted(text_.substr(pos_)));
     return u;
   }
 
@@ -205,7 +207,15 @@ class UnitParser {
       if (pos_ >= text_.size() || text_[pos_] != ')') fail("a closing parenthesis is missing");
       ++pos_;
     } else if (pos_ < text_.size() && text_[pos_] == '1') {
+      // Only the numerator of a quotient ("1/s"): a "1" with digits or a unit after it is a
+      // second number ("5 12 mm" would read as 5 mm, its "12" as 1 to the power 2).
       ++pos_;
+      skip_spaces();
+      if (pos_ >= text_.size() || text_[pos_] != '/')
+        fail(
+            "\"1\" is a unit only as the numerator of a quotient, as in \"1/s\": a second "
+            "number?");
+      return u;
     } else {
       const std::size_t start = pos_;
       while (pos_ < text_.size() && is_symbol_byte(text_[pos_]) && !at_superscript() &&

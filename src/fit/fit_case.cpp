@@ -195,7 +195,7 @@ std::vector<CampaignTest> fit_tests(const Campaign& campaign) {
       const std::size_t k = std::stoul(tests[i].json_path.substr(6));
       throw JsonValue(campaign.document.at("tests").at(k).at("scene"), campaign.display,
                       json_child_path(tests[i].json_path, "scene"))
-          .error_with_value("\"" + tests[i].scene.string() + "\"",
+          .error_with_value(json_quoted(tests[i].scene.string()),
                             "the scene of test \"" + tests[j].name +
                                 "\" again: one record fitted as two independent tests would "
                                 "count twice (give a test one entry, and a weight)");

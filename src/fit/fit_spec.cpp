@@ -91,10 +91,9 @@ FitSpec read_fit_spec(const Campaign& c) {
     for (const auto& [key, value] : free->json().items()) {
       const JsonValue v(value, c.display, json_child_path(free->path(), key));
       if (std::find(names.begin(), names.end(), key) == names.end())
-        throw v.error_with_value("\"" + key + "\"",
-                                 "not a parameter of the " +
-                                     std::string(to_string(spec.material.model)) + " law" +
-                                     suggestion_text(key, names));
+        throw v.error_with_value(json_quoted(key), "not a parameter of the " +
+                                                       std::string(to_string(spec.material.model)) +
+                                                       " law; " + suggestion_text(key, names));
       FreeParameter p;
       p.name = key;
       p.json_path = v.path();

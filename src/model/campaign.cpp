@@ -58,19 +58,18 @@ Campaign read_campaign(const fs::path& file) {
     if (written.empty()) throw scene.error("expected a scene file name");
     test.scene = written.is_absolute() ? written : file.parent_path() / written;
     std::error_code ec;
+    // The path as JSON text: a line break or control character in it stays on the one line.
     if (!fs::exists(test.scene, ec))
-      throw scene.error_with_value("\"" + written.string() + "\"",
-                                   "no such file (" + test.scene.string() + ")");
-    if (!fs::is_regular_file(test.scene, ec))
-      throw scene.error_with_value("\"" + written.string() + "\"", "is not a regular file");
+      throw scene.error("no such file (" + json_quoted(test.scene.string()) + ")");
+    if (!fs::is_regular_file(test.scene, ec)) throw scene.error("is not a regular file");
     test.name = name_of_scene(test.scene);
     if (auto v = t.get("name")) {
       test.name = v->file_name(campaign_output_names());
     } else if (const std::string why = file_name_problem(test.name, campaign_output_names());
                !why.empty()) {
-      throw scene.error_with_value(
-          "\"" + written.string() + "\"",
-          "names the test \"" + test.name + "\", which " + why + " (give the test a \"name\")");
+      throw scene.error_with_value(json_quoted(written.string()),
+                                   "names the test " + json_quoted(test.name) + ", which " + why +
+                                       " (give the test a \"name\")");
     }
     if (!names.insert(test.name).second)
       throw(t.get("name") ? *t.get("name") : scene)

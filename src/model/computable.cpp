@@ -10,6 +10,7 @@
 #include "core/json_value.hpp"
 #include "model/interface_name.hpp"
 #include "model/penalty_links.hpp"
+#include "model/scene_inputs.hpp"
 
 namespace shpb {
 
@@ -93,13 +94,8 @@ class Inputs {
 
   // A material of the scene's `materials`, of a file, or given inline in the bar.
   Input material_input(std::size_t i, const char* key, double si, Dimension dim) const {
-    const std::string& name = scene_.bars[i].material.name;
-    const std::string value = JsonValue::format(si, dim);
-    if (std::find(scene_.material_files.begin(), scene_.material_files.end(),
-                  std::filesystem::path(name)) != scene_.material_files.end())
-      return {name, key, value, si};
-    if (name == "inline") return {file_, bar(i) + ".material." + key, value, si};
-    return {file_, "materials." + name + "." + key, value, si};
+    const InputLocation at = material_key_location(scene_, i, key);
+    return {at.file, at.path, JsonValue::format(si, dim), si};
   }
 
   const Scene& scene_;
@@ -175,6 +171,31 @@ void check_computable(const Scene& scene, const ChainDiscretization& d) {
     check(links.stiffness_N_m, inputs, where + "a penalty stiffness", "N/m");
     if (method != ContactMethod::kPenalty)
       check(links.mass_penalty_kg, inputs, where + "a mass penalty", "kg");
+  }
+}
+
+void check_reduction_computable(const Scene& scene) {
+  if (!scene.specimen || *scene.specimen == 0 || *scene.specimen + 1 >= scene.bars.size()) return;
+  const std::size_t s = *scene.specimen;
+  const Inputs in(scene);
+  const BarSpec& specimen = scene.bars[s];
+  const std::vector<Input> specimen_section = {in.section(s)}, specimen_length = {in.length(s)};
+  const std::string of_specimen = " on specimen \"" + specimen.name + "\"";
+  check(specimen.area_m2, specimen_section,
+        "specimen \"" + specimen.name + "\" a cross-section area", "m^2");
+  for (const std::size_t i : {s - 1, s + 1}) {
+    const BarSpec& b = scene.bars[i];
+    const std::string bar = "bar \"" + b.name + "\" ";
+    const std::vector<Input> section = {in.section(i)}, material = {in.density(i), in.modulus(i)};
+    const double c0 = b.material.wave_speed_m_s();
+    check(b.area_m2, section, bar + "a cross-section area", "m^2");
+    check(c0, material, bar + "a wave speed sqrt(E/rho)", "m/s");
+    check(b.impedance_kg_s(), join(material, section), bar + "an impedance rho c A", "kg/s");
+    check(b.material.youngs_modulus_Pa * b.area_m2 / specimen.area_m2,
+          join(material, section, specimen_section),
+          bar + "a stress per unit strain E A_bar / A_specimen" + of_specimen, "Pa");
+    check(c0 / specimen.length_m, join(material, specimen_length),
+          bar + "a strain rate per unit strain c0 / L_specimen" + of_specimen, "1/s");
   }
 }
 

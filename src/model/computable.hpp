@@ -20,4 +20,11 @@ inline constexpr double kLargestComputable = 1.7976931348623157e308;    // DBL_M
 // SI units (orders of magnitude), which is the one hundreds of orders out when a double overflows.
 void check_computable(const Scene& scene, const ChainDiscretization& d);
 
+// The same rule for what a reduction derives from the specimen and the bars either side of it
+// (docs/methods.md §6): their cross-section areas, the bars' wave speeds and impedances, the stress
+// of a unit strain at a bar's gauge on the specimen, E A_bar / A_specimen, and the strain rate of
+// a unit strain, c0 / L_specimen. Checked by every command that reduces a test (process, compare,
+// fit, and validate for process), which need no discretization: the specimen may have no material.
+void check_reduction_computable(const Scene& scene);
+
 }  // namespace shpb

@@ -232,6 +232,9 @@ MeasurementSpec read_measurement(const JsonValue& value, const std::filesystem::
     }
     if (auto u = to.get("unit")) {
       const std::string unit = u->string();
+      // "1 " + "" would parse as a bare number, silently seconds.
+      if (unit.find_first_not_of(" \t") == std::string::npos)
+        throw u->error("expected a time unit such as \"us\"");
       try {
         m.time_unit_s = parse_quantity("1 " + unit, Dimension::kTime);
         m.time_unit = unit;

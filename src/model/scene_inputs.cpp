@@ -1,5 +1,9 @@
 #include "model/scene_inputs.hpp"
 
+#include <algorithm>
+
+#include "core/json_value.hpp"
+
 namespace shpb {
 
 std::vector<std::filesystem::path> scene_inputs(const Scene& scene, bool measured_files) {
@@ -11,6 +15,17 @@ std::vector<std::filesystem::path> scene_inputs(const Scene& scene, bool measure
     for (const ChannelSpec& c : scene.measurement->channels) files.push_back(c.file);
   }
   return files;
+}
+
+InputLocation material_key_location(const Scene& scene, std::size_t bar, const std::string& key) {
+  const std::string& name = scene.bars[bar].material.name;
+  if (std::find(scene.material_files.begin(), scene.material_files.end(),
+                std::filesystem::path(name)) != scene.material_files.end())
+    return {name, key};
+  if (name == "inline")
+    return {scene.file.string(),
+            json_child_path(json_element_path("bars", bar) + ".material", key)};
+  return {scene.file.string(), json_child_path(json_child_path("materials", name), key)};
 }
 
 }  // namespace shpb

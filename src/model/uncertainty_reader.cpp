@@ -82,12 +82,11 @@ UncertaintySpec read_uncertainty(const JsonValue& value, const std::vector<std::
       const JsonValue bv(item, value.file(), json_child_path(b->path(), name));
       const auto it = std::find(bars.begin(), bars.end(), name);
       if (it == bars.end())
-        throw bv.error_with_value("\"" + name + "\"",
-                                  "no such bar; " + suggestion_text(name, bars));
+        throw bv.error_with_value(json_quoted(name), "no such bar; " + suggestion_text(name, bars));
       const auto index = static_cast<std::size_t>(it - bars.begin());
       const bool is_specimen = index == *specimen;
       if (!is_specimen && index + 1 != *specimen && index != *specimen + 1)
-        throw bv.error_with_value("\"" + name + "\"",
+        throw bv.error_with_value(json_quoted(name),
                                   "only the specimen and the bars either side of it enter the "
                                   "reduction");
       const auto bo =

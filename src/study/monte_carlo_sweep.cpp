@@ -141,7 +141,7 @@ std::vector<Distribution> read_distributions(const std::filesystem::path& file,
     const JsonValue v(item, file.string(), json_child_path(values.path(), key));
     const Target* t = find_target(all, key);
     if (!t)
-      throw v.error_with_value("\"" + key + "\"",
+      throw v.error_with_value(json_quoted(key),
                                "no such scene value; " + suggestion_text(key, keys));
     Distribution d;
     d.key = key;

@@ -323,6 +323,12 @@ const std::vector<BadScene>& cases() {
        "measurement.windows.incident"},
       {"a channel without any file", [](json& s, json&) { s["measurement"].erase("file"); },
        "measurement.channels[0].file: (missing)"},
+      {"a length with a line break: the message stays one line",
+       [](json& s, json&) { s["bars"][0]["length"] = "300 mm\nx"; },
+       "bars[0].length: \"300 mm\\nx\": unexpected \"\\nx\""},
+      {"an empty time unit (not seconds by default)",
+       [](json& s, json&) { s["measurement"]["time"]["unit"] = ""; },
+       "measurement.time.unit: \"\": expected a time unit"},
   };
   return table;
 }
@@ -515,6 +521,59 @@ TEST_CASE("A scene whose derived quantities overflow or underflow a double is re
       CHECK(sim.err == r.err);
       CHECK(listing(dir) == before);
     }
+  }
+  fs::remove_all(root);
+}
+
+// The reduction's own derived quantities (model/computable.hpp, check_reduction_computable):
+// `process` needs no simulation, so a specimen whose area underflows, or a bar whose area or
+// stress per unit strain overflows, must be refused by the reduction itself (before this check:
+// exit 3, "the reduction produced a non-finite value", with pulses.csv written).
+TEST_CASE("process refuses a test whose reduction quantities overflow or underflow a double",
+          "[app][bad-scenes][computable]") {
+  struct Case {
+    std::string what;
+    std::function<void(json&)> breaks;
+    std::string where;
+  };
+  const std::vector<Case> table = {
+      {"a specimen 1e-300 mm across: its area underflows to 0",
+       [](json& s) { s["bars"][2]["diameter"] = "1e-300 mm"; }, "bars[2].diameter: 1e-303 m: "},
+      {"an incident bar 1e300 mm across: its area overflows",
+       [](json& s) { s["bars"][1]["diameter"] = "1e300 mm"; }, "bars[1].diameter: 1e+297 m: "},
+      {"a specimen of 1e-300 mm2: the bars' stress per unit strain E A/A_s overflows",
+       [](json& s) {
+         s["bars"][2].erase("diameter");
+         s["bars"][2]["area"] = "1e-300 mm2";
+       },
+       "bars[2].area: 1e-306 m^2: "},
+  };
+  const auto root = shpb_test::scratch_dir("bad_scenes_reduction_computable");
+  json valid = base_scene();
+  valid.erase("measurement");
+  std::ofstream(root / "scene.json") << valid.dump(2);
+  std::ofstream(root / "specimen.json") << base_specimen().dump(2);
+  const auto sim = run_shpb(
+      {"simulate", "-q", (root / "scene.json").string(), "-o", (root / "simulated").string()});
+  REQUIRE(sim.code == 0);
+  const std::string signals = (root / "simulated" / "gauges.csv").string();
+  for (std::size_t i = 0; i < table.size(); ++i) {
+    INFO(table[i].what);
+    const auto dir = root / ("case" + std::to_string(i));
+    fs::create_directories(dir);
+    json scene = valid;
+    table[i].breaks(scene);
+    std::ofstream(dir / "scene.json") << scene.dump(2);
+    std::ofstream(dir / "specimen.json") << base_specimen().dump(2);
+    const auto before = listing(dir);
+    const auto r = run_shpb({"process", (dir / "scene.json").string(), "--signals", signals, "-o",
+                             (dir / "out").string()});
+    INFO("stderr: " << r.err);
+    CHECK(r.code == 2);
+    CHECK(r.err.rfind("error: " + (dir / "scene.json").string() + ": " + table[i].where, 0) == 0);
+    CHECK(r.err.find("double precision") != std::string::npos);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    CHECK(listing(dir) == before);  // no output folder, not even pulses.csv
   }
   fs::remove_all(root);
 }

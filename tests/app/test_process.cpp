@@ -4,9 +4,12 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <tuple>
+#include <vector>
 
 #include "lab_record.hpp"
 #include "run_shpb.hpp"
@@ -148,6 +151,85 @@ TEST_CASE("process refuses an uncertainty that would draw a positive quantity <=
                      0) == 0);
     CHECK(last.find("on a value of 2e+11 Pa that must stay > 0") != std::string::npos);
     CHECK(std::count(last.begin(), last.end(), '\n') == 1);
+    CHECK_FALSE(fs::exists(dir / "out"));
+  }
+}
+
+// A trigger delay or window start is drawn as a time shift of a pulse: a standard uncertainty of
+// a sixth of the record or more moves pulses off the record (before this check: 1e300 samples ran
+// to exit 0 with bands and no warning). Refused before any draw, naming the JSON path and value.
+TEST_CASE("process refuses a time-shift uncertainty that would move pulses off the record",
+          "[app][process][uncertainty]") {
+  const fs::path dir = temp_dir("uncertainty_shift");
+  // The record (lab_record.hpp) holds kSamples samples kDt apart: 799.9 us, a sixth 133.3 us.
+  const std::vector<std::tuple<std::string, nlohmann::json, std::string>> cases = {
+      {"window_start", 1e300, "measurement.uncertainty.window_start: 1e+300 samples: "},
+      {"window_start", 1334, "measurement.uncertainty.window_start: 1334 samples: "},
+      {"trigger_delay", "1 ms", "measurement.uncertainty.trigger_delay: 0.001 s: "},
+      {"trigger_delay", "0.1 us", ""},
+      {"window_start", 1, ""}};
+  for (const auto& [key, given, refused] : cases) {
+    CAPTURE(key, given.dump());
+    nlohmann::json scene = shpb_test::steel_scene();
+    scene["measurement"]["uncertainty"] = {{key, given}};
+    const fs::path file = shpb_test::write(dir, scene, good_signals());
+    fs::remove_all(dir / "out");
+    const auto r = run_shpb(
+        {"process", file.string(), "-o", (dir / "out").string(), "--draws", "20", "--quiet"});
+    INFO(r.err);
+    if (refused.empty()) {
+      CHECK(r.code == 0);
+      continue;
+    }
+    CHECK(r.code == 2);
+    const std::string last = r.err.substr(r.err.rfind("error: "));
+    CHECK(last.rfind("error: " + file.string() + ": " + refused, 0) == 0);
+    CHECK(last.find("would move its pulse off the record") != std::string::npos);
+    CHECK(std::count(last.begin(), last.end(), '\n') == 1);
+    CHECK_FALSE(fs::exists(dir / "out"));
+  }
+}
+
+// An auxetic bar is a valid material (-1 < nu < 0.5) but not a processed bar (the dispersion
+// tables cover 0 ... 0.49): the refusal names where the ratio was given — a key of `materials`, a
+// material file, or the bar's inline material — not a path the file does not have (before:
+// "bars[1].material.poisson_ratio" for a ratio given in materials.steel).
+TEST_CASE("process names where a processed bar's unsupported Poisson ratio was given",
+          "[app][process]") {
+  const fs::path dir = temp_dir("poisson_path");
+  fs::create_directories(dir / "m");
+  const nlohmann::json steel = shpb_test::steel_scene()["materials"]["steel"];
+  struct Case {
+    std::string what, file, where;
+    std::function<void(nlohmann::json&)> edit;
+  };
+  const std::vector<Case> cases = {
+      {"a key of materials", "scene.json", "materials.steel.poisson_ratio",
+       [](nlohmann::json& s) { s["materials"]["steel"]["poisson_ratio"] = -0.2; }},
+      {"a material file", "m/bar.json", "poisson_ratio",
+       [&](nlohmann::json& s) {
+         nlohmann::json m = steel;
+         m["poisson_ratio"] = -0.2;
+         std::ofstream(dir / "m/bar.json") << m.dump();
+         s["bars"][3]["material"] = "m/bar.json";
+       }},
+      {"an inline material", "scene.json", "bars[1].material.poisson_ratio",
+       [&](nlohmann::json& s) {
+         s["bars"][1]["material"] = steel;
+         s["bars"][1]["material"]["poisson_ratio"] = -0.2;
+       }}};
+  for (const Case& c : cases) {
+    INFO(c.what);
+    nlohmann::json scene = shpb_test::steel_scene();
+    c.edit(scene);
+    const fs::path file = shpb_test::write(dir, scene, good_signals());
+    fs::remove_all(dir / "out");
+    const auto r = run_shpb({"process", file.string(), "-o", (dir / "out").string(), "--quiet"});
+    INFO(r.err);
+    CHECK(r.code == 2);
+    const std::string last = r.err.substr(std::min(r.err.rfind("error: "), r.err.size()));
+    const std::string named = (dir / c.file).string();
+    CHECK(last.rfind("error: " + named + ": " + c.where + ": -0.2: must be in [0, 0.49]", 0) == 0);
     CHECK_FALSE(fs::exists(dir / "out"));
   }
 }

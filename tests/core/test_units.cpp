@@ -137,6 +137,11 @@ TEST_CASE("Unknown units, bad numbers and malformed expressions are rejected", "
   CHECK(rejects("1e300 Tm", Dimension::kLength, "out of range"));
   CHECK(rejects("1,5 mm", Dimension::kLength, "decimal point, not a comma"));
   CHECK(rejects("20 m m", Dimension::kLength, "an area"));  // space multiplies: m² is no length
+  // A second number, not the unit "1" of "1/s" (read before as 16 x 1^6 mm and 2 x 1 m).
+  CHECK(rejects("16 16 mm", Dimension::kLength, "a second number?"));
+  CHECK(rejects("2 1 m", Dimension::kLength, "a second number?"));
+  CHECK(rejects("5 1", Dimension::kLength, "a second number?"));
+  CHECK(q("1000 1 / s", Dimension::kStrainRate) == 1000);
 }
 
 TEST_CASE("Every dimension has a name and an SI unit for messages", "[core][units]") {

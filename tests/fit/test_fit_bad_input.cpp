@@ -76,7 +76,7 @@ TEST_CASE("Bad fit campaigns: exit 2 naming file and JSON path, nothing written"
       {"{" + tests + "," + material + R"(, "free": {"A": ["50 MPa", "150 MPa"]}, "stagse": []})",
        "stagse"},
       {"{" + tests + "," + material + R"(, "free": {"Q": ["50 MPa", "150 MPa"]}})",
-       "free.Q: \"Q\": not a parameter of the johnson-cook law"},
+       "free.Q: \"Q\": not a parameter of the johnson-cook law; "},
       {"{" + tests + "," + material + R"(, "free": {"yield_stress": [1, 2]}})",
        "free.yield_stress"},
       {"{" + tests + "," + material + R"(, "free": {"A": ["150 MPa", "50 MPa"]}})",

@@ -75,4 +75,23 @@ TEST_CASE("Bad campaigns name the file, the JSON path and what was expected", "[
              Catch::Contains("tests[0].weight") && Catch::Contains("> 0"));
 }
 
+// A test name names the test's output folder (docs/scene-format.md, campaign files), so it must
+// be one a file system can create: NAME_MAX, 255 bytes (before: a 256-byte name was accepted,
+// every test processed, then the folder refused with a message blaming an input). A scene path
+// with a line break is named within the message's one line.
+TEST_CASE("A campaign's test name fits a folder name; a bad scene path stays on one line",
+          "[campaign]") {
+  Scratch s;
+  const auto named = [&](const std::string& name) {
+    return error_of(
+        s.write(R"({"tests": [{"scene": "a/scene.json", "name": ")" + name + R"("}]})"));
+  };
+  CHECK(named(std::string(255, 'n')).empty());
+  CHECK_THAT(named(std::string(256, 'n')),
+             Catch::Contains("tests[0].name") && Catch::Contains("at most 255 bytes"));
+  const std::string line_break = error_of(s.write(R"({"tests": [{"scene": "a/scene.json\nx"}]})"));
+  CHECK_THAT(line_break, Catch::Contains("tests[0].scene") && Catch::Contains("no such file"));
+  CHECK(line_break.find('\n') == std::string::npos);
+}
+
 }  // namespace tests_model_test_campaign
