@@ -89,14 +89,21 @@ std::size_t widen(std::size_t i, double by, bool down, std::size_t n) {
 // (an amplifier settling after the trigger; and its error is an offset common to the hundreds of
 // samples a fit lays over each pulse, docs/validation.md "shpb fit"), and the pulse found anew.
 // Returns that level's standard deviation (rest_level_sd; 0 when the level is not settled so).
+// Twice: first up to the pulse's half-height sample, as its onset found against the first 5 % of
+// a record that settles after its trigger is not the pulse's; then before the onset less one rise
+// of the pulse found against that level (rest_samples_before: the rise biased the median).
 double settle_rest_level(RestSignal& s) {
   if (!s.first) return 0;
-  const auto level = rest_level_before(s.x, s.first->half);
-  if (!level) return 0;
-  const double sd = rest_level_sd(s.noise, s.first->half);
-  for (double& v : s.x) v -= *level;
-  if (auto again = find_first_pulse(s.x, {0.0, s.noise})) s.first = again;
-  return sd;
+  auto settle = [&s](std::size_t rest) -> std::optional<double> {
+    const auto level = rest_level_before(s.x, rest);
+    if (!level) return std::nullopt;
+    for (double& v : s.x) v -= *level;
+    if (auto again = find_first_pulse(s.x, {0.0, s.noise})) s.first = again;
+    return rest_level_sd(s.noise, rest);
+  };
+  const auto first = settle(s.first->half);
+  if (!first) return 0;
+  return settle(rest_samples_before(*s.first)).value_or(*first);
 }
 
 // A pulse the record does not hold (it ended first, or a dead channel) is not compared, and one

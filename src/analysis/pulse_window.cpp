@@ -97,9 +97,14 @@ Baseline estimate_baseline(std::span<const double> x, double fraction) {
   return b;
 }
 
-std::optional<double> rest_level_before(std::span<const double> x, std::size_t half) {
-  if (half < kMinRestSamples || half > x.size()) return std::nullopt;
-  return median(std::vector<double>(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(half)));
+std::optional<double> rest_level_before(std::span<const double> x, std::size_t samples) {
+  if (samples < kMinRestSamples || samples > x.size()) return std::nullopt;
+  return median(std::vector<double>(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(samples)));
+}
+
+std::size_t rest_samples_before(const PulseWindow& w) {
+  const std::size_t rise = w.half > w.onset ? w.half - w.onset : 0;
+  return w.onset - std::min(rise, w.onset / 2);
 }
 
 double rest_band(double noise, double peak) {

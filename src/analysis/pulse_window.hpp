@@ -29,10 +29,10 @@ double quantization_step(std::span<const double> x);
 // is an offset common to every sample later read from that level.
 double rest_level_sd(double noise, std::size_t samples);
 
-// The median of x before `half` (a pulse's first half-height sample): the rest level from the
-// whole record before the pulse, whose short rise moves a median little (as find_onset takes it);
-// nullopt when there are fewer samples than estimate_baseline's smallest segment holds.
-std::optional<double> rest_level_before(std::span<const double> x, std::size_t half);
+// The median of x's first `samples` (the record before a pulse, rest_samples_before; up to its
+// half-height sample while its onset is not known): the rest level from the whole record before
+// the pulse; nullopt when there are fewer samples than estimate_baseline's smallest segment holds.
+std::optional<double> rest_level_before(std::span<const double> x, std::size_t samples);
 
 struct PulseWindow {
   std::size_t onset = 0;  // first sample of the pulse
@@ -41,6 +41,16 @@ struct PulseWindow {
   double sign = -1;       // −1 compressive (strain < 0), +1 tensile
   double peak = 0;        // largest |x − baseline| inside the window
 };
+
+// The samples before pulse w that are at rest: those before its onset less one rise (onset to
+// half height), at most half of them (a slow transmitted pulse's rise can outlast the rest before
+// it, and the level is read from the whole rest for a record settling after its trigger, as
+// tests/app/test_compare.cpp checks). Up to its half-height sample the median took the rise's
+// samples, all on the pulse's side, and moved the level towards the pulse by about n_rise/(2N)
+// √(2π) σ, an offset common to every sample read from it that a noise-free record does not show
+// (docs/validation.md, "shpb fit": the Al 6061 campaign's B 0.5 % low from the noise before the
+// pulses alone).
+std::size_t rest_samples_before(const PulseWindow& w);
 
 // The band within which a record counts as at rest around a pulse of this peak: max(5σ, 3 % of the
 // peak). A pulse is one that rises beyond twice it.

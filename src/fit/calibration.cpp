@@ -91,6 +91,7 @@ struct Shot {
   std::vector<double> time_s, source;
   double dt = 0, peak = 0, cutoff_Hz = 0;
   double source_level_sd = 0;        // the source record's removed baseline level's
+  double source_noise = 0;           // the source record's noise per sample (its baseline's)
   std::size_t keep0 = 0, keep1 = 0;  // the source's kept samples (SourceWindow::end)
   std::vector<ShotBar> bars;
   std::vector<Target> targets;
@@ -455,6 +456,7 @@ Shot prepare_shot(const CalibrationShot& cs, Parameters& params, std::string& re
       2 * struck.length_m / struck.material.wave_speed_m_s(), "2L/c0 = %.3g s of its bar", file);
   s.source = source;
   s.source_level_sd = rest_level_sd(base.noise, baseline_samples(source.size()));
+  s.source_noise = base.noise;
   s.keep0 = w.keep0, s.keep1 = w.end;
   s.peak = w.pulse.peak;
   striker_plateau(s, scene, gauged[0], w, base.noise);
@@ -690,21 +692,74 @@ std::vector<LsCommonError> rest_level_errors(const std::vector<Shot>& shots,
   return out;
 }
 
+// The source record's noise over its kept samples (docs/methods.md §11, "Uncertainties"): every
+// pulse modelled from the source carries it (the model is linear in the source), so it is common
+// to all of a shot's compared pulses, not independent from residual to residual as s² counts it;
+// on shots of an independent propagation ν scattered 1.2 times its sd so counted. d_j, the
+// residuals' derivative in kept sample j, is the model of a unit sample there.
+struct SourceNoise {
+  Eigen::MatrixXd jtd;  // Σ_j σ² (Jᵀ d_j)(Jᵀ d_j)ᵀ, J unscaled
+  double power = 0;     // Σ_j σ² |d_j|²: its expected share of Σ r²
+};
+
+SourceNoise source_noise(const std::vector<Shot>& shots, const std::vector<double>& theta,
+                         Tables& tables, const Eigen::MatrixXd& jacobian) {
+  SourceNoise out{Eigen::MatrixXd::Zero(jacobian.cols(), jacobian.cols()), 0.0};
+  long total = 0;
+  for (const Shot& s : shots)
+    for (const Target& t : s.targets) total += static_cast<long>(t.samples.size());
+  if (jacobian.rows() != total) return out;  // no Jacobian: scaled_svd says so
+  long first = 0;                            // the shot's first residual
+  for (const Shot& s : shots) {
+    long rows = 0;
+    for (const Target& t : s.targets) rows += static_cast<long>(t.samples.size());
+    Shot unit = s;
+    std::fill(unit.source.begin(), unit.source.end(), 0.0);
+    Eigen::VectorXd d(rows);
+    // Jᵀ d_j, as j moves, is band-limited at the model's low-pass cut-off (zero above it in
+    // every leg): sampled every `step` samples (above twice the cut-off) its sums over the window,
+    // each sample weighing for its `step`, are those over every sample (every sd within 0.03 % of
+    // the sum over every sample at 1 and 5 MS/s; 5 times faster at 5 MS/s).
+    const auto step =
+        std::max<std::size_t>(1, static_cast<std::size_t>(std::floor(0.5 / (s.cutoff_Hz * s.dt))));
+    const std::size_t end = std::min(s.keep1, s.source.size());
+    for (std::size_t j0 = s.keep0; j0 < end; j0 += step) {
+      const std::size_t block = std::min(step, end - j0), j = j0 + block / 2;
+      unit.source[j] = 1;
+      long row = 0;
+      for (const Target& t : s.targets) {
+        const std::vector<double> m = model_of(unit, t, theta, tables);
+        for (std::size_t i : t.samples) d(row++) = m[i] / s.peak;
+      }
+      unit.source[j] = 0;
+      const Eigen::VectorXd v = jacobian.middleRows(first, rows).transpose() * d;
+      const double var = s.source_noise * s.source_noise * static_cast<double>(block);
+      out.jtd += var * v * v.transpose();
+      out.power += var * d.squaredNorm();
+    }
+    first += rows;
+  }
+  return out;
+}
+
 // Uncertainties from the Jacobian at the optimum (docs/methods.md §11, "Uncertainties"):
-// s² V S⁻² Vᵀ over the directions stronger than kWeakDirection (s² = Σr² over the low-passed
-// residuals' independent count less P), plus each record's baseline level
-// carried through the estimator (σ² g gᵀ, g = V S⁻² Vᵀ Jᵀ d); the weaker directions are left out
-// and named in fit.undetermined, and a parameter weighing on them, or on a combination the travel
-// times leave free (`timing_weight`), gets no sd.
+// s² V S⁻² Vᵀ over the directions stronger than kWeakDirection (s² = Σr² less the source noise's
+// share, over the low-passed residuals' independent count less P), plus the source's noise and
+// each record's baseline level carried through the estimator (σ² g gᵀ, g = V S⁻² Vᵀ Jᵀ d); the
+// weaker directions are left out and named in fit.undetermined, and a parameter weighing on them,
+// or on a combination the travel times leave free (`timing_weight`), gets no sd.
 void fitted_parameters(const std::vector<LsParameter>& list, const LsResult& r,
                        double independent_residuals, const std::vector<double>& timing_weight,
-                       const std::vector<LsCommonError>& levels, CalibrationFit& fit) {
+                       const std::vector<LsCommonError>& levels, const SourceNoise& source,
+                       CalibrationFit& fit) {
   const std::size_t p = list.size();
   const ScaledSvd j = scaled_svd(r.jacobian, p);  // d r / d x, x = θ / scale
   const Eigen::VectorXd& sv = j.sv;
   fit.reciprocal_condition = sv(0) > 0 ? sv(static_cast<long>(p) - 1) / sv(0) : 0.0;
   const double dof = std::max(1.0, independent_residuals - static_cast<double>(p));
-  const double s2 = 2 * r.cost / dof;
+  // The records' own noise: what the source's noise leaves of Σr² (none if its baseline's noise
+  // overstates it).
+  const double s2 = std::max(0.0, 2 * r.cost - source.power) / dof;
   // (JᵀJ)⁻¹ over the determined directions, in the columns' unit-norm scaling.
   Eigen::MatrixXd pinv = Eigen::MatrixXd::Zero(static_cast<long>(p), static_cast<long>(p));
   std::vector<double> weak_weight = timing_weight;
@@ -726,8 +781,9 @@ void fitted_parameters(const std::vector<LsParameter>& list, const LsResult& r,
                                two_digits(sv(i) / sv(0)) +
                                " times as much as the best-determined one");
   }
-  Eigen::MatrixXd cov = s2 * pinv;
-  const Eigen::MatrixXd js = r.jacobian * j.norm.cwiseInverse().asDiagonal();
+  const Eigen::MatrixXd scale_back = j.norm.cwiseInverse().asDiagonal();
+  Eigen::MatrixXd cov = s2 * pinv + pinv * scale_back * source.jtd * scale_back * pinv;
+  const Eigen::MatrixXd js = r.jacobian * scale_back;
   for (const LsCommonError& e : levels) {
     if (!(e.sd > 0) || static_cast<long>(e.sensitivity.size()) != js.rows()) continue;
     const Eigen::VectorXd g = pinv * (js.transpose() * Eigen::Map<const Eigen::VectorXd>(
@@ -879,7 +935,8 @@ CalibrationFit calibrate_bars(const std::vector<CalibrationShot>& input,
     for (const Target& t : s.targets)
       independent += t.noise_share * static_cast<double>(t.samples.size());
   fitted_parameters(list, r, independent, timing_weight,
-                    rest_level_errors(prepared.shots, r.value, tables), fit);
+                    rest_level_errors(prepared.shots, r.value, tables),
+                    source_noise(prepared.shots, r.value, tables, r.jacobian), fit);
   // The Jacobian's weak directions first, then what the travel times leave free besides.
   fit.undetermined.insert(fit.undetermined.end(), timing_free.begin(), timing_free.end());
   fit.calibration = calibration_of(input, fit.parameters, prepared.reference);

@@ -85,8 +85,10 @@ void write_calibration_outputs(CalibrationFit& fit, const std::filesystem::path&
            "least squares (Ceres, Levenberg-Marquardt) of each returning pulse modelled as the "
            "source pulse moved along its way with Pochhammer-Chree dispersion, times the "
            "channel's gain, delayed by its delay, against its record low-passed as the model; sd "
-           "from the Jacobian at the optimum, s^2 (J^T J)^-1 with s^2 = sum r^2 / (N' - P), N' "
-           "the low-passed residuals' independent count; ci95 = value +- 1.96 sd"},
+           "from the Jacobian at the optimum, s^2 (J^T J)^-1 with s^2 = (sum r^2 less the source "
+           "noise's share) / (N' - P), N' the low-passed residuals' independent count, plus the "
+           "source record's noise and each record's baseline level carried through the fit; ci95 "
+           "= value +- 1.96 sd"},
           {"residuals", fit.residuals},
           {"iterations", fit.iterations},
           {"converged", fit.converged},

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <optional>
@@ -147,9 +148,11 @@ void write_json(const fs::path& file, const nlohmann::json& j) { std::ofstream(f
 // The two shots of a lab: the incident bar alone (bars apart), and the bars together. With
 // `incident_gain` the incident channel reads that much of the true strain (and the transmitter
 // channel kTrueGain times as much), and the bars-apart shot gives its measured striker velocity.
-// `draw` chooses the records' noise, `noise` its sd.
+// `draw` chooses the records' noise, `noise` its sd (`together_source_noise` the bars-together
+// shot's incident record's, if given).
 fs::path write_shots(const std::string& name, std::optional<double> incident_gain = {},
-                     unsigned draw = 0, double noise = kNoise) {
+                     unsigned draw = 0, double noise = kNoise,
+                     std::optional<double> together_source_noise = {}) {
   const double gi = incident_gain.value_or(1.0);
   const fs::path dir = shpb_test::scratch_dir(name);
   const double xi = kTrueIncidentGauge, li = kIncidentLength, lt = kTransmitterLength,
@@ -165,7 +168,7 @@ fs::path write_shots(const std::string& name, std::optional<double> incident_gai
   write_json(dir / "apart.json", apart_scene);
   // Bars together: the incident pulse passes into the transmitter and comes back from its far
   // end; the transmitter's channel has its own gain and delay.
-  const auto inc = record({{1, xi}}, gi, 0.0, 2 + 3 * draw, noise);
+  const auto inc = record({{1, xi}}, gi, 0.0, 2 + 3 * draw, together_source_noise.value_or(noise));
   const auto tr = record({{1, li + xt}, {-1, li + 2 * lt - xt}, {1, li + 2 * lt + xt}},
                          gi * kTrueGain, kTrueDelay, 3 + 3 * draw, noise);
   write_csv(dir / "together.csv", {"inc", "tr"}, {inc, tr});
@@ -250,6 +253,42 @@ TEST_CASE("calibrate's standard uncertainty of a channel gain holds over noise d
   INFO("RMS z of the gain: " << rms_z);
   CHECK(rms_z >= kRmsLow);
   CHECK(rms_z <= kRmsHigh);
+}
+
+// The bars-together shot's source record is its incident gauge's: its noise, propagated into every
+// modelled pulse, is common to all the transmitter's compared pulses (docs/methods.md §11,
+// "Uncertainties"). With that record the shots' only noise, each Poisson ratio's error over its
+// stated sd has a root mean square of 1; counted as independent residuals (one s² for every
+// shot) the transmitter's ν scattered 1.5 times its sd and the incident's 0.3 times.
+TEST_CASE("calibrate's Poisson ratios' standard uncertainty holds with the source's noise",
+          "[fit][calibrate]") {
+  // 12 draws (0.8 s each), two ratios: the RMS of 12 unit normals is 1 within ±1/√24 = ±0.2
+  // (one s.d.); the bounds are 2.5 s.d. either side.
+  constexpr int kDraws = 12;
+  constexpr double kRmsLow = 0.5, kRmsHigh = 1.5;
+  // The other records 30 times quieter than the source's (kQuiet as in the unbiased-ν test).
+  constexpr double kQuiet = 1e-4 * kPeak, kSourceNoise = 0.005 * kPeak;
+  std::map<std::string, double> z2;
+  for (int d = 0; d < kDraws; ++d) {
+    const fs::path dir = write_shots("calibrate_source_noise_" + std::to_string(d), {},
+                                     200 + static_cast<unsigned>(d), kQuiet, kSourceNoise);
+    const auto r = run_shpb({"calibrate", (dir / "apart.json").string(),
+                             (dir / "together.json").string(), "-o", (dir / "out").string(), "-q"});
+    INFO(r.err);
+    REQUIRE(r.code == 0);
+    const auto summary = read_json(dir / "out" / "summary.json");
+    for (const char* b : {"incident", "transmitter"}) {
+      const auto& p = parameter(summary, std::string("bars.") + b + ".poisson_ratio");
+      REQUIRE(p["sd"].is_number());
+      z2[b] += std::pow((p["value"].get<double>() - kTrueNu) / p["sd"].get<double>(), 2);
+    }
+  }
+  for (const auto& [b, sum] : z2) {
+    const double rms_z = std::sqrt(sum / kDraws);
+    INFO(b << " bar's ν: RMS z " << rms_z);
+    CHECK(rms_z >= kRmsLow);
+    CHECK(rms_z <= kRmsHigh);
+  }
 }
 
 // The records hold what the bars do: the pulse's dispersive tail trailing it at the source gauge
