@@ -42,8 +42,7 @@ constexpr double kMaxReadStrain = kPlausibleStrainMax * 1e6;
 
 void check_strain_magnitude(const std::filesystem::path& file, const MeasurementSpec& m,
                             std::size_t channel, const std::vector<double>& read, double factor,
-                            const std::vector<std::size_t>& lines,
-                            const std::vector<double>& time_s) {
+                            const LineMap& lines, const std::vector<double>& time_s) {
   for (std::size_t i = 0; i < read.size(); ++i) {
     if (std::abs(read[i] * factor) <= kMaxReadStrain) continue;
     throw input_error(file.string(),
@@ -267,8 +266,8 @@ GaugeSignals read_gauge_signals(const MeasurementSpec& m, const std::filesystem:
                                          : resample(cols.time_s, cols.values[k], out.time_s);
       double factor = strain_per_unit(ch);
       if (ch.invert) factor = -factor;
-      factor /= ch.calibrated_gain;                    // model/calibration.hpp
-      static const std::vector<std::size_t> kNoLines;  // resampled: samples named by time
+      factor /= ch.calibrated_gain;   // model/calibration.hpp
+      static const LineMap kNoLines;  // resampled: samples named by time
       check_strain_magnitude(file, m, channels[k], v, factor, same_clock ? cols.lines : kNoLines,
                              out.time_s);
       for (double& x : v) x *= factor;

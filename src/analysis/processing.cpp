@@ -847,6 +847,8 @@ PulseTiming time_the_pulses(const std::vector<double>& t, double dt, std::size_t
 
 // The three pulses at the faces, as strains (e*) and — with Tyas–Pope amplitude factors — as
 // stresses over the modulus (f*; the strains again without them).
+// The kinematic pulses at the faces and the force pulses, these empty where they are the same
+// (an elastic bar without amplitude factors): no copy of three whole records.
 struct FacePulses {
   std::vector<double> ei, er, et, fi, fr, ft;
 };
@@ -951,8 +953,6 @@ FacePulses pulses_at_faces(const PreparedSignal& inc, const PreparedSignal& tra,
     f.fi = moved(inc.x, k.front_waveguide, front, d_i, 0, force, kForce);
     f.fr = moved(inc.x, k.front_waveguide, front, -d_i, timing.extra_r, force, kForce);
     f.ft = moved(tra.x, k.back_waveguide, back, -d_t, timing.extra_t, force, kForce);
-  } else {
-    f.fi = f.ei, f.fr = f.er, f.ft = f.et;
   }
   if (ds.correction)
     r.cutoff_Hz =
@@ -996,8 +996,10 @@ void reduce_at_faces(const std::vector<double>& t, double dt, const FacePulses& 
   r.incident = cut(f.ei);
   r.reflected = cut(f.er);
   r.transmitted = cut(f.et);
-  r.curve = reduce_pulses(r.incident, r.reflected, r.transmitted, cut(f.fi), cut(f.fr), cut(f.ft),
-                          dt, k.front, k.back, k.specimen);
+  const bool forces = !f.fi.empty();
+  r.curve = reduce_pulses(r.incident, r.reflected, r.transmitted, forces ? cut(f.fi) : r.incident,
+                          forces ? cut(f.fr) : r.reflected, forces ? cut(f.ft) : r.transmitted, dt,
+                          k.front, k.back, k.specimen);
 }
 
 // The curve ends with loading (docs/methods.md §6): at the primary strain's maximum or, earlier,

@@ -39,11 +39,12 @@ std::string describe(const ColumnRef& c) {
 }
 
 // Fields of a row up to its last non-empty one (a trailing separator adds none).
-std::size_t filled_width(const TextRow& row) {
-  std::size_t n = row.fields.size();
-  while (n > 0 && row.fields[n - 1].empty()) --n;
+std::size_t filled_width(const std::vector<std::string_view>& fields) {
+  std::size_t n = fields.size();
+  while (n > 0 && fields[n - 1].empty()) --n;
   return n;
 }
+std::size_t filled_width(const TextRow& row) { return filled_width(row.fields); }
 
 // The first decimal-comma number of a row of a comma-separated file whose fields read as exactly
 // `names` numbers once each integer followed by a field of digits is joined into one ("-0",
@@ -190,8 +191,11 @@ void refuse_cut_last_line(const DelimitedText& text, std::size_t first_data,
         (cut.exponent > 0) == (fixed.exponent > 0))
       continue;
     bool uniform = true;
-    for (std::size_t i = first_data + 1; uniform && i + 1 < text.rows.size(); ++i)
-      uniform = shape_of(text.rows[i].fields[c], mark) == fixed;
+    std::vector<std::string_view> fields;
+    for (std::size_t i = first_data + 1; uniform && i + 1 < text.rows.size(); ++i) {
+      text.rows.fields(i, fields);
+      uniform = shape_of(fields[c], mark) == fixed;
+    }
     if (!uniform) continue;
     const auto written = [](const NumberShape& n) {
       return std::to_string(n.decimals) + (n.decimals == 1 ? " decimal" : " decimals") +
@@ -221,11 +225,12 @@ void refuse_wider_rows(const DelimitedText& text, std::size_t first_data) {
   const auto number_or_empty = [&](std::string_view f) {
     return f.empty() || parse_number(f, text.decimal_comma).has_value();
   };
+  std::vector<std::string_view> fields;
   for (std::size_t i = first_data + 1; i < text.rows.size(); ++i) {
-    const TextRow& row = text.rows[i];
-    if (const std::size_t filled = filled_width(row);
-        filled > width && std::all_of(row.fields.begin(), row.fields.end(), number_or_empty))
-      throw input_error(text.file.string(), "line " + std::to_string(row.line),
+    text.rows.fields(i, fields);
+    if (const std::size_t filled = filled_width(fields);
+        filled > width && std::all_of(fields.begin(), fields.end(), number_or_empty))
+      throw input_error(text.file.string(), "line " + std::to_string(text.rows.line(i)),
                         std::to_string(filled) + " fields",
                         "expected at most the " + std::to_string(width) + " of line " +
                             std::to_string(text.rows[first_data].line) +
@@ -245,7 +250,7 @@ RawSignalColumns read_columns(const DelimitedText& text, std::size_t first_data,
   raw.names = names;
   const std::size_t n = text.rows.size() - first_data;
   raw.time.resize(n);
-  raw.lines.resize(n);
+  raw.lines = text.rows.lines().from(first_data);
   raw.values.assign(indices.size(), std::vector<double>(n));
   auto header_name = [&](std::size_t c) {
     return header && c < header->fields.size() ? header->fields[c] : std::string_view();
@@ -255,13 +260,14 @@ RawSignalColumns read_columns(const DelimitedText& text, std::size_t first_data,
   for (std::size_t c : indices) column_names.push_back(header_name(c));
   // Samples [a, b) into their places; the first bad field of the range throws.
   const auto parse = [&](std::size_t a, std::size_t b) {
+    TextRow row;  // one buffer for the range's rows
     for (std::size_t i = a; i < b; ++i) {
       if (i % 65536 == 0) throw_if_interrupted();  // a long record stops within a second
-      const TextRow& row = text.rows[first_data + i];
+      row.line = text.rows.line(first_data + i);
+      text.rows.fields(first_data + i, row.fields);
       if (time_index) raw.time[i] = number_at(text, row, *time_index, time_name);
       for (std::size_t k = 0; k < indices.size(); ++k)
         raw.values[k][i] = number_at(text, row, indices[k], column_names[k]);
-      raw.lines[i] = row.line;
     }
   };
   // A long record is parsed in two halves at once (the process's largest single cost on a
@@ -511,9 +517,9 @@ std::string no_numbers_cause(const DelimitedText& text) {
 // (Delta_X, X0 rows). Each row holds one value per trace.
 struct HeaderClock {
   bool labview = false;  // Delta_X/X0: never read (below)
-  const TextRow* interval_row = nullptr;
-  const TextRow* start_row = nullptr;
-  const TextRow* trace_names = nullptr;  // Yokogawa's TraceName row: the channels' names
+  std::optional<TextRow> interval_row;
+  std::optional<TextRow> start_row;
+  std::optional<TextRow> trace_names;  // Yokogawa's TraceName row: the channels' names
   SampleClock clock;
 };
 
@@ -553,16 +559,16 @@ double header_value(const DelimitedText& text, const TextRow& row, double unit_s
 
 std::optional<HeaderClock> header_clock(const DelimitedText& text, std::size_t first_data) {
   HeaderClock h;
-  const TextRow* unit_row = nullptr;
+  std::optional<TextRow> unit_row;
   for (std::size_t i = 0; i < first_data; ++i) {
-    const TextRow& row = text.rows[i];
+    const TextRow row = text.rows[i];
     if (row.fields.empty()) continue;
     const std::string_view key = row.fields[0];
     if (key == "HResolution" || key == "Delta_X")
-      h.interval_row = &row, h.labview = key == "Delta_X";
-    if (key == "HOffset" || key == "X0") h.start_row = &row;
-    if (key == "HUnit") unit_row = &row;
-    if (key == "TraceName") h.trace_names = &row;
+      h.interval_row = row, h.labview = key == "Delta_X";
+    if (key == "HOffset" || key == "X0") h.start_row = row;
+    if (key == "HUnit") unit_row = row;
+    if (key == "TraceName") h.trace_names = row;
   }
   if (!h.interval_row) return std::nullopt;
   double unit_s = 1;  // Yokogawa's HUnit: "s" for a time record
@@ -614,7 +620,7 @@ bool stamps_follow(const DelimitedText& text, std::size_t first_data, const Head
 // Its TraceName row names the channels.
 struct FileClock {
   std::optional<SampleClock> clock;
-  const TextRow* trace_names = nullptr;
+  std::optional<TextRow> trace_names;
 };
 FileClock file_clock(const DelimitedText& text, std::size_t first_data,
                      const SignalRequest& request, std::vector<std::string>& warnings) {
@@ -687,22 +693,30 @@ RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest
     return numbers > 0 && 2 * numbers >= filled;
   };
   while (first > 0 && data_shaped(text.rows[first - 1])) --first;
-  const TextRow* header = first > 0 ? &text.rows[first - 1] : nullptr;
-  const TextRow* wider = nullptr;
-  if (header)
-    for (std::size_t i = first; i < text.rows.size() && !wider; ++i)
-      if (filled_width(text.rows[i]) > filled_width(*header)) wider = &text.rows[i];
+  const std::optional<TextRow> header_row =
+      first > 0 ? std::optional(text.rows[first - 1]) : std::nullopt;
+  const TextRow* header = header_row ? &*header_row : nullptr;
+  std::optional<TextRow> wider_row;
+  if (header) {
+    std::vector<std::string_view> fields;
+    for (std::size_t i = first; i < text.rows.size() && !wider_row; ++i) {
+      text.rows.fields(i, fields);
+      if (filled_width(fields) > filled_width(*header)) wider_row = text.rows[i];
+    }
+  }
+  const TextRow* wider = wider_row ? &*wider_row : nullptr;
   if ((time_ref.index || clock) &&
       std::all_of(request.columns.begin(), request.columns.end(),
                   [](const ColumnRef& c) { return c.index.has_value(); }))
     refuse_split_decimal_commas(text, header, wider);
   // Yokogawa's trace names stand over their samples when the data rows keep the key column (empty,
   // or the time): as wide as the names row.
-  const TextRow* names_row = trace_names && filled_width(*trace_names) <= width ? trace_names
-                             : header && first >= 2 && unit_row(*header) &&
-                                     filled_width(text.rows[first - 2]) == filled_width(*header)
-                                 ? &text.rows[first - 2]
-                                 : nullptr;
+  const std::optional<TextRow> above =
+      header && first >= 2 ? std::optional(text.rows[first - 2]) : std::nullopt;
+  const TextRow* names_row =
+      trace_names && filled_width(*trace_names) <= width                            ? &*trace_names
+      : above && unit_row(*header) && filled_width(*above) == filled_width(*header) ? &*above
+                                                                                    : nullptr;
   const TextRow* named = names_row ? names_row : header;  // what names each column
   const std::optional<std::size_t> time_index =
       clock ? std::nullopt

@@ -8,10 +8,10 @@ namespace shpb {
 // Raw columns as found: time stamps (or a time base built from the header) with the line of
 // each sample, before the time base is checked.
 struct RawSignalColumns {
-  std::vector<double> time;        // in the file's time unit (times request.time_unit_s later)
-  bool time_from_header = false;   // LANL: start + i·dt, nothing to check
-  double header_dt = 0;            // … that dt
-  std::vector<std::size_t> lines;  // line of each sample
+  std::vector<double> time;       // in the file's time unit (times request.time_unit_s later)
+  bool time_from_header = false;  // LANL: start + i·dt, nothing to check
+  double header_dt = 0;           // … that dt
+  LineMap lines;                  // line of each sample
   std::vector<std::string> names;
   std::vector<std::vector<double>> values;
   std::vector<std::string> warnings;  // a time base read from the file's header

@@ -12,7 +12,8 @@ namespace shpb {
 RawSignalColumns read_lanl_raw_columns(const DelimitedText& text, const SignalRequest& request) {
   constexpr std::size_t kFirstSignalColumn = 2, kHeaderRows = 3;
   const auto& rows = text.rows;
-  if (rows.size() <= kHeaderRows || rows[0].fields.size() <= kFirstSignalColumn)
+  const TextRow head = rows[0];  // the signals' names
+  if (rows.size() <= kHeaderRows || head.fields.size() <= kFirstSignalColumn)
     throw input_error(text.file.string(), "line 1", "",
                       "not a LANL .raw file (expected signal names in columns 3 and on, then start "
                       "time, sample interval and samples)");
@@ -22,28 +23,28 @@ RawSignalColumns read_lanl_raw_columns(const DelimitedText& text, const SignalRe
     std::size_t index = 0;
     if (c.index) {
       if (*c.index < static_cast<int>(kFirstSignalColumn) ||
-          *c.index >= static_cast<int>(rows[0].fields.size()))
+          *c.index >= static_cast<int>(head.fields.size()))
         throw input_error(text.file.string(), "", "column index " + std::to_string(*c.index),
                           "signal columns of this file are " + std::to_string(kFirstSignalColumn) +
-                              "–" + std::to_string(rows[0].fields.size() - 1));
+                              "–" + std::to_string(head.fields.size() - 1));
       index = static_cast<std::size_t>(*c.index);
     } else {
       std::string names;
-      for (std::size_t k = kFirstSignalColumn; k < rows[0].fields.size(); ++k) {
-        if (rows[0].fields[k] == c.name) index = k;
-        names += (names.empty() ? "\"" : ", \"") + std::string(rows[0].fields[k]) + "\"";
+      for (std::size_t k = kFirstSignalColumn; k < head.fields.size(); ++k) {
+        if (head.fields[k] == c.name) index = k;
+        names += (names.empty() ? "\"" : ", \"") + std::string(head.fields[k]) + "\"";
       }
       if (index == 0)
         throw input_error(text.file.string(), "line 1", "column \"" + c.name + "\"",
                           "no such signal; the file has " + names);
     }
     indices.push_back(index);
-    raw.names.emplace_back(rows[0].fields[index]);
+    raw.names.emplace_back(head.fields[index]);
   }
   // Every signal column of the file shares one time base: check they agree.
   const std::size_t c0 = indices.empty() ? kFirstSignalColumn : indices.front();
-  const double start = number_at(text, rows[1], c0, rows[0].fields[c0]);
-  const double dt = number_at(text, rows[2], c0, rows[0].fields[c0]);
+  const double start = number_at(text, rows[1], c0, head.fields[c0]);
+  const double dt = number_at(text, rows[2], c0, head.fields[c0]);
   if (!(dt > 0))
     throw input_error(text.file.string(), text_place(rows[2].line, c0), format_number(dt) + " s",
                       "sample interval must be > 0");
@@ -55,20 +56,23 @@ RawSignalColumns read_lanl_raw_columns(const DelimitedText& text, const SignalRe
                       "sample interval too small for the start time " + format_number(start) +
                           " s: the time stamps would not increase");
   for (std::size_t idx : indices) {
-    if (number_at(text, rows[1], idx, rows[0].fields[idx]) != start ||
-        number_at(text, rows[2], idx, rows[0].fields[idx]) != dt)
+    if (number_at(text, rows[1], idx, head.fields[idx]) != start ||
+        number_at(text, rows[2], idx, head.fields[idx]) != dt)
       throw input_error(text.file.string(), text_place(rows[1].line, idx),
-                        std::string(rows[0].fields[idx]),
+                        std::string(head.fields[idx]),
                         "start time and sample interval differ between signal columns");
   }
   raw.time_from_header = true;
   raw.header_dt = dt;
   raw.values.resize(indices.size());
+  TextRow row;  // one buffer for every row
   for (std::size_t r = kHeaderRows; r < rows.size(); ++r) {
+    row.line = rows.line(r);
+    rows.fields(r, row.fields);
     for (std::size_t k = 0; k < indices.size(); ++k)
-      raw.values[k].push_back(number_at(text, rows[r], indices[k], rows[0].fields[indices[k]]));
+      raw.values[k].push_back(number_at(text, row, indices[k], head.fields[indices[k]]));
     raw.time.push_back(start + static_cast<double>(r - kHeaderRows) * dt);
-    raw.lines.push_back(rows[r].line);
+    raw.lines.push_back(row.line);
   }
   return raw;
 }

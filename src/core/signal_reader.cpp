@@ -76,10 +76,12 @@ ClockFit fit_clock(const std::vector<double>& t) {
 // exported twice (a known scope-export glitch): it is skipped with a warning naming its line, so
 // the samples after it keep their times. One with other values is refused: which of the two is
 // the sample at that time cannot be told. The file itself is never changed.
-void drop_repeated_rows(const std::filesystem::path& file, std::vector<std::size_t>& lines,
+void drop_repeated_rows(const std::filesystem::path& file, const LineMap& lines,
                         SignalColumns& out) {
   std::vector<double>& t = out.time_s;
   std::vector<std::size_t> skipped;
+  LineMap kept_lines;
+  kept_lines.push_back(lines[0]);
   std::size_t kept = 1;
   for (std::size_t i = 1; i < t.size(); ++i) {
     const bool repeat = t[i] == t[kept - 1];
@@ -88,18 +90,20 @@ void drop_repeated_rows(const std::filesystem::path& file, std::vector<std::size
     if (repeat && !same)
       throw input_error(file.string(), "line " + std::to_string(lines[i]) + " (time column)",
                         seconds(t[i]),
-                        "the time of line " + std::to_string(lines[kept - 1]) +
+                        "the time of line " + std::to_string(kept_lines[kept - 1]) +
                             " again, with other values; expected strictly increasing time (which "
                             "of the two rows is the sample at that time cannot be told)");
     if (repeat) {
       skipped.push_back(lines[i]);
       continue;
     }
-    t[kept] = t[i], lines[kept] = lines[i];
+    t[kept] = t[i];
+    kept_lines.push_back(lines[i]);
     for (auto& v : out.values) v[kept] = v[i];
     ++kept;
   }
-  t.resize(kept), lines.resize(kept);
+  t.resize(kept);
+  out.lines = std::move(kept_lines);
   for (auto& v : out.values) v.resize(kept);
   // The first lines by number, then how many more: a file exported with every row twice has
   // thousands.
@@ -188,8 +192,7 @@ std::vector<double> stamp_rounding(const std::vector<double>& t) {
 // line); one further off by more than kRoundedStampFraction of the interval has samples missing
 // before it (a gap) or extra ones, which the rebuilt clock would spread over the record: a gap
 // of 200 samples in the epoxy record's 3-digit stamps put them 98 intervals off, 1 sample 0.48.
-void refuse_gap_in_rounded_stamps(const std::filesystem::path& file,
-                                  const std::vector<std::size_t>& lines,
+void refuse_gap_in_rounded_stamps(const std::filesystem::path& file, const LineMap& lines,
                                   const std::vector<double>& t, const ClockFit& c,
                                   const std::string& hint) {
   const std::vector<double> step = stamp_rounding(t);
@@ -219,7 +222,7 @@ std::string no_time_column_hint(const SignalRequest& request) {
 // Checks the time stamps: increasing and uniform. Repeated stamps throughout (rounded to fewer
 // digits than the sampling needs) are not an error: the base is rebuilt from a least-squares fit
 // of t against the sample index, with a warning; a few are repeated rows (drop_repeated_rows).
-void check_time_base(const std::filesystem::path& file, const RawSignalColumns& raw,
+void check_time_base(const std::filesystem::path& file, RawSignalColumns& raw,
                      const SignalRequest& request, SignalColumns& out) {
   const auto& t = out.time_s;
   if (t.size() < 2)
@@ -227,7 +230,7 @@ void check_time_base(const std::filesystem::path& file, const RawSignalColumns& 
                       "expected at least 2");
   if (raw.time_from_header) {
     out.dt_s = raw.header_dt;
-    out.lines = raw.lines;
+    out.lines = std::move(raw.lines);
     return;
   }
   std::size_t repeats = 0;
@@ -239,16 +242,15 @@ void check_time_base(const std::filesystem::path& file, const RawSignalColumns& 
                             "); expected increasing time" + no_time_column_hint(request));
     repeats += t[i] == t[i - 1];
   }
-  std::vector<std::size_t> kept_lines;  // the line of each sample, once repeated rows are skipped
   if (repeats > 0 &&
       (static_cast<double>(repeats) <= kUniformStepTolerance * static_cast<double>(t.size() - 1) ||
        every_repeat_twice(out))) {
-    kept_lines = raw.lines;
-    drop_repeated_rows(file, kept_lines, out);
+    drop_repeated_rows(file, raw.lines, out);  // the line of each sample kept
     repeats = 0;
+  } else {
+    out.lines = std::move(raw.lines);
   }
-  const std::vector<std::size_t>& lines = kept_lines.empty() ? raw.lines : kept_lines;
-  out.lines = lines;
+  const LineMap& lines = out.lines;
   const std::size_t n = t.size();
   const double span = t.back() - t.front();
   if (!(span > 0))

@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/line_map.hpp"
 #include "core/signal_spec.hpp"
 
 namespace shpb {
@@ -40,8 +41,8 @@ struct SignalColumns {
   double dt_s = 0;
   std::vector<std::string> names;           // resolved name of each requested column
   std::vector<std::vector<double>> values;  // one per requested column, time_s.size() each
-  std::vector<std::size_t> lines;  // the file's line (a sheet's row) of each sample; empty once
-                                   // resampled onto another grid
+  LineMap lines;  // the file's line (a sheet's row) of each sample; empty once resampled onto
+                  // another grid
   std::vector<std::string> warnings;
 };
 

@@ -72,7 +72,7 @@ void Sheet::set(std::size_t row, std::size_t column, std::string value) {
 DelimitedText Sheet::text() && {
   DelimitedText t;
   t.file = file_;
-  // The text's rows view one buffer of every cell and one list of every field, as a CSV's do.
+  // The text's rows view one buffer of every cell, as a CSV's view its bytes.
   auto bytes = std::make_shared<std::string>();
   std::vector<std::pair<std::size_t, std::size_t>> offsets;  // each field's start and size
   std::vector<std::pair<std::size_t, std::size_t>> rows;     // row number, fields' end
@@ -86,16 +86,15 @@ DelimitedText Sheet::text() && {
     }
     rows.emplace_back(row, offsets.size());
   }
-  auto all = std::make_shared<std::vector<std::string_view>>();
-  all->reserve(offsets.size());
-  for (const auto& [start, size] : offsets) all->emplace_back(bytes->data() + start, size);
   std::size_t begin = 0;
   for (const auto& [row, end] : rows) {
-    t.rows.push_back({row, std::span<const std::string_view>(all->data() + begin, end - begin)});
+    std::vector<std::string_view> cells;
+    for (std::size_t k = begin; k < end; ++k)
+      cells.emplace_back(bytes->data() + offsets[k].first, offsets[k].second);
+    t.rows.add_cells(row, std::move(cells));
     begin = end;
   }
   t.bytes = std::move(bytes);
-  t.all_fields = std::move(all);
   detect_decimal_comma(t);  // text cells such as "0,25" (a German CSV pasted as text)
   if (t.rows.empty())
     throw input_error(file_.string(), "", "empty sheet", "expected rows of numbers after a header");

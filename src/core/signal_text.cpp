@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <limits>
 
 #include "core/error.hpp"
 #include "core/input_file.hpp"
@@ -158,6 +159,38 @@ std::string text_place(std::size_t line, std::size_t column_index) {
   return "line " + std::to_string(line) + ", column " + std::to_string(column_index + 1);
 }
 
+void TextRows::fields(std::size_t i, std::vector<std::string_view>& out) const {
+  out.clear();
+  if (!cell_ends_.empty()) {  // a sheet's cells
+    const std::size_t begin = i > 0 ? cell_ends_[i - 1] : 0;
+    out.assign(cells_.begin() + static_cast<std::ptrdiff_t>(begin),
+               cells_.begin() + static_cast<std::ptrdiff_t>(cell_ends_[i]));
+    return;
+  }
+  const std::size_t start = starts_[i];
+  std::size_t end = start;
+  if (!has_cr_) {
+    const void* lf = std::memchr(bytes_.data() + start, '\n', bytes_.size() - start);
+    end =
+        lf ? static_cast<std::size_t>(static_cast<const char*>(lf) - bytes_.data()) : bytes_.size();
+  } else {
+    while (end < bytes_.size() && bytes_[end] != '\n' && bytes_[end] != '\r') ++end;
+  }
+  split(bytes_.substr(start, end - start), delimiter_, out);
+}
+
+void TextRows::add_cells(std::size_t line, std::vector<std::string_view> cells) {
+  cells_.insert(cells_.end(), cells.begin(), cells.end());
+  cell_ends_.push_back(cells_.size());
+  lines_.push_back(line);
+}
+
+std::size_t TextRows::bookkeeping_bytes() const {
+  return starts_.capacity() * sizeof(std::uint32_t) + cells_.capacity() * sizeof(std::string_view) +
+         cell_ends_.capacity() * sizeof(std::size_t) +
+         lines_.runs() * sizeof(std::pair<std::size_t, std::size_t>);
+}
+
 namespace {
 // Byte order marks: UTF-8 is dropped (spreadsheets write it); UTF-16 text is refused by name
 // rather than failing later on the NUL bytes between its characters.
@@ -185,20 +218,26 @@ void detect_decimal_comma(DelimitedText& text) {
   // thousands, so a field that may be thousands is no evidence there (nor a workbook's text cell).
   std::size_t with_comma = 0, numbers = 0;
   const std::size_t from = text.rows.size() > kSniffLines ? text.rows.size() - kSniffLines : 0;
-  for (std::size_t i = from; i < text.rows.size(); ++i)
-    for (const auto& f : text.rows[i].fields) {
+  std::vector<std::string_view> fields;
+  for (std::size_t i = from; i < text.rows.size(); ++i) {
+    text.rows.fields(i, fields);
+    for (const auto& f : fields) {
       if (looks_like_decimal_comma_number(f))
         with_comma += text.delimiter != ',' || !maybe_thousands(f);
       else if (f.find('.') != std::string_view::npos && parse_number(f, false))
         ++numbers;
     }
+  }
   text.decimal_comma = with_comma > numbers;
 }
 
 DelimitedText read_delimited_text(const std::filesystem::path& file) {
-  // Type (no FIFO or device) and size checked before reading: 1 GiB is far beyond any record.
+  // Type (no FIFO or device) and size checked before reading: 1 GiB is far beyond any record
+  // (and a row's start fits the 4 bytes TextRows keeps).
+  constexpr std::uintmax_t kMaxBytes = std::uintmax_t{1} << 30;
+  static_assert(kMaxBytes <= std::numeric_limits<std::uint32_t>::max());
   auto owned = std::make_shared<std::string>(
-      read_input_file(file, file.string(), "a signal file", std::uintmax_t{1} << 30));
+      read_input_file(file, file.string(), "a signal file", kMaxBytes));
   std::string& bytes = *owned;
   drop_bom_or_refuse_binary(file, bytes);
 
@@ -237,7 +276,6 @@ DelimitedText read_delimited_text(const std::filesystem::path& file) {
   Line line;
   if (Cursor c; !next_line(c, line))
     throw input_error(file.string(), "line 1", "empty file", "expected signal rows");
-  const Line first_line = line;
 
   DelimitedText text;
   text.file = file;
@@ -257,37 +295,17 @@ DelimitedText read_delimited_text(const std::filesystem::path& file) {
   else
     text.delimiter = ' ';
 
-  // Every row's fields, one after the other; the rows' spans are set once they stop moving.
-  const auto line_ends =
-      static_cast<std::size_t>(std::count(bytes.begin(), bytes.end(), has_cr ? '\r' : '\n'));
-  auto fields = std::make_shared<std::vector<std::string_view>>();
-  std::vector<std::size_t> ends;  // one past each row's last field in `fields`
-  ends.reserve(line_ends + 1);
-  text.rows.reserve(line_ends + 1);
-  {
-    std::vector<std::string_view> first;
-    split(first_line.text, text.delimiter, first);
-    // As many fields per row as the first holds, but never more than the file's bytes: each
-    // field takes one at least (its separator or line end), and a long header over short rows
-    // (100 000 names on a 20 000-row record) would otherwise reserve gigabytes.
-    fields->reserve(std::min(first.size() * (line_ends + 1), bytes.size() + 1));
-  }
-  for (Cursor c; next_line(c, line);) {
-    split(line.text, text.delimiter, *fields);
-    ends.push_back(fields->size());
-    text.rows.push_back({line.number, {}});
-  }
-  for (std::size_t i = 0; i < text.rows.size(); ++i) {
-    const std::size_t begin = i > 0 ? ends[i - 1] : 0;
-    text.rows[i].fields =
-        std::span<const std::string_view>(fields->data() + begin, ends[i] - begin);
-  }
+  // Every row's start and line; its fields are split when it is read (TextRows).
+  text.rows.set_text(bytes, text.delimiter, has_cr);
+  text.rows.reserve(
+      static_cast<std::size_t>(std::count(bytes.begin(), bytes.end(), has_cr ? '\r' : '\n')) + 1);
+  for (Cursor c; next_line(c, line);)
+    text.rows.add_line(static_cast<std::uint32_t>(line.text.data() - bytes.data()), line.number);
   const auto last_end = bytes.find_last_of("\r\n");
   text.last_row_unterminated =
       bytes.find_first_not_of(" \t", last_end == std::string::npos ? 0 : last_end + 1) !=
       std::string::npos;
   text.bytes = std::move(owned);
-  text.all_fields = std::move(fields);
 
   detect_decimal_comma(text);
   return text;

@@ -1,33 +1,78 @@
 #pragma once
 // Delimited text as measurement software writes it: any encoding (read as bytes), CRLF/LF/CR,
 // comma, semicolon, tab or blank separated, optional decimal comma, quoted fields, header and
-// metadata lines. Splits into fields and remembers each row's line number for error messages.
-// The fields are views into the file's bytes, kept once by the DelimitedText (no string per cell).
+// metadata lines. Remembers where each row starts and its line number for error messages; a
+// row is split into fields when it is read (views into the file's bytes, kept once by the
+// DelimitedText). A deep-memory record (tens of millions of rows) thus costs its bytes and 4
+// bytes a row, not a view (16 bytes) per field and a row record (24) per row.
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <optional>
-#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "core/line_map.hpp"
+
 namespace shpb {
 
 struct TextRow {
-  std::size_t line = 0;                      // 1-based line number in the file
-  std::span<const std::string_view> fields;  // unquoted, trimmed (views into the file's bytes)
+  std::size_t line = 0;                  // 1-based line number in the file
+  std::vector<std::string_view> fields;  // unquoted, trimmed (views into the file's bytes)
+};
+
+// The non-blank rows of a text, each split on demand: rows[i] is a TextRow (by value).
+class TextRows {
+ public:
+  std::size_t size() const { return lines_.size(); }
+  bool empty() const { return lines_.empty(); }
+  TextRow operator[](std::size_t i) const {
+    TextRow row;
+    row.line = lines_[i];
+    fields(i, row.fields);
+    return row;
+  }
+  TextRow front() const { return (*this)[0]; }
+  TextRow back() const { return (*this)[size() - 1]; }
+  std::size_t line(std::size_t i) const { return lines_[i]; }
+  const LineMap& lines() const { return lines_; }
+  // Row i's fields into `out` (cleared first): a loop over many rows reuses one buffer.
+  void fields(std::size_t i, std::vector<std::string_view>& out) const;
+  // What the rows cost beyond the text's bytes: the start offsets and line runs of a file, the
+  // field views of a sheet.
+  std::size_t bookkeeping_bytes() const;
+
+  // A file's rows: one line each, from `start` to its line end, split at `delimiter`.
+  void add_line(std::uint32_t start, std::size_t line) {
+    starts_.push_back(start), lines_.push_back(line);
+  }
+  // A sheet's rows: their cells, as views into bytes kept by the text.
+  void add_cells(std::size_t line, std::vector<std::string_view> cells);
+  void reserve(std::size_t rows) { starts_.reserve(rows); }
+  void set_text(std::string_view bytes, char delimiter, bool has_cr) {
+    bytes_ = bytes, delimiter_ = delimiter, has_cr_ = has_cr;
+  }
+
+ private:
+  std::string_view bytes_;
+  char delimiter_ = ',';
+  bool has_cr_ = false;
+  std::vector<std::uint32_t> starts_;    // files: each row's first byte
+  std::vector<std::string_view> cells_;  // sheets: every row's cells, one after another
+  std::vector<std::size_t> cell_ends_;   // sheets: one past each row's last cell
+  LineMap lines_;
 };
 
 struct DelimitedText {
   std::filesystem::path file;
   char delimiter = ',';  // '\t', ';', ',' or ' ' (runs of blanks)
   bool decimal_comma = false;
-  std::vector<TextRow> rows;           // non-blank lines only
+  TextRows rows;                       // non-blank lines only
   bool last_row_unterminated = false;  // the file ends inside its last row (no line end after it)
-  // What the rows view: the file's bytes and every row's fields, one after the other (shared so
-  // that copies and moves of the text keep the views valid).
+  // What the rows view: the file's bytes (shared so that copies and moves of the text keep the
+  // views valid).
   std::shared_ptr<const std::string> bytes;
-  std::shared_ptr<const std::vector<std::string_view>> all_fields;
 };
 
 // Sets `text.decimal_comma` from its last rows' numbers (read_delimited_text does it for a file;

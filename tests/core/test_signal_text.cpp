@@ -3,8 +3,12 @@
 #include <catch2/catch.hpp>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
+#include <fstream>
 #include <string>
 
+#include "../scratch.hpp"
+#include "core/signal_reader.hpp"
 #include "core/signal_text.hpp"
 
 // This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
@@ -60,6 +64,63 @@ TEST_CASE("Numbers parse to the correctly rounded value, fast path or not", "[si
     CAPTURE(bad);
     CHECK_FALSE(parse_number(bad, false).has_value());
   }
+}
+
+// A deep-memory record (10-100 M samples a channel) is held as its bytes plus a few bytes a row:
+// a row's start (4 bytes) and its line as a run of consecutive lines, its fields split when it is
+// read. A view per field (16 bytes) and a row record (24) took 120 bytes a sample through
+// `process` and ran a laptop out of memory (docs/validation.md, "Deep-memory records").
+TEST_CASE("A text's rows cost their start offset, not a view per field", "[signal]") {
+  const shpb_test::ScratchDir scratch("signal_text");
+  constexpr std::size_t kRows = 20000;
+  constexpr std::size_t kRowStartBytes = sizeof(std::uint32_t);  // the one record kept per row
+  const auto file = scratch.path() / "record.csv";
+  {
+    std::ofstream out(file, std::ios::binary);
+    out << "time_s,incident_V,transmitted_V,reflected_V\n";
+    for (std::size_t i = 0; i < kRows; ++i) out << i << "e-7,0.25,-0.5," << i % 7 << "\n";
+  }
+  const DelimitedText text = read_delimited_text(file);
+  REQUIRE(text.rows.size() == kRows + 1);
+  // Four fields a row, each a view of 16 bytes before: at most the row's start now, the one run
+  // of lines (no blank line) and the vector's spare capacity of at most the line count.
+  CHECK(text.rows.bookkeeping_bytes() <= (kRows + 2) * kRowStartBytes + 64);
+  const TextRow last = text.rows.back();
+  CHECK(last.line == kRows + 1);
+  REQUIRE(last.fields.size() == 4);
+  CHECK(last.fields[0] == std::to_string(kRows - 1) + "e-7");
+  CHECK(last.fields[3] == std::to_string((kRows - 1) % 7));
+
+  // The samples' lines: one run, whatever the length.
+  SignalRequest request;
+  request.file = file;
+  request.columns = {{"incident_V", std::nullopt}};
+  const SignalColumns cols = read_signal_columns(request);
+  REQUIRE(cols.lines.size() == kRows);
+  CHECK(cols.lines.runs() == 1);
+  CHECK(cols.lines[0] == 2);
+  CHECK(cols.lines[kRows - 1] == kRows + 1);
+}
+
+TEST_CASE("Rows keep their file's line numbers across blank lines and line ends", "[signal]") {
+  const shpb_test::ScratchDir scratch("signal_text_lines");
+  const auto file = scratch.path() / "blank.csv";
+  // CRLF, a lone CR and LF line ends; blank lines (one of blanks only) between rows.
+  std::ofstream(file, std::ios::binary) << "t;v\r\n\r\n1;2\r\n  \r\n3;4\r5;6\n\n\n7;\"8\"";
+  const DelimitedText text = read_delimited_text(file);
+  REQUIRE(text.rows.size() == 5);
+  const std::size_t lines[] = {1, 3, 5, 6, 9};
+  const std::string second[] = {"v", "2", "4", "6", "8"};
+  std::vector<std::string_view> fields;
+  for (std::size_t i = 0; i < 5; ++i) {
+    CAPTURE(i);
+    CHECK(text.rows.line(i) == lines[i]);
+    CHECK(text.rows[i].line == lines[i]);
+    text.rows.fields(i, fields);
+    REQUIRE(fields.size() == 2);
+    CHECK(fields[1] == second[i]);
+  }
+  CHECK(text.last_row_unterminated);
 }
 
 }  // namespace tests_core_test_signal_text
