@@ -227,6 +227,7 @@ void refuse_wider_rows(const DelimitedText& text, std::size_t first_data) {
   };
   std::vector<std::string_view> fields;
   for (std::size_t i = first_data + 1; i < text.rows.size(); ++i) {
+    if (text.rows.max_fields(i) <= width) continue;
     text.rows.fields(i, fields);
     if (const std::size_t filled = filled_width(fields);
         filled > width && std::all_of(fields.begin(), fields.end(), number_or_empty))
@@ -700,6 +701,7 @@ RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest
   if (header) {
     std::vector<std::string_view> fields;
     for (std::size_t i = first; i < text.rows.size() && !wider_row; ++i) {
+      if (text.rows.max_fields(i) <= filled_width(*header)) continue;
       text.rows.fields(i, fields);
       if (filled_width(fields) > filled_width(*header)) wider_row = text.rows[i];
     }

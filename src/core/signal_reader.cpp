@@ -341,34 +341,40 @@ void check_time_base(const std::filesystem::path& file, RawSignalColumns& raw,
 
 std::string_view to_string(SignalFormat f) { return enum_name(kSignalFormatNames, f); }
 
-SignalColumns read_signal_columns(const SignalRequest& request) {
+namespace {
+
+// The file's columns as found, in `format` (detected when asked). The text (the file's bytes, a
+// deep record's largest part) is let go on return, before the time base is checked.
+RawSignalColumns read_raw_columns(const SignalRequest& request, SignalFormat& format) {
   const DelimitedText text = is_spreadsheet(request.file)
                                  ? read_spreadsheet(request.file, request.sheet)
                                  : read_delimited_text(request.file);
-  SignalColumns out;
-  out.file = request.file;
-  out.format = request.format == SignalFormat::kAuto ? detect(text) : request.format;
+  format = request.format == SignalFormat::kAuto ? detect(text) : request.format;
   // A format whose files carry their own time base has no use for the scene's.
-  if (request.clock && out.format != SignalFormat::kCsv)
+  if (request.clock && format != SignalFormat::kCsv)
     throw input_error(
         request.file.string(), "measurement.time.interval",
         format_number(request.clock->interval_s) + " s",
-        "a " + std::string(to_string(out.format)) + " file carries its own time base (" +
-            (out.format == SignalFormat::kLanlRaw ? "each signal's start time and sample interval"
-                                                  : "its time column") +
+        "a " + std::string(to_string(format)) + " file carries its own time base (" +
+            (format == SignalFormat::kLanlRaw ? "each signal's start time and sample interval"
+                                              : "its time column") +
             "); drop measurement.time.interval, which is for files without one");
-  RawSignalColumns raw;
-  switch (out.format) {
+  switch (format) {
     case SignalFormat::kLanlRaw:
-      raw = read_lanl_raw_columns(text, request);
-      break;
+      return read_lanl_raw_columns(text, request);
     case SignalFormat::kTektronix:
-      raw = read_tektronix_columns(text, request);
-      break;
+      return read_tektronix_columns(text, request);
     default:
-      raw = read_csv_columns(text, request);
-      break;
+      return read_csv_columns(text, request);
   }
+}
+
+}  // namespace
+
+SignalColumns read_signal_columns(const SignalRequest& request) {
+  SignalColumns out;
+  out.file = request.file;
+  RawSignalColumns raw = read_raw_columns(request, out.format);
   out.time_s = std::move(raw.time);
   if (!raw.time_from_header)
     for (double& v : out.time_s) v *= request.time_unit_s;

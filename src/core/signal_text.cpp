@@ -159,14 +159,7 @@ std::string text_place(std::size_t line, std::size_t column_index) {
   return "line " + std::to_string(line) + ", column " + std::to_string(column_index + 1);
 }
 
-void TextRows::fields(std::size_t i, std::vector<std::string_view>& out) const {
-  out.clear();
-  if (!cell_ends_.empty()) {  // a sheet's cells
-    const std::size_t begin = i > 0 ? cell_ends_[i - 1] : 0;
-    out.assign(cells_.begin() + static_cast<std::ptrdiff_t>(begin),
-               cells_.begin() + static_cast<std::ptrdiff_t>(cell_ends_[i]));
-    return;
-  }
+std::string_view TextRows::line_text(std::size_t i) const {
   const std::size_t start = starts_[i];
   std::size_t end = start;
   if (!has_cr_) {
@@ -176,7 +169,29 @@ void TextRows::fields(std::size_t i, std::vector<std::string_view>& out) const {
   } else {
     while (end < bytes_.size() && bytes_[end] != '\n' && bytes_[end] != '\r') ++end;
   }
-  split(bytes_.substr(start, end - start), delimiter_, out);
+  return bytes_.substr(start, end - start);
+}
+
+void TextRows::fields(std::size_t i, std::vector<std::string_view>& out) const {
+  out.clear();
+  if (!cell_ends_.empty()) {  // a sheet's cells
+    const std::size_t begin = i > 0 ? cell_ends_[i - 1] : 0;
+    out.assign(cells_.begin() + static_cast<std::ptrdiff_t>(begin),
+               cells_.begin() + static_cast<std::ptrdiff_t>(cell_ends_[i]));
+    return;
+  }
+  split(line_text(i), delimiter_, out);
+}
+
+std::size_t TextRows::max_fields(std::size_t i) const {
+  if (!cell_ends_.empty()) return cell_ends_[i] - (i > 0 ? cell_ends_[i - 1] : 0);
+  const std::string_view l = line_text(i);
+  // split() ends a field only at the delimiter (blank or tab where runs of blanks separate).
+  const auto separators =
+      delimiter_ == ' '
+          ? std::count_if(l.begin(), l.end(), [](char c) { return c == ' ' || c == '\t'; })
+          : std::count(l.begin(), l.end(), delimiter_);
+  return static_cast<std::size_t>(separators) + 1;
 }
 
 void TextRows::add_cells(std::size_t line, std::vector<std::string_view> cells) {

@@ -39,6 +39,9 @@ class TextRows {
   const LineMap& lines() const { return lines_; }
   // Row i's fields into `out` (cleared first): a loop over many rows reuses one buffer.
   void fields(std::size_t i, std::vector<std::string_view>& out) const;
+  // At least the number of row i's fields, counted without splitting it (its separators and
+  // one): a scan for rows wider than a width skips the others at the cost of a byte count.
+  std::size_t max_fields(std::size_t i) const;
   // What the rows cost beyond the text's bytes: the start offsets and line runs of a file, the
   // field views of a sheet.
   std::size_t bookkeeping_bytes() const;
@@ -55,6 +58,7 @@ class TextRows {
   }
 
  private:
+  std::string_view line_text(std::size_t i) const;  // a file's row i, without its line end
   std::string_view bytes_;
   char delimiter_ = ',';
   bool has_cr_ = false;
