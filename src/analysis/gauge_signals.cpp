@@ -139,20 +139,24 @@ void check_sample_interval(const SignalColumns& cols, const MeasurementSpec& m) 
 }
 
 // Each gauge's strain, the mean of its channels (checked to agree), in order of first appearance.
-void average_channels(const MeasurementSpec& m,
-                      const std::vector<std::vector<double>>& channel_strain,
+void average_channels(const MeasurementSpec& m, std::vector<std::vector<double>>& channel_strain,
                       const std::vector<std::filesystem::path>& channel_file, GaugeSignals& out) {
   for (std::size_t c = 0; c < m.channels.size(); ++c) {
     const std::string& g = m.channels[c].gauge;
     if (out.find(g)) continue;
-    std::vector<double> sum(out.time_s.size(), 0.0);
     std::vector<std::size_t> twins;
     for (std::size_t d = c; d < m.channels.size(); ++d)
-      if (m.channels[d].gauge == g) {
-        for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += channel_strain[d][i];
-        twins.push_back(d);
-      }
-    if (twins.size() > 1) check_twin_channels(m, twins, channel_strain, channel_file);
+      if (m.channels[d].gauge == g) twins.push_back(d);
+    if (twins.size() == 1) {  // the mean of one channel is the channel, moved (0 + x: -0 is 0)
+      for (double& x : channel_strain[c]) x = 0.0 + x;
+      out.gauges.push_back(g);
+      out.strain.push_back(std::move(channel_strain[c]));
+      continue;
+    }
+    std::vector<double> sum(out.time_s.size(), 0.0);
+    for (std::size_t d : twins)
+      for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += channel_strain[d][i];
+    check_twin_channels(m, twins, channel_strain, channel_file);
     for (double& x : sum) x /= static_cast<double>(twins.size());
     out.gauges.push_back(g);
     out.strain.push_back(std::move(sum));
@@ -226,21 +230,23 @@ GaugeSignals read_gauge_signals(const MeasurementSpec& m, const std::filesystem:
     SignalColumns cols = read_signal_columns(req);
     check_sample_interval(cols, m);
     out.warnings.insert(out.warnings.end(), cols.warnings.begin(), cols.warnings.end());
-    if (first_file) {
-      out.time_s = cols.time_s;
+    const bool sets_clock = first_file;
+    if (sets_clock) {  // the common clock, moved there
+      out.time_s = std::move(cols.time_s);
       out.dt_s = cols.dt_s;
       first_file = false;
     }
+    const std::vector<double>& file_time = sets_clock ? out.time_s : cols.time_s;
     const bool same_clock =
-        cols.time_s.size() == out.time_s.size() &&
-        std::abs(cols.time_s.front() - out.time_s.front()) < kSameClock * out.dt_s &&
+        file_time.size() == out.time_s.size() &&
+        std::abs(file_time.front() - out.time_s.front()) < kSameClock * out.dt_s &&
         std::abs(cols.dt_s - out.dt_s) * static_cast<double>(out.time_s.size()) <
             kSameClock * out.dt_s;
     if (!same_clock) {
       // Files of one test record it over the same time: a file with next to no samples within
       // the first's record (its time in another unit, or its own trigger's clock) holds no pulse
       // there, and resampled it would be a flat line.
-      const auto within = std::count_if(cols.time_s.begin(), cols.time_s.end(), [&](double t) {
+      const auto within = std::count_if(file_time.begin(), file_time.end(), [&](double t) {
         return t >= out.time_s.front() && t <= out.time_s.back();
       });
       if (static_cast<std::size_t>(within) < kMinRecordSamples) {
@@ -248,7 +254,7 @@ GaugeSignals read_gauge_signals(const MeasurementSpec& m, const std::filesystem:
         std::snprintf(value, sizeof value,
                       "%td samples (record %.6g s to %.6g s, interval %.3g s) within %s's "
                       "record (%.6g s to %.6g s)",
-                      within, cols.time_s.front(), cols.time_s.back(), cols.dt_s,
+                      within, file_time.front(), file_time.back(), cols.dt_s,
                       order.front().filename().string().c_str(), out.time_s.front(),
                       out.time_s.back());
         throw input_error(file.string(), "time column", value,
@@ -262,8 +268,8 @@ GaugeSignals read_gauge_signals(const MeasurementSpec& m, const std::filesystem:
     }
     for (std::size_t k = 0; k < channels.size(); ++k) {
       const ChannelSpec& ch = m.channels[channels[k]];
-      std::vector<double> v = same_clock ? std::move(cols.values[k])
-                                         : resample(cols.time_s, cols.values[k], out.time_s);
+      std::vector<double> v =
+          same_clock ? std::move(cols.values[k]) : resample(file_time, cols.values[k], out.time_s);
       double factor = strain_per_unit(ch);
       if (ch.invert) factor = -factor;
       factor /= ch.calibrated_gain;   // model/calibration.hpp
