@@ -363,6 +363,37 @@ auto checked(double T::*field, const char* name, Range range) {
   };
 }
 
+// A Johnson-Cook temperature edit: its range, then the readers' rules between the temperatures
+// (model/input_limits.hpp), so that the homologous temperature stays the one a file could give.
+auto jc_temperature(double JohnsonCookParams::*field, const char* name) {
+  return [field, name](JohnsonCookParams& o, double x) {
+    JohnsonCookParams edited = o;
+    checked(field, name, Range::kPositive)(edited, x);
+    std::string what =
+        melting_temperature_problem(edited.melting_temperature_K, edited.room_temperature_K);
+    if (!what.empty())
+      what = "melting_temperature_K " + format_double(edited.melting_temperature_K) + " " + what;
+    else if (what = test_temperature_problem(edited.initial_temperature_K,
+                                             edited.melting_temperature_K);
+             !what.empty())
+      what = "initial_temperature_K " + format_double(edited.initial_temperature_K) + " " + what;
+    if (!what.empty()) throw input_error("scene edit", name, format_double(x), what);
+    o = edited;
+  };
+}
+
+// A bar's length edit: its range, then its gauges on it, as the scene reader places them.
+void set_length(BarSpec& b, double x) {
+  BarSpec edited = b;
+  checked(&BarSpec::length_m, "bar.length_m", Range::kPositive)(edited, x);
+  for (const auto& g : b.gauges)
+    if (const std::string what = gauge_position_problem(g.position_m, x); !what.empty())
+      throw input_error(
+          "scene edit", "bar.length_m", format_double(x),
+          "gauge \"" + g.name + "\" at " + format_double(g.position_m) + " m " + what);
+  b.length_m = x;
+}
+
 // ---- results ----------------------------------------------------------------------------------
 
 struct Simulation {
@@ -439,18 +470,17 @@ PYBIND11_MODULE(_shpb, m) {
           checked(&JohnsonCookParams::m, "johnson_cook.m", Range::kPositive))
       .def_property(
           "room_temperature_K", [](const JohnsonCookParams& o) { return o.room_temperature_K; },
-          checked(&JohnsonCookParams::room_temperature_K, "johnson_cook.room_temperature_K",
-                  Range::kPositive))
+          jc_temperature(&JohnsonCookParams::room_temperature_K, "johnson_cook.room_temperature_K"))
       .def_property(
           "melting_temperature_K",
           [](const JohnsonCookParams& o) { return o.melting_temperature_K; },
-          checked(&JohnsonCookParams::melting_temperature_K, "johnson_cook.melting_temperature_K",
-                  Range::kPositive))
+          jc_temperature(&JohnsonCookParams::melting_temperature_K,
+                         "johnson_cook.melting_temperature_K"))
       .def_property(
           "initial_temperature_K",
           [](const JohnsonCookParams& o) { return o.initial_temperature_K; },
-          checked(&JohnsonCookParams::initial_temperature_K, "johnson_cook.initial_temperature_K",
-                  Range::kPositive))
+          jc_temperature(&JohnsonCookParams::initial_temperature_K,
+                         "johnson_cook.initial_temperature_K"))
       .def_property(
           "specific_heat_J_kgK", [](const JohnsonCookParams& o) { return o.specific_heat_J_kgK; },
           checked(&JohnsonCookParams::specific_heat_J_kgK, "johnson_cook.specific_heat_J_kgK",
@@ -522,8 +552,7 @@ PYBIND11_MODULE(_shpb, m) {
       .def_readonly("name", &BarSpec::name)
       .def_readonly("material", &BarSpec::material, py::return_value_policy::reference_internal)
       .def_property(
-          "length_m", [](const BarSpec& o) { return o.length_m; },
-          checked(&BarSpec::length_m, "bar.length_m", Range::kPositive))
+          "length_m", [](const BarSpec& o) { return o.length_m; }, &set_length)
       .def_readonly("area_m2", &BarSpec::area_m2)
       .def_readonly("diameter_m", &BarSpec::diameter_m)
       .def_property(
