@@ -160,3 +160,11 @@ def test_a_numpy_integer_is_a_bar_index():
     assert scene.bar(np.int64(-1)).name == "transmitter"
     with pytest.raises(IndexError):
         scene.bar(2**70)
+
+
+@pytest.mark.parametrize("value", ["12", "0.5", 0.5], ids=str)
+def test_a_list_of_a_over_lambda_is_a_list(value):
+    # The text "12" was read, character by character, as the table of a/Λ = 1 and 2.
+    with pytest.raises(TypeError) as e:
+        shpb.dispersion(a_over_lambda=value)
+    assert str(e.value).startswith("a_over_lambda: ")
