@@ -296,7 +296,7 @@ BarSpec& bar_of(Scene& s, const py::object& key) {
 std::optional<double> tolerance_value(const py::object& t) {
   if (t.is_none()) return std::nullopt;
   if (py::isinstance<py::str>(t)) {
-    const std::string text = t.cast<std::string>();
+    const std::string text = message_text(t);  // a lone surrogate: no quantity, refused below
     try {
       return parse_quantity(text, Dimension::kDimensionless);
     } catch (const std::invalid_argument&) {

@@ -168,3 +168,11 @@ def test_a_list_of_a_over_lambda_is_a_list(value):
     with pytest.raises(TypeError) as e:
         shpb.dispersion(a_over_lambda=value)
     assert str(e.value).startswith("a_over_lambda: ")
+
+
+def test_a_tolerance_text_that_is_not_utf8_is_the_tolerance_message():
+    # A lone surrogate failed pybind11's conversion to UTF-8 (RuntimeError) before the tolerance
+    # was read.
+    with pytest.raises(shpb.InputError) as e:
+        shpb.simulate(CLASSIC, tolerance="1 \udcff")
+    assert str(e.value).startswith("tolerance: ")
