@@ -176,3 +176,17 @@ def test_a_tolerance_text_that_is_not_utf8_is_the_tolerance_message():
     with pytest.raises(shpb.InputError) as e:
         shpb.simulate(CLASSIC, tolerance="1 \udcff")
     assert str(e.value).startswith("tolerance: ")
+
+
+@pytest.mark.parametrize("kwargs, option", [
+    (dict(max_a_over_lambda=float("inf")), "--max-a-over-lambda: inf: "),
+    (dict(max_a_over_lambda=1e300), "--max-a-over-lambda: 1e+300: "),
+    (dict(radius_m=float("inf"), c0_m_s=4975.0), "--radius/--c0: inf m, 4975 m/s: "),
+    (dict(radius_m=0.0095, c0_m_s=float("nan")), "--radius/--c0: 0.0095 m, nan m/s: "),
+], ids=["max-inf", "max-1e300", "radius-inf", "c0-nan"])
+def test_a_dispersion_option_out_of_range_names_itself(kwargs, option):
+    # An infinite largest a/Λ made the table's points NaN, refused as "--a-over-lambda: -nan"
+    # (an option not given); an infinite radius or a NaN c0 gave a NaN frequency_Hz column.
+    with pytest.raises(shpb.InputError) as e:
+        shpb.dispersion(**kwargs)
+    assert str(e.value).startswith(option)
