@@ -23,6 +23,7 @@
 #include "app/process.hpp"
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
+#include "core/json_document.hpp"
 #include "core/json_value.hpp"
 #include "core/output_folder.hpp"
 #include "core/units.hpp"
@@ -103,6 +104,15 @@ auto run_released(F&& work) -> decltype(work()) {
   return std::move(*value);
 }
 
+// A library error raised as `type`. Its message names files as the user gave them: a name that
+// is not UTF-8 is decoded as Python decodes file names (os.fsdecode: the bytes that are not UTF-8
+// as lone surrogates), so that the message is the path given, not an empty one.
+void raise(const py::handle& type, const std::string& message) {
+  const py::object text = py::reinterpret_steal<py::object>(
+      PyUnicode_DecodeFSDefaultAndSize(message.data(), static_cast<Py_ssize_t>(message.size())));
+  if (text) PyErr_SetObject(type.ptr(), text.ptr());
+}
+
 // ---- numpy views ------------------------------------------------------------------------------
 
 // A read-only numpy array over a vector that `owner` (a Python object holding it) keeps alive:
@@ -157,33 +167,86 @@ py::object json_to_python(const nlohmann::ordered_json& j) {
 
 // ---- the scene --------------------------------------------------------------------------------
 
+// Python text as UTF-8 for a message: a lone surrogate (a file name that is not UTF-8, as
+// os.fsdecode gives it) as its \udcff escape instead of a failed conversion.
+std::string message_text(const py::handle& s) {
+  return py::bytes(py::str(s).attr("encode")("utf-8", "backslashreplace")).cast<std::string>();
+}
+
+// An object as a message shows it: its repr on one line (a DataFrame's repr has many: its type).
+std::string shown(const py::handle& o) {
+  const std::string r = message_text(py::repr(o));
+  if (r.find('\n') == std::string::npos) return r;
+  return "a " + message_text(py::type::of(o).attr("__name__"));
+}
+
+// The JSON value of an object json.dumps cannot write itself: a numpy scalar or 0-d array of a
+// number, bool or text (its value; a float16 or long double as the nearest double), a path (its
+// text). nullopt for anything else: complex numbers, dates, arrays of several values (a numpy
+// array is no JSON list: `.tolist()` makes it one), masked values, bytes, ...
+std::optional<py::object> json_value_of(const py::handle& o) {
+  if (py::module_::import("sys").attr("modules").contains("numpy")) {
+    const py::module_ np = py::module_::import("numpy");
+    const bool scalar = py::isinstance(o, np.attr("generic")) ||
+                        (py::type::of(o).is(np.attr("ndarray")) && o.attr("ndim").cast<int>() == 0);
+    if (scalar) {
+      const char kind = o.attr("dtype").attr("kind").cast<std::string>()[0];
+      if (kind == 'f') return py::float_(py::reinterpret_borrow<py::object>(o));
+      if (std::string("iubUO").find(kind) != std::string::npos) return o.attr("item")();
+      return std::nullopt;
+    }
+  }
+  if (py::hasattr(o, "__fspath__")) {
+    py::object text = py::module_::import("os").attr("fspath")(o);
+    if (py::isinstance<py::str>(text)) return text;
+  }
+  return std::nullopt;
+}
+
 // The first value of `o` json.dumps refuses, with its JSON path as the scene reader writes paths
-// (core/json_value.hpp) and its repr: a NaN or infinite number, or an object of no JSON type.
+// (core/json_value.hpp) and how it is shown: a key of no JSON type, a NaN or infinite number, an
+// object of no JSON type, or nesting deeper than the reader takes (a dict that holds itself is
+// nested without end), refused as the reader refuses it.
 struct NotJson {
   std::string path, value;
+  const char* expected =
+      "expected a finite number, a string, true, false, null, a list or a dict "
+      "(NaN and infinity are not JSON)";
 };
-std::optional<NotJson> first_not_json(const py::handle& o, const std::string& path) {
+std::optional<NotJson> first_not_json(const py::handle& o, const std::string& path,
+                                      const std::string& file, int depth = 0) {
+  const bool container =
+      py::isinstance<py::dict>(o) || py::isinstance<py::list>(o) || py::isinstance<py::tuple>(o);
+  if (container) ++depth;
+  if (depth > kMaxJsonDepth) throw too_deep(file, path);
   if (py::isinstance<py::dict>(o)) {
-    for (const auto& [key, value] : py::reinterpret_borrow<py::dict>(o))
-      if (auto bad = first_not_json(value, json_child_path(path, py::str(key).cast<std::string>())))
-        return bad;
+    for (const auto& [key, value] : py::reinterpret_borrow<py::dict>(o)) {
+      const std::string child = json_child_path(path, message_text(key));
+      const bool number_key = py::isinstance<py::int_>(key) || py::isinstance<py::float_>(key);
+      if (!(key.is_none() || py::isinstance<py::str>(key) || number_key) ||
+          (py::isinstance<py::float_>(key) && !std::isfinite(key.cast<double>())))
+        return NotJson{child, "key " + shown(key), "expected a key that is a string or a number"};
+      if (auto bad = first_not_json(value, child, file, depth)) return bad;
+    }
     return std::nullopt;
   }
   if (py::isinstance<py::list>(o) || py::isinstance<py::tuple>(o)) {
     std::size_t i = 0;
     for (const auto& item : o)
-      if (auto bad = first_not_json(item, json_element_path(path, i++))) return bad;
+      if (auto bad = first_not_json(item, json_element_path(path, i++), file, depth)) return bad;
     return std::nullopt;
   }
-  const py::object value =
-      py::hasattr(o, "item") ? o.attr("item")() : py::reinterpret_borrow<py::object>(o);
-  if (py::isinstance<py::float_>(value) && !std::isfinite(value.cast<double>()))
-    return NotJson{path, py::repr(value).cast<std::string>()};
-  if (value.is_none() || py::isinstance<py::str>(value) || py::isinstance<py::bool_>(value) ||
-      py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value) ||
-      py::hasattr(value, "__fspath__"))
+  if (py::isinstance<py::float_>(o) && !std::isfinite(o.cast<double>()))
+    return NotJson{path, shown(o)};
+  if (o.is_none() || py::isinstance<py::str>(o) || py::isinstance<py::bool_>(o) ||
+      py::isinstance<py::int_>(o) || py::isinstance<py::float_>(o))
     return std::nullopt;
-  return NotJson{path, py::repr(value).cast<std::string>()};
+  if (const auto value = json_value_of(o)) {
+    if (py::isinstance<py::float_>(*value) && !std::isfinite(value->cast<double>()))
+      return NotJson{path, shown(o)};
+    return first_not_json(*value, path, file, depth + 1);  // a 0-d object array may hold itself
+  }
+  return NotJson{path, shown(o)};
 }
 
 // Python strings, ints and floats, nested in dicts and lists, as JSON text (json.dumps; numpy
@@ -192,33 +255,39 @@ std::optional<NotJson> first_not_json(const py::handle& o, const std::string& pa
 std::string dict_to_json_text(const py::object& d, const std::filesystem::path& file) {
   py::object json = py::module_::import("json");
   py::object to_value = py::cpp_function([](py::object o) -> py::object {
-    if (py::hasattr(o, "item")) return o.attr("item")();  // numpy scalars
-    if (py::hasattr(o, "__fspath__")) return py::str(o);  // pathlib.Path
-    throw py::type_error("not JSON: " + py::repr(o).cast<std::string>());
+    if (const auto value = json_value_of(o)) return *value;
+    throw py::type_error("not JSON");  // located by first_not_json
   });
   try {
     return json.attr("dumps")(d, py::arg("allow_nan") = false, py::arg("default") = to_value)
         .cast<std::string>();
   } catch (py::error_already_set& e) {
-    if (!e.matches(PyExc_ValueError) && !e.matches(PyExc_TypeError)) throw;
-    if (const auto bad = first_not_json(d, ""))
+    // A circular reference is a ValueError of json.dumps, nesting beyond Python's recursion
+    // limit a RecursionError.
+    if (!e.matches(PyExc_ValueError) && !e.matches(PyExc_TypeError) &&
+        !e.matches(PyExc_RecursionError))
+      throw;
+    if (const auto bad = first_not_json(d, "", file.string()))
       throw input_error(file.string(), bad->path.empty() ? "(top level)" : bad->path, bad->value,
-                        "expected a finite number, a string, true, false, null, a list or a dict "
-                        "(NaN and infinity are not JSON)");
-    throw input_error(file.string(), "", "", "not JSON: " + py::str(e.value()).cast<std::string>());
+                        bad->expected);
+    throw input_error(file.string(), "", "", "not JSON: " + message_text(e.value()));
   }
 }
 
 // The bar named `name` or at index `i` (negative from the end, as Python lists).
 BarSpec& bar_of(Scene& s, const py::object& key) {
   if (py::isinstance<py::str>(key)) {
-    const std::string name = key.cast<std::string>();
+    const std::string name = message_text(key);  // a lone surrogate names no bar
     for (auto& b : s.bars)
       if (b.name == name) return b;
     throw py::key_error("no bar named \"" + name + "\" in scene " + s.name);
   }
-  long i = key.cast<long>();
-  const long n = static_cast<long>(s.bars.size());
+  // An index as a list takes one (an int, a numpy integer): anything else is a TypeError.
+  if (!PyIndex_Check(key.ptr()))
+    throw py::type_error("bar: " + shown(key) + ": expected a bar's name or index");
+  Py_ssize_t i = PyNumber_AsSsize_t(key.ptr(), PyExc_IndexError);
+  if (i == -1 && PyErr_Occurred()) throw py::error_already_set();
+  const auto n = static_cast<Py_ssize_t>(s.bars.size());
   if (i < 0) i += n;
   if (i < 0 || i >= n) throw py::index_error("bar index out of range");
   return s.bars[static_cast<std::size_t>(i)];
@@ -227,7 +296,7 @@ BarSpec& bar_of(Scene& s, const py::object& key) {
 std::optional<double> tolerance_value(const py::object& t) {
   if (t.is_none()) return std::nullopt;
   if (py::isinstance<py::str>(t)) {
-    const std::string text = t.cast<std::string>();
+    const std::string text = message_text(t);  // a lone surrogate: no quantity, refused below
     try {
       return parse_quantity(text, Dimension::kDimensionless);
     } catch (const std::invalid_argument&) {
@@ -235,7 +304,12 @@ std::optional<double> tolerance_value(const py::object& t) {
                         "expected a gauge error such as \"1 %\" or 0.01");
     }
   }
-  return t.cast<double>();
+  try {
+    return t.cast<double>();
+  } catch (const py::cast_error&) {  // pybind11's RuntimeError would not say which argument
+    throw py::type_error("tolerance: " + shown(t) +
+                         ": expected a gauge error such as \"1 %\" or 0.01");
+  }
 }
 
 // Some text per edited field: name=value, SI units in the names (the attributes' own names).
@@ -289,6 +363,37 @@ auto checked(double T::*field, const char* name, Range range) {
   };
 }
 
+// A Johnson-Cook temperature edit: its range, then the readers' rules between the temperatures
+// (model/input_limits.hpp), so that the homologous temperature stays the one a file could give.
+auto jc_temperature(double JohnsonCookParams::*field, const char* name) {
+  return [field, name](JohnsonCookParams& o, double x) {
+    JohnsonCookParams edited = o;
+    checked(field, name, Range::kPositive)(edited, x);
+    std::string what =
+        melting_temperature_problem(edited.melting_temperature_K, edited.room_temperature_K);
+    if (!what.empty())
+      what = "melting_temperature_K " + format_double(edited.melting_temperature_K) + " " + what;
+    else if (what = test_temperature_problem(edited.initial_temperature_K,
+                                             edited.melting_temperature_K);
+             !what.empty())
+      what = "initial_temperature_K " + format_double(edited.initial_temperature_K) + " " + what;
+    if (!what.empty()) throw input_error("scene edit", name, format_double(x), what);
+    o = edited;
+  };
+}
+
+// A bar's length edit: its range, then its gauges on it, as the scene reader places them.
+void set_length(BarSpec& b, double x) {
+  BarSpec edited = b;
+  checked(&BarSpec::length_m, "bar.length_m", Range::kPositive)(edited, x);
+  for (const auto& g : b.gauges)
+    if (const std::string what = gauge_position_problem(g.position_m, x); !what.empty())
+      throw input_error(
+          "scene edit", "bar.length_m", format_double(x),
+          "gauge \"" + g.name + "\" at " + format_double(g.position_m) + " m " + what);
+  b.length_m = x;
+}
+
 // ---- results ----------------------------------------------------------------------------------
 
 struct Simulation {
@@ -331,11 +436,11 @@ PYBIND11_MODULE(_shpb, m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const InputError& e) {
-      input_error_type(e.what());
+      raise(input_error_type, e.what());
     } catch (const NumericalError& e) {
-      numerical_error_type(e.what());
+      raise(numerical_error_type, e.what());
     } catch (const WriteError& e) {
-      write_error_type(final_names(e.what()).c_str());  // the output, not its temporary
+      raise(write_error_type, final_names(e.what()));  // the output, not its temporary
     } catch (const Interrupted&) {
       PyErr_SetNone(PyExc_KeyboardInterrupt);
     }
@@ -365,18 +470,17 @@ PYBIND11_MODULE(_shpb, m) {
           checked(&JohnsonCookParams::m, "johnson_cook.m", Range::kPositive))
       .def_property(
           "room_temperature_K", [](const JohnsonCookParams& o) { return o.room_temperature_K; },
-          checked(&JohnsonCookParams::room_temperature_K, "johnson_cook.room_temperature_K",
-                  Range::kPositive))
+          jc_temperature(&JohnsonCookParams::room_temperature_K, "johnson_cook.room_temperature_K"))
       .def_property(
           "melting_temperature_K",
           [](const JohnsonCookParams& o) { return o.melting_temperature_K; },
-          checked(&JohnsonCookParams::melting_temperature_K, "johnson_cook.melting_temperature_K",
-                  Range::kPositive))
+          jc_temperature(&JohnsonCookParams::melting_temperature_K,
+                         "johnson_cook.melting_temperature_K"))
       .def_property(
           "initial_temperature_K",
           [](const JohnsonCookParams& o) { return o.initial_temperature_K; },
-          checked(&JohnsonCookParams::initial_temperature_K, "johnson_cook.initial_temperature_K",
-                  Range::kPositive))
+          jc_temperature(&JohnsonCookParams::initial_temperature_K,
+                         "johnson_cook.initial_temperature_K"))
       .def_property(
           "specific_heat_J_kgK", [](const JohnsonCookParams& o) { return o.specific_heat_J_kgK; },
           checked(&JohnsonCookParams::specific_heat_J_kgK, "johnson_cook.specific_heat_J_kgK",
@@ -448,8 +552,7 @@ PYBIND11_MODULE(_shpb, m) {
       .def_readonly("name", &BarSpec::name)
       .def_readonly("material", &BarSpec::material, py::return_value_policy::reference_internal)
       .def_property(
-          "length_m", [](const BarSpec& o) { return o.length_m; },
-          checked(&BarSpec::length_m, "bar.length_m", Range::kPositive))
+          "length_m", [](const BarSpec& o) { return o.length_m; }, &set_length)
       .def_readonly("area_m2", &BarSpec::area_m2)
       .def_readonly("diameter_m", &BarSpec::diameter_m)
       .def_property(
@@ -486,12 +589,17 @@ PYBIND11_MODULE(_shpb, m) {
       .def_static(
           "load",
           [](const std::filesystem::path& file) {
-            return read_scene(std::filesystem::absolute(file));
+            // An empty path (std::filesystem::absolute throws on it) is the reader's to refuse.
+            return read_scene(file.empty() ? file : std::filesystem::absolute(file));
           },
           py::arg("path"))
       .def_static(
           "from_dict",
           [](const py::object& d, const std::filesystem::path& file) {
+            if (file.empty())
+              throw input_error("file", "", "\"\"",
+                                "expected the path the dict's relative paths are written from, "
+                                "such as \"scene.json\"");
             const std::filesystem::path anchored = std::filesystem::absolute(file);
             return read_scene_text(dict_to_json_text(d, anchored), anchored);
           },

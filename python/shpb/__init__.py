@@ -278,6 +278,11 @@ f_a_over_c0 and, with radius_m and c0_m_s, frequency_Hz): a DataFrame with panda
 dict of numpy arrays.""")
 def dispersion(poisson=0.29, a_over_lambda=None, max_a_over_lambda=1.6, points=321,
                radius_m=None, c0_m_s=None):
+    # A text is iterable too: "12" was read as the two values 1 and 2.
+    if isinstance(a_over_lambda, (str, bytes)) or not (a_over_lambda is None
+                                                       or hasattr(a_over_lambda, "__iter__")):
+        raise TypeError(f"a_over_lambda: {a_over_lambda!r}: expected a list of numbers such as "
+                        "[0.1, 0.5]")
     with tempfile.TemporaryDirectory(prefix="shpb-dispersion-") as tmp:
         path = os.path.join(tmp, "dispersion.csv")
         _shpb._dispersion(poisson, [] if a_over_lambda is None else [float(x) for x in a_over_lambda], max_a_over_lambda, points,

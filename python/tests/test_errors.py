@@ -89,8 +89,16 @@ def test_a_bad_tolerance_is_the_commands_message(tmp_path):
     lambda s: setattr(s, "tolerance", 1.5),
     lambda s: setattr(s, "tolerance", "-1 %"),
     lambda s: setattr(s, "tolerance", float("nan")),
+    # Rules between values (model/input_limits.hpp): each value in its range, the pair not. The
+    # incident bar cut to 0.5 m left its gauge at 1 m off the bar, and the run went on; a room
+    # temperature above melting made the homologous temperature negative.
+    lambda s: setattr(s.bars[1], "length_m", 0.5),
+    lambda s: setattr(s.specimen.material.johnson_cook, "room_temperature_K", 2000.0),
+    lambda s: setattr(s.specimen.material.johnson_cook, "melting_temperature_K", 100.0),
+    lambda s: setattr(s.specimen.material.johnson_cook, "initial_temperature_K", 2000.0),
 ], ids=["length", "gap", "velocity", "elements", "density", "poisson", "jc-n", "duration",
-        "tolerance-150%", "tolerance-negative", "tolerance-nan"])
+        "tolerance-150%", "tolerance-negative", "tolerance-nan", "gauge-off-bar",
+        "room-above-melting", "melting-below-room", "test-above-melting"])
 def test_an_edit_outside_the_scene_files_range_is_refused(edit):
     # A value no scene file could hold is refused when it is set, and the scene keeps its value.
     scene = shpb.Scene.load(SOURCE / "experiments" / "classic-al6061" / "scene.json")

@@ -145,10 +145,7 @@ class Sax {
   }
   void enter() {
     throw_if_interrupted();  // a huge document stops within a second of a signal
-    if (++depth_ > kMaxJsonDepth)
-      throw input_error(display_, where_.path(),
-                        "nesting deeper than " + std::to_string(kMaxJsonDepth),
-                        "expected a scene-like document (objects and arrays a few levels deep)");
+    if (++depth_ > kMaxJsonDepth) throw too_deep(display_, where_.path());
   }
 
   nlohmann::detail::json_sax_dom_parser<json> dom_;
@@ -158,6 +155,11 @@ class Sax {
 };
 
 }  // namespace
+
+InputError too_deep(const std::string& display, const std::string& path) {
+  return input_error(display, path, "nesting deeper than " + std::to_string(kMaxJsonDepth),
+                     "expected a scene-like document (objects and arrays a few levels deep)");
+}
 
 json parse_json_object(const std::string& text, const std::string& display) {
   if (text.find_first_not_of(" \t\r\n") == std::string::npos)

@@ -7,11 +7,17 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "core/error.hpp"
+
 namespace shpb {
 
 // Limits checked before the document is built: a scene is a few kB and a few levels deep.
 inline constexpr int kMaxJsonDepth = 64;
 inline constexpr std::size_t kMaxJsonBytes = std::size_t{64} << 20;
+
+// The refusal of a value nested deeper than kMaxJsonDepth at `path` (also of a dict the Python
+// module is given, python/shpb_module.cpp: a dict that holds itself is nested without end).
+InputError too_deep(const std::string& display, const std::string& path);
 
 // `display` is how the file is named in messages (the path as the user wrote it).
 nlohmann::json read_json_object_file(const std::filesystem::path& file, const std::string& display);

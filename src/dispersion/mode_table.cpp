@@ -11,6 +11,9 @@
 namespace shpb {
 namespace {
 
+// The largest a/Λ tabulated: far beyond the bars' frequencies (a/Λ of a few tenths).
+constexpr double kMaxAOverLambda = 1000;
+
 std::vector<double> table_points(const ModeTableOptions& o) {
   std::vector<double> xs = o.a_over_lambda;
   if (xs.empty())
@@ -29,16 +32,24 @@ bool ModeTableOptions::IsValid(std::string* error) const {
   else if (a_over_lambda.empty() && (points < 2 || points > kMaxTablePoints))
     e = input_error("--points", "", std::to_string(points),
                     "must be in [2, " + std::to_string(kMaxTablePoints) + "]");
-  else if (a_over_lambda.empty() && !(max_a_over_lambda > 0))
-    e = input_error("--max-a-over-lambda", "", format_double(max_a_over_lambda), "must be > 0");
+  // The largest a/Λ under its own name: an infinite one made the table's points NaN, refused
+  // as --a-over-lambda (a value nobody gave).
+  else if (a_over_lambda.empty() &&
+           !(max_a_over_lambda > 0 && max_a_over_lambda <= kMaxAOverLambda))
+    e = input_error("--max-a-over-lambda", "", format_double(max_a_over_lambda),
+                    "must be in (0, " + format_double(kMaxAOverLambda) + "]");
   for (double x : e ? std::vector<double>{} : table_points(*this))
-    if (!e && (!(x >= 0) || x > 1000))
-      e = input_error("--a-over-lambda", "", format_double(x), "must be in [0, 1000]");
+    if (!e && (!(x >= 0) || x > kMaxAOverLambda))
+      e = input_error("--a-over-lambda", "", format_double(x),
+                      "must be in [0, " + format_double(kMaxAOverLambda) + "]");
   if (!e && radius_m.has_value() != c0_m_s.has_value())
     e = input_error(radius_m ? "--c0" : "--radius", "", "missing",
                     "--radius and --c0 go together (frequency_Hz needs both)");
-  else if (!e && radius_m && (!(*radius_m > 0) || !(*c0_m_s > 0)))
-    e = input_error("--radius/--c0", "", "", "must be > 0");
+  else if (!e && radius_m &&
+           !(std::isfinite(*radius_m) && *radius_m > 0 && std::isfinite(*c0_m_s) && *c0_m_s > 0))
+    e = input_error("--radius/--c0", "",
+                    format_double(*radius_m) + " m, " + format_double(*c0_m_s) + " m/s",
+                    "must be finite and > 0");
   if (e) *error = e->what();
   return !e;
 }

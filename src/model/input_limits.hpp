@@ -2,6 +2,7 @@
 // The ranges the scene and material readers accept (docs/scene-format.md), public so that every
 // other way of setting the same value (the Python module's scene edits) checks the same bounds.
 #include <cstdint>
+#include <string>
 
 namespace shpb {
 
@@ -12,5 +13,13 @@ inline constexpr std::int64_t kMaxElements = 100'000'000;
 // positive only for −1 < ν < 0.5 (docs/scene-format.md, materials).
 inline constexpr double kPoissonRatioAbove = -1.0;
 inline constexpr double kPoissonRatioBelow = 0.5;
+
+// Rules between values, for the key named last: "" where they hold, else what is expected.
+// A gauge lies on its bar, within [0, length] of its left end (model/scene_reader.cpp).
+std::string gauge_position_problem(double position_m, double bar_length_m);
+// Johnson-Cook's homologous temperature (T - T_room) / (T_melt - T_room) needs T_melt > T_room;
+// the test's temperature lies below melting (model/material_reader.cpp).
+std::string melting_temperature_problem(double melting_K, double room_K);
+std::string test_temperature_problem(double test_K, double melting_K);
 
 }  // namespace shpb

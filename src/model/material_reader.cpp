@@ -7,6 +7,17 @@
 #include "model/scene.hpp"
 
 namespace shpb {
+
+std::string melting_temperature_problem(double melting_K, double room_K) {
+  if (melting_K > room_K) return {};
+  return "must be > room_temperature (" + JsonValue::format(room_K, Dimension::kTemperature) + ")";
+}
+
+std::string test_temperature_problem(double test_K, double melting_K) {
+  if (test_K < melting_K) return {};
+  return "must be below melting_temperature (" +
+         JsonValue::format(melting_K, Dimension::kTemperature) + ")";
+}
 namespace {
 
 std::vector<std::string> allowed_keys(MaterialModel model) {
@@ -63,17 +74,19 @@ void read_johnson_cook(const JsonObject& o, MaterialSpec& m) {
     p.room_temperature_K = v->positive_quantity(Dimension::kTemperature);
   const auto melt = o.require("melting_temperature", "e.g. \"925 K\"");
   p.melting_temperature_K = melt.quantity(Dimension::kTemperature);
-  if (!(p.melting_temperature_K > p.room_temperature_K))
-    throw melt.error_with_value(
-        JsonValue::format(p.melting_temperature_K, Dimension::kTemperature),
-        "must be > room_temperature (" +
-            JsonValue::format(p.room_temperature_K, Dimension::kTemperature) + ")");
+  if (const std::string what =
+          melting_temperature_problem(p.melting_temperature_K, p.room_temperature_K);
+      !what.empty())
+    throw melt.error_with_value(JsonValue::format(p.melting_temperature_K, Dimension::kTemperature),
+                                what);
   p.initial_temperature_K = p.room_temperature_K;
   if (auto v = o.get("temperature")) {
     p.initial_temperature_K = v->positive_quantity(Dimension::kTemperature);
-    if (!(p.initial_temperature_K < p.melting_temperature_K))
+    if (const std::string what =
+            test_temperature_problem(p.initial_temperature_K, p.melting_temperature_K);
+        !what.empty())
       throw v->error_with_value(JsonValue::format(p.initial_temperature_K, Dimension::kTemperature),
-                                "must be below melting_temperature");
+                                what);
   }
   if (auto v = o.get("adiabatic")) p.adiabatic = v->boolean();
   if (auto v = o.get("taylor_quinney"))

@@ -17,6 +17,12 @@
 #include "model/test_setup.hpp"
 
 namespace shpb {
+
+std::string gauge_position_problem(double position_m, double bar_length_m) {
+  if (position_m >= 0 && position_m <= bar_length_m) return {};
+  return "must lie on the bar: within [0, " + JsonValue::format(bar_length_m, Dimension::kLength) +
+         "] from its left end";
+}
 namespace {
 
 namespace fs = std::filesystem;
@@ -187,11 +193,9 @@ class SceneReader {
         gauge.position_m = pos.quantity(Dimension::kLength);
         if (to_specimen)  // on the bar once the specimen is known (resolve_distances_to_specimen)
           gauge.distance_to_specimen_m = gauge.position_m;
-        else if (!(gauge.position_m >= 0 && gauge.position_m <= b.length_m))
-          throw pos.error_with_value(JsonValue::format(gauge.position_m, Dimension::kLength),
-                                     "must lie on the bar: within [0, " +
-                                         JsonValue::format(b.length_m, Dimension::kLength) +
-                                         "] from its left end");
+        else if (const std::string what = gauge_position_problem(gauge.position_m, b.length_m);
+                 !what.empty())
+          throw pos.error_with_value(JsonValue::format(gauge.position_m, Dimension::kLength), what);
         b.gauges.push_back(gauge);
       }
     }
