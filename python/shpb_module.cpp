@@ -827,8 +827,8 @@ PYBIND11_MODULE(_shpb, m) {
          const std::string& sweep, int refine, const py::object& tolerance,
          const std::optional<std::string>& contact, const std::optional<std::string>& stepping,
          const std::optional<double>& courant, int threads,
-         const std::optional<std::filesystem::path>& distributions, std::size_t draws,
-         const std::optional<std::uint64_t>& seed) {
+         const std::optional<std::filesystem::path>& distributions,
+         const std::optional<std::size_t>& draws, const std::optional<std::uint64_t>& seed) {
         StudyArgs a;
         a.scene = scene;
         a.output = output;

@@ -255,7 +255,7 @@ def study(scene, sweep="pareto", refine=1, tolerance=None, threads=0, contact=No
     distributions = None if distributions is None else os.fspath(distributions)
     return _folder_run("study", lambda out: _shpb._study(
         scene, out, sweep, refine, tolerance, contact, stepping, courant, threads,
-        distributions, 0 if draws is None else draws, seed), scene, distributions)
+        distributions, draws, seed), scene, distributions)
 
 
 @_with_help("fit", """fit(campaign, threads=0, max_iterations=40, relative_step=0.05, bootstrap=30,

@@ -115,6 +115,11 @@ def test_an_edit_outside_the_scene_files_range_is_refused(edit):
                         sweep="stability", refine=65), "--refine"),
     (lambda: shpb.process(SOURCE / "experiments" / "lanl-cu-ofe-273k" / "scene.json", draws=1),
      "--draws"),
+    # 0 draws is no Monte Carlo: refused as the command refuses --draws 0 (it was read as "not
+    # given" and ran the default 200 draws).
+    (lambda: shpb.study(SOURCE / "experiments" / "striker-on-bar" / "scene.json",
+                        sweep="monte-carlo", distributions=SOURCE / "experiments" / "classic-al6061"
+                        / "distributions.json", draws=0), "--draws"),
     (lambda: shpb.dispersion(max_a_over_lambda=0), "--max-a-over-lambda"),
     (lambda: shpb.dispersion(points=1000001), "--points"),
     # --threads is a whole number >= 0 (0: all cores); -1 was taken as all cores, or ignored.
@@ -122,7 +127,7 @@ def test_an_edit_outside_the_scene_files_range_is_refused(edit):
      "--threads"),
     (lambda: shpb.study(SOURCE / "experiments" / "striker-on-bar" / "scene.json",
                         sweep="stability", threads=-1), "--threads"),
-], ids=["refine-0", "refine-65", "draws-1", "max-a-over-lambda-0", "points-1000001",
+], ids=["refine-0", "refine-65", "draws-1", "study-draws-0", "max-a-over-lambda-0", "points-1000001",
         "simulate-threads--1", "study-threads--1"])
 def test_an_option_outside_the_commands_range_is_an_input_error(call, option):
     # The range the command's option parser gives the option holds from Python too: refused before

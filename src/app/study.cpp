@@ -37,7 +37,7 @@ StudyOptions study_options(const StudyArgs& args) {
   StudyOptions o{args.sweep, args.overrides.contact, args.overrides.stepping,
                  args.overrides.courant, args.refine};
   o.distributions = args.distributions;
-  if (args.draws > 0) o.draws = args.draws;
+  if (args.draws) o.draws = *args.draws;
   if (args.seed) o.seed = *args.seed;
   return o;
 }

@@ -9,7 +9,7 @@ bool StudyArgs::IsValid(std::string* error) const {
   const int modes = (plan ? 1 : 0) + (run ? 1 : 0) + (merge ? 1 : 0);
   // The Monte Carlo option given first, if any (named by the errors below).
   const char* monte_carlo_option = !distributions.empty() ? "--distributions"
-                                   : draws > 0            ? "--draws"
+                                   : draws                ? "--draws"
                                    : seed                 ? "--seed"
                                                           : nullptr;
   std::optional<InputError> e;
@@ -18,9 +18,9 @@ bool StudyArgs::IsValid(std::string* error) const {
   else if (refine < 1 || refine > kMaxRefine)
     e = input_error("--refine", "", std::to_string(refine),
                     "expected 1 to " + std::to_string(kMaxRefine));
-  else if (draws != 0 && (draws < kMinDraws || draws > kMaxStudyDraws))
+  else if (draws && (*draws < kMinDraws || *draws > kMaxStudyDraws))
     e = input_error(
-        "--draws", "", std::to_string(draws),
+        "--draws", "", std::to_string(*draws),
         "expected " + std::to_string(kMinDraws) + " to " + std::to_string(kMaxStudyDraws));
   else if (refine != 1 && sweep != Sweep::kStability)
     e = input_error("--refine", "", std::to_string(refine), "only with --sweep stability");

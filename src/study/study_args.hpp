@@ -26,7 +26,7 @@ struct StudyArgs {
   int refine = 1;  // stability grid refinement (study/sweep.hpp)
   // --sweep monte-carlo: the distributions file, draws and seed (study/monte_carlo_sweep.hpp).
   std::filesystem::path distributions;
-  std::size_t draws = 0;  // 0: the default (kDefaultMonteCarloDraws)
+  std::optional<std::size_t> draws;  // none: the default (kDefaultMonteCarloDraws)
   std::optional<std::uint64_t> seed;
   // Plan, run, merge (docs/commands.md): at most one of the three.
   std::optional<std::filesystem::path> plan;   // write DIR/plan.json (needs the scene)
