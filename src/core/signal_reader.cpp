@@ -177,9 +177,9 @@ std::vector<double> stamp_rounding(const std::vector<double>& t) {
            (std::pow(10.0, -decimals) > std::abs(v) || !exact(v, std::pow(10.0, -decimals))))
       ++decimals;
   }
+  const double fixed = std::pow(10.0, -decimals);
   std::vector<double> step(t.size());
   for (std::size_t i = 0; i < t.size(); ++i) {
-    const double fixed = std::pow(10.0, -decimals);
     step[i] =
         t[i] == 0
             ? fixed

@@ -552,6 +552,18 @@ PreparedShots prepare_shots(const std::vector<CalibrationShot>& input) {
   return ps;
 }
 
+// The residuals a shot's compared samples make, and all shots'.
+std::size_t residual_count(const Shot& s) {
+  std::size_t n = 0;
+  for (const Target& t : s.targets) n += t.samples.size();
+  return n;
+}
+std::size_t residual_count(const std::vector<Shot>& shots) {
+  std::size_t n = 0;
+  for (const Shot& s : shots) n += residual_count(s);
+  return n;
+}
+
 // One least-squares group per shot: its residuals over its compared samples, plain squares.
 std::vector<LsGroup> residual_groups(const std::vector<Shot>& shots, Tables& tables) {
   std::vector<LsGroup> groups;
@@ -562,9 +574,7 @@ std::vector<LsGroup> residual_groups(const std::vector<Shot>& shots, Tables& tab
     g.residuals = [shot, &tables](const std::vector<double>& theta) {
       return shot_residuals(*shot, theta, tables);
     };
-    std::size_t count = 0;
-    for (const Target& t : s.targets) count += t.samples.size();
-    g.loss_scale.assign(count, 1.0);
+    g.loss_scale.assign(residual_count(s), 1.0);
     groups.push_back(std::move(g));
   }
   return groups;
@@ -664,9 +674,7 @@ std::vector<double> timing_undetermined(const std::vector<Shot>& shots,
 // window at 1 (the model is linear in the source). One error per record, over all residuals.
 std::vector<LsCommonError> rest_level_errors(const std::vector<Shot>& shots,
                                              const std::vector<double>& theta, Tables& tables) {
-  std::size_t total = 0;
-  for (const Shot& s : shots)
-    for (const Target& t : s.targets) total += t.samples.size();
+  const std::size_t total = residual_count(shots);
   std::vector<LsCommonError> out;
   std::size_t first = 0;  // the shot's first residual
   for (const Shot& s : shots) {
@@ -705,14 +713,11 @@ struct SourceNoise {
 SourceNoise source_noise(const std::vector<Shot>& shots, const std::vector<double>& theta,
                          Tables& tables, const Eigen::MatrixXd& jacobian) {
   SourceNoise out{Eigen::MatrixXd::Zero(jacobian.cols(), jacobian.cols()), 0.0};
-  long total = 0;
-  for (const Shot& s : shots)
-    for (const Target& t : s.targets) total += static_cast<long>(t.samples.size());
-  if (jacobian.rows() != total) return out;  // no Jacobian: scaled_svd says so
-  long first = 0;                            // the shot's first residual
+  if (jacobian.rows() != static_cast<long>(residual_count(shots)))
+    return out;    // no Jacobian: scaled_svd says so
+  long first = 0;  // the shot's first residual
   for (const Shot& s : shots) {
-    long rows = 0;
-    for (const Target& t : s.targets) rows += static_cast<long>(t.samples.size());
+    const auto rows = static_cast<long>(residual_count(s));
     Shot unit = s;
     std::fill(unit.source.begin(), unit.source.end(), 0.0);
     Eigen::VectorXd d(rows);
