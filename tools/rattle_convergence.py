@@ -9,7 +9,7 @@ Usage: tools/rattle_convergence.py [build/shpb] [experiment ...]
 For each experiment, links (rigid, then finite: contact.stiffness_factor 1e4 at every rigid interface),
 stepping (global, then asynchronous) and mesh — the default, --tolerance 1 %
 and 0.5 %, every bar's elements k x the default run's (k = 1, 2, 4, and 8 when the k = 4 run
-predicts it under a minute), and the bars alone refined ("bars k": 4, 20 x, the specimen kept, so
+predicts it under a minute), and the bars alone refined ("bars k": 4, 6, 8, 20 x, the specimen kept, so
 that the bars' cut-off frequency rises above the specimen's element-scale ringing) — prints one line
 per specimen face:
   elements per bar (striker/incident/specimen/transmitter), wall time of the full run;
@@ -49,7 +49,7 @@ BAND_PERIOD_S = 5e-6  # the ringing's period is sought below 5 us (the specimens
 RING_WINDOW_S = 40e-6  # ... over the first 40 us after the unloading, while the specimen rings
 FELT = 1e-3  # a closing whose force reaches 0.1 % of the loading peak: what a gauge could see
 FINITE = 1e4  # contact.stiffness_factor of the finite links
-BARS_ONLY_K = (4, 20)  # the bars alone refined, the specimen at the default run's elements
+BARS_ONLY_K = (4, 6, 8, 20)  # the bars alone refined, the specimen at the default run's elements
 
 
 def scene_copy(experiment, work, elements=None, duration_s=None, finite=False):
