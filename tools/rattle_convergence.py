@@ -10,8 +10,9 @@ For each experiment, links (rigid, then finite: contact.stiffness_factor 1e4 at 
 stepping (global, then asynchronous) and mesh — the default, --tolerance 1 %
 and 0.5 %, every bar's elements k x the default run's (k = 1, 2, 4, and 8 when the k = 4 run
 predicts it under a minute), and the bars alone refined ("bars k": 4, 6, 8, 20 x, the specimen kept, so
-that the bars' cut-off frequency rises above the specimen's element-scale ringing) — prints one line
-per specimen face:
+that the bars' cut-off frequency rises above the specimen's element-scale ringing), and the specimen
+alone coarsened ("spec N": 3, 6 elements, the bars at the default run's) — prints one line per
+specimen face:
   elements per bar (striker/incident/specimen/transmitter), wall time of the full run;
   t_r, the face's unloading: the first record sample after its force's peak at which it is zero
   (each face's windows below are after its own; a face never released says so);
@@ -50,6 +51,7 @@ RING_WINDOW_S = 40e-6  # ... over the first 40 us after the unloading, while the
 FELT = 1e-3  # a closing whose force reaches 0.1 % of the loading peak: what a gauge could see
 FINITE = 1e4  # contact.stiffness_factor of the finite links
 BARS_ONLY_K = (4, 6, 8, 20)  # the bars alone refined, the specimen at the default run's elements
+SPECIMEN_ONLY = (3, 6)  # the specimen alone coarsened to these elements, the bars at the default's
 
 
 def scene_copy(experiment, work, elements=None, duration_s=None, finite=False):
@@ -240,3 +242,12 @@ with tempfile.TemporaryDirectory() as work:
                         print(f'bars k {k:<3d} {tag:13s} {err}', flush=True)
                         continue
                     print(line(f'bars k {k}', tag, r), flush=True)
+                for n in SPECIMEN_ONLY:  # the specimen's ringing lowered to the bars' cut-off
+                    if base is None:
+                        break
+                    try:
+                        r, s = measure(e, work, {**base, specimen: n}, options, finite)
+                    except RuntimeError as err:
+                        print(f'spec {n:<5d} {tag:13s} {err}', flush=True)
+                        continue
+                    print(line(f'spec {n}', tag, r), flush=True)
