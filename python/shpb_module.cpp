@@ -18,6 +18,8 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <type_traits>
+#include <utility>
 
 #include "app/commands.hpp"
 #include "app/process.hpp"
@@ -382,6 +384,56 @@ auto jc_temperature(double JohnsonCookParams::*field, const char* name) {
   };
 }
 
+// A material's parameters of one law, its attribute group (material.bilinear,
+// material.johnson_cook): read on any material, set only on a material of that law, where the
+// scene reader takes them (model/material_reader.cpp); on another one an edit was kept unused.
+template <class P>
+struct LawParams {
+  MaterialSpec* material;
+};
+template <class P>
+P& params_of(const LawParams<P>& l) {
+  if constexpr (std::is_same_v<P, BilinearParams>)
+    return l.material->bilinear;
+  else
+    return l.material->johnson_cook;
+}
+template <class P>
+constexpr std::pair<MaterialModel, const char*> law_of() {
+  if constexpr (std::is_same_v<P, BilinearParams>)
+    return {MaterialModel::kBilinear, "bilinear"};
+  else
+    return {MaterialModel::kJohnsonCook, "johnson_cook"};
+}
+template <class P, class T>
+auto law_get(T P::*field) {
+  return [field](const LawParams<P>& l) { return params_of(l).*field; };
+}
+// The edit `set` of the attribute `name` (group.attribute), refused unless the material's law is
+// the group's.
+template <class P, class T, class Set>
+auto law_set(const char* name, Set set) {
+  return [name, set](LawParams<P>& l, T x) {
+    const auto [law, group] = law_of<P>();
+    if (l.material->model != law) {
+      std::string value;
+      if constexpr (std::is_same_v<T, bool>)
+        value = x ? "True" : "False";
+      else
+        value = format_double(x);
+      throw input_error("scene edit", name, value,
+                        "material \"" + l.material->name + "\" is " +
+                            std::string(to_string(l.material->model)) + ": " + group +
+                            ".* applies only to a " + std::string(to_string(law)) + " material");
+    }
+    set(params_of(l), x);
+  };
+}
+template <class P>
+auto law_set(double P::*field, const char* name, Range range) {
+  return law_set<P, double>(name, checked(field, name, range));
+}
+
 // A bar's length edit: its range, then its gauges on it, as the scene reader places them.
 void set_length(BarSpec& b, double x) {
   BarSpec edited = b;
@@ -447,50 +499,41 @@ PYBIND11_MODULE(_shpb, m) {
   });
 
   // Material parameters, SI units in the names (docs/scene-format.md gives the JSON keys).
-  py::class_<JohnsonCookParams>(m, "JohnsonCook")
+  using JohnsonCook = LawParams<JohnsonCookParams>;
+  using JC = JohnsonCookParams;
+  py::class_<JohnsonCook>(m, "JohnsonCook")
+      .def_property("A_Pa", law_get(&JC::A_Pa),
+                    law_set(&JC::A_Pa, "johnson_cook.A_Pa", Range::kNonNegative))
+      .def_property("B_Pa", law_get(&JC::B_Pa),
+                    law_set(&JC::B_Pa, "johnson_cook.B_Pa", Range::kNonNegative))
+      .def_property("n", law_get(&JC::n), law_set(&JC::n, "johnson_cook.n", Range::kFraction))
+      .def_property("C", law_get(&JC::C), law_set(&JC::C, "johnson_cook.C", Range::kFinite))
+      .def_property("reference_strain_rate_1_s", law_get(&JC::reference_strain_rate_1_s),
+                    law_set(&JC::reference_strain_rate_1_s,
+                            "johnson_cook.reference_strain_rate_1_s", Range::kPositive))
+      .def_property("m", law_get(&JC::m), law_set(&JC::m, "johnson_cook.m", Range::kPositive))
+      .def_property("room_temperature_K", law_get(&JC::room_temperature_K),
+                    law_set<JC, double>(
+                        "johnson_cook.room_temperature_K",
+                        jc_temperature(&JC::room_temperature_K, "johnson_cook.room_temperature_K")))
+      .def_property("melting_temperature_K", law_get(&JC::melting_temperature_K),
+                    law_set<JC, double>("johnson_cook.melting_temperature_K",
+                                        jc_temperature(&JC::melting_temperature_K,
+                                                       "johnson_cook.melting_temperature_K")))
+      .def_property("initial_temperature_K", law_get(&JC::initial_temperature_K),
+                    law_set<JC, double>("johnson_cook.initial_temperature_K",
+                                        jc_temperature(&JC::initial_temperature_K,
+                                                       "johnson_cook.initial_temperature_K")))
       .def_property(
-          "A_Pa", [](const JohnsonCookParams& o) { return o.A_Pa; },
-          checked(&JohnsonCookParams::A_Pa, "johnson_cook.A_Pa", Range::kNonNegative))
+          "specific_heat_J_kgK", law_get(&JC::specific_heat_J_kgK),
+          law_set(&JC::specific_heat_J_kgK, "johnson_cook.specific_heat_J_kgK", Range::kPositive))
+      .def_property("taylor_quinney", law_get(&JC::taylor_quinney),
+                    law_set(&JC::taylor_quinney, "johnson_cook.taylor_quinney", Range::kFraction))
       .def_property(
-          "B_Pa", [](const JohnsonCookParams& o) { return o.B_Pa; },
-          checked(&JohnsonCookParams::B_Pa, "johnson_cook.B_Pa", Range::kNonNegative))
-      .def_property(
-          "n", [](const JohnsonCookParams& o) { return o.n; },
-          checked(&JohnsonCookParams::n, "johnson_cook.n", Range::kFraction))
-      .def_property(
-          "C", [](const JohnsonCookParams& o) { return o.C; },
-          checked(&JohnsonCookParams::C, "johnson_cook.C", Range::kFinite))
-      .def_property(
-          "reference_strain_rate_1_s",
-          [](const JohnsonCookParams& o) { return o.reference_strain_rate_1_s; },
-          checked(&JohnsonCookParams::reference_strain_rate_1_s,
-                  "johnson_cook.reference_strain_rate_1_s", Range::kPositive))
-      .def_property(
-          "m", [](const JohnsonCookParams& o) { return o.m; },
-          checked(&JohnsonCookParams::m, "johnson_cook.m", Range::kPositive))
-      .def_property(
-          "room_temperature_K", [](const JohnsonCookParams& o) { return o.room_temperature_K; },
-          jc_temperature(&JohnsonCookParams::room_temperature_K, "johnson_cook.room_temperature_K"))
-      .def_property(
-          "melting_temperature_K",
-          [](const JohnsonCookParams& o) { return o.melting_temperature_K; },
-          jc_temperature(&JohnsonCookParams::melting_temperature_K,
-                         "johnson_cook.melting_temperature_K"))
-      .def_property(
-          "initial_temperature_K",
-          [](const JohnsonCookParams& o) { return o.initial_temperature_K; },
-          jc_temperature(&JohnsonCookParams::initial_temperature_K,
-                         "johnson_cook.initial_temperature_K"))
-      .def_property(
-          "specific_heat_J_kgK", [](const JohnsonCookParams& o) { return o.specific_heat_J_kgK; },
-          checked(&JohnsonCookParams::specific_heat_J_kgK, "johnson_cook.specific_heat_J_kgK",
-                  Range::kPositive))
-      .def_property(
-          "taylor_quinney", [](const JohnsonCookParams& o) { return o.taylor_quinney; },
-          checked(&JohnsonCookParams::taylor_quinney, "johnson_cook.taylor_quinney",
-                  Range::kFraction))
-      .def_readwrite("adiabatic", &JohnsonCookParams::adiabatic)
-      .def("__repr__", [](const JohnsonCookParams& o) {
+          "adiabatic", law_get(&JC::adiabatic),
+          law_set<JC, bool>("johnson_cook.adiabatic", [](JC& o, bool x) { o.adiabatic = x; }))
+      .def("__repr__", [](const JohnsonCook& l) {
+        const JC& o = params_of(l);
         return "<shpb.JohnsonCook " +
                fields({{"A_Pa", o.A_Pa},
                        {"B_Pa", o.B_Pa},
@@ -502,15 +545,16 @@ PYBIND11_MODULE(_shpb, m) {
                        {"melting_temperature_K", o.melting_temperature_K}}) +
                (o.adiabatic ? ", adiabatic" : "") + ">";
       });
-  py::class_<BilinearParams>(m, "Bilinear")
+  using Bilinear = LawParams<BilinearParams>;
+  py::class_<Bilinear>(m, "Bilinear")
       .def_property(
-          "yield_stress_Pa", [](const BilinearParams& o) { return o.yield_stress_Pa; },
-          checked(&BilinearParams::yield_stress_Pa, "bilinear.yield_stress_Pa", Range::kPositive))
-      .def_property(
-          "tangent_modulus_Pa", [](const BilinearParams& o) { return o.tangent_modulus_Pa; },
-          checked(&BilinearParams::tangent_modulus_Pa, "bilinear.tangent_modulus_Pa",
-                  Range::kNonNegative))
-      .def("__repr__", [](const BilinearParams& o) {
+          "yield_stress_Pa", law_get(&BilinearParams::yield_stress_Pa),
+          law_set(&BilinearParams::yield_stress_Pa, "bilinear.yield_stress_Pa", Range::kPositive))
+      .def_property("tangent_modulus_Pa", law_get(&BilinearParams::tangent_modulus_Pa),
+                    law_set(&BilinearParams::tangent_modulus_Pa, "bilinear.tangent_modulus_Pa",
+                            Range::kNonNegative))
+      .def("__repr__", [](const Bilinear& l) {
+        const BilinearParams& o = params_of(l);
         return "<shpb.Bilinear " +
                fields({{"yield_stress_Pa", o.yield_stress_Pa},
                        {"tangent_modulus_Pa", o.tangent_modulus_Pa}}) +
@@ -535,10 +579,10 @@ PYBIND11_MODULE(_shpb, m) {
                                     format_double(kPoissonRatioBelow) + ")");
             o.poisson_ratio = x;
           })
-      .def_readonly("bilinear", &MaterialSpec::bilinear,
-                    py::return_value_policy::reference_internal)
-      .def_readonly("johnson_cook", &MaterialSpec::johnson_cook,
-                    py::return_value_policy::reference_internal)
+      .def_property_readonly(
+          "bilinear", [](MaterialSpec& s) { return Bilinear{&s}; }, py::keep_alive<0, 1>())
+      .def_property_readonly(
+          "johnson_cook", [](MaterialSpec& s) { return JohnsonCook{&s}; }, py::keep_alive<0, 1>())
       .def_property_readonly("wave_speed_m_s", &MaterialSpec::wave_speed_m_s)
       .def("__repr__", [](const MaterialSpec& s) {
         return "<shpb.Material " + s.name + " (" + std::string(to_string(s.model)) + "): " +

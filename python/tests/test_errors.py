@@ -108,6 +108,34 @@ def test_an_edit_outside_the_scene_files_range_is_refused(edit):
     assert shpb.simulate(scene).gauges["incident"].tolist() == before
 
 
+@pytest.mark.parametrize("bar, group, attribute, value, law", [
+    ("specimen", "bilinear", "yield_stress_Pa", 300e6, "johnson-cook"),
+    ("specimen", "bilinear", "tangent_modulus_Pa", 1e9, "johnson-cook"),
+    ("incident", "bilinear", "yield_stress_Pa", 300e6, "elastic"),
+    ("incident", "johnson_cook", "A_Pa", 300e6, "elastic"),
+    ("incident", "johnson_cook", "adiabatic", False, "elastic"),
+], ids=["bilinear-on-jc", "tangent-on-jc", "bilinear-on-elastic", "jc-on-elastic",
+        "adiabatic-on-elastic"])
+def test_a_parameter_of_another_law_is_refused(bar, group, attribute, value, law):
+    # A material is read with the keys of its own law only (docs/scene-format.md): a parameter of
+    # another law was kept and never used (a bilinear yield stress set on a Johnson-Cook specimen
+    # changed nothing). Refused when set, naming the attribute and the material's law.
+    scene = shpb.Scene.load(SOURCE / "experiments" / "classic-al6061" / "scene.json")
+    material = scene.bar(bar).material
+    assert material.model == law
+    with pytest.raises(shpb.InputError) as e:
+        setattr(getattr(material, group), attribute, value)
+    message = str(e.value)
+    assert "\n" not in message
+    assert message.startswith(f"scene edit: {group}.{attribute}: ")
+    assert f" is {law}: " in message
+    # The group of the material's own law is still edited.
+    shaper = shpb.Scene.load(SOURCE / "experiments" / "pulse-shaper" / "scene.json")
+    bilinear = next(b.material for b in shaper.bars if b.material.model == "bilinear")
+    bilinear.bilinear.yield_stress_Pa = 120e6
+    assert bilinear.bilinear.yield_stress_Pa == 120e6
+
+
 @pytest.mark.parametrize("call, option", [
     (lambda: shpb.study(SOURCE / "experiments" / "striker-on-bar" / "scene.json",
                         sweep="stability", refine=0), "--refine"),
