@@ -92,9 +92,7 @@ BarCheckResult check_bars_together(const GaugeSignals& signals, const BarCheckSe
     std::vector<double> x(raw.size());
     for (std::size_t i = 0; i < raw.size(); ++i) x[i] = raw[i] - b.level;
     const auto p = find_first_pulse(x, {0.0, b.noise});
-    if (!p)
-      throw input_error(scene_file, "measurement.channels", "gauge \"" + gauge + "\"",
-                        "its signal never rises above its noise: no pulse to check");
+    if (!p) throw no_pulse_error(signals, gauge, scene_file, "no pulse to check");
     return std::pair{x, *p};
   };
   auto [near, pn] = prepared(s.near_gauge);

@@ -147,6 +147,14 @@ void average_channels(const MeasurementSpec& m, std::vector<std::vector<double>>
     std::vector<std::size_t> twins;
     for (std::size_t d = c; d < m.channels.size(); ++d)
       if (m.channels[d].gauge == g) twins.push_back(d);
+    GaugeSignals::Source source{channel_file[c].string(), channel_label(m, c)};
+    for (std::size_t k = 1; k < twins.size(); ++k)
+      source.where +=
+          " and " +
+          (channel_file[twins[k]] == channel_file[c] ? ""
+                                                     : channel_file[twins[k]].string() + ", ") +
+          channel_label(m, twins[k]);
+    out.sources.push_back(std::move(source));
     if (twins.size() == 1) {  // the mean of one channel is the channel, moved (0 + x: -0 is 0)
       for (double& x : channel_strain[c]) x = 0.0 + x;
       out.gauges.push_back(g);
@@ -169,6 +177,15 @@ const std::vector<double>* GaugeSignals::find(std::string_view gauge) const {
   for (std::size_t i = 0; i < gauges.size(); ++i)
     if (gauges[i] == gauge) return &strain[i];
   return nullptr;
+}
+
+InputError no_pulse_error(const GaugeSignals& signals, const std::string& gauge,
+                          const std::string& scene_file, const std::string& purpose) {
+  const std::string what = "its signal never rises above its noise: " + purpose;
+  for (std::size_t g = 0; g < signals.sources.size() && g < signals.gauges.size(); ++g)
+    if (signals.gauges[g] == gauge)
+      return input_error(signals.sources[g].file, signals.sources[g].where, "", what);
+  return input_error(scene_file, "measurement.channels", "gauge \"" + gauge + "\"", what);
 }
 
 double volts_to_strain(const BridgeSpec& b) {

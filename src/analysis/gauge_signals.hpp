@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/error.hpp"
 #include "model/scene.hpp"
 
 namespace shpb {
@@ -17,10 +18,22 @@ struct GaugeSignals {
   std::vector<std::string> gauges;
   std::vector<std::vector<double>> strain;  // per gauge, tension positive
   std::vector<std::string> warnings;
+  // Where each gauge was read (one per gauge, as `gauges`; none for signals made in memory): its
+  // record's file, and its column with the scene's channel (a gauge's channels joined by "and").
+  struct Source {
+    std::string file, where;
+  };
+  std::vector<Source> sources;
 
   // The strain of `gauge`, or nullptr.
   const std::vector<double>* find(std::string_view gauge) const;
 };
+
+// The one-line refusal of `gauge`, whose signal never rises above its noise: it names the record's
+// file and column the user would open, and the scene's channel; `purpose` says what the pulse was
+// for. A signal made in memory (no source) is named by the scene's channel alone.
+InputError no_pulse_error(const GaugeSignals& signals, const std::string& gauge,
+                          const std::string& scene_file, const std::string& purpose);
 
 // ε = (4/arms)·V / (GF · gain · V_ex): quarter bridge arms = 1, half 2, full 4.
 double volts_to_strain(const BridgeSpec& bridge);

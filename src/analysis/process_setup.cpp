@@ -5,6 +5,7 @@
 #include "analysis/bar_check.hpp"
 #include "analysis/gauge_signals.hpp"
 #include "analysis/processing.hpp"
+#include "analysis/uncertainty.hpp"
 #include "model/test_setup.hpp"
 
 namespace shpb {
@@ -66,6 +67,7 @@ json process_setup(const Scene& scene) {
       require_pulse_fits_round_trip(
           k, signals.dt_s * static_cast<double>(inc.first->end - 1 - inc.first->onset),
           scene.file.string());
+    check_uncertainty(scene, signals);  // what process refuses before its draws
     p["reduction"] = "specimen";
     p["test"] = m.tension ? "tension" : "compression";
     p["incident_gauge"] = {{"name", k.incident_gauge},

@@ -697,12 +697,10 @@ struct PreparedSignal {
   std::vector<double> x;
   double noise = 0;
 };
-PreparedSignal prepared_signal(const std::vector<double>& raw, const std::string& gauge,
+PreparedSignal prepared_signal(const GaugeSignals& signals, const std::string& gauge,
                                const ProcessingOptions& options, ProcessingResult& r) {
-  RestSignal s = signal_from_rest(raw, -1.0);
-  if (!s.first)
-    throw input_error(options.scene_file, "measurement.channels", "gauge \"" + gauge + "\"",
-                      "its signal never rises above its noise: no pulse to process");
+  RestSignal s = signal_from_rest(*signals.find(gauge), -1.0);
+  if (!s.first) throw no_pulse_error(signals, gauge, options.scene_file, "no pulse to process");
   if (s.inverted) {
     r.inverted_gauges.push_back(gauge);
     r.warnings.push_back(inverted_gauge_warning(gauge, options.tension));
@@ -1237,8 +1235,8 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
   const double dt = signals.dt_s;
   const auto& t = signals.time_s;
   require_delays_fit(k, dt, options.scene_file);
-  const PreparedSignal inc = prepared_signal(*inc_raw, k.incident_gauge, options, r);
-  const PreparedSignal tra = prepared_signal(*tra_raw, k.transmitted_gauge, options, r);
+  const PreparedSignal inc = prepared_signal(signals, k.incident_gauge, options, r);
+  const PreparedSignal tra = prepared_signal(signals, k.transmitted_gauge, options, r);
   const auto [on, end] = incident_samples(t, inc, options, r);
   require_pulse_fits_round_trip(k, t[end - 1] - t[on], options.scene_file);
   r.incident_window = {k.incident_gauge, t[on], t[end - 1], r.incident_window.detected};

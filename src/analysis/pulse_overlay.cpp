@@ -150,8 +150,8 @@ MeasuredPulses find_measured_pulses(const Scene& scene, const GaugeSignals& sign
   RestSignal inc = signal_from_rest(*signals.find(m.setup.incident_gauge), first_sign);
   RestSignal tra = signal_from_rest(*signals.find(m.setup.transmitted_gauge), first_sign);
   if (!inc.first)
-    throw input_error(scene.file.string(), "measurement", m.setup.incident_gauge,
-                      "no incident pulse above the noise in the measured signal");
+    throw no_pulse_error(signals, m.setup.incident_gauge, scene.file.string(),
+                         "no incident pulse to compare");
   for (const auto* s : {&inc, &tra})
     if (s->inverted)
       m.warnings.push_back(inverted_gauge_warning(

@@ -190,6 +190,58 @@ TEST_CASE("process refuses a time-shift uncertainty that would move pulses off t
   }
 }
 
+// What process refuses in measurement.uncertainty before any draw, from the scene and its record
+// alone, validate refuses too, with the same line (before: validate exit 0 on a gauge-position
+// uncertainty of 7 m on a gauge 1 m from the specimen; process exit 2). What process accepts,
+// validate accepts.
+TEST_CASE("validate refuses the measurement.uncertainty process refuses, with its message",
+          "[app][process][validate][uncertainty]") {
+  const fs::path dir = temp_dir("uncertainty_validate");
+  const std::vector<std::pair<nlohmann::json, bool>> cases = {
+      {{{"gauge_position", "7 m"}}, true},
+      {{{"bars", {{"incident", {{"youngs_modulus", "250 GPa"}}}}}}, true},
+      {{{"trigger_delay", "1 ms"}}, true},
+      {{{"gauge_position", "1 mm"}, {"trigger_delay", "0.1 us"}}, false}};
+  for (const auto& [uncertainty, refused] : cases) {
+    CAPTURE(uncertainty.dump());
+    nlohmann::json scene = shpb_test::steel_scene();
+    scene["measurement"]["uncertainty"] = uncertainty;
+    const fs::path file = shpb_test::write(dir, scene, good_signals());
+    fs::remove_all(dir / "out");
+    const auto v = run_shpb({"validate", file.string()});
+    const auto p = run_shpb(
+        {"process", file.string(), "-o", (dir / "out").string(), "--draws", "20", "--quiet"});
+    INFO(v.err << p.err);
+    CHECK(v.code == (refused ? 2 : 0));
+    CHECK(p.code == (refused ? 2 : 0));
+    if (!refused) continue;
+    const std::string last = p.err.substr(p.err.rfind("error: "));
+    CHECK(v.err.substr(v.err.rfind("error: ")) == last);
+    CHECK(last.rfind("error: " + file.string() + ": measurement.uncertainty.", 0) == 0);
+    CHECK(std::count(last.begin(), last.end(), '\n') == 1);
+  }
+}
+
+// A gauge whose record holds no pulse above its noise: the one line names the record's file and
+// column the user would open, with the scene's channel (before: the scene and
+// "measurement.channels: gauge "incident"" alone, the file and column unsaid). Exit 2.
+TEST_CASE("process names the record file and column of a gauge without a pulse", "[app][process]") {
+  const fs::path dir = temp_dir("no_pulse");
+  shpb_test::Record flat;
+  flat.incident_gauge = [](double) { return 0.0; };
+  const fs::path scene = write_scene(dir, shpb_test::csv(flat));
+  const auto r = run_shpb({"process", scene.string(), "-o", (dir / "out").string(), "--quiet"});
+  INFO(r.err);
+  CHECK(r.code == 2);
+  const std::string last = r.err.substr(r.err.rfind("error: "));
+  CHECK(last.rfind("error: " + (dir / "signals.csv").string() +
+                       ": column \"incident\" (measurement.channels[0], gauge \"incident\"): "
+                       "its signal never rises above its noise",
+                   0) == 0);
+  CHECK(std::count(last.begin(), last.end(), '\n') == 1);
+  CHECK_FALSE(fs::exists(dir / "out"));
+}
+
 // An auxetic bar is a valid material (-1 < nu < 0.5) but not a processed bar (the dispersion
 // tables cover 0 ... 0.49): the refusal names where the ratio was given — a key of `materials`, a
 // material file, or the bar's inline material — not a path the file does not have (before:
