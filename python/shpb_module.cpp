@@ -205,6 +205,31 @@ std::optional<py::object> json_value_of(const py::handle& o) {
   return std::nullopt;
 }
 
+// A number handed to the module (a keyword argument, an edited value) taken as a scene value is
+// (json_value_of, docs/python.md): a Python int or float, a numpy scalar or 0-d array by its value.
+// Anything else is a TypeError naming `name`: a numpy array of one or more values (a 1-element
+// one was read as its value, which a scene dict refuses), a bool, text, a list.
+template <class T>
+T number(const py::handle& o, const std::string& name,
+         const char* expected = std::is_integral_v<T> ? "expected a whole number"
+                                                      : "expected a number") {
+  py::object value = py::reinterpret_borrow<py::object>(o);
+  if (const auto v = json_value_of(o)) value = *v;
+  if (!py::isinstance<py::bool_>(value) &&
+      (py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value))) {
+    try {
+      return value.cast<T>();  // a float as a whole number, a count below 0: refused below
+    } catch (const py::cast_error&) {
+    }
+  }
+  throw py::type_error(name + ": " + shown(o) + ": " + expected);
+}
+template <class T>
+std::optional<T> optional_number(const py::handle& o, const std::string& name) {
+  if (o.is_none()) return std::nullopt;
+  return number<T>(o, name);
+}
+
 // The first value of `o` json.dumps refuses, with its JSON path as the scene reader writes paths
 // (core/json_value.hpp) and how it is shown: a key of no JSON type, a NaN or infinite number, an
 // object of no JSON type, or nesting deeper than the reader takes (a dict that holds itself is
@@ -306,12 +331,7 @@ std::optional<double> tolerance_value(const py::object& t) {
                         "expected a gauge error such as \"1 %\" or 0.01");
     }
   }
-  try {
-    return t.cast<double>();
-  } catch (const py::cast_error&) {  // pybind11's RuntimeError would not say which argument
-    throw py::type_error("tolerance: " + shown(t) +
-                         ": expected a gauge error such as \"1 %\" or 0.01");
-  }
+  return number<double>(t, "tolerance", "expected a gauge error such as \"1 %\" or 0.01");
 }
 
 // Some text per edited field: name=value, SI units in the names (the attributes' own names).
@@ -323,8 +343,8 @@ std::string fields(std::initializer_list<std::pair<const char*, double>> values)
 }
 
 RunOverrides overrides_of(const py::object& tolerance, const std::optional<std::string>& contact,
-                          const std::optional<std::string>& stepping,
-                          const std::optional<double>& courant, int threads) {
+                          const std::optional<std::string>& stepping, const py::object& courant,
+                          const py::object& threads) {
   RunOverrides o;
   o.tolerance = tolerance_value(tolerance);
   if (contact) {
@@ -338,8 +358,8 @@ RunOverrides overrides_of(const py::object& tolerance, const std::optional<std::
     if (!o.stepping)
       throw input_error("stepping", "", "\"" + *stepping + "\"", "expected asynchronous or global");
   }
-  o.courant = courant;
-  o.threads = threads;
+  o.courant = optional_number<double>(courant, "courant");
+  o.threads = number<int>(threads, "threads");
   o.quiet = true;
   return o;
 }
@@ -350,7 +370,8 @@ enum class Range { kFinite, kPositive, kNonNegative, kFraction };
 
 template <class T>
 auto checked(double T::*field, const char* name, Range range) {
-  return [field, name, range](T& object, double x) {
+  return [field, name, range](T& object, const py::object& value) {
+    const double x = number<double>(value, name);
     const bool ok =
         std::isfinite(x) && (range == Range::kFinite || (range == Range::kPositive && x > 0) ||
                              (range == Range::kNonNegative && x >= 0) ||
@@ -368,7 +389,7 @@ auto checked(double T::*field, const char* name, Range range) {
 // A Johnson-Cook temperature edit: its range, then the readers' rules between the temperatures
 // (model/input_limits.hpp), so that the homologous temperature stays the one a file could give.
 auto jc_temperature(double JohnsonCookParams::*field, const char* name) {
-  return [field, name](JohnsonCookParams& o, double x) {
+  return [field, name](JohnsonCookParams& o, const py::object& x) {
     JohnsonCookParams edited = o;
     checked(field, name, Range::kPositive)(edited, x);
     std::string what =
@@ -379,7 +400,7 @@ auto jc_temperature(double JohnsonCookParams::*field, const char* name) {
                                              edited.melting_temperature_K);
              !what.empty())
       what = "initial_temperature_K " + format_double(edited.initial_temperature_K) + " " + what;
-    if (!what.empty()) throw input_error("scene edit", name, format_double(x), what);
+    if (!what.empty()) throw input_error("scene edit", name, format_double(edited.*field), what);
     o = edited;
   };
 }
@@ -411,33 +432,28 @@ auto law_get(T P::*field) {
 }
 // The edit `set` of the attribute `name` (group.attribute), refused unless the material's law is
 // the group's.
-template <class P, class T, class Set>
+template <class P, class Set>
 auto law_set(const char* name, Set set) {
-  return [name, set](LawParams<P>& l, T x) {
+  return [name, set](LawParams<P>& l, const py::object& x) {
     const auto [law, group] = law_of<P>();
-    if (l.material->model != law) {
-      std::string value;
-      if constexpr (std::is_same_v<T, bool>)
-        value = x ? "True" : "False";
-      else
-        value = format_double(x);
-      throw input_error("scene edit", name, value,
+    if (l.material->model != law)
+      throw input_error("scene edit", name, shown(x),
                         "material \"" + l.material->name + "\" is " +
                             std::string(to_string(l.material->model)) + ": " + group +
                             ".* applies only to a " + std::string(to_string(law)) + " material");
-    }
     set(params_of(l), x);
   };
 }
 template <class P>
 auto law_set(double P::*field, const char* name, Range range) {
-  return law_set<P, double>(name, checked(field, name, range));
+  return law_set<P>(name, checked(field, name, range));
 }
 
 // A bar's length edit: its range, then its gauges on it, as the scene reader places them.
-void set_length(BarSpec& b, double x) {
+void set_length(BarSpec& b, const py::object& value) {
   BarSpec edited = b;
-  checked(&BarSpec::length_m, "bar.length_m", Range::kPositive)(edited, x);
+  checked(&BarSpec::length_m, "bar.length_m", Range::kPositive)(edited, value);
+  const double x = edited.length_m;
   for (const auto& g : b.gauges)
     if (const std::string what = gauge_position_problem(g.position_m, x); !what.empty())
       throw input_error(
@@ -512,26 +528,26 @@ PYBIND11_MODULE(_shpb, m) {
                     law_set(&JC::reference_strain_rate_1_s,
                             "johnson_cook.reference_strain_rate_1_s", Range::kPositive))
       .def_property("m", law_get(&JC::m), law_set(&JC::m, "johnson_cook.m", Range::kPositive))
-      .def_property("room_temperature_K", law_get(&JC::room_temperature_K),
-                    law_set<JC, double>(
-                        "johnson_cook.room_temperature_K",
-                        jc_temperature(&JC::room_temperature_K, "johnson_cook.room_temperature_K")))
+      .def_property(
+          "room_temperature_K", law_get(&JC::room_temperature_K),
+          law_set<JC>("johnson_cook.room_temperature_K",
+                      jc_temperature(&JC::room_temperature_K, "johnson_cook.room_temperature_K")))
       .def_property("melting_temperature_K", law_get(&JC::melting_temperature_K),
-                    law_set<JC, double>("johnson_cook.melting_temperature_K",
-                                        jc_temperature(&JC::melting_temperature_K,
-                                                       "johnson_cook.melting_temperature_K")))
+                    law_set<JC>("johnson_cook.melting_temperature_K",
+                                jc_temperature(&JC::melting_temperature_K,
+                                               "johnson_cook.melting_temperature_K")))
       .def_property("initial_temperature_K", law_get(&JC::initial_temperature_K),
-                    law_set<JC, double>("johnson_cook.initial_temperature_K",
-                                        jc_temperature(&JC::initial_temperature_K,
-                                                       "johnson_cook.initial_temperature_K")))
+                    law_set<JC>("johnson_cook.initial_temperature_K",
+                                jc_temperature(&JC::initial_temperature_K,
+                                               "johnson_cook.initial_temperature_K")))
       .def_property(
           "specific_heat_J_kgK", law_get(&JC::specific_heat_J_kgK),
           law_set(&JC::specific_heat_J_kgK, "johnson_cook.specific_heat_J_kgK", Range::kPositive))
       .def_property("taylor_quinney", law_get(&JC::taylor_quinney),
                     law_set(&JC::taylor_quinney, "johnson_cook.taylor_quinney", Range::kFraction))
-      .def_property(
-          "adiabatic", law_get(&JC::adiabatic),
-          law_set<JC, bool>("johnson_cook.adiabatic", [](JC& o, bool x) { o.adiabatic = x; }))
+      .def_property("adiabatic", law_get(&JC::adiabatic),
+                    law_set<JC>("johnson_cook.adiabatic",
+                                [](JC& o, const py::object& x) { o.adiabatic = x.cast<bool>(); }))
       .def("__repr__", [](const JohnsonCook& l) {
         const JC& o = params_of(l);
         return "<shpb.JohnsonCook " +
@@ -572,7 +588,8 @@ PYBIND11_MODULE(_shpb, m) {
           checked(&MaterialSpec::youngs_modulus_Pa, "material.youngs_modulus_Pa", Range::kPositive))
       .def_property(
           "poisson_ratio", [](const MaterialSpec& o) { return o.poisson_ratio; },
-          [](MaterialSpec& o, double x) {
+          [](MaterialSpec& o, const py::object& value) {
+            const double x = number<double>(value, "material.poisson_ratio");
             if (!(x > kPoissonRatioAbove && x < kPoissonRatioBelow))
               throw input_error("scene edit", "material.poisson_ratio", format_double(x),
                                 "must be in (" + format_double(kPoissonRatioAbove) + ", " +
@@ -604,7 +621,8 @@ PYBIND11_MODULE(_shpb, m) {
           checked(&BarSpec::velocity_m_s, "bar.velocity_m_s", Range::kFinite))
       .def_property(
           "elements", [](const BarSpec& b) { return b.elements; },
-          [](BarSpec& b, int n) {
+          [](BarSpec& b, const py::object& value) {
+            const int n = number<int>(value, "bar.elements");
             if (n < 0 || n > kMaxElements)
               throw input_error("scene edit", "bar.elements", std::to_string(n),
                                 "must be in [1, " + std::to_string(kMaxElements) +
@@ -689,7 +707,8 @@ PYBIND11_MODULE(_shpb, m) {
           })
       .def_property(
           "duration_s", [](const Scene& s) { return s.simulation.duration_s; },
-          [](Scene& s, std::optional<double> t) {
+          [](Scene& s, const py::object& value) {
+            const auto t = optional_number<double>(value, "duration_s");
             if (t && !(std::isfinite(*t) && *t > 0))
               throw input_error("scene edit", "duration_s", format_double(*t), "must be > 0");
             s.simulation.duration_s = t;
@@ -698,7 +717,7 @@ PYBIND11_MODULE(_shpb, m) {
           "validate",
           [](const Scene& s, const py::object& tolerance) {
             Scene copy = s;
-            apply_overrides(overrides_of(tolerance, {}, {}, {}, 0), copy);
+            apply_overrides(overrides_of(tolerance, {}, {}, py::none(), py::int_(0)), copy);
           },
           py::arg("tolerance") = py::none())
       .def("copy", [](const Scene& s) { return Scene(s); })
@@ -761,8 +780,8 @@ PYBIND11_MODULE(_shpb, m) {
   m.def(
       "_simulate",
       [](const Scene& scene, const py::object& tolerance, const std::optional<std::string>& contact,
-         const std::optional<std::string>& stepping, const std::optional<double>& courant,
-         int threads, bool full_model) {
+         const std::optional<std::string>& stepping, const py::object& courant,
+         const py::object& threads, bool full_model) {
         auto s = std::make_shared<Simulation>();
         s->scene = scene;
         const RunOverrides overrides = overrides_of(tolerance, contact, stepping, courant, threads);
@@ -777,8 +796,8 @@ PYBIND11_MODULE(_shpb, m) {
         return s;
       },
       py::arg("scene"), py::arg("tolerance") = py::none(), py::arg("contact") = py::none(),
-      py::arg("stepping") = py::none(), py::arg("courant") = py::none(), py::arg("threads") = 0,
-      py::arg("full_model") = false);
+      py::arg("stepping") = py::none(), py::arg("courant") = py::none(),
+      py::arg("threads") = py::int_(0), py::arg("full_model") = false);
 
   py::class_<Processing, std::shared_ptr<Processing>>(m, "_Processing")
       .def_property_readonly("scene", [](const Processing& p) { return p.scene; })
@@ -831,13 +850,13 @@ PYBIND11_MODULE(_shpb, m) {
 
   m.def(
       "_process",
-      [](const Scene& scene, const std::optional<std::filesystem::path>& signals, std::size_t draws,
-         std::uint64_t seed) {
+      [](const Scene& scene, const std::optional<std::filesystem::path>& signals,
+         const py::object& draws, const py::object& seed) {
         auto p = std::make_shared<Processing>();
         p->scene = scene;
         MonteCarloOptions monte_carlo;
-        monte_carlo.draws = draws;
-        monte_carlo.seed = seed;
+        monte_carlo.draws = number<std::size_t>(draws, "draws");
+        monte_carlo.seed = number<std::uint64_t>(seed, "seed");
         p->outcome = run_released([&] {
           ProcessOutcome o = process_scene(p->scene, signals, false);
           add_uncertainty(p->scene, monte_carlo, o);
@@ -846,8 +865,8 @@ PYBIND11_MODULE(_shpb, m) {
         if (!p->outcome.failure.empty()) throw NumericalError(p->outcome.failure);
         return p;
       },
-      py::arg("scene"), py::arg("signals") = py::none(), py::arg("draws") = kDefaultDraws,
-      py::arg("seed") = kDefaultSeed);
+      py::arg("scene"), py::arg("signals") = py::none(), py::arg("draws") = py::int_(kDefaultDraws),
+      py::arg("seed") = py::int_(kDefaultSeed));
 
   // compare, study, fit and dispersion: the command's own function, writing its folder (or file)
   // where the Python side reads it back (python/shpb/__init__.py). The exit code is returned: 3
@@ -856,10 +875,10 @@ PYBIND11_MODULE(_shpb, m) {
       "_compare",
       [](const std::filesystem::path& scene, const std::filesystem::path& output,
          const py::object& tolerance, const std::optional<std::string>& contact,
-         const std::optional<std::string>& stepping, const std::optional<double>& courant,
-         int threads, bool dispersion, const std::optional<double>& striker_velocity) {
+         const std::optional<std::string>& stepping, const py::object& courant,
+         const py::object& threads, bool dispersion, const py::object& striker_velocity) {
         CompareArgs a{scene, output, overrides_of(tolerance, contact, stepping, courant, threads),
-                      dispersion, striker_velocity};
+                      dispersion, optional_number<double>(striker_velocity, "striker_velocity")};
         return run_released([&] { return run_compare(a); });
       },
       py::arg("scene"), py::arg("output"), py::arg("tolerance"), py::arg("contact"),
@@ -868,23 +887,23 @@ PYBIND11_MODULE(_shpb, m) {
   m.def(
       "_study",
       [](const std::filesystem::path& scene, const std::filesystem::path& output,
-         const std::string& sweep, int refine, const py::object& tolerance,
+         const std::string& sweep, const py::object& refine, const py::object& tolerance,
          const std::optional<std::string>& contact, const std::optional<std::string>& stepping,
-         const std::optional<double>& courant, int threads,
-         const std::optional<std::filesystem::path>& distributions,
-         const std::optional<std::size_t>& draws, const std::optional<std::uint64_t>& seed) {
+         const py::object& courant, const py::object& threads,
+         const std::optional<std::filesystem::path>& distributions, const py::object& draws,
+         const py::object& seed) {
         StudyArgs a;
         a.scene = scene;
         a.output = output;
         if (distributions) a.distributions = *distributions;
-        a.draws = draws;
-        a.seed = seed;
+        a.draws = optional_number<std::size_t>(draws, "draws");
+        a.seed = optional_number<std::uint64_t>(seed, "seed");
         const auto s = enum_value(kSweepNames, sweep);
         if (!s)
           throw input_error("sweep", "", "\"" + sweep + "\"",
                             "expected pareto, stability or monte-carlo");
         a.sweep = *s;
-        a.refine = refine;
+        a.refine = number<int>(refine, "refine");
         a.overrides = overrides_of(tolerance, contact, stepping, courant, threads);
         return run_released([&] { return run_study(a); });
       },
@@ -893,16 +912,17 @@ PYBIND11_MODULE(_shpb, m) {
       py::arg("threads"), py::arg("distributions"), py::arg("draws"), py::arg("seed"));
   m.def(
       "_fit",
-      [](const std::filesystem::path& campaign, const std::filesystem::path& output, int threads,
-         int max_iterations, double relative_step, int bootstrap, unsigned long seed) {
+      [](const std::filesystem::path& campaign, const std::filesystem::path& output,
+         const py::object& threads, const py::object& max_iterations,
+         const py::object& relative_step, const py::object& bootstrap, const py::object& seed) {
         FitArgs a;
         a.campaign = campaign;
         a.output = output;
-        a.options.threads = threads;
-        a.options.max_iterations = max_iterations;
-        a.options.relative_step = relative_step;
-        a.options.bootstrap = bootstrap;
-        a.options.seed = seed;
+        a.options.threads = number<int>(threads, "threads");
+        a.options.max_iterations = number<int>(max_iterations, "max_iterations");
+        a.options.relative_step = number<double>(relative_step, "relative_step");
+        a.options.bootstrap = number<int>(bootstrap, "bootstrap");
+        a.options.seed = number<unsigned long>(seed, "seed");
         a.quiet = true;
         return run_released([&] { return run_fit(a); });
       },
@@ -910,11 +930,20 @@ PYBIND11_MODULE(_shpb, m) {
       py::arg("relative_step"), py::arg("bootstrap"), py::arg("seed"));
   m.def(
       "_dispersion",
-      [](double poisson, const std::vector<double>& a_over_lambda, double max_a_over_lambda,
-         int points, const std::optional<double>& radius_m, const std::optional<double>& c0_m_s,
-         const std::filesystem::path& output) {
-        DispersionArgs a{poisson, a_over_lambda, max_a_over_lambda, points, radius_m,
-                         c0_m_s,  output};
+      [](const py::object& poisson, const py::list& a_over_lambda,
+         const py::object& max_a_over_lambda, const py::object& points, const py::object& radius_m,
+         const py::object& c0_m_s, const std::filesystem::path& output) {
+        std::vector<double> ratios;
+        for (std::size_t i = 0; i < a_over_lambda.size(); ++i)
+          ratios.push_back(
+              number<double>(a_over_lambda[i], "a_over_lambda[" + std::to_string(i) + "]"));
+        DispersionArgs a{number<double>(poisson, "poisson"),
+                         ratios,
+                         number<double>(max_a_over_lambda, "max_a_over_lambda"),
+                         number<int>(points, "points"),
+                         optional_number<double>(radius_m, "radius_m"),
+                         optional_number<double>(c0_m_s, "c0_m_s"),
+                         output};
         return run_released([&] { return run_dispersion(a); });
       },
       py::arg("poisson"), py::arg("a_over_lambda"), py::arg("max_a_over_lambda"), py::arg("points"),

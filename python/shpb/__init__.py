@@ -285,6 +285,6 @@ def dispersion(poisson=0.29, a_over_lambda=None, max_a_over_lambda=1.6, points=3
                         "[0.1, 0.5]")
     with tempfile.TemporaryDirectory(prefix="shpb-dispersion-") as tmp:
         path = os.path.join(tmp, "dispersion.csv")
-        _shpb._dispersion(poisson, [] if a_over_lambda is None else [float(x) for x in a_over_lambda], max_a_over_lambda, points,
+        _shpb._dispersion(poisson, [] if a_over_lambda is None else list(a_over_lambda), max_a_over_lambda, points,
                           radius_m, c0_m_s, path)
         return _table(_read_csv(path))

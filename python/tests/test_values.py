@@ -147,6 +147,61 @@ def test_a_tolerance_of_no_number_type_is_a_type_error_naming_it(value):
     assert str(e.value).startswith("tolerance: ")
 
 
+def number_arguments():
+    """Each numeric keyword argument of the module and each numeric edit, as a call of a value."""
+    striker = SOURCE / "experiments" / "striker-on-bar" / "scene.json"
+    scene = shpb.Scene.load(striker)
+    return [
+        ("validate-tolerance", "tolerance", lambda v: scene.validate(tolerance=v)),
+        ("simulate-tolerance", "tolerance", lambda v: shpb.simulate(scene, tolerance=v)),
+        ("simulate-courant", "courant", lambda v: shpb.simulate(scene, courant=v)),
+        ("simulate-threads", "threads", lambda v: shpb.simulate(scene, threads=v)),
+        ("process-draws", "draws", lambda v: shpb.process(CLASSIC, draws=v)),
+        ("process-seed", "seed", lambda v: shpb.process(CLASSIC, seed=v)),
+        ("compare-striker", "striker_velocity",
+         lambda v: shpb.compare(CLASSIC, striker_velocity=v)),
+        ("study-refine", "refine", lambda v: shpb.study(striker, sweep="stability", refine=v)),
+        ("fit-relative-step", "relative_step", lambda v: shpb.fit(CLASSIC, relative_step=v)),
+        ("dispersion-poisson", "poisson", lambda v: shpb.dispersion(poisson=v)),
+        ("dispersion-points", "points", lambda v: shpb.dispersion(points=v)),
+        ("dispersion-a-over-lambda", "a_over_lambda[0]",
+         lambda v: shpb.dispersion(a_over_lambda=[v])),
+        ("edit-velocity", "bar.velocity_m_s", lambda v: setattr(scene.striker, "velocity_m_s", v)),
+        ("edit-elements", "bar.elements", lambda v: setattr(scene.bars[0], "elements", v)),
+        ("edit-tolerance", "tolerance", lambda v: setattr(scene, "tolerance", v)),
+        ("edit-duration", "duration_s", lambda v: setattr(scene, "duration_s", v)),
+    ]
+
+
+@pytest.mark.parametrize("name, call", [(n, c) for _, n, c in number_arguments()],
+                         ids=[i for i, _, _ in number_arguments()])
+def test_a_one_value_array_is_no_number_argument(name, call):
+    # A scene dict refuses a numpy array of one value (test_a_value_of_no_json_type_is_named_with
+    # _its_path); a keyword argument or an edit took it as its value (float() of the array). Each
+    # follows the scene values' rule (json_value_of): a TypeError naming the argument, before any
+    # work.
+    with pytest.raises(TypeError) as e:
+        call(np.array([1]))
+    message = str(e.value)
+    assert "\n" not in message
+    assert message.startswith(f"{name}: array([1]): expected ")
+
+
+@pytest.mark.parametrize("value", [np.float64(0.02), np.array(0.02), np.float16(0.02),
+                                   np.longdouble(0.02)],
+                         ids=["float64", "0-d", "float16", "longdouble"])
+def test_a_numpy_scalar_is_its_value_as_an_argument(value):
+    # As in a scene dict: a numpy scalar or a 0-d array is the number it holds.
+    scene = shpb.Scene.load(CLASSIC)
+    scene.tolerance = value
+    assert scene.tolerance == float(value)
+    scene.validate(tolerance=value)
+    scene.striker.velocity_m_s = value
+    assert scene.striker.velocity_m_s == float(value)
+    scene.bars[1].elements = np.array(400, dtype=np.int16)
+    assert scene.bars[1].elements == 400
+
+
 @pytest.mark.parametrize("key", [1.5, None, b"striker", [0]], ids=str)
 def test_a_bar_key_of_no_index_type_is_a_type_error(key):
     # As a list's index: a RuntimeError of pybind11's cast before.
