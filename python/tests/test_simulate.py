@@ -36,8 +36,34 @@ def test_save_writes_the_commands_folder(tmp_path):
             for key in ("wall_time_s", "mesh_choice_time_s", "run_time_s"):
                 ja.pop(key), jb.pop(key)
             assert ja == jb
+        elif name == ".shpb-output":  # its digest of summary.json differs with those times
+            def lines(path):
+                return [x for x in path.read_text().splitlines() if not x.endswith(" summary.json")]
+            assert lines(a) == lines(b)
         else:
             assert a.read_bytes() == b.read_bytes(), name
+
+
+def test_save_keeps_a_file_the_user_edited(tmp_path):
+    # A gauges.csv shpb wrote and the user annotated since was replaced by the next save: the
+    # output folder's marker listed names only. It now records each file's digest, and every save
+    # (this one, process's, the command's -o) refuses the folder, in one line naming the file.
+    scene = SOURCE / "experiments" / "striker-on-bar" / "scene.json"
+    run = shpb.simulate(scene)
+    out = tmp_path / "out"
+    run.save(out)
+    run.save(out)  # an unedited result is replaced
+    with open(out / "gauges.csv", "a") as f:
+        f.write("# my note\n")
+    edited = (out / "gauges.csv").read_bytes()
+    with pytest.raises(shpb.InputError) as e:
+        run.save(out)
+    assert "\n" not in str(e.value)
+    assert str(e.value).startswith(f"{out}: holds gauges.csv, which was changed since shpb wrote")
+    assert (out / "gauges.csv").read_bytes() == edited
+    code, _, err = run_command("simulate", scene, "-o", out, "--quiet")
+    assert code == 2 and err.strip() == "error: " + str(e.value)
+    assert (out / "gauges.csv").read_bytes() == edited
 
 
 def test_summary_in_memory_is_summary_json(tmp_path):

@@ -13,12 +13,6 @@ namespace {
 constexpr std::uint64_t kFnvOffsetBasis = 14695981039346656037ull;
 constexpr std::uint64_t kFnvPrime = 1099511628211ull;
 
-std::string hex(std::uint64_t v) {
-  char s[17];
-  std::snprintf(s, sizeof s, "%016llx", static_cast<unsigned long long>(v));
-  return s;
-}
-
 fs::path absolute_path(const fs::path& file) {
   std::error_code ec;
   const fs::path a = fs::absolute(file, ec);
@@ -37,6 +31,12 @@ std::uint64_t fnv1a64(std::uint64_t h, std::string_view bytes) {
 }  // namespace
 
 std::uint64_t fnv1a64(std::string_view bytes) { return fnv1a64(kFnvOffsetBasis, bytes); }
+
+std::string digest_text(std::uint64_t digest) {
+  char s[17];
+  std::snprintf(s, sizeof s, "%016llx", static_cast<unsigned long long>(digest));
+  return s;
+}
 
 std::optional<std::uint64_t> file_digest(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
@@ -62,7 +62,7 @@ nlohmann::json input_digests(const std::vector<fs::path>& files, const fs::path&
     if (!seen.insert(name).second) continue;
     const auto digest = file_digest(f);
     if (!digest) throw input_error(f.string(), "", "", "cannot be read");
-    list.push_back({{"file", name}, {"fnv1a64", hex(*digest)}});
+    list.push_back({{"file", name}, {"fnv1a64", digest_text(*digest)}});
   }
   return list;
 }
@@ -89,7 +89,7 @@ void check_input_digests(const nlohmann::json& recorded, const fs::path& record_
     if (!now)
       throw input_error(record_file.string(), where, "\"" + file + "\"",
                         "missing or unreadable since " + since + ": " + remedy);
-    if (hex(*now) != e["fnv1a64"].get<std::string>())
+    if (digest_text(*now) != e["fnv1a64"].get<std::string>())
       throw input_error(record_file.string(), where, "\"" + file + "\"",
                         "changed since " + since + ": " + remedy);
   }

@@ -18,6 +18,8 @@ namespace shpb {
 // FNV-1a of `bytes`, and of a file's bytes (nullopt if the file cannot be read).
 std::uint64_t fnv1a64(std::string_view bytes);
 std::optional<std::uint64_t> file_digest(const std::filesystem::path& file);
+// A digest as records write it: 16 hex digits.
+std::string digest_text(std::uint64_t digest);
 
 // [{"file": path, "fnv1a64": 16 hex digits}, ...] of `files` (duplicates once, in order); the
 // path absolute, or relative to `base` if one is given (files of a folder that is moved into place

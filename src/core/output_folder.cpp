@@ -11,6 +11,7 @@
 #include <cerrno>
 #include <charconv>
 #include <csignal>
+#include <cstring>
 #include <fstream>
 #include <optional>
 #include <random>
@@ -58,11 +59,7 @@ const std::string& host_name() {
   return name;
 }
 
-std::string host_tag() {
-  char s[17];
-  std::snprintf(s, sizeof s, "%016llx", static_cast<unsigned long long>(fnv1a64(host_name())));
-  return s;
-}
+std::string host_tag() { return digest_text(fnv1a64(host_name())); }
 
 bool all_digits(std::string_view s, std::size_t max) {
   return !s.empty() && s.size() <= max &&
@@ -95,9 +92,58 @@ std::string temporary_marker_text(pid_t pid) {
          "\npid: " + std::to_string(pid) + "\n";
 }
 
+// The marker's line of a file shpb wrote: "fnv1a64: <16 hex digits> <path in the folder>"
+// (core/file_digest.hpp). A file the user edited since no longer has it: it is not shpb's to
+// replace. Markers without these lines (an older shpb's) are judged by their names alone.
+constexpr const char* kDigestLine = "fnv1a64: ";
+constexpr std::size_t kDigestDigits = 16;
+
+// The digest lines of every regular file under `dir` (sub-folders too), in the order of their
+// paths. Markers are bookkeeping, not results: the temporary's own, and a sub-folder's
+// .shpb-output, which `report` extends when it draws that sub-folder (docs/commands.md, report).
+std::string digest_lines(const fs::path& dir) {
+  std::set<std::string> files;
+  std::error_code ec;
+  for (auto it = fs::recursive_directory_iterator(dir, ec);
+       !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (it->is_regular_file(ec) && !it->is_symlink(ec) && name != kOutputMarker &&
+        name != kTemporaryMarker)
+      files.insert(it->path().lexically_relative(dir).string());
+  }
+  std::string lines;
+  for (const auto& name : files)
+    if (const auto digest = file_digest(dir / name))
+      lines += kDigestLine + digest_text(*digest) + " " + name + "\n";
+  return lines;
+}
+
+// The file of `dir` whose digest line (`line`, without its prefix) no longer holds: one the user
+// edited, or replaced by something else; "" if it holds, or the file is gone (nothing of the
+// user's is lost then). A path leading out of the folder is no file of it: ignored. A file found
+// as written is kept in `verified` by its size and time of change: one run looks at its DIR up to
+// three times, and a file unchanged since (an edit changes its time) is not read again.
+std::string edited_file(const fs::path& dir, const std::string& line,
+                        OutputFolder::Verified* verified) {
+  if (line.size() <= kDigestDigits + 1 || line[kDigestDigits] != ' ') return "";
+  const fs::path name = fs::path(line.substr(kDigestDigits + 1)).lexically_normal();
+  if (name.is_absolute() || name.empty() || *name.begin() == "..") return "";
+  std::error_code ec;
+  const auto type = fs::symlink_status(dir / name, ec).type();
+  if (type == fs::file_type::not_found) return "";
+  if (type != fs::file_type::regular) return name.string();
+  const auto stamp = std::pair{fs::file_size(dir / name, ec), fs::last_write_time(dir / name, ec)};
+  const auto seen = verified ? verified->find(line) : OutputFolder::Verified::iterator{};
+  if (verified && seen != verified->end() && seen->second == stamp && !ec) return "";
+  const auto digest = file_digest(dir / name);
+  if (!digest || digest_text(*digest) != line.substr(0, kDigestDigits)) return name.string();
+  if (verified && !ec) (*verified)[line] = stamp;
+  return "";
+}
+
 // Why shpb may not replace `dir`, or "" if it may: it is empty, or its marker starts with the
-// signature and lists every entry the folder holds.
-std::string refusal(const fs::path& dir) {
+// signature and lists every entry the folder holds, each file as shpb wrote it (its digest).
+std::string refusal(const fs::path& dir, OutputFolder::Verified* verified = nullptr) {
   std::error_code ec;
   if (fs::is_empty(dir, ec)) return "";
   const fs::path marker = dir / kOutputMarker;
@@ -110,8 +156,11 @@ std::string refusal(const fs::path& dir) {
   if (!std::getline(in, line) || line != kOutputMarkerSignature)
     return std::string(kOutputMarker) + " is not shpb's marker; refusing to replace the folder";
   std::set<std::string> listed;
-  while (std::getline(in, line))
+  std::vector<std::string> digests;
+  while (std::getline(in, line)) {
     if (line.rfind("file: ", 0) == 0) listed.insert(line.substr(6));
+    if (line.rfind(kDigestLine, 0) == 0) digests.push_back(line.substr(std::strlen(kDigestLine)));
+  }
   for (const auto& e : fs::directory_iterator(dir, ec)) {
     const std::string name = e.path().filename().string();
     if (name != kOutputMarker && !listed.count(name))
@@ -120,15 +169,20 @@ std::string refusal(const fs::path& dir) {
              "choose another output folder)";
   }
   if (ec) return "cannot be listed: " + ec.message();
+  for (const auto& d : digests)
+    if (const std::string name = edited_file(dir, d, verified); !name.empty())
+      return "holds " + name +
+             ", which was changed since shpb wrote it; refusing to replace the folder (move it "
+             "away or choose another output folder)";
   return "";
 }
 
 // Throws unless shpb may replace `dir` (refusal): a folder, empty or a whole shpb result.
-void refuse_to_replace(const fs::path& dir) {
+void refuse_to_replace(const fs::path& dir, OutputFolder::Verified* verified = nullptr) {
   std::error_code ec;
   if (!fs::is_directory(fs::symlink_status(dir, ec)))
     throw input_error(dir.string(), "", "", "exists and is not a folder");
-  if (const std::string why = refusal(dir); !why.empty())
+  if (const std::string why = refusal(dir, verified); !why.empty())
     throw input_error(dir.string(), "", "", why);
 }
 
@@ -392,7 +446,7 @@ OutputFolder::OutputFolder(fs::path final_dir, std::string command,
                             "): choose an output folder apart from the run's inputs");
   }
   if (fs::exists(final_, ec)) {
-    refuse_to_replace(final_);
+    refuse_to_replace(final_, &verified_);
     if (is_mount_point(final_))
       throw input_error(final_.string(), "", "",
                         "is a mount point, which cannot be replaced: write into a folder inside "
@@ -418,6 +472,7 @@ void OutputFolder::commit() {
     names.insert(e.path().filename().string());
   names.erase(kTemporaryMarker);  // the result holds only what the command wrote
   for (const auto& name : names) marker += "file: " + name + "\n";
+  marker += digest_lines(temp_);
   // The output marker before the temporary's is removed: a run killed from here on leaves a
   // folder that is provably shpb's either way, which the next run removes.
   write_text_file(temp_ / kOutputMarker, marker);
@@ -438,11 +493,11 @@ void OutputFolder::commit() {
     // DIR was checked when the run started; the user may have put a file into it since (a
     // long study): checked again, and the folder it swapped out once more, so that it is never
     // the user's that is removed.
-    refuse_to_replace(final_);
+    refuse_to_replace(final_, &verified_);
     // One atomic exchange where the file system offers it: DIR is never missing, not even for
     // an instant; the previous result ends up in the temporary folder and is removed with it.
     if (::renameat2(AT_FDCWD, temp_.c_str(), AT_FDCWD, final_.c_str(), RENAME_EXCHANGE) == 0) {
-      if (const std::string why = refusal(temp_); !why.empty()) {
+      if (const std::string why = refusal(temp_, &verified_); !why.empty()) {
         ::renameat2(AT_FDCWD, temp_.c_str(), AT_FDCWD, final_.c_str(), RENAME_EXCHANGE);
         throw input_error(final_.string(), "", "", why);
       }
@@ -451,7 +506,7 @@ void OutputFolder::commit() {
     const fs::path old = temp_.string() + ".old";
     fs::rename(final_, old, ec);
     if (ec) throw_write_error(final_, ec.value());
-    if (const std::string why = refusal(old); !why.empty()) {
+    if (const std::string why = refusal(old, &verified_); !why.empty()) {
       fs::rename(old, final_, ec);
       throw input_error(final_.string(), "", "", why);
     }

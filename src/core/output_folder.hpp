@@ -3,16 +3,20 @@
 // failed or interrupted run leaves the previous DIR intact and no half-written result
 // (docs/outputs.md (conventions)). Files the program did not write are never deleted: an existing
 // DIR is replaced only if it is empty or shpb wrote it — it holds the marker file `.shpb-output`
-// (signature line, command, the names shpb wrote) and nothing the marker does not list. A folder
+// (signature line, command, the names shpb wrote, each file's digest) and nothing the marker does
+// not list, each file as shpb wrote it (an edited one is the user's). A folder
 // that is, holds or lies inside an input of the run is refused. A DIR that is a symbolic link is
 // written through (the link stays, its target is replaced). Every file is fsync'ed before the one
 // atomic exchange of the two folders; temporaries of runs that were killed outright are removed by
 // the next run into the same DIR when they are provably shpb's (exact name with this host's tag,
 // dead pid, and for a folder its marker naming host and pid, or a whole shpb result: killed while
 // committing).
+#include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace shpb {
@@ -46,6 +50,11 @@ class OutputFolder {
   // an interrupted run changes nothing, and WriteError if a file cannot be made durable.
   void commit();
 
+  // The files of the previous result found as shpb wrote them, by their marker's digest line:
+  // their size and time of change then (output_folder.cpp, edited_file).
+  using Verified =
+      std::map<std::string, std::pair<std::uintmax_t, std::filesystem::file_time_type>>;
+
  private:
   void placed(const std::optional<std::filesystem::path>& previous);
 
@@ -54,6 +63,7 @@ class OutputFolder {
   std::filesystem::path created_;  // the outermost parent folder this run made, if any
   std::string command_;
   bool committed_ = false;
+  Verified verified_;
 };
 
 // One output file written atomically (e.g. `dispersion -o FILE`): written to a temporary file in

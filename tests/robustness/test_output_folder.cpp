@@ -84,6 +84,44 @@ TEST_CASE("A folder holding files shpb did not write is never replaced", "[robus
   CHECK(litter(scratch.path()).empty());
 }
 
+TEST_CASE("A file shpb wrote and the user edited since is never replaced", "[robustness][output]") {
+  // The marker listed names only: a gauges.csv the user annotated was replaced by the next run
+  // (docs/outputs.md, Ownership marker). Its digest no longer holds: refused, before the run and
+  // when the run commits, and the edit is kept; an unedited result is still replaced.
+  ScratchFolder scratch("folder");
+  const fs::path out = scratch.path() / "out";
+  for (const bool edit_during_run : {false, true}) {
+    CAPTURE(edit_during_run);
+    fs::remove_all(out);
+    {
+      shpb::OutputFolder first(out);
+      write_bytes(first.file("summary.json"), "first");
+      fs::create_directory(first.file("simulation"));
+      write_bytes(first.file("simulation") / "gauges.csv", "time_s\n0\n");
+      first.commit();
+    }
+    const fs::path edited = edit_during_run ? out / "summary.json" : out / "simulation/gauges.csv";
+    if (!edit_during_run) {
+      write_bytes(edited, "time_s\n0\n# my note\n");
+      CHECK_THROWS_AS(shpb::OutputFolder(out), shpb::InputError);
+    } else {
+      shpb::OutputFolder second(out);
+      write_bytes(second.file("summary.json"), "second");
+      write_bytes(edited, "first, annotated");  // while the second run works
+      CHECK_THROWS_AS(second.commit(), shpb::InputError);
+    }
+    CHECK(read_all(edited) == (edit_during_run ? "first, annotated" : "time_s\n0\n# my note\n"));
+    CHECK(litter(scratch.path()).empty());
+  }
+  shpb::OutputFolder unedited(scratch.path() / "other");
+  write_bytes(unedited.file("summary.json"), "one");
+  unedited.commit();
+  shpb::OutputFolder again(scratch.path() / "other");
+  write_bytes(again.file("summary.json"), "two");
+  again.commit();
+  CHECK(read_all(scratch.path() / "other/summary.json") == "two");
+}
+
 TEST_CASE("Folders that only look like temporaries of a dead run are kept",
           "[robustness][output]") {
   // Removing needs proof (the exact name with this host's tag and the marker inside naming host
