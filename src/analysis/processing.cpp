@@ -857,10 +857,7 @@ FacePulses pulses_at_faces(const PreparedSignal& inc, const PreparedSignal& tra,
   const DispersionSpec& ds = options.dispersion;
   PropagationOptions po;
   po.dispersion = ds.correction;
-  auto cutoff_fa = [&](const BarWaveguide& w) {
-    if (ds.cutoff_fa_c0) return *ds.cutoff_fa_c0;
-    return ds.cutoff_Hz ? *ds.cutoff_Hz * w.radius_m / w.c0_m_s : kDefaultCutoffFaOverC0;
-  };
+  auto cutoff_fa = [&](const BarWaveguide& w) { return cutoff_fa_over_c0(ds, w); };
   // One band for every pulse of a viscoelastic bar: the law's inverse grows what lies above it by
   // more than kMaxLawGain (methods.md §5.1).
   po.law_cutoff_Hz = std::min(law_band_limit_Hz(k.front_waveguide, k.incident_distance_m),
@@ -952,9 +949,7 @@ FacePulses pulses_at_faces(const PreparedSignal& inc, const PreparedSignal& tra,
     f.fr = moved(inc.x, k.front_waveguide, front, -d_i, timing.extra_r, force, kForce);
     f.ft = moved(tra.x, k.back_waveguide, back, -d_t, timing.extra_t, force, kForce);
   }
-  if (ds.correction)
-    r.cutoff_Hz =
-        cutoff_fa(k.front_waveguide) * k.front_waveguide.c0_m_s / k.front_waveguide.radius_m;
+  if (ds.correction) r.cutoff_Hz = dispersion_cutoff_Hz(ds, k.front_waveguide);
   return f;
 }
 
@@ -1223,6 +1218,15 @@ void require_pulse_fits_round_trip(const KolskySetup& k, double pulse_s,
   require_pulse_fits_round_trip(k.incident_gauge, "incident pulse", pulse_s,
                                 2 * k.incident_distance_m / k.front.c0_m_s,
                                 "2d/c0 = %.3g s of its gauge to the specimen and back", scene_file);
+}
+
+double cutoff_fa_over_c0(const DispersionSpec& ds, const BarWaveguide& w) {
+  if (ds.cutoff_fa_c0) return *ds.cutoff_fa_c0;
+  return ds.cutoff_Hz ? *ds.cutoff_Hz * w.radius_m / w.c0_m_s : kDefaultCutoffFaOverC0;
+}
+
+double dispersion_cutoff_Hz(const DispersionSpec& ds, const BarWaveguide& w) {
+  return cutoff_fa_over_c0(ds, w) * w.c0_m_s / w.radius_m;
 }
 
 ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup& k,

@@ -211,11 +211,9 @@ void require_shift_within_record(const std::string& file, const std::string& pat
 }
 
 // Timing (trigger delay, window starts), the dispersion cut-off and the friction coefficient.
-// Without a `nominal` reduction (check_uncertainty), the cut-off's standard uncertainty is not
-// added: its value is the reduction's.
 void add_analysis_inputs(InputList& in, const Scene& scene, const UncertaintySpec& u,
                          const GaugeSignals& signals, const ProcessingOptions& options,
-                         const ProcessingResult* nominal) {
+                         const KolskySetup& setup) {
   const std::string file = scene.file.string();
   if (u.trigger_delay)
     require_shift_within_record(file, u.trigger_delay->path,
@@ -241,8 +239,9 @@ void add_analysis_inputs(InputList& in, const Scene& scene, const UncertaintySpe
     throw input_error(scene.file.string(), u.dispersion_cutoff->path, "",
                       "the reduction applies no dispersion correction (measurement.dispersion "
                       "\"correction\": \"none\", or simulated signals): it has no cut-off");
-  if (u.dispersion_cutoff && nominal) {
-    const double f0 = nominal->cutoff_Hz;
+  if (u.dispersion_cutoff) {
+    const double f0 =
+        dispersion_cutoff_Hz(options.dispersion, setup.front_waveguide);  // the reduction's
     in.add("dispersion_cutoff", f0, absolute(*u.dispersion_cutoff, f0), Dimension::kFrequency,
            u.dispersion_cutoff->path, true, [f0](double x, DrawState& d) {
              // The cut-off scales with its draw whichever way the scene gives it (f·a/c0 ∝ f).
@@ -265,14 +264,14 @@ void add_analysis_inputs(InputList& in, const Scene& scene, const UncertaintySpe
 
 std::vector<Input> inputs_of(const Scene& scene, const MeasurementSpec& m,
                              const GaugeSignals& signals, const ProcessingOptions& options,
-                             const ProcessingResult* nominal, const KolskySetup& setup) {
+                             const KolskySetup& setup) {
   const UncertaintySpec& u = *scene.measurement->uncertainty;
   InputList in;
   in.file = scene.file.string();
   add_bridge_inputs(in, u, m);
   for (const BarUncertainty& b : u.bars) add_bar_inputs(in, b, scene.bars[b.bar]);
   if (u.gauge_position) add_gauge_position_inputs(in, *u.gauge_position, scene, setup);
-  add_analysis_inputs(in, scene, u, signals, options, nominal);
+  add_analysis_inputs(in, scene, u, signals, options, setup);
   return std::move(in.in);
 }
 
@@ -434,7 +433,7 @@ bool MonteCarloOptions::IsValid(std::string* error) const {
 
 void check_uncertainty(const Scene& scene, const GaugeSignals& signals) {
   if (!scene.measurement || !scene.measurement->uncertainty || !scene.specimen) return;
-  inputs_of(scene, *scene.measurement, signals, processing_options(scene), nullptr,
+  inputs_of(scene, *scene.measurement, signals, processing_options(scene),
             resolve_setup(scene, signals.gauges));
 }
 
@@ -446,7 +445,7 @@ UncertaintyResult propagate_uncertainty(const Scene& scene, const MeasurementSpe
   if (!scene.measurement || !scene.measurement->uncertainty || !scene.specimen)
     throw std::logic_error("propagate_uncertainty: the scene has no uncertainty block");
   const KolskySetup setup = resolve_setup(scene, signals.gauges);
-  const std::vector<Input> inputs = inputs_of(scene, m, signals, options, &nominal, setup);
+  const std::vector<Input> inputs = inputs_of(scene, m, signals, options, setup);
   const std::vector<FigureSpec> figures =
       figure_specs(nominal, options.primary == PrimaryReduction::kOneWave, setup.pulse_shaper);
   UncertaintyResult out;

@@ -72,10 +72,9 @@ UncertaintyResult propagate_uncertainty(const Scene& scene, const MeasurementSpe
                                         const ProcessingResult& nominal,
                                         const MonteCarloOptions& mc);
 
-// The refusals of the scene's measurement.uncertainty that the scene and its record decide
+// The refusals of the scene's measurement.uncertainty, which the scene and its record decide
 // without a reduction (propagate_uncertainty's own checks, before any draw): what `shpb validate`
-// applies, so that it refuses what process would. The dispersion cut-off's standard uncertainty,
-// checked against the cut-off the reduction finds, is left to process.
+// applies, so that it refuses what process would.
 void check_uncertainty(const Scene& scene, const GaugeSignals& signals);
 
 // curve.csv's band columns (docs/outputs.md), in their order.

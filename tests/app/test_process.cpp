@@ -201,10 +201,14 @@ TEST_CASE("validate refuses the measurement.uncertainty process refuses, with it
       {{{"gauge_position", "7 m"}}, true},
       {{{"bars", {{"incident", {{"youngs_modulus", "250 GPa"}}}}}}, true},
       {{{"trigger_delay", "1 ms"}}, true},
-      {{{"gauge_position", "1 mm"}, {"trigger_delay", "0.1 us"}}, false}};
+      // The default cut-off on these bars: f a/c0 = 0.2619, c0 = 5000 m/s, a = 10 mm: 131 kHz.
+      {{{"dispersion_cutoff", "1 MHz"}}, true},
+      {{{"gauge_position", "1 mm"}, {"trigger_delay", "0.1 us"}, {"dispersion_cutoff", "10 %"}},
+       false}};
   for (const auto& [uncertainty, refused] : cases) {
     CAPTURE(uncertainty.dump());
     nlohmann::json scene = shpb_test::steel_scene();
+    scene["measurement"]["dispersion"]["correction"] = "pochhammer-chree";  // it has a cut-off
     scene["measurement"]["uncertainty"] = uncertainty;
     const fs::path file = shpb_test::write(dir, scene, good_signals());
     fs::remove_all(dir / "out");
