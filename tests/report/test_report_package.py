@@ -88,15 +88,31 @@ def test_a_foreign_figures_folder_is_never_replaced(tmp_path):
 
 def test_the_output_marker_learns_the_report_files_only_if_it_is_shpbs(tmp_path):
     marker = tmp_path / ".shpb-output"
-    marker.write_text(report_main.OUTPUT_SIGNATURE + "\nfile: gauges.csv\n", encoding="utf-8")
-    report_main.tell_output_marker(str(tmp_path), ["figures", "report.html"],
+    # FNV-1a 64 of "a" (its published test vector): the digest shpb's C++ side writes.
+    (tmp_path / "a.txt").write_bytes(b"a")
+    assert report_main.fnv1a64(str(tmp_path / "a.txt")) == "af63dc4c8601ec8c"
+    (tmp_path / "a.txt").unlink()
+    marker.write_text(report_main.OUTPUT_SIGNATURE + "\nfile: gauges.csv\nfile: figures\n"
+                      "fnv1a64: 0123456789abcdef gauges.csv\n"
+                      "fnv1a64: 0123456789abcdef figures/old.png\n", encoding="utf-8")
+    staged = tmp_path / ".report-host-1-abcd_123"
+    staged.mkdir()
+    (staged / "energy.png").write_bytes(b"a")
+    (tmp_path / "page.html").write_bytes(b"a")
+    report_main.tell_output_marker(str(tmp_path), {"figures": str(staged),
+                                                   "report.html": str(tmp_path / "page.html")},
                                    str(tmp_path / ".report-host-1-abcd_123.marker"))
     lines = marker.read_text(encoding="utf-8").splitlines()
     assert "file: figures" in lines and "file: report.html" in lines
+    # The replaced figures' digests go, the new files' come, the results' stay.
+    assert "fnv1a64: 0123456789abcdef gauges.csv" in lines
+    assert "fnv1a64: 0123456789abcdef figures/old.png" not in lines
+    assert "fnv1a64: af63dc4c8601ec8c figures/energy.png" in lines
+    assert "fnv1a64: af63dc4c8601ec8c report.html" in lines
     foreign = tmp_path / "other"
     foreign.mkdir()
     (foreign / ".shpb-output").write_text("not ours\n", encoding="utf-8")
-    report_main.tell_output_marker(str(foreign), ["figures"],
+    report_main.tell_output_marker(str(foreign), {"figures": str(staged)},
                                    str(foreign / ".report-host-1-abcd_123.marker"))
     assert (foreign / ".shpb-output").read_text(encoding="utf-8") == "not ours\n"
     assert os.listdir(foreign) == [".shpb-output"]
@@ -199,3 +215,15 @@ def test_a_killed_reports_folder_with_its_marker_cut_short_is_removed(tmp_path):
     write(kept, "notes.txt", "the user's")
     report_main.remove_stale_temporaries(str(tmp_path))
     assert sorted(p.name for p in tmp_path.iterdir()) == [kept.name]
+
+
+def test_a_report_file_the_user_edited_is_never_replaced(tmp_path):
+    (tmp_path / "report.html").write_bytes(b"a")
+    (tmp_path / ".shpb-output").write_text(
+        report_main.OUTPUT_SIGNATURE + "\nfile: report.html\n"
+        "fnv1a64: af63dc4c8601ec8c report.html\n", encoding="utf-8")
+    assert report_main.edited_since_written(str(tmp_path), ["report.html"]) is None
+    (tmp_path / "report.html").write_bytes(b"a, and the user's note")
+    with pytest.raises(ReportError, match="was changed since shpb report wrote it"):
+        report_main.check_ownership(str(tmp_path))
+

@@ -153,6 +153,21 @@ TEST_CASE("report never replaces a figures/ folder or report.html it did not wri
   INFO(o.err);
   CHECK(o.code == 0);
 
+  // A page of its own the user annotated since: neither the report nor a simulation into the
+  // folder replaces it.
+  REQUIRE(run({"report", out.string()}, scratch.path(), kLimit_s).code == 0);
+  const std::string annotated = read_all(out / "report.html") + "<!-- the user's note -->";
+  write_bytes(out / "report.html", annotated);
+  o = run({"report", out.string()}, scratch.path(), kLimit_s);
+  INFO(o.err);
+  CHECK(o.code == 2);
+  CHECK(o.err.find("changed since") != std::string::npos);
+  o = run({"simulate", (scratch.path() / "scene.json").string(), "-o", out.string(), "-q"},
+          scratch.path(), kLimit_s);
+  INFO(o.err);
+  CHECK(o.code == 2);
+  CHECK(read_all(out / "report.html") == annotated);
+
   // A user's report.html beside shpb's results.
   ScratchFolder other("lost");
   const fs::path out2 = other.path() / "out";

@@ -10,7 +10,8 @@ interrupted by SIGINT or SIGTERM (nothing printed: shpb says it), the previous r
 
 Ownership: figures/ is this package's only if it holds the marker file .shpb-report, report.html
 only if it carries the page's generator line; the output folder's own marker (.shpb-output, see
-core/output_folder.hpp) is told about both so that shpb may later replace the folder whole.
+core/output_folder.hpp) is told about both, with each file's digest, so that shpb may later replace
+the folder whole, and neither shpb nor this package replaces a file the user edited since.
 """
 import logging
 import os
@@ -41,12 +42,70 @@ OUTPUT_MARKER = ".shpb-output"
 OUTPUT_SIGNATURE = "shpb output folder: written by shpb, replaced only by shpb"
 
 
+# The output marker's line of a file shpb wrote: "fnv1a64: <16 hex digits> <path in the folder>",
+# the digest FNV-1a 64 of its bytes (core/output_folder.cpp, core/file_digest.hpp).
+DIGEST_LINE = "fnv1a64: "
+FNV_OFFSET_BASIS = 14695981039346656037
+FNV_PRIME = 1099511628211
+
+
+def fnv1a64(path: str) -> str:
+    h = FNV_OFFSET_BASIS
+    with open(path, "rb") as f:
+        for byte in f.read():
+            h = ((h ^ byte) * FNV_PRIME) & 0xFFFFFFFFFFFFFFFF
+    return f"{h:016x}"
+
+
+def digest_lines(staged: str, name: str) -> list[str]:
+    """The marker's digest lines of the file or folder `staged`, to be put in place as `name`:
+    each regular file under it, by its path in the output folder."""
+    if os.path.isfile(staged) and not os.path.islink(staged):
+        return [f"{DIGEST_LINE}{fnv1a64(staged)} {name}"]
+    lines = []
+    for root, _, files in os.walk(staged):
+        for f in sorted(files):
+            path = os.path.join(root, f)
+            if not os.path.islink(path):
+                rel = os.path.relpath(path, staged).replace(os.sep, "/")
+                lines.append(f"{DIGEST_LINE}{fnv1a64(path)} {name}/{rel}")
+    return sorted(lines, key=lambda line: line.split(" ", 2)[2])
+
+
+def under(path: str, names: list[str]) -> bool:
+    return any(path == n or path.startswith(n + "/") for n in names)
+
+
+def edited_since_written(folder: str, names: list[str]) -> Optional[str]:
+    """The first file under `names` whose digest a marker records (the folder's .shpb-output if
+    it is shpb's, figures/.shpb-report if it is this package's) and which no longer has it (the
+    user edited it), else None. A file gone since is nothing lost."""
+    output = read_text(os.path.join(folder, OUTPUT_MARKER))
+    figures = read_text(os.path.join(folder, "figures", FIGURES_MARKER))
+    lines = ((output.splitlines() if output.startswith(OUTPUT_SIGNATURE + "\n") else []) +
+             (figures.splitlines() if figures.startswith(FIGURES_SIGNATURE) else []))
+    for line in lines:
+        if not line.startswith(DIGEST_LINE):
+            continue
+        digest, _, path = line[len(DIGEST_LINE):].partition(" ")
+        full = os.path.join(folder, *path.split("/"))
+        if under(path, names) and os.path.lexists(full) and (
+                os.path.islink(full) or not os.path.isfile(full) or fnv1a64(full) != digest):
+            return full
+    return None
+
+
 def check_ownership(folder: str) -> None:
-    """Refuses to replace a figures/ or report.html that this script did not write."""
+    """Refuses to replace a figures/ or report.html that this script did not write, or that the
+    user edited since."""
+    edited = edited_since_written(folder, ["figures", "report.html"])
+    if edited:
+        raise ReportError(f"{edited}: was changed since shpb report wrote it: refusing to "
+                          "replace it (move it away, then run the report again)")
     fig_dir = os.path.join(folder, "figures")
     if os.path.lexists(fig_dir) and (
             os.path.islink(fig_dir) or not os.path.isdir(fig_dir)
-            or read_text(os.path.join(fig_dir, FIGURES_MARKER)) != FIGURES_SIGNATURE):
+            or not read_text(os.path.join(fig_dir, FIGURES_MARKER)).startswith(FIGURES_SIGNATURE)):
         raise ReportError(f"{fig_dir}: exists and was not written by shpb report: refusing to "
                           "replace it (move it away, then run the report again)")
     page = os.path.join(folder, "report.html")
@@ -63,17 +122,19 @@ def sync(path: str) -> None:
         os.close(fd)
 
 
-def tell_output_marker(folder: str, names: list[str], tmp: str) -> None:
-    """Lists `names` in the folder's .shpb-output marker (if it is shpb's), atomically (through
-    the temporary file `tmp`)."""
+def tell_output_marker(folder: str, staged: dict[str, str], tmp: str) -> None:
+    """Lists the names of `staged` (name in the folder -> where it is staged) in the folder's
+    .shpb-output marker (if it is shpb's) with their files' digests, replacing those of the
+    files they replace, atomically (through the temporary file `tmp`)."""
     marker = os.path.join(folder, OUTPUT_MARKER)
     text = read_text(marker)
     if not text.startswith(OUTPUT_SIGNATURE + "\n"):
         return
-    lines = text.splitlines()
+    names = list(staged)
+    lines = [line for line in text.splitlines() if not (
+        line.startswith(DIGEST_LINE) and under(line[len(DIGEST_LINE):].partition(" ")[2], names))]
     added = [f"file: {n}" for n in names if f"file: {n}" not in lines]
-    if not added:
-        return
+    added += [line for n, path in staged.items() for line in digest_lines(path, n)]
     with open(tmp, "w", encoding="utf-8") as f:
         f.write("\n".join(lines + added) + "\n")
         f.flush()
@@ -110,7 +171,7 @@ def remove_stale_temporaries(folder: str) -> None:
         if not os.path.isdir(path):
             os.remove(path)
         elif (not os.listdir(path)
-              or read_text(os.path.join(path, FIGURES_MARKER)) == FIGURES_SIGNATURE
+              or read_text(os.path.join(path, FIGURES_MARKER)).startswith(FIGURES_SIGNATURE)
               or marker_cut_short(path)):
             shutil.rmtree(path, ignore_errors=True)
 
@@ -211,7 +272,17 @@ def build(folder: str) -> tuple[str, int]:
         final_html = os.path.join(folder, "report.html")
         _committing = True
         os.replace(html_tmp, tmp + ".html")
-        tell_output_marker(folder, ["figures", "report.html"], tmp + ".marker")
+        # The figures' own marker records what the report put in place, so that a folder without
+        # shpb's marker (make run's, holding simulate/ and process/) keeps the user's edits too.
+        with open(os.path.join(tmp, FIGURES_MARKER), "a", encoding="utf-8") as f:
+            f.write("".join(line + "\n" for line in
+                            digest_lines(tmp + ".html", "report.html") + [
+                                line for line in digest_lines(tmp, "figures")
+                                if not line.endswith("/" + FIGURES_MARKER)]))
+            f.flush()
+            os.fsync(f.fileno())
+        tell_output_marker(folder, {"figures": tmp, "report.html": tmp + ".html"},
+                           tmp + ".marker")
         if os.path.isdir(fig_dir):  # ours (check_ownership): set aside, removed below
             old = tmp + ".old"
             os.replace(fig_dir, old)
