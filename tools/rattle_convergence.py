@@ -27,7 +27,7 @@ specimen face:
   between the closings seen; the specimen's fundamental period 2L/c (L deformed, at the end of the
   run; c = Courant x h / step from summary.json), its element transit h/c, and the dominant period
   (below 5 us) of the specimen's stress (its ringing) over 40 us after t_r.
-Runs one simulation at a time under nice -n 19; the three experiments take about 6 minutes.
+Runs one simulation at a time under nice -n 19; the three experiments take about 9 minutes (the classic 7).
 """
 import json
 import os
