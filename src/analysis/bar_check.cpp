@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "analysis/processing.hpp"
 #include "analysis/pulse_window.hpp"
 #include "core/error.hpp"
 #include "core/number_format.hpp"
@@ -112,9 +113,8 @@ BarCheckResult check_bars_together(const GaugeSignals& signals, const BarCheckSe
                           format_number(s.distance_m / (s.waveguide.c0_m_s * dt)) + " samples",
                       "expected at most 2^24 samples: is the time unit right?");
   PropagationOptions po;
-  if (ds.cutoff_Hz)
-    po.cutoff_fa_over_c0 = *ds.cutoff_Hz * s.waveguide.radius_m / s.waveguide.c0_m_s;
-  r.cutoff_Hz = po.cutoff_fa_over_c0 * s.waveguide.c0_m_s / s.waveguide.radius_m;
+  // One cut-off in Hz, set on the near gauge's bar as process sets it on the incident bar.
+  r.cutoff_Hz = dispersion_cutoff_Hz(ds, s.waveguide);
   // Zeros after the record leave room for the delay (the output keeps the input's length).
   std::vector<double> moved = near;
   moved.resize(n + static_cast<std::size_t>(1.25 * s.distance_m / (s.waveguide.c0_m_s * dt)) + 1,
@@ -129,7 +129,7 @@ BarCheckResult check_bars_together(const GaugeSignals& signals, const BarCheckSe
     bar_po.cutoff_fa_over_c0 = r.cutoff_Hz * guide.radius_m / guide.c0_m_s;
     const DispersionTable table(guide.poisson);
     if (bar_po.cutoff_fa_over_c0 > table.max_normalized_frequency())
-      throw input_error(scene_file, "measurement.dispersion.cutoff",
+      throw input_error(scene_file, dispersion_cutoff_key(ds),
                         "f·a/c0 = " + format_number(bar_po.cutoff_fa_over_c0),
                         "cut-off beyond the tabulated mode");
     Propagator prop(table, guide, bar_po);

@@ -921,8 +921,7 @@ FacePulses pulses_at_faces(const PreparedSignal& inc, const PreparedSignal& tra,
       return delayed(p.propagate(x, dt, distance), extra);
     }
     const DispersionTable& tab = *table;
-    const std::string key =
-        ds.cutoff_fa_c0 ? "measurement.dispersion.cutoff_fa_c0" : "measurement.dispersion.cutoff";
+    const std::string key = dispersion_cutoff_key(ds);
     if (table_reach(w) > tab.max_normalized_frequency())
       throw input_error(options.scene_file, key, cutoff_text(w),
                         "cut-off beyond the tabulated mode");
@@ -1227,6 +1226,10 @@ double cutoff_fa_over_c0(const DispersionSpec& ds, const BarWaveguide& w) {
 
 double dispersion_cutoff_Hz(const DispersionSpec& ds, const BarWaveguide& w) {
   return cutoff_fa_over_c0(ds, w) * w.c0_m_s / w.radius_m;
+}
+
+const char* dispersion_cutoff_key(const DispersionSpec& ds) {
+  return ds.cutoff_fa_c0 ? "measurement.dispersion.cutoff_fa_c0" : "measurement.dispersion.cutoff";
 }
 
 ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup& k,

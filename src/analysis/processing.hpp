@@ -207,6 +207,8 @@ void require_pulse_fits_round_trip(const std::string& gauge, const std::string& 
 // cutoff_fa_c0, its cutoff in Hz, else the default (docs/scene-format.md, measurement.dispersion).
 double cutoff_fa_over_c0(const DispersionSpec& ds, const BarWaveguide& w);
 double dispersion_cutoff_Hz(const DispersionSpec& ds, const BarWaveguide& w);
+// The scene key that sets it, for messages: measurement.dispersion.cutoff_fa_c0 or .cutoff.
+const char* dispersion_cutoff_key(const DispersionSpec& ds);
 
 ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup& setup,
                                  const ProcessingOptions& options);

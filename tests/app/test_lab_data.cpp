@@ -486,6 +486,26 @@ TEST_CASE("A bars-together record is checked: Pochhammer-Chree against a plain t
   CHECK(with <= kAcceptedRms);
   CHECK(shift > 2 * with);
   CHECK(fs::exists(d / "out/pulses.csv"));
+
+  // The cut-off given as f·a/c0 is the near bar's, as process takes it on the incident bar
+  // (docs/scene-format.md, measurement.dispersion), and the same check as the cut-off in Hz.
+  constexpr double kFaOverC0 = 0.15;
+  const double hz = kFaOverC0 * kC0 / bar.radius_m;
+  scene["measurement"]["dispersion"] = {{"cutoff_fa_c0", kFaOverC0}};
+  const fs::path d2 = scratch_dir("labdata_bars_together_fa");
+  REQUIRE(
+      run_shpb({"process", write(d2, scene, s.str()).string(), "-o", (d2 / "out").string()}).code ==
+      0);
+  scene["measurement"]["dispersion"] = {{"cutoff", std::to_string(hz) + " Hz"}};
+  const fs::path d3 = scratch_dir("labdata_bars_together_hz");
+  REQUIRE(
+      run_shpb({"process", write(d3, scene, s.str()).string(), "-o", (d3 / "out").string()}).code ==
+      0);
+  constexpr double kPrinted = 1e-9;  // the Hz value went through a printed decimal
+  CHECK(summary(d2 / "out")["cutoff_Hz"].get<double>() == Approx(hz).epsilon(kPrinted));
+  CHECK(summary(d2 / "out")["rms_of_peak"]["pochhammer_chree"].get<double>() ==
+        Approx(summary(d3 / "out")["rms_of_peak"]["pochhammer_chree"].get<double>())
+            .epsilon(kPrinted));
 }
 
 TEST_CASE("The report of a processed test heads with the striker, equilibrium and every warning",
