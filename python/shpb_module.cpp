@@ -596,10 +596,14 @@ PYBIND11_MODULE(_shpb, m) {
                                     format_double(kPoissonRatioBelow) + ")");
             o.poisson_ratio = x;
           })
+      // The group holds its material alive. A property applies no call policy given beside its
+      // getter (pybind11 takes only the function's record from it), so the getter carries it.
       .def_property_readonly(
-          "bilinear", [](MaterialSpec& s) { return Bilinear{&s}; }, py::keep_alive<0, 1>())
+          "bilinear",
+          py::cpp_function([](MaterialSpec& s) { return Bilinear{&s}; }, py::keep_alive<0, 1>()))
       .def_property_readonly(
-          "johnson_cook", [](MaterialSpec& s) { return JohnsonCook{&s}; }, py::keep_alive<0, 1>())
+          "johnson_cook",
+          py::cpp_function([](MaterialSpec& s) { return JohnsonCook{&s}; }, py::keep_alive<0, 1>()))
       .def_property_readonly("wave_speed_m_s", &MaterialSpec::wave_speed_m_s)
       .def("__repr__", [](const MaterialSpec& s) {
         return "<shpb.Material " + s.name + " (" + std::string(to_string(s.model)) + "): " +

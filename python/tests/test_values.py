@@ -1,6 +1,7 @@
 """Python values a notebook may hand the module (docs/python.md, The API): a scene dict's values,
 file names, tolerances and bar keys. Each is taken as documented or refused with a documented
 exception whose one line names what is wrong; never a crash of the interpreter."""
+import gc
 import json
 import os
 import subprocess
@@ -245,3 +246,24 @@ def test_a_dispersion_option_out_of_range_names_itself(kwargs, option):
     with pytest.raises(shpb.InputError) as e:
         shpb.dispersion(**kwargs)
     assert str(e.value).startswith(option)
+
+
+@pytest.mark.parametrize("group", ["johnson_cook", "bilinear"])
+def test_a_law_group_keeps_its_material_alive(group):
+    # The group of parameters refers to its material in the scene: taken from a scene no one
+    # holds any more, it must keep that scene alive (it read and wrote freed memory: a message
+    # naming the material with garbage).
+    scene_file = SOURCE / "experiments" / "classic-al6061" / "scene.json"
+    params = getattr(shpb.Scene.load(scene_file).specimen.material, group)
+    gc.collect()
+    filler = [bytearray(64) for _ in range(20000)]  # reuses freed memory, if any was freed
+    expected = shpb.Scene.load(scene_file).specimen.material
+    if group == "johnson_cook":
+        assert params.A_Pa == expected.johnson_cook.A_Pa
+        params.A_Pa = 2 * expected.johnson_cook.A_Pa
+        assert params.A_Pa == 2 * expected.johnson_cook.A_Pa
+    else:  # the classic specimen is Johnson-Cook: the edit is refused, naming its material
+        with pytest.raises(shpb.InputError) as e:
+            params.yield_stress_Pa = 3e8
+        assert f'material "{expected.name}" is johnson-cook' in str(e.value)
+    del filler
