@@ -227,3 +227,49 @@ def test_a_report_file_the_user_edited_is_never_replaced(tmp_path):
     with pytest.raises(ReportError, match="was changed since shpb report wrote it"):
         report_main.check_ownership(str(tmp_path))
 
+
+
+def test_a_fifo_in_place_of_a_marker_or_page_does_not_block_the_report(tmp_path):
+    # A FIFO has no writer: opened as a file it blocks the report forever (docs/commands.md,
+    # report: never a hang). It is no marker of shpb's, and no page of the report's.
+    write(tmp_path, "gauges.csv", "time_s,incident\n0,0\n1e-6,-1e-4\n")
+    os.mkfifo(tmp_path / ".shpb-output")
+    html, count = report_main.build(str(tmp_path))
+    assert count == 1 and os.path.isfile(html)
+    assert (tmp_path / ".shpb-output").is_fifo()
+    os.mkfifo(tmp_path / "page")
+    assert report_main.read_text(str(tmp_path / "page")) == ""
+    other = tmp_path / "other"
+    other.mkdir()
+    os.mkfifo(other / "report.html")
+    with pytest.raises(ReportError, match="report.html: exists and was not written"):
+        report_main.check_ownership(str(other))
+
+
+def test_the_output_marker_keeps_every_line_however_long(tmp_path):
+    # A campaign of many tests has a marker of many lines: the report rewrites it with its own
+    # files' lines and must keep every other one (a lost line makes shpb refuse the folder).
+    lines = [f"fnv1a64: 0123456789abcdef test-{i:05d}/curve.csv" for i in range(4000)]
+    text = report_main.OUTPUT_SIGNATURE + "\n" + "\n".join(lines) + "\n"
+    assert len(text) > 1 << 17  # beyond any first-part read
+    (tmp_path / ".shpb-output").write_text(text, encoding="utf-8")
+    (tmp_path / "page.html").write_bytes(b"a")
+    report_main.tell_output_marker(str(tmp_path), {"report.html": str(tmp_path / "page.html")},
+                                   str(tmp_path / ".report-host-1-abcd_123.marker"))
+    kept = (tmp_path / ".shpb-output").read_text(encoding="utf-8").splitlines()
+    assert kept[1:len(lines) + 1] == lines
+    assert "fnv1a64: af63dc4c8601ec8c report.html" in kept
+
+
+@pytest.mark.parametrize("value, shown", [("NaN", "NaN"), ("-Infinity", "Infinity"),
+                                          ("1e400", "Infinity"), ("1" + "0" * 400, "digits")],
+                         ids=["NaN", "-Infinity", "1e400", "integer of 401 digits"])
+def test_a_number_json_does_not_have_is_refused_with_its_path(tmp_path, value, shown):
+    # Python's json reads NaN, Infinity and 1e400 (as infinity), which JSON and shpb never write:
+    # shown as "nan" in the page or an axis, or beyond a float in a figure. Exit 2, its path named.
+    write(tmp_path, "gauges.csv", "time_s,incident\n0,0\n1e-6,-1e-4\n")
+    write(tmp_path, "summary.json", '{"command": "simulate", "bars": [{"final_velocity_m_s": '
+          + value + "}]}")
+    with pytest.raises(ReportError, match=r"summary.json: bars\[0\].final_velocity_m_s: .*" +
+                       shown + ".*a finite number was expected"):
+        Source(str(tmp_path), ".")

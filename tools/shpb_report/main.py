@@ -80,8 +80,8 @@ def edited_since_written(folder: str, names: list[str]) -> Optional[str]:
     """The first file under `names` whose digest a marker records (the folder's .shpb-output if
     it is shpb's, figures/.shpb-report if it is this package's) and which no longer has it (the
     user edited it), else None. A file gone since is nothing lost."""
-    output = read_text(os.path.join(folder, OUTPUT_MARKER))
-    figures = read_text(os.path.join(folder, "figures", FIGURES_MARKER))
+    output = read_text(os.path.join(folder, OUTPUT_MARKER), None)
+    figures = read_text(os.path.join(folder, "figures", FIGURES_MARKER), None)
     lines = ((output.splitlines() if output.startswith(OUTPUT_SIGNATURE + "\n") else []) +
              (figures.splitlines() if figures.startswith(FIGURES_SIGNATURE) else []))
     for line in lines:
@@ -127,7 +127,7 @@ def tell_output_marker(folder: str, staged: dict[str, str], tmp: str) -> None:
     .shpb-output marker (if it is shpb's) with their files' digests, replacing those of the
     files they replace, atomically (through the temporary file `tmp`)."""
     marker = os.path.join(folder, OUTPUT_MARKER)
-    text = read_text(marker)
+    text = read_text(marker, None)  # whole: every line not about these names is kept
     if not text.startswith(OUTPUT_SIGNATURE + "\n"):
         return
     names = list(staged)

@@ -10,7 +10,9 @@ import json
 import math
 import os
 import re
-from typing import Any
+import stat
+import sys
+from typing import Any, Optional
 
 import numpy as np
 
@@ -27,17 +29,44 @@ class ReportError(Exception):
     """Bad input: printed as one `error:` line, exit code 2."""
 
 
-def read_text(path: str, limit: int = 1 << 16) -> str:
+def read_text(path: str, limit: Optional[int] = 1 << 16) -> str:
+    """The text of a regular file (its first `limit` characters; None: all of it), "" for
+    anything else: a FIFO in place of a marker or page must not block the report (opened
+    without waiting for a writer), a device not be read."""
     try:
-        with open(path, encoding="utf-8", errors="replace") as f:
-            return f.read(limit)
+        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
     except OSError:
         return ""
+    with open(fd, encoding="utf-8", errors="replace") as f:
+        try:
+            return f.read(limit) if stat.S_ISREG(os.fstat(fd).st_mode) else ""
+        except OSError:
+            return ""
 
 
 def slug(text: str) -> str:
     s = re.sub(r"[^A-Za-z0-9]+", "-", text).strip("-").lower()
     return s or "main"
+
+
+def first_non_finite(doc: Any) -> Optional[tuple[str, str]]:
+    """The JSON path and text of the first number of `doc` that is no finite double: NaN and
+    Infinity, which Python's json reads though JSON has neither and shpb writes neither, 1e400
+    (read as infinity) and an integer beyond a double's range. Iterative: a document nested as
+    deeply as json reads it is walked without recursion."""
+    stack = [("", doc)]
+    while stack:
+        where, v = stack.pop()
+        if isinstance(v, dict):
+            stack.extend((f"{where}.{k}" if where else str(k), x)
+                         for k, x in reversed(list(v.items())))
+        elif isinstance(v, list):
+            stack.extend((f"{where}[{i}]", x) for i, x in reversed(list(enumerate(v))))
+        elif isinstance(v, float) and not math.isfinite(v):
+            return where, "NaN" if math.isnan(v) else "Infinity or beyond a double's range"
+        elif isinstance(v, int) and not isinstance(v, bool) and abs(v) > sys.float_info.max:
+            return where, f"an integer of {len(str(abs(v)))} digits"
+    return None
 
 
 class Table:
@@ -126,6 +155,10 @@ class Source:
                 raise ReportError(f"{path}: {type(e).__name__}: {e}: valid JSON was expected")
             except OSError as e:
                 raise ReportError(f"{path}: {e.strerror or e}: a readable file was expected")
+            where = first_non_finite(self.summary)
+            if where is not None:
+                raise ReportError(f"{path}: {where[0] or '(the document)'}: {where[1]}: a finite "
+                                  "number was expected (JSON has no NaN or infinity)")
 
     def has(self, name: str) -> bool:
         return name in self.files
