@@ -273,3 +273,40 @@ def test_a_number_json_does_not_have_is_refused_with_its_path(tmp_path, value, s
     with pytest.raises(ReportError, match=r"summary.json: bars\[0\].final_velocity_m_s: .*" +
                        shown + ".*a finite number was expected"):
         Source(str(tmp_path), ".")
+
+
+def test_raw_signals_with_a_time_column_alone_draw_nothing(tmp_path):
+    # No gauge column: nothing to draw, not a figure of no rows (a bug's exit 4).
+    write(tmp_path, "raw_signals.csv", "time_s\n0\n1e-6\n")
+    html, count = report_main.build(str(tmp_path))
+    assert count == 0 and os.path.isfile(html)
+
+
+def test_uncertainty_entries_of_the_wrong_kind_are_drawn_without_them(tmp_path):
+    # summary.json uncertainty (docs/outputs.md, process) read as every other value: an entry of
+    # another kind is absent, never a bug's exit 4.
+    write(tmp_path, "summary.json", '{"uncertainty": {"figures": {'
+          '"peak_stress_Pa": {"contributions": 5, "interval_95": 7},'
+          '"plateau_strain_rate_1_s": {"contributions": [{"input": "a", "share": "x"}, 3],'
+          ' "interval_95": [1], "unit": 4}}}}')
+    shown = []
+
+    class Kept:
+        def save(self, fig, *caption):
+            shown.extend(ax.get_title() for ax in fig.axes)
+
+    from shpb_report import process
+    process.fig_uncertainty(Source(str(tmp_path), "."), Kept())
+    assert shown == ["peak_stress_Pa", "plateau_strain_rate_1_s"]  # no interval in the titles
+
+
+def test_a_home_matplotlib_cannot_write_leaves_stderr_to_the_result(tmp_path):
+    # Run as a user whose home is read-only, matplotlib warned on stderr at import: the report's
+    # output is one line, the result or the error (docs/commands.md, report).
+    import subprocess
+    write(tmp_path, "gauges.csv", "time_s,incident\n0,0\n1e-6,-1e-4\n")
+    script = Path(__file__).resolve().parents[2] / "tools" / "report.py"
+    env = dict(os.environ, MPLCONFIGDIR="/proc/version/matplotlib")  # no folder can be made there
+    r = subprocess.run(["/usr/bin/python3", str(script), str(tmp_path)], env=env,
+                       capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0 and r.stderr == ""

@@ -3,9 +3,14 @@
 Conventions (docs/outputs.md): times in µs, bar strains in µε, specimen strains in %, stresses
 in MPa; signals tension positive, specimen quantities compression positive.
 """
+import logging
 import os
 
-import matplotlib
+# Quiet before matplotlib is imported: with a home it cannot write (another user's, a read-only
+# one) it says so on stderr at import, where only the one result or error line goes. A figure of
+# an odd but valid file (an all-empty column, nothing to label) is drawn without its chatter too.
+logging.getLogger("matplotlib").setLevel(logging.ERROR)
+import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402

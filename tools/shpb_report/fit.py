@@ -4,7 +4,7 @@ and the parameter correlations."""
 import numpy as np
 
 from .drawing import MICRO, MPA, US, new_figure
-from .reading import ReportError
+from .reading import ReportError, number_pair
 from .schema import columns
 
 CURVES = columns("fit_curves")
@@ -102,14 +102,6 @@ def fig_fit(src, figs):
     draw_intervals(src, figs)
 
 
-def _pair(v):
-    """[lower, upper] of numbers, or None."""
-    if isinstance(v, list) and len(v) == 2 and all(
-            isinstance(x, (int, float)) and not isinstance(x, bool) for x in v):
-        return float(v[0]), float(v[1])
-    return None
-
-
 def draw_intervals(src, figs):
     """Each parameter's 95 % intervals relative to its value: linearised, bootstrap and reported
     (docs/outputs.md, fit: summary.json parameters; docs/methods.md §9, "Intervals")."""
@@ -119,12 +111,12 @@ def draw_intervals(src, figs):
         if not isinstance(p, dict) or not isinstance(p.get("value"), (int, float)):
             continue
         value = float(p["value"])
-        reported = _pair(p.get("interval_95"))
+        reported = number_pair(p.get("interval_95"))
         if reported is None or value == 0:
             continue
         boot = p.get("bootstrap") if isinstance(p.get("bootstrap"), dict) else {}
-        rows.append((str(name), value, reported, _pair(p.get("linearised_interval_95")),
-                     _pair(boot.get("interval_95")), str(p.get("interval_method", "")),
+        rows.append((str(name), value, reported, number_pair(p.get("linearised_interval_95")),
+                     number_pair(boot.get("interval_95")), str(p.get("interval_method", "")),
                      bool(p.get("weakly_identified"))))
     if not rows:
         return

@@ -13,7 +13,6 @@ only if it carries the page's generator line; the output folder's own marker (.s
 core/output_folder.hpp) is told about both, with each file's digest, so that shpb may later replace
 the folder whole, and neither shpb nor this package replaces a file the user edited since.
 """
-import logging
 import os
 import re
 import shutil
@@ -303,9 +302,8 @@ def build(folder: str) -> tuple[str, int]:
 
 
 def main(argv: list[str]) -> int:
-    # A figure of an odd but valid file (an all-empty column, nothing to label) is drawn as it is:
-    # no matplotlib or numpy chatter on stderr, where only the one result or error line goes.
-    logging.getLogger("matplotlib").setLevel(logging.ERROR)
+    # No numpy chatter on stderr (matplotlib's is quieted in drawing.py), where only the one
+    # result or error line goes.
     warnings.simplefilter("ignore", RuntimeWarning)
     # shpb runs this after the script was killed outright (src/app/report.cpp): its temporaries
     # would keep DIR from being replaced.

@@ -2,7 +2,7 @@
 the pulses at the specimen faces, the stress–strain curves with strain rate and equilibrium, the
 bars-together check, and a campaign's curves on one plot."""
 from .drawing import MICRO, MPA, US, gauge_columns, new_figure, outside_legend, ratio_finite
-from .reading import NUMBER
+from .reading import NUMBER, number, number_pair
 from .schema import columns
 
 BAR_CHECK = columns("bar_check_pulses")
@@ -134,18 +134,20 @@ def fig_uncertainty(src, figs):
         return
     fig, axes = new_figure(1, len(names), height=4.2, width=4.2 * len(names) + 1.5)
     for ax, name in zip(axes[0], names):
-        shares = [c for c in figures[name].get("contributions", []) if isinstance(c, dict)][:8]
+        entry = ("uncertainty", "figures", name)
+        shares = [c for c in src.value(*entry, "contributions", kind=list) or []
+                  if isinstance(c, dict)][:8]
         labels = [str(c.get("input")) for c in shares][::-1]
-        values = [100 * float(c.get("share", 0)) for c in shares][::-1]
+        values = [100 * (number(c.get("share")) or 0.0) for c in shares][::-1]
         ax.barh(range(len(values)), values, color="C0")
         ax.set_yticks(range(len(values)), labels, fontsize=7)
         ax.set_xlabel("share of the variance (%)")
-        f = figures[name]
-        low, high = (f.get("interval_95") or [None, None])[:2]
-        scale, unit = (MPA, "MPa") if name.endswith("Pa") or "_Pa_" in name else (1.0, f.get("unit", ""))
+        interval = number_pair(src.value(*entry, "interval_95"))
+        scale, unit = ((MPA, "MPa") if name.endswith("Pa") or "_Pa_" in name
+                       else (1.0, src.value(*entry, "unit", kind=str) or ""))
         title = name
-        if isinstance(low, (int, float)) and isinstance(high, (int, float)):
-            title += f"\n95 %: {low * scale:.4g} to {high * scale:.4g} {unit}"
+        if interval is not None:
+            title += f"\n95 %: {interval[0] * scale:.4g} to {interval[1] * scale:.4g} {unit}"
         ax.set_title(title, fontsize=9)
     figs.save(fig, src.png("uncertainty"), src.title("Uncertainty contributions"),
               "Each uncertain input's share of the variance of the headline figures (squared "
@@ -177,6 +179,8 @@ def fig_raw_signals(src, figs):
     t = src.table(RAW_SIGNALS.FILE)
     time = t.numeric(RAW_SIGNALS.time_s) * US
     gauges = gauge_columns(t)
+    if not gauges:  # a time column alone: no signal to draw
+        return
     fig, axes = new_figure(len(gauges), 1, height=2.6 * len(gauges) + 0.8, sharex=True)
     colors = {"incident": "C0", "reflected": "C3", "transmitted": "C2"}
     for ax, g in zip(axes[:, 0], gauges):

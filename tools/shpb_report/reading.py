@@ -49,6 +49,18 @@ def slug(text: str) -> str:
     return s or "main"
 
 
+def number(v: Any) -> Optional[float]:
+    """A summary.json value as a number: an int or float, not a bool; else None."""
+    return float(v) if isinstance(v, (int, float)) and not isinstance(v, bool) else None
+
+
+def number_pair(v: Any) -> Optional[tuple[float, float]]:
+    """[lower, upper] of numbers (an interval of summary.json), or None."""
+    if isinstance(v, list) and len(v) == 2 and all(number(x) is not None for x in v):
+        return float(v[0]), float(v[1])
+    return None
+
+
 def first_non_finite(doc: Any) -> Optional[tuple[str, str]]:
     """The JSON path and text of the first number of `doc` that is no finite double: NaN and
     Infinity, which Python's json reads though JSON has neither and shpb writes neither, 1e400
@@ -182,8 +194,7 @@ class Source:
         if kind is None or v is None:
             return v
         if kind == NUMBER:
-            ok = isinstance(v, (int, float)) and not isinstance(v, bool)
-            return float(v) if ok else None
+            return number(v)
         return v if isinstance(v, kind) else None
 
     def png(self, base: str) -> str:
