@@ -64,7 +64,7 @@ def main(argv):
                 ("ragged", "time_s,incident\n0,0\n1e-6\n", "gauges.csv: line 3: 1 fields"),
                 ("infinite", "time_s,incident\n0,inf\n1e-6,0\n", "line 2, column 2: inf"),
                 ("no_time", "t,incident\n0,0\n", "a column time_s was expected"),
-                ("text_time", "time_s,incident\nzero,0\n", "column time_s: text")):
+                ("text_time", "time_s,incident\nzero,0\n", "line 2, column 1 (time_s): zero")):
             folder = gauges_folder(root, name, text)
             code, err = run(share, folder)
             check(code == 2, f"{name}: exit {code}, 2 expected ({err.strip()})")

@@ -310,3 +310,24 @@ def test_a_home_matplotlib_cannot_write_leaves_stderr_to_the_result(tmp_path):
     r = subprocess.run(["/usr/bin/python3", str(script), str(tmp_path)], env=env,
                        capture_output=True, text=True, timeout=300)
     assert r.returncode == 0 and r.stderr == ""
+
+
+def test_a_csv_error_names_its_line_column_and_value(tmp_path):
+    # docs/commands.md, report: one line naming the file and the line/column/value.
+    write(tmp_path, "curve.csv", "time_s,strain\n0,0\n1e-6,0.01\n2e-6,abc\n")
+    with pytest.raises(ReportError, match=r"curve.csv: line 4, column 2 \(strain\): abc: a number"):
+        Table(str(tmp_path / "curve.csv")).numeric("strain")
+    # An unclosed quote takes the lines after it into one field, until the field limit.
+    write(tmp_path, "curve.csv", 'time_s,strain\n0,0\n1e-6,"0.01\n' + "2e-6,0.02\n" * 20000)
+    with pytest.raises(ReportError, match=r"curve.csv: line \d+: field larger .*comma-separated"):
+        Table(str(tmp_path / "curve.csv"))
+    write(tmp_path, "curve.csv", "time_s,strain,strain\n0,0,1\n")
+    with pytest.raises(ReportError, match=r"line 1, column 3: strain: a name of its own .*column 2"):
+        Table(str(tmp_path / "curve.csv"))
+
+
+def test_a_byte_order_mark_is_no_part_of_the_first_column_name(tmp_path):
+    # A spreadsheet saves UTF-8 with a byte-order mark: time_s is still time_s.
+    (tmp_path / "gauges.csv").write_bytes(b"\xef\xbb\xbftime_s,incident\r\n0,0\r\n1e-6,-1e-4\r\n")
+    t = Table(str(tmp_path / "gauges.csv"))
+    assert t.names == ["time_s", "incident"] and list(t.numeric("time_s")) == [0, 1e-6]

@@ -88,16 +88,25 @@ class Table:
         self.path = path
         self.columns = {}
         self.names = []
+        self.first_text = {}  # column name -> (line, column, text) of its first non-number
+        # utf-8-sig: a byte-order mark (a spreadsheet's save) is no part of the first name.
         try:
-            with open(path, newline="", encoding="utf-8", errors="replace") as f:
-                rows = list(csv.reader(f))
-        except csv.Error as e:  # an unclosed quote, a NUL byte: not a CSV this package reads
-            raise ReportError(f"{path}: {e}: comma-separated numbers were expected")
+            with open(path, newline="", encoding="utf-8-sig", errors="replace") as f:
+                reader = csv.reader(f)
+                try:
+                    rows = list(reader)
+                except csv.Error as e:  # an unclosed quote, a NUL byte: not a CSV of numbers
+                    raise ReportError(f"{path}: line {reader.line_num}: {e}: comma-separated "
+                                      "numbers were expected")
         except OSError as e:  # unreadable (permissions): an input error, not a failed write
             raise ReportError(f"{path}: {e.strerror or e}: a readable file was expected")
         if not rows:
             raise ReportError(f"{path}: line 1: empty file: a header row was expected")
         self.names = [n.strip() for n in rows[0]]
+        for j, name in enumerate(self.names, start=1):
+            if name in self.names[:j - 1]:
+                raise ReportError(f"{path}: line 1, column {j}: {name}: a name of its own was "
+                                  f"expected (column {self.names.index(name) + 1} has it)")
         data = []
         for i, row in enumerate(rows[1:], start=2):
             if not row:
@@ -111,6 +120,7 @@ class Table:
                     x = float(text) if text.strip() else math.nan
                 except ValueError:
                     values.append(text.strip())
+                    self.first_text.setdefault(self.names[j - 1], (i, j, text.strip()))
                     continue
                 # shpb writes no NaN or infinity (an undefined value is an empty field), and no
                 # quantity it writes comes near 1e100: beyond that a figure's axes overflow.
@@ -144,7 +154,9 @@ class Table:
     def numeric(self, name: str) -> np.ndarray:
         col = self[name]
         if col.dtype == object:
-            raise ReportError(f"{self.path}: column {name}: text: numbers were expected")
+            line, j, text = self.first_text[name]
+            raise ReportError(f"{self.path}: line {line}, column {j} ({name}): {text}: a number "
+                              "or an empty field was expected")
         return col
 
 
