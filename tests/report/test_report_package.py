@@ -331,3 +331,13 @@ def test_a_byte_order_mark_is_no_part_of_the_first_column_name(tmp_path):
     (tmp_path / "gauges.csv").write_bytes(b"\xef\xbb\xbftime_s,incident\r\n0,0\r\n1e-6,-1e-4\r\n")
     t = Table(str(tmp_path / "gauges.csv"))
     assert t.names == ["time_s", "incident"] and list(t.numeric("time_s")) == [0, 1e-6]
+
+
+def test_a_bars_together_headline_shows_no_nan_for_a_missing_rms(tmp_path):
+    # summary.json rms_of_peak (docs/outputs.md, process) with one of its two values: the page
+    # shows that one, and no "nan" for the other.
+    from shpb_report.page import headline_html
+    write(tmp_path, "summary.json", '{"command": "process", "rms_of_peak": '
+          '{"pochhammer_chree": 0.021}}')
+    text = headline_html(Source(str(tmp_path), "."))
+    assert "2.1 % with Pochhammer–Chree" in text and "nan" not in text.lower()

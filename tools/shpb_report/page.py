@@ -97,12 +97,11 @@ def headline_html(src):
             rows.append(("equilibrium (R ≤ 5 %)", f"{100 * frac:.0f} % of the loaded time; "
                          + (f"holds from {t_eq * 1e6:.3g} µs until unloading" if t_eq is not None
                             else "never holds until unloading")))
-        pc, shift = number("rms_of_peak", "pochhammer_chree"), number("rms_of_peak", "time_shift")
-        if pc is not None or shift is not None:
-            nan = float("nan")
-            rows.append(("bars together: RMS of peak",
-                         f"{100 * (pc if pc is not None else nan):.3g} % with Pochhammer–Chree, "
-                         f"{100 * (shift if shift is not None else nan):.3g} % with a time shift"))
+        rms = [f"{100 * v:.3g} % with {how}" for v, how in (
+            (number("rms_of_peak", "pochhammer_chree"), "Pochhammer–Chree"),
+            (number("rms_of_peak", "time_shift"), "a time shift")) if v is not None]
+        if rms:  # the one present, never a "nan %" for the other
+            rows.append(("bars together: RMS of peak", ", ".join(rms)))
         if src.value("error"):
             rows.append(("error", str(src.value("error"))))
     warnings = src.value("warnings", kind=list) or []
