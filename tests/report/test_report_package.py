@@ -341,3 +341,49 @@ def test_a_bars_together_headline_shows_no_nan_for_a_missing_rms(tmp_path):
           '{"pochhammer_chree": 0.021}}')
     text = headline_html(Source(str(tmp_path), "."))
     assert "2.1 % with Pochhammer–Chree" in text and "nan" not in text.lower()
+
+
+def test_a_file_the_user_put_in_figures_is_never_removed(tmp_path):
+    # docs/outputs.md, Conventions: no file shpb did not write is deleted. The next report
+    # replaced figures/ whole, with the user's own file or folder in it.
+    write(tmp_path, "gauges.csv", "time_s,incident\n0,0\n1e-6,-1e-4\n")
+    report_main.build(str(tmp_path))
+    report_main.build(str(tmp_path))  # its own figures are replaced
+    for mine in ("figures/mine.png", "figures/notes/a.txt"):
+        (tmp_path / mine).parent.mkdir(exist_ok=True)
+        (tmp_path / mine).write_text("the user's", encoding="utf-8")
+        with pytest.raises(ReportError, match="figures/(mine.png|notes): was not written by "
+                                              "shpb report"):
+            report_main.build(str(tmp_path))
+        assert (tmp_path / mine).read_text(encoding="utf-8") == "the user's"
+        os.remove(tmp_path / mine)
+
+
+def test_a_read_only_figures_folder_is_exit_3_and_leaves_nothing(tmp_path):
+    # Its figures could not be removed once set aside: they stayed in DIR as a temporary its
+    # marker does not list, and shpb refused to replace DIR after (docs/outputs.md, Conventions).
+    # Run as a user the permissions bind (root's access is never denied).
+    import shutil
+    import subprocess
+    import tempfile
+    folder = Path(tempfile.mkdtemp(prefix="shpb-report-readonly-"))
+    try:
+        write(folder, "gauges.csv", "time_s,incident\n0,0\n1e-6,-1e-4\n")
+        report_main.build(str(folder))
+        script = Path(__file__).resolve().parents[2] / "tools" / "report.py"
+        command = ["/usr/bin/python3", str(script), str(folder)]
+        if os.geteuid() == 0:
+            folder.chmod(0o755)
+            for p in [folder, *folder.rglob("*")]:
+                os.chown(p, 65534, 65534)
+            command = ["setpriv", "--reuid=65534", "--regid=65534", "--clear-groups"] + command
+        (folder / "figures").chmod(0o555)
+        before = sorted(os.listdir(folder))
+        r = subprocess.run(command, capture_output=True, text=True, timeout=300,
+                           env=dict(os.environ, MPLCONFIGDIR=str(folder / ".mpl")))
+        assert r.returncode == 3, r.stderr
+        assert r.stderr.startswith(f"error: {folder}/figures: cannot be written")
+        assert sorted(n for n in os.listdir(folder) if n != ".mpl") == before
+    finally:
+        (folder / "figures").chmod(0o755)
+        shutil.rmtree(folder)

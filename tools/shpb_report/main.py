@@ -5,14 +5,15 @@ any previous report intact (docs/outputs.md, conventions). Exit codes: 0 report 
 input (DIR holds no output file this package knows, a file is malformed — message "error: <file>:
 <line/column>: <value>: <what was expected>" —, or DIR holds a figures/ folder or a report.html
 this package did not write: they are never replaced); 3 the report cannot be written (read-only
-folder, full disk); 4 a bug of this package (one line naming the exception and where); 130
+folder or figures/, full disk); 4 a bug of this package (one line naming the exception and where); 130
 interrupted by SIGINT or SIGTERM (nothing printed: shpb says it), the previous report intact.
 
-Ownership: figures/ is this package's only if it holds the marker file .shpb-report, report.html
-only if it carries the page's generator line; the output folder's own marker (.shpb-output, see
+Ownership: figures/ is this package's only if it holds the marker file .shpb-report and nothing
+its digest lines do not list, report.html only if it carries the page's generator line; the output folder's own marker (.shpb-output, see
 core/output_folder.hpp) is told about both, with each file's digest, so that shpb may later replace
 the folder whole, and neither shpb nor this package replaces a file the user edited since.
 """
+import errno
 import os
 import re
 import shutil
@@ -94,6 +95,26 @@ def edited_since_written(folder: str, names: list[str]) -> Optional[str]:
     return None
 
 
+def added_since_written(folder: str) -> Optional[str]:
+    """The first entry of figures/ that its marker's digest lines do not list (a file or folder
+    the user put there: the report writes files alone), else None. A marker without digest lines
+    (an older report's) lists none: its figures/ is judged by the marker alone, as before."""
+    fig_dir = os.path.join(folder, "figures")
+    marker = read_text(os.path.join(fig_dir, FIGURES_MARKER), None)
+    listed = {line[len(DIGEST_LINE):].partition(" ")[2] for line in marker.splitlines()
+              if line.startswith(DIGEST_LINE)}
+    if not marker.startswith(FIGURES_SIGNATURE) or not listed:
+        return None
+    for root, dirs, files in os.walk(fig_dir):
+        if dirs:
+            return os.path.join(root, sorted(dirs)[0])
+        rel = os.path.relpath(root, folder).replace(os.sep, "/")
+        for name in sorted(files):
+            if f"{rel}/{name}" not in listed and (root, name) != (fig_dir, FIGURES_MARKER):
+                return os.path.join(root, name)
+    return None
+
+
 def check_ownership(folder: str) -> None:
     """Refuses to replace a figures/ or report.html that this script did not write, or that the
     user edited since."""
@@ -101,6 +122,10 @@ def check_ownership(folder: str) -> None:
     if edited:
         raise ReportError(f"{edited}: was changed since shpb report wrote it: refusing to "
                           "replace it (move it away, then run the report again)")
+    added = added_since_written(folder)
+    if added:
+        raise ReportError(f"{added}: was not written by shpb report: refusing to replace the "
+                          "figures folder that holds it (move it away, then run the report again)")
     fig_dir = os.path.join(folder, "figures")
     if os.path.lexists(fig_dir) and (
             os.path.islink(fig_dir) or not os.path.isdir(fig_dir)
@@ -245,6 +270,11 @@ def build(folder: str) -> tuple[str, int]:
                           "other shpb output: an output folder of simulate, process, compare, "
                           "study, fit, calibrate or plan was expected")
     check_ownership(folder)
+    # The previous figures are set aside and removed: in a figures/ the user made read-only they
+    # could not be, and would stay in DIR as a temporary its marker does not list.
+    fig_dir = os.path.join(folder, "figures")
+    if os.path.isdir(fig_dir) and not os.access(fig_dir, os.W_OK | os.X_OK):
+        raise PermissionError(errno.EACCES, os.strerror(errno.EACCES), fig_dir)
     remove_stale_temporaries(folder)
     # Figures are drawn into a temporary folder and moved into place at the end, so a failure
     # leaves any previous report intact (docs/outputs.md (conventions)).
@@ -267,7 +297,6 @@ def build(folder: str) -> tuple[str, int]:
         for name in os.listdir(tmp):
             sync(os.path.join(tmp, name))
         sync(tmp)
-        fig_dir = os.path.join(folder, "figures")
         final_html = os.path.join(folder, "report.html")
         _committing = True
         os.replace(html_tmp, tmp + ".html")
