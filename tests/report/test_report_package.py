@@ -387,3 +387,15 @@ def test_a_read_only_figures_folder_is_exit_3_and_leaves_nothing(tmp_path):
     finally:
         (folder / "figures").chmod(0o755)
         shutil.rmtree(folder)
+
+
+def test_an_undefined_value_of_comparison_csv_is_shown_empty(tmp_path):
+    # An undefined number is an empty field (docs/outputs.md, Conventions): the page's table of
+    # comparison.csv shows it empty, not as "nan".
+    write(tmp_path, "signals.csv", "time_s,incident_measured_strain\n0,0\n1e-6,-1e-4\n")
+    write(tmp_path, "comparison.csv", "gauge,pulse,window_start_s,window_end_s,nrmse\n"
+          "incident,incident,0,1e-6,\n")
+    html, _ = report_main.build(str(tmp_path))
+    page = Path(html).read_text(encoding="utf-8")
+    assert "<td>incident</td><td>incident</td><td>0</td><td>1e-06</td><td></td>" in page
+    assert "<td>nan</td>" not in page

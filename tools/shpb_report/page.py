@@ -5,6 +5,7 @@ import base64
 import datetime
 import html
 import json
+import math
 import os
 
 from .drawing import MPA
@@ -118,7 +119,9 @@ def headline_html(src):
 
 def fmt(v):
     if isinstance(v, float):
-        return f"{v:.6g}"
+        # An empty CSV field, read as NaN, is an undefined value (docs/outputs.md, Conventions):
+        # shown empty as written, never as "nan".
+        return "" if math.isnan(v) else f"{v:.6g}"
     if isinstance(v, (dict, list)):
         return json.dumps(v)
     return str(v)
