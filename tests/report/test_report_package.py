@@ -399,3 +399,50 @@ def test_an_undefined_value_of_comparison_csv_is_shown_empty(tmp_path):
     page = Path(html).read_text(encoding="utf-8")
     assert "<td>incident</td><td>incident</td><td>0</td><td>1e-06</td><td></td>" in page
     assert "<td>nan</td>" not in page
+
+
+def test_an_empty_name_is_refused_with_its_place(tmp_path):
+    # A column of names (fit's test, a study's method) with an empty field was read as NaN: one
+    # "nan" curve per row (thousands of panels, a bug's exit 4 for an image too large).
+    write(tmp_path, "fit.json", "{}")
+    write(tmp_path, "signals.csv", "test,gauge,pulse,time_s,measured_strain,start_strain,"
+          "fitted_strain\ncu,incident,reflected,0,0,0,0\n,incident,reflected,1e-6,0,0,0\n")
+    with pytest.raises(ReportError, match=r"signals.csv: line 3, column 1 \(test\): an empty "
+                                          "field: a name was expected"):
+        report_main.build(str(tmp_path))
+    write(tmp_path, "signals.csv", "test,gauge,pulse,time_s,measured_strain,start_strain,"
+          "fitted_strain\n1,incident,reflected,0,0,0,0\n")
+    assert list(Table(str(tmp_path / "signals.csv")).text("test")) == ["1"]
+
+
+def test_a_pareto_run_without_a_resolution_shows_no_nan(tmp_path):
+    # An undefined number is an empty field (docs/outputs.md, Conventions): no "nan" annotation.
+    from shpb_report import study
+    write(tmp_path, "pareto.csv", "method,stepping,resolution,error,wall_time_s,stable,"
+          "pareto_front_wall_time\npenalty,global,,0.01,0.5,1,1\npenalty,global,2,0.001,1,1,1\n")
+    shown = []
+
+    class Kept:
+        def save(self, fig, *caption):
+            shown.extend(t.get_text() for ax in fig.axes for t in ax.texts)
+
+    study.fig_pareto(Source(str(tmp_path), "."), Kept())
+    assert shown == ["2"]
+
+
+def test_a_warning_while_drawing_leaves_stderr_to_the_result(tmp_path):
+    # numpy's and matplotlib's warnings (a layout that does not fit, a comparison numpy will
+    # change) are no result: stderr holds the one result or error line (docs/commands.md).
+    import subprocess
+    write(tmp_path, "gauges.csv", "time_s,incident\n0,0\n1e-6,-1e-4\n")
+    tools = Path(__file__).resolve().parents[2] / "tools"
+    code = (f"import sys, warnings; sys.path.insert(0, {str(tools)!r})\n"
+            "from shpb_report import main, simulate\n"
+            "def warn(src, figs):\n"
+            "    warnings.warn('constrained_layout not applied', UserWarning)\n"
+            "    warnings.warn('elementwise comparison failed', FutureWarning)\n"
+            "simulate.fig_gauges = warn\n"
+            f"sys.exit(main.main(['report.py', {str(tmp_path)!r}]))\n")
+    r = subprocess.run(["/usr/bin/python3", "-c", code], capture_output=True, text=True,
+                       timeout=300)
+    assert r.returncode == 0 and r.stderr == ""

@@ -27,7 +27,7 @@ def fig_compare_signals(src, figs):
         c = src.table(COMPARISON.FILE)
         k = COMPARISON
         if all(n in c for n in (k.gauge, k.pulse, k.window_start_s, k.window_end_s)):
-            for row in zip(c[k.gauge], c[k.pulse], c.numeric(k.window_start_s),
+            for row in zip(c.text(k.gauge), c.text(k.pulse), c.numeric(k.window_start_s),
                            c.numeric(k.window_end_s)):
                 windows.append(row)
     fig, axes = new_figure(len(gauges), 1, height=2.9 * len(gauges) + 0.6, sharex=True)

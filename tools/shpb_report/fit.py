@@ -18,8 +18,9 @@ def fig_fit(src, figs):
         if name not in t:
             raise ReportError(f"{t.path}: header: {','.join(t.names)}: a column {name} "
                               "was expected (shpb fit's signals.csv)")
-    tests = list(dict.fromkeys(t[k.test]))
-    pulses = list(dict.fromkeys(t[k.pulse]))
+    test_of, pulse_of = t.text(k.test), t.text(k.pulse)
+    tests = list(dict.fromkeys(test_of))
+    pulses = list(dict.fromkeys(pulse_of))
     if not tests or not pulses:
         return
     nrmse = {x["name"]: x for x in src.value("tests", kind=list) or []
@@ -29,7 +30,7 @@ def fig_fit(src, figs):
     for i, test in enumerate(tests):
         for j, pulse in enumerate(pulses):
             ax = axes[i, j]
-            m = (t[k.test] == test) & (t[k.pulse] == pulse)
+            m = (test_of == test) & (pulse_of == pulse)
             time = t.numeric(k.time_s)[m] * US
             ax.plot(time, t.numeric(k.measured_strain)[m] * MICRO, color="k", linewidth=1.1,
                     label="measured")
@@ -58,8 +59,9 @@ def fig_fit(src, figs):
         # A viscoelastic law has no flow stress: curves.csv gives its response along the test's
         # strain history, drawn against the true strain (its plastic strain means nothing).
         viscous = src.value("model", kind=str) == "viscoelastic"
-        for n, test in enumerate(dict.fromkeys(c[CURVES.test])):
-            m = c[CURVES.test] == test
+        curve_of = c.text(CURVES.test)
+        for n, test in enumerate(dict.fromkeys(curve_of)):
+            m = curve_of == test
             ep = c.numeric(CURVES.true_strain if viscous else CURVES.true_plastic_strain)[m]
             ax.plot(ep, c.numeric(CURVES.stress_measured_Pa)[m] * MPA, color=f"C{n}", linewidth=1.0,
                     label=f"{test} processed")

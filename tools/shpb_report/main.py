@@ -331,9 +331,10 @@ def build(folder: str) -> tuple[str, int]:
 
 
 def main(argv: list[str]) -> int:
-    # No numpy chatter on stderr (matplotlib's is quieted in drawing.py), where only the one
-    # result or error line goes.
-    warnings.simplefilter("ignore", RuntimeWarning)
+    # No numpy or matplotlib warning on stderr (a layout that does not fit, a comparison numpy
+    # will change; matplotlib's log is quieted in drawing.py), where only the one result or
+    # error line goes.
+    warnings.simplefilter("ignore")
     # shpb runs this after the script was killed outright (src/app/report.cpp): its temporaries
     # would keep DIR from being replaced.
     if len(argv) == 3 and argv[1] == "--remove-temporaries":

@@ -108,6 +108,7 @@ class Table:
                 raise ReportError(f"{path}: line 1, column {j}: {name}: a name of its own was "
                                   f"expected (column {self.names.index(name) + 1} has it)")
         data = []
+        self.lines = []  # the line of each row (blank lines are skipped)
         for i, row in enumerate(rows[1:], start=2):
             if not row:
                 continue
@@ -130,13 +131,14 @@ class Table:
                                       "expected")
                 values.append(x)
             data.append(values)
+            self.lines.append(i)
         self.rows = data
         for j, name in enumerate(self.names):
             col = [r[j] for r in data]
             if all(isinstance(v, float) for v in col):
                 self.columns[name] = np.array(col, dtype=float)
             else:
-                self.columns[name] = np.array([str(v) for v in col], dtype=object)
+                self.columns[name] = np.array(col, dtype=object)  # text, and NaN where empty
 
     def __contains__(self, name: str) -> bool:
         return name in self.columns
@@ -150,6 +152,20 @@ class Table:
 
     def __len__(self) -> int:
         return len(self.rows)
+
+    def text(self, name: str) -> np.ndarray:
+        """A column of names (a test, method, gauge, pulse), as text: a figure is drawn per name
+        and labelled with it, so an empty field (read as NaN: one curve per row, each "nan") is
+        refused with its place. A name written as a number keeps its digits ("1", "0.5")."""
+        col = self[name]
+        out = []
+        for k, v in enumerate(col):
+            if isinstance(v, float) and math.isnan(v):
+                raise ReportError(f"{self.path}: line {self.lines[k]}, column "
+                                  f"{self.names.index(name) + 1} ({name}): an empty field: a "
+                                  "name was expected")
+            out.append(v if isinstance(v, str) else f"{v:g}")
+        return np.array(out, dtype=object)
 
     def numeric(self, name: str) -> np.ndarray:
         col = self[name]

@@ -14,18 +14,20 @@ def fig_pareto(src, figs):
     error = t.numeric("error")
     stable = t.numeric("stable") > 0.5 if "stable" in t else np.ones(len(t), bool)
     ok = stable & np.isfinite(error) & np.isfinite(cost) & (error > 0) & (cost > 0)
-    methods = list(dict.fromkeys(t["method"])) if "method" in t else ["run"]
-    steppings = list(dict.fromkeys(t["stepping"])) if "stepping" in t else [""]
+    method_of = t.text("method") if "method" in t else None
+    stepping_of = t.text("stepping") if "stepping" in t else None
+    methods = list(dict.fromkeys(method_of)) if method_of is not None else ["run"]
+    steppings = list(dict.fromkeys(stepping_of)) if stepping_of is not None else [""]
     markers = {s: m for s, m in zip(steppings, ("o", "s", "^", "D"))}
     fig, axes = new_figure(height=5.0)
     ax = axes[0, 0]
     for k, method in enumerate(methods):
         for stepping in steppings:
             sel = ok.copy()
-            if "method" in t:
-                sel &= t["method"] == method
-            if "stepping" in t:
-                sel &= t["stepping"] == stepping
+            if method_of is not None:
+                sel &= method_of == method
+            if stepping_of is not None:
+                sel &= stepping_of == stepping
             if not sel.any():
                 continue
             filled = stepping != "global"
@@ -34,6 +36,8 @@ def fig_pareto(src, figs):
                        label=f"{method}, {stepping}".strip(", "))
             if "resolution" in t:
                 for x, y, r in zip(cost[sel], error[sel], t.numeric("resolution")[sel]):
+                    if not np.isfinite(r):  # an undefined resolution: no number to show
+                        continue
                     ax.annotate(f"{r:g}", (x, y), textcoords="offset points", xytext=(4, 3),
                                 fontsize=6, color="0.35")
     # The front as `shpb study` computed it (study/pareto_front.hpp), one column of pareto.csv.

@@ -13,7 +13,7 @@ def boundary(ax, b, rows, rigid):
     """The measured boundary of each link and its closed form (stability_boundary.csv's `rows`):
     lines over the stiffness, or a level across a rigid-link panel, which has no stiffness."""
     bx = b.numeric("stiffness_factor")
-    lines = [(b.numeric("critical_courant"), rows & (b["link"] == link),
+    lines = [(b.numeric("critical_courant"), rows & (b.text("link") == link),
               {"color": color, "linestyle": dash}, f"measured boundary ({link})")
              for link, color, dash in (("unilateral", "k", "-"), ("tied", "b", "--"))]
     lines.append((b.numeric("closed_form_courant"), rows, {"color": "C4", "linestyle": ":"},
@@ -31,7 +31,7 @@ def fig_stability(src, figs):
     t = src.table("stability.csv")
     xcol, ycol = "stiffness_factor", "courant"
     rcol = "mass_ratio" if "mass_ratio" in t else None
-    keys = np.array([str(m) for m in t["method"]]) if "method" in t else None
+    keys = t.text("method") if "method" in t else None
     if keys is not None and "step_ratio" in t:
         # Localized bipenalty is mapped at several step ratios (asynchronous): one figure each.
         keys = np.array([m if not (np.isfinite(q) and q != 1) else f"{m} step ratio {q:.3g}"
@@ -45,7 +45,7 @@ def fig_stability(src, figs):
     b = src.table("stability_boundary.csv") if src.has("stability_boundary.csv") else None
     if b is not None and len(b):
         bkeys = np.array([m if not (np.isfinite(q) and q != 1) else f"{m} step ratio {q:.3g}"
-                          for m, q in zip(map(str, b["method"]), b.numeric("step_ratio"))])
+                          for m, q in zip(b.text("method"), b.numeric("step_ratio"))])
     for method in methods:
         sel = (keys == method) if keys is not None else np.ones(len(t), bool)
         ratios = [None]
