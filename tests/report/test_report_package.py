@@ -446,3 +446,20 @@ def test_a_warning_while_drawing_leaves_stderr_to_the_result(tmp_path):
     r = subprocess.run(["/usr/bin/python3", "-c", code], capture_output=True, text=True,
                        timeout=300)
     assert r.returncode == 0 and r.stderr == ""
+
+
+def test_a_calibration_shot_whose_gauges_are_no_list_is_drawn_without_them(tmp_path):
+    # summary.json scenes[].gauges (docs/outputs.md, calibrate) read as every other value: of
+    # another kind it is absent (no figure for the shot), never a bug's exit 4.
+    from shpb_report import calibrate
+    write(tmp_path, "calibration.json", "{}")
+    write(tmp_path, "shot-1.csv", "time_s,inc_measured\n0,0\n")
+    write(tmp_path, "summary.json", '{"scenes": [{"signals": "shot-1.csv", "gauges": 1.5}]}')
+    saved = []
+
+    class Kept:
+        def save(self, fig, *caption):
+            saved.append(fig)
+
+    calibrate.fig_calibration(Source(str(tmp_path), "."), Kept())
+    assert saved == []

@@ -22,7 +22,8 @@ def fig_calibration(src, figs):
             raise ReportError(f"{path}: missing: the shot's signals named in summary.json "
                               "were expected")
         t = Table(path)
-        gauges = [g for g in shot.get("gauges", []) if isinstance(g, str)]
+        gauges = [g for g in src.value("scenes", k - 1, "gauges", kind=list) or []
+                  if isinstance(g, str)]
         if not gauges:
             continue
         time = t.numeric("time_s") * US
