@@ -1,7 +1,10 @@
 """Unit tests of the report package (tools/shpb_report), run by pytest from Debian (ctest
 report.package). The end-to-end exit codes are tests/app/report_exit_codes.py."""
 import os
+import shutil
+import subprocess
 import sys
+import tempfile
 import warnings
 from pathlib import Path
 
@@ -303,7 +306,6 @@ def test_uncertainty_entries_of_the_wrong_kind_are_drawn_without_them(tmp_path):
 def test_a_home_matplotlib_cannot_write_leaves_stderr_to_the_result(tmp_path):
     # Run as a user whose home is read-only, matplotlib warned on stderr at import: the report's
     # output is one line, the result or the error (docs/commands.md, report).
-    import subprocess
     write(tmp_path, "gauges.csv", "time_s,incident\n0,0\n1e-6,-1e-4\n")
     script = Path(__file__).resolve().parents[2] / "tools" / "report.py"
     env = dict(os.environ, MPLCONFIGDIR="/proc/version/matplotlib")  # no folder can be made there
@@ -322,7 +324,7 @@ def test_a_csv_error_names_its_line_column_and_value(tmp_path):
     with pytest.raises(ReportError, match=r"curve.csv: line \d+: field larger .*comma-separated"):
         Table(str(tmp_path / "curve.csv"))
     write(tmp_path, "curve.csv", "time_s,strain,strain\n0,0,1\n")
-    with pytest.raises(ReportError, match=r"line 1, column 3: strain: a name of its own .*column 2"):
+    with pytest.raises(ReportError, match=r"line 1, column 3: strain: a name of its own .*col"):
         Table(str(tmp_path / "curve.csv"))
 
 
@@ -359,34 +361,59 @@ def test_a_file_the_user_put_in_figures_is_never_removed(tmp_path):
         os.remove(tmp_path / mine)
 
 
-def test_a_read_only_figures_folder_is_exit_3_and_leaves_nothing(tmp_path):
+def report_as_a_user(folder: Path) -> subprocess.CompletedProcess:
+    """tools/report.py run on `folder` as a user the permissions bind (root's access is never
+    denied: as nobody, the folder given to it)."""
+    command = ["/usr/bin/python3", str(Path(__file__).resolve().parents[2] / "tools" / "report.py"),
+               str(folder)]
+    if os.geteuid() == 0:
+        for p in [folder, *folder.rglob("*")]:
+            os.chown(p, 65534, 65534, follow_symlinks=False)
+        command = ["setpriv", "--reuid=65534", "--regid=65534", "--clear-groups"] + command
+    return subprocess.run(command, capture_output=True, text=True, timeout=300)
+
+
+@pytest.fixture
+def open_folder():
+    """A folder another user can reach (pytest's tmp_path is its owner's alone)."""
+    folder = Path(tempfile.mkdtemp(prefix="shpb-report-"))
+    folder.chmod(0o755)
+    yield folder
+    for p in [folder, *folder.rglob("*")]:
+        if p.is_dir() and not p.is_symlink():
+            p.chmod(0o755)
+    shutil.rmtree(folder)
+
+
+def test_a_read_only_figures_folder_is_exit_3_and_leaves_nothing(open_folder):
     # Its figures could not be removed once set aside: they stayed in DIR as a temporary its
     # marker does not list, and shpb refused to replace DIR after (docs/outputs.md, Conventions).
-    # Run as a user the permissions bind (root's access is never denied).
-    import shutil
-    import subprocess
-    import tempfile
-    folder = Path(tempfile.mkdtemp(prefix="shpb-report-readonly-"))
-    try:
-        write(folder, "gauges.csv", "time_s,incident\n0,0\n1e-6,-1e-4\n")
-        report_main.build(str(folder))
-        script = Path(__file__).resolve().parents[2] / "tools" / "report.py"
-        command = ["/usr/bin/python3", str(script), str(folder)]
-        if os.geteuid() == 0:
-            folder.chmod(0o755)
-            for p in [folder, *folder.rglob("*")]:
-                os.chown(p, 65534, 65534)
-            command = ["setpriv", "--reuid=65534", "--regid=65534", "--clear-groups"] + command
-        (folder / "figures").chmod(0o555)
-        before = sorted(os.listdir(folder))
-        r = subprocess.run(command, capture_output=True, text=True, timeout=300,
-                           env=dict(os.environ, MPLCONFIGDIR=str(folder / ".mpl")))
-        assert r.returncode == 3, r.stderr
-        assert r.stderr.startswith(f"error: {folder}/figures: cannot be written")
-        assert sorted(n for n in os.listdir(folder) if n != ".mpl") == before
-    finally:
-        (folder / "figures").chmod(0o755)
-        shutil.rmtree(folder)
+    folder = open_folder
+    write(folder, "gauges.csv", "time_s,incident\n0,0\n1e-6,-1e-4\n")
+    report_main.build(str(folder))
+    (folder / "figures").chmod(0o555)
+    before = sorted(os.listdir(folder))
+    r = report_as_a_user(folder)
+    assert r.returncode == 3, r.stderr
+    assert r.stderr.startswith(f"error: {folder}/figures: cannot be written")
+    assert sorted(os.listdir(folder)) == before
+
+
+def test_an_unreadable_folder_is_a_bad_input_never_left_out(open_folder):
+    # A campaign's test folder the report cannot read was left out without a word (exit 0, one
+    # test fewer), and DIR itself unreadable said "cannot be written" (exit 3): both exit 2.
+    for test in ("a", "b"):
+        (open_folder / test).mkdir()
+        write(open_folder / test, "curve.csv", "time_s,strain,stress_3wave_Pa\n0,0,0\n")
+    (open_folder / "b").chmod(0)
+    r = report_as_a_user(open_folder)
+    assert r.returncode == 2, r.stderr
+    assert r.stderr == (f"error: {open_folder}/b: Permission denied: a readable folder was "
+                        "expected\n")
+    (open_folder / "b").chmod(0o755)
+    open_folder.chmod(0o311)  # entered and written, not listed
+    r = report_as_a_user(open_folder)
+    assert r.returncode == 2 and r.stderr.startswith(f"error: {open_folder}: Permission denied")
 
 
 def test_an_undefined_value_of_comparison_csv_is_shown_empty(tmp_path):
@@ -433,7 +460,6 @@ def test_a_pareto_run_without_a_resolution_shows_no_nan(tmp_path):
 def test_a_warning_while_drawing_leaves_stderr_to_the_result(tmp_path):
     # numpy's and matplotlib's warnings (a layout that does not fit, a comparison numpy will
     # change) are no result: stderr holds the one result or error line (docs/commands.md).
-    import subprocess
     write(tmp_path, "gauges.csv", "time_s,incident\n0,0\n1e-6,-1e-4\n")
     tools = Path(__file__).resolve().parents[2] / "tools"
     code = (f"import sys, warnings; sys.path.insert(0, {str(tools)!r})\n"

@@ -182,8 +182,18 @@ class Source:
     def __init__(self, folder: str, label: str) -> None:
         self.folder = folder
         self.label = label
-        self.files = {n: os.path.join(folder, n) for n in KNOWN_FILES
-                      if os.path.isfile(os.path.join(folder, n))}
+        names = set(listing(folder))
+        self.files = {}
+        for n in KNOWN_FILES:
+            path = os.path.join(folder, n)
+            try:
+                regular = n in names and stat.S_ISREG(os.stat(path).st_mode)
+            except FileNotFoundError:  # a dangling link: no such file
+                continue
+            except OSError as e:  # a folder without search permission, a loop of links
+                raise ReportError(f"{path}: {e.strerror or e}: a readable file was expected")
+            if regular:
+                self.files[n] = path
         self._tables = {}
         self.summary = {}
         if "summary.json" in self.files:
@@ -233,10 +243,19 @@ class Source:
         return text if self.label == "." else f"{text} — {self.label}"
 
 
+def listing(folder: str) -> list[str]:
+    """The names in `folder`. One that cannot be read is a bad input (exit 2), not a folder
+    without output: a campaign's test would be left out of the report without a word."""
+    try:
+        return os.listdir(folder)
+    except OSError as e:
+        raise ReportError(f"{folder}: {e.strerror or e}: a readable folder was expected")
+
+
 def find_sources(folder: str) -> list["Source"]:
     """The folder itself and its immediate sub-folders, those holding a known output file."""
     candidates = [Source(folder, ".")]
-    for name in sorted(os.listdir(folder)):
+    for name in sorted(listing(folder)):
         sub = os.path.join(folder, name)
         if os.path.isdir(sub) and name != "figures" and not name.startswith("."):
             candidates.append(Source(sub, name))
