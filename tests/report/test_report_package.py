@@ -489,3 +489,16 @@ def test_a_calibration_shot_whose_gauges_are_no_list_is_drawn_without_them(tmp_p
 
     calibrate.fig_calibration(Source(str(tmp_path), "."), Kept())
     assert saved == []
+
+
+def test_a_field_not_on_a_grid_is_refused_not_allocated(tmp_path):
+    # field.csv is a time × position grid (docs/outputs.md, simulate): 5000 scattered points
+    # asked for 2.5e7 cells (81000 of them, 49 GB: a bug's MemoryError, exit 4). Exit 2.
+    rows = "".join(f"{i * 1e-7},{i * 1e-4},{i}\n" for i in range(5000))
+    write(tmp_path, "field.csv", "time_s,x_m,stress_Pa\n" + rows)
+    with pytest.raises(ReportError, match=r"field.csv: 5000 times × 5000 positions for 5000 rows: "
+                                          "a time × position grid was expected"):
+        report_main.build(str(tmp_path))
+    grid = "".join(f"{i * 1e-7},{j * 1e-2},{i * j}\n" for i in range(200) for j in range(400))
+    write(tmp_path, "field.csv", "time_s,x_m,stress_Pa\n" + grid)
+    assert report_main.build(str(tmp_path))[1] == 1

@@ -3,6 +3,7 @@ x–t wave diagram, the energy history and the specimen's own truth."""
 import numpy as np
 
 from .drawing import MICRO, MPA, US, gauge_columns, new_figure
+from .reading import ReportError
 from .schema import columns, suffix
 
 ENERGY = columns("energy")
@@ -11,6 +12,7 @@ GAUGES = columns("gauges")
 INTERFACES = columns("interfaces")
 SPECIMEN = columns("specimen")
 FORCE = suffix("interfaces", "<left>-<right>_force_N")
+FIELD_CELLS = 10**7  # a wave diagram's cells always drawn: 80 MB of doubles
 
 
 def fig_gauges(src, figs):
@@ -55,6 +57,12 @@ def read_field(src):
     time, x, s = t.numeric(FIELD.time_s), t.numeric(FIELD.x_m), t.numeric(FIELD.stress_Pa)
     ts = np.unique(time)
     xs = np.unique(x)
+    # A time × position grid (docs/outputs.md, simulate), parts of it absent where the causal
+    # economy cut a bar. Scattered points would ask for times × positions cells (49 GB for 81000
+    # rows, a bug's MemoryError): beyond 10^7 cells a quarter of them must hold a row.
+    if ts.size * xs.size > max(4 * len(t), FIELD_CELLS):
+        raise ReportError(f"{t.path}: {ts.size} times × {xs.size} positions for {len(t)} rows: "
+                          "a time × position grid was expected")
     field = np.full((ts.size, xs.size), np.nan)
     field[np.searchsorted(ts, time), np.searchsorted(xs, x)] = s
     return xs, ts, field
