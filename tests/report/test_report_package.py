@@ -502,3 +502,16 @@ def test_a_field_not_on_a_grid_is_refused_not_allocated(tmp_path):
     grid = "".join(f"{i * 1e-7},{j * 1e-2},{i * j}\n" for i in range(200) for j in range(400))
     write(tmp_path, "field.csv", "time_s,x_m,stress_Pa\n" + grid)
     assert report_main.build(str(tmp_path))[1] == 1
+
+
+
+def test_a_file_of_hundreds_of_gauges_is_refused_with_its_count(tmp_path):
+    # A row of panels per gauge: 300 asked for an image 78080 pixels high, beyond Agg's 2^16
+    # (a bug's exit 4 after seconds of drawing). More rows than a figure holds: exit 2, named.
+    from shpb_report.drawing import MAX_PANEL_ROWS
+    n = MAX_PANEL_ROWS + 1
+    write(tmp_path, "raw_signals.csv", "time_s," + ",".join(f"g{i}" for i in range(n)) + "\n"
+          + "0," + ",".join("0" for _ in range(n)) + "\n")
+    with pytest.raises(ReportError, match=f"raw_signals.csv: {n} gauge columns: at most "
+                                          f"{MAX_PANEL_ROWS} were expected"):
+        report_main.build(str(tmp_path))

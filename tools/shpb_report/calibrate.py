@@ -5,7 +5,7 @@ import os
 
 import numpy as np
 
-from .drawing import MICRO, US, new_figure
+from .drawing import MICRO, US, new_figure, panel_rows
 from .reading import ReportError, Table
 
 
@@ -27,7 +27,8 @@ def fig_calibration(src, figs):
         if not gauges:
             continue
         time = t.numeric("time_s") * US
-        fig, axes = new_figure(len(gauges), 2, height=2.9 * len(gauges) + 0.6, width=11)
+        rows = panel_rows(len(gauges), src.files["summary.json"], f"gauges of scenes[{k - 1}]")
+        fig, axes = new_figure(rows, 2, height=2.9 * rows + 0.6, width=11)
         for i, g in enumerate(gauges):
             measured = t.numeric(f"{g}_measured")
             fitted = t.numeric(f"{g}_fitted")

@@ -2,7 +2,7 @@
 with the compared pulse windows of comparison.csv."""
 import re
 
-from .drawing import MICRO, US, new_figure, outside_legend
+from .drawing import MICRO, US, new_figure, outside_legend, panel_rows
 from .schema import columns, suffix
 
 COMPARISON = columns("comparison")
@@ -30,7 +30,8 @@ def fig_compare_signals(src, figs):
             for row in zip(c.text(k.gauge), c.text(k.pulse), c.numeric(k.window_start_s),
                            c.numeric(k.window_end_s)):
                 windows.append(row)
-    fig, axes = new_figure(len(gauges), 1, height=2.9 * len(gauges) + 0.6, sharex=True)
+    rows = panel_rows(len(gauges), t.path, "gauges")
+    fig, axes = new_figure(rows, 1, height=2.9 * rows + 0.6, sharex=True)
     for ax, g in zip(axes[:, 0], gauges):
         ax.plot(time, t.numeric(g + MEASURED) * MICRO, color="k", linewidth=1.2,
                 label="measured")

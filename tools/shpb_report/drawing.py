@@ -16,7 +16,12 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from .reading import ReportError  # noqa: E402
+
 DPI = 100
+# Rows of panels one figure holds: 64 draw in about 7 s; 300 asked for a PNG beyond Agg's 2^16
+# pixels (a bug's exit 4), and squeezed into one they took minutes (the constrained layout).
+MAX_PANEL_ROWS = 64
 US = 1e6  # s -> µs
 MICRO = 1e6  # strain -> µε
 MPA = 1e-6  # Pa -> MPa
@@ -44,6 +49,15 @@ def close_all():
 def grid(ax):
     ax.grid(True, color="0.88", linewidth=0.6)
     ax.set_axisbelow(True)
+
+
+def panel_rows(count, path, what):
+    """`count` rows of panels, one per gauge or test of the file `path`: more than a figure
+    holds is a bad input (exit 2), named."""
+    if count > MAX_PANEL_ROWS:
+        raise ReportError(f"{path}: {count} {what}: at most {MAX_PANEL_ROWS} were expected (a "
+                          "row of panels each)")
+    return count
 
 
 def new_figure(rows=1, cols=1, height=4.2, width=9.0, **kw):

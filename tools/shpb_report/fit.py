@@ -3,7 +3,7 @@ signals.csv): measured, starting and fitted pulses per test, the processed curve
 and the parameter correlations."""
 import numpy as np
 
-from .drawing import MICRO, MPA, US, new_figure
+from .drawing import MICRO, MPA, US, new_figure, panel_rows
 from .reading import ReportError, number_pair
 from .schema import columns
 
@@ -25,8 +25,8 @@ def fig_fit(src, figs):
         return
     nrmse = {x["name"]: x for x in src.value("tests", kind=list) or []
              if isinstance(x, dict) and isinstance(x.get("name"), str)}
-    fig, axes = new_figure(len(tests), len(pulses), height=2.8 * len(tests) + 0.6,
-                           width=4.2 * len(pulses) + 1)
+    rows, cols = panel_rows(len(tests), t.path, "tests"), panel_rows(len(pulses), t.path, "pulses")
+    fig, axes = new_figure(rows, cols, height=2.8 * rows + 0.6, width=4.2 * cols + 1)
     for i, test in enumerate(tests):
         for j, pulse in enumerate(pulses):
             ax = axes[i, j]

@@ -2,16 +2,18 @@
 
 Figures are drawn into a temporary folder and moved into place at the end, so a failure leaves
 any previous report intact (docs/outputs.md, conventions). Exit codes: 0 report written; 2 a bad
-input (DIR holds no output file this package knows, a file is malformed — message "error: <file>:
-<line/column>: <value>: <what was expected>" —, or DIR holds a figures/ folder or a report.html
-this package did not write: they are never replaced); 3 the report cannot be written (read-only
-folder or figures/, full disk); 4 a bug of this package (one line naming the exception and where); 130
-interrupted by SIGINT or SIGTERM (nothing printed: shpb says it), the previous report intact.
+input (DIR holds no output file this package knows, a file or folder is malformed or unreadable —
+message "error: <file>: <line/column>: <value>: <what was expected>" —, or DIR holds a figures/
+folder or a report.html this package did not write: they are never replaced); 3 the report
+cannot be written (read-only folder or figures/, full disk); 4 a bug of this package (one line
+naming the exception and where); 130 interrupted by SIGINT or SIGTERM (nothing printed: shpb
+says it), the previous report intact.
 
 Ownership: figures/ is this package's only if it holds the marker file .shpb-report and nothing
-its digest lines do not list, report.html only if it carries the page's generator line; the output folder's own marker (.shpb-output, see
-core/output_folder.hpp) is told about both, with each file's digest, so that shpb may later replace
-the folder whole, and neither shpb nor this package replaces a file the user edited since.
+its digest lines do not list, report.html only if it carries the page's generator line; the
+output folder's own marker (.shpb-output, see core/output_folder.hpp) is told about both, with
+each file's digest, so that shpb may later replace the folder whole, and neither shpb nor this
+package replaces a file the user edited since.
 """
 import errno
 import os

@@ -1,7 +1,8 @@
 """Figures of `shpb process` (docs/outputs.md, process): raw signals with their pulse windows,
 the pulses at the specimen faces, the stress–strain curves with strain rate and equilibrium, the
 bars-together check, and a campaign's curves on one plot."""
-from .drawing import MICRO, MPA, US, gauge_columns, new_figure, outside_legend, ratio_finite
+from .drawing import (MICRO, MPA, US, gauge_columns, new_figure, outside_legend, panel_rows,
+                      ratio_finite)
 from .reading import NUMBER, number, number_pair
 from .schema import columns
 
@@ -181,7 +182,8 @@ def fig_raw_signals(src, figs):
     gauges = gauge_columns(t)
     if not gauges:  # a time column alone: no signal to draw
         return
-    fig, axes = new_figure(len(gauges), 1, height=2.6 * len(gauges) + 0.8, sharex=True)
+    rows = panel_rows(len(gauges), t.path, "gauge columns")
+    fig, axes = new_figure(rows, 1, height=2.6 * rows + 0.8, sharex=True)
     colors = {"incident": "C0", "reflected": "C3", "transmitted": "C2"}
     for ax, g in zip(axes[:, 0], gauges):
         ax.plot(time, t.numeric(g) * MICRO, color="k", linewidth=0.9, label=f"{g} (as read)")

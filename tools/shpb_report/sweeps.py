@@ -5,7 +5,7 @@ import math
 
 import numpy as np
 
-from .drawing import new_figure
+from .drawing import new_figure, panel_rows
 from .reading import slug
 
 
@@ -54,7 +54,7 @@ def fig_stability(src, figs):
             ratios = sorted(set(v for v in values if np.isfinite(v))) or [None]
         n = len(ratios)
         cols = min(n, 3)
-        rows = math.ceil(n / cols)
+        rows = panel_rows(math.ceil(n / cols), t.path, f"rows of mass ratios ({n}, 3 a row)")
         # Not sharex: the rigid-link limit (ε_s/k 0) has no place on the stiffness's log axis.
         fig, axes = new_figure(rows, cols, height=3.6 * rows + 0.4, width=4.2 * cols + 1.0,
                                sharey=True)
