@@ -265,16 +265,18 @@ def test_the_output_marker_keeps_every_line_however_long(tmp_path):
 
 
 @pytest.mark.parametrize("value, shown", [("NaN", "NaN"), ("-Infinity", "Infinity"),
-                                          ("1e400", "Infinity"), ("1" + "0" * 400, "digits")],
-                         ids=["NaN", "-Infinity", "1e400", "integer of 401 digits"])
+                                          ("1e400", "Infinity"), ("1" + "0" * 400, "digits"),
+                                          ("-1e308", "-1e\\+308")],
+                         ids=["NaN", "-Infinity", "1e400", "integer of 401 digits", "-1e308"])
 def test_a_number_json_does_not_have_is_refused_with_its_path(tmp_path, value, shown):
     # Python's json reads NaN, Infinity and 1e400 (as infinity), which JSON and shpb never write:
-    # shown as "nan" in the page or an axis, or beyond a float in a figure. Exit 2, its path named.
+    # shown as "nan" in the page or an axis, or beyond a float in a figure; -1e308 overflowed a
+    # plan's axis limits (a bug's exit 4). Exit 2, its path named.
     write(tmp_path, "gauges.csv", "time_s,incident\n0,0\n1e-6,-1e-4\n")
     write(tmp_path, "summary.json", '{"command": "simulate", "bars": [{"final_velocity_m_s": '
           + value + "}]}")
     with pytest.raises(ReportError, match=r"summary.json: bars\[0\].final_velocity_m_s: .*" +
-                       shown + ".*a finite number was expected"):
+                       shown + ".*a finite number below 1e100 in magnitude was expected"):
         Source(str(tmp_path), ".")
 
 

@@ -11,7 +11,6 @@ import math
 import os
 import re
 import stat
-import sys
 from typing import Any, Optional
 
 import numpy as np
@@ -23,6 +22,9 @@ KNOWN_FILES = ("gauges.csv", "interfaces.csv", "specimen.csv", "energy.csv", "fi
                "curves.csv", "fit.json", "calibration.json", "gauge_bands.csv",
                "curve_bands.csv", "draws.csv", "path.csv", "loading.csv")
 NUMBER = "number"  # Source.value kind: an int or float, not a bool
+# shpb writes no NaN or infinity (an undefined value is an empty field or absent), and no
+# quantity it writes comes near 1e100: beyond that a figure's axes overflow (CSV and JSON alike).
+LARGEST = 1e100
 
 
 class ReportError(Exception):
@@ -61,11 +63,11 @@ def number_pair(v: Any) -> Optional[tuple[float, float]]:
     return None
 
 
-def first_non_finite(doc: Any) -> Optional[tuple[str, str]]:
-    """The JSON path and text of the first number of `doc` that is no finite double: NaN and
+def first_out_of_range(doc: Any) -> Optional[tuple[str, str]]:
+    """The JSON path and text of the first number of `doc` that a figure cannot take: NaN and
     Infinity, which Python's json reads though JSON has neither and shpb writes neither, 1e400
-    (read as infinity) and an integer beyond a double's range. Iterative: a document nested as
-    deeply as json reads it is walked without recursion."""
+    (read as infinity), and any number of LARGEST or more (a figure's axes overflow; a Table's
+    rule). Iterative: a document nested as deeply as json reads it is walked without recursion."""
     stack = [("", doc)]
     while stack:
         where, v = stack.pop()
@@ -74,9 +76,10 @@ def first_non_finite(doc: Any) -> Optional[tuple[str, str]]:
                          for k, x in reversed(list(v.items())))
         elif isinstance(v, list):
             stack.extend((f"{where}[{i}]", x) for i, x in reversed(list(enumerate(v))))
-        elif isinstance(v, float) and not math.isfinite(v):
-            return where, "NaN" if math.isnan(v) else "Infinity or beyond a double's range"
-        elif isinstance(v, int) and not isinstance(v, bool) and abs(v) > sys.float_info.max:
+        elif isinstance(v, float) and not abs(v) < LARGEST:
+            return where, ("NaN" if math.isnan(v) else "Infinity" if math.isinf(v) else
+                           f"{v:.6g}")
+        elif isinstance(v, int) and not isinstance(v, bool) and abs(v) >= LARGEST:
             return where, f"an integer of {len(str(abs(v)))} digits"
     return None
 
@@ -123,9 +126,7 @@ class Table:
                     values.append(text.strip())
                     self.first_text.setdefault(self.names[j - 1], (i, j, text.strip()))
                     continue
-                # shpb writes no NaN or infinity (an undefined value is an empty field), and no
-                # quantity it writes comes near 1e100: beyond that a figure's axes overflow.
-                if text.strip() and not abs(x) < 1e100:
+                if text.strip() and not abs(x) < LARGEST:
                     raise ReportError(f"{path}: line {i}, column {j}: {text.strip()}: a finite "
                                       "number (below 1e100 in magnitude) or an empty field was "
                                       "expected")
@@ -205,10 +206,10 @@ class Source:
                 raise ReportError(f"{path}: {type(e).__name__}: {e}: valid JSON was expected")
             except OSError as e:
                 raise ReportError(f"{path}: {e.strerror or e}: a readable file was expected")
-            where = first_non_finite(self.summary)
+            where = first_out_of_range(self.summary)
             if where is not None:
                 raise ReportError(f"{path}: {where[0] or '(the document)'}: {where[1]}: a finite "
-                                  "number was expected (JSON has no NaN or infinity)")
+                                  "number below 1e100 in magnitude was expected")
 
     def has(self, name: str) -> bool:
         return name in self.files
