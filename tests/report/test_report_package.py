@@ -517,3 +517,26 @@ def test_a_file_of_hundreds_of_gauges_is_refused_with_its_count(tmp_path):
     with pytest.raises(ReportError, match=f"raw_signals.csv: {n} gauge columns: at most "
                                           f"{MAX_PANEL_ROWS} were expected"):
         report_main.build(str(tmp_path))
+
+
+def test_a_pareto_without_a_positive_run_and_a_loading_without_times_draw_nothing_wrong(tmp_path):
+    # Nothing to put on the pareto's log axes (no run, or no positive cost), or a plan's loading
+    # with undefined times (empty fields, docs/outputs.md Conventions): a bug's exit 4 before
+    # (no positive values to log-scale, NaN axis limits). The pareto has no figure then.
+    from shpb_report import plan, study
+    saved = []
+
+    class Kept:
+        def save(self, fig, *caption):
+            fig.savefig(tmp_path / "f.png")
+            saved.append(caption[0])
+
+    for rows in ("", "penalty,global,1,0,0,1,0\n"):
+        write(tmp_path, "pareto.csv", "method,stepping,resolution,error,wall_time_s,stable,"
+              "pareto_front_wall_time\n" + rows)
+        study.fig_pareto(Source(str(tmp_path), "."), Kept())
+    assert saved == []
+    write(tmp_path, "loading.csv", "time_s,strain,strain_rate_1_s,front_force_N,back_force_N,"
+          "equilibrium_ratio,loading\n,0,1000,1,1,0,1\n,0.001,1000,1,1,0,1\n")
+    plan.fig_loading(Source(str(tmp_path), "."), Kept())
+    assert saved == ["plan_loading.png"]

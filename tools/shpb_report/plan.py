@@ -27,7 +27,7 @@ def fig_loading(src, figs):
     t = src.table(LOADING.FILE)
     rate_target, band, ratio_max, before = _targets(src)
     time = t.numeric(LOADING.time_s) * US
-    loading = t.numeric(LOADING.loading) > 0.5
+    loading = (t.numeric(LOADING.loading) > 0.5) & np.isfinite(time)  # undefined times: no span
     fig, axes = new_figure(2, 1, height=6.4, sharex=True)
     ax = axes[0, 0]
     ax.plot(time, t.numeric(LOADING.strain_rate_1_s), color="C0", linewidth=1.0,

@@ -14,6 +14,9 @@ def fig_pareto(src, figs):
     error = t.numeric("error")
     stable = t.numeric("stable") > 0.5 if "stable" in t else np.ones(len(t), bool)
     ok = stable & np.isfinite(error) & np.isfinite(cost) & (error > 0) & (cost > 0)
+    bad = ~stable & np.isfinite(cost) & (cost > 0)  # an unstable run, drawn at its cost
+    if not (ok | bad).any():  # no run with a positive cost and error: nothing on log axes
+        return
     method_of = t.text("method") if "method" in t else None
     stepping_of = t.text("stepping") if "stepping" in t else None
     methods = list(dict.fromkeys(method_of)) if method_of is not None else ["run"]
@@ -46,12 +49,9 @@ def fig_pareto(src, figs):
         front = front[np.argsort(cost[front], kind="stable")]
         ax.plot(cost[front], error[front], color="k", linewidth=1.0, drawstyle="steps-post",
                 label="Pareto front", zorder=0)
-    bad = ~stable
     if bad.any():
         y = np.nanmax(error[ok]) * 2 if ok.any() else 1.0
-        ax.scatter(cost[bad & np.isfinite(cost) & (cost > 0)],
-                   np.full((bad & np.isfinite(cost) & (cost > 0)).sum(), y), marker="x",
-                   color="C3", label="unstable")
+        ax.scatter(cost[bad], np.full(bad.sum(), y), marker="x", color="C3", label="unstable")
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("wall time of the solve (s)")
