@@ -242,6 +242,10 @@ def test_a_fifo_in_place_of_a_marker_or_page_does_not_block_the_report(tmp_path)
     assert (tmp_path / ".shpb-output").is_fifo()
     os.mkfifo(tmp_path / "page")
     assert report_main.read_text(str(tmp_path / "page")) == ""
+    # A folder there is no marker either (it was exit 3, "3: cannot be written", the fd named).
+    os.remove(tmp_path / ".shpb-output")
+    os.mkdir(tmp_path / ".shpb-output")
+    assert report_main.build(str(tmp_path))[1] == 1
     other = tmp_path / "other"
     other.mkdir()
     os.mkfifo(other / "report.html")

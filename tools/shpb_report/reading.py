@@ -39,9 +39,12 @@ def read_text(path: str, limit: Optional[int] = 1 << 16) -> str:
         fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
     except OSError:
         return ""
+    if not stat.S_ISREG(os.fstat(fd).st_mode):  # a folder, FIFO or device: no text of ours
+        os.close(fd)
+        return ""
     with open(fd, encoding="utf-8", errors="replace") as f:
         try:
-            return f.read(limit) if stat.S_ISREG(os.fstat(fd).st_mode) else ""
+            return f.read(limit)
         except OSError:
             return ""
 
