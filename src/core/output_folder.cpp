@@ -141,6 +141,9 @@ std::string edited_file(const fs::path& dir, const std::string& line,
   return "";
 }
 
+std::string added_file(const fs::path& dir, const std::vector<std::string>& digests,
+                       OutputFolder::Verified* verified);
+
 // Why shpb may not replace `dir`, or "" if it may: it is empty, or its marker starts with the
 // signature and lists every entry the folder holds, each file as shpb wrote it (its digest).
 std::string refusal(const fs::path& dir, OutputFolder::Verified* verified = nullptr) {
@@ -174,7 +177,39 @@ std::string refusal(const fs::path& dir, OutputFolder::Verified* verified = null
       return "holds " + name +
              ", which was changed since shpb wrote it; refusing to replace the folder (move it "
              "away or choose another output folder)";
+  if (!digests.empty()) return added_file(dir, digests, verified);
   return "";
+}
+
+// Why shpb may not replace `dir`'s sub-folders, or "": each file under them is one its digest
+// lines record (a file the user put into figures/, say, is not shpb's to delete). A sub-folder
+// with a marker of its own (a campaign's test, which `report` may have drawn since) is judged by
+// that marker. A marker without digest lines (an older shpb's) is judged by its names alone.
+std::string added_file(const fs::path& dir, const std::vector<std::string>& digests,
+                       OutputFolder::Verified* verified) {
+  std::set<std::string> recorded;
+  for (const auto& d : digests)
+    if (d.size() > kDigestDigits + 1)
+      recorded.insert(fs::path(d.substr(kDigestDigits + 1)).lexically_normal().string());
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    if (!fs::is_directory(e.symlink_status(ec))) continue;
+    if (fs::is_regular_file(fs::symlink_status(e.path() / kOutputMarker, ec))) {
+      if (std::string why = refusal(e.path(), verified); !why.empty())
+        return e.path().filename().string() + "/: " + why;
+      continue;
+    }
+    for (auto it = fs::recursive_directory_iterator(e.path(), ec);
+         !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+      if (fs::is_directory(it->symlink_status(ec))) continue;
+      const std::string name = it->path().lexically_relative(dir).lexically_normal().string();
+      if (it->path().filename() != kOutputMarker && !recorded.count(name))
+        return "holds " + name +
+               ", which shpb did not write; refusing to replace the folder (move it away or "
+               "choose another output folder)";
+    }
+  }
+  return ec ? "cannot be listed: " + ec.message() : "";
 }
 
 // Throws unless shpb may replace `dir` (refusal): a folder, empty or a whole shpb result.

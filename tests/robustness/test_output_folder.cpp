@@ -122,6 +122,34 @@ TEST_CASE("A file shpb wrote and the user edited since is never replaced", "[rob
   CHECK(read_all(scratch.path() / "other/summary.json") == "two");
 }
 
+TEST_CASE("A file the user adds inside a sub-folder shpb wrote is never deleted",
+          "[robustness][output]") {
+  // The marker's "file: figures" line covers the sub-folder by name: a PDF the user put into it
+  // was deleted with the folder by the next run. Every file under a sub-folder must be one the
+  // digest lines record; a sub-folder with its own marker (a campaign's test) is judged by it.
+  ScratchFolder scratch("folder");
+  const fs::path out = scratch.path() / "out";
+  {
+    shpb::OutputFolder first(out);
+    fs::create_directories(first.file("figures"));
+    write_bytes(first.file("figures") / "signals.png", "png");
+    fs::create_directories(first.file("test-1"));
+    write_bytes(first.file("test-1") / "curve.csv", "strain\n0\n");
+    first.commit();
+  }
+  write_bytes(out / "figures" / "paper_fig1.pdf", "%PDF the user's figure");
+  CHECK_THROWS_AS(shpb::OutputFolder(out), shpb::InputError);
+  CHECK(read_all(out / "figures" / "paper_fig1.pdf") == "%PDF the user's figure");
+  fs::remove(out / "figures" / "paper_fig1.pdf");
+  {
+    shpb::OutputFolder again(out);  // as written: replaced
+    write_bytes(again.file("summary.json"), "two");
+    again.commit();
+  }
+  CHECK(read_all(out / "summary.json") == "two");
+  CHECK(litter(scratch.path()).empty());
+}
+
 TEST_CASE("Folders that only look like temporaries of a dead run are kept",
           "[robustness][output]") {
   // Removing needs proof (the exact name with this host's tag and the marker inside naming host
