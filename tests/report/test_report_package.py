@@ -544,3 +544,19 @@ def test_a_pareto_without_a_positive_run_and_a_loading_without_times_draw_nothin
           "equilibrium_ratio,loading\n,0,1000,1,1,0,1\n,0.001,1000,1,1,0,1\n")
     plan.fig_loading(Source(str(tmp_path), "."), Kept())
     assert saved == ["plan_loading.png"]
+
+
+def test_a_folder_the_report_cannot_write_into_is_named(tmp_path, monkeypatch, capsys):
+    # A read-only DIR (as a user other than root): the error named the hidden temporary folder
+    # the report tried to make there, not DIR. Root ignores permissions, so mkdtemp is refused
+    # here as the file system would refuse it.
+    (tmp_path / "gauges.csv").write_text("time_s,incident\n0,0\n1e-7,1e-4\n", encoding="utf-8")
+
+    def refused(prefix=None, dir=None):
+        raise PermissionError(13, "Permission denied", os.path.join(dir, prefix + "abcd1234"))
+
+    monkeypatch.setattr(report_main.tempfile, "mkdtemp", refused)
+    assert report_main.main(["report", str(tmp_path)]) == 3
+    err = capsys.readouterr().err.strip()
+    assert err == f"error: {tmp_path}: cannot be written: Permission denied"
+

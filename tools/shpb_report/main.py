@@ -281,7 +281,10 @@ def build(folder: str) -> tuple[str, int]:
     # Figures are drawn into a temporary folder and moved into place at the end, so a failure
     # leaves any previous report intact (docs/outputs.md (conventions)).
     global _committing
-    tmp = tempfile.mkdtemp(prefix=temporary_prefix(), dir=folder)
+    try:
+        tmp = tempfile.mkdtemp(prefix=temporary_prefix(), dir=folder)
+    except OSError as e:  # the user's folder is named, not the temporary they never saw
+        raise OSError(e.errno, e.strerror, folder) from e
     os.chmod(tmp, 0o755)
     old = None
     try:
