@@ -118,16 +118,30 @@ std::string digest_lines(const fs::path& dir) {
   return lines;
 }
 
-// The file of `dir` whose digest line (`line`, without its prefix) no longer holds: one the user
-// edited, or replaced by something else; "" if it holds, or the file is gone (nothing of the
-// user's is lost then). A path leading out of the folder is no file of it: ignored. A file found
-// as written is kept in `verified` by its size and time of change: one run looks at its DIR up to
-// three times, and a file unchanged since (an edit changes its time) is not read again.
-std::string edited_file(const fs::path& dir, const std::string& line,
+// A file a marker's digest line records: the line (without its prefix), the digest's text and the
+// file's path in the folder.
+struct RecordedFile {
+  std::string line, digest;
+  fs::path path;
+};
+
+// The file `line` (a digest line without its prefix) records; none for a malformed line or a path
+// leading out of the folder, which is no file of it.
+std::optional<RecordedFile> recorded_file(const std::string& line) {
+  if (line.size() <= kDigestDigits + 1 || line[kDigestDigits] != ' ') return std::nullopt;
+  fs::path path = fs::path(line.substr(kDigestDigits + 1)).lexically_normal();
+  if (path.is_absolute() || path.empty() || *path.begin() == "..") return std::nullopt;
+  return RecordedFile{line, line.substr(0, kDigestDigits), std::move(path)};
+}
+
+// The file `r` of `dir` whose digest no longer holds: one the user edited, or replaced by
+// something else; "" if it holds, or the file is gone (nothing of the user's is lost then). A file
+// found as written is kept in `verified` by its size and time of change: one run looks at its DIR
+// up to three times, and a file unchanged since (an edit changes its time) is not read again.
+std::string edited_file(const fs::path& dir, const RecordedFile& r,
                         OutputFolder::Verified* verified) {
-  if (line.size() <= kDigestDigits + 1 || line[kDigestDigits] != ' ') return "";
-  const fs::path name = fs::path(line.substr(kDigestDigits + 1)).lexically_normal();
-  if (name.is_absolute() || name.empty() || *name.begin() == "..") return "";
+  const fs::path& name = r.path;
+  const std::string& line = r.line;
   std::error_code ec;
   const auto type = fs::symlink_status(dir / name, ec).type();
   if (type == fs::file_type::not_found) return "";
@@ -136,12 +150,12 @@ std::string edited_file(const fs::path& dir, const std::string& line,
   const auto seen = verified ? verified->find(line) : OutputFolder::Verified::iterator{};
   if (verified && seen != verified->end() && seen->second == stamp && !ec) return "";
   const auto digest = file_digest(dir / name);
-  if (!digest || digest_text(*digest) != line.substr(0, kDigestDigits)) return name.string();
+  if (!digest || digest_text(*digest) != r.digest) return name.string();
   if (verified && !ec) (*verified)[line] = stamp;
   return "";
 }
 
-std::string added_file(const fs::path& dir, const std::vector<std::string>& digests,
+std::string added_file(const fs::path& dir, const std::vector<RecordedFile>& recorded,
                        OutputFolder::Verified* verified);
 
 // Why shpb may not replace `dir`, or "" if it may: it is empty, or its marker starts with the
@@ -159,10 +173,13 @@ std::string refusal(const fs::path& dir, OutputFolder::Verified* verified = null
   if (!std::getline(in, line) || line != kOutputMarkerSignature)
     return std::string(kOutputMarker) + " is not shpb's marker; refusing to replace the folder";
   std::set<std::string> listed;
-  std::vector<std::string> digests;
+  std::vector<RecordedFile> recorded;
+  bool has_digests = false;  // a marker of this shpb, not an older one's of names alone
   while (std::getline(in, line)) {
     if (line.rfind("file: ", 0) == 0) listed.insert(line.substr(6));
-    if (line.rfind(kDigestLine, 0) == 0) digests.push_back(line.substr(std::strlen(kDigestLine)));
+    if (line.rfind(kDigestLine, 0) != 0) continue;
+    has_digests = true;
+    if (auto r = recorded_file(line.substr(std::strlen(kDigestLine)))) recorded.push_back(*r);
   }
   for (const auto& e : fs::directory_iterator(dir, ec)) {
     const std::string name = e.path().filename().string();
@@ -172,12 +189,12 @@ std::string refusal(const fs::path& dir, OutputFolder::Verified* verified = null
              "choose another output folder)";
   }
   if (ec) return "cannot be listed: " + ec.message();
-  for (const auto& d : digests)
-    if (const std::string name = edited_file(dir, d, verified); !name.empty())
+  for (const auto& r : recorded)
+    if (const std::string name = edited_file(dir, r, verified); !name.empty())
       return "holds " + name +
              ", which was changed since shpb wrote it; refusing to replace the folder (move it "
              "away or choose another output folder)";
-  if (!digests.empty()) return added_file(dir, digests, verified);
+  if (has_digests) return added_file(dir, recorded, verified);
   return "";
 }
 
@@ -185,12 +202,10 @@ std::string refusal(const fs::path& dir, OutputFolder::Verified* verified = null
 // lines record (a file the user put into figures/, say, is not shpb's to delete). A sub-folder
 // with a marker of its own (a campaign's test, which `report` may have drawn since) is judged by
 // that marker. A marker without digest lines (an older shpb's) is judged by its names alone.
-std::string added_file(const fs::path& dir, const std::vector<std::string>& digests,
+std::string added_file(const fs::path& dir, const std::vector<RecordedFile>& recorded,
                        OutputFolder::Verified* verified) {
-  std::set<std::string> recorded;
-  for (const auto& d : digests)
-    if (d.size() > kDigestDigits + 1)
-      recorded.insert(fs::path(d.substr(kDigestDigits + 1)).lexically_normal().string());
+  std::set<std::string> paths;
+  for (const auto& r : recorded) paths.insert(r.path.string());
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(dir, ec)) {
     if (!fs::is_directory(e.symlink_status(ec))) continue;
@@ -203,7 +218,7 @@ std::string added_file(const fs::path& dir, const std::vector<std::string>& dige
          !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
       if (fs::is_directory(it->symlink_status(ec))) continue;
       const std::string name = it->path().lexically_relative(dir).lexically_normal().string();
-      if (it->path().filename() != kOutputMarker && !recorded.count(name))
+      if (it->path().filename() != kOutputMarker && !paths.count(name))
         return "holds " + name +
                ", which shpb did not write; refusing to replace the folder (move it away or "
                "choose another output folder)";

@@ -102,8 +102,10 @@ def test_the_output_marker_learns_the_report_files_only_if_it_is_shpbs(tmp_path)
     staged.mkdir()
     (staged / "energy.png").write_bytes(b"a")
     (tmp_path / "page.html").write_bytes(b"a")
-    report_main.tell_output_marker(str(tmp_path), {"figures": str(staged),
-                                                   "report.html": str(tmp_path / "page.html")},
+    report_main.tell_output_marker(str(tmp_path), ["figures", "report.html"],
+                                   report_main.digest_lines(str(staged), "figures") +
+                                   report_main.digest_lines(str(tmp_path / "page.html"),
+                                                            "report.html"),
                                    str(tmp_path / ".report-host-1-abcd_123.marker"))
     lines = marker.read_text(encoding="utf-8").splitlines()
     assert "file: figures" in lines and "file: report.html" in lines
@@ -115,7 +117,8 @@ def test_the_output_marker_learns_the_report_files_only_if_it_is_shpbs(tmp_path)
     foreign = tmp_path / "other"
     foreign.mkdir()
     (foreign / ".shpb-output").write_text("not ours\n", encoding="utf-8")
-    report_main.tell_output_marker(str(foreign), {"figures": str(staged)},
+    report_main.tell_output_marker(str(foreign), ["figures"],
+                                   report_main.digest_lines(str(staged), "figures"),
                                    str(foreign / ".report-host-1-abcd_123.marker"))
     assert (foreign / ".shpb-output").read_text(encoding="utf-8") == "not ours\n"
     assert os.listdir(foreign) == [".shpb-output"]
@@ -261,7 +264,9 @@ def test_the_output_marker_keeps_every_line_however_long(tmp_path):
     assert len(text) > 1 << 17  # beyond any first-part read
     (tmp_path / ".shpb-output").write_text(text, encoding="utf-8")
     (tmp_path / "page.html").write_bytes(b"a")
-    report_main.tell_output_marker(str(tmp_path), {"report.html": str(tmp_path / "page.html")},
+    report_main.tell_output_marker(str(tmp_path), ["report.html"],
+                                   report_main.digest_lines(str(tmp_path / "page.html"),
+                                                            "report.html"),
                                    str(tmp_path / ".report-host-1-abcd_123.marker"))
     kept = (tmp_path / ".shpb-output").read_text(encoding="utf-8").splitlines()
     assert kept[1:len(lines) + 1] == lines

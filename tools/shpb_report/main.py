@@ -74,6 +74,14 @@ def digest_lines(staged: str, name: str) -> list[str]:
     return sorted(lines, key=lambda line: line.split(" ", 2)[2])
 
 
+def recorded_file(line: str) -> Optional[tuple[str, str]]:
+    """(digest, path) of a marker's digest line, else None."""
+    if not line.startswith(DIGEST_LINE):
+        return None
+    digest, _, path = line[len(DIGEST_LINE):].partition(" ")
+    return digest, path
+
+
 def under(path: str, names: list[str]) -> bool:
     return any(path == n or path.startswith(n + "/") for n in names)
 
@@ -86,10 +94,8 @@ def edited_since_written(folder: str, names: list[str]) -> Optional[str]:
     figures = read_text(os.path.join(folder, "figures", FIGURES_MARKER), None)
     lines = ((output.splitlines() if output.startswith(OUTPUT_SIGNATURE + "\n") else []) +
              (figures.splitlines() if figures.startswith(FIGURES_SIGNATURE) else []))
-    for line in lines:
-        if not line.startswith(DIGEST_LINE):
-            continue
-        digest, _, path = line[len(DIGEST_LINE):].partition(" ")
+    # A file both markers record is read once.
+    for digest, path in dict.fromkeys(r for r in map(recorded_file, lines) if r):
         full = os.path.join(folder, *path.split("/"))
         if under(path, names) and os.path.lexists(full) and (
                 os.path.islink(full) or not os.path.isfile(full) or fnv1a64(full) != digest):
@@ -103,8 +109,7 @@ def added_since_written(folder: str) -> Optional[str]:
     (an older report's) lists none: its figures/ is judged by the marker alone, as before."""
     fig_dir = os.path.join(folder, "figures")
     marker = read_text(os.path.join(fig_dir, FIGURES_MARKER), None)
-    listed = {line[len(DIGEST_LINE):].partition(" ")[2] for line in marker.splitlines()
-              if line.startswith(DIGEST_LINE)}
+    listed = {r[1] for r in map(recorded_file, marker.splitlines()) if r}
     if not marker.startswith(FIGURES_SIGNATURE) or not listed:
         return None
     for root, dirs, files in os.walk(fig_dir):
@@ -148,19 +153,17 @@ def sync(path: str) -> None:
         os.close(fd)
 
 
-def tell_output_marker(folder: str, staged: dict[str, str], tmp: str) -> None:
-    """Lists the names of `staged` (name in the folder -> where it is staged) in the folder's
-    .shpb-output marker (if it is shpb's) with their files' digests, replacing those of the
-    files they replace, atomically (through the temporary file `tmp`)."""
+def tell_output_marker(folder: str, names: list[str], digests: list[str], tmp: str) -> None:
+    """Lists `names` in the folder's .shpb-output marker (if it is shpb's) with the digest lines
+    of their files, `digests` (digest_lines), replacing those of the files they replace,
+    atomically (through the temporary file `tmp`)."""
     marker = os.path.join(folder, OUTPUT_MARKER)
     text = read_text(marker, None)  # whole: every line not about these names is kept
     if not text.startswith(OUTPUT_SIGNATURE + "\n"):
         return
-    names = list(staged)
-    lines = [line for line in text.splitlines() if not (
-        line.startswith(DIGEST_LINE) and under(line[len(DIGEST_LINE):].partition(" ")[2], names))]
-    added = [f"file: {n}" for n in names if f"file: {n}" not in lines]
-    added += [line for n, path in staged.items() for line in digest_lines(path, n)]
+    lines = [line for line in text.splitlines()
+             if not ((r := recorded_file(line)) and under(r[1], names))]
+    added = [f"file: {n}" for n in names if f"file: {n}" not in lines] + digests
     with open(tmp, "w", encoding="utf-8") as f:
         f.write("\n".join(lines + added) + "\n")
         f.flush()
@@ -306,15 +309,19 @@ def build(folder: str) -> tuple[str, int]:
         _committing = True
         os.replace(html_tmp, tmp + ".html")
         # The figures' own marker records what the report put in place, so that a folder without
-        # shpb's marker (make run's, holding simulate/ and process/) keeps the user's edits too.
-        with open(os.path.join(tmp, FIGURES_MARKER), "a", encoding="utf-8") as f:
-            f.write("".join(line + "\n" for line in
-                            digest_lines(tmp + ".html", "report.html") + [
-                                line for line in digest_lines(tmp, "figures")
-                                if not line.endswith("/" + FIGURES_MARKER)]))
+        # shpb's marker (make run's, holding simulate/ and process/) keeps the user's edits too;
+        # shpb's marker records the same files, and the figures' marker itself. Each file is
+        # read once.
+        figures_marker = os.path.join(tmp, FIGURES_MARKER)
+        placed = digest_lines(tmp + ".html", "report.html") + [
+            line for line in digest_lines(tmp, "figures")
+            if recorded_file(line)[1] != "figures/" + FIGURES_MARKER]
+        with open(figures_marker, "a", encoding="utf-8") as f:
+            f.write("".join(line + "\n" for line in placed))
             f.flush()
             os.fsync(f.fileno())
-        tell_output_marker(folder, {"figures": tmp, "report.html": tmp + ".html"},
+        tell_output_marker(folder, ["figures", "report.html"],
+                           placed + digest_lines(figures_marker, "figures/" + FIGURES_MARKER),
                            tmp + ".marker")
         if os.path.isdir(fig_dir):  # ours (check_ownership): set aside, removed below
             old = tmp + ".old"
