@@ -857,7 +857,6 @@ FacePulses pulses_at_faces(const PreparedSignal& inc, const PreparedSignal& tra,
   const DispersionSpec& ds = options.dispersion;
   PropagationOptions po;
   po.dispersion = ds.correction;
-  auto cutoff_fa = [&](const BarWaveguide& w) { return cutoff_fa_over_c0(ds, w); };
   // One band for every pulse of a viscoelastic bar: the law's inverse grows what lies above it by
   // more than kMaxLawGain (methods.md §5.1).
   po.law_cutoff_Hz = std::min(law_band_limit_Hz(k.front_waveguide, k.incident_distance_m),
@@ -871,12 +870,12 @@ FacePulses pulses_at_faces(const PreparedSignal& inc, const PreparedSignal& tra,
             kMaxLawGain, po.law_cutoff_Hz / 1e3, 1e6 / po.law_cutoff_Hz));
   auto table_reach = [&](const BarWaveguide& w) {
     PropagationOptions o = po;
-    o.cutoff_fa_over_c0 = cutoff_fa(w);
+    o.cutoff_fa_over_c0 = cutoff_fa_over_c0(ds, w);
     return mode_reach(w, o);
   };
   // A cut-off read through a viscoelastic bar's law: f·a over its phase velocity, not over c0.
   auto cutoff_text = [&](const BarWaveguide& w) {
-    std::string text = "f·a/c0 = " + format_double(cutoff_fa(w));
+    std::string text = "f·a/c0 = " + format_double(cutoff_fa_over_c0(ds, w));
     if (w.viscoelastic())
       text += " (f·a over the law's phase velocity up to " + format_double(table_reach(w)) + ")";
     return text;
@@ -915,7 +914,7 @@ FacePulses pulses_at_faces(const PreparedSignal& inc, const PreparedSignal& tra,
     PropagationOptions o = po;
     o.amplitude = a;
     o.quantity = q;
-    o.cutoff_fa_over_c0 = cutoff_fa(w);
+    o.cutoff_fa_over_c0 = cutoff_fa_over_c0(ds, w);
     if (!ds.correction) {
       Propagator p(w, o);
       return delayed(p.propagate(x, dt, distance), extra);
