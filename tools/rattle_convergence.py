@@ -232,22 +232,16 @@ with tempfile.TemporaryDirectory() as work:
                     wall = r['wall']
                     print(line(f'k {k}', tag, r), flush=True)
                 specimen = json.load(open(os.path.join(ROOT, 'experiments', e, 'scene.json')))['specimen']
-                for k in BARS_ONLY_K:  # the bars' cut-off above the specimen's ringing
-                    if base is None:
-                        break
+                # The bars' cut-off raised above the specimen's ringing, or that ringing lowered
+                # to the bars' cut-off.
+                variants = [] if base is None else (
+                    [(f'bars k {k}', {n: v * (1 if n == specimen else k) for n, v in base.items()})
+                     for k in BARS_ONLY_K] +
+                    [(f'spec {n}', {**base, specimen: n}) for n in SPECIMEN_ONLY])
+                for label, elements in variants:
                     try:
-                        r, s = measure(e, work, {n: v * (1 if n == specimen else k)
-                                                 for n, v in base.items()}, options, finite)
+                        r, s = measure(e, work, elements, options, finite)
                     except RuntimeError as err:
-                        print(f'bars k {k:<3d} {tag:13s} {err}', flush=True)
+                        print(f'{label:10s} {tag:13s} {err}', flush=True)
                         continue
-                    print(line(f'bars k {k}', tag, r), flush=True)
-                for n in SPECIMEN_ONLY:  # the specimen's ringing lowered to the bars' cut-off
-                    if base is None:
-                        break
-                    try:
-                        r, s = measure(e, work, {**base, specimen: n}, options, finite)
-                    except RuntimeError as err:
-                        print(f'spec {n:<5d} {tag:13s} {err}', flush=True)
-                        continue
-                    print(line(f'spec {n}', tag, r), flush=True)
+                    print(line(label, tag, r), flush=True)
