@@ -565,3 +565,23 @@ def test_a_folder_the_report_cannot_write_into_is_named(tmp_path, monkeypatch, c
     err = capsys.readouterr().err.strip()
     assert err == f"error: {tmp_path}: cannot be written: Permission denied"
 
+
+
+def test_a_file_shpb_wrote_that_is_gone_is_named_not_left_out_in_silence(tmp_path, capsys):
+    # A simulate folder whose gauges.csv was removed (or replaced by a folder) since: the report
+    # draws what is left, and says on stderr and on the page which file its figures are missing.
+    write(tmp_path, "gauges.csv", "time_s,incident\n0,0\n1e-6,-1e-4\n")
+    write(tmp_path, "energy.csv", "time_s,total_J\n0,1\n1e-6,1\n")
+    (tmp_path / ".shpb-output").write_text(
+        report_main.OUTPUT_SIGNATURE + "\ncommand: simulate\nfile: energy.csv\nfile: gauges.csv\n",
+        encoding="utf-8")
+    assert report_main.main(["report", str(tmp_path)]) == 0
+    assert capsys.readouterr().err == ""
+    os.remove(tmp_path / "gauges.csv")
+    os.mkdir(tmp_path / "gauges.csv")
+    assert report_main.main(["report", str(tmp_path)]) == 0
+    err = capsys.readouterr().err.splitlines()
+    assert err == [f"warning: {tmp_path / 'gauges.csv'}: written by shpb, no longer a file here: "
+                   "the figures drawn from it are left out"]
+    assert "gauges.csv: written by shpb, no longer a file here" in (
+        tmp_path / "report.html").read_text(encoding="utf-8")

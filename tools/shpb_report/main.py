@@ -30,7 +30,8 @@ from typing import Callable, Optional
 from . import calibrate, compare, fit, plan, process, simulate, study, sweeps
 from .drawing import Figures, close_all
 from .page import GENERATOR, write_html
-from .reading import ReportError, Source, find_sources, read_text
+from .reading import (DIGEST_LINE, OUTPUT_MARKER, OUTPUT_SIGNATURE, ReportError, Source,
+                      find_sources, read_text, recorded_file)
 
 USAGE = """usage: shpb report DIR
 
@@ -40,13 +41,6 @@ process/ side by side). Writes DIR/figures/*.png and DIR/report.html; nothing el
 
 FIGURES_MARKER = ".shpb-report"
 FIGURES_SIGNATURE = "figures written by shpb report; replaced only by shpb report\n"
-OUTPUT_MARKER = ".shpb-output"
-OUTPUT_SIGNATURE = "shpb output folder: written by shpb, replaced only by shpb"
-
-
-# The output marker's line of a file shpb wrote: "fnv1a64: <16 hex digits> <path in the folder>",
-# the digest FNV-1a 64 of its bytes (core/output_folder.cpp, core/file_digest.hpp).
-DIGEST_LINE = "fnv1a64: "
 FNV_OFFSET_BASIS = 14695981039346656037
 FNV_PRIME = 1099511628211
 
@@ -72,14 +66,6 @@ def digest_lines(staged: str, name: str) -> list[str]:
                 rel = os.path.relpath(path, staged).replace(os.sep, "/")
                 lines.append(f"{DIGEST_LINE}{fnv1a64(path)} {name}/{rel}")
     return sorted(lines, key=lambda line: line.split(" ", 2)[2])
-
-
-def recorded_file(line: str) -> Optional[tuple[str, str]]:
-    """(digest, path) of a marker's digest line, else None."""
-    if not line.startswith(DIGEST_LINE):
-        return None
-    digest, _, path = line[len(DIGEST_LINE):].partition(" ")
-    return digest, path
 
 
 def under(path: str, names: list[str]) -> bool:
@@ -275,6 +261,9 @@ def build(folder: str) -> tuple[str, int]:
                           "other shpb output: an output folder of simulate, process, compare, "
                           "study, fit, calibrate or plan was expected")
     check_ownership(folder)
+    for src in sources:
+        for missing in src.missing:
+            print(f"warning: {missing}", file=sys.stderr)
     # The previous figures are set aside and removed: in a figures/ the user made read-only they
     # could not be, and would stay in DIR as a temporary its marker does not list.
     fig_dir = os.path.join(folder, "figures")

@@ -105,7 +105,7 @@ def headline_html(src):
             rows.append(("bars together: RMS of peak", ", ".join(rms)))
         if src.value("error"):
             rows.append(("error", str(src.value("error"))))
-    warnings = src.value("warnings", kind=list) or []
+    warnings = (src.value("warnings", kind=list) or []) + src.missing
     out = []
     if rows:
         out.append("<table class='kv headline'>" + "".join(

@@ -25,6 +25,13 @@ NUMBER = "number"  # Source.value kind: an int or float, not a bool
 # shpb writes no NaN or infinity (an undefined value is an empty field or absent), and no
 # quantity it writes comes near 1e100: beyond that a figure's axes overflow (CSV and JSON alike).
 LARGEST = 1e100
+# shpb's marker in an output folder (core/output_folder.cpp): its signature line, then a line
+# "file: <name>" per file or sub-folder it wrote and "fnv1a64: <16 hex digits> <path>" per file,
+# the digest FNV-1a 64 of its bytes (core/file_digest.hpp).
+OUTPUT_MARKER = ".shpb-output"
+OUTPUT_SIGNATURE = "shpb output folder: written by shpb, replaced only by shpb"
+NAME_LINE = "file: "
+DIGEST_LINE = "fnv1a64: "
 
 
 class ReportError(Exception):
@@ -47,6 +54,24 @@ def read_text(path: str, limit: Optional[int] = 1 << 16) -> str:
             return f.read(limit)
         except OSError:
             return ""
+
+
+def recorded_file(line: str) -> Optional[tuple[str, str]]:
+    """(digest, path) of a marker's digest line, else None."""
+    if not line.startswith(DIGEST_LINE):
+        return None
+    digest, _, path = line[len(DIGEST_LINE):].partition(" ")
+    return digest, path
+
+
+def written_by_shpb(folder: str) -> set[str]:
+    """The names shpb's marker in `folder` records (by name or digest line), none without one."""
+    marker = read_text(os.path.join(folder, OUTPUT_MARKER), None)
+    if not marker.startswith(OUTPUT_SIGNATURE + "\n"):
+        return set()
+    lines = marker.splitlines()
+    return ({line[len(NAME_LINE):] for line in lines if line.startswith(NAME_LINE)} |
+            {r[1] for r in map(recorded_file, lines) if r})
 
 
 def slug(text: str) -> str:
@@ -198,6 +223,12 @@ class Source:
                 raise ReportError(f"{path}: {e.strerror or e}: a readable file was expected")
             if regular:
                 self.files[n] = path
+        # A file shpb wrote here that is gone, or no longer a file, since: its figures are left
+        # out, and the page and stderr say so rather than the report drawing less in silence.
+        self.missing = [f"{os.path.join(folder, n)}: written by shpb, no longer a file here: "
+                        "the figures drawn from it are left out"
+                        for n in sorted(written_by_shpb(folder) & set(KNOWN_FILES))
+                        if n not in self.files]
         self._tables = {}
         self.summary = {}
         if "summary.json" in self.files:
