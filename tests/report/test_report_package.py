@@ -585,3 +585,9 @@ def test_a_file_shpb_wrote_that_is_gone_is_named_not_left_out_in_silence(tmp_pat
                    "the figures drawn from it are left out"]
     assert "gauges.csv: written by shpb, no longer a file here" in (
         tmp_path / "report.html").read_text(encoding="utf-8")
+
+
+def test_a_sub_folder_linking_back_to_the_folder_is_drawn_once(tmp_path):
+    write(tmp_path, "gauges.csv", "time_s,incident\n0,0\n1e-6,-1e-4\n")
+    os.symlink(".", tmp_path / "again")
+    assert [s.label for s in report_main.find_sources(str(tmp_path))] == ["."]

@@ -292,6 +292,8 @@ def find_sources(folder: str) -> list["Source"]:
     candidates = [Source(folder, ".")]
     for name in sorted(listing(folder)):
         sub = os.path.join(folder, name)
-        if os.path.isdir(sub) and name != "figures" and not name.startswith("."):
+        # A link back to the folder itself is the folder, drawn once.
+        if (os.path.isdir(sub) and name != "figures" and not name.startswith(".")
+                and not os.path.samefile(sub, folder)):
             candidates.append(Source(sub, name))
     return [s for s in candidates if any(n != "summary.json" for n in s.files)]
