@@ -57,7 +57,7 @@ docs: build
 bench: deps
 	@bash tools/bench.sh $(BUILD)
 
-FORMATTED = $$(git ls-files 'src/*.cpp' 'src/*.hpp' 'tests/*.cpp' 'tests/*.hpp' 'tools/*.cpp' 'python/*.cpp')
+FORMATTED = $$(git ls-files 'src/*.cpp' 'src/*.hpp' 'tests/*.cpp' 'tests/*.hpp' 'tools/*.cpp' 'python/*.cpp' 'python/*.hpp')
 format:
 	@clang-format -i $(FORMATTED)
 

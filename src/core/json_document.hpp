@@ -16,7 +16,7 @@ inline constexpr int kMaxJsonDepth = 64;
 inline constexpr std::size_t kMaxJsonBytes = std::size_t{64} << 20;
 
 // The refusal of a value nested deeper than kMaxJsonDepth at `path` (also of a dict the Python
-// module is given, python/shpb_module.cpp: a dict that holds itself is nested without end).
+// module is given, python/values.cpp: a dict that holds itself is nested without end).
 InputError too_deep(const std::string& display, const std::string& path);
 
 // `display` is how the file is named in messages (the path as the user wrote it).

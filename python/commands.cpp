@@ -1,0 +1,145 @@
+// The other commands: compare, study, fit and dispersion run by the command's own function, and
+// the files a result's save(dir) declares and copies (python/shpb/__init__.py wraps them).
+#include "app/commands.hpp"
+
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bindings.hpp"
+#include "core/error.hpp"
+#include "core/output_folder.hpp"
+#include "interrupt.hpp"
+#include "values.hpp"
+
+namespace shpb::python {
+
+namespace {
+
+void bind_command_runs(py::module_& m) {
+  // compare, study, fit and dispersion: the command's own function, writing its folder (or file)
+  // where the Python side reads it back (python/shpb/__init__.py). The exit code is returned: 3
+  // is a result written with a numerical failure said in its summary.
+  m.def(
+      "_compare",
+      [](const std::filesystem::path& scene, const std::filesystem::path& output,
+         const py::object& tolerance, const std::optional<std::string>& contact,
+         const std::optional<std::string>& stepping, const py::object& courant,
+         const py::object& threads, bool dispersion, const py::object& striker_velocity) {
+        CompareArgs a{scene, output, overrides_of(tolerance, contact, stepping, courant, threads),
+                      dispersion, optional_number<double>(striker_velocity, "striker_velocity")};
+        return run_released([&] { return run_compare(a); });
+      },
+      py::arg("scene"), py::arg("output"), py::arg("tolerance"), py::arg("contact"),
+      py::arg("stepping"), py::arg("courant"), py::arg("threads"), py::arg("dispersion"),
+      py::arg("striker_velocity"));
+  m.def(
+      "_study",
+      [](const std::filesystem::path& scene, const std::filesystem::path& output,
+         const std::string& sweep, const py::object& refine, const py::object& tolerance,
+         const std::optional<std::string>& contact, const std::optional<std::string>& stepping,
+         const py::object& courant, const py::object& threads,
+         const std::optional<std::filesystem::path>& distributions, const py::object& draws,
+         const py::object& seed) {
+        StudyArgs a;
+        a.scene = scene;
+        a.output = output;
+        if (distributions) a.distributions = *distributions;
+        a.draws = optional_number<std::size_t>(draws, "draws");
+        a.seed = optional_number<std::uint64_t>(seed, "seed");
+        const auto s = enum_value(kSweepNames, sweep);
+        if (!s)
+          throw input_error("sweep", "", "\"" + sweep + "\"",
+                            "expected pareto, stability or monte-carlo");
+        a.sweep = *s;
+        a.refine = number<int>(refine, "refine");
+        a.overrides = overrides_of(tolerance, contact, stepping, courant, threads);
+        return run_released([&] { return run_study(a); });
+      },
+      py::arg("scene"), py::arg("output"), py::arg("sweep"), py::arg("refine"),
+      py::arg("tolerance"), py::arg("contact"), py::arg("stepping"), py::arg("courant"),
+      py::arg("threads"), py::arg("distributions"), py::arg("draws"), py::arg("seed"));
+  m.def(
+      "_fit",
+      [](const std::filesystem::path& campaign, const std::filesystem::path& output,
+         const py::object& threads, const py::object& max_iterations,
+         const py::object& relative_step, const py::object& bootstrap, const py::object& seed) {
+        FitArgs a;
+        a.campaign = campaign;
+        a.output = output;
+        a.options.threads = number<int>(threads, "threads");
+        a.options.max_iterations = number<int>(max_iterations, "max_iterations");
+        a.options.relative_step = number<double>(relative_step, "relative_step");
+        a.options.bootstrap = number<int>(bootstrap, "bootstrap");
+        a.options.seed = number<unsigned long>(seed, "seed");
+        a.quiet = true;
+        return run_released([&] { return run_fit(a); });
+      },
+      py::arg("campaign"), py::arg("output"), py::arg("threads"), py::arg("max_iterations"),
+      py::arg("relative_step"), py::arg("bootstrap"), py::arg("seed"));
+  m.def(
+      "_dispersion",
+      [](const py::object& poisson, const py::list& a_over_lambda,
+         const py::object& max_a_over_lambda, const py::object& points, const py::object& radius_m,
+         const py::object& c0_m_s, const std::filesystem::path& output) {
+        std::vector<double> ratios;
+        for (std::size_t i = 0; i < a_over_lambda.size(); ++i)
+          ratios.push_back(
+              number<double>(a_over_lambda[i], "a_over_lambda[" + std::to_string(i) + "]"));
+        DispersionArgs a{number<double>(poisson, "poisson"),
+                         ratios,
+                         number<double>(max_a_over_lambda, "max_a_over_lambda"),
+                         number<int>(points, "points"),
+                         optional_number<double>(radius_m, "radius_m"),
+                         optional_number<double>(c0_m_s, "c0_m_s"),
+                         output};
+        return run_released([&] { return run_dispersion(a); });
+      },
+      py::arg("poisson"), py::arg("a_over_lambda"), py::arg("max_a_over_lambda"), py::arg("points"),
+      py::arg("radius_m"), py::arg("c0_m_s"), py::arg("output"));
+}
+
+}  // namespace
+
+void bind_commands(py::module_& m) {
+  bind_command_runs(m);
+  // The files a run of compare, study or fit read, as the command declares them to its output
+  // folder: result.save(dir) refuses a dir that is or holds one, as the command does (a study of
+  // a plan's scene.json saved over the plan deleted the scene).
+  m.def(
+      "_inputs",
+      [](const std::string& command, const std::filesystem::path& file,
+         const std::filesystem::path& distributions) {
+        return run_released([&] {
+          if (command == "fit") return fit_inputs(prepare_fit(file, FitOptions{}));
+          const Scene scene = read_scene(file);
+          return command == "study" ? study_inputs(scene, distributions) : scene_inputs(scene);
+        });
+      },
+      py::arg("command"), py::arg("file"), py::arg("distributions"));
+  // result.save(dir) of those: the command's folder copied with the output folder's own rules
+  // (checks, marker, atomic replacement; core/output_folder.hpp).
+  m.def(
+      "_save_folder",
+      [](const std::filesystem::path& from, const std::filesystem::path& dir,
+         const std::string& command, const std::vector<std::filesystem::path>& inputs) {
+        run_released([&] {
+          OutputFolder out(dir, command, inputs);
+          for (const auto& e : std::filesystem::directory_iterator(from))
+            if (e.path().filename() != kOutputMarker)
+              std::filesystem::copy(e.path(), out.file(e.path().filename().string()),
+                                    std::filesystem::copy_options::recursive);
+          out.commit();
+          return 0;
+        });
+      },
+      py::arg("from"), py::arg("dir"), py::arg("command"), py::arg("inputs"));
+}
+
+}  // namespace shpb::python

@@ -1,0 +1,106 @@
+// process: _process, the library's process_scene on a scene in memory (with its Monte Carlo
+// uncertainty), and its result _Processing (signals, pulses and curve as numpy views,
+// summary.json's values, save as `shpb process` writes its folder).
+#include "app/process.hpp"
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "analysis/uncertainty.hpp"
+#include "bindings.hpp"
+#include "core/error.hpp"
+#include "interrupt.hpp"
+#include "values.hpp"
+#include "views.hpp"
+
+namespace shpb::python {
+
+namespace {
+
+struct Processing {
+  Scene scene;
+  ProcessOutcome outcome;
+};
+
+}  // namespace
+
+void bind_process(py::module_& m) {
+  py::class_<Processing, std::shared_ptr<Processing>>(m, "_Processing")
+      .def_property_readonly("scene", [](const Processing& p) { return p.scene; })
+      .def_property_readonly("raw_signals",
+                             [](py::object self) {
+                               const GaugeSignals& g = self.cast<Processing&>().outcome.signals;
+                               py::dict d;
+                               d["time_s"] = view(g.time_s, self);
+                               for (std::size_t i = 0; i < g.gauges.size(); ++i)
+                                 d[g.gauges[i].c_str()] = view(g.strain[i], self);
+                               return d;
+                             })
+      .def_property_readonly("pulses",
+                             [](py::object self) {
+                               const ProcessingResult& r = self.cast<Processing&>().outcome.result;
+                               py::dict d;
+                               d["time_s"] = view(r.time_s, self);
+                               d["incident"] = view(r.incident, self);
+                               d["reflected"] = view(r.reflected, self);
+                               d["transmitted"] = view(r.transmitted, self);
+                               return d;
+                             })
+      .def_property_readonly("curve",
+                             [](py::object self) {
+                               // curve.csv's columns and rows (up to the end of loading), in its
+                               // order.
+                               const ProcessingResult& r = self.cast<Processing&>().outcome.result;
+                               const auto rows = static_cast<py::ssize_t>(r.loading_end);
+                               py::dict d;
+                               const auto columns = curve_columns(self.cast<Processing&>().outcome);
+                               for (const auto& [name, v] : columns)
+                                 d[name] = view(*v, self)[py::slice(0, rows, 1)];
+                               return d;
+                             })
+      .def_property_readonly(
+          "summary",
+          [](const Processing& p) {
+            return json_to_python(process_summary(p.outcome, p.scene.file.string()));
+          })
+      .def_property_readonly("warnings", [](const Processing& p) { return p.outcome.warnings; })
+      .def(
+          "save",
+          [](const Processing& p, const std::filesystem::path& dir) {
+            run_released([&] {
+              write_process_outputs(p.outcome, p.scene, p.scene.file.string(), dir);
+              return 0;
+            });
+          },
+          py::arg("dir"));
+
+  m.def(
+      "_process",
+      [](const Scene& scene, const std::optional<std::filesystem::path>& signals,
+         const py::object& draws, const py::object& seed) {
+        auto p = std::make_shared<Processing>();
+        p->scene = scene;
+        MonteCarloOptions monte_carlo;
+        monte_carlo.draws = number<std::size_t>(draws, "draws");
+        monte_carlo.seed = number<std::uint64_t>(seed, "seed");
+        p->outcome = run_released([&] {
+          ProcessOutcome o = process_scene(p->scene, signals, false);
+          add_uncertainty(p->scene, monte_carlo, o);
+          return o;
+        });
+        if (!p->outcome.failure.empty()) throw NumericalError(p->outcome.failure);
+        return p;
+      },
+      py::arg("scene"), py::arg("signals") = py::none(), py::arg("draws") = py::int_(kDefaultDraws),
+      py::arg("seed") = py::int_(kDefaultSeed));
+}
+
+}  // namespace shpb::python

@@ -1,0 +1,181 @@
+// The scene and its parts: Scene (load, from_dict, its bars, the run settings a scene holds) and
+// Bar.
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include "bindings.hpp"
+#include "core/csv_writer.hpp"
+#include "core/error.hpp"
+#include "model/input_limits.hpp"
+#include "model/scene_validation.hpp"
+#include "model/wave_travel.hpp"
+#include "values.hpp"
+
+namespace shpb::python {
+
+namespace {
+
+// The bar named `name` or at index `i` (negative from the end, as Python lists).
+BarSpec& bar_of(Scene& s, const py::object& key) {
+  if (py::isinstance<py::str>(key)) {
+    const std::string name = message_text(key);  // a lone surrogate names no bar
+    for (auto& b : s.bars)
+      if (b.name == name) return b;
+    throw py::key_error("no bar named \"" + name + "\" in scene " + s.name);
+  }
+  // An index as a list takes one (an int, a numpy integer): anything else is a TypeError.
+  if (!PyIndex_Check(key.ptr()))
+    throw py::type_error("bar: " + shown(key) + ": expected a bar's name or index");
+  Py_ssize_t i = PyNumber_AsSsize_t(key.ptr(), PyExc_IndexError);
+  if (i == -1 && PyErr_Occurred()) throw py::error_already_set();
+  const auto n = static_cast<Py_ssize_t>(s.bars.size());
+  if (i < 0) i += n;
+  if (i < 0 || i >= n) throw py::index_error("bar index out of range");
+  return s.bars[static_cast<std::size_t>(i)];
+}
+
+// A bar's length edit: its range, then its gauges on it, as the scene reader places them.
+void set_length(BarSpec& b, const py::object& value) {
+  BarSpec edited = b;
+  checked(&BarSpec::length_m, "bar.length_m", Range::kPositive)(edited, value);
+  const double x = edited.length_m;
+  for (const auto& g : b.gauges)
+    if (const std::string what = gauge_position_problem(g.position_m, x); !what.empty())
+      throw input_error(
+          "scene edit", "bar.length_m", format_double(x),
+          "gauge \"" + g.name + "\" at " + format_double(g.position_m) + " m " + what);
+  b.length_m = x;
+}
+
+void bind_bar(py::module_& m) {
+  py::class_<BarSpec>(m, "Bar")
+      .def_readonly("name", &BarSpec::name)
+      .def_readonly("material", &BarSpec::material, py::return_value_policy::reference_internal)
+      .def_property(
+          "length_m", [](const BarSpec& o) { return o.length_m; }, &set_length)
+      .def_readonly("area_m2", &BarSpec::area_m2)
+      .def_readonly("diameter_m", &BarSpec::diameter_m)
+      .def_property(
+          "velocity_m_s", [](const BarSpec& o) { return o.velocity_m_s; },
+          checked(&BarSpec::velocity_m_s, "bar.velocity_m_s", Range::kFinite))
+      .def_property(
+          "elements", [](const BarSpec& b) { return b.elements; },
+          [](BarSpec& b, const py::object& value) {
+            const int n = number<int>(value, "bar.elements");
+            if (n < 0 || n > kMaxElements)
+              throw input_error("scene edit", "bar.elements", std::to_string(n),
+                                "must be in [1, " + std::to_string(kMaxElements) +
+                                    "], or 0 for the automatic mesh");
+            b.elements = n;
+          })
+      .def_property(
+          "gap_m", [](const BarSpec& o) { return o.gap_m; },
+          checked(&BarSpec::gap_m, "bar.gap_m", Range::kNonNegative))
+      .def_property_readonly("gauges",
+                             [](const BarSpec& b) {
+                               py::dict d;
+                               for (const auto& g : b.gauges) d[g.name.c_str()] = g.position_m;
+                               return d;
+                             })
+      .def("__repr__", [](const BarSpec& b) {
+        return "<shpb.Bar " + b.name + ": " + b.material.name + ", " + format_double(b.length_m) +
+               " m, " + format_double(b.velocity_m_s) + " m/s>";
+      });
+}
+
+}  // namespace
+
+void bind_scene(py::module_& m) {
+  bind_bar(m);
+  // Edits (e.g. scene.striker.velocity_m_s = 12) act on the scene in memory; a run checks the
+  // edited scene with the one validation every command applies (model/scene_validation.hpp).
+  // The scene's file made absolute when read: its relative paths (measurement data, read when the
+  // scene is processed) then resolve as they did when it was loaded, whatever os.chdir (a
+  // notebook's %cd) did in between.
+  py::class_<Scene>(m, "Scene")
+      .def_static(
+          "load",
+          [](const std::filesystem::path& file) {
+            // An empty path (std::filesystem::absolute throws on it) is the reader's to refuse.
+            return read_scene(file.empty() ? file : std::filesystem::absolute(file));
+          },
+          py::arg("path"))
+      .def_static(
+          "from_dict",
+          [](const py::object& d, const std::filesystem::path& file) {
+            if (file.empty())
+              throw input_error("file", "", "\"\"",
+                                "expected the path the dict's relative paths are written from, "
+                                "such as \"scene.json\"");
+            const std::filesystem::path anchored = std::filesystem::absolute(file);
+            return read_scene_text(dict_to_json_text(d, anchored), anchored);
+          },
+          py::arg("d"), py::arg("file") = std::filesystem::path("scene.json"))
+      .def_readwrite("name", &Scene::name)
+      .def_property_readonly("file", [](const Scene& s) { return s.file; })
+      .def_property_readonly(
+          "bars",
+          [](py::object self) {
+            Scene& s = self.cast<Scene&>();
+            py::list l;
+            for (auto& b : s.bars)
+              l.append(py::cast(&b, py::return_value_policy::reference_internal, self));
+            return l;
+          })
+      .def("bar", &bar_of, py::arg("key"), py::return_value_policy::reference_internal)
+      .def_property_readonly("specimen",
+                             [](py::object self) -> py::object {
+                               Scene& s = self.cast<Scene&>();
+                               if (!s.specimen) return py::none();
+                               return py::cast(&s.bars[*s.specimen],
+                                               py::return_value_policy::reference_internal, self);
+                             })
+      .def_property_readonly("striker",
+                             [](py::object self) -> py::object {
+                               Scene& s = self.cast<Scene&>();
+                               const auto i = striker_bar(s);
+                               if (!i) return py::none();
+                               return py::cast(&s.bars[*i],
+                                               py::return_value_policy::reference_internal, self);
+                             })
+      .def_property(
+          "tolerance", [](const Scene& s) { return s.simulation.tolerance; },
+          [](Scene& s, const py::object& t) {
+            // Refused when set, as the other edits, with the one rule of the scene's key and
+            // --tolerance (model/scene_validation.hpp).
+            const auto value = tolerance_value(t);
+            if (value)
+              if (const std::string what = tolerance_problem(*value); !what.empty())
+                throw input_error("scene edit", "simulation.tolerance",
+                                  format_double(*value * 100) + " %", what);
+            s.simulation.tolerance = value;
+          })
+      .def_property(
+          "duration_s", [](const Scene& s) { return s.simulation.duration_s; },
+          [](Scene& s, const py::object& value) {
+            const auto t = optional_number<double>(value, "duration_s");
+            if (t && !(std::isfinite(*t) && *t > 0))
+              throw input_error("scene edit", "duration_s", format_double(*t), "must be > 0");
+            s.simulation.duration_s = t;
+          })
+      .def(
+          "validate",
+          [](const Scene& s, const py::object& tolerance) {
+            Scene copy = s;
+            apply_overrides(overrides_of(tolerance, {}, {}, py::none(), py::int_(0)), copy);
+          },
+          py::arg("tolerance") = py::none())
+      .def("copy", [](const Scene& s) { return Scene(s); })
+      .def("__copy__", [](const Scene& s) { return Scene(s); })
+      .def("__deepcopy__", [](const Scene& s, py::object) { return Scene(s); })
+      .def("__repr__", [](const Scene& s) {
+        return "<shpb.Scene " + s.name + ": " + std::to_string(s.bars.size()) + " bars>";
+      });
+}
+
+}  // namespace shpb::python
