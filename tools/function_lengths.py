@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""The longest functions of src/ (README: no function over 120 lines).
+"""The longest functions of src/ and python/ (README: no function over 120 lines).
 
-Usage: function_lengths.py SRC_DIR [--max N] [--top K]
+Usage: function_lengths.py DIR [DIR ...] [--max N] [--top K]
 Prints the K longest function bodies (lines from the signature's opening brace to the closing
 one) and exits 1 when one is longer than N lines. Comments and string literals are blanked
 first, so braces inside them do not count; lambdas count as part of the function around them.
@@ -79,12 +79,12 @@ def functions(path):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("src")
+    parser.add_argument("dirs", nargs="+")
     parser.add_argument("--max", type=int, default=120)
     parser.add_argument("--top", type=int, default=5)
     args = parser.parse_args()
     rows = []
-    for path in sorted(pathlib.Path(args.src).rglob("*.[ch]pp")):
+    for path in sorted(p for d in args.dirs for p in pathlib.Path(d).rglob("*.[ch]pp")):
         rows += [(lines, f"{path}:{line}", name) for name, line, lines in functions(path)]
     rows.sort(reverse=True)
     for lines, where, name in rows[: args.top]:
