@@ -109,11 +109,7 @@ int main(int argc, char** argv) {
       "signals (simulated or measured) to specimen stress–strain curves."};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("shpb ") + kVersion);
-  const std::vector<Command> commands = {add_simulate_command(app),  add_process_command(app),
-                                         add_compare_command(app),   add_dispersion_command(app),
-                                         add_study_command(app),     add_validate_command(app),
-                                         add_report_command(app),    add_fit_command(app),
-                                         add_calibrate_command(app), add_plan_command(app)};
+  const std::vector<Command> commands = add_commands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -12,6 +12,13 @@
 
 namespace shpb {
 
+std::vector<Command> add_commands(CLI::App& app) {
+  return {add_simulate_command(app),   add_process_command(app), add_compare_command(app),
+          add_dispersion_command(app), add_study_command(app),   add_validate_command(app),
+          add_report_command(app),     add_fit_command(app),     add_calibrate_command(app),
+          add_plan_command(app)};
+}
+
 std::string alternatives(const std::vector<std::string>& names) {
   std::string text;
   for (const auto& n : names) text += (text.empty() ? "" : " | ") + n;

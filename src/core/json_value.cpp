@@ -162,7 +162,7 @@ std::vector<JsonValue> JsonValue::array() const {
   return items;
 }
 
-JsonObject JsonValue::object(std::vector<std::string> allowed_keys) const {
+JsonObject JsonValue::object(const std::vector<std::string>& allowed_keys) const {
   if (!json_->is_object()) throw error("expected an object { ... }");
   for (const auto& [key, value] : json_->items()) {
     bool known = false;

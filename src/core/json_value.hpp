@@ -52,7 +52,7 @@ class JsonValue {
   // A name() that also names a file or folder: see file_name_problem().
   std::string file_name(const std::vector<std::string>& reserved) const;
   std::vector<JsonValue> array() const;  // the elements of an array
-  JsonObject object(std::vector<std::string> allowed_keys) const;
+  JsonObject object(const std::vector<std::string>& allowed_keys) const;
 
   // Formats an SI value of dimension d for messages: "-0.005 m".
   static std::string format(double value_si, Dimension d);

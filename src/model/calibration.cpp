@@ -4,6 +4,7 @@
 #include "core/file_digest.hpp"
 #include "core/json_document.hpp"
 #include "core/json_value.hpp"
+#include "model/input_keys.hpp"
 #include "model/scene.hpp"
 
 namespace shpb {
@@ -14,7 +15,7 @@ nlohmann::json value_json(const CalibratedValue& v) {
 }
 
 CalibratedValue read_value(const JsonValue& v, Dimension d, double lo, double hi) {
-  const auto o = v.object({"value", "sd"});
+  const auto o = v.object(input_keys::kCalibratedValue);
   CalibratedValue c;
   c.value = o.require("value", "the fitted value").quantity_in(d, lo, hi, true, true);
   if (auto sd = o.get("sd"); sd && !sd->json().is_null()) c.sd = sd->non_negative_quantity(d);
@@ -50,8 +51,7 @@ Calibration read_calibration_file(const std::filesystem::path& file) {
   const std::string display = file.string();
   const nlohmann::json j = read_json_object_file(file, display);
   const JsonValue root(j, display, "");
-  const auto o = root.object({"format", "version", "command", "reference_gauge", "absolute_gain",
-                              "bars", "gauges", "provenance"});
+  const auto o = root.object(input_keys::kCalibration);
   const auto format = o.require("format", "\"shpb calibration 1\" (a file `shpb calibrate` wrote)");
   if (format.string() != "shpb calibration 1")
     throw format.error("expected \"shpb calibration 1\" (a file `shpb calibrate` wrote)");
@@ -59,8 +59,7 @@ Calibration read_calibration_file(const std::filesystem::path& file) {
   if (auto r = o.get("reference_gauge")) c.reference_gauge = r->string();
   if (auto a = o.get("absolute_gain")) c.absolute_gain = a->boolean();
   for (const auto& b : o.require("bars", "a list of calibrated bars").array()) {
-    const auto bo =
-        b.object({"bar", "wave_speed_m_s", "poisson_ratio", "density_kg_m3", "youngs_modulus_Pa"});
+    const auto bo = b.object(input_keys::kCalibrationBar);
     BarCalibration bc;
     bc.bar = bo.require("bar", "the bar's name").name();
     // Wave speeds of solids lie between about 100 m/s (soft polymers) and 20 km/s.
@@ -73,7 +72,7 @@ Calibration read_calibration_file(const std::filesystem::path& file) {
     c.bars.push_back(bc);
   }
   for (const auto& g : o.require("gauges", "a list of calibrated gauges").array()) {
-    const auto go = g.object({"gauge", "bar", "position_m", "gain", "delay_s"});
+    const auto go = g.object(input_keys::kCalibrationGauge);
     GaugeCalibration gc;
     gc.gauge = go.require("gauge", "the gauge's name").name();
     if (auto b = go.get("bar")) gc.bar = b->string();

@@ -6,15 +6,10 @@
 #include "core/json_document.hpp"
 #include "core/json_value.hpp"
 #include "core/output_folder.hpp"
+#include "model/input_keys.hpp"
 
 namespace shpb {
 namespace fs = std::filesystem;
-
-const std::vector<std::string>& campaign_keys() {
-  static const std::vector<std::string> keys = {"name", "notes",    "tests",  "material",
-                                                "free", "nuisance", "stages", "loss"};
-  return keys;
-}
 
 const std::vector<std::string>& campaign_output_names() {
   static const std::vector<std::string> names = {"campaign.csv",  "summary.json", "part.json",
@@ -40,7 +35,7 @@ Campaign read_campaign(const fs::path& file) {
   c.display = file.string();
   c.document = read_json_object_file(file, c.display);
   const JsonValue root(c.document, c.display, "");
-  const auto o = root.object(campaign_keys());
+  const auto o = root.object(input_keys::kCampaign);
   c.name = file.stem().string();
   if (auto v = o.get("name")) c.name = v->name();
   if (auto v = o.get("notes")) v->string();
@@ -50,7 +45,7 @@ Campaign read_campaign(const fs::path& file) {
   if (items.empty()) throw tests.error("must list at least one test");
   std::set<std::string> names;
   for (std::size_t i = 0; i < items.size(); ++i) {
-    const auto t = items[i].object({"scene", "name", "weight"});
+    const auto t = items[i].object(input_keys::kCampaignTest);
     CampaignTest test;
     test.json_path = items[i].path();
     const auto scene = t.require("scene", "the test's scene file, relative to the campaign file");

@@ -37,9 +37,6 @@ struct Campaign {
 // (analysis/process_campaign.cpp): no test may be named as one of them.
 const std::vector<std::string>& campaign_output_names();
 
-// Every top-level key a campaign may hold (the fit's keys included, so one file serves both).
-const std::vector<std::string>& campaign_keys();
-
 // Reads and checks the file: exit-2 InputErrors name the file and JSON path. Scenes must exist
 // as regular files; they are read by the command that uses them.
 Campaign read_campaign(const std::filesystem::path& file);

@@ -1,7 +1,10 @@
 #include "model/material_reader.hpp"
 
+#include <stdexcept>
+
 #include "core/closest_match.hpp"
 #include "core/json_document.hpp"
+#include "model/input_keys.hpp"
 #include "model/input_limits.hpp"
 #include "model/material_law.hpp"
 #include "model/scene.hpp"
@@ -18,28 +21,27 @@ std::string test_temperature_problem(double test_K, double melting_K) {
   return "must be below melting_temperature (" +
          JsonValue::format(melting_K, Dimension::kTemperature) + ")";
 }
+
+const std::vector<std::string>& material_model_keys(MaterialModel model) {
+  switch (model) {
+    case MaterialModel::kElastic:
+      return input_keys::kElastic;
+    case MaterialModel::kBilinear:
+      return input_keys::kBilinear;
+    case MaterialModel::kJohnsonCook:
+      return input_keys::kJohnsonCook;
+    case MaterialModel::kViscoelastic:
+      return input_keys::kViscoelastic;
+  }
+  throw std::logic_error("material_model_keys: unknown model");
+}
+
 namespace {
 
 std::vector<std::string> allowed_keys(MaterialModel model) {
-  std::vector<std::string> keys = {"model",  "name",  "density",    "poisson_ratio",
-                                   "source", "notes", "uncertainty"};
-  switch (model) {
-    case MaterialModel::kElastic:
-      keys.push_back("youngs_modulus");
-      break;
-    case MaterialModel::kBilinear:
-      keys.insert(keys.end(), {"youngs_modulus", "yield_stress", "tangent_modulus"});
-      break;
-    case MaterialModel::kJohnsonCook:
-      keys.insert(keys.end(),
-                  {"youngs_modulus", "A", "B", "n", "C", "reference_strain_rate", "m",
-                   "room_temperature", "melting_temperature", "temperature", "specific_heat",
-                   "taylor_quinney", "adiabatic", "strain_rate_filter"});
-      break;
-    case MaterialModel::kViscoelastic:
-      keys.insert(keys.end(), {"long_term_modulus", "arms"});
-      break;
-  }
+  std::vector<std::string> keys = input_keys::kMaterial;
+  const auto& own = material_model_keys(model);
+  keys.insert(keys.end(), own.begin(), own.end());
   return keys;
 }
 
@@ -110,7 +112,7 @@ void read_viscoelastic(const JsonObject& o, MaterialSpec& m) {
                                 "at most " + std::to_string(MaterialPointState::kMaxArms));
   m.youngs_modulus_Pa = p.long_term_modulus_Pa;
   for (const auto& item : items) {
-    const auto a = item.object({"modulus", "relaxation_time"});
+    const auto a = item.object(input_keys::kMaxwellArm);
     MaxwellArm arm;
     arm.modulus_Pa = a.require("modulus", "e.g. \"1 GPa\"").positive_quantity(Dimension::kPressure);
     arm.relaxation_time_s =

@@ -5,6 +5,7 @@
 // [0, 1]; bilinear σ_y > 0, 0 ≤ E_t < E; viscoelastic τ_k > 0, at most kMaxArms arms.
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "core/json_value.hpp"
 #include "model/material.hpp"
@@ -13,6 +14,9 @@ namespace shpb {
 
 // `name` is stored in MaterialSpec::name (the key in `materials`, the file, or "inline").
 MaterialSpec read_material(const JsonValue& value, const std::string& name);
+
+// The keys of `model`'s own law, besides the keys of every material (input_keys::kMaterial).
+const std::vector<std::string>& material_model_keys(MaterialModel model);
 
 // A material file; `display` names it in messages.
 MaterialSpec read_material_file(const std::filesystem::path& file, const std::string& display);

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/closest_match.hpp"
+#include "model/input_keys.hpp"
 #include "model/uncertainty_reader.hpp"
 
 namespace shpb {
@@ -46,7 +47,7 @@ std::optional<SampleClock> read_sample_clock(const JsonObject& to) {
 }
 
 BridgeSpec read_bridge(const JsonValue& v) {
-  const auto o = v.object({"arms", "gauge_factor", "excitation", "gain"});
+  const auto o = v.object(input_keys::kBridge);
   BridgeSpec b;
   const auto arms = o.require("arms", "active arms of the Wheatstone bridge: 1, 2 or 4");
   b.arms = static_cast<int>(arms.integer(1, 4));
@@ -68,7 +69,7 @@ TimeWindow read_window(const JsonValue& v) {
 
 // {"strain": [from, to]} (engineering strain, 0 ≤ from < to) or {"time": [from, to]} (times).
 RateWindow read_rate_window(const JsonValue& v) {
-  const auto o = v.object({"strain", "time"});
+  const auto o = v.object(input_keys::kRateWindow);
   const auto strain = o.get("strain"), time = o.get("time");
   if (strain.has_value() == time.has_value())
     throw v.error(
@@ -94,7 +95,7 @@ RateWindow read_rate_window(const JsonValue& v) {
 
 ChannelSpec read_channel(const JsonValue& v, const std::filesystem::path& scene_dir,
                          const std::vector<std::string>& gauges) {
-  const auto o = v.object({"gauge", "file", "column", "unit", "bridge", "scale", "invert"});
+  const auto o = v.object(input_keys::kChannel);
   ChannelSpec c;
   const auto gauge = o.require("gauge", "the name of a gauge in bars[].gauges");
   c.gauge = gauge.string();
@@ -132,7 +133,7 @@ ChannelSpec read_channel(const JsonValue& v, const std::filesystem::path& scene_
 }
 
 DispersionSpec read_dispersion(const JsonValue& v) {
-  const auto o = v.object({"correction", "amplitude_factors", "cutoff", "cutoff_fa_c0"});
+  const auto o = v.object(input_keys::kDispersion);
   DispersionSpec d;
   if (auto c = o.get("correction")) d.correction = enum_from(*c, kCorrectionNames);
   if (auto a = o.get("amplitude_factors")) d.amplitude_factors = a->boolean();
@@ -158,10 +159,7 @@ MeasurementSpec read_measurement(const JsonValue& value, const std::filesystem::
                                  const std::vector<std::string>& gauges,
                                  const std::vector<std::string>& bars,
                                  std::optional<std::size_t> specimen) {
-  const auto o =
-      value.object({"file", "format", "time", "channels", "dispersion", "windows",
-                    "striker_velocity", "notes", "load_drop", "sheet", "test", "corrections",
-                    "reflected_time", "align", "primary", "rate_window", "uncertainty"});
+  const auto o = value.object(input_keys::kMeasurement);
   MeasurementSpec m;
   const auto uncertainty = o.get("uncertainty");
   if (uncertainty) m.uncertainty = read_uncertainty(*uncertainty, bars, specimen);
@@ -181,7 +179,7 @@ MeasurementSpec read_measurement(const JsonValue& value, const std::filesystem::
   if (auto p = o.get("primary")) m.primary = enum_from(*p, kPrimaryNames);
   if (auto w = o.get("rate_window")) m.rate_window = read_rate_window(*w);
   if (auto c = o.get("corrections")) {
-    const auto co = c->object({"friction", "inertia"});
+    const auto co = c->object(input_keys::kCorrections);
     // Coulomb coefficient of the faces, as contact.friction (docs/methods.md §8).
     if (auto f = co.get("friction"))
       m.corrections.friction = f->quantity_in(Dimension::kDimensionless, 0, 1, false, true);
@@ -215,7 +213,7 @@ MeasurementSpec read_measurement(const JsonValue& value, const std::filesystem::
   if (auto f = o.get("file")) m.file = (scene_dir / f->name()).lexically_normal();
   if (auto f = o.get("format")) m.format = enum_from(*f, kSignalFormatNames);
   if (auto t = o.get("time")) {
-    const auto to = t->object({"column", "unit", "resample", "interval", "rate", "start"});
+    const auto to = t->object(input_keys::kMeasurementTime);
     m.time_clock = read_sample_clock(to);
     if (auto c = to.get("column")) m.time_column = read_column(*c);
     if (auto r = to.get("resample")) {
@@ -252,7 +250,7 @@ MeasurementSpec read_measurement(const JsonValue& value, const std::filesystem::
                         "(missing)", "required: the channel's file, or measurement.file for all");
   if (auto d = o.get("dispersion")) m.dispersion = read_dispersion(*d);
   if (auto w = o.get("windows")) {
-    const auto wo = w->object({"incident", "reflected", "transmitted"});
+    const auto wo = w->object(input_keys::kWindows);
     if (auto x = wo.get("incident")) m.windows.incident = read_window(*x);
     if (auto x = wo.get("reflected")) m.windows.reflected = read_window(*x);
     if (auto x = wo.get("transmitted")) m.windows.transmitted = read_window(*x);

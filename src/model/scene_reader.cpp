@@ -8,6 +8,7 @@
 #include "core/json_document.hpp"
 #include "core/json_value.hpp"
 #include "model/calibration.hpp"
+#include "model/input_keys.hpp"
 #include "model/input_limits.hpp"
 #include "model/interface_name.hpp"
 #include "model/material_reader.hpp"
@@ -36,8 +37,7 @@ class SceneReader {
 
   Scene read(const nlohmann::json& j) {
     const JsonValue root(j, display_, "");
-    const auto o = root.object({"name", "notes", "bars", "specimen", "materials", "contact",
-                                "simulation", "measurement", "calibration", "plan"});
+    const auto o = root.object(input_keys::kScene);
     Scene scene;
     scene.file = file_;
     scene.name = default_name();
@@ -141,8 +141,7 @@ class SceneReader {
   }
 
   BarSpec read_bar(const JsonValue& v, bool last) {
-    const auto o = v.object({"name", "material", "length", "diameter", "area", "velocity",
-                             "elements", "gap", "gauges", "notes", "inertia"});
+    const auto o = v.object(input_keys::kBar);
     BarSpec b;
     b.name = o.require("name", "a unique name such as \"incident\"").name();
     // `process` needs no specimen material (geometry is enough): checked once the specimen is
@@ -180,7 +179,7 @@ class SceneReader {
     }
     if (auto x = o.get("gauges")) {
       for (const auto& g : x->array()) {
-        const auto go = g.object({"name", "position", "distance_to_specimen"});
+        const auto go = g.object(input_keys::kGauge);
         GaugeSpec gauge;
         gauge.name = go.require("name", "a unique gauge name").name();
         const auto to_specimen = go.get("distance_to_specimen");
@@ -299,16 +298,14 @@ class SceneReader {
   }
 
   static ContactSpec read_contact(const JsonValue& v, const Scene& scene) {
-    const auto o = v.object({"method", "stiffness_factor", "stiffness", "rise_time", "mass_ratio",
-                             "interfaces", "friction"});
+    const auto o = v.object(input_keys::kContact);
     ContactSpec c;
     if (auto m = o.get("method")) c.method = contact_method(*m);
     if (auto f = o.get("friction")) c.friction = read_friction(*f);
     c.penalty = read_penalty(o);
     if (auto list = o.get("interfaces")) {
       for (const auto& item : list->array()) {
-        const auto io = item.object({"between", "method", "stiffness_factor", "stiffness",
-                                     "rise_time", "mass_ratio", "friction"});
+        const auto io = item.object(input_keys::kInterface);
         const auto between =
             io.require("between", "two neighbouring bars, e.g. [\"striker\", \"incident\"]");
         const auto pair = between.array();
@@ -364,8 +361,7 @@ class SceneReader {
   }
 
   static SimulationSpec read_simulation(const JsonValue& v) {
-    const auto o = v.object({"duration", "sample_rate", "stepping", "courant", "kinematics",
-                             "max_strain", "tolerance"});
+    const auto o = v.object(input_keys::kSimulation);
     SimulationSpec s;
     if (auto x = o.get("duration")) s.duration_s = x->positive_quantity(Dimension::kTime);
     if (auto x = o.get("sample_rate"))

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "model/input_keys.hpp"
+
 namespace shpb {
 
 std::string sign_keeping_problem(double value, double sigma, Dimension d) {
@@ -39,9 +41,7 @@ StandardUncertainty read_standard_uncertainty(const JsonValue& v, Dimension d, b
 
 UncertaintySpec read_uncertainty(const JsonValue& value, const std::vector<std::string>& bars,
                                  std::optional<std::size_t> specimen) {
-  const auto o =
-      value.object({"gauge_factor", "excitation", "gain", "gauge_position", "trigger_delay",
-                    "window_start", "dispersion_cutoff", "friction", "bars", "shared", "notes"});
+  const auto o = value.object(input_keys::kUncertainty);
   UncertaintySpec u;
   if (auto v = o.get("notes")) v->string();
   if (auto v = o.get("gauge_factor"))
@@ -90,9 +90,7 @@ UncertaintySpec read_uncertainty(const JsonValue& value, const std::vector<std::
                                   "only the specimen and the bars either side of it enter the "
                                   "reduction");
       const auto bo =
-          is_specimen
-              ? bv.object({"diameter", "length"})
-              : bv.object({"youngs_modulus", "density", "wave_speed", "poisson_ratio", "diameter"});
+          bv.object(is_specimen ? input_keys::kUncertaintySpecimen : input_keys::kUncertaintyBar);
       BarUncertainty bu;
       bu.bar = index;
       if (auto v = bo.get("youngs_modulus"))

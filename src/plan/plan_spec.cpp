@@ -4,6 +4,7 @@
 #include "core/error.hpp"
 #include "core/json_document.hpp"
 #include "core/json_value.hpp"
+#include "model/input_keys.hpp"
 
 namespace shpb {
 namespace {
@@ -64,7 +65,7 @@ PlanInput read_plan_input(const fs::path& scene_file) {
   const JsonValue root(in.json, scene_file.string(), "");
   const auto plan = JsonObject(root).require(
       "plan", "what the plan may change: striker length and velocity, shaper, specimen length");
-  const auto o = plan.object({"striker", "shaper", "specimen", "notes"});
+  const auto o = plan.object(input_keys::kPlan);
   const auto incident = scene.incident_bar();
   if (!scene.specimen || !incident || !scene.transmitter_bar() || scene.bars[0].velocity_m_s == 0)
     throw plan.error(
@@ -88,7 +89,7 @@ PlanInput read_plan_input(const fs::path& scene_file) {
                                             "the striker's bounds, e.g. {\"velocity\": [\"5 m/s\", "
                                             "\"40 m/s\"]}"))
                            .value()
-                           .object({"length", "velocity"});
+                           .object(input_keys::kPlanStriker);
   const double length = scene.bars[0].length_m;
   spec.striker_length = {length, length};
   if (auto v = striker.get("length")) spec.striker_length = read_range(*v, Dimension::kLength);
@@ -96,9 +97,10 @@ PlanInput read_plan_input(const fs::path& scene_file) {
       read_range(striker.require("velocity", "e.g. [\"5 m/s\", \"40 m/s\"]"), Dimension::kVelocity);
   if (auto v = o.get("specimen"))
     spec.specimen_length = read_range(
-        v->object({"length"}).require("length", "e.g. [\"3 mm\", \"8 mm\"]"), Dimension::kLength);
+        v->object(input_keys::kPlanSpecimen).require("length", "e.g. [\"3 mm\", \"8 mm\"]"),
+        Dimension::kLength);
   if (auto v = o.get("shaper")) {
-    const auto s = v->object({"material", "diameter", "thickness"});
+    const auto s = v->object(input_keys::kPlanShaper);
     const BarSpec* own = spec.scene_has_shaper ? &scene.bars[1] : nullptr;
     if (own && !s.has("material"))
       spec.shaper_materials.push_back({"", *own});

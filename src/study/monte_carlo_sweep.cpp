@@ -16,6 +16,7 @@
 #include "core/error.hpp"
 #include "core/json_document.hpp"
 #include "core/json_value.hpp"
+#include "model/input_keys.hpp"
 #include "model/law_parameters.hpp"
 #include "model/scene_validation.hpp"
 #include "model/uncertainty_reader.hpp"
@@ -127,7 +128,7 @@ std::vector<Distribution> read_distributions(const std::filesystem::path& file,
   // and size beyond the limits are refused naming the file (core/json_document.hpp).
   const nlohmann::json doc = read_json_object_file(file, file.string());
   const JsonValue root(doc, file.string(), "");
-  const auto o = root.object({"values", "notes"});
+  const auto o = root.object(input_keys::kDistributions);
   if (auto v = o.get("notes")) v->string();
   const JsonValue values = o.require("values", "{\"<bar>.<quantity>\": {\"normal\": ...}, ...}");
   if (!values.is_object() || values.json().empty())
@@ -152,7 +153,7 @@ std::vector<Distribution> read_distributions(const std::filesystem::path& file,
       throw v.error(
           "expected {\"normal\": standard deviation} or {\"uniform\": half-width or "
           "[low, high]}");
-    const auto dist = v.object({"normal", "uniform"});
+    const auto dist = v.object(input_keys::kDistribution);
     // A spread in the value's unit or "%" of the scene's value; > 0.
     auto spread = [&](const JsonValue& s) {
       const StandardUncertainty u = read_standard_uncertainty(s, d.dimension, d.nominal != 0);

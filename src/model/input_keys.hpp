@@ -1,0 +1,95 @@
+#pragma once
+// The keys each JSON object of the input files allows (docs/scene-format.md): the scene, its
+// materials, measurement, calibration file and plan block, campaign files and Monte Carlo
+// distributions files. The readers open each object with its list (an unknown key is refused with
+// a "did you mean", core/json_value.hpp), and tests/app/test_docs_complete.cpp checks that
+// docs/scene-format.md documents exactly these keys. Order matters only for messages ("expected
+// one of: …").
+#include <string>
+#include <vector>
+
+namespace shpb::input_keys {
+
+using Keys = std::vector<std::string>;
+
+// The scene file.
+inline const Keys kScene = {"name",    "notes",      "bars",        "specimen",    "materials",
+                            "contact", "simulation", "measurement", "calibration", "plan"};
+inline const Keys kBar = {"name",     "material", "length", "diameter", "area",   "velocity",
+                          "elements", "gap",      "gauges", "notes",    "inertia"};
+inline const Keys kGauge = {"name", "position", "distance_to_specimen"};
+inline const Keys kContact = {"method",     "stiffness_factor", "stiffness", "rise_time",
+                              "mass_ratio", "interfaces",       "friction"};
+inline const Keys kInterface = {"between",   "method",     "stiffness_factor", "stiffness",
+                                "rise_time", "mass_ratio", "friction"};
+inline const Keys kSimulation = {"duration",   "sample_rate", "stepping", "courant",
+                                 "kinematics", "max_strain",  "tolerance"};
+
+// A material (scene `materials`, a bar's inline `material`, a material file): the keys of every
+// model, then each model's own.
+inline const Keys kMaterial = {"model",  "name",  "density",    "poisson_ratio",
+                               "source", "notes", "uncertainty"};
+inline const Keys kElastic = {"youngs_modulus"};
+inline const Keys kBilinear = {"youngs_modulus", "yield_stress", "tangent_modulus"};
+inline const Keys kJohnsonCook = {"youngs_modulus",
+                                  "A",
+                                  "B",
+                                  "n",
+                                  "C",
+                                  "reference_strain_rate",
+                                  "m",
+                                  "room_temperature",
+                                  "melting_temperature",
+                                  "temperature",
+                                  "specific_heat",
+                                  "taylor_quinney",
+                                  "adiabatic",
+                                  "strain_rate_filter"};
+inline const Keys kViscoelastic = {"long_term_modulus", "arms"};
+inline const Keys kMaxwellArm = {"modulus", "relaxation_time"};  // viscoelastic `arms[]`
+
+// The scene's `measurement`.
+inline const Keys kMeasurement = {
+    "file",        "format",           "time",           "channels",  "dispersion",
+    "windows",     "striker_velocity", "notes",          "load_drop", "sheet",
+    "test",        "corrections",      "reflected_time", "align",     "primary",
+    "rate_window", "uncertainty"};
+inline const Keys kMeasurementTime = {"column", "unit", "resample", "interval", "rate", "start"};
+inline const Keys kChannel = {"gauge", "file", "column", "unit", "bridge", "scale", "invert"};
+inline const Keys kBridge = {"arms", "gauge_factor", "excitation", "gain"};
+inline const Keys kDispersion = {"correction", "amplitude_factors", "cutoff", "cutoff_fa_c0"};
+inline const Keys kWindows = {"incident", "reflected", "transmitted"};
+inline const Keys kRateWindow = {"strain", "time"};
+inline const Keys kCorrections = {"friction", "inertia"};
+inline const Keys kUncertainty = {
+    "gauge_factor",      "excitation", "gain", "gauge_position", "trigger_delay", "window_start",
+    "dispersion_cutoff", "friction",   "bars", "shared",         "notes"};
+// `uncertainty.bars.<name>`: an incident or transmitter bar, or the specimen.
+inline const Keys kUncertaintyBar = {"youngs_modulus", "density", "wave_speed", "poisson_ratio",
+                                     "diameter"};
+inline const Keys kUncertaintySpecimen = {"diameter", "length"};
+
+// The scene's `plan` block.
+inline const Keys kPlan = {"striker", "shaper", "specimen", "notes"};
+inline const Keys kPlanStriker = {"length", "velocity"};
+inline const Keys kPlanShaper = {"material", "diameter", "thickness"};
+inline const Keys kPlanSpecimen = {"length"};
+
+// A calibration file (`shpb calibrate`'s calibration.json).
+inline const Keys kCalibration = {"format",        "version", "command", "reference_gauge",
+                                  "absolute_gain", "bars",    "gauges",  "provenance"};
+inline const Keys kCalibrationBar = {"bar", "wave_speed_m_s", "poisson_ratio", "density_kg_m3",
+                                     "youngs_modulus_Pa"};
+inline const Keys kCalibrationGauge = {"gauge", "bar", "position_m", "gain", "delay_s"};
+inline const Keys kCalibratedValue = {"value", "sd"};
+
+// A campaign file (the fit's keys included, so one file serves `process` and `fit`).
+inline const Keys kCampaign = {"name", "notes",    "tests",  "material",
+                               "free", "nuisance", "stages", "loss"};
+inline const Keys kCampaignTest = {"scene", "name", "weight"};
+
+// A Monte Carlo distributions file (`study --sweep monte-carlo`).
+inline const Keys kDistributions = {"values", "notes"};
+inline const Keys kDistribution = {"normal", "uniform"};
+
+}  // namespace shpb::input_keys
