@@ -76,8 +76,8 @@ inline const Keys kPlanShaper = {"material", "diameter", "thickness"};
 inline const Keys kPlanSpecimen = {"length"};
 
 // A calibration file (`shpb calibrate`'s calibration.json).
-inline const Keys kCalibration = {"format",        "version", "command", "reference_gauge",
-                                  "absolute_gain", "bars",    "gauges",  "provenance"};
+inline const Keys kCalibration = {"format", "reference_gauge", "absolute_gain",
+                                  "bars",   "gauges",          "provenance"};
 inline const Keys kCalibrationBar = {"bar", "wave_speed_m_s", "poisson_ratio", "density_kg_m3",
                                      "youngs_modulus_Pa"};
 inline const Keys kCalibrationGauge = {"gauge", "bar", "position_m", "gain", "delay_s"};

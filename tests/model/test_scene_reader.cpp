@@ -1,12 +1,16 @@
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "../scratch.hpp"
 #include "core/error.hpp"
+#include "model/calibration.hpp"
+#include "model/input_keys.hpp"
 #include "model/scene.hpp"
 
 // This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
@@ -226,6 +230,35 @@ TEST_CASE("Errors name the file, the JSON path, the value and the constraint", "
 
   write(file, R"({"bars": [], "materails": {}})");
   CHECK(error_of(file) == file.string() + ": materails: unknown key: did you mean \"materials\"?");
+}
+
+TEST_CASE("A calibration file holds exactly the keys shpb calibrate writes", "[model][scene]") {
+  // One format, its writer and its reader (model/calibration.hpp): a key the writer never writes
+  // would be accepted and silently ignored, where a scene's unknown key is refused.
+  Calibration c;
+  c.bars.push_back({"incident", {4975, 1}, {0.29, 0.01}, 8080});
+  c.gauges.push_back({"inc", "incident", {1, 1e-3}, {1, 0.01}, {0, 1e-7}});
+  const nlohmann::json written = calibration_to_json(c);
+  std::vector<std::string> keys;
+  for (const auto& [key, value] : written.items()) keys.push_back(key);
+  std::vector<std::string> accepted = input_keys::kCalibration;
+  std::sort(keys.begin(), keys.end());
+  std::sort(accepted.begin(), accepted.end());
+  CHECK(keys == accepted);
+
+  const Scratch s("calibration_keys");
+  const fs::path file = s.dir / "calibration.json";
+  nlohmann::json with_version = written;
+  with_version["version"] = "1.0";
+  write(file, with_version.dump());
+  try {
+    read_calibration_file(file);
+    FAIL("a calibration file with a top-level \"version\" was read");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()).find(file.string() + ": version: unknown key") == 0);
+  }
+  write(file, written.dump());
+  CHECK(read_calibration_file(file).bars.at(0).wave_speed_m_s.value == 4975);
 }
 
 }  // namespace tests_model_test_scene_reader
