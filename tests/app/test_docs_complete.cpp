@@ -2,7 +2,7 @@
 // in its section of docs/commands.md, every key of every JSON object the input readers open in its
 // table of docs/scene-format.md, and nothing more. The lists are the code's own: the commands'
 // CLI11 definitions (app/commands.hpp, add_commands) and the readers' key lists
-// (model/input_keys.hpp, fit's nuisance names).
+// (model/input_keys.hpp; fit's nuisance names and the law parameters it may free).
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <catch2/catch.hpp>
@@ -18,6 +18,7 @@
 #include "core/enum_names.hpp"
 #include "fit/fit_spec.hpp"
 #include "model/input_keys.hpp"
+#include "model/law_parameters.hpp"
 #include "model/material.hpp"
 #include "model/material_reader.hpp"
 
@@ -214,6 +215,22 @@ struct DocObject {
   std::vector<std::pair<std::string, Keys>> children = {};
 };
 
+// The law parameters a campaign may free (`free`), of every model; a viscoelastic arm's as
+// `arms[k].modulus`.
+Keys free_parameter_names() {
+  Keys names;
+  for (const auto& [model_name, model] : shpb::kMaterialModelNames) {
+    shpb::MaterialSpec m;
+    m.model = model;
+    m.viscoelastic.arms.resize(1);
+    for (std::string name : shpb::law_parameter_names(m)) {
+      if (name.rfind("arms[0]", 0) == 0) name.replace(0, 7, "arms[k]");
+      if (!contains(names, name)) names.push_back(name);
+    }
+  }
+  return names;
+}
+
 std::vector<DocObject> scene_format_objects() {
   namespace k = shpb::input_keys;
   std::vector<DocObject> objects = {
@@ -246,7 +263,9 @@ std::vector<DocObject> scene_format_objects() {
        {{"striker", k::kPlanStriker}, {"shaper", k::kPlanShaper}, {"specimen", k::kPlanSpecimen}}},
       {"Campaign files",
        k::kCampaign,
-       {{"tests", k::kCampaignTest}, {"nuisance", shpb::enum_names(shpb::kNuisanceNames)}}}};
+       {{"tests", k::kCampaignTest},
+        {"nuisance", shpb::enum_names(shpb::kNuisanceNames)},
+        {"free", free_parameter_names()}}}};
   // Each material model's own keys, in the table named after the model (**bilinear** — …).
   for (const auto& [name, model] : shpb::kMaterialModelNames) {
     DocObject o{std::string(name), shpb::material_model_keys(model)};
