@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "analysis/processing.hpp"
+#include "analysis/dispersion_cutoff.hpp"
 #include "analysis/pulse_window.hpp"
 #include "core/error.hpp"
 #include "core/number_format.hpp"

@@ -7,7 +7,10 @@
 #include <optional>
 #include <tuple>
 
+#include "analysis/dispersion_cutoff.hpp"
+#include "analysis/message_text.hpp"
 #include "analysis/pulse_window.hpp"
+#include "analysis/sample_index.hpp"
 #include "core/correlation.hpp"
 #include "core/csv_writer.hpp"  // format_double
 #include "core/error.hpp"
@@ -61,25 +64,6 @@ BarWaveguide waveguide_of(const BarSpec& b) {
       w.arms.push_back({a.modulus_Pa / e0, a.relaxation_time_s});
   }
   return w;
-}
-
-std::size_t index_at(const std::vector<double>& t, double time) {
-  const auto it = std::lower_bound(t.begin(), t.end(), time);
-  return static_cast<std::size_t>(it - t.begin());
-}
-
-// The one rule for times set by hand (the scene's windows): the nearest sample.
-std::size_t nearest_sample(const std::vector<double>& t, double time) {
-  const std::size_t i = index_at(t, time);
-  if (i == 0) return 0;
-  if (i == t.size()) return t.size() - 1;
-  return time - t[i - 1] <= t[i] - time ? i - 1 : i;
-}
-
-std::string fmt(const char* format, double a, double b = 0, double c = 0, double d = 0) {
-  char buf[400];
-  std::snprintf(buf, sizeof buf, format, a, b, c, d);
-  return buf;
 }
 
 // A fraction as a percentage: three significant digits, whole percent from 100 % up.
@@ -1216,19 +1200,6 @@ void require_pulse_fits_round_trip(const KolskySetup& k, double pulse_s,
   require_pulse_fits_round_trip(k.incident_gauge, "incident pulse", pulse_s,
                                 2 * k.incident_distance_m / k.front.c0_m_s,
                                 "2d/c0 = %.3g s of its gauge to the specimen and back", scene_file);
-}
-
-double cutoff_fa_over_c0(const DispersionSpec& ds, const BarWaveguide& w) {
-  if (ds.cutoff_fa_c0) return *ds.cutoff_fa_c0;
-  return ds.cutoff_Hz ? *ds.cutoff_Hz * w.radius_m / w.c0_m_s : kDefaultCutoffFaOverC0;
-}
-
-double dispersion_cutoff_Hz(const DispersionSpec& ds, const BarWaveguide& w) {
-  return cutoff_fa_over_c0(ds, w) * w.c0_m_s / w.radius_m;
-}
-
-const char* dispersion_cutoff_key(const DispersionSpec& ds) {
-  return ds.cutoff_fa_c0 ? "measurement.dispersion.cutoff_fa_c0" : "measurement.dispersion.cutoff";
 }
 
 ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup& k,

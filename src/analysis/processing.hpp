@@ -203,13 +203,6 @@ void require_pulse_fits_round_trip(const std::string& gauge, const std::string& 
                                    double pulse_s, double round_trip_s,
                                    const std::string& round_trip, const std::string& scene_file);
 
-// The dispersion correction's cut-off on the waveguide `w`, f·a/c0 and in Hz: the scene's
-// cutoff_fa_c0, its cutoff in Hz, else the default (docs/scene-format.md, measurement.dispersion).
-double cutoff_fa_over_c0(const DispersionSpec& ds, const BarWaveguide& w);
-double dispersion_cutoff_Hz(const DispersionSpec& ds, const BarWaveguide& w);
-// The scene key that sets it, for messages: measurement.dispersion.cutoff_fa_c0 or .cutoff.
-const char* dispersion_cutoff_key(const DispersionSpec& ds);
-
 ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup& setup,
                                  const ProcessingOptions& options);
 

@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "analysis/dispersion_cutoff.hpp"
 #include "analysis/test_processing.hpp"
 #include "core/csv_writer.hpp"  // format_double
 #include "core/error.hpp"

@@ -8,6 +8,7 @@
 #include <memory>
 #include <mutex>
 
+#include "analysis/dispersion_cutoff.hpp"
 #include "analysis/gauge_signals.hpp"
 #include "analysis/processing.hpp"
 #include "analysis/pulse_window.hpp"

@@ -4,6 +4,7 @@
 #include <random>
 #include <vector>
 
+#include "analysis/dispersion_cutoff.hpp"
 #include "analysis/processing.hpp"
 #include "analysis/pulse_window.hpp"
 #include "dispersion/propagation.hpp"
