@@ -3,6 +3,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "analysis/kolsky_setup.hpp"
 #include "analysis/processing.hpp"
 #include "analysis/pulse_window.hpp"
 #include "core/checked_write.hpp"

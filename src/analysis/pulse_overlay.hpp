@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/kolsky_setup.hpp"
 #include "analysis/processing.hpp"
 #include "analysis/pulse_window.hpp"
 #include "core/time_series.hpp"
