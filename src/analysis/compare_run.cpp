@@ -4,8 +4,8 @@
 #include <nlohmann/json.hpp>
 
 #include "analysis/kolsky_setup.hpp"
-#include "analysis/processing.hpp"
 #include "analysis/pulse_window.hpp"
+#include "analysis/signal_checks.hpp"
 #include "core/checked_write.hpp"
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"

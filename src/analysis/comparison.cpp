@@ -4,8 +4,8 @@
 #include <cmath>
 #include <vector>
 
-#include "analysis/processing.hpp"
 #include "analysis/pulse_window.hpp"
+#include "analysis/signal_checks.hpp"
 #include "core/correlation.hpp"
 
 namespace shpb {

@@ -21,7 +21,7 @@ struct PulseComparison {
   double correlation = 1;                                      // Pearson coefficient in the window
 };
 
-struct ClippedSamples;  // analysis/processing.hpp
+struct ClippedSamples;  // analysis/signal_checks.hpp
 
 // Compares simulated with measured over samples [begin, end) of a grid of step dt_s. The
 // cross-correlation lag is searched within ± half the window. A clipped measured channel's samples

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <map>
 
-#include "analysis/processing.hpp"
+#include "analysis/signal_checks.hpp"
 #include "core/error.hpp"
 #include "core/interpolation.hpp"
 #include "core/median.hpp"

@@ -5,7 +5,7 @@
 #include "analysis/bar_check.hpp"
 #include "analysis/gauge_signals.hpp"
 #include "analysis/kolsky_setup.hpp"
-#include "analysis/processing.hpp"
+#include "analysis/signal_checks.hpp"
 #include "analysis/uncertainty.hpp"
 #include "model/test_setup.hpp"
 

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <numbers>
 #include <optional>
 #include <tuple>
 
@@ -11,7 +10,7 @@
 #include "analysis/message_text.hpp"
 #include "analysis/pulse_window.hpp"
 #include "analysis/sample_index.hpp"
-#include "core/correlation.hpp"
+#include "analysis/signal_checks.hpp"
 #include "core/csv_writer.hpp"  // format_double
 #include "core/error.hpp"
 #include "core/interpolation.hpp"
@@ -372,137 +371,6 @@ Equilibrium judge_equilibrium(const Curve& c, const std::vector<double>& t, std:
     e.holds_from_s = t[from];
   return e;
 }
-
-// The clipping warning of the record of gauge `name` (processing.hpp), if it looks clipped.
-std::optional<std::string> clipping_warning(const std::string& name, const std::vector<double>& x) {
-  const std::vector<ClippedLevel> levels = clipped_levels(x);
-  if (levels.empty()) return std::nullopt;
-  const ClippedLevel& c = levels.front();
-  return "gauge \"" + name + "\": " + std::to_string(c.run) +
-         " consecutive samples at the record's extreme " + format_double(c.level) + " (" +
-         std::to_string(c.at_level) + " samples at that level, " + std::to_string(c.at_next) +
-         " at the next one)" +
-         ": the signal looks clipped (amplifier or digitizer range); pulses and the striker "
-         "velocity inferred from it are too small";
-}
-
-}  // namespace
-
-std::vector<ClippedLevel> clipped_levels(const std::vector<double>& x) {
-  std::vector<ClippedLevel> out;
-  if (x.empty()) return out;
-  const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
-  for (const double extreme : {*hi, *lo}) {
-    if (extreme == 0 || (!out.empty() && extreme == out.front().level)) continue;
-    // The level histogram at the extreme: its count, and that of the next level inward.
-    std::size_t run = 0, longest = 0, at_extreme = 0, at_next = 0;
-    double next = extreme == *hi ? *lo : *hi;
-    for (double v : x) {
-      longest = std::max(longest, run = v == extreme ? run + 1 : 0);
-      at_extreme += v == extreme;
-      if (v != extreme && std::abs(extreme - v) < std::abs(extreme - next)) next = v;
-    }
-    for (double v : x) at_next += v == next;
-    const bool piles_up =
-        static_cast<double>(at_extreme) >= kClippedPileUp * static_cast<double>(at_next);
-    if (longest >= kClippedRun && piles_up)
-      out.push_back(ClippedLevel{extreme, longest, at_extreme, at_next});
-  }
-  return out;
-}
-
-std::optional<ClippedSamples> clipped_samples(const std::vector<double>& raw,
-                                              const std::vector<double>& from_rest) {
-  const std::vector<ClippedLevel> levels = clipped_levels(raw);
-  if (levels.empty()) return std::nullopt;
-  // Whether from_rest runs with raw or against it (a turned channel): from the record's extremes.
-  const auto [lo, hi] = std::minmax_element(raw.begin(), raw.end());
-  const bool turned = from_rest[static_cast<std::size_t>(hi - raw.begin())] <
-                      from_rest[static_cast<std::size_t>(lo - raw.begin())];
-  ClippedSamples out;
-  out.at.assign(raw.size(), 0);
-  for (const ClippedLevel& c : levels) {
-    // The raw record's upper level bounds from below; turned over, from above.
-    const signed char side = (c.level == *hi) != turned ? 1 : -1;
-    for (std::size_t i = 0; i < raw.size(); ++i)
-      if (raw[i] == c.level) {
-        out.at[i] = side;
-        (side > 0 ? out.upper : out.lower) = from_rest[i];
-      }
-  }
-  return out;
-}
-
-ClippedSamples::Residual ClippedSamples::residual(std::size_t i, double model,
-                                                  double measured) const {
-  if (at[i] == 0) return {model - measured, 1};
-  const double level = at[i] > 0 ? *upper : *lower;
-  const double beyond = at[i] * (model - level);  // > 0: the model reaches the level
-  if (!(noise > 0)) return beyond >= 0 ? Residual{0, 0} : Residual{model - level, 1};
-  const double z = beyond / noise;
-  // −2 ln Φ(z), from the tail that keeps its digits: Φ(z) = 1 − ½ erfc(z/√2) above 0, and below
-  // −30 (erfc underflows) the Mills-ratio limit z² + 2 ln(−z √(2π)).
-  const double tail = 0.5 * std::erfc(std::abs(z) / std::numbers::sqrt2);
-  const double loss = z >= 0    ? -2 * std::log1p(-tail)
-                      : z > -30 ? -2 * std::log(tail)
-                                : z * z + 2 * std::log(-z * std::sqrt(2 * std::numbers::pi));
-  const double root = std::sqrt(loss);
-  if (!(root > 0)) return {0, 0};
-  // dr/dmodel = φ(z)/(Φ(z) √loss) for r = −σ √loss, signed by the side (the level bounds from
-  // below at +1: a larger model helps).
-  const double density = std::exp(-0.5 * z * z) / std::sqrt(2 * std::numbers::pi);
-  const double cdf = z >= 0 ? 1 - tail : tail;
-  const double ratio = cdf > 0 ? density / cdf : -z;  // Mills ratio where Φ underflows
-  return {-at[i] * noise * root, ratio / root};
-}
-
-std::vector<std::string> signal_warnings(const GaugeSignals& signals) {
-  std::vector<std::string> warnings;
-  if (signals.time_s.size() < kMinRecordSamples)
-    warnings.push_back("the record has only " + std::to_string(signals.time_s.size()) +
-                       " samples: too few to resolve a pulse (check the sample rate)");
-  for (std::size_t g = 0; g < signals.gauges.size(); ++g)
-    if (auto w = clipping_warning(signals.gauges[g], signals.strain[g])) warnings.push_back(*w);
-  for (std::size_t g = 0; g < signals.gauges.size(); ++g)
-    for (std::size_t h = g + 1; h < signals.gauges.size(); ++h) {
-      const std::vector<double>& a = signals.strain[g];
-      const std::vector<double>& b = signals.strain[h];
-      if (a.size() != b.size() || a.empty()) continue;
-      const double r = correlation_coefficient(a, b);
-      if (std::abs(r) >= 1 - kCopiedChannelCorrelation)
-        warnings.push_back("gauges \"" + signals.gauges[g] + "\" and \"" + signals.gauges[h] +
-                           "\" hold the same record" + (r < 0 ? " inverted" : "") +
-                           " (correlation " + (r < 0 ? "-1" : "1") + " within " +
-                           format_double(kCopiedChannelCorrelation) +
-                           "): one channel was read twice (check the measurement's channels "
-                           "and the export)");
-    }
-  return warnings;
-}
-
-RestSignal signal_from_rest(const std::vector<double>& raw, double expected_sign) {
-  const Baseline b = estimate_baseline(raw);
-  RestSignal s{std::vector<double>(raw.size()), b.noise, std::nullopt, false};
-  for (std::size_t i = 0; i < raw.size(); ++i) s.x[i] = raw[i] - b.level;
-  s.first = find_first_pulse(s.x, {0.0, b.noise});
-  if (s.first && s.first->sign != expected_sign) {
-    for (double& v : s.x) v = -v;
-    s.first->sign = expected_sign, s.inverted = true;
-  }
-  return s;
-}
-
-std::string inverted_gauge_warning(const std::string& gauge, bool tension) {
-  return "gauge \"" + gauge +
-         (tension ? "\": its first pulse is compressive; a tension test's first pulse is tensile, "
-                    "so the signal was inverted (check the channel's `invert` and the "
-                    "measurement's `test`)"
-                  : "\": its first pulse is tensile; a compression test's first pulse is "
-                    "compressive, so the signal was inverted (check the channel's `invert`, or "
-                    "\"test\": \"tension\")");
-}
-
-namespace {
 
 // The pulses are moved by the gauge distances: refuse a delay of more samples than any record
 // holds before the propagation pads the signal by it.
@@ -1025,27 +893,6 @@ void warn_window_shift(const ShiftStressError& stress_change, const std::vector<
 }
 
 }  // namespace
-
-void require_pulse_fits_round_trip(const std::string& gauge, const std::string& pulse,
-                                   double pulse_s, double round_trip_s,
-                                   const std::string& round_trip, const std::string& scene_file) {
-  if (!(round_trip_s > 0) || pulse_s <= kMaxPulseRoundTrips * round_trip_s) return;
-  char value[300];
-  std::snprintf(value, sizeof value, "gauge \"%s\": %s %.3g s long, %.3g round trips %s",
-                gauge.c_str(), pulse.c_str(), pulse_s, pulse_s / round_trip_s,
-                fmt(round_trip.c_str(), round_trip_s).c_str());
-  throw input_error(scene_file, "measurement.time.unit", value,
-                    "expected a pulse shorter than its round trip (its reflection would overlap "
-                    "it): is the time unit right? (a column in ms read as s makes every pulse "
-                    "1000 times longer)");
-}
-
-void require_pulse_fits_round_trip(const KolskySetup& k, double pulse_s,
-                                   const std::string& scene_file) {
-  require_pulse_fits_round_trip(k.incident_gauge, "incident pulse", pulse_s,
-                                2 * k.incident_distance_m / k.front.c0_m_s,
-                                "2d/c0 = %.3g s of its gauge to the specimen and back", scene_file);
-}
 
 ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup& k,
                                  const ProcessingOptions& options) {

@@ -9,27 +9,11 @@
 
 #include "analysis/gauge_signals.hpp"
 #include "analysis/kolsky_setup.hpp"
-#include "analysis/pulse_window.hpp"
 #include "analysis/reduction.hpp"
 #include "dispersion/propagation.hpp"
 #include "model/scene.hpp"
 
 namespace shpb {
-
-// A gauge record from its rest level: less its baseline (estimate_baseline: a bridge's offset is no
-// strain), with its first pulse (find_first_pulse). A record whose first pulse has the other sign
-// than `expected_sign` (−1: a compression test's, +1: a tension test's) is turned over (a bridge
-// wired the other way, docs/commands.md `process`). Used by `process`, `compare` and `fit`.
-struct RestSignal {
-  std::vector<double> x;
-  double noise = 0;                  // the baseline's
-  std::optional<PulseWindow> first;  // in x, after any turn; nullopt: nothing above the noise
-  bool inverted = false;
-};
-RestSignal signal_from_rest(const std::vector<double>& raw, double expected_sign);
-
-// What a turned record's gauge is told.
-std::string inverted_gauge_warning(const std::string& gauge, bool tension);
 
 // The curve ends at the strain maximum or, earlier, where the 1-wave stress falls below half the
 // peak it had reached and stays there (fracture, or the end of the pulse), docs/methods.md §6.
@@ -135,74 +119,7 @@ struct ProcessingResult {
 // above 20 % of its peak; it is reached where it then holds until unloading.
 inline constexpr double kEquilibriumThreshold = 0.05;
 
-// An incident pulse lasting more than this many round trips of its gauge to the specimen and back
-// (2d/c0, when its reflection reaches the gauge) would be overlapped by its own reflection many
-// times over: no Kolsky record, but a clock read in the wrong unit (a column in ms read as s makes
-// every pulse 1000 times longer, which the sample-interval range lets through at 10 MS/s).
-inline constexpr double kMaxPulseRoundTrips = 10;
-// Refuses (InputError at measurement.time.unit) an incident pulse of `pulse_s` at its gauge longer
-// than that. Used by `process`, `compare` and `fit`.
-void require_pulse_fits_round_trip(const KolskySetup& setup, double pulse_s,
-                                   const std::string& scene_file);
-// The same rule for any `pulse` of `gauge` against a round trip of `round_trip_s`, described by
-// `round_trip` (a printf format of that time, e.g. "2L/c0 = %.3g s of its bar"): `calibrate`'s
-// first pulse against its struck bar's round trip.
-void require_pulse_fits_round_trip(const std::string& gauge, const std::string& pulse,
-                                   double pulse_s, double round_trip_s,
-                                   const std::string& round_trip, const std::string& scene_file);
-
 ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup& setup,
                                  const ProcessingOptions& options);
-
-// A record clipped by its amplifier or digitizer piles up at its extreme level: every sample the
-// range cut off lands there, so the level holds at least kClippedPileUp times as many samples as
-// the next level inward, and at least kClippedRun of them follow one another. An unclipped
-// record only touches its extreme: a noisy or ringing top spreads over the levels below it, so
-// its extreme level holds fewer samples than the next one even where a coarse (8-bit) digitizer
-// repeats the level for several samples running.
-// Also warns of a record too short to hold a pulse (fewer than kMinRecordSamples samples), and of
-// two gauges whose records are the same up to a scale (one channel read twice, or exported under
-// two names): two gauges on a bar record different pulses at different times, each with its own
-// noise, so their correlation over a whole record is nowhere near 1 − kCopiedChannelCorrelation,
-// which a copy scaled by another bridge factor reaches to round-off.
-inline constexpr std::size_t kClippedRun = 5;
-inline constexpr double kClippedPileUp = 2.0;
-inline constexpr std::size_t kMinRecordSamples = 16;
-inline constexpr double kCopiedChannelCorrelation = 1e-9;
-std::vector<std::string> signal_warnings(const GaugeSignals& signals);
-// The extreme levels at which a record looks clipped by the rule above (the upper one first; each
-// with its longest run there and the counts at that level and the next one inward): none, one or
-// both (a range exceeded both ways, by pulses of both signs).
-struct ClippedLevel {
-  double level = 0;
-  std::size_t run = 0, at_level = 0, at_next = 0;
-};
-std::vector<ClippedLevel> clipped_levels(const std::vector<double>& x);
-// A clipped record's samples at its clip levels, and those levels in the units of the record as it
-// is used (`from_rest`: the same record less its rest level, turned as its pulses are). The strain
-// there reached at least the level: a bound, not a value (fit and calibrate read it so: a
-// censored measurement, Tobit 1958).
-struct ClippedSamples {
-  std::optional<double> upper, lower;  // from rest: the strain reached at least / at most these
-  std::vector<signed char> at;         // +1 at the upper level, −1 at the lower, 0 a value
-  double noise = 0;  // the record's noise σ (its quiet start's, estimate_baseline)
-  // Sample i's residual, model − measured for a value; at a clip level the censored one whose
-  // square is −2 ln P(the strain reached the level | the model), P = Φ(±(model − level)/σ)
-  // (Tobit 1958): −σ √(−2 ln P), 0 well beyond the level, model − level well short of it (the
-  // noiseless limit: 0 beyond, model − level short). With the derivative by the model.
-  struct Residual {
-    double value = 0, slope = 1;
-  };
-  Residual residual(std::size_t i, double model, double measured) const;
-  // x as the clipped channel records it.
-  double clip(double x) const {
-    if (upper && x > *upper) return *upper;
-    if (lower && x < *lower) return *lower;
-    return x;
-  }
-};
-// nullopt when `raw` does not look clipped.
-std::optional<ClippedSamples> clipped_samples(const std::vector<double>& raw,
-                                              const std::vector<double>& from_rest);
 
 }  // namespace shpb

@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "analysis/kolsky_setup.hpp"
-#include "analysis/processing.hpp"
 #include "analysis/pulse_window.hpp"
+#include "analysis/signal_checks.hpp"
 #include "core/time_series.hpp"
 #include "dispersion/dispersion_table.hpp"
 #include "model/scene.hpp"
@@ -37,14 +37,14 @@ struct MeasuredPulses {
   PulseWindow incident_window;
   std::optional<PulseWindow> reflected_window, transmitted_window;
   double incident_plateau = 0;    // |plateau| of the incident pulse, strain
-  double struck_end_plateau = 0;  // the same where the striker struck (processing.hpp)
+  double struck_end_plateau = 0;  // the same where the striker struck (kolsky_setup.hpp)
   // Standard deviation of the incident pulse's front time (the clock) from the baseline's noise,
   // taken as white: what the record noise alone makes of the alignment.
   double incident_front_sd_s = 0;
   // Samples of the incident front strictly between 40 and 60 % of its plateau: none, and the
   // record does not say where in a sample interval the clocks meet.
   double incident_front_samples = 0;
-  // A clipped channel's samples at its clip level (ClippedSamples, processing.hpp), in the units
+  // A clipped channel's samples at its clip level (ClippedSamples, signal_checks.hpp), in the units
   // of `incident` and `transmitted`.
   std::optional<ClippedSamples> incident_clipped, transmitted_clipped;
   // A channel turned over, a pulse the record does not hold or cuts short.

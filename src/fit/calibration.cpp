@@ -10,8 +10,8 @@
 
 #include "analysis/dispersion_cutoff.hpp"
 #include "analysis/gauge_signals.hpp"
-#include "analysis/processing.hpp"
 #include "analysis/pulse_window.hpp"
+#include "analysis/signal_checks.hpp"
 #include "core/error.hpp"
 #include "core/median.hpp"
 #include "core/number_format.hpp"
@@ -423,7 +423,7 @@ Shot prepare_shot(const CalibrationShot& cs, Parameters& params, std::string& re
   check_shot_scene(scene, file);
   const GaugeSignals signals = read_gauge_signals(*scene.measurement, {});
   // What reading the record assumed, and what makes it doubtful (clipping, too few samples):
-  // process's own checks of a record (analysis/processing.hpp).
+  // process's own checks of a record (analysis/signal_checks.hpp).
   s.warnings = signals.warnings;
   for (auto& w : signal_warnings(signals)) s.warnings.push_back(std::move(w));
   const std::vector<std::size_t> gauged = gauged_bars(scene, signals, file);
@@ -451,7 +451,7 @@ Shot prepare_shot(const CalibrationShot& cs, Parameters& params, std::string& re
       cut_source(source, base.noise,
                  static_cast<std::size_t>(std::max(0.0, return_s / signals.dt_s)), file, src.name);
   // A striker pulse lasts 2 L_s/c0: ten times the struck bar's own round trip is no striker's,
-  // but a clock read in the wrong unit (the rule of process, analysis/processing.hpp).
+  // but a clock read in the wrong unit (the rule of process, analysis/signal_checks.hpp).
   require_pulse_fits_round_trip(
       src.name, "first pulse", static_cast<double>(w.pulse.end - w.pulse.onset) * signals.dt_s,
       2 * struck.length_m / struck.material.wave_speed_m_s(), "2L/c0 = %.3g s of its bar", file);

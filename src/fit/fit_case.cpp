@@ -5,6 +5,7 @@
 
 #include "analysis/gauge_signals.hpp"
 #include "analysis/processing.hpp"
+#include "analysis/signal_checks.hpp"
 #include "analysis/test_processing.hpp"
 #include "core/error.hpp"
 #include "core/json_value.hpp"

@@ -84,7 +84,7 @@ class FitCase {
   Overlay simulate(const MaterialSpec& law, const Nuisance& nuisance) const;
   // √(w / n_p) (s − m) / max|m| over each fitted window: Σ r² = w Σ_pulses NRMSE².
   // A sample of a clipped channel at its clip level says only that the strain reached it: its
-  // residual is the censored one (ClippedSamples, analysis/processing.hpp; Tobit 1958).
+  // residual is the censored one (ClippedSamples, analysis/signal_checks.hpp; Tobit 1958).
   std::vector<double> residuals(const Overlay& o) const;
   ClippedSamples::Residual residual_at(const std::vector<double>& measured_strain, std::size_t i,
                                        double simulated) const;
