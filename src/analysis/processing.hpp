@@ -24,11 +24,6 @@ inline constexpr double kDefaultLoadDrop = 0.5;
 // while the reflected pulse dies out) is a few percent of the total.
 inline constexpr double kLoadDropStrainShortfall = 0.05;
 
-// A shift of a pulse at the faces that changes the 3-wave stress by more than 5 % of the 1-wave
-// peak is warned about: beyond the 5 % spread of the two face forces accepted as equilibrium, it
-// changes what is read as the specimen's response.
-inline constexpr double kShiftStressError = 0.05;
-
 struct ProcessingOptions {
   DispersionSpec dispersion;            // correction on/off, amplitude factors, cut-off
   PulseWindows windows;                 // manual windows (gauge clocks) override detection
