@@ -11,6 +11,7 @@
 #include "core/median.hpp"
 #include "core/number_format.hpp"
 #include "core/signal_reader.hpp"
+#include "core/time_series.hpp"
 
 namespace shpb {
 namespace {

@@ -20,14 +20,14 @@ namespace shpb {
 // record only touches its extreme: a noisy or ringing top spreads over the levels below it, so
 // its extreme level holds fewer samples than the next one even where a coarse (8-bit) digitizer
 // repeats the level for several samples running.
-// Also warns of a record too short to hold a pulse (fewer than kMinRecordSamples samples), and of
+// Also warns of a record too short to hold a pulse (fewer than kMinRecordSamples samples,
+// core/time_series.hpp), and of
 // two gauges whose records are the same up to a scale (one channel read twice, or exported under
 // two names): two gauges on a bar record different pulses at different times, each with its own
 // noise, so their correlation over a whole record is nowhere near 1 − kCopiedChannelCorrelation,
 // which a copy scaled by another bridge factor reaches to round-off.
 inline constexpr std::size_t kClippedRun = 5;
 inline constexpr double kClippedPileUp = 2.0;
-inline constexpr std::size_t kMinRecordSamples = 16;
 inline constexpr double kCopiedChannelCorrelation = 1e-9;
 std::vector<std::string> signal_warnings(const GaugeSignals& signals);
 // The extreme levels at which a record looks clipped by the rule above (the upper one first; each

@@ -7,6 +7,10 @@
 
 namespace shpb {
 
+// Fewer samples cannot resolve a pulse (a rise alone takes several): a simulated record that short
+// is warned of, a measured window that short refused.
+inline constexpr std::size_t kMinRecordSamples = 16;
+
 // values[c][k] is column c at time_s[k].
 struct TimeSeries {
   std::vector<std::string> columns;  // CSV names (units in the names), without time_s

@@ -145,8 +145,6 @@ constexpr double kPlausibleSpecimenStrain = 0.9;
 // Interfaces interpenetrating by more than this fraction of the smaller neighbouring element:
 // the contact is too soft to stand for the bars' touching faces.
 constexpr double kPlausiblePenetrationElements = 0.5;
-// Fewer recorded samples cannot resolve a pulse (a rise alone takes several).
-constexpr std::size_t kMinRecordSamples = 16;
 // The energy balance (kinetic + strain + dissipated against the work put in) closes to 1e-6…5e-3 in
 // every shipped experiment; a larger gap means the discrete contacts did work the bars' forces did
 // not. Measured causes: a light, stiff bar tied to a heavy, slow one at asynchronous steps where no
