@@ -162,10 +162,8 @@ class FolderResult:
     failure said in its summary. save(dir) writes the very files into `dir`."""
 
     def __init__(self, command, folder, exit_code, inputs=()):
-        import weakref
         self.command, self.exit_code, self._folder = command, exit_code, folder
         self._inputs = list(inputs)  # the files the run read: save(dir) may hold none of them
-        weakref.finalize(self, shutil.rmtree, os.path.dirname(folder), True)
         self.tables, self.json = {}, {}
         for name in sorted(os.listdir(folder)):
             path = os.path.join(folder, name)
@@ -209,15 +207,20 @@ def _read_csv(path):
 
 def _folder_run(command, run, file, distributions=None):
     """Runs `command` on its scene or campaign `file` into a temporary folder."""
+    import weakref
     tmp = tempfile.mkdtemp(prefix=f"shpb-{command}-")
     folder = os.path.join(tmp, "out")
     try:
         code = run(folder)
         inputs = _shpb._inputs(command, file, distributions or "")
+        result = FolderResult(command, folder, code, inputs)
     except BaseException:
         shutil.rmtree(tmp, True)
         raise
-    return FolderResult(command, folder, code, inputs)
+    # The temporary folder is this function's and goes with its result; a FolderResult made of
+    # any other folder removes nothing.
+    weakref.finalize(result, shutil.rmtree, tmp, True)
+    return result
 
 
 def _scene_file(scene):

@@ -1,6 +1,8 @@
 """compare, dispersion, study and fit from Python: the command's own function, so the command's
 files."""
+import gc
 import json
+import os
 
 import numpy as np
 
@@ -119,3 +121,23 @@ def test_save_refuses_a_folder_holding_an_input_as_the_command_does(tmp_path):
     else:
         raise AssertionError("saved over the folder holding the starting material")
     assert {p.name: p.read_bytes() for p in first.iterdir()} == before
+
+
+def test_a_result_removes_its_own_temporary_folder_and_nothing_else(tmp_path):
+    # A FolderResult read from a folder of the user's (its parent holding other files) removes
+    # nothing when collected; the temporary folder compare ran into goes with its result.
+    user = tmp_path / "results"
+    (user / "x").mkdir(parents=True)
+    (user / "keep.txt").write_text("the user's", encoding="utf-8")
+    (user / "x" / "summary.json").write_text("{}", encoding="utf-8")
+    result = shpb.FolderResult("compare", str(user / "x"), 0)
+    assert result.summary == {}
+    del result
+    gc.collect()
+    assert (user / "keep.txt").is_file() and (user / "x" / "summary.json").is_file()
+    result = shpb.compare(SOURCE / "experiments" / "lanl-cu-ofe-273k" / "scene.json")
+    temporary = result._folder
+    assert result.tables and os.path.isdir(temporary)
+    del result
+    gc.collect()
+    assert not os.path.exists(os.path.dirname(temporary))
