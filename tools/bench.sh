@@ -98,7 +98,7 @@ if [ "${BENCH_STUDY:-1}" != 0 ]; then
 fi
 
 # 5. --tolerance 1%: the automatic meshes against the meshes the gauge-error model chooses
-#    (model/mesh_error_model.hpp): node updates, solve time, recorded error measured against the
+#    (model/mesh_choice.hpp): node updates, solve time, recorded error measured against the
 #    study's reference and predicted (skipped with BENCH_TOLERANCE=0).
 if [ "${BENCH_TOLERANCE:-1}" != 0 ]; then
   echo

@@ -7,7 +7,7 @@
 // experiments/*/scene.json (tools/bench.sh does both); --asynchronous-only: the asynchronous line
 // alone (e.g. under valgrind --tool=callgrind, for the instructions of one scene's runs);
 // --tolerance TOL (e.g. 0.03): also each scene at the meshes and Courant number that tolerance
-// chooses (model/mesh_error_model.hpp) beside its automatic meshes: CPU time and the gauge error
+// chooses (model/mesh_choice.hpp) beside its automatic meshes: CPU time and the gauge error
 // against the study's reference, recorded (study/recorded_error.hpp) and point-sampled (the
 // study's `error` column); --defaults: a table of each scene's default run before (automatic
 // meshes) and now (the default tolerance): solve time and gauge error against the reference, and
@@ -25,6 +25,7 @@
 
 #include "core/median.hpp"
 #include "model/front_error.hpp"
+#include "model/mesh_choice.hpp"
 #include "model/mesh_error_model.hpp"
 #include "model/scene_validation.hpp"
 #include "solver/contact.hpp"
@@ -190,7 +191,7 @@ void defaults_table(const std::vector<std::string>& files, const SimulationOptio
     // model's search), median of `repeat`: a run pays it before its solve. Made afresh (nothing
     // remembered, as in a process of its own); searched again with the model's integrals
     // remembered, as a study or a velocity sweep searches (model/front_error.hpp); and the same
-    // scene's choice found again, as a loop of runs of one scene finds it (mesh_error_model.hpp).
+    // scene's choice found again, as a loop of runs of one scene finds it (model/mesh_choice.hpp).
     Scene now;
     enum Remembered { kNothing, kIntegrals, kChoices };
     std::vector<double> times[3];

@@ -212,7 +212,7 @@ int calibrate(int argc, char** argv) {
     for (double c : {0.5, 0.8, 0.95}) cases.push_back({1, 1, c});
     if (scene.specimen)
       for (double s : {0.08, 0.16, 0.5}) cases.push_back({2, s, kDefaultCourant});
-    // Close to C = 1, the Courant number a tolerance may choose (model/mesh_error_model.cpp).
+    // Close to C = 1, the Courant number a tolerance may choose (model/mesh_choice.cpp).
     for (double r : {0.25, 0.5, 1.0, 2.0}) cases.push_back({r, 1, 0.9999});
     if (scene.specimen)
       for (double s : {0.16, 0.5}) cases.push_back({0.5, s, 0.9999});

@@ -73,7 +73,7 @@ ChainDiscretization discretize(const Scene& scene);
 // Whether a discretization's estimates are within that budget.
 bool affordable(const ChainDiscretization& d);
 
-// For a search over meshes (model/mesh_error_model.cpp), which prices many candidates:
+// For a search over meshes (model/mesh_choice.cpp), which prices many candidates:
 // discretize() for a scene of `duration_s` whose element counts fit an int, without the refusal
 // (see affordable()); and the estimates of `d` with bar i discretized as `b` instead — a plan of
 // the chain at asynchronous steps, where each bar's step and cost are its own.

@@ -112,7 +112,7 @@ struct SimulationSpec {
   std::optional<double> max_strain;
   // The gauge error the user accepts (a fraction; "1 %" in the scene, `--tolerance`): the bars
   // without an `elements` of their own are meshed as coarsely as the error model predicts meets
-  // it (model/mesh_error_model.hpp). Unset in the scene and on the command line: kDefaultTolerance
+  // it (model/mesh_choice.hpp). Unset in the scene and on the command line: kDefaultTolerance
   // (model/scene_validation.hpp resolve_scene), with tolerance_is_default set.
   std::optional<double> tolerance;
   bool tolerance_is_default = false;

@@ -10,7 +10,7 @@
 #include "core/error.hpp"
 #include "core/json_value.hpp"
 #include "model/computable.hpp"
-#include "model/mesh_error_model.hpp"
+#include "model/mesh_choice.hpp"
 #include "model/test_setup.hpp"
 
 namespace shpb {

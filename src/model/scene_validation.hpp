@@ -37,7 +37,7 @@ std::string tolerance_problem(double fraction);
 ChainDiscretization validate_scene(const Scene& scene, const RunOptions& options = {});
 
 // validate_scene(), then, with a tolerance, every bar without an `elements` of its own meshed as
-// the error model chooses (model/mesh_error_model.hpp: choose_meshes) — written into the scene's
+// the error model chooses (model/mesh_choice.hpp: choose_meshes) — written into the scene's
 // bars so that every later discretize() sees it — and the result checked again. A tolerance no
 // affordable mesh is predicted to meet, or a scene without a striker, is refused (InputError
 // naming --tolerance or simulation.tolerance, with the best predicted error).

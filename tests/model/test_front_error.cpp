@@ -10,6 +10,7 @@
 
 #include "model/discretization.hpp"
 #include "model/front_error.hpp"
+#include "model/mesh_choice.hpp"
 #include "model/mesh_error_model.hpp"
 
 // This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).

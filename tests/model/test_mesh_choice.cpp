@@ -1,4 +1,4 @@
-// The mesh search of a tolerance (model/mesh_error_model.hpp, docs/methods.md §1.1): its pricing of
+// The mesh search of a tolerance (model/mesh_choice.hpp, docs/methods.md §1.1): its pricing of
 // a candidate by parts equals discretize(), and what it chooses is the cheapest mesh the model
 // predicts within the target, checked against a brute-force search of the same model.
 #include <catch2/catch.hpp>
@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "model/discretization.hpp"
+#include "model/mesh_choice.hpp"
 #include "model/mesh_error_model.hpp"
 
 // This file's own names: the test files are compiled in batches (CMakeLists.txt, unity build).
