@@ -2,16 +2,14 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
-#include <stdexcept>
 #include <thread>
-#include <type_traits>
 
 #include "core/error.hpp"
 #include "core/number_format.hpp"
 #include "core/output_folder.hpp"
 #include "core/signal_formats.hpp"
+#include "core/signal_header_units.hpp"
 #include "core/signal_spreadsheet.hpp"
-#include "core/units.hpp"
 
 namespace shpb {
 namespace {
@@ -304,131 +302,6 @@ RawSignalColumns read_columns(const DelimitedText& text, std::size_t first_data,
   if (second_error) std::rethrow_exception(second_error);
   refuse_cut_last_line(text, first_data, columns, names_read);
   return raw;
-}
-
-// The unit a header field names, as scopes and spreadsheets write it: "Time (ms)", "Zeit [us]",
-// "CH1 (mV)", a unit row's "(ms)", "second", "Volt" or "µm/m", or after the last of `cuts`
-// ("Time/s", "time_s"); nothing for a name without one ("Time", "Sample"). `value` reads a unit's
-// name (µ written u) as the kind of unit sought, or gives nothing; the unit is returned as written
-// with that value.
-template <class Read, class Value = typename std::invoke_result_t<Read, std::string>::value_type>
-std::optional<std::pair<std::string, Value>> header_unit(std::string_view field, Read value,
-                                                         std::string_view cuts) {
-  const auto read = [&](std::string_view unit) -> std::optional<std::pair<std::string, Value>> {
-    while (!unit.empty() && unit.front() == ' ') unit.remove_prefix(1);
-    while (!unit.empty() && unit.back() == ' ') unit.remove_suffix(1);
-    std::string name(unit);
-    // A unit starts with a letter, µ (UTF-8 C2 B5, Greek μ CE BC, Latin-1 B5) or is "%": not a
-    // number.
-    const auto first = static_cast<unsigned char>(name.empty() ? '0' : name.front());
-    if (!std::isalpha(first) && first != 0xC2 && first != 0xCE && first != 0xB5 && name != "%")
-      return std::nullopt;
-    for (const std::string_view micro : {"\xC2\xB5", "\xCE\xBC", "\xB5"})
-      if (name.rfind(micro, 0) == 0) name = "u" + name.substr(micro.size());
-    if (const auto v = value(name)) return std::make_pair(std::string(unit), *v);
-    return std::nullopt;
-  };
-  if (const auto open = field.find_last_of("(["); open != std::string_view::npos) {
-    const auto close = field.find_first_of(")]", open);
-    return read(field.substr(open + 1, close == std::string_view::npos ? close : close - open - 1));
-  }
-  if (const auto whole = read(field)) return whole;  // a unit row's cell
-  if (const auto cut = field.find_last_of(cuts); cut != std::string_view::npos)
-    return read(field.substr(cut + 1));
-  return std::nullopt;
-}
-
-// Where a name ends and its unit begins: "Time/s", "time_s", "t s" for the time; only "CH1/mV"
-// for a value, whose names (a gauge's "inc_V") may end in a unit's letters.
-constexpr std::string_view kTimeUnitCuts = "/_ ", kValueUnitCuts = "/";
-
-// A time unit's name in seconds, read as a scene's quantities are (core/units.hpp).
-std::optional<double> time_unit(std::string name) {
-  if (name == "second" || name == "seconds" || name == "sec") name = "s";
-  try {
-    return parse_quantity("1 " + name, Dimension::kTime);
-  } catch (const std::invalid_argument&) {
-    return std::nullopt;
-  }
-}
-
-// A value column's unit: a voltage ("V", "mV", "Volt") or a strain ("ε", "µε", "µm/m",
-// "microstrain", "%"), with its size in volts or in strain.
-struct ValueUnit {
-  bool volts = false;
-  double size = 1;
-};
-std::optional<ValueUnit> value_unit(std::string name) {
-  if (name == "Volt" || name == "Volts" || name == "volt" || name == "volts") name = "V";
-  if (name == "\xCE\xB5") return ValueUnit{false, 1};  // ε
-  if (name == "%") return ValueUnit{false, 0.01};      // a strain in percent
-  if (name == "u\xCE\xB5" || name == "ue" || name == "ustrain" || name == "microstrain")
-    return ValueUnit{false, 1e-6};
-  try {
-    if (name.find('/') != std::string::npos)  // m/m, mm/m, µm/m
-      return ValueUnit{false, parse_quantity("1 " + name, Dimension::kDimensionless)};
-    return ValueUnit{true, parse_quantity("1 " + name, Dimension::kVoltage)};
-  } catch (const std::invalid_argument&) {
-    return std::nullopt;
-  }
-}
-
-// Two units are the same when their sizes agree to round-off.
-constexpr double kSameUnit = 1e-9;
-
-ValueUnit read_as(SignalUnit u) {
-  switch (u) {
-    case SignalUnit::kVolt:
-      return {true, 1};
-    case SignalUnit::kMillivolt:
-      return {true, 1e-3};
-    case SignalUnit::kMicrostrain:
-      return {false, 1e-6};
-    case SignalUnit::kStrain:
-      break;
-  }
-  return {false, 1};
-}
-
-// A row of units only, under the row of names (PicoScope "(ms),(mV)", Keysight "second,Volt"):
-// every filled field, without its brackets, a time or value unit.
-bool unit_row(const TextRow& row) {
-  std::size_t units = 0;
-  for (std::string_view f : row.fields) {
-    if (f.empty()) continue;
-    if (f.size() >= 2 && (f.front() == '(' || f.front() == '[') &&
-        (f.back() == ')' || f.back() == ']'))
-      f = f.substr(1, f.size() - 2);
-    if (f.find_first_of("([/_ ") != std::string_view::npos && !value_unit(std::string(f)))
-      return false;  // a name with a unit ("Time (ms)", "t_s"), not a unit
-    if (!header_unit(f, time_unit, kTimeUnitCuts) && !header_unit(f, value_unit, kValueUnitCuts))
-      return false;
-    ++units;
-  }
-  return units > 0;
-}
-
-// A header that names a value column's unit must name the one the channel reads it in: a column
-// in mV read as V is 1000 times the strain, µm/m read as strain a million times.
-void check_value_unit(const DelimitedText& text, const TextRow& header, std::size_t column,
-                      SignalUnit unit) {
-  if (column >= header.fields.size()) return;
-  const auto named = header_unit(header.fields[column], value_unit, kValueUnitCuts);
-  const ValueUnit read = read_as(unit);
-  if (!named || (named->second.volts == read.volts &&
-                 std::abs(named->second.size / read.size - 1) <= kSameUnit))
-    return;
-  std::string hint = "convert the column to V, mV, strain or microstrain";
-  for (const auto& [name, u] : kSignalUnitNames)
-    if (read_as(u).volts == named->second.volts &&
-        std::abs(named->second.size / read_as(u).size - 1) <= kSameUnit)
-      hint = "set \"unit\": \"" + std::string(name) + "\"";
-  throw input_error(text.file.string(), text_place(header.line, column),
-                    "\"" + std::string(header.fields[column]) + "\"",
-                    "the header gives the values in " + named->first +
-                        ", but the channel reads them in " +
-                        std::string(enum_name(kSignalUnitNames, unit)) +
-                        " (measurement.channels[].unit): " + hint + " or correct the header");
 }
 
 // A number written with the file's other mark. German spreadsheets write 1234 as "1.234",

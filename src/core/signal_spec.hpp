@@ -42,7 +42,7 @@ struct SampleClock {
 };
 
 // measurement.channels[].unit: what a column's values are in (volts become strain through a bridge
-// or a scale). A header naming a column's unit must agree with it (signal_csv.cpp).
+// or a scale). A header naming a column's unit must agree with it (signal_header_units.hpp).
 enum class SignalUnit { kVolt, kMillivolt, kStrain, kMicrostrain };
 inline constexpr EnumName<SignalUnit> kSignalUnitNames[] = {
     {"V", SignalUnit::kVolt},
