@@ -22,6 +22,7 @@
 #include "model/uncertainty_reader.hpp"
 #include "output_schema.hpp"
 #include "solver/simulation.hpp"
+#include "study/json_numbers.hpp"
 #include "version.hpp"
 
 namespace shpb {
@@ -105,10 +106,6 @@ std::string column_name(const Distribution& d) {
   return unit.empty() ? d.key : d.key + "_" + unit;
 }
 
-Json number(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
-double number(const nlohmann::json& j) {
-  return j.is_null() ? std::numeric_limits<double>::quiet_NaN() : j.get<double>();
-}
 Json doubles(const std::vector<double>& v) {
   Json a = Json::array();
   for (double x : v) a.push_back(number(x));

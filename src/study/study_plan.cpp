@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "study/json_numbers.hpp"
 #include "version.hpp"
 
 namespace shpb {
@@ -14,12 +15,6 @@ namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
 
 namespace {
-
-// JSON has no NaN or infinity: written as null, read back as NaN (a CSV writes both as empty).
-Json number(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
-double number(const nlohmann::json& j) {
-  return j.is_null() ? std::numeric_limits<double>::quiet_NaN() : j.get<double>();
-}
 
 Json series_json(const TimeSeries& s) {
   Json values = Json::array();
