@@ -75,13 +75,4 @@ Distribution distribution_from(const nlohmann::json& j);
 nlohmann::ordered_json job_result_json(const MonteCarloJobResult& r);
 MonteCarloJobResult job_result_from(const nlohmann::json& j);
 
-// draws.csv, gauge_bands.csv, curve_bands.csv and summary.json (docs/outputs.md) from every run's
-// result (results[0] the nominal run). NumericalError (exit 3) when the nominal run or all but
-// one of the draws failed; otherwise the warnings to print: how many draws failed or were not
-// reduced, with the first cause.
-std::vector<std::string> write_monte_carlo(
-    const Scene& scene, const std::vector<Distribution>& distributions, std::uint64_t seed,
-    const std::vector<MonteCarloJob>& jobs, const std::vector<MonteCarloJobResult>& results,
-    int threads, double wall_s, const std::filesystem::path& dir);
-
 }  // namespace shpb

@@ -7,6 +7,7 @@
 #include "core/csv_writer.hpp"
 #include "model/mesh_error_model.hpp"
 #include "output_schema.hpp"
+#include "study/monte_carlo_outputs.hpp"
 #include "study/pareto_front.hpp"
 #include "study/pareto_sweep.hpp"
 #include "study/stability_sweep.hpp"
