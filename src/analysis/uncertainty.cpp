@@ -13,7 +13,7 @@
 #include "analysis/uncertainty_inputs.hpp"
 #include "core/csv_writer.hpp"  // format_double
 #include "core/error.hpp"
-#include "core/output_folder.hpp"
+#include "core/interrupt.hpp"
 #include "core/parallel_runner.hpp"
 #include "output_schema.hpp"
 

@@ -13,7 +13,7 @@
 #include "app/commands.hpp"
 #include "core/error.hpp"
 #include "core/external_program.hpp"
-#include "core/output_folder.hpp"  // interrupted()
+#include "core/interrupt.hpp"  // interrupted()
 
 namespace shpb {
 

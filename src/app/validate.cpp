@@ -14,7 +14,7 @@
 #include "analysis/process_setup.hpp"
 #include "app/cli_options.hpp"
 #include "app/commands.hpp"
-#include "core/output_folder.hpp"
+#include "core/interrupt.hpp"
 #include "model/setup_report.hpp"
 #include "solver/contact.hpp"
 

@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "core/checked_write.hpp"
-#include "core/output_folder.hpp"
+#include "core/interrupt.hpp"
 
 namespace shpb {
 

@@ -9,7 +9,7 @@
 #include <chrono>
 #include <thread>
 
-#include "core/output_folder.hpp"  // interrupted()
+#include "core/interrupt.hpp"  // interrupted()
 
 extern char** environ;
 

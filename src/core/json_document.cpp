@@ -5,8 +5,8 @@
 
 #include "core/error.hpp"
 #include "core/input_file.hpp"
+#include "core/interrupt.hpp"
 #include "core/json_value.hpp"
-#include "core/output_folder.hpp"
 
 namespace shpb {
 namespace {

@@ -23,18 +23,12 @@
 #include "core/checked_write.hpp"
 #include "core/error.hpp"
 #include "core/file_digest.hpp"
+#include "core/interrupt.hpp"
 
 namespace shpb {
 namespace fs = std::filesystem;
 
 namespace {
-std::atomic<bool> g_interrupted{false};  // the one global: a signal handler cannot reach others
-// The first signal asks the run to stop cleanly; a second one ends it at once (default action).
-extern "C" void on_signal(int sig) {
-  g_interrupted.store(true);
-  std::signal(sig, SIG_DFL);
-}
-
 // The temporaries of this scheme: ".<name>.tmp-<pid>-<host>-<random>", <host> the 16 hex digits
 // of the FNV-1a of this host's name (core/file_digest.hpp) so that a folder shared between
 // machines never has its pids judged by the wrong host; a folder also holds kTemporaryMarker
@@ -454,24 +448,6 @@ std::string final_names(const std::string& text) {
   }
   return out;
 }
-
-void install_interrupt_handlers() {
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
-  // Started with them blocked (a parent's thread that blocks them, as runtimes do), SIGTERM from
-  // scancel or timeout would never arrive: taken from now on, one already pending at once.
-  sigset_t signals;
-  sigemptyset(&signals);
-  sigaddset(&signals, SIGINT);
-  sigaddset(&signals, SIGTERM);
-  ::sigprocmask(SIG_UNBLOCK, &signals, nullptr);
-}
-bool interrupted() { return g_interrupted.load(std::memory_order_relaxed); }
-void throw_if_interrupted() {
-  if (interrupted()) throw Interrupted();
-}
-void request_interrupt() { g_interrupted.store(true); }
-void clear_interrupt() { g_interrupted.store(false); }
 
 OutputFolder::OutputFolder(fs::path final_dir, std::string command,
                            const std::vector<fs::path>& inputs)

@@ -19,6 +19,8 @@
 #include <utility>
 #include <vector>
 
+#include "core/interrupt.hpp"  // commit() throws Interrupted once a signal arrived
+
 namespace shpb {
 
 // The marker's first line; a folder is shpb's only if its marker starts with exactly this line.
@@ -91,17 +93,5 @@ class OutputFile {
 // `text` (an error message) with every temporary folder or file of this process named by the
 // output it stands for: "DIR/field.csv: cannot be written", not ".DIR.tmp-…/field.csv".
 std::string final_names(const std::string& text);
-
-// Interruption (SIGINT, SIGTERM): installed once, before main (main.cpp), and unblocked; long
-// loops poll interrupted() and throw shpb::Interrupted so that OutputFolder's destructor cleans
-// up. A second signal ends the process at once.
-void install_interrupt_handlers();
-bool interrupted();
-// Throws Interrupted if a signal arrived: the one-line poll of a loop.
-void throw_if_interrupted();
-// For a host with its own signal handling (the Python module: Ctrl-C in a notebook): ask the
-// running work to stop as a signal would, and forget the request once that work has stopped.
-void request_interrupt();
-void clear_interrupt();
 
 }  // namespace shpb

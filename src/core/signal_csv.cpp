@@ -5,8 +5,8 @@
 #include <thread>
 
 #include "core/error.hpp"
+#include "core/interrupt.hpp"
 #include "core/number_format.hpp"
-#include "core/output_folder.hpp"
 #include "core/signal_formats.hpp"
 #include "core/signal_header_clock.hpp"
 #include "core/signal_header_units.hpp"

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "core/error.hpp"
-#include "core/output_folder.hpp"
+#include "core/interrupt.hpp"
 #include "core/spreadsheet_sheet.hpp"
 
 #if defined(__SANITIZE_ADDRESS__)

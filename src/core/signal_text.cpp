@@ -10,7 +10,7 @@
 
 #include "core/error.hpp"
 #include "core/input_file.hpp"
-#include "core/output_folder.hpp"
+#include "core/interrupt.hpp"
 
 namespace shpb {
 namespace {

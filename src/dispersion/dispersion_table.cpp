@@ -5,7 +5,7 @@
 #include <stdexcept>
 
 #include "core/interpolation.hpp"
-#include "core/output_folder.hpp"
+#include "core/interrupt.hpp"
 #include "dispersion/pochhammer_chree.hpp"
 
 namespace shpb {

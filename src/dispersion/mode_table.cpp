@@ -4,7 +4,7 @@
 
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
-#include "core/output_folder.hpp"
+#include "core/interrupt.hpp"
 #include "dispersion/pochhammer_chree.hpp"
 #include "output_schema.hpp"
 

@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "core/interpolation.hpp"
-#include "core/output_folder.hpp"
+#include "core/interrupt.hpp"
 
 namespace shpb {
 namespace {

@@ -11,7 +11,7 @@
 #include <mutex>
 
 #include "core/error.hpp"
-#include "core/output_folder.hpp"
+#include "core/interrupt.hpp"
 #include "core/parallel_runner.hpp"
 
 namespace shpb {

@@ -14,7 +14,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
-#include "core/output_folder.hpp"
+#include "core/interrupt.hpp"
 #include "core/parallel_runner.hpp"
 #include "model/discretization.hpp"  // default_duration_s
 #include "model/scene_validation.hpp"
