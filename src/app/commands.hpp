@@ -40,7 +40,8 @@ Command add_validate_command(CLI::App& app);
 Command add_report_command(CLI::App& app);
 Command add_fit_command(CLI::App& app);
 Command add_calibrate_command(CLI::App& app);
-Command add_plan_command(CLI::App& app);  // app/plan.cpp (its options: plan/plan_search.hpp)
+// app/plan.cpp (its options: plan/plan_search.hpp; --rate and --strain: plan/loading_metrics.hpp)
+Command add_plan_command(CLI::App& app);
 // Every subcommand, registered in the order of `shpb --help` (main.cpp; the documentation's check,
 // tests/app/test_docs_complete.cpp).
 std::vector<Command> add_commands(CLI::App& app);
