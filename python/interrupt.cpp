@@ -3,7 +3,7 @@
 
 #include <atomic>
 
-#include "core/output_folder.hpp"
+#include "core/interrupt.hpp"
 
 namespace shpb::python {
 

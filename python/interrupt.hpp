@@ -4,7 +4,7 @@
 // runs in the calling thread with the GIL released, so Python threads run simulations in
 // parallel. Called from the main thread, Python's SIGINT handler is set aside for the work's
 // duration for one that sets the library's interrupt flag, which the library's long loops poll as
-// they poll SIGINT in the command (core/output_folder.hpp); once the work has stopped, Python's
+// they poll SIGINT in the command (core/interrupt.hpp); once the work has stopped, Python's
 // handler is put back and given the signal (PyErr_SetInterruptEx), so Ctrl-C raises
 // KeyboardInterrupt then. No thread is started: a worker thread per call cost its start and its
 // wake-ups on every run (0.2–0.8 ms of a 7 ms run on a loaded machine, docs/python.md), and a
