@@ -30,8 +30,9 @@ from typing import Callable, Optional
 from . import calibrate, compare, fit, plan, process, simulate, study, sweeps
 from .drawing import Figures, close_all
 from .page import GENERATOR, write_html
+# OUTPUT_SIGNATURE: the tests write markers through this module, as it reads them.
 from .reading import (DIGEST_LINE, OUTPUT_MARKER, OUTPUT_SIGNATURE, ReportError, Source,
-                      find_sources, read_text, recorded_file)
+                      find_sources, marker_lines, output_marker_lines, read_text, recorded_file)
 
 USAGE = """usage: shpb report DIR
 
@@ -43,6 +44,11 @@ FIGURES_MARKER = ".shpb-report"
 FIGURES_SIGNATURE = "figures written by shpb report; replaced only by shpb report\n"
 FNV_OFFSET_BASIS = 14695981039346656037
 FNV_PRIME = 1099511628211
+
+
+def figures_marker_lines(fig_dir: str) -> list[str]:
+    """The lines of this package's marker in `fig_dir`, none if it is not this package's."""
+    return marker_lines(os.path.join(fig_dir, FIGURES_MARKER), FIGURES_SIGNATURE)
 
 
 def fnv1a64(path: str) -> str:
@@ -76,10 +82,7 @@ def edited_since_written(folder: str, names: list[str]) -> Optional[str]:
     """The first file under `names` whose digest a marker records (the folder's .shpb-output if
     it is shpb's, figures/.shpb-report if it is this package's) and which no longer has it (the
     user edited it), else None. A file gone since is nothing lost."""
-    output = read_text(os.path.join(folder, OUTPUT_MARKER), None)
-    figures = read_text(os.path.join(folder, "figures", FIGURES_MARKER), None)
-    lines = ((output.splitlines() if output.startswith(OUTPUT_SIGNATURE + "\n") else []) +
-             (figures.splitlines() if figures.startswith(FIGURES_SIGNATURE) else []))
+    lines = output_marker_lines(folder) + figures_marker_lines(os.path.join(folder, "figures"))
     # A file both markers record is read once.
     for digest, path in dict.fromkeys(r for r in map(recorded_file, lines) if r):
         full = os.path.join(folder, *path.split("/"))
@@ -94,9 +97,8 @@ def added_since_written(folder: str) -> Optional[str]:
     the user put there: the report writes files alone), else None. A marker without digest lines
     (an older report's) lists none: its figures/ is judged by the marker alone, as before."""
     fig_dir = os.path.join(folder, "figures")
-    marker = read_text(os.path.join(fig_dir, FIGURES_MARKER), None)
-    listed = {r[1] for r in map(recorded_file, marker.splitlines()) if r}
-    if not marker.startswith(FIGURES_SIGNATURE) or not listed:
+    listed = {r[1] for r in map(recorded_file, figures_marker_lines(fig_dir)) if r}
+    if not listed:
         return None
     for root, dirs, files in os.walk(fig_dir):
         if dirs:
@@ -122,7 +124,7 @@ def check_ownership(folder: str) -> None:
     fig_dir = os.path.join(folder, "figures")
     if os.path.lexists(fig_dir) and (
             os.path.islink(fig_dir) or not os.path.isdir(fig_dir)
-            or not read_text(os.path.join(fig_dir, FIGURES_MARKER)).startswith(FIGURES_SIGNATURE)):
+            or not figures_marker_lines(fig_dir)):
         raise ReportError(f"{fig_dir}: exists and was not written by shpb report: refusing to "
                           "replace it (move it away, then run the report again)")
     page = os.path.join(folder, "report.html")
@@ -143,18 +145,17 @@ def tell_output_marker(folder: str, names: list[str], digests: list[str], tmp: s
     """Lists `names` in the folder's .shpb-output marker (if it is shpb's) with the digest lines
     of their files, `digests` (digest_lines), replacing those of the files they replace,
     atomically (through the temporary file `tmp`)."""
-    marker = os.path.join(folder, OUTPUT_MARKER)
-    text = read_text(marker, None)  # whole: every line not about these names is kept
-    if not text.startswith(OUTPUT_SIGNATURE + "\n"):
+    marker = output_marker_lines(folder)  # whole: every line not about these names is kept
+    if not marker:
         return
-    lines = [line for line in text.splitlines()
+    lines = [line for line in marker
              if not ((r := recorded_file(line)) and under(r[1], names))]
     added = [f"file: {n}" for n in names if f"file: {n}" not in lines] + digests
     with open(tmp, "w", encoding="utf-8") as f:
         f.write("\n".join(lines + added) + "\n")
         f.flush()
         os.fsync(f.fileno())
-    os.replace(tmp, marker)
+    os.replace(tmp, os.path.join(folder, OUTPUT_MARKER))
 
 
 # This run's temporaries in DIR: ".report-<host>-<pid>-<random>" (the figures), and beside it the
@@ -186,7 +187,7 @@ def remove_stale_temporaries(folder: str) -> None:
         if not os.path.isdir(path):
             os.remove(path)
         elif (not os.listdir(path)
-              or read_text(os.path.join(path, FIGURES_MARKER)).startswith(FIGURES_SIGNATURE)
+              or figures_marker_lines(path)
               or marker_cut_short(path)):
             shutil.rmtree(path, ignore_errors=True)
 

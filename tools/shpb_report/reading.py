@@ -64,12 +64,21 @@ def recorded_file(line: str) -> Optional[tuple[str, str]]:
     return digest, path
 
 
+def marker_lines(path: str, signature: str) -> list[str]:
+    """The lines of the marker file `path` (whole) if it opens with `signature` (its first line,
+    newline included), else none: a file of another writer, or no file, records nothing."""
+    text = read_text(path, None)
+    return text.splitlines() if text.startswith(signature) else []
+
+
+def output_marker_lines(folder: str) -> list[str]:
+    """The lines of shpb's marker in `folder`, none if the folder has no marker of shpb's."""
+    return marker_lines(os.path.join(folder, OUTPUT_MARKER), OUTPUT_SIGNATURE + "\n")
+
+
 def written_by_shpb(folder: str) -> set[str]:
     """The names shpb's marker in `folder` records (by name or digest line), none without one."""
-    marker = read_text(os.path.join(folder, OUTPUT_MARKER), None)
-    if not marker.startswith(OUTPUT_SIGNATURE + "\n"):
-        return set()
-    lines = marker.splitlines()
+    lines = output_marker_lines(folder)
     return ({line[len(NAME_LINE):] for line in lines if line.startswith(NAME_LINE)} |
             {r[1] for r in map(recorded_file, lines) if r})
 
