@@ -95,6 +95,11 @@ double quantile(const std::vector<double>& sorted, double p) {
   return sorted[lo] + (h - static_cast<double>(lo)) * (sorted[hi] - sorted[lo]);
 }
 
+bool states_interval(std::size_t with_value, std::size_t draws) {
+  return with_value >= 2 &&
+         static_cast<double>(with_value) >= kBandQuantiles[2] * static_cast<double>(draws);
+}
+
 void quantile_bands(const std::vector<const std::vector<double>*>& draws, std::size_t rows,
                     std::vector<double> (&band)[3]) {
   for (auto& b : band) b.assign(rows, std::numeric_limits<double>::quiet_NaN());
@@ -103,11 +108,7 @@ void quantile_bands(const std::vector<const std::vector<double>*>& draws, std::s
     column.clear();
     for (const auto* d : draws)
       if (std::isfinite((*d)[j])) column.push_back((*d)[j]);
-    // Fewer than kBandQuantiles[2] of the draws hold a value: no 95 % band (docs/methods.md §10).
-    if (static_cast<double>(column.size()) <
-            kBandQuantiles[2] * static_cast<double>(draws.size()) ||
-        column.empty())
-      continue;
+    if (!states_interval(column.size(), draws.size())) continue;
     std::sort(column.begin(), column.end());
     for (int q = 0; q < 3; ++q) band[q][j] = quantile(column, kBandQuantiles[q]);
   }
@@ -178,10 +179,11 @@ std::vector<FigureSpec> figure_specs(const ProcessingResult& nominal, bool one_w
   return f;
 }
 
-FigureUncertainty figure_statistics(std::string name, std::string unit, double nominal,
-                                    const std::vector<double>& values,
-                                    const std::vector<std::size_t>& good,
-                                    const std::vector<double>& z, std::size_t k) {
+std::optional<FigureUncertainty> figure_statistics(std::string name, std::string unit,
+                                                   double nominal,
+                                                   const std::vector<double>& values,
+                                                   const std::vector<std::size_t>& good,
+                                                   const std::vector<double>& z, std::size_t k) {
   FigureUncertainty fu;
   fu.name = std::move(name);
   fu.unit = std::move(unit);
@@ -194,7 +196,7 @@ FigureUncertainty figure_statistics(std::string name, std::string unit, double n
       from.push_back(d);
     }
   fu.draws = y.size();
-  if (y.size() < 2) return fu;
+  if (!states_interval(y.size(), good.size())) return std::nullopt;
   const double n = static_cast<double>(y.size());
   double mean = 0;
   for (double v : y) mean += v;

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <random>
 #include <string>
 #include <utility>
@@ -45,9 +46,15 @@ inline constexpr double kBandQuantiles[3] = {0.025, 0.5, 0.975};
 // Quantile p of sorted values, linear between order statistics (Hyndman & Fan type 7).
 double quantile(const std::vector<double>& sorted, double p);
 
+// Whether `with_value` of `draws` draws give a 95 % band or interval: at least two, and at least
+// kBandQuantiles[2] of them, as more than 2.5 % of the draws without a value leave no 2.5 %
+// quantile of them all (the quantiles of those that have one are of a selection: the draws whose
+// loading reaches a strain, docs/methods.md §10).
+bool states_interval(std::size_t with_value, std::size_t draws);
+
 // band[q][j]: quantile kBandQuantiles[q] of the draws' values at point j, for j < rows (every
 // draw at least `rows` long), over the draws that have a finite value there; NaN (no band) where
-// fewer than kBandQuantiles[2] of them do.
+// they do not state an interval (states_interval).
 void quantile_bands(const std::vector<const std::vector<double>*>& draws, std::size_t rows,
                     std::vector<double> (&band)[3]);
 
@@ -95,11 +102,11 @@ struct FigureUncertainty {
   std::vector<std::pair<std::size_t, double>> shares;  // (index into inputs, share)
 };
 
-// The statistics of values[d] over the draws `from` where it is finite (none below two such
-// draws); the shares against inputs[d * k + i] (input i of draw d, any affine scale).
-FigureUncertainty figure_statistics(std::string name, std::string unit, double nominal,
-                                    const std::vector<double>& values,
-                                    const std::vector<std::size_t>& from,
-                                    const std::vector<double>& inputs, std::size_t k);
+// The statistics of values[d] over the draws `from` where it is finite; none (nullopt) where those
+// do not state an interval (states_interval). The shares against inputs[d * k + i] (input i of
+// draw d, any affine scale).
+std::optional<FigureUncertainty> figure_statistics(
+    std::string name, std::string unit, double nominal, const std::vector<double>& values,
+    const std::vector<std::size_t>& from, const std::vector<double>& inputs, std::size_t k);
 
 }  // namespace shpb

@@ -206,8 +206,11 @@ std::vector<std::string> write_monte_carlo(
   const Quantities q = quantities(results);
   Json figures = Json::object();
   for (std::size_t f = 0; f < q.names.size(); ++f) {
-    const FigureUncertainty u =
+    // A quantity too few draws give is left out (analysis/monte_carlo.hpp, states_interval).
+    const auto stated =
         figure_statistics(q.names[f], q.units[f], q.nominal[f], q.values[f], from, inputs, k);
+    if (!stated) continue;
+    const FigureUncertainty& u = *stated;
     Json shares = Json::array();
     for (const auto& [i, share] : u.shares)
       shares.push_back({{"value", distributions[i].key}, {"share", share}});

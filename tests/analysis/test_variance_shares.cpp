@@ -33,7 +33,9 @@ TEST_CASE("An input a figure does not depend on has no share of its variance on 
       for (std::size_t i = 0; i < kInputs; ++i) inputs[d * kInputs + i] = normal(rng);
       figure[d] = 3 + 2 * inputs[d * kInputs];  // input 0 alone, any affine scale
     }
-    const FigureUncertainty f = figure_statistics("f", "", 3, figure, all, inputs, kInputs);
+    const auto stated = figure_statistics("f", "", 3, figure, all, inputs, kInputs);
+    REQUIRE(stated);
+    const FigureUncertainty& f = *stated;
     REQUIRE(f.shares.size() == kInputs);
     REQUIRE(f.shares[0].first == 0);
     CHECK(f.shares[0].second == Approx(1).margin(kRoundOff));
