@@ -591,3 +591,28 @@ def test_a_sub_folder_linking_back_to_the_folder_is_drawn_once(tmp_path):
     write(tmp_path, "gauges.csv", "time_s,incident\n0,0\n1e-6,-1e-4\n")
     os.symlink(".", tmp_path / "again")
     assert [s.label for s in report_main.find_sources(str(tmp_path))] == ["."]
+
+
+@pytest.mark.parametrize("where", ["mkdtemp", "chmod", "drawing"])
+def test_a_signal_at_any_moment_of_the_drawing_leaves_no_temporary(tmp_path, monkeypatch, where):
+    # SIGINT/SIGTERM raise KeyboardInterrupt wherever the script is (main._on_signal): landing
+    # between the temporary folder's creation and the block that removes it (inside mkdtemp once
+    # the folder exists, or at its chmod), it left `.report-…` in DIR after exit 130.
+    (tmp_path / "gauges.csv").write_text("time_s,incident\n0,0\n1e-7,1e-4\n", encoding="utf-8")
+    made = report_main.tempfile.mkdtemp
+    chmod = report_main.os.chmod
+
+    def signalled():
+        raise KeyboardInterrupt
+
+    if where == "mkdtemp":
+        monkeypatch.setattr(report_main.tempfile, "mkdtemp",
+                            lambda **kw: (made(**kw), signalled())[0])
+    elif where == "chmod":
+        monkeypatch.setattr(report_main.os, "chmod", lambda *a, **kw: signalled())
+    else:
+        monkeypatch.setattr(report_main, "write_html", lambda *a, **kw: signalled())
+    assert report_main.main(["report", str(tmp_path)]) == 130
+    monkeypatch.setattr(report_main.os, "chmod", chmod)
+    assert [p.name for p in tmp_path.iterdir() if p.name.startswith(".report-")] == []
+    assert not (tmp_path / "report.html").exists()

@@ -15,6 +15,7 @@ output folder's own marker (.shpb-output, see core/output_folder.hpp) is told ab
 each file's digest, so that shpb may later replace the folder whole, and neither shpb nor this
 package replaces a file the user edited since.
 """
+import contextlib
 import errno
 import os
 import re
@@ -192,6 +193,21 @@ def remove_stale_temporaries(folder: str) -> None:
             shutil.rmtree(path, ignore_errors=True)
 
 
+# This run's temporaries, found by their prefix rather than by the names it holds: a signal can
+# land between a temporary's creation and the assignment of its name (inside mkdtemp).
+def remove_own_temporaries(folder: str) -> None:
+    prefix = temporary_prefix()
+    with contextlib.suppress(OSError):  # in a `finally`: the error being raised is the one to tell
+        for name in os.listdir(folder):
+            path = os.path.join(folder, name)
+            if not name.startswith(prefix) or os.path.islink(path):
+                continue
+            if os.path.isdir(path):
+                shutil.rmtree(path, ignore_errors=True)
+            else:
+                os.remove(path)
+
+
 # A run killed between making its folder and finishing the marker's line leaves the marker alone
 # in it, cut short (empty when killed at its opening): the folder is that run's all the same.
 def marker_cut_short(path: str) -> bool:
@@ -275,12 +291,11 @@ def build(folder: str) -> tuple[str, int]:
     # leaves any previous report intact (docs/outputs.md (conventions)).
     global _committing
     try:
-        tmp = tempfile.mkdtemp(prefix=temporary_prefix(), dir=folder)
-    except OSError as e:  # the user's folder is named, not the temporary they never saw
-        raise OSError(e.errno, e.strerror, folder) from e
-    os.chmod(tmp, 0o755)
-    old = None
-    try:
+        try:
+            tmp = tempfile.mkdtemp(prefix=temporary_prefix(), dir=folder)
+        except OSError as e:  # the user's folder is named, not the temporary they never saw
+            raise OSError(e.errno, e.strerror, folder) from e
+        os.chmod(tmp, 0o755)
         with open(os.path.join(tmp, FIGURES_MARKER), "w", encoding="utf-8") as f:
             f.write(FIGURES_SIGNATURE)
         figs = Figures(tmp)
@@ -314,22 +329,17 @@ def build(folder: str) -> tuple[str, int]:
                            placed + digest_lines(figures_marker, "figures/" + FIGURES_MARKER),
                            tmp + ".marker")
         if os.path.isdir(fig_dir):  # ours (check_ownership): set aside, removed below
-            old = tmp + ".old"
-            os.replace(fig_dir, old)
+            os.replace(fig_dir, tmp + ".old")
         os.replace(tmp, fig_dir)
         os.replace(tmp + ".html", final_html)
         sync(folder)
         return final_html, len(figs.items)
     finally:
+        # A signal now is too late: raised here it would cut the removal short, or say
+        # "interrupted" of a report that was put in place.
+        _committing = True
         close_all()
-        for leftover in (tmp, old):
-            if leftover and os.path.isdir(leftover):
-                shutil.rmtree(leftover, ignore_errors=True)
-        for leftover in (tmp + ".html", tmp + ".marker"):
-            if os.path.isfile(leftover):
-                os.remove(leftover)
-        # _committing stays set once the renames began: a signal now is too late, and raised
-        # here it would say "interrupted" of a report that was put in place.
+        remove_own_temporaries(folder)
 
 
 def main(argv: list[str]) -> int:
