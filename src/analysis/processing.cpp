@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <optional>
+#include <span>
 #include <tuple>
 
 #include "analysis/dispersion_cutoff.hpp"
@@ -116,6 +117,24 @@ double law_foot_delay_s(const PreparedSignal& inc, std::size_t on, std::size_t e
   return foot ? (static_cast<double>(foot->onset) - static_cast<double>(on + lead)) * dt : 0.0;
 }
 
+// The length of an incident pulse whose reflection reaches its gauge before it has passed. Where
+// the two nearly cancel (a specimen that reflects almost all of it, of the other sign), their sum
+// lies in the rest band and the pulse seems to end when its reflection arrives; the reflected
+// pulse then shows alone once the incident one has passed, and ends one pulse length after its
+// arrival (docs/methods.md §6). Sought within the detected length beyond it (a pulse up to twice
+// that long); never shorter than the detected window.
+double incident_length_at_overlap(const std::vector<double>& t, std::size_t on, std::size_t end,
+                                  double travel_r, const PreparedSignal& inc) {
+  const double detected = t[end - 1] - t[on];
+  const std::size_t limit = std::min(inc.x.size(), index_at(t, t[on] + travel_r + 2 * detected));
+  if (end >= limit) return detected;
+  const auto q =
+      find_first_pulse(std::span<const double>(inc.x).first(limit), {0.0, inc.noise}, end);
+  // The incident pulse is negative here: a cancelling reflection is positive.
+  if (!q || q->sign < 0) return detected;
+  return std::max(detected, t[q->end - 1] - t[on] - travel_r);
+}
+
 PulseTiming time_the_pulses(const std::vector<double>& t, double dt, std::size_t on,
                             std::size_t end, const PreparedSignal& inc, const PreparedSignal& tra,
                             const KolskySetup& k, const ProcessingOptions& options,
@@ -153,6 +172,7 @@ PulseTiming time_the_pulses(const std::vector<double>& t, double dt, std::size_t
     r.reflected_onset_offset_s = t[o->onset] - expected_r;
     r.reflected_rise_s = t[o->half] - t[o->onset];
   }
+  if (!apart) r.incident_length_s = incident_length_at_overlap(t, on, end, travel_r, inc);
   if (const auto q = find_first_pulse(tra.x, {0.0, tra.noise})) {
     p.transmitted_onset_s = t[q->onset];
     r.transmitted_onset_offset_s = t[q->onset] - expected_t;

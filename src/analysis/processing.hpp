@@ -77,6 +77,10 @@ struct ProcessingResult {
   // How long the incident pulse still passes its gauge after the reflected pulse arrives there
   // (0: they are apart); one gauge records their sum.
   double incident_overlap_s = 0;
+  // The incident pulse's length on its gauge when its reflection arrives before it has passed
+  // (the detected window ends there at the latest: from then on the gauge records their sum),
+  // from where the reflected pulse ends: one pulse length after its arrival; 0 when apart.
+  double incident_length_s = 0;
   // When the transmitter's far end reflects the transmitted pulse back to its gauge inside the
   // window the curve uses: that instant on the faces' clock.
   std::optional<double> transmitted_echo_s;

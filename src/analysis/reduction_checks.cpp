@@ -269,10 +269,11 @@ void check_one_and_two_wave(const Curve& c, std::size_t n, const ProcessingResul
 }
 
 void warn_incident_overlap(const KolskySetup& k, double dt, ProcessingResult& r) {
-  const double overlap = r.incident_window.end_s - r.reflected_window.start_s;
+  const double length =
+      std::max(r.incident_window.end_s - r.incident_window.start_s, r.incident_length_s);
+  const double overlap = r.incident_window.start_s + length - r.reflected_window.start_s;
   if (!(overlap > kOverlapSamples * dt)) return;
   r.incident_overlap_s = overlap;
-  const double length = r.incident_window.end_s - r.incident_window.start_s;
   r.warnings.push_back(
       "gauge \"" + k.incident_gauge + "\": " +
       fmt("the incident pulse still passes it %.3g us after the reflected pulse arrives (round "
