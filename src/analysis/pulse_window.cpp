@@ -23,6 +23,12 @@ constexpr double kMaxGridLevels = 16777216.0;
 // of a step: a channel's scale (a bridge factor, mV to strain) leaves rounding errors of ~10⁻¹⁶
 // of the range, i.e. < 10⁻⁸ of a step even on a 24-bit grid.
 constexpr double kGridTolerance = 1e-6;
+// An export prints each value to so many significant digits (6: LeCroy, PicoScope, a %g): a
+// digitizer's level whose step is no round decimal (10 V over 256 levels) is then off the grid by
+// up to half a unit of its last digit, 5·10⁻⁶ of its magnitude, which the grid check allows. A
+// grid whose levels the digits cannot tell apart to a tenth of a step is none.
+constexpr double kPrintedRounding = 5e-6;
+constexpr double kMaxPrintedRoundingSteps = 0.1;
 // σ of a uniform rounding error over one step (Widrow & Kollár 2008, Quantization Noise, §4.1).
 const double kQuantizationSigma = 1 / std::sqrt(12.0);
 
@@ -53,7 +59,10 @@ double quantization_step(std::span<const double> x) {
   q = range / span;
   for (double v : levels) {
     const double steps = (v - levels.front()) / q;
-    if (std::abs(steps - std::round(steps)) > kGridTolerance) return 0;
+    const double printed = kPrintedRounding * (std::abs(v) + std::abs(levels.front())) / q;
+    if (printed > kMaxPrintedRoundingSteps ||
+        std::abs(steps - std::round(steps)) > std::max(kGridTolerance, printed))
+      return 0;
   }
   return q;
 }
@@ -64,9 +73,8 @@ namespace {
 // are |x − that level|): a digitizer of step q rounds Gaussian noise of σ_n < q to that level
 // unless it exceeds q/2, so the share p of samples off it gives σ_n = q / (2√2 erfc⁻¹(p)) (a count,
 // as robust as the MAD it stands in for); each sample also carries the rounding error, q/√12
-// (Widrow & Kollár 2008, §4.1): σ² = σ_n² + q²/12. A record on no grid has no step: 0.
-double one_level_noise(std::span<const double> x, const std::vector<double>& deviations) {
-  const double q = quantization_step(x);
+// (Widrow & Kollár 2008, §4.1): σ² = σ_n² + q²/12. A record on no grid (q = 0) has no step: 0.
+double one_level_noise(double q, const std::vector<double>& deviations) {
   if (!(q > 0)) return 0;
   const double off = static_cast<double>(std::count_if(deviations.begin(), deviations.end(),
                                                        [](double d) { return d > 0; })) /
@@ -84,22 +92,43 @@ double one_level_noise(std::span<const double> x, const std::vector<double>& dev
   return std::sqrt(sigma_n * sigma_n + kQuantizationSigma * kQuantizationSigma * q * q);
 }
 
+// The median of a rest segment `seg` of a record on a grid of step q (quantization_step; 0: on
+// none), whose plain median is `level`. Each sample stands for the values within ±q/2 of its grid
+// level, and the median is interpolated within that interval of the median level (the median of
+// grouped data): noise of about a step spreads the samples over the neighbouring levels in the
+// proportions of where the rest lies between them. The plain median snaps to a level: up to q/2
+// off, an offset of every sample read from it, which the bar/specimen area ratio multiplies in
+// the 2- and 3-wave stresses (an 8-bit record of a ±1.25 × peak range: q/2 is 0.5 % of the peak).
+double grid_median(const std::vector<double>& seg, double q, double level) {
+  if (!(q > 0) || seg.empty()) return level;
+  const double low = level - 0.5 * q, high = level + 0.5 * q;
+  const auto below = static_cast<double>(
+      std::count_if(seg.begin(), seg.end(), [low](double v) { return v < low; }));
+  const auto at = static_cast<double>(std::count_if(
+      seg.begin(), seg.end(), [low, high](double v) { return v >= low && v <= high; }));
+  return low + q * (0.5 * static_cast<double>(seg.size()) - below) / at;
+}
+
 }  // namespace
 
 Baseline estimate_baseline(std::span<const double> x, double fraction) {
   const std::size_t n = baseline_samples(x.size(), fraction);
-  std::vector<double> seg(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(n));
+  const std::vector<double> seg(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(n));
+  const double q = quantization_step(x);
   Baseline b;
-  b.level = median(seg);
-  for (double& v : seg) v = std::abs(v - b.level);
-  b.noise = kMadToSigma * median(seg);
-  if (b.noise == 0) b.noise = one_level_noise(x, seg);
+  const double level = median(seg);
+  std::vector<double> deviations(seg.size());
+  for (std::size_t i = 0; i < seg.size(); ++i) deviations[i] = std::abs(seg[i] - level);
+  b.noise = kMadToSigma * median(deviations);
+  if (b.noise == 0) b.noise = one_level_noise(q, deviations);
+  b.level = grid_median(seg, q, level);
   return b;
 }
 
 std::optional<double> rest_level_before(std::span<const double> x, std::size_t samples) {
   if (samples < kMinRestSamples || samples > x.size()) return std::nullopt;
-  return median(std::vector<double>(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(samples)));
+  const std::vector<double> seg(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(samples));
+  return grid_median(seg, quantization_step(x), median(seg));
 }
 
 std::size_t rest_samples_before(const PulseWindow& w) {

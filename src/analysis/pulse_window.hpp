@@ -15,13 +15,16 @@ struct Baseline {
   double noise = 0;
 };
 
-// Baseline from the first `fraction` of the record (at least 10 samples: baseline_samples).
+// Baseline from the first `fraction` of the record (at least 10 samples: baseline_samples). The
+// level is the segment's median; on a digitizer's grid (quantization_step) the median of grouped
+// data, interpolated between the levels, which does not snap to one of them.
 Baseline estimate_baseline(std::span<const double> x, double fraction = 0.05);
 std::size_t baseline_samples(std::size_t record, double fraction = 0.05);
 
 // The step q of the grid every sample of x lies on (a digitizer's least significant bit, or an
-// export's fixed decimals, times the channel's scale), or 0 when the values lie on no grid of at
-// most 2^24 levels (a record recorded or computed in floating point).
+// export's fixed decimals, times the channel's scale; each value to within the rounding of its 6
+// printed significant digits), or 0 when the values lie on no grid of at most 2^24 levels (a
+// record recorded or computed in floating point).
 double quantization_step(std::span<const double> x);
 
 // Standard deviation of a rest level taken as the median of `samples` samples of white noise of
@@ -32,6 +35,7 @@ double rest_level_sd(double noise, std::size_t samples);
 // The median of x's first `samples` (the record before a pulse, rest_samples_before; up to its
 // half-height sample while its onset is not known): the rest level from the whole record before
 // the pulse; nullopt when there are fewer samples than estimate_baseline's smallest segment holds.
+// On a digitizer's grid, interpolated between its levels as estimate_baseline's.
 std::optional<double> rest_level_before(std::span<const double> x, std::size_t samples);
 
 struct PulseWindow {
