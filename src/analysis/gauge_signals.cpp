@@ -180,13 +180,18 @@ const std::vector<double>* GaugeSignals::find(std::string_view gauge) const {
   return nullptr;
 }
 
-InputError no_pulse_error(const GaugeSignals& signals, const std::string& gauge,
-                          const std::string& scene_file, const std::string& purpose) {
-  const std::string what = "its signal never rises above its noise: " + purpose;
+InputError channel_error(const GaugeSignals& signals, const std::string& gauge,
+                         const std::string& scene_file, const std::string& what) {
   for (std::size_t g = 0; g < signals.sources.size() && g < signals.gauges.size(); ++g)
     if (signals.gauges[g] == gauge)
       return input_error(signals.sources[g].file, signals.sources[g].where, "", what);
   return input_error(scene_file, "measurement.channels", "gauge \"" + gauge + "\"", what);
+}
+
+InputError no_pulse_error(const GaugeSignals& signals, const std::string& gauge,
+                          const std::string& scene_file, const std::string& purpose) {
+  return channel_error(signals, gauge, scene_file,
+                       "its signal never rises above its noise: " + purpose);
 }
 
 double volts_to_strain(const BridgeSpec& b) {

@@ -29,9 +29,13 @@ struct GaugeSignals {
   const std::vector<double>* find(std::string_view gauge) const;
 };
 
-// The one-line refusal of `gauge`, whose signal never rises above its noise: it names the record's
-// file and column the user would open, and the scene's channel; `purpose` says what the pulse was
-// for. A signal made in memory (no source) is named by the scene's channel alone.
+// The one-line refusal of `gauge` for the reason `what`: it names the record's file and column the
+// user would open, and the scene's channel. A signal made in memory (no source) is named by the
+// scene's channel alone.
+InputError channel_error(const GaugeSignals& signals, const std::string& gauge,
+                         const std::string& scene_file, const std::string& what);
+
+// … whose signal never rises above its noise; `purpose` says what the pulse was for.
 InputError no_pulse_error(const GaugeSignals& signals, const std::string& gauge,
                           const std::string& scene_file, const std::string& purpose);
 

@@ -152,6 +152,8 @@ MeasuredPulses find_measured_pulses(const Scene& scene, const GaugeSignals& sign
   if (!inc.first)
     throw no_pulse_error(signals, m.setup.incident_gauge, scene.file.string(),
                          "no incident pulse to compare");
+  require_rest_before_pulse(signals, m.setup.incident_gauge, inc, scene.file.string());
+  require_rest_before_pulse(signals, m.setup.transmitted_gauge, tra, scene.file.string());
   for (const auto* s : {&inc, &tra})
     if (s->inverted)
       m.warnings.push_back(inverted_gauge_warning(

@@ -15,7 +15,6 @@ constexpr double kNoiseSigmas = 5.0;           // band of the baseline, in σ
 constexpr double kBandOfPeak = 0.03;           // … and at least this fraction of the peak
 constexpr double kDetectFractionOfPeak = 0.5;  // a pulse is found at half its height
 constexpr double kMadToSigma = 1.4826;         // σ of Gaussian noise from its MAD
-constexpr std::size_t kMinRestSamples = 10;    // as estimate_baseline's smallest quiet segment
 // A grid of more levels than a 24-bit digitizer's is not told apart from floating point: its
 // q/√12 would be below 2·10⁻⁸ of the record's range, far under any gauge's noise.
 constexpr double kMaxGridLevels = 16777216.0;
@@ -109,12 +108,9 @@ double grid_median(const std::vector<double>& seg, double q, double level) {
   return low + q * (0.5 * static_cast<double>(seg.size()) - below) / at;
 }
 
-}  // namespace
-
-Baseline estimate_baseline(std::span<const double> x, double fraction) {
-  const std::size_t n = baseline_samples(x.size(), fraction);
+// Level and noise of the record's first n samples (n ≥ 1).
+Baseline quiet_segment(std::span<const double> x, std::size_t n, double q) {
   const std::vector<double> seg(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(n));
-  const double q = quantization_step(x);
   Baseline b;
   const double level = median(seg);
   std::vector<double> deviations(seg.size());
@@ -123,6 +119,21 @@ Baseline estimate_baseline(std::span<const double> x, double fraction) {
   if (b.noise == 0) b.noise = one_level_noise(q, deviations);
   b.level = grid_median(seg, q, level);
   return b;
+}
+
+}  // namespace
+
+Baseline estimate_baseline(std::span<const double> x, double fraction) {
+  const double q = quantization_step(x);
+  std::size_t n = baseline_samples(x.size(), fraction);
+  // A scope triggered on the pulse keeps a pre-trigger of a few percent of the record: its first
+  // 5 % may hold the pulse, whose level the median then takes for the rest (a compressive pulse
+  // read as tensile). The segment ends before the first pulse found against the level of the
+  // first samples, by one rise (rest_samples_before); never shorter than those samples.
+  if (n > kMinRestSamples && x.size() >= kMinRestSamples)
+    if (const auto w = find_first_pulse(x, quiet_segment(x, kMinRestSamples, q)))
+      n = std::clamp(rest_samples_before(*w), kMinRestSamples, n);
+  return quiet_segment(x, std::min(n, x.size()), q);
 }
 
 std::optional<double> rest_level_before(std::span<const double> x, std::size_t samples) {

@@ -7,6 +7,10 @@
 
 namespace shpb {
 
+// The fewest samples a rest level is read from: estimate_baseline's smallest quiet segment, and
+// what a record must hold at rest before its first pulse (require_rest_before_pulse).
+inline constexpr std::size_t kMinRestSamples = 10;
+
 struct Baseline {
   double level = 0;  // median of the quiet segment
   // 1.4826 × median absolute deviation (σ of Gaussian noise); for a digitized record whose quiet

@@ -436,6 +436,47 @@ TEST_CASE("An overlap whose sum cancels is said with the incident pulse's whole 
   CHECK(!has_warning(s, "the forces of the two faces differ"));
 }
 
+TEST_CASE("A record triggered on its pulse reads its rest level before the pulse",
+          "[app][process][warnings]") {
+  // A scope triggered on the incident pulse with a short pre-trigger: its rest (a bridge offset of
+  // 1e-4) lasts 10 us, 100 of the 400 samples of the record's first 5 %, which the rest level was
+  // the median of. That median was the pulse's plateau: the compressive incident pulse read as
+  // tensile and turned over, the 2-wave stress 166 times the 1-wave one. The rest level is read
+  // before the first pulse, and a record holding too little rest before it is refused.
+  constexpr double kOffset = 1e-4;
+  auto record = [](double start, double rise) {
+    return shpb_test::Record{
+        [=](double t) {
+          return kOffset - 1e-3 * shpb_test::trap(t, start, 100e-6, rise) +
+                 0.6e-3 * shpb_test::trap(t, start + 400e-6, 100e-6, rise);
+        },
+        [=](double t) { return -0.4e-3 * shpb_test::trap(t, start + 300e-6, 100e-6, rise); }};
+  };
+  const fs::path d = scratch_dir("reduction_short_pretrigger");
+  const auto r = run_shpb({"process", write(d, steel_scene(), csv(record(10e-6, 10e-6))).string(),
+                           "-o", (d / "out").string(), "-q"});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  const json s = summary(d / "out");
+  CHECK(!has_warning(s, "was inverted"));
+  // The incident plateau 1e-3 and the 1-wave peak E (A_bar/A_specimen) 0.4e-3 = 320 MPa of the
+  // steel bars (200 GPa, 20 mm) on the 10 mm specimen, as the record holds them exactly.
+  constexpr double kExact = 1e-6;  // the plateau and peak are samples of the exact trapezoids
+  CHECK(s["incident_plateau_strain"].get<double>() == Approx(1e-3).epsilon(kExact));
+  CHECK(s["reductions"]["1-wave"]["peak_stress_Pa"].get<double>() == Approx(320e6).epsilon(kExact));
+  // 0.3 us of rest, 3 samples, before a front rising in 1 us: the first samples the level is
+  // read from are mostly the front's; refused naming the column.
+  const fs::path short_rest = d / "three_samples";
+  fs::create_directories(short_rest);
+  const auto refused =
+      run_shpb({"process", write(short_rest, steel_scene(), csv(record(0.3e-6, 1e-6))).string(),
+                "-o", (short_rest / "out").string(), "-q"});
+  CHECK(refused.code == 2);
+  CHECK(refused.err.find("column \"incident\"") != std::string::npos);
+  CHECK(refused.err.find("samples at rest before it are needed to read its rest level") !=
+        std::string::npos);
+}
+
 TEST_CASE("A transmitter short enough to reflect the pulse back onto its gauge is said to",
           "[app][process][warnings]") {
   // The classic experiment with a 0.4 m transmitter, its gauge at the middle: the free far end
