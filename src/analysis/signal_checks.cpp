@@ -122,14 +122,14 @@ std::vector<std::string> signal_warnings(const GaugeSignals& signals) {
 
 void require_rest_before_pulse(const GaugeSignals& signals, const std::string& gauge,
                                const RestSignal& s, const std::string& scene_file) {
-  // The level is the median of at least kMinRestSamples: the rest's while most of them are.
-  constexpr std::size_t kFewestAtRest = kMinRestSamples / 2 + 1;
-  if (!s.first || s.first->onset >= kFewestAtRest) return;
+  // The rest level and noise are read from the first kMinRestSamples at least: all at rest.
+  if (!s.first || s.first->onset >= kMinRestSamples) return;
   throw channel_error(
       signals, gauge, scene_file,
       fmt("its first pulse starts %.0f samples into the record: at least %.0f samples at rest "
-          "before it are needed to read its rest level (record with a longer pre-trigger)",
-          static_cast<double>(s.first->onset), static_cast<double>(kFewestAtRest)));
+          "before it are needed to read its rest level and noise (record with a longer "
+          "pre-trigger)",
+          static_cast<double>(s.first->onset), static_cast<double>(kMinRestSamples)));
 }
 
 RestSignal signal_from_rest(const std::vector<double>& raw, double expected_sign) {

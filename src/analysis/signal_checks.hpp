@@ -77,8 +77,8 @@ struct RestSignal {
 };
 RestSignal signal_from_rest(const std::vector<double>& raw, double expected_sign);
 
-// A record that holds at most half of kMinRestSamples before its first pulse (a scope's
-// pre-trigger shorter than that) has no rest level to read: its offset, its polarity and every
+// A record that holds fewer than kMinRestSamples before its first pulse (a scope's pre-trigger
+// shorter than that) has no rest level to read: its offset, its polarity and every
 // strain read from them would be the pulse's own (a compressive pulse turned over as tensile).
 // Refused, exit 2.
 void require_rest_before_pulse(const GaugeSignals& signals, const std::string& gauge,
