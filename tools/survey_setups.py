@@ -16,12 +16,16 @@ bilinear, Johnson-Cook (Al 6061, Ti-6Al-4V, copper) and viscoelastic (PMMA) spec
   strain/V, no dispersion correction: the 1D model does not disperse): point-sampled at 1 MS/s, a
   pre-trigger of 5 to 100 us at rest, white noise of 1 % of each channel's peak, an offset of +3 %
   (incident) and -2 % (transmitted) of it, 8 bits over the scope range (0.2, 0.5 or 1 × a decade)
-  above 1.2 × the peak, each value printed to 6 significant digits as scope exports write them.
+  above 1.2 × the peak, each value printed to 6 significant digits as scope exports write them;
+- that scope record cut to start 12, 20 or 40 us before the incident pulse's half height, as a
+  scope triggered on the pulse with a short pre-trigger keeps it.
 Errors, over the loading where the specimen's own stress is at least half its peak, as fractions of
 that peak: the median |difference| of the 3-wave stress against its mean stress, the 1-wave against
 its back-face and the 2-wave against its front-face stress at the same time; the strain rate as the
 mean rate over that window against the specimen's; the strain at its end against the specimen's.
-Prints one JSON row a run (exit codes, energy error, warnings, errors) and writes OUTDIR/rows.json.
+Prints one JSON row a run (exit codes, energy error, warnings, errors), writes OUTDIR/rows.json, and
+ends with, per record kind, the runs that exit non-zero and those beyond 5 % (a stress) or 10 % (the
+rate) with no warning at all, or whose curve misses the specimen's loading.
 """
 import csv, json, math, pathlib, random, subprocess, sys
 import numpy as np
@@ -188,6 +192,17 @@ def degrade(gauges, dst, rate_hz, seed, pretrig_s):
     return list(cols)
 
 
+def triggered(record, dst, lead_s):
+    """The scope record cut to start `lead_s` before the incident pulse's half height, as a scope
+    triggered on that pulse with a short pre-trigger keeps it."""
+    h, a = read_csv(record)
+    x = a[:, 1]
+    rest = np.median(x[:20])
+    half = np.argmax(np.abs(x - rest) > 0.5 * np.max(np.abs(x - rest)))
+    keep = a[:, 0] >= a[half, 0] - lead_s
+    np.savetxt(dst, a[keep], delimiter=",", header=",".join(h), comments="", fmt="%.6g")
+
+
 def compare(curve, spec, test):
     h, a = read_csv(curve)
     hs, s = read_csv(spec)
@@ -272,14 +287,30 @@ def main():
             ps = json.load(open(d / "meas" / "summary.json"))
             row["meas_warn"] = ps.get("warnings", [])
             row["meas_cmp"] = compare(d / "meas" / "curve.csv", d / "sim" / "specimen.csv", c["test"])
+        # The same record from a scope triggered on the incident pulse, 12 to 40 us before it.
+        triggered(d / "record.csv", d / "record_triggered.csv", [12e-6, 20e-6, 40e-6][len(rows) % 3])
+        meas["file"] = "record_triggered.csv"
+        (d / "scene_triggered.json").write_text(json.dumps(msc, indent=1))
+        rc, so, se = run([SHPB, "process", str(d / "scene_triggered.json"), "-o", str(d / "trig"),
+                          "--quiet"])
+        row["trig_rc"] = rc
+        row["trig_stderr"] = se.strip()[-600:]
+        if rc == 0:
+            ps = json.load(open(d / "trig" / "summary.json"))
+            row["trig_warn"] = ps.get("warnings", [])
+            row["trig_cmp"] = compare(d / "trig" / "curve.csv", d / "sim" / "specimen.csv", c["test"])
         rows.append(row)
         print(json.dumps(row), flush=True)
     json.dump(rows, open(OUT / "rows.json", "w"), indent=1)
     # Runs beyond 5 % (a stress) or 10 % (the rate) with no warning at all: each one a defect to find.
-    for kind, key, warn in (("--signals", "cmp", "proc_warn"), ("scope", "meas_cmp", "meas_warn")):
-        bad = [r["id"] for r in rows if r.get(key) and not r.get(warn) and
-               (max(r[key]["e3"], r[key]["e1"], r[key]["e2"]) > 0.05 or r[key]["erate"] > 0.10)]
-        failed = [r["id"] for r in rows if r.get("proc_rc" if kind == "--signals" else "meas_rc")]
+    for kind, key, warn, rc in (("--signals", "cmp", "proc_warn", "proc_rc"),
+                                ("scope", "meas_cmp", "meas_warn", "meas_rc"),
+                                ("triggered", "trig_cmp", "trig_warn", "trig_rc")):
+        # A curve that misses the specimen's loading altogether (no comparison) counts too.
+        bad = [r["id"] for r in rows if r.get(rc) == 0 and not r.get(warn) and
+               (not r.get(key) or max(r[key]["e3"], r[key]["e1"], r[key]["e2"]) > 0.05 or
+                r[key]["erate"] > 0.10)]
+        failed = [f"{r['id']} ({r[rc]})" for r in rows if r.get(rc)]
         print(f"{kind}: {len(rows)} runs, exit != 0: {failed or 'none'}; "
               f"beyond 5 % / 10 % with no warning: {bad or 'none'}")
 
