@@ -332,6 +332,23 @@ std::vector<LsCommonError> FitCase::rest_level_errors() const {
   return out;
 }
 
+std::vector<double> FitCase::misfit_over_noise(const Overlay& o) const {
+  const MeasuredPulses& m = measured();
+  std::vector<double> out;
+  for (const OverlaidPulse& p : fitted_windows_) {
+    const auto& meas = p.transmitted ? m.transmitted : m.incident;
+    const auto& sim = p.transmitted ? o.transmitted : o.incident;
+    const ClippedSamples* clipped = clipped_channel(m, p.transmitted);
+    double sum = 0;
+    std::size_t n = 0;
+    for (std::size_t i = p.begin; i < p.end; ++i)
+      if (!clipped || clipped->at[i] == 0) sum += (sim[i] - meas[i]) * (sim[i] - meas[i]), ++n;
+    const double noise = (p.transmitted ? m.transmitted_baseline : m.incident_baseline).noise;
+    out.push_back(n > 0 && noise > 0 ? std::sqrt(sum / static_cast<double>(n)) / noise : 0.0);
+  }
+  return out;
+}
+
 std::vector<double> FitCase::residual_scales() const {
   std::vector<double> s;
   for (const OverlaidPulse& p : fitted_windows_)

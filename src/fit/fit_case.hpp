@@ -97,6 +97,10 @@ class FitCase {
   std::vector<LsCommonError> rest_level_errors() const;
   // compare's figures per window (NRMSE, ratios) for the overlay.
   std::vector<PulseComparison> compare(const Overlay& o) const;
+  // Per fitted window: the RMS of simulated − measured strain over its record's noise (the
+  // baseline's), samples at a clip level left out; about 1 where the law reproduces the pulse
+  // within the noise, 0 for a record without noise.
+  std::vector<double> misfit_over_noise(const Overlay& o) const;
 
  private:
   CampaignTest test_;

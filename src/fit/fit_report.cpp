@@ -118,6 +118,9 @@ nlohmann::json tests_json(const FitRun& run) {
       t["nrmse_" + cb[i].pulse + "_before"] = cb[i].nrmse;
       t["nrmse_" + cb[i].pulse + "_after"] = ca[i].nrmse;
     }
+    const std::vector<double> misfit = c.misfit_over_noise(run.after[k]);
+    for (std::size_t j = 0; j < misfit.size(); ++j)
+      t["misfit_over_noise_" + c.fitted_windows()[j].name] = misfit[j];
     tests.push_back(t);
   }
   return tests;

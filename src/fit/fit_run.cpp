@@ -32,6 +32,9 @@ constexpr double kStepCheckLimit = 0.25;
 // (h²) far below the data scatter too. The signals stage uses FitOptions::relative_step.
 constexpr double kCurveRelativeStep = 1e-4;
 constexpr int kCurveIterations = 200;  // closed-form residuals: iterations are cheap
+// A fitted window whose residuals' RMS exceeds its record's noise this many times holds a misfit
+// the noise cannot explain (three quarters of its variance): the law cannot reproduce the test.
+constexpr double kMisfitOverNoise = 2.0;
 // Robust loss threshold in units of each residual's scale (least_squares.hpp).
 constexpr double kLossDelta = 0.02;
 
@@ -293,6 +296,23 @@ void check_rate_span(FitRun& run) {
     }
 }
 
+// Lack of fit: the intervals describe the best fit of this law, which is not the material's law
+// when the residuals are far above the record's noise (docs/methods.md §9, "Lack of fit").
+void check_misfit(FitRun& run) {
+  for (std::size_t k = 0; k < run.cases.size(); ++k) {
+    const FitCase& test = *run.cases[k];
+    const std::vector<double> ratio = test.misfit_over_noise(run.after[k]);
+    for (std::size_t j = 0; j < ratio.size(); ++j)
+      if (ratio[j] > kMisfitOverNoise)
+        run.warnings.push_back(
+            test.name() + ": " + test.fitted_windows()[j].name +
+            " pulse: the fitted model leaves residuals " + format_number(ratio[j]) +
+            " times the record's noise (RMS over the fitted window against the baseline's): the "
+            "law (or the nuisances freed) cannot reproduce this test, and the standard errors and "
+            "intervals are those of the best fit of this law, not bounds on the material's");
+  }
+}
+
 }  // namespace
 
 bool FitOptions::IsValid(std::string* error) const {
@@ -392,6 +412,7 @@ void run_fit(FitRun& run, const FitOptions& options) {
   run.simulations += static_cast<long>(run.cases.size());
   check_identifiability(run);
   check_rate_span(run);
+  check_misfit(run);
   if (options.bootstrap > 0) run_bootstrap(run, options);
   set_intervals(run);
 }
