@@ -265,6 +265,26 @@ SourceWindow cut_source(std::vector<double>& source, double noise, std::size_t r
   return w;
 }
 
+// Bars apart, the far end free: a pulse still passing the gauge when its reflection from that end
+// returns is summed with it, inverted, and no source can be cut from the record (the model would
+// propagate the sum: a gauge 195 mm from the end of a 2 m bar under a 120 µs pulse came out 83 mm
+// off at a stated 3 mm, with no warning). The gauge must lie at least c0 T/2 from the far end.
+void require_source_before_return(const SourceWindow& w, double return_s, double dt,
+                                  const BarSpec& bar, const std::string& file,
+                                  const GaugeSpec& gauge) {
+  const double seen_s = static_cast<double>(w.pulse.end - w.pulse.onset) * dt;
+  if (seen_s <= return_s) return;
+  char msg[400];
+  std::snprintf(msg, sizeof msg,
+                "its first pulse is still passing the gauge when its reflection from the bar's "
+                "free far end returns, 2(L - x)/c0 = %.3g s after it arrived (the pulse seen "
+                "there lasts %.3g s): no source pulse can be cut from the record; a gauge at least "
+                "c0 T/2 = %.3g m from the far end of bar \"%s\" for a pulse of T, or a shorter "
+                "striker",
+                return_s, seen_s, 0.5 * bar.material.wave_speed_m_s() * seen_s, bar.name.c_str());
+  throw input_error(file, "measurement.channels", "gauge \"" + gauge.name + "\"", msg);
+}
+
 // A measured striker velocity (docs/methods.md §11, "Absolute gains"): the strain the striker
 // gives the struck bar per unit of its wave speed, v Z_s / (Z_s + Z_b), and the source's plateau
 // with its standard error. Nothing without a velocity or a striker bar with a material.
@@ -455,6 +475,8 @@ Shot prepare_shot(const CalibrationShot& cs, Parameters& params, std::string& re
   require_pulse_fits_round_trip(
       src.name, "first pulse", static_cast<double>(w.pulse.end - w.pulse.onset) * signals.dt_s,
       2 * struck.length_m / struck.material.wave_speed_m_s(), "2L/c0 = %.3g s of its bar", file);
+  if (gauged.size() == 1)
+    require_source_before_return(w, return_s, signals.dt_s, struck, file, src);
   s.source = source;
   s.source_level_sd = rest_level_sd(base.noise, baseline_samples(source.size()));
   s.source_noise = base.noise;

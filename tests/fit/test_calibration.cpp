@@ -406,6 +406,27 @@ TEST_CASE("calibrate and a scene's calibration refuse bad input with one line an
     CHECK(r.err.find("round trips 2L/c0") != std::string::npos);
     CHECK(!fs::exists(dir / "o4"));
   }
+  // Bars apart with the gauge 150 mm from the free far end: the 120 µs pulse is still passing it
+  // when its reflection returns 60 µs after it arrived, and the record holds their sum, from
+  // which no source pulse can be cut (fitted before: the gauge 83 mm off at a stated 3 mm, no
+  // warning). Refused, naming the return time and the distance from the end a gauge needs.
+  {
+    constexpr double kNearEnd = kIncidentLength - 0.15;
+    const double li = kIncidentLength;
+    write_csv(dir / "near_end.csv", {"inc"},
+              {record({{1, kNearEnd}, {-1, 2 * li - kNearEnd}, {1, 2 * li + kNearEnd}}, 1.0, 0.0,
+                      11, kNoise)});
+    nlohmann::json near_end = scene(false, "near_end.csv");
+    near_end["bars"][1]["gauges"][0]["position"] = std::to_string(kNearEnd) + " m";
+    write_json(dir / "near_end.json", near_end);
+    r = run_shpb({"calibrate", (dir / "near_end.json").string(), "-o", (dir / "o5").string()});
+    INFO(r.err);
+    CHECK(one_line(r));
+    CHECK(r.err.find("near_end.json: measurement.channels: gauge \"inc\": its first pulse is "
+                     "still passing the gauge when its reflection") != std::string::npos);
+    CHECK(r.err.find("from the far end of bar \"incident\"") != std::string::npos);
+    CHECK(!fs::exists(dir / "o5"));
+  }
   // A calibration file that is not one.
   write_json(dir / "bad.json", {{"format", "something else"}, {"bars", nlohmann::json::array()}});
   nlohmann::json s = scene(true, "together.csv");
