@@ -91,6 +91,24 @@ double one_level_noise(double q, const std::vector<double>& deviations) {
   return std::sqrt(sigma_n * sigma_n + kQuantizationSigma * kQuantizationSigma * q * q);
 }
 
+// The noise of a quiet segment on a grid of step q whose MAD is not 0 (`seg` its samples, `level`
+// their median, `mad` their median absolute deviation). That median is one of the grid's values:
+// for noise σ_n from q/2 to 3q/2 it is q, read as σ = 1.48 q whatever σ_n (40 % high at σ_n = q,
+// an 8-bit record of 1 % noise). The segment's standard deviation counts every sample and is the
+// noise itself, rounding included (σ² = σ_n² + q²/12, Sheppard's correction, Widrow & Kollár 2008
+// §4.1); the samples beyond kTrimSigmas of the MAD's σ (or of a step) are left out, as the MAD
+// ignores a spike.
+double rounded_noise(const std::vector<double>& seg, double level, double mad, double q) {
+  constexpr double kTrimSigmas = 5.0;  // Gaussian noise beyond 5 σ: 6·10⁻⁷ of the samples
+  const double limit = kTrimSigmas * std::max(kMadToSigma * mad, q);
+  double sum = 0, sum2 = 0;
+  std::size_t n = 0;
+  for (double v : seg)
+    if (std::abs(v - level) <= limit) sum += v - level, sum2 += (v - level) * (v - level), ++n;
+  const double mean = sum / static_cast<double>(n);
+  return std::sqrt(std::max(0.0, sum2 / static_cast<double>(n) - mean * mean));
+}
+
 // The median of a rest segment `seg` of a record on a grid of step q (quantization_step; 0: on
 // none), whose plain median is `level`. Each sample stands for the values within ±q/2 of its grid
 // level, and the median is interpolated within that interval of the median level (the median of
@@ -115,8 +133,11 @@ Baseline quiet_segment(std::span<const double> x, std::size_t n, double q) {
   const double level = median(seg);
   std::vector<double> deviations(seg.size());
   for (std::size_t i = 0; i < seg.size(); ++i) deviations[i] = std::abs(seg[i] - level);
-  b.noise = kMadToSigma * median(deviations);
-  if (b.noise == 0) b.noise = one_level_noise(q, deviations);
+  const double mad = median(deviations);
+  if (mad == 0)
+    b.noise = one_level_noise(q, deviations);
+  else
+    b.noise = q > 0 ? rounded_noise(seg, level, mad, q) : kMadToSigma * mad;
   b.level = grid_median(seg, q, level);
   return b;
 }

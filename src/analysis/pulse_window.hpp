@@ -15,7 +15,8 @@ struct Baseline {
   double level = 0;  // median of the quiet segment
   // 1.4826 × median absolute deviation (σ of Gaussian noise); for a digitized record whose quiet
   // segment reads mostly one level (MAD 0), from the share of samples off it and the rounding
-  // error q/√12 of its step (quantization_step).
+  // error q/√12 of its step (quantization_step); for one whose quiet segment spreads over a few
+  // levels, their standard deviation (the MAD, a whole number of steps, misreads it by up to 40 %).
   double noise = 0;
 };
 

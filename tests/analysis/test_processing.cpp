@@ -206,6 +206,39 @@ TEST_CASE("A digitized record's rest level lies between the digitizer's levels",
     }
 }
 
+// An 8-bit record of 1 % noise has noise of about one step. The quiet start's median absolute
+// deviation is then one step whatever the noise from half a step to one and a half, and σ = 1.48 q
+// was read for σ = 1.04 q (40 % high: the fit's and the calibration's noise and uncertainty terms
+// with it). The quiet samples' standard deviation is that noise, rounding included: over 40 draws
+// of the quiet level's place within its step, the mean estimate within kRoundedBias of
+// √(σ_n² + q²/12) at σ_n = q, 1.5 q, 3 q.
+TEST_CASE("A digitized quiet start of a few steps of noise gives that noise, not its rounded MAD",
+          "[analysis][pulse]") {
+  // 40 draws of 1000 samples: the mean's sampling error is 0.1 % of σ (the level's place drawn
+  // uniformly, the rounding error is uniform and independent of the noise: σ² = σ_n² + q²/12
+  // exactly); the MAD's reading was 40 % high at σ_n = q, 7 % at 1.5 q.
+  constexpr double kRoundedBias = 0.02;
+  constexpr int kDraws = 40;
+  constexpr double kStep = 1.0 / 128;  // an 8-bit ±1 V digitizer
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> place(-0.5, 0.5);
+  std::normal_distribution<double> unit(0.0, 1.0);
+  for (const double sigma_steps : {1.0, 1.5, 3.0}) {
+    double sum = 0;
+    for (int k = 0; k < kDraws; ++k) {
+      const double level = place(random) * kStep;
+      std::vector<double> x(20000);  // its first 5 %, 1000 samples, the quiet start
+      for (double& v : x)
+        v = kStep * std::round((level + sigma_steps * kStep * unit(random)) / kStep);
+      sum += estimate_baseline(x).noise;
+    }
+    const double truth = kStep * std::sqrt(sigma_steps * sigma_steps + 1.0 / 12);
+    INFO("sigma_n " << sigma_steps << " steps: mean estimate " << sum / kDraws / kStep
+                    << " steps, truth " << truth / kStep);
+    CHECK(sum / kDraws == Approx(truth).epsilon(kRoundedBias));
+  }
+}
+
 TEST_CASE("Processing ideal 1D gauge signals recovers the face pulses, the curve and the striker",
           "[analysis][processing]") {
   const FacePulses face;
