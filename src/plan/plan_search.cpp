@@ -192,7 +192,9 @@ class Planner {
   }
 
   std::vector<PlanCandidate> grid() const;
-  std::string binding(const Evaluation& best) const;
+  // The constraint that binds the closest set-up `best`; `redirect`: a strain missed by a striker
+  // shorter than the bounds allow is explained by the closest set-up with one long enough.
+  std::string binding(const Evaluation& best, bool redirect = true) const;
   double striker_length_limit() const;
 
   static constexpr int kSecantSteps = 6;
@@ -261,7 +263,7 @@ std::vector<PlanCandidate> Planner::grid() const {
   return out;
 }
 
-std::string Planner::binding(const Evaluation& best) const {
+std::string Planner::binding(const Evaluation& best, bool redirect) const {
   const LoadingMetrics& m = best.metrics;
   const double R = targets_.rate_1_s, E = targets_.strain;
   char what[700];
@@ -278,6 +280,28 @@ std::string Planner::binding(const Evaluation& best) const {
                   "only %.3g 1/s; about %.3g m/s would be needed",
                   spec_.striker_velocity.hi, m.plateau_rate_1_s,
                   spec_.striker_velocity.hi * R / std::max(m.plateau_rate_1_s, 1e-9 * R));
+  } else if (f.strain == worst && worst > 0 && striker_length_for(E, R, c) <= limit) {
+    // The bounds allow a striker long enough for E: its length does not bind. Named before: "a
+    // striker of at least 0.253 m; the longest allowed is 0.6 m", the set-ups with one missing
+    // the band as a hardening specimen slowed (docs/methods.md §12, "Infeasible targets").
+    // Of those, the shortest (a longer one loads a hardening specimen on past E as it slows), the
+    // closest at that length.
+    const double needed = striker_length_for(E, R, c);
+    const PlanStep* longer = nullptr;
+    for (const PlanStep& p : path_) {
+      const double L = p.candidate.striker_length_m;
+      if (L >= needed && (!longer || L < longer->candidate.striker_length_m ||
+                          (L == longer->candidate.striker_length_m &&
+                           p.metrics.shortfall() < longer->metrics.shortfall())))
+        longer = &p;
+    }
+    if (redirect && longer) return binding({longer->candidate, longer->metrics, {}}, false);
+    std::snprintf(what, sizeof what,
+                  "the target strain %.3g is not reached (%.3g) although the bounds allow the "
+                  "striker of at least %.3g m a loading of %.3g us at %.4g 1/s needs (2L/c >= "
+                  "strain/rate): the rate does not hold over that loading; a faster striker "
+                  "(plan.striker.velocity) or a pulse shaper (plan.shaper)",
+                  E, m.strain_reached, needed, 1e6 * E / R, R);
   } else if (f.strain == worst && worst > 0) {
     std::snprintf(what, sizeof what,
                   "the target strain %.3g is not reached (%.3g): at %.4g 1/s the loading "
@@ -301,13 +325,16 @@ std::string Planner::binding(const Evaluation& best) const {
                     "a shorter striker (about %.3g m: 2L/c = strain/rate, plan.striker.length) "
                     "or a pulse shaper (plan.shaper)",
                     needed);
-    else if (spec_.scene_has_shaper || !spec_.shaper_materials.empty())  // one was searched
-      std::snprintf(remedy, sizeof remedy,
-                    "a softer or thicker pulse shaper than plan.shaper allows, or a longer "
-                    "striker");
-    else
-      std::snprintf(remedy, sizeof remedy,
-                    "allow a pulse shaper (plan.shaper), or a longer striker");
+    else {
+      // A longer striker lengthens a pulse too short for a plateau; one already of E/R does not.
+      const bool longer = best.candidate.striker_length_m < needed;
+      if (spec_.scene_has_shaper || !spec_.shaper_materials.empty())  // one was searched
+        std::snprintf(remedy, sizeof remedy, "a softer or thicker pulse shaper than plan.shaper %s",
+                      longer ? "allows, or a longer striker" : "allows");
+      else
+        std::snprintf(remedy, sizeof remedy, "allow a pulse shaper (plan.shaper)%s",
+                      longer ? ", or a longer striker" : "");
+    }
     std::snprintf(what, sizeof what,
                   "the rate stays within ±%.0f %% of %.4g 1/s over only %.0f %% of the loading "
                   "(%.0f %% needed): %s",
