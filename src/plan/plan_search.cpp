@@ -273,8 +273,20 @@ std::string Planner::binding(const Evaluation& best, bool redirect) const {
   // missed by 0.2 % beside a band missed by a quarter was named, with a striker the bounds allow.
   const LoadingMetrics::Shortfalls f = m.shortfalls();
   const double worst = std::max({f.strain, f.strain_limit, f.band, f.equilibrium});
-  if (m.plateau_rate_1_s < (1 - kRateBand) * R &&
-      best.candidate.striker_velocity_m_s >= spec_.striker_velocity.hi) {
+  const bool at_velocity_bound = m.plateau_rate_1_s < (1 - kRateBand) * R &&
+                                 best.candidate.striker_velocity_m_s >= spec_.striker_velocity.hi;
+  if (at_velocity_bound && redirect) {
+    // A set-up the search tried reached the rate within the bounds: the velocity bound does not
+    // bind (a 570 mm striker at 30 m/s, whose rate fell to 1380 1/s as a hardening specimen
+    // slowed, asked for 65 m/s while a 350 mm one reached 3000 1/s at 24 m/s and missed the band).
+    const PlanStep* reached = nullptr;
+    for (const PlanStep& p : path_)
+      if (p.metrics.plateau_rate_1_s >= (1 - kRateBand) * R &&
+          (!reached || p.metrics.shortfall() < reached->metrics.shortfall()))
+        reached = &p;
+    if (reached) return binding({reached->candidate, reached->metrics, {}}, false);
+  }
+  if (at_velocity_bound) {
     std::snprintf(what, sizeof what,
                   "plan.striker.velocity: at its upper bound %.3g m/s the specimen's rate reaches "
                   "only %.3g 1/s; about %.3g m/s would be needed",

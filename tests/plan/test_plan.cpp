@@ -338,8 +338,9 @@ TEST_CASE("An infeasible plan names the criterion its closest set-up misses most
   if (worst == missed_equilibrium) CHECK(named.rfind("equilibrium", 0) == 0);
 }
 
-TEST_CASE("An infeasible plan never names a striker length the bounds allow as the cause",
-          "[app][plan]") {
+TEST_CASE(
+    "An infeasible plan never names a striker length or velocity the bounds allow as the cause",
+    "[app][plan]") {
   // 7075-T6 aluminium bars (19 mm, 1.5 m, c0 = 5051 m/s), a 6 × 6 mm bilinear stainless specimen
   // (yield 300 MPa, tangent 2 GPa) 3–6 mm long, strikers 100–600 mm at 3–30 m/s, 3000 1/s to
   // strain 0.3: a
@@ -401,6 +402,18 @@ TEST_CASE("An infeasible plan never names a striker length the bounds allow as t
   REQUIRE(at != std::string::npos);
   CHECK(std::stod(r.err.substr(at + closest.size())) >= needed);
   CHECK_FALSE(fs::exists(dir.path() / "out"));
+  // The specimen's length fixed at 6 mm: the closest set-up was a 570 mm striker at the 30 m/s
+  // bound, its rate fallen to 1380 1/s over its long loading, and the line asked for 65 m/s while
+  // shorter strikers reached 3000 1/s within the bounds. The velocity bound does not bind.
+  scene["plan"].erase("specimen");
+  std::ofstream(dir.path() / "scene.json") << scene.dump(2);
+  const auto fixed =
+      run_shpb({"plan", (dir.path() / "scene.json").string(), "--rate", "3000", "--strain", "0.3",
+                "-o", (dir.path() / "out").string(), "--threads", "2", "-q"});
+  INFO(fixed.err);
+  REQUIRE(fixed.code == 3);
+  CHECK(fixed.err.find('\n') == fixed.err.size() - 1);
+  CHECK(fixed.err.find("plan.striker.velocity: at its upper bound") == std::string::npos);
 }
 
 TEST_CASE("A band no allowed shaper meets asks for another shaper, not for one", "[app][plan]") {
