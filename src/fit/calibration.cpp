@@ -64,7 +64,7 @@ struct Arrival {
 };
 
 struct ShotBar {
-  double radius_m = 0;
+  double radius_m = 0, density_kg_m3 = 0;
   std::size_t c = 0, nu = 0;  // parameter indices
 };
 
@@ -120,6 +120,19 @@ class Tables {
   std::map<double, std::unique_ptr<DispersionTable>> tables_;
 };
 
+// The strain a pulse carries into bar `to` across its interface with bar `from`, per unit of its
+// strain in `from`, at θ's wave speeds: the particle velocity's transmission 2 Z_f/(Z_f + Z_t),
+// Z = ρ c A, times c_f/c_t (v = c ε). Bars of one impedance pass the strain whole; an incident bar
+// 1 % faster than a transmitter of its density and size passes it 1.5 % larger, which the
+// transmitter channel's gain took for its own (docs/methods.md §11).
+double strain_transmission(const ShotBar& from, const ShotBar& to,
+                           const std::vector<double>& theta) {
+  const double cf = theta[from.c], ct = theta[to.c];
+  const double zf = from.density_kg_m3 * cf * from.radius_m * from.radius_m,
+               zt = to.density_kg_m3 * ct * to.radius_m * to.radius_m;
+  return 2 * zf / (zf + zt) * cf / ct;
+}
+
 // The model of one target's record at θ.
 std::vector<double> model_of(const Shot& s, const Target& t, const std::vector<double>& theta,
                              Tables& tables) {
@@ -142,7 +155,13 @@ std::vector<double> model_of(const Shot& s, const Target& t, const std::vector<d
       p.propagate(x, s.dt, seg.length(theta), y, k + 1 == a.way.size() ? delay : 0.0);
       x.swap(y);
     }
-    for (std::size_t i = 0; i < n; ++i) sum[i] += a.sign * x[i];
+    // A way from the struck bar into the transmitter crosses the interface once (a tensile
+    // return opens it: reflected whole).
+    const double crossing =
+        a.way.front().bar != a.way.back().bar
+            ? strain_transmission(s.bars[a.way.front().bar], s.bars[a.way.back().bar], theta)
+            : 1.0;
+    for (std::size_t i = 0; i < n; ++i) sum[i] += a.sign * crossing * x[i];
   }
   const double gain = t.gain ? theta[*t.gain] : 1.0;
   for (double& v : sum) v *= gain;
@@ -202,6 +221,7 @@ std::vector<ShotBar> bar_parameters(const Scene& scene, const std::vector<std::s
     const double c = bar.material.wave_speed_m_s();
     ShotBar sb;
     sb.radius_m = 0.5 * bar.diameter_m;
+    sb.density_kg_m3 = bar.material.density_kg_m3;
     sb.c = params.add(bar_key(bar) + ".wave_speed_m_s", c, (1 - kWaveSpeedRange) * c,
                       (1 + kWaveSpeedRange) * c, c);
     const double nu = bar.material.poisson_ratio;
