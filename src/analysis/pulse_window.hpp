@@ -12,7 +12,7 @@ namespace shpb {
 inline constexpr std::size_t kMinRestSamples = 10;
 
 struct Baseline {
-  double level = 0;  // median of the quiet segment
+  double level = 0;  // median of the quiet segment (of grouped data on a grid: grid_median)
   // 1.4826 × median absolute deviation (σ of Gaussian noise); for a digitized record whose quiet
   // segment reads mostly one level (MAD 0), from the share of samples off it and the rounding
   // error q/√12 of its step (quantization_step); for one whose quiet segment spreads over a few
