@@ -7,6 +7,7 @@
 #include <cmath>
 #include <ctime>
 
+#include "analysis/message_text.hpp"
 #include "core/error.hpp"
 #include "core/json_value.hpp"
 #include "core/median.hpp"
@@ -306,8 +307,9 @@ void check_misfit(FitRun& run) {
       if (ratio[j] > kMisfitOverNoise)
         run.warnings.push_back(
             test.name() + ": " + test.fitted_windows()[j].name +
-            " pulse: the fitted model leaves residuals " + format_number(ratio[j]) +
-            " times the record's noise (RMS over the fitted window against the baseline's): the "
+            fmt(" pulse: the fitted model leaves residuals %.3g times the record's noise",
+                ratio[j]) +
+            " (RMS over the fitted window against the baseline's): the "
             "law (or the nuisances freed) cannot reproduce this test, and the standard errors and "
             "intervals are those of the best fit of this law, not bounds on the material's");
   }
