@@ -62,14 +62,13 @@ json process_setup(const Scene& scene) {
   if (scene.specimen) {
     const KolskySetup k = resolve_setup(scene, signals.gauges);
     // A time base process would refuse is refused here too (docs/scene-format.md `measurement`).
-    if (const RestSignal inc =
-            signal_from_rest(*signals.find(k.incident_gauge), m.tension ? 1.0 : -1.0);
-        inc.first) {
-      require_rest_before_pulse(signals, k.incident_gauge, inc, scene.file.string());
+    const RestSignal inc =
+        signal_from_rest(*signals.find(k.incident_gauge), m.tension ? 1.0 : -1.0);
+    require_rest_before_pulse(signals, k.incident_gauge, inc, scene.file.string());
+    if (inc.first)
       require_pulse_fits_round_trip(
           k, signals.dt_s * static_cast<double>(inc.first->end - 1 - inc.first->onset),
           scene.file.string());
-    }
     check_uncertainty(scene, signals);  // what process refuses before its draws
     p["reduction"] = "specimen";
     p["test"] = m.tension ? "tension" : "compression";

@@ -48,8 +48,8 @@ struct PreparedSignal {
 PreparedSignal prepared_signal(const GaugeSignals& signals, const std::string& gauge,
                                const ProcessingOptions& options, ProcessingResult& r) {
   RestSignal s = signal_from_rest(*signals.find(gauge), -1.0);
-  if (!s.first) throw no_pulse_error(signals, gauge, options.scene_file, "no pulse to process");
   require_rest_before_pulse(signals, gauge, s, options.scene_file);
+  if (!s.first) throw no_pulse_error(signals, gauge, options.scene_file, "no pulse to process");
   if (s.inverted) {
     r.inverted_gauges.push_back(gauge);
     r.warnings.push_back(inverted_gauge_warning(gauge, options.tension));

@@ -149,11 +149,11 @@ MeasuredPulses find_measured_pulses(const Scene& scene, const GaugeSignals& sign
   const double first_sign = tension ? 1.0 : -1.0;
   RestSignal inc = signal_from_rest(*signals.find(m.setup.incident_gauge), first_sign);
   RestSignal tra = signal_from_rest(*signals.find(m.setup.transmitted_gauge), first_sign);
+  require_rest_before_pulse(signals, m.setup.incident_gauge, inc, scene.file.string());
+  require_rest_before_pulse(signals, m.setup.transmitted_gauge, tra, scene.file.string());
   if (!inc.first)
     throw no_pulse_error(signals, m.setup.incident_gauge, scene.file.string(),
                          "no incident pulse to compare");
-  require_rest_before_pulse(signals, m.setup.incident_gauge, inc, scene.file.string());
-  require_rest_before_pulse(signals, m.setup.transmitted_gauge, tra, scene.file.string());
   for (const auto* s : {&inc, &tra})
     if (s->inverted)
       m.warnings.push_back(inverted_gauge_warning(

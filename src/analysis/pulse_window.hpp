@@ -72,6 +72,29 @@ double rest_band(double noise, double peak);
 std::optional<PulseWindow> find_first_pulse(std::span<const double> x, const Baseline& baseline,
                                             std::size_t from = 0);
 
+// How a record starts. One that starts on its first pulse's front (a scope triggered late on a slow
+// rise: a shaped pulse, a polymer bar's) has no rest to read: its first samples are the rise, and
+// the baseline read from them is a level on the front with the rise's spread as its "noise". Told
+// from a record at rest by the samples before that pulse's onset (the pulse found against the
+// median of the first kMinRestSamples, with the noise of the successive differences, which a trend
+// leaves): the median of their last third exceeds that of their first third towards the pulse by
+// more than kFrontTrendSigmas times what the noise explains, and at least kFrontRateFraction of the
+// rate at which the pulse goes on rising from its onset to half height. A rest's level does not
+// move towards its pulse at the pulse's own rate: a drift or an amplifier's settling, within the
+// rest band over those samples, runs at a small fraction of it (docs/methods.md §6, "From gauges to
+// faces").
+struct RecordStart {
+  // The first pulse against the median of the first kMinRestSamples, with the noise σ of the
+  // successive differences (1.4826 × their MAD / √2; on a grid at least its rounding's q/√12).
+  std::optional<PulseWindow> first;
+  double noise = 0;
+  bool on_front = false;  // by the rule above
+  // The level's change across the samples before that onset towards the pulse (from the median of
+  // their first third to that of their last), and their mean slope over the rise's.
+  double change = 0, rate_fraction = 0;
+};
+RecordStart record_start(std::span<const double> x);
+
 // Onset of a pulse of the given sign in [from, to), the same way, and its first half-peak
 // sample (onset to half is the front's rise); nullopt if none, or if its peak is not above
 // min_peak.

@@ -122,19 +122,28 @@ std::vector<std::string> signal_warnings(const GaugeSignals& signals) {
 
 void require_rest_before_pulse(const GaugeSignals& signals, const std::string& gauge,
                                const RestSignal& s, const std::string& scene_file) {
+  if (s.start.on_front)
+    throw channel_error(
+        signals, gauge, scene_file,
+        fmt("it starts on its first pulse's front: its %.0f samples before that pulse's onset "
+            "move %.3g towards it, beyond their noise and at %.2g of the rate at which the pulse "
+            "goes on rising, so no rest level can be read before the pulse (record with a longer "
+            "pre-trigger: the rest level and noise are read from the record only)",
+            static_cast<double>(s.start.first->onset), s.start.change, s.start.rate_fraction));
   // The rest level and noise are read from the first kMinRestSamples at least: all at rest.
-  if (!s.first || s.first->onset >= kMinRestSamples) return;
+  const std::optional<PulseWindow>& first = s.first ? s.first : s.start.first;
+  if (!first || first->onset >= kMinRestSamples) return;
   throw channel_error(
       signals, gauge, scene_file,
       fmt("its first pulse starts %.0f samples into the record: at least %.0f samples at rest "
           "before it are needed to read its rest level and noise (record with a longer "
           "pre-trigger)",
-          static_cast<double>(s.first->onset), static_cast<double>(kMinRestSamples)));
+          static_cast<double>(first->onset), static_cast<double>(kMinRestSamples)));
 }
 
 RestSignal signal_from_rest(const std::vector<double>& raw, double expected_sign) {
   const Baseline b = estimate_baseline(raw);
-  RestSignal s{std::vector<double>(raw.size()), b.noise, std::nullopt, false};
+  RestSignal s{std::vector<double>(raw.size()), b.noise, std::nullopt, false, record_start(raw)};
   for (std::size_t i = 0; i < raw.size(); ++i) s.x[i] = raw[i] - b.level;
   s.first = find_first_pulse(s.x, {0.0, b.noise});
   if (s.first && s.first->sign != expected_sign) {

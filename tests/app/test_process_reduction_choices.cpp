@@ -11,7 +11,9 @@
 #include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <optional>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -475,6 +477,83 @@ TEST_CASE("A record triggered on its pulse reads its rest level before the pulse
   CHECK(refused.err.find("column \"incident\"") != std::string::npos);
   CHECK(refused.err.find("samples at rest before it are needed to read its rest level") !=
         std::string::npos);
+}
+
+TEST_CASE("A record that starts on its pulse's front is refused as one",
+          "[app][process][warnings]") {
+  // A scope triggered late on a slow rise keeps no rest before it: its first samples are the
+  // front, whose level the baseline took for the rest and whose rise for the noise. A noise-free
+  // linear rise of 40 us, the record starting 15 us into it, was processed (exit 0) from a level
+  // 37 % of the way up; so was a shaped (raised-cosine) rise of 50 us with 1 % noise, starting
+  // 12 us into it (its curve cut at a "load drop"). Both are refused as starting on the front.
+  constexpr double kOffset = 1e-4;          // a bridge's offset
+  constexpr double kNoise = 1e-5;           // 1 % of the incident plateau
+  std::vector<double> noise(2 * kSamples);  // the incident gauge's, then the transmitted one's
+  std::mt19937 draw(7);
+  std::normal_distribution<double> gauss(0.0, kNoise);
+  for (double& v : noise) v = gauss(draw);
+  auto at = [&noise](double t, int gauge) {
+    return noise[static_cast<std::size_t>(gauge * kSamples + std::lround(t / kDt))];
+  };
+  // Unit pulses starting at t0: a trapezoid's linear rise, or a raised cosine's shaped one.
+  auto linear = [](double t, double t0, double rise) { return trap(t, t0, 100e-6, rise); };
+  auto shaped = [](double t, double t0, double rise) {
+    const double u = t - t0, f = trap(t, t0, 100e-6, rise);
+    return u > 0 && u < rise ? 0.5 * (1 - std::cos(std::numbers::pi * u / rise)) : f;
+  };
+  struct Case {
+    std::string name;
+    std::function<double(double, double, double)> pulse;
+    double start, rise;
+    bool noisy;
+  };
+  for (const Case& c :
+       {Case{"ramp", linear, -15e-6, 40e-6, false}, Case{"shaped", shaped, -12e-6, 50e-6, true}}) {
+    const double n = c.noisy ? 1.0 : 0.0;
+    const Record rec{[&, c, n](double t) {
+                       return kOffset + n * at(t, 0) - 1e-3 * c.pulse(t, c.start, c.rise) +
+                              0.6e-3 * c.pulse(t, c.start + 400e-6, c.rise);
+                     },
+                     [&, c, n](double t) {
+                       return n * at(t, 1) - 0.4e-3 * c.pulse(t, c.start + 300e-6, c.rise);
+                     }};
+    const fs::path d = scratch_dir("reduction_front_" + c.name);
+    const auto r = run_shpb(
+        {"process", write(d, steel_scene(), csv(rec)).string(), "-o", (d / "out").string(), "-q"});
+    INFO(c.name << ": " << r.err);
+    CHECK(r.code == 2);
+    CHECK(r.err.find("signals.csv: column \"incident\"") != std::string::npos);
+    CHECK(r.err.find("it starts on its first pulse's front") != std::string::npos);
+    CHECK(r.err.find("no rest level can be read before the pulse") != std::string::npos);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    CHECK(!fs::exists(d / "out" / "curve.csv"));
+  }
+}
+
+TEST_CASE("A record drifting and settling within its rest band is still processed",
+          "[app][process][warnings]") {
+  // The clean record (rise 10 us, 500 samples of rest), its incident gauge drifting by 2 % of the
+  // plateau over the record and settling from 3 % of it with a 5 us time constant after the
+  // trigger, as an amplifier does: its level moves by less than the rest band and at a small
+  // fraction of the pulse's rise rate, so it is read as at rest. The 1-wave stress (the untouched
+  // transmitted gauge) is exact; the incident plateau is within the drift.
+  constexpr double kDrift = 2e-5, kSettling = 3e-5, kTau = 5e-6;
+  const Record clean = shpb_test::clean();
+  const Record rec{[clean](double t) {
+                     return kDrift * t / (kSamples * kDt) + kSettling * std::exp(-t / kTau) +
+                            clean.incident_gauge(t);
+                   },
+                   clean.transmitted_gauge};
+  const fs::path d = scratch_dir("reduction_drift_settling");
+  const auto r = run_shpb(
+      {"process", write(d, steel_scene(), csv(rec)).string(), "-o", (d / "out").string(), "-q"});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  const json s = summary(d / "out");
+  constexpr double kExact = 1e-6;  // the transmitted record is the exact trapezoid
+  CHECK(s["reductions"]["1-wave"]["peak_stress_Pa"].get<double>() == Approx(320e6).epsilon(kExact));
+  // The rest level is read within the drift over the record, 2 % of the plateau.
+  CHECK(s["incident_plateau_strain"].get<double>() == Approx(1e-3).epsilon(kDrift / 1e-3));
 }
 
 TEST_CASE("A transmitter short enough to reflect the pulse back onto its gauge is said to",
