@@ -13,17 +13,58 @@
 namespace shpb {
 namespace {
 
-// The clipping warning of the record of gauge `name` (signal_checks.hpp), if it looks clipped.
+// The clipping warning of the record of gauge `name` (signal_checks.hpp), if it looks clipped or
+// may be: an established clip first.
 std::optional<std::string> clipping_warning(const std::string& name, const std::vector<double>& x) {
   const std::vector<ClippedLevel> levels = clipped_levels(x);
   if (levels.empty()) return std::nullopt;
-  const ClippedLevel& c = levels.front();
-  return "gauge \"" + name + "\": " + std::to_string(c.run) +
-         " consecutive samples at the record's extreme " + format_double(c.level) + " (" +
-         std::to_string(c.at_level) + " samples at that level, " + std::to_string(c.at_next) +
-         " at the next one)" +
-         ": the signal looks clipped (amplifier or digitizer range); pulses and the striker "
-         "velocity inferred from it are too small";
+  const auto found = std::find_if(levels.begin(), levels.end(),
+                                  [](const ClippedLevel& l) { return l.established; });
+  const ClippedLevel& c = found != levels.end() ? *found : levels.front();
+  const std::string seen = "gauge \"" + name + "\": " + std::to_string(c.run) +
+                           " consecutive samples at the record's extreme " +
+                           format_double(c.level) + " (" + std::to_string(c.at_level) +
+                           " samples at that level, " + std::to_string(c.at_next) +
+                           " at the next one)";
+  if (c.established)
+    return seen +
+           ": the signal looks clipped (amplifier or digitizer range); pulses and the striker "
+           "velocity inferred from it are too small";
+  return seen +
+         ": the signal may be clipped (amplifier or digitizer range), or its top is flat: its "
+         "noise is too small against the digitizer's step to tell; its samples are read as "
+         "values (check that the pulse stayed within the channel's range)";
+}
+
+// The widest stretch around level c's run whose samples lie within `depth` of its level.
+std::size_t width_within(const std::vector<double>& x, const ClippedLevel& c, double depth,
+                         double inward) {
+  std::size_t a = c.run_start, b = c.run_start + c.run;
+  while (a > 0 && inward * (c.level - x[a - 1]) <= depth) --a;
+  while (b < x.size() && inward * (c.level - x[b]) <= depth) ++b;
+  return b - a;
+}
+
+// Whether a smooth top on a grid of step q explains level c's run (signal_checks.hpp): a parabola
+// rounded to the grid stays at its top level (within q/2 below it) over w₀, within 2½ steps over
+// w₂, w₂² − w₀² = 16q/κ, and its top lies within a step of the level's lower edge: w₀² ≤ 8q/κ, so
+// 3 w₀² ≤ w₂². Counted widths are within a sample of the crossings': w₀ − 1 and w₂ + 1.
+bool smooth_top(const std::vector<double>& x, const ClippedLevel& c, double q, double inward) {
+  const double w0 = static_cast<double>(c.run) - 1;
+  const double w2 = static_cast<double>(width_within(x, c, 2.5 * q, inward)) + 1;
+  return 3 * w0 * w0 <= w2 * w2;
+}
+
+// Whether the record's noise rules out an unclipped signal held at level c for its run
+// (signal_checks.hpp). The baseline's noise carries the rounding q²/12 (estimate_baseline), which
+// holds no sample on a level: the analog noise is what is left.
+bool noise_rules_out(const std::vector<double>& x, const ClippedLevel& c, double q) {
+  const double total = estimate_baseline(x).noise;
+  const double analog2 = total * total - q * q / 12;
+  if (!(analog2 > 0)) return false;
+  const double in_step = std::erf(q / (2 * std::sqrt(2 * analog2)));
+  const double runs = static_cast<double>(x.size() - c.run + 1);
+  return runs * std::pow(in_step, static_cast<double>(c.run)) < kClipFalseAlarm;
 }
 
 }  // namespace
@@ -32,28 +73,34 @@ std::vector<ClippedLevel> clipped_levels(const std::vector<double>& x) {
   std::vector<ClippedLevel> out;
   if (x.empty()) return out;
   const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
+  const double q = quantization_step(x);
   for (const double extreme : {*hi, *lo}) {
     if (extreme == 0 || (!out.empty() && extreme == out.front().level)) continue;
     // The level histogram at the extreme: its count, and that of the next level inward.
-    std::size_t run = 0, longest = 0, at_extreme = 0, at_next = 0;
+    ClippedLevel c{extreme};
+    std::size_t run = 0;
     double next = extreme == *hi ? *lo : *hi;
-    for (double v : x) {
-      longest = std::max(longest, run = v == extreme ? run + 1 : 0);
-      at_extreme += v == extreme;
-      if (v != extreme && std::abs(extreme - v) < std::abs(extreme - next)) next = v;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      run = x[i] == extreme ? run + 1 : 0;
+      if (run > c.run) c.run = run, c.run_start = i + 1 - run;
+      c.at_level += x[i] == extreme;
+      if (x[i] != extreme && std::abs(extreme - x[i]) < std::abs(extreme - next)) next = x[i];
     }
-    for (double v : x) at_next += v == next;
+    for (double v : x) c.at_next += v == next;
     const bool piles_up =
-        static_cast<double>(at_extreme) >= kClippedPileUp * static_cast<double>(at_next);
-    if (longest >= kClippedRun && piles_up)
-      out.push_back(ClippedLevel{extreme, longest, at_extreme, at_next});
+        static_cast<double>(c.at_level) >= kClippedPileUp * static_cast<double>(c.at_next);
+    if (c.run < kClippedRun || !piles_up) continue;
+    const double inward = extreme == *hi ? 1 : -1;
+    c.established = !(q > 0) || noise_rules_out(x, c, q);
+    if (c.established || !smooth_top(x, c, q, inward)) out.push_back(c);
   }
   return out;
 }
 
 std::optional<ClippedSamples> clipped_samples(const std::vector<double>& raw,
                                               const std::vector<double>& from_rest) {
-  const std::vector<ClippedLevel> levels = clipped_levels(raw);
+  std::vector<ClippedLevel> levels = clipped_levels(raw);
+  std::erase_if(levels, [](const ClippedLevel& c) { return !c.established; });
   if (levels.empty()) return std::nullopt;
   // Whether from_rest runs with raw or against it (a turned channel): from the record's extremes.
   const auto [lo, hi] = std::minmax_element(raw.begin(), raw.end());

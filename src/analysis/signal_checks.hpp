@@ -16,10 +16,15 @@ namespace shpb {
 
 // A record clipped by its amplifier or digitizer piles up at its extreme level: every sample the
 // range cut off lands there, so the level holds at least kClippedPileUp times as many samples as
-// the next level inward, and at least kClippedRun of them follow one another. An unclipped
-// record only touches its extreme: a noisy or ringing top spreads over the levels below it, so
-// its extreme level holds fewer samples than the next one even where a coarse (8-bit) digitizer
-// repeats the level for several samples running.
+// the next level inward, and at least kClippedRun of them follow one another. A digitized smooth
+// top can do the same (docs/methods.md §6, "Clipping"): within one step q it dwells for about
+// 2√(2q/κ) samples at curvature κ, so a top whose widths at the next two levels down fit one
+// parabola with it is no clip; one that stays flat longer is clipped only when the record's noise
+// σ (its baseline's, less the rounding q/√12) could not have held an unclipped signal in one step
+// for that run: a sample falls in a step with probability at most P = erf(q/(2√2 σ)), so the run
+// of n has at most (N − n + 1) Pⁿ < kClipFalseAlarm. Else it may be clipped (a flat plateau below
+// the noise of a step reads the same as a clip): said, not assumed. A record on no grid (computed
+// or in floating point) repeats a value at its extreme only when cut.
 // Also warns of a record too short to hold a pulse (fewer than kMinRecordSamples samples,
 // core/time_series.hpp), and of
 // two gauges whose records are the same up to a scale (one channel read twice, or exported under
@@ -28,14 +33,19 @@ namespace shpb {
 // which a copy scaled by another bridge factor reaches to round-off.
 inline constexpr std::size_t kClippedRun = 5;
 inline constexpr double kClippedPileUp = 2.0;
+// The chance that an unclipped record's noise holds it on one level as long as its run, above
+// which a pile-up is only "may be clipped": one record in a thousand.
+inline constexpr double kClipFalseAlarm = 1e-3;
 inline constexpr double kCopiedChannelCorrelation = 1e-9;
 std::vector<std::string> signal_warnings(const GaugeSignals& signals);
 // The extreme levels at which a record looks clipped by the rule above (the upper one first; each
-// with its longest run there and the counts at that level and the next one inward): none, one or
-// both (a range exceeded both ways, by pulses of both signs).
+// with its longest run there, where it starts, and the counts at that level and the next one
+// inward): none, one or both (a range exceeded both ways, by pulses of both signs). `established`:
+// clipped; else it may be.
 struct ClippedLevel {
   double level = 0;
-  std::size_t run = 0, at_level = 0, at_next = 0;
+  std::size_t run = 0, run_start = 0, at_level = 0, at_next = 0;
+  bool established = false;
 };
 std::vector<ClippedLevel> clipped_levels(const std::vector<double>& x);
 // A clipped record's samples at its clip levels, and those levels in the units of the record as it
@@ -61,7 +71,7 @@ struct ClippedSamples {
     return x;
   }
 };
-// nullopt when `raw` does not look clipped.
+// nullopt when no level of `raw` is established as clipped.
 std::optional<ClippedSamples> clipped_samples(const std::vector<double>& raw,
                                               const std::vector<double>& from_rest);
 

@@ -479,7 +479,8 @@ Shot prepare_shot(const CalibrationShot& cs, Parameters& params, std::string& re
   auto [source, base] = baseline_removed(signals, src.name);
   // The model propagates the source record: a clipped source cuts every modelled pulse, which no
   // reading of the targets can undo (a clipped target is read as bounds).
-  if (!clipped_levels(*signals.find(src.name)).empty())
+  const std::vector<ClippedLevel> cut = clipped_levels(*signals.find(src.name));
+  if (std::any_of(cut.begin(), cut.end(), [](const ClippedLevel& c) { return c.established; }))
     s.warnings.push_back(file + ": gauge \"" + src.name +
                          "\" is this shot's source and its record is clipped: every pulse the "
                          "calibration models from it is cut too, so its values are biased; fire "
