@@ -17,8 +17,8 @@ namespace shpb {
 // A record clipped by its amplifier or digitizer piles up at its extreme level: every sample the
 // range cut off lands there, so the level holds at least kClippedPileUp times as many samples as
 // the next level inward, and at least kClippedRun of them follow one another. A digitized smooth
-// top can do the same (docs/methods.md §6, "Clipping"): within one step q it dwells for about
-// 2√(2q/κ) samples at curvature κ, so a top whose widths at the next two levels down fit one
+// top can do the same (docs/methods.md §9, "A clipped channel"): within one step q it dwells for
+// about 2√(2q/κ) samples at curvature κ, so a top whose widths at the next two levels down fit one
 // parabola with it is no clip; one that stays flat longer is clipped only when the record's noise
 // σ (its baseline's, less the rounding q/√12) could not have held an unclipped signal in one step
 // for that run: a sample falls in a step with probability at most P = erf(q/(2√2 σ)), so the run

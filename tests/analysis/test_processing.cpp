@@ -395,13 +395,14 @@ std::string clip_said(const std::vector<double>& x) {
 
 }  // namespace
 
-// Quantized smooth tops (docs/methods.md §6, "Clipping"; measured in docs/validation.md): an 8-bit
-// record of 0.1–0.2 % noise holds a rounded top on its extreme level for tens of samples, 2√(2q/κ),
-// more than twice as many as on the next level, as a clip does (main called 30 % of these clipped).
-// No smooth top is called clipped: only a run the noise could not have held on one step is, at a
-// false-alarm rate below kClipFalseAlarm per extreme by construction (1e-3: 0.3 expected among
-// these 150 tops, none measured); a rounded top is cleared by its curvature, and a trapezoid's flat
-// plateau, which reads as a clip below the noise of a step, may be clipped at most.
+// Quantized smooth tops (docs/methods.md §9, "A clipped channel"; measured in docs/validation.md):
+// an 8-bit record of 0.1–0.2 % noise holds a rounded top on its extreme level for tens of samples,
+// 2√(2q/κ), more than twice as many as on the next level, as a clip does (main called about 30 % of
+// such tops clipped). No smooth top is called clipped: only a run the noise could not have held on
+// one step is, at a false-alarm rate below kClipFalseAlarm per extreme by construction (1e-3: 0.3
+// expected among these 144 tops, none measured); a rounded top is cleared by its curvature, and a
+// trapezoid's flat plateau, which reads as a clip below the noise of a step, may be clipped at
+// most.
 TEST_CASE("A digitized smooth top is not called clipped", "[analysis][clipping]") {
   std::mt19937_64 rng(2026);
   constexpr int kAllowedFalseAlarms = 1;  // 0.3 expected at the rule's bound
