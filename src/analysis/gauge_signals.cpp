@@ -141,7 +141,8 @@ void check_sample_interval(const SignalColumns& cols, const MeasurementSpec& m) 
 
 // Each gauge's strain, the mean of its channels (checked to agree), in order of first appearance.
 void average_channels(const MeasurementSpec& m, std::vector<std::vector<double>>& channel_strain,
-                      const std::vector<std::filesystem::path>& channel_file, GaugeSignals& out) {
+                      const std::vector<std::filesystem::path>& channel_file,
+                      const std::vector<double>& channel_factor, GaugeSignals& out) {
   for (std::size_t c = 0; c < m.channels.size(); ++c) {
     const std::string& g = m.channels[c].gauge;
     if (out.find(g)) continue;
@@ -160,6 +161,12 @@ void average_channels(const MeasurementSpec& m, std::vector<std::vector<double>>
       for (double& x : channel_strain[c]) x = 0.0 + x;
       out.gauges.push_back(g);
       out.strain.push_back(std::move(channel_strain[c]));
+      std::optional<std::array<double, 2>> range = m.channels[c].range;
+      if (range) {  // in strain; a negative factor (inverted) swaps its ends
+        for (double& e : *range) e *= channel_factor[c];
+        if ((*range)[0] > (*range)[1]) std::swap((*range)[0], (*range)[1]);
+      }
+      out.ranges.push_back(range);
       continue;
     }
     std::vector<double> sum(out.time_s.size(), 0.0);
@@ -169,10 +176,17 @@ void average_channels(const MeasurementSpec& m, std::vector<std::vector<double>>
     for (double& x : sum) x /= static_cast<double>(twins.size());
     out.gauges.push_back(g);
     out.strain.push_back(std::move(sum));
+    out.ranges.emplace_back();
   }
 }
 
 }  // namespace
+
+std::optional<std::array<double, 2>> GaugeSignals::range_of(std::string_view gauge) const {
+  for (std::size_t i = 0; i < gauges.size() && i < ranges.size(); ++i)
+    if (gauges[i] == gauge) return ranges[i];
+  return std::nullopt;
+}
 
 const std::vector<double>* GaugeSignals::find(std::string_view gauge) const {
   for (std::size_t i = 0; i < gauges.size(); ++i)
@@ -229,6 +243,7 @@ GaugeSignals read_gauge_signals(const MeasurementSpec& m, const std::filesystem:
   GaugeSignals out;
   std::vector<std::vector<double>> channel_strain(m.channels.size());
   std::vector<std::filesystem::path> channel_file(m.channels.size());
+  std::vector<double> channel_factor(m.channels.size(), 1.0);
   bool first_file = true;
   // Files in channel order, so the first channel's file sets the common clock.
   std::vector<std::filesystem::path> order;
@@ -307,10 +322,11 @@ GaugeSignals read_gauge_signals(const MeasurementSpec& m, const std::filesystem:
           v[i] = sample_at(late, static_cast<double>(i) + shift, late.front(), late.back());
       }
       channel_strain[channels[k]] = std::move(v);
+      channel_factor[channels[k]] = factor;
       channel_file[channels[k]] = file;
     }
   }
-  average_channels(m, channel_strain, channel_file, out);
+  average_channels(m, channel_strain, channel_file, channel_factor, out);
   for (std::size_t g = 0; g < out.gauges.size(); ++g) {
     const double peak = median_abs_peak(out.strain[g]);
     if (peak < kPlausibleStrainMin || peak > kPlausibleStrainMax) {

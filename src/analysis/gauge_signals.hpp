@@ -2,7 +2,9 @@
 // From a scene's `measurement` block to strain at each gauge (tension positive): read every
 // channel through read_signal_columns, volts → strain through the bridge, polarity, averaging of
 // the channels of one gauge (opposite gauges cancel bending), one common time base.
+#include <array>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -24,6 +26,11 @@ struct GaugeSignals {
     std::string file, where;
   };
   std::vector<Source> sources;
+  // Each gauge's stated full scale in its strain, [low, high] (measurement.channels[].range, after
+  // its scale, sign and gain): none where not stated or where the gauge averages two channels
+  // (their mean has no one full scale); none at all for signals made in memory.
+  std::vector<std::optional<std::array<double, 2>>> ranges;
+  std::optional<std::array<double, 2>> range_of(std::string_view gauge) const;
 
   // The strain of `gauge`, or nullptr.
   const std::vector<double>* find(std::string_view gauge) const;

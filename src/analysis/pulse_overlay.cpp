@@ -161,8 +161,10 @@ MeasuredPulses find_measured_pulses(const Scene& scene, const GaugeSignals& sign
   m.incident_rest_sd = settle_rest_level(inc);
   m.transmitted_rest_sd = settle_rest_level(tra);
   m.incident = std::move(inc.x), m.transmitted = std::move(tra.x);
-  m.incident_clipped = clipped_samples(*signals.find(m.setup.incident_gauge), m.incident);
-  m.transmitted_clipped = clipped_samples(*signals.find(m.setup.transmitted_gauge), m.transmitted);
+  m.incident_clipped = clipped_samples(*signals.find(m.setup.incident_gauge), m.incident,
+                                       signals.range_of(m.setup.incident_gauge));
+  m.transmitted_clipped = clipped_samples(*signals.find(m.setup.transmitted_gauge), m.transmitted,
+                                          signals.range_of(m.setup.transmitted_gauge));
   if (m.incident_clipped) m.incident_clipped->noise = inc.noise;
   if (m.transmitted_clipped) m.transmitted_clipped->noise = tra.noise;
   m.incident_baseline = {0.0, inc.noise}, m.transmitted_baseline = {0.0, tra.noise};

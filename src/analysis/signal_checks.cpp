@@ -15,8 +15,9 @@ namespace {
 
 // The clipping warning of the record of gauge `name` (signal_checks.hpp), if it looks clipped or
 // may be: an established clip first.
-std::optional<std::string> clipping_warning(const std::string& name, const std::vector<double>& x) {
-  const std::vector<ClippedLevel> levels = clipped_levels(x);
+std::optional<std::string> clipping_warning(const std::string& name, const std::vector<double>& x,
+                                            const FullScale& range) {
+  const std::vector<ClippedLevel> levels = clipped_levels(x, range);
   if (levels.empty()) return std::nullopt;
   const auto found = std::find_if(levels.begin(), levels.end(),
                                   [](const ClippedLevel& l) { return l.established; });
@@ -33,7 +34,7 @@ std::optional<std::string> clipping_warning(const std::string& name, const std::
   return seen +
          ": the signal may be clipped (amplifier or digitizer range), or its top is flat: its "
          "noise is too small against the digitizer's step to tell; its samples are read as "
-         "values (check that the pulse stayed within the channel's range)";
+         "values (state the channel's full scale, measurement.channels[].range, to settle it)";
 }
 
 // The widest stretch around level c's run whose samples lie within `depth` of its level.
@@ -69,7 +70,7 @@ bool noise_rules_out(const std::vector<double>& x, const ClippedLevel& c, double
 
 }  // namespace
 
-std::vector<ClippedLevel> clipped_levels(const std::vector<double>& x) {
+std::vector<ClippedLevel> clipped_levels(const std::vector<double>& x, const FullScale& range) {
   std::vector<ClippedLevel> out;
   if (x.empty()) return out;
   const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
@@ -87,10 +88,17 @@ std::vector<ClippedLevel> clipped_levels(const std::vector<double>& x) {
       if (x[i] != extreme && std::abs(extreme - x[i]) < std::abs(extreme - next)) next = x[i];
     }
     for (double v : x) c.at_next += v == next;
+    const double inward = extreme == *hi ? 1 : -1;
+    if (range) {  // the stated full scale settles it
+      const double limit = extreme == *hi ? (*range)[1] : (*range)[0];
+      c.established = true;
+      if (inward * (limit - extreme) <= kRangeSteps * q + kRangePrinted * std::abs(limit))
+        out.push_back(c);
+      continue;
+    }
     const bool piles_up =
         static_cast<double>(c.at_level) >= kClippedPileUp * static_cast<double>(c.at_next);
     if (c.run < kClippedRun || !piles_up) continue;
-    const double inward = extreme == *hi ? 1 : -1;
     c.established = !(q > 0) || noise_rules_out(x, c, q);
     if (c.established || !smooth_top(x, c, q, inward)) out.push_back(c);
   }
@@ -98,8 +106,9 @@ std::vector<ClippedLevel> clipped_levels(const std::vector<double>& x) {
 }
 
 std::optional<ClippedSamples> clipped_samples(const std::vector<double>& raw,
-                                              const std::vector<double>& from_rest) {
-  std::vector<ClippedLevel> levels = clipped_levels(raw);
+                                              const std::vector<double>& from_rest,
+                                              const FullScale& range) {
+  std::vector<ClippedLevel> levels = clipped_levels(raw, range);
   std::erase_if(levels, [](const ClippedLevel& c) { return !c.established; });
   if (levels.empty()) return std::nullopt;
   // Whether from_rest runs with raw or against it (a turned channel): from the record's extremes.
@@ -149,7 +158,9 @@ std::vector<std::string> signal_warnings(const GaugeSignals& signals) {
     warnings.push_back("the record has only " + std::to_string(signals.time_s.size()) +
                        " samples: too few to resolve a pulse (check the sample rate)");
   for (std::size_t g = 0; g < signals.gauges.size(); ++g)
-    if (auto w = clipping_warning(signals.gauges[g], signals.strain[g])) warnings.push_back(*w);
+    if (auto w = clipping_warning(signals.gauges[g], signals.strain[g],
+                                  signals.range_of(signals.gauges[g])))
+      warnings.push_back(*w);
   for (std::size_t g = 0; g < signals.gauges.size(); ++g)
     for (std::size_t h = g + 1; h < signals.gauges.size(); ++h) {
       const std::vector<double>& a = signals.strain[g];

@@ -3,6 +3,7 @@
 // digitizer, too short, or one channel read twice; a gauge's record from its rest level, turned
 // when its first pulse has the other polarity; a pulse too long for its round trip (a clock read
 // in the wrong unit).
+#include <array>
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -24,7 +25,9 @@ namespace shpb {
 // for that run: a sample falls in a step with probability at most P = erf(q/(2√2 σ)), so the run
 // of n has at most (N − n + 1) Pⁿ < kClipFalseAlarm. Else it may be clipped (a flat plateau below
 // the noise of a step reads the same as a clip): said, not assumed. A record on no grid (computed
-// or in floating point) repeats a value at its extreme only when cut.
+// or in floating point) repeats a value at its extreme only when cut. A stated full scale
+// (measurement.channels[].range, GaugeSignals::ranges) settles it: an extreme within
+// kRangeSteps steps of it is clipped, pile-up or not, and one further inside is not.
 // Also warns of a record too short to hold a pulse (fewer than kMinRecordSamples samples,
 // core/time_series.hpp), and of
 // two gauges whose records are the same up to a scale (one channel read twice, or exported under
@@ -36,6 +39,11 @@ inline constexpr double kClippedPileUp = 2.0;
 // The chance that an unclipped record's noise holds it on one level as long as its run, above
 // which a pile-up is only "may be clipped": one record in a thousand.
 inline constexpr double kClipFalseAlarm = 1e-3;
+// A digitizer's top code lies a step below its full scale (2^(b−1) − 1 of 2^(b−1) steps), and a
+// rounding of half a step more: a level within 1½ steps of the stated range is at it.
+inline constexpr double kRangeSteps = 1.5;
+// The same for a record on no grid: the 6 printed significant digits of an export.
+inline constexpr double kRangePrinted = 1e-6;
 inline constexpr double kCopiedChannelCorrelation = 1e-9;
 std::vector<std::string> signal_warnings(const GaugeSignals& signals);
 // The extreme levels at which a record looks clipped by the rule above (the upper one first; each
@@ -47,7 +55,8 @@ struct ClippedLevel {
   std::size_t run = 0, run_start = 0, at_level = 0, at_next = 0;
   bool established = false;
 };
-std::vector<ClippedLevel> clipped_levels(const std::vector<double>& x);
+using FullScale = std::optional<std::array<double, 2>>;  // [low, high], GaugeSignals::ranges
+std::vector<ClippedLevel> clipped_levels(const std::vector<double>& x, const FullScale& range = {});
 // A clipped record's samples at its clip levels, and those levels in the units of the record as it
 // is used (`from_rest`: the same record less its rest level, turned as its pulses are). The strain
 // there reached at least the level: a bound, not a value (fit and calibrate read it so: a
@@ -73,7 +82,8 @@ struct ClippedSamples {
 };
 // nullopt when no level of `raw` is established as clipped.
 std::optional<ClippedSamples> clipped_samples(const std::vector<double>& raw,
-                                              const std::vector<double>& from_rest);
+                                              const std::vector<double>& from_rest,
+                                              const FullScale& range = {});
 
 // A gauge record from its rest level: less its baseline (estimate_baseline: a bridge's offset is no
 // strain), with its first pulse (find_first_pulse). A record whose first pulse has the other sign

@@ -479,7 +479,8 @@ Shot prepare_shot(const CalibrationShot& cs, Parameters& params, std::string& re
   auto [source, base] = baseline_removed(signals, src.name);
   // The model propagates the source record: a clipped source cuts every modelled pulse, which no
   // reading of the targets can undo (a clipped target is read as bounds).
-  const std::vector<ClippedLevel> cut = clipped_levels(*signals.find(src.name));
+  const std::vector<ClippedLevel> cut =
+      clipped_levels(*signals.find(src.name), signals.range_of(src.name));
   if (std::any_of(cut.begin(), cut.end(), [](const ClippedLevel& c) { return c.established; }))
     s.warnings.push_back(file + ": gauge \"" + src.name +
                          "\" is this shot's source and its record is clipped: every pulse the "
@@ -521,7 +522,7 @@ Shot prepare_shot(const CalibrationShot& cs, Parameters& params, std::string& re
       if (t.arrivals.empty()) continue;
       const auto [measured, base_g] = baseline_removed(signals, g.name);
       t.measured = measured;
-      t.clipped = clipped_samples(*signals.find(g.name), t.measured);
+      t.clipped = clipped_samples(*signals.find(g.name), t.measured, signals.range_of(g.name));
       if (t.clipped) t.clipped->noise = base_g.noise;
       t.level_sd = rest_level_sd(base_g.noise, baseline_samples(measured.size()));
       low_pass_as_modelled(t, low_pass, s.dt);

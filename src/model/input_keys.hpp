@@ -55,7 +55,8 @@ inline const Keys kMeasurement = {
     "test",        "corrections",      "reflected_time", "align",     "primary",
     "rate_window", "uncertainty"};
 inline const Keys kMeasurementTime = {"column", "unit", "resample", "interval", "rate", "start"};
-inline const Keys kChannel = {"gauge", "file", "column", "unit", "bridge", "scale", "invert"};
+inline const Keys kChannel = {"gauge",  "file",  "column", "unit",
+                              "bridge", "scale", "invert", "range"};
 inline const Keys kBridge = {"arms", "gauge_factor", "excitation", "gain"};
 inline const Keys kDispersion = {"correction", "amplitude_factors", "cutoff", "cutoff_fa_c0"};
 inline const Keys kWindows = {"incident", "reflected", "transmitted"};

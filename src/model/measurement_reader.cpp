@@ -93,6 +93,28 @@ RateWindow read_rate_window(const JsonValue& v) {
   return w;
 }
 
+// A channel's full scale: ±value or [low, high], a voltage for a channel in volts (kept in the
+// column's unit), a number in the column's unit otherwise.
+std::array<double, 2> read_channel_range(const JsonValue& v, SignalUnit unit) {
+  const bool volts = unit == SignalUnit::kVolt || unit == SignalUnit::kMillivolt;
+  const Dimension d = volts ? Dimension::kVoltage : Dimension::kDimensionless;
+  const double per = unit == SignalUnit::kMillivolt ? 1e3 : 1.0;  // column units per volt
+  const char* expected = volts ? "expected the channel's full scale, \"5 V\" (±5 V) or "
+                                 "[\"-1 V\", \"9 V\"]"
+                               : "expected the channel's full scale in its unit, 5000 (±5000) or "
+                                 "[-1000, 9000]";
+  if (v.is_string() || v.is_number()) {
+    const double half = v.quantity(d) * per;
+    if (!(half > 0)) throw v.error(expected);
+    return {-half, half};
+  }
+  const auto ends = v.array();
+  if (ends.size() != 2) throw v.error(expected);
+  const std::array<double, 2> r{ends[0].quantity(d) * per, ends[1].quantity(d) * per};
+  if (!(r[1] > r[0])) throw v.error("the high end must exceed the low one");
+  return r;
+}
+
 ChannelSpec read_channel(const JsonValue& v, const std::filesystem::path& scene_dir,
                          const std::vector<std::string>& gauges) {
   const auto o = v.object(input_keys::kChannel);
@@ -129,6 +151,7 @@ ChannelSpec read_channel(const JsonValue& v, const std::filesystem::path& scene_
                           "\"gain\"} (or \"scale\": strain per volt)");
   }
   if (auto i = o.get("invert")) c.invert = i->boolean();
+  if (auto r = o.get("range")) c.range = read_channel_range(*r, c.unit);
   return c;
 }
 

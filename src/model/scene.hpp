@@ -1,6 +1,7 @@
 #pragma once
 // The scene: one JSON file describing a bar set-up (docs/scene-format.md), read into plain structs
 // with defaults. Validation happens once, in read_scene(); nothing downstream re-checks.
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <optional>
@@ -156,6 +157,9 @@ struct ChannelSpec {
   std::optional<BridgeSpec> bridge;  // required for volts, or
   std::optional<double> scale;       // strain per volt (a calibration factor) instead
   bool invert = false;
+  // The digitizer's (or amplifier's) full scale [low, high] in the column's unit, if stated: a
+  // sample there is a clip, and a record inside it is not clipped (docs/methods.md §9).
+  std::optional<std::array<double, 2>> range;
   // From a calibration of its gauge (model/calibration.hpp), never from the channel's own keys:
   // the recorded strain over the true strain, and the time by which the record lags the reference
   // channel. The signal is divided by the gain and moved earlier by the delay when it is read.

@@ -138,6 +138,47 @@ TEST_CASE("An 8-bit record is not called clipped; a record cut by its range is",
   CHECK_FALSE(has_warning(summary(d / "clipped"), "gauge \"transmitted\""));
 }
 
+// The incident channel digitized on 8 bits at ±80 % of its peak: its tensile plateau is cut and
+// held at the top code, with no noise to tell it from a flat top ("may be clipped" at most). Its
+// stated range settles it (docs/scene-format.md, measurement.channels[].range): at the range the
+// plateau is clipped, its samples bounds; stated twice as wide, the same flat top lies far inside
+// the range and is no clip.
+TEST_CASE("A channel's stated range settles whether its record is clipped",
+          "[app][process][clipping]") {
+  const fs::path d = scratch_dir("formats_range");
+  const auto record = shipped();
+  constexpr double kCutRange = 0.8;
+  const double range = kCutRange * peak_abs(record[1]);
+  auto cut = record;
+  cut[1] = digitize(record[1], range);
+  write_csv(d / "cut.csv", cut);
+  for (const double stated : {range, 2 * range}) {
+    INFO("stated range " << stated);
+    json scene = json::parse(read_text(scene_reading(d, "cut.csv")));
+    scene["measurement"]["channels"][0]["range"] = stated;
+    std::ofstream(d / "ranged.json") << scene.dump(2);
+    const fs::path out = d / (stated == range ? "at" : "inside");
+    const auto r =
+        run_shpb({"process", (d / "ranged.json").string(), "-o", out.string(), "--quiet"});
+    INFO(r.err);
+    REQUIRE(r.code == 0);
+    CHECK(has_warning(summary(out), "looks clipped") == (stated == range));
+    CHECK_FALSE(has_warning(summary(out), "may be clipped"));
+  }
+  // A range whose ends are reversed, or a voltage for a column in strain: exit 2 naming the key.
+  for (const json& bad : {json::array({2 * range, range}), json("5 V")}) {
+    INFO("range " << bad.dump());
+    json scene = json::parse(read_text(d / "scene.json"));
+    scene["measurement"]["channels"][0]["range"] = bad;
+    std::ofstream(d / "bad.json") << scene.dump(2);
+    const auto r =
+        run_shpb({"process", (d / "bad.json").string(), "-o", (d / "bad").string(), "--quiet"});
+    CHECK(r.code == 2);
+    CHECK(r.err.find("measurement.channels[0].range") != std::string::npos);
+    CHECK_FALSE(fs::exists(d / "bad"));
+  }
+}
+
 TEST_CASE("A channel read twice is said by process and compare", "[app][process][compare]") {
   // The transmitted column replaced by the incident one times 1.7 (one channel exported under two
   // names, or mapped twice with another bridge factor), and by its negative. Two gauges on a bar
