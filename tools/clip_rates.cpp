@@ -50,11 +50,14 @@ bool piles_up(const std::vector<double>& x) {
   return false;
 }
 
+// The digitizer's range of a record drawn with these arguments.
+double range_of(double peak_of_range, double clip) { return clip > 0 ? clip : 1 / peak_of_range; }
+
 std::vector<double> record(int kind, int bits, double noise, double peak_of_range, double clip,
                            std::mt19937_64& rng) {
   std::normal_distribution<double> gauss(0, noise);
   // Would-be peak 1; the range at `peak / peak_of_range`, or at `clip` of the peak.
-  const double range = clip > 0 ? clip : 1 / peak_of_range;
+  const double range = range_of(peak_of_range, clip);
   const double q = 2 * range / std::ldexp(1.0, bits);
   const double top = std::ldexp(1.0, bits - 1);
   std::vector<double> x(kSamples);
@@ -78,16 +81,21 @@ int main(int argc, char** argv) {
   const double noises[] = {0.001, 0.002, 0.005, 0.01, 0.02};
   const double clips[] = {0.5, 0.7, 0.9, 0.95, 0.99};
   std::printf(
-      "| bits | noise | unclipped: main clipped | now clipped | now may be | clipped: main "
-      "found | now clipped | now may be | now missed |\n|---|---|---|---|---|---|---|---|---|\n");
+      "| bits | noise | unclipped: main clipped | now clipped | now may be | range stated: clipped "
+      "| "
+      "clipped: main found | now clipped | now may be | now missed | range stated: found "
+      "|\n|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const int bits : {8, 10, 12, 16})
     for (const double noise : noises) {
-      int n_un = 0, old_fp = 0, new_fp = 0, new_may = 0;
-      int n_cl = 0, old_tp = 0, new_tp = 0, new_may_cl = 0, new_miss = 0;
+      int n_un = 0, old_fp = 0, new_fp = 0, new_may = 0, range_fp = 0;
+      int n_cl = 0, old_tp = 0, new_tp = 0, new_may_cl = 0, new_miss = 0, range_tp = 0;
+      auto stated = [](double range) { return shpb::FullScale{{-range, range}}; };
       for (int d = 0; d < draws; ++d)
         for (int kind = 0; kind < 3; ++kind) {
           for (const double at : {0.3, 0.6, 0.9}) {
-            const auto x = record(kind, bits, noise, at + jitter(rng), 0, rng);
+            const double of_range = at + jitter(rng);
+            const auto x = record(kind, bits, noise, of_range, 0, rng);
+            range_fp += !shpb::clipped_levels(x, stated(range_of(of_range, 0))).empty();
             const auto levels = shpb::clipped_levels(x);
             ++n_un, old_fp += piles_up(x);
             const bool est = std::any_of(levels.begin(), levels.end(),
@@ -95,7 +103,9 @@ int main(int argc, char** argv) {
             new_fp += est, new_may += !est && !levels.empty();
           }
           for (const double c : clips) {
-            const auto x = record(kind, bits, noise, 0, c * (1 + jitter(rng) / 5), rng);
+            const double cut = c * (1 + jitter(rng) / 5);
+            const auto x = record(kind, bits, noise, 0, cut, rng);
+            range_tp += !shpb::clipped_levels(x, stated(range_of(0, cut))).empty();
             const auto levels = shpb::clipped_levels(x);
             ++n_cl, old_tp += piles_up(x);
             const bool est = std::any_of(levels.begin(), levels.end(),
@@ -105,9 +115,10 @@ int main(int argc, char** argv) {
         }
       auto pc = [](int k, int n) { return 100.0 * k / n; };
       std::printf(
-          "| %d | %.1f %% | %.1f %% | %.1f %% | %.1f %% | %.1f %% | %.1f %% | %.1f %% | %.1f %% "
-          "|\n",
+          "| %d | %.1f %% | %.1f %% | %.1f %% | %.1f %% | %.1f %% | %.1f %% | %.1f %% | %.1f %% | "
+          "%.1f %% | %.1f %% |\n",
           bits, 100 * noise, pc(old_fp, n_un), pc(new_fp, n_un), pc(new_may, n_un),
-          pc(old_tp, n_cl), pc(new_tp, n_cl), pc(new_may_cl, n_cl), pc(new_miss, n_cl));
+          pc(range_fp, n_un), pc(old_tp, n_cl), pc(new_tp, n_cl), pc(new_may_cl, n_cl),
+          pc(new_miss, n_cl), pc(range_tp, n_cl));
     }
 }
