@@ -49,6 +49,15 @@ const char* const kRateFilter = "1 us";
 // (docs/methods.md §9); the fitted windows end before that (src/fit/fit_case.cpp).
 const char* const kStepping = "asynchronous";
 
+// `shpb fit DIR/campaign.json -o DIR/out` without a bootstrap; its summary.json.
+json fit_summary(const fs::path& dir, const char* out) {
+  const auto r = run_shpb({"fit", (dir / "campaign.json").string(), "-o", (dir / out).string(),
+                           "--threads", "2", "-q", "--bootstrap", "0"});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  return json::parse(std::ifstream(dir / out / "summary.json"));
+}
+
 }  // namespace
 
 TEST_CASE("fit recovers Johnson-Cook A, B, n, C from three noisy simulated tests", "[fit]") {
@@ -169,13 +178,7 @@ TEST_CASE("fit reads a clipped channel's clipped samples as bounds, not values",
   json campaign = json::parse(std::ifstream(dir / "campaign.json"));
   campaign["free"].erase("C");
   std::ofstream(dir / "campaign.json") << campaign.dump(1);
-  auto fitted = [&](const char* out) {
-    const auto r = run_shpb({"fit", (dir / "campaign.json").string(), "-o", (dir / out).string(),
-                             "--threads", "2", "-q", "--bootstrap", "0"});
-    INFO(r.err);
-    REQUIRE(r.code == 0);
-    return json::parse(std::ifstream(dir / out / "summary.json"));
-  };
+  auto fitted = [&](const char* out) { return fit_summary(dir, out); };
   const json whole = fitted("whole");
   constexpr double kClipLevel = 0.85;  // of the transmitted pulse's peak: a range set too tight
   {
@@ -227,13 +230,7 @@ TEST_CASE("fit says when the law cannot reproduce the tests: residuals far above
   shpb_test::write_synthetic_campaign(dir, dir / "rate-copper.json", kRateFilter, kStepping, 7);
   // The misfit criterion of src/fit/fit_run.cpp: residuals' RMS over the record's noise.
   constexpr double kMisfitOverNoise = 2.0;
-  auto fitted = [&](const char* out) {
-    const auto r = run_shpb({"fit", (dir / "campaign.json").string(), "-o", (dir / out).string(),
-                             "--threads", "2", "-q", "--bootstrap", "0"});
-    INFO(r.err);
-    REQUIRE(r.code == 0);
-    return json::parse(std::ifstream(dir / out / "summary.json"));
-  };
+  auto fitted = [&](const char* out) { return fit_summary(dir, out); };
   auto says_misfit = [](const json& s) {
     for (const auto& w : s["warnings"])
       if (w.get<std::string>().find("cannot reproduce this test") != std::string::npos) return true;
