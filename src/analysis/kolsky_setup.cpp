@@ -36,6 +36,11 @@ constexpr double kStaircaseImpedanceRatio = 2.0;
 
 }  // namespace
 
+double transmitted_arrival_s(const KolskySetup& setup, double incident_s) {
+  return incident_s + setup.incident_distance_m / setup.front.c0_m_s + setup.specimen_transit_s +
+         setup.transmitted_distance_m / setup.back.c0_m_s;
+}
+
 double striker_velocity_from_plateau(const KolskySetup& setup, double incident_plateau_strain) {
   const double z_b = setup.incident_impedance_kg_s;
   const double z_s = setup.striker_impedance_kg_s.value_or(z_b);

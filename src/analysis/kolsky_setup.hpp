@@ -51,6 +51,11 @@ struct KolskySetup {
 // has none. Used by `process`, `compare` and `fit`, with the plateau at the struck end.
 double striker_velocity_from_plateau(const KolskySetup& setup, double incident_plateau_strain);
 
+// When the transmitted front of an incident front at its gauge at `incident_s` reaches its own
+// gauge in the 1D bars: d/c0 to the specimen, L_s/c_s through it (0 without its modulus), d'/c0'
+// on.
+double transmitted_arrival_s(const KolskySetup& setup, double incident_s);
+
 // The incident pulse's plateau (pulse_window.hpp plateau_level) where the striker struck: an
 // elastic bar's is the gauge's; a viscoelastic bar's pulse has decayed on its way to the gauge and
 // is moved back to the struck end as a velocity first (docs/methods.md §5.1). Of a staircase, the

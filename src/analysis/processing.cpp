@@ -148,7 +148,7 @@ PulseTiming time_the_pulses(const std::vector<double>& t, double dt, std::size_t
   const BarWaveguide *front = &k.front_waveguide, *back = &k.back_waveguide;
   const double expected_r =
       t[on] + 2 * d_i / c_front + law_foot_delay_s(inc, on, end, dt, {{front, 2 * d_i}});
-  const double expected_t = t[on] + d_i / c_front + k.specimen_transit_s + d_t / c_back +
+  const double expected_t = transmitted_arrival_s(k, t[on]) +
                             law_foot_delay_s(inc, on, end, dt, {{front, d_i}, {back, d_t}});
   // Alignment check: where the reflected and transmitted pulses really start against where
   // geometry puts them.
@@ -159,13 +159,12 @@ PulseTiming time_the_pulses(const std::vector<double>& t, double dt, std::size_t
   r.incident_rise_s = t[inc_half] - t[on];
   // A reflected front due before the incident pulse has ended on its gauge (a gauge closer to the
   // specimen than half the pulse's length) cannot be told from that pulse: no onset is sought.
-  // It is sought from the incident pulse's first sample at rest, and only a pulse rising beyond
-  // twice the band the incident pulse ended within is one: a smaller one (a specimen matched to
-  // the bar reflects next to nothing, docs/methods.md §6) cannot be told from the incident's tail.
+  // It is sought from the incident pulse's first sample at rest, beyond the incident's tail
+  // (following_pulse_min_peak).
   const double travel_r = 2 * d_i / c_front;
   const bool apart = t[end - 1] < t[on] + travel_r - alignment_tolerance_s(dt, travel_r);
   const auto i1 = index_at(t, expected_r + p.duration);
-  const double min_peak = 2 * rest_band(inc.noise, incident_peak);
+  const double min_peak = following_pulse_min_peak(inc.noise, incident_peak);
   if (const auto o = apart
                          ? find_onset(inc.x, {0.0, inc.noise}, reflected_sign(k), end, i1, min_peak)
                          : std::nullopt) {

@@ -112,18 +112,36 @@ void report_missing_pulses(MeasuredPulses& m) {
   const KolskySetup& k = m.setup;
   const double t_end = m.time_s.back(), t_inc = m.time_s[m.incident_window.onset];
   char msg[400];
-  if (!m.reflected_window) {
+  const double round_trip = 2 * k.incident_distance_m / k.front.c0_m_s;
+  if (!m.reflected_window && t_end - t_inc < round_trip) {
     std::snprintf(msg, sizeof msg,
                   "gauge \"%s\": no reflected pulse in the record, which ends at %.4g s (%.3g s "
                   "after the incident onset; the reflected pulse follows it by 2d/c0 = %.3g s): "
                   "the reflected pulse is not compared",
-                  k.incident_gauge.c_str(), t_end, t_end - t_inc,
-                  2 * k.incident_distance_m / k.front.c0_m_s);
+                  k.incident_gauge.c_str(), t_end, t_end - t_inc, round_trip);
+    m.warnings.push_back(msg);
+  } else if (!m.reflected_window) {
+    std::snprintf(
+        msg, sizeof msg,
+        "gauge \"%s\": no reflected pulse beyond the incident pulse's tail (twice the "
+        "band it ends within, %.3g strain; a specimen matched to the bar reflects next to "
+        "nothing): the reflected pulse is not compared",
+        k.incident_gauge.c_str(),
+        following_pulse_min_peak(m.incident_baseline.noise, m.incident_window.peak));
     m.warnings.push_back(msg);
   }
-  if (!m.transmitted_window)
+  const double transmitted_after = transmitted_arrival_s(k, 0.0);
+  if (!m.transmitted_window && t_end - t_inc < transmitted_after) {
+    std::snprintf(msg, sizeof msg,
+                  "gauge \"%s\": no transmitted pulse in the record, which ends at %.4g s (%.3g s "
+                  "after the incident onset; the transmitted pulse follows it by %.3g s): the "
+                  "transmitted pulse is not compared",
+                  k.transmitted_gauge.c_str(), t_end, t_end - t_inc, transmitted_after);
+    m.warnings.push_back(msg);
+  } else if (!m.transmitted_window) {
     m.warnings.push_back("gauge \"" + k.transmitted_gauge +
                          "\": no pulse above the noise: the transmitted pulse is not compared");
+  }
   const std::size_t n = m.time_s.size();
   for (const auto& [w, name, gauge] :
        {std::tuple{std::optional<PulseWindow>(m.incident_window), "incident", k.incident_gauge},
@@ -172,7 +190,12 @@ MeasuredPulses find_measured_pulses(const Scene& scene, const GaugeSignals& sign
   require_pulse_fits_round_trip(m.setup,
                                 m.dt_s * static_cast<double>(inc.first->end - 1 - inc.first->onset),
                                 scene.file.string());
+  // Only a pulse beyond the incident pulse's ringing tail is its reflection, as `process` takes it:
+  // a record ending before the reflection arrives otherwise had that tail compared as it.
   m.reflected_window = find_first_pulse(m.incident, m.incident_baseline, inc.first->end);
+  if (m.reflected_window &&
+      !(m.reflected_window->peak > following_pulse_min_peak(inc.noise, inc.first->peak)))
+    m.reflected_window.reset();
   m.transmitted_window = tra.first;
   report_missing_pulses(m);
   m.incident_plateau =

@@ -172,6 +172,10 @@ double rest_band(double noise, double peak) {
   return std::max(kNoiseSigmas * noise, kBandOfPeak * peak);
 }
 
+double following_pulse_min_peak(double noise, double previous_peak) {
+  return 2 * rest_band(noise, previous_peak);
+}
+
 std::optional<PulseWindow> find_first_pulse(std::span<const double> x, const Baseline& b,
                                             std::size_t from) {
   double peak = 0;

@@ -65,6 +65,12 @@ std::size_t rest_samples_before(const PulseWindow& w);
 // peak). A pulse is one that rises beyond twice it.
 double rest_band(double noise, double peak);
 
+// The least peak of a pulse that follows one of peak `previous_peak` on the same record (the
+// reflected pulse after the incident one): twice the band that pulse ended within. A smaller one
+// (the incident pulse's ringing tail, or the next to nothing a specimen matched to the bar
+// reflects, docs/methods.md §6) cannot be told from that tail.
+double following_pulse_min_peak(double noise, double previous_peak);
+
 // The first large pulse of either sign in x − baseline.level: it starts at the first sample beyond
 // half the record's largest excursion; the onset is the last sample before that within the
 // noise band (max(5σ, 3 % of the peak)), the end the first sample after the pulse's last

@@ -225,6 +225,23 @@ TEST_CASE("A record that ends inside its pulses is compared over what it holds, 
   for (const auto& p : no_pulse["pulses"]) CHECK(p["pulse"] != "transmitted");
 }
 
+TEST_CASE("A record that ends before the reflected pulse arrives compares no incident tail as it",
+          "[app][compare]") {
+  // The classic gauges see the incident pulse from ~200 to ~320 µs after impact and its
+  // reflection and the transmitted pulse 2d/c0 = 402 µs after it: a record ending at 500 µs holds
+  // neither, only the incident pulse's numerical ringing (a few percent of it), which is no pulse.
+  const fs::path dir = scratch_dir("compare_record_before_reflection");
+  self_measured_scene(dir);
+  constexpr double kRecordEnd_s = 500e-6;
+  const auto summary = compared(altered_scene(
+                                    dir, [](double, double&, double&) {}, kRecordEnd_s),
+                                dir);
+  REQUIRE(summary["pulses"].size() == 1);
+  CHECK(summary["pulses"][0]["pulse"] == "incident");
+  CHECK(has_warning(summary, "no reflected pulse in the record, which ends at"));
+  CHECK(has_warning(summary, "no transmitted pulse in the record, which ends at"));
+}
+
 TEST_CASE("LANL copper: the simulated incident pulse meets the measured one within 5 % and 2 us",
           "[app][compare][measured]") {
   const fs::path dir = scratch_dir("compare_lanl");
