@@ -15,6 +15,9 @@ namespace {
 // Each compared window reaches this fraction of the measured pulse's length beyond both ends,
 // so that a shifted simulated pulse still lies inside it.
 constexpr double kWindowMargin = 0.2;
+// A reflected pulse detected over less than this fraction of the incident pulse's length has lost
+// its tail in the rest band (report_missing_pulses).
+constexpr double kShortReflected = 0.5;
 
 // Linear interpolation of y on the uniform grid t0 + k·dt; 0 before the grid (the bars are at
 // rest before impact), the last value after it.
@@ -154,6 +157,24 @@ void report_missing_pulses(MeasuredPulses& m) {
                     gauge.c_str(), name, t_end);
       m.warnings.push_back(msg);
     }
+  // A reflected pulse lasts as long as the incident one (the specimen is loaded that long; a broken
+  // one reflects the rest whole, docs/methods.md §6): a window ending sooner than kShortReflected
+  // of it ended where the pulse's tail sank into the rest band (a hardening specimen's reflected
+  // pulse decays), and only its first part is compared.
+  const PulseWindow& in = m.incident_window;
+  if (const auto& r = m.reflected_window;
+      r && r->end < n &&
+      static_cast<double>(r->end - r->onset) <
+          kShortReflected * static_cast<double>(in.end - in.onset)) {
+    std::snprintf(msg, sizeof msg,
+                  "gauge \"%s\": the reflected pulse's window (%.3g s) is shorter than half the "
+                  "incident pulse (%.3g s): its tail lies within the record's rest band (%.3g "
+                  "strain) and is not compared; its ratios and NRMSE are of its first part only",
+                  k.incident_gauge.c_str(), m.time_s[r->end - 1] - m.time_s[r->onset],
+                  m.time_s[in.end - 1] - m.time_s[in.onset],
+                  rest_band(m.incident_baseline.noise, r->peak));
+    m.warnings.push_back(msg);
+  }
 }
 
 }  // namespace

@@ -242,6 +242,26 @@ TEST_CASE("A record that ends before the reflected pulse arrives compares no inc
   CHECK(has_warning(summary, "no transmitted pulse in the record, which ends at"));
 }
 
+TEST_CASE(
+    "A reflected pulse whose tail sinks into the rest band is compared over its first part, "
+    "and said",
+    "[app][compare]") {
+  // The classic reflected pulse reaches its gauge ~600 µs after impact and lasts as long as the
+  // incident one, ~120 µs; a record at rest from 640 µs on (a decaying pulse's tail within the
+  // noise band) holds its first ~40 µs only, under half of it.
+  const fs::path dir = scratch_dir("compare_short_reflected");
+  self_measured_scene(dir);
+  constexpr double kTailFrom_s = 640e-6, kTailTo_s = 800e-6;
+  const auto summary = compared(altered_scene(dir,
+                                              [&](double t, double& inc, double&) {
+                                                if (t > kTailFrom_s && t < kTailTo_s) inc = 0;
+                                              }),
+                                dir);
+  CHECK(summary["pulses"].size() == 3);
+  CHECK(has_warning(summary, "the reflected pulse's window"));
+  CHECK(has_warning(summary, "its tail lies within the record's rest band"));
+}
+
 TEST_CASE("LANL copper: the simulated incident pulse meets the measured one within 5 % and 2 us",
           "[app][compare][measured]") {
   const fs::path dir = scratch_dir("compare_lanl");
