@@ -60,8 +60,20 @@ Json speed_ratios(const ParetoStudy& study) {
   return out;
 }
 
-void write_pareto(const ParetoStudy& study, const Scene& scene, int threads, double wall_s,
-                  const std::filesystem::path& dir) {
+// Returns the warnings to print: a scene whose every interface is bonded compares no contact
+// method (a glued joint stays bonded in every run, src/study/sweep.cpp scene_for): its methods'
+// rows are one run each, told apart by wall-time noise only.
+std::vector<std::string> write_pareto(const ParetoStudy& study, const Scene& scene, int threads,
+                                      double wall_s, const std::filesystem::path& dir) {
+  bool all_bonded = true;
+  for (std::size_t k = 0; k + 1 < scene.bars.size(); ++k)
+    all_bonded = all_bonded && interface_method(scene.contact, k) == ContactMethod::kBonded;
+  std::vector<std::string> warnings;
+  if (all_bonded)
+    warnings.push_back(
+        "study pareto: every interface of the scene is bonded, and a bonded interface stays "
+        "bonded in every run: the contact methods of pareto.csv are the same run, only the "
+        "stepping and the mesh differ");
   std::vector<double> err, wall, updates;
   for (const ParetoRow& r : study.rows) {
     err.push_back(r.error);
@@ -119,7 +131,9 @@ void write_pareto(const ParetoStudy& study, const Scene& scene, int threads, dou
     j["tolerance"] = *t;
     j["predicted_gauge_error"] = predict_gauge_error(scene, discretize(scene)).total;
   }
+  j["warnings"] = warnings;
   write_text_file(dir / "summary.json", j.dump(2) + "\n");
+  return warnings;
 }
 
 void write_stability(const StabilityStudy& study, const Scene& scene, int refine, int threads,
@@ -195,7 +209,8 @@ std::vector<std::string> write_study(const StudyPlan& plan, const Scene& scene,
         assemble_stability(stability_probe_scene(scene), plan.stability, results.stability), scene,
         plan.refine, threads, wall_s, dir);
   else
-    write_pareto(assemble_pareto(scene, plan.pareto, results.pareto), scene, threads, wall_s, dir);
+    return write_pareto(assemble_pareto(scene, plan.pareto, results.pareto), scene, threads, wall_s,
+                        dir);
   return {};
 }
 

@@ -10,7 +10,8 @@
 
 namespace shpb {
 
-// Returns the warnings to print on stderr (a Monte Carlo study's failed draws).
+// Returns the warnings to print on stderr (a Monte Carlo study's failed draws, a Pareto sweep of a
+// scene whose every interface is bonded).
 std::vector<std::string> write_study(const StudyPlan& plan, const Scene& scene,
                                      const StudyResults& results, int threads, double wall_s,
                                      const std::filesystem::path& dir);

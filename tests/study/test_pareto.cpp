@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -100,6 +101,32 @@ TEST_CASE("A pareto sweep gives the same results on one thread and on two", "[st
     CHECK((one.rows[i].error == two.rows[i].error ||
            (std::isnan(one.rows[i].error) && std::isnan(two.rows[i].error))));
   }
+}
+
+TEST_CASE("A pareto sweep of a scene whose every interface is bonded says it compares no method",
+          "[study][app]") {
+  // A bonded interface stays bonded in every run (docs/commands.md, study): the four methods'
+  // rows of a chain glued throughout (a tension bar's striker and specimen) are the same run.
+  const shpb_test::ScratchDir scratch("study_bonded");
+  const fs::path& dir = scratch.path();
+  const fs::path scene = dir / "scene.json";
+  std::ofstream(scene) << R"({ "name": "tiny bonded striker on bar",
+    "bars": [ { "name": "striker", "material": "steel", "length": "50 mm", "area": "2.85 cm2",
+                "velocity": "10 m/s", "elements": 10 },
+              { "name": "bar", "material": "steel", "length": "200 mm", "area": "2.85 cm2",
+                "elements": 40, "gauges": [ { "name": "gauge", "position": "100 mm" } ] } ],
+    "materials": { "steel": { "model": "elastic", "density": 8000, "youngs_modulus": "200 GPa",
+                              "poisson_ratio": 0.29 } },
+    "contact": { "method": "bonded" },
+    "simulation": { "duration": "60 us" } })";
+  const auto r = shpb_test::run_shpb(
+      {"study", scene.string(), "-o", (dir / "out").string(), "--threads", "1", "--quiet"});
+  REQUIRE(r.code == 0);
+  CHECK(r.err.find("every interface of the scene is bonded") != std::string::npos);
+  std::ifstream summary(dir / "out" / "summary.json");
+  const auto j = nlohmann::json::parse(summary);
+  REQUIRE(j.contains("warnings"));
+  REQUIRE(j["warnings"].size() == 1);
 }
 
 TEST_CASE("shpb study writes pareto.csv with the documented columns, and exits 2 on a bad scene",
