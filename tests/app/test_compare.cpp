@@ -262,6 +262,20 @@ TEST_CASE(
   CHECK(has_warning(summary, "its tail lies within the record's rest band"));
 }
 
+TEST_CASE("A measurement without dispersion correction is compared with the 1D pulses, as fit does",
+          "[app][compare]") {
+  // The shipped tension bar's record is a 1D simulation ("dispersion": {"correction": "none"}):
+  // its pulses never dispersed, and a dispersed simulation laid over them would not be the test.
+  const fs::path dir = scratch_dir("compare_no_correction");
+  const auto r = run_shpb(
+      {"compare", (fs::path(SHPB_SOURCE_DIR) / "experiments/tension-bonded/scene.json").string(),
+       "-o", (dir / "out").string(), "--quiet"});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  const auto summary = nlohmann::json::parse(read_text(dir / "out" / "summary.json"));
+  CHECK(summary["dispersion"] == false);
+}
+
 TEST_CASE("LANL copper: the simulated incident pulse meets the measured one within 5 % and 2 us",
           "[app][compare][measured]") {
   const fs::path dir = scratch_dir("compare_lanl");
