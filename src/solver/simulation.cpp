@@ -253,6 +253,11 @@ SimulationResult run_chain(const Scene& scene, const ChainDiscretization& d,
                      " engineering strain in an element, beyond the " +
                      std::to_string(1 - b.min_stretch) +
                      " its stable step was planned for: raise simulation.max_strain";
+    // A contact that blew up crushes elements too (a plain penalty at its default stiffness on a
+    // pulse shaper: the energy × 10): then a larger plan is not the remedy alone.
+    if (!(std::abs(outcome.energy_error) <= kPlausibleEnergyError))
+      result.failure += ", or look at the energy balance, off by " + percent(outcome.energy_error) +
+                        " % (compare another contact method or --stepping global)";
     break;
   }
   result.energy_error = outcome.energy_error;
