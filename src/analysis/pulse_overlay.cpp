@@ -115,15 +115,21 @@ void report_missing_pulses(MeasuredPulses& m) {
   const KolskySetup& k = m.setup;
   const double t_end = m.time_s.back(), t_inc = m.time_s[m.incident_window.onset];
   char msg[400];
-  const double round_trip = 2 * k.incident_distance_m / k.front.c0_m_s;
-  if (!m.reflected_window && t_end - t_inc < round_trip) {
+  // A pulse that follows the incident onset by `after` in a record that ends before it.
+  const auto record_ends_first = [&](const std::string& gauge, const char* pulse,
+                                     const char* after_is, double after) {
+    if (t_end - t_inc >= after) return false;
     std::snprintf(msg, sizeof msg,
-                  "gauge \"%s\": no reflected pulse in the record, which ends at %.4g s (%.3g s "
-                  "after the incident onset; the reflected pulse follows it by 2d/c0 = %.3g s): "
-                  "the reflected pulse is not compared",
-                  k.incident_gauge.c_str(), t_end, t_end - t_inc, round_trip);
+                  "gauge \"%s\": no %s pulse in the record, which ends at %.4g s (%.3g s after "
+                  "the incident onset; the %s pulse follows it by %s%.3g s): the %s pulse is not "
+                  "compared",
+                  gauge.c_str(), pulse, t_end, t_end - t_inc, pulse, after_is, after, pulse);
     m.warnings.push_back(msg);
-  } else if (!m.reflected_window) {
+    return true;
+  };
+  const double round_trip = 2 * k.incident_distance_m / k.front.c0_m_s;
+  if (!m.reflected_window &&
+      !record_ends_first(k.incident_gauge, "reflected", "2d/c0 = ", round_trip)) {
     std::snprintf(
         msg, sizeof msg,
         "gauge \"%s\": no reflected pulse beyond the incident pulse's tail (twice the "
@@ -133,18 +139,10 @@ void report_missing_pulses(MeasuredPulses& m) {
         following_pulse_min_peak(m.incident_baseline.noise, m.incident_window.peak));
     m.warnings.push_back(msg);
   }
-  const double transmitted_after = transmitted_arrival_s(k, 0.0);
-  if (!m.transmitted_window && t_end - t_inc < transmitted_after) {
-    std::snprintf(msg, sizeof msg,
-                  "gauge \"%s\": no transmitted pulse in the record, which ends at %.4g s (%.3g s "
-                  "after the incident onset; the transmitted pulse follows it by %.3g s): the "
-                  "transmitted pulse is not compared",
-                  k.transmitted_gauge.c_str(), t_end, t_end - t_inc, transmitted_after);
-    m.warnings.push_back(msg);
-  } else if (!m.transmitted_window) {
+  if (!m.transmitted_window &&
+      !record_ends_first(k.transmitted_gauge, "transmitted", "", transmitted_arrival_s(k, 0.0)))
     m.warnings.push_back("gauge \"" + k.transmitted_gauge +
                          "\": no pulse above the noise: the transmitted pulse is not compared");
-  }
   const std::size_t n = m.time_s.size();
   for (const auto& [w, name, gauge] :
        {std::tuple{std::optional<PulseWindow>(m.incident_window), "incident", k.incident_gauge},

@@ -139,6 +139,7 @@ Baseline quiet_segment(std::span<const double> x, std::size_t n, double q) {
   else
     b.noise = q > 0 ? rounded_noise(seg, level, mad, q) : kMadToSigma * mad;
   b.level = grid_median(seg, q, level);
+  b.step = q;
   return b;
 }
 
@@ -221,7 +222,7 @@ std::optional<PulseWindow> find_first_pulse(std::span<const double> x, const Bas
   return w;
 }
 
-RecordStart record_start(std::span<const double> x) {
+RecordStart record_start(std::span<const double> x, double step) {
   // A chance trend of white noise beyond 4 σ: 3·10⁻⁵ of records (one-sided), and the rate must be
   // the pulse's as well. The rate: the rest records of the survey of outside set-ups reach 0.19 (a
   // polymer bar's foot within the band, 17 samples after the trigger), its fronts 1.0 to 1.4 at
@@ -240,8 +241,7 @@ RecordStart record_start(std::span<const double> x) {
   const double centre = median(steps);
   for (double& d : steps) d = std::abs(d - centre);
   // A difference of two samples carries √2 σ; on a digitizer's grid, at least the rounding's.
-  r.noise = std::max(kMadToSigma * median(steps) / std::numbers::sqrt2,
-                     kQuantizationSigma * quantization_step(x));
+  r.noise = std::max(kMadToSigma * median(steps) / std::numbers::sqrt2, kQuantizationSigma * step);
   r.first = find_first_pulse(
       x, {median({x.begin(), x.begin() + static_cast<std::ptrdiff_t>(kMinRestSamples)}), r.noise});
   const std::size_t n = r.first ? r.first->onset : 0, third = n / 3;

@@ -18,6 +18,7 @@ struct Baseline {
   // error q/√12 of its step (quantization_step); for one whose quiet segment spreads over a few
   // levels, their standard deviation (the MAD, a whole number of steps, misreads it by up to 40 %).
   double noise = 0;
+  double step = 0;  // the record's grid step q (quantization_step), 0 on none
 };
 
 // Baseline from the first `fraction` of the record (at least 10 samples: baseline_samples). The
@@ -100,7 +101,7 @@ struct RecordStart {
   // their first third to that of their last), and their mean slope over the rise's.
   double change = 0, rate_fraction = 0;
 };
-RecordStart record_start(std::span<const double> x);
+RecordStart record_start(std::span<const double> x, double step);  // step: quantization_step
 
 // Onset of a pulse of the given sign in [from, to), the same way, and its first half-peak
 // sample (onset to half is the front's rise); nullopt if none, or if its peak is not above

@@ -201,7 +201,8 @@ void require_rest_before_pulse(const GaugeSignals& signals, const std::string& g
 
 RestSignal signal_from_rest(const std::vector<double>& raw, double expected_sign) {
   const Baseline b = estimate_baseline(raw);
-  RestSignal s{std::vector<double>(raw.size()), b.noise, std::nullopt, false, record_start(raw)};
+  RestSignal s{std::vector<double>(raw.size()), b.noise, std::nullopt, false,
+               record_start(raw, b.step)};
   for (std::size_t i = 0; i < raw.size(); ++i) s.x[i] = raw[i] - b.level;
   s.first = find_first_pulse(s.x, {0.0, b.noise});
   if (s.first && s.first->sign != expected_sign) {
