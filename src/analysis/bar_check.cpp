@@ -5,6 +5,7 @@
 
 #include "analysis/dispersion_cutoff.hpp"
 #include "analysis/pulse_window.hpp"
+#include "analysis/signal_checks.hpp"
 #include "core/error.hpp"
 #include "core/number_format.hpp"
 #include "dispersion/dispersion_table.hpp"
@@ -88,13 +89,9 @@ BarCheckResult check_bars_together(const GaugeSignals& signals, const BarCheckSe
   const auto& t = signals.time_s;
   const std::size_t n = t.size();
   auto prepared = [&](const std::string& gauge) {
-    const std::vector<double>& raw = *signals.find(gauge);
-    const Baseline b = estimate_baseline(raw);
-    std::vector<double> x(raw.size());
-    for (std::size_t i = 0; i < raw.size(); ++i) x[i] = raw[i] - b.level;
-    const auto p = find_first_pulse(x, {0.0, b.noise});
-    if (!p) throw no_pulse_error(signals, gauge, scene_file, "no pulse to check");
-    return std::pair{x, *p};
+    RestSignal x = rest_signal(signals, gauge, 0.0, scene_file);
+    if (!x.first) throw no_pulse_error(signals, gauge, scene_file, "no pulse to check");
+    return std::pair{std::move(x.x), *x.first};
   };
   auto [near, pn] = prepared(s.near_gauge);
   auto [far, pf] = prepared(s.far_gauge);

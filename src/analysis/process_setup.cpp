@@ -63,8 +63,7 @@ json process_setup(const Scene& scene) {
     const KolskySetup k = resolve_setup(scene, signals.gauges);
     // A time base process would refuse is refused here too (docs/scene-format.md `measurement`).
     const RestSignal inc =
-        signal_from_rest(*signals.find(k.incident_gauge), m.tension ? 1.0 : -1.0);
-    require_rest_before_pulse(signals, k.incident_gauge, inc, scene.file.string());
+        rest_signal(signals, k.incident_gauge, m.tension ? 1.0 : -1.0, scene.file.string());
     if (inc.first)
       require_pulse_fits_round_trip(
           k, signals.dt_s * static_cast<double>(inc.first->end - 1 - inc.first->onset),

@@ -47,8 +47,7 @@ struct PreparedSignal {
 };
 PreparedSignal prepared_signal(const GaugeSignals& signals, const std::string& gauge,
                                const ProcessingOptions& options, ProcessingResult& r) {
-  RestSignal s = signal_from_rest(*signals.find(gauge), -1.0);
-  require_rest_before_pulse(signals, gauge, s, options.scene_file);
+  RestSignal s = rest_signal(signals, gauge, -1.0, options.scene_file);
   if (!s.first) throw no_pulse_error(signals, gauge, options.scene_file, "no pulse to process");
   if (s.inverted) {
     r.inverted_gauges.push_back(gauge);

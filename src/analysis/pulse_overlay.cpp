@@ -184,10 +184,8 @@ MeasuredPulses find_measured_pulses(const Scene& scene, const GaugeSignals& sign
   m.dt_s = signals.dt_s;
   const bool tension = scene.measurement && scene.measurement->tension;
   const double first_sign = tension ? 1.0 : -1.0;
-  RestSignal inc = signal_from_rest(*signals.find(m.setup.incident_gauge), first_sign);
-  RestSignal tra = signal_from_rest(*signals.find(m.setup.transmitted_gauge), first_sign);
-  require_rest_before_pulse(signals, m.setup.incident_gauge, inc, scene.file.string());
-  require_rest_before_pulse(signals, m.setup.transmitted_gauge, tra, scene.file.string());
+  RestSignal inc = rest_signal(signals, m.setup.incident_gauge, first_sign, scene.file.string());
+  RestSignal tra = rest_signal(signals, m.setup.transmitted_gauge, first_sign, scene.file.string());
   if (!inc.first)
     throw no_pulse_error(signals, m.setup.incident_gauge, scene.file.string(),
                          "no incident pulse to compare");

@@ -27,7 +27,7 @@ struct MeasuredPulses {
   KolskySetup setup;
   std::vector<double> time_s;
   double dt_s = 0;
-  // Strain at the incident and transmitted gauges from their rest levels (signal_from_rest, then
+  // Strain at the incident and transmitted gauges from their rest levels (rest_signal, then
   // the median before the first pulse).
   std::vector<double> incident, transmitted;
   Baseline incident_baseline, transmitted_baseline;  // level 0: removed; the records' noise

@@ -199,16 +199,26 @@ void require_rest_before_pulse(const GaugeSignals& signals, const std::string& g
           static_cast<double>(first->onset), static_cast<double>(kMinRestSamples)));
 }
 
+namespace {
 RestSignal signal_from_rest(const std::vector<double>& raw, double expected_sign) {
   const Baseline b = estimate_baseline(raw);
   RestSignal s{std::vector<double>(raw.size()), b.noise, std::nullopt, false,
                record_start(raw, b.step)};
   for (std::size_t i = 0; i < raw.size(); ++i) s.x[i] = raw[i] - b.level;
   s.first = find_first_pulse(s.x, {0.0, b.noise});
-  if (s.first && s.first->sign != expected_sign) {
+  if (s.first && expected_sign != 0 && s.first->sign != expected_sign) {
     for (double& v : s.x) v = -v;
     s.first->sign = expected_sign, s.inverted = true;
   }
+  return s;
+}
+
+}  // namespace
+
+RestSignal rest_signal(const GaugeSignals& signals, const std::string& gauge, double expected_sign,
+                       const std::string& scene_file) {
+  RestSignal s = signal_from_rest(*signals.find(gauge), expected_sign);
+  require_rest_before_pulse(signals, gauge, s, scene_file);
   return s;
 }
 

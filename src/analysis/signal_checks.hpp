@@ -85,10 +85,11 @@ std::optional<ClippedSamples> clipped_samples(const std::vector<double>& raw,
                                               const std::vector<double>& from_rest,
                                               const FullScale& range = {});
 
-// A gauge record from its rest level: less its baseline (estimate_baseline: a bridge's offset is no
-// strain), with its first pulse (find_first_pulse). A record whose first pulse has the other sign
-// than `expected_sign` (−1: a compression test's, +1: a tension test's) is turned over (a bridge
-// wired the other way, docs/commands.md `process`). Used by `process`, `compare` and `fit`.
+// A gauge record from its rest level (rest_signal): less its baseline (estimate_baseline: a
+// bridge's offset is no strain), with its first pulse (find_first_pulse). A record whose first
+// pulse has the other sign than `expected_sign` (−1: a compression test's, +1: a tension test's) is
+// turned over (a bridge wired the other way, docs/commands.md `process`); 0 keeps the record's sign
+// (a calibration shot, a bars-together check). Used by `process`, `compare`, `fit` and `calibrate`.
 struct RestSignal {
   std::vector<double> x;
   double noise = 0;                  // the baseline's
@@ -96,7 +97,6 @@ struct RestSignal {
   bool inverted = false;
   RecordStart start;  // how the record starts (record_start)
 };
-RestSignal signal_from_rest(const std::vector<double>& raw, double expected_sign);
 
 // A record that starts on its first pulse's front (record_start), or holds fewer than
 // kMinRestSamples before its first pulse (a scope's pre-trigger shorter than that; where no pulse
@@ -106,6 +106,11 @@ RestSignal signal_from_rest(const std::vector<double>& raw, double expected_sign
 // rises above it). Refused, exit 2, before a missing pulse is.
 void require_rest_before_pulse(const GaugeSignals& signals, const std::string& gauge,
                                const RestSignal& s, const std::string& scene_file);
+
+// `gauge`'s record from its rest level, refused where it has none to read
+// (require_rest_before_pulse): how every command reads a measured gauge's record.
+RestSignal rest_signal(const GaugeSignals& signals, const std::string& gauge, double expected_sign,
+                       const std::string& scene_file);
 
 // What a turned record's gauge is told.
 std::string inverted_gauge_warning(const std::string& gauge, bool tension);

@@ -245,16 +245,6 @@ const GaugeSpec& source_gauge(const BarSpec& struck, const GaugeSignals& signals
   return *src;
 }
 
-// A gauge's record less its baseline level, with that baseline (level and noise).
-std::pair<std::vector<double>, Baseline> baseline_removed(const GaugeSignals& signals,
-                                                          const std::string& gauge) {
-  const std::vector<double>& raw = *signals.find(gauge);
-  const Baseline b = estimate_baseline(raw);
-  std::vector<double> x(raw.size());
-  for (std::size_t i = 0; i < raw.size(); ++i) x[i] = raw[i] - b.level;
-  return std::pair{x, b};
-}
-
 // The source's first pulse, its window [keep0, keep1) (the compared windows are this one moved)
 // and the source's kept samples, [keep0, end).
 struct SourceWindow {
@@ -476,7 +466,10 @@ Shot prepare_shot(const CalibrationShot& cs, Parameters& params, std::string& re
   const std::size_t ps = position_parameter(params, struck, src);
   s.dt = signals.dt_s;
   s.time_s = signals.time_s;
-  auto [source, base] = baseline_removed(signals, src.name);
+  // Each record's rest level is read before its first pulse, as process reads it (a record with
+  // none is refused); the records keep their signs (a shot's returns come with both).
+  RestSignal base = rest_signal(signals, src.name, 0.0, file);
+  std::vector<double>& source = base.x;
   // The model propagates the source record: a clipped source cuts every modelled pulse, which no
   // reading of the targets can undo (a clipped target is read as bounds).
   const std::vector<ClippedLevel> cut =
@@ -520,7 +513,8 @@ Shot prepare_shot(const CalibrationShot& cs, Parameters& params, std::string& re
           t, ways_to(k, gauged.size() == 2, bar.length_m, struck.length_m, pg, ps, &g == &src), s,
           params, w);
       if (t.arrivals.empty()) continue;
-      const auto [measured, base_g] = baseline_removed(signals, g.name);
+      const RestSignal base_g = rest_signal(signals, g.name, 0.0, file);
+      const std::vector<double>& measured = base_g.x;
       t.measured = measured;
       t.clipped = clipped_samples(*signals.find(g.name), t.measured, signals.range_of(g.name));
       if (t.clipped) t.clipped->noise = base_g.noise;

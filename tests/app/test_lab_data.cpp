@@ -506,6 +506,22 @@ TEST_CASE("A bars-together record is checked: Pochhammer-Chree against a plain t
   CHECK(summary(d2 / "out")["rms_of_peak"]["pochhammer_chree"].get<double>() ==
         Approx(summary(d3 / "out")["rms_of_peak"]["pochhammer_chree"].get<double>())
             .epsilon(kPrinted));
+
+  // The same record from 2 µs into the near pulse's 5 µs front (a scope triggered on the pulse
+  // with no pre-trigger): no rest level to read before it, refused as a test's record is.
+  std::ostringstream cut;
+  cut.precision(17);
+  cut << "time_s,near,far\n";
+  for (int i = 0; i < kSamples; ++i)
+    if (i * kDt >= 52e-6) cut << i * kDt << "," << near[i] << "," << far[i] << "\n";
+  const fs::path d4 = scratch_dir("labdata_bars_together_on_front");
+  const auto on_front =
+      run_shpb({"process", write(d4, scene, cut.str()).string(), "-o", (d4 / "out").string()});
+  INFO(on_front.err);
+  CHECK(on_front.code == 2);
+  CHECK(on_front.err.find("signals.csv: column \"near\"") != std::string::npos);
+  CHECK(on_front.err.find("it starts on its first pulse's front") != std::string::npos);
+  CHECK(!fs::exists(d4 / "out"));
 }
 
 TEST_CASE("The report of a processed test heads with the striker, equilibrium and every warning",

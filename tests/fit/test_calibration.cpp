@@ -470,6 +470,26 @@ TEST_CASE("calibrate and a scene's calibration refuse bad input with one line an
     CHECK(r.err.find("from the far end of bar \"incident\"") != std::string::npos);
     CHECK(!fs::exists(dir / "o5"));
   }
+  // The bars-apart record from 4 µs into its pulse's 10 µs rise (a scope triggered on the pulse
+  // with no pre-trigger): its first samples are the front, not the rest, so its rest level, noise
+  // and pulse window would all be read from the pulse. Refused as process refuses such a record.
+  {
+    const double onset = 20e-6 + kTrueIncidentGauge / kTrueC;  // the struck end's pulse arrives
+    std::istringstream in(shpb_test::read_text(dir / "apart.csv"));
+    std::string line, text;
+    std::getline(in, line);
+    text = line + "\n";
+    while (std::getline(in, line))
+      if (std::stod(line.substr(0, line.find(','))) >= onset + 4e-6) text += line + "\n";
+    std::ofstream(dir / "on_front.csv") << text;
+    write_json(dir / "on_front.json", scene(false, "on_front.csv"));
+    r = run_shpb({"calibrate", (dir / "on_front.json").string(), "-o", (dir / "o6").string()});
+    INFO(r.err);
+    CHECK(one_line(r));
+    CHECK(r.err.find("on_front.csv") != std::string::npos);
+    CHECK(r.err.find("it starts on its first pulse's front") != std::string::npos);
+    CHECK(!fs::exists(dir / "o6"));
+  }
   // A calibration file that is not one.
   write_json(dir / "bad.json", {{"format", "something else"}, {"bars", nlohmann::json::array()}});
   nlohmann::json s = scene(true, "together.csv");
