@@ -125,18 +125,28 @@ double median_abs_peak(const std::vector<double>& x) {
 // column, e.g. "us" on seconds) is refused before anything is sized from it.
 void check_sample_interval(const SignalColumns& cols, const MeasurementSpec& m) {
   if (cols.dt_s >= kMinSampleInterval_s && cols.dt_s <= kMaxSampleInterval_s) return;
+  const bool first_column = m.time_column.name.empty() && !m.time_column.index &&
+                            cols.format == SignalFormat::kCsv && !m.time_clock;
   const std::string column = m.time_column.index
                                  ? "column index " + std::to_string(*m.time_column.index)
+                             : first_column               ? "the first column (the default)"
                              : m.time_column.name.empty() ? "the format's time base"
                                                           : "column \"" + m.time_column.name + "\"";
-  char value[120], expected[300];
+  char value[160], expected[400];
   std::snprintf(value, sizeof value, "time %s in \"%s\": sample interval %.3g s", column.c_str(),
                 m.time_unit.c_str(), cols.dt_s);
-  std::snprintf(expected, sizeof expected,
-                "expected %.0e s to %.0e s (a digitizer's range); is the column in another unit "
-                "than measurement.time.unit says?",
-                kMinSampleInterval_s, kMaxSampleInterval_s);
-  throw input_error(cols.file.string(), "", value, expected);
+  // Whole steps of one: sample numbers (Rigol's "Sequence", a DAQ's "Sample", a spreadsheet's
+  // index), no time at all.
+  const bool counts = cols.dt_s == 1.0 && m.time_unit == "s" && cols.time_s.front() >= 0 &&
+                      cols.time_s.front() == std::round(cols.time_s.front());
+  std::snprintf(expected, sizeof expected, "expected %.0e s to %.0e s (a digitizer's range); %s",
+                kMinSampleInterval_s, kMaxSampleInterval_s,
+                counts ? "the column counts samples (0, 1, 2, ...): give the record's time base as "
+                         "measurement.time.interval (and start), its channels by name or index"
+                       : "is the column in another unit than measurement.time.unit says?");
+  const std::string place =
+      cols.lines.size() > 1 ? "line " + std::to_string(cols.lines[1]) : std::string();
+  throw input_error(cols.file.string(), place, value, expected);
 }
 
 // Each gauge's strain, the mean of its channels (checked to agree), in order of first appearance.

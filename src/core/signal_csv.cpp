@@ -1,5 +1,6 @@
 // Plain CSV/TSV and Tektronix per-channel CSV (signal_formats.hpp).
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <exception>
 #include <thread>
@@ -23,14 +24,40 @@ bool instrument_marker(double v) { return std::abs(v) >= 9.9e37 && std::abs(v) <
 // then below 1 % of the parsing).
 constexpr std::size_t kParallelParseRows = 100000;
 
+// What instruments and spreadsheets write for a sample that is not a number: NaN, ±inf, ±∞
+// (PicoScope's overrange), Excel's #N/A. Never a header's name.
+bool not_a_number_marker(std::string_view f) {
+  if (!f.empty() && (f.front() == '-' || f.front() == '+')) f.remove_prefix(1);
+  std::string lower(f);
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  return lower == "nan" || lower == "inf" || lower == "infinity" || lower == "\u221e" ||
+         lower == "#n/a";
+}
+
+// A row of numbers, where a field may also be empty or a not-a-number marker: a column of NaN (a
+// channel not recorded) beside the samples leaves every row a data row. Read columns are checked
+// sample by sample (number_at).
 bool all_numeric(const TextRow& row, bool decimal_comma) {
   std::size_t numbers = 0;
   for (const auto& f : row.fields) {
-    if (f.empty()) continue;
+    if (f.empty() || not_a_number_marker(f)) continue;
     if (!parse_number(f, decimal_comma)) return false;
     ++numbers;
   }
   return numbers > 0;
+}
+
+// Whether a row holds words and no number (text and empty fields only): after the data, a footer
+// ("End of data", "# 8001 samples written …"), never a sample, whose time column holds a number.
+// A line cut short to a sign or a mark holds no word: refused as a sample.
+bool footer_row(const TextRow& row, bool decimal_comma) {
+  const auto word = [](std::string_view f) {
+    return std::any_of(f.begin(), f.end(), [](unsigned char c) { return std::isalpha(c); });
+  };
+  return std::none_of(row.fields.begin(), row.fields.end(),
+                      [&](std::string_view f) { return parse_number(f, decimal_comma); }) &&
+         std::any_of(row.fields.begin(), row.fields.end(), word);
 }
 
 std::string describe(const ColumnRef& c) {
@@ -175,11 +202,13 @@ NumberShape shape_of(std::string_view field, char decimal_mark) {
 // fewer. Such a last line is refused by line and column. A column of varying widths ("%g") gives
 // nothing to judge by, and a last line without a line end is otherwise accepted (some exports
 // write none).
-void refuse_cut_last_line(const DelimitedText& text, std::size_t first_data,
+void refuse_cut_last_line(const DelimitedText& text, std::size_t first_data, std::size_t end,
                           const std::vector<std::size_t>& columns,
                           const std::vector<std::string_view>& names) {
   constexpr std::size_t kRowsToJudgeBy = 2;
-  if (!text.last_row_unterminated || text.rows.size() < first_data + kRowsToJudgeBy + 1) return;
+  if (!text.last_row_unterminated || end < text.rows.size() ||
+      text.rows.size() < first_data + kRowsToJudgeBy + 1)
+    return;
   const char mark = text.decimal_comma ? ',' : '.';
   const TextRow& last = text.rows.back();
   for (std::size_t k = 0; k < columns.size(); ++k) {
@@ -218,14 +247,14 @@ void refuse_cut_last_line(const DelimitedText& text, std::size_t first_data,
 // header and columns by name is refused earlier (resolve), with the header to judge by. A row
 // with a text beside its numbers (a scope's marker or a note) shifts nothing, and a sheet's
 // cells are cells.
-void refuse_wider_rows(const DelimitedText& text, std::size_t first_data) {
+void refuse_wider_rows(const DelimitedText& text, std::size_t first_data, std::size_t end) {
   if (is_spreadsheet(text.file)) return;
   const std::size_t width = text.rows[first_data].fields.size();
   const auto number_or_empty = [&](std::string_view f) {
     return f.empty() || parse_number(f, text.decimal_comma).has_value();
   };
   std::vector<std::string_view> fields;
-  for (std::size_t i = first_data + 1; i < text.rows.size(); ++i) {
+  for (std::size_t i = first_data + 1; i < end; ++i) {
     if (text.rows.max_fields(i) <= width) continue;
     text.rows.fields(i, fields);
     if (const std::size_t filled = filled_width(fields);
@@ -239,16 +268,16 @@ void refuse_wider_rows(const DelimitedText& text, std::size_t first_data) {
   }
 }
 
-// The rows from `first_data` on: the time column's stamps (none without one: a clock fills
-// them) and the columns `indices`.
-RawSignalColumns read_columns(const DelimitedText& text, std::size_t first_data,
+// The rows [first_data, end): the time column's stamps (none without one: a clock fills them)
+// and the columns `indices`.
+RawSignalColumns read_columns(const DelimitedText& text, std::size_t first_data, std::size_t end,
                               const TextRow* header, std::optional<std::size_t> time_index,
                               const std::vector<std::size_t>& indices,
                               const std::vector<std::string>& names) {
-  refuse_wider_rows(text, first_data);
+  refuse_wider_rows(text, first_data, end);
   RawSignalColumns raw;
   raw.names = names;
-  const std::size_t n = text.rows.size() - first_data;
+  const std::size_t n = end - first_data;
   raw.time.resize(n);
   raw.lines = text.rows.lines().from(first_data);
   raw.values.assign(indices.size(), std::vector<double>(n));
@@ -280,7 +309,7 @@ RawSignalColumns read_columns(const DelimitedText& text, std::size_t first_data,
   names_read.insert(names_read.end(), column_names.begin(), column_names.end());
   if (n < kParallelParseRows) {
     parse(0, n);
-    refuse_cut_last_line(text, first_data, columns, names_read);
+    refuse_cut_last_line(text, first_data, end, columns, names_read);
     return raw;
   }
   const std::size_t half = n / 2;
@@ -301,7 +330,7 @@ RawSignalColumns read_columns(const DelimitedText& text, std::size_t first_data,
   second.join();
   if (first_error) std::rethrow_exception(first_error);
   if (second_error) std::rethrow_exception(second_error);
-  refuse_cut_last_line(text, first_data, columns, names_read);
+  refuse_cut_last_line(text, first_data, end, columns, names_read);
   return raw;
 }
 
@@ -314,6 +343,40 @@ std::string other_mark(const DelimitedText& text) {
          " in a file whose decimal mark is the " + mark +
          ": a thousands separator or the other decimal mark; expected numbers with a decimal " +
          mark + " and no thousands separator";
+}
+
+// A number whose digits are grouped by thousands ("-1.197,266" in a German file, "1 197,266"
+// with a French (narrow) no-break space, "1'197.266" in a Swiss one): what the grouping character
+// is, for the message; nullopt for anything else. Never read: "1.234" alone may be either mark.
+std::optional<std::string> thousands_separator(std::string_view f, bool decimal_comma) {
+  struct Separator {
+    std::string_view bytes, name;
+  };
+  static constexpr Separator kSeparators[] = {{"\xE2\x80\xAF", "narrow no-break space"},
+                                              {"\xC2\xA0", "no-break space"},
+                                              {"\xE2\x80\x99", "apostrophe"},
+                                              {"\xA0", "no-break space (Latin-1)"},
+                                              {" ", "space"},
+                                              {"'", "apostrophe"},
+                                              {".", "point"},
+                                              {",", "comma"}};
+  const std::string_view mark = decimal_comma ? "," : ".";
+  std::string digits;
+  std::optional<std::string> found;
+  for (std::size_t i = 0; i < f.size();) {
+    const auto sep = std::find_if(std::begin(kSeparators), std::end(kSeparators), [&](auto s) {
+      return s.bytes != mark && f.substr(i).starts_with(s.bytes);
+    });
+    const bool between = i > 0 && std::isdigit(static_cast<unsigned char>(f[i - 1]));
+    if (sep != std::end(kSeparators) && between) {
+      found = std::string(sep->name);
+      i += sep->bytes.size();
+    } else {
+      digits += f[i++];
+    }
+  }
+  if (!found || !parse_number(digits, decimal_comma)) return std::nullopt;
+  return found;
 }
 
 }  // namespace
@@ -345,6 +408,12 @@ double number_at(const DelimitedText& text, const TextRow& row, std::size_t colu
                    f.find("NAN") != std::string::npos;
   if (parse_number(f, !text.decimal_comma))
     throw input_error(text.file.string(), where, "\"" + f + "\"", other_mark(text));
+  if (const auto separator = thousands_separator(f, text.decimal_comma))
+    throw input_error(
+        text.file.string(), where, "\"" + f + "\"",
+        "digits grouped by thousands (a " + *separator +
+            " between them); expected numbers without a thousands separator (export the "
+            "column in a number format without digit grouping)");
   if (f.front() == '=')
     throw input_error(text.file.string(), where, "\"" + f + "\"",
                       "a formula whose value the workbook does not hold (written by a program "
@@ -374,6 +443,10 @@ std::string no_numbers_cause(const DelimitedText& text) {
     if (f.empty() || parse_number(f, text.decimal_comma)) continue;
     const std::string field = "\"" + std::string(f.substr(0, 40)) + "\"";
     if (parse_number(f, !text.decimal_comma)) return read + ": " + field + ": " + other_mark(text);
+    if (is_spreadsheet(text.file))
+      return read + ": " + field +
+             " is not a number; are the signals on another sheet? (measurement.sheet; by default "
+             "the first worksheet)";
     if (text.delimiter == ',' && f.find_first_of(" \t") != std::string_view::npos)
       return read + ": " + field +
              " looks like blank-separated numbers with decimal commas, the comma taken as the "
@@ -387,6 +460,23 @@ std::string no_numbers_cause(const DelimitedText& text) {
   return read;
 }
 
+// One past the last data row: a footer (rows after the data that hold words and no number) is
+// not read, and said.
+std::size_t data_end(const DelimitedText& text, std::size_t first,
+                     std::vector<std::string>& warnings) {
+  std::size_t end = text.rows.size();
+  while (end > first + 1 && footer_row(text.rows[end - 1], text.decimal_comma)) --end;
+  if (end == text.rows.size()) return end;
+  const bool several = end + 1 < text.rows.size();
+  warnings.push_back(text.file.string() + ": line" +
+                     (several ? "s " + std::to_string(text.rows.line(end)) + "–" +
+                                    std::to_string(text.rows.back().line)
+                              : " " + std::to_string(text.rows.line(end))) +
+                     " after the data hold" + (several ? "" : "s") + " no number (a footer, \"" +
+                     std::string(text.rows[end].fields.front().substr(0, 40)) + "\"): not read");
+  return end;
+}
+
 }  // namespace
 
 RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest& request) {
@@ -398,8 +488,9 @@ RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest
                       "no numeric rows",
                       "expected rows of numbers after the header; " + no_numbers_cause(text));
   const std::size_t width = text.rows[first].fields.size();
-  std::vector<std::string> clock_warnings;
-  const auto [clock, trace_names] = file_clock(text, first, request, clock_warnings);
+  std::vector<std::string> warnings;
+  const std::size_t end = data_end(text, first, warnings);
+  const auto [clock, trace_names] = file_clock(text, first, request, warnings);
   ColumnRef time_ref = request.time_column;
   if (time_ref.name.empty() && !time_ref.index && !clock) time_ref.index = 0;
   // Rows just above that are shaped as data are data rows with a text in some field (a scope's
@@ -431,7 +522,7 @@ RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest
   std::optional<TextRow> wider_row;
   if (header) {
     std::vector<std::string_view> fields;
-    for (std::size_t i = first; i < text.rows.size() && !wider_row; ++i) {
+    for (std::size_t i = first; i < end && !wider_row; ++i) {
       if (text.rows.max_fields(i) <= filled_width(*header)) continue;
       text.rows.fields(i, fields);
       if (filled_width(fields) > filled_width(*header)) wider_row = text.rows[i];
@@ -478,7 +569,7 @@ RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest
   if (header)
     for (std::size_t k = 0; k < request.column_units.size(); ++k)
       check_value_unit(text, *header, indices[k], request.column_units[k]);
-  RawSignalColumns raw = read_columns(text, first, named, time_index, indices, names);
+  RawSignalColumns raw = read_columns(text, first, end, named, time_index, indices, names);
   if (clock) {  // sample i at start + i·interval
     for (std::size_t i = 0; i < raw.time.size(); ++i) {
       raw.time[i] = clock->start_s + static_cast<double>(i) * clock->interval_s;
@@ -492,8 +583,8 @@ RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest
     }
     raw.time_from_header = true;
     raw.header_dt = clock->interval_s;
-    raw.warnings = std::move(clock_warnings);
   }
+  raw.warnings = std::move(warnings);
   return raw;
 }
 
@@ -521,7 +612,7 @@ RawSignalColumns read_tektronix_columns(const DelimitedText& text, const SignalR
   const std::size_t time_index = request.time_column.index
                                      ? static_cast<std::size_t>(*request.time_column.index)
                                      : kTimeColumn;
-  return read_columns(text, 0, nullptr, time_index, indices, names);
+  return read_columns(text, 0, text.rows.size(), nullptr, time_index, indices, names);
 }
 
 }  // namespace shpb

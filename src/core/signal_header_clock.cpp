@@ -1,6 +1,7 @@
 // The time base a signal file's header states (core/signal_header_clock.hpp).
 #include "core/signal_header_clock.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.hpp"
@@ -55,6 +56,28 @@ double header_value(const DelimitedText& text, const TextRow& row, double unit_s
   return *value * unit_s;
 }
 
+// Rigol's CSV: "X,CH1,CH2,Start,Increment," over "Sequence,Volt,Volt,-1.0e-04,1.0e-07,": sample
+// i at Start + i·Increment (the first column numbers the samples); the names left of Start name
+// the channels.
+void rigol_clock(const DelimitedText& text, std::size_t first_data, HeaderClock& h) {
+  for (std::size_t i = 0; i + 1 < first_data; ++i) {
+    const TextRow names = text.rows[i];
+    const auto& f = names.fields;
+    const auto start = std::find(f.begin(), f.end(), "Start");
+    const auto increment = std::find(f.begin(), f.end(), "Increment");
+    if (start == f.end() || increment == f.end()) continue;
+    const TextRow values = text.rows[i + 1];
+    const auto at = [&](auto it) {
+      const auto c = static_cast<std::size_t>(it - f.begin());
+      return TextRow{values.line, {*it, c < values.fields.size() ? values.fields[c] : ""}};
+    };
+    h.interval_row = at(increment);
+    h.start_row = at(start);
+    h.trace_names = TextRow{names.line, {f.begin(), start}};
+    return;
+  }
+}
+
 std::optional<HeaderClock> header_clock(const DelimitedText& text, std::size_t first_data) {
   HeaderClock h;
   std::optional<TextRow> unit_row;
@@ -68,6 +91,7 @@ std::optional<HeaderClock> header_clock(const DelimitedText& text, std::size_t f
     if (key == "HUnit") unit_row = row;
     if (key == "TraceName") h.trace_names = row;
   }
+  if (!h.interval_row) rigol_clock(text, first_data, h);
   if (!h.interval_row) return std::nullopt;
   double unit_s = 1;  // Yokogawa's HUnit: "s" for a time record
   if (unit_row && unit_row->fields.size() > 1) {
@@ -89,23 +113,30 @@ std::optional<HeaderClock> header_clock(const DelimitedText& text, std::size_t f
 }
 
 // Whether the data's first column holds the header's clock (a time column exported beside the
-// header's time base): its first stamps within a quarter interval of start + i·interval (of the
-// first stamp + i·interval where the header's start is not read), where a channel's values are
-// nowhere near.
+// header's time base): its first stamps within a quarter interval, and half their printed last
+// digit, of start + i·interval (of the first stamp + i·interval where the header's start is not
+// read), where a channel's values are nowhere near. Stamps printed coarser than the interval
+// (LabVIEW's 6 decimals at 10 MS/s: 10 rows a µs) are judged over as many rows as the clock takes
+// to cross three of their digits, which a channel's values do not follow.
 bool stamps_follow(const DelimitedText& text, std::size_t first_data, const HeaderClock& h,
                    double unit_s) {
   constexpr std::size_t kStampsJudged = 3;
   constexpr double kOffClock = 0.25;  // of the interval
-  if (text.rows.size() < first_data + kStampsJudged) return false;
-  std::optional<double> start = h.labview ? std::nullopt : std::optional(h.clock.start_s);
-  for (std::size_t i = 0; i < kStampsJudged; ++i) {
+  constexpr double kDigitsCrossed = 3;
+  double start = h.clock.start_s;  // LabVIEW's X0 is not read: the first stamp's
+  for (std::size_t i = 0, judged = kStampsJudged; i < judged; ++i) {
+    if (first_data + i >= text.rows.size()) return false;
     const TextRow& row = text.rows[first_data + i];
     const auto t =
         row.fields.empty() ? std::nullopt : parse_number(row.fields[0], text.decimal_comma);
     if (!t) return false;
-    if (!start) start = *t * unit_s;
-    if (std::abs(*t * unit_s - *start - static_cast<double>(i) * h.clock.interval_s) >
-        kOffClock * h.clock.interval_s)
+    const double digit = printed_step(row.fields[0], text.decimal_comma) * unit_s;
+    judged = std::max(
+        judged,
+        static_cast<std::size_t>(std::ceil(kDigitsCrossed * digit / h.clock.interval_s)) + 1);
+    if (h.labview && i == 0) start = *t * unit_s;
+    if (std::abs(*t * unit_s - start - static_cast<double>(i) * h.clock.interval_s) >
+        kOffClock * h.clock.interval_s + (h.labview && i > 0 ? digit : digit / 2))
       return false;
   }
   return true;

@@ -1,6 +1,7 @@
 #pragma once
-// The time base a signal file's header states (Yokogawa's HResolution/HOffset/HUnit rows, LabVIEW's
-// Delta_X/X0) for a file without a time column, and the scene's checked against it.
+// The time base a signal file's header states (Yokogawa's HResolution/HOffset/HUnit rows, Rigol's
+// Start/Increment, LabVIEW's Delta_X/X0) for a file without a time column, and the scene's checked
+// against it.
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -13,10 +14,11 @@
 namespace shpb {
 
 // The time base of a file without a time column: the scene's (measurement.time.interval), checked
-// against a header that states one, or the header's (Yokogawa), with a warning naming its rows.
+// against a header that states one, or the header's (Yokogawa, Rigol), with a warning naming its
+// rows.
 // LabVIEW's X0 may be an absolute time (seconds since 1904) and its Delta_X one segment's of
 // several: refused, naming the row, for the scene to state the interval.
-// Its TraceName row names the channels.
+// Its TraceName row (Rigol: the names left of Start) names the channels.
 struct FileClock {
   std::optional<SampleClock> clock;
   std::optional<TextRow> trace_names;

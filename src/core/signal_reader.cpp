@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <vector>
 
 #include "core/csv_writer.hpp"
@@ -188,18 +189,28 @@ std::vector<double> stamp_rounding(const std::vector<double>& t) {
   return step;
 }
 
-// Rounded stamps lie within half their rounding step of the sampling clock (their least-squares
-// line); one further off by more than kRoundedStampFraction of the interval has samples missing
+// Rounded stamps lie within half their rounding step of the sampling clock (a line t0 + i·dt);
+// one further off by more than kRoundedStampFraction of the interval has samples missing
 // before it (a gap) or extra ones, which the rebuilt clock would spread over the record: a gap
 // of 200 samples in the epoxy record's 3-digit stamps put them 98 intervals off, 1 sample 0.48.
 void refuse_gap_in_rounded_stamps(const std::filesystem::path& file, const LineMap& lines,
                                   const std::vector<double>& t, const ClockFit& c,
                                   const std::string& hint) {
   const std::vector<double> step = stamp_rounding(t);
+  // Judged from the clock start that every rounding fits best (the middle of the band the stamps
+  // allow), not from the least-squares line: stamps rounded to a multiple of the interval (10 MS/s
+  // printed to the µs) round their ties one way, which moves that line up to half an interval.
+  double lowest = std::numeric_limits<double>::infinity(), highest = -lowest;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const double residual = t[i] - static_cast<double>(i) * c.dt;
+    lowest = std::min(lowest, residual + step[i] / 2);
+    highest = std::max(highest, residual - step[i] / 2);
+  }
+  const double t0 = (lowest + highest) / 2;
   std::size_t worst = 0;
   double worst_off = 0;
   for (std::size_t i = 0; i < t.size(); ++i) {
-    const double off = std::abs(t[i] - c.t0 - static_cast<double>(i) * c.dt) - step[i] / 2;
+    const double off = std::abs(t[i] - t0 - static_cast<double>(i) * c.dt) - step[i] / 2;
     if (off > worst_off) worst = i, worst_off = off;
   }
   if (worst_off <= kRoundedStampFraction * c.dt) return;

@@ -17,8 +17,9 @@ bool is_spreadsheet(const std::filesystem::path& file);
 // (FreeXL, its reader, gives no formula's value); "" for any other file.
 std::string empty_cell_cause(const std::filesystem::path& file);
 
-// Reads `sheet` (empty: the first) of a workbook. InputError naming the file for a broken
-// workbook, a missing sheet (with the names it has) or a sheet beyond Excel's limits.
+// Reads `sheet` (empty: the first worksheet, past any chart sheet) of a workbook. InputError naming
+// the file for a broken workbook, a missing sheet (with the names it has) or a sheet beyond Excel's
+// limits.
 DelimitedText read_spreadsheet(const std::filesystem::path& file, const std::string& sheet);
 
 }  // namespace shpb

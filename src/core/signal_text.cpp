@@ -155,6 +155,18 @@ std::optional<double> parse_number(std::string_view field, bool decimal_comma) {
   return v;
 }
 
+double printed_step(std::string_view field, bool decimal_comma) {
+  const auto e = field.find_first_of("eE");
+  const std::string_view mantissa = field.substr(0, e);
+  const auto mark = mantissa.find(decimal_comma ? ',' : '.');
+  const auto decimals =
+      mark == std::string_view::npos ? 0 : static_cast<int>(mantissa.size() - mark - 1);
+  int exponent = 0;
+  if (e != std::string_view::npos)
+    if (const auto x = parse_number(field.substr(e + 1), false)) exponent = static_cast<int>(*x);
+  return std::pow(10.0, exponent - decimals);
+}
+
 std::string text_place(std::size_t line, std::size_t column_index) {
   return "line " + std::to_string(line) + ", column " + std::to_string(column_index + 1);
 }
@@ -207,13 +219,60 @@ std::size_t TextRows::bookkeeping_bytes() const {
 }
 
 namespace {
-// Byte order marks: UTF-8 is dropped (spreadsheets write it); UTF-16 text is refused by name
-// rather than failing later on the NUL bytes between its characters.
+// UTF-16 text after its byte order mark (Excel's "Unicode Text", little-endian; big-endian
+// too) as UTF-8. An unpaired surrogate or an odd byte count is no UTF-16 text: refused by line.
+std::string utf8_of_utf16(const std::filesystem::path& file, std::string_view bytes) {
+  const bool big = bytes[0] == '\xFE';
+  const auto unit = [&](std::size_t i) {
+    const auto hi = static_cast<unsigned char>(bytes[big ? i : i + 1]);
+    const auto lo = static_cast<unsigned char>(bytes[big ? i + 1 : i]);
+    return static_cast<std::uint32_t>(hi << 8 | lo);
+  };
+  std::string out;
+  out.reserve(bytes.size() / 2);
+  std::size_t line = 1;
+  const auto refuse = [&](const std::string& what) {
+    throw input_error(file.string(), "line " + std::to_string(line), what,
+                      "expected UTF-16 text after its byte order mark; save the file as UTF-8 "
+                      "or CSV");
+  };
+  for (std::size_t i = 2; i + 1 < bytes.size(); i += 2) {
+    std::uint32_t c = unit(i);
+    if (c >= 0xDC00 && c < 0xE000) refuse("an unpaired low surrogate");
+    if (c >= 0xD800 && c < 0xDC00) {
+      const std::uint32_t low = i + 2 < bytes.size() ? unit(i + 2) : 0;
+      if (low < 0xDC00 || low >= 0xE000) refuse("an unpaired high surrogate");
+      c = 0x10000 + ((c - 0xD800) << 10) + (low - 0xDC00);
+      i += 2;
+    }
+    line += c == '\n';
+    if (c < 0x80) {
+      out.push_back(static_cast<char>(c));
+    } else if (c < 0x800) {
+      out.push_back(static_cast<char>(0xC0 | c >> 6));
+      out.push_back(static_cast<char>(0x80 | (c & 0x3F)));
+    } else if (c < 0x10000) {
+      out.push_back(static_cast<char>(0xE0 | c >> 12));
+      out.push_back(static_cast<char>(0x80 | (c >> 6 & 0x3F)));
+      out.push_back(static_cast<char>(0x80 | (c & 0x3F)));
+    } else {
+      out.push_back(static_cast<char>(0xF0 | c >> 18));
+      out.push_back(static_cast<char>(0x80 | (c >> 12 & 0x3F)));
+      out.push_back(static_cast<char>(0x80 | (c >> 6 & 0x3F)));
+      out.push_back(static_cast<char>(0x80 | (c & 0x3F)));
+    }
+  }
+  if (bytes.size() % 2) refuse("an odd number of bytes (the file ends inside a character)");
+  return out;
+}
+
+// Byte order marks: UTF-8 is dropped (spreadsheets write it); UTF-16 text is read as UTF-8.
+// Other text with NUL bytes (UTF-16 without its mark, binary data) is refused by name rather than
+// failing later on them.
 void drop_bom_or_refuse_binary(const std::filesystem::path& file, std::string& bytes) {
   if (bytes.rfind("\xEF\xBB\xBF", 0) == 0) bytes.erase(0, 3);
   if (bytes.rfind("\xFF\xFE", 0) == 0 || bytes.rfind("\xFE\xFF", 0) == 0)
-    throw input_error(file.string(), "line 1", "UTF-16 text",
-                      "expected text (ASCII, UTF-8 or Latin-1); save the file as UTF-8 or CSV");
+    bytes = utf8_of_utf16(file, bytes);
   if (const auto nul = bytes.find('\0'); nul != std::string::npos) {
     // Named on its own line (LF, CRLF or lone CR end a line, as below), not on line 1.
     std::size_t number = 1;

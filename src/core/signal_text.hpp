@@ -91,6 +91,10 @@ DelimitedText read_delimited_text(const std::filesystem::path& file);
 // NaN and inf.
 std::optional<double> parse_number(std::string_view field, bool decimal_comma);
 
+// The unit of the last digit a number is written with: 1e-6 for "-0.000100", 1e-7 for
+// "1.25E-05", 1 for "42" (a stamp printed so lies within half of it of the value it rounds).
+double printed_step(std::string_view field, bool decimal_comma);
+
 // "line 12, column 3" — the place of a field in messages (columns 1-based, as editors count).
 std::string text_place(std::size_t line, std::size_t column_index);
 

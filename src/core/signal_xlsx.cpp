@@ -14,6 +14,8 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <set>
+#include <string_view>
 #include <type_traits>
 #include <vector>
 
@@ -225,6 +227,64 @@ std::vector<std::string> shared_strings(Parts& parts, const fs::path& file) {
   return shared;
 }
 
+// The sheet to read and its part: `sheet` by name, else the first worksheet.
+struct ChosenSheet {
+  std::string name, part;
+};
+ChosenSheet chosen_sheet(Parts& parts, const fs::path& file, const std::string& sheet) {
+  // Sheet names → relationship ids → parts.
+  std::vector<std::pair<std::string, std::string>> sheets;  // name, r:id
+  Xml wb;
+  wb.start = [&](const std::string& el, const char** a) {
+    if (el != "sheet") return;
+    const char* name = attribute(a, "name");
+    const char* id = attribute(a, "id");
+    if (name && id) sheets.emplace_back(name, id);
+  };
+  std::map<std::string, std::string> targets;
+  std::set<std::string> charts;  // r:ids of chart sheets (a chart, no cells)
+  Xml rl;
+  rl.start = [&](const std::string& el, const char** a) {
+    if (el != "Relationship") return;
+    const char* id = attribute(a, "Id");
+    const char* target = attribute(a, "Target");
+    const char* type = attribute(a, "Type");
+    if (id && target) targets[id] = target;
+    if (id && type && std::string_view(type).ends_with("/chartsheet")) charts.insert(id);
+  };
+  if (!wb.parse(parts, file, "xl/workbook.xml") ||
+      !rl.parse(parts, file, "xl/_rels/workbook.xml.rels"))
+    broken(file, "no xl/workbook.xml");
+  if (sheets.empty()) broken(file, "a workbook without sheets");
+  // By default the first worksheet: a chart sheet (a plot saved in front of the data) holds no
+  // cells.
+  const auto worksheet = [&](const auto& s) { return !charts.contains(s.second); };
+  const auto worksheet_names = [&] {
+    std::vector<std::string> names;
+    for (const auto& s : sheets)
+      if (worksheet(s)) names.push_back(s.first);
+    return names_text(names);
+  };
+  auto chosen = std::find_if(sheets.begin(), sheets.end(), worksheet);
+  if (chosen == sheets.end()) broken(file, "a workbook of chart sheets only");
+  if (!sheet.empty()) {
+    chosen =
+        std::find_if(sheets.begin(), sheets.end(), [&](const auto& s) { return s.first == sheet; });
+    if (chosen == sheets.end()) {
+      std::vector<std::string> names;
+      for (const auto& s : sheets) names.push_back(s.first);
+      throw input_error(file.string(), "sheet", "\"" + sheet + "\"",
+                        "no such sheet; the workbook has " + names_text(names));
+    }
+    if (!worksheet(*chosen))
+      throw input_error(file.string(), "sheet", "\"" + sheet + "\"",
+                        "a chart sheet, which holds no cells; the workbook's worksheets are " +
+                            worksheet_names());
+  }
+  const std::string& target = targets[chosen->second];
+  return {chosen->first, target.rfind('/', 0) == 0 ? target.substr(1) : "xl/" + target};
+}
+
 }  // namespace
 
 DelimitedText read_xlsx(const fs::path& file, const std::string& sheet) {
@@ -238,40 +298,8 @@ DelimitedText read_xlsx(const fs::path& file, const std::string& sheet) {
     broken(file, "not a zip archive (" + reason + ")");
   }
   Parts parts(zip.get(), file);
-  // Sheet names → relationship ids → parts.
-  std::vector<std::pair<std::string, std::string>> sheets;  // name, r:id
-  Xml wb;
-  wb.start = [&](const std::string& el, const char** a) {
-    if (el != "sheet") return;
-    const char* name = attribute(a, "name");
-    const char* id = attribute(a, "id");
-    if (name && id) sheets.emplace_back(name, id);
-  };
-  std::map<std::string, std::string> targets;
-  Xml rl;
-  rl.start = [&](const std::string& el, const char** a) {
-    if (el != "Relationship") return;
-    const char* id = attribute(a, "Id");
-    const char* target = attribute(a, "Target");
-    if (id && target) targets[id] = target;
-  };
-  if (!wb.parse(parts, file, "xl/workbook.xml") ||
-      !rl.parse(parts, file, "xl/_rels/workbook.xml.rels"))
-    broken(file, "no xl/workbook.xml");
-  if (sheets.empty()) broken(file, "a workbook without sheets");
-  auto chosen = sheets.begin();
-  if (!sheet.empty()) {
-    chosen =
-        std::find_if(sheets.begin(), sheets.end(), [&](const auto& s) { return s.first == sheet; });
-    if (chosen == sheets.end()) {
-      std::vector<std::string> names;
-      for (const auto& s : sheets) names.push_back(s.first);
-      throw input_error(file.string(), "sheet", "\"" + sheet + "\"",
-                        "no such sheet; the workbook has " + names_text(names));
-    }
-  }
-  std::string part = targets[chosen->second];
-  part = part.rfind('/', 0) == 0 ? part.substr(1) : "xl/" + part;
+  const ChosenSheet chosen = chosen_sheet(parts, file, sheet);
+  const std::string& part = chosen.part;
   const std::vector<std::string> shared = shared_strings(parts, file);
 
   Sheet out(file);
@@ -329,7 +357,7 @@ DelimitedText read_xlsx(const fs::path& file, const std::string& sheet) {
       // for 1 or 0.
       if (type == "b")
         throw input_error(file.string(),
-                          "sheet \"" + chosen->first + "\", cell " + cell_name(row, column),
+                          "sheet \"" + chosen.name + "\", cell " + cell_name(row, column),
                           value == "1"   ? "TRUE"
                           : value == "0" ? "FALSE"
                                          : "\"" + value + "\"",
@@ -341,7 +369,7 @@ DelimitedText read_xlsx(const fs::path& file, const std::string& sheet) {
   };
   try {
     if (!x.parse(parts, file, part))
-      broken(file, "sheet \"" + chosen->first + "\" has no part " + part);
+      broken(file, "sheet \"" + chosen.name + "\" has no part " + part);
   } catch (const std::length_error& e) {
     broken(file, part + ": " + e.what());
   }

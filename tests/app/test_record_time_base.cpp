@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "classic_record.hpp"
 #include "lab_record.hpp"
 #include "run_shpb.hpp"
 #include "write_xlsx.hpp"
@@ -29,46 +30,16 @@ using shpb_test::run_shpb;
 using shpb_test::RunResult;
 using shpb_test::scratch_dir;
 using shpb_test::summary;
+using shpb_test::classic::check_refused;
+using shpb_test::classic::check_same_curve;
+using shpb_test::classic::classic_reading;
+using shpb_test::classic::kSameRecord;
+using shpb_test::classic::kSource;
+using shpb_test::classic::process;
+using shpb_test::classic::processed;
+using shpb_test::classic::simulated;
 
 namespace {
-
-const fs::path kSource = SHPB_SOURCE_DIR;
-
-// The same samples on the same clock: the curves agree to round-off. The timed record's interval
-// is its stamps' mean step and the untimed one's the scene's, equal to their last bits, so the
-// stress differs by far less than this fraction of its peak (0 measured).
-constexpr double kSameRecord = 1e-9;
-// A start given to the record moves every time by it, to round-off of the times (µs at 1e-20 s).
-constexpr double kSameTime_s = 1e-15;
-
-// The classic experiment (its specimen file named from anywhere) measured by `file`, the channels
-// by `incident` and `transmitted`, with `time` as measurement.time (none if null). Written to
-// dir/name; returns its path.
-fs::path classic_reading(const fs::path& dir, const std::string& name, const fs::path& file,
-                         const json& time, const json& incident = "incident",
-                         const json& transmitted = "transmitted") {
-  json scene = json::parse(read_text(kSource / "experiments/classic-al6061/scene.json"));
-  scene["bars"][2]["material"] = (kSource / "specimens/al6061-t6.json").string();
-  scene["measurement"] = {
-      {"file", file.string()},
-      {"channels",
-       {{{"gauge", "incident"}, {"column", incident}, {"unit", "strain"}},
-        {{"gauge", "transmitted"}, {"column", transmitted}, {"unit", "strain"}}}},
-      {"dispersion", {{"correction", "none"}}}};  // the 1D model does not disperse
-  if (!time.is_null()) scene["measurement"]["time"] = time;
-  std::ofstream(dir / name) << scene.dump(2);
-  return dir / name;
-}
-
-// The classic experiment simulated into dir/sim: gauges.csv (time_s, incident, transmitted).
-std::vector<std::vector<double>> simulated(const fs::path& dir) {
-  json scene = json::parse(read_text(kSource / "experiments/classic-al6061/scene.json"));
-  scene["bars"][2]["material"] = (kSource / "specimens/al6061-t6.json").string();
-  std::ofstream(dir / "sim.json") << scene.dump(2);
-  REQUIRE(run_shpb({"simulate", (dir / "sim.json").string(), "-o", (dir / "sim").string(), "-q"})
-              .code == 0);
-  return read_columns(dir / "sim/gauges.csv");
-}
 
 // The record's channels only, `prefix` before each row (Yokogawa's empty key column: ","),
 // written with 17 digits under `header`.
@@ -80,47 +51,6 @@ std::string channels_only(const std::vector<std::vector<double>>& rec, const std
   for (std::size_t i = 0; i < rec[0].size(); ++i)
     s << prefix << rec[1][i] << "," << rec[2][i] << "\n";
   return s.str();
-}
-
-RunResult process(const fs::path& scene, const fs::path& out) {
-  return run_shpb({"process", scene.string(), "-o", out.string(), "--quiet"});
-}
-
-// `process` that must succeed.
-void processed(const fs::path& scene, const fs::path& out) {
-  const RunResult r = process(scene, out);
-  INFO(r.err);
-  REQUIRE(r.code == 0);
-}
-
-// curve.csv of `out` against the timed record's `ref`: the same rows, times later by `shift_s`,
-// the 3-wave stress and the strain the same.
-void check_same_curve(const fs::path& ref, const fs::path& out, double shift_s) {
-  const auto a = shpb_test::read_table(ref / "curve.csv");
-  const auto b = shpb_test::read_table(out / "curve.csv");
-  const auto& sa = a["stress_3wave_Pa"];
-  const auto& sb = b["stress_3wave_Pa"];
-  REQUIRE(sa.size() == sb.size());
-  const double peak = summary(ref)["peak_stress_Pa"].get<double>();
-  double stress_off = 0, time_off = 0, strain_off = 0;
-  for (std::size_t i = 0; i < sa.size(); ++i) {
-    stress_off = std::max(stress_off, std::abs(sa[i] - sb[i]));
-    time_off = std::max(time_off, std::abs(b["time_s"][i] - a["time_s"][i] - shift_s));
-    strain_off = std::max(strain_off, std::abs(a["strain"][i] - b["strain"][i]));
-  }
-  CHECK(stress_off <= kSameRecord * peak);
-  CHECK(time_off <= kSameTime_s);
-  CHECK(strain_off <= kSameRecord * summary(ref)["max_strain"].get<double>());
-  CHECK(summary(out)["peak_stress_Pa"].get<double>() ==
-        Approx(peak).epsilon(kSameRecord).margin(0));
-}
-
-// A refusal: exit 2 and one line saying each of `said`.
-void check_refused(const RunResult& r, const std::vector<std::string>& said) {
-  INFO(r.err);
-  CHECK(r.code == 2);
-  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
-  for (const auto& s : said) CHECK(r.err.find(s) != std::string::npos);
 }
 
 }  // namespace

@@ -273,6 +273,22 @@ TEST_CASE("Broken signal files are rejected naming file, line and column", "[cor
             read_signal_columns(csv_request(p, {by_index(1)}));
           }).find("header.csv") != std::string::npos);
   }
+  SECTION("digits grouped by thousands") {
+    // Excel's "#,##0.000" in a German (point) or French (narrow no-break space) locale: named
+    // as such, never read ("1.234" alone may be either mark).
+    const std::string de = "t;v\n0,0;1,000\n1,0;999,500\n2,0;-1.197,266\n";
+    const auto p = write_file("de.csv", de);
+    CHECK(error_of([&] { read_signal_columns(csv_request(p, {by_name("v")})); })
+              .find("de.csv: line 4, column 2 (\"v\"): \"-1.197,266\": digits grouped by "
+                    "thousands (a point between them)") != std::string::npos);
+    const auto fr = write_file("fr.csv",
+                               "t;v\n0,0;1,000\n1,0;2\xE2\x80\xAF"
+                               "500,125\n");
+    CHECK(error_of([&] { read_signal_columns(csv_request(fr, {by_name("v")})); })
+              .find("line 3, column 2 (\"v\"): \"2\xE2\x80\xAF"
+                    "500,125\": digits grouped by "
+                    "thousands (a narrow no-break space between them)") != std::string::npos);
+  }
   SECTION("gap in the time base") {
     const auto p = write_file("gap.csv", head + "0,1,2\n1,1,2\n2,1,2\n5,1,2\n6,1,2\n");
     const auto msg = error_of([&] { read_signal_columns(csv_request(p, {by_index(1)})); });

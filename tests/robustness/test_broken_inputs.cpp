@@ -284,8 +284,11 @@ TEST_CASE("Broken signal files are refused with file, line and column, or read w
              s);
        }),
        process(), Expect::kWorks, ""},
-      {"UTF-16 text", signals([](std::string s) { return utf16le(s); }), process(),
-       Expect::kRefused, "signals.csv: line 1: UTF-16"},
+      {"UTF-16 text (Excel's \"Unicode Text\")", signals([](std::string s) { return utf16le(s); }),
+       process(), Expect::kWorks, ""},
+      {"UTF-16 text cut inside a character",
+       signals([](std::string s) { return utf16le(s).substr(0, 2 * s.size() + 1); }), process(),
+       Expect::kRefused, "an odd number of bytes"},
       {"semicolons and decimal commas",
        signals([](std::string s) { return replace_all(replace_all(s, ",", ";"), ".", ","); }),
        process(), Expect::kWorks, ""},
