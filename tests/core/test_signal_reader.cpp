@@ -327,6 +327,12 @@ TEST_CASE("A data row with text in one field is a data row, never taken for the 
        by_index(1),
        "",
        4},
+      {"\u221e, -\u221e, NaN and #N/A in every sample of columns not read (a channel overranged "
+       "throughout, one not recorded)",
+       "time_s,incident,transmitted,trigger,temperature\n0,1,10,\u221e,NaN\n1e-6,2,20,-\u221e,#N/"
+       "A\n"
+       "2e-6,3,30,\u221e,NaN\n3e-6,4,40,\u221e,nan\n",
+       by_name("time_s"), by_name("incident"), "", 4},
       {"a metadata line right above the data stays metadata",
        "Sample Interval,1e-6,s,V\n" + rest,
        {},
