@@ -19,11 +19,16 @@ namespace shpb::python {
 namespace {
 
 // A Johnson-Cook temperature edit: its range, then the readers' rules between the temperatures
-// (model/input_limits.hpp), so that the homologous temperature stays the one a file could give.
+// (model/input_limits.hpp), so that the homologous temperature stays the one a file could give. A
+// room temperature edit moves a test without a `temperature` of its own with it, as the file's
+// edit would (set_room_temperature); the test's temperature set is its own from then on.
 auto jc_temperature(double JohnsonCookParams::*field, const char* name) {
   return [field, name](JohnsonCookParams& o, const py::object& x) {
     JohnsonCookParams edited = o;
     checked(field, name, Range::kPositive)(edited, x);
+    if (field == &JohnsonCookParams::room_temperature_K)
+      set_room_temperature(edited, edited.room_temperature_K);
+    if (field == &JohnsonCookParams::initial_temperature_K) edited.temperature_given = true;
     std::string what =
         melting_temperature_problem(edited.melting_temperature_K, edited.room_temperature_K);
     if (!what.empty())
@@ -127,7 +132,8 @@ void bind_johnson_cook(py::module_& m) {
                        {"reference_strain_rate_1_s", o.reference_strain_rate_1_s},
                        {"m", o.m},
                        {"room_temperature_K", o.room_temperature_K},
-                       {"melting_temperature_K", o.melting_temperature_K}}) +
+                       {"melting_temperature_K", o.melting_temperature_K},
+                       {"initial_temperature_K", o.initial_temperature_K}}) +
                (o.adiabatic ? ", adiabatic" : "") + ">";
       });
 }

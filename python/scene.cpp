@@ -13,6 +13,7 @@
 #include "core/error.hpp"
 #include "model/input_limits.hpp"
 #include "model/scene_validation.hpp"
+#include "model/test_setup.hpp"
 #include "model/wave_travel.hpp"
 #include "values.hpp"
 
@@ -20,12 +21,21 @@ namespace shpb::python {
 
 namespace {
 
-// The bar named `name` or at index `i` (negative from the end, as Python lists).
-BarSpec& bar_of(Scene& s, const py::object& key) {
+// A bar of a scene, as Python holds it: the scene and the bar's index (an edit of its length
+// places the scene's gauges given by their distance to the specimen again, which needs the scene).
+struct BarView {
+  py::object scene;
+  std::size_t index = 0;
+  Scene& owner() const { return scene.cast<Scene&>(); }
+  BarSpec& bar() const { return owner().bars[index]; }
+};
+
+// The index of the bar named `name` or at index `i` (negative from the end, as Python lists).
+std::size_t bar_index(const Scene& s, const py::object& key) {
   if (py::isinstance<py::str>(key)) {
     const std::string name = message_text(key);  // a lone surrogate names no bar
-    for (auto& b : s.bars)
-      if (b.name == name) return b;
+    for (std::size_t i = 0; i < s.bars.size(); ++i)
+      if (s.bars[i].name == name) return i;
     throw py::key_error("no bar named \"" + name + "\" in scene " + s.name);
   }
   // An index as a list takes one (an int, a numpy integer): anything else is a TypeError.
@@ -36,53 +46,84 @@ BarSpec& bar_of(Scene& s, const py::object& key) {
   const auto n = static_cast<Py_ssize_t>(s.bars.size());
   if (i < 0) i += n;
   if (i < 0 || i >= n) throw py::index_error("bar index out of range");
-  return s.bars[static_cast<std::size_t>(i)];
+  return static_cast<std::size_t>(i);
 }
 
-// A bar's length edit: its range, then its gauges on it, as the scene reader places them.
-void set_length(BarSpec& b, const py::object& value) {
-  BarSpec edited = b;
-  checked(&BarSpec::length_m, "bar.length_m", Range::kPositive)(edited, value);
-  const double x = edited.length_m;
-  for (const auto& g : b.gauges)
-    if (const std::string what = gauge_position_problem(g.position_m, x); !what.empty())
-      throw input_error(
-          "scene edit", "bar.length_m", format_double(x),
-          "gauge \"" + g.name + "\" at " + format_double(g.position_m) + " m " + what);
-  b.length_m = x;
+// A bar's length edit: its range, then its gauges on it, as the scene reader places them: one given
+// by its position stays there (and must lie on the bar), one given by its distance to the specimen
+// keeps that distance (its place on its bar moves, and every gauge beyond this bar too).
+void set_length(const BarView& v, const py::object& value) {
+  Scene edited = v.owner();
+  BarSpec& b = edited.bars[v.index];
+  checked(&BarSpec::length_m, "bar.length_m", Range::kPositive)(b, value);
+  const double x = b.length_m;
+  for (std::size_t i = 0; i < edited.bars.size(); ++i)
+    for (auto& g : edited.bars[i].gauges) {
+      if (g.distance_to_specimen_m) {
+        const GaugePlacement place = place_gauge_at_distance(edited, i, *g.distance_to_specimen_m);
+        if (!place.problem.empty())
+          throw input_error("scene edit", "bar.length_m", format_double(x),
+                            "gauge \"" + g.name + "\" at distance_to_specimen " +
+                                format_double(*g.distance_to_specimen_m) + " m " + place.problem);
+        g.position_m = place.position_m;
+      } else if (i == v.index) {
+        if (const std::string what = gauge_position_problem(g.position_m, x); !what.empty())
+          throw input_error(
+              "scene edit", "bar.length_m", format_double(x),
+              "gauge \"" + g.name + "\" at " + format_double(g.position_m) + " m " + what);
+      }
+    }
+  // Field by field: a Material taken from a bar views the scene's own bars, which stay in place.
+  Scene& s = v.owner();
+  s.bars[v.index].length_m = x;
+  for (std::size_t i = 0; i < s.bars.size(); ++i)
+    for (std::size_t k = 0; k < s.bars[i].gauges.size(); ++k)
+      s.bars[i].gauges[k].position_m = edited.bars[i].gauges[k].position_m;
+}
+
+// A setter of a bar's field through its view.
+template <class Set>
+auto on_bar(Set set) {
+  return [set](const BarView& v, const py::object& value) { set(v.bar(), value); };
 }
 
 void bind_bar(py::module_& m) {
-  py::class_<BarSpec>(m, "Bar")
-      .def_readonly("name", &BarSpec::name)
-      .def_readonly("material", &BarSpec::material, py::return_value_policy::reference_internal)
+  py::class_<BarView>(m, "Bar")
+      .def_property_readonly("name", [](const BarView& v) { return v.bar().name; })
+      .def_property_readonly("material",
+                             [](py::object self) {
+                               return py::cast(&self.cast<BarView&>().bar().material,
+                                               py::return_value_policy::reference_internal, self);
+                             })
       .def_property(
-          "length_m", [](const BarSpec& o) { return o.length_m; }, &set_length)
-      .def_readonly("area_m2", &BarSpec::area_m2)
-      .def_readonly("diameter_m", &BarSpec::diameter_m)
+          "length_m", [](const BarView& v) { return v.bar().length_m; }, &set_length)
+      .def_property_readonly("area_m2", [](const BarView& v) { return v.bar().area_m2; })
+      .def_property_readonly("diameter_m", [](const BarView& v) { return v.bar().diameter_m; })
       .def_property(
-          "velocity_m_s", [](const BarSpec& o) { return o.velocity_m_s; },
-          checked(&BarSpec::velocity_m_s, "bar.velocity_m_s", Range::kFinite))
+          "velocity_m_s", [](const BarView& v) { return v.bar().velocity_m_s; },
+          on_bar(checked(&BarSpec::velocity_m_s, "bar.velocity_m_s", Range::kFinite)))
       .def_property(
-          "elements", [](const BarSpec& b) { return b.elements; },
-          [](BarSpec& b, const py::object& value) {
+          "elements", [](const BarView& v) { return v.bar().elements; },
+          on_bar([](BarSpec& b, const py::object& value) {
             const int n = number<int>(value, "bar.elements");
             if (n < 0 || n > kMaxElements)
               throw input_error("scene edit", "bar.elements", std::to_string(n),
                                 "must be in [1, " + std::to_string(kMaxElements) +
                                     "], or 0 for the automatic mesh");
             b.elements = n;
-          })
+          }))
       .def_property(
-          "gap_m", [](const BarSpec& o) { return o.gap_m; },
-          checked(&BarSpec::gap_m, "bar.gap_m", Range::kNonNegative))
+          "gap_m", [](const BarView& v) { return v.bar().gap_m; },
+          on_bar(checked(&BarSpec::gap_m, "bar.gap_m", Range::kNonNegative)))
       .def_property_readonly("gauges",
-                             [](const BarSpec& b) {
+                             [](const BarView& v) {
                                py::dict d;
-                               for (const auto& g : b.gauges) d[g.name.c_str()] = g.position_m;
+                               for (const auto& g : v.bar().gauges)
+                                 d[g.name.c_str()] = g.position_m;
                                return d;
                              })
-      .def("__repr__", [](const BarSpec& b) {
+      .def("__repr__", [](const BarView& v) {
+        const BarSpec& b = v.bar();
         return "<shpb.Bar " + b.name + ": " + b.material.name + ", " + format_double(b.length_m) +
                " m, " + format_double(b.velocity_m_s) + " m/s>";
       });
@@ -118,30 +159,30 @@ void bind_scene(py::module_& m) {
           py::arg("d"), py::arg("file") = std::filesystem::path("scene.json"))
       .def_readwrite("name", &Scene::name)
       .def_property_readonly("file", [](const Scene& s) { return s.file; })
-      .def_property_readonly(
-          "bars",
-          [](py::object self) {
-            Scene& s = self.cast<Scene&>();
-            py::list l;
-            for (auto& b : s.bars)
-              l.append(py::cast(&b, py::return_value_policy::reference_internal, self));
-            return l;
-          })
-      .def("bar", &bar_of, py::arg("key"), py::return_value_policy::reference_internal)
+      .def_property_readonly("bars",
+                             [](py::object self) {
+                               py::list l;
+                               for (std::size_t i = 0; i < self.cast<Scene&>().bars.size(); ++i)
+                                 l.append(BarView{self, i});
+                               return l;
+                             })
+      .def(
+          "bar",
+          [](py::object self, const py::object& key) {
+            return BarView{self, bar_index(self.cast<Scene&>(), key)};
+          },
+          py::arg("key"))
       .def_property_readonly("specimen",
                              [](py::object self) -> py::object {
-                               Scene& s = self.cast<Scene&>();
+                               const Scene& s = self.cast<Scene&>();
                                if (!s.specimen) return py::none();
-                               return py::cast(&s.bars[*s.specimen],
-                                               py::return_value_policy::reference_internal, self);
+                               return py::cast(BarView{self, *s.specimen});
                              })
       .def_property_readonly("striker",
                              [](py::object self) -> py::object {
-                               Scene& s = self.cast<Scene&>();
-                               const auto i = striker_bar(s);
+                               const auto i = striker_bar(self.cast<Scene&>());
                                if (!i) return py::none();
-                               return py::cast(&s.bars[*i],
-                                               py::return_value_policy::reference_internal, self);
+                               return py::cast(BarView{self, *i});
                              })
       .def_property(
           "tolerance", [](const Scene& s) { return s.simulation.tolerance; },

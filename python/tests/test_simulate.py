@@ -101,6 +101,59 @@ def test_an_edited_material_parameter_runs_as_the_edited_file(tmp_path, classic_
         assert np.array_equal(got[name], expected[name]), name
 
 
+def test_an_edited_room_temperature_moves_a_test_at_room_temperature(tmp_path, classic_json):
+    # The specimen's file gives no `temperature`: its test is at room temperature
+    # (docs/scene-format.md), and the room temperature edited in memory is the file's edit: the
+    # test was left at the old 293 K, below the new room, with no word.
+    folder = scene_dir(tmp_path, "classic-al6061")
+    material = json.loads((SOURCE / "specimens" / "al6061-t6.json").read_text())
+    assert "temperature" not in material
+    material["room_temperature"] = "330 K"
+    classic_json["bars"][2]["material"] = "hot-room"
+    classic_json["materials"]["hot-room"] = material
+    (folder / "edited.json").write_text(json.dumps(classic_json))
+    assert run_command("simulate", folder / "edited.json", "-o", tmp_path / "cmd", "--quiet")[0] == 0
+    scene = shpb.Scene.load(SOURCE / "experiments" / "classic-al6061" / "scene.json")
+    jc = scene.specimen.material.johnson_cook
+    jc.room_temperature_K = 330
+    assert jc.initial_temperature_K == 330
+    got = columns(shpb.simulate(scene).specimen)
+    expected = read_csv(tmp_path / "cmd" / "specimen.csv")
+    for name in expected:
+        assert np.array_equal(got[name], expected[name]), name
+    # A test temperature set is the test's own: a later room temperature leaves it.
+    jc.initial_temperature_K = 350
+    jc.room_temperature_K = 300
+    assert (jc.initial_temperature_K, jc.room_temperature_K) == (350, 300)
+
+
+def test_a_gauge_given_by_its_distance_to_the_specimen_keeps_it_when_its_bar_is_cut(tmp_path):
+    # tension-bonded's incident gauge is 1 m from the specimen (`distance_to_specimen`): on the
+    # incident bar cut to 1.5 m it sits 0.5 m from the bar's left end, as the file's edit puts it.
+    # The edit left it at 1 m from the left end, 0.5 m from the specimen, with no word.
+    folder = scene_dir(tmp_path, "tension-bonded")
+    edited = json.loads((folder / "scene.json").read_text())
+    edited["bars"][1]["length"] = "1.5 m"
+    (folder / "edited.json").write_text(json.dumps(edited))
+    assert run_command("simulate", folder / "edited.json", "-o", tmp_path / "cmd", "--quiet")[0] == 0
+    scene = shpb.Scene.load(folder / "scene.json")
+    material = scene.bar("incident").material  # a view of the scene, read after the edit
+    scene.bar("incident").length_m = 1.5
+    assert scene.bar("incident").gauges == {"incident": 0.5}
+    assert scene.bar("transmitter").gauges == {"transmitted": 0.5}
+    assert material.youngs_modulus_Pa == 200e9
+    got = columns(shpb.simulate(scene).gauges)
+    expected = read_csv(tmp_path / "cmd" / "gauges.csv")
+    for name in expected:
+        assert np.array_equal(got[name], expected[name]), name
+    # Cut below its distance, the bar cannot hold the gauge: refused, the scene unchanged.
+    with pytest.raises(shpb.InputError, match='gauge "incident" at distance_to_specimen 1 m must '
+                                              r'lie on the bar: within \[0 m, 0.9 m\]'):
+        scene.bar("incident").length_m = 0.9
+    assert scene.bar("incident").length_m == 1.5
+    assert scene.bar("incident").gauges == {"incident": 0.5}
+
+
 def test_tolerance_is_the_commands_tolerance(tmp_path):
     scene = SOURCE / "experiments" / "classic-al6061" / "scene.json"
     assert run_command("simulate", scene, "-o", tmp_path / "cmd", "--quiet",

@@ -35,6 +35,9 @@ struct JohnsonCookParams {
   double room_temperature_K = 293.15;
   double melting_temperature_K = 1000;
   double initial_temperature_K = 293.15;  // test temperature
+  // `temperature` given: the test's own; else the test is at room temperature, and stays there when
+  // the room temperature is set (set_room_temperature).
+  bool temperature_given = false;
   double specific_heat_J_kgK = 900;
   double taylor_quinney = 0.9;  // β, fraction of plastic work turned into heat
   bool adiabatic = true;
@@ -43,6 +46,12 @@ struct JohnsonCookParams {
   std::optional<double> strain_rate_filter_s;
   bool operator==(const JohnsonCookParams&) const = default;
 };
+
+// The room temperature of `p` set to `kelvin`; a test without a `temperature` of its own is at it.
+inline void set_room_temperature(JohnsonCookParams& p, double kelvin) {
+  p.room_temperature_K = kelvin;
+  if (!p.temperature_given) p.initial_temperature_K = kelvin;
+}
 
 // Generalized Maxwell (Prony series): E(t) = E_inf + Σ E_k exp(−t/τ_k).
 struct MaxwellArm {

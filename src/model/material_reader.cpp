@@ -73,7 +73,7 @@ void read_johnson_cook(const JsonObject& o, MaterialSpec& m) {
   p.m = o.require("m", "the thermal softening exponent, e.g. 1.34")
             .positive_quantity(Dimension::kDimensionless);
   if (auto v = o.get("room_temperature"))
-    p.room_temperature_K = v->positive_quantity(Dimension::kTemperature);
+    set_room_temperature(p, v->positive_quantity(Dimension::kTemperature));
   const auto melt = o.require("melting_temperature", "e.g. \"925 K\"");
   p.melting_temperature_K = melt.quantity(Dimension::kTemperature);
   if (const std::string what =
@@ -81,9 +81,9 @@ void read_johnson_cook(const JsonObject& o, MaterialSpec& m) {
       !what.empty())
     throw melt.error_with_value(JsonValue::format(p.melting_temperature_K, Dimension::kTemperature),
                                 what);
-  p.initial_temperature_K = p.room_temperature_K;
   if (auto v = o.get("temperature")) {
     p.initial_temperature_K = v->positive_quantity(Dimension::kTemperature);
+    p.temperature_given = true;
     if (const std::string what =
             test_temperature_problem(p.initial_temperature_K, p.melting_temperature_K);
         !what.empty())

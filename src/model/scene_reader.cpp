@@ -215,15 +215,11 @@ class SceneReader {
                                 ? "a gauge on the specimen has no distance to it; give position"
                                 : "needs \"specimen\" (the distance is to its face); give "
                                   "position from the bar's left end instead");
-        const double between = bars_between_m(scene, i), d = *g.distance_to_specimen_m;
-        const double length = scene.bars[i].length_m;
-        if (!(d >= between && d <= between + length))
-          throw given.error_with_value(
-              JsonValue::format(d, Dimension::kLength),
-              "must lie on the bar: within [" + JsonValue::format(between, Dimension::kLength) +
-                  ", " + JsonValue::format(between + length, Dimension::kLength) +
-                  "] (the pulse's travel in the bars to the specimen face)");
-        g.position_m = i < *scene.specimen ? length - (d - between) : d - between;
+        const double d = *g.distance_to_specimen_m;
+        const GaugePlacement place = place_gauge_at_distance(scene, i, d);
+        if (!place.problem.empty())
+          throw given.error_with_value(JsonValue::format(d, Dimension::kLength), place.problem);
+        g.position_m = place.position_m;
       }
   }
 

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "core/json_value.hpp"
+
 namespace shpb {
 
 namespace {
@@ -59,6 +61,17 @@ std::optional<double> distance_to_specimen_m(const Scene& s, std::size_t bar, do
   if (!s.specimen || bar == *s.specimen) return std::nullopt;
   const double own = bar < *s.specimen ? s.bars[bar].length_m - position_m : position_m;
   return own + bars_between_m(s, bar);
+}
+
+GaugePlacement place_gauge_at_distance(const Scene& s, std::size_t bar, double d) {
+  const double between = bars_between_m(s, bar), length = s.bars[bar].length_m;
+  GaugePlacement p;
+  if (!(d >= between && d <= between + length))
+    p.problem = "must lie on the bar: within [" + JsonValue::format(between, Dimension::kLength) +
+                ", " + JsonValue::format(between + length, Dimension::kLength) +
+                "] (the pulse's travel in the bars to the specimen face)";
+  p.position_m = bar < *s.specimen ? length - (d - between) : d - between;
+  return p;
 }
 
 std::optional<double> scene_striker_speed_m_s(const Scene& s) {

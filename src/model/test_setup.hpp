@@ -42,6 +42,16 @@ std::optional<double> distance_to_specimen_m(const Scene& scene, std::size_t bar
 // distance to the specimen that is not on the gauge's own bar.
 double bars_between_m(const Scene& scene, std::size_t bar);
 
+// Where a gauge given by its distance to the specimen (`distance_to_specimen`) sits on bar `bar`
+// (not the specimen), from the bar's left end: the inverse of distance_to_specimen_m, so that a
+// bar cut or lengthened keeps the gauge at its distance. `problem`: empty when the distance lies on
+// the bar, within [B, B + length] (B: bars_between_m), else what is expected.
+struct GaugePlacement {
+  double position_m = 0;
+  std::string problem;
+};
+GaugePlacement place_gauge_at_distance(const Scene& scene, std::size_t bar, double distance_m);
+
 // The striker velocity the scene gives for its test: `measurement.striker_velocity`, else the
 // striker bar's own speed; nullopt if neither is set. Always a speed (> 0).
 std::optional<double> scene_striker_speed_m_s(const Scene& scene);
