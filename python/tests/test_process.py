@@ -56,6 +56,24 @@ def test_a_scene_without_measurement_is_the_commands_message(tmp_path):
     assert "error: " + str(e.value) == err.strip()
 
 
+@pytest.mark.parametrize("signals", [False, True], ids=["measurement", "signals"])
+def test_a_scene_without_a_specimen_is_the_commands_message(signals, tmp_path):
+    # striker-on-bar has no specimen and no measurement: the command refuses it as a bars-together
+    # check without signals, and --signals as a test with no specimen. The module gave another
+    # line for both.
+    scene = SOURCE / "experiments" / "striker-on-bar" / "scene.json"
+    gauges = tmp_path / "run" / "gauges.csv"
+    extra = []
+    if signals:
+        assert run_command("simulate", scene, "-o", tmp_path / "run", "--quiet")[0] == 0
+        extra = ["--signals", gauges]
+    code, _, err = run_command("process", scene, "-o", tmp_path / "cmd", *extra)
+    assert code == 2
+    with pytest.raises(shpb.InputError) as e:
+        shpb.process(scene, signals=gauges if signals else None)
+    assert "error: " + str(e.value) == err.strip()
+
+
 def test_a_scene_loaded_by_a_relative_path_processes_after_a_change_of_folder(tmp_path,
                                                                                monkeypatch):
     # A notebook loads "scene.json" from its folder, then changes folder (os.chdir, %cd): the

@@ -14,13 +14,22 @@
 
 namespace shpb {
 
-BarCheckOutcome check_scene_bars(const Scene& scene, bool with_signals_file) {
+namespace {
+
+// What a scene without a specimen must give to be the bars-together check.
+void require_bar_check_inputs(const Scene& scene, bool with_signals_file) {
   if (with_signals_file)
     throw input_error(scene.file.string(), "specimen", "(missing)",
                       "--signals reduces a simulated test: name the specimen bar");
   if (!scene.measurement)
     throw input_error(scene.file.string(), "measurement", "(missing)",
                       "a bars-together check needs the measured signals of two gauges");
+}
+
+}  // namespace
+
+BarCheckOutcome check_scene_bars(const Scene& scene, bool with_signals_file) {
+  require_bar_check_inputs(scene, with_signals_file);
   const MeasurementSpec& m = *scene.measurement;
   const GaugeSignals signals = read_gauge_signals(m, {});
   for (const auto& w : signals.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
@@ -64,10 +73,13 @@ GaugeSignals simulated_signals(const TimeSeries& gauges, const std::vector<std::
 ProcessOutcome process_scene(const Scene& scene,
                              const std::optional<std::filesystem::path>& signals_file,
                              bool print_warnings) {
-  if (!scene.specimen)
+  if (!scene.specimen) {
+    // The command's refusals first (the same lines from the module), then the check it would run.
+    require_bar_check_inputs(scene, signals_file.has_value());
     throw input_error(scene.file.string(), "specimen", "(missing)",
                       "name the specimen bar to reduce a test (a scene without one is the "
                       "command's bars-together check)");
+  }
   std::vector<std::string> gauges;
   for (const auto& b : scene.bars)
     for (const auto& g : b.gauges) gauges.push_back(g.name);
