@@ -30,6 +30,41 @@ struct Processing {
   ProcessOutcome outcome;
 };
 
+// `text` with every `file` in it named `shown`.
+std::string renamed(std::string text, const std::string& file, const std::string& shown) {
+  for (auto at = text.find(file); at != std::string::npos; at = text.find(file, at + shown.size()))
+    text.replace(at, file.size(), shown);
+  return text;
+}
+
+// The reduction of signals read from `signals`; a SimulationResult's, written to a temporary
+// gauges.csv (shpb/__init__.py), is named `shown` wherever the file would be named: summary.json,
+// the warnings and an error's line (the temporary is gone when the call returns).
+ProcessOutcome process_signals(const Scene& scene,
+                               const std::optional<std::filesystem::path>& signals,
+                               const std::optional<std::string>& shown,
+                               const MonteCarloOptions& monte_carlo) {
+  const std::string file = signals ? signals->string() : "";
+  try {
+    ProcessOutcome o = run_released([&] {
+      ProcessOutcome o = process_scene(scene, signals, false);
+      add_uncertainty(scene, monte_carlo, o);
+      return o;
+    });
+    if (shown) {
+      o.signals_shown = *shown;
+      for (auto& w : o.warnings) w = renamed(w, file, *shown);
+    }
+    return o;
+  } catch (const InputError& e) {
+    if (!shown) throw;
+    throw InputError(renamed(e.what(), file, *shown));
+  } catch (const NumericalError& e) {
+    if (!shown) throw;
+    throw NumericalError(renamed(e.what(), file, *shown));
+  }
+}
+
 }  // namespace
 
 void bind_process(py::module_& m) {
@@ -85,22 +120,19 @@ void bind_process(py::module_& m) {
   m.def(
       "_process",
       [](const Scene& scene, const std::optional<std::filesystem::path>& signals,
-         const py::object& draws, const py::object& seed) {
+         const py::object& draws, const py::object& seed,
+         const std::optional<std::string>& signals_shown) {
         auto p = std::make_shared<Processing>();
         p->scene = scene;
         MonteCarloOptions monte_carlo;
         monte_carlo.draws = number<std::size_t>(draws, "draws");
         monte_carlo.seed = number<std::uint64_t>(seed, "seed");
-        p->outcome = run_released([&] {
-          ProcessOutcome o = process_scene(p->scene, signals, false);
-          add_uncertainty(p->scene, monte_carlo, o);
-          return o;
-        });
+        p->outcome = process_signals(p->scene, signals, signals_shown, monte_carlo);
         if (!p->outcome.failure.empty()) throw NumericalError(p->outcome.failure);
         return p;
       },
       py::arg("scene"), py::arg("signals") = py::none(), py::arg("draws") = py::int_(kDefaultDraws),
-      py::arg("seed") = py::int_(kDefaultSeed));
+      py::arg("seed") = py::int_(kDefaultSeed), py::arg("signals_shown") = py::none());
 }
 
 }  // namespace shpb::python

@@ -147,10 +147,13 @@ def process(scene, signals=None, draws=1000, seed=1):
     if not isinstance(scene, Scene):
         scene = Scene.load(os.fspath(scene))
     if isinstance(signals, SimulationResult):
+        # Read as the command reads a gauges.csv, through a temporary one; named as what it is
+        # (summary.json's signals.file, warnings, errors), not as the temporary gone on return.
+        shown = f"the SimulationResult of {signals.scene.file} (in memory)"
         with tempfile.TemporaryDirectory(prefix="shpb-") as tmp:
             signals.save(os.path.join(tmp, "run"))
             return ProcessResult(_shpb._process(scene, os.path.join(tmp, "run", "gauges.csv"),
-                                                draws, seed))
+                                                draws, seed, shown))
     return ProcessResult(_shpb._process(scene, None if signals is None else os.fspath(signals),
                                         draws, seed))
 

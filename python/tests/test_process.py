@@ -74,6 +74,23 @@ def test_a_scene_without_a_specimen_is_the_commands_message(signals, tmp_path):
     assert "error: " + str(e.value) == err.strip()
 
 
+def test_a_simulation_in_memory_is_named_as_such_not_by_a_temporary_file(tmp_path):
+    # process(scene, signals=run) reads the run through a temporary gauges.csv, removed when the
+    # call returns: summary.json (in memory and saved) and an error's line named that file, which
+    # no longer exists.
+    scene = shpb.Scene.load(SOURCE / "experiments" / "classic-al6061" / "scene.json")
+    shown = f"the SimulationResult of {scene.file} (in memory)"
+    result = shpb.process(scene, signals=shpb.simulate(scene))
+    assert result.summary["signals"]["file"] == shown
+    result.save(tmp_path / "out")
+    assert json.loads((tmp_path / "out" / "summary.json").read_text())["signals"]["file"] == shown
+    # The epoxy scene gives no striker velocity: its simulated gauges hold no pulse.
+    epoxy = shpb.Scene.load(SOURCE / "experiments" / "epoxy-resin-sample01" / "scene.json")
+    with pytest.raises(shpb.InputError) as e:
+        shpb.process(epoxy, signals=shpb.simulate(epoxy))
+    assert str(e.value).startswith(f"the SimulationResult of {epoxy.file} (in memory): column ")
+
+
 def test_a_scene_loaded_by_a_relative_path_processes_after_a_change_of_folder(tmp_path,
                                                                                monkeypatch):
     # A notebook loads "scene.json" from its folder, then changes folder (os.chdir, %cd): the

@@ -258,7 +258,7 @@ nlohmann::json process_summary(const ProcessOutcome& o, const std::string& scene
   s["scene"] = scene_display;
   s["calibration"] = o.calibration;
   s["signals"] = {{"source", simulated ? "simulated (--signals)" : "measurement"},
-                  {"file", m.file.string()},
+                  {"file", o.signals_shown.empty() ? m.file.string() : o.signals_shown},
                   {"samples", signals.time_s.size()},
                   {"sample_interval_s", signals.dt_s},
                   {"incident_gauge", setup.incident_gauge},

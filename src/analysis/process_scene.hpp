@@ -23,6 +23,9 @@ namespace shpb {
 struct ProcessOutcome {
   MeasurementSpec measurement;  // what was read (the scene's, or the --signals file's columns)
   bool simulated = false;       // --signals: a gauges.csv of `shpb simulate`
+  // How summary.json names the signals' file when it is not one to name: a simulation held in
+  // memory, read through a temporary file (the Python module); empty: measurement.file.
+  std::string signals_shown;
   ProcessingOptions options;
   GaugeSignals signals;  // as read, in strain (raw_signals.csv)
   KolskySetup setup;
