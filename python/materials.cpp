@@ -114,14 +114,33 @@ void bind_johnson_cook(py::module_& m) {
                     law_set<JC>("johnson_cook.initial_temperature_K",
                                 jc_temperature(&JC::initial_temperature_K,
                                                "johnson_cook.initial_temperature_K")))
-      .def_property(
-          "specific_heat_J_kgK", law_get(&JC::specific_heat_J_kgK),
-          law_set(&JC::specific_heat_J_kgK, "johnson_cook.specific_heat_J_kgK", Range::kPositive))
+      .def_property("specific_heat_J_kgK", law_get(&JC::specific_heat_J_kgK),
+                    law_set<JC>("johnson_cook.specific_heat_J_kgK",
+                                [](JC& o, const py::object& x) {
+                                  checked(&JC::specific_heat_J_kgK,
+                                          "johnson_cook.specific_heat_J_kgK",
+                                          Range::kPositive)(o, x);
+                                  o.specific_heat_given = true;
+                                }))
       .def_property("taylor_quinney", law_get(&JC::taylor_quinney),
                     law_set(&JC::taylor_quinney, "johnson_cook.taylor_quinney", Range::kFraction))
       .def_property("adiabatic", law_get(&JC::adiabatic),
                     law_set<JC>("johnson_cook.adiabatic",
-                                [](JC& o, const py::object& x) { o.adiabatic = x.cast<bool>(); }))
+                                [](JC& o, const py::object& x) {
+                                  // True or False (a numpy bool by its value), as the file's
+                                  // JSON boolean; anything else a TypeError naming it.
+                                  py::object v = py::reinterpret_borrow<py::object>(x);
+                                  if (const auto j = json_value_of(x)) v = *j;
+                                  if (!py::isinstance<py::bool_>(v))
+                                    throw py::type_error("johnson_cook.adiabatic: " + shown(x) +
+                                                         ": expected True or False");
+                                  if (v.cast<bool>() && !o.specific_heat_given)
+                                    throw input_error(
+                                        "scene edit", "johnson_cook.adiabatic", "True",
+                                        "adiabatic heating needs the material's specific heat: "
+                                        "set johnson_cook.specific_heat_J_kgK first");
+                                  o.adiabatic = v.cast<bool>();
+                                }))
       .def("__repr__", [](const JohnsonCook& l) {
         const JC& o = params_of(l);
         return "<shpb.JohnsonCook " +
@@ -143,9 +162,22 @@ void bind_bilinear(py::module_& m) {
       .def_property(
           "yield_stress_Pa", law_get(&BilinearParams::yield_stress_Pa),
           law_set(&BilinearParams::yield_stress_Pa, "bilinear.yield_stress_Pa", Range::kPositive))
-      .def_property("tangent_modulus_Pa", law_get(&BilinearParams::tangent_modulus_Pa),
-                    law_set(&BilinearParams::tangent_modulus_Pa, "bilinear.tangent_modulus_Pa",
-                            Range::kNonNegative))
+      .def_property(
+          "tangent_modulus_Pa", law_get(&BilinearParams::tangent_modulus_Pa),
+          [](Bilinear& l, const py::object& x) {
+            BilinearParams& p = l.material->bilinear;
+            const double before = p.tangent_modulus_Pa;
+            law_set(&BilinearParams::tangent_modulus_Pa, "bilinear.tangent_modulus_Pa",
+                    Range::kNonNegative)(l, x);  // the law and the range (refused: unchanged)
+            if (const std::string what =
+                    tangent_modulus_problem(p.tangent_modulus_Pa, l.material->youngs_modulus_Pa);
+                !what.empty()) {
+              const double refused = p.tangent_modulus_Pa;
+              p.tangent_modulus_Pa = before;
+              throw input_error("scene edit", "bilinear.tangent_modulus_Pa", format_double(refused),
+                                what);
+            }
+          })
       .def("__repr__", [](const Bilinear& l) {
         const BilinearParams& o = params_of(l);
         return "<shpb.Bilinear " +
@@ -153,6 +185,28 @@ void bind_bilinear(py::module_& m) {
                        {"tangent_modulus_Pa", o.tangent_modulus_Pa}}) +
                ">";
       });
+}
+
+// Young's modulus edited as a file could give it: a viscoelastic material has none of its own (its
+// instantaneous modulus is its long-term modulus plus its arms', which the meshes and the wave
+// speed follow), and a bilinear law's tangent modulus stays below it.
+void set_youngs_modulus(MaterialSpec& o, const py::object& value) {
+  const char* name = "material.youngs_modulus_Pa";
+  if (o.model == MaterialModel::kViscoelastic)
+    throw input_error("scene edit", name, shown(value),
+                      "material \"" + o.name +
+                          "\" is viscoelastic: its modulus is its long_term_modulus plus its "
+                          "arms' moduli (a scene file gives it no youngs_modulus)");
+  MaterialSpec edited = o;
+  checked(&MaterialSpec::youngs_modulus_Pa, name, Range::kPositive)(edited, value);
+  if (o.model == MaterialModel::kBilinear)
+    if (const std::string what =
+            tangent_modulus_problem(edited.bilinear.tangent_modulus_Pa, edited.youngs_modulus_Pa);
+        !what.empty())
+      throw input_error("scene edit", name, format_double(edited.youngs_modulus_Pa),
+                        "bilinear.tangent_modulus_Pa " +
+                            format_double(edited.bilinear.tangent_modulus_Pa) + " " + what);
+  o.youngs_modulus_Pa = edited.youngs_modulus_Pa;
 }
 
 }  // namespace
@@ -169,7 +223,7 @@ void bind_materials(py::module_& m) {
           checked(&MaterialSpec::density_kg_m3, "material.density_kg_m3", Range::kPositive))
       .def_property(
           "youngs_modulus_Pa", [](const MaterialSpec& o) { return o.youngs_modulus_Pa; },
-          checked(&MaterialSpec::youngs_modulus_Pa, "material.youngs_modulus_Pa", Range::kPositive))
+          &set_youngs_modulus)
       .def_property(
           "poisson_ratio", [](const MaterialSpec& o) { return o.poisson_ratio; },
           [](MaterialSpec& o, const py::object& value) {

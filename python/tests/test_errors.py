@@ -108,6 +108,55 @@ def test_an_edit_outside_the_scene_files_range_is_refused(edit):
     assert shpb.simulate(scene).gauges["incident"].tolist() == before
 
 
+@pytest.mark.parametrize("experiment, edit, message", [
+    # A viscoelastic material has no youngs_modulus of its own (its instantaneous modulus is
+    # E_inf + its arms'): PMMA set to 1 GPa meshed its specimen for a 1 GPa wave speed while the
+    # law stayed at 5.7 GPa, and the run blew up (engineering strain 13.3 in an element).
+    ("lanl-pmma13-mini-kolsky", lambda s: setattr(s.specimen.material, "youngs_modulus_Pa", 1e9),
+     "material.youngs_modulus_Pa: 1000000000.0: material "),
+    # A bilinear law hardens below its elastic modulus (the reader's tangent_modulus < E): a
+    # tangent modulus of 80 GPa on a 70 GPa metal, or the metal's modulus cut below its 2 GPa
+    # tangent, ran with no word.
+    ("tension-bonded",
+     lambda s: setattr(s.specimen.material.bilinear, "tangent_modulus_Pa", 80e9),
+     "bilinear.tangent_modulus_Pa: 8e+10: must be >= 0 and < youngs_modulus (7e+10 Pa)"),
+    ("tension-bonded", lambda s: setattr(s.specimen.material, "youngs_modulus_Pa", 1e9),
+     "material.youngs_modulus_Pa: 1e+09: bilinear.tangent_modulus_Pa 2e+09 must be >= 0 and < "
+     "youngs_modulus (1e+09 Pa)"),
+], ids=["viscoelastic-modulus", "tangent-above-modulus", "modulus-below-tangent"])
+def test_a_modulus_no_material_file_could_hold_is_refused(experiment, edit, message):
+    scene = shpb.Scene.load(SOURCE / "experiments" / experiment / "scene.json")
+    material = scene.specimen.material
+    before = repr(material), repr(material.bilinear)
+    with pytest.raises(shpb.InputError) as e:
+        edit(scene)
+    assert str(e.value).startswith("scene edit: " + message)
+    assert (repr(material), repr(material.bilinear)) == before
+
+
+def test_adiabatic_heating_is_a_boolean_and_needs_a_specific_heat(classic_json):
+    # A material that is not adiabatic need not give its specific heat (docs/scene-format.md);
+    # adiabatic set True on one ran with a specific heat of 900 J/(kg K) no file had given, and
+    # a text or a number was pybind11's RuntimeError "Unable to cast".
+    material = json.loads((SOURCE / "specimens" / "al6061-t6.json").read_text())
+    material["adiabatic"] = False
+    del material["specific_heat"]
+    classic_json["materials"]["cold"] = material
+    classic_json["bars"][2]["material"] = "cold"
+    scene = shpb.Scene.from_dict(classic_json, file=SOURCE / "experiments" / "classic-al6061" /
+                                 "scene.json")
+    jc = scene.specimen.material.johnson_cook
+    for value in ["no", 1]:
+        with pytest.raises(TypeError, match="johnson_cook.adiabatic: "):
+            jc.adiabatic = value
+    with pytest.raises(shpb.InputError, match="needs the material's specific heat"):
+        jc.adiabatic = True
+    assert jc.adiabatic is False
+    jc.specific_heat_J_kgK = 885
+    jc.adiabatic = True
+    assert jc.adiabatic is True
+
+
 @pytest.mark.parametrize("bar, group, attribute, value, law", [
     ("specimen", "bilinear", "yield_stress_Pa", 300e6, "johnson-cook"),
     ("specimen", "bilinear", "tangent_modulus_Pa", 1e9, "johnson-cook"),

@@ -21,5 +21,7 @@ std::string gauge_position_problem(double position_m, double bar_length_m);
 // the test's temperature lies below melting (model/material_reader.cpp).
 std::string melting_temperature_problem(double melting_K, double room_K);
 std::string test_temperature_problem(double test_K, double melting_K);
+// A bilinear law's hardening slope after yield lies below its elastic modulus.
+std::string tangent_modulus_problem(double tangent_Pa, double youngs_modulus_Pa);
 
 }  // namespace shpb

@@ -39,6 +39,9 @@ struct JohnsonCookParams {
   // the room temperature is set (set_room_temperature).
   bool temperature_given = false;
   double specific_heat_J_kgK = 900;
+  // `specific_heat` given (adiabatic heating needs it: a scene edit that turns the heating on
+  // without it is refused, as the file would be).
+  bool specific_heat_given = false;
   double taylor_quinney = 0.9;  // β, fraction of plastic work turned into heat
   bool adiabatic = true;
   // τ of a first-order low-pass filter on the rate of the rate term (0: off, the step's rate);

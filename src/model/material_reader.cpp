@@ -22,6 +22,12 @@ std::string test_temperature_problem(double test_K, double melting_K) {
          JsonValue::format(melting_K, Dimension::kTemperature) + ")";
 }
 
+std::string tangent_modulus_problem(double tangent_Pa, double youngs_modulus_Pa) {
+  if (tangent_Pa >= 0 && tangent_Pa < youngs_modulus_Pa) return {};
+  return "must be >= 0 and < youngs_modulus (" +
+         JsonValue::format(youngs_modulus_Pa, Dimension::kPressure) + ")";
+}
+
 const std::vector<std::string>& material_model_keys(MaterialModel model) {
   switch (model) {
     case MaterialModel::kElastic:
@@ -51,11 +57,9 @@ void read_bilinear(const JsonObject& o, MaterialSpec& m) {
                           .positive_quantity(Dimension::kPressure);
   const auto et = o.require("tangent_modulus", "the hardening slope after yield, e.g. \"1 GPa\"");
   p.tangent_modulus_Pa = et.quantity(Dimension::kPressure);
-  if (!(p.tangent_modulus_Pa >= 0 && p.tangent_modulus_Pa < m.youngs_modulus_Pa))
-    throw et.error_with_value(JsonValue::format(p.tangent_modulus_Pa, Dimension::kPressure),
-                              "must be >= 0 and < youngs_modulus (" +
-                                  JsonValue::format(m.youngs_modulus_Pa, Dimension::kPressure) +
-                                  ")");
+  if (const std::string what = tangent_modulus_problem(p.tangent_modulus_Pa, m.youngs_modulus_Pa);
+      !what.empty())
+    throw et.error_with_value(JsonValue::format(p.tangent_modulus_Pa, Dimension::kPressure), what);
 }
 
 void read_johnson_cook(const JsonObject& o, MaterialSpec& m) {
@@ -93,10 +97,12 @@ void read_johnson_cook(const JsonObject& o, MaterialSpec& m) {
   if (auto v = o.get("adiabatic")) p.adiabatic = v->boolean();
   if (auto v = o.get("taylor_quinney"))
     p.taylor_quinney = v->quantity_in(Dimension::kDimensionless, 0, 1, false, false);
-  if (p.adiabatic || o.has("specific_heat"))
+  if (p.adiabatic || o.has("specific_heat")) {
     p.specific_heat_J_kgK =
         o.require("specific_heat", "needed for adiabatic heating, e.g. \"885 J/(kg K)\"")
             .positive_quantity(Dimension::kSpecificHeat);
+    p.specific_heat_given = true;
+  }
   if (auto v = o.get("strain_rate_filter"))
     p.strain_rate_filter_s = v->non_negative_quantity(Dimension::kTime);
 }
