@@ -114,7 +114,15 @@ void bind_bar(py::module_& m) {
           }))
       .def_property(
           "gap_m", [](const BarView& v) { return v.bar().gap_m; },
-          on_bar(checked(&BarSpec::gap_m, "bar.gap_m", Range::kNonNegative)))
+          [](const BarView& v, const py::object& value) {
+            BarSpec edited = v.bar();
+            checked(&BarSpec::gap_m, "bar.gap_m", Range::kNonNegative)(edited, value);
+            // The last bar's gap (0) was kept and never used.
+            if (edited.gap_m > 0 && v.index + 1 == v.owner().bars.size())
+              throw input_error("scene edit", "bar.gap_m", format_double(edited.gap_m),
+                                kLastBarGap);
+            v.bar().gap_m = edited.gap_m;
+          })
       .def_property_readonly("gauges",
                              [](const BarView& v) {
                                py::dict d;

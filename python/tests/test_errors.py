@@ -96,9 +96,11 @@ def test_a_bad_tolerance_is_the_commands_message(tmp_path):
     lambda s: setattr(s.specimen.material.johnson_cook, "room_temperature_K", 2000.0),
     lambda s: setattr(s.specimen.material.johnson_cook, "melting_temperature_K", 100.0),
     lambda s: setattr(s.specimen.material.johnson_cook, "initial_temperature_K", 2000.0),
+    # The gap is to the next bar: the last bar's was kept and never used (the file refuses it).
+    lambda s: setattr(s.bars[-1], "gap_m", 0.01),
 ], ids=["length", "gap", "velocity", "elements", "density", "poisson", "jc-n", "duration",
         "tolerance-150%", "tolerance-negative", "tolerance-nan", "gauge-off-bar",
-        "room-above-melting", "melting-below-room", "test-above-melting"])
+        "room-above-melting", "melting-below-room", "test-above-melting", "gap-after-last-bar"])
 def test_an_edit_outside_the_scene_files_range_is_refused(edit):
     # A value no scene file could hold is refused when it is set, and the scene keeps its value.
     scene = shpb.Scene.load(SOURCE / "experiments" / "classic-al6061" / "scene.json")

@@ -14,6 +14,10 @@ inline constexpr std::int64_t kMaxElements = 100'000'000;
 inline constexpr double kPoissonRatioAbove = -1.0;
 inline constexpr double kPoissonRatioBelow = 0.5;
 
+// A bar's `gap` is to the next bar on its right: the last bar has none.
+inline constexpr const char* kLastBarGap =
+    "the gap is to the next bar on the right; the last bar has none";
+
 // Rules between values, for the key named last: "" where they hold, else what is expected.
 // A gauge lies on its bar, within [0, length] of its left end (model/scene_reader.cpp).
 std::string gauge_position_problem(double position_m, double bar_length_m);

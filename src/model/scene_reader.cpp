@@ -166,7 +166,7 @@ class SceneReader {
     if (auto x = o.get("velocity")) b.velocity_m_s = x->quantity(Dimension::kVelocity);
     if (auto x = o.get("elements")) b.elements = static_cast<int>(x->integer(1, kMaxElements));
     if (auto x = o.get("gap")) {
-      if (last) throw x->error("the gap is to the next bar on the right; the last bar has none");
+      if (last) throw x->error(kLastBarGap);
       b.gap_m = x->non_negative_quantity(Dimension::kLength);
     }
     if (auto x = o.get("notes")) x->string();
