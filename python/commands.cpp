@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "app/cli_options.hpp"
 #include "bindings.hpp"
 #include "core/error.hpp"
 #include "core/output_folder.hpp"
@@ -32,8 +33,14 @@ void bind_command_runs(py::module_& m) {
          const py::object& tolerance, const std::optional<std::string>& contact,
          const std::optional<std::string>& stepping, const py::object& courant,
          const py::object& threads, bool dispersion, const py::object& striker_velocity) {
+        // A velocity as the option takes it ("15 m/s", a bare number in m/s), or a number.
+        const std::optional<double> velocity =
+            py::isinstance<py::str>(striker_velocity)
+                ? std::optional(quantity_option(
+                      "--striker-velocity", message_text(striker_velocity), Dimension::kVelocity))
+                : optional_number<double>(striker_velocity, "striker_velocity");
         CompareArgs a{scene, output, overrides_of(tolerance, contact, stepping, courant, threads),
-                      dispersion, optional_number<double>(striker_velocity, "striker_velocity")};
+                      dispersion, velocity};
         return run_released([&] { return run_compare(a); });
       },
       py::arg("scene"), py::arg("output"), py::arg("tolerance"), py::arg("contact"),

@@ -5,6 +5,7 @@ import json
 import os
 
 import numpy as np
+import pytest
 
 import shpb
 from conftest import SOURCE, columns, read_csv, run_command
@@ -41,6 +42,24 @@ def test_compare_saves_the_commands_folder(tmp_path):
     for name in same_folder(tmp_path / "cmd", tmp_path / "py", result, timing=()):
         if name.endswith(".csv"):
             assert (tmp_path / "cmd" / name).read_bytes() == (tmp_path / "py" / name).read_bytes()
+
+
+def test_compare_takes_the_striker_velocity_as_the_option_does(tmp_path):
+    # --striker-velocity takes a velocity with its unit ("15 m/s"); compare(striker_velocity=...)
+    # took a number only: the option's text was a TypeError.
+    scene = SOURCE / "experiments" / "lanl-cu-ofe-273k" / "scene.json"
+    assert run_command("compare", scene, "-o", tmp_path / "cmd", "--quiet",
+                       "--striker-velocity", "15 m/s")[0] == 0
+    result = shpb.compare(scene, striker_velocity="15 m/s")
+    assert result.summary["striker_velocity_m_s"] == 15
+    result.save(tmp_path / "py")
+    same_folder(tmp_path / "cmd", tmp_path / "py", result, timing=())
+    code, _, err = run_command("compare", scene, "-o", tmp_path / "bad", "--striker-velocity",
+                               "15 kg")
+    assert code == 2
+    with pytest.raises(shpb.InputError) as e:
+        shpb.compare(scene, striker_velocity="15 kg")
+    assert "error: " + str(e.value) == err.strip()
 
 
 def same_folder(cmd, py, result, timing=("wall_time",)):
