@@ -300,11 +300,13 @@ GaugeSignals read_gauge_signals(const MeasurementSpec& m, const std::filesystem:
       if (static_cast<std::size_t>(within) < kMinRecordSamples) {
         char value[200];
         std::snprintf(value, sizeof value,
-                      "%td samples (record %.6g s to %.6g s, interval %.3g s) within %s's "
-                      "record (%.6g s to %.6g s)",
-                      within, file_time.front(), file_time.back(), cols.dt_s,
-                      order.front().filename().string().c_str(), out.time_s.front(),
-                      out.time_s.back());
+                      "%td samples (record %s s to %s s, interval %.3g s) within %s's "
+                      "record (%s s to %s s)",
+                      within, format_resolved(file_time.front(), cols.dt_s, 6).c_str(),
+                      format_resolved(file_time.back(), cols.dt_s, 6).c_str(), cols.dt_s,
+                      order.front().filename().string().c_str(),
+                      format_resolved(out.time_s.front(), out.dt_s, 6).c_str(),
+                      format_resolved(out.time_s.back(), out.dt_s, 6).c_str());
         throw input_error(file.string(), "time column", value,
                           "expected the files of one test to record the same time, at least " +
                               std::to_string(kMinRecordSamples) +

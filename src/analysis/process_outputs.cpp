@@ -6,6 +6,7 @@
 #include "core/checked_write.hpp"
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
+#include "core/number_format.hpp"
 #include "core/output_folder.hpp"
 #include "model/calibration.hpp"
 #include "model/scene_inputs.hpp"
@@ -379,12 +380,13 @@ std::string process_headline(const ProcessOutcome& o, const std::filesystem::pat
                   r.strain_rate_has_plateau ? "plateau" : "no plateau: mean",
                   r.strain_rate_has_plateau ? r.plateau_strain_rate_1_s : r.mean_strain_rate_1_s);
   std::string line(1024, '\0');
-  line.resize(static_cast<std::size_t>(std::snprintf(
-      line.data(), line.size(),
-      "process: window %.6g–%.6g s at the faces; %s; %s; peak %s stress %.4g MPa -> %s",
-      r.face_start_s, r.face_end_s, striker, rate,
-      std::string(enum_name(kPrimaryNames, o.options.primary)).c_str(), r.peak_stress_Pa / 1e6,
-      output.string().c_str())));
+  line.resize(static_cast<std::size_t>(
+      std::snprintf(line.data(), line.size(),
+                    "process: window %s–%s s at the faces; %s; %s; peak %s stress %.4g MPa -> %s",
+                    format_resolved(r.face_start_s, o.signals.dt_s, 6).c_str(),
+                    format_resolved(r.face_end_s, o.signals.dt_s, 6).c_str(), striker, rate,
+                    std::string(enum_name(kPrimaryNames, o.options.primary)).c_str(),
+                    r.peak_stress_Pa / 1e6, output.string().c_str())));
   if (o.uncertainty) line.append("\n").append(uncertainty_headline(*o.uncertainty));
   return line;
 }

@@ -15,6 +15,7 @@
 #include "analysis/signal_checks.hpp"
 #include "core/csv_writer.hpp"  // format_double
 #include "core/error.hpp"
+#include "core/number_format.hpp"
 
 namespace shpb {
 namespace {
@@ -455,9 +456,15 @@ void summarize_loading(bool one_wave, bool dropped, ProcessingResult& r) {
   }
 }
 
+// "a to b us" on a record's clock, each end resolving its sample interval dt.
+std::string us_range(double from_s, double to_s, double dt) {
+  return format_resolved(from_s * 1e6, dt * 1e6, 6) + " to " +
+         format_resolved(to_s * 1e6, dt * 1e6, 6) + " us";
+}
+
 // The mean strain rate over measurement.rate_window (by strain or by time on the faces' clock).
 void mean_rate_in_window(const std::vector<double>& strain, const std::vector<double>& rate,
-                         const ProcessingOptions& options, ProcessingResult& r) {
+                         double dt, const ProcessingOptions& options, ProcessingResult& r) {
   if (!options.rate_window) return;
   const RateWindow& w = *options.rate_window;
   const std::size_t loaded = r.loading_end;
@@ -468,14 +475,12 @@ void mean_rate_in_window(const std::vector<double>& strain, const std::vector<do
     if (x >= w.from && x <= w.to) sum += rate[i], ++count;
   }
   if (count == 0)
-    throw input_error(options.scene_file, "measurement.rate_window",
-                      w.by_strain ? fmt("strain %.4g to %.4g", w.from, w.to)
-                                  : fmt("%.6g to %.6g us", w.from * 1e6, w.to * 1e6),
-                      w.by_strain
-                          ? fmt("a range inside the loading (strain 0 to %.4g)", r.max_strain)
-                          : fmt("a range inside the loading (faces' clock, as curve.csv's time_s: "
-                                "%.6g to %.6g us)",
-                                r.time_s[0] * 1e6, r.time_s[loaded - 1] * 1e6));
+    throw input_error(
+        options.scene_file, "measurement.rate_window",
+        w.by_strain ? fmt("strain %.4g to %.4g", w.from, w.to) : us_range(w.from, w.to, dt),
+        w.by_strain ? fmt("a range inside the loading (strain 0 to %.4g)", r.max_strain)
+                    : "a range inside the loading (faces' clock, as curve.csv's time_s: " +
+                          us_range(r.time_s[0], r.time_s[loaded - 1], dt) + ")");
   r.window_strain_rate_1_s = sum / static_cast<double>(count);
 }
 
@@ -528,7 +533,7 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
   check_front_resolution(rate, dt, r);
   check_struck_end_band(k, r);
   check_stress_noise(inc.noise, tra.noise, k, one_wave, r);
-  mean_rate_in_window(strain, rate, options, r);
+  mean_rate_in_window(strain, rate, dt, options, r);
   r.area_ratio = k.front.area_m2 / k.specimen.area_m2;
   const ShiftStressError stress_change(r, k, dt);
   warn_reflected_offset(stress_change, k, dt, options, r);

@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "core/interpolation.hpp"
+#include "core/number_format.hpp"
 #include "dispersion/propagation.hpp"
 
 namespace shpb {
@@ -120,10 +121,11 @@ void report_missing_pulses(MeasuredPulses& m) {
                                      const char* after_is, double after) {
     if (t_end - t_inc >= after) return false;
     std::snprintf(msg, sizeof msg,
-                  "gauge \"%s\": no %s pulse in the record, which ends at %.4g s (%.3g s after "
+                  "gauge \"%s\": no %s pulse in the record, which ends at %s s (%.3g s after "
                   "the incident onset; the %s pulse follows it by %s%.3g s): the %s pulse is not "
                   "compared",
-                  gauge.c_str(), pulse, t_end, t_end - t_inc, pulse, after_is, after, pulse);
+                  gauge.c_str(), pulse, format_resolved(t_end, m.dt_s, 4).c_str(), t_end - t_inc,
+                  pulse, after_is, after, pulse);
     m.warnings.push_back(msg);
     return true;
   };
@@ -150,9 +152,9 @@ void report_missing_pulses(MeasuredPulses& m) {
         std::tuple{m.transmitted_window, "transmitted", k.transmitted_gauge}})
     if (w && w->end >= n) {
       std::snprintf(msg, sizeof msg,
-                    "gauge \"%s\": the %s pulse lasts until the record ends (%.4g s): compared "
+                    "gauge \"%s\": the %s pulse lasts until the record ends (%s s): compared "
                     "over its recorded part only",
-                    gauge.c_str(), name, t_end);
+                    gauge.c_str(), name, format_resolved(t_end, m.dt_s, 4).c_str());
       m.warnings.push_back(msg);
     }
   // A reflected pulse lasts as long as the incident one (the specimen is loaded that long; a broken
@@ -323,10 +325,11 @@ Overlay PulseOverlay::overlay(const Scene& scene, const TimeSeries& simulated_ga
     if (p.end > last) {
       char msg[400];
       std::snprintf(msg, sizeof msg,
-                    "the simulation ends (%.4g s on the measured clock) before the %s pulse has "
-                    "passed gauge \"%s\" (its window ends at %.4g s): compared on %.0f %% of its "
+                    "the simulation ends (%s s on the measured clock) before the %s pulse has "
+                    "passed gauge \"%s\" (its window ends at %s s): compared on %.0f %% of its "
                     "window only; set simulation.duration to at least %.3g s",
-                    o.t_sim_end + o.offset_s, name.c_str(), gauge.c_str(), m.time_s[p.end - 1],
+                    format_resolved(o.t_sim_end + o.offset_s, dt, 4).c_str(), name.c_str(),
+                    gauge.c_str(), format_resolved(m.time_s[p.end - 1], dt, 4).c_str(),
                     100.0 * static_cast<double>(std::max(last, p.begin) - p.begin) /
                         static_cast<double>(p.end - p.begin),
                     m.time_s[p.end - 1] - o.offset_s - t_sim0);

@@ -7,6 +7,7 @@
 #include "analysis/pulse_window.hpp"
 #include "analysis/sample_index.hpp"
 #include "core/interpolation.hpp"
+#include "core/number_format.hpp"
 #include "dispersion/propagation.hpp"
 
 namespace shpb {
@@ -382,10 +383,11 @@ void warn_window_shift(const ShiftStressError& stress_change, const std::vector<
   if (error <= kShiftStressError) return;
   r.warnings.push_back(
       "measurement.windows." + name + fmt(" starts %.3g us ", std::abs(off) * 1e6) +
-      (off < 0 ? "before" : "after") +
-      fmt(" the pulse's detected onset (%.6g us): a window is a time shift, so it moves the "
-          "pulse %.3g us at the faces, which changes the 3-wave stress by up to ",
-          *onset_s * 1e6, std::abs(off) * 1e6) +
+      (off < 0 ? "before" : "after") + " the pulse's detected onset (" +
+      format_resolved(*onset_s * 1e6, dt * 1e6, 6) +
+      fmt(" us): a window is a time shift, so it moves the pulse %.3g us at the faces, which "
+          "changes the 3-wave stress by up to ",
+          std::abs(off) * 1e6) +
       percent(error) +
       " of the 1-wave peak; start the window at the onset, or leave it to detection");
 }

@@ -1,5 +1,6 @@
 #include "core/number_format.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -36,6 +37,18 @@ std::string format_number(double value) {
   std::string shortest(buffer, end);
   if (significant_digits(shortest) <= kTypedDigits) return shortest;
   std::snprintf(buffer, sizeof buffer, "%.6g", value);
+  return buffer;
+}
+
+std::string format_resolved(double value, double resolution, int digits) {
+  constexpr int kDoubleDigits = 17;
+  if (std::isfinite(value) && value != 0 && std::isfinite(resolution) && resolution > 0) {
+    const double needed =
+        std::floor(std::log10(std::abs(value))) - std::floor(std::log10(resolution)) + 1;
+    digits = static_cast<int>(std::clamp<double>(needed, digits, kDoubleDigits));
+  }
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
   return buffer;
 }
 

@@ -274,8 +274,9 @@ void check_time_base(const std::filesystem::path& file, RawSignalColumns& raw,
     char msg[500];
     std::snprintf(msg, sizeof msg,
                   "%s: %s; time base rebuilt from the sample interval %.6g s (%.6g MHz, "
-                  "least-squares fit %.6g s) starting at %.6g s",
-                  file.string().c_str(), why.c_str(), c.dt, 1e-6 / c.dt, c.fitted_dt, c.t0);
+                  "least-squares fit %.6g s) starting at %s s",
+                  file.string().c_str(), why.c_str(), c.dt, 1e-6 / c.dt, c.fitted_dt,
+                  format_resolved(c.t0, c.dt, 6).c_str());
     out.warnings.push_back(msg);
   };
   if (repeats > 0) {

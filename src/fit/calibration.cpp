@@ -434,9 +434,9 @@ void cut_to_compared_span(Shot& s, const std::string& file) {
   if (2 * used >= n) return;
   char msg[300];
   std::snprintf(msg, sizeof msg,
-                "%s: the record's %zu samples cut to its first %zu (to %.6g s): the span the "
+                "%s: the record's %zu samples cut to its first %zu (to %s s): the span the "
                 "fit compares and the largest channel delay",
-                file.c_str(), n, used, s.time_s[used - 1]);
+                file.c_str(), n, used, format_resolved(s.time_s[used - 1], s.dt, 6).c_str());
   s.warnings.push_back(msg);
   s.time_s.resize(used);
   s.source.resize(used);

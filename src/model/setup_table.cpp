@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <string>
 
+#include "core/number_format.hpp"
 #include "model/setup_report.hpp"
 
 namespace shpb {
@@ -82,8 +83,12 @@ void print_process(const json& p) {
               p["samples"].get<std::size_t>(),
               g(p["sample_interval_s"].get<double>() * 1e6).c_str(),
               g(1e-6 / p["sample_interval_s"].get<double>()).c_str(),
-              g(p["record_s"][0].get<double>() * 1e6).c_str(),
-              g(p["record_s"][1].get<double>() * 1e6).c_str());
+              format_resolved(p["record_s"][0].get<double>() * 1e6,
+                              p["sample_interval_s"].get<double>() * 1e6, 4)
+                  .c_str(),
+              format_resolved(p["record_s"][1].get<double>() * 1e6,
+                              p["sample_interval_s"].get<double>() * 1e6, 4)
+                  .c_str());
   std::printf("%-14s %-40s %-14s %-11s %14s %12s %12s\n", "channel", "file", "column", "unit",
               "strain/unit", "min_strain", "max_strain");
   for (const auto& c : p["channels"]) {

@@ -70,15 +70,17 @@ inline Record fractured() {
   return rec;
 }
 
-// The record as a CSV file `time_s,incident,transmitted`, each strain times `scale`.
-inline std::string csv(const Record& r, double scale = 1.0, double dt = kDt,
-                       int samples = kSamples) {
+// The record as a CSV file `time_s,incident,transmitted`, each strain times `scale`, on a clock
+// that reads `clock_start` at the record's first sample (a DAQ's time since it was armed).
+inline std::string csv(const Record& r, double scale = 1.0, double dt = kDt, int samples = kSamples,
+                       double clock_start = 0) {
   std::ostringstream s;
   s.precision(17);
   s << "time_s,incident,transmitted\n";
   for (int i = 0; i < samples; ++i) {
     const double t = i * dt;
-    s << t << "," << scale * r.incident_gauge(t) << "," << scale * r.transmitted_gauge(t) << "\n";
+    s << clock_start + t << "," << scale * r.incident_gauge(t) << ","
+      << scale * r.transmitted_gauge(t) << "\n";
   }
   return s.str();
 }

@@ -626,6 +626,41 @@ TEST_CASE("The strain rate is quoted over the window the scene chooses", "[app][
   CHECK_FALSE(fs::exists(d / "beyond"));
 }
 
+TEST_CASE("Times on a record's clock that starts late are printed to its sample",
+          "[app][process][windows][rate]") {
+  // A DAQ's clock counts from when it was armed: the clean test recorded 58.3 s into it (a DEWESoft
+  // export of a 1 MS/s test read 58.312841 s at its first sample). Six significant digits of such a
+  // time in us ("5.83003e+07 us") name no sample of a 10 MHz record; the messages that point a lab
+  // to a time on its record give it to the sample interval.
+  constexpr double kClock = 58.3;
+  const fs::path d = scratch_dir("reduction_late_clock");
+  json scene = steel_scene();
+  scene["measurement"]["rate_window"] = {{"time", {"58.30027 s", "58.30033 s"}}};
+  scene["measurement"]["windows"] = {{"reflected", {"58.30044 s", "58.30056 s"}}};
+  const std::string record = csv(Record{}, 1.0, kDt, kSamples, kClock);
+  auto r = run_shpb({"process", write(d, scene, record).string(), "-o", (d / "out").string()});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  // The reflected pulse's onset, picked 0.3 us into its 10 us ramp at 450 us (as on a clock from
+  // zero, "A hand-set window far from the pulse's onset ..."): 58300450.3 us.
+  CHECK(has_warning(summary(d / "out"), "the pulse's detected onset (58300450.3 us)"));
+  // A rate window the loading never reaches is refused with the loading's range on the faces'
+  // clock: its ends are curve.csv's first and last times, to the sample.
+  const Table curve = read_table(d / "out" / "curve.csv");
+  scene["measurement"]["rate_window"] = {{"time", {"58.3005 s", "58.3006 s"}}};
+  r = run_shpb({"process", write(d, scene, record).string(), "-o", (d / "beyond").string()});
+  REQUIRE(r.code == 2);
+  const std::string said = "as curve.csv's time_s: ";
+  const auto at = r.err.find(said);
+  REQUIRE(at != std::string::npos);
+  std::istringstream range(r.err.substr(at + said.size()));
+  double from_us = 0, to_us = 0;
+  std::string to;
+  range >> from_us >> to >> to_us;
+  CHECK(from_us == Approx(curve["time_s"].front() * 1e6).epsilon(0).margin(kDt * 1e6));
+  CHECK(to_us == Approx(curve["time_s"].back() * 1e6).epsilon(0).margin(kDt * 1e6));
+}
+
 TEST_CASE("With a pulse shaper the inferred striker velocity is marked not meaningful",
           "[app][process][striker]") {
   const fs::path d = scratch_dir("reduction_shaper");

@@ -10,6 +10,7 @@ namespace tests_core_test_number_format {
 
 using shpb::format_number;
 using shpb::format_range;
+using shpb::format_resolved;
 
 TEST_CASE("Numbers in messages read as a user writes them", "[core][format]") {
   // Typed values come back as typed (the shortest text that reads back as the same double).
@@ -35,6 +36,21 @@ TEST_CASE("Ranges in messages are printed as a user would write them", "[core][f
   CHECK(format_range(1e-5, 0.05) == "[1e-05, 0.05]");
   CHECK(format_range(0, 1, true, false) == "(0, 1]");
   CHECK(format_range(0, 0.49, false, true) == "[0, 0.49)");
+}
+
+TEST_CASE("Times on a record's clock resolve its sample interval", "[core][format]") {
+  // A clock near zero keeps "%.6g": the digits already resolve the sample.
+  CHECK(format_resolved(450.3, 0.1, 6) == "450.3");
+  CHECK(format_resolved(-197.6, 0.08, 4) == "-197.6");
+  // A clock armed 58.3 s before the test: 1 us samples need 8 digits, 0.1 us ones 9.
+  CHECK(format_resolved(58312841, 1, 6) == "58312841");
+  CHECK(format_resolved(58300450.3, 0.1, 6) == "58300450.3");
+  CHECK(format_resolved(58.313055, 1e-6, 6) == "58.313055");
+  // The last sample of 50000 at 8 ns from -80 us: 320 us to 4 digits names no sample.
+  CHECK(format_resolved(319.992, 0.008, 4) == "319.992");
+  // No resolution, or a zero: the digits asked for.
+  CHECK(format_resolved(58312841, 0, 6) == "5.83128e+07");
+  CHECK(format_resolved(0, 1e-6, 6) == "0");
 }
 
 }  // namespace tests_core_test_number_format
