@@ -222,6 +222,31 @@ void refuse_gap_in_rounded_stamps(const std::filesystem::path& file, const LineM
           hint);
 }
 
+// Time stamps too large for a double to hold to their steps: seconds since an epoch (LabVIEW's
+// 1904, Unix's 1970), 3.8e9 s at a 1 MS/s record's 1 us steps, are read to 4.77e-7 s, so their
+// steps come out 0.95 and 1.43 us. The stamps are right as written; what they are read into cannot
+// keep them. Refused by that cause (before the steps are refused as a gap, or repeated stamps
+// rebuilt as a rounded column) when a double's spacing at the largest stamp exceeds the
+// uniformity tolerance of the mean step: only then can it move a step out of it.
+void refuse_unresolved_stamps(const std::filesystem::path& file, const LineMap& lines,
+                              const std::vector<double>& t) {
+  const std::size_t last = std::abs(t.back()) >= std::abs(t.front()) ? t.size() - 1 : 0;
+  const double largest = std::abs(t[last]);
+  const double spacing = std::nextafter(largest, HUGE_VAL) - largest;
+  const double mean_step = (t.back() - t.front()) / static_cast<double>(t.size() - 1);
+  if (!(spacing > kUniformStepTolerance * mean_step)) return;
+  char share[32];
+  std::snprintf(share, sizeof share, "%.3g %%", 100 * spacing / mean_step);
+  throw input_error(
+      file.string(), "line " + std::to_string(lines[last]) + " (time column)",
+      format_resolved(t[last], mean_step, 6) + " s",
+      "time stamps this large are read to " + seconds(spacing) + " (a double's spacing there), " +
+          share + " of the mean step " + seconds(mean_step) +
+          ": their steps cannot be told from gaps; expected times on the record's own clock "
+          "(from its trigger or first sample, as a scope writes them): export them so, or give "
+          "measurement.time.interval (and start) and name the channels' columns");
+}
+
 // What a refusal of the time stamps adds when the first column was taken as the time column by
 // default: a file without a time column reads its first channel there.
 std::string no_time_column_hint(const SignalRequest& request) {
@@ -280,6 +305,7 @@ void check_time_base(const std::filesystem::path& file, RawSignalColumns& raw,
     out.warnings.push_back(msg);
   };
   if (repeats > 0) {
+    refuse_unresolved_stamps(file, lines, t);
     std::size_t distinct = 1;
     for (std::size_t i = 1; i < n; ++i) distinct += t[i] != t[i - 1];
     const ClockFit c = fit_clock(t);
@@ -294,6 +320,7 @@ void check_time_base(const std::filesystem::path& file, RawSignalColumns& raw,
       r.mode == TimeResample::kAlways
           ? first_off || r.interval_s
           : first_off && r.mode == TimeResample::kAuto && jitter <= kAutoResampleJitter;
+  if (first_off && !resample) refuse_unresolved_stamps(file, lines, t);
   if (first_off && !resample && r.mode == TimeResample::kAuto) {
     // Steps too uneven to resample that differ only because the stamps were printed with too few
     // digits: the clock was uniform (a digitizer's crystal), its stamps were not.

@@ -549,6 +549,33 @@ TEST_CASE("Stamps printed with too few digits for the sample rate are read on th
   CHECK(error_of([&] { read_signal_columns(gap); }).find("gap or jump") != std::string::npos);
 }
 
+TEST_CASE("Stamps too large for a double to hold to their steps are refused by that cause",
+          "[core][signal]") {
+  // LabVIEW's absolute time, seconds since 1904: a 1 MS/s record at 3786825658.312841 s written
+  // exactly to the microsecond. A double holds that to 2^-21 s = 0.477 us, so the steps read 0.95
+  // and 1.43 us: once refused as "a gap or jump in the record", which it has none of. The same
+  // stamps 100 s into the acquisition are read on their 1 us clock.
+  auto text = [](long long seconds) {
+    std::string out = "time_s,a\n";
+    for (int i = 0; i < 600; ++i) {
+      char line[64];
+      std::snprintf(line, sizeof line, "%lld.%06d,%d\n", seconds, 312841 + i, i);
+      out += line;
+    }
+    return out;
+  };
+  const std::string refused = error_of([&] {
+    read_signal_columns(csv_request(write_file("epoch.csv", text(3786825658LL)), {by_index(1)}));
+  });
+  CHECK(refused.find("epoch.csv: line 601 (time column)") != std::string::npos);
+  CHECK(refused.find("time stamps this large are read to 4.76837e-07 s") != std::string::npos);
+  CHECK(refused.find("gap or jump") == std::string::npos);
+  const auto read =
+      read_signal_columns(csv_request(write_file("armed.csv", text(100)), {by_index(1)}));
+  CHECK(read.dt_s == Approx(1e-6).epsilon(1e-9));
+  CHECK(read.warnings.empty());
+}
+
 // A scope export at 10 MHz written in a fixed format: row i holds t = i·0.1 µs and the value i.
 std::vector<std::string> fixed_format_rows(int n) {
   std::vector<std::string> rows;
