@@ -23,6 +23,9 @@ namespace {
 // The face window runs this fraction of the incident duration past its end, so the
 // transmitted pulse (delayed by the specimen transit) is not cut.
 constexpr double kWindowTail = 0.15;
+// A record ends with a pulse on it when the mean of its last this many samples lies outside the
+// rest band: a few, so that one noisy sample decides nothing.
+constexpr std::size_t kEndSamples = 5;
 
 // The pulses are moved by the gauge distances: refuse a delay of more samples than any record
 // holds before the propagation pads the signal by it.
@@ -216,6 +219,9 @@ PulseTiming time_the_pulses(const std::vector<double>& t, double dt, std::size_t
 // (an elastic bar without amplitude factors): no copy of three whole records.
 struct FacePulses {
   std::vector<double> ei, er, et, fi, fr, ft;
+  // How much short of a pure delay the moved reflected and transmitted pulses already depend on
+  // their record's end (Propagator::end_reach_s).
+  double reach_r = 0, reach_t = 0;
 };
 FacePulses pulses_at_faces(const PreparedSignal& inc, const PreparedSignal& tra, double dt,
                            const PulseTiming& timing, const KolskySetup& k,
@@ -277,13 +283,14 @@ FacePulses pulses_at_faces(const PreparedSignal& inc, const PreparedSignal& tra,
   };
   auto moved = [&](const std::vector<double>& x, const BarWaveguide& w,
                    const DispersionTable* table, double distance, double extra, AmplitudeFactor a,
-                   WaveQuantity q) {
+                   WaveQuantity q, double* reach = nullptr) {
     PropagationOptions o = po;
     o.amplitude = a;
     o.quantity = q;
     o.cutoff_fa_over_c0 = cutoff_fa_over_c0(ds, w);
     if (!ds.correction) {
       Propagator p(w, o);
+      if (reach) *reach = p.end_reach_s(x.size(), dt, distance);
       return delayed(p.propagate(x, dt, distance), extra);
     }
     const DispersionTable& tab = *table;
@@ -296,6 +303,7 @@ FacePulses pulses_at_faces(const PreparedSignal& inc, const PreparedSignal& tra,
                         "with amplitude factors the cut-off must lie below the m1 pole (f·a/c0 = " +
                             std::to_string(tab.m1_pole_normalized_frequency()) + ")");
     Propagator p(tab, w, o, &plans);
+    if (reach) *reach = p.end_reach_s(x.size(), dt, distance);
     return delayed(p.propagate(x, dt, distance), extra);
   };
   const double d_i = k.incident_distance_m, d_t = k.transmitted_distance_m;
@@ -305,8 +313,8 @@ FacePulses pulses_at_faces(const PreparedSignal& inc, const PreparedSignal& tra,
   constexpr auto kVelocity = WaveQuantity::kVelocity, kForce = WaveQuantity::kForce;
   FacePulses f;
   f.ei = moved(inc.x, k.front_waveguide, front, d_i, 0, kin, kVelocity);
-  f.er = moved(inc.x, k.front_waveguide, front, -d_i, timing.extra_r, kin, kVelocity);
-  f.et = moved(tra.x, k.back_waveguide, back, -d_t, timing.extra_t, kin, kVelocity);
+  f.er = moved(inc.x, k.front_waveguide, front, -d_i, timing.extra_r, kin, kVelocity, &f.reach_r);
+  f.et = moved(tra.x, k.back_waveguide, back, -d_t, timing.extra_t, kin, kVelocity, &f.reach_t);
   constexpr auto kStress = AmplitudeFactor::kStress;
   if (ds.amplitude_factors || k.front_waveguide.viscoelastic() || k.back_waveguide.viscoelastic()) {
     const auto force = ds.amplitude_factors ? kStress : AmplitudeFactor::kNone;
@@ -318,15 +326,68 @@ FacePulses pulses_at_faces(const PreparedSignal& inc, const PreparedSignal& tra,
   return f;
 }
 
+// Whether a gauge's record ends with a pulse still on it: the mean of its last kEndSamples
+// samples beyond what a following pulse must rise to (twice the rest band, max(5σ, 3 % of its
+// peak)): a pulse's ringing tail at the end (±7 % of the peak on a 20 mm steel bar at 1 MS/s) is
+// not one.
+bool ends_in_pulse(const PreparedSignal& s) {
+  double peak = 0;
+  for (const double x : s.x) peak = std::max(peak, std::abs(x));
+  const std::size_t m = std::min(kEndSamples, s.x.size());
+  double sum = 0;
+  for (std::size_t i = s.x.size() - m; i < s.x.size(); ++i) sum += s.x[i];
+  return std::abs(sum / static_cast<double>(m)) > following_pulse_min_peak(s.noise, peak);
+}
+
+// The last time at the faces at which every pulse is read from the record: the reflected and
+// transmitted pulses are moved back from their gauges (negative shifts), so the record holds them
+// at the faces only until its end less their travel, and a record that ends while a pulse is still
+// on it less the reach of the dispersion correction (the tapered end, the slowest component's
+// extra travel) too. Beyond it a pulse at the faces was read off the record (as zero) or from the
+// taper: a record cut while its reflected pulse still passed its gauge (a DEWESoft export of a
+// 1 MS/s test cut 4 us early) read its 1-wave peak 10 % and its 3-wave peak 5 % high, cut 24 us
+// early its 3-wave peak 32 % high, blamed on a specimen that broke.
+struct RecordedAtFaces {
+  double time_s = 0;
+  bool by_reflected = true;  // the reflected pulse's gauge ends it (else the transmitted one's)
+};
+RecordedAtFaces recorded_at_faces(const std::vector<double>& t, const FacePulses& f,
+                                  const PreparedSignal& inc, const PreparedSignal& tra,
+                                  const ProcessingResult& r) {
+  const double reflected = r.shift_reflected_s - (ends_in_pulse(inc) ? f.reach_r : 0.0);
+  const double transmitted = r.shift_transmitted_s - (ends_in_pulse(tra) ? f.reach_t : 0.0);
+  return {t.back() + std::min({0.0, reflected, transmitted}), reflected <= transmitted};
+}
+
+// A record that ends before the loading has passed the faces (the incident pulse's duration from
+// the window's start) ends the curve short of the loading's end: said, with the gauge whose pulse
+// the record ends in.
+void warn_record_ends_in_loading(const std::vector<double>& t, const RecordedAtFaces& at,
+                                 const PulseTiming& timing, const KolskySetup& k,
+                                 ProcessingResult& r) {
+  const double recorded = at.time_s, loaded = timing.face_start + timing.duration;
+  const bool reflected = at.by_reflected;
+  if (!(recorded < loaded)) return;
+  const double dt = t[1] - t[0];
+  r.warnings.push_back(
+      "gauge \"" + (reflected ? k.incident_gauge : k.transmitted_gauge) +
+      "\": the record ends at " + format_resolved(t.back(), dt, 6) + " s" +
+      fmt(", %.3g us before the ", (loaded - recorded) * 1e6) +
+      (reflected ? "reflected" : "transmitted") + " pulse has passed it (the loading lasts until " +
+      format_resolved(loaded, dt, 6) + " s at the faces, the record holds every pulse until " +
+      format_resolved(recorded, dt, 6) +
+      " s): the curve ends with the record, short of the loading's end; a longer record keeps it");
+}
+
 // The pulses cut to a common window at the faces — the incident duration plus a tail, never
-// reaching the next reflection of the incident pulse (2 d_I / c0 later) nor the record's end —
-// and reduced to the curve.
-void reduce_at_faces(const std::vector<double>& t, double dt, const FacePulses& f,
+// reaching the next reflection of the incident pulse (2 d_I / c0 later) nor the time the record
+// holds every pulse to (recorded_at_faces) — and reduced to the curve.
+void reduce_at_faces(const std::vector<double>& t, double dt, const FacePulses& f, double recorded,
                      const PulseTiming& timing, const KolskySetup& k,
                      const ProcessingOptions& options, ProcessingResult& r) {
   double face_end = timing.face_start + (1 + kWindowTail) * timing.duration;
   face_end = std::min(
-      {face_end, timing.face_start + 2 * k.incident_distance_m / k.front.c0_m_s - dt, t.back()});
+      {face_end, timing.face_start + 2 * k.incident_distance_m / k.front.c0_m_s - dt, recorded});
   // The window opens where the specimen is still at rest, and the strain is integrated from zero
   // there: at the last sample at or before the incident pulse's last sample at rest on its gauge
   // (the one before its onset, the first beyond the rest band) moved to the faces. The pulse
@@ -340,8 +401,16 @@ void reduce_at_faces(const std::vector<double>& t, double dt, const FacePulses& 
   if (a > 0 && (a == t.size() || t[a] > at_rest)) --a;
   const std::size_t b = std::min(index_at(t, face_end) + 1, t.size());
   if (!(b > a + 4))
-    throw input_error(options.scene_file, "measurement", "gauge \"" + k.incident_gauge + "\"",
-                      "the pulse window at the specimen faces lies outside the record");
+    throw input_error(
+        options.scene_file, "measurement", "gauge \"" + k.incident_gauge + "\"",
+        "the pulse window at the specimen faces lies outside the record" +
+            (recorded < face_end + dt
+                 ? " (it holds every pulse at the faces until " + format_resolved(recorded, dt, 6) +
+                       " s, and the loading starts there at " +
+                       format_resolved(timing.face_start, dt, 6) +
+                       " s: it ends before the reflected or transmitted pulse has reached its "
+                       "gauge; a longer record)"
+                 : std::string()));
   r.face_start_s = t[a];
   r.face_end_s = t[b - 1];
   r.transmitted_window = {k.transmitted_gauge, t[a] - r.shift_transmitted_s,
@@ -503,8 +572,10 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
   r.incident_window = {k.incident_gauge, t[on], t[end - 1], r.incident_window.detected};
   const PulseTiming timing = time_the_pulses(t, dt, on, end, inc, tra, k, options, r);
   warn_incident_overlap(k, dt, r);
-  reduce_at_faces(t, dt, pulses_at_faces(inc, tra, dt, timing, k, options, r), timing, k, options,
-                  r);
+  const FacePulses faces = pulses_at_faces(inc, tra, dt, timing, k, options, r);
+  const RecordedAtFaces recorded = recorded_at_faces(t, faces, inc, tra, r);
+  reduce_at_faces(t, dt, faces, recorded.time_s, timing, k, options, r);
+  warn_record_ends_in_loading(t, recorded, timing, k, r);
   warn_transmitted_echo(k, timing, dt, r);
 
   // Summary numbers.

@@ -153,6 +153,30 @@ std::complex<double> Propagator::viscoelastic_transfer(double f, double distance
   return factor * std::exp(std::complex<double>(0, -omega * distance_m) * slowness);
 }
 
+// The slowest phase velocity below the cut-off; a viscoelastic bar's is its static one.
+double Propagator::slowest_speed_m_s() const {
+  return (options_.dispersion ? table_->phase_velocity(options_.cutoff_fa_over_c0) : 1.0) *
+         bar_.c0_m_s * bar_.slowest_speed_fraction();
+}
+
+// Over 2 % of the record but at most kTaperPeriods periods of the cut-off: the ramp's own
+// spectrum then lies below the cut-off (no ringing), and a long record's pulse near its start (a
+// short pre-trigger) is never under it; over 2 % of a 100 000-sample record the taper scaled such
+// a pulse down unseen.
+std::size_t Propagator::taper_samples(std::size_t samples, double dt) const {
+  const double cutoff_period_samples =
+      bar_.radius_m / (options_.cutoff_fa_over_c0 * bar_.c0_m_s * dt);
+  return std::min(static_cast<std::size_t>(options_.taper_fraction * static_cast<double>(samples)),
+                  static_cast<std::size_t>(std::ceil(kTaperPeriods * cutoff_period_samples)));
+}
+
+double Propagator::end_reach_s(std::size_t samples, double dt, double distance_m) const {
+  if (!options_.dispersion) return 0;
+  const double c = table_->phase_velocity(options_.cutoff_fa_over_c0) * bar_.c0_m_s;
+  return static_cast<double>(taper_samples(samples, dt)) * dt +
+         std::abs(distance_m) * (1 / c - 1 / bar_.c0_m_s);
+}
+
 void Propagator::propagate(std::span<const double> signal, double dt, double distance_m,
                            std::span<double> out, double delay_s) {
   const std::size_t n = signal.size();
@@ -163,13 +187,9 @@ void Propagator::propagate(std::span<const double> signal, double dt, double dis
     delay_by_interpolation(signal, distance_m / (bar_.c0_m_s * dt) + delay_s / dt, out);
     return;
   }
-  // Padding: room for the largest delay of any passed component (slowest phase velocity below
-  // the cut-off; a viscoelastic bar's is its static one) plus a quarter record, so nothing wraps
-  // into the kept samples.
-  double c_min = options_.dispersion
-                     ? table_->phase_velocity(options_.cutoff_fa_over_c0) * bar_.c0_m_s
-                     : bar_.c0_m_s;
-  c_min *= bar_.slowest_speed_fraction();
+  // Padding: room for the largest delay of any passed component plus a quarter record, so
+  // nothing wraps into the kept samples.
+  const double c_min = slowest_speed_m_s();
   const auto shift = static_cast<std::size_t>(
       std::ceil(std::abs(distance_m) / (c_min * dt) + std::abs(delay_s) / dt));
   // A law's transfer remembers as long as its slowest arm: its kernel's tail, wrapped around the
@@ -184,15 +204,8 @@ void Propagator::propagate(std::span<const double> signal, double dt, double dis
   std::span<double> x = fft.samples();
   std::copy(signal.begin(), signal.end(), x.begin());
   std::fill(x.begin() + static_cast<std::ptrdiff_t>(n), x.end(), 0.0);
-  // Cosine taper of both ends: the record need not start or end at zero. Over 2 % of the record
-  // but at most kTaperPeriods periods of the cut-off: the ramp's own spectrum then lies below the
-  // cut-off (no ringing), and a long record's pulse near its start (a short pre-trigger) is never
-  // under it; over 2 % of a 100 000-sample record the taper scaled such a pulse down unseen.
-  const double cutoff_period_samples =
-      bar_.radius_m / (options_.cutoff_fa_over_c0 * bar_.c0_m_s * dt);
-  const auto taper =
-      std::min(static_cast<std::size_t>(options_.taper_fraction * static_cast<double>(n)),
-               static_cast<std::size_t>(std::ceil(kTaperPeriods * cutoff_period_samples)));
+  // Cosine taper of both ends: the record need not start or end at zero.
+  const std::size_t taper = taper_samples(n, dt);
   for (std::size_t i = 0; i < taper; ++i) {
     const double w = 0.5 * (1 - std::cos(std::numbers::pi * (static_cast<double>(i) + 0.5) /
                                          static_cast<double>(taper)));

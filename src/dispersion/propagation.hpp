@@ -103,6 +103,13 @@ class Propagator {
                  std::span<double> out, double delay_s = 0);
   std::vector<double> propagate(std::span<const double> signal, double dt, double distance_m);
 
+  // How much earlier than a pure delay by distance/c0 the dispersion-corrected signal already
+  // depends on the record's last samples: the end's taper and the slowest passed component's extra
+  // travel over the distance (0 without the correction; a polymer bar's law, whose slow speeds
+  // are its creep, is not counted). A record that ends while its pulse is still on is read that
+  // much short of its end once moved (methods.md §6).
+  double end_reach_s(std::size_t samples, double dt, double distance_m) const;
+
   // Low-pass gain H at frequency f (1 below the roll-off, 0 above the cut-off).
   double lowpass_gain(double frequency_Hz) const;
   // A viscoelastic bar's low-pass at options.law_cutoff_Hz (1 below its roll-off).
@@ -111,6 +118,10 @@ class Propagator {
  private:
   // The transfer function of a viscoelastic bar at ω > 0 (docs/methods.md §5.1).
   std::complex<double> viscoelastic_transfer(double frequency_Hz, double distance_m) const;
+  // The slowest phase velocity any passed component travels at.
+  double slowest_speed_m_s() const;
+  // The samples of each end tapered to zero before the transform.
+  std::size_t taper_samples(std::size_t samples, double dt) const;
 
   const DispersionTable* table_;
   BarWaveguide bar_;

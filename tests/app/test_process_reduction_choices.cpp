@@ -303,6 +303,9 @@ TEST_CASE("A polymer bar's struck end too far from its gauge to read the striker
   CHECK(f["striker_velocity_m_s"]["inferred"].get<double>() < 2.0 * (1 - kVelocityTolerance));
   json near = far;
   near["bars"][1]["gauges"] = {{{"name", "incident"}, {"distance_to_specimen", "1.8 m"}}};
+  // Long enough to record the reflected pulse, 3.6 m of travel after the incident one: a record
+  // that ends before it reaches the gauge holds no pulse window at the faces (refused).
+  near["simulation"]["duration"] = "4.2 ms";
   const json n = simulate_and_process(scratch_dir("reduction_soft_struck_end_near"), near);
   CHECK(!has_warning(n, "the inferred striker velocity"));
   CHECK(n["striker_velocity_m_s"]["inferred"].get<double>() ==
@@ -661,6 +664,34 @@ TEST_CASE("Times on a record's clock that starts late are printed to its sample"
   CHECK(to_us == Approx(curve["time_s"].back() * 1e6).epsilon(0).margin(kDt * 1e6));
 }
 
+TEST_CASE("A record that ends while its reflected pulse passes the gauge ends the curve there",
+          "[app][process][warnings]") {
+  // The clean test cut at 500 us, halfway through the reflected pulse (450-550 us on the incident
+  // gauge, 1 m from the specimen): the record holds it at the faces only until 300 us, 50 us into
+  // the 100 us loading. The faces' window ran to 365 us with the reflected pulse read as zero
+  // beyond 300 us, so the front face carried the whole incident pulse there: the 3-wave stress
+  // (1e-3 + 0.4e-3)/2 against the true 0.4e-3, 560 MPa for 320 MPa, with no word.
+  const fs::path d = scratch_dir("reduction_record_ends_in_loading");
+  const auto r =
+      run_shpb({"process", write(d, steel_scene(), csv(Record{}, 1.0, kDt, 5000)).string(), "-o",
+                (d / "out").string(), "-q"});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  const json s = summary(d / "out");
+  // E (A_bar/A_specimen) 0.4e-3 = 200 GPa x 4 x 0.4e-3 of the record's exact trapezoids.
+  constexpr double kExact = 1e-6;
+  CHECK(s["reductions"]["3-wave"]["peak_stress_Pa"].get<double>() == Approx(320e6).epsilon(kExact));
+  CHECK(s["windows"]["specimen_faces"]["end_s"].get<double>() <= 300e-6 + kDt / 2);
+  CHECK(has_warning(s,
+                    "gauge \"incident\": the record ends at 0.0004999 s, 49.7 us before the "
+                    "reflected pulse has passed it"));
+  // The whole record: the loading is held, nothing said.
+  const auto whole = run_shpb({"process", write(d, steel_scene(), csv(Record{})).string(), "-o",
+                               (d / "whole").string(), "-q"});
+  REQUIRE(whole.code == 0);
+  CHECK_FALSE(has_warning(summary(d / "whole"), "the record ends at"));
+}
+
 TEST_CASE("With a pulse shaper the inferred striker velocity is marked not meaningful",
           "[app][process][striker]") {
   const fs::path d = scratch_dir("reduction_shaper");
@@ -885,7 +916,9 @@ TEST_CASE("A specimen stiffer than the bars first reflects a compressive pulse, 
           "[app][process][alignment]") {
   // Tungsten carbide (600 GPa, 15600 kg/m3, Ø12 mm) on titanium bars (114 GPa, Ø20 mm): impedance
   // ratio ρcA 1.53, so the reflected pulse starts compressive, σ_R/σ_I = (Z_s − Z_b)/(Z_s + Z_b)
-  // = 0.21, and turns tensile only in the specimen's ring-up. Simulated, so the geometry is exact.
+  // = 0.21, and turns tensile only in the specimen's ring-up. Simulated, so the geometry is exact;
+  // 400 us hold the reflected pulse until it has passed the incident gauge (350 us ended 25 us
+  // before, and the curve was reduced with it read as zero there).
   const fs::path d = scratch_dir("reduction_stiff_specimen");
   std::ofstream(d / "scene.json") << R"({
   "bars": [
@@ -901,7 +934,7 @@ TEST_CASE("A specimen stiffer than the bars first reflects a compressive pulse, 
     "ti": { "model": "elastic", "density": 4430, "youngs_modulus": "114 GPa", "poisson_ratio": 0.34 },
     "wc": { "model": "elastic", "density": 15600, "youngs_modulus": "600 GPa", "poisson_ratio": 0.22 }
   },
-  "simulation": { "duration": "350 us", "sample_rate": "10 MHz" }
+  "simulation": { "duration": "400 us", "sample_rate": "10 MHz" }
 })";
   auto r = run_shpb({"simulate", (d / "scene.json").string(), "-o", (d / "sim").string(), "-q"});
   REQUIRE(r.code == 0);
