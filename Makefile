@@ -49,10 +49,9 @@ fuzz:
 
 # The printed output shown in the experiment READMEs and docs/commands.md, run again and rewritten,
 # and the column tables of docs/outputs.md from src/core/output_schema.json (ctest docs.outputs
-# fails when either is stale).
+# fails when either is stale, or when a page shows a command with an option it does not have).
 docs: build
-	@python3 tools/doc_outputs.py --update $(BUILD)/shpb experiments/*/README.md docs/commands.md \
-	  docs/outputs.md
+	@python3 tools/doc_outputs.py --update $(BUILD)/shpb experiments/*/README.md docs/*.md README.md
 
 bench: deps
 	@bash tools/bench.sh $(BUILD)

@@ -23,6 +23,10 @@ list the C++ writers and the report take their names from): a line
 (the schema's id of a file) is followed by the table of that file's columns, checked and rewritten
 like the printed output.
 
+Every command a page shows (`shpb CMD ...`, `build/shpb CMD ...`, in code or in prose) is also
+checked for its options: each `-x` or `--name` after the command must be one that `shpb CMD
+--help` lists (both modes; a wrong one is reported with its file and line, and is not rewritten).
+
 Usage: doc_outputs.py (--check | --update) SHPB_EXE FILE.md...
 """
 from __future__ import annotations
@@ -118,11 +122,41 @@ def schema_blocks(lines: list[str]):
             yield match.group(1), i + 1, end
 
 
+# A command shown on a page: `shpb CMD` and its arguments up to the end of the code span, the
+# table cell, a comment or the line.
+SHOWN_COMMAND = re.compile(r"\bshpb (validate|simulate|process|compare|dispersion|study|fit|calibrate"
+                           r"|plan|report)\b([^`|#\n]*)")
+# An option among the arguments: a dash and a letter, not inside a path or a word (`-1`, `a-b` and
+# `results/x-y` are none).
+SHOWN_OPTION = re.compile(r"(?<![\w/.-])(--?[A-Za-z][A-Za-z0-9-]*)")
+
+
+def unknown_options(exe: str, files: list[str]) -> list[str]:
+    """file:line: the options of shown commands that the command's --help does not list."""
+    known: dict[str, set[str]] = {}
+    found = []
+    for name in files:
+        for number, line in enumerate(Path(name).read_text(encoding="utf-8").split("\n"), 1):
+            for command, arguments in SHOWN_COMMAND.findall(line):
+                if command not in known:
+                    text = subprocess.run([exe, command, "--help"], capture_output=True, text=True,
+                                          check=False).stdout
+                    known[command] = set(SHOWN_OPTION.findall(text))
+                found += [f"{name}:{number}: shpb {command}: {option}: not an option of the command"
+                          for option in SHOWN_OPTION.findall(arguments)
+                          if option not in known[command]]
+    return found
+
+
 def main(argv: list[str]) -> int:
     if len(argv) < 4 or argv[1] not in ("--check", "--update"):
         print(__doc__.strip().splitlines()[-1], file=sys.stderr)
         return 2
     update, exe, files = argv[1] == "--update", argv[2], argv[3:]
+    unknown = unknown_options(exe, files)
+    if unknown:
+        print("\n".join(unknown), file=sys.stderr)
+        return 1
     stale = 0
     for name in files:
         path = Path(name)
