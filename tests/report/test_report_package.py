@@ -616,3 +616,143 @@ def test_a_signal_at_any_moment_of_the_drawing_leaves_no_temporary(tmp_path, mon
     monkeypatch.setattr(report_main.os, "chmod", chmod)
     assert [p.name for p in tmp_path.iterdir() if p.name.startswith(".report-")] == []
     assert not (tmp_path / "report.html").exists()
+
+
+class Kept:
+    """A figure collector that keeps the figures, to read what they draw."""
+
+    def __init__(self):
+        self.figures = []
+
+    def save(self, fig, *caption):
+        self.figures.append(fig)
+
+
+def band_x(ax):
+    """The x-values of every band (fill_between) drawn on `ax`, each as a set."""
+    return [{round(x, 9) for x, _ in band.get_paths()[0].vertices} if band.get_paths() else set()
+            for band in ax.collections]
+
+
+def test_a_one_wave_primarys_bands_surround_the_curves_they_belong_to(tmp_path):
+    # "primary": "1-wave": the bands are quantiles at the row's 1-wave strain, the rate band the
+    # 1-wave rate's (docs/outputs.md, curve.csv). The 3-wave curve is drawn against its own
+    # strain: a 3-wave band at the 1-wave strain surrounded no drawn curve, and the rate band
+    # was drawn around the 3-wave rate it is not a band of. Here the 1-wave strain is twice the
+    # 3-wave strain and the rates differ by 1000 1/s; the last row's band fields are empty.
+    from shpb_report import process
+    rows = []
+    for i in range(6):
+        e3, e1 = 0.01 * i, 0.02 * i
+        band = ",,,,,,,," if i == 5 else "90e6,100e6,110e6,190e6,200e6,210e6,2900,3000,3100"
+        rows.append(f"{1e-6 * i},2000,{e3},200e6,200e6,100e6,{e1},{200e6 * (1 - e1)},0,3000,{e1},"
+                    + band)
+    write(tmp_path, "curve.csv",
+          "time_s,strain_rate_1_s,strain,stress_1wave_Pa,stress_2wave_Pa,stress_3wave_Pa,"
+          "true_strain,true_stress_Pa,equilibrium_ratio,strain_rate_1wave_1_s,strain_1wave,"
+          "stress_3wave_p2.5_Pa,stress_3wave_p50_Pa,stress_3wave_p97.5_Pa,stress_1wave_p2.5_Pa,"
+          "stress_1wave_p50_Pa,stress_1wave_p97.5_Pa,strain_rate_p2.5_1_s,strain_rate_p50_1_s,"
+          "strain_rate_p97.5_1_s\n" + "\n".join(rows) + "\n")
+    write(tmp_path, "summary.json", '{"command": "process", "test": "compression", "primary": '
+          '{"reduction": "1-wave", "strain": "strain_1wave", "stress": "stress_1wave_Pa"}}')
+    kept = Kept()
+    process.fig_curve(Source(str(tmp_path), "."), kept)
+    curves, rates = kept.figures
+    ax = curves.axes[0]
+    one_wave_x = {round(100 * 0.02 * i, 9) for i in range(5)}  # where the band fields are given
+    assert band_x(ax) == [one_wave_x]
+    ax = rates.axes[0]
+    (band,) = ax.collections
+    lo, hi = (min(band.get_paths()[0].vertices[:, 1]), max(band.get_paths()[0].vertices[:, 1]))
+    primary = [line for line in ax.get_lines() if "primary" in line.get_label()]
+    assert len(primary) == 1 and all(lo <= y <= hi for y in primary[0].get_ydata()[:5])
+
+
+def test_a_tension_tests_curve_is_labelled_and_overlaid_tension_positive(tmp_path):
+    # curve.csv of a "test": "tension" is tension positive, specimen.csv compression positive
+    # whatever the test (docs/outputs.md, curve.csv and Conventions). The axes said
+    # "compression +" and the model truth of a sibling simulation was drawn mirrored into the
+    # third quadrant.
+    from shpb_report import process
+    write(tmp_path, "curve.csv", "time_s,strain_rate_1_s,strain,stress_1wave_Pa,stress_2wave_Pa,"
+          "stress_3wave_Pa,true_strain,true_stress_Pa,equilibrium_ratio\n"
+          "0,1000,0,0,0,0,0,0,0\n1e-6,1000,0.05,300e6,300e6,300e6,0.0488,315e6,0\n")
+    write(tmp_path, "summary.json", '{"command": "process", "test": "tension"}')
+    truth_dir = tmp_path / "simulate"
+    truth_dir.mkdir()
+    write(truth_dir, "specimen.csv", "time_s,strain,stress_Pa,strain_rate_1_s,true_strain,"
+          "true_stress_Pa\n0,0,0,0,0,0\n1e-6,-0.05,-300e6,-1000,-0.0488,-315e6\n")
+    kept = Kept()
+    truth = Source(str(truth_dir), "simulate").table("specimen.csv")
+    process.fig_curve(Source(str(tmp_path), "."), kept, truth)
+    labels = [text for fig in kept.figures for ax in fig.axes
+              for text in (ax.get_xlabel(), ax.get_ylabel()) if "+" in text]
+    assert labels and all("tension +" in text for text in labels)
+    truth_lines = [line for fig in kept.figures for ax in fig.axes for line in ax.get_lines()
+                   if "truth" in line.get_label()]
+    assert len(truth_lines) == 3
+    for line in truth_lines:  # the truth's stress-strain and rate, tension positive as the curve
+        assert max(line.get_ydata()) > 0 and min(line.get_ydata()) >= 0
+
+
+def test_a_campaign_draws_each_tests_primary_reduction_in_its_own_sense(tmp_path):
+    # The campaign's plot drew every test's 3-wave stress against the 3-wave strain, labelled
+    # compression positive, whatever the test's primary reduction and loading.
+    from shpb_report import process
+    header = ("time_s,strain_rate_1_s,strain,stress_1wave_Pa,stress_2wave_Pa,stress_3wave_Pa,"
+              "strain_1wave\n")
+    for name, test, primary in (("a", "tension", "3-wave"), ("b", "compression", "1-wave")):
+        (tmp_path / name).mkdir()
+        write(tmp_path / name, "curve.csv", header + "0,1,0,0,0,0,0\n1,1,0.1,200e6,0,100e6,0.2\n")
+        strain, stress = (("strain", "stress_3wave_Pa") if primary == "3-wave"
+                          else ("strain_1wave", "stress_1wave_Pa"))
+        write(tmp_path / name, "summary.json",
+              f'{{"command": "process", "test": "{test}", "primary": {{"reduction": '
+              f'"{primary}", "strain": "{strain}", "stress": "{stress}"}}}}')
+    write(tmp_path, "campaign.csv", "test\na\nb\n")
+    kept = Kept()
+    sources = [Source(str(tmp_path / n), n) for n in ("a", "b")]
+    process.fig_campaign(str(tmp_path), sources, kept)
+    (ax,) = kept.figures[0].axes
+    a, b = ax.get_lines()
+    assert list(a.get_xdata()) == [0, 10] and list(a.get_ydata()) == [0, 100]
+    assert list(b.get_xdata()) == [0, 20] and list(b.get_ydata()) == [0, 200]
+    assert "compression +" not in ax.get_xlabel() and "compression +" not in ax.get_ylabel()
+
+
+def legends_above_their_axes(fig):
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    legends = [(ax.get_legend(), ax) for ax in fig.axes if ax.get_legend() is not None]
+    return legends and all(legend.get_window_extent(renderer).y0
+                           >= ax.get_window_extent(renderer).y1 for legend, ax in legends)
+
+
+def test_a_calibration_shots_legend_hides_no_trace_and_the_bands_strain_is_in_percent(tmp_path):
+    # A calibration shot's legend sat inside the axes, over the last returning pulse, and a
+    # fit's over the pulse's tail; the Monte Carlo's stress-strain panel had its strain as a fraction where every other figure
+    # of the report has it in % (docs/outputs.md, report).
+    from shpb_report import calibrate, study
+    write(tmp_path, "calibration.json", "{}")
+    write(tmp_path, "shot-1.csv", "time_s,inc_measured,inc_nominal,inc_fitted,inc_compared\n"
+          "0,0,0,0,1\n1e-4,-1e-3,-1e-3,-1e-3,1\n2e-4,0,0,0,1\n")
+    write(tmp_path, "summary.json",
+          '{"scenes": [{"signals": "shot-1.csv", "gauges": ["inc"], "kind": "bars apart"}],'
+          ' "draws": 2}')
+    kept = Kept()
+    calibrate.fig_calibration(Source(str(tmp_path), "."), kept)
+    (fig,) = kept.figures
+    assert legends_above_their_axes(fig)
+    from shpb_report import fit
+    write(tmp_path, "signals.csv", "test,pulse,time_s,measured_strain,start_strain,fitted_strain\n"
+          "a,reflected,0,0,0,0\na,reflected,1e-6,1e-3,1e-3,1e-3\n")
+    kept = Kept()
+    fit.fig_fit(Source(str(tmp_path), "."), kept)
+    assert legends_above_their_axes(kept.figures[0])
+    write(tmp_path, "gauge_bands.csv", "time_s,inc,inc_p2.5,inc_p50,inc_p97.5\n0,0,0,0,0\n")
+    write(tmp_path, "curve_bands.csv", "strain,stress_3wave_Pa,stress_3wave_p2.5_Pa,"
+          "stress_3wave_p97.5_Pa\n0,0,0,0\n0.2,300e6,290e6,310e6\n")
+    kept = Kept()
+    study.fig_monte_carlo(Source(str(tmp_path), "."), kept)
+    ax = kept.figures[0].axes[1]
+    assert "(%" in ax.get_xlabel() and max(ax.get_lines()[0].get_xdata()) == pytest.approx(20)

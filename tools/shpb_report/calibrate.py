@@ -5,7 +5,7 @@ import os
 
 import numpy as np
 
-from .drawing import MICRO, US, new_figure, panel_rows
+from .drawing import MICRO, US, new_figure, outside_legend, panel_rows
 from .reading import ReportError, Table
 
 
@@ -39,10 +39,10 @@ def fig_calibration(src, figs):
                     alpha=0.7, label="nominal")
             ax.plot(time, fitted * MICRO, color="C3", linewidth=1.0, linestyle="--",
                     label="fitted")
-            ax.set_title(f"{shot.get('kind', '')}: gauge {g}", fontsize=9)
+            ax.set_title(f"{shot.get('kind', '')}: gauge {g}", fontsize=9, pad=20)
             ax.set_xlabel("time (µs)")
-            ax.set_ylabel("strain (µε)")
-            ax.legend(loc="lower right", fontsize=7)
+            ax.set_ylabel("strain (µε, tension +)")
+            outside_legend(ax)  # inside, it hid the last returning pulse
             ax = axes[i, 1]
             residual = np.where(compared, measured - fitted, np.nan)
             ax.plot(time, residual * MICRO, color="C3", linewidth=0.8)
@@ -52,7 +52,7 @@ def fig_calibration(src, figs):
                                              for x in ("nominal", "fitted")):
                 title += (f" (RMS {100 * rms['nominal']:.2f} % → {100 * rms['fitted']:.2f} % "
                           "of peak)")
-            ax.set_title(title, fontsize=9)
+            ax.set_title(title, fontsize=9, pad=20)  # level with the left one
             ax.set_xlabel("time (µs)")
             ax.set_ylabel("measured − fitted (µε)")
         figs.save(fig, src.png(f"calibration_shot{k}"),

@@ -3,7 +3,7 @@ signals.csv): measured, starting and fitted pulses per test, the processed curve
 and the parameter correlations."""
 import numpy as np
 
-from .drawing import MICRO, MPA, US, new_figure, panel_rows
+from .drawing import MICRO, MPA, US, new_figure, outside_legend, panel_rows
 from .reading import ReportError, number_pair
 from .schema import columns
 
@@ -44,10 +44,10 @@ def fig_fit(src, figs):
             if all(isinstance(v, (int, float)) and not isinstance(v, bool)
                    for v in (before, after)):
                 title += f" (NRMSE {before:.3f} → {after:.3f})"
-            ax.set_title(title, fontsize=9)
+            ax.set_title(title, fontsize=9, pad=20)
             ax.set_xlabel("time (µs)")
-            ax.set_ylabel("strain (µε)")
-            ax.legend(loc="lower right", fontsize=7)
+            ax.set_ylabel("strain (µε, tension +)")
+            outside_legend(ax)  # inside, it hid the pulse's tail
     figs.save(fig, src.png("fit_signals"), src.title("Fit: measured and simulated pulses"),
               "Each compared window of each test: measured (black), simulated with the starting "
               "law (blue) and with the fitted one (dashed); NRMSE as in summary.json.")
@@ -68,7 +68,7 @@ def fig_fit(src, figs):
             ax.plot(ep, c.numeric(CURVES.stress_fitted_Pa)[m] * MPA, color=f"C{n}", linewidth=1.0,
                     linestyle="--", label=f"{test} fitted law")
             ax.plot(ep, c.numeric(CURVES.stress_start_Pa)[m] * MPA, color=f"C{n}", linewidth=0.7,
-                    linestyle=":", alpha=0.8)
+                    linestyle=":", alpha=0.8, label=f"{test} starting law")
         ax.set_xlabel("true strain" if viscous else "true plastic strain")
         ax.set_ylabel("true stress (MPa)")
         ax.set_title(src.title("Processed curves after equilibrium and the law"))
@@ -90,11 +90,14 @@ def fig_fit(src, figs):
         fig, axes = new_figure(height=0.5 * len(names) + 2.5, width=0.6 * len(names) + 3.5)
         ax = axes[0, 0]
         im = ax.imshow(a, vmin=-1, vmax=1, cmap="RdBu_r")
+        ax.grid(False)  # the grid's lines crossed the cells' numbers
         ax.set_xticks(range(len(names)), names, rotation=45, ha="right", fontsize=8)
         ax.set_yticks(range(len(names)), names, fontsize=8)
         for i in range(len(names)):
             for j in range(len(names)):
-                ax.text(j, i, f"{a[i, j]:.2f}", ha="center", va="center", fontsize=7)
+                # White on the dark cells of strong correlations, where black could not be read.
+                ax.text(j, i, f"{a[i, j]:.2f}", ha="center", va="center", fontsize=7,
+                        color="w" if abs(a[i, j]) > 0.6 else "k")
         fig.colorbar(im, ax=ax)
         ax.set_title(src.title("Parameter correlations"))
         figs.save(fig, src.png("fit_correlation"), src.title("Fit: parameter correlations"),

@@ -160,8 +160,10 @@ def write_html(path, folder, sources, figs, fig_dir_name):
              f"<h1>shpb report: {html.escape(os.path.basename(os.path.abspath(folder)))}</h1>",
              f"<p class='meta'>Folder {html.escape(os.path.abspath(folder))}; generated "
              f"{datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC by "
-             "shpb report. Signals tension positive; stress–strain, strain rate and "
-             "specimen stress compression positive.</p>"]
+             "shpb report. Signals tension positive; a processed test's stress–strain and "
+             "strain rate positive in its own loading (compression, or tension for a tension "
+             "test: its summary.json conventions); the simulation's specimen stress and "
+             "interface forces compression positive.</p>"]
     for src in sources:
         name = "this folder" if src.label == "." else src.label
         parts.append(f"<h2>Results: {html.escape(name)}</h2>")

@@ -35,12 +35,28 @@ def fig_pulses(src, figs):
               "(pulses.csv). In equilibrium incident + reflected follows the transmitted pulse.")
 
 
+def loaded_sense(src):
+    """What curve.csv counts positive: the test's own loading, compression unless summary.json
+    says "test": "tension" (docs/outputs.md, curve.csv)."""
+    return "tension" if src.value("test", kind=str) == "tension" else "compression"
+
+
+def truth_in_sense(truth, sense):
+    """specimen.csv's signed columns as the curve counts them: specimen.csv is compression
+    positive whatever the test (docs/outputs.md, Conventions), a tension test's curve tension
+    positive. Its time is read as it is."""
+    sign = -1.0 if sense == "tension" else 1.0
+    return lambda name: truth.numeric(name) * (1.0 if name == SPECIMEN.time_s else sign)
+
+
 def fig_curve(src, figs, truth=None):
     t = src.table(CURVE.FILE)
+    sense = loaded_sense(src)
     # The primary reduction (summary.json primary) is drawn first and heaviest.
     one_wave = src.value("primary", "reduction", kind=str) == "1-wave" and CURVE.strain_1wave in t
     primary = "1-wave" if one_wave else "3-wave"
     strain = t.numeric(CURVE.strain_1wave if one_wave else CURVE.strain)
+    truth_of = truth_in_sense(truth, sense) if truth is not None else None
     fig, axes = new_figure(1, 2, height=4.6, width=11.0)
     ax = axes[0, 0]
     if one_wave:
@@ -56,17 +72,20 @@ def fig_curve(src, figs, truth=None):
             if col in t:
                 ax.plot(strain * 100, t.numeric(col) * MPA, color=color,
                         linewidth=1.6 if color == "k" else 1.0, label=label)
-    if truth is not None:
-        ax.plot(truth.numeric(SPECIMEN.strain) * 100, truth.numeric(SPECIMEN.stress_Pa) * MPA,
+    if truth_of is not None:
+        ax.plot(truth_of(SPECIMEN.strain) * 100, truth_of(SPECIMEN.stress_Pa) * MPA,
                 color="C4", linestyle=":", linewidth=1.4, label="model truth (specimen.csv)")
+    # The bands are quantiles at the row's primary strain (docs/outputs.md, curve.csv): each is
+    # drawn around the curve drawn against that strain. With a 1-wave primary the 3-wave band
+    # belongs to no drawn curve (the 3-wave curve is against its own strain): left out.
     bands = [(f"stress_{n}wave", f"{n}-wave 95 % band", c) for n, c in (("3", "0.3"), ("1", "C2"))
-             if f"stress_{n}wave_p2.5_Pa" in t]
+             if f"stress_{n}wave_p2.5_Pa" in t and not (one_wave and n == "3")]
     for base, label, color in bands:
         ax.fill_between(strain * 100, t.numeric(base + "_p2.5_Pa") * MPA,
                         t.numeric(base + "_p97.5_Pa") * MPA, color=color, alpha=0.25,
                         linewidth=0, label=label)
-    ax.set_xlabel("engineering strain (%, compression +)")
-    ax.set_ylabel("engineering stress (MPa, compression +)")
+    ax.set_xlabel(f"engineering strain (%, {sense} +)")
+    ax.set_ylabel(f"engineering stress (MPa, {sense} +)")
     ax.set_title(src.title("Engineering stress–strain"))
     ax.legend(loc="best", fontsize=8)
     ax = axes[0, 1]
@@ -76,13 +95,12 @@ def fig_curve(src, figs, truth=None):
     stress = CURVE.stress_1wave_Pa if one_wave else CURVE.stress_3wave_Pa
     ax.plot(strain * 100, t.numeric(stress) * MPA, color="0.6", linewidth=1.0, linestyle="--",
             label=f"engineering ({primary})")
-    if truth is not None and SPECIMEN.true_strain in truth and SPECIMEN.true_stress_Pa in truth:
+    if truth_of is not None and SPECIMEN.true_strain in truth and SPECIMEN.true_stress_Pa in truth:
         # The law as the specimen followed it: true stress at true strain (specimen.csv).
-        ax.plot(truth.numeric(SPECIMEN.true_strain) * 100,
-                truth.numeric(SPECIMEN.true_stress_Pa) * MPA, color="C4", linestyle=":",
-                linewidth=1.4, label="law, model truth (true)")
-    ax.set_xlabel("true strain (%, compression +)")
-    ax.set_ylabel("true stress (MPa, compression +)")
+        ax.plot(truth_of(SPECIMEN.true_strain) * 100, truth_of(SPECIMEN.true_stress_Pa) * MPA,
+                color="C4", linestyle=":", linewidth=1.4, label="law, model truth (true)")
+    ax.set_xlabel(f"true strain (%, {sense} +)")
+    ax.set_ylabel(f"true stress (MPa, {sense} +)")
     ax.set_title(src.title("True stress–strain"))
     ax.legend(loc="best", fontsize=8)
     figs.save(fig, src.png("stress_strain"), src.title("Stress–strain curves"),
@@ -90,27 +108,39 @@ def fig_curve(src, figs, truth=None):
                "the 3-wave curve" if one_wave else
                "1-, 2- and 3-wave engineering stress against the 3-wave strain")
               + ", and true stress against true strain (curve.csv, docs/methods.md §6), "
-              "compression positive"
+              f"{sense} positive"
               + ("; shaded: the 95 % bands of measurement.uncertainty (Monte Carlo, "
                  "docs/methods.md §10)" if bands else "")
               + ("; dotted: the simulation's own specimen truth." if truth is not None else "."))
+    fig_rate(src, figs, t, one_wave, sense, truth_of)
 
+
+def fig_rate(src, figs, t, one_wave, sense, truth_of):
+    """The primary reduction's strain rate (its band around it) and the equilibrium ratio."""
+    primary = "1-wave" if one_wave else "3-wave"
     time = t.numeric(CURVE.time_s) * US
     fig, axes = new_figure(2, 1, height=6.0, sharex=True)
-    axes[0, 0].plot(time, t.numeric(CURVE.strain_rate_1_s), color="k", linewidth=1.0,
-                    label="3-wave")
-    if "strain_rate_p2.5_1_s" in t:
-        axes[0, 0].fill_between(time, t.numeric("strain_rate_p2.5_1_s"),
-                                t.numeric("strain_rate_p97.5_1_s"), color="0.3", alpha=0.25,
-                                linewidth=0, label=f"95 % band ({primary})")
-        axes[0, 0].legend(loc="best", fontsize=8)
-    if truth is not None:
-        axes[0, 0].plot(truth.numeric(SPECIMEN.time_s) * US,
-                        truth.numeric(SPECIMEN.strain_rate_1_s), color="C4", linestyle=":",
-                        linewidth=1.2, label="model truth")
-        axes[0, 0].legend(loc="best", fontsize=8)
-    axes[0, 0].set_ylabel("strain rate (1/s, compression +)")
-    axes[0, 0].set_title(src.title("Strain rate and equilibrium against time"))
+    ax = axes[0, 0]
+    primary_rate = (CURVE.strain_rate_1wave_1_s if one_wave and CURVE.strain_rate_1wave_1_s in t
+                    else CURVE.strain_rate_1_s)
+    if primary_rate != CURVE.strain_rate_1_s:
+        ax.plot(time, t.numeric(CURVE.strain_rate_1_s), color="0.6", linewidth=1.0,
+                linestyle="--", label="3-wave")
+    ax.plot(time, t.numeric(primary_rate), color="k", linewidth=1.0,
+            label=f"{primary} (primary)" if one_wave else "3-wave")
+    if CURVE.strain_rate_p2_5_1_s in t and CURVE.strain_rate_p97_5_1_s in t:
+        # The primary reduction's rate band (docs/outputs.md, curve.csv), around its own rate.
+        ax.fill_between(time, t.numeric(CURVE.strain_rate_p2_5_1_s),
+                        t.numeric(CURVE.strain_rate_p97_5_1_s), color="0.3", alpha=0.25,
+                        linewidth=0, label=f"95 % band ({primary})")
+    if truth_of is not None:
+        ax.plot(truth_of(SPECIMEN.time_s) * US,
+                truth_of(SPECIMEN.strain_rate_1_s), color="C4", linestyle=":", linewidth=1.2,
+                label="model truth")
+    if len(ax.get_lines()) + len(ax.collections) > 1:
+        ax.legend(loc="best", fontsize=8)
+    ax.set_ylabel(f"strain rate (1/s, {sense} +)")
+    ax.set_title(src.title("Strain rate and equilibrium against time"))
     if CURVE.equilibrium_ratio in t:
         axes[1, 0].plot(time, ratio_finite(t.numeric(CURVE.equilibrium_ratio)), color="C0",
                         linewidth=1.0, label="2|P1 − P2| / |P1 + P2|")
@@ -121,7 +151,9 @@ def fig_curve(src, figs, truth=None):
     axes[1, 0].set_xlabel("time at the specimen faces (µs)")
     figs.save(fig, src.png("rate_equilibrium"),
               src.title("Strain rate and equilibrium"),
-              "3-wave strain rate and the equilibrium ratio R(t) = 2|P1 − P2|/|P1 + P2| of the "
+              f"{primary} strain rate"
+              + (" (dashed: the 3-wave rate)" if primary_rate != CURVE.strain_rate_1_s else "")
+              + " and the equilibrium ratio R(t) = 2|P1 − P2|/|P1 + P2| of the "
               "front and back face forces (curve.csv); below the dotted 5 % line the specimen "
               "is taken as in equilibrium.")
 
@@ -156,23 +188,44 @@ def fig_uncertainty(src, figs):
               "§10), the largest eight; the title gives the 95 % interval.")
 
 
+def primary_columns(src, table):
+    """The strain and stress columns of a test's primary reduction (summary.json primary),
+    the 3-wave ones if it names none curve.csv holds."""
+    strain = src.value("primary", "strain", kind=str)
+    stress = src.value("primary", "stress", kind=str)
+    if strain in table and stress in table:
+        return strain, stress
+    return CURVE.strain, CURVE.stress_3wave_Pa
+
+
 def fig_campaign(folder, sources, figs):
-    """All tests of a campaign (`shpb process` over several scenes) on one stress–strain plot."""
+    """All tests of a campaign (`shpb process` over several scenes) on one stress–strain plot,
+    each test's primary reduction, positive in its own loading."""
     tests = [s for s in sources if s.label != "." and s.has(CURVE.FILE)]
     if not tests:
         return
     fig, axes = new_figure(1, 1, height=5.0)
     ax = axes[0, 0]
+    reductions = set()
     for i, src in enumerate(tests):
         t = src.table(CURVE.FILE)
-        ax.plot(t.numeric(CURVE.strain) * 100, t.numeric(CURVE.stress_3wave_Pa) * MPA,
-                color=f"C{i % 10}", linewidth=1.2, label=src.label)
-    ax.set_xlabel("engineering strain (%, compression +)")
-    ax.set_ylabel("3-wave engineering stress (MPa, compression +)")
+        strain, stress = primary_columns(src, t)
+        reduction = "1-wave" if stress == CURVE.stress_1wave_Pa else "3-wave"
+        reductions.add(reduction)
+        tension = loaded_sense(src) == "tension"
+        ax.plot(t.numeric(strain) * 100, t.numeric(stress) * MPA, color=f"C{i % 10}",
+                linewidth=1.2, label=src.label + (" (tension)" if tension else "")
+                + (f" ({reduction})" if reduction != "3-wave" else ""))
+    senses = {loaded_sense(src) for src in tests}
+    sense = senses.pop() if len(senses) == 1 else "each test's loading"
+    what = "3-wave" if reductions == {"3-wave"} else "primary"
+    ax.set_xlabel(f"engineering strain (%, {sense} +)")
+    ax.set_ylabel(f"{what} engineering stress (MPa, {sense} +)")
     ax.set_title(f"Campaign: {len(tests)} tests")
     ax.legend(loc="best", fontsize=8)
     figs.save(fig, "campaign_stress_strain.png", "Campaign: stress–strain curves of all tests",
-              "3-wave engineering stress against strain of every test (each test's curve.csv); "
+              "Engineering stress against strain of every test's primary reduction (each test's "
+              "curve.csv and summary.json primary), positive in the test's own loading; "
               "campaign.csv gives their plateau strain rates, peak and flow stresses.")
 
 

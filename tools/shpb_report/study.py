@@ -56,7 +56,7 @@ def fig_pareto(src, figs):
     ax.set_yscale("log")
     ax.set_xlabel("wall time of the solve (s)")
     reference = src.value("reference", kind=str)
-    ax.set_ylabel("error against the reference"
+    ax.set_ylabel("relative L2 error against the reference"
                   + (f"\n({textwrap.shorten(reference, 55)})" if reference else ""))
     ax.set_title(src.title("Accuracy against cost"))
     ax.legend(loc="best", fontsize=7)
@@ -86,12 +86,12 @@ def fig_monte_carlo(src, figs):
     if curve:
         c = src.table("curve_bands.csv")
         ax = axes[0, 1]
-        e = c.numeric("strain")
+        e = c.numeric("strain") * 100  # in %, as every other stress–strain figure
         ax.fill_between(e, c.numeric("stress_3wave_p2.5_Pa") / 1e6,
                         c.numeric("stress_3wave_p97.5_Pa") / 1e6, color="C0", alpha=0.3,
                         linewidth=0, label="95 % band")
         ax.plot(e, c.numeric("stress_3wave_Pa") / 1e6, color="C0", linewidth=1.0, label="nominal")
-        ax.set_xlabel("engineering strain")
+        ax.set_xlabel("engineering strain (%)")
         ax.set_ylabel("3-wave stress (MPa)")
         ax.legend(loc="best", fontsize=7)
     draws = src.value("draws")
