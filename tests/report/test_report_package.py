@@ -756,3 +756,17 @@ def test_a_calibration_shots_legend_hides_no_trace_and_the_bands_strain_is_in_pe
     study.fig_monte_carlo(Source(str(tmp_path), "."), kept)
     ax = kept.figures[0].axes[1]
     assert "(%" in ax.get_xlabel() and max(ax.get_lines()[0].get_xdata()) == pytest.approx(20)
+
+
+def test_a_fits_parameters_are_a_table_of_the_page(tmp_path):
+    # A fit's result, summary.json parameters (records by name, docs/outputs.md, fit), was
+    # shown only inside the folded summary.json: the page's tables had no fitted value.
+    from shpb_report.page import summary_html
+    write(tmp_path, "fit.json", "{}")
+    write(tmp_path, "summary.json", '{"model": "johnson-cook", "parameters": {"A": {"value": '
+          '28870602.4, "unit": "Pa", "interval_95": [26200459.0, 31540745.7]}, "n": {"value": '
+          '0.783, "unit": "", "interval_95": [0.76, 0.80]}}}')
+    page = summary_html(Source(str(tmp_path), "."))
+    tables = page.split("<details>")[0]
+    assert "<td>A</td><td>2.88706e+07</td><td>Pa</td>" in tables
+    assert "<td>n</td><td>0.783</td>" in tables

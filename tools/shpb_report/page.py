@@ -27,6 +27,11 @@ def summary_html(src):
             out.append(f"<tr><th>{html.escape(str(k))}</th><td>{html.escape(fmt(v))}</td></tr>")
         out.append("</table>")
     for k, v in s.items():
+        # A list of records, or records by name (fit's parameters: value, unit, interval_95 …,
+        # its result, which was seen only in the folded summary.json), is a table.
+        named = (isinstance(v, dict) and v and all(isinstance(r, dict) for r in v.values()))
+        if named:
+            v = [{"name": name, **r} for name, r in v.items()]
         if isinstance(v, list) and v and all(isinstance(r, dict) for r in v):
             if k == "warnings":
                 continue
