@@ -770,3 +770,37 @@ def test_a_fits_parameters_are_a_table_of_the_page(tmp_path):
     tables = page.split("<details>")[0]
     assert "<td>A</td><td>2.88706e+07</td><td>Pa</td>" in tables
     assert "<td>n</td><td>0.783</td>" in tables
+
+
+def test_a_comparison_without_dispersion_draws_its_simulation_once(tmp_path):
+    # Without dispersion (summary.json dispersion false) the simulated and the raw simulated
+    # columns are one signal: it was drawn twice, as "simulated (1D, no dispersion)" and
+    # "simulated", one line hiding the other and the legend naming two.
+    from shpb_report import compare
+    write(tmp_path, "signals.csv", "time_s,inc_measured_strain,inc_simulated_strain,"
+          "inc_simulated_raw_strain\n0,0,0,0\n1e-6,-1e-3,-1e-3,-1e-3\n")
+    for dispersed, lines in (("false", 2), ("true", 3)):
+        write(tmp_path, "summary.json", f'{{"command": "compare", "dispersion": {dispersed}}}')
+        kept = Kept()
+        compare.fig_compare_signals(Source(str(tmp_path), "."), kept)
+        assert len(kept.figures[0].axes[0].get_lines()) == lines
+
+
+def test_a_monte_carlo_studys_contributions_are_drawn_as_bars(tmp_path):
+    # study --sweep monte-carlo's shares of the variance (summary.json quantities, records by
+    # name) were only a cell of JSON text on the page; process's are bars. Both now are, each
+    # bar the share summary.json gives, the title its 95 % interval.
+    write(tmp_path, "gauge_bands.csv", "time_s,inc,inc_p2.5,inc_p50,inc_p97.5\n0,0,0,0,0\n")
+    write(tmp_path, "summary.json", '{"sweep": "monte-carlo", "draws": 8, "quantities": '
+          '{"peak_stress_Pa": {"interval_95": [550e6, 600e6], "unit": "Pa", "contributions": '
+          '[{"value": "specimen.A", "share": 0.6}, {"value": "striker.velocity", "share": 0.3}]}}}')
+    names = [d.__name__ if hasattr(d, "__name__") else d for d in drawn(tmp_path)]
+    assert len(names) == 2
+    from shpb_report import study
+    kept = Kept()
+    study.fig_monte_carlo_contributions(Source(str(tmp_path), "."), kept)
+    (ax,) = kept.figures[0].axes
+    widths = sorted(round(bar.get_width(), 9) for bar in ax.patches)
+    assert widths == [30, 60]
+    assert [t.get_text() for t in ax.get_yticklabels()] == ["striker.velocity", "specimen.A"]
+    assert "550 to 600 MPa" in ax.get_title()

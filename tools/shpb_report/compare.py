@@ -35,11 +35,12 @@ def fig_compare_signals(src, figs):
     for ax, g in zip(axes[:, 0], gauges):
         ax.plot(time, t.numeric(g + MEASURED) * MICRO, color="k", linewidth=1.2,
                 label="measured")
-        if g + SIMULATED_RAW in t:
+        dispersed = src.value("dispersion")
+        # Without dispersion (--no-dispersion) the raw column is the simulated one: drawn once.
+        if g + SIMULATED_RAW in t and (dispersed or g + SIMULATED not in t):
             ax.plot(time, t.numeric(g + SIMULATED_RAW) * MICRO, color="C0",
                     linewidth=0.8, alpha=0.6, label="simulated (1D, no dispersion)")
         if g + SIMULATED in t:
-            dispersed = src.value("dispersion")
             label = "simulated + Pochhammer–Chree" if dispersed else "simulated"
             ax.plot(time, t.numeric(g + SIMULATED) * MICRO, color="C3",
                     linewidth=1.0, linestyle="--", label=label)

@@ -256,6 +256,8 @@ FIGURE_TABLE: list[list[tuple[Callable[[Source], bool], FigureDrawer]]] = [
     [(lambda s: s.has("pareto.csv"), lambda s, f, t: study.fig_pareto(s, f))],
     [(lambda s: s.has("stability.csv"), lambda s, f, t: sweeps.fig_stability(s, f))],
     [(lambda s: s.has("gauge_bands.csv"), lambda s, f, t: study.fig_monte_carlo(s, f))],
+    [(lambda s: s.has("gauge_bands.csv") and s.value("quantities") is not None,
+      lambda s, f, t: study.fig_monte_carlo_contributions(s, f))],
 ]
 
 

@@ -158,34 +158,46 @@ def fig_rate(src, figs, t, one_wave, sense, truth_of):
               "is taken as in equilibrium.")
 
 
-def fig_uncertainty(src, figs):
-    """Each input's share of the variance of the headline figures (summary.json uncertainty)."""
-    figures = src.value("uncertainty", "figures", kind=dict) or {}
-    names = [n for n in ("flow_stress_Pa_at_strain_0.1", "peak_stress_Pa", "plateau_strain_rate_1_s",
-                         "mean_strain_rate_1_s") if isinstance(figures.get(n), dict)][:3]
+HEADLINE_FIGURES = ("flow_stress_Pa_at_strain_0.1", "peak_stress_Pa", "plateau_strain_rate_1_s",
+                    "mean_strain_rate_1_s")
+
+
+def draw_contributions(src, figs, where, name, caption):
+    """Each drawn input's share of the variance of the headline figures held under the
+    summary.json keys `where` (records by figure name, each with interval_95, unit and
+    contributions [{input or value, share}], largest first), as bars: the first three."""
+    figures = src.value(*where, kind=dict) or {}
+    names = [n for n in HEADLINE_FIGURES if isinstance(figures.get(n), dict)][:3]
     if not names:
         return
     fig, axes = new_figure(1, len(names), height=4.2, width=4.2 * len(names) + 1.5)
-    for ax, name in zip(axes[0], names):
-        entry = ("uncertainty", "figures", name)
+    for ax, figure in zip(axes[0], names):
+        entry = (*where, figure)
         shares = [c for c in src.value(*entry, "contributions", kind=list) or []
                   if isinstance(c, dict)][:8]
-        labels = [str(c.get("input")) for c in shares][::-1]
+        # process names the input "input", study --sweep monte-carlo "value".
+        labels = [str(c.get("input", c.get("value"))) for c in shares][::-1]
         values = [100 * (number(c.get("share")) or 0.0) for c in shares][::-1]
         ax.barh(range(len(values)), values, color="C0")
         ax.set_yticks(range(len(values)), labels, fontsize=7)
         ax.set_xlabel("share of the variance (%)")
         interval = number_pair(src.value(*entry, "interval_95"))
-        scale, unit = ((MPA, "MPa") if name.endswith("Pa") or "_Pa_" in name
+        scale, unit = ((MPA, "MPa") if figure.endswith("Pa") or "_Pa_" in figure
                        else (1.0, src.value(*entry, "unit", kind=str) or ""))
-        title = name
+        title = figure
         if interval is not None:
             title += f"\n95 %: {interval[0] * scale:.4g} to {interval[1] * scale:.4g} {unit}"
         ax.set_title(title, fontsize=9)
-    figs.save(fig, src.png("uncertainty"), src.title("Uncertainty contributions"),
-              "Each uncertain input's share of the variance of the headline figures (squared "
-              "correlation over the Monte Carlo draws, summary.json uncertainty, docs/methods.md "
-              "§10), the largest eight; the title gives the 95 % interval.")
+    figs.save(fig, src.png(name), src.title("Uncertainty contributions"), caption)
+
+
+def fig_uncertainty(src, figs):
+    """Each input's share of the variance of the headline figures (summary.json uncertainty)."""
+    draw_contributions(src, figs, ("uncertainty", "figures"), "uncertainty",
+                       "Each uncertain input's share of the variance of the headline figures "
+                       "(squared correlation over the Monte Carlo draws, summary.json "
+                       "uncertainty, docs/methods.md §10), the largest eight; the title gives "
+                       "the 95 % interval.")
 
 
 def primary_columns(src, table):

@@ -6,6 +6,7 @@ import textwrap
 import numpy as np
 
 from .drawing import new_figure
+from .process import draw_contributions
 
 
 def fig_pareto(src, figs):
@@ -99,3 +100,12 @@ def fig_monte_carlo(src, figs):
               f"The 2.5–97.5 % band over {draws} draws of the distributions "
               "(summary.json) around the nominal run: every gauge's strain against time"
               + (" and the processed 3-wave stress against strain." if curve else "."))
+
+
+def fig_monte_carlo_contributions(src, figs):
+    """`--sweep monte-carlo`: each drawn value's share of the variance of the headline figures
+    (summary.json quantities), as bars: a table cell of records could not be read at a glance."""
+    draw_contributions(src, figs, ("quantities",), "monte_carlo_contributions",
+                       "Each drawn scene value's share of the variance of the headline figures "
+                       "(squared correlation over the draws, summary.json quantities), the "
+                       "largest eight; the title gives the 95 % interval.")
