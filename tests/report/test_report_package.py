@@ -804,3 +804,15 @@ def test_a_monte_carlo_studys_contributions_are_drawn_as_bars(tmp_path):
     assert widths == [30, 60]
     assert [t.get_text() for t in ax.get_yticklabels()] == ["striker.velocity", "specimen.A"]
     assert "550 to 600 MPa" in ax.get_title()
+
+
+def test_the_time_equilibrium_holds_from_is_also_given_on_the_figures_clock(tmp_path):
+    # time_to_equilibrium_s counts from the window start (docs/outputs.md, process), the rate
+    # and equilibrium figure's axis is the faces' clock: "holds from 12.4 µs" could not be
+    # found on an axis running from 400 to 480 µs. The headline gives both.
+    from shpb_report.page import headline_html
+    write(tmp_path, "summary.json", '{"command": "process", "time_to_equilibrium_s": 12.4e-6, '
+          '"equilibrium": {"fraction_of_loaded_time": 0.93, '
+          '"holds_until_unloading_from_s": 412e-6}}')
+    page = headline_html(Source(str(tmp_path), "."))
+    assert "12.4 µs after the window start (412 µs at the faces" in page

@@ -100,9 +100,16 @@ def headline_html(src):
         frac = number("equilibrium", "fraction_of_loaded_time")
         if frac is not None:
             t_eq = number("time_to_equilibrium_s")
+            t_from = number("equilibrium", "holds_until_unloading_from_s")
+            # time_to_equilibrium_s counts from the window start; the figures' axis is the
+            # faces' clock, on which the same instant is equilibrium.holds_until_unloading_from_s.
+            clock = (f" ({t_from * 1e6:.6g} µs at the faces, the figures' clock)"
+                     if t_from is not None else "")
+            holds = ("never holds until unloading" if t_eq is None else
+                     f"holds from {t_eq * 1e6:.3g} µs after the window start{clock} until "
+                     "unloading")
             rows.append(("equilibrium (R ≤ 5 %)", f"{100 * frac:.0f} % of the loaded time; "
-                         + (f"holds from {t_eq * 1e6:.3g} µs until unloading" if t_eq is not None
-                            else "never holds until unloading")))
+                         + holds))
         rms = [f"{100 * v:.3g} % with {how}" for v, how in (
             (number("rms_of_peak", "pochhammer_chree"), "Pochhammer–Chree"),
             (number("rms_of_peak", "time_shift"), "a time shift")) if v is not None]
