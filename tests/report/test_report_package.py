@@ -816,3 +816,19 @@ def test_the_time_equilibrium_holds_from_is_also_given_on_the_figures_clock(tmp_
           '"holds_until_unloading_from_s": 412e-6}}')
     page = headline_html(Source(str(tmp_path), "."))
     assert "12.4 µs after the window start (412 µs at the faces" in page
+
+
+def test_a_stability_maps_legend_is_one_and_lies_over_no_run(tmp_path):
+    # Each panel had its own legend in its lower left corner, over the stable runs of low
+    # stiffness and Courant number (nine copies in a localized-bipenalty map). One legend now,
+    # above the first panel, naming every entry of every panel.
+    rows = [f"localized-bipenalty,{k},{r},{c},1,1,1,0"
+            for k, r in ((0, 0), (1, 0.5), (100, 2)) for c in (0.1, 0.5)]
+    write(tmp_path, "stability.csv", "method,stiffness_factor,mass_ratio,courant,energy_growth,"
+          "stable,step_ratio,closings_after_release\n" + "\n".join(rows) + "\n")
+    kept = Kept()
+    sweeps.fig_stability(Source(str(tmp_path), "."), kept)
+    (fig,) = kept.figures
+    legends = [ax.get_legend() for ax in fig.axes if ax.get_legend() is not None]
+    assert len(legends) == 1 and legends_above_their_axes(fig)
+    assert {t.get_text() for t in legends[0].get_texts()} == {"stable", "unstable"}

@@ -27,6 +27,22 @@ def boundary(ax, b, rows, rigid):
             ax.plot(bx[m], values[m], linewidth=1.0, label=label, **style)
 
 
+def one_legend(panels):
+    """One legend of every panel's entries, above the first: inside each panel it lay over the
+    stable runs at low stiffness and Courant number, the same nine times over."""
+    entries = {}
+    for ax in panels:
+        for handle, label in zip(*ax.get_legend_handles_labels()):
+            entries.setdefault(label, handle)
+    if not entries:
+        return
+    first = panels[0]
+    first.legend(list(entries.values()), list(entries), loc="lower left",
+                 bbox_to_anchor=(0.0, 1.0), ncol=2, fontsize=7, frameon=False)
+    rows = math.ceil(len(entries) / 2)
+    first.set_title(first.get_title(), fontsize=9, pad=12 * rows + 8)  # above the legend
+
+
 def fig_stability(src, figs):
     t = src.table("stability.csv")
     xcol, ycol = "stiffness_factor", "courant"
@@ -83,16 +99,15 @@ def fig_stability(src, figs):
                 ax.set_xticks([0.0], ["rigid-link limit"])
                 ax.set_title("rigid-link limit (no ε_s, R)", fontsize=9)
                 ax.set_ylabel("Courant number c·Δt/h")
-                ax.legend(loc="lower left", fontsize=7)
                 continue
             ax.set_xscale("log")
             ax.set_xlim(*finite_range)
             ax.set_title((f"R/R_crit = {r:g}" if r is not None else method), fontsize=9)
             ax.set_xlabel("penalty stiffness ε_s / (EA/h)")
             ax.set_ylabel("Courant number c·Δt/h")
-            ax.legend(loc="lower left", fontsize=7)
         for ax in list(axes.flat)[n:]:
             ax.set_visible(False)
+        one_legend(list(axes.flat)[:n])
         fig.suptitle(src.title(f"Stability map: {method}".rstrip(": ")))
         figs.save(fig, src.png(f"stability_{slug(method or 'all')}"),
                   src.title(f"Stability map {method}".strip()),
