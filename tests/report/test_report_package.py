@@ -832,3 +832,26 @@ def test_a_stability_maps_legend_is_one_and_lies_over_no_run(tmp_path):
     legends = [ax.get_legend() for ax in fig.axes if ax.get_legend() is not None]
     assert len(legends) == 1 and legends_above_their_axes(fig)
     assert {t.get_text() for t in legends[0].get_texts()} == {"stable", "unstable"}
+
+
+def test_a_dispersion_table_under_any_name_is_drawn(tmp_path):
+    # `shpb dispersion -o FILE` writes one table named as the user chose; a folder holding it
+    # was refused ("no gauges.csv, curve.csv, ... or other shpb output", exit 2). It is known by
+    # its header and drawn: the phase and group velocities against a/Λ and frequency, as read.
+    write(tmp_path, "bar-19mm.csv", "a_over_lambda,c_over_c0,cg_over_c0,f_a_over_c0,frequency_Hz\n"
+          "0,1,1,0,0\n0.5,0.7,0.4,0.35,90000\n1,0.6,0.55,0.6,150000\n")
+    write(tmp_path, "notes.csv", "a,b\n1,2\n")  # another table: not a dispersion one
+    (src,) = report_main.find_sources(str(tmp_path))
+    assert src.dispersion == ["bar-19mm.csv"]
+    from shpb_report import dispersion
+    kept = Kept()
+    dispersion.fig_dispersion(src, kept)
+    (fig,) = kept.figures
+    by_a, by_f = fig.axes
+    phase = by_a.get_lines()[0]
+    assert list(phase.get_xdata()) == [0, 0.5, 1] and list(phase.get_ydata()) == [1, 0.7, 0.6]
+    assert list(by_f.get_lines()[1].get_xdata()) == [0, 90, 150]  # kHz
+    assert list(by_f.get_lines()[1].get_ydata()) == [1, 0.4, 0.55]
+    assert "kHz" in by_f.get_xlabel() and "a/Λ" in by_a.get_xlabel()
+    html, count = report_main.build(str(tmp_path))
+    assert count == 1

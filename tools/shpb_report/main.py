@@ -28,7 +28,7 @@ import traceback
 import warnings
 from typing import Callable, Optional
 
-from . import calibrate, compare, fit, plan, process, simulate, study, sweeps
+from . import calibrate, compare, dispersion, fit, plan, process, simulate, study, sweeps
 from .drawing import Figures, close_all
 from .page import GENERATOR, write_html
 # OUTPUT_SIGNATURE: the tests write markers through this module, as it reads them.
@@ -37,8 +37,9 @@ from .reading import (DIGEST_LINE, OUTPUT_MARKER, OUTPUT_SIGNATURE, ReportError,
 
 USAGE = """usage: shpb report DIR
 
-DIR is an output folder of `shpb simulate`, `process`, `compare`, `study`, `fit` or `calibrate`, or
-a folder whose immediate sub-folders are such outputs (e.g. `make run` writes simulate/ and
+DIR is an output folder of `shpb simulate`, `process`, `compare`, `study`, `fit`, `calibrate` or
+`plan`, a folder holding a table of `shpb dispersion -o FILE`, or a folder whose immediate
+sub-folders are such outputs (e.g. `make run` writes simulate/ and
 process/ side by side). Writes DIR/figures/*.png and DIR/report.html; nothing else in DIR is touched."""
 
 FIGURES_MARKER = ".shpb-report"
@@ -256,6 +257,7 @@ FIGURE_TABLE: list[list[tuple[Callable[[Source], bool], FigureDrawer]]] = [
     [(lambda s: s.has("pareto.csv"), lambda s, f, t: study.fig_pareto(s, f))],
     [(lambda s: s.has("stability.csv"), lambda s, f, t: sweeps.fig_stability(s, f))],
     [(lambda s: s.has("gauge_bands.csv"), lambda s, f, t: study.fig_monte_carlo(s, f))],
+    [(lambda s: bool(s.dispersion), lambda s, f, t: dispersion.fig_dispersion(s, f))],
     [(lambda s: s.has("gauge_bands.csv") and s.value("quantities") is not None,
       lambda s, f, t: study.fig_monte_carlo_contributions(s, f))],
 ]
@@ -278,7 +280,7 @@ def build(folder: str) -> tuple[str, int]:
     if not sources:
         raise ReportError(f"{folder}: no gauges.csv, curve.csv, signals.csv, pareto.csv or "
                           "other shpb output: an output folder of simulate, process, compare, "
-                          "study, fit, calibrate or plan was expected")
+                          "study, fit, calibrate or plan, or a dispersion table, was expected")
     check_ownership(folder)
     for src in sources:
         for missing in src.missing:

@@ -15,6 +15,8 @@ from typing import Any, Optional
 
 import numpy as np
 
+from .schema import columns
+
 # Files this package understands, by producer (docs/outputs.md).
 KNOWN_FILES = ("gauges.csv", "interfaces.csv", "specimen.csv", "energy.csv", "field.csv",
                "pulses.csv", "curve.csv", "signals.csv", "comparison.csv", "pareto.csv",
@@ -232,6 +234,14 @@ class Source:
                 raise ReportError(f"{path}: {e.strerror or e}: a readable file was expected")
             if regular:
                 self.files[n] = path
+        # `shpb dispersion -o FILE` names its table as the user chose: it is known by its header.
+        self.dispersion = []
+        for n in sorted(names):
+            path = os.path.join(folder, n)
+            if (n.endswith(".csv") and n not in self.files and os.path.isfile(path)
+                    and dispersion_table(path)):
+                self.files[n] = path
+                self.dispersion.append(n)
         # A file shpb wrote here that is gone, or no longer a file, since: its figures are left
         # out, and the page and stderr say so rather than the report drawing less in silence.
         self.missing = [f"{os.path.join(folder, n)}: written by shpb, no longer a file here: "
@@ -285,6 +295,18 @@ class Source:
 
     def title(self, text: str) -> str:
         return text if self.label == "." else f"{text} — {self.label}"
+
+
+def dispersion_table(path: str) -> bool:
+    """Whether the CSV file `path` opens with the header of `shpb dispersion`'s table."""
+    d = columns("dispersion")
+    head = ",".join((d.a_over_lambda, d.c_over_c0, d.cg_over_c0, d.f_a_over_c0))
+    try:
+        with open(path, "rb") as f:
+            first = f.read(len(head) + 1).decode("utf-8", "replace")
+    except OSError:  # unreadable: not this table; a known file is checked where it is read
+        return False
+    return first == head + "\n" or first == head + "\r" or first == head + ","
 
 
 def listing(folder: str) -> list[str]:
