@@ -18,6 +18,9 @@ struct EndSegment {
   int elements = 0;
   // The current instant's joint: its displacement on its path and its segment element's force.
   double joint_w = 0, joint_force_N = 0;
+  // The instant the segment's nodes (the joint aside) are at: its clock's pending one, ahead of
+  // the slow bar's instants between two of the clock's (finish_segment).
+  double nodes_tau = 0;
 };
 
 struct Chain {
@@ -27,8 +30,7 @@ struct Chain {
   std::vector<InterfaceState> interface_states;
   std::vector<double> contact_dissipated_J;  // per interface, cumulative
   std::vector<long> final_step;  // per bar: its last instant is at or beyond the end (this phase)
-  double start_time_s = 0;       // simulation clock at τ = 0 (≤ 0: first contact at t = 0)
-  double end_tau_s = 0;          // τ of the end of the recording
+  double end_tau_s = 0;          // τ of the end of the recording (τ = 0: the first contact)
   double max_penetration_m = 0;
   // The largest interpenetration in elements: over the smaller of the interface's two neighbouring
   // elements (a compliant contact between 1 mm bar elements is judged on 1 mm, not on a

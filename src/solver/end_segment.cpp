@@ -65,14 +65,6 @@ void plan_end_segments(Chain& chain, const Scene& scene, bool law_specimen) {
     const double k1 = s.stiffness_N_m, m1 = s.mass_kg[end == 1 ? s.nodes - 1 : 0];
     const double k2 = f.stiffness_N_m, m2 = f.mass_kg[end == 1 ? 0 : f.nodes - 1];
     if (!((k1 + k2) / (m1 + m2) > kLightStiffEnd * k1 / m1)) continue;
-    // A gauge reads its element at the bar's instants: none within the segment (and its joint).
-    const double reach = (kSegmentElements + 1) * s.element_length_m;
-    const double length = s.element_length_m * s.elements();
-    bool gauge_inside = false;
-    for (const GaugeSpec& g : scene.bars[slow].gauges)
-      gauge_inside =
-          gauge_inside || (end == 1 ? g.position_m >= length - reach : g.position_m <= reach);
-    if (gauge_inside) continue;
     s.segment_elements[end] = kSegmentElements;
     chain.interface_segment[k] = static_cast<int>(chain.segments.size());
     chain.segments.push_back({slow, end, fast, k, kSegmentElements});
@@ -141,7 +133,7 @@ void apply_segment_end(Chain& chain, const EndSegment& seg, double dv, double fo
   s.force[end] += force;
 }
 
-long finish_segment(Chain& chain, const EndSegment& seg, double tau, bool bar_stepping) {
+long finish_segment(Chain& chain, EndSegment& seg, double tau, bool bar_stepping) {
   const BarModel& b = chain.bars[seg.bar];
   BarState& s = chain.states[seg.bar];
   const BarState& clock = chain.states[seg.clock_bar];
@@ -160,6 +152,7 @@ long finish_segment(Chain& chain, const EndSegment& seg, double tau, bool bar_st
     s.v[i] += kick * s.force[i] * b.inverse_mass[i];
     s.w[i] += dt * s.v[i];
   }
+  seg.nodes_tau = tau + dt;
   // The joint's impulse κ N: a force over the bar's own kick if it steps now, else a velocity
   // jump moving its pending position along its new path (scheduler rule 6).
   if (seg.joint_force_N != 0) {
@@ -173,6 +166,30 @@ long finish_segment(Chain& chain, const EndSegment& seg, double tau, bool bar_st
     }
   }
   return sp.last - sp.first + 1;
+}
+
+namespace {
+// Node `node`'s displacement at τ: its own, or a segment node's at τ on its straight path.
+double node_w_at(const Chain& chain, std::size_t bar, int node, double tau) {
+  const BarModel& b = chain.bars[bar];
+  const BarState& s = chain.states[bar];
+  if (node >= b.first_owned_node() && node <= b.last_owned_node()) return s.w[node];
+  const int end = node < b.first_owned_node() ? 0 : 1;
+  for (const EndSegment& seg : chain.segments)
+    if (seg.bar == bar && seg.end == end) return s.w[node] - (seg.nodes_tau - tau) * s.v[node];
+  return s.w[node];
+}
+}  // namespace
+
+double segmented_element_strain(const Chain& chain, std::size_t bar, int element, double tau) {
+  const BarModel& b = chain.bars[bar];
+  const double inv_h = 1.0 / b.element_length_m;  // as the recorder's unsegmented bars
+  const auto strain = [&](int e) {
+    return (node_w_at(chain, bar, e + 1, tau) - node_w_at(chain, bar, e, tau)) * inv_h;
+  };
+  const bool joint = (b.segment_elements[0] > 0 && element == b.first_owned_node() - 1) ||
+                     (b.segment_elements[1] > 0 && element == b.last_owned_node());
+  return joint ? 0.5 * (strain(element - 1) + strain(element + 1)) : strain(element);
 }
 
 }  // namespace shpb

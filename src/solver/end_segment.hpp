@@ -32,8 +32,8 @@ inline constexpr double kLightStiffEnd = 1.2;
 // fast end (its pair's (k1 + k2)/(m1 + m2) above kLightStiffEnd × k1/m1) an end segment on the fast
 // bar's clock, where that is supported: a slow bar with fixed steps, elastic or a law bar that is
 // not the specimen (its segment's law steps on the fast clock; not with friction or radial
-// inertia), a fast bar with fixed steps (an elastic specimen too), no gauge and no cut end within
-// the segment. `law_specimen`:
+// inertia), a fast bar with fixed steps (an elastic specimen too), no cut end within the segment
+// (a gauge within it reads it on its own clock: segmented_element_strain). `law_specimen`:
 // a specimen with a material law (on its adaptive step too) takes them as well (simulation.cpp
 // says when).
 void plan_end_segments(Chain& chain, const Scene& scene, bool law_specimen);
@@ -47,6 +47,13 @@ void plan_end_segments(Chain& chain, const Scene& scene, bool law_specimen);
 void prepare_segment(Chain& chain, EndSegment& seg, double tau, bool bar_stepping);
 EndState segment_end_state(const Chain& chain, const EndSegment& seg, double tau);
 void apply_segment_end(Chain& chain, const EndSegment& seg, double dv, double force);
-long finish_segment(Chain& chain, const EndSegment& seg, double tau, bool bar_stepping);
+long finish_segment(Chain& chain, EndSegment& seg, double tau, bool bar_stepping);
+
+// The strain of element `element` of bar `bar` (with end segments) at τ, an instant of that bar, as
+// a gauge reads it: a segment's nodes, which are at their clock's pending instant (nodes_tau ≥ τ),
+// taken at τ on their straight paths; the joint's element, whose two nodes step on two clocks and
+// whose stretch zigzags with the segment element's impulses (measured: 2–5 % low on a plateau, read
+// at the bar's instants), as the mean of its neighbours.
+double segmented_element_strain(const Chain& chain, std::size_t bar, int element, double tau);
 
 }  // namespace shpb

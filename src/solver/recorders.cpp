@@ -8,6 +8,7 @@
 #include "core/record_filter.hpp"
 #include "output_schema.hpp"
 #include "solver/bar_integrator.hpp"
+#include "solver/end_segment.hpp"
 
 namespace shpb {
 
@@ -72,12 +73,10 @@ std::vector<double> GridSampler::column(int c, long n) const {
 
 ChainRecorders::ChainRecorders(const Scene& scene, const Chain& chain, const ChainDiscretization& d,
                                const SimulationOptions& options) {
-  start_time_s_ = chain.start_time_s;
   sample_spacing_s_ = 1.0 / d.sample_rate_Hz;
   samples_ = grid_count(d.duration_s, sample_spacing_s_);
   energy_spacing_ = std::max(sample_spacing_s_, chain.end_tau_s / (kEnergyPoints - 1));
   energy_samples_ = grid_count(chain.end_tau_s, energy_spacing_);
-  const double tau0 = -start_time_s_;
   if (gauges_filtered(scene.simulation)) gauge_oversampling_ = kGaugeOversampling;
   record_field_ = options.record_field && options.field_times > 1 && options.field_points > 0;
 
@@ -99,11 +98,11 @@ ChainRecorders::ChainRecorders(const Scene& scene, const Chain& chain, const Cha
       gauge_names_.push_back(g.name);
     }
     r.gauge_sampler =
-        GridSampler(tau0, sample_spacing_s_ / gauge_oversampling_,
+        GridSampler(0.0, sample_spacing_s_ / gauge_oversampling_,
                     (samples_ - 1) * gauge_oversampling_ + 1, static_cast<int>(r.gauges.size()));
     r.specimen = scene.specimen && *scene.specimen == i;
     if (r.specimen)
-      r.specimen_sampler = GridSampler(tau0, sample_spacing_s_, samples_, kSpecimenColumns);
+      r.specimen_sampler = GridSampler(0.0, sample_spacing_s_, samples_, kSpecimenColumns);
     r.energy_sampler = GridSampler(0.0, energy_spacing_, energy_samples_, 3);
     if (record_field_) {
       const double length = h * ne;
@@ -122,12 +121,12 @@ ChainRecorders::ChainRecorders(const Scene& scene, const Chain& chain, const Cha
   }
   for (const InterfaceModel& m : chain.interfaces) {
     interface_names_.push_back(m.name);
-    interfaces_.push_back({GridSampler(tau0, sample_spacing_s_, samples_, 2),
+    interfaces_.push_back({GridSampler(0.0, sample_spacing_s_, samples_, 2),
                            GridSampler(0.0, energy_spacing_, energy_samples_, 4)});
   }
   if (record_field_) {
     for (int j = 0; j < options.field_times; ++j)
-      field_tau_.push_back(tau0 + d.duration_s * j / (options.field_times - 1));
+      field_tau_.push_back(d.duration_s * j / (options.field_times - 1));
     field_stress_.assign(field_tau_.size() * field_x_.size(), 0.0);
   }
 }
@@ -175,10 +174,15 @@ void ChainRecorders::on_bar_instant(const Chain& chain, std::size_t i, double ta
       many.resize(r.gauges.size());
       out = many.data();
     }
+    const bool segmented = bar.segment_elements[0] > 0 || bar.segment_elements[1] > 0;
+    const auto strain = [&](int e) {
+      return segmented ? segmented_element_strain(chain, i, e, tau_n)
+                       : (s.w[e + 1] - s.w[e]) * inv_h;
+    };
     for (std::size_t g = 0; g < r.gauges.size(); ++g) {
       const GaugeProbe& p = r.gauges[g];
-      const double e0 = (s.w[p.element + 1] - s.w[p.element]) * inv_h;
-      const double e1 = p.weight > 0 ? (s.w[p.element + 2] - s.w[p.element + 1]) * inv_h : e0;
+      const double e0 = strain(p.element);
+      const double e1 = p.weight > 0 ? strain(p.element + 1) : e0;
       out[g] = (1 - p.weight) * e0 + p.weight * e1;
     }
     r.gauge_sampler.push(tau_n, out);
@@ -336,7 +340,7 @@ void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& resu
     ts.values.assign(5, {});
     const long n = energy_complete();
     for (long k = 0; k < n; ++k) {
-      const double t = energy_grid_tau(k) + start_time_s_;
+      const double t = energy_grid_tau(k);
       if (t > until_s + 1e-12) break;
       double kin = 0, strain = 0, contact = 0, diss = 0;
       for (const BarRecorder& r : bars_) {
@@ -365,7 +369,7 @@ void ChainRecorders::finish(const Chain&, double until_s, SimulationResult& resu
     for (const BarRecorder& r : bars_) rows = std::min(rows, r.field_next);
     FieldGrid& f = result.field;
     for (long j = 0; j < rows; ++j) {
-      const double t = field_tau_[j] + start_time_s_;
+      const double t = field_tau_[j];
       if (t > until_s + 1e-12) break;
       f.time_s.push_back(t);
     }

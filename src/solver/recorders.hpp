@@ -91,7 +91,6 @@ class ChainRecorders {
     GridSampler energy_sampler;  // link energy, contact dissipation, end segment's kinetic, strain
   };
 
-  double start_time_s_ = 0;
   double sample_spacing_s_ = 0;
   int gauge_oversampling_ = 1;  // gauge grid points per sample
   long samples_ = 0;

@@ -259,7 +259,7 @@ ScheduleOutcome run_schedule(Chain& chain, ChainRecorders& recorders,
     for (; energy_checked < complete; ++energy_checked) {
       const double e = recorders.energy_total(energy_checked);
       if (energy_checked == 0) energy0 = e;
-      const double t = recorders.energy_grid_tau(energy_checked) + chain.start_time_s;
+      const double t = recorders.energy_grid_tau(energy_checked);
       const bool finite = std::isfinite(e);
       if (finite && energy0 > 0)
         outcome.energy_error = std::max(outcome.energy_error, std::abs(e - energy0) / energy0);
@@ -273,9 +273,7 @@ ScheduleOutcome run_schedule(Chain& chain, ChainRecorders& recorders,
                               ? describe_failure(chain, t, "total energy", finite ? e / energy0 : e)
                               : describe_failure(chain, t, "strain energy", strain / energy0);
         outcome.checked_until_s =
-            energy_checked == 0
-                ? chain.start_time_s
-                : recorders.energy_grid_tau(energy_checked - 1) + chain.start_time_s;
+            energy_checked == 0 ? 0.0 : recorders.energy_grid_tau(energy_checked - 1);
         return false;
       }
     }
@@ -340,7 +338,7 @@ ScheduleOutcome run_schedule(Chain& chain, ChainRecorders& recorders,
       if (!after_instant(tau_j)) return outcome;
     }
   }
-  outcome.checked_until_s = chain.end_tau_s + chain.start_time_s;
+  outcome.checked_until_s = chain.end_tau_s;
   return outcome;
 }
 

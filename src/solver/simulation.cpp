@@ -108,14 +108,21 @@ Chain build_chain(const Scene& scene, const ChainDiscretization& d, bool full_mo
     configure_bar(c.bars.back(), scene, i, adaptive);
     c.states.push_back(make_bar_state(c.bars.back(), full_model));
   }
+  // Until the first contact the bars fly rigidly, unstrained: the run starts there, each gap
+  // already closed by its flight, so that the first contact falls on an instant of every bar.
+  // Started at the scene's gaps, it closed at the last instant before the meeting (contact.hpp
+  // closes_within), up to a step before the clock's zero: every signal up to a step early
+  // (measured: 0.45 us, 9.6 % gauge error, on a striker with a 2 mm gap at the default meshes).
+  const double flight = first_contact_delay_s(scene);
   for (std::size_t k = 0; k + 1 < c.bars.size(); ++k) {
     c.interfaces.push_back(interface_model(scene, d, k));
+    const double closing = scene.bars[k].velocity_m_s - scene.bars[k + 1].velocity_m_s;
+    c.interfaces.back().gap0_m = std::max(0.0, scene.bars[k].gap_m - closing * flight);
     c.interface_states.emplace_back();
-    c.interface_states.back().gap_m = scene.bars[k].gap_m;
+    c.interface_states.back().gap_m = c.interfaces.back().gap0_m;
   }
   c.contact_dissipated_J.assign(c.interfaces.size(), 0.0);
-  c.start_time_s = -first_contact_delay_s(scene);
-  c.end_tau_s = d.duration_s - c.start_time_s;
+  c.end_tau_s = d.duration_s;
   for (const BarModel& b : c.bars)
     c.final_step.push_back(static_cast<long>(std::ceil(c.end_tau_s / b.time_step_s - 1e-9)));
   if (!full_model && c.bars.size() > 1) cut_last_bar(c, scene, adaptive);

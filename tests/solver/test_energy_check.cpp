@@ -159,10 +159,10 @@ TEST_CASE("a stiff and heavy elastic specimen keeps its energy through its faces
 
 TEST_CASE("an elastic specimen keeps its energy with a gauge inside its face's end segment",
           "[solver][energy][specimen-faces]") {
-  // A gauge in the last three elements of a bar turns the end segment at that face off (its
-  // record is taken on the bar's own clock); the face is then the coupling of §3.4 with the
-  // specimen at its own C. With the specimen at the bars' C 0.9999 the elastic classic scene blew
-  // up (energy × 10³, exit 3) with its transmitter gauge 0–8 mm from the specimen.
+  // A gauge in the last three elements of a bar turned the end segment at that face off; the face
+  // was then the coupling of §3.4 with the specimen at its own C. With the specimen at the bars'
+  // C 0.9999 the elastic classic scene blew up (energy × 10³, exit 3) with its transmitter gauge
+  // 0–8 mm from the specimen. The segment now stays (the gauge reads it on its own clock).
   Scene scene = read_scene(std::filesystem::path(SHPB_SOURCE_DIR) /
                            "tools/bench_scenes/elastic-classic.json");
   BarSpec& transmitter = scene.bars.back();
