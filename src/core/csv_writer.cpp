@@ -17,8 +17,15 @@ std::string format_double(double value) {
   return std::string(buffer, end);
 }
 
+namespace {
+// A cell's number: a subnormal (|x| < 2.2e-308: a wave front's underflowing foot, -1e-323) is
+// written as 0: no strain, stress or time is that small, and readers refuse it (C++'s std::stod,
+// spreadsheets that hold doubles only down to 2.2e-308).
+double cell_value(double value) { return std::fpclassify(value) == FP_SUBNORMAL ? 0.0 : value; }
+}  // namespace
+
 std::string format_field(double value) {
-  return std::isfinite(value) ? format_double(value) : std::string();
+  return std::isfinite(value) ? format_double(cell_value(value)) : std::string();
 }
 
 std::string quote_cell(const std::string& s) {
@@ -107,7 +114,7 @@ void CsvWriter::row(std::string_view leading, std::size_t leading_columns,
     if (i || leading_columns) line_.push_back(',');
     if (!std::isfinite(values[i]))
       throw std::logic_error(path_.string() + ": refusing to write a non-finite value");
-    auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, values[i]);
+    auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, cell_value(values[i]));
     line_.append(buffer, end);
   }
   line_.append(trailing);

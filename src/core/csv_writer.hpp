@@ -53,7 +53,8 @@ std::string quote_cell(const std::string& text);
 
 // Shortest text that reads back to the same double.
 std::string format_double(double value);
-// A CSV field: format_double, empty for a non-finite value (an undefined number, docs/outputs.md).
+// A CSV field: format_double, empty for a non-finite value (an undefined number, docs/outputs.md),
+// 0 for a subnormal one (as CsvWriter::row writes it).
 std::string format_field(double value);
 
 }  // namespace shpb

@@ -37,6 +37,24 @@ TEST_CASE("A CSV file has one header row and refuses non-finite values", "[core]
   REQUIRE(s.str() == "time_s,strain\n0,0.001\n");
 }
 
+TEST_CASE("A subnormal value is written as 0 for every reader to take", "[core][csv]") {
+  // A wave front's foot underflows to about 1e-323 in a run's gauges: std::stod (and spreadsheets
+  // holding doubles down to 2.2e-308 only) refuse such a cell; no strain or stress is that small.
+  const shpb_test::ScratchDir scratch("csv_writer_subnormal");
+  const auto path = scratch.path() / "table.csv";
+  {
+    CsvWriter w(path, {"time_s", "strain"});
+    w.row({4.65e-5, -1e-323});
+    w.close();
+  }
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  CHECK(s.str() == "time_s,strain\n4.65e-05,0\n");
+  CHECK(format_field(8.8e-320) == "0");
+  CHECK(format_field(2.3e-308) == format_double(2.3e-308));  // the smallest normal ones are kept
+}
+
 TEST_CASE("A row with preformatted leading cells reads as the same row of doubles", "[core][csv]") {
   const shpb_test::ScratchDir scratch("csv_leading");
   const auto path = scratch.path() / "table.csv";
