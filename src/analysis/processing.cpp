@@ -362,13 +362,12 @@ RecordedAtFaces recorded_at_faces(const std::vector<double>& t, const FacePulses
 // A record that ends before the loading has passed the faces (the incident pulse's duration from
 // the window's start) ends the curve short of the loading's end: said, with the gauge whose pulse
 // the record ends in.
-void warn_record_ends_in_loading(const std::vector<double>& t, const RecordedAtFaces& at,
+void warn_record_ends_in_loading(const std::vector<double>& t, double dt, const RecordedAtFaces& at,
                                  const PulseTiming& timing, const KolskySetup& k,
                                  ProcessingResult& r) {
   const double recorded = at.time_s, loaded = timing.face_start + timing.duration;
   const bool reflected = at.by_reflected;
   if (!(recorded < loaded)) return;
-  const double dt = t[1] - t[0];
   r.warnings.push_back(
       "gauge \"" + (reflected ? k.incident_gauge : k.transmitted_gauge) +
       "\": the record ends at " + format_resolved(t.back(), dt, 6) + " s" +
@@ -575,7 +574,7 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
   const FacePulses faces = pulses_at_faces(inc, tra, dt, timing, k, options, r);
   const RecordedAtFaces recorded = recorded_at_faces(t, faces, inc, tra, r);
   reduce_at_faces(t, dt, faces, recorded.time_s, timing, k, options, r);
-  warn_record_ends_in_loading(t, recorded, timing, k, r);
+  warn_record_ends_in_loading(t, dt, recorded, timing, k, r);
   warn_transmitted_echo(k, timing, dt, r);
 
   // Summary numbers.
