@@ -29,7 +29,7 @@ void print_simulation(const json& s) {
   for (const auto& i : s["interfaces"]) {
     const std::string name = i["left"].get<std::string>() + " | " + i["right"].get<std::string>();
     const json& l = i["links"];
-    std::string stiffness, mass;
+    std::string stiffness, mass = "-";  // the rigid-link limit and penalty take no mass penalty
     if (l.is_string()) {
       stiffness = l.get<std::string>();
     } else {
