@@ -82,12 +82,19 @@ std::string describe_failure(const Chain& chain, double t, const char* energy, d
   double courant = 0;
   for (std::size_t i = 0; i < chain.bars.size(); ++i)
     courant = std::max(courant, chain.bars[i].courant_at(chain.states[i].dt));
+  // At C = 1 a free bar's highest mode (ω = 2c/h) meets the central difference's double root:
+  // its amplitude grows linearly with no change of the discrete energy (§1.1), whatever the
+  // coupling.
+  if (courant >= 1 - kSameInstant)
+    out << "; a bar steps at C = 1, where its highest mode grows linearly (docs/methods.md §1.1)";
   if (!chain.global_stepping) {
     out << "; compare with --stepping global";
     if (courant > kAdvisedCourant)
       out << " or --courant " << kAdvisedCourant;
     else
       out << " or a --courant below " << std::setprecision(3) << courant;
+  } else if (courant > kAdvisedCourant) {
+    out << "; compare with --courant " << kAdvisedCourant;
   }
   return out.str();
 }
