@@ -184,7 +184,7 @@ struct NumberShape {
   bool operator==(const NumberShape&) const = default;
 };
 NumberShape shape_of(std::string_view field, char decimal_mark) {
-  const auto e = field.find_first_of("eE");
+  const auto e = exponent_mark(field);
   const std::string_view mantissa = field.substr(0, e);
   const auto mark = mantissa.find(decimal_mark);
   const std::string_view exponent =
@@ -477,6 +477,102 @@ std::size_t data_end(const DelimitedText& text, std::size_t first,
   return end;
 }
 
+// A channel header (catman's and other acquisition programs' exports) may hold rows of numbers
+// only between the column names and the data: sample rates, channel numbers, unit codes. Such a
+// row is shaped as a sample, and read as one it would put a sample rate or a channel number into
+// the record. Rows of numbers at the top of the data are therefore header rows, refused by line
+// with that cause and the remedy, when a row below them holds no number (a row of units) or,
+// with a time column, when their times are off the clock of the rows below them; never read.
+// A channel header holds a handful of rows; a record's samples are thousands.
+constexpr std::size_t kHeaderRowsOfNumbers = 16;
+// The rows below that must lie on one uniform clock to judge the rows above by it.
+constexpr std::size_t kClockRows = 4;
+
+// Lines [first, first + rows) named for a message: "line 3" or "lines 3–4".
+std::string lines_named(const DelimitedText& text, std::size_t first, std::size_t rows) {
+  const std::string from = std::to_string(text.rows.line(first));
+  return rows == 1 ? "line " + from
+                   : "lines " + from + "–" + std::to_string(text.rows.line(first + rows - 1));
+}
+
+// Why rows [first, first + rows) of numbers are not read, and what to do.
+std::string header_rows_cause(const DelimitedText& text, std::size_t first, std::size_t rows) {
+  const std::string lines = lines_named(text, first, rows);
+  return lines + " under the header" +
+         (first > 0 ? " (line " + std::to_string(text.rows.line(first - 1)) + ")" : "") + " hold" +
+         (rows == 1 ? "s" : "") +
+         " numbers that cannot be told from samples (a channel header's sample rates, channel "
+         "numbers or unit codes";
+}
+
+void refuse_numbers_above_header_rows(const DelimitedText& text, std::size_t first,
+                                      std::size_t end) {
+  const std::size_t last = std::min(end, first + kHeaderRowsOfNumbers + 1);
+  for (std::size_t r = first + 1; r < last; ++r) {
+    const TextRow row = text.rows[r];
+    if (all_numeric(row, text.decimal_comma)) continue;
+    // A sample with a marker ("OVER" beside its time, NaN throughout) is read as one.
+    if (!footer_row(row, text.decimal_comma) ||
+        std::all_of(row.fields.begin(), row.fields.end(),
+                    [](std::string_view f) { return f.empty() || not_a_number_marker(f); }))
+      return;
+    const std::string lines = lines_named(text, first, r - first);
+    throw input_error(
+        text.file.string(), "line " + std::to_string(row.line),
+        "\"" + std::string(row.fields.front().substr(0, 40)) + "\"",
+        "no number in this row, above the samples: " + header_rows_cause(text, first, r - first) +
+            " above its units); expected the samples below the header rows: delete " + lines +
+            " from the file, or export without the channel header");
+  }
+}
+
+void refuse_rows_off_the_clock(const DelimitedText& text, std::size_t first, std::size_t end,
+                               std::size_t time_index, std::string_view time_name, double unit_s) {
+  const std::size_t n = std::min(end - first, kHeaderRowsOfNumbers + kClockRows);
+  std::vector<double> t(n), digit(n);  // each row's time and the unit of its last digit
+  std::vector<std::string_view> fields;
+  for (std::size_t i = 0; i < n; ++i) {
+    text.rows.fields(first + i, fields);
+    const auto v = time_index < fields.size() ? parse_number(fields[time_index], text.decimal_comma)
+                                              : std::nullopt;
+    if (!v) return;  // refused by line and column when read
+    t[i] = *v;
+    digit[i] = printed_step(fields[time_index], text.decimal_comma);
+  }
+  for (std::size_t j = 0; j + kClockRows <= n; ++j) {
+    const double dt = (t[j + kClockRows - 1] - t[j]) / static_cast<double>(kClockRows - 1);
+    bool uniform = dt > 0;
+    for (std::size_t k = j; uniform && k + 1 < j + kClockRows; ++k)
+      uniform = std::abs(t[k + 1] - t[k] - dt) <= kAutoResampleJitter * dt;
+    if (!uniform) continue;
+    // The rows above, each where the clock puts it within the jitter and the stamps' rounding
+    // (their finest digit: "0" is as exact as "1e-07"), by every step back to it, and a digit:
+    // samples, or the clock's own faults (a gap, a jump) that the time base judges.
+    const double rounding =
+        *std::min_element(digit.begin() + static_cast<std::ptrdiff_t>(j),
+                          digit.begin() + static_cast<std::ptrdiff_t>(j + kClockRows));
+    bool on_clock = true;
+    for (std::size_t i = 0; i < j && on_clock; ++i) {
+      const auto back = static_cast<double>(j - i);
+      on_clock = std::abs(t[i] - (t[j] - back * dt)) <=
+                 back * (kAutoResampleJitter * dt + rounding) + rounding;
+    }
+    if (on_clock) return;
+    const TextRow row = text.rows[first];
+    throw input_error(
+        text.file.string(),
+        text_place(row.line, time_index) +
+            (time_name.empty() ? "" : " (\"" + std::string(time_name) + "\")"),
+        "\"" + std::string(row.fields[time_index]) + "\"",
+        "not on the clock of the samples below (every " + format_number(dt * unit_s) + " s from " +
+            format_number(t[j] * unit_s) + " s at line " +
+            std::to_string(text.rows.line(first + j)) + "): " + header_rows_cause(text, first, j) +
+            ", or samples out of place); expected samples from the first row of numbers on: "
+            "delete " +
+            lines_named(text, first, j) + " from the file, or export without the channel header");
+  }
+}
+
 }  // namespace
 
 RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest& request) {
@@ -490,6 +586,7 @@ RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest
   const std::size_t width = text.rows[first].fields.size();
   std::vector<std::string> warnings;
   const std::size_t end = data_end(text, first, warnings);
+  refuse_numbers_above_header_rows(text, first, end);
   const auto [clock, trace_names] = file_clock(text, first, request, warnings);
   ColumnRef time_ref = request.time_column;
   if (time_ref.name.empty() && !time_ref.index && !clock) time_ref.index = 0;
@@ -558,6 +655,12 @@ RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest
                             format_number(request.time_unit_s) +
                             " s (measurement.time.unit, default s): set \"time\": {\"unit\": \"" +
                             unit->first + "\"} or correct the header");
+  if (time_index && request.resample.mode != TimeResample::kAlways)
+    refuse_rows_off_the_clock(text, first, end, *time_index,
+                              named && *time_index < named->fields.size()
+                                  ? named->fields[*time_index]
+                                  : std::string_view(),
+                              request.time_unit_s);
   std::vector<std::size_t> indices;
   std::vector<std::string> names;
   for (const auto& c : request.columns) {

@@ -131,6 +131,28 @@ bool maybe_thousands(std::string_view f) {
   return true;
 }
 
+// Fortran's D exponent, as DOUBLE PRECISION values are written ("1.0D-03",
+// "0.1234567890123457D+01"): a mantissa of digits with its decimal mark (already a point), D or
+// d, an exponent of 1 to 3 digits with or without its sign. The position of the D; nullopt for
+// anything else ("3D", "2d4" and names hold no decimal mark).
+std::optional<std::size_t> fortran_exponent(std::string_view f) {
+  const auto d = f.find_first_of("dD");
+  if (d == std::string_view::npos || d == 0) return std::nullopt;
+  const auto digit = [](char c) { return c >= '0' && c <= '9'; };
+  std::string_view mantissa = f.substr(0, d), exponent = f.substr(d + 1);
+  if (mantissa.front() == '-' || mantissa.front() == '+') mantissa.remove_prefix(1);
+  if (!exponent.empty() && (exponent.front() == '-' || exponent.front() == '+'))
+    exponent.remove_prefix(1);
+  const auto point = mantissa.find('.');
+  return point != std::string_view::npos && mantissa.size() > 1 &&
+                 std::all_of(mantissa.begin(), mantissa.end(),
+                             [&](char c) { return digit(c) || c == '.'; }) &&
+                 mantissa.find('.', point + 1) == std::string_view::npos && !exponent.empty() &&
+                 exponent.size() <= 3 && std::all_of(exponent.begin(), exponent.end(), digit)
+             ? std::optional(d)
+             : std::nullopt;
+}
+
 }  // namespace
 
 std::optional<double> parse_number(std::string_view field, bool decimal_comma) {
@@ -151,12 +173,23 @@ std::optional<double> parse_number(std::string_view field, bool decimal_comma) {
   if (const auto v = exact_short_decimal(b, e)) return v;
   double v = 0;
   const auto [end, ec] = std::from_chars(b, e, v);
-  if (ec != std::errc() || end != e || !std::isfinite(v)) return std::nullopt;
-  return v;
+  if (ec == std::errc() && end == e && std::isfinite(v)) return v;
+  if (const auto d = fortran_exponent(field)) {
+    std::string with_e(field);
+    with_e[*d] = 'e';
+    return parse_number(with_e, false);
+  }
+  return std::nullopt;
+}
+
+std::size_t exponent_mark(std::string_view field) {
+  const auto e = field.find_first_of("eE");
+  if (e != std::string_view::npos) return e;
+  return fortran_exponent(field).value_or(std::string_view::npos);
 }
 
 double printed_step(std::string_view field, bool decimal_comma) {
-  const auto e = field.find_first_of("eE");
+  const auto e = exponent_mark(field);
   const std::string_view mantissa = field.substr(0, e);
   const auto mark = mantissa.find(decimal_comma ? ',' : '.');
   const auto decimals =

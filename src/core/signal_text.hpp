@@ -87,9 +87,13 @@ void detect_decimal_comma(DelimitedText& text);
 DelimitedText read_delimited_text(const std::filesystem::path& file);
 
 // Strict number parsing of one field (the whole field must be a finite number; with
-// `decimal_comma`, a decimal comma and no point). Returns nullopt for anything else, including
-// NaN and inf.
+// `decimal_comma`, a decimal comma and no point; Fortran's "1.0D-03" is 1.0E-03). Returns nullopt
+// for anything else, including NaN and inf.
 std::optional<double> parse_number(std::string_view field, bool decimal_comma);
+
+// Where a number's exponent starts: its E (or e), or Fortran's D of a DOUBLE PRECISION value
+// ("1.0D-03", which parse_number reads as 1.0E-03); npos without one.
+std::size_t exponent_mark(std::string_view field);
 
 // The unit of the last digit a number is written with: 1e-6 for "-0.000100", 1e-7 for
 // "1.25E-05", 1 for "42" (a stamp printed so lies within half of it of the value it rounds).

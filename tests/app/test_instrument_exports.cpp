@@ -158,6 +158,43 @@ TEST_CASE("A column of NaN beside the samples and a footer line leave the record
   }
 }
 
+TEST_CASE("Fortran's D exponents are read and a channel header's rows of numbers refused",
+          "[app][process][csv]") {
+  // A Fortran program's DOUBLE PRECISION columns ("0.1000000000000000D-06") were refused by value
+  // and line; a catman-style export's sample rates and channel numbers under the names were
+  // refused as a time going backwards (line 3: 0 s after 1e+07 s).
+  const fs::path d = scratch_dir("exports_fortran_catman");
+  const auto rec = simulated_and_timed(d);
+  SECTION("D exponents give the plain CSV's curve") {
+    std::ofstream out(d / "fortran.txt");
+    out << " time_s incident transmitted\n";
+    char field[40];
+    for (std::size_t i = 0; i < rec[0].size(); ++i) {
+      for (const auto& column : rec) {
+        std::snprintf(field, sizeof field, " %.16E", column[i]);
+        std::string f = field;
+        std::replace(f.begin(), f.end(), 'E', 'D');
+        out << f;
+      }
+      out << "\n";
+    }
+    out.close();
+    const auto scene = classic_reading(d, "s.json", d / "fortran.txt", nullptr);
+    processed(scene, d / "out");
+    check_same_curve(d / "timed", d / "out", 0);
+  }
+  SECTION("a channel header's rows of numbers are refused by line with their cause") {
+    std::ofstream(d / "catman.txt") << "time_s\tincident\ttransmitted\n"
+                                       "10000000\t10000000\t10000000\n0\t1\t2\n"
+                                    << record_rows(rec, {"\t", "\t"});
+    const auto scene = classic_reading(d, "s.json", d / "catman.txt", nullptr);
+    check_refused(process(scene, d / "out"),
+                  {"catman.txt: line 2, column 1 (\"time_s\"): \"10000000\"",
+                   "not on the clock of the samples below", "lines 2–3 under the header (line 1)",
+                   "export without the channel header"});
+  }
+}
+
 TEST_CASE("A workbook's chart sheet in front of its data is passed over by default",
           "[app][process][excel]") {
   // A plot saved as a chart sheet before the signals' sheet: "the first sheet" was the chart,

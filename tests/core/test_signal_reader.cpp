@@ -357,6 +357,107 @@ TEST_CASE("A data row with text in one field is a data row, never taken for the 
   }
 }
 
+TEST_CASE(
+    "Rows of numbers between a channel header's names and its data are refused and never read",
+    "[core][signal]") {
+  // catman-style channel headers: under each column's name its sample rate and channel number
+  // (rows of numbers only), sometimes above a row of units. Read as the first samples, a sample
+  // rate of 1e7 or a channel number became a time and a strain; the message named a time going
+  // backwards, or the units row's "s" as a bad sample.
+  const std::string data =
+      "-2e-6,0.5,-1\n-1e-6,0.5,-1\n0,0.5,-1\n1e-6,0.75,-2\n2e-6,1,-3\n"
+      "3e-6,1.25,-4\n";
+  struct Case {
+    const char* what;
+    std::string head;
+    std::string error;  // the refusal, or empty: read whole
+  };
+  const Case cases[] = {
+      {"sample rates and channel numbers under the names",
+       "Time,incident,transmitted\n1000000,1000000,1000000\n0,1,2\n",
+       "head.csv: line 2, column 1 (\"Time\"): \"1000000\": not on the clock of the samples below "
+       "(every 1e-06 s from -2e-06 s at line 4): lines 2–3 under the header (line 1)"},
+      {"a channel number under the names and units", "Time,incident,transmitted\ns,V,V\n0,1,2\n",
+       "head.csv: line 3, column 1 (\"Time\"): \"0\": not on the clock of the samples below "
+       "(every 1e-06 s from -2e-06 s at line 4): line 3 under the header (line 2)"},
+      {"sample rates and channel numbers above the units",
+       "Time,incident,transmitted\n1000000,1000000,1000000\n0,1,2\ns,V,V\n",
+       "head.csv: line 4: \"s\": no number in this row, above the samples: lines 2–3 under the "
+       "header (line 1)"},
+      {"the names and units alone", "Time,incident,transmitted\ns,V,V\n", ""},
+      {"samples whose first stamp is a step early on their clock",
+       "Time,incident,transmitted\n-3e-6,0.5,-1\n", ""},
+  };
+  for (const auto& c : cases) {
+    DYNAMIC_SECTION(c.what) {
+      const auto p = write_file("head.csv", c.head + data);
+      auto r = csv_request(p, {by_name("incident")});
+      r.time_column = by_name("Time");
+      if (!c.error.empty()) {
+        const std::string e = error_of([&] { read_signal_columns(r); });
+        CHECK(e.find(c.error) != std::string::npos);
+        CHECK(e.find("export without the channel header") != std::string::npos);
+      } else {
+        const SignalColumns s = read_signal_columns(r);
+        CHECK(s.values[0].back() == 1.25);
+        CHECK(s.dt_s == Approx(1e-6));
+      }
+    }
+  }
+  SECTION("under a row of comments the time column by index still shows them") {
+    // The row above the first row of numbers was taken for the header: "no such column".
+    const auto p = write_file("head.csv",
+                              "Time,incident,transmitted\nComment,bar 1,bar 2\n"
+                              "1000000,1000000,1000000\n0,1,2\n" +
+                                  data);
+    const std::string e =
+        error_of([&] { read_signal_columns(csv_request(p, {by_name("incident")})); });
+    CHECK(e.find("head.csv: line 3, column 1 (\"Comment\"): \"1000000\": not on the clock") !=
+          std::string::npos);
+    CHECK(e.find("lines 3–4 under the header (line 2)") != std::string::npos);
+  }
+  SECTION("without a time column, a row of units below them still shows them") {
+    const auto p = write_file("head.csv",
+                              "incident,transmitted\n1000000,1000000\n0,1\nV,V\n"
+                              "0.5,-1\n0.5,-1\n0.75,-2\n");
+    auto r = csv_request(p, {by_name("incident")});
+    r.clock = SampleClock{1e-6, 0};
+    CHECK(error_of([&] {
+            read_signal_columns(r);
+          }).find("line 4: \"V\": no number in this row, above the samples: lines 2–3") !=
+          std::string::npos);
+  }
+}
+
+TEST_CASE("Fortran's D exponents are read as the E they mean", "[core][signal]") {
+  // DOUBLE PRECISION values as Fortran writes them ("0.1000000000000000D-05", list-directed or
+  // with a D edit descriptor): refused as "expected a finite number" before.
+  const auto p = write_file("fortran.txt",
+                            " t_s incident transmitted\n"
+                            " 0.0000000000000000D+00 -0.1250000000000000D-03 0.5D0\n"
+                            " 0.1000000000000000D-05 -0.2500000000000000D-03 0.25d+1\n"
+                            " 0.2000000000000000D-05 -0.3750000000000000D-03 -0.75D-2\n");
+  auto r = csv_request(p, {by_name("incident"), by_name("transmitted")});
+  r.time_column = by_name("t_s");
+  const SignalColumns s = read_signal_columns(r);
+  CHECK(s.time_s == std::vector<double>{0, 1e-6, 2e-6});
+  CHECK(s.values[0] == std::vector<double>{-0.125e-3, -0.25e-3, -0.375e-3});
+  CHECK(s.values[1] == std::vector<double>{0.5, 2.5, -0.75e-2});
+  SECTION("a D that is no exponent stays text") {
+    // No decimal point before it, no digits after it, or more than three: names, not numbers.
+    for (const char* field : {"3D4", "2d", "1.5D", "1.5D+", "1.5D1234", "D-03", "1.5.2D3"}) {
+      const auto q =
+          write_file("fortran.txt", std::string("t_s,x\n0,") + field + "\n1e-6,1\n2e-6,2\n");
+      auto rq = csv_request(q, {by_name("x")});
+      rq.time_column = by_name("t_s");
+      CHECK(error_of([&] {
+              read_signal_columns(rq);
+            }).find(std::string("line 2, column 2 (\"x\"): \"") + field + "\"") !=
+            std::string::npos);
+    }
+  }
+}
+
 TEST_CASE("A time unit the header gives must be the one the column is read in", "[core][signal]") {
   // Scopes and spreadsheets name the unit in the header ("Time (ms)", "t [us]", "Time/s"), or in
   // a unit row below it (PicoScope "(ms)", Keysight "second"); a name without one says nothing.
