@@ -106,10 +106,10 @@ std::string JsonValue::string() const {
   return json_->get<std::string>();
 }
 
-std::string name_problem(std::string_view s) {
+std::string header_name_problem(std::string_view s) {
   if (s.empty() || s.find_first_not_of(' ') == std::string::npos) return "must not be empty";
-  if (s.find_first_of(",\"\r\n") != std::string::npos)
-    return "must not contain a comma, quote or line break (names become CSV column names)";
+  if (s.find_first_of("\r\n") != std::string::npos)
+    return "must not contain a line break (a header's name is one line)";
   // Names are compared exactly as written: two that differ only in white space or in invisible
   // characters would be distinct here and the same to a reader that trims.
   if (std::isspace(static_cast<unsigned char>(s.front())) ||
@@ -118,6 +118,12 @@ std::string name_problem(std::string_view s) {
   for (const unsigned char c : s)
     if (c < 0x20 || c == 0x7f) return "must not contain control characters (tab, NUL, escape...)";
   return "";
+}
+
+std::string name_problem(std::string_view s) {
+  if (s.find_first_of(",\"\r\n") != std::string::npos)
+    return "must not contain a comma, quote or line break (names become CSV column names)";
+  return header_name_problem(s);
 }
 
 std::string file_name_problem(std::string_view s, const std::vector<std::string>& reserved) {
@@ -144,6 +150,12 @@ std::string file_name_problem(std::string_view s, const std::vector<std::string>
 std::string JsonValue::name() const {
   const std::string s = string();
   if (const std::string why = name_problem(s); !why.empty()) throw error(why);
+  return s;
+}
+
+std::string JsonValue::header_name() const {
+  const std::string s = string();
+  if (const std::string why = header_name_problem(s); !why.empty()) throw error(why);
   return s;
 }
 

@@ -49,6 +49,9 @@ class JsonValue {
   bool boolean() const;
   std::string string() const;  // any string
   std::string name() const;    // a non-empty string usable as a CSV column name
+  // A column's name in a file the user brings ("DMS1 A (bar 1,0m)"): found there, never written
+  // as a column, so a comma or a quote is allowed; see header_name_problem().
+  std::string header_name() const;
   // A name() that also names a file or folder: see file_name_problem().
   std::string file_name(const std::vector<std::string>& reserved) const;
   std::vector<JsonValue> array() const;  // the elements of an array
@@ -67,8 +70,11 @@ class JsonValue {
 // UTF-8 in a path or key the user gave stays within a message's one line.
 std::string json_quoted(std::string_view s);
 
-// Why `s` is not a name (bars, gauges, tests: they become CSV columns and rows), or "": not empty,
-// no comma, quote, line break or control character, no white space at either end.
+// Why `s` is not a name of a column in a file the user brings, or "": not empty, no line break or
+// control character, no white space at either end (a header's fields are read trimmed).
+std::string header_name_problem(std::string_view s);
+// Why `s` is not a name (bars, gauges, tests: they become CSV columns and rows), or "": a
+// header_name_problem()-free name with no comma or quote.
 std::string name_problem(std::string_view s);
 // Why `s` is not a name that also names a file or folder (a campaign's test folders), or "": a
 // name, no path separator ('/', '\\'), not "." or "..", and none of `reserved` (the other files

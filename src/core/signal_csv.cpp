@@ -117,11 +117,24 @@ void refuse_split_decimal_commas(const DelimitedText& text, const TextRow* heade
             "semicolon or tab separator");
 }
 
+// The rows right above a header that are as wide as it, nearest first, up to the first row of
+// another width: the rest of a header of several rows (a TranAX export's channel names over a row
+// of quantities, "Zeit;Signal;Signal", over the units), never the metadata above it.
+std::vector<TextRow> header_block(const DelimitedText& text, std::size_t header) {
+  std::vector<TextRow> block;
+  const std::size_t width = filled_width(text.rows[header]);
+  for (std::size_t i = header; i-- > 0 && filled_width(text.rows[i]) == width;)
+    block.push_back(text.rows[i]);
+  return block;
+}
+
 // Column index of a reference: by 0-based index, or by exact (then case-insensitive) header name.
 // `wider`: the first data row holding more filled fields than the header names, if any. `names`:
-// the row above a header of units (PicoScope's "Time,Channel A" over "(ms),(mV)"), searched first.
+// the row above a header of units (PicoScope's "Time,Channel A" over "(ms),(mV)"), searched first;
+// then the header, then the rows of its block above (header_block), nearest first.
 std::size_t resolve(const DelimitedText& text, const TextRow* header, const TextRow* names,
-                    const ColumnRef& ref, std::size_t columns_in_data, const TextRow* wider) {
+                    const std::vector<TextRow>& block, const ColumnRef& ref,
+                    std::size_t columns_in_data, const TextRow* wider) {
   if (ref.index) {
     if (*ref.index < 0 || static_cast<std::size_t>(*ref.index) >= columns_in_data)
       throw input_error(text.file.string(), "", describe(ref),
@@ -166,6 +179,8 @@ std::size_t resolve(const DelimitedText& text, const TextRow* header, const Text
     if (names)
       if (const auto c = find(*names)) return *c;
     if (const auto c = find(*header)) return *c;
+    for (const auto& row : block)
+      if (const auto c = find(row)) return *c;
     const TextRow& listed = names ? *names : *header;
     std::string list;
     for (const auto& h : listed.fields) (list += list.empty() ? "\"" : ", \"").append(h) += '"';
@@ -573,6 +588,21 @@ void refuse_rows_off_the_clock(const DelimitedText& text, std::size_t first, std
   }
 }
 
+// A header that names the time column's unit must agree with the unit it is read in: a column in
+// ms read as seconds passes the sample-interval check at 10 MHz and above (0.1 ms -> 1e-4 s).
+void check_time_unit(const DelimitedText& text, const TextRow& header, std::size_t time_index,
+                     double time_unit_s) {
+  if (time_index >= header.fields.size()) return;
+  if (const auto unit = header_unit(header.fields[time_index], time_unit, kTimeUnitCuts);
+      unit && std::abs(unit->second / time_unit_s - 1) > kSameUnit)
+    throw input_error(text.file.string(), text_place(header.line, time_index),
+                      "\"" + std::string(header.fields[time_index]) + "\"",
+                      "the header gives the time in " + unit->first +
+                          ", but the column is read in units of " + format_number(time_unit_s) +
+                          " s (measurement.time.unit, default s): set \"time\": {\"unit\": \"" +
+                          unit->first + "\"} or correct the header");
+}
+
 }  // namespace
 
 RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest& request) {
@@ -639,22 +669,12 @@ RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest
       : above && unit_row(*header) && filled_width(*above) == filled_width(*header) ? &*above
                                                                                     : nullptr;
   const TextRow* named = names_row ? names_row : header;  // what names each column
+  const std::vector<TextRow> block =
+      header ? header_block(text, first - 1) : std::vector<TextRow>();
   const std::optional<std::size_t> time_index =
       clock ? std::nullopt
-            : std::optional(resolve(text, header, names_row, time_ref, width, wider));
-  // A header that names the time column's unit must agree with the unit it is read in: a column
-  // in ms read as seconds passes the sample-interval check at 10 MHz and above (0.1 ms -> 1e-4 s).
-  if (header && time_index && *time_index < header->fields.size())
-    if (const auto unit = header_unit(header->fields[*time_index], time_unit, kTimeUnitCuts);
-        unit && std::abs(unit->second / request.time_unit_s - 1) > kSameUnit)
-      throw input_error(text.file.string(), text_place(header->line, *time_index),
-                        "\"" + std::string(header->fields[*time_index]) + "\"",
-                        "the header gives the time in " + unit->first +
-                            ", but the column is read "
-                            "in units of " +
-                            format_number(request.time_unit_s) +
-                            " s (measurement.time.unit, default s): set \"time\": {\"unit\": \"" +
-                            unit->first + "\"} or correct the header");
+            : std::optional(resolve(text, header, names_row, block, time_ref, width, wider));
+  if (header && time_index) check_time_unit(text, *header, *time_index, request.time_unit_s);
   if (time_index && request.resample.mode != TimeResample::kAlways)
     refuse_rows_off_the_clock(text, first, end, *time_index,
                               named && *time_index < named->fields.size()
@@ -664,7 +684,7 @@ RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest
   std::vector<std::size_t> indices;
   std::vector<std::string> names;
   for (const auto& c : request.columns) {
-    indices.push_back(resolve(text, header, names_row, c, width, wider));
+    indices.push_back(resolve(text, header, names_row, block, c, width, wider));
     names.push_back(named && indices.back() < named->fields.size()
                         ? std::string(named->fields[indices.back()])
                         : "column " + std::to_string(indices.back()));

@@ -12,7 +12,7 @@ namespace {
 ColumnRef read_column(const JsonValue& v) {
   ColumnRef c;
   if (v.is_string())
-    c.name = v.name();
+    c.name = v.header_name();
   else if (v.is_number())
     c.index = static_cast<int>(v.integer(0, 100000));
   else

@@ -195,6 +195,44 @@ TEST_CASE("Fortran's D exponents are read and a channel header's rows of numbers
   }
 }
 
+TEST_CASE("A TranAX export's channels are read by the names above its quantities and units",
+          "[app][process][csv]") {
+  // Elsys TranAX, as a rock-testing lab's Carrara marble record is written: each line quoted
+  // whole, semicolons, decimal commas, metadata, then the channel names ("Kanal"), a row of
+  // quantities ("Zeit;Signal;Signal;") and the units. A name holding a comma was refused by the
+  // scene ("must not contain a comma"), and the names two rows above the units were not searched:
+  // "no such column; the header has "Zeit", "Signal", "Signal"".
+  const fs::path d = scratch_dir("exports_tranax");
+  const auto rec = simulated_and_timed(d);
+  const std::string incident = "DMS1 A (Eingangsstab 1,0m) (0.A1)";
+  const std::string transmitted = "DMS2 A (Ausgangsstab 1m) (0.A3)";
+  std::ofstream out(d / "tranax.csv", std::ios::binary);
+  out << "\"Starttime;22.03.2016 12:02:33\"\r\n\"TriggerSample;-21762\"\r\n"
+         "\"Samplerate;10000000 Hz\"\r\n\"Blocklength;"
+      << rec[0].size() << "\"\r\n\"Kanal;" << incident << ";" << transmitted
+      << ";\"\r\n\"Zeit;Signal;Signal;\"\r\n\"s;V;V;\"\r\n";
+  char field[40];
+  for (std::size_t i = 0; i < rec[0].size(); ++i) {
+    out << "\"";
+    for (std::size_t k = 0; k < rec.size(); ++k) {
+      std::snprintf(field, sizeof field, "%.16e", rec[k][i]);
+      std::string f = field;
+      std::replace(f.begin(), f.end(), '.', ',');
+      out << (k ? ";" : "") << f;
+    }
+    out << "\"\r\n";
+  }
+  out.close();
+  const auto scene =
+      classic_reading(d, "s.json", d / "tranax.csv", nullptr, incident, transmitted, "V");
+  processed(scene, d / "out");
+  check_same_curve(d / "timed", d / "out", 0);
+  const auto quantity =
+      classic_reading(d, "q.json", d / "tranax.csv", nullptr, "Signal", transmitted, "V");
+  check_refused(process(quantity, d / "quantity"),
+                {"tranax.csv: line 6", "column \"Signal\"", "several header columns match"});
+}
+
 TEST_CASE("A workbook's chart sheet in front of its data is passed over by default",
           "[app][process][excel]") {
   // A plot saved as a chart sheet before the signals' sheet: "the first sheet" was the chart,
