@@ -132,8 +132,8 @@ bool maybe_thousands(std::string_view f) {
 }
 
 // Fortran's D exponent, as DOUBLE PRECISION values are written ("1.0D-03",
-// "0.1234567890123457D+01"): a mantissa of digits with its decimal mark (already a point), D or
-// d, an exponent of 1 to 3 digits with or without its sign. The position of the D; nullopt for
+// "0.1234567890123457D+01"): a mantissa of digits with one decimal mark (point or comma), D or d,
+// an exponent of 1 to 3 digits with or without its sign. The position of the D; nullopt for
 // anything else ("3D", "2d4" and names hold no decimal mark).
 std::optional<std::size_t> fortran_exponent(std::string_view f) {
   const auto d = f.find_first_of("dD");
@@ -143,12 +143,12 @@ std::optional<std::size_t> fortran_exponent(std::string_view f) {
   if (mantissa.front() == '-' || mantissa.front() == '+') mantissa.remove_prefix(1);
   if (!exponent.empty() && (exponent.front() == '-' || exponent.front() == '+'))
     exponent.remove_prefix(1);
-  const auto point = mantissa.find('.');
-  return point != std::string_view::npos && mantissa.size() > 1 &&
+  const auto mark = [](char c) { return c == '.' || c == ','; };
+  return std::count_if(mantissa.begin(), mantissa.end(), mark) == 1 && mantissa.size() > 1 &&
                  std::all_of(mantissa.begin(), mantissa.end(),
-                             [&](char c) { return digit(c) || c == '.'; }) &&
-                 mantissa.find('.', point + 1) == std::string_view::npos && !exponent.empty() &&
-                 exponent.size() <= 3 && std::all_of(exponent.begin(), exponent.end(), digit)
+                             [&](char c) { return digit(c) || mark(c); }) &&
+                 !exponent.empty() && exponent.size() <= 3 &&
+                 std::all_of(exponent.begin(), exponent.end(), digit)
              ? std::optional(d)
              : std::nullopt;
 }

@@ -443,6 +443,15 @@ TEST_CASE("Fortran's D exponents are read as the E they mean", "[core][signal]")
   CHECK(s.time_s == std::vector<double>{0, 1e-6, 2e-6});
   CHECK(s.values[0] == std::vector<double>{-0.125e-3, -0.25e-3, -0.375e-3});
   CHECK(s.values[1] == std::vector<double>{0.5, 2.5, -0.75e-2});
+  SECTION("with decimal commas") {
+    const auto q =
+        write_file("fortran.txt", "t_s;x\n0,0D+00;-0,125D-03\n0,1D-05;0,25d+1\n0,2D-05;-0,75D-2\n");
+    auto rq = csv_request(q, {by_name("x")});
+    rq.time_column = by_name("t_s");
+    const SignalColumns c = read_signal_columns(rq);
+    CHECK(c.time_s == std::vector<double>{0, 1e-6, 2e-6});
+    CHECK(c.values[0] == std::vector<double>{-0.125e-3, 2.5, -0.75e-2});
+  }
   SECTION("a D that is no exponent stays text") {
     // No decimal point before it, no digits after it, or more than three: names, not numbers.
     for (const char* field : {"3D4", "2d", "1.5D", "1.5D+", "1.5D1234", "D-03", "1.5.2D3"}) {
