@@ -512,12 +512,12 @@ std::string lines_named(const DelimitedText& text, std::size_t first, std::size_
 
 // Why rows [first, first + rows) of numbers are not read, and what to do.
 std::string header_rows_cause(const DelimitedText& text, std::size_t first, std::size_t rows) {
-  const std::string lines = lines_named(text, first, rows);
-  return lines + " under the header" +
-         (first > 0 ? " (line " + std::to_string(text.rows.line(first - 1)) + ")" : "") + " hold" +
-         (rows == 1 ? "s" : "") +
-         " numbers that cannot be told from samples (a channel header's sample rates, channel "
-         "numbers or unit codes";
+  return lines_named(text, first, rows) +
+         (first > 0 ? " under the header (line " + std::to_string(text.rows.line(first - 1)) + ")"
+                    : "") +
+         (rows == 1 ? " holds" : " hold") +
+         " numbers only, which cannot be told from samples (a header's sample count, sample rates, "
+         "channel numbers or unit codes";
 }
 
 void refuse_numbers_above_header_rows(const DelimitedText& text, std::size_t first,
@@ -536,7 +536,7 @@ void refuse_numbers_above_header_rows(const DelimitedText& text, std::size_t fir
         text.file.string(), "line " + std::to_string(row.line),
         "\"" + std::string(row.fields.front().substr(0, 40)) + "\"",
         "no number in this row, above the samples: " + header_rows_cause(text, first, r - first) +
-            " above its units); expected the samples below the header rows: delete " + lines +
+            "); expected the samples below the header rows: delete " + lines +
             " from the file, or export without the channel header");
   }
 }
