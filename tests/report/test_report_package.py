@@ -13,6 +13,7 @@ import pytest
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools"))
 
 from shpb_report import main as report_main  # noqa: E402
+from shpb_report.drawing import figure_title  # noqa: E402
 from shpb_report import sweeps  # noqa: E402
 from shpb_report.reading import ReportError, Source, Table  # noqa: E402
 
@@ -311,7 +312,7 @@ def test_uncertainty_entries_of_the_wrong_kind_are_drawn_without_them(tmp_path):
 
     from shpb_report import process
     process.fig_uncertainty(Source(str(tmp_path), "."), Kept())
-    assert shown == ["peak_stress_Pa", "plateau_strain_rate_1_s"]  # no interval in the titles
+    assert shown == ["peak stress", "plateau strain rate"]  # no interval in the titles
 
 
 def test_a_home_matplotlib_cannot_write_leaves_stderr_to_the_result(tmp_path):
@@ -855,3 +856,96 @@ def test_a_dispersion_table_under_any_name_is_drawn(tmp_path):
     assert "kHz" in by_f.get_xlabel() and "a/Λ" in by_a.get_xlabel()
     html, count = report_main.build(str(tmp_path))
     assert count == 1
+
+
+class Titled(report_main.Figures):
+    """The report's own figure collector (it gives an untitled figure the page's title), keeping
+    each figure to read what it draws."""
+
+    def __init__(self, folder):
+        super().__init__(str(folder))
+        self.figures = []
+
+    def save(self, fig, *rest):
+        super().save(fig, *rest)
+        self.figures.append(fig)
+
+
+def test_a_simulation_in_which_nothing_moves_draws_no_empty_figure_and_says_so(tmp_path):
+    # A scene whose bars all rest (striker velocity 0) records zeros: the report drew six empty
+    # figures (gauges, wave diagram, specimen twice, interfaces, energy) and said nothing.
+    write(tmp_path, "gauges.csv", "time_s,incident,transmitted\n0,0,0\n1e-6,0,-0\n")
+    write(tmp_path, "interfaces.csv", "time_s,striker-incident_force_N\n0,0\n1e-6,0\n")
+    write(tmp_path, "energy.csv", "time_s,kinetic_J,strain_J,contact_J,dissipated_J,total_J\n"
+          "0,0,0,0,0,0\n1e-6,0,0,0,0,0\n")
+    write(tmp_path, "field.csv", "time_s,x_m,stress_Pa\n0,0,0\n0,1,0\n1e-6,0,0\n1e-6,1,0\n")
+    write(tmp_path, "specimen.csv", "time_s,strain,stress_Pa,strain_rate_1_s\n0,0,0,0\n"
+          "1e-6,0,0,0\n")
+    assert drawn(tmp_path) == []
+    html, count = report_main.build(str(tmp_path))
+    assert count == 0
+    assert "nothing moves in this simulation" in Path(html).read_text(encoding="utf-8")
+    # One gauge that moves, and every figure is drawn.
+    write(tmp_path, "gauges.csv", "time_s,incident,transmitted\n0,0,0\n1e-6,-1e-6,0\n")
+    assert len(drawn(tmp_path)) == 5
+
+
+def test_the_energy_legend_lies_over_no_line_and_every_figure_has_a_title(tmp_path):
+    # The energy figure's legend sat in the upper right, over the total (flat at the top of its
+    # panel); the bars-together figure had no title at all, nor had the plan's.
+    from shpb_report import plan, simulate
+    write(tmp_path, "energy.csv", "time_s,kinetic_J,strain_J,contact_J,dissipated_J,total_J\n"
+          "0,78,0,0,0,78\n1e-4,39,39,0,0,78\n2e-4,20,21,0,37,78\n")
+    kept = Titled(tmp_path)
+    simulate.fig_energy(Source(str(tmp_path), "."), kept)
+    (fig,) = kept.figures
+    assert legends_above_their_axes(fig)
+    assert figure_title(fig) == "Energy history"
+    write(tmp_path, "pulses.csv", "time_s,near,far_measured,far_pochhammer_chree,far_time_shift\n"
+          "0,0,0,0,0\n1e-6,-1e-3,-1e-3,-1e-3,-1e-3\n")
+    write(tmp_path, "summary.json", '{"command": "process", "near_gauge": "near", "far_gauge": '
+          '"far", "distance_m": 2.0, "rms_of_peak": {"pochhammer_chree": 0.004, '
+          '"time_shift": 0.03}}')
+    kept = Titled(tmp_path)
+    report_main.process.fig_bar_check(Source(str(tmp_path), "."), kept)
+    title = figure_title(kept.figures[0])
+    assert "near moved to far over 2 m" in title
+    assert "0.4 % with Pochhammer–Chree, 3 % with a time shift" in title
+    write(tmp_path, "loading.csv", "time_s,strain,strain_rate_1_s,front_force_N,back_force_N,"
+          "equilibrium_ratio,loading\n0,0,1000,1,1,0,1\n1e-6,0.001,1000,1,1,0,1\n")
+    kept = Titled(tmp_path)
+    plan.fig_loading(Source(str(tmp_path), "."), kept)
+    assert figure_title(kept.figures[0]) == "Planned test: rate and equilibrium"
+
+
+def test_a_plans_equilibrium_ratio_is_drawn_over_the_loading_alone(tmp_path):
+    # After the loading the specimen unloads, its face forces ring about small values and R
+    # (their ratio) swung between 0 and 200 %: the panel was filled with noise. R is judged over
+    # the loading (docs/outputs.md, loading.csv): it is drawn there alone.
+    from shpb_report import plan
+    rows = [f"{i * 1e-6},0,1000,1,1,{0.5 if i >= 6 else 0.01},{1 if 2 <= i < 6 else 0}"
+            for i in range(10)]
+    write(tmp_path, "loading.csv", "time_s,strain,strain_rate_1_s,front_force_N,back_force_N,"
+          "equilibrium_ratio,loading\n" + "\n".join(rows) + "\n")
+    kept = Kept()
+    plan.fig_loading(Source(str(tmp_path), "."), kept)
+    ratio_axes = kept.figures[0].axes[1]
+    line = next(line for line in ratio_axes.get_lines() if line.get_label().startswith("R = 2"))
+    x, y = line.get_xdata(), line.get_ydata()
+    shown = [round(t, 9) for t, v in zip(x, y) if v == v]
+    assert shown == [2, 3, 4, 5] and max(v for v in y if v == v) == 1.0
+
+
+def test_uncertainty_panels_are_titled_in_words_with_the_interval_and_its_unit(tmp_path):
+    # The panels were titled with summary.json's keys ("flow_stress_Pa_at_strain_0.1").
+    from shpb_report import process
+    write(tmp_path, "summary.json", '{"uncertainty": {"figures": {'
+          '"flow_stress_Pa_at_strain_0.1": {"interval_95": [210.7e6, 233.7e6], "unit": "Pa", '
+          '"contributions": [{"input": "a", "share": 0.5}]},'
+          '"mean_strain_rate_1_s": {"interval_95": [2869, 2974], "unit": "1/s", '
+          '"contributions": [{"input": "a", "share": 0.5}]}}}}')
+    kept = Kept()
+    process.fig_uncertainty(Source(str(tmp_path), "."), kept)
+    titles = [ax.get_title() for ax in kept.figures[0].axes]
+    assert titles == ["flow stress at strain 0.1\n95 %: 210.7 to 233.7 MPa",
+                      "mean strain rate\n95 %: 2869 to 2974 1/s"]

@@ -35,10 +35,25 @@ class Figures:
         self.items = []  # (file name, title, caption)
 
     def save(self, fig, name, title, caption):
+        entitle(fig, title)
         path = os.path.join(self.out_dir, name)
         fig.savefig(path, dpi=DPI)
         plt.close(fig)
         self.items.append((name, title, caption))
+
+
+def figure_title(fig):
+    """The figure's own title: its suptitle, else its axes' titles joined, else ""."""
+    if fig._suptitle is not None and fig._suptitle.get_text():  # get_suptitle: matplotlib 3.8
+        return fig._suptitle.get_text()
+    return " ".join(t for t in (ax.get_title() for ax in fig.axes) if t)
+
+
+def entitle(fig, title):
+    """Every saved figure carries a title: a figure drawn without one (the bars-together check,
+    the plan's figures) gets the page's, so that a PNG opened alone says what it shows."""
+    if not figure_title(fig):
+        fig.suptitle(title)
 
 
 def close_all():

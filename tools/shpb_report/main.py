@@ -235,6 +235,12 @@ def _pulses_with(column: str) -> Callable[[Source], bool]:
     return lambda src: src.has("pulses.csv") and column in src.table("pulses.csv")
 
 
+def _simulated(name: str) -> Callable[[Source], bool]:
+    """A simulation's file, drawn unless nothing moves in the run (six empty figures: the page
+    says so instead, simulate.NOTHING_MOVES)."""
+    return lambda src: src.has(name) and not simulate.nothing_moves(src)
+
+
 # The figures of one output folder: (what the folder must hold, the figure). In each group the
 # first figure whose condition holds is drawn (a fit's signals.csv is not a compare's).
 FigureDrawer = Callable[[Source, Figures, Optional[dict]], None]
@@ -242,8 +248,8 @@ FIGURE_TABLE: list[list[tuple[Callable[[Source], bool], FigureDrawer]]] = [
     [(lambda s: s.has("path.csv"), lambda s, f, t: plan.fig_plan(s, f))],
     [(lambda s: s.has("fit.json") and s.has("signals.csv"), lambda s, f, t: fit.fig_fit(s, f)),
      (lambda s: s.has("signals.csv"), lambda s, f, t: compare.fig_compare_signals(s, f)),
-     (lambda s: s.has("gauges.csv"), lambda s, f, t: simulate.fig_gauges(s, f))],
-    [(lambda s: s.has("field.csv"), lambda s, f, t: simulate.fig_wave_diagram(s, f))],
+     (_simulated("gauges.csv"), lambda s, f, t: simulate.fig_gauges(s, f))],
+    [(_simulated("field.csv"), lambda s, f, t: simulate.fig_wave_diagram(s, f))],
     [(lambda s: s.has("calibration.json"), lambda s, f, t: calibrate.fig_calibration(s, f))],
     [(lambda s: s.has("raw_signals.csv"), lambda s, f, t: process.fig_raw_signals(s, f))],
     [(_pulses_with(process.PULSES.incident), lambda s, f, t: process.fig_pulses(s, f)),
@@ -251,9 +257,9 @@ FIGURE_TABLE: list[list[tuple[Callable[[Source], bool], FigureDrawer]]] = [
     [(lambda s: s.has("curve.csv"), process.fig_curve)],
     [(lambda s: s.value("uncertainty", "figures") is not None,
       lambda s, f, t: process.fig_uncertainty(s, f))],
-    [(lambda s: s.has("specimen.csv"), lambda s, f, t: simulate.fig_specimen(s, f))],
-    [(lambda s: s.has("interfaces.csv"), lambda s, f, t: simulate.fig_interfaces(s, f))],
-    [(lambda s: s.has("energy.csv"), lambda s, f, t: simulate.fig_energy(s, f))],
+    [(_simulated("specimen.csv"), lambda s, f, t: simulate.fig_specimen(s, f))],
+    [(_simulated("interfaces.csv"), lambda s, f, t: simulate.fig_interfaces(s, f))],
+    [(_simulated("energy.csv"), lambda s, f, t: simulate.fig_energy(s, f))],
     [(lambda s: s.has("pareto.csv"), lambda s, f, t: study.fig_pareto(s, f))],
     [(lambda s: s.has("stability.csv"), lambda s, f, t: sweeps.fig_stability(s, f))],
     [(lambda s: s.has("gauge_bands.csv"), lambda s, f, t: study.fig_monte_carlo(s, f))],
@@ -285,6 +291,8 @@ def build(folder: str) -> tuple[str, int]:
     for src in sources:
         for missing in src.missing:
             print(f"warning: {missing}", file=sys.stderr)
+        if simulate.nothing_moves(src):
+            src.notes.append(simulate.NOTHING_MOVES)
     # The previous figures are set aside and removed: in a figures/ the user made read-only they
     # could not be, and would stay in DIR as a temporary its marker does not list.
     fig_dir = os.path.join(folder, "figures")

@@ -117,7 +117,7 @@ def headline_html(src):
             rows.append(("bars together: RMS of peak", ", ".join(rms)))
         if src.value("error"):
             rows.append(("error", str(src.value("error"))))
-    warnings = (src.value("warnings", kind=list) or []) + src.missing
+    warnings = (src.value("warnings", kind=list) or []) + src.missing + src.notes
     out = []
     if rows:
         out.append("<table class='kv headline'>" + "".join(

@@ -162,6 +162,23 @@ HEADLINE_FIGURES = ("flow_stress_Pa_at_strain_0.1", "peak_stress_Pa", "plateau_s
                     "mean_strain_rate_1_s")
 
 
+# summary.json's quantity keys end in their unit, which a title gives after the interval.
+UNIT_SUFFIXES = ("_Pa", "_1_s", "_m_s", "_m", "_s", "_J", "_N", "_K")
+
+
+def quantity_name(key):
+    """A summary.json quantity key as words: its unit suffix dropped, underscores as spaces
+    ("peak_stress_Pa": "peak stress", "flow_stress_Pa_at_strain_0.05": "flow stress at strain
+    0.05")."""
+    words = key
+    for unit in UNIT_SUFFIXES:
+        if words.endswith(unit) and len(words) > len(unit):
+            words = words[:-len(unit)]
+            break
+    words = words.replace("_Pa_at_", "_at_")
+    return words.replace("_", " ")
+
+
 def draw_contributions(src, figs, where, name, caption):
     """Each drawn input's share of the variance of the headline figures held under the
     summary.json keys `where` (records by figure name, each with interval_95, unit and
@@ -184,7 +201,7 @@ def draw_contributions(src, figs, where, name, caption):
         interval = number_pair(src.value(*entry, "interval_95"))
         scale, unit = ((MPA, "MPa") if figure.endswith("Pa") or "_Pa_" in figure
                        else (1.0, src.value(*entry, "unit", kind=str) or ""))
-        title = figure
+        title = quantity_name(figure)
         if interval is not None:
             title += f"\n95 %: {interval[0] * scale:.4g} to {interval[1] * scale:.4g} {unit}"
         ax.set_title(title, fontsize=9)
@@ -282,6 +299,18 @@ def fig_bar_check(src, figs):
     ax.set_xlabel("time on the signals' clock (µs)")
     ax.set_ylabel("far gauge strain (µε, tension +)")
     outside_legend(ax)
+    near, far = src.value("near_gauge", kind=str), src.value("far_gauge", kind=str)
+    distance = src.value("distance_m", kind=NUMBER)
+    title = "Bars together: the near gauge's pulse moved to the far gauge"
+    if near and far:
+        title = f"Bars together: {near} moved to {far}" + (
+            f" over {distance:.4g} m" if distance is not None else "")
+    rms = [f"{100 * v:.3g} % with {how}" for v, how in (
+        (src.value("rms_of_peak", "pochhammer_chree", kind=NUMBER), "Pochhammer–Chree"),
+        (src.value("rms_of_peak", "time_shift", kind=NUMBER), "a time shift")) if v is not None]
+    if rms:
+        title += "\nRMS of peak: " + ", ".join(rms)
+    fig.suptitle(src.title(title))  # above the legend
     figs.save(fig, src.png("bars_together"), src.title("Bars together: the far gauge"),
               "The near gauge's pulse moved to the far gauge with Pochhammer–Chree dispersion "
               "and by a plain time shift, over the measured far pulse (pulses.csv; RMS in "

@@ -248,6 +248,8 @@ class Source:
                         "the figures drawn from it are left out"
                         for n in sorted(written_by_shpb(folder) & set(KNOWN_FILES))
                         if n not in self.files]
+        # What the page says of the folder besides its producer's warnings (main.build).
+        self.notes = []
         self._tables = {}
         self.summary = {}
         if "summary.json" in self.files:

@@ -2,7 +2,7 @@
 x–t wave diagram, the energy history and the specimen's own truth."""
 import numpy as np
 
-from .drawing import MICRO, MPA, US, gauge_columns, new_figure
+from .drawing import MICRO, MPA, US, gauge_columns, new_figure, outside_legend
 from .reading import ReportError
 from .schema import columns, suffix
 
@@ -13,6 +13,27 @@ INTERFACES = columns("interfaces")
 SPECIMEN = columns("specimen")
 FORCE = suffix("interfaces", "<left>-<right>_force_N")
 FIELD_CELLS = 10**7  # a wave diagram's cells always drawn: 80 MB of doubles
+NOTHING_MOVES = ("nothing moves in this simulation: every gauge strain, contact force and energy "
+                 "it recorded is zero (no bar has a velocity), so its gauge, wave-diagram, "
+                 "specimen, interface and energy figures would be empty and are not drawn")
+
+
+def nothing_moves(src):
+    """A simulation folder whose records are all zero (a scene whose bars all rest): its
+    figures would be six empty axes. Judged on gauges.csv, interfaces.csv and energy.csv, every
+    column but time_s; field.csv and specimen.csv follow from them."""
+    if not src.has(GAUGES.FILE):
+        return False
+    read = 0  # values judged: a file of times alone shows nothing either way
+    for name in (GAUGES.FILE, INTERFACES.FILE, ENERGY.FILE):
+        if src.has(name):
+            t = src.table(name)
+            for column in t.names[1:]:
+                values = t.numeric(column)
+                if np.any(values[np.isfinite(values)] != 0):
+                    return False
+                read += values.size
+    return read > 0
 
 
 def fig_gauges(src, figs):
@@ -104,8 +125,8 @@ def fig_energy(src, figs):
         style = {"color": "k", "linewidth": 1.6} if name == ENERGY.total_J else {"linewidth": 1.0}
         ax.plot(time, t.numeric(name), label=labels.get(name, name), **style)
     ax.set_ylabel("energy (J)")
-    ax.set_title(src.title("Energy history"))
-    ax.legend(loc="best", fontsize=8)
+    # Above the axes: inside, it sat over the total, which is flat near the top of the panel.
+    outside_legend(ax)
     if ENERGY.total_J in t and len(t):
         total = t.numeric(ENERGY.total_J)
         e0 = total[0] if total[0] != 0 else (np.max(np.abs(total)) or 1.0)
