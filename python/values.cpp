@@ -149,6 +149,7 @@ RunOverrides overrides_of(const py::object& tolerance, const std::optional<std::
   o.courant = optional_number<double>(courant, "courant");
   o.threads = number<int>(threads, "threads");
   o.quiet = true;
+  o.warnings_on_stderr = false;  // returned: result.warnings (python/shpb/__init__.py)
   return o;
 }
 

@@ -14,6 +14,7 @@ Ctrl-C stops a run as SIGINT stops the command.
 import os
 import shutil
 import tempfile
+import warnings as _warnings
 
 from . import _shpb
 from ._shpb import (Bar, Bilinear, InputError, JohnsonCook, Material, NumericalError, Scene,
@@ -31,8 +32,22 @@ except ImportError:
 
 __version__ = _shpb.__version__
 __all__ = ["Scene", "Bar", "Material", "JohnsonCook", "Bilinear", "InputError", "NumericalError",
-           "WriteError", "simulate", "process", "compare", "dispersion", "fit", "study",
-           "SimulationResult", "ProcessResult", "FolderResult"]
+           "WriteError", "ShpbWarning", "simulate", "process", "compare", "dispersion", "fit",
+           "study", "SimulationResult", "ProcessResult", "FolderResult"]
+
+
+class ShpbWarning(UserWarning):
+    """A warning of a run: what the command prints as `warning: ...` on stderr (a notebook does
+    not show the library's stderr). Each is also in the result's `warnings`."""
+
+
+def _warned(result, calls=1):
+    """Issues each of the result's warnings through Python's warnings module (shown under a
+    notebook's cell, on a script's stderr), at the line of the user's code `calls` functions of
+    this module up, and returns the result."""
+    for text in result.warnings:
+        _warnings.warn(text, ShpbWarning, stacklevel=2 + calls)
+    return result
 
 
 def _table(columns):
@@ -131,8 +146,8 @@ def simulate(scene, tolerance=None, threads=0, contact=None, stepping=None, cour
              full_model=False):
     if not isinstance(scene, Scene):
         scene = Scene.load(os.fspath(scene))
-    return SimulationResult(_shpb._simulate(scene, tolerance, contact, stepping, courant,
-                                            threads, full_model))
+    return _warned(SimulationResult(_shpb._simulate(scene, tolerance, contact, stepping, courant,
+                                                    threads, full_model)))
 
 
 @_with_help("process", """process(scene, signals=None, draws=1000, seed=1) -> ProcessResult
@@ -152,10 +167,10 @@ def process(scene, signals=None, draws=1000, seed=1):
         shown = f"the SimulationResult of {signals.scene.file} (in memory)"
         with tempfile.TemporaryDirectory(prefix="shpb-") as tmp:
             signals.save(os.path.join(tmp, "run"))
-            return ProcessResult(_shpb._process(scene, os.path.join(tmp, "run", "gauges.csv"),
-                                                draws, seed, shown))
-    return ProcessResult(_shpb._process(scene, None if signals is None else os.fspath(signals),
-                                        draws, seed))
+            return _warned(ProcessResult(_shpb._process(
+                scene, os.path.join(tmp, "run", "gauges.csv"), draws, seed, shown)))
+    return _warned(ProcessResult(_shpb._process(
+        scene, None if signals is None else os.fspath(signals), draws, seed)))
 
 
 class FolderResult:
@@ -180,6 +195,12 @@ class FolderResult:
     @property
     def summary(self):
         return self.json.get("summary")
+
+    @property
+    def warnings(self):
+        """The run's warnings, summary.json's (what the command prints on stderr)."""
+        found = (self.summary or {}).get("warnings")
+        return list(found) if isinstance(found, list) else []
 
     def save(self, dir):
         """Writes the command's folder into `dir` (replaced atomically; a folder shpb did not
@@ -223,7 +244,7 @@ def _folder_run(command, run, file, distributions=None):
     # The temporary folder is this function's and goes with its result; a FolderResult made of
     # any other folder removes nothing.
     weakref.finalize(result, shutil.rmtree, tmp, True)
-    return result
+    return _warned(result, calls=2)  # _folder_run, called by compare, study or fit
 
 
 def _scene_file(scene):

@@ -50,7 +50,8 @@ int run_compare(const CompareArgs& args) {
   write_comparison(plan, c, sim.gauges, dispersion, facts, out.path());
   out.commit();
   // What is implausible is said even with --quiet (which silences progress only).
-  for (const auto& w : c.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  if (args.overrides.warnings_on_stderr)
+    for (const auto& w : c.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   if (!sim.stable) {
     std::fprintf(stderr, "error: %s: %s (outputs up to then written to %s)\n",
                  plan.scene.file.string().c_str(), sim.failure.c_str(),

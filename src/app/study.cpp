@@ -121,7 +121,8 @@ int run_study(const StudyArgs& args) {
       write_study(plan, scene, results, threads, seconds_since(start), out.path());
   const double wall = seconds_since(start);
   out.commit();
-  for (const auto& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  if (args.overrides.warnings_on_stderr)
+    for (const auto& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   if (!args.overrides.quiet)
     std::fprintf(stderr, "study %s of %s in %.3g s on %d threads; wrote %s\n",
                  to_string(args.sweep).c_str(), scene.name.c_str(), wall, threads,

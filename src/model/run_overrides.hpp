@@ -18,6 +18,9 @@ struct RunOverrides {
   std::optional<double> tolerance;  // --tolerance: the gauge error accepted (a fraction)
   int threads = 0;                  // 0: all cores
   bool quiet = false;
+  // The run's warnings on stderr (even with quiet, which silences progress only); the Python
+  // module returns them instead (result.warnings, and Python's warnings module).
+  bool warnings_on_stderr = true;
   // Without a tolerance, kDefaultTolerance meshes the scene (false: the automatic meshes, as the
   // study sweeps them and validate compares against them).
   bool default_tolerance = true;

@@ -247,6 +247,7 @@ std::vector<std::string> write_monte_carlo(
   j["quantities"] = figures;
   j["threads"] = threads;
   j["wall_time_s"] = wall_s;
+  j["warnings"] = warnings;  // what the command prints, as every summary.json holds them
   write_text_file(dir / "summary.json", j.dump(2) + "\n");
   return warnings;
 }

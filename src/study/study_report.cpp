@@ -193,6 +193,7 @@ void write_stability(const StabilityStudy& study, const Scene& scene, int refine
   j["points"] = study.rows.size();
   j["threads"] = threads;
   j["wall_time_s"] = wall_s;
+  j["warnings"] = Json::array();  // none: every summary.json has the key
   write_text_file(dir / "summary.json", j.dump(2) + "\n");
 }
 
