@@ -25,9 +25,11 @@ def nothing_moves(src):
     if not src.has(GAUGES.FILE):
         return False
     read = 0  # values judged: a file of times alone shows nothing either way
-    for name in (GAUGES.FILE, INTERFACES.FILE, ENERGY.FILE):
+    for name, time in ((GAUGES.FILE, GAUGES.time_s), (INTERFACES.FILE, INTERFACES.time_s),
+                       (ENERGY.FILE, ENERGY.time_s)):
         if src.has(name):
             t = src.table(name)
+            t.numeric(time)  # a file the figures would refuse is refused as they would
             for column in t.names[1:]:
                 values = t.numeric(column)
                 if np.any(values[np.isfinite(values)] != 0):
