@@ -60,11 +60,8 @@ void bind_command_runs(py::module_& m) {
         if (distributions) a.distributions = *distributions;
         a.draws = optional_number<std::size_t>(draws, "draws");
         a.seed = optional_number<std::uint64_t>(seed, "seed");
-        const auto s = enum_value(kSweepNames, sweep);
-        if (!s)
-          throw input_error("sweep", "", "\"" + sweep + "\"",
-                            "expected pareto, stability or monte-carlo");
-        a.sweep = *s;
+        check_choice("--sweep", sweep, enum_names(kSweepNames));  // the command's check
+        a.sweep = *enum_value(kSweepNames, sweep);
         a.refine = number<int>(refine, "refine");
         a.overrides = overrides_of(tolerance, contact, stepping, courant, threads);
         return run_released([&] { return run_study(a); });

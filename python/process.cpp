@@ -17,6 +17,7 @@
 #include "analysis/uncertainty.hpp"
 #include "bindings.hpp"
 #include "core/error.hpp"
+#include "core/options_check.hpp"
 #include "interrupt.hpp"
 #include "values.hpp"
 #include "views.hpp"
@@ -127,6 +128,7 @@ void bind_process(py::module_& m) {
         MonteCarloOptions monte_carlo;
         monte_carlo.draws = number<std::size_t>(draws, "draws");
         monte_carlo.seed = number<std::uint64_t>(seed, "seed");
+        require_valid(monte_carlo);  // before the scene's own errors, as the command checks it
         p->outcome = process_signals(p->scene, signals, signals_shown, monte_carlo);
         if (!p->outcome.failure.empty()) throw NumericalError(p->outcome.failure);
         return p;

@@ -1,6 +1,7 @@
 // Python values taken in (python/values.hpp).
 #include "values.hpp"
 
+#include "app/cli_options.hpp"
 #include "core/json_document.hpp"
 #include "core/json_value.hpp"
 #include "core/units.hpp"
@@ -133,20 +134,21 @@ std::string fields(std::initializer_list<std::pair<const char*, double>> values)
 RunOverrides overrides_of(const py::object& tolerance, const std::optional<std::string>& contact,
                           const std::optional<std::string>& stepping, const py::object& courant,
                           const py::object& threads) {
+  // Text as the command line gives it, read by the command's own function (one check, one
+  // message: courant="0.9" is --courant 0.9, a TypeError before); a number as a number.
   RunOverrides o;
-  o.tolerance = tolerance_value(tolerance);
-  if (contact) {
-    o.contact = contact_method_from_string(*contact);
-    if (!o.contact || *o.contact == ContactMethod::kBonded)
-      throw input_error("contact", "", "\"" + *contact + "\"",
-                        "expected penalty, bipenalty or localized-bipenalty");
-  }
-  if (stepping) {
-    o.stepping = stepping_from_string(*stepping);
-    if (!o.stepping)
-      throw input_error("stepping", "", "\"" + *stepping + "\"", "expected asynchronous or global");
-  }
-  o.courant = optional_number<double>(courant, "courant");
+  RunOptionText text;
+  text.contact = contact.value_or("");
+  text.stepping = stepping.value_or("");
+  if (py::isinstance<py::str>(tolerance))
+    text.tolerance = message_text(tolerance);
+  else
+    o.tolerance = tolerance_value(tolerance);
+  if (py::isinstance<py::str>(courant))
+    text.courant = message_text(courant);
+  else
+    o.courant = optional_number<double>(courant, "courant");
+  resolve_run_options(o, text);
   o.threads = number<int>(threads, "threads");
   o.quiet = true;
   o.warnings_on_stderr = false;  // returned: result.warnings (python/shpb/__init__.py)

@@ -89,6 +89,9 @@ std::string usage_error(CLI::App& app, const CLI::ParseError& e, int argc, char*
     const CLI::App& command = *app.get_subcommands().front();
     return unknown_option(extra, "shpb " + command.get_name(), long_options(command));
   }
+  // A value our checks refused (app/cli_options.cpp: --threads, --seed) in the library's words,
+  // as the Python module gives them; anything else in CLI11's, with where to look.
+  if (dynamic_cast<const CLI::ValidationError*>(&e)) return e.what();
   return std::string(e.what()) + " (see shpb --help)";
 }
 

@@ -231,7 +231,7 @@ def test_a_tolerance_text_that_is_not_utf8_is_the_tolerance_message():
     # was read.
     with pytest.raises(shpb.InputError) as e:
         shpb.simulate(CLASSIC, tolerance="1 \udcff")
-    assert str(e.value).startswith("tolerance: ")
+    assert str(e.value).startswith("--tolerance: ")  # the command's message (commands.md)
 
 
 @pytest.mark.parametrize("kwargs, option", [

@@ -284,6 +284,8 @@ bool CampaignOptions::IsValid(std::string* error) const {
     e = input_error(campaign->string(), "", "", "give scenes or --campaign, not both");
   else if (merge && !shard.empty())
     e = input_error("--merge", "", "", "the merge comes after the shards: not with --shard");
+  else if (std::string draws; !monte_carlo.IsValid(&draws))
+    e = InputError(draws);
   for (double s : flow_strains)
     if (!e && !(s > 0 && s < 1))
       e = input_error("--flow-stress-at", "", format_double(s),

@@ -78,10 +78,9 @@ Command add_dispersion_command(CLI::App& app) {
       ->delimiter(',')
       ->check(number);
   cmd->add_option("--max-a-over-lambda", disp.max_a_over_lambda,
-                  "Largest a/Λ of an evenly spaced table (default 1.6)")
-      ->check(finite_positive_check());
-  cmd->add_option("--points", disp.points, "Number of table points (default 321)")
-      ->check(CLI::Range(2, kMaxTablePoints));
+                  "Largest a/Λ of an evenly spaced table (default 1.6)");
+  // Their ranges: ModeTableOptions::IsValid, the Python module's check too.
+  cmd->add_option("--points", disp.points, "Number of table points (default 321)");
   cmd->add_option("--radius", o->radius, "Bar radius, e.g. \"9.525 mm\" (adds frequency_Hz)");
   cmd->add_option("--c0", o->c0, "Bar wave speed sqrt(E/ρ), e.g. \"4975 m/s\"");
   cmd->add_option("-o,--output", disp.output, "CSV file to write (default, or -: stdout)");

@@ -30,6 +30,7 @@ void reuse_heap_buffers() {
 }  // namespace
 
 int run_process(const ProcessArgs& args) {
+  require_valid(args.monte_carlo);  // an option before the scene's own errors
   reuse_heap_buffers();
   const ProcessedScene p = process_into(args.scene, args.signals, args.output, &args.monte_carlo);
   if (args.quiet) return 0;
@@ -73,7 +74,9 @@ Command add_process_command(CLI::App& app) {
   cmd->add_flag("--quiet,-q", o->one.quiet, "No progress output on stderr");
   cmd->add_option("--draws", o->one.monte_carlo.draws,
                   "Monte Carlo draws of measurement.uncertainty (default 1000)")
-      ->check(CLI::Range(static_cast<int>(kMinDraws), static_cast<int>(kMaxDraws)));
+      ->check(unsigned_text_check());
+  // Its range: MonteCarloOptions::IsValid, checked before the scene is read (run_process,
+  // process_campaign), as the Python module checks it.
   add_seed_option(cmd, o->one.monte_carlo.seed,
                   "Seed of the Monte Carlo draws (default 1: the same draws every run)");
   add_threads_option(cmd, o->one.monte_carlo.threads,

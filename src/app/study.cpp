@@ -149,18 +149,18 @@ Command add_study_command(CLI::App& app) {
                   "Output folder (replaced atomically); with --merge default DIR/result");
   const std::vector<std::string> sweeps = enum_names(kSweepNames);
   cmd->add_option("--sweep", o->sweep,
-                  alternatives(sweeps) + " (default " + to_string(StudyArgs{}.sweep) + ")")
-      ->check(CLI::IsMember(sweeps));
+                  alternatives(sweeps) + " (default " + to_string(StudyArgs{}.sweep) + ")");
+  // Its choices (check_choice) and the ranges of --refine and --draws (StudyArgs::IsValid) are
+  // checked as the Python module checks them: one message.
   cmd->add_option("--refine", study.refine,
                   "Stability map: refine-1 more points between neighbours on the stiffness "
-                  "and Courant axes (2: about 4 x the points; default 1)")
-      ->check(CLI::Range(1, kMaxRefine));
+                  "and Courant axes (2: about 4 x the points; default 1)");
   cmd->add_option("--distributions", study.distributions,
                   "Monte Carlo: JSON file of the scene values to draw and their distributions");
   cmd->add_option(
          "--draws", study.draws,
          "Monte Carlo: number of draws (default " + std::to_string(kDefaultMonteCarloDraws) + ")")
-      ->check(CLI::Range(static_cast<int>(kMinDraws), static_cast<int>(kMaxStudyDraws)));
+      ->check(unsigned_text_check());
   auto* seed = add_seed_option(
       cmd, o->seed, "Monte Carlo: seed of the draws (default 1: the same draws every run)");
   cmd->add_option("--plan", study.plan,
@@ -175,8 +175,11 @@ Command add_study_command(CLI::App& app) {
                   "whole sweep into -o (default DIR/result)");
   add_run_options(cmd, study.overrides, o->run);
   return {cmd, [o, seed] {
+            if (!o->sweep.empty()) {
+              check_choice("--sweep", o->sweep, enum_names(kSweepNames));
+              o->args.sweep = *enum_value(kSweepNames, o->sweep);
+            }
             resolve_run_options(o->args.overrides, o->run);
-            if (!o->sweep.empty()) o->args.sweep = *enum_value(kSweepNames, o->sweep);
             if (seed->count() > 0) o->args.seed = o->seed;
             return run_study(o->args);
           }};

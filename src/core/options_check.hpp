@@ -5,6 +5,10 @@
 
 namespace shpb {
 
+// --threads of every command (and `threads` of the Python module): a whole number >= 0, 0 for all
+// cores. The one wording of the command line's check (app/cli_options.cpp) and the library's.
+inline constexpr const char* kThreadsExpected = "expected a whole number >= 0 (0: all cores)";
+
 // Options whose IsValid(&message) is false are refused before anything runs (InputError, exit 2,
 // the one-line message), as Ceres' Solver::Options::IsValid.
 template <typename Options>

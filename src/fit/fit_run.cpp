@@ -12,6 +12,7 @@
 #include "core/json_value.hpp"
 #include "core/median.hpp"
 #include "core/number_format.hpp"
+#include "core/options_check.hpp"
 #include "core/parallel_runner.hpp"
 #include "fit/fit_bootstrap.hpp"
 #include "model/law_parameters.hpp"
@@ -319,7 +320,7 @@ void check_misfit(FitRun& run) {
 
 bool FitOptions::IsValid(std::string* error) const {
   if (threads < 0)
-    *error = input_error("--threads", "", std::to_string(threads), "expected >= 0").what();
+    *error = input_error("--threads", "", std::to_string(threads), kThreadsExpected).what();
   else if (max_iterations < 1 || max_iterations > 10000)
     *error =
         input_error("--max-iterations", "", std::to_string(max_iterations), "expected 1 to 10000")

@@ -3,14 +3,14 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/options_check.hpp"
 
 namespace shpb {
 
 ChainDiscretization apply_overrides(const RunOverrides& overrides, Scene& scene) {
   // The command line refuses it as it parses (app/cli_options.hpp); Python passes any int.
   if (overrides.threads < 0)
-    throw input_error("--threads", "", std::to_string(overrides.threads),
-                      "expected a whole number >= 0 (0: all cores)");
+    throw input_error("--threads", "", std::to_string(overrides.threads), kThreadsExpected);
   if (overrides.contact) {
     scene.contact.method = *overrides.contact;
     for (auto& i : scene.contact.interfaces) i.method.reset();

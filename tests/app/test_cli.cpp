@@ -166,9 +166,10 @@ TEST_CASE("A misspelt command or option is named, with the one meant", "[app][cl
   }
 }
 
-// Seeds, thread counts and positive sizes are checked where the options are declared
-// (app/cli_options.hpp), before any file is read: "-1" is not wrapped to 2^64 - 1 nor taken as
-// "all cores", a seed past 2^64 - 1 is not saturated, NaN and inf are no size.
+// Seeds and thread counts are checked where the options are declared (app/cli_options.hpp), the
+// other ranges by the library (each command's IsValid), all before any file is read: "-1" is not
+// wrapped to 2^64 - 1 nor taken as "all cores", a seed past 2^64 - 1 is not saturated, NaN and
+// inf are no size.
 TEST_CASE("Numeric options refuse a sign, a fraction, NaN, inf or an overflow", "[app][cli]") {
   const std::string missing = "/nonexistent/input.json";
   const std::string out = (shpb_test::scratch_dir("cli_numbers") / "out").string();
@@ -184,7 +185,16 @@ TEST_CASE("Numeric options refuse a sign, a fraction, NaN, inf or an overflow", 
            {"simulate " + missing + " -o " + out + " --threads nan",
             "--threads: nan: expected a whole number"},
            {"dispersion --poisson 0.3 --max-a-over-lambda inf",
-            "--max-a-over-lambda: inf: expected a finite number > 0"},
+            "--max-a-over-lambda: inf: must be in (0, 1000]"},
+           // A count's sign, before its range; the ranges are the library's, as Python's.
+           {"process " + missing + " -o " + out + " --draws -1",
+            "--draws: -1: expected a whole number"},
+           {"process " + missing + " -o " + out + " --draws 1", "--draws: 1: expected 2 to "},
+           {"study " + missing + " -o " + out + " --refine 0", "--refine: 0: expected 1 to 64"},
+           {"fit " + missing + " -o " + out + " --bootstrap -1",
+            "--bootstrap: -1: expected 0 to 100000"},
+           {"simulate " + missing + " -o " + out + " --contact bonded",
+            "--contact: \"bonded\": expected penalty, bipenalty or localized-bipenalty"},
            // The largest seed is a seed: the error is then the missing file's.
            {"process " + missing + " -o " + out + " --seed 18446744073709551615",
             missing + ": no such file"}}) {
