@@ -14,11 +14,13 @@
 #include <optional>
 #include <string>
 
+#include "analysis/process_outputs.hpp"
 #include "analysis/uncertainty.hpp"
 #include "bindings.hpp"
 #include "core/error.hpp"
 #include "core/options_check.hpp"
 #include "interrupt.hpp"
+#include "output_schema.hpp"
 #include "values.hpp"
 #include "views.hpp"
 
@@ -30,6 +32,44 @@ struct Processing {
   Scene scene;
   ProcessOutcome outcome;
 };
+
+// A scene without a specimen: the command's bars-together check.
+struct BarChecking {
+  Scene scene;
+  BarCheckOutcome outcome;
+};
+
+void bind_bar_check(py::module_& m) {
+  py::class_<BarChecking, std::shared_ptr<BarChecking>>(m, "_BarCheck")
+      .def_property_readonly("scene", [](const BarChecking& b) { return b.scene; })
+      .def_property_readonly("pulses",
+                             [](py::object self) {
+                               // pulses.csv's columns, in its order (docs/outputs.md).
+                               namespace k = schema::bar_check_pulses;
+                               const BarCheckResult& r = self.cast<BarChecking&>().outcome.result;
+                               py::dict d;
+                               d[k::time_s] = view(r.time_s, self);
+                               d[k::far_measured] = view(r.far_measured, self);
+                               d[k::far_pochhammer_chree] = view(r.far_dispersion, self);
+                               d[k::far_time_shift] = view(r.far_time_shift, self);
+                               return d;
+                             })
+      .def_property_readonly(
+          "summary",
+          [](const BarChecking& b) {
+            return json_to_python(bar_check_summary(b.outcome, b.scene, b.scene.file.string()));
+          })
+      .def_property_readonly("warnings", [](const BarChecking& b) { return b.outcome.warnings; })
+      .def(
+          "save",
+          [](const BarChecking& b, const std::filesystem::path& dir) {
+            run_released([&] {
+              write_bar_check(b.outcome, b.scene, b.scene.file.string(), dir);
+              return 0;
+            });
+          },
+          py::arg("dir"));
+}
 
 // `text` with every `file` in it named `shown`.
 std::string renamed(std::string text, const std::string& file, const std::string& shown) {
@@ -69,6 +109,7 @@ ProcessOutcome process_signals(const Scene& scene,
 }  // namespace
 
 void bind_process(py::module_& m) {
+  bind_bar_check(m);
   py::class_<Processing, std::shared_ptr<Processing>>(m, "_Processing")
       .def_property_readonly("scene", [](const Processing& p) { return p.scene; })
       .def_property_readonly("raw_signals",
@@ -122,16 +163,23 @@ void bind_process(py::module_& m) {
       "_process",
       [](const Scene& scene, const std::optional<std::filesystem::path>& signals,
          const py::object& draws, const py::object& seed,
-         const std::optional<std::string>& signals_shown) {
-        auto p = std::make_shared<Processing>();
-        p->scene = scene;
+         const std::optional<std::string>& signals_shown) -> py::object {
         MonteCarloOptions monte_carlo;
         monte_carlo.draws = number<std::size_t>(draws, "draws");
         monte_carlo.seed = number<std::uint64_t>(seed, "seed");
         require_valid(monte_carlo);  // before the scene's own errors, as the command checks it
+        if (!scene.specimen) {       // the bars pushed together: the command's check (process_into)
+          auto b = std::make_shared<BarChecking>();
+          b->scene = scene;
+          b->outcome =
+              run_released([&] { return check_scene_bars(scene, signals.has_value(), false); });
+          return py::cast(b);
+        }
+        auto p = std::make_shared<Processing>();
+        p->scene = scene;
         p->outcome = process_signals(p->scene, signals, signals_shown, monte_carlo);
         if (!p->outcome.failure.empty()) throw NumericalError(p->outcome.failure);
-        return p;
+        return py::cast(p);
       },
       py::arg("scene"), py::arg("signals") = py::none(), py::arg("draws") = py::int_(kDefaultDraws),
       py::arg("seed") = py::int_(kDefaultSeed), py::arg("signals_shown") = py::none());

@@ -33,7 +33,7 @@ except ImportError:
 __version__ = _shpb.__version__
 __all__ = ["Scene", "Bar", "Material", "JohnsonCook", "Bilinear", "InputError", "NumericalError",
            "WriteError", "ShpbWarning", "simulate", "process", "compare", "dispersion", "fit",
-           "study", "SimulationResult", "ProcessResult", "FolderResult"]
+           "study", "SimulationResult", "ProcessResult", "BarCheckResult", "FolderResult"]
 
 
 class ShpbWarning(UserWarning):
@@ -132,6 +132,40 @@ class ProcessResult:
         return f"<shpb.ProcessResult {self.summary['scene']}: peak {self.summary['peak_stress_Pa'] / 1e6:.4g} MPa>"
 
 
+class BarCheckResult:
+    """`shpb process` of a scene without a specimen, in memory: the bars-together check (the
+    near gauge's pulse moved to the far gauge with Pochhammer-Chree dispersion and by a plain
+    delay, against the far record). pulses: pulses.csv; summary: summary.json (rms_of_peak,
+    distance_m, ...). save(dir) writes the command's folder."""
+
+    def __init__(self, native):
+        self._native = native
+
+    scene = property(lambda self: self._native.scene)
+    pulses = property(lambda self: _table(self._native.pulses), doc="pulses.csv")
+    summary = property(lambda self: self._native.summary, doc="summary.json")
+    warnings = property(lambda self: self._native.warnings)
+
+    def arrays(self, table):
+        """The columns of `table` ("pulses") as read-only numpy arrays that view the library's
+        memory (no copy)."""
+        return getattr(self._native, table)
+
+    def save(self, dir):
+        """Writes pulses.csv and summary.json into `dir`, as `shpb process -o dir`."""
+        self._native.save(os.fspath(dir))
+
+    def __repr__(self):
+        s = self.summary
+        return (f"<shpb.BarCheckResult {s['scene']}: {s['near_gauge']} -> {s['far_gauge']}, RMS "
+                f"{100 * s['rms_of_peak']['pochhammer_chree']:.3g} % of peak>")
+
+
+def _process_result(native):
+    """A ProcessResult, or a BarCheckResult for a scene without a specimen."""
+    return BarCheckResult(native) if isinstance(native, _shpb._BarCheck) else ProcessResult(native)
+
+
 @_with_help("simulate", """simulate(scene, tolerance=None, threads=0, contact=None, stepping=None,
          courant=None, full_model=False) -> SimulationResult
 
@@ -154,7 +188,8 @@ def simulate(scene, tolerance=None, threads=0, contact=None, stepping=None, cour
 
 Reduces the scene's measured signals (its `measurement`), or `signals` (a gauges.csv written
 by `shpb simulate`, or a SimulationResult), to the pulses at the specimen faces and the
-1/2/3-wave stress-strain curve, as `shpb process` does; a `measurement.uncertainty` block is
+1/2/3-wave stress-strain curve, as `shpb process` does (a scene without a specimen: the
+bars-together check of its measurement, a BarCheckResult); a `measurement.uncertainty` block is
 propagated by `draws` Monte Carlo draws from `seed` (the command's --draws, --seed). Nothing is
 written until result.save(dir). Raises shpb.InputError for a bad scene or signal file, and
 shpb.NumericalError when the reduction fails (the command's exit 3).""")
@@ -167,9 +202,9 @@ def process(scene, signals=None, draws=1000, seed=1):
         shown = f"the SimulationResult of {signals.scene.file} (in memory)"
         with tempfile.TemporaryDirectory(prefix="shpb-") as tmp:
             signals.save(os.path.join(tmp, "run"))
-            return _warned(ProcessResult(_shpb._process(
+            return _warned(_process_result(_shpb._process(
                 scene, os.path.join(tmp, "run", "gauges.csv"), draws, seed, shown)))
-    return _warned(ProcessResult(_shpb._process(
+    return _warned(_process_result(_shpb._process(
         scene, None if signals is None else os.fspath(signals), draws, seed)))
 
 

@@ -103,3 +103,50 @@ def test_a_scene_loaded_by_a_relative_path_processes_after_a_change_of_folder(tm
     got = shpb.process(scene, draws=2).arrays("curve")
     for name in expected:
         assert np.array_equal(got[name], expected[name], equal_nan=True), name
+
+
+def bars_together(folder):
+    """Two 20 mm steel bars pushed together, gauges 0.5 m into the first and 1.0 m into the
+    second (2 m apart, c0 = 5000 m/s: 400 µs), no specimen. The far record is the near one
+    delayed by exactly those 400 µs (4000 samples): a plain time shift reproduces it."""
+    dt, samples, delay = 1e-7, 12000, 4000
+    def trapezoid(i):  # a 100 µs pulse from 50 µs, 5 µs fronts, -1e-3
+        t = i * dt * 1e6
+        return -1e-3 * max(0.0, min(1.0, (t - 50) / 5, (155 - t) / 5))
+    rows = ["time_s,near,far"] + [f"{i * dt!r},{trapezoid(i)!r},{trapezoid(i - delay)!r}"
+                                  for i in range(samples)]
+    (folder / "signals.csv").write_text("\n".join(rows) + "\n", encoding="utf-8")
+    steel = {"model": "elastic", "density": 8000, "youngs_modulus": "200 GPa",
+             "poisson_ratio": 0.29}
+    scene = {"bars": [{"name": "a", "material": "steel", "length": "1.5 m", "diameter": "20 mm",
+                       "gauges": [{"name": "near", "position": "0.5 m"}]},
+                      {"name": "b", "material": "steel", "length": "1.5 m", "diameter": "20 mm",
+                       "gauges": [{"name": "far", "position": "1.0 m"}]}],
+             "materials": {"steel": steel},
+             "measurement": {"file": "signals.csv", "time": {"column": "time_s", "unit": "s"},
+                             "channels": [{"gauge": "near", "column": "near", "unit": "strain"},
+                                          {"gauge": "far", "column": "far", "unit": "strain"}]}}
+    path = folder / "scene.json"
+    path.write_text(json.dumps(scene), encoding="utf-8")
+    return path
+
+
+def test_the_bars_together_check_is_the_commands(tmp_path):
+    # `shpb process` of a scene without a specimen checks the bars together; process() raised
+    # "name the specimen bar to reduce a test" for it. It returns the check now, the command's
+    # folder byte for byte, and the delayed record is reproduced by the delay.
+    scene = bars_together(tmp_path)
+    code, _, err = run_command("process", scene, "-o", tmp_path / "cmd", "--quiet")
+    assert code == 0, err
+    result = shpb.process(scene)
+    assert isinstance(result, shpb.BarCheckResult)
+    assert result.summary["distance_m"] == pytest.approx(2.0)
+    # A pure delay of a whole number of samples: what is left is round-off.
+    rounding = 1e-12
+    assert result.summary["rms_of_peak"]["time_shift"] < rounding
+    pulses = result.arrays("pulses")
+    assert np.allclose(pulses["far_time_shift"], pulses["far_measured"], rtol=0, atol=1e-15)
+    result.save(tmp_path / "py")
+    for name in ("pulses.csv", "summary.json"):
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cmd" / name).read_bytes()
+    assert result.warnings == result.summary["warnings"]

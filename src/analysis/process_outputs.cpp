@@ -155,7 +155,6 @@ nlohmann::json corrections_json(const ProcessOutcome& o) {
 
 void write_bar_check(const BarCheckOutcome& o, const Scene& scene, const std::string& scene_display,
                      const std::filesystem::path& output) {
-  const BarCheckSetup& setup = o.setup;
   const BarCheckResult& r = o.result;
   OutputFolder out(output, "process", scene_inputs(scene));
   {
@@ -165,25 +164,31 @@ void write_bar_check(const BarCheckOutcome& o, const Scene& scene, const std::st
     for (std::size_t i = 0; i < r.time_s.size(); ++i)
       p.row({r.time_s[i], r.far_measured[i], r.far_dispersion[i], r.far_time_shift[i]});
   }
-  write_json(
-      out, "summary.json",
-      {{"version", kVersion},
-       {"command", "process"},
-       {"scene", scene_display},
-       {"calibration", calibration_summary(scene)},
-       {"check", "bars together (no specimen)"},
-       {"near_gauge", setup.near_gauge},
-       {"far_gauge", setup.far_gauge},
-       {"distance_m", setup.distance_m},
-       {"cutoff_Hz", r.cutoff_Hz},
-       {"rms_of_peak", {{"pochhammer_chree", r.rms_dispersion}, {"time_shift", r.rms_time_shift}}},
-       {"how",
-        "the near gauge's first pulse (the rest of its record zeroed) moved by the distance "
-        "to the far gauge, with Pochhammer-Chree dispersion and by a plain delay "
-        "distance/c0; RMS of the difference from the far record over its pulse (+-20 % of "
-        "its length), as a fraction of its peak"},
-       {"warnings", o.warnings}});
+  write_json(out, "summary.json", bar_check_summary(o, scene, scene_display));
   out.commit();
+}
+
+nlohmann::json bar_check_summary(const BarCheckOutcome& o, const Scene& scene,
+                                 const std::string& scene_display) {
+  const BarCheckSetup& setup = o.setup;
+  const BarCheckResult& r = o.result;
+  return {
+      {"version", kVersion},
+      {"command", "process"},
+      {"scene", scene_display},
+      {"calibration", calibration_summary(scene)},
+      {"check", "bars together (no specimen)"},
+      {"near_gauge", setup.near_gauge},
+      {"far_gauge", setup.far_gauge},
+      {"distance_m", setup.distance_m},
+      {"cutoff_Hz", r.cutoff_Hz},
+      {"rms_of_peak", {{"pochhammer_chree", r.rms_dispersion}, {"time_shift", r.rms_time_shift}}},
+      {"how",
+       "the near gauge's first pulse (the rest of its record zeroed) moved by the distance "
+       "to the far gauge, with Pochhammer-Chree dispersion and by a plain delay "
+       "distance/c0; RMS of the difference from the far record over its pulse (+-20 % of "
+       "its length), as a fraction of its peak"},
+      {"warnings", o.warnings}};
 }
 
 void write_process_outputs(const ProcessOutcome& o, const Scene& scene,

@@ -19,6 +19,8 @@ nlohmann::json process_summary(const ProcessOutcome& o, const std::string& scene
 
 void write_bar_check(const BarCheckOutcome& o, const Scene& scene, const std::string& scene_display,
                      const std::filesystem::path& output);
+nlohmann::json bar_check_summary(const BarCheckOutcome& o, const Scene& scene,
+                                 const std::string& scene_display);
 
 // The one-test command's work: the scene read and reduced (or, without a specimen, its bars
 // checked together), the folder written. Exactly one of `outcome` and `bars` is set.

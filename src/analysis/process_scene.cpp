@@ -28,11 +28,12 @@ void require_bar_check_inputs(const Scene& scene, bool with_signals_file) {
 
 }  // namespace
 
-BarCheckOutcome check_scene_bars(const Scene& scene, bool with_signals_file) {
+BarCheckOutcome check_scene_bars(const Scene& scene, bool with_signals_file, bool print_warnings) {
   require_bar_check_inputs(scene, with_signals_file);
   const MeasurementSpec& m = *scene.measurement;
   const GaugeSignals signals = read_gauge_signals(m, {});
-  for (const auto& w : signals.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  if (print_warnings)
+    for (const auto& w : signals.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   BarCheckOutcome o;
   o.setup = resolve_bar_check(scene, signals.gauges);
   o.result = check_bars_together(signals, o.setup, m.dispersion, scene.file.string());

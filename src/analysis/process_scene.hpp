@@ -72,7 +72,8 @@ struct BarCheckOutcome {
   std::vector<std::string> warnings;
 };
 // InputError when the scene cannot be checked (no measurement, or `with_signals_file`: --signals
-// reduces a simulated test).
-BarCheckOutcome check_scene_bars(const Scene& scene, bool with_signals_file);
+// reduces a simulated test). The warnings are in the outcome, also printed with `print_warnings`.
+BarCheckOutcome check_scene_bars(const Scene& scene, bool with_signals_file,
+                                 bool print_warnings = true);
 
 }  // namespace shpb
