@@ -292,9 +292,18 @@ nlohmann::json process_summary(const ProcessOutcome& o, const std::string& scene
                        : "3-wave: the mean of the two face forces over A_s against the integral "
                          "of (v1 - v2)/L_s"}};
   s["reductions"] = {
-      {"3-wave", {{"peak_stress_Pa", r.peak_stress_3wave_Pa}, {"max_strain", r.max_strain_3wave}}},
+      {"3-wave",
+       {{"peak_stress_Pa", r.peak_stress_3wave_Pa},
+        {"max_strain", r.max_strain_3wave},
+        {"peak_stress_over_loading_Pa", r.peak_stress_3wave_over_loading_Pa}}},
       {"1-wave", {{"peak_stress_Pa", r.peak_stress_1wave_Pa}, {"max_strain", r.max_strain_1wave}}},
-      {"over", "the loading (the rows of curve.csv)"}};
+      {"over",
+       "the loading (the rows of curve.csv); the 3-wave peak_stress_Pa over its samples in "
+       "equilibrium (R <= 0.05) once the specimen reaches equilibrium that lasts until unloading "
+       "or "
+       "is in equilibrium over at least half its loading, else over the loading: "
+       "peak_stress_over_loading_Pa includes the ring-up and the unloading "
+       "edge, where the front face's force is not the specimen's"}};
   nlohmann::json disp = {
       {"correction", std::string(enum_name(kCorrectionNames, options.dispersion.correction))},
       {"amplitude_factors", options.dispersion.amplitude_factors}};

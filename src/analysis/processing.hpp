@@ -55,6 +55,9 @@ struct Equilibrium {
   double fraction = 0;                                 // of the loaded samples with R ≤ 5 %
   std::optional<std::pair<double, double>> longest_s;  // longest run with R ≤ 5 %
   std::optional<double> holds_from_s;  // start of the run that lasts until unloading
+  // Largest 3-wave stress over the loaded samples with R ≤ 5 %: where the two face forces agree,
+  // the specimen's stress; null when no loaded sample is in equilibrium.
+  std::optional<double> peak_3wave_Pa;
 };
 
 struct ProcessingResult {
@@ -108,6 +111,9 @@ struct ProcessingResult {
   // reflected-pulse strain).
   double peak_stress_3wave_Pa = 0, max_strain_3wave = 0;
   double peak_stress_1wave_Pa = 0, max_strain_1wave = 0;
+  // The 3-wave stress's largest value over the whole loading, its ring-up and unloading fronts
+  // included (peak_stress_3wave_Pa is read in equilibrium once the specimen reaches it).
+  double peak_stress_3wave_over_loading_Pa = 0;
   Equilibrium equilibrium;
   std::optional<double> time_to_equilibrium_s;  // holds_from_s − start of the face window
   double cutoff_Hz = 0;                         // 0 without dispersion correction

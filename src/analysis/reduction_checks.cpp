@@ -285,6 +285,24 @@ void warn_incident_overlap(const KolskySetup& k, double dt, ProcessingResult& r)
           0.5 * k.front.c0_m_s * length));
 }
 
+void settle_peak_stress(bool one_wave, ProcessingResult& r) {
+  r.peak_stress_3wave_over_loading_Pa = r.peak_stress_3wave_Pa;
+  const Equilibrium& e = r.equilibrium;
+  if (e.peak_3wave_Pa && (e.holds_from_s || e.fraction >= kMostlyInEquilibrium)) {
+    r.peak_stress_3wave_Pa = *e.peak_3wave_Pa;
+  } else if (e.loaded_s) {
+    r.warnings.push_back(
+        fmt("the specimen is in equilibrium (R = 2|P1-P2|/|P1+P2| <= %.3g) over only %.3g %% of "
+            "its loading and not until it unloads: outside equilibrium its stresses are the face "
+            "forces over its area, not a material's stress, and the peak 3-wave stress %.4g MPa "
+            "is read over the whole loading, its ring-up and unloading fronts included (the "
+            "1-wave, transmitted face's, %.4g MPa)",
+            kEquilibriumThreshold, 100 * e.fraction, r.peak_stress_3wave_Pa / 1e6,
+            r.peak_stress_1wave_Pa / 1e6));
+  }
+  r.peak_stress_Pa = one_wave ? r.peak_stress_1wave_Pa : r.peak_stress_3wave_Pa;
+}
+
 Equilibrium judge_equilibrium(const Curve& c, const std::vector<double>& t, std::size_t n,
                               double peak_force, std::size_t unloading, std::size_t ring_down) {
   Equilibrium e;
@@ -307,6 +325,8 @@ Equilibrium judge_equilibrium(const Curve& c, const std::vector<double>& t, std:
       run_start = i + 1;
       continue;
     }
+    e.peak_3wave_Pa =
+        std::max(e.peak_3wave_Pa.value_or(c.stress_3wave_Pa[i]), c.stress_3wave_Pa[i]);
     if (i + 1 - run_start > best_length) best_start = run_start, best_length = i + 1 - run_start;
   }
   e.fraction = static_cast<double>(held) / static_cast<double>(last + 1 - first);

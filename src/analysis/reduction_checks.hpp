@@ -82,12 +82,25 @@ void check_one_and_two_wave(const Curve& c, std::size_t n, const ProcessingResul
 inline constexpr double kOverlapSamples = 2;
 void warn_incident_overlap(const KolskySetup& k, double dt, ProcessingResult& r);
 
+// The 3-wave stress is the specimen's stress only where the two face forces agree: at the
+// ring-up and on the unloading edge the front face's force (the sum of two large pulses whose
+// fronts a sample or a model's element apart do not cancel) rises far above the back face's and
+// above the specimen's stress (a copper specimen of 5 mm x 5 mm: 1.36 x its peak, at the incident
+// pulse's falling edge). Once the specimen reaches equilibrium that lasts until unloading, or is
+// in equilibrium over most of its loading (a record that ends before the unloading), the 3-wave
+// peak is read over the loaded samples in equilibrium (R ≤ 5 %); the loading's largest value is
+// kept beside it. Otherwise the peak is the loading's, said with the fraction of the loading in
+// equilibrium: outside it the stresses are the face forces over the area, not a material's stress.
+inline constexpr double kMostlyInEquilibrium = 0.5;
+void settle_peak_stress(bool one_wave, ProcessingResult& r);
+
 // Loaded: from the first to the last sample where the mean force is at least 20 % of its peak.
 // Among those, the fraction with R ≤ 5 %, the longest run of them, and the run that reaches the
 // unloading (equilibrium that holds until unloading): the sample `unloading` where the incident
 // pulse's falling edge, less the specimen's ring-down, reaches the front face, or the last loaded
 // sample before it. The front face unloads first, so R rises on that edge in every test. A run
-// shorter than `ring_down` samples is not equilibrium.
+// shorter than `ring_down` samples is not equilibrium. The largest 3-wave stress among the loaded
+// samples with R ≤ 5 % is the peak in equilibrium.
 Equilibrium judge_equilibrium(const Curve& c, const std::vector<double>& t, std::size_t n,
                               double peak_force, std::size_t unloading, std::size_t ring_down);
 
