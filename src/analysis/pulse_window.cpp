@@ -264,6 +264,57 @@ RecordStart record_start(std::span<const double> x, double step) {
   return r;
 }
 
+std::optional<RestElsewhere> rest_elsewhere(std::span<const double> x, const PulseWindow& first,
+                                            double noise) {
+  if (first.onset >= x.size()) return std::nullopt;
+  const std::span<const double> y = x.subspan(first.onset);
+  const double band = rest_band(noise, first.peak), far = kRestElsewhereFraction * first.peak;
+  // The level held longest: the sorted samples' widest count within ±band of one of them.
+  std::vector<double> sorted(y.begin(), y.end());
+  std::sort(sorted.begin(), sorted.end());
+  std::size_t best = 0, best_lo = 0, lo = 0, hi = 0;
+  for (std::size_t k = 0; k < sorted.size(); ++k) {
+    while (sorted[lo] < sorted[k] - band) ++lo;
+    while (hi < sorted.size() && sorted[hi] <= sorted[k] + band) ++hi;
+    if (hi - lo > best) best = hi - lo, best_lo = lo;
+  }
+  const double level =
+      median(std::vector<double>(sorted.begin() + static_cast<std::ptrdiff_t>(best_lo),
+                                 sorted.begin() + static_cast<std::ptrdiff_t>(best_lo + best)));
+  if (!(std::abs(level) >= far)) return std::nullopt;
+  // Reached from the start in one step, not past it by `far` (a pulse's tail settling there, a
+  // polymer bar's creep after its pulse, peaks first); rests there (kMinRestSamples in a row
+  // within the band, not trending through it), left by `far`, rests there again.
+  std::optional<std::size_t> rest;
+  bool left = false;
+  double reached = 0;
+  for (std::size_t i = 0; i < y.size();) {
+    if (std::abs(y[i] - level) > band) {
+      if (!rest && (reached = std::max(reached, std::abs(y[i]))) > std::abs(level) + far)
+        return std::nullopt;
+      left = left || (rest && std::abs(y[i] - level) >= far);
+      ++i;
+      continue;
+    }
+    std::size_t j = i;
+    while (j < y.size() && std::abs(y[j] - level) <= band) ++j;
+    // At rest, not a front crossing the band: its first and last thirds' medians within half
+    // the band of each other (a front through the band moves by about 4/3 of it).
+    const std::size_t third = (j - i) / 3;
+    auto median_from = [&](std::size_t a) {
+      return median(std::vector<double>(y.begin() + static_cast<std::ptrdiff_t>(a),
+                                        y.begin() + static_cast<std::ptrdiff_t>(a + third)));
+    };
+    if (j - i >= kMinRestSamples &&
+        std::abs(median_from(j - third) - median_from(i)) <= 0.5 * band) {
+      if (rest && left) return RestElsewhere{level, first.onset + *rest, first.onset + i};
+      if (!rest) rest = i;
+    }
+    i = j;
+  }
+  return std::nullopt;
+}
+
 std::optional<Onset> find_onset(std::span<const double> x, const Baseline& b, double sign,
                                 std::size_t from, std::size_t to, double min_peak) {
   to = std::min(to, x.size());

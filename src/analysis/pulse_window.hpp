@@ -103,6 +103,29 @@ struct RecordStart {
 };
 RecordStart record_start(std::span<const double> x, double step);  // step: quantization_step
 
+// A record that starts inside a pulse — high up its front or on its plateau, past what
+// record_start tells — reads that pulse's level as its rest: its "first pulse" is the pulse's end,
+// back to the true rest, where the record then rests between and after its later pulses. A
+// record at rest comes back to its start level after its first pulse and spends most of the rest
+// of the record there; one that started inside a pulse never does. Told by the level `x` (from
+// its start level) holds longest from the first pulse's onset on (the most samples within the
+// rest band, rest_band(noise, first.peak), of one level): where that level lies at least
+// kRestElsewhereFraction of the first pulse's peak from the start level, the record reaches it
+// from the start in one step (not beyond it by as much first: a pulse that peaks and then settles
+// there, as a polymer bar's creep after its pulse does, is a pulse) and rests there
+// (kMinRestSamples in a row within the band) before and after a later pulse that leaves it by as
+// much, the start lay on a pulse of that height. A rest's own drift or a plateau's ringing
+// stays well inside a quarter of the peak; a record started inside its pulse rests the pulse's
+// height A from its start, and its later pulse (a reflection, of R ≤ A) reaches that level's
+// first peak A + R, so A ≥ half of it and R ≥ a quarter of it for R ≥ A/3.
+inline constexpr double kRestElsewhereFraction = 0.25;
+struct RestElsewhere {
+  double level = 0;                  // from the start level
+  std::size_t first = 0, again = 0;  // where the record rests there, before and after a pulse
+};
+std::optional<RestElsewhere> rest_elsewhere(std::span<const double> x, const PulseWindow& first,
+                                            double noise);
+
 // Onset of a pulse of the given sign in [from, to), the same way, and its first half-peak
 // sample (onset to half is the front's rise); nullopt if none, or if its peak is not above
 // min_peak.

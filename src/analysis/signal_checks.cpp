@@ -190,13 +190,25 @@ void require_rest_before_pulse(const GaugeSignals& signals, const std::string& g
             static_cast<double>(s.start.first->onset), s.start.change, s.start.rate_fraction));
   // The rest level and noise are read from the first kMinRestSamples at least: all at rest.
   const std::optional<PulseWindow>& first = s.first ? s.first : s.start.first;
-  if (!first || first->onset >= kMinRestSamples) return;
-  throw channel_error(
-      signals, gauge, scene_file,
-      fmt("its first pulse starts %.0f samples into the record: at least %.0f samples at rest "
-          "before it are needed to read its rest level and noise (record with a longer "
-          "pre-trigger)",
-          static_cast<double>(first->onset), static_cast<double>(kMinRestSamples)));
+  if (first && first->onset < kMinRestSamples)
+    throw channel_error(
+        signals, gauge, scene_file,
+        fmt("its first pulse starts %.0f samples into the record: at least %.0f samples at rest "
+            "before it are needed to read its rest level and noise (record with a longer "
+            "pre-trigger)",
+            static_cast<double>(first->onset), static_cast<double>(kMinRestSamples)));
+  if (s.first)
+    if (const auto r = rest_elsewhere(s.x, *s.first, s.noise))
+      throw channel_error(
+          signals, gauge, scene_file,
+          fmt("it starts inside a pulse: after its first pulse it rests %.3g from the level it "
+              "starts at, not at that level (%.0f %% of the peak, from sample %.0f, and again "
+              "from sample %.0f after a later pulse: the level it holds longest)",
+              s.inverted ? -r->level : r->level, 100 * std::abs(r->level) / s.first->peak,
+              static_cast<double>(r->first), static_cast<double>(r->again)) +
+              ", so its start lies on a pulse of that height, on its plateau or upper front, "
+              "which was read as the rest level (record with a longer pre-trigger: the rest "
+              "level and noise are read from the record before its first pulse only)");
 }
 
 namespace {

@@ -533,6 +533,57 @@ TEST_CASE("A record that starts on its pulse's front is refused as one",
   }
 }
 
+TEST_CASE("A record that starts inside its pulse is refused as one", "[app][process][warnings]") {
+  // A scope that triggers too late keeps neither rest nor the front's foot: the record starts high
+  // up the incident front or on its plateau, which its first samples read as the rest level. The
+  // incident pulse's end then read as a tensile first pulse, turned over, and the reduction ran
+  // (exit 0) from the plateau: the 2-wave stress five times the 1-wave one, said only as a gauge
+  // to invert and a disagreement. After that "pulse" the record rests at the true rest, the
+  // plateau's height from its start, before and after the reflected pulse: refused as starting
+  // inside a pulse. The clean test's pulses (rise 10 us), shifted to start before the record.
+  constexpr double kNoise = 1e-5;  // 1 % of the incident plateau
+  std::mt19937 draw(11);
+  std::normal_distribution<double> gauss(0.0, kNoise);
+  std::vector<double> noise(kSamples);
+  for (double& v : noise) v = gauss(draw);
+  struct Case {
+    std::string name;
+    double start;  // the incident pulse's start on the record's clock
+    bool noisy;
+  };
+  for (const Case& c : {Case{"front", -7e-6, false}, Case{"plateau", -40e-6, false},
+                        Case{"plateau_noisy", -60e-6, true}}) {
+    const double n = c.noisy ? 1.0 : 0.0;
+    const double s0 = c.start;
+    const Record rec{[&noise, s0, n](double t) {
+                       return n * noise[static_cast<std::size_t>(std::lround(t / kDt))] -
+                              1e-3 * trap(t, s0) + 0.6e-3 * trap(t, s0 + 400e-6);
+                     },
+                     [s0](double t) { return -0.4e-3 * trap(t, s0 + 300e-6); }};
+    const fs::path d = scratch_dir("reduction_inside_" + c.name);
+    const auto r = run_shpb(
+        {"process", write(d, steel_scene(), csv(rec)).string(), "-o", (d / "out").string(), "-q"});
+    INFO(c.name << ": " << r.err);
+    CHECK(r.code == 2);
+    CHECK(r.err.find("signals.csv: column \"incident\"") != std::string::npos);
+    CHECK(r.err.find("it starts inside a pulse") != std::string::npos);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    CHECK(!fs::exists(d / "out" / "curve.csv"));
+  }
+  // The same pulses 2 us (20 samples) after the record's start: a short pre-trigger, at rest.
+  const Record at_rest{[](double t) { return -1e-3 * trap(t, 2e-6) + 0.6e-3 * trap(t, 402e-6); },
+                       [](double t) { return -0.4e-3 * trap(t, 302e-6); }};
+  const fs::path d = scratch_dir("reduction_inside_control");
+  const auto r = run_shpb({"process", write(d, steel_scene(), csv(at_rest)).string(), "-o",
+                           (d / "out").string(), "-q"});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  const json s = summary(d / "out");
+  CHECK(!has_warning(s, "was inverted"));
+  constexpr double kExact = 1e-6;  // the record holds the exact trapezoids
+  CHECK(s["incident_plateau_strain"].get<double>() == Approx(1e-3).epsilon(kExact));
+}
+
 TEST_CASE("A record drifting and settling within its rest band is still processed",
           "[app][process][warnings]") {
   // The clean record (rise 10 us, 500 samples of rest), its incident gauge drifting by 2 % of the

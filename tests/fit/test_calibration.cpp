@@ -516,6 +516,46 @@ TEST_CASE("calibrate and a scene's calibration refuse bad input with one line an
   CHECK(!fs::exists(dir / "o2"));
 }
 
+TEST_CASE("calibrate refuses a bars-apart shot that starts inside its pulse as one",
+          "[fit][calibrate]") {
+  // A scope triggered late on a sharp, undispersed front: the record starts 40 % up its 1 us rise
+  // (a trapezoid's, 100 us long, summed with its returns from the free far end and the struck end
+  // as the bar sends them back, with the quiet lab's noise). Its first samples read the plateau
+  // as the rest, and the pulse's end back to the true rest as a first pulse that never ends: it
+  // was refused as a pulse still passing the gauge when its reflection returns, which it is not
+  // (c0 T/2 = 0.25 m, the gauge 1 m from the far end). Refused as starting inside the pulse.
+  const fs::path dir = shpb_test::scratch_dir("calibrate_inside_pulse");
+  constexpr double kRise = 1e-6, kLength = 100e-6;
+  constexpr double kStart = -0.4 * kRise;  // the pulse reaches the gauge before the record starts
+  auto trapezoid = [&](double t) {
+    const double u = t - kStart;
+    if (u <= 0 || u >= kLength) return 0.0;
+    return std::min({1.0, u / kRise, (kLength - u) / kRise});
+  };
+  std::mt19937 rng(5);
+  std::normal_distribution<double> noise(0.0, kNoise);
+  std::vector<double> x(kSamples);
+  const double xi = kIncidentGauge, li = kIncidentLength;
+  for (std::size_t i = 0; i < kSamples; ++i) {
+    const double t = static_cast<double>(i) * kDt;
+    double v = 0;
+    for (const auto& [sign, d] : {std::pair{1.0, 0.0}, std::pair{-1.0, 2 * (li - xi)},
+                                  std::pair{1.0, 2 * li}, std::pair{-1.0, 4 * li - 2 * xi}})
+      v += sign * trapezoid(t - d / kNominalC);
+    x[i] = -kPeak * v + noise(rng);
+  }
+  write_csv(dir / "late.csv", {"inc"}, {x});
+  write_json(dir / "late.json", scene(false, "late.csv"));
+  const auto r =
+      run_shpb({"calibrate", (dir / "late.json").string(), "-o", (dir / "out").string(), "-q"});
+  INFO(r.err);
+  CHECK(r.code == 2);
+  CHECK(r.err.find("late.csv: column \"inc\"") != std::string::npos);
+  CHECK(r.err.find("it starts inside a pulse") != std::string::npos);
+  CHECK(r.err.find("still passing the gauge") == std::string::npos);
+  CHECK(!fs::exists(dir / "out"));
+}
+
 TEST_CASE("calibrate names what one bars-together shot cannot determine", "[fit][calibrate]") {
   const fs::path dir = write_shots("calibrate_alone");
   const auto r =
