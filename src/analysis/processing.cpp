@@ -378,15 +378,20 @@ void warn_record_ends_in_loading(const std::vector<double>& t, double dt, const 
       " s): the curve ends with the record, short of the loading's end; a longer record keeps it");
 }
 
+// Where the window at the faces would end if the record held every pulse: the incident duration
+// plus a tail, short of the incident pulse's next reflection (2 d_I / c0 later).
+double window_end_held(double dt, const PulseTiming& timing, const KolskySetup& k) {
+  return std::min(timing.face_start + (1 + kWindowTail) * timing.duration,
+                  timing.face_start + 2 * k.incident_distance_m / k.front.c0_m_s - dt);
+}
+
 // The pulses cut to a common window at the faces — the incident duration plus a tail, never
 // reaching the next reflection of the incident pulse (2 d_I / c0 later) nor the time the record
 // holds every pulse to (recorded_at_faces) — and reduced to the curve.
 void reduce_at_faces(const std::vector<double>& t, double dt, const FacePulses& f, double recorded,
                      const PulseTiming& timing, const KolskySetup& k,
                      const ProcessingOptions& options, ProcessingResult& r) {
-  double face_end = timing.face_start + (1 + kWindowTail) * timing.duration;
-  face_end = std::min(
-      {face_end, timing.face_start + 2 * k.incident_distance_m / k.front.c0_m_s - dt, recorded});
+  const double face_end = std::min(window_end_held(dt, timing, k), recorded);
   // The window opens where the specimen is still at rest, and the strain is integrated from zero
   // there: at the last sample at or before the incident pulse's last sample at rest on its gauge
   // (the one before its onset, the first beyond the rest band) moved to the faces. The pulse
@@ -577,10 +582,17 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
   warn_record_ends_in_loading(t, dt, recorded, timing, k, r);
   warn_transmitted_echo(k, timing, dt, r);
 
-  // Summary numbers.
+  // Summary numbers. The incident plateau over the whole incident pulse at the faces, from the
+  // window's start to the pulse's end (or its next reflection), not where the record ends for the
+  // reflected or transmitted pulse: a record cut in its reflected pulse read it over the part the
+  // window kept (the LANL copper record cut at 215 us: the plateau 1.0 % high, the striker 1.5 %).
+  const std::size_t a = index_at(t, r.face_start_s);
+  const std::size_t held = std::min(index_at(t, window_end_held(dt, timing, k)) + 1, t.size());
   const std::size_t inc_end =
-      std::min(r.time_s.size(), index_at(r.time_s, timing.face_start + timing.duration));
-  r.incident_plateau_strain = plateau_level(r.incident, 0, first_step_end(k, 0, inc_end, dt), -1.0);
+      std::min(held, index_at(t, timing.face_start + timing.duration)) - std::min(a, held);
+  const std::span<const double> incident_held(faces.ei.data() + a, faces.ei.size() - a);
+  r.incident_plateau_strain =
+      plateau_level(incident_held, 0, first_step_end(k, 0, inc_end, dt), -1.0);
   PulseWindow incident_pulse;
   incident_pulse.onset = on, incident_pulse.end = end, incident_pulse.sign = -1;
   r.inferred_striker_velocity_m_s = striker_velocity_from_plateau(
