@@ -285,12 +285,15 @@ void warn_incident_overlap(const KolskySetup& k, double dt, ProcessingResult& r)
           0.5 * k.front.c0_m_s * length));
 }
 
-void settle_peak_stress(bool one_wave, ProcessingResult& r) {
+void settle_peak_stress(const ProcessingOptions& options, ProcessingResult& r) {
   r.peak_stress_3wave_over_loading_Pa = r.peak_stress_3wave_Pa;
   const Equilibrium& e = r.equilibrium;
-  if (e.peak_3wave_Pa && (e.holds_from_s || e.fraction >= kMostlyInEquilibrium)) {
+  r.peak_in_equilibrium =
+      e.peak_3wave_Pa && options.peak_in_equilibrium.value_or(e.holds_from_s.has_value() ||
+                                                              e.fraction >= kMostlyInEquilibrium);
+  if (r.peak_in_equilibrium) {
     r.peak_stress_3wave_Pa = *e.peak_3wave_Pa;
-  } else if (e.loaded_s) {
+  } else if (e.loaded_s && !options.peak_in_equilibrium.has_value()) {
     r.warnings.push_back(
         fmt("the specimen is in equilibrium (R = 2|P1-P2|/|P1+P2| <= %.3g) over only %.3g %% of "
             "its loading and not until it unloads: outside equilibrium its stresses are the face "
@@ -300,7 +303,8 @@ void settle_peak_stress(bool one_wave, ProcessingResult& r) {
             kEquilibriumThreshold, 100 * e.fraction, r.peak_stress_3wave_Pa / 1e6,
             r.peak_stress_1wave_Pa / 1e6));
   }
-  r.peak_stress_Pa = one_wave ? r.peak_stress_1wave_Pa : r.peak_stress_3wave_Pa;
+  r.peak_stress_Pa = options.primary == PrimaryReduction::kOneWave ? r.peak_stress_1wave_Pa
+                                                                   : r.peak_stress_3wave_Pa;
 }
 
 Equilibrium judge_equilibrium(const Curve& c, const std::vector<double>& t, std::size_t n,

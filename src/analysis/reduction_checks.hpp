@@ -91,8 +91,9 @@ void warn_incident_overlap(const KolskySetup& k, double dt, ProcessingResult& r)
 // peak is read over the loaded samples in equilibrium (R ≤ 5 %); the loading's largest value is
 // kept beside it. Otherwise the peak is the loading's, said with the fraction of the loading in
 // equilibrium: outside it the stresses are the face forces over the area, not a material's stress.
+// A Monte Carlo draw reads its peak where its nominal did (ProcessingOptions::peak_in_equilibrium).
 inline constexpr double kMostlyInEquilibrium = 0.5;
-void settle_peak_stress(bool one_wave, ProcessingResult& r);
+void settle_peak_stress(const ProcessingOptions& options, ProcessingResult& r);
 
 // Loaded: from the first to the last sample where the mean force is at least 20 % of its peak.
 // Among those, the fraction with R ≤ 5 %, the longest run of them, and the run that reaches the

@@ -214,10 +214,13 @@ UncertaintyResult propagate_uncertainty(const Scene& scene, const MeasurementSpe
   const bool one_wave = options.primary == PrimaryReduction::kOneWave;
   const Curve& nc = nominal.curve;
   const std::vector<std::vector<std::size_t>> channels_of = channels_of_gauges(m, signals);
+  // Each draw reads its peak stress where the nominal did (processing.hpp).
+  ProcessingOptions draw_options = options;
+  draw_options.peak_in_equilibrium = nominal.peak_in_equilibrium;
   const DrawContext ctx{scene,
                         m,
                         signals,
-                        options,
+                        draw_options,
                         inputs,
                         z,
                         channels_of,
