@@ -3,6 +3,7 @@ files."""
 import gc
 import json
 import os
+import shutil
 
 import numpy as np
 import pytest
@@ -42,6 +43,19 @@ def test_compare_saves_the_commands_folder(tmp_path):
     for name in same_folder(tmp_path / "cmd", tmp_path / "py", result, timing=()):
         if name.endswith(".csv"):
             assert (tmp_path / "cmd" / name).read_bytes() == (tmp_path / "py" / name).read_bytes()
+
+
+def test_a_compare_run_from_the_scenes_folder_saves_beside_it(tmp_path, monkeypatch):
+    # A lab's run from the scene's folder, by relative names: the command writes its folder there;
+    # result.save refused it, a channel read from the measurement's file having been declared as
+    # an empty path, "." in Python: the current folder, an input.
+    folder = tmp_path / "lanl"
+    shutil.copytree(SOURCE / "experiments" / "lanl-cu-ofe-273k", folder)
+    monkeypatch.chdir(folder)
+    assert run_command("compare", "scene.json", "-o", "cmd", "--quiet")[0] == 0
+    result = shpb.compare("scene.json")
+    result.save("py")
+    same_folder(folder / "cmd", folder / "py", result, timing=())
 
 
 def test_compare_takes_the_striker_velocity_as_the_option_does(tmp_path):

@@ -14,6 +14,10 @@ std::vector<std::filesystem::path> scene_inputs(const Scene& scene, bool measure
     files.push_back(scene.measurement->file);
     for (const ChannelSpec& c : scene.measurement->channels) files.push_back(c.file);
   }
+  // A record read from the measurement's file names none of its own (and the reverse): no empty
+  // path, which Python's pathlib turns into "." (a result's save(dir) under the current folder
+  // was refused as lying inside an input).
+  std::erase_if(files, [](const std::filesystem::path& f) { return f.empty(); });
   return files;
 }
 
