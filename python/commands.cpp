@@ -1,4 +1,5 @@
-// The other commands: compare, study, fit and dispersion run by the command's own function, and
+// The other commands: compare, study, fit, calibrate and dispersion run by the command's own
+// function, and
 // the files a result's save(dir) declares and copies (python/shpb/__init__.py wraps them).
 #include "app/commands.hpp"
 
@@ -88,6 +89,19 @@ void bind_command_runs(py::module_& m) {
       py::arg("campaign"), py::arg("output"), py::arg("threads"), py::arg("max_iterations"),
       py::arg("relative_step"), py::arg("bootstrap"), py::arg("seed"));
   m.def(
+      "_calibrate",
+      [](const std::vector<std::filesystem::path>& scenes, const std::filesystem::path& output,
+         const py::object& threads) {
+        CalibrateArgs a;
+        a.scenes = scenes;
+        a.output = output;
+        a.threads = number<int>(threads, "threads");
+        a.quiet = true;
+        a.warnings_on_stderr = false;  // result.warnings (python/shpb/__init__.py)
+        return run_released([&] { return run_calibrate(a); });
+      },
+      py::arg("scenes"), py::arg("output"), py::arg("threads"));
+  m.def(
       "_dispersion",
       [](const py::object& poisson, const py::list& a_over_lambda,
          const py::object& max_a_over_lambda, const py::object& points, const py::object& radius_m,
@@ -113,20 +127,23 @@ void bind_command_runs(py::module_& m) {
 
 void bind_commands(py::module_& m) {
   bind_command_runs(m);
-  // The files a run of compare, study or fit read, as the command declares them to its output
-  // folder: result.save(dir) refuses a dir that is or holds one, as the command does (a study of
-  // a plan's scene.json saved over the plan deleted the scene).
+  // The files a run of compare, study, fit or calibrate read (`files`: the one scene or campaign,
+  // calibrate's scenes), as the command declares them to its output folder: result.save(dir)
+  // refuses a dir that is or holds one, as the command does (a study of a plan's scene.json saved
+  // over the plan deleted the scene).
   m.def(
       "_inputs",
-      [](const std::string& command, const std::filesystem::path& file,
+      [](const std::string& command, const std::vector<std::filesystem::path>& files,
          const std::filesystem::path& distributions) {
         return run_released([&] {
+          if (command == "calibrate") return calibrate_inputs(files);
+          const std::filesystem::path& file = files.at(0);
           if (command == "fit") return fit_inputs(prepare_fit(file, FitOptions{}));
           const Scene scene = read_scene(file);
           return command == "study" ? study_inputs(scene, distributions) : scene_inputs(scene);
         });
       },
-      py::arg("command"), py::arg("file"), py::arg("distributions"));
+      py::arg("command"), py::arg("files"), py::arg("distributions"));
   // result.save(dir) of those: the command's folder copied with the output folder's own rules
   // (checks, marker, atomic replacement; core/output_folder.hpp).
   m.def(

@@ -76,5 +76,6 @@ PYBIND11_MODULE(_shpb, m) {
   bind_scene(m);
   bind_simulate(m);
   bind_process(m);
+  bind_plan(m);
   bind_commands(m);
 }

@@ -33,7 +33,8 @@ except ImportError:
 __version__ = _shpb.__version__
 __all__ = ["Scene", "Bar", "Material", "JohnsonCook", "Bilinear", "InputError", "NumericalError",
            "WriteError", "ShpbWarning", "simulate", "process", "compare", "dispersion", "fit",
-           "study", "SimulationResult", "ProcessResult", "BarCheckResult", "FolderResult"]
+           "study", "plan", "calibrate", "SimulationResult", "ProcessResult", "BarCheckResult",
+           "FolderResult", "PlanResult"]
 
 
 class ShpbWarning(UserWarning):
@@ -209,7 +210,8 @@ def process(scene, signals=None, draws=1000, seed=1):
 
 
 class FolderResult:
-    """The output of `shpb compare`, `shpb study` or `shpb fit`, read into memory: tables (every
+    """The output of `shpb compare`, `shpb study`, `shpb fit`, `shpb calibrate` or `shpb plan`
+    (a PlanResult), read into memory: tables (every
     CSV file, by name without .csv) and json (every JSON file, by name without .json), as the
     command wrote them. exit_code: 0, or 3 when the command wrote its result with a numerical
     failure said in its summary. save(dir) writes the very files into `dir`."""
@@ -233,9 +235,13 @@ class FolderResult:
 
     @property
     def warnings(self):
-        """The run's warnings, summary.json's (what the command prints on stderr)."""
-        found = (self.summary or {}).get("warnings")
-        return list(found) if isinstance(found, list) else []
+        """The run's warnings, what the command prints on stderr: summary.json's `undetermined`
+        (calibrate's directions the shots do not fix) then its `warnings`."""
+        lines = []
+        for key in ("undetermined", "warnings"):
+            found = (self.summary or {}).get(key)
+            lines += found if isinstance(found, list) else []
+        return lines
 
     def save(self, dir):
         """Writes the command's folder into `dir` (replaced atomically; a folder shpb did not
@@ -264,14 +270,15 @@ def _read_csv(path):
     return columns
 
 
-def _folder_run(command, run, file, distributions=None):
-    """Runs `command` on its scene or campaign `file` into a temporary folder."""
+def _folder_run(command, run, files, distributions=None):
+    """Runs `command` on its scene or campaign file (calibrate: its scene files) `files` into a
+    temporary folder."""
     import weakref
     tmp = tempfile.mkdtemp(prefix=f"shpb-{command}-")
     folder = os.path.join(tmp, "out")
     try:
         code = run(folder)
-        inputs = _shpb._inputs(command, file, distributions or "")
+        inputs = _shpb._inputs(command, files, distributions or "")
         result = FolderResult(command, folder, code, inputs)
     except BaseException:
         shutil.rmtree(tmp, True)
@@ -279,14 +286,15 @@ def _folder_run(command, run, file, distributions=None):
     # The temporary folder is this function's and goes with its result; a FolderResult made of
     # any other folder removes nothing.
     weakref.finalize(result, shutil.rmtree, tmp, True)
-    return _warned(result, calls=2)  # _folder_run, called by compare, study or fit
+    return _warned(result, calls=2)  # _folder_run, called by compare, study, fit or calibrate
 
 
 def _scene_file(scene):
-    """compare and study run a scene file: a path, or the file a shpb.Scene was loaded from."""
+    """compare, study, plan and calibrate run a scene file: its path (a shpb.Scene is refused:
+    one edited in memory is not its file)."""
     if isinstance(scene, Scene):
-        raise TypeError("compare and study read the scene from its file, as the commands do: "
-                        "pass the path (a Scene edited in memory is not a file)")
+        raise TypeError("compare, study, plan and calibrate read the scene from its file, as the "
+                        "commands do: pass the path (a Scene edited in memory is not a file)")
     return os.fspath(scene)
 
 
@@ -300,7 +308,7 @@ def compare(scene, tolerance=None, threads=0, contact=None, stepping=None, coura
     scene = _scene_file(scene)
     return _folder_run("compare", lambda out: _shpb._compare(
         scene, out, tolerance, contact, stepping, courant, threads, dispersion,
-        striker_velocity), scene)
+        striker_velocity), [scene])
 
 
 @_with_help("study", """study(scene, sweep="pareto", refine=1, tolerance=None, threads=0,
@@ -317,7 +325,7 @@ def study(scene, sweep="pareto", refine=1, tolerance=None, threads=0, contact=No
     distributions = None if distributions is None else os.fspath(distributions)
     return _folder_run("study", lambda out: _shpb._study(
         scene, out, sweep, refine, tolerance, contact, stepping, courant, threads,
-        distributions, draws, seed), scene, distributions)
+        distributions, draws, seed), [scene], distributions)
 
 
 @_with_help("fit", """fit(campaign, threads=0, max_iterations=40, relative_step=0.05, bootstrap=30,
@@ -329,7 +337,59 @@ result.json["fit"] is fit.json (a material file), result.tables the command's CS
 def fit(campaign, threads=0, max_iterations=40, relative_step=0.05, bootstrap=30, seed=1):
     campaign = os.fspath(campaign)
     return _folder_run("fit", lambda out: _shpb._fit(campaign, out, threads, max_iterations,
-                                                     relative_step, bootstrap, seed), campaign)
+                                                     relative_step, bootstrap, seed), [campaign])
+
+
+@_with_help("calibrate", """calibrate(scenes, threads=0) -> FolderResult
+
+Fits the bars (wave speed, Poisson ratio), gauge positions and channel gains and delays to the
+calibration shots of `scenes` (the paths of their scene files: bars apart, bars together; one
+path alone is one shot), as `shpb calibrate` does; result.json["calibration"] is
+calibration.json (what a scene's "calibration" names), result.tables the shot-K.csv files.""")
+def calibrate(scenes, threads=0):
+    if isinstance(scenes, (str, bytes, os.PathLike, Scene)):
+        scenes = [scenes]
+    scenes = [_scene_file(s) for s in scenes]
+    return _folder_run("calibrate", lambda out: _shpb._calibrate(scenes, out, threads), scenes)
+
+
+class PlanResult(FolderResult):
+    """The output of `shpb plan`, read into memory: tables["plan_path"] and the other CSV files,
+    json["summary"] and json["scene"] (the planned scene, its material files named from the
+    result's temporary folder). save(dir) writes the command's folder, its scene.json naming them
+    from `dir` as the command's does from its -o."""
+
+    def __init__(self, native, folder, inputs):
+        super().__init__("plan", folder, 0, inputs)
+        self._native = native
+
+    def save(self, dir):
+        self._native.save(os.fspath(dir))
+
+
+@_with_help("plan", """plan(scene, rate, strain=0.15, search_tolerance="3 %", tolerance="0.5 %",
+     threads=0) -> PlanResult
+
+Finds the striker, shaper and specimen within the scene file's `plan` bounds that meet the
+target strain `rate` (a number in 1/s or the option's text, "2500 1/s") to the engineering
+`strain`, as `shpb plan` does; the tolerances are the gauge errors of the search's runs and of
+the verification run (a fraction or text, "3 %"). Raises shpb.NumericalError naming the
+criterion missed most when no set-up within the bounds meets the targets (the command's exit 3,
+nothing written).""")
+def plan(scene, rate, strain=0.15, search_tolerance="3 %", tolerance="0.5 %", threads=0):
+    import weakref
+    scene = _scene_file(scene)
+    native = _shpb._plan(scene, rate, strain, search_tolerance, tolerance, threads)
+    tmp = tempfile.mkdtemp(prefix="shpb-plan-")
+    try:
+        folder = os.path.join(tmp, "out")
+        native.save(folder)
+        result = PlanResult(native, folder, native.inputs)
+    except BaseException:
+        shutil.rmtree(tmp, True)
+        raise
+    weakref.finalize(result, shutil.rmtree, tmp, True)
+    return _warned(result)
 
 
 @_with_help("dispersion", """dispersion(poisson=0.29, a_over_lambda=None, max_a_over_lambda=1.6,

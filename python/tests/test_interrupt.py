@@ -109,3 +109,23 @@ def test_sigint_stops_the_monte_carlo_of_a_measurement_uncertainty():
     assert lines[0].startswith("stopped after"), lines
     assert float(lines[0].split()[2]) < STOP_WITHIN_S, lines
     assert lines[1] == "next run draws: 20"
+
+
+PLAN_SCRIPT = textwrap.dedent("""
+    import os, signal, sys, threading, time
+    import shpb
+    # The plan-al6061 search at its default tolerances: minutes of simulations.
+    scene = os.path.join(os.path.dirname(os.path.dirname(sys.argv[1])), "plan-al6061", "scene.json")
+    threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
+    start = time.monotonic()
+    try:
+        shpb.plan(scene, rate=2500)
+        print("not interrupted")
+    except KeyboardInterrupt:
+        print("interrupted after %.1f s" % (time.monotonic() - start))
+""")
+
+
+def test_sigint_stops_a_plan_search():
+    # The search's runs poll the library's flag as the command's poll SIGINT.
+    assert run_script(PLAN_SCRIPT).startswith("interrupted after")

@@ -15,20 +15,30 @@
 namespace shpb {
 namespace {
 
-struct CalibrateArgs {
-  std::vector<std::filesystem::path> scenes;
-  std::filesystem::path output;
-  int threads = 0;
-  bool quiet = false;
-};
-
-int run_calibrate(const CalibrateArgs& args) {
+// The shots of `scenes`, and the files they read appended to `inputs`.
+std::vector<CalibrationShot> read_shots(const std::vector<std::filesystem::path>& scenes,
+                                        std::vector<std::filesystem::path>& inputs) {
   std::vector<CalibrationShot> shots;
-  std::vector<std::filesystem::path> inputs;
-  for (const auto& file : args.scenes) {
+  for (const auto& file : scenes) {
     shots.push_back({read_scene(file), file.string()});
     for (const auto& f : scene_inputs(shots.back().scene)) inputs.push_back(f);
   }
+  return shots;
+}
+
+}  // namespace
+
+std::vector<std::filesystem::path> calibrate_inputs(
+    const std::vector<std::filesystem::path>& scenes) {
+  std::vector<std::filesystem::path> inputs;
+  read_shots(scenes, inputs);
+  return inputs;
+}
+
+int run_calibrate(const CalibrateArgs& args) {
+  require_valid(args);
+  std::vector<std::filesystem::path> inputs;
+  const std::vector<CalibrationShot> shots = read_shots(args.scenes, inputs);
   CalibrateOptions options;
   options.threads = args.threads;
   if (!args.quiet)
@@ -37,8 +47,10 @@ int run_calibrate(const CalibrateArgs& args) {
     };
   CalibrationFit fit = calibrate_bars(shots, options);
   write_calibration_outputs(fit, args.output, inputs);
-  for (const auto& w : fit.undetermined) std::fprintf(stderr, "warning: %s\n", w.c_str());
-  for (const auto& w : fit.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  if (args.warnings_on_stderr) {
+    for (const auto& w : fit.undetermined) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    for (const auto& w : fit.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  }
   if (!args.quiet) {
     for (const auto& p : fit.parameters)
       std::fprintf(stderr, "calibrate: %-40s %.6g -> %.6g +- %s\n", p.name.c_str(), p.nominal,
@@ -47,8 +59,6 @@ int run_calibrate(const CalibrateArgs& args) {
   }
   return 0;
 }
-
-}  // namespace
 
 Command add_calibrate_command(CLI::App& app) {
   auto args = std::make_shared<CalibrateArgs>();

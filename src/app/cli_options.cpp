@@ -134,8 +134,8 @@ double tolerance_option(const std::string& option, const std::string& text) {
   } catch (const std::invalid_argument&) {
     throw input_error(option, "", "\"" + text + "\"", "expected a gauge error such as \"1 %\"");
   }
-  if (const std::string what = tolerance_problem(t); !what.empty())
-    throw input_error(option, "", format_double(t * 100) + " %", what);
+  if (const std::string what = tolerance_option_problem(option, t); !what.empty())
+    throw InputError(what);
   return t;
 }
 

@@ -13,11 +13,13 @@
 
 #include "analysis/uncertainty.hpp"
 #include "core/options_check.hpp"
+#include "fit/calibration.hpp"
 #include "fit/fit_run.hpp"
 #include "model/run_overrides.hpp"
 #include "model/scene.hpp"
 #include "model/scene_inputs.hpp"
 #include "model/scene_validation.hpp"
+#include "plan/plan_search.hpp"
 #include "study/study_args.hpp"
 
 namespace CLI {
@@ -25,6 +27,8 @@ class App;
 }
 
 namespace shpb {
+
+class OutputFolder;
 
 // A registered subcommand and what runs it once the command line is parsed.
 struct Command {
@@ -108,5 +112,47 @@ struct FitArgs {
   bool IsValid(std::string* error) const { return options.IsValid(error); }
 };
 int run_fit(const FitArgs& args);
+
+struct CalibrateArgs {
+  std::vector<std::filesystem::path> scenes;
+  std::filesystem::path output;
+  int threads = 0;
+  bool quiet = false;
+  bool warnings_on_stderr = true;  // the Python module returns them (result.warnings)
+  bool IsValid(std::string* error) const {
+    *error = threads_problem(threads);
+    return error->empty();
+  }
+};
+int run_calibrate(const CalibrateArgs& args);
+// The files a calibration of `scenes` reads (its output folder may hold none of them).
+std::vector<std::filesystem::path> calibrate_inputs(
+    const std::vector<std::filesystem::path>& scenes);
+
+struct PlanArgs {
+  std::filesystem::path scene;
+  std::filesystem::path output;
+  PlanTargets targets;  // --rate, --strain
+  PlanOptions options;  // --search-tolerance, --tolerance, --threads
+  bool quiet = false;
+};
+// A plan run: what it read, what it was asked and what it found.
+struct PlannedTest {
+  std::filesystem::path file;  // the scene as given (messages)
+  PlanInput input;
+  PlanTargets targets;
+  PlanOptions options;
+  PlanResult result;
+};
+// The options checked and the scene's plan read: InputError (exit 2) before anything is written.
+PlannedTest prepare_plan(const PlanArgs& args);
+// The search; NumericalError (exit 3, nothing written) naming the scene and the criterion its
+// closest set-up misses most when no set-up within the bounds meets the targets.
+void search_plan(PlannedTest& plan);
+// The files a plan reads (its output folder may hold none of them).
+std::vector<std::filesystem::path> plan_inputs(const PlanInput& input);
+// The plan's files into `out` (scene.json's paths relative to its final folder), `out` committed.
+void write_plan(const PlannedTest& plan, OutputFolder& out);
+int run_plan(const PlanArgs& args);
 
 }  // namespace shpb

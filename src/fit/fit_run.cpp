@@ -319,8 +319,8 @@ void check_misfit(FitRun& run) {
 }  // namespace
 
 bool FitOptions::IsValid(std::string* error) const {
-  if (threads < 0)
-    *error = input_error("--threads", "", std::to_string(threads), kThreadsExpected).what();
+  if (!threads_problem(threads).empty())
+    *error = threads_problem(threads);
   else if (max_iterations < 1 || max_iterations > 10000)
     *error =
         input_error("--max-iterations", "", std::to_string(max_iterations), "expected 1 to 10000")

@@ -9,8 +9,8 @@ namespace shpb {
 
 ChainDiscretization apply_overrides(const RunOverrides& overrides, Scene& scene) {
   // The command line refuses it as it parses (app/cli_options.hpp); Python passes any int.
-  if (overrides.threads < 0)
-    throw input_error("--threads", "", std::to_string(overrides.threads), kThreadsExpected);
+  if (const std::string what = threads_problem(overrides.threads); !what.empty())
+    throw InputError(what);
   if (overrides.contact) {
     scene.contact.method = *overrides.contact;
     for (auto& i : scene.contact.interfaces) i.method.reset();

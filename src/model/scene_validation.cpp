@@ -20,6 +20,12 @@ std::string tolerance_problem(double fraction) {
   return "expected a gauge error above 0 % and below 100 %, such as \"1 %\"";
 }
 
+std::string tolerance_option_problem(const std::string& option, double fraction) {
+  const std::string what = tolerance_problem(fraction);
+  if (what.empty()) return {};
+  return input_error(option, "", format_double(fraction * 100) + " %", what).what();
+}
+
 std::string courant_problem(double c) {
   if (c > 0 && c <= 1) return {};
   return "must be in (0, 1]: lumped central difference is stable for C <= 1";

@@ -29,6 +29,9 @@ std::string courant_problem(double c);
 // Empty if `fraction` is an acceptable gauge-error tolerance (0 < it < 1, i.e. below 100 %),
 // else what is expected (the one rule for the scene's `simulation.tolerance` and --tolerance).
 std::string tolerance_problem(double fraction);
+// The line refusing `fraction` given to the gauge-error option `option` ("--tolerance: 150 %:
+// expected ..."), empty when tolerance_problem finds none.
+std::string tolerance_option_problem(const std::string& option, double fraction);
 
 // Throws InputError (exit 2) for what a run would refuse: a Courant number outside (0, 1]
 // (docs/methods.md §1: lumped central difference is stable for C ≤ 1), a tolerance outside

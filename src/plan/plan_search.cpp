@@ -15,11 +15,23 @@
 
 #include "core/error.hpp"
 #include "core/interrupt.hpp"
+#include "core/options_check.hpp"
 #include "core/parallel_runner.hpp"
 #include "model/discretization.hpp"  // default_duration_s
 #include "model/scene_validation.hpp"
 
 namespace shpb {
+
+bool PlanOptions::IsValid(std::string* error) const {
+  for (const std::string& what :
+       {tolerance_option_problem("--search-tolerance", search_tolerance),
+        tolerance_option_problem("--tolerance", verify_tolerance), threads_problem(threads)})
+    if (!what.empty()) {
+      *error = what;
+      return false;
+    }
+  return true;
+}
 
 Scene planned_scene(const PlanInput& input, const PlanCandidate& c) {
   Scene s = input.scene;

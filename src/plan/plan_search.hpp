@@ -56,6 +56,9 @@ struct PlanOptions {
   double verify_tolerance = 0.005;  // of the chosen set-up's verification run
   int threads = 0;
   std::function<void(double)> progress;
+  // The tolerances in (0 %, 100 %), threads >= 0: the lines of --search-tolerance, --tolerance
+  // and --threads (the command's and the Python module's one check).
+  bool IsValid(std::string* error) const;
 };
 
 // The set-up closest to the scene that meets the targets; InputError for a target out of range.
