@@ -41,8 +41,6 @@ double LoadingMetrics::shortfall() const {
 
 LoadingMetrics loading_metrics(const TimeSeries& specimen, std::span<const double> front,
                                std::span<const double> back, const PlanTargets& targets) {
-  // A rate below this fraction of the target is no loading yet (or any more).
-  constexpr double kOnsetFraction = 0.1;
   LoadingMetrics m;
   m.target_strain = targets.strain;
   const auto& t = specimen.time_s;
@@ -51,7 +49,7 @@ LoadingMetrics loading_metrics(const TimeSeries& specimen, std::span<const doubl
   const double R = targets.rate_1_s;
   for (double e : strain) m.strain_reached = std::max(m.strain_reached, e);
   std::size_t k0 = 0;
-  while (k0 < t.size() && rate[k0] < kOnsetFraction * R) ++k0;
+  while (k0 < t.size() && rate[k0] < kLoadingOnsetFraction * R) ++k0;
   if (k0 + 2 >= t.size()) return m;
   // The loading is the test a lab reduces: to the strain maximum, where `process`'s loading ends
   // (docs/methods.md §6), not to the target strain. The rate a lab quotes is its plateau over all

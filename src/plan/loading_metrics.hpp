@@ -30,6 +30,9 @@ struct PlanTargets {
   bool IsValid(std::string* error) const;  // a positive rate, a strain in (0, 1)
 };
 
+// A specimen rate below this fraction of the target is no loading yet (or any more).
+inline constexpr double kLoadingOnsetFraction = 0.1;
+
 // What a simulated record says about a loading: the specimen's rate and strain
 // (SimulationResult::specimen), and the equilibrium of the forces the bars put on its faces (the
 // forces a lab's gauges measure: incident + reflected at the front, transmitted at the back).

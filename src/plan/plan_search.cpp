@@ -298,7 +298,13 @@ std::string Planner::binding(const Evaluation& best, bool redirect) const {
         reached = &p;
     if (reached) return binding({reached->candidate, reached->metrics, {}}, false);
   }
-  if (at_velocity_bound) {
+  if (at_velocity_bound && m.plateau_rate_1_s == 0) {
+    // No loading at all: nothing to extrapolate a velocity from (it read "about 5e+09 m/s").
+    std::snprintf(what, sizeof what,
+                  "plan.striker.velocity: at its upper bound %.3g m/s the specimen's rate never "
+                  "reaches %.3g %% of %.3g 1/s (its strain %.3g at most)",
+                  spec_.striker_velocity.hi, 100 * kLoadingOnsetFraction, R, m.strain_reached);
+  } else if (at_velocity_bound) {
     std::snprintf(what, sizeof what,
                   "plan.striker.velocity: at its upper bound %.3g m/s the specimen's rate reaches "
                   "only %.3g 1/s; about %.3g m/s would be needed",
