@@ -300,10 +300,9 @@ nlohmann::json process_summary(const ProcessOutcome& o, const std::string& scene
       {"over",
        "the loading (the rows of curve.csv); the 3-wave peak_stress_Pa over its samples in "
        "equilibrium (R <= 0.05) once the specimen reaches equilibrium that lasts until unloading "
-       "or "
-       "is in equilibrium over at least half its loading, else over the loading: "
-       "peak_stress_over_loading_Pa includes the ring-up and the unloading "
-       "edge, where the front face's force is not the specimen's"}};
+       "or is in equilibrium over at least half its loading, else over the loading: "
+       "peak_stress_over_loading_Pa includes the ring-up and the unloading edge, where the front "
+       "face's force is not the specimen's"}};
   nlohmann::json disp = {
       {"correction", std::string(enum_name(kCorrectionNames, options.dispersion.correction))},
       {"amplitude_factors", options.dispersion.amplitude_factors}};

@@ -127,6 +127,11 @@ struct ProcessingResult {
   std::vector<std::string> warnings;
 };
 
+// The headline peak stress (ProcessingResult::peak_stress_Pa): the primary reduction's.
+inline double primary_peak_stress(const ProcessingResult& r) {
+  return r.primary == PrimaryReduction::kOneWave ? r.peak_stress_1wave_Pa : r.peak_stress_3wave_Pa;
+}
+
 // Equilibrium holds where R ≤ 5 % (a common criterion, e.g. Gray 2000) while the mean force is
 // above 20 % of its peak; it is reached where it then holds until unloading.
 inline constexpr double kEquilibriumThreshold = 0.05;

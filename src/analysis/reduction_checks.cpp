@@ -303,8 +303,7 @@ void settle_peak_stress(const ProcessingOptions& options, ProcessingResult& r) {
             kEquilibriumThreshold, 100 * e.fraction, r.peak_stress_3wave_Pa / 1e6,
             r.peak_stress_1wave_Pa / 1e6));
   }
-  r.peak_stress_Pa = options.primary == PrimaryReduction::kOneWave ? r.peak_stress_1wave_Pa
-                                                                   : r.peak_stress_3wave_Pa;
+  r.peak_stress_Pa = primary_peak_stress(r);
 }
 
 Equilibrium judge_equilibrium(const Curve& c, const std::vector<double>& t, std::size_t n,
