@@ -14,6 +14,7 @@
 #include "core/csv_writer.hpp"  // format_double
 #include "core/error.hpp"
 #include "core/interrupt.hpp"
+#include "core/options_check.hpp"
 #include "core/parallel_runner.hpp"
 #include "output_schema.hpp"
 
@@ -180,11 +181,15 @@ void fill_bands(const std::vector<DrawResult>& results, const std::vector<std::s
 }  // namespace
 
 bool MonteCarloOptions::IsValid(std::string* error) const {
-  if (draws >= kMinDraws && draws <= kMaxDraws) return true;
-  *error = input_error("--draws", "", std::to_string(draws),
-                       "expected " + std::to_string(kMinDraws) + " to " + std::to_string(kMaxDraws))
-               .what();
-  return false;
+  if (!(draws >= kMinDraws && draws <= kMaxDraws)) {
+    *error =
+        input_error("--draws", "", std::to_string(draws),
+                    "expected " + std::to_string(kMinDraws) + " to " + std::to_string(kMaxDraws))
+            .what();
+    return false;
+  }
+  *error = threads_problem(threads);
+  return error->empty();
 }
 
 void check_uncertainty(const Scene& scene, const GaugeSignals& signals) {
@@ -261,6 +266,7 @@ nlohmann::json uncertainty_summary(const UncertaintyResult& u) {
   nlohmann::json inputs = nlohmann::json::array();
   for (const UncertainInput& i : u.inputs)
     inputs.push_back({{"name", i.name},
+                      {"key", i.key},
                       {"nominal", i.nominal},
                       {"standard_uncertainty", i.standard_uncertainty},
                       {"unit", i.unit}});

@@ -45,7 +45,8 @@ struct MonteCarloOptions {
 // One scalar input drawn: its name (the scene value it perturbs), nominal value and standard
 // uncertainty, both SI (a trigger delay and a window start are 0 nominally).
 struct UncertainInput {
-  std::string name;
+  std::string name;  // in words: "gauge factor of channel 0 (gauge incident)"
+  std::string key;   // the scene's JSON path that gave its uncertainty
   double nominal = 0;
   double standard_uncertainty = 0;
   std::string unit;  // SI unit of the two values ("" for a plain number)

@@ -33,7 +33,7 @@ struct InputList {
     if (positive)
       if (const std::string what = sign_keeping_problem(value, sigma, d); !what.empty())
         throw input_error(file, path, JsonValue::format(sigma, d), what);
-    in.push_back({{std::move(name), value, sigma, unit_of(d)}, positive, std::move(apply)});
+    in.push_back({{std::move(name), path, value, sigma, unit_of(d)}, positive, std::move(apply)});
   }
 };
 
@@ -45,6 +45,7 @@ struct InputList {
 void add_bridge_inputs(InputList& in, const UncertaintySpec& u, const MeasurementSpec& m) {
   struct Factor {
     const char* key;
+    const char* words;
     const std::optional<StandardUncertainty>* spec;
     double BridgeSpec::*value;
     Dimension dim;
@@ -54,11 +55,12 @@ void add_bridge_inputs(InputList& in, const UncertaintySpec& u, const Measuremen
     return std::find(u.shared.begin(), u.shared.end(), key) != u.shared.end();
   };
   const Factor factors[] = {
-      {"gauge_factor", &u.gauge_factor, &BridgeSpec::gauge_factor, Dimension::kDimensionless,
-       is_shared("gauge_factor")},
-      {"excitation", &u.excitation, &BridgeSpec::excitation_V, Dimension::kVoltage,
-       is_shared("excitation")},
-      {"gain", &u.gain, &BridgeSpec::gain, Dimension::kDimensionless, is_shared("gain")}};
+      {"gauge_factor", "gauge factor", &u.gauge_factor, &BridgeSpec::gauge_factor,
+       Dimension::kDimensionless, is_shared("gauge_factor")},
+      {"excitation", "bridge excitation", &u.excitation, &BridgeSpec::excitation_V,
+       Dimension::kVoltage, is_shared("excitation")},
+      {"gain", "amplifier gain", &u.gain, &BridgeSpec::gain, Dimension::kDimensionless,
+       is_shared("gain")}};
   // Per channel first, channel by channel (the order of the draws), then the shared factors.
   for (std::size_t c = 0; c < m.channels.size(); ++c) {
     const ChannelSpec& ch = m.channels[c];
@@ -66,9 +68,10 @@ void add_bridge_inputs(InputList& in, const UncertaintySpec& u, const Measuremen
     for (const Factor& f : factors)
       if (*f.spec && !f.shared) {
         const double x0 = (*ch.bridge).*f.value;
-        in.add("channel " + std::to_string(c) + " (" + ch.gauge + ") " + f.key, x0,
-               absolute(**f.spec, x0), f.dim, (*f.spec)->path, true,
-               [c, x0](double x, DrawState& d) { d.channel_factor[c] *= x0 / x; });
+        in.add(
+            std::string(f.words) + " of channel " + std::to_string(c) + " (gauge " + ch.gauge + ")",
+            x0, absolute(**f.spec, x0), f.dim, (*f.spec)->path, true,
+            [c, x0](double x, DrawState& d) { d.channel_factor[c] *= x0 / x; });
       }
   }
   for (const Factor& f : factors) {
@@ -79,8 +82,8 @@ void add_bridge_inputs(InputList& in, const UncertaintySpec& u, const Measuremen
         channels.emplace_back(c, (*b).*f.value, absolute(**f.spec, (*b).*f.value));
     if (channels.empty()) continue;
     const auto [c0, x00, s00] = channels.front();
-    in.add(std::string("every channel ") + f.key, x00, s00, f.dim, (*f.spec)->path, true,
-           [channels, x00, s00](double x, DrawState& d) {
+    in.add(std::string(f.words) + " of every channel (one draw)", x00, s00, f.dim, (*f.spec)->path,
+           true, [channels, x00, s00](double x, DrawState& d) {
              const double z = s00 > 0 ? (x - x00) / s00 : 0.0;
              for (const auto& [c, x0, sigma] : channels) {
                const double xc = x0 + sigma * z;
@@ -93,15 +96,15 @@ void add_bridge_inputs(InputList& in, const UncertaintySpec& u, const Measuremen
 
 // One bar's material and geometry.
 void add_bar_inputs(InputList& in, const BarUncertainty& b, const BarSpec& bar) {
-  const std::string name = bar.name + " ";
+  const std::string of = " of bar " + bar.name;
   const std::size_t i = b.bar;
   if (b.youngs_modulus)
-    in.add(name + "youngs_modulus", bar.material.youngs_modulus_Pa,
+    in.add("Young's modulus" + of, bar.material.youngs_modulus_Pa,
            absolute(*b.youngs_modulus, bar.material.youngs_modulus_Pa), Dimension::kPressure,
            b.youngs_modulus->path, true,
            [i](double x, DrawState& d) { set_instantaneous_modulus(d.scene.bars[i].material, x); });
   if (b.density)
-    in.add(name + "density", bar.material.density_kg_m3,
+    in.add("density" + of, bar.material.density_kg_m3,
            absolute(*b.density, bar.material.density_kg_m3), Dimension::kDensity, b.density->path,
            true, [i](double x, DrawState& d) { d.scene.bars[i].material.density_kg_m3 = x; });
   if (b.wave_speed) {
@@ -110,7 +113,7 @@ void add_bar_inputs(InputList& in, const BarUncertainty& b, const BarSpec& bar) 
     // the bar's modulus and density (inputs are applied in order).
     const double c0 = bar.material.wave_speed_m_s();
     const bool keep_density = b.density && !b.youngs_modulus;
-    in.add(name + "wave_speed", c0, absolute(*b.wave_speed, c0), Dimension::kVelocity,
+    in.add("wave speed" + of, c0, absolute(*b.wave_speed, c0), Dimension::kVelocity,
            b.wave_speed->path, true, [i, keep_density](double x, DrawState& d) {
              MaterialSpec& mat = d.scene.bars[i].material;
              if (keep_density)
@@ -123,17 +126,17 @@ void add_bar_inputs(InputList& in, const BarUncertainty& b, const BarSpec& bar) 
     const double nu = bar.material.poisson_ratio;
     const double sigma = absolute(*b.poisson_ratio, nu);
     const double step = kPoissonGridSigma * sigma;
-    in.add(name + "poisson_ratio", nu, sigma, Dimension::kDimensionless, b.poisson_ratio->path,
+    in.add("Poisson's ratio" + of, nu, sigma, Dimension::kDimensionless, b.poisson_ratio->path,
            true, [i, nu, step](double x, DrawState& d) {
              d.scene.bars[i].material.poisson_ratio = nu + step * std::round((x - nu) / step);
            });
   }
   if (b.diameter)
-    in.add(name + "diameter", bar.diameter_m, absolute(*b.diameter, bar.diameter_m),
+    in.add("diameter" + of, bar.diameter_m, absolute(*b.diameter, bar.diameter_m),
            Dimension::kLength, b.diameter->path, true,
            [i](double x, DrawState& d) { set_bar_diameter(d.scene.bars[i], x); });
   if (b.length)
-    in.add(name + "length", bar.length_m, absolute(*b.length, bar.length_m), Dimension::kLength,
+    in.add("length" + of, bar.length_m, absolute(*b.length, bar.length_m), Dimension::kLength,
            b.length->path, true, [i](double x, DrawState& d) { d.scene.bars[i].length_m = x; });
 }
 
@@ -150,8 +153,8 @@ void add_gauge_position_inputs(InputList& in, const StandardUncertainty& positio
                                               [&](const GaugeSpec& x) { return x.name == gauge; }) -
                                  gauges.begin());
     // Drawn as the distance to the specimen; moved along the bar by the difference.
-    in.add("gauge " + gauge + " distance_to_specimen", distance, absolute(position, distance),
-           Dimension::kLength, position.path, true,
+    in.add("distance of gauge " + gauge + " to the specimen", distance,
+           absolute(position, distance), Dimension::kLength, position.path, true,
            [bar, g, distance, toward = bar < s](double x, DrawState& d) {
              d.scene.bars[bar].gauges[g].position_m += (toward ? -1 : 1) * (x - distance);
            });
@@ -191,14 +194,15 @@ void add_analysis_inputs(InputList& in, const Scene& scene, const UncertaintySpe
                                 format_double(u.window_start->value) + " samples",
                                 u.window_start->value * signals.dt_s, signals);
   if (u.trigger_delay)
-    in.add("trigger_delay", 0, u.trigger_delay->value, Dimension::kTime, u.trigger_delay->path,
-           false, [](double x, DrawState& d) { d.options.transmitted_shift_s += x; });
+    in.add("trigger delay of the transmitted record", 0, u.trigger_delay->value, Dimension::kTime,
+           u.trigger_delay->path, false,
+           [](double x, DrawState& d) { d.options.transmitted_shift_s += x; });
   if (u.window_start) {
     const double dt = signals.dt_s;
-    in.add("reflected window_start", 0, u.window_start->value * dt, Dimension::kTime,
+    in.add("start of the reflected window", 0, u.window_start->value * dt, Dimension::kTime,
            u.window_start->path, false,
            [](double x, DrawState& d) { d.options.reflected_shift_s += x; });
-    in.add("transmitted window_start", 0, u.window_start->value * dt, Dimension::kTime,
+    in.add("start of the transmitted window", 0, u.window_start->value * dt, Dimension::kTime,
            u.window_start->path, false,
            [](double x, DrawState& d) { d.options.transmitted_shift_s += x; });
   }
@@ -209,8 +213,8 @@ void add_analysis_inputs(InputList& in, const Scene& scene, const UncertaintySpe
   if (u.dispersion_cutoff) {
     const double f0 =
         dispersion_cutoff_Hz(options.dispersion, setup.front_waveguide);  // the reduction's
-    in.add("dispersion_cutoff", f0, absolute(*u.dispersion_cutoff, f0), Dimension::kFrequency,
-           u.dispersion_cutoff->path, true, [f0](double x, DrawState& d) {
+    in.add("dispersion cut-off frequency", f0, absolute(*u.dispersion_cutoff, f0),
+           Dimension::kFrequency, u.dispersion_cutoff->path, true, [f0](double x, DrawState& d) {
              // The cut-off scales with its draw whichever way the scene gives it (f·a/c0 ∝ f).
              DispersionSpec& ds = d.options.dispersion;
              if (ds.cutoff_Hz)
@@ -222,8 +226,8 @@ void add_analysis_inputs(InputList& in, const Scene& scene, const UncertaintySpe
   if (u.friction) {
     const double mu = *scene.measurement->corrections.friction;
     // μ ≥ 0: a draw below zero is the frictionless face.
-    in.add("friction", mu, absolute(*u.friction, mu), Dimension::kDimensionless, u.friction->path,
-           false, [](double x, DrawState& d) {
+    in.add("friction coefficient of the specimen faces", mu, absolute(*u.friction, mu),
+           Dimension::kDimensionless, u.friction->path, false, [](double x, DrawState& d) {
              d.scene.measurement->corrections.friction = std::max(0.0, x);
            });
   }

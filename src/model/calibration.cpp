@@ -1,5 +1,8 @@
 #include "model/calibration.hpp"
 
+#include <cmath>
+
+#include "core/csv_writer.hpp"  // format_double
 #include "core/error.hpp"
 #include "core/file_digest.hpp"
 #include "core/json_document.hpp"
@@ -14,12 +17,44 @@ nlohmann::json value_json(const CalibratedValue& v) {
   return {{"value", v.value}, {"sd", v.sd ? nlohmann::json(*v.sd) : nlohmann::json()}};
 }
 
+// density_kg_m3 and youngs_modulus_Pa are the scene's density and ρ c0², written for reading; they
+// are checked to be those, not read as values (the calibration sets the wave speed). A file
+// `shpb calibrate` wrote reads them back exactly; the tolerance admits one printed again at
+// 10 significant digits and refuses any edit of a value.
+constexpr double kRecordedValueTolerance = 1e-9;
+
+bool same_value(double a, double b) {
+  return std::abs(a - b) <= kRecordedValueTolerance * std::abs(b);
+}
+
 CalibratedValue read_value(const JsonValue& v, Dimension d, double lo, double hi) {
   const auto o = v.object(input_keys::kCalibratedValue);
   CalibratedValue c;
   c.value = o.require("value", "the fitted value").quantity_in(d, lo, hi, true, true);
   if (auto sd = o.get("sd"); sd && !sd->json().is_null()) c.sd = sd->non_negative_quantity(d);
   return c;
+}
+
+// Gains and delays are relative to the reference gauge's channel: its own delay is 0 and, unless
+// `absolute_gain`, its gain 1 (a reference or absolute_gain edited by hand would change nothing
+// the scene reads: refused).
+void check_reference_gauge(const JsonObject& o, const Calibration& c) {
+  const auto given = o.get("reference_gauge");
+  if (!given || c.reference_gauge.empty()) return;  // none recorded
+  for (const GaugeCalibration& g : c.gauges)
+    if (g.gauge == c.reference_gauge) {
+      if (g.delay_s.value == 0 && (c.absolute_gain || g.gain.value == 1)) return;
+      throw given->error(
+          "gains and delays are relative to this gauge's channel, whose gauges[] "
+          "entry has gain " +
+          format_double(g.gain.value) + " and delay " +
+          JsonValue::format(g.delay_s.value, Dimension::kTime) +
+          ": expected delay 0 and, unless absolute_gain, gain 1 (a file shpb "
+          "calibrate wrote; the reference is not changed by editing it)");
+    }
+  throw given->error(
+      "expected the name of a gauge in gauges[] (the channel the gains and delays "
+      "are relative to)");
 }
 
 }  // namespace
@@ -69,6 +104,17 @@ Calibration read_calibration_file(const std::filesystem::path& file) {
                                   Dimension::kDimensionless, 0, 0.5);
     if (auto d = bo.get("density_kg_m3"))
       bc.density_kg_m3 = d->positive_quantity(Dimension::kDensity);
+    if (auto e = bo.get("youngs_modulus_Pa")) {
+      const double c0 = bc.wave_speed_m_s.value;
+      if (!bc.density_kg_m3)
+        throw e->error("is density_kg_m3 x wave_speed_m_s^2: needs density_kg_m3 beside it");
+      const double modulus = bc.density_kg_m3 * c0 * c0;
+      if (!same_value(e->positive_quantity(Dimension::kPressure), modulus))
+        throw e->error("expected density_kg_m3 x wave_speed_m_s^2 = " +
+                       JsonValue::format(modulus, Dimension::kPressure) +
+                       ", which it records: the calibrated modulus is the scene's density times "
+                       "wave_speed_m_s squared (edit wave_speed_m_s to change it)");
+    }
     c.bars.push_back(bc);
   }
   for (const auto& g : o.require("gauges", "a list of calibrated gauges").array()) {
@@ -84,12 +130,14 @@ Calibration read_calibration_file(const std::filesystem::path& file) {
     c.gauges.push_back(gc);
   }
   if (auto p = o.get("provenance")) c.provenance = p->json();
+  check_reference_gauge(o, c);
   return c;
 }
 
 void apply_calibration(Scene& scene, const Calibration& c, const std::filesystem::path& file) {
   const std::string where = scene.file.string();
-  for (const auto& b : c.bars) {
+  for (std::size_t i = 0; i < c.bars.size(); ++i) {
+    const BarCalibration& b = c.bars[i];
     BarSpec* bar = nullptr;
     for (auto& s : scene.bars)
       if (s.name == b.bar) bar = &s;
@@ -99,6 +147,13 @@ void apply_calibration(Scene& scene, const Calibration& c, const std::filesystem
                             "\", which the scene does not have (with a material): a calibration "
                             "of other bars");
     MaterialSpec& m = bar->material;
+    if (b.density_kg_m3 && !same_value(b.density_kg_m3, m.density_kg_m3))
+      throw input_error(file.string(), "bars[" + std::to_string(i) + "].density_kg_m3",
+                        JsonValue::format(b.density_kg_m3, Dimension::kDensity),
+                        "expected the density of bar \"" + b.bar + "\" in " + where + " (" +
+                            JsonValue::format(m.density_kg_m3, Dimension::kDensity) +
+                            "): the calibration was made with another; it sets the wave speed, "
+                            "the scene the density (run shpb calibrate again with this scene's)");
     set_instantaneous_modulus(m, m.density_kg_m3 * b.wave_speed_m_s.value * b.wave_speed_m_s.value);
     m.poisson_ratio = b.poisson_ratio.value;
   }

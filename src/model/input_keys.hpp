@@ -47,6 +47,8 @@ inline const Keys kJohnsonCook = {"youngs_modulus",
                                   "strain_rate_filter"};
 inline const Keys kViscoelastic = {"long_term_modulus", "arms"};
 inline const Keys kMaxwellArm = {"modulus", "relaxation_time"};  // viscoelastic `arms[]`
+// A material's `uncertainty.<law parameter>`: a fit's interval of it (fit.json).
+inline const Keys kFitInterval = {"interval_95", "method", "weakly_identified"};
 
 // The scene's `measurement`.
 inline const Keys kMeasurement = {

@@ -1,11 +1,13 @@
 #include "model/material_reader.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "core/closest_match.hpp"
 #include "core/json_document.hpp"
 #include "model/input_keys.hpp"
 #include "model/input_limits.hpp"
+#include "model/law_parameters.hpp"
 #include "model/material_law.hpp"
 #include "model/scene.hpp"
 
@@ -128,6 +130,37 @@ void read_viscoelastic(const JsonObject& o, MaterialSpec& m) {
   }
 }
 
+// A fit's intervals of the law's parameters (fit.json, docs/outputs.md): a record of the fit that
+// no command propagates, checked to be one. A standard uncertainty written here ("2 %", a density)
+// would be read by nothing: the uncertainty `process` draws is measurement.uncertainty's.
+void check_fit_intervals(const JsonValue& v, const MaterialSpec& m) {
+  const std::string elsewhere =
+      "a material's uncertainty holds a fit's 95 % intervals of its law parameters (fit.json), "
+      "which no command propagates; a standard uncertainty that process draws goes in "
+      "measurement.uncertainty.bars.<bar> (docs/scene-format.md)";
+  if (!v.is_object()) throw v.error("expected an object: " + elsewhere);
+  const std::vector<std::string> names = law_parameter_names(m);
+  for (const auto& [key, item] : v.json().items()) {
+    const JsonValue p(item, v.file(), json_child_path(v.path(), key));
+    if (std::find(names.begin(), names.end(), key) == names.end())
+      throw p.error("not a law parameter of this " + std::string(to_string(m.model)) +
+                    " material (" + suggestion_text(key, names) + "): " + elsewhere);
+    if (!p.is_object())
+      throw p.error(
+          "expected {\"interval_95\": [lower, upper], \"method\", \"weakly_identified\"}: " +
+          elsewhere);
+    const auto po = p.object(input_keys::kFitInterval);
+    const auto interval = po.require("interval_95", "[lower, upper] in SI units");
+    const auto ends = interval.array();
+    if (ends.size() != 2) throw interval.error("expected [lower, upper] in SI units");
+    const Dimension d = law_parameter_dimension(key);
+    if (!(ends[0].quantity(d) <= ends[1].quantity(d)))
+      throw interval.error("expected [lower, upper] with lower <= upper");
+    if (auto x = po.get("method")) x->string();
+    if (auto x = po.get("weakly_identified")) x->boolean();
+  }
+}
+
 }  // namespace
 
 MaterialSpec read_material(const JsonValue& value, const std::string& name) {
@@ -144,9 +177,6 @@ MaterialSpec read_material(const JsonValue& value, const std::string& name) {
   const JsonObject o = value.object(allowed_keys(m.model));
   if (auto v = o.get("source")) m.source = v->string();
   if (auto v = o.get("notes")) v->string();
-  // A fit's intervals of its parameters (docs/outputs.md, fit.json): documentation, not read.
-  if (auto v = o.get("uncertainty"); v && !v->is_object())
-    throw v->error("expected an object (a fit's intervals of its parameters)");
   if (auto v = o.get("name")) v->string();
   m.density_kg_m3 =
       o.require("density", "e.g. \"7.85 g/cm3\"").positive_quantity(Dimension::kDensity);
@@ -162,6 +192,7 @@ MaterialSpec read_material(const JsonValue& value, const std::string& name) {
 
   if (m.model == MaterialModel::kBilinear) read_bilinear(o, m);
   if (m.model == MaterialModel::kJohnsonCook) read_johnson_cook(o, m);
+  if (auto v = o.get("uncertainty")) check_fit_intervals(*v, m);
   return m;
 }
 

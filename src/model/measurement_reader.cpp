@@ -176,6 +176,19 @@ DispersionSpec read_dispersion(const JsonValue& v) {
   return d;
 }
 
+// An uncertainty of a bridge factor with no bridge to apply it to would be propagated as zero.
+void require_bridge(const JsonValue& measurement, const MeasurementSpec& m, bool bridged) {
+  if (!m.uncertainty || bridged) return;
+  const UncertaintySpec& u = *m.uncertainty;
+  const nlohmann::json& given = measurement.json()["uncertainty"];
+  for (const auto& [key, spec] :
+       {std::pair{"gauge_factor", &u.gauge_factor}, std::pair{"excitation", &u.excitation},
+        std::pair{"gain", &u.gain}})
+    if (*spec)
+      throw input_error(measurement.file(), (*spec)->path, given[key].dump(),
+                        "a bridge's uncertainty needs measured channels in volts with a bridge");
+}
+
 }  // namespace
 
 MeasurementSpec read_measurement(const JsonValue& value, const std::filesystem::path& scene_dir,
@@ -222,15 +235,20 @@ MeasurementSpec read_measurement(const JsonValue& value, const std::filesystem::
                       uncertainty->json()["friction"].dump(),
                       "an uncertainty of the friction correction's coefficient needs "
                       "measurement.corrections.friction");
+
   // Corrections or the reduction's choices alone (for `process --signals` of simulated gauges):
-  // no signals to read.
+  // no signals to read, so no key of the record (read by nothing then).
   if (!o.get("channels") && !o.get("file") &&
       (o.get("test") || o.get("load_drop") || o.get("corrections") || o.get("align") ||
        o.get("primary") || o.get("rate_window") || uncertainty)) {
-    if (uncertainty && m.uncertainty->gauge_factor)
-      throw input_error(value.file(), m.uncertainty->gauge_factor->path,
-                        uncertainty->json()["gauge_factor"].dump(),
-                        "a bridge's uncertainty needs measured channels in volts with a bridge");
+    for (const char* key :
+         {"format", "time", "sheet", "dispersion", "windows", "reflected_time", "striker_velocity"})
+      if (auto k = o.get(key))
+        throw k->error(
+            "a key of the measured record, which this measurement has none of (no channels): "
+            "process --signals of simulated gauges reads only the reduction's choices (test, "
+            "load_drop, corrections, align, primary, rate_window) and their uncertainty");
+    require_bridge(value, m, false);
     return m;
   }
   if (auto f = o.get("file")) m.file = (scene_dir / f->name()).lexically_normal();
@@ -282,17 +300,9 @@ MeasurementSpec read_measurement(const JsonValue& value, const std::filesystem::
   if (auto r = o.get("reflected_time")) m.reflected_time_s = r->positive_quantity(Dimension::kTime);
   if (auto s = o.get("striker_velocity"))
     m.striker_velocity_m_s = s->positive_quantity(Dimension::kVelocity);
-  if (uncertainty) {
-    const UncertaintySpec& u = *m.uncertainty;
-    const bool bridged = std::any_of(m.channels.begin(), m.channels.end(),
-                                     [](const ChannelSpec& c) { return c.bridge.has_value(); });
-    for (const auto& [key, given] :
-         {std::pair{"gauge_factor", &u.gauge_factor}, std::pair{"excitation", &u.excitation},
-          std::pair{"gain", &u.gain}})
-      if (*given && !bridged)
-        throw input_error(value.file(), (*given)->path, uncertainty->json()[key].dump(),
-                          "a bridge's uncertainty needs a channel in volts with a bridge");
-  }
+  require_bridge(value, m,
+                 std::any_of(m.channels.begin(), m.channels.end(),
+                             [](const ChannelSpec& c) { return c.bridge.has_value(); }));
   return m;
 }
 

@@ -329,6 +329,29 @@ const std::vector<BadScene>& cases() {
       {"an empty time unit (not seconds by default)",
        [](json& s, json&) { s["measurement"]["time"]["unit"] = ""; },
        "measurement.time.unit: \"\": expected a time unit"},
+      // Keys accepted and then read by nothing gave a plausible number without a word: a
+      // material's uncertainty (a fit's record), the keys of a record a measurement without
+      // channels does not have, a bridge's uncertainty with no bridge.
+      {"a standard uncertainty in a material's uncertainty",
+       [](json& s, json&) {
+         s["materials"]["steel"]["uncertainty"] = {{"youngs_modulus", "2 %"}};
+       },
+       "materials.steel.uncertainty.youngs_modulus: \"2 %\": expected {\"interval_95\""},
+      {"a material's interval of a value that is no law parameter",
+       [](json&, json& m) {
+         m["uncertainty"] = {{"density", {{"interval_95", {2600, 2800}}}}};
+       },
+       "uncertainty.density: {\"interval_95\":[2600,2800]}: not a law parameter"},
+      {"a striker velocity in a measurement without channels",
+       [](json& s, json&) {
+         s["measurement"] = {{"test", "compression"}, {"striker_velocity", "15 m/s"}};
+       },
+       "measurement.striker_velocity: \"15 m/s\": a key of the measured record"},
+      {"a bridge excitation's uncertainty in a measurement without channels",
+       [](json& s, json&) {
+         s["measurement"] = {{"uncertainty", {{"excitation", "1 %"}}}};
+       },
+       "measurement.uncertainty.excitation: \"1 %\": a bridge's uncertainty needs"},
   };
   return table;
 }

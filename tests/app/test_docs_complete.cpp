@@ -237,7 +237,7 @@ std::vector<DocObject> scene_format_objects() {
       {"Top level", k::kScene},
       {"bars", k::kBar},
       {"bars[].gauges[]", k::kGauge},
-      {"materials", k::kMaterial},
+      {"materials", k::kMaterial, {{"uncertainty", k::kFitInterval}}},
       {"contact", k::kContact},
       {"contact.interfaces[]", k::kInterface},
       {"simulation", k::kSimulation},

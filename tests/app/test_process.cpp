@@ -361,6 +361,54 @@ TEST_CASE("A gauge factor shared by every channel moves the stress by its whole 
   CHECK(relative <= (1 + kSpread) * kGaugeFactorU);
 }
 
+// Each drawn input is named in words (docs/outputs.md, process: summary.json's inputs[]), with the
+// scene's JSON path of its uncertainty beside it: before, the name was the scene's key ("channel 0
+// (incident) gauge_factor", "incident wave_speed"), which summary.json, the printed line and the
+// report's panels showed a reader.
+TEST_CASE("process names each uncertain input in words beside the scene key it came from",
+          "[app][process][uncertainty]") {
+  const fs::path dir = temp_dir("input_names");
+  nlohmann::json scene = shpb_test::steel_scene();
+  for (auto& ch : scene["measurement"]["channels"]) {
+    ch["unit"] = "V";
+    ch["bridge"] = {{"arms", 2}, {"gauge_factor", 2.0}, {"excitation", "5 V"}, {"gain", 100}};
+  }
+  scene["measurement"]["uncertainty"] = {
+      {"gauge_factor", "1 %"},
+      {"excitation", "0.1 %"},
+      {"shared", {"excitation"}},
+      {"gauge_position", "1 mm"},
+      {"trigger_delay", "0.1 us"},
+      {"bars", {{"incident", {{"wave_speed", "0.5 %"}}}, {"specimen", {{"length", "0.01 mm"}}}}}};
+  const fs::path file = shpb_test::write(dir, scene, shpb_test::csv(shpb_test::Record{}, 250.0));
+  const auto r = run_shpb(
+      {"process", file.string(), "-o", (dir / "out").string(), "--draws", "20", "--threads", "2"});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  const std::string u = "measurement.uncertainty.";
+  const std::vector<std::pair<std::string, std::string>> expected = {
+      {"gauge factor of channel 0 (gauge incident)", u + "gauge_factor"},
+      {"gauge factor of channel 1 (gauge transmitted)", u + "gauge_factor"},
+      {"bridge excitation of every channel (one draw)", u + "excitation"},
+      {"wave speed of bar incident", u + "bars.incident.wave_speed"},
+      {"length of bar specimen", u + "bars.specimen.length"},
+      {"distance of gauge incident to the specimen", u + "gauge_position"},
+      {"distance of gauge transmitted to the specimen", u + "gauge_position"},
+      {"trigger delay of the transmitted record", u + "trigger_delay"}};
+  std::vector<std::pair<std::string, std::string>> named;
+  const nlohmann::json written = summary(dir / "out");
+  for (const auto& i : written["uncertainty"]["inputs"])
+    named.emplace_back(i["name"].get<std::string>(), i["key"].get<std::string>());
+  CHECK(named == expected);
+  // The printed line names the largest contributors so: in words, no scene key.
+  const std::string output = r.out + r.err;
+  const auto at = output.find("largest contributors: ");
+  REQUIRE(at != std::string::npos);
+  const std::string contributors = output.substr(at, output.find('\n', at) - at);
+  INFO(contributors);
+  CHECK(contributors.find('_') == std::string::npos);
+}
+
 // The curve bands (docs/methods.md §10) at a strain only where at least 97.5 % of the draws reach
 // it: a draw whose loading ends short of a strain has no state there. Its end-of-loading value
 // (unloading) used to stand in and pulled the bands' last strains down, the strain rate's lower

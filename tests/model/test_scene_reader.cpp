@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -259,6 +260,96 @@ TEST_CASE("A calibration file holds exactly the keys shpb calibrate writes", "[m
   }
   write(file, written.dump());
   CHECK(read_calibration_file(file).bars.at(0).wave_speed_m_s.value == 4975);
+}
+
+// A calibration's density_kg_m3 and youngs_modulus_Pa are the scene's density and ρ c0², written
+// for reading, and its reference gauge the channel the gains are relative to: an edit of any of
+// them changed nothing the scene reads (the modulus stayed ρ_scene c0²). Each is checked to be
+// what it records.
+TEST_CASE("A calibration's recorded density modulus and reference gauge are checked not ignored",
+          "[model][scene]") {
+  const Scratch s("calibration_recorded");
+  write(s.dir / "scene.json", std::string(R"({"calibration": "calibration.json", "bars": [
+      {"name": "striker", "material": "steel", "length": "0.3 m", "diameter": "19.05 mm",
+       "velocity": "10 m/s"},
+      {"name": "incident", "material": "steel", "length": "2 m", "diameter": "19.05 mm",
+       "gauges": [{"name": "inc", "position": "1 m"}, {"name": "far", "position": "1.5 m"}]}],
+    "materials": {)") + kSteel + "}}");
+  Calibration c;
+  c.reference_gauge = "inc";
+  const double c0 = 5000, rho = 7850;  // the scene's steel: 7.85 g/cm3
+  c.bars.push_back({"incident", {c0, 1}, {0.29, 0.01}, rho});
+  c.gauges.push_back({"inc", "incident", {1, 1e-3}, {1, 0.01}, {0, 1e-7}});
+  c.gauges.push_back({"far", "incident", {1.5, 1e-3}, {1.02, 0.01}, {1e-7, 1e-8}});
+  const auto with = [&](const std::function<void(nlohmann::json&)>& edit) {
+    nlohmann::json j = calibration_to_json(c);
+    edit(j);
+    write(s.dir / "calibration.json", j.dump());
+    return error_of(s.dir / "scene.json");
+  };
+  const std::string cal = (s.dir / "calibration.json").lexically_normal().string();
+  // As written: read, the modulus ρ c0² of the scene's density.
+  CHECK(with([](nlohmann::json&) {}) == "(no error)");
+  CHECK(read_scene(s.dir / "scene.json").bars[1].material.youngs_modulus_Pa ==
+        Approx(rho * c0 * c0).epsilon(kUlps));
+  // The modulus edited by hand (210 GPa where ρ c0² is 196.25 GPa).
+  std::string e = with([](nlohmann::json& j) { j["bars"][0]["youngs_modulus_Pa"] = 210e9; });
+  INFO(e);
+  CHECK(e.rfind(cal + ": bars[0].youngs_modulus_Pa: 210000000000.0: expected density_kg_m3 x "
+                      "wave_speed_m_s^2 = 1.9625e+11 Pa",
+                0) == 0);
+  // The density edited, or the scene's changed since the calibration.
+  e = with([](nlohmann::json& j) {
+    j["bars"][0]["density_kg_m3"] = 8000;
+    j["bars"][0]["youngs_modulus_Pa"] = 8000 * 5000.0 * 5000.0;
+  });
+  CHECK(e.rfind(cal + ": bars[0].density_kg_m3: 8000 kg/m^3: expected the density of bar "
+                      "\"incident\"",
+                0) == 0);
+  // Another reference gauge named: the gains stay relative to "inc" (gain 1, delay 0).
+  e = with([](nlohmann::json& j) { j["reference_gauge"] = "far"; });
+  CHECK(e.rfind(cal + ": reference_gauge: \"far\": gains and delays are relative to this gauge's "
+                      "channel, whose gauges[] entry has gain 1.02",
+                0) == 0);
+  e = with([](nlohmann::json& j) { j["reference_gauge"] = "nowhere"; });
+  CHECK(e.rfind(cal + ": reference_gauge: \"nowhere\": expected the name of a gauge in gauges[]",
+                0) == 0);
+  // Absolute gains: the reference's gain is its own (not 1).
+  e = with([](nlohmann::json& j) {
+    j["absolute_gain"] = true;
+    j["gauges"][0]["gain"]["value"] = 0.97;
+  });
+  CHECK(e == "(no error)");
+}
+
+// A material's `uncertainty` is a fit's record of its law parameters' intervals (fit.json): read
+// as such, refused as anything else (a standard uncertainty there was read by nothing).
+TEST_CASE("A material's uncertainty is a fit's intervals of its law parameters", "[model][scene]") {
+  const Scratch s("material_uncertainty");
+  const auto scene_with = [&](const std::string& uncertainty) {
+    write(s.dir / "scene.json", R"({"bars": [
+      {"name": "striker", "material": "al", "length": "0.3 m", "diameter": "19.05 mm"},
+      {"name": "incident", "material": "al", "length": "2 m", "diameter": "19.05 mm"}],
+      "materials": {"al": {"model": "bilinear", "density": 2700, "youngs_modulus": "70 GPa",
+        "poisson_ratio": 0.33, "yield_stress": "300 MPa", "tangent_modulus": "1 GPa",
+        "uncertainty": )" + uncertainty +
+                                    "}}}");
+    return error_of(s.dir / "scene.json");
+  };
+  const std::string file = s.dir / "scene.json";
+  CHECK(scene_with(R"({"yield_stress": {"interval_95": [2.9e8, 3.1e8], "method": "bootstrap",
+                        "weakly_identified": false}})") == "(no error)");
+  CHECK(scene_with(R"({"yield_stress": "2 %"})")
+            .rfind(file + ": materials.al.uncertainty.yield_stress: \"2 %\": expected {", 0) == 0);
+  CHECK(scene_with(R"({"A": {"interval_95": [1, 2]}})")
+            .rfind(file + ": materials.al.uncertainty.A: {\"interval_95\":[1,2]}: not a law "
+                          "parameter of this bilinear material",
+                   0) == 0);
+  CHECK(scene_with(R"({"yield_stress": {"interval_95": [3.1e8, 2.9e8]}})")
+            .rfind(file + ": materials.al.uncertainty.yield_stress.interval_95: ", 0) == 0);
+  CHECK(scene_with(R"({"yield_stress": {"interval95": [2.9e8, 3.1e8]}})")
+            .rfind(file + ": materials.al.uncertainty.yield_stress.interval95: unknown key", 0) ==
+        0);
 }
 
 }  // namespace tests_model_test_scene_reader
