@@ -2,6 +2,7 @@
 // JohnsonCook. Material parameters, SI units in the names (docs/scene-format.md gives the JSON
 // keys).
 #include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
 
 #include <string>
 #include <type_traits>
@@ -11,6 +12,7 @@
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
 #include "model/input_limits.hpp"
+#include "model/law_parameters.hpp"
 #include "model/scene.hpp"
 #include "values.hpp"
 
@@ -53,6 +55,8 @@ template <class P>
 P& params_of(const LawParams<P>& l) {
   if constexpr (std::is_same_v<P, BilinearParams>)
     return l.material->bilinear;
+  else if constexpr (std::is_same_v<P, ViscoelasticParams>)
+    return l.material->viscoelastic;
   else
     return l.material->johnson_cook;
 }
@@ -60,8 +64,20 @@ template <class P>
 constexpr std::pair<MaterialModel, const char*> law_of() {
   if constexpr (std::is_same_v<P, BilinearParams>)
     return {MaterialModel::kBilinear, "bilinear"};
+  else if constexpr (std::is_same_v<P, ViscoelasticParams>)
+    return {MaterialModel::kViscoelastic, "viscoelastic"};
   else
     return {MaterialModel::kJohnsonCook, "johnson_cook"};
+}
+// Refuses an edit `name` = `x` of a law's group unless the material's law is the group's.
+template <class P>
+void require_law(const LawParams<P>& l, const char* name, const py::handle& x) {
+  const auto [law, group] = law_of<P>();
+  if (l.material->model != law)
+    throw input_error("scene edit", name, shown(x),
+                      "material \"" + l.material->name + "\" is " +
+                          std::string(to_string(l.material->model)) + ": " + group +
+                          ".* applies only to a " + std::string(to_string(law)) + " material");
 }
 template <class P, class T>
 auto law_get(T P::*field) {
@@ -72,12 +88,7 @@ auto law_get(T P::*field) {
 template <class P, class Set>
 auto law_set(const char* name, Set set) {
   return [name, set](LawParams<P>& l, const py::object& x) {
-    const auto [law, group] = law_of<P>();
-    if (l.material->model != law)
-      throw input_error("scene edit", name, shown(x),
-                        "material \"" + l.material->name + "\" is " +
-                            std::string(to_string(l.material->model)) + ": " + group +
-                            ".* applies only to a " + std::string(to_string(law)) + " material");
+    require_law(l, name, x);
     set(params_of(l), x);
   };
 }
@@ -88,6 +99,67 @@ auto law_set(double P::*field, const char* name, Range range) {
 
 using JohnsonCook = LawParams<JohnsonCookParams>;
 using Bilinear = LawParams<BilinearParams>;
+using Viscoelastic = LawParams<ViscoelasticParams>;
+
+// A viscoelastic law's moduli and relaxation times, each in the range its file's key takes; the
+// instantaneous modulus (youngs_modulus_Pa, which the meshes and the wave speed follow) follows
+// them as the reader derives it (set_law_parameter).
+void bind_viscoelastic(py::module_& m) {
+  using VP = ViscoelasticParams;
+  py::class_<Viscoelastic>(m, "Viscoelastic")
+      .def_property("long_term_modulus_Pa", law_get(&VP::long_term_modulus_Pa),
+                    [](Viscoelastic& l, const py::object& x) {
+                      const char* name = "viscoelastic.long_term_modulus_Pa";
+                      require_law(l, name, x);
+                      set_law_parameter(*l.material, "long_term_modulus",
+                                        checked_value(x, name, Range::kPositive));
+                    })
+      .def_property_readonly("arms",
+                             [](const Viscoelastic& l) {
+                               py::list arms;
+                               for (const MaxwellArm& a : params_of(l).arms) {
+                                 py::dict d;
+                                 d["modulus_Pa"] = a.modulus_Pa;
+                                 d["relaxation_time_s"] = a.relaxation_time_s;
+                                 arms.append(d);
+                               }
+                               return arms;
+                             })
+      .def(
+          "set_arm",
+          [](Viscoelastic& l, const py::object& k, const py::object& modulus,
+             const py::object& time) {
+            const char* name = "viscoelastic.set_arm";
+            require_law(l, name, k);
+            const auto i = number<std::size_t>(k, "viscoelastic.set_arm: k");
+            const std::size_t arms = params_of(l).arms.size();
+            if (i >= arms)
+              throw input_error("scene edit", name, std::to_string(i),
+                                "material \"" + l.material->name + "\" has " +
+                                    std::to_string(arms) + " arms: expected an index below that");
+            const std::string arm = "arms[" + std::to_string(i) + "].";
+            // Both checked before either is set: a refused edit leaves the material unchanged.
+            const auto e =
+                modulus.is_none()
+                    ? std::nullopt
+                    : std::optional(checked_value(modulus, "viscoelastic.set_arm: modulus_Pa",
+                                                  Range::kPositive));
+            const auto tau =
+                time.is_none()
+                    ? std::nullopt
+                    : std::optional(checked_value(time, "viscoelastic.set_arm: relaxation_time_s",
+                                                  Range::kPositive));
+            if (e) set_law_parameter(*l.material, arm + "modulus", *e);
+            if (tau) set_law_parameter(*l.material, arm + "relaxation_time", *tau);
+          },
+          py::arg("k"), py::arg("modulus_Pa") = py::none(),
+          py::arg("relaxation_time_s") = py::none())
+      .def("__repr__", [](const Viscoelastic& l) {
+        return "<shpb.Viscoelastic " +
+               fields({{"long_term_modulus_Pa", params_of(l).long_term_modulus_Pa}}) + ", " +
+               std::to_string(params_of(l).arms.size()) + " arms>";
+      });
+}
 
 void bind_johnson_cook(py::module_& m) {
   using JC = JohnsonCookParams;
@@ -129,17 +201,24 @@ void bind_johnson_cook(py::module_& m) {
                                 [](JC& o, const py::object& x) {
                                   // True or False (a numpy bool by its value), as the file's
                                   // JSON boolean; anything else a TypeError naming it.
-                                  py::object v = py::reinterpret_borrow<py::object>(x);
-                                  if (const auto j = json_value_of(x)) v = *j;
-                                  if (!py::isinstance<py::bool_>(v))
-                                    throw py::type_error("johnson_cook.adiabatic: " + shown(x) +
-                                                         ": expected True or False");
-                                  if (v.cast<bool>() && !o.specific_heat_given)
+                                  const bool on = boolean(x, "johnson_cook.adiabatic");
+                                  if (on && !o.specific_heat_given)
                                     throw input_error(
                                         "scene edit", "johnson_cook.adiabatic", "True",
                                         "adiabatic heating needs the material's specific heat: "
                                         "set johnson_cook.specific_heat_J_kgK first");
-                                  o.adiabatic = v.cast<bool>();
+                                  o.adiabatic = on;
+                                }))
+      // None: the default (the scene's specimen: half its elastic transit; other bars: off).
+      .def_property("strain_rate_filter_s", law_get(&JC::strain_rate_filter_s),
+                    law_set<JC>("johnson_cook.strain_rate_filter_s",
+                                [](JC& o, const py::object& x) {
+                                  if (x.is_none()) {
+                                    o.strain_rate_filter_s.reset();
+                                    return;
+                                  }
+                                  o.strain_rate_filter_s = checked_value(
+                                      x, "johnson_cook.strain_rate_filter_s", Range::kNonNegative);
                                 }))
       .def("__repr__", [](const JohnsonCook& l) {
         const JC& o = params_of(l);
@@ -214,6 +293,7 @@ void set_youngs_modulus(MaterialSpec& o, const py::object& value) {
 void bind_materials(py::module_& m) {
   bind_johnson_cook(m);
   bind_bilinear(m);
+  bind_viscoelastic(m);
   py::class_<MaterialSpec>(m, "Material")
       .def_readonly("name", &MaterialSpec::name)
       .def_property_readonly("model",
@@ -242,6 +322,9 @@ void bind_materials(py::module_& m) {
       .def_property_readonly(
           "johnson_cook",
           py::cpp_function([](MaterialSpec& s) { return JohnsonCook{&s}; }, py::keep_alive<0, 1>()))
+      .def_property_readonly("viscoelastic",
+                             py::cpp_function([](MaterialSpec& s) { return Viscoelastic{&s}; },
+                                              py::keep_alive<0, 1>()))
       .def_property_readonly("wave_speed_m_s", &MaterialSpec::wave_speed_m_s)
       .def("__repr__", [](const MaterialSpec& s) {
         return "<shpb.Material " + s.name + " (" + std::string(to_string(s.model)) + "): " +

@@ -162,11 +162,12 @@ void bind_process(py::module_& m) {
   m.def(
       "_process",
       [](const Scene& scene, const std::optional<std::filesystem::path>& signals,
-         const py::object& draws, const py::object& seed,
+         const py::object& draws, const py::object& seed, const py::object& threads,
          const std::optional<std::string>& signals_shown) -> py::object {
         MonteCarloOptions monte_carlo;
         monte_carlo.draws = number<std::size_t>(draws, "draws");
         monte_carlo.seed = number<std::uint64_t>(seed, "seed");
+        monte_carlo.threads = number<int>(threads, "threads");
         require_valid(monte_carlo);  // before the scene's own errors, as the command checks it
         if (!scene.specimen) {       // the bars pushed together: the command's check (process_into)
           auto b = std::make_shared<BarChecking>();
@@ -182,7 +183,8 @@ void bind_process(py::module_& m) {
         return py::cast(p);
       },
       py::arg("scene"), py::arg("signals") = py::none(), py::arg("draws") = py::int_(kDefaultDraws),
-      py::arg("seed") = py::int_(kDefaultSeed), py::arg("signals_shown") = py::none());
+      py::arg("seed") = py::int_(kDefaultSeed), py::arg("threads") = py::int_(0),
+      py::arg("signals_shown") = py::none());
 }
 
 }  // namespace shpb::python

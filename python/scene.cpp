@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <string>
 
+#include "analysis/monte_carlo.hpp"  // set_bar_diameter
 #include "bindings.hpp"
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
@@ -98,7 +99,13 @@ void bind_bar(py::module_& m) {
       .def_property(
           "length_m", [](const BarView& v) { return v.bar().length_m; }, &set_length)
       .def_property_readonly("area_m2", [](const BarView& v) { return v.bar().area_m2; })
-      .def_property_readonly("diameter_m", [](const BarView& v) { return v.bar().diameter_m; })
+      .def_property(
+          "diameter_m", [](const BarView& v) { return v.bar().diameter_m; },
+          // The section scales with it (a bar given its area keeps its shape: the equivalent
+          // circular diameter), as a Monte Carlo draw of a diameter does.
+          [](const BarView& v, const py::object& value) {
+            set_bar_diameter(v.bar(), checked_value(value, "bar.diameter_m", Range::kPositive));
+          })
       .def_property(
           "velocity_m_s", [](const BarView& v) { return v.bar().velocity_m_s; },
           on_bar(checked(&BarSpec::velocity_m_s, "bar.velocity_m_s", Range::kFinite)))
@@ -122,6 +129,16 @@ void bind_bar(py::module_& m) {
               throw input_error("scene edit", "bar.gap_m", format_double(edited.gap_m),
                                 kLastBarGap);
             v.bar().gap_m = edited.gap_m;
+          })
+      .def_property(
+          "inertia", [](const BarView& v) { return v.bar().inertia; },
+          [](const BarView& v, const py::object& value) {
+            // True or False (a numpy bool by its value), as the file's JSON boolean.
+            Scene edited = v.owner();
+            edited.bars[v.index].inertia = boolean(value, "bar.inertia");
+            if (const std::string what = radial_inertia_problem(edited, v.index); !what.empty())
+              throw input_error("scene edit", "bar.inertia", "True", what);
+            v.bar().inertia = edited.bars[v.index].inertia;
           })
       .def_property_readonly("gauges",
                              [](const BarView& v) {

@@ -124,6 +124,14 @@ std::optional<double> tolerance_value(const py::object& t) {
   return number<double>(t, "tolerance", "expected a gauge error such as \"1 %\" or 0.01");
 }
 
+bool boolean(const py::handle& o, const std::string& name) {
+  py::object v = py::reinterpret_borrow<py::object>(o);
+  if (const auto j = json_value_of(o)) v = *j;
+  if (!py::isinstance<py::bool_>(v))
+    throw py::type_error(name + ": " + shown(o) + ": expected True or False");
+  return v.cast<bool>();
+}
+
 std::string fields(std::initializer_list<std::pair<const char*, double>> values) {
   std::string text;
   for (const auto& [name, value] : values)

@@ -55,6 +55,10 @@ T number(const py::handle& o, const std::string& name,
   }
   throw py::type_error(name + ": " + shown(o) + ": " + expected);
 }
+// True or False (a numpy bool by its value), as a file's JSON boolean; anything else a TypeError
+// naming `name`.
+bool boolean(const py::handle& o, const std::string& name);
+
 template <class T>
 std::optional<T> optional_number(const py::handle& o, const std::string& name) {
   if (o.is_none()) return std::nullopt;
@@ -79,21 +83,25 @@ RunOverrides overrides_of(const py::object& tolerance, const std::optional<std::
 // model/material_reader.cpp), so that a run never starts from a value no scene file could hold.
 enum class Range { kFinite, kPositive, kNonNegative, kFraction };
 
+inline double checked_value(const py::object& value, const char* name, Range range) {
+  const double x = number<double>(value, name);
+  const bool ok =
+      std::isfinite(x) &&
+      (range == Range::kFinite || (range == Range::kPositive && x > 0) ||
+       (range == Range::kNonNegative && x >= 0) || (range == Range::kFraction && x >= 0 && x <= 1));
+  if (!ok)
+    throw input_error("scene edit", name, format_double(x),
+                      range == Range::kPositive      ? "must be > 0"
+                      : range == Range::kNonNegative ? "must be >= 0"
+                      : range == Range::kFraction    ? "must be in [0, 1]"
+                                                     : "must be a finite number");
+  return x;
+}
+
 template <class T>
 auto checked(double T::*field, const char* name, Range range) {
   return [field, name, range](T& object, const py::object& value) {
-    const double x = number<double>(value, name);
-    const bool ok =
-        std::isfinite(x) && (range == Range::kFinite || (range == Range::kPositive && x > 0) ||
-                             (range == Range::kNonNegative && x >= 0) ||
-                             (range == Range::kFraction && x >= 0 && x <= 1));
-    if (!ok)
-      throw input_error("scene edit", name, format_double(x),
-                        range == Range::kPositive      ? "must be > 0"
-                        : range == Range::kNonNegative ? "must be >= 0"
-                        : range == Range::kFraction    ? "must be in [0, 1]"
-                                                       : "must be a finite number");
-    object.*field = x;
+    object.*field = checked_value(value, name, range);
   };
 }
 

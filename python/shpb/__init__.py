@@ -11,14 +11,14 @@ installed) named as the command's CSV columns and summary.json, and result.save(
 exactly the command's output folder. Simulations release the GIL (threads run in parallel);
 Ctrl-C stops a run as SIGINT stops the command.
 """
-import os
-import shutil
-import tempfile
+import os as _os
+import shutil as _shutil
+import tempfile as _tempfile
 import warnings as _warnings
 
 from . import _shpb
 from ._shpb import (Bar, Bilinear, InputError, JohnsonCook, Material, NumericalError, Scene,
-                    WriteError)
+                    Viscoelastic, WriteError)
 
 try:
     from ._command_help import HELP as _HELP
@@ -31,7 +31,7 @@ except ImportError:
     _pandas = None
 
 __version__ = _shpb.__version__
-__all__ = ["Scene", "Bar", "Material", "JohnsonCook", "Bilinear", "InputError", "NumericalError",
+__all__ = ["Scene", "Bar", "Material", "JohnsonCook", "Bilinear", "Viscoelastic", "InputError", "NumericalError",
            "WriteError", "ShpbWarning", "simulate", "process", "compare", "dispersion", "fit",
            "study", "plan", "calibrate", "SimulationResult", "ProcessResult", "BarCheckResult",
            "FolderResult", "PlanResult"]
@@ -68,13 +68,29 @@ def _with_help(command, python_part):
     return decorate
 
 
-class SimulationResult:
+class _Returned:
+    """A result of the library's run (`_native`), which only the module's functions make: a
+    constructor called from Python would give an object whose every attribute fails."""
+
+    _made_by = None
+
+    def __init__(self, *args, **kwargs):
+        raise TypeError(f"shpb.{type(self).__name__} is what shpb.{self._made_by}() returns; it is "
+                        "not constructed by hand")
+
+    @classmethod
+    def _of(cls, native):
+        result = object.__new__(cls)
+        result._native = native
+        return result
+
+
+class SimulationResult(_Returned):
     """A run of `shpb simulate`, in memory. Tables (time_s and one column per CSV column):
     gauges, interfaces, specimen (None without a specimen), energy; field: time_s, x_m and
     stress_Pa[time, x]; summary: summary.json as a dict. save(dir) writes the command's folder."""
 
-    def __init__(self, native):
-        self._native = native
+    _made_by = "simulate"
 
     scene = property(lambda self: self._native.scene, doc="the scene as run (overrides applied)")
     gauges = property(lambda self: _table(self._native.gauges), doc="gauges.csv")
@@ -97,7 +113,7 @@ class SimulationResult:
         """Writes gauges.csv, interfaces.csv, specimen.csv, energy.csv, field.csv and
         summary.json into `dir`, as `shpb simulate -o dir` (replaced atomically; a folder shpb
         did not write is refused)."""
-        self._native.save(os.fspath(dir))
+        self._native.save(_os.fspath(dir))
 
     def __repr__(self):
         s = self.summary
@@ -105,12 +121,11 @@ class SimulationResult:
                 f"samples, stable={s['stable']}, {s['wall_time_s']:.3g} s>")
 
 
-class ProcessResult:
+class ProcessResult(_Returned):
     """A run of `shpb process`, in memory: raw_signals, pulses, curve (rows up to the end of
     loading, as curve.csv) and summary (summary.json). save(dir) writes the command's folder."""
 
-    def __init__(self, native):
-        self._native = native
+    _made_by = "process"
 
     scene = property(lambda self: self._native.scene)
     raw_signals = property(lambda self: _table(self._native.raw_signals), doc="raw_signals.csv")
@@ -127,20 +142,19 @@ class ProcessResult:
     def save(self, dir):
         """Writes raw_signals.csv, pulses.csv, curve.csv and summary.json into `dir`, as
         `shpb process -o dir`."""
-        self._native.save(os.fspath(dir))
+        self._native.save(_os.fspath(dir))
 
     def __repr__(self):
         return f"<shpb.ProcessResult {self.summary['scene']}: peak {self.summary['peak_stress_Pa'] / 1e6:.4g} MPa>"
 
 
-class BarCheckResult:
+class BarCheckResult(_Returned):
     """`shpb process` of a scene without a specimen, in memory: the bars-together check (the
     near gauge's pulse moved to the far gauge with Pochhammer-Chree dispersion and by a plain
     delay, against the far record). pulses: pulses.csv; summary: summary.json (rms_of_peak,
     distance_m, ...). save(dir) writes the command's folder."""
 
-    def __init__(self, native):
-        self._native = native
+    _made_by = "process"
 
     scene = property(lambda self: self._native.scene)
     pulses = property(lambda self: _table(self._native.pulses), doc="pulses.csv")
@@ -154,7 +168,7 @@ class BarCheckResult:
 
     def save(self, dir):
         """Writes pulses.csv and summary.json into `dir`, as `shpb process -o dir`."""
-        self._native.save(os.fspath(dir))
+        self._native.save(_os.fspath(dir))
 
     def __repr__(self):
         s = self.summary
@@ -164,7 +178,7 @@ class BarCheckResult:
 
 def _process_result(native):
     """A ProcessResult, or a BarCheckResult for a scene without a specimen."""
-    return BarCheckResult(native) if isinstance(native, _shpb._BarCheck) else ProcessResult(native)
+    return (BarCheckResult if isinstance(native, _shpb._BarCheck) else ProcessResult)._of(native)
 
 
 @_with_help("simulate", """simulate(scene, tolerance=None, threads=0, contact=None, stepping=None,
@@ -180,33 +194,34 @@ result.stable False and result.failure saying where and when (the command's exit
 def simulate(scene, tolerance=None, threads=0, contact=None, stepping=None, courant=None,
              full_model=False):
     if not isinstance(scene, Scene):
-        scene = Scene.load(os.fspath(scene))
-    return _warned(SimulationResult(_shpb._simulate(scene, tolerance, contact, stepping, courant,
+        scene = Scene.load(_os.fspath(scene))
+    return _warned(SimulationResult._of(_shpb._simulate(scene, tolerance, contact, stepping, courant,
                                                     threads, full_model)))
 
 
-@_with_help("process", """process(scene, signals=None, draws=1000, seed=1) -> ProcessResult
+@_with_help("process", """process(scene, signals=None, draws=1000, seed=1, threads=0) -> ProcessResult
 
 Reduces the scene's measured signals (its `measurement`), or `signals` (a gauges.csv written
 by `shpb simulate`, or a SimulationResult), to the pulses at the specimen faces and the
 1/2/3-wave stress-strain curve, as `shpb process` does (a scene without a specimen: the
 bars-together check of its measurement, a BarCheckResult); a `measurement.uncertainty` block is
-propagated by `draws` Monte Carlo draws from `seed` (the command's --draws, --seed). Nothing is
+propagated by `draws` Monte Carlo draws from `seed` on `threads` worker threads (0: all cores;
+the command's --draws, --seed, --threads). Nothing is
 written until result.save(dir). Raises shpb.InputError for a bad scene or signal file, and
 shpb.NumericalError when the reduction fails (the command's exit 3).""")
-def process(scene, signals=None, draws=1000, seed=1):
+def process(scene, signals=None, draws=1000, seed=1, threads=0):
     if not isinstance(scene, Scene):
-        scene = Scene.load(os.fspath(scene))
+        scene = Scene.load(_os.fspath(scene))
     if isinstance(signals, SimulationResult):
         # Read as the command reads a gauges.csv, through a temporary one; named as what it is
         # (summary.json's signals.file, warnings, errors), not as the temporary gone on return.
         shown = f"the SimulationResult of {signals.scene.file} (in memory)"
-        with tempfile.TemporaryDirectory(prefix="shpb-") as tmp:
-            signals.save(os.path.join(tmp, "run"))
+        with _tempfile.TemporaryDirectory(prefix="shpb-") as tmp:
+            signals.save(_os.path.join(tmp, "run"))
             return _warned(_process_result(_shpb._process(
-                scene, os.path.join(tmp, "run", "gauges.csv"), draws, seed, shown)))
+                scene, _os.path.join(tmp, "run", "gauges.csv"), draws, seed, threads, shown)))
     return _warned(_process_result(_shpb._process(
-        scene, None if signals is None else os.fspath(signals), draws, seed)))
+        scene, None if signals is None else _os.fspath(signals), draws, seed, threads)))
 
 
 class FolderResult:
@@ -220,8 +235,8 @@ class FolderResult:
         self.command, self.exit_code, self._folder = command, exit_code, folder
         self._inputs = list(inputs)  # the files the run read: save(dir) may hold none of them
         self.tables, self.json = {}, {}
-        for name in sorted(os.listdir(folder)):
-            path = os.path.join(folder, name)
+        for name in sorted(_os.listdir(folder)):
+            path = _os.path.join(folder, name)
             if name.endswith(".csv"):
                 self.tables[name[:-4]] = _table(_read_csv(path))
             elif name.endswith(".json"):
@@ -246,7 +261,7 @@ class FolderResult:
     def save(self, dir):
         """Writes the command's folder into `dir` (replaced atomically; a folder shpb did not
         write is refused)."""
-        _shpb._save_folder(self._folder, os.fspath(dir), self.command, self._inputs)
+        _shpb._save_folder(self._folder, _os.fspath(dir), self.command, self._inputs)
 
     def __repr__(self):
         return f"<shpb.FolderResult of {self.command}: {', '.join(self.tables) or 'no tables'}>"
@@ -274,18 +289,18 @@ def _folder_run(command, run, files, distributions=None):
     """Runs `command` on its scene or campaign file (calibrate: its scene files) `files` into a
     temporary folder."""
     import weakref
-    tmp = tempfile.mkdtemp(prefix=f"shpb-{command}-")
-    folder = os.path.join(tmp, "out")
+    tmp = _tempfile.mkdtemp(prefix=f"shpb-{command}-")
+    folder = _os.path.join(tmp, "out")
     try:
         code = run(folder)
         inputs = _shpb._inputs(command, files, distributions or "")
         result = FolderResult(command, folder, code, inputs)
     except BaseException:
-        shutil.rmtree(tmp, True)
+        _shutil.rmtree(tmp, True)
         raise
     # The temporary folder is this function's and goes with its result; a FolderResult made of
     # any other folder removes nothing.
-    weakref.finalize(result, shutil.rmtree, tmp, True)
+    weakref.finalize(result, _shutil.rmtree, tmp, True)
     return _warned(result, calls=2)  # _folder_run, called by compare, study, fit or calibrate
 
 
@@ -295,7 +310,7 @@ def _scene_file(scene):
     if isinstance(scene, Scene):
         raise TypeError("compare, study, plan and calibrate read the scene from its file, as the "
                         "commands do: pass the path (a Scene edited in memory is not a file)")
-    return os.fspath(scene)
+    return _os.fspath(scene)
 
 
 @_with_help("compare", """compare(scene, tolerance=None, threads=0, contact=None, stepping=None,
@@ -322,7 +337,7 @@ are in result.tables and result.json.""")
 def study(scene, sweep="pareto", refine=1, tolerance=None, threads=0, contact=None,
           stepping=None, courant=None, distributions=None, draws=None, seed=None):
     scene = _scene_file(scene)
-    distributions = None if distributions is None else os.fspath(distributions)
+    distributions = None if distributions is None else _os.fspath(distributions)
     return _folder_run("study", lambda out: _shpb._study(
         scene, out, sweep, refine, tolerance, contact, stepping, courant, threads,
         distributions, draws, seed), [scene], distributions)
@@ -335,7 +350,7 @@ Fits the campaign file's free material parameters to its tests, as `shpb fit` do
 refits checking each parameter's interval, 0 for the linearised ones only);
 result.json["fit"] is fit.json (a material file), result.tables the command's CSV files.""")
 def fit(campaign, threads=0, max_iterations=40, relative_step=0.05, bootstrap=30, seed=1):
-    campaign = os.fspath(campaign)
+    campaign = _os.fspath(campaign)
     return _folder_run("fit", lambda out: _shpb._fit(campaign, out, threads, max_iterations,
                                                      relative_step, bootstrap, seed), [campaign])
 
@@ -347,7 +362,7 @@ calibration shots of `scenes` (the paths of their scene files: bars apart, bars 
 path alone is one shot), as `shpb calibrate` does; result.json["calibration"] is
 calibration.json (what a scene's "calibration" names), result.tables the shot-K.csv files.""")
 def calibrate(scenes, threads=0):
-    if isinstance(scenes, (str, bytes, os.PathLike, Scene)):
+    if isinstance(scenes, (str, bytes, _os.PathLike, Scene)):
         scenes = [scenes]
     scenes = [_scene_file(s) for s in scenes]
     return _folder_run("calibrate", lambda out: _shpb._calibrate(scenes, out, threads), scenes)
@@ -359,12 +374,19 @@ class PlanResult(FolderResult):
     result's temporary folder). save(dir) writes the command's folder, its scene.json naming them
     from `dir` as the command's does from its -o."""
 
-    def __init__(self, native, folder, inputs):
-        super().__init__("plan", folder, 0, inputs)
-        self._native = native
+    def __init__(self, *args, **kwargs):
+        raise TypeError("shpb.PlanResult is what shpb.plan() returns; it is not constructed by "
+                        "hand")
+
+    @classmethod
+    def _of(cls, native, folder, inputs):
+        result = object.__new__(cls)
+        FolderResult.__init__(result, "plan", folder, 0, inputs)
+        result._native = native
+        return result
 
     def save(self, dir):
-        self._native.save(os.fspath(dir))
+        self._native.save(_os.fspath(dir))
 
 
 @_with_help("plan", """plan(scene, rate, strain=0.15, search_tolerance="3 %", tolerance="0.5 %",
@@ -380,15 +402,15 @@ def plan(scene, rate, strain=0.15, search_tolerance="3 %", tolerance="0.5 %", th
     import weakref
     scene = _scene_file(scene)
     native = _shpb._plan(scene, rate, strain, search_tolerance, tolerance, threads)
-    tmp = tempfile.mkdtemp(prefix="shpb-plan-")
+    tmp = _tempfile.mkdtemp(prefix="shpb-plan-")
     try:
-        folder = os.path.join(tmp, "out")
+        folder = _os.path.join(tmp, "out")
         native.save(folder)
-        result = PlanResult(native, folder, native.inputs)
+        result = PlanResult._of(native, folder, native.inputs)
     except BaseException:
-        shutil.rmtree(tmp, True)
+        _shutil.rmtree(tmp, True)
         raise
-    weakref.finalize(result, shutil.rmtree, tmp, True)
+    weakref.finalize(result, _shutil.rmtree, tmp, True)
     return _warned(result)
 
 
@@ -405,8 +427,8 @@ def dispersion(poisson=0.29, a_over_lambda=None, max_a_over_lambda=1.6, points=3
                                                        or hasattr(a_over_lambda, "__iter__")):
         raise TypeError(f"a_over_lambda: {a_over_lambda!r}: expected a list of numbers such as "
                         "[0.1, 0.5]")
-    with tempfile.TemporaryDirectory(prefix="shpb-dispersion-") as tmp:
-        path = os.path.join(tmp, "dispersion.csv")
+    with _tempfile.TemporaryDirectory(prefix="shpb-dispersion-") as tmp:
+        path = _os.path.join(tmp, "dispersion.csv")
         _shpb._dispersion(poisson, [] if a_over_lambda is None else list(a_over_lambda), max_a_over_lambda, points,
                           radius_m, c0_m_s, path)
         return _table(_read_csv(path))

@@ -296,6 +296,11 @@ Scene read_scene(const std::filesystem::path& file);
 // messages and anchors its relative paths, as if the text had been read from there.
 Scene read_scene_text(const std::string& text, const std::filesystem::path& file);
 
+// Why bar i may not have radial inertia on (`inertia`: true), empty when it may: the closed form of
+// a Kolsky specimen that flows (a material law), squeezed between two others (the specimen or a
+// pulse shaper). The scene reader's rule and the Python module's edit.
+std::string radial_inertia_problem(const Scene& scene, std::size_t i);
+
 std::string_view to_string(ContactMethod m);
 std::string_view to_string(Stepping s);
 std::string_view to_string(MaterialModel m);

@@ -63,15 +63,9 @@ class SceneReader {
             "material",
             "a name from materials, a file or an object (only the specimen may go "
             "without one, for `process`)");
-    // Radial inertia is the closed form of a Kolsky specimen (model/specimen_response.hpp): a
-    // bar squeezed between two others, the specimen or a pulse shaper.
     for (std::size_t i = 0; i < scene.bars.size(); ++i)
-      if (scene.bars[i].inertia && scene.specimen != i && !squeezed_bar(i, scene.bars.size()))
-        throw JsonObject(items[i])
-            .require("inertia", "")
-            .error(
-                "radial inertia is modelled for a bar squeezed between two others (the "
-                "specimen or a pulse shaper)");
+      if (const std::string what = radial_inertia_problem(scene, i); !what.empty())
+        throw JsonObject(items[i]).require("inertia", "").error(what);
     if (auto v = o.get("contact")) scene.contact = read_contact(*v, scene);
     if (auto v = o.get("simulation")) scene.simulation = read_simulation(*v);
     if (auto v = o.get("contact")) check_face_friction(scene, *v);
@@ -170,13 +164,7 @@ class SceneReader {
       b.gap_m = x->non_negative_quantity(Dimension::kLength);
     }
     if (auto x = o.get("notes")) x->string();
-    if (auto x = o.get("inertia")) {
-      b.inertia = x->boolean();
-      if (b.inertia && b.material.is_elastic())
-        throw x->error(
-            "radial inertia applies to a flowing specimen: give the bar a material law "
-            "(bilinear, johnson-cook or viscoelastic)");
-    }
+    if (auto x = o.get("inertia")) b.inertia = x->boolean();  // radial_inertia_problem, once placed
     if (auto x = o.get("gauges")) {
       for (const auto& g : x->array()) {
         const auto go = g.object(input_keys::kGauge);
@@ -398,6 +386,19 @@ Scene read_scene(const std::filesystem::path& file) { return SceneReader(file).r
 
 Scene read_scene_text(const std::string& text, const std::filesystem::path& file) {
   return SceneReader(file).read(parse_json_object(text, file.string()));
+}
+
+std::string radial_inertia_problem(const Scene& scene, std::size_t i) {
+  const BarSpec& b = scene.bars[i];
+  if (!b.inertia) return {};
+  if (b.material.is_elastic())
+    return "radial inertia applies to a flowing specimen: give the bar a material law (bilinear, "
+           "johnson-cook or viscoelastic)";
+  // The closed form of a Kolsky specimen (model/specimen_response.hpp).
+  if (scene.specimen != i && !squeezed_bar(i, scene.bars.size()))
+    return "radial inertia is modelled for a bar squeezed between two others (the specimen or a "
+           "pulse shaper)";
+  return {};
 }
 
 // The gauged bars nearest to the specimen on either side: the incident and transmitter bars.
