@@ -949,3 +949,28 @@ def test_uncertainty_panels_are_titled_in_words_with_the_interval_and_its_unit(t
     titles = [ax.get_title() for ax in kept.figures[0].axes]
     assert titles == ["flow stress at strain 0.1\n95 %: 210.7 to 233.7 MPa",
                       "mean strain rate\n95 %: 2869 to 2974 1/s"]
+
+
+def test_a_simulations_specimen_equilibrium_is_drawn_over_its_loading_alone(tmp_path):
+    # The loading ends at the specimen's largest strain (docs/methods.md §6), as process judges
+    # equilibrium and plan's panel draws it. After it the unloaded specimen's face stresses ring
+    # about zero (here 40 and -10 MPa against a 300 MPa peak: their sum beyond the ratio's 2 %
+    # floor), and their ratio, 2 x 50 / 30 = 3.3, spiked to the top of the panel. A tension test's specimen.csv is
+    # compression positive too: its loading ends at its most negative strain.
+    from shpb_report import simulate
+    for sense in (1, -1):
+        rows = []
+        for i in range(20):
+            loading = i <= 10
+            strain = sense * (0.01 * i if loading else 0.1 - 0.001 * (i - 10))
+            front = sense * (300e6 if loading else 40e6 * (-1) ** i)
+            back = sense * (300e6 if loading else -10e6 * (-1) ** i)
+            rows.append(f"{1e-6 * i},{strain},{sense * 1000},{(front + back) / 2},{front},{back}")
+        write(tmp_path, "specimen.csv", "time_s,strain,strain_rate_1_s,stress_Pa,front_stress_Pa,"
+              "back_stress_Pa\n" + "\n".join(rows) + "\n")
+        kept = Kept()
+        simulate.fig_specimen(Source(str(tmp_path), "."), kept)
+        ratio_axes = kept.figures[1].axes[1]
+        (ratio,) = [line for line in ratio_axes.get_lines() if line.get_label() != "5 %"]
+        time, r = ratio.get_xdata(), ratio.get_ydata()
+        assert all(v == 0 for v in r[time <= 10]) and all(v != v for v in r[time > 10])
