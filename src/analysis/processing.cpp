@@ -500,9 +500,50 @@ void warn_transmitted_echo(const KolskySetup& k, const PulseTiming& timing, doub
           0.5 * k.back.c0_m_s * (r.transmitted_window.end_s - echo)));
 }
 
+// What a load drop that ends the curve short says about the specimen (docs/methods.md §6). A
+// broken specimen carries no force: its transmitted pulse falls back to its gauge's rest band
+// (rest_band: max(5σ, 3 % of the peak)) while the incident pulse still loads the front face. One
+// that softens (adiabatic heating, a rate effect) or necks keeps carrying a part of its peak.
+// Judged on the median 1-wave stress over the samples after the drop while the incident pulse holds
+// its plateau band (a median: the broken specimen's transmitted pulse rings about zero);
+// `transmitted_noise` is the transmitted gauge's σ.
+std::string load_drop_cause(const ProcessingResult& r, const KolskySetup& k,
+                            double transmitted_noise) {
+  const std::vector<double>& s1 = r.curve.stress_1wave_Pa;
+  const double level = std::abs(r.incident_plateau_strain);
+  std::vector<double> after;
+  for (std::size_t i = r.loading_end; i < s1.size(); ++i)
+    if (std::abs(r.incident[i]) >= (1 - kPlateauBand) * level) after.push_back(s1[i]);
+  const double peak = r.peak_stress_1wave_Pa;
+  if (after.empty() || !(peak > 0))
+    return "the incident pulse no longer loads the front face at its plateau after it, so the drop "
+           "is the pulse's unloading, not a fracture; set ";
+  std::nth_element(after.begin(), after.begin() + static_cast<std::ptrdiff_t>(after.size() / 2),
+                   after.end());
+  const double carried = after[after.size() / 2] / peak;
+  const double at_rest =
+      rest_band(transmitted_noise * k.back.youngs_modulus_Pa * k.back.area_m2 / k.specimen.area_m2,
+                peak) /
+      peak;
+  const std::string median =
+      fmt("a median %.3g %% of its peak 1-wave stress over the %.3g us after the drop while the "
+          "incident pulse still loads it",
+          100 * carried + 0.0,  // + 0: a stress of exactly −0 (a zero strain times −E A) as 0
+          static_cast<double>(after.size()) * (r.time_s[1] - r.time_s[0]) * 1e6);
+  if (carried <= at_rest)
+    return "the specimen broke there: it carries " + median +
+           ", the transmitted gauge back at rest; set ";
+  return "the specimen still carries " + median +
+         fmt(" (a broken one leaves the transmitted gauge at rest, within %.3g %%): it did not "
+             "break but softened (adiabatic heating, a rate effect) or necked, and carries force "
+             "past the drop; set ",
+             100 * at_rest);
+}
+
 // Peaks and strains over the loading, and a warning when a load drop ended the curve well short
 // of the record's strain maximum.
-void summarize_loading(bool one_wave, bool dropped, ProcessingResult& r) {
+void summarize_loading(bool one_wave, bool dropped, const KolskySetup& k, double transmitted_noise,
+                       ProcessingResult& r) {
   const Curve& c = r.curve;
   const std::size_t loaded = r.loading_end;
   auto largest = [loaded](const std::vector<double>& v) {
@@ -524,7 +565,7 @@ void summarize_loading(bool one_wave, bool dropped, ProcessingResult& r) {
             r.max_strain, r.record_max_strain, (r.time_s[loaded - 1] - r.time_s[0]) * 1e6) +
         (echo ? "it comes after the transmitter's far-end reflection reached its gauge (above), "
                 "which the 1-wave stress takes for a drop: use a longer transmitter, or set "
-              : "a specimen that broke there, or set ") +
+              : load_drop_cause(r, k, transmitted_noise)) +
         "measurement.load_drop to false to keep the whole loading");
   }
 }
@@ -610,7 +651,7 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
           ? index_at(r.time_s,
                      r.time_s[0] + r.incident_rise_s + (1 + kRingUpTransits) * k.specimen_transit_s)
           : 0;
-  summarize_loading(one_wave, find_loading_end(strain, ring_up, options, r), r);
+  summarize_loading(one_wave, find_loading_end(strain, ring_up, options, r), k, tra.noise, r);
   judge_strain_rate(rate, r.loading_end, r);
   check_front_resolution(rate, dt, r);
   check_struck_end_band(k, r);
