@@ -269,6 +269,51 @@ void check_one_and_two_wave(const Curve& c, std::size_t n, const ProcessingResul
   warnings.push_back(text);
 }
 
+void check_one_wave_rate(const Curve& c, const KolskySetup& k, ProcessingResult& r) {
+  if (r.primary != PrimaryReduction::kOneWave || !r.equilibrium.loaded_s) return;
+  const std::size_t first = index_at(r.time_s, r.equilibrium.loaded_s->first);
+  const std::size_t last = index_at(r.time_s, r.equilibrium.loaded_s->second);
+  std::vector<double> difference, ratio, gain;
+  double sum = 0;
+  for (std::size_t i = first; i <= last && i < r.time_s.size(); ++i) {
+    const double rate = c.strain_rate_1_s[i];
+    if (!(rate > 0)) continue;
+    const double mean_force = 0.5 * (c.force_front_N[i] + c.force_back_N[i]);
+    sum += rate;
+    difference.push_back(std::abs(c.strain_rate_1wave_1_s[i] - rate));
+    ratio.push_back(c.equilibrium_ratio[i]);
+    gain.push_back(k.front.c0_m_s * mean_force /
+                   (k.front.youngs_modulus_Pa * k.front.area_m2 * k.specimen.length_m * rate));
+  }
+  if (difference.empty()) return;
+  auto median = [](std::vector<double>& v) {
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+    return v[v.size() / 2];
+  };
+  const double mean_rate = sum / static_cast<double>(difference.size());
+  const double off = median(difference) / mean_rate;
+  if (off <= kOneWaveRateError) return;
+  // The strains part by the integral of the difference: small where the mismatch changes sign.
+  double apart = 0;
+  for (std::size_t i = 0; i < r.loading_end; ++i)
+    apart = std::max(apart, std::abs(c.strain_1wave[i] - c.strain[i]));
+  r.warnings.push_back(
+      "the 1-wave strain rate (the primary) is the 3-wave rate plus c0 (P2 - P1)/(E A L_s): it "
+      "assumes the faces' forces equal, and differs from the 3-wave rate, which needs no "
+      "equilibrium, by a median " +
+      percent(off) +
+      fmt(" of the mean 3-wave rate %.4g 1/s over the loading (its strain by up to ", mean_rate) +
+      percent(apart / std::max(r.max_strain, 1e-300)) +
+      fmt(" of the max strain %.3g): the face forces differ by a median R = ", r.max_strain) +
+      percent(median(ratio)) +
+      fmt(", and the specimen's force as a particle velocity in the incident bar is a median %.3g "
+          "x its faces' relative velocity, the factor R takes into the rate (large for a "
+          "specimen near the bar's impedance or strong against its rate: a transmitted pulse "
+          "large against the reflected one); \"primary\": \"3-wave\" gives the strain and "
+          "its rate without that assumption",
+          median(gain)));
+}
+
 void warn_incident_overlap(const KolskySetup& k, double dt, ProcessingResult& r) {
   const double length =
       std::max(r.incident_window.end_s - r.incident_window.start_s, r.incident_length_s);

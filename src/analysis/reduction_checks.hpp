@@ -74,6 +74,18 @@ void judge_strain_rate(const std::vector<double>& rate, std::size_t n, Processin
 void check_one_and_two_wave(const Curve& c, std::size_t n, const ProcessingResult& r,
                             const ProcessingOptions& o, std::vector<std::string>& warnings);
 
+// The 1-wave strain rate is the 3-wave one with the incident pulse eliminated by the faces'
+// equilibrium P1 = P2 (docs/methods.md §6): it differs from it by exactly c_f (P2 − P1)/(E_f A_f
+// L_s), which is G (P2 − P1)/P̄ of the rate, G = c_f P̄/(E_f A_f L_s ε̇) the particle velocity of the
+// specimen's force in the incident bar over the faces' relative velocity. A specimen whose
+// transmitted pulse is large against its reflected one (near the bar's impedance, or strong
+// against its rate) turns a force mismatch the equilibrium criterion passes into several times as
+// much in its rate. With a 1-wave primary, a median difference beyond kOneWaveRateError of the
+// mean rate over the loaded samples is said, naming R, G and the 3-wave reduction, which needs no
+// equilibrium.
+inline constexpr double kOneWaveRateError = 0.05;
+void check_one_wave_rate(const Curve& c, const KolskySetup& k, ProcessingResult& r);
+
 // One gauge sees the incident and the reflected pulse pass in turn. A pulse longer than its round
 // trip 2d/c0 to the specimen and back (a long striker, a gauge near the specimen, a polymer bar's
 // creep tail) still passes when its reflection arrives, and the record holds their sum: the
