@@ -160,7 +160,8 @@ std::vector<FigureSpec> figure_specs(const ProcessingResult& nominal, bool one_w
                    const Curve& c = r.curve;
                    const auto& x = one_wave ? c.strain_1wave : c.strain;
                    const auto& y = one_wave ? c.stress_1wave_Pa : c.stress_3wave_Pa;
-                   if (e > r.max_strain) return std::nan("");
+                   if (e > r.max_strain || e <= ring_up_strain(r.time_s, x, r.equilibrium.first_s))
+                     return std::nan("");
                    return value_at_first_reach(x, y, r.loading_end, e);
                  }});
   }

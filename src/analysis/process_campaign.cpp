@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "analysis/process_outputs.hpp"
+#include "analysis/processing.hpp"
 #include "core/checked_write.hpp"
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
@@ -133,10 +134,16 @@ std::vector<std::string> campaign_row(const CampaignTest& test, const fs::path& 
                                     number_cell(s.at("plateau_strain_rate_1_s")),
                                     number_cell(s.at("peak_stress_Pa"))};
   if (!flow_strains.empty()) {
-    const auto c = read_columns(folder / schema::curve::kFile,
-                                {schema::curve::strain, schema::curve::stress_3wave_Pa});
+    const auto c = read_columns(
+        folder / schema::curve::kFile,
+        {schema::curve::strain, schema::curve::stress_3wave_Pa, schema::curve::time_s});
+    // Not quoted at a strain the specimen reaches in its ring-up (processing.hpp).
+    const auto& first = s.at("equilibrium").value("first_s", nlohmann::json());
+    const double ring_up = ring_up_strain(
+        c[2], c[0], first.is_number() ? std::optional<double>(first.get<double>()) : std::nullopt);
     for (double e : flow_strains) {
-      const double f = flow_stress(c[0], c[1], e);
+      const double f =
+          e <= ring_up ? std::numeric_limits<double>::quiet_NaN() : flow_stress(c[0], c[1], e);
       cells.push_back(format_field(f));
     }
   }
@@ -180,7 +187,8 @@ void write_campaign(const Campaign& c, const std::vector<fs::path>& folders,
       "one row per test, from its folder's summary.json (plateau strain rate, peak 3-wave stress, "
       "time to equilibrium, striker velocity as the scene gives it and as inferred, warnings "
       "joined by ' | ') and curve.csv (flow_stress_Pa_at_<e>: 3-wave engineering stress where "
-      "the engineering strain first reaches e, linear between samples; empty if it never does)";
+      "the engineering strain first reaches e, linear between samples; empty if it never does, "
+      "or reaches it in the ring-up, before the face forces first agree: equilibrium.first_s)";
   write_text_file(dir / "summary.json", s.dump(2) + "\n");
 }
 

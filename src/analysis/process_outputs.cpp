@@ -31,7 +31,8 @@ void to_json(nlohmann::json& j, const Equilibrium& e) {
        {"loaded_s", interval(e.loaded_s)},
        {"longest_interval_s", interval(e.longest_s)},
        {"holds_until_unloading_from_s",
-        e.holds_from_s ? nlohmann::json(*e.holds_from_s) : nlohmann::json()}};
+        e.holds_from_s ? nlohmann::json(*e.holds_from_s) : nlohmann::json()},
+       {"first_s", e.first_s ? nlohmann::json(*e.first_s) : nlohmann::json()}};
 }
 
 namespace {

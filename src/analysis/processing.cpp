@@ -600,6 +600,14 @@ void mean_rate_in_window(const std::vector<double>& strain, const std::vector<do
 
 }  // namespace
 
+double ring_up_strain(const std::vector<double>& t, const std::vector<double>& strain,
+                      const std::optional<double>& first_s) {
+  double largest = 0;
+  for (std::size_t i = 0; first_s && i < std::min(t.size(), strain.size()) && t[i] < *first_s; ++i)
+    largest = std::max(largest, strain[i]);
+  return largest;
+}
+
 ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup& k,
                                  const ProcessingOptions& options) {
   ProcessingResult r;

@@ -61,6 +61,10 @@ struct Equilibrium {
   double fraction = 0;                                 // of the loaded samples with R ≤ 5 %
   std::optional<std::pair<double, double>> longest_s;  // longest run with R ≤ 5 %
   std::optional<double> holds_from_s;  // start of the run that lasts until unloading
+  // The first loaded sample with R ≤ 5 %: the ring-up has passed — the front face's transient,
+  // the reflected front against the incident one (tensile in a compression test), and its
+  // overshoot — and the face forces first agree (docs/methods.md §6).
+  std::optional<double> first_s;
   // Largest 3-wave stress over the loaded samples with R ≤ 5 %: where the two face forces agree,
   // the specimen's stress; null when no loaded sample is in equilibrium.
   std::optional<double> peak_3wave_Pa;
@@ -131,6 +135,14 @@ struct ProcessingResult {
 inline double primary_peak_stress(const ProcessingResult& r) {
   return r.primary == PrimaryReduction::kOneWave ? r.peak_stress_1wave_Pa : r.peak_stress_3wave_Pa;
 }
+
+// The largest strain of `strain` (on the faces' clock `t`) before the specimen first comes into
+// equilibrium (Equilibrium::first_s): the ring-up's. A stress read at a strain it reaches is the
+// face forces' transient, not the specimen's, and a flow stress at a strain no greater is not
+// quoted (summary.json's uncertainty figures, campaign.csv); without equilibrium, 0 (the warning
+// of settle_peak_stress says so instead).
+double ring_up_strain(const std::vector<double>& t, const std::vector<double>& strain,
+                      const std::optional<double>& first_s);
 
 // Equilibrium holds where R ≤ 5 % (a common criterion, e.g. Gray 2000) while the mean force is
 // above 20 % of its peak; it is reached where it then holds until unloading.

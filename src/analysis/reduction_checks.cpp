@@ -368,6 +368,7 @@ Equilibrium judge_equilibrium(const Curve& c, const std::vector<double>& t, std:
   std::size_t held = 0, run_start = first, best_start = first, best_length = 0;
   for (std::size_t i = first; i <= last; ++i) {
     const bool ok = in_equilibrium(i);
+    if (ok && !e.first_s) e.first_s = t[i];
     held += ok;
     if (!ok) {
       run_start = i + 1;

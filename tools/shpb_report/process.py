@@ -1,6 +1,8 @@
 """Figures of `shpb process` (docs/outputs.md, process): raw signals with their pulse windows,
 the pulses at the specimen faces, the stress–strain curves with strain rate and equilibrium, the
 bars-together check, and a campaign's curves on one plot."""
+import numpy as np
+
 from .drawing import (MICRO, MPA, US, gauge_columns, new_figure, outside_legend, panel_rows,
                       ratio_finite)
 from .reading import NUMBER, number, number_pair
@@ -57,20 +59,36 @@ def fig_curve(src, figs, truth=None):
     primary = "1-wave" if one_wave else "3-wave"
     strain = t.numeric(CURVE.strain_1wave if one_wave else CURVE.strain)
     truth_of = truth_in_sense(truth, sense) if truth is not None else None
+    # The ring-up (docs/methods.md §6): the rows before the face forces first agree within 5 %
+    # (summary.json equilibrium.first_s) hold the front face's transient, a tensile stress in a
+    # compression test among it, not the specimen's stress: the curves are drawn from there, the
+    # primary's ring-up thin and dotted.
+    first = src.value("equilibrium", "first_s", kind=NUMBER)
+    ring = (t.numeric(CURVE.time_s) < first if first is not None and CURVE.time_s in t
+            else np.zeros(len(strain), dtype=bool))
+
+    def past(values):
+        return np.where(ring, np.nan, values)
+
     fig, axes = new_figure(1, 2, height=4.6, width=11.0)
     ax = axes[0, 0]
+    primary_stress = t.numeric(CURVE.stress_1wave_Pa if one_wave else CURVE.stress_3wave_Pa)
+    if ring.any():
+        upto = min(int(np.count_nonzero(ring)) + 1, len(strain))  # joined to the curve
+        ax.plot(strain[:upto] * 100, primary_stress[:upto] * MPA, color="0.5", linewidth=0.8,
+                linestyle=":", label="ring-up: the face forces not yet in equilibrium")
     if one_wave:
-        ax.plot(strain * 100, t.numeric(CURVE.stress_1wave_Pa) * MPA, color="k", linewidth=1.6,
+        ax.plot(strain * 100, past(primary_stress) * MPA, color="k", linewidth=1.6,
                 label="1-wave (transmitted) against the reflected-pulse strain (primary)")
         if CURVE.strain in t and CURVE.stress_3wave_Pa in t:
-            ax.plot(t.numeric(CURVE.strain) * 100, t.numeric(CURVE.stress_3wave_Pa) * MPA,
+            ax.plot(t.numeric(CURVE.strain) * 100, past(t.numeric(CURVE.stress_3wave_Pa)) * MPA,
                     color="0.5", linewidth=1.0, label="3-wave against the 3-wave strain")
     else:
         for col, label, color in ((CURVE.stress_1wave_Pa, "1-wave (transmitted)", "C2"),
                                   (CURVE.stress_2wave_Pa, "2-wave (incident + reflected)", "C1"),
                                   (CURVE.stress_3wave_Pa, "3-wave (average)", "k")):
             if col in t:
-                ax.plot(strain * 100, t.numeric(col) * MPA, color=color,
+                ax.plot(strain * 100, past(t.numeric(col)) * MPA, color=color,
                         linewidth=1.6 if color == "k" else 1.0, label=label)
     if truth_of is not None:
         ax.plot(truth_of(SPECIMEN.strain) * 100, truth_of(SPECIMEN.stress_Pa) * MPA,
@@ -90,10 +108,9 @@ def fig_curve(src, figs, truth=None):
     ax.legend(loc="best", fontsize=8)
     ax = axes[0, 1]
     if CURVE.true_strain in t and CURVE.true_stress_Pa in t:
-        ax.plot(t.numeric(CURVE.true_strain) * 100, t.numeric(CURVE.true_stress_Pa) * MPA,
+        ax.plot(t.numeric(CURVE.true_strain) * 100, past(t.numeric(CURVE.true_stress_Pa)) * MPA,
                 color="k", linewidth=1.4, label=f"true ({primary})")
-    stress = CURVE.stress_1wave_Pa if one_wave else CURVE.stress_3wave_Pa
-    ax.plot(strain * 100, t.numeric(stress) * MPA, color="0.6", linewidth=1.0, linestyle="--",
+    ax.plot(strain * 100, past(primary_stress) * MPA, color="0.6", linewidth=1.0, linestyle="--",
             label=f"engineering ({primary})")
     if truth_of is not None and SPECIMEN.true_strain in truth and SPECIMEN.true_stress_Pa in truth:
         # The law as the specimen followed it: true stress at true strain (specimen.csv).
@@ -108,6 +125,9 @@ def fig_curve(src, figs, truth=None):
                "the 3-wave curve" if one_wave else
                "1-, 2- and 3-wave engineering stress against the 3-wave strain")
               + ", and true stress against true strain (curve.csv, docs/methods.md §6), "
+              + ("from where the face forces first agree within 5 % (dotted before: the "
+                 "ring-up, the front face's transient), " if ring.any() else "")
+              + 
               f"{sense} positive"
               + ("; shaded: the 95 % bands of measurement.uncertainty (Monte Carlo, "
                  "docs/methods.md §10)" if bands else "")
