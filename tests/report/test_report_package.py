@@ -974,3 +974,28 @@ def test_a_simulations_specimen_equilibrium_is_drawn_over_its_loading_alone(tmp_
         (ratio,) = [line for line in ratio_axes.get_lines() if line.get_label() != "5 %"]
         time, r = ratio.get_xdata(), ratio.get_ydata()
         assert all(v == 0 for v in r[time <= 10]) and all(v != v for v in r[time > 10])
+
+
+def test_a_processed_curve_is_drawn_from_where_its_face_forces_first_agree(tmp_path):
+    # The rows before summary.json's equilibrium.first_s are the ring-up (docs/methods.md §6):
+    # here a tensile 3-wave stress of -40 MPa at the first two rows of a compression test, which
+    # no contact carries. The curves start at the first row in equilibrium; the ring-up is one
+    # dotted line of its own.
+    from shpb_report import process
+    rows = ["0,1000,0,0,-80e6,-40e6,0,-40e6,2", "1e-6,1000,0.001,0,-80e6,-40e6,0.001,-40e6,2"]
+    rows += [f"{1e-6 * i},1000,{0.001 * i},300e6,300e6,300e6,{0.001 * i},300e6,0"
+             for i in range(2, 8)]
+    write(tmp_path, "curve.csv", "time_s,strain_rate_1_s,strain,stress_1wave_Pa,stress_2wave_Pa,"
+          "stress_3wave_Pa,true_strain,true_stress_Pa,equilibrium_ratio\n" + "\n".join(rows)
+          + "\n")
+    write(tmp_path, "summary.json", '{"command": "process", "test": "compression", '
+          '"equilibrium": {"first_s": 2e-6}}')
+    kept = Kept()
+    process.fig_curve(Source(str(tmp_path), "."), kept)
+    ax = kept.figures[0].axes[0]
+    for line in ax.get_lines():
+        y = line.get_ydata()
+        if "ring-up" in line.get_label():
+            assert min(y) == -40 and len(y) == 3  # joined to the first row in equilibrium
+        else:
+            assert all(v != v for v in y[:2]) and min(y[2:]) == 300
