@@ -212,23 +212,18 @@ TEST_CASE("A 1-wave strain rate that the face forces' mismatch takes off the spe
   // assumes them equal: it is the 3-wave rate plus c0 (P2 - P1)/(E A L_s), here about 2.5 x R of
   // the rate late in the loading. The specimen's own rate (specimen.csv) is the truth.
   const fs::path d = scratch_dir("reduction_one_wave_rate");
-  json scene = json::parse(R"({
-    "bars": [
-      {"name": "striker", "material": "bar", "length": "300 mm", "diameter": "19.05 mm",
-       "velocity": "30 m/s"},
-      {"name": "incident", "material": "bar", "length": "2 m", "diameter": "19.05 mm",
-       "gauges": [{"name": "incident", "position": "1 m"}]},
-      {"name": "specimen", "material": "copper", "length": "6 mm", "diameter": "12 mm"},
-      {"name": "transmitter", "material": "bar", "length": "2 m", "diameter": "19.05 mm",
-       "gauges": [{"name": "transmitted", "position": "1 m"}]}],
-    "specimen": "specimen",
-    "materials": {
-      "bar": {"model": "elastic", "density": 2700, "youngs_modulus": "70 GPa",
-              "poisson_ratio": 0.33},
-      "copper": {"model": "bilinear", "density": 8960, "youngs_modulus": "117 GPa",
-                 "poisson_ratio": 0.34, "yield_stress": "150 MPa", "tangent_modulus": "1 GPa"}},
-    "simulation": {"duration": "800 us", "sample_rate": "10 MHz"},
-    "measurement": {"primary": "1-wave"}})");
+  // The classic experiment's layout with aluminium bars and that specimen.
+  json scene = json::parse(read_text(kSource / "experiments/classic-al6061/scene.json"));
+  scene["materials"] = json::parse(R"({
+    "aluminium": {"model": "elastic", "density": 2700, "youngs_modulus": "70 GPa",
+                  "poisson_ratio": 0.33},
+    "copper": {"model": "bilinear", "density": 8960, "youngs_modulus": "117 GPa",
+               "poisson_ratio": 0.34, "yield_stress": "150 MPa", "tangent_modulus": "1 GPa"}})");
+  for (const int bar : {0, 1, 3}) scene["bars"][bar]["material"] = "aluminium";
+  scene["bars"][0]["velocity"] = "30 m/s";
+  scene["bars"][2] = {
+      {"name", "specimen"}, {"material", "copper"}, {"length", "6 mm"}, {"diameter", "12 mm"}};
+  scene["measurement"] = {{"primary", "1-wave"}};
   const json s = simulate_and_process(d, scene);
   const Table sp = read_table(d / "sim/specimen.csv");
   const Table c = read_table(d / "out/curve.csv");
