@@ -125,6 +125,25 @@ nlohmann::json strain_rate_json(const ProcessOutcome& o) {
        "mean_over_window_1_s is the mean rate; of the primary reduction"}};
 }
 
+// What the headline peak stress is (processing.hpp, headline_peak_stress).
+nlohmann::json peak_stress_from(const ProcessingResult& r) {
+  const HeadlinePeak peak = headline_peak_stress(r);
+  std::string how;
+  if (r.primary == PrimaryReduction::kOneWave)
+    how = "the primary reduction's: the transmitted face's stress P2/A_s, largest over the loading";
+  else if (peak.reduction == PrimaryReduction::kOneWave)
+    how =
+        "the specimen is in equilibrium (reached and held until unloading, or over at least half "
+        "its loading), where its two faces' stresses agree: the transmitted face's stress "
+        "P2/A_s, largest over the loading (every sample of it, where the 3-wave peak is read "
+        "over the samples with R <= 0.05 only)";
+  else
+    how =
+        "the 3-wave stress, largest over the whole loading, its ring-up and unloading fronts "
+        "included: the specimen is not in equilibrium over most of its loading (warnings)";
+  return {{"reduction", std::string(enum_name(kPrimaryNames, peak.reduction))}, {"how", how}};
+}
+
 nlohmann::json corrections_json(const ProcessOutcome& o) {
   const SpecimenCorrections& corrections = o.corrections;
   const CorrectionReport& removed = o.removed;
@@ -338,6 +357,7 @@ nlohmann::json process_summary(const ProcessOutcome& o, const std::string& scene
                          {"cut_short", r.loading_cut_short},
                          {"note", "curve.csv ends here; pulses.csv keeps the whole window"}};
   s["peak_stress_Pa"] = r.peak_stress_Pa;
+  s["peak_stress_from"] = peak_stress_from(r);
   s["max_strain"] = r.max_strain;
   s["time_to_equilibrium_s"] =
       r.time_to_equilibrium_s ? nlohmann::json(*r.time_to_equilibrium_s) : nlohmann::json();
@@ -380,6 +400,7 @@ std::string bar_check_headline(const BarCheckOutcome& o, const std::filesystem::
 
 std::string process_headline(const ProcessOutcome& o, const std::filesystem::path& output) {
   const ProcessingResult& r = o.result;
+  const HeadlinePeak peak = headline_peak_stress(r);
   char striker[80], rate[120];
   if (o.setup.pulse_shaper)
     std::snprintf(striker, sizeof striker, "striker not inferred (pulse shaper)");
@@ -394,13 +415,14 @@ std::string process_headline(const ProcessOutcome& o, const std::filesystem::pat
                   r.strain_rate_has_plateau ? "plateau" : "no plateau: mean",
                   r.strain_rate_has_plateau ? r.plateau_strain_rate_1_s : r.mean_strain_rate_1_s);
   std::string line(1024, '\0');
-  line.resize(static_cast<std::size_t>(
-      std::snprintf(line.data(), line.size(),
-                    "process: window %s–%s s at the faces; %s; %s; peak %s stress %.4g MPa -> %s",
-                    format_resolved(r.face_start_s, o.signals.dt_s, 6).c_str(),
-                    format_resolved(r.face_end_s, o.signals.dt_s, 6).c_str(), striker, rate,
-                    std::string(enum_name(kPrimaryNames, o.options.primary)).c_str(),
-                    r.peak_stress_Pa / 1e6, output.string().c_str())));
+  line.resize(static_cast<std::size_t>(std::snprintf(
+      line.data(), line.size(),
+      "process: window %s–%s s at the faces; %s; %s; peak %s stress %.4g MPa%s -> %s",
+      format_resolved(r.face_start_s, o.signals.dt_s, 6).c_str(),
+      format_resolved(r.face_end_s, o.signals.dt_s, 6).c_str(), striker, rate,
+      std::string(enum_name(kPrimaryNames, peak.reduction)).c_str(), r.peak_stress_Pa / 1e6,
+      peak.reduction == o.options.primary ? "" : " (transmitted face, in equilibrium)",
+      output.string().c_str())));
   if (o.uncertainty) line.append("\n").append(uncertainty_headline(*o.uncertainty));
   return line;
 }

@@ -553,7 +553,7 @@ void summarize_loading(bool one_wave, bool dropped, const KolskySetup& k, double
   r.max_strain_3wave = largest(c.strain);
   r.peak_stress_1wave_Pa = largest(c.stress_1wave_Pa);
   r.max_strain_1wave = largest(c.strain_1wave);
-  r.peak_stress_Pa = primary_peak_stress(r);
+  r.peak_stress_Pa = headline_peak_stress(r).stress_Pa;
   r.max_strain = one_wave ? r.max_strain_1wave : r.max_strain_3wave;
   if (dropped && r.max_strain < (1 - kLoadDropStrainShortfall) * r.record_max_strain) {
     r.loading_cut_short = true;

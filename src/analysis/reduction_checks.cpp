@@ -333,11 +333,10 @@ void warn_incident_overlap(const KolskySetup& k, double dt, ProcessingResult& r)
 void settle_peak_stress(const ProcessingOptions& options, ProcessingResult& r) {
   r.peak_stress_3wave_over_loading_Pa = r.peak_stress_3wave_Pa;
   const Equilibrium& e = r.equilibrium;
-  r.peak_in_equilibrium =
-      e.peak_3wave_Pa && options.peak_in_equilibrium.value_or(e.holds_from_s.has_value() ||
-                                                              e.fraction >= kMostlyInEquilibrium);
+  r.peak_in_equilibrium = options.peak_in_equilibrium.value_or(
+      e.peak_3wave_Pa && (e.holds_from_s.has_value() || e.fraction >= kMostlyInEquilibrium));
   if (r.peak_in_equilibrium) {
-    r.peak_stress_3wave_Pa = *e.peak_3wave_Pa;
+    if (e.peak_3wave_Pa) r.peak_stress_3wave_Pa = *e.peak_3wave_Pa;
   } else if (e.loaded_s && !options.peak_in_equilibrium.has_value()) {
     r.warnings.push_back(
         fmt("the specimen is in equilibrium (R = 2|P1-P2|/|P1+P2| <= %.3g) over only %.3g %% of "
@@ -348,7 +347,7 @@ void settle_peak_stress(const ProcessingOptions& options, ProcessingResult& r) {
             kEquilibriumThreshold, 100 * e.fraction, r.peak_stress_3wave_Pa / 1e6,
             r.peak_stress_1wave_Pa / 1e6));
   }
-  r.peak_stress_Pa = primary_peak_stress(r);
+  r.peak_stress_Pa = headline_peak_stress(r).stress_Pa;
 }
 
 Equilibrium judge_equilibrium(const Curve& c, const std::vector<double>& t, std::size_t n,

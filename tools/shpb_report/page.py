@@ -84,9 +84,14 @@ def headline_html(src):
         elif mean is not None:
             rows.append(("strain rate", f"no plateau; mean over the loading {mean:.4g} 1/s"))
         primary = src.value("primary", "reduction", kind=str) or "3-wave"
+        # The reduction the headline peak comes from (summary.json peak_stress_from; the
+        # transmitted face's in equilibrium), the primary one in summaries without it.
+        source = src.value("peak_stress_from", "reduction", kind=str) or primary
         peak = number("peak_stress_Pa")
         if peak is not None:
-            rows.append((f"peak {primary} stress", f"{peak * MPA:.4g} MPa"))
+            rows.append((f"peak {source} stress"
+                         + ("" if source == primary else " (transmitted face, in equilibrium)"),
+                         f"{peak * MPA:.4g} MPa"))
         strain = number("max_strain")
         if strain is not None:
             how = src.value("end_of_loading", "how", kind=str) or ""
