@@ -99,11 +99,13 @@ void warn_incident_overlap(const KolskySetup& k, double dt, ProcessingResult& r)
 // fronts a sample or a model's element apart do not cancel) rises far above the back face's and
 // above the specimen's stress (a copper specimen of 5 mm x 5 mm: 1.36 x its peak, at the incident
 // pulse's falling edge). Once the specimen reaches equilibrium that lasts until unloading, or is
-// in equilibrium over most of its loading (a record that ends before the unloading), the 3-wave
-// peak is read over the loaded samples in equilibrium (R ≤ 5 %); the loading's largest value is
-// kept beside it. Otherwise the peak is the loading's, said with the fraction of the loading in
-// equilibrium: outside it the stresses are the face forces over the area, not a material's stress.
-// A Monte Carlo draw reads its peak where its nominal did (ProcessingOptions::peak_in_equilibrium).
+// in equilibrium over most of its loading (a record that ends before the unloading), it is in
+// equilibrium for its peak: the headline peak is the transmitted face's (processing.hpp,
+// headline_peak_stress), and the 3-wave peak is read over the loaded samples in equilibrium
+// (R ≤ 5 %), the loading's largest value kept beside it. Otherwise the peak is the loading's, said
+// with the fraction of the loading in equilibrium: outside it the stresses are the face forces
+// over the area, not a material's stress. A Monte Carlo draw takes its nominal's decision
+// (ProcessingOptions::peak_in_equilibrium).
 inline constexpr double kMostlyInEquilibrium = 0.5;
 void settle_peak_stress(const ProcessingOptions& options, ProcessingResult& r);
 

@@ -381,9 +381,10 @@ double specimen_peak_over_curve(const SimulationResult& sim, const ProcessingRes
 // pulse's falling edge the front face's force from the gauges, E A (ε_I + ε_R), is the sum of two
 // large pulses whose fronts do not cancel (the simulated reflected front leads by up to one bar
 // step): 1.72 × the specimen's stress there while its own front face unloads, and the peak 3-wave
-// stress, read over the whole loading, was 1.36 × the specimen's peak, with no word. Read where
-// the faces agree (R ≤ 5 %) the 3-wave stress is their mean, so it lies within half that spread
-// of the transmitted face's stress; the specimen's stress varies along it by less than 0.5 % here.
+// stress, read over the whole loading, was 1.36 × the specimen's peak, with no word. In
+// equilibrium the headline peak is the transmitted face's, within half the 5 % spread of the
+// faces that counts as equilibrium of their mean; the specimen's stress varies along it by less
+// than 0.5 % here.
 TEST_CASE("The peak stress of a test in equilibrium is the specimen's, not its unloading edge's",
           "[analysis][processing][simulation]") {
   const Simulated v = simulated_variant("classic-al6061", [](nlohmann::json& j) {
