@@ -188,7 +188,8 @@ TEST_CASE("A load drop of a specimen that still carries force is not called a fr
   scene["bars"][2]["material"] = (kSource / "specimens/al6061-t6.json").string();
   scene["materials"].erase("metal");
   // The simulated gauges are read by --signals: the measured record's keys go.
-  for (const char* key : {"file", "time", "channels", "dispersion"}) scene["measurement"].erase(key);
+  for (const char* key : {"file", "time", "channels", "dispersion"})
+    scene["measurement"].erase(key);
   const json s = simulate_and_process(d, scene);
   REQUIRE(s["end_of_loading"]["cut_short"] == true);
   // The truth: the specimen's stress (compression positive: negative in tension) from the drop to
