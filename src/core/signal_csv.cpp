@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "core/interrupt.hpp"
+#include "core/median.hpp"
 #include "core/number_format.hpp"
 #include "core/signal_formats.hpp"
 #include "core/signal_header_clock.hpp"
@@ -211,6 +212,27 @@ NumberShape shape_of(std::string_view field, char decimal_mark) {
                                             [](char ch) { return ch >= '0' && ch <= '9'; }))};
 }
 
+// "7 decimals and an exponent of 2 digits"
+std::string written(const NumberShape& n) {
+  return std::to_string(n.decimals) + (n.decimals == 1 ? " decimal" : " decimals") +
+         (n.exponent ? " and an exponent of " + std::to_string(n.exponent) +
+                           (n.exponent == 1 ? " digit" : " digits")
+                     : "");
+}
+
+// Whether column `c` of rows [from, end) is written in one fixed format, `shape` (a row too short
+// to hold it has no say).
+bool written_alike(const DelimitedText& text, std::size_t from, std::size_t end, std::size_t c,
+                   const NumberShape& shape) {
+  const char mark = text.decimal_comma ? ',' : '.';
+  std::vector<std::string_view> fields;
+  for (std::size_t i = from; i < end; ++i) {
+    text.rows.fields(i, fields);
+    if (c < fields.size() && !(shape_of(fields[c], mark) == shape)) return false;
+  }
+  return true;
+}
+
 // A file that ends inside its last line (no line end after it) may have been cut there. When
 // that line still parses ("1.2e-05" cut to "1.2"), the cut shows only in a column written in a
 // fixed format: all the other rows' values have the same decimals (and exponent), the last one
@@ -233,19 +255,7 @@ void refuse_cut_last_line(const DelimitedText& text, std::size_t first_data, std
     if (cut.decimals >= fixed.decimals && cut.exponent >= fixed.exponent &&
         (cut.exponent > 0) == (fixed.exponent > 0))
       continue;
-    bool uniform = true;
-    std::vector<std::string_view> fields;
-    for (std::size_t i = first_data + 1; uniform && i + 1 < text.rows.size(); ++i) {
-      text.rows.fields(i, fields);
-      uniform = shape_of(fields[c], mark) == fixed;
-    }
-    if (!uniform) continue;
-    const auto written = [](const NumberShape& n) {
-      return std::to_string(n.decimals) + (n.decimals == 1 ? " decimal" : " decimals") +
-             (n.exponent ? " and an exponent of " + std::to_string(n.exponent) +
-                               (n.exponent == 1 ? " digit" : " digits")
-                         : "");
-    };
+    if (!written_alike(text, first_data + 1, text.rows.size() - 1, c, fixed)) continue;
     throw input_error(
         text.file.string(),
         text_place(last.line, c) + (names[k].empty() ? "" : " (\"" + std::string(names[k]) + "\")"),
@@ -496,12 +506,22 @@ std::size_t data_end(const DelimitedText& text, std::size_t first,
 // only between the column names and the data: sample rates, channel numbers, unit codes. Such a
 // row is shaped as a sample, and read as one it would put a sample rate or a channel number into
 // the record. Rows of numbers at the top of the data are therefore header rows, refused by line
-// with that cause and the remedy, when a row below them holds no number (a row of units) or,
-// with a time column, when their times are off the clock of the rows below them; never read.
-// A channel header holds a handful of rows; a record's samples are thousands.
+// with that cause and the remedy, when a row below them holds no number (a row of units), or
+// when they are no samples of the record below them: with a time column, their times off the
+// clock of the rows below; without one (measurement.time.interval), a value read off the level
+// of the rows below or written in another form than the whole column below. Never read. A
+// channel header holds a handful of rows; a record's samples are thousands.
 constexpr std::size_t kHeaderRowsOfNumbers = 16;
 // The rows below that must lie on one uniform clock to judge the rows above by it.
 constexpr std::size_t kClockRows = 4;
+// A record's first samples are its rest before the pulse (at least 10, which the reduction needs
+// to read its rest level): a row above them lies among the next ones, within this many times
+// their range of their median (or of the column's digitizer step, on which a quiet record's
+// samples may all read one level). Gaussian noise puts a sample so far from 16 others' median in
+// none of 2·10⁶ draws (3 × their range: none either; 2 ×: 1.3·10⁻⁵); a header's sample rate,
+// sample count or channel number in volts lies hundreds of ranges off.
+constexpr std::size_t kLevelRows = 16;
+constexpr double kLevelRanges = 4;
 
 // Lines [first, first + rows) named for a message: "line 3" or "lines 3–4".
 std::string lines_named(const DelimitedText& text, std::size_t first, std::size_t rows) {
@@ -518,6 +538,57 @@ std::string header_rows_cause(const DelimitedText& text, std::size_t first, std:
          (rows == 1 ? " holds" : " hold") +
          " numbers only, which cannot be told from samples (a header's sample count, sample rates, "
          "channel numbers or unit codes";
+}
+
+// Rows [first, first + rows) refused as a channel header's: the value of the first one in
+// `column` (named `name`) is no sample of the record below, `why`.
+[[noreturn]] void refuse_header_rows(const DelimitedText& text, std::size_t first, std::size_t rows,
+                                     std::size_t column, std::string_view name,
+                                     const std::string& why) {
+  const TextRow row = text.rows[first];
+  throw input_error(
+      text.file.string(),
+      text_place(row.line, column) + (name.empty() ? "" : " (\"" + std::string(name) + "\")"),
+      "\"" + std::string(row.fields[column]) + "\"",
+      why + ": " + header_rows_cause(text, first, rows) +
+          ", or samples out of place); expected samples from the first row of "
+          "numbers on: delete " +
+          lines_named(text, first, rows) + " from the file, or export without the channel header");
+}
+
+// A sample count alone on its line at the top of the numbers (scope exports that write the number
+// of points first, above the names or the samples): a header's, not read, when it is the number of
+// rows of numbers from the next one to the data's end (said in a warning); refused when it is not
+// and the rows below are wider (so it is no sample of theirs): rows lost or added after the
+// export, or another header's number. Returns the row after it (0 if it is none): the data's top.
+std::size_t after_sample_count(const DelimitedText& text, std::size_t first,
+                               std::vector<std::string>& warnings) {
+  const TextRow row = text.rows[first];
+  const std::string_view f = row.fields.empty() ? std::string_view() : row.fields.front();
+  if (filled_width(row) != 1 || f.empty() || f.size() > 12 ||
+      !std::all_of(f.begin(), f.end(), [](char c) { return c >= '0' && c <= '9'; }))
+    return 0;
+  std::size_t data = first + 1;
+  while (data < text.rows.size() && !all_numeric(text.rows[data], text.decimal_comma)) ++data;
+  if (data == text.rows.size()) return 0;
+  std::vector<std::string> footer;
+  const std::size_t samples = data_end(text, data, footer) - data;
+  const std::string rows = lines_named(text, data, samples);
+  if (std::stoull(std::string(f)) == samples) {
+    warnings.push_back(text.file.string() + ": line " + std::to_string(row.line) + " holds " +
+                       std::string(f) + " alone, the number of samples below it (" + rows +
+                       "): read as the header's sample count");
+    return first + 1;
+  }
+  if (filled_width(text.rows[data]) > 1)
+    throw input_error(
+        text.file.string(), "line " + std::to_string(row.line), "\"" + std::string(f) + "\"",
+        "a number alone on its line above rows of " +
+            std::to_string(filled_width(text.rows[data])) +
+            " fields: a header's sample count, but " + rows + " hold " + std::to_string(samples) +
+            " samples (rows lost or added after the export, or another number of "
+            "the header); expected the number of samples below it");
+  return 0;
 }
 
 void refuse_numbers_above_header_rows(const DelimitedText& text, std::size_t first,
@@ -573,21 +644,82 @@ void refuse_rows_off_the_clock(const DelimitedText& text, std::size_t first, std
                  back * (kAutoResampleJitter * dt + rounding) + rounding;
     }
     if (on_clock) return;
-    const TextRow row = text.rows[first];
-    throw input_error(
-        text.file.string(),
-        text_place(row.line, time_index) +
-            (time_name.empty() ? "" : " (\"" + std::string(time_name) + "\")"),
-        "\"" + std::string(row.fields[time_index]) + "\"",
-        "not on the clock of the samples below (every " + format_number(dt * unit_s) + " s from " +
-            format_number(t[j] * unit_s) + " s at line " +
-            std::to_string(text.rows.line(first + j)) + "): " + header_rows_cause(text, first, j) +
-            ", or samples out of place); expected samples from the first row of numbers on: "
-            "delete " +
-            lines_named(text, first, j) + " from the file, or export without the channel header");
+    refuse_header_rows(text, first, j, time_index, time_name,
+                       "not on the clock of the samples below (every " +
+                           format_number(dt * unit_s) + " s from " + format_number(t[j] * unit_s) +
+                           " s at line " + std::to_string(text.rows.line(first + j)) + ")");
   }
 }
 
+// The values of column `c` in rows [from, end) that are numbers.
+std::vector<double> column_values(const DelimitedText& text, std::size_t from, std::size_t end,
+                                  std::size_t c) {
+  std::vector<double> v;
+  std::vector<std::string_view> fields;
+  for (std::size_t i = from; i < end; ++i) {
+    text.rows.fields(i, fields);
+    if (c < fields.size())
+      if (const auto x = parse_number(fields[c], text.decimal_comma)) v.push_back(*x);
+  }
+  return v;
+}
+
+// Why row r's value in column c is no sample of the record in the rows below it (nullopt: it may
+// be one): off their level (kLevelRanges), or written in another form than the whole column below
+// when that is written in one fixed format ("%.6e" throughout, a channel number "1" above).
+std::optional<std::string> off_the_record(const DelimitedText& text, std::size_t r, std::size_t end,
+                                          std::size_t c) {
+  std::vector<std::string_view> fields;
+  text.rows.fields(r, fields);
+  const auto v = c < fields.size() ? parse_number(fields[c], text.decimal_comma) : std::nullopt;
+  if (!v) return std::nullopt;  // refused by line and column when read
+  const std::string_view field = fields[c];
+  const std::vector<double> below =
+      column_values(text, r + 1, std::min(end, r + 1 + kLevelRows), c);
+  if (below.size() < kLevelRows) return std::nullopt;
+  const auto [low, high] = std::minmax_element(below.begin(), below.end());
+  const double level = median(below), off = std::abs(*v - level);
+  if (off > kLevelRanges * (*high - *low)) {
+    // The column's digitizer step: the smallest difference of its distinct values below.
+    std::vector<double> all = column_values(text, r + 1, end, c);
+    std::sort(all.begin(), all.end());
+    double step = 0;
+    for (std::size_t i = 1; i < all.size(); ++i)
+      if (all[i] > all[i - 1] && (step == 0 || all[i] - all[i - 1] < step))
+        step = all[i] - all[i - 1];
+    if (off > kLevelRanges * std::max(*high - *low, step))
+      return "off the level of the samples below (" + format_number(level) + ", from " +
+             format_number(*low) + " to " + format_number(*high) + " over " +
+             lines_named(text, r + 1, kLevelRows) + ")";
+  }
+  const char mark = text.decimal_comma ? ',' : '.';
+  text.rows.fields(r + 1, fields);
+  if (c >= fields.size()) return std::nullopt;
+  const NumberShape shape = shape_of(field, mark), fixed = shape_of(fields[c], mark);
+  if (shape == fixed || !written_alike(text, r + 2, end, c, fixed)) return std::nullopt;
+  return "written with " + written(shape) + " where every value below it in the column has " +
+         written(fixed) + " (lines " + std::to_string(text.rows.line(r + 1)) + "–" +
+         std::to_string(text.rows.line(end - 1)) + ")";
+}
+
+// Without a time column: the top rows, each judged against the rows below it in every column
+// read (off_the_record), down to the first that lies among them; the rows above it are refused.
+void refuse_rows_off_the_level(const DelimitedText& text, std::size_t first, std::size_t end,
+                               const std::vector<std::size_t>& columns,
+                               const std::vector<std::string_view>& names) {
+  std::optional<std::pair<std::size_t, std::string>> refused;  // the first row's column and why
+  std::size_t r = first;
+  for (; r < std::min(end, first + kHeaderRowsOfNumbers); ++r) {
+    std::optional<std::pair<std::size_t, std::string>> off;
+    for (std::size_t k = 0; k < columns.size() && !off; ++k)
+      if (auto why = off_the_record(text, r, end, columns[k])) off = {k, std::move(*why)};
+    if (!off) break;
+    if (!refused) refused = off;
+  }
+  if (refused)
+    refuse_header_rows(text, first, r - first, columns[refused->first], names[refused->first],
+                       refused->second);
+}
 // A header that names the time column's unit must agree with the unit it is read in: a column in
 // ms read as seconds passes the sample-interval check at 10 MHz and above (0.1 ms -> 1e-4 s).
 void check_time_unit(const DelimitedText& text, const TextRow& header, std::size_t time_index,
@@ -613,8 +745,12 @@ RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest
     throw input_error(text.file.string(), "line " + std::to_string(text.rows.back().line),
                       "no numeric rows",
                       "expected rows of numbers after the header; " + no_numbers_cause(text));
-  const std::size_t width = text.rows[first].fields.size();
   std::vector<std::string> warnings;
+  const std::size_t top = after_sample_count(text, first, warnings);
+  for (first = std::max(first, top);
+       first < text.rows.size() && !all_numeric(text.rows[first], text.decimal_comma);)
+    ++first;
+  const std::size_t width = text.rows[first].fields.size();
   const std::size_t end = data_end(text, first, warnings);
   refuse_numbers_above_header_rows(text, first, end);
   const auto [clock, trace_names] = file_clock(text, first, request, warnings);
@@ -642,7 +778,7 @@ RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest
     }
     return numbers > 0 && 2 * numbers >= filled;
   };
-  while (first > 0 && data_shaped(text.rows[first - 1])) --first;
+  while (first > top && data_shaped(text.rows[first - 1])) --first;
   const std::optional<TextRow> header_row =
       first > 0 ? std::optional(text.rows[first - 1]) : std::nullopt;
   const TextRow* header = header_row ? &*header_row : nullptr;
@@ -675,12 +811,6 @@ RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest
       clock ? std::nullopt
             : std::optional(resolve(text, header, names_row, block, time_ref, width, wider));
   if (header && time_index) check_time_unit(text, *header, *time_index, request.time_unit_s);
-  if (time_index && request.resample.mode != TimeResample::kAlways)
-    refuse_rows_off_the_clock(text, first, end, *time_index,
-                              named && *time_index < named->fields.size()
-                                  ? named->fields[*time_index]
-                                  : std::string_view(),
-                              request.time_unit_s);
   std::vector<std::size_t> indices;
   std::vector<std::string> names;
   for (const auto& c : request.columns) {
@@ -688,6 +818,17 @@ RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest
     names.push_back(named && indices.back() < named->fields.size()
                         ? std::string(named->fields[indices.back()])
                         : "column " + std::to_string(indices.back()));
+  }
+  const auto name_of = [&](std::size_t c) {
+    return named && c < named->fields.size() ? named->fields[c] : std::string_view();
+  };
+  if (!time_index) {
+    std::vector<std::string_view> header_names;
+    for (std::size_t c : indices) header_names.push_back(name_of(c));
+    refuse_rows_off_the_level(text, first, end, indices, header_names);
+  } else if (request.resample.mode != TimeResample::kAlways) {
+    refuse_rows_off_the_clock(text, first, end, *time_index, name_of(*time_index),
+                              request.time_unit_s);
   }
   if (header)
     for (std::size_t k = 0; k < request.column_units.size(); ++k)

@@ -195,6 +195,41 @@ TEST_CASE("Fortran's D exponents are read and a channel header's rows of numbers
   }
 }
 
+TEST_CASE("A sample count on the first line is read and a channel number over untimed rows refused",
+          "[app][process][csv]") {
+  // Scope exports that write the number of points first: refused as a header row of numbers
+  // ("no number in this row, above the samples"). A file without a time column
+  // (measurement.time.interval) read a channel-number row under its names as the first samples:
+  // a strain of 1 and 2, then refused as a pulse at the record's start.
+  const fs::path d = scratch_dir("exports_count_channels");
+  const auto rec = simulated_and_timed(d);
+  SECTION("the count of the samples below, then the names") {
+    std::ofstream(d / "count.csv") << rec[0].size() << "\ntime_s,incident,transmitted\n"
+                                   << record_rows(rec);
+    const auto scene = classic_reading(d, "s.json", d / "count.csv", nullptr);
+    processed(scene, d / "out");
+    CHECK(has_warning(summary(d / "out"), "line 1 holds " + std::to_string(rec[0].size()) +
+                                              " alone, the number of samples below it"));
+    check_same_curve(d / "timed", d / "out", 0);
+    std::ofstream(d / "short.csv") << rec[0].size() + 1 << "\ntime_s,incident,transmitted\n"
+                                   << record_rows(rec);
+    const auto wrong = classic_reading(d, "w.json", d / "short.csv", nullptr);
+    check_refused(process(wrong, d / "wrong"),
+                  {"short.csv: line 1: \"" + std::to_string(rec[0].size() + 1) + "\"",
+                   "a header's sample count, but lines 3–" + std::to_string(rec[0].size() + 2) +
+                       " hold " + std::to_string(rec[0].size()) + " samples"});
+  }
+  SECTION("a channel-number row under the names of untimed samples") {
+    const std::vector<std::vector<double>> untimed(rec.begin() + 1, rec.end());
+    std::ofstream(d / "untimed.csv") << "incident,transmitted\n1,2\n"
+                                     << record_rows(untimed, {","});
+    const auto scene = classic_reading(d, "u.json", d / "untimed.csv", {{"interval", "0.1 us"}});
+    check_refused(process(scene, d / "out"),
+                  {"untimed.csv: line 2, column 1 (\"incident\"): \"1\"",
+                   "off the level of the samples below", "export without the channel header"});
+  }
+}
+
 TEST_CASE("A TranAX export's channels are read by the names above its quantities and units",
           "[app][process][csv]") {
   // Elsys TranAX, as a rock-testing lab's Carrara marble record is written: each line quoted

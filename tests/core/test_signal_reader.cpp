@@ -429,6 +429,96 @@ TEST_CASE(
   }
 }
 
+TEST_CASE(
+    "Rows of numbers under the names of a file without a time column are judged by the samples "
+    "below",
+    "[core][signal]") {
+  // measurement.time.interval: no clock to judge a channel header's rows by, and a sample rate, a
+  // sample count or a channel number under the names was read as the first sample of each channel
+  // (then refused as an implausible strain or a pulse at the record's start, or read as a spike).
+  // A record's first samples are its rest: a row off their level, or written in another form than
+  // the whole column below it, is no sample of theirs.
+  const auto quiet = [](int rows, const char* format, double a, double b) {
+    std::string text;
+    char line[64];
+    for (int i = 0; i < rows; ++i) {
+      // rest ± a few steps (0.01 and 0.02), the same pattern every 5 rows
+      std::snprintf(line, sizeof line, format, a + 0.01 * ((i * 3) % 5 - 2),
+                    b + 0.02 * ((i * 2) % 5 - 2));
+      text += line;
+    }
+    return text;
+  };
+  std::string one_level;
+  for (int i = 0; i < 20; ++i) one_level += "0.50,1\n";
+  struct Case {
+    const char* what;
+    std::string text;
+    std::string error;  // the refusal, or empty: read whole, the first sample `first`
+    double first = 0;
+  };
+  const Case cases[] = {
+      {"sample rates and channel numbers",
+       "incident,transmitted\n1000000,1000000\n1,2\n" + quiet(40, "%.4f,%.4f\n", 0.5, -0.3),
+       "head.csv: line 2, column 1 (\"incident\"): \"1000000\": off the level of the samples "
+       "below"},
+      {"a channel number on the rest level, written unlike the column",
+       "incident,transmitted\n0,1\n" + quiet(40, "%.3f,%.3f\n", 0.0, 1.0),
+       "head.csv: line 2, column 1 (\"incident\"): \"0\": written with 0 decimals where every "
+       "value below it in the column has 3 decimals (lines 3–42): line 2 under the header"},
+      {"samples in %g", "incident,transmitted\n" + quiet(40, "%g,%g\n", 0.0, 1.0), "", -0.02},
+      {"a first sample two of the column's steps off a level the next 20 all read",
+       "incident,transmitted\n0.52,1\n" + one_level + quiet(40, "%.2f,%.0f\n", 0.5, 1), "", 0.52},
+  };
+  for (const auto& c : cases) {
+    DYNAMIC_SECTION(c.what) {
+      const auto p = write_file("head.csv", c.text);
+      auto r = csv_request(p, {by_name("incident")});
+      r.clock = SampleClock{1e-6, 0};
+      if (!c.error.empty()) {
+        const std::string e = error_of([&] { read_signal_columns(r); });
+        CHECK(e.find(c.error) != std::string::npos);
+        CHECK(e.find("export without the channel header") != std::string::npos);
+      } else {
+        const SignalColumns s = read_signal_columns(r);
+        CHECK(s.values[0].front() == Approx(c.first));
+        CHECK(s.warnings.empty());
+      }
+    }
+  }
+}
+
+TEST_CASE("A sample count alone on the first line is the header's when it counts the samples",
+          "[core][signal]") {
+  // Scope exports that write the number of points first: the count was refused as a header row
+  // of numbers. It is the header's when it is the number of samples below it; another number
+  // above rows of several fields is refused as a count that does not match them.
+  std::string rows;
+  for (int i = 0; i < 30; ++i) rows += std::to_string(i) + "e-6," + std::to_string(i % 3) + "\n";
+  SECTION("above the names") {
+    const auto p = write_file("count.csv", "30\nTime,incident\n" + rows);
+    const SignalColumns s = read_signal_columns(csv_request(p, {by_name("incident")}));
+    REQUIRE(s.values[0].size() == 30);
+    CHECK(s.values[0][1] == 1);
+    REQUIRE(s.warnings.size() == 1);
+    CHECK(s.warnings[0].find("line 1 holds 30 alone, the number of samples below it (lines "
+                             "3–32): read as the header's sample count") != std::string::npos);
+  }
+  SECTION("right above the samples") {
+    const auto p = write_file("count.csv", "30\n" + rows);
+    const SignalColumns s = read_signal_columns(csv_request(p, {by_index(1)}));
+    CHECK(s.values[0].size() == 30);
+    CHECK(s.time_s.front() == 0);
+  }
+  SECTION("a count that is not the samples'") {
+    const auto p = write_file("count.csv", "31\nTime,incident\n" + rows);
+    CHECK(error_of([&] { read_signal_columns(csv_request(p, {by_name("incident")})); })
+              .find("count.csv: line 1: \"31\": a number alone on its line above rows of 2 "
+                    "fields: a header's sample count, but lines 3–32 hold 30 samples") !=
+          std::string::npos);
+  }
+}
+
 TEST_CASE("Fortran's D exponents are read as the E they mean", "[core][signal]") {
   // DOUBLE PRECISION values as Fortran writes them ("0.1000000000000000D-05", list-directed or
   // with a D edit descriptor): refused as "expected a finite number" before.
