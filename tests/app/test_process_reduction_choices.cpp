@@ -727,6 +727,45 @@ TEST_CASE("A record that starts inside its pulse is refused as one", "[app][proc
   CHECK(s["incident_plateau_strain"].get<double>() == Approx(1e-3).epsilon(kExact));
 }
 
+TEST_CASE("A coarse record that starts on its front's last samples is refused as inside its pulse",
+          "[app][process][warnings]") {
+  // LANL copper at 1 MS/s on 8 bits, its scope triggered 1 us up the rounded top of its 6 us
+  // front: the first samples climb from 43 % of the plateau to it and were read as the rest, their
+  // climb as a noise 19 × the digitizer's, so wide a band that the reflected pulse's decaying tail
+  // and the true rest after it made one run, a trend and no rest: exit 0, a 3-wave peak of
+  // 1160 MPa from the plateau. The same shape here (gauges 0.38 m from the specimen, 280 samples,
+  // steps of 2 % of the plateau, no noise).
+  constexpr double kDtCoarse = 1e-6, kStep = 2e-5;
+  constexpr int kCoarseSamples = 280;
+  const auto on_grid = [](double v) { return kStep * std::round(v / kStep); };
+  const Record rec{
+      [&](double t) {
+        const double u = t / 1e-6;  // µs
+        const double front = -(1 - 0.57 * std::exp(-u / 2.5));
+        double v = u < 50 ? front : u < 53 ? front * (53 - u) / 3 : 0;
+        if (u >= 150 && u < 210)  // the reflected pulse, decaying from 0.57 to 0.31
+          v += std::min({(u - 150) / 3, 0.57 - 0.26 * (u - 153) / 52, 0.31 * (210 - u) / 5});
+        return on_grid(1e-3 * v);
+      },
+      [&](double t) {
+        const double u = t / 1e-6;
+        return on_grid(u >= 150 && u < 210 ? -0.7e-3 * std::min({1.0, (u - 150) / 3, (210 - u) / 3})
+                                           : 0.0);
+      }};
+  json scene = steel_scene();
+  scene["bars"][1]["gauges"][0]["position"] = "1.62 m";
+  scene["bars"][3]["gauges"][0]["position"] = "0.38 m";
+  const fs::path d = scratch_dir("reduction_inside_upper_front");
+  const auto r =
+      run_shpb({"process", write(d, scene, csv(rec, 1.0, kDtCoarse, kCoarseSamples)).string(), "-o",
+                (d / "out").string(), "-q"});
+  INFO(r.err);
+  CHECK(r.code == 2);
+  CHECK(r.err.find("signals.csv: column \"incident\"") != std::string::npos);
+  CHECK(r.err.find("it starts inside a pulse") != std::string::npos);
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+}
+
 TEST_CASE("A record drifting and settling within its rest band is still processed",
           "[app][process][warnings]") {
   // The clean record (rise 10 us, 500 samples of rest), its incident gauge drifting by 2 % of the
