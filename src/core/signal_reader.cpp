@@ -132,6 +132,35 @@ bool every_repeat_twice(const SignalColumns& out) {
   return true;
 }
 
+// A peak-detect (envelope) acquisition exports a minimum and a maximum per interval, each pair at
+// one time stamp (Rohde & Schwarz RTM's CSV): read as samples they interleave the envelope's two
+// edges, and their stamps look like a rounded column or a gap. Every row paired with the next at
+// one stamp, each pair's first values at most its second's in every column read (and below them
+// somewhere): refused by that cause. Stamps rounded to twice the interval repeat in pairs too, but
+// noisy samples are not so ordered over thousands of pairs.
+void refuse_extreme_pairs(const std::filesystem::path& file, const LineMap& lines,
+                          const SignalColumns& out) {
+  const std::vector<double>& t = out.time_s;
+  constexpr std::size_t kPairsToJudgeBy = 2;
+  if (t.size() < 2 * kPairsToJudgeBy || t.size() % 2 != 0) return;
+  bool below = false;
+  for (std::size_t i = 0; i + 1 < t.size(); i += 2) {
+    if (t[i] != t[i + 1]) return;
+    for (const auto& v : out.values) {
+      if (v[i] > v[i + 1]) return;
+      below = below || v[i] < v[i + 1];
+    }
+  }
+  if (!below) return;  // each row twice: rows exported twice (drop_repeated_rows)
+  throw input_error(file.string(), "line " + std::to_string(lines[1]) + " (time column)",
+                    seconds(t[1]),
+                    "the time of line " + std::to_string(lines[0]) +
+                        " again, as every row's is its neighbour's, each pair's first values at "
+                        "most its second's: a minimum and a maximum per interval (a peak-detect "
+                        "or envelope acquisition), not samples; expected one sample per time: "
+                        "acquire (or export) the record in sample mode");
+}
+
 // The steps of increasing stamps: the median one is the sampling interval, against which a gap or
 // jump stands out.
 struct StepSurvey {
@@ -278,6 +307,7 @@ void check_time_base(const std::filesystem::path& file, RawSignalColumns& raw,
                             "); expected increasing time" + no_time_column_hint(request));
     repeats += t[i] == t[i - 1];
   }
+  if (repeats > 0) refuse_extreme_pairs(file, raw.lines, out);
   if (repeats > 0 &&
       (static_cast<double>(repeats) <= kUniformStepTolerance * static_cast<double>(t.size() - 1) ||
        every_repeat_twice(out))) {

@@ -681,6 +681,33 @@ TEST_CASE("Repeated time stamps are detected and the time base rebuilt with a wa
   CHECK(std::abs(s.time_s[0] - -1.98e-4) < 1e-6);
 }
 
+TEST_CASE("A peak-detect export's minimum and maximum pairs are refused as such",
+          "[core][signal]") {
+  // Rohde & Schwarz RTM scopes in peak-detect mode write a minimum and a maximum at each time
+  // stamp: refused as "off the sampling clock of the rounded stamps ... a gap or jump", the
+  // cause (and with coarser stamps the clock) not the file's. A column truncated to twice the
+  // interval repeats its stamps in pairs as well, its samples in no order: read, rebuilt.
+  std::string pairs = "in s,C1 in V\n", truncated = "t_s,x\n";
+  char line[64];
+  for (int i = 0; i < 200; ++i) {
+    const double level = std::sin(0.05 * i), spread = 0.01 * (1 + i % 3);
+    std::snprintf(line, sizeof line, "%.6e,%.6f\n%.6e,%.6f\n", 2e-7 * i, level - spread, 2e-7 * i,
+                  level + spread);
+    pairs += line;
+    std::snprintf(line, sizeof line, "%.1e,%.6f\n", 2e-7 * (i / 2), i % 2 ? level : -level);
+    truncated += line;
+  }
+  const auto p = write_file("pairs.csv", pairs);
+  CHECK(error_of([&] { read_signal_columns(csv_request(p, {by_index(1)})); })
+            .find("pairs.csv: line 3 (time column): 0 s: the time of line 2 again, as every row's "
+                  "is its neighbour's, each pair's first values at most its second's: a minimum "
+                  "and a maximum per interval") != std::string::npos);
+  const auto q = write_file("truncated.csv", truncated);
+  const SignalColumns s = read_signal_columns(csv_request(q, {by_index(1)}));
+  CHECK(s.dt_s == Approx(1e-7));
+  CHECK(s.warnings.front().find("the column was rounded") != std::string::npos);
+}
+
 TEST_CASE("Rounded stamps with samples missing are refused, not spread over the record",
           "[core][signal]") {
   // The epoxy file's 3-digit stamps of an 80 ns clock, through zero (where they are finest),
