@@ -299,6 +299,52 @@ std::string utf8_of_utf16(const std::filesystem::path& file, std::string_view by
   return out;
 }
 
+// The length of the UTF-8 character at bytes[i] (RFC 3629: no overlong form, no surrogate, none
+// beyond U+10FFFF), 0 if none starts there.
+std::size_t utf8_character(std::string_view bytes, std::size_t i) {
+  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(bytes[k]); };
+  const unsigned char c = byte(i);
+  const std::size_t n = c < 0x80                 ? 1
+                        : c >= 0xC2 && c <= 0xDF ? 2
+                        : c >= 0xE0 && c <= 0xEF ? 3
+                        : c >= 0xF0 && c <= 0xF4 ? 4
+                                                 : 0;
+  if (n == 0 || i + n > bytes.size()) return 0;
+  // The range of the byte after the lead; the others 0x80–0xBF.
+  const unsigned char low = c == 0xE0 ? 0xA0 : c == 0xF0 ? 0x90 : 0x80;
+  const unsigned char high = c == 0xED ? 0x9F : c == 0xF4 ? 0x8F : 0xBF;
+  for (std::size_t k = 1; k < n; ++k)
+    if (k == 1 ? byte(i + k) < low || byte(i + k) > high : (byte(i + k) & 0xC0) != 0x80) return 0;
+  return n;
+}
+
+// Text that is not all UTF-8 (a Latin-1 file: "Messger\xE4t", "\xB5s") as UTF-8: its UTF-8
+// characters kept, every other byte read as the Latin-1 character it is. Its names, units and any
+// text quoted from it into a message, a warning or summary.json are then UTF-8, which JSON
+// outputs require (a Latin-1 footer's warning ended process at exit 4, "invalid UTF-8 byte").
+void latin1_as_utf8(std::string& bytes) {
+  std::size_t i = 0;
+  while (i < bytes.size())
+    if (const std::size_t n = utf8_character(bytes, i))
+      i += n;
+    else
+      break;
+  if (i == bytes.size()) return;
+  std::string out(bytes, 0, i);
+  out.reserve(bytes.size() + bytes.size() / 8);
+  while (i < bytes.size()) {
+    if (const std::size_t n = utf8_character(bytes, i)) {
+      out.append(bytes, i, n);
+      i += n;
+    } else {
+      const auto c = static_cast<unsigned char>(bytes[i++]);
+      out.push_back(static_cast<char>(0xC0 | c >> 6));
+      out.push_back(static_cast<char>(0x80 | (c & 0x3F)));
+    }
+  }
+  bytes = std::move(out);
+}
+
 // Byte order marks: UTF-8 is dropped (spreadsheets write it); UTF-16 text is read as UTF-8.
 // Other text with NUL bytes (UTF-16 without its mark, binary data) is refused by name rather than
 // failing later on them.
@@ -340,13 +386,15 @@ void detect_decimal_comma(DelimitedText& text) {
 
 DelimitedText read_delimited_text(const std::filesystem::path& file) {
   // Type (no FIFO or device) and size checked before reading: 1 GiB is far beyond any record
-  // (and a row's start fits the 4 bytes TextRows keeps).
+  // (and a row's start fits the 4 bytes TextRows keeps, also once Latin-1 is read as UTF-8, at
+  // most twice as long).
   constexpr std::uintmax_t kMaxBytes = std::uintmax_t{1} << 30;
-  static_assert(kMaxBytes <= std::numeric_limits<std::uint32_t>::max());
+  static_assert(2 * kMaxBytes <= std::numeric_limits<std::uint32_t>::max());
   auto owned = std::make_shared<std::string>(
       read_input_file(file, file.string(), "a signal file", kMaxBytes));
   std::string& bytes = *owned;
   drop_bom_or_refuse_binary(file, bytes);
+  latin1_as_utf8(bytes);
 
   // Lines (LF, CRLF or lone CR) with their numbers, one at a time, blank ones skipped.
   const bool has_cr = bytes.find('\r') != std::string::npos;

@@ -51,6 +51,13 @@ std::string error_of(F&& f) {
   return "";
 }
 
+// The request refused as a channel header's rows of numbers, the message holding `error`.
+void check_header_rows_refused(const SignalRequest& r, const std::string& error) {
+  const std::string e = error_of([&] { read_signal_columns(r); });
+  CHECK(e.find(error) != std::string::npos);
+  CHECK(e.find("export without the channel header") != std::string::npos);
+}
+
 // The measured records ship with their experiments (experiments/<name>/data, each with its
 // LICENSE).
 const fs::path kExperiments = fs::path(SHPB_SOURCE_DIR) / "experiments";
@@ -182,7 +189,7 @@ TEST_CASE("Semicolon and tab files with decimal commas are detected", "[core][si
     const std::string error = error_of([&] { read_signal_columns(r); });
     INFO(error);
     CHECK(error.find(
-              "thousands.csv: line 4, column 2 (\"inc [\xb5\xce\xb5]\"): \"1.140\": a point in "
+              "thousands.csv: line 4, column 2 (\"inc [\xc2\xb5\xce\xb5]\"): \"1.140\": a point in "
               "a file whose decimal mark is the comma: a thousands separator") !=
           std::string::npos);
     // The other way round, "1,012" in a file of decimal points.
@@ -211,10 +218,21 @@ TEST_CASE("Semicolon and tab files with decimal commas are detected", "[core][si
                     "\"3,750\": a comma in a file whose decimal mark is the point") !=
           std::string::npos);
   }
-  SECTION("tab, Latin-1 header") {
-    const auto p = write_file("tab.tsv", "Zeit\tDehnung \xb5\xe9\n0\t1,25\n1\t2,5\n2\t3,75\n");
+  SECTION("tab, Latin-1 header and footer") {
+    // Quoted into a warning, a name or a message, Latin-1 text was written as its bytes, which
+    // no JSON output takes (summary.json: exit 4, "invalid UTF-8 byte"): now as UTF-8.
+    const auto p = write_file(
+        "tab.tsv", "Zeit\tDehnung \xb5\xe9\n0\t1,25\n1\t2,5\n2\t3,75\nEnde (Messger\xe4t)\n");
     const auto s = read_signal_columns(csv_request(p, {by_index(1)}));
     CHECK(s.values[0] == std::vector<double>{1.25, 2.5, 3.75});
+    CHECK(s.names[0] == "Dehnung \xc2\xb5\xc3\xa9");
+    REQUIRE(s.warnings.size() == 1);
+    CHECK(s.warnings[0].find("(a footer, \"Ende (Messger\xc3\xa4t)\")") != std::string::npos);
+    const auto q = write_file("tab.tsv", "Zeit\tDehnung \xb5\xe9\n0\t1,25\n1\tzw\xf6lf\n");
+    CHECK(error_of([&] {
+            read_signal_columns(csv_request(q, {by_index(1)}));
+          }).find("line 3, column 2 (\"Dehnung \xc2\xb5\xc3\xa9\"): \"zw\xc3\xb6lf\"") !=
+          std::string::npos);
   }
 }
 
@@ -394,9 +412,7 @@ TEST_CASE(
       auto r = csv_request(p, {by_name("incident")});
       r.time_column = by_name("Time");
       if (!c.error.empty()) {
-        const std::string e = error_of([&] { read_signal_columns(r); });
-        CHECK(e.find(c.error) != std::string::npos);
-        CHECK(e.find("export without the channel header") != std::string::npos);
+        check_header_rows_refused(r, c.error);
       } else {
         const SignalColumns s = read_signal_columns(r);
         CHECK(s.values[0].back() == 1.25);
@@ -476,9 +492,7 @@ TEST_CASE(
       auto r = csv_request(p, {by_name("incident")});
       r.clock = SampleClock{1e-6, 0};
       if (!c.error.empty()) {
-        const std::string e = error_of([&] { read_signal_columns(r); });
-        CHECK(e.find(c.error) != std::string::npos);
-        CHECK(e.find("export without the channel header") != std::string::npos);
+        check_header_rows_refused(r, c.error);
       } else {
         const SignalColumns s = read_signal_columns(r);
         CHECK(s.values[0].front() == Approx(c.first));

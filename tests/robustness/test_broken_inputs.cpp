@@ -284,6 +284,9 @@ TEST_CASE("Broken signal files are refused with file, line and column, or read w
              s);
        }),
        process(), Expect::kWorks, ""},
+      {"a Latin-1 footer line after the data (its warning in summary.json)",
+       signals([](std::string s) { return s + "Ende der Messung (Messger\xE4t 1)\n"; }), process(),
+       Expect::kWorks, ""},
       {"UTF-16 text (Excel's \"Unicode Text\")", signals([](std::string s) { return utf16le(s); }),
        process(), Expect::kWorks, ""},
       {"UTF-16 text cut inside a character",
