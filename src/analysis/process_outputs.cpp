@@ -130,13 +130,17 @@ nlohmann::json peak_stress_from(const ProcessingResult& r) {
   const HeadlinePeak peak = headline_peak_stress(r);
   std::string how;
   if (r.primary == PrimaryReduction::kOneWave)
-    how = "the primary reduction's: the transmitted face's stress P2/A_s, largest over the loading";
+    how =
+        "the primary reduction's: the transmitted face's stress P2/A_s, largest over the loading "
+        "of a straight line fitted to the samples within the half period the transmitter "
+        "resolves";
   else if (peak.reduction == PrimaryReduction::kOneWave)
     how =
         "the specimen is in equilibrium (reached and held until unloading, or over at least half "
         "its loading), where its two faces' stresses agree: the transmitted face's stress "
         "P2/A_s, largest over the loading (every sample of it, where the 3-wave peak is read "
-        "over the samples with R <= 0.05 only)";
+        "over the samples with R <= 0.05 only) of a straight line fitted to the samples within "
+        "the half period the transmitter resolves";
   else
     how =
         "the 3-wave stress, largest over the whole loading, its ring-up and unloading fronts "
