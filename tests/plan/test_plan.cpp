@@ -493,6 +493,10 @@ TEST_CASE("A bad plan block is exit 2 naming its JSON path, with nothing written
     CHECK(r.err.find(c.path) != std::string::npos);
     CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
     CHECK_FALSE(fs::exists(out));
+    // validate reads the block as plan does: the same one line.
+    const auto v = run_shpb({"validate", scene.string()});
+    CHECK(v.code == 2);
+    CHECK(v.err == r.err);
   }
 }
 
@@ -513,6 +517,9 @@ TEST_CASE("A tension test is refused by plan, naming the striker's velocity", "[
   CHECK(r.err.rfind("error: " + scene.string() + ": bars[0].velocity: -10 m/s: ", 0) == 0);
   CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
   CHECK_FALSE(fs::exists(out));
+  const auto v = run_shpb({"validate", scene.string()});
+  CHECK(v.code == 2);
+  CHECK(v.err == r.err);
 }
 
 TEST_CASE("At a high rate a shorter specimen brings the bars' forces into equilibrium early",
