@@ -24,6 +24,7 @@ namespace tests_analysis_test_simulated_gauges {
 
 using namespace shpb;
 
+using shpb_test::gauges_of;
 using shpb_test::moving_average;
 
 namespace {
@@ -47,18 +48,6 @@ double interpolate(const std::vector<double>& t, const std::vector<double>& y, d
 struct Agreement {
   double stress_rms, rate_rms, strain_max, strain_1wave_max;
 };
-
-// The simulated gauges of a scene, as process reads them.
-GaugeSignals gauges_of(const SimulationResult& sim) {
-  GaugeSignals g;
-  g.time_s = sim.gauges.time_s;
-  g.dt_s = g.time_s[1] - g.time_s[0];
-  for (const char* name : {"incident", "transmitted"}) {
-    g.gauges.push_back(name);
-    g.strain.push_back(sim.gauges.column(name));
-  }
-  return g;
-}
 
 // The gauges point-sampled every `interval_s`, as a coarse scope records them.
 GaugeSignals point_sampled(const GaugeSignals& g, double interval_s) {

@@ -32,6 +32,7 @@ namespace tests_analysis_test_uncertainty {
 
 using namespace shpb;
 
+using shpb_test::gauges_of;
 using shpb_test::moving_average;
 
 namespace {
@@ -169,13 +170,7 @@ TEST_CASE(
   auto truth_at = [&](const std::vector<double>& y, double e) {
     return value_at_first_reach(true_strain, y, true_strain.size(), e);
   };
-  GaugeSignals record;
-  record.time_s = sim.gauges.time_s;
-  record.dt_s = record.time_s[1] - record.time_s[0];
-  for (const char* name : {"incident", "transmitted"}) {
-    record.gauges.push_back(name);
-    record.strain.push_back(sim.gauges.column(name));
-  }
+  const GaugeSignals record = gauges_of(sim);
   const UncertaintySpec u = declared_uncertainty(specimen);
 
   Coverage cover;
@@ -247,13 +242,7 @@ TEST_CASE("The Monte Carlo interval of the peak stress is the back face's in equ
   const SimulationResult sim = simulate(truth);
   REQUIRE(sim.stable);
   const std::size_t specimen = *truth.specimen;
-  GaugeSignals record;
-  record.time_s = sim.gauges.time_s;
-  record.dt_s = record.time_s[1] - record.time_s[0];
-  for (const char* name : {"incident", "transmitted"}) {
-    record.gauges.push_back(name);
-    record.strain.push_back(sim.gauges.column(name));
-  }
+  const GaugeSignals record = gauges_of(sim);
   const double specimen_peak = *std::max_element(sim.specimen.column("stress_Pa").begin(),
                                                  sim.specimen.column("stress_Pa").end());
   const double d_t = truth.bars[specimen + 1].diameter_m, d_s = truth.bars[specimen].diameter_m;
