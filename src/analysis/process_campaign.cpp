@@ -184,11 +184,12 @@ void write_campaign(const Campaign& c, const std::vector<fs::path>& folders,
   s["tests"] = tests;
   s["flow_stress_strains"] = flow_strains;
   s["campaign_csv"] =
-      "one row per test, from its folder's summary.json (plateau strain rate, peak 3-wave stress, "
-      "time to equilibrium, striker velocity as the scene gives it and as inferred, warnings "
-      "joined by ' | ') and curve.csv (flow_stress_Pa_at_<e>: 3-wave engineering stress where "
-      "the engineering strain first reaches e, linear between samples; empty if it never does, "
-      "or reaches it in the ring-up, before the face forces first agree: equilibrium.first_s)";
+      "one row per test, from its folder's summary.json (plateau strain rate, headline peak "
+      "stress, time to equilibrium, striker velocity as the scene gives it and as inferred, "
+      "warnings joined by ' | ') and curve.csv (flow_stress_Pa_at_<e>: 3-wave engineering "
+      "stress where the engineering strain first reaches e, linear between samples; empty if it "
+      "never does, or reaches it in the ring-up, before the face forces first agree: "
+      "equilibrium.first_s)";
   write_text_file(dir / "summary.json", s.dump(2) + "\n");
 }
 
