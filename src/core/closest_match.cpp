@@ -51,6 +51,30 @@ std::optional<std::string> closest_match(std::string_view word,
   return best;
 }
 
+std::string key_suggestion_text(std::string_view word, const std::vector<std::string>& allowed,
+                                const std::vector<KeyPlace>& schema) {
+  if (closest_match(word, allowed)) return suggestion_text(word, allowed);
+  const auto places_of = [&](const std::string& key) {
+    std::vector<std::string> places;
+    for (const KeyPlace& p : schema)
+      if (std::find(p.keys->begin(), p.keys->end(), key) != p.keys->end() &&
+          std::find(places.begin(), places.end(), p.where) == places.end())
+        places.push_back(p.where);
+    std::string text;
+    for (std::size_t i = 0; i < places.size(); ++i)
+      text += (i == 0 ? "" : i + 1 == places.size() ? " or " : ", ") + places[i];
+    return text;
+  };
+  if (const std::string places = places_of(std::string(word)); !places.empty())
+    return "not here; \"" + std::string(word) + "\" is a key of " + places;
+  std::vector<std::string> elsewhere;
+  for (const KeyPlace& p : schema)
+    elsewhere.insert(elsewhere.end(), p.keys->begin(), p.keys->end());
+  if (const auto near = closest_match(word, elsewhere))
+    return "did you mean \"" + *near + "\", a key of " + places_of(*near) + "?";
+  return suggestion_text(word, allowed);
+}
+
 std::string suggestion_text(std::string_view word, const std::vector<std::string>& candidates) {
   if (auto m = closest_match(word, candidates)) return "did you mean \"" + *m + "\"?";
   std::string s = "expected one of: ";

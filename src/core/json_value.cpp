@@ -174,14 +174,24 @@ std::vector<JsonValue> JsonValue::array() const {
   return items;
 }
 
+UnknownKeyError::UnknownKeyError(std::string file, std::string path, std::string key,
+                                 std::vector<std::string> allowed)
+    : InputError(input_error(file, path, "unknown key", key_suggestion_text(key, allowed, {}))),
+      file_(std::move(file)),
+      path_(std::move(path)),
+      key_(std::move(key)),
+      allowed_(std::move(allowed)) {}
+
+InputError UnknownKeyError::placed(const std::vector<KeyPlace>& schema) const {
+  return input_error(file_, path_, "unknown key", key_suggestion_text(key_, allowed_, schema));
+}
+
 JsonObject JsonValue::object(const std::vector<std::string>& allowed_keys) const {
   if (!json_->is_object()) throw error("expected an object { ... }");
   for (const auto& [key, value] : json_->items()) {
     bool known = false;
     for (const auto& k : allowed_keys) known = known || k == key;
-    if (!known)
-      throw input_error(file_, json_child_path(path_, key), "unknown key",
-                        suggestion_text(key, allowed_keys));
+    if (!known) throw UnknownKeyError(file_, json_child_path(path_, key), key, allowed_keys);
   }
   return JsonObject(*this);
 }

@@ -20,6 +20,22 @@ namespace shpb {
 
 class JsonObject;
 
+// The refusal of a key an object does not allow (JsonValue::object), "did you mean" among that
+// object's keys; a reader that knows the file's other objects says where the key belongs
+// (placed(): one rule, core/closest_match.hpp key_suggestion_text).
+class UnknownKeyError : public InputError {
+ public:
+  UnknownKeyError(std::string file, std::string path, std::string key,
+                  std::vector<std::string> allowed);
+  const std::string& file() const { return file_; }
+  // The same refusal, the key looked for in the objects of `schema` too.
+  InputError placed(const std::vector<KeyPlace>& schema) const;
+
+ private:
+  std::string file_, path_, key_;
+  std::vector<std::string> allowed_;
+};
+
 class JsonValue {
  public:
   JsonValue(const nlohmann::json& json, std::string file, std::string path)

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "core/closest_match.hpp"
+
 namespace shpb::input_keys {
 
 using Keys = std::vector<std::string>;
@@ -77,6 +79,38 @@ inline const Keys kPlan = {"striker", "shaper", "specimen", "notes"};
 inline const Keys kPlanStriker = {"length", "velocity"};
 inline const Keys kPlanShaper = {"material", "diameter", "thickness"};
 inline const Keys kPlanSpecimen = {"length"};
+
+// Every object of a scene file, where it is: a key refused in one object is looked for in the
+// others, so that the refusal says where it belongs (core/json_value.hpp, UnknownKeyError).
+inline const std::vector<KeyPlace> kScenePlaces = {
+    {"the top level", &kScene},
+    {"bars[]", &kBar},
+    {"bars[].gauges[]", &kGauge},
+    {"a material", &kMaterial},
+    {"an elastic material", &kElastic},
+    {"a bilinear material", &kBilinear},
+    {"a johnson-cook material", &kJohnsonCook},
+    {"a viscoelastic material", &kViscoelastic},
+    {"a viscoelastic material's arms[]", &kMaxwellArm},
+    {"contact", &kContact},
+    {"contact.interfaces[]", &kInterface},
+    {"simulation", &kSimulation},
+    {"measurement", &kMeasurement},
+    {"measurement.time", &kMeasurementTime},
+    {"measurement.channels[]", &kChannel},
+    {"measurement.channels[].bridge", &kBridge},
+    {"measurement.dispersion", &kDispersion},
+    {"measurement.windows", &kWindows},
+    {"measurement.rate_window", &kRateWindow},
+    {"measurement.corrections", &kCorrections},
+    {"measurement.uncertainty", &kUncertainty},
+    {"measurement.uncertainty.bars.<bar>", &kUncertaintyBar},
+    {"measurement.uncertainty.bars.<specimen>", &kUncertaintySpecimen},
+    {"plan", &kPlan},
+    {"plan.striker", &kPlanStriker},
+    {"plan.shaper", &kPlanShaper},
+    {"plan.specimen", &kPlanSpecimen},
+    {"a material's uncertainty.<parameter>", &kFitInterval}};
 
 // A calibration file (`shpb calibrate`'s calibration.json).
 inline const Keys kCalibration = {"format", "reference_gauge", "absolute_gain",

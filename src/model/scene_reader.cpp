@@ -35,7 +35,19 @@ class SceneReader {
 
   Scene read() { return read(read_json_object_file(file_, display_)); }
 
+  // The scene; a key refused in one of its objects is refused naming the others it belongs to (a
+  // material file's own keys are that file's).
   Scene read(const nlohmann::json& j) {
+    try {
+      return read_objects(j);
+    } catch (const UnknownKeyError& e) {
+      if (e.file() != display_) throw;
+      throw e.placed(input_keys::kScenePlaces);
+    }
+  }
+
+ private:
+  Scene read_objects(const nlohmann::json& j) {
     const JsonValue root(j, display_, "");
     const auto o = root.object(input_keys::kScene);
     Scene scene;
@@ -90,7 +102,6 @@ class SceneReader {
     return scene;
   }
 
- private:
   // "experiments/classic-al6061/scene.json" is named by its folder, other files by their stem.
   std::string default_name() const {
     const auto stem = file_.stem().string();

@@ -122,6 +122,13 @@ const std::vector<BadScene>& cases() {
          s.erase("simulation");
        },
        "simulaton: unknown key: did you mean \"simulation\"?"},
+      // A key of another object of the scene is refused naming where it belongs (before, the
+      // keys of the object it was found in were listed).
+      {"a contact key misspelt at the top level", [](json& s, json&) { s["frition"] = 0.1; },
+       "frition: unknown key: did you mean \"friction\", a key of contact, contact.interfaces[], "
+       "measurement.corrections or measurement.uncertainty?"},
+      {"a simulation key in contact", [](json& s, json&) { s["contact"]["duration"] = "1 ms"; },
+       "contact.duration: unknown key: not here; \"duration\" is a key of simulation"},
       {"a length in kilograms", [](json& s, json&) { s["bars"][1]["length"] = "2 kg"; },
        "bars[1].length: \"2 kg\": \"kg\" is a mass"},
       {"a density in gigapascals",
