@@ -3,7 +3,7 @@
 // (model/setup_report.hpp) — exactly the mesh, time steps and interface links `simulate` will use
 // (discretize(), interface_model()) and, for a scene with a measurement, what `process` will read
 // and use (analysis/process_setup.hpp). A scene that only processes (a bar without material) is
-// checked for `process` alone. A scene with a `plan` block has it read as `plan` reads it.
+// checked for `process` alone.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
@@ -15,9 +15,7 @@
 #include "app/cli_options.hpp"
 #include "app/commands.hpp"
 #include "core/interrupt.hpp"
-#include "core/json_document.hpp"
 #include "model/setup_report.hpp"
-#include "plan/plan_spec.hpp"
 #include "solver/contact.hpp"
 
 namespace shpb {
@@ -64,11 +62,7 @@ json resolved_setup(const Scene& scene, const ChainDiscretization& d) {
 }  // namespace
 
 int run_validate(const ValidateArgs& args) {
-  Scene scene = read_scene(args.scene);
-  // The plan block, which only `plan` uses, checked by `plan`'s own reading: a misspelt bound is
-  // said before a search of minutes, not at its start.
-  if (read_json_object_file(args.scene, args.scene.string()).contains("plan"))
-    (void)read_plan_input(args.scene);
+  Scene scene = read_scene(args.scene);  // its plan block too, as every command reads it
   const bool measured = scene.measurement && !scene.measurement->channels.empty();
   const auto no_material = std::find_if(scene.bars.begin(), scene.bars.end(),
                                         [](const BarSpec& b) { return !b.has_material; });

@@ -272,6 +272,36 @@ struct MeasurementSpec {
   bool operator==(const MeasurementSpec&) const = default;
 };
 
+// The scene's `plan` block (docs/scene-format.md#plan): what `shpb plan` may change in a set-up and
+// within which bounds. Read and checked with the rest of the scene by every command that reads it
+// (a scene is one file: a misspelt bound is refused by simulate as by plan); used by plan alone.
+
+// A quantity the plan may vary within [lo, hi]; lo == hi fixes it.
+struct PlanRange {
+  double lo = 0, hi = 0;
+  bool free() const { return hi > lo; }
+  bool operator==(const PlanRange&) const = default;
+};
+
+// A pulse-shaper material the plan may use: as written (for the planned scene) and as read.
+struct ShaperMaterial {
+  std::string text;  // the scene's name or a path relative to the scene
+  BarSpec bar;       // a shaper bar of this material (length and diameter set by the plan)
+  bool operator==(const ShaperMaterial&) const = default;
+};
+
+struct PlanSpec {
+  PlanRange striker_length;    // fixed at the scene's striker length unless given
+  PlanRange striker_velocity;  // required
+  std::optional<PlanRange> specimen_length;
+  // A pulse shaper between the striker and the incident bar: the scene's own (bars[1] when the
+  // incident bar is bars[2]), or one the plan may add.
+  std::vector<ShaperMaterial> shaper_materials;  // empty: no shaper block
+  PlanRange shaper_diameter, shaper_thickness;
+  bool scene_has_shaper = false;
+  bool operator==(const PlanSpec&) const = default;
+};
+
 struct Scene {
   std::string name;
   std::filesystem::path file;           // where it was read from (for messages and relative paths)
@@ -283,6 +313,7 @@ struct Scene {
   std::vector<std::filesystem::path> material_files;  // the material files it read, once each
   // The calibration whose values replaced the nominal ones (top-level "calibration"), or empty.
   std::filesystem::path calibration_file;
+  std::optional<PlanSpec> plan;  // the `plan` block, if the scene has one
 
   // Index of the first bar with a gauge left of the specimen / right of it, if any.
   std::optional<std::size_t> incident_bar() const;

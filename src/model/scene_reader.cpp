@@ -13,6 +13,7 @@
 #include "model/interface_name.hpp"
 #include "model/material_reader.hpp"
 #include "model/measurement_reader.hpp"
+#include "model/plan_reader.hpp"
 #include "model/scene.hpp"
 #include "model/scene_validation.hpp"
 #include "model/test_setup.hpp"
@@ -99,6 +100,8 @@ class SceneReader {
                        "; paths are relative to the scene)");
       apply_calibration(scene, read_calibration_file(path), path);
     }
+    // Last, on the scene as every command takes it: the bounds `plan` may search within.
+    if (auto v = o.get("plan")) scene.plan = read_plan_block(*v, scene, j, file_);
     return scene;
   }
 

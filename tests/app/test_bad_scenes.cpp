@@ -359,6 +359,23 @@ const std::vector<BadScene>& cases() {
          s["measurement"] = {{"uncertainty", {{"excitation", "1 %"}}}};
        },
        "measurement.uncertainty.excitation: \"1 %\": a bridge's uncertainty needs"},
+      // The plan block, which only `plan` uses, is read by every command with the rest of the
+      // scene (before, simulate, process, compare, study and calibrate ran such a scene).
+      {"a misspelt plan key",
+       [](json& s, json&) {
+         s["plan"] = {{"strikr", {{"velocity", {"5 m/s", "40 m/s"}}}}};
+       },
+       "plan.strikr: unknown key: did you mean \"striker\"?"},
+      {"plan bounds out of order",
+       [](json& s, json&) {
+         s["plan"] = {{"striker", {{"velocity", {"40 m/s", "5 m/s"}}}}};
+       },
+       "plan.striker.velocity: [\"40 m/s\",\"5 m/s\"]: expected a range [lo, hi] with lo ≤ hi"},
+      {"a plan shaper material not there",
+       [](json& s, json&) {
+         s["plan"] = {{"striker", {{"velocity", "10 m/s"}}}, {"shaper", {{"material", "brass"}}}};
+       },
+       "plan.shaper.material: \"brass\": neither a name from the scene's materials nor"},
   };
   return table;
 }
@@ -455,11 +472,21 @@ TEST_CASE("Every command that takes a scene refuses a bad scene with the same li
           "[release-only][app][bad-scenes]") {
   // One validation (model/scene_validation.hpp after read_scene): whatever the command, the same
   // bad scene gives exit 2, the same one-line message and nothing written. `process --campaign`
-  // and `fit` reach the scene through a campaign file naming it.
-  const std::vector<std::string> chosen = {
-      "a length in kilograms",     "a negative length",       "a misspelt bar key",
-      "an unknown contact method", "a Poisson ratio of 0.5",  "a Poisson ratio of -1",
-      "a Courant number above 1",  "a missing material file", "a Johnson-Cook n above 1"};
+  // and `fit` reach the scene through a campaign file naming it. The scene's plan block, which
+  // only `plan` uses, is judged by all of them: a scene is one file.
+  const std::vector<std::string> chosen = {"a length in kilograms",
+                                           "a negative length",
+                                           "a misspelt bar key",
+                                           "an unknown contact method",
+                                           "a Poisson ratio of 0.5",
+                                           "a Poisson ratio of -1",
+                                           "a Courant number above 1",
+                                           "a missing material file",
+                                           "a Johnson-Cook n above 1",
+                                           "a misspelt plan key",
+                                           "plan bounds out of order",
+                                           "a plan shaper material not there",
+                                           "a contact key misspelt at the top level"};
   const std::string copper =
       (fs::path(SHPB_SOURCE_DIR) / "specimens/ofhc-copper.json").lexically_normal().string();
   const auto root = shpb_test::scratch_dir("bad_scenes_commands");
@@ -488,6 +515,7 @@ TEST_CASE("Every command that takes a scene refuses a bad scene with the same li
         {"process", "--campaign", (dir / "campaign.json").string(), "-o", out},
         {"compare", scene.string(), "-o", out},
         {"study", scene.string(), "-o", out},
+        {"calibrate", scene.string(), "-o", out},
         {"fit", (dir / "fit.json").string(), "-o", out}};
     for (const auto& args : commands) {
       INFO("shpb " << args[0] << " " << args[1]);
