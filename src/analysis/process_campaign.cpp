@@ -314,6 +314,7 @@ void process_campaign(const CampaignOptions& args) {
   // one, and a part records their digests for the merge.
   std::vector<fs::path> inputs;
   if (args.campaign) inputs.push_back(*args.campaign);
+  if (c.fit && !c.fit->material_file.empty()) inputs.push_back(c.fit->material_file);  // read too
   for (const auto& test : c.tests)
     for (const auto& f : scene_inputs(read_scene(test.scene))) inputs.push_back(f);
 

@@ -10,9 +10,9 @@
 #include "analysis/comparison.hpp"
 #include "analysis/gauge_signals.hpp"
 #include "analysis/pulse_overlay.hpp"
-#include "fit/fit_spec.hpp"
 #include "fit/least_squares.hpp"
 #include "model/campaign.hpp"
+#include "model/fit_spec.hpp"
 #include "model/scene.hpp"
 
 namespace shpb {

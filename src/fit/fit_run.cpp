@@ -377,7 +377,8 @@ FitRun prepare_fit(const std::filesystem::path& campaign_file, const FitOptions&
   FitRun run;
   run.started = std::chrono::steady_clock::now();
   run.campaign = read_campaign(campaign_file);
-  run.spec = read_fit_spec(run.campaign);
+  // Read with the file; a file without the fit's keys is refused for the missing material.
+  run.spec = run.campaign.fit ? *run.campaign.fit : read_fit_spec(run.campaign);
   for (const auto& test : fit_tests(run.campaign))
     run.cases.push_back(std::make_unique<FitCase>(test, run.campaign, run.spec));
   lay_out(run, options.threads, options.relative_step);

@@ -16,9 +16,9 @@
 #include "core/units.hpp"
 #include "fit/fit_case.hpp"
 #include "fit/fit_interval.hpp"
-#include "fit/fit_spec.hpp"
 #include "fit/least_squares.hpp"
 #include "model/campaign.hpp"
+#include "model/fit_spec.hpp"
 
 namespace shpb {
 

@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "fit/fit_spec.hpp"
+#include "model/fit_spec.hpp"
 
 namespace shpb {
 

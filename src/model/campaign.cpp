@@ -73,6 +73,8 @@ Campaign read_campaign(const fs::path& file) {
     if (auto v = t.get("weight")) test.weight = v->positive_quantity(Dimension::kDimensionless);
     c.tests.push_back(std::move(test));
   }
+  for (const auto& key : input_keys::kCampaignFit)
+    if (!c.fit && o.has(key)) c.fit = read_fit_spec(c);
   return c;
 }
 

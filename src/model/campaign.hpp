@@ -13,8 +13,11 @@
 // 1).
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "model/fit_spec.hpp"
 
 namespace shpb {
 
@@ -31,14 +34,17 @@ struct Campaign {
   std::string name;
   std::vector<CampaignTest> tests;
   nlohmann::json document;  // the whole file, for the readers of command-specific keys
+  // The fit's keys (model/fit_spec.hpp), when the file has any: read and checked for every command.
+  std::optional<FitSpec> fit;
 };
 
 // The files and folders a campaign's output folder holds besides its test folders
 // (analysis/process_campaign.cpp): no test may be named as one of them.
 const std::vector<std::string>& campaign_output_names();
 
-// Reads and checks the file: exit-2 InputErrors name the file and JSON path. Scenes must exist
-// as regular files; they are read by the command that uses them.
+// Reads and checks the file, the fit's keys included when it has any (a file is judged the same by
+// `process --campaign` and `fit`): exit-2 InputErrors name the file and JSON path. Scenes must
+// exist as regular files; they are read by the command that uses them.
 Campaign read_campaign(const std::filesystem::path& file);
 
 // The campaign of scene files named on the command line (`shpb process A.json B.json`): each

@@ -120,9 +120,14 @@ inline const Keys kCalibrationBar = {"bar", "wave_speed_m_s", "poisson_ratio", "
 inline const Keys kCalibrationGauge = {"gauge", "bar", "position_m", "gain", "delay_s"};
 inline const Keys kCalibratedValue = {"value", "sd"};
 
-// A campaign file (the fit's keys included, so one file serves `process` and `fit`).
-inline const Keys kCampaign = {"name", "notes",    "tests",  "material",
-                               "free", "nuisance", "stages", "loss"};
+// A campaign file: its tests, and the fit's keys (model/fit_spec.hpp), so one file serves `process`
+// and `fit`; both read all of them.
+inline const Keys kCampaignFit = {"material", "free", "nuisance", "stages", "loss"};
+inline const Keys kCampaign = [] {
+  Keys keys = {"name", "notes", "tests"};
+  keys.insert(keys.end(), kCampaignFit.begin(), kCampaignFit.end());
+  return keys;
+}();
 inline const Keys kCampaignTest = {"scene", "name", "weight"};
 
 // A Monte Carlo distributions file (`study --sweep monte-carlo`).

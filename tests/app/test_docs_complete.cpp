@@ -16,7 +16,7 @@
 
 #include "app/commands.hpp"
 #include "core/enum_names.hpp"
-#include "fit/fit_spec.hpp"
+#include "model/fit_spec.hpp"
 #include "model/input_keys.hpp"
 #include "model/law_parameters.hpp"
 #include "model/material.hpp"

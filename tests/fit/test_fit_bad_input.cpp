@@ -1,5 +1,6 @@
 // shpb fit with bad campaign files: exit 2, one line naming the file and the JSON path, and no
-// output folder written (docs/commands.md).
+// output folder written (docs/commands.md). `process --campaign` judges the fit's keys of the same
+// file the same way (a campaign file is one file for both commands).
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
@@ -43,10 +44,12 @@ void write_scenes(const fs::path& dir) {
 
 struct Case {
   std::string campaign, expected;
+  bool fit_use = false;  // refused for what only the fit does with a test (not its keys)
 };
 
 // Each campaign: exit 2, one line starting with the campaign file and holding `expected`, and no
-// output folder.
+// output folder; `process --campaign` of the file the same (before, it processed the tests and
+// ignored the fit's keys whatever they held).
 void check_rejected(const fs::path& dir, const std::vector<Case>& cases) {
   int k = 0;
   for (const Case& c : cases) {
@@ -60,6 +63,11 @@ void check_rejected(const fs::path& dir, const std::vector<Case>& cases) {
     CHECK(r.err.rfind("error: " + file.string() + ": ", 0) == 0);
     CHECK(r.err.find(c.expected) != std::string::npos);
     CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    CHECK(!fs::exists(out));
+    if (c.fit_use) continue;
+    const auto p = run_shpb({"process", "--campaign", file.string(), "-o", out.string(), "-q"});
+    CHECK(p.code == 2);
+    CHECK(p.err == r.err);
     CHECK(!fs::exists(out));
   }
 }
@@ -103,7 +111,7 @@ TEST_CASE("Bad fit campaigns: exit 2 naming file and JSON path, nothing written"
       {"{" + tests + "," + material + "}", "free: (missing): nothing to fit"},
       {R"({"tests": [{"scene": "unmeasured.json"}],)" + material +
            R"(, "free": {"A": ["50 MPa", "150 MPa"]}})",
-       "tests[0].scene: "},
+       "tests[0].scene: ", true},
   };
   check_rejected(dir, cases);
   fs::remove_all(dir);

@@ -47,7 +47,9 @@ TEST_CASE("A campaign lists its tests relative to the campaign file", "[campaign
   Scratch s;
   const auto c = read_campaign(s.write(R"({"name": "cu", "tests": [
       {"scene": "a/scene.json"}, {"scene": "b/fast.json", "name": "4000 per s", "weight": "2"}],
-      "free": {"A": [1, 2]}})"));
+      "material": {"model": "elastic", "density": 2700, "youngs_modulus": "70 GPa",
+                   "poisson_ratio": 0.33},
+      "free": {"youngs_modulus": ["60 GPa", "80 GPa"]}})"));
   REQUIRE(c.name == "cu");
   REQUIRE(c.tests.size() == 2);
   CHECK(c.tests[0].name == "a");  // a scene.json is named by its folder, as scenes are
@@ -55,7 +57,21 @@ TEST_CASE("A campaign lists its tests relative to the campaign file", "[campaign
   CHECK(fs::equivalent(c.tests[0].scene, s.dir / "a" / "scene.json"));
   CHECK(c.tests[1].name == "4000 per s");
   CHECK(c.tests[1].weight == 2.0);
-  CHECK(c.document.contains("free"));  // the fit's keys are kept for its own reader
+  // The fit's keys, read with the file for every command.
+  REQUIRE(c.fit);
+  REQUIRE(c.fit->free.size() == 1);
+  CHECK(c.fit->free[0].lower == 60e9);
+}
+
+TEST_CASE("A campaign's fit keys are read with the file, for every command", "[campaign]") {
+  // A file is judged the same by `process --campaign` and `fit`: a campaign without fit keys has
+  // none; one with any has them all read, as fit reads them (before, read by fit alone).
+  Scratch s;
+  CHECK_FALSE(read_campaign(s.write(R"({"tests": [{"scene": "a/scene.json"}]})")).fit);
+  const auto file = s.write(R"({"tests": [{"scene": "a/scene.json"}], "loss": "huber"})");
+  CHECK(error_of(file) == file.string() +
+                              ": material: (missing): required: the starting material file (the "
+                              "law to fit)");
 }
 
 TEST_CASE("Bad campaigns name the file, the JSON path and what was expected", "[campaign]") {

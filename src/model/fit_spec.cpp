@@ -1,4 +1,4 @@
-#include "fit/fit_spec.hpp"
+#include "model/fit_spec.hpp"
 
 #include <algorithm>
 #include <set>
@@ -6,6 +6,7 @@
 #include "core/closest_match.hpp"
 #include "core/json_document.hpp"
 #include "core/json_value.hpp"
+#include "model/campaign.hpp"
 #include "model/law_parameters.hpp"
 #include "model/material_reader.hpp"
 #include "model/scene.hpp"

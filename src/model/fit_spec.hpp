@@ -1,5 +1,7 @@
 #pragma once
-// The fit's keys of a campaign file (model/campaign.hpp reads tests[]): docs/methods.md §9.
+// The fit's keys of a campaign file (docs/methods.md §9), read with the rest of the file by
+// read_campaign (model/campaign.hpp) when it has any: `process --campaign` judges them as `fit`
+// does.
 //   "material": FILE | {...}       the starting law; its model is the one fitted
 //   "free": {"A": [lo, hi], ...}   parameters of that law freed within bounds (others stay)
 //   "nuisance": {"striker_velocity": [lo, hi] | "10 %", "rise_time": [lo, hi],
@@ -16,10 +18,11 @@
 
 #include "core/enum_names.hpp"
 #include "core/units.hpp"
-#include "model/campaign.hpp"
 #include "model/material.hpp"
 
 namespace shpb {
+
+struct Campaign;
 
 struct FreeParameter {
   std::string name;
@@ -79,7 +82,8 @@ struct FitSpec {
   FitLoss loss = FitLoss::kLinear;
 };
 
-// Reads and checks the fit's keys; InputError (exit 2) names the file and JSON path.
+// Reads and checks the fit's keys of a campaign (read_campaign calls it when the file has any);
+// InputError (exit 2) names the file and JSON path: without `material`, that it is required.
 FitSpec read_fit_spec(const Campaign& campaign);
 
 }  // namespace shpb
