@@ -720,6 +720,28 @@ void refuse_rows_off_the_level(const DelimitedText& text, std::size_t first, std
     refuse_header_rows(text, first, r - first, columns[refused->first], names[refused->first],
                        refused->second);
 }
+// Whether a header field names a time column: "Time", "TIME", "t", or a time unit ("Time (ms)",
+// "time_s", a unit row's "(us)").
+bool names_time(std::string_view field) {
+  std::string lower(field);
+  for (auto& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return lower == "t" || lower.rfind("time", 0) == 0 ||
+         header_unit(field, time_unit, kTimeUnitCuts).has_value();
+}
+
+// RawSignalColumns::time_column_shown of the column read as the time: the header (or the row of
+// names above a unit row) names time there, and no channel is read from it.
+bool time_column_shown(const TextRow* header, const TextRow* named,
+                       std::optional<std::size_t> time_index,
+                       const std::vector<std::size_t>& channels) {
+  if (!time_index || std::find(channels.begin(), channels.end(), *time_index) != channels.end())
+    return false;
+  for (const TextRow* row : {header, named})
+    if (row && *time_index < row->fields.size() && names_time(row->fields[*time_index]))
+      return true;
+  return false;
+}
+
 // A header that names the time column's unit must agree with the unit it is read in: a column in
 // ms read as seconds passes the sample-interval check at 10 MHz and above (0.1 ms -> 1e-4 s).
 void check_time_unit(const DelimitedText& text, const TextRow& header, std::size_t time_index,
@@ -834,6 +856,7 @@ RawSignalColumns read_csv_columns(const DelimitedText& text, const SignalRequest
     for (std::size_t k = 0; k < request.column_units.size(); ++k)
       check_value_unit(text, *header, indices[k], request.column_units[k]);
   RawSignalColumns raw = read_columns(text, first, end, named, time_index, indices, names);
+  raw.time_column_shown = time_column_shown(header, named, time_index, indices);
   if (clock) {  // sample i at start + i·interval
     for (std::size_t i = 0; i < raw.time.size(); ++i) {
       raw.time[i] = clock->start_s + static_cast<double>(i) * clock->interval_s;
@@ -876,7 +899,10 @@ RawSignalColumns read_tektronix_columns(const DelimitedText& text, const SignalR
   const std::size_t time_index = request.time_column.index
                                      ? static_cast<std::size_t>(*request.time_column.index)
                                      : kTimeColumn;
-  return read_columns(text, 0, text.rows.size(), nullptr, time_index, indices, names);
+  RawSignalColumns raw =
+      read_columns(text, 0, text.rows.size(), nullptr, time_index, indices, names);
+  raw.time_column_shown = true;  // the format's own
+  return raw;
 }
 
 }  // namespace shpb

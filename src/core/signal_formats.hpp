@@ -10,8 +10,11 @@ namespace shpb {
 struct RawSignalColumns {
   std::vector<double> time;       // in the file's time unit (times request.time_unit_s later)
   bool time_from_header = false;  // LANL: start + i·dt, nothing to check
-  double header_dt = 0;           // … that dt
-  LineMap lines;                  // line of each sample
+  // The column read as the time shows itself one (the format's own, or a header naming time or a
+  // time unit, and no channel read from it): a refusal of its stamps is of a time column.
+  bool time_column_shown = false;
+  double header_dt = 0;  // … that dt
+  LineMap lines;         // line of each sample
   std::vector<std::string> names;
   std::vector<std::vector<double>> values;
   std::vector<std::string> warnings;  // a time base read from the file's header

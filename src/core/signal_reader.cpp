@@ -277,9 +277,12 @@ void refuse_unresolved_stamps(const std::filesystem::path& file, const LineMap& 
 }
 
 // What a refusal of the time stamps adds when the first column was taken as the time column by
-// default: a file without a time column reads its first channel there.
-std::string no_time_column_hint(const SignalRequest& request) {
-  if (!request.time_column.name.empty() || request.time_column.index) return "";
+// default and does not show itself one (RawSignalColumns::time_column_shown): a file without a
+// time column reads its first channel there. A time column the scene did not name is refused as
+// a named one is.
+std::string no_time_column_hint(const SignalRequest& request, const RawSignalColumns& raw) {
+  if (!request.time_column.name.empty() || request.time_column.index || raw.time_column_shown)
+    return "";
   return "; a file without a time column needs its time base: measurement.time.interval (and "
          "start)";
 }
@@ -304,7 +307,7 @@ void check_time_base(const std::filesystem::path& file, RawSignalColumns& raw,
       throw input_error(file.string(), "line " + std::to_string(raw.lines[i]) + " (time column)",
                         seconds(t[i]),
                         "time goes backwards (previous sample " + seconds(t[i - 1]) +
-                            "); expected increasing time" + no_time_column_hint(request));
+                            "); expected increasing time" + no_time_column_hint(request, raw));
     repeats += t[i] == t[i - 1];
   }
   if (repeats > 0) refuse_extreme_pairs(file, raw.lines, out);
@@ -321,7 +324,8 @@ void check_time_base(const std::filesystem::path& file, RawSignalColumns& raw,
   const double span = t.back() - t.front();
   if (!(span > 0))
     throw input_error(file.string(), "line " + std::to_string(lines.back()) + " (time column)",
-                      seconds(t.back()), "time does not advance" + no_time_column_hint(request));
+                      seconds(t.back()),
+                      "time does not advance" + no_time_column_hint(request, raw));
   // The base rebuilt on the stamps' least-squares line, with a warning saying why.
   auto rebuild = [&](const ClockFit& c, const std::string& why) {
     for (std::size_t i = 0; i < n; ++i) out.time_s[i] = c.t0 + static_cast<double>(i) * c.dt;
@@ -339,7 +343,7 @@ void check_time_base(const std::filesystem::path& file, RawSignalColumns& raw,
     std::size_t distinct = 1;
     for (std::size_t i = 1; i < n; ++i) distinct += t[i] != t[i - 1];
     const ClockFit c = fit_clock(t);
-    refuse_gap_in_rounded_stamps(file, lines, t, c, no_time_column_hint(request));
+    refuse_gap_in_rounded_stamps(file, lines, t, c, no_time_column_hint(request, raw));
     rebuild(c, "time stamps repeat (" + std::to_string(distinct) + " distinct values in " +
                    std::to_string(n) + " rows: the column was rounded)");
     return;
@@ -376,7 +380,8 @@ void check_time_base(const std::filesystem::path& file, RawSignalColumns& raw,
     throw input_error(file.string(), "line " + std::to_string(lines[i]) + " (time column)",
                       "step " + seconds(t[i] - t[i - 1]),
                       "expected uniform sampling at " + seconds(median_step) +
-                          " (gap or jump in the record)" + hint + no_time_column_hint(request));
+                          " (gap or jump in the record)" + hint +
+                          no_time_column_hint(request, raw));
   }
   if (!resample) {
     out.dt_s = mean_step;

@@ -756,6 +756,40 @@ TEST_CASE("Rounded stamps with samples missing are refused, not spread over the 
   CHECK(twice.find("samples missing or repeated") != std::string::npos);
 }
 
+TEST_CASE("A refusal of default time stamps asks for a time base only where there may be none",
+          "[core][signal]") {
+  // With no time column named, the first column is read as the time. Its stamps refused, the
+  // hint that a file without a time column needs measurement.time.interval fits a first column
+  // that is a channel (read as one, or named as no time column is); it was also given for a
+  // record whose first column is its time, named so, with a gap in it.
+  const std::string hint = "a file without a time column needs its time base";
+  struct Case {
+    const char* file;
+    std::string text;
+    std::vector<ColumnRef> columns;
+    bool hinted;
+  };
+  const std::string gap = "0,1,2\n1,1,2\n2,1,2\n5,1,2\n6,1,2\n";  // stamps 0 1 2 5 6
+  const std::string back = "0.5,1,2\n0.2,1,2\n0.7,1,2\n";         // a signal's values
+  const Case cases[] = {
+      {"time_s_gap.csv", "time_s,a,b\n" + gap, {by_name("a")}, false},
+      {"time_us_gap.csv", "Time (us),a,b\n" + gap, {by_name("a")}, false},
+      {"time_gap.csv", "Time,a,b\n" + gap, {by_name("a")}, false},
+      {"t_back.csv", "t,a,b\n" + back, {by_name("a")}, false},
+      {"channels_back.csv", "a,b,c\n" + back, {by_name("a"), by_name("b")}, true},
+      {"trigger_back.csv", "trigger,a,b\n" + back, {by_name("a")}, true},
+      {"time_read_as_channel.csv", "time,a,b\n" + back, {by_index(0), by_name("a")}, true},
+      {"no_header_back.csv", back, {by_index(1)}, true},
+  };
+  for (const Case& c : cases) {
+    const std::string e =
+        error_of([&] { read_signal_columns(csv_request(write_file(c.file, c.text), c.columns)); });
+    INFO(e);
+    CHECK(e.find(std::string(c.file) + ": line ") != std::string::npos);
+    CHECK((e.find(hint) != std::string::npos) == c.hinted);
+  }
+}
+
 // A 3 MHz record exported with its time in µs to one decimal: the steps read 0.3, 0.3, 0.4 µs
 // (20 % apart, beyond what resampling takes for export jitter), yet every stamp lies within
 // 0.05 µs of the uniform clock it was printed from. The base is rebuilt on the least-squares line
