@@ -36,6 +36,19 @@ class UnknownKeyError : public InputError {
   std::vector<std::string> allowed_;
 };
 
+// read(), a key it refuses in `file` said with where it belongs among `schema` (the objects of
+// that file: UnknownKeyError::placed); a refusal in another file (a material file a scene names)
+// as it is.
+template <class Read>
+auto read_placing_keys(const std::string& file, const std::vector<KeyPlace>& schema, Read&& read) {
+  try {
+    return read();
+  } catch (const UnknownKeyError& e) {
+    if (e.file() != file) throw;
+    throw e.placed(schema);
+  }
+}
+
 class JsonValue {
  public:
   JsonValue(const nlohmann::json& json, std::string file, std::string path)

@@ -27,9 +27,7 @@ std::string name_of_scene(const fs::path& scene) {
   }
   return scene.stem().string();
 }
-}  // namespace
-
-Campaign read_campaign(const fs::path& file) {
+Campaign read_campaign_objects(const fs::path& file) {
   Campaign c;
   c.file = file;
   c.display = file.string();
@@ -76,6 +74,15 @@ Campaign read_campaign(const fs::path& file) {
   for (const auto& key : input_keys::kCampaignFit)
     if (!c.fit && o.has(key)) c.fit = read_fit_spec(c);
   return c;
+}
+
+}  // namespace
+
+// A key refused in one object of the file names the other it belongs to ("weight" at the top
+// level: a key of tests[]).
+Campaign read_campaign(const fs::path& file) {
+  return read_placing_keys(file.string(), input_keys::kCampaignPlaces,
+                           [&] { return read_campaign_objects(file); });
 }
 
 Campaign campaign_of_scenes(const std::vector<fs::path>& scenes) {

@@ -129,6 +129,9 @@ inline const Keys kCampaign = [] {
   return keys;
 }();
 inline const Keys kCampaignTest = {"scene", "name", "weight"};
+// Its objects, as kScenePlaces.
+inline const std::vector<KeyPlace> kCampaignPlaces = {{"the top level", &kCampaign},
+                                                      {"tests[]", &kCampaignTest}};
 
 // A Monte Carlo distributions file (`study --sweep monte-carlo`).
 inline const Keys kDistributions = {"values", "notes"};

@@ -39,12 +39,7 @@ class SceneReader {
   // The scene; a key refused in one of its objects is refused naming the others it belongs to (a
   // material file's own keys are that file's).
   Scene read(const nlohmann::json& j) {
-    try {
-      return read_objects(j);
-    } catch (const UnknownKeyError& e) {
-      if (e.file() != display_) throw;
-      throw e.placed(input_keys::kScenePlaces);
-    }
+    return read_placing_keys(display_, input_keys::kScenePlaces, [&] { return read_objects(j); });
   }
 
  private:

@@ -89,6 +89,14 @@ TEST_CASE("Bad campaigns name the file, the JSON path and what was expected", "[
              Catch::Contains("tests[1].name") && Catch::Contains("unique"));
   CHECK_THAT(error_of(s.write(R"({"tests": [{"scene": "a/scene.json", "weight": 0}]})")),
              Catch::Contains("tests[0].weight") && Catch::Contains("> 0"));
+  // A key of the file's other object is named there (before: the keys of this one were listed).
+  const auto file = s.write(R"({"tests": [{"scene": "a/scene.json"}], "weight": 2})");
+  CHECK(error_of(file) ==
+        file.string() + ": weight: unknown key: not here; \"weight\" is a key of tests[]");
+  const auto misplaced = s.write(R"({"tests": [{"scene": "a/scene.json", "stages": []}]})");
+  CHECK(error_of(misplaced) ==
+        misplaced.string() +
+            ": tests[0].stages: unknown key: not here; \"stages\" is a key of the top level");
 }
 
 // A test name names the test's output folder (docs/scene-format.md, campaign files), so it must
