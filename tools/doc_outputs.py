@@ -23,6 +23,18 @@ list the C++ writers and the report take their names from): a line
 (the schema's id of a file) is followed by the table of that file's columns, checked and rewritten
 like the printed output.
 
+The keys of a JSON file a command writes (`summary.json`, `plan.json`, or what `validate --json`
+prints) are checked against the table or paragraph that documents them: a line
+
+    <!-- shpb-keys: summary.json: simulate experiments/classic-al6061/scene.json -o results/x -q -->
+
+(the file in the command's `-o` folder, or `stdout`, then the command) is followed by that table or
+paragraph. Every file and folder the command wrote must be named in backquotes in the page's section
+that holds the line, and in the first line of `shpb CMD --help` where that line says what it writes. Every key the file holds must be named there in backquotes (`bars[]`, `quantities.<name>`
+name `bars` and `quantities`), and every key of an object it holds (of every element, for an array
+of objects) named in the key's table row, or in the paragraph; a key a table row names outside its
+parentheses must be in the file unless the row says when it is written ("only ...").
+
 Every command a page shows (`shpb CMD ...`, `build/shpb CMD ...`, in code or in prose) is also
 checked for its options: each `-x` or `--name` after the command must be one that `shpb CMD
 --help` lists (both modes; a wrong one is reported with its file and line, and is not rewritten).
@@ -42,6 +54,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 MARKER = re.compile(r"^<!-- shpb-output: (.+?) -->$")
 SCHEMA_MARKER = re.compile(r"^<!-- shpb-schema: ([a-z_]+) -->$")
+KEYS_MARKER = re.compile(r"^<!-- shpb-keys: ([^:]+): (.+?) -->$")
 SCHEMA = ROOT / "src" / "core" / "output_schema.json"
 # Progress lines on stderr ("simulating: 40%"): left out of the documented output.
 PROGRESS = re.compile(r"^[a-z ]+: \d+%$")
@@ -122,6 +135,107 @@ def schema_blocks(lines: list[str]):
             yield match.group(1), i + 1, end
 
 
+def documented_names(text: str) -> set[str]:
+    """The keys text names in backquotes: `bars[]` and `quantities.<name>` name bars and quantities."""
+    return {re.split(r"[\[.<]", name, maxsplit=1)[0] for name in re.findall(r"`([^`]+)`", text)}
+
+
+def names(text: str, key: str) -> bool:
+    """True if text names key: as a word, or by a backquoted pattern (`nrmse_<pulse>_before`)."""
+    if re.search(rf"(?<![\w-]){re.escape(key)}(?![\w-])", text):
+        return True
+    patterns = [re.escape(n) for n in re.findall(r"`([^`]*<[^`]+)`", text)]
+    return any(re.fullmatch(re.sub(r"<[^>]+>", r"[^\\s]+", p), key) for p in patterns)
+
+
+def outside_parentheses(text: str) -> str:
+    depth, kept = 0, []
+    for c in text:
+        depth += c == "("
+        if depth == 0:
+            kept.append(c)
+        depth -= c == ")" and depth > 0
+    return "".join(kept)
+
+
+def written_json(exe: str, what: str, command: str):
+    result = subprocess.run([exe, *shlex.split(command)], cwd=ROOT, capture_output=True, text=True,
+                            timeout=600, check=False)
+    if result.returncode != 0:
+        raise SystemExit(f"shpb {command}: exit {result.returncode}: {result.stderr.strip()}")
+    if what == "stdout":
+        return json.loads(result.stdout), None
+    words = shlex.split(command)
+    folder = ROOT / next(words[i + 1] for i, w in enumerate(words) if w in ("-o", "--output"))
+    return json.loads((folder / what).read_text(encoding="utf-8")), folder
+
+
+def section(lines: list[str], number: int) -> str:
+    """The text of the `## ` section that holds line number."""
+    start = next(i for i in range(number, -1, -1) if lines[i].startswith("## "))
+    end = next((i for i in range(number + 1, len(lines)) if lines[i].startswith("## ")), len(lines))
+    return "\n".join(lines[start:end])
+
+
+def file_mismatches(exe: str, where: str, command: str, folder: Path, text: str) -> list[str]:
+    """The files of an output folder that its page section, or its command's --help line saying
+    what it writes, does not name (a folder with a marker of its own, a campaign's test, aside)."""
+    written = sorted(p.name + ("/" if p.is_dir() else "") for p in folder.iterdir()
+                     if p.name != ".shpb-output" and not (p / ".shpb-output").exists())
+    found = [f"{where}: writes {name}, which its section does not name" for name in written
+             if not re.search(rf"`{re.escape(name.rstrip('/'))}/?`", text)]
+    described = subprocess.run([exe, command.split()[0], "--help"], capture_output=True, text=True,
+                               check=False).stdout.split("\n")[0]
+    if "write" in described:
+        found += [f"{where}: writes {name}, which `shpb {command.split()[0]} --help` does not name"
+                  for name in written if name.rstrip("/") not in described]
+    return found
+
+
+def nested_keys(value) -> set[str]:
+    """The keys of an object, or of every object of an array."""
+    items = value if isinstance(value, list) else [value]
+    return {k for item in items if isinstance(item, dict) for k in item}
+
+
+def key_mismatches(exe: str, name: str, lines: list[str]) -> list[str]:
+    """file:line: the keys of each marked JSON file that its table or paragraph does not match."""
+    found = []
+    for number, line in enumerate(lines):
+        match = KEYS_MARKER.match(line)
+        if not match:
+            continue
+        what, command = match.groups()
+        end = number + 1
+        while end < len(lines) and lines[end].strip():
+            end += 1
+        block = lines[number + 1:end]
+        written, folder = written_json(exe, what, command)
+        where = f"{name}:{number + 1}: {what} of shpb {command.split()[0]}"
+        if folder is not None:
+            found += file_mismatches(exe, where, command, folder, section(lines, number))
+        rows = {}  # key -> its table row, for the keys a row names outside its parentheses
+        for row in block:
+            if row.startswith("|") and not re.match(r"^\|\s*(key|-+)\s*\|", row):
+                first = row.split("|")[1]
+                for key in documented_names(outside_parentheses(first)):
+                    rows[key] = row
+        named = documented_names("\n".join(block))
+        for key, value in written.items():
+            if key not in named:
+                found.append(f"{where}: writes `{key}`, which the documentation does not name")
+                continue
+            if isinstance(value, dict) and value and all(isinstance(v, dict) for v in value.values()):
+                continue  # a map of records by a name of the data (fit's parameters): not keys
+            text = rows.get(key, "\n".join(block))
+            found += [f"{where}: writes `{key}` with `{inner}`, which its documentation does not name"
+                      for inner in sorted(nested_keys(value)) if not names(text, inner)]
+        found += [f"{where}: documents `{key}`, which it does not write (a row for a key written "
+                  "only sometimes says when: \"only ...\")"
+                  for key, row in rows.items() if key not in written and "only" not in row]
+    return found
+
+
 # A command shown on a page: `shpb CMD` and its arguments up to the end of the code span, the
 # table cell, a comment or the line.
 SHOWN_COMMAND = re.compile(r"\bshpb (validate|simulate|process|compare|dispersion|study|fit|calibrate"
@@ -156,6 +270,11 @@ def main(argv: list[str]) -> int:
     unknown = unknown_options(exe, files)
     if unknown:
         print("\n".join(unknown), file=sys.stderr)
+        return 1
+    mismatched = [m for name in files
+                  for m in key_mismatches(exe, name, Path(name).read_text(encoding="utf-8").split("\n"))]
+    if mismatched:
+        print("\n".join(mismatched), file=sys.stderr)
         return 1
     stale = 0
     for name in files:

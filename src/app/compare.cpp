@@ -73,7 +73,8 @@ Command add_compare_command(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "compare",
       "Simulate the scene and compare its gauge signals with the measured ones, pulse "
-      "by pulse; write comparison.csv and summary.json");
+      "by pulse; write comparison.csv, signals.csv, summary.json and the simulation's files in "
+      "simulation/");
   cmd->add_option("scene", o->args.scene, "Scene JSON file with a measurement")->required();
   cmd->add_option("-o,--output", o->args.output, "Output folder (replaced atomically)")->required();
   cmd->add_flag("--no-dispersion", o->no_dispersion,

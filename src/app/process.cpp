@@ -52,7 +52,8 @@ Command add_process_command(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "process",
       "Reduce gauge signals (the scene's measurement, or --signals) to aligned pulses "
-      "and 1/2/3-wave stress–strain curves; write pulses.csv, curve.csv, summary.json");
+      "and 1/2/3-wave stress–strain curves; write raw_signals.csv, pulses.csv, curve.csv, "
+      "summary.json (several tests: a folder each, campaign.csv and summary.json)");
   cmd->add_option("scene", o->scenes,
                   "Scene JSON file (bars, gauges, specimen, measurement); several: a "
                   "campaign, one folder per test and campaign.csv");
