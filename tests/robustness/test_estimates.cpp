@@ -44,9 +44,9 @@ struct Subreaper {
 // at the resident set it inherits (for posix_spawn's vfork, the parent's own peak) and keeps it
 // across exec, so shpb spawned by this test process reported the peak earlier tests of the same
 // process had raised it to (154 MB after the 205 tests declared before it; the run alone: 76 MB).
-// shpb is therefore started
-// by a shell that leaves it running in the background and exits: forked from the shell, shpb
-// starts from the shell's few MB, and this process, its subreaper meanwhile, waits for it.
+// shpb is therefore started by a shell that leaves it running in the background and exits: forked
+// from the shell, shpb starts from the shell's few MB, and this process, its subreaper meanwhile,
+// waits for it.
 double peak_rss_bytes(const std::vector<std::string>& args, const fs::path& scratch, int& code) {
   const Subreaper subreaper;
   const fs::path pid_file = scratch / "shpb.pid";
