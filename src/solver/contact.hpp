@@ -67,9 +67,10 @@ struct InterfaceState {
   // (the link is integrated), its last one if not (d is measured).
   double link_d[2] = {0, 0}, link_v[2] = {0, 0}, link_tau[2] = {0, 0};
   // Results of the last solve.
-  double force_N = 0;   // compression positive
-  double gap_m = 0;     // total gap g
-  double energy_J = 0;  // potential + penalty kinetic energy held by the links
+  double force_N = 0;       // compression positive
+  double peak_force_N = 0;  // the largest force_N so far (scheduler.cpp, book_solve)
+  double gap_m = 0;         // total gap g
+  double energy_J = 0;      // potential + penalty kinetic energy held by the links
   // An end segment on this tie's clock (solver/end_segment.hpp): its kinetic and strain energy at
   // the last solve, recorded with the interface (it steps at the interface's instants).
   double segment_kinetic_J = 0, segment_strain_J = 0;

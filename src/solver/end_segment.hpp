@@ -14,6 +14,8 @@
 // tied pair's mode, where the slow bar cannot follow it (above its cut-off 2c/h), decays into the
 // slow bar by e^(−κ) per element, cosh(κ/2) = ω_m h/(2c): three elements keep the joint away from
 // it (one is not enough: measured, it resonates).
+#include <vector>
+
 #include "model/scene.hpp"
 #include "solver/chain.hpp"
 #include "solver/contact.hpp"
@@ -26,6 +28,15 @@ inline constexpr int kSegmentElements = 3;
 // 411/452, 6e-3), at 1.01 and 1.02 (30 and 24 elements) not; equal bars are at 1 (the mini-Kolsky
 // striker on its bar, 1.02, keeps its coupling: segments there doubled its energy error).
 inline constexpr double kLightStiffEnd = 1.2;
+// A law specimen's face is unloaded, for its end segment to start (start_release_segments), once
+// it is open and the slow bar's end element carries less than this share of the face's largest
+// force. Measured (docs/validation.md, the 144 set-ups of "A law specimen that stays elastic"):
+// thin wafers open within the loading with more than 10 % of it there; 25 m/s copper specimens
+// opened with 1-10 % there, amid the unloading's own energy error, and switching then created
+// 0.07-0.08 % more (first runs 0.43-0.49 -> 0.51-0.55 % off, repeated where the coupling of §3.4
+// was not); at 1 % none, every set-up repeated exactly as without. The shipped experiments' faces
+// reach it within 0-7 µs of their first release.
+inline constexpr double kUnloadedShare = 0.01;
 
 // Gives the slow bar of each asynchronous localized tie (rigid links; finite links where the fast
 // bar is squeezed between two others, a pulse shaper or a specimen) with a light, stiff
@@ -35,8 +46,18 @@ inline constexpr double kLightStiffEnd = 1.2;
 // inertia), a fast bar with fixed steps (an elastic specimen too), no cut end within the segment
 // (a gauge within it reads it on its own clock: segmented_element_strain). `law_specimen`:
 // a specimen with a material law (on its adaptive step too) takes them as well (simulation.cpp
-// says when).
+// says when); else its faces' segments wait in chain.release_segments for start_release_segments.
 void plan_end_segments(Chain& chain, const Scene& scene, bool law_specimen);
+
+// At an instant τ, before anything steps there (scheduler rule 11): a waiting segment at a law
+// specimen's face starts at the first instant of its clock (the specimen) at which the face is
+// open after its loading (kUnloadedShare), so the run until then is the one without it. After
+// the release the slow bar's end and the specimen's were pinned together by the slow end's reset
+// to the frame (rules 4–5) and switched the face 20-170 times as often as the global steps, one
+// clock, at the same meshes (classic and LANL copper experiments, docs/methods.md §3.7). Its nodes
+// (the joint aside) go from the slow bar's pending instant back to τ on their straight paths and
+// step on the clock from there.
+void start_release_segments(Chain& chain, const std::vector<char>& stepping, double tau);
 
 // At an instant τ of the segment's clock bar (which steps), in take_instant's order: `prepare`
 // puts a tied segment end at the frame (rule 4) and assembles the segment's element forces with

@@ -99,10 +99,12 @@ std::string describe_failure(const Chain& chain, double t, const char* energy, d
   return out.str();
 }
 
-// What every solve of interface k leaves in the chain: its closing losses and the largest
-// interpenetration, also in elements of the smaller neighbouring one.
+// What every solve of interface k leaves in the chain: its closing losses, its largest force and
+// the largest interpenetration, also in elements of the smaller neighbouring one.
 void book_solve(Chain& chain, std::size_t k, const ContactResult& res) {
-  const double gap = chain.interface_states[k].gap_m;
+  InterfaceState& is = chain.interface_states[k];
+  const double gap = is.gap_m;
+  is.peak_force_N = std::max(is.peak_force_N, is.force_N);
   chain.contact_dissipated_J[k] += res.dissipated_J;
   chain.max_penetration_m = std::max(chain.max_penetration_m, -gap);
   chain.max_penetration_elements =
@@ -116,6 +118,9 @@ void take_instant(Chain& chain, ChainRecorders& recorders, const std::vector<cha
                   std::size_t first, std::size_t last, double tau) {
   const std::size_t ni = chain.interfaces.size();
   const std::size_t k0 = first > 0 ? first - 1 : 0, k1 = std::min(last + 1, ni);
+
+  // Rule 11: a law specimen's face takes its end segment after its first release.
+  if (!chain.release_segments.empty()) start_release_segments(chain, stepping, tau);
 
   // Rule 4: a stepping end tied to a frame is put where the frame is.
   for (std::size_t k = k0; k < k1; ++k)

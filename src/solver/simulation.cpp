@@ -282,13 +282,16 @@ SimulationResult run_chain(const Scene& scene, const ChainDiscretization& d,
     st.steps = s.step;
     st.courant = b.courant_at(s.dt);
     st.node_updates = s.node_updates;
-    // An end segment's nodes step on their clock bar's instants (end_segment.hpp).
+    // An end segment's nodes step on their clock bar's instants from the instant it started at
+    // (end_segment.hpp), on the bar's before.
     st.node_updates_full_model = static_cast<long long>(s.step) *
                                  (b.full_nodes - b.segment_elements[0] - b.segment_elements[1]);
     for (const EndSegment& seg : chain.segments)
       if (seg.bar == i)
         st.node_updates_full_model +=
-            static_cast<long long>(chain.states[seg.clock_bar].step) * seg.elements;
+            static_cast<long long>(seg.bar_steps_before + chain.states[seg.clock_bar].step -
+                                   seg.clock_steps_before) *
+            seg.elements;
     double momentum = 0;
     for (int n = 0; n < b.nodes; ++n) momentum += b.mass_kg[n] * (s.v[n] + b.initial_velocity_m_s);
     st.final_velocity_m_s = momentum / b.total_mass_kg();
@@ -304,6 +307,7 @@ SimulationResult run_chain(const Scene& scene, const ChainDiscretization& d,
     if (const EndSegment* seg = chain.segment_at(k)) {
       st.segment_bar = chain.bars[seg->bar].name;
       st.segment_elements = seg->elements;
+      st.segment_from_s = seg->from_tau;
     }
     result.interface_statistics.push_back(st);
   }
@@ -325,9 +329,12 @@ bool holds_energy(const SimulationResult& r) {
   return r.stable && std::abs(r.energy_error) <= kAsynchronousEnergyError;
 }
 
+// The end segments a run took from its start (a law specimen's faces take theirs once
+// unloaded otherwise, end_segment.hpp).
 int segment_count(const SimulationResult& r) {
   int n = 0;
-  for (const InterfaceStatistics& i : r.interface_statistics) n += i.segment_elements > 0;
+  for (const InterfaceStatistics& i : r.interface_statistics)
+    n += i.segment_elements > 0 && i.segment_from_s == 0;
   return n;
 }
 
@@ -500,10 +507,11 @@ void to_json(nlohmann::ordered_json& j, const InterfaceStatistics& i) {
        {"method", i.method},
        {"activations", i.activations},
        {"releases", i.releases},
-       {"end_segment",
-        i.segment_elements > 0
-            ? nlohmann::ordered_json{{"bar", i.segment_bar}, {"elements", i.segment_elements}}
-            : nlohmann::ordered_json(nullptr)}};
+       {"end_segment", i.segment_elements > 0
+                           ? nlohmann::ordered_json{{"bar", i.segment_bar},
+                                                    {"elements", i.segment_elements},
+                                                    {"from_s", i.segment_from_s}}
+                           : nlohmann::ordered_json(nullptr)}};
 }
 
 void write_simulation_outputs(const SimulationResult& result, const Scene& scene,

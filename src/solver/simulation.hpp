@@ -59,6 +59,8 @@ struct InterfaceStatistics {
   // other bar's clock, and how many; empty and 0 without one.
   std::string segment_bar;
   int segment_elements = 0;
+  // The run's time it started at: 0 from the start, else a law specimen face's first release.
+  double segment_from_s = 0;
 };
 
 struct SimulationResult {

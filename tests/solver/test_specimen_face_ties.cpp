@@ -4,6 +4,7 @@
 // scene blew up near C = 1 (the tolerance's own choice, C 0.9999, and --courant 0.9995 at the
 // automatic meshes: energy × 10³ after a few hundred closings); with the steel's end segments on
 // the specimen's clock it keeps its energy at every Courant number a run may take.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
@@ -63,7 +64,42 @@ TEST_CASE("the elastic classic scene is stable up to C = 1 at its automatic mesh
   }
 }
 
-// A law specimen's faces keep the coupling of §3.4 (no end segments). At the first contact the
+// After a law specimen's faces release, at asynchronous steps the slow bar's end was reset to the
+// frame on its own instants (§3.4, rules 4-5) and pinned to the specimen's end: the classic
+// experiment's faces closed 1004 / 1043 times after their release, where the global steps at the
+// same meshes, one clock at each face, close 53 / 43 times. The count of such a grazing contact is
+// no converged quantity (§3.7): it varies with the bars' mesh and step by itself (global steps:
+// 53 / 43 at these meshes, 162 / 99 at the default global ones, x 3.1 / 2.3; 529 / 284 at the
+// --tolerance 0.5 % ones), so the bound is that spread, not a count (with end segments from the
+// release: 112 / 119).
+constexpr double kGrazingCountSpread = 4;
+
+TEST_CASE("a law specimen's released faces switch at asynchronous steps as at global ones",
+          "[solver][contact][specimen-faces]") {
+  Scene scene =
+      read_scene(std::filesystem::path(SHPB_SOURCE_DIR) / "experiments/classic-al6061/scene.json");
+  resolve_scene(scene);  // the meshes of the default tolerance, as `shpb simulate` runs it
+  const SimulationResult async = simulate(scene);
+  REQUIRE(async.stable);
+  REQUIRE(async.discretization.stepping == Stepping::kAsynchronous);
+  // The same meshes, at global steps.
+  for (std::size_t i = 0; i < scene.bars.size(); ++i)
+    scene.bars[i].elements = async.bars[i].elements;
+  scene.simulation.stepping = Stepping::kGlobal;
+  const SimulationResult global = simulate(scene);
+  REQUIRE(global.stable);
+  for (std::size_t k = 1; k < async.interface_statistics.size(); ++k) {
+    const InterfaceStatistics &a = async.interface_statistics[k],
+                              &g = global.interface_statistics[k];
+    INFO(a.name << ": " << a.activations - 1 << " closings after the release asynchronous, "
+                << g.activations - 1 << " global");
+    // The first closing is the loading's; those after the first release are the rattle.
+    CHECK(a.activations - 1 <= kGrazingCountSpread * std::max<long>(1, g.activations - 1));
+  }
+}
+
+// A law specimen's faces keep the coupling of §3.4 through the loading (end segments after their
+// first release only). At the first contact the
 // neighbour's tied end moves with the frame over the specimen's many steps between two of its
 // own; its energy there is the frame's discrete kinetic energy (§3.4): booked from the end's own
 // half-step velocities instead, the PMMA mini-Kolsky showed 0.71-0.83 % at C 0.9995-1 for one
