@@ -21,8 +21,9 @@ struct EndSegment {
   // The instant the segment's nodes (the joint aside) are at: its clock's pending one, ahead of
   // the slow bar's instants between two of the clock's (finish_segment).
   double nodes_tau = 0;
-  // The instant the segment started at: 0 from the start of the run, else a law specimen face's
-  // first release (start_release_segments); the slow bar's and the clock's step counts then.
+  // The instant the segment started at: 0 from the start of the run, else the instant a law
+  // specimen's face was unloaded (start_release_segments); the slow bar's and the clock's step
+  // counts then.
   double from_tau = 0;
   long bar_steps_before = 0, clock_steps_before = 0;
 };
@@ -44,7 +45,7 @@ struct Chain {
   bool global_stepping = false;  // every bar takes the same steps (an adaptive one sets them)
   std::vector<EndSegment> segments;
   std::vector<int> interface_segment;  // per interface: its index in segments, or −1
-  // End segments at a law specimen's faces that start at the face's first release
+  // End segments at a law specimen's faces that start once the face is unloaded
   // (end_segment.hpp, docs/methods.md §3.7); moved to `segments` then.
   std::vector<EndSegment> release_segments;
 

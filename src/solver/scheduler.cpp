@@ -119,7 +119,7 @@ void take_instant(Chain& chain, ChainRecorders& recorders, const std::vector<cha
   const std::size_t ni = chain.interfaces.size();
   const std::size_t k0 = first > 0 ? first - 1 : 0, k1 = std::min(last + 1, ni);
 
-  // Rule 11: a law specimen's face takes its end segment after its first release.
+  // Rule 11: a law specimen's face takes its end segment once unloaded.
   if (!chain.release_segments.empty()) start_release_segments(chain, stepping, tau);
 
   // Rule 4: a stepping end tied to a frame is put where the frame is.

@@ -50,8 +50,8 @@
 // 11. A tie with an end segment (end_segment.hpp) is solved at its clock bar's instants only,
 //     both ends stepping there; the slow bar's rule 4 and its own instants leave the segment
 //     alone; the joint takes its impulse as a force if its bar steps, else by rule 6. A law
-//     specimen's face takes its segment at the first instant of the specimen after the face's
-//     first release (start_release_segments), before that instant's rule 4.
+//     specimen's face takes its segment at the first instant of the specimen at which the face
+//     is unloaded (start_release_segments), before that instant's rule 4.
 #include <functional>
 #include <string>
 

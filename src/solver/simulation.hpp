@@ -59,7 +59,7 @@ struct InterfaceStatistics {
   // other bar's clock, and how many; empty and 0 without one.
   std::string segment_bar;
   int segment_elements = 0;
-  // The run's time it started at: 0 from the start, else a law specimen face's first release.
+  // The run's time it started at: 0 from the start, else when a law specimen's face was unloaded.
   double segment_from_s = 0;
 };
 

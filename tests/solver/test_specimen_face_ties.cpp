@@ -70,8 +70,8 @@ TEST_CASE("the elastic classic scene is stable up to C = 1 at its automatic mesh
 // same meshes, one clock at each face, close 53 / 43 times. The count of such a grazing contact is
 // no converged quantity (§3.7): it varies with the bars' mesh and step by itself (global steps:
 // 53 / 43 at these meshes, 162 / 99 at the default global ones, x 3.1 / 2.3; 529 / 284 at the
-// --tolerance 0.5 % ones), so the bound is that spread, not a count (with end segments from the
-// release: 112 / 119).
+// --tolerance 0.5 % ones), so the bound is that spread, not a count (with end segments once the
+// faces are unloaded: 112 / 119).
 constexpr double kGrazingCountSpread = 4;
 
 TEST_CASE("a law specimen's released faces switch at asynchronous steps as at global ones",
@@ -98,8 +98,8 @@ TEST_CASE("a law specimen's released faces switch at asynchronous steps as at gl
   }
 }
 
-// A law specimen's faces keep the coupling of §3.4 through the loading (end segments after their
-// first release only). At the first contact the
+// A law specimen's faces keep the coupling of §3.4 through the loading (end segments once they
+// are unloaded only). At the first contact the
 // neighbour's tied end moves with the frame over the specimen's many steps between two of its
 // own; its energy there is the frame's discrete kinetic energy (§3.4): booked from the end's own
 // half-step velocities instead, the PMMA mini-Kolsky showed 0.71-0.83 % at C 0.9995-1 for one
