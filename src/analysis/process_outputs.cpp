@@ -132,19 +132,21 @@ nlohmann::json peak_stress_from(const ProcessingResult& r) {
   if (r.primary == PrimaryReduction::kOneWave)
     how =
         "the primary reduction's: the transmitted face's stress P2/A_s, largest over the loading "
-        "of a straight line fitted to the samples within the half period the transmitter "
-        "resolves";
+        "(ended where the transmitted stress starts to unload, as its record shows it) of a "
+        "straight line fitted to the samples within the half period the transmitter resolves";
   else if (peak.reduction == PrimaryReduction::kOneWave)
     how =
         "the specimen is in equilibrium (reached and held until unloading, or over at least half "
         "its loading), where its two faces' stresses agree: the transmitted face's stress "
         "P2/A_s, largest over the loading (every sample of it, where the 3-wave peak is read "
-        "over the samples with R <= 0.05 only) of a straight line fitted to the samples within "
-        "the half period the transmitter resolves";
+        "over the samples with R <= 0.05 only, ended where the transmitted stress starts to "
+        "unload, as its record shows it) of a straight line fitted to the samples within the "
+        "half period the transmitter resolves";
   else
     how =
         "the 3-wave stress, largest over the whole loading, its ring-up and unloading fronts "
-        "included: the specimen is not in equilibrium over most of its loading (warnings)";
+        "included, of a straight line fitted to the samples within the half period both bars "
+        "resolve: the specimen is not in equilibrium over most of its loading (warnings)";
   return {{"reduction", std::string(enum_name(kPrimaryNames, peak.reduction))}, {"how", how}};
 }
 

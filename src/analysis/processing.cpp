@@ -575,8 +575,48 @@ std::size_t resolved_half_window(const BarWaveguide& bar, double dt) {
   return static_cast<std::size_t>(std::lround(0.25 / (cutoff_Hz * dt)));
 }
 
+// Where the transmitted face's stress `s1` starts to unload, as its own record shows it
+// (docs/methods.md §6): the end of the samples its peak is read over. The loading ends at the
+// strain's maximum `n`, which a transmitted record running ahead of the reflected one (a trigger
+// delay) or a fast test's edge (Johnson-Cook copper at 30 m/s) puts a few samples into the
+// transmitted pulse's unloading edge, where a window that spans them reads low. The edge's first
+// samples fall by less than a noisy record's noise, so it is timed where it is steep: its last
+// crossing of 90 % of the peak `level` before it first falls below 50 %. It started to unload as
+// long before that 90 % crossing as it takes from there to 50 % (the simulated classic test's
+// rounded edge, 0.5 us from 90 to 50 %: at its top sample). That is a step the bar does not
+// resolve when it falls from 90 to 50 % within half the half window `h` the peak is read over; an
+// edge the bar's band limit spreads (a step low-passed at the cut-off falls from 90 to 50 % in
+// about h) has a crest, read by the windows centred on it, where one ending at the crest would
+// extrapolate its rising flank (the classic test low-passed at its cut-off, its transmitted record
+// 1 us late: +1.7 %). The loading is only shortened, by at most h (a stress below 90 % of its peak
+// earlier in the loading softened, its peak lies before): past the strain's maximum the back
+// face's stress is no longer the loading's (a bilinear copper at 30 m/s: still rising, 1.9 % above
+// the specimen's peak). n when the stress does not fall below half its peak.
+std::size_t transmitted_loading_end(const std::vector<double>& s1, std::size_t n, std::size_t h,
+                                    double level) {
+  if (h == 0 || n == 0 || !(level > 0)) return n;
+  const auto top = static_cast<std::size_t>(
+      std::max_element(s1.begin(), s1.begin() + static_cast<std::ptrdiff_t>(n)) - s1.begin());
+  std::size_t half = top;
+  while (half < s1.size() && s1[half] >= 0.5 * level) ++half;
+  if (half == s1.size()) return n;
+  std::size_t steep = half;  // the last sample at or above 90 % before `half`
+  while (steep > top && s1[steep] < 0.9 * level) --steep;
+  if (s1[steep] < 0.9 * level) return n;
+  auto crossing = [&](std::size_t j, double at) {  // between samples j and j + 1
+    return static_cast<double>(j) + (s1[j] - at) / (s1[j] - s1[j + 1]);
+  };
+  const double t90 = crossing(steep, 0.9 * level), t50 = crossing(half - 1, 0.5 * level);
+  if (t50 - t90 > 0.5 * static_cast<double>(h)) return n;
+  const double start = std::floor(2 * t90 - t50) + 1;
+  const double low = static_cast<double>(n > h ? n - h : 1);
+  return static_cast<std::size_t>(std::clamp(start, low, static_cast<double>(n)));
+}
+
 // Peaks and strains over the loading, and a warning when a load drop ended the curve well short
-// of the record's strain maximum.
+// of the record's strain maximum. The peak stresses are read from the line fitted over the
+// windows each stress's bars resolve (largest_line_fit): the 3-wave stress's, from both bars'
+// pulses, over the coarser one's.
 void summarize_loading(bool one_wave, bool dropped, const KolskySetup& k, double transmitted_noise,
                        ProcessingResult& r) {
   const Curve& c = r.curve;
@@ -584,10 +624,15 @@ void summarize_loading(bool one_wave, bool dropped, const KolskySetup& k, double
   auto largest = [loaded](const std::vector<double>& v) {
     return *std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(loaded));
   };
-  r.peak_stress_3wave_Pa = largest(c.stress_3wave_Pa);
+  const double dt = r.time_s[1] - r.time_s[0];
+  const std::size_t back = resolved_half_window(k.back_waveguide, dt);
+  r.peak_stress_3wave_over_loading_Pa = largest(c.stress_3wave_Pa);
+  r.peak_stress_3wave_Pa = largest_line_fit(
+      c.stress_3wave_Pa, loaded, std::max(resolved_half_window(k.front_waveguide, dt), back));
   r.max_strain_3wave = largest(c.strain);
+  const std::vector<double>& s1 = c.stress_1wave_Pa;
   r.peak_stress_1wave_Pa = largest_line_fit(
-      c.stress_1wave_Pa, loaded, resolved_half_window(k.back_waveguide, r.time_s[1] - r.time_s[0]));
+      s1, transmitted_loading_end(s1, loaded, back, largest_line_fit(s1, loaded, back)), back);
   r.max_strain_1wave = largest(c.strain_1wave);
   r.peak_stress_Pa = headline_peak_stress(r).stress_Pa;
   r.max_strain = one_wave ? r.max_strain_1wave : r.max_strain_3wave;

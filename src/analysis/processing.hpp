@@ -121,7 +121,9 @@ struct ProcessingResult {
   // reflected-pulse strain).
   double peak_stress_3wave_Pa = 0, max_strain_3wave = 0;
   double peak_stress_1wave_Pa = 0, max_strain_1wave = 0;
-  // The 3-wave stress's largest value over the whole loading, its ring-up and unloading fronts
+  // The peak stresses are read from the line fitted over the half period the bars resolve
+  // (processing.cpp, summarize_loading), not from a sample, which a record's noise lifts. The
+  // 3-wave stress's largest sample over the whole loading, its ring-up and unloading fronts
   // included (peak_stress_3wave_Pa is read in equilibrium once the specimen reaches it).
   double peak_stress_3wave_over_loading_Pa = 0;
   // The specimen is in equilibrium for its peak (settle_peak_stress): the headline peak is the
@@ -139,7 +141,8 @@ struct ProcessingResult {
 // agree, and the back face's peak is read over every sample of the loading, where the 3-wave
 // stress's is read over the samples with R ≤ 5 %: a set that a lab's errors shrink, whose largest
 // stress is then biased low and spread into a long lower tail by the Monte Carlo draws
-// (docs/methods.md §10). Otherwise the 3-wave reduction's over the whole loading (said).
+// (docs/methods.md §10). Otherwise the 3-wave reduction's over the whole loading, its line fit's
+// as the 1-wave peak's (said).
 struct HeadlinePeak {
   double stress_Pa = 0;
   PrimaryReduction reduction = PrimaryReduction::kThreeWave;

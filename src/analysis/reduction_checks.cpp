@@ -331,7 +331,6 @@ void warn_incident_overlap(const KolskySetup& k, double dt, ProcessingResult& r)
 }
 
 void settle_peak_stress(const ProcessingOptions& options, ProcessingResult& r) {
-  r.peak_stress_3wave_over_loading_Pa = r.peak_stress_3wave_Pa;
   const Equilibrium& e = r.equilibrium;
   r.peak_in_equilibrium = options.peak_in_equilibrium.value_or(
       e.peak_3wave_Pa && (e.holds_from_s.has_value() || e.fraction >= kMostlyInEquilibrium));
@@ -342,8 +341,9 @@ void settle_peak_stress(const ProcessingOptions& options, ProcessingResult& r) {
         fmt("the specimen is in equilibrium (R = 2|P1-P2|/|P1+P2| <= %.3g) over only %.3g %% of "
             "its loading and not until it unloads: outside equilibrium its stresses are the face "
             "forces over its area, not a material's stress, and the peak 3-wave stress %.4g MPa "
-            "is read over the whole loading, its ring-up and unloading fronts included (the "
-            "1-wave, transmitted face's, %.4g MPa)",
+            "is read over the whole loading, its ring-up and unloading fronts included, from the "
+            "line fitted over the half period both bars resolve (the 1-wave, transmitted face's, "
+            "%.4g MPa)",
             kEquilibriumThreshold, 100 * e.fraction, r.peak_stress_3wave_Pa / 1e6,
             r.peak_stress_1wave_Pa / 1e6));
   }
