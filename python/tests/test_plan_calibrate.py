@@ -186,3 +186,19 @@ def test_a_bad_calibration_shot_is_the_commands_message(tmp_path, monkeypatch):
             shpb.calibrate(scenes, threads=threads)
         assert "error: " + str(e.value) == err.strip()
     assert not (tmp_path / "out").exists()
+
+
+def test_calibrate_of_no_shot_is_the_commands_line_not_an_abort(tmp_path):
+    # shpb.calibrate([]) reached the solver with nothing to fit, which aborted the interpreter (a
+    # notebook's kernel died); the command refused it in its option parser. Both now say one line.
+    import subprocess
+    import sys
+    code, _, err = run_command("calibrate", "-o", tmp_path / "cmd")
+    assert code == 2
+    p = subprocess.run([sys.executable, "-c",
+                        "import shpb\ntry:\n    shpb.calibrate([])\nexcept shpb.InputError as e:"
+                        "\n    print('error: ' + str(e))"],
+                       capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    assert p.stdout.strip() == err.strip()
+    assert not (tmp_path / "cmd").exists()

@@ -9,6 +9,7 @@
 
 #include "app/cli_options.hpp"
 #include "app/commands.hpp"
+#include "core/error.hpp"
 #include "fit/calibration.hpp"
 #include "fit/calibration_report.hpp"
 
@@ -60,6 +61,16 @@ int run_calibrate(const CalibrateArgs& args) {
   return 0;
 }
 
+bool CalibrateArgs::IsValid(std::string* error) const {
+  // No shot is nothing to fit (the solver aborted the process on it: a notebook's kernel died);
+  // checked here, not by the option parser, so that the command and the module say one line.
+  *error = scenes.empty()
+               ? input_error("calibrate", "", "", "a scene file is needed (one a calibration shot)")
+                     .what()
+               : threads_problem(threads);
+  return error->empty();
+}
+
 Command add_calibrate_command(CLI::App& app) {
   auto args = std::make_shared<CalibrateArgs>();
   auto* cmd = app.add_subcommand(
@@ -68,8 +79,7 @@ Command add_calibrate_command(CLI::App& app) {
       "calibration shots (bars apart, bars together); write calibration.json, summary.json and "
       "shot-K.csv");
   cmd->add_option("scene", args->scenes,
-                  "Scenes of calibration shots (no specimen; a measurement each)")
-      ->required();
+                  "Scenes of calibration shots (no specimen; a measurement each)");
   cmd->add_option("-o,--output", args->output, "Output folder (replaced atomically)")->required();
   add_threads_option(cmd, args->threads, "Evaluations in parallel (0 = all cores)");
   cmd->add_flag("--quiet,-q", args->quiet, "No progress output on stderr");

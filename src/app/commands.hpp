@@ -118,11 +118,8 @@ struct CalibrateArgs {
   std::filesystem::path output;
   int threads = 0;
   bool quiet = false;
-  bool warnings_on_stderr = true;  // the Python module returns them (result.warnings)
-  bool IsValid(std::string* error) const {
-    *error = threads_problem(threads);
-    return error->empty();
-  }
+  bool warnings_on_stderr = true;          // the Python module returns them (result.warnings)
+  bool IsValid(std::string* error) const;  // a shot at least, and --threads
 };
 int run_calibrate(const CalibrateArgs& args);
 // The files a calibration of `scenes` reads (its output folder may hold none of them).
