@@ -1,5 +1,5 @@
-// The other commands: compare, study, fit, calibrate and dispersion run by the command's own
-// function, and
+// The other commands: compare, study, fit, calibrate, dispersion and process of a campaign run
+// by the command's own function, and
 // the files a result's save(dir) declares and copies (python/shpb/__init__.py wraps them).
 #include "app/commands.hpp"
 
@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/process_campaign.hpp"
 #include "app/cli_options.hpp"
 #include "bindings.hpp"
 #include "core/error.hpp"
@@ -23,6 +24,41 @@
 namespace shpb::python {
 
 namespace {
+
+// `shpb process` of several tests: a campaign file or the scenes' files.
+CampaignOptions campaign_options(const std::optional<std::filesystem::path>& campaign,
+                                 const std::vector<std::filesystem::path>& scenes) {
+  CampaignOptions c;
+  c.campaign = campaign;
+  c.scenes = scenes;
+  return c;
+}
+
+// process of a campaign: the command's process_campaign, its folder read back in Python.
+void bind_process_campaign(py::module_& m) {
+  m.def(
+      "_process_campaign",
+      [](const std::optional<std::filesystem::path>& campaign,
+         const std::vector<std::filesystem::path>& scenes, const std::filesystem::path& output,
+         const py::list& flow_stress_at, const py::object& draws, const py::object& seed,
+         const py::object& threads) {
+        CampaignOptions c = campaign_options(campaign, scenes);
+        for (std::size_t i = 0; i < flow_stress_at.size(); ++i)  // --flow-stress-at
+          c.flow_strains.push_back(
+              number<double>(flow_stress_at[i], "flow_stress_at[" + std::to_string(i) + "]"));
+        c.output = output;
+        c.monte_carlo.draws = number<std::size_t>(draws, "draws");
+        c.monte_carlo.seed = number<std::uint64_t>(seed, "seed");
+        c.monte_carlo.threads = number<int>(threads, "threads");
+        c.print_warnings = false;  // result.warnings, from each test's summary.json
+        return run_released([&] {
+          process_campaign(c);  // its checks first (CampaignOptions::IsValid), as the command's
+          return 0;
+        });
+      },
+      py::arg("campaign"), py::arg("scenes"), py::arg("output"), py::arg("flow_stress_at"),
+      py::arg("draws"), py::arg("seed"), py::arg("threads"));
+}
 
 void bind_command_runs(py::module_& m) {
   // compare, study, fit and dispersion: the command's own function, writing its folder (or file)
@@ -127,6 +163,7 @@ void bind_command_runs(py::module_& m) {
 
 void bind_commands(py::module_& m) {
   bind_command_runs(m);
+  bind_process_campaign(m);
   // The files a run of compare, study, fit or calibrate read (`files`: the one scene or campaign,
   // calibrate's scenes), as the command declares them to its output folder: result.save(dir)
   // refuses a dir that is or holds one, as the command does (a study of a plan's scene.json saved
@@ -144,6 +181,15 @@ void bind_commands(py::module_& m) {
         });
       },
       py::arg("command"), py::arg("files"), py::arg("distributions"));
+  // The files a campaign processed from `campaign` (a campaign file) or `scenes` read.
+  m.def(
+      "_campaign_inputs",
+      [](const std::optional<std::filesystem::path>& campaign,
+         const std::vector<std::filesystem::path>& scenes) {
+        return run_released(
+            [&] { return process_campaign_inputs(campaign_options(campaign, scenes)); });
+      },
+      py::arg("campaign"), py::arg("scenes"));
   // result.save(dir) of those: the command's folder copied with the output folder's own rules
   // (checks, marker, atomic replacement; core/output_folder.hpp).
   m.def(

@@ -34,7 +34,7 @@ __version__ = _shpb.__version__
 __all__ = ["Scene", "Bar", "Material", "JohnsonCook", "Bilinear", "Viscoelastic", "InputError", "NumericalError",
            "WriteError", "ShpbWarning", "simulate", "process", "compare", "dispersion", "fit",
            "study", "plan", "calibrate", "SimulationResult", "ProcessResult", "BarCheckResult",
-           "FolderResult", "PlanResult"]
+           "FolderResult", "PlanResult", "process_campaign", "CampaignResult"]
 
 
 class ShpbWarning(UserWarning):
@@ -78,6 +78,13 @@ class _Returned:
         raise TypeError(f"shpb.{type(self).__name__} is what shpb.{self._made_by}() returns; it is "
                         "not constructed by hand")
 
+    def arrays(self, table):
+        """The columns of `table` (one of the result's tables, by name: "gauges", "curve", ...)
+        as read-only numpy arrays that view the library's memory (no copy)."""
+        if table not in self._tables:  # not any attribute of the library's object
+            raise KeyError(f"{table!r}: expected one of the tables {', '.join(self._tables)}")
+        return getattr(self._native, table)
+
     @classmethod
     def _of(cls, native):
         result = object.__new__(cls)
@@ -91,6 +98,7 @@ class SimulationResult(_Returned):
     stress_Pa[time, x]; summary: summary.json as a dict. save(dir) writes the command's folder."""
 
     _made_by = "simulate"
+    _tables = ("gauges", "interfaces", "specimen", "energy", "field")
 
     scene = property(lambda self: self._native.scene, doc="the scene as run (overrides applied)")
     gauges = property(lambda self: _table(self._native.gauges), doc="gauges.csv")
@@ -103,11 +111,6 @@ class SimulationResult(_Returned):
     failure = property(lambda self: self._native.failure)
     warnings = property(lambda self: self._native.warnings)
     wall_time_s = property(lambda self: self._native.wall_time_s, doc="the solve alone")
-
-    def arrays(self, table):
-        """The columns of `table` ("gauges", "energy", ...) as read-only numpy arrays that view
-        the library's memory (no copy)."""
-        return getattr(self._native, table)
 
     def save(self, dir):
         """Writes gauges.csv, interfaces.csv, specimen.csv, energy.csv, field.csv and
@@ -126,6 +129,7 @@ class ProcessResult(_Returned):
     loading, as curve.csv) and summary (summary.json). save(dir) writes the command's folder."""
 
     _made_by = "process"
+    _tables = ("curve", "pulses", "raw_signals")
 
     scene = property(lambda self: self._native.scene)
     raw_signals = property(lambda self: _table(self._native.raw_signals), doc="raw_signals.csv")
@@ -133,11 +137,6 @@ class ProcessResult(_Returned):
     curve = property(lambda self: _table(self._native.curve), doc="curve.csv")
     summary = property(lambda self: self._native.summary, doc="summary.json")
     warnings = property(lambda self: self._native.warnings)
-
-    def arrays(self, table):
-        """The columns of `table` ("curve", "pulses", "raw_signals") as read-only numpy arrays
-        that view the library's memory (no copy)."""
-        return getattr(self._native, table)
 
     def save(self, dir):
         """Writes raw_signals.csv, pulses.csv, curve.csv and summary.json into `dir`, as
@@ -155,16 +154,12 @@ class BarCheckResult(_Returned):
     distance_m, ...). save(dir) writes the command's folder."""
 
     _made_by = "process"
+    _tables = ("pulses",)
 
     scene = property(lambda self: self._native.scene)
     pulses = property(lambda self: _table(self._native.pulses), doc="pulses.csv")
     summary = property(lambda self: self._native.summary, doc="summary.json")
     warnings = property(lambda self: self._native.warnings)
-
-    def arrays(self, table):
-        """The columns of `table` ("pulses") as read-only numpy arrays that view the library's
-        memory (no copy)."""
-        return getattr(self._native, table)
 
     def save(self, dir):
         """Writes pulses.csv and summary.json into `dir`, as `shpb process -o dir`."""
@@ -285,31 +280,34 @@ def _read_csv(path):
     return columns
 
 
-def _folder_run(command, run, files, distributions=None):
+def _folder_run(command, run, files, distributions=None, inputs_of=None, kind=None):
     """Runs `command` on its scene or campaign file (calibrate: its scene files) `files` into a
-    temporary folder."""
+    temporary folder; `inputs_of()` the files it read, if not the command's `_inputs`; `kind`
+    the result's class (a FolderResult)."""
     import weakref
     tmp = _tempfile.mkdtemp(prefix=f"shpb-{command}-")
     folder = _os.path.join(tmp, "out")
     try:
         code = run(folder)
-        inputs = _shpb._inputs(command, files, distributions or "")
-        result = FolderResult(command, folder, code, inputs)
+        inputs = inputs_of() if inputs_of else _shpb._inputs(command, files, distributions or "")
+        result = (kind or FolderResult)(command, folder, code, inputs)
     except BaseException:
         _shutil.rmtree(tmp, True)
         raise
     # The temporary folder is this function's and goes with its result; a FolderResult made of
     # any other folder removes nothing.
     weakref.finalize(result, _shutil.rmtree, tmp, True)
-    return _warned(result, calls=2)  # _folder_run, called by compare, study, fit or calibrate
+    return _warned(result, calls=2)  # _folder_run, called by compare, study, fit, calibrate or
+    # process_campaign
 
 
 def _scene_file(scene):
-    """compare, study, plan and calibrate run a scene file: its path (a shpb.Scene is refused:
-    one edited in memory is not its file)."""
+    """compare, study, plan, calibrate, fit and process_campaign run a scene or campaign file: its
+    path (a shpb.Scene is refused: one edited in memory is not its file)."""
     if isinstance(scene, Scene):
-        raise TypeError("compare, study, plan and calibrate read the scene from its file, as the "
-                        "commands do: pass the path (a Scene edited in memory is not a file)")
+        raise TypeError("compare, study, plan, calibrate, fit and process_campaign read their scene "
+                        "or campaign from its file, as the commands do: pass the path (a Scene "
+                        "edited in memory is not a file)")
     return _os.fspath(scene)
 
 
@@ -350,7 +348,7 @@ Fits the campaign file's free material parameters to its tests, as `shpb fit` do
 refits checking each parameter's interval, 0 for the linearised ones only);
 result.json["fit"] is fit.json (a material file), result.tables the command's CSV files.""")
 def fit(campaign, threads=0, max_iterations=40, relative_step=0.05, bootstrap=30, seed=1):
-    campaign = _os.fspath(campaign)
+    campaign = _scene_file(campaign)
     return _folder_run("fit", lambda out: _shpb._fit(campaign, out, threads, max_iterations,
                                                      relative_step, bootstrap, seed), [campaign])
 
@@ -366,6 +364,49 @@ def calibrate(scenes, threads=0):
         scenes = [scenes]
     scenes = [_scene_file(s) for s in scenes]
     return _folder_run("calibrate", lambda out: _shpb._calibrate(scenes, out, threads), scenes)
+
+
+class CampaignResult(FolderResult):
+    """What `process_campaign` returns: the folder of `shpb process --campaign` read back,
+    campaign.csv as tables["campaign"], summary.json as summary, and each test's folder as
+    tests[name] (a FolderResult: its curve, pulses and raw_signals tables, its summary)."""
+
+    def __init__(self, command, folder, exit_code, inputs=()):
+        super().__init__(command, folder, exit_code, inputs)
+        self.tests = {t["name"]: FolderResult(command, _os.path.join(folder, t["folder"]),
+                                              exit_code, inputs)
+                      for t in self.summary["tests"]}
+
+    @property
+    def warnings(self):
+        """Each test's warnings in the campaign's order: what the command prints on stderr."""
+        return [w for test in self.tests.values() for w in test.warnings]
+
+    def __repr__(self):
+        return f"<shpb.CampaignResult of {len(self.tests)} tests: {', '.join(self.tests)}>"
+
+
+@_with_help("process", """process_campaign(campaign, flow_stress_at=(), draws=1000, seed=1,
+                 threads=0) -> CampaignResult
+
+Processes several measured tests as `shpb process --campaign FILE` (campaign: the path of a
+campaign file) or `shpb process SCENE...` (campaign: a list of scene files' paths) does, each
+test as the one-test command, plus campaign.csv (result.tables["campaign"]); flow_stress_at:
+the engineering strains of --flow-stress-at; draws, seed and threads: each test's
+measurement.uncertainty as --draws, --seed and --threads.""")
+def process_campaign(campaign, flow_stress_at=(), draws=1000, seed=1, threads=0):
+    if isinstance(campaign, (str, bytes, _os.PathLike, Scene)):
+        file, scenes = _scene_file(campaign), []
+    else:
+        file, scenes = None, [_scene_file(s) for s in campaign]
+    if isinstance(flow_stress_at, (str, bytes)):  # not its characters, one by one
+        raise TypeError(f"flow_stress_at: {flow_stress_at!r}: expected a list of engineering "
+                        "strains, e.g. [0.02, 0.05]")
+    if isinstance(flow_stress_at, (int, float)):
+        flow_stress_at = [flow_stress_at]
+    return _folder_run("process", lambda out: _shpb._process_campaign(
+        file, scenes, out, list(flow_stress_at), draws, seed, threads), scenes,
+        inputs_of=lambda: _shpb._campaign_inputs(file, scenes), kind=CampaignResult)
 
 
 class PlanResult(FolderResult):

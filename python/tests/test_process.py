@@ -150,3 +150,13 @@ def test_the_bars_together_check_is_the_commands(tmp_path):
     for name in ("pulses.csv", "summary.json"):
         assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cmd" / name).read_bytes()
     assert result.warnings == result.summary["warnings"]
+
+
+@pytest.mark.parametrize("name", ["nope", "save", "scene", "summary"])
+def test_arrays_of_a_name_that_is_no_table_is_a_key_error(name):
+    # arrays(name) was getattr on the library's object: "nope" an AttributeError naming the
+    # private class _Processing, "save" a bound method, "scene" a Scene, none of them columns.
+    result = shpb.process(SOURCE / "experiments" / "lanl-pmma13-mini-kolsky" / "scene.json")
+    with pytest.raises(KeyError, match="expected one of the tables curve, pulses, raw_signals"):
+        result.arrays(name)
+    assert set(result.arrays("curve")) == set(result.curve.columns)

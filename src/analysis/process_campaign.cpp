@@ -198,7 +198,7 @@ void process_test(const CampaignTest& test, const fs::path& folder, std::size_t 
                   const CampaignOptions& options) {
   say(options, "test " + std::to_string(i + 1) + "/" + std::to_string(n) + " \"" + test.name +
                    "\" (" + test.scene.string() + ")");
-  process_into(test.scene, {}, folder, &options.monte_carlo);
+  process_into(test.scene, {}, folder, &options.monte_carlo, options.print_warnings);
 }
 
 // The list of tests a part was written for: its check against the merge's own list.
@@ -283,7 +283,28 @@ void merge_campaign(const CampaignOptions& args, const Campaign& c, std::vector<
                 " tests) into " + out.final_path().string());
 }
 
+Campaign campaign_of(const CampaignOptions& args) {
+  return args.campaign ? read_campaign(*args.campaign) : campaign_of_scenes(args.scenes);
+}
+
+// Every scene read and checked before anything is processed or written: a bad scene is refused
+// as the one-scene command refuses it (exit 2, its one line), not after the tests before it.
+// The files they name (and the campaign file) are the run's inputs: no output folder may hold
+// one, and a part records their digests for the merge.
+std::vector<fs::path> campaign_inputs(const CampaignOptions& args, const Campaign& c) {
+  std::vector<fs::path> inputs;
+  if (args.campaign) inputs.push_back(*args.campaign);
+  if (c.fit && !c.fit->material_file.empty()) inputs.push_back(c.fit->material_file);  // read too
+  for (const auto& test : c.tests)
+    for (const auto& f : scene_inputs(read_scene(test.scene))) inputs.push_back(f);
+  return inputs;
+}
+
 }  // namespace
+
+std::vector<fs::path> process_campaign_inputs(const CampaignOptions& options) {
+  return campaign_inputs(options, campaign_of(options));
+}
 
 bool CampaignOptions::IsValid(std::string* error) const {
   std::optional<InputError> e;
@@ -305,18 +326,9 @@ bool CampaignOptions::IsValid(std::string* error) const {
 
 void process_campaign(const CampaignOptions& args) {
   require_valid(args);
-  const Campaign c =
-      args.campaign ? read_campaign(*args.campaign) : campaign_of_scenes(args.scenes);
+  const Campaign c = campaign_of(args);
   const std::size_t n = c.tests.size();
-  // Every scene read and checked before anything is processed or written: a bad scene is refused
-  // as the one-scene command refuses it (exit 2, its one line), not after the tests before it.
-  // The files they name (and the campaign file) are the run's inputs: no output folder may hold
-  // one, and a part records their digests for the merge.
-  std::vector<fs::path> inputs;
-  if (args.campaign) inputs.push_back(*args.campaign);
-  if (c.fit && !c.fit->material_file.empty()) inputs.push_back(c.fit->material_file);  // read too
-  for (const auto& test : c.tests)
-    for (const auto& f : scene_inputs(read_scene(test.scene))) inputs.push_back(f);
+  std::vector<fs::path> inputs = campaign_inputs(args, c);
 
   if (!args.shard.empty()) return process_shard(args, c, inputs);
   if (args.merge) return merge_campaign(args, c, std::move(inputs));

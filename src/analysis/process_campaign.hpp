@@ -23,6 +23,9 @@ struct CampaignOptions {
   // --threads); a test without the block is processed as before.
   MonteCarloOptions monte_carlo;
   std::function<void(const std::string&)> progress;  // one line at a time; empty: silent
+  // Each test's warnings on stderr as the one-test command prints them (`warning: ...`); they
+  // are in its folder's summary.json either way (the Python module returns them from there).
+  bool print_warnings = true;
   // Ceres' Solver::Options::IsValid: false with the reason in `error`.
   bool IsValid(std::string* error) const;
 };
@@ -30,5 +33,8 @@ struct CampaignOptions {
 // Every scene read and checked before anything is processed or written. InputError (exit 2),
 // NumericalError (exit 3) as the one-test command.
 void process_campaign(const CampaignOptions& options);
+// The files such a run reads (the campaign file, a fit's material file, each scene's files): no
+// output folder may hold one.
+std::vector<std::filesystem::path> process_campaign_inputs(const CampaignOptions& options);
 
 }  // namespace shpb

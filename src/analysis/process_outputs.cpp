@@ -379,14 +379,14 @@ nlohmann::json process_summary(const ProcessOutcome& o, const std::string& scene
 ProcessedScene process_into(const std::filesystem::path& scene_file,
                             const std::optional<std::filesystem::path>& signals_file,
                             const std::filesystem::path& output,
-                            const MonteCarloOptions* monte_carlo) {
+                            const MonteCarloOptions* monte_carlo, bool print_warnings) {
   ProcessedScene p;
   p.scene = read_scene(scene_file);
   if (!p.scene.specimen) {
-    p.bars = check_scene_bars(p.scene, signals_file.has_value());
+    p.bars = check_scene_bars(p.scene, signals_file.has_value(), print_warnings);
     write_bar_check(*p.bars, p.scene, scene_file.string(), output);
   } else {
-    p.outcome = process_scene(p.scene, signals_file);
+    p.outcome = process_scene(p.scene, signals_file, print_warnings);
     if (monte_carlo) add_uncertainty(p.scene, *monte_carlo, *p.outcome);
     write_process_outputs(*p.outcome, p.scene, scene_file.string(), output);
   }

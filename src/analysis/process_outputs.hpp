@@ -23,7 +23,8 @@ nlohmann::json bar_check_summary(const BarCheckOutcome& o, const Scene& scene,
                                  const std::string& scene_display);
 
 // The one-test command's work: the scene read and reduced (or, without a specimen, its bars
-// checked together), the folder written. Exactly one of `outcome` and `bars` is set.
+// checked together), the folder written. Exactly one of `outcome` and `bars` is set. The
+// warnings are in the outcome (and its summary.json), also printed with `print_warnings`.
 struct ProcessedScene {
   Scene scene;
   std::optional<ProcessOutcome> outcome;
@@ -32,7 +33,8 @@ struct ProcessedScene {
 ProcessedScene process_into(const std::filesystem::path& scene_file,
                             const std::optional<std::filesystem::path>& signals_file,
                             const std::filesystem::path& output,
-                            const MonteCarloOptions* monte_carlo = nullptr);
+                            const MonteCarloOptions* monte_carlo = nullptr,
+                            bool print_warnings = true);
 
 // The one-line summaries the command prints on stderr (with the uncertainty's line when drawn).
 std::string bar_check_headline(const BarCheckOutcome& o, const std::filesystem::path& output);
