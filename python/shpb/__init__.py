@@ -78,9 +78,8 @@ class _Returned:
         raise TypeError(f"shpb.{type(self).__name__} is what shpb.{self._made_by}() returns; it is "
                         "not constructed by hand")
 
-    def arrays(self, table):
-        """The columns of `table` (one of the result's tables, by name: "gauges", "curve", ...)
-        as read-only numpy arrays that view the library's memory (no copy)."""
+    def _arrays(self, table):
+        """arrays(table) of each result: the columns of one of its `_tables`."""
         if table not in self._tables:  # not any attribute of the library's object
             raise KeyError(f"{table!r}: expected one of the tables {', '.join(self._tables)}")
         return getattr(self._native, table)
@@ -112,6 +111,12 @@ class SimulationResult(_Returned):
     warnings = property(lambda self: self._native.warnings)
     wall_time_s = property(lambda self: self._native.wall_time_s, doc="the solve alone")
 
+    def arrays(self, table):
+        """The columns of `table` ("gauges", "interfaces", "specimen", "energy", "field") as
+        read-only numpy arrays that view the library's memory (no copy); another name is a
+        KeyError."""
+        return self._arrays(table)
+
     def save(self, dir):
         """Writes gauges.csv, interfaces.csv, specimen.csv, energy.csv, field.csv and
         summary.json into `dir`, as `shpb simulate -o dir` (replaced atomically; a folder shpb
@@ -138,6 +143,11 @@ class ProcessResult(_Returned):
     summary = property(lambda self: self._native.summary, doc="summary.json")
     warnings = property(lambda self: self._native.warnings)
 
+    def arrays(self, table):
+        """The columns of `table` ("curve", "pulses", "raw_signals") as read-only numpy arrays
+        that view the library's memory (no copy); another name is a KeyError."""
+        return self._arrays(table)
+
     def save(self, dir):
         """Writes raw_signals.csv, pulses.csv, curve.csv and summary.json into `dir`, as
         `shpb process -o dir`."""
@@ -160,6 +170,11 @@ class BarCheckResult(_Returned):
     pulses = property(lambda self: _table(self._native.pulses), doc="pulses.csv")
     summary = property(lambda self: self._native.summary, doc="summary.json")
     warnings = property(lambda self: self._native.warnings)
+
+    def arrays(self, table):
+        """The columns of `table` ("pulses") as read-only numpy arrays that view the
+        library's memory (no copy); another name is a KeyError."""
+        return self._arrays(table)
 
     def save(self, dir):
         """Writes pulses.csv and summary.json into `dir`, as `shpb process -o dir`."""
