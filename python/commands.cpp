@@ -41,8 +41,10 @@ void bind_process_campaign(py::module_& m) {
       [](const std::optional<std::filesystem::path>& campaign,
          const std::vector<std::filesystem::path>& scenes, const std::filesystem::path& output,
          const py::list& flow_stress_at, const py::object& draws, const py::object& seed,
-         const py::object& threads) {
+         const py::object& threads, const std::optional<std::string>& shard, bool merge) {
         CampaignOptions c = campaign_options(campaign, scenes);
+        c.shard = shard.value_or("");  // --shard K/N, --merge
+        c.merge = merge;
         for (std::size_t i = 0; i < flow_stress_at.size(); ++i)  // --flow-stress-at
           c.flow_strains.push_back(
               number<double>(flow_stress_at[i], "flow_stress_at[" + std::to_string(i) + "]"));
@@ -51,13 +53,11 @@ void bind_process_campaign(py::module_& m) {
         c.monte_carlo.seed = number<std::uint64_t>(seed, "seed");
         c.monte_carlo.threads = number<int>(threads, "threads");
         c.print_warnings = false;  // result.warnings, from each test's summary.json
-        return run_released([&] {
-          process_campaign(c);  // its checks first (CampaignOptions::IsValid), as the command's
-          return 0;
-        });
+        // Its checks first (CampaignOptions::IsValid), as the command's; the folder written.
+        return run_released([&] { return process_campaign(c); });
       },
       py::arg("campaign"), py::arg("scenes"), py::arg("output"), py::arg("flow_stress_at"),
-      py::arg("draws"), py::arg("seed"), py::arg("threads"));
+      py::arg("draws"), py::arg("seed"), py::arg("threads"), py::arg("shard"), py::arg("merge"));
 }
 
 void bind_command_runs(py::module_& m) {

@@ -384,13 +384,16 @@ def calibrate(scenes, threads=0):
 class CampaignResult(FolderResult):
     """What `process_campaign` returns: the folder of `shpb process --campaign` read back,
     campaign.csv as tables["campaign"], summary.json as summary, and each test's folder as
-    tests[name] (a FolderResult: its curve, pulses and raw_signals tables, its summary)."""
+    tests[name] (a FolderResult: its curve, pulses and raw_signals tables, its summary); of a
+    shard, its part: json["part"] (part.json) and the tests it processed."""
 
     def __init__(self, command, folder, exit_code, inputs=()):
         super().__init__(command, folder, exit_code, inputs)
-        self.tests = {t["name"]: FolderResult(command, _os.path.join(folder, t["folder"]),
-                                              exit_code, inputs)
-                      for t in self.summary["tests"]}
+        # summary.json's tests, each in its folder; a shard's part: part.json's, those it holds.
+        listed = (self.summary or self.json["part"])["tests"]
+        folders = [(t["name"], _os.path.join(folder, t.get("folder", t["name"]))) for t in listed]
+        self.tests = {name: FolderResult(command, path, exit_code, inputs)
+                      for name, path in folders if _os.path.isdir(path)}
 
     @property
     def warnings(self):
@@ -402,14 +405,17 @@ class CampaignResult(FolderResult):
 
 
 @_with_help("process", """process_campaign(campaign, flow_stress_at=(), draws=1000, seed=1,
-                 threads=0) -> CampaignResult
+                 threads=0, shard=None, merge=False, output=None) -> CampaignResult
 
 Processes several measured tests as `shpb process --campaign FILE` (campaign: the path of a
 campaign file) or `shpb process SCENE...` (campaign: a list of scene files' paths) does, each
 test as the one-test command, plus campaign.csv (result.tables["campaign"]); flow_stress_at:
 the engineering strains of --flow-stress-at; draws, seed and threads: each test's
-measurement.uncertainty as --draws, --seed and --threads.""")
-def process_campaign(campaign, flow_stress_at=(), draws=1000, seed=1, threads=0):
+measurement.uncertainty as --draws, --seed and --threads. shard="K/N" and merge=True are
+--shard and --merge, writing into `output` (the command's -o DIR, needed with them alone):
+shard returns its part DIR/parts/K-of-N as a FolderResult, merge DIR/result.""")
+def process_campaign(campaign, flow_stress_at=(), draws=1000, seed=1, threads=0, shard=None,
+                     merge=False, output=None):
     if isinstance(campaign, (str, bytes, _os.PathLike, Scene)):
         file, scenes = _scene_file(campaign), []
     else:
@@ -419,9 +425,22 @@ def process_campaign(campaign, flow_stress_at=(), draws=1000, seed=1, threads=0)
                         "strains, e.g. [0.02, 0.05]")
     if isinstance(flow_stress_at, (int, float)):
         flow_stress_at = [flow_stress_at]
-    return _folder_run("process", lambda out: _shpb._process_campaign(
-        file, scenes, out, list(flow_stress_at), draws, seed, threads), scenes,
-        inputs_of=lambda: _shpb._campaign_inputs(file, scenes), kind=CampaignResult)
+
+    def run(out):
+        return _shpb._process_campaign(file, scenes, out, list(flow_stress_at), draws, seed,
+                                       threads, shard, merge)
+
+    def inputs():
+        return _shpb._campaign_inputs(file, scenes)
+
+    if (shard is None and not merge) != (output is None):
+        raise TypeError("output: the folder of shard and merge (their -o DIR), needed with them "
+                        "alone: a campaign's result is written by result.save(dir)")
+    if output is None:
+        return _folder_run("process", lambda out: [run(out), 0][1], scenes, inputs_of=inputs,
+                           kind=CampaignResult)
+    folder = run(_os.fspath(output))  # the part or DIR/result, the user's: nothing removed
+    return _warned(CampaignResult("process", folder, 0, inputs()))
 
 
 class PlanResult(FolderResult):

@@ -110,3 +110,34 @@ def test_a_bad_scene_of_a_campaign_is_the_commands_line(tmp_path):
         shpb.process_campaign(bad)
     assert "error: " + str(e.value) == err.strip()
     assert not (tmp_path / "cmd").exists()
+
+
+def test_shards_merged_from_python_are_the_commands_campaign(tmp_path):
+    # A campaign split in two shards and merged, from Python (each shard could run on its own
+    # machine): DIR/result is byte for byte the command's unsharded folder of the same campaign.
+    code, _, err = run_command("process", "--campaign", CAMPAIGN, "--draws", DRAWS, "-q",
+                               "-o", tmp_path / "cmd")
+    assert code == 0, err
+    with pytest.warns(shpb.ShpbWarning):
+        parts = [shpb.process_campaign(CAMPAIGN, draws=DRAWS, shard=f"{k}/2",
+                                       output=tmp_path / "py") for k in range(2)]
+    assert [list(p.tests) for p in parts] == [["epoxy-resin", "pmma-mini-kolsky"],
+                                              ["cu-ofe-273k"]]
+    assert parts[1].json["part"]["shard"] == "1/2"
+    merged = shpb.process_campaign(CAMPAIGN, draws=DRAWS, merge=True, output=tmp_path / "py")
+    assert list(merged.tests) == ["epoxy-resin", "cu-ofe-273k", "pmma-mini-kolsky"]
+    names = files_of(tmp_path / "cmd")
+    assert names == files_of(tmp_path / "py" / "result")
+    for name in names:
+        assert (tmp_path / "cmd" / name).read_bytes() == \
+            (tmp_path / "py" / "result" / name).read_bytes(), name
+
+
+def test_a_merge_with_a_part_missing_is_the_commands_line(tmp_path):
+    code, _, err = run_command("process", "--campaign", CAMPAIGN, "--merge", "-o", tmp_path)
+    assert code == 2
+    with pytest.raises(shpb.InputError) as e:
+        shpb.process_campaign(CAMPAIGN, merge=True, output=tmp_path)
+    assert "error: " + str(e.value) == err.strip()
+    with pytest.raises(TypeError, match="output"):  # a shard without its folder
+        shpb.process_campaign(CAMPAIGN, shard="0/2")

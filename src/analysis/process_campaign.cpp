@@ -210,14 +210,14 @@ Json tests_json(const Campaign& c) {
 }
 
 // --shard K/N: every N-th test into the part DIR/parts/K-of-N, with what it was computed from.
-void process_shard(const CampaignOptions& args, const Campaign& c,
-                   const std::vector<fs::path>& inputs) {
+fs::path process_shard(const CampaignOptions& args, const Campaign& c,
+                       const std::vector<fs::path>& inputs) {
   const std::size_t n = c.tests.size();
   const Shard shard = parse_shard("--shard", args.shard);
   const fs::path part = args.output / "parts" / part_name(shard);
   if (fs::exists(part)) {
     say(args, part.string() + " exists, shard skipped");
-    return;
+    return part;
   }
   OutputFolder out(part, "process", inputs);
   const auto runs = shard_runs(n, shard);
@@ -235,10 +235,12 @@ void process_shard(const CampaignOptions& args, const Campaign& c,
          {"files", input_digests(written, out.path())}};
   write_text_file(out.file("part.json"), j.dump(1) + "\n");
   out.commit();
+  return out.final_path();
 }
 
 // --merge: the parts checked (every test once, inputs and files unchanged), DIR/result written.
-void merge_campaign(const CampaignOptions& args, const Campaign& c, std::vector<fs::path> inputs) {
+fs::path merge_campaign(const CampaignOptions& args, const Campaign& c,
+                        std::vector<fs::path> inputs) {
   const std::size_t n = c.tests.size();
   const fs::path parts_dir = args.output / "parts";
   const std::vector<Part> parts = find_parts(parts_dir, "");
@@ -281,6 +283,7 @@ void merge_campaign(const CampaignOptions& args, const Campaign& c, std::vector<
   out.commit();
   say(args, "merged " + std::to_string(parts.size()) + " parts (" + std::to_string(n) +
                 " tests) into " + out.final_path().string());
+  return out.final_path();
 }
 
 Campaign campaign_of(const CampaignOptions& args) {
@@ -324,7 +327,7 @@ bool CampaignOptions::IsValid(std::string* error) const {
   return !e;
 }
 
-void process_campaign(const CampaignOptions& args) {
+fs::path process_campaign(const CampaignOptions& args) {
   require_valid(args);
   const Campaign c = campaign_of(args);
   const std::size_t n = c.tests.size();
@@ -341,6 +344,7 @@ void process_campaign(const CampaignOptions& args) {
   write_campaign(c, folders, args.flow_strains, out.path());
   out.commit();
   say(args, std::to_string(n) + " tests; wrote " + out.final_path().string() + "/campaign.csv");
+  return out.final_path();
 }
 
 }  // namespace shpb

@@ -31,8 +31,9 @@ struct CampaignOptions {
 };
 
 // Every scene read and checked before anything is processed or written. InputError (exit 2),
-// NumericalError (exit 3) as the one-test command.
-void process_campaign(const CampaignOptions& options);
+// NumericalError (exit 3) as the one-test command. Returns the folder holding the result: the
+// output folder, a shard's part (DIR/parts/K-of-N) or the merge's DIR/result.
+std::filesystem::path process_campaign(const CampaignOptions& options);
 // The files such a run reads (the campaign file, a fit's material file, each scene's files): no
 // output folder may hold one.
 std::vector<std::filesystem::path> process_campaign_inputs(const CampaignOptions& options);
