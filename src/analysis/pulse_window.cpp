@@ -242,8 +242,9 @@ RecordStart record_start(std::span<const double> x, double step) {
   for (double& d : steps) d = std::abs(d - centre);
   // A difference of two samples carries √2 σ; on a digitizer's grid, at least the rounding's.
   r.noise = std::max(kMadToSigma * median(steps) / std::numbers::sqrt2, kQuantizationSigma * step);
-  r.first = find_first_pulse(
-      x, {median({x.begin(), x.begin() + static_cast<std::ptrdiff_t>(kMinRestSamples)}), r.noise});
+  const double start_level =
+      median({x.begin(), x.begin() + static_cast<std::ptrdiff_t>(kMinRestSamples)});
+  r.first = find_first_pulse(x, {start_level, r.noise});
   const std::size_t n = r.first ? r.first->onset : 0, third = n / 3;
   if (third == 0) return r;
   auto level = [&](std::size_t from) {
@@ -253,8 +254,28 @@ RecordStart record_start(std::span<const double> x, double step) {
   const PulseWindow& w = *r.first;
   const double first = level(0), middle = level((n - third) / 2), last = level(n - third);
   r.change = w.sign * (last - first);
-  // The rise from the last sample before the onset to the half-height one, per sample.
-  const double rise = w.sign * (x[w.half] - x[n - 1]) / static_cast<double>(w.half - n + 1);
+  // The rate at which the pulse goes on rising: the mean from the last sample before the onset to
+  // the half-height one, or, where its front stops below half height (a pulse shaper's elastic
+  // step to 0.40–0.49 of the peak and a shoulder there for µs before the shaper's ramp crosses
+  // half), to that first top: the front's own rise. The mean to half the peak took in the
+  // shoulder, 3 to 10 times slower than the step, and the step's foot inside the rest band (a few
+  // samples at 10 MS/s, 40 to 70 at 100 MS/s, after 10 to 50 of rest) read as a front at 0.3 to
+  // 2.4 of it (docs/validation.md, "Where a record starts"). The front stops where, beyond twice
+  // the band (a pulse's least height), it rises by no further band for longer than the record
+  // took to get there: a rising front, even a noisy one (σ ≤ a fifth of the band), climbs each
+  // band in about the time its previous band took, less than all the time before it.
+  const double band = rest_band(r.noise, w.peak);
+  auto height = [&](std::size_t k) { return w.sign * (x[k] - start_level); };
+  std::size_t top = n, end = w.half;
+  for (std::size_t k = n; k < w.half; ++k) {
+    if (height(k) > height(top) + band) {
+      top = k;
+    } else if (height(top) >= 2 * band && k - top > top) {
+      end = top;
+      break;
+    }
+  }
+  const double rise = w.sign * (x[end] - x[n - 1]) / static_cast<double>(end - n + 1);
   r.rate_fraction = r.change / static_cast<double>(n - third) / rise;
   // The difference of two medians of `third` samples of white noise: √2 · √(π/2) σ/√third.
   const double sd = std::sqrt(std::numbers::pi / static_cast<double>(third)) * r.noise;

@@ -86,11 +86,12 @@ std::optional<PulseWindow> find_first_pulse(std::span<const double> x, const Bas
 // median of the first kMinRestSamples, with the noise of the successive differences, which a trend
 // leaves): the median of their last third exceeds that of their first third towards the pulse by
 // more than kFrontTrendSigmas times what the noise explains, at least kFrontRateFraction of the
-// rate at which the pulse goes on rising from its onset to half height, and through the middle
-// third too (its median at least kFrontEvenness of that change from either end's). A rest's level
-// does not move towards its pulse at the pulse's own rate: a drift or an amplifier's settling,
-// within the rest band over those samples, runs at a small fraction of it (docs/methods.md §6,
-// "From gauges to faces").
+// rate at which the pulse goes on rising from its onset to half height (or to its front's first
+// top, where the front stops below half height: a pulse shaper's elastic step), and through the
+// middle third too (its median at least kFrontEvenness of that change from either end's). A rest's
+// level does not move towards its pulse at the pulse's own rate: a drift or an amplifier's
+// settling, within the rest band over those samples, runs at a small fraction of it
+// (docs/methods.md §6, "From gauges to faces").
 struct RecordStart {
   // The first pulse against the median of the first kMinRestSamples, with the noise σ of the
   // successive differences (1.4826 × their MAD / √2; on a grid at least its rounding's q/√12).

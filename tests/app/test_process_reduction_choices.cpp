@@ -676,6 +676,53 @@ TEST_CASE("A record that starts on its pulse's front is refused as one",
   }
 }
 
+TEST_CASE("A pulse-shaped record with a short pre-trigger is read from its rest",
+          "[app][process][warnings]") {
+  // A pulse shaper's incident pulse as experiments/pulse-shaper simulates it: an elastic step to
+  // 0.47 of the plateau whose foot doubles every 0.1 us (a normal distribution's, centred 0.9 us
+  // in, σ 0.3 us: 4 % of the plateau at 0.5 us, 30 % at 1 us), a shoulder there until 5 us, then
+  // the shaper's ramp to the plateau over 20 us. Recorded at 100 MS/s with 0.1 % noise after 20 or
+  // 50 samples of rest, it was refused as starting on its front: the step's foot inside the rest
+  // band (its first 0.5 us, 50 samples) moved towards the pulse at 0.3 to 0.7 of the mean rate from
+  // the onset to half height, which the shoulder made several times slower than the step's.
+  constexpr double kOffset = 1e-4;     // a bridge's offset
+  constexpr double kNoise = 1e-6;      // 0.1 % of the incident plateau
+  constexpr double kFineDt = 1e-8;     // 100 MS/s
+  constexpr int kFineSamples = 80000;  // 800 us
+  constexpr double kStep = 0.47, kStepAt = 0.9e-6, kStepWidth = 0.3e-6, kShoulderEnd = 5e-6,
+                   kRamp = 20e-6;
+  std::vector<double> noise(kFineSamples);
+  std::mt19937 draw(5);
+  std::normal_distribution<double> gauss(0.0, kNoise);
+  for (double& v : noise) v = gauss(draw);
+  auto shaped = [=](double t, double t0) {
+    const double u = t - t0;
+    if (u > 90e-6) return shpb_test::trap(t, t0, 100e-6, 10e-6);
+    const double step =
+        kStep * 0.5 * std::erfc(-(u - kStepAt) / (kStepWidth * std::numbers::sqrt2));
+    return u < kShoulderEnd ? step
+                            : std::min(1.0, kStep + (1 - kStep) * (u - kShoulderEnd) / kRamp);
+  };
+  for (const int rest : {20, 50}) {
+    const double t0 = rest * kFineDt;
+    const Record rec{[&, t0](double t) {
+                       return kOffset + noise[static_cast<std::size_t>(std::lround(t / kFineDt))] -
+                              1e-3 * shaped(t, t0) + 0.6e-3 * shaped(t, t0 + 400e-6);
+                     },
+                     [t0](double t) { return -0.4e-3 * shpb_test::trap(t, t0 + 300e-6); }};
+    const fs::path d = scratch_dir("reduction_shaped_rest_" + std::to_string(rest));
+    const auto r =
+        run_shpb({"process", write(d, steel_scene(), csv(rec, 1.0, kFineDt, kFineSamples)).string(),
+                  "-o", (d / "out").string(), "-q"});
+    INFO(rest << " samples of rest: " << r.err);
+    REQUIRE(r.code == 0);
+    // The plateau 1e-3 (the median of the samples beyond half its height, most of them on the
+    // plateau) read from the rest level kOffset: within five times the noise's σ.
+    CHECK(summary(d / "out")["incident_plateau_strain"].get<double>() ==
+          Approx(1e-3).margin(5 * kNoise));
+  }
+}
+
 TEST_CASE("A record that starts inside its pulse is refused as one", "[app][process][warnings]") {
   // A scope that triggers too late keeps neither rest nor the front's foot: the record starts high
   // up the incident front or on its plateau, which its first samples read as the rest level. The
