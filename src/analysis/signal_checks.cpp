@@ -188,8 +188,12 @@ void require_rest_before_pulse(const GaugeSignals& signals, const std::string& g
             "goes on rising, so no rest level can be read before the pulse (record with a longer "
             "pre-trigger: the rest level and noise are read from the record only)",
             static_cast<double>(s.start.first->onset), s.start.change, s.start.rate_fraction));
-  // The rest level and noise are read from the first kMinRestSamples at least: all at rest.
-  const std::optional<PulseWindow>& first = s.first ? s.first : s.start.first;
+  // The rest level and noise are read from the first kMinRestSamples at least: all at rest. Its
+  // first pulse as the record's first samples see it, too: a record starting partway up a sharp
+  // front reads a level on the pulse, whose noise band hides that onset, from its first 5 %.
+  const std::optional<PulseWindow>& first =
+      s.start.first && (!s.first || s.start.first->onset < s.first->onset) ? s.start.first
+                                                                           : s.first;
   if (first && first->onset < kMinRestSamples)
     throw channel_error(
         signals, gauge, scene_file,

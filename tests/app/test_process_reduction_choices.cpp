@@ -723,6 +723,57 @@ TEST_CASE("A pulse-shaped record with a short pre-trigger is read from its rest"
   }
 }
 
+TEST_CASE("A fine record that starts a few samples up a sharp front is refused",
+          "[app][process][warnings]") {
+  // A 100 MS/s record with 1 % noise that starts 10 % up a 1 us raised-cosine front: 20 samples
+  // of front below its first sample are missing, and its first samples are the front's foot. The
+  // three-thirds rule sees too few samples before the onset to tell a trend in some noise draws,
+  // and the rest level read from the record's first 5 % (4000 samples: the whole front and 39 us
+  // of plateau) had the front as its noise, whose band hid the onset: processed at exit 0 from a
+  // level on the pulse. The first pulse as the record's first samples see it starts within them:
+  // refused, in every draw, as holding too little rest before it (or as starting on its front).
+  constexpr double kNoise = 1e-5;      // 1 % of the incident plateau
+  constexpr double kFineDt = 1e-8;     // 100 MS/s
+  constexpr int kFineSamples = 80000;  // 800 us
+  constexpr double kRise = 1e-6;
+  // The raised cosine 0.5 (1 − cos(π u / kRise)) reaches 0.1 at u = kRise arccos(0.8) / π.
+  const double start = -kRise * std::acos(0.8) / std::numbers::pi;
+  auto pulse = [=](double t, double t0) {
+    const double u = t - t0;
+    if (u <= 0 || u >= 100e-6) return 0.0;
+    const double edge = std::min(u, 100e-6 - u);
+    return edge < kRise ? 0.5 * (1 - std::cos(std::numbers::pi * edge / kRise)) : 1.0;
+  };
+  constexpr unsigned kDraws = 12;  // about 1 s of runs
+  int processed = 0;
+  for (unsigned seed = 1; seed <= kDraws; ++seed) {
+    std::vector<double> noise(2 * kFineSamples);
+    std::mt19937 draw(seed);
+    std::normal_distribution<double> gauss(0.0, kNoise);
+    for (double& v : noise) v = gauss(draw);
+    auto at = [&](double t, int g) {
+      return noise[static_cast<std::size_t>(g * kFineSamples + std::lround(t / kFineDt))];
+    };
+    const Record rec{[&](double t) {
+                       return at(t, 0) - 1e-3 * pulse(t, start) + 0.6e-3 * pulse(t, start + 400e-6);
+                     },
+                     [&](double t) { return at(t, 1) - 0.4e-3 * pulse(t, start + 300e-6); }};
+    const fs::path d = scratch_dir("reduction_fine_cut_front_" + std::to_string(seed));
+    const auto r =
+        run_shpb({"process", write(d, steel_scene(), csv(rec, 1.0, kFineDt, kFineSamples)).string(),
+                  "-o", (d / "out").string(), "-q"});
+    INFO("draw " << seed << ": " << r.err);
+    processed += r.code == 0;
+    CHECK(r.code == 2);
+    CHECK(r.err.find("signals.csv: column \"incident\"") != std::string::npos);
+    CHECK((r.err.find("samples at rest before it are needed to read its rest level") !=
+               std::string::npos ||
+           r.err.find("it starts on its first pulse's front") != std::string::npos));
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  }
+  CHECK(processed == 0);
+}
+
 TEST_CASE("A record that starts inside its pulse is refused as one", "[app][process][warnings]") {
   // A scope that triggers too late keeps neither rest nor the front's foot: the record starts high
   // up the incident front or on its plateau, which its first samples read as the rest level. The
