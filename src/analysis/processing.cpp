@@ -709,6 +709,9 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
   const FacePulses faces = pulses_at_faces(inc, tra, dt, timing, k, options, r);
   const RecordedAtFaces recorded = recorded_at_faces(t, faces, inc, tra, r);
   reduce_at_faces(t, dt, faces, recorded.time_s, timing, k, options, r);
+  // Corrected before anything is read from the curve: its peaks are the corrected stresses'.
+  r.corrections_removed =
+      apply_specimen_corrections(r.curve, dt, options.specimen, options.corrections);
   warn_record_ends_in_loading(t, dt, recorded, timing, k, r);
   warn_transmitted_echo(k, timing, dt, r);
 

@@ -10,6 +10,7 @@
 #include "analysis/gauge_signals.hpp"
 #include "analysis/kolsky_setup.hpp"
 #include "analysis/reduction.hpp"
+#include "analysis/specimen_corrections.hpp"
 #include "dispersion/propagation.hpp"
 #include "model/scene.hpp"
 
@@ -44,6 +45,10 @@ struct ProcessingOptions {
   // crosses the rule's bound was read at the unloading edge's transient: the classic test, 5 of
   // 200 draws at about 2 x the peak, u 15 % for a 95 % interval of ±5 %).
   std::optional<bool> peak_in_equilibrium;
+  // The specimen corrections (docs/methods.md §8), applied to the curve before its peaks are read,
+  // and the specimen they need (analysis/test_processing.hpp sets both from the scene).
+  SpecimenCorrections corrections;
+  SpecimenProperties specimen;
   // Shared by repeated reductions (null: each reduction solves its own tables and plans).
   DispersionTableCache* tables = nullptr;
   FftPlans* plans = nullptr;
@@ -131,6 +136,7 @@ struct ProcessingResult {
   bool peak_in_equilibrium = false;
   Equilibrium equilibrium;
   std::optional<double> time_to_equilibrium_s;  // holds_from_s − start of the face window
+  CorrectionReport corrections_removed;         // what options.corrections took out
   double cutoff_Hz = 0;                         // 0 without dispersion correction
   std::vector<std::string> warnings;
 };

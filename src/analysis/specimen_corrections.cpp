@@ -62,28 +62,28 @@ CorrectionReport apply_specimen_corrections(Curve& c, double dt, const SpecimenP
   report.friction_factor_max = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const double e = c.strain[i];
-    double sigma = c.stress_3wave_Pa[i] * (1 - e);  // true: force over A0/(1 − e)
-    if (corrections.inertia) {
+    double& s3 = c.stress_3wave_Pa[i];
+    if (corrections.inertia) {  // the mean of the two faces' stresses
       const InertiaTerms t = inertia_terms(s, e, rate[i], accel[i]);
       axial_acc[i] = t.axial_acceleration_Pa;
       axial_conv[i] = t.axial_convective_Pa;
       radial_acc[i] = t.radial_acceleration_Pa;
       radial_conv[i] = t.radial_convective_Pa;
-      sigma -= t.total();
+      s3 = (s3 * (1 - e) - t.total()) / (1 - e);  // true: force over A0/(1 − e)
     }
-    if (corrections.friction) {
+    if (corrections.friction) {  // each face's stress, the mean of them as well
       const double length = s.length_m * (1 - e);
       const double diameter = std::sqrt(4 * s.area_m2 / (std::numbers::pi * (1 - e)));
       const double phi = friction_factor(*corrections.friction, diameter, length);
-      friction[i] = sigma - sigma / phi;
-      sigma /= phi;
+      friction[i] = s3 * (1 - e) - s3 / phi * (1 - e);
+      for (std::vector<double>* v : {&c.stress_3wave_Pa, &c.stress_1wave_Pa, &c.stress_2wave_Pa})
+        if (i < v->size()) (*v)[i] /= phi;
       if (loaded[i]) {
         report.friction_factor_min = std::min(report.friction_factor_min, phi);
         report.friction_factor_max = std::max(report.friction_factor_max, phi);
       }
     }
-    c.true_stress_Pa[i] = sigma;
-    c.stress_3wave_Pa[i] = sigma / (1 - e);
+    c.true_stress_Pa[i] = s3 * (1 - e);
   }
   if (!corrections.friction) report.friction_factor_min = report.friction_factor_max = 1;
   if (corrections.inertia) {

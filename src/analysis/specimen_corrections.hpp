@@ -3,8 +3,10 @@
 // (docs/methods.md §8), the closed forms of model/specimen_response.hpp read backwards:
 //   measured = φ σ_flow + Δσ_inertia,   σ_flow = (measured − Δσ_inertia) / φ,
 // in true terms (force over the current, volume-conserving area A0/(1 − e)), then written back to
-// the engineering 3-wave stress. Applied by `process` when the scene asks for them
-// (measurement.corrections), after the reduction (analysis/reduction.hpp).
+// the engineering 3-wave stress. Friction divides each face's stress by φ (the 1- and 2-wave
+// stresses too); inertia corrects the 3-wave stress, the mean of the faces', only. Applied by
+// process_signals when the scene asks for them (measurement.corrections), after the reduction
+// (analysis/reduction.hpp) and before the curve's peaks are read.
 #include <optional>
 #include <string>
 #include <vector>
@@ -52,7 +54,8 @@ struct InertiaTerms {
 InertiaTerms inertia_terms(const SpecimenProperties& specimen, double engineering_strain,
                            double true_rate_1_s, double true_acceleration_1_s2);
 
-// Corrects curve.stress_3wave_Pa and curve.true_stress_Pa in place (sampled at dt).
+// Corrects curve.stress_3wave_Pa, curve.true_stress_Pa and (friction) curve.stress_1wave_Pa and
+// curve.stress_2wave_Pa in place (sampled at dt).
 CorrectionReport apply_specimen_corrections(Curve& curve, double dt,
                                             const SpecimenProperties& specimen,
                                             const SpecimenCorrections& corrections);

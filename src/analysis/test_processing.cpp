@@ -27,14 +27,21 @@ ProcessedTest process_test(const Scene& scene, const GaugeSignals& signals,
                            const KolskySetup& setup, const ProcessingOptions& options) {
   ProcessedTest t;
   ProcessingResult& r = t.result;
+  ProcessingOptions o = options;
+  if (scene.measurement)
+    t.corrections = o.corrections = {scene.measurement->corrections.friction,
+                                     scene.measurement->corrections.inertia};
+  const BarSpec& specimen = scene.bars[*scene.specimen];
+  o.specimen = {specimen.length_m, specimen.area_m2, specimen.material.density_kg_m3};
   if (options.tension) {
     GaugeSignals negated = signals;
     for (auto& g : negated.strain)
       for (double& x : g) x = -x;
-    r = process_signals(negated, setup, options);
+    r = process_signals(negated, setup, o);
   } else {
-    r = process_signals(signals, setup, options);
+    r = process_signals(signals, setup, o);
   }
+  t.removed = r.corrections_removed;
   // The move to the faces (docs/methods.md §5) and the reduction (§6) know elastic bars and
   // viscoelastic ones (§5.1). A bar with another law (bilinear, Johnson–Cook) is reduced as an
   // elastic bar of its Young's modulus, which holds while it does not yield.
@@ -47,16 +54,6 @@ ProcessedTest process_test(const Scene& scene, const GaugeSignals& signals,
                             " law: its pulses are moved to the specimen and reduced as in an "
                             "elastic bar of its Young's modulus, which holds only while the bar "
                             "does not yield");
-  if (scene.measurement)
-    t.corrections = {scene.measurement->corrections.friction,
-                     scene.measurement->corrections.inertia};
-  const BarSpec& specimen = scene.bars[*scene.specimen];
-  t.removed = apply_specimen_corrections(
-      r.curve, signals.dt_s, {specimen.length_m, specimen.area_m2, specimen.material.density_kg_m3},
-      t.corrections);
-  if (t.corrections.friction || t.corrections.inertia)
-    r.peak_stress_Pa = r.peak_stress_3wave_Pa =
-        *std::max_element(r.curve.stress_3wave_Pa.begin(), r.curve.stress_3wave_Pa.end());
   if (options.tension)
     for (auto* v : {&r.incident, &r.reflected, &r.transmitted})
       for (double& x : *v) x = -x;

@@ -19,10 +19,11 @@ struct ProcessedTest {
   CorrectionReport removed;         // what the corrections took out of the true stress
 };
 
-// process_signals(), then the specimen corrections (docs/methods.md §8). A tension test: the
-// reduction is linear in the strains, so negated signals reduce as a compression test whose
-// "compression positive" outputs read tension positive; the pulses are negated back and the true
-// values follow the tensile formulas (ln(1 + e), σ (1 + e)).
+// process_signals() with the specimen corrections (docs/methods.md §8) the scene asks for, applied
+// before the curve's peaks are read. A tension test: the reduction is linear in the strains, so
+// negated signals reduce as a compression test whose "compression positive" outputs read tension
+// positive; the pulses are negated back and the true values follow the tensile formulas
+// (ln(1 + e), σ (1 + e)).
 ProcessedTest process_test(const Scene& scene, const GaugeSignals& signals,
                            const KolskySetup& setup, const ProcessingOptions& options);
 

@@ -317,6 +317,70 @@ void check_friction(json scene, const shpb::MaterialSpec& material, LawAlong law
 }
 }  // namespace
 
+namespace {
+// The peaks summary.json reports, 1- and 3-wave, the headline first.
+std::vector<double> reported_peaks(const json& summary) {
+  const json& red = summary["reductions"];
+  return {summary["peak_stress_Pa"].get<double>(), red["1-wave"]["peak_stress_Pa"].get<double>(),
+          red["3-wave"]["peak_stress_Pa"].get<double>(),
+          red["3-wave"]["peak_stress_over_loading_Pa"].get<double>()};
+}
+
+json process_with(json scene, const json& corrections, const fs::path& dir,
+                  const std::string& name) {
+  scene["measurement"]["corrections"] = corrections;
+  std::ofstream(dir / (name + ".json")) << scene.dump(2);
+  const auto proc =
+      run_shpb({"process", (dir / (name + ".json")).string(), "--signals",
+                (dir / "sim" / "gauges.csv").string(), "-o", (dir / name).string(), "--quiet"});
+  INFO(proc.err);
+  REQUIRE(proc.code == 0);
+  std::ifstream in(dir / name / "summary.json");
+  return json::parse(in);
+}
+}  // namespace
+
+TEST_CASE(
+    "The specimen corrections leave the peaks to the headline rule: zero changes nothing and "
+    "friction divides them by the Dharan-Hauser factor",
+    "[app][friction]") {
+  const auto dir = scratch_dir("corrected_peaks");
+  const json scene = classic_scene();
+  const Processed raw = simulate_and_process(scene, dir);
+  REQUIRE(raw.process["peak_stress_from"]["reduction"] == "1-wave");  // in equilibrium
+  const std::vector<double> plain = reported_peaks(raw.process);
+
+  // A correction of zero is none: every peak as uncorrected, exactly (φ = 1 divides exactly).
+  const std::vector<double> zero =
+      reported_peaks(process_with(scene, {{"friction", 0.0}, {"inertia", false}}, dir, "zero"));
+  for (std::size_t i = 0; i < plain.size(); ++i) {
+    INFO("peak " << i << ": " << plain[i] << " uncorrected, " << zero[i] << " with friction 0");
+    CHECK(zero[i] == plain[i]);
+  }
+
+  // Friction μ: in equilibrium the headline is the transmitted face's stress, which friction
+  // raises by φ = 1 + μ d/(3√3 L) at the specimen's current shape (d = D0/√(1 − e),
+  // L = L0 (1 − e)): corrected, every peak is the uncorrected one over φ at the strain it is read
+  // at, the classic (hardening) specimen's largest strain of the loading. φ grows by 1.5e-4 over
+  // the 2 µs before it, about the half period the peak is read over: the tolerance.
+  constexpr double kFactorOverPeakWindow = 3e-4;
+  const double mu = 0.05, L0 = 5e-3, D0 = 10e-3;  // the classic specimen
+  const double e = *std::max_element(raw.curve.at("strain").begin(), raw.curve.at("strain").end());
+  const double phi = 1 + mu * (D0 / std::sqrt(1 - e)) / (3 * std::sqrt(3.0) * L0 * (1 - e));
+  const std::vector<double> rubbed =
+      reported_peaks(process_with(scene, {{"friction", mu}}, dir, "friction"));
+  for (std::size_t i = 0; i < plain.size(); ++i) {
+    INFO("peak " << i << ": uncorrected/corrected " << plain[i] / rubbed[i] << ", phi " << phi
+                 << " at strain " << e);
+    CHECK(plain[i] / rubbed[i] == Approx(phi).epsilon(kFactorOverPeakWindow));
+  }
+  // Friction acts on each face: the 1-wave reduction as primary takes the correction too.
+  json one_wave = scene;
+  one_wave["measurement"]["primary"] = "1-wave";
+  const json primary = process_with(one_wave, {{"friction", mu}}, dir, "one_wave");
+  CHECK(primary["peak_stress_Pa"].get<double>() == rubbed[1]);
+}
+
 TEST_CASE(
     "A simulated tension test whose measurement gives only \"test\" is processed back to its "
     "bilinear law, tension positive",
