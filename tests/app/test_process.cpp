@@ -312,6 +312,8 @@ TEST_CASE("The epoxy file's repeated time stamps and doubtful scale are reported
   // And a soft specimen in equilibrium over less than half its loading, never until unloading.
   CHECK(r.err.find("in equilibrium (R = 2|P1-P2|/|P1+P2| <= 0.05) over only 46.5 %") !=
         std::string::npos);
+  // Said whole, down to the transmitted face's peak it closes with (a long message once lost it).
+  CHECK(r.err.find("(the 1-wave, transmitted face's, ") != std::string::npos);
   CHECK(summary(out)["warnings"].size() == 5);
 }
 

@@ -379,6 +379,18 @@ TEST_CASE(
   one_wave["measurement"]["primary"] = "1-wave";
   const json primary = process_with(one_wave, {{"friction", mu}}, dir, "one_wave");
   CHECK(primary["peak_stress_Pa"].get<double>() == rubbed[1]);
+  // The inertia correction reaches the mean (3-wave) stress only: a headline read from the
+  // transmitted face is said not to carry it, naming the corrected 3-wave peak; friction alone
+  // reaches every face and is not said so.
+  const auto says_inertia = [](const json& summary) {
+    for (const auto& w : summary["warnings"])
+      if (w.get<std::string>().find("corrections.inertia") != std::string::npos) return true;
+    return false;
+  };
+  const json inert = process_with(scene, {{"inertia", true}}, dir, "inertia");
+  REQUIRE(inert["peak_stress_from"]["reduction"] == "1-wave");
+  CHECK(says_inertia(inert));
+  CHECK_FALSE(says_inertia(process_with(scene, {{"friction", mu}}, dir, "friction_only")));
 }
 
 TEST_CASE(
