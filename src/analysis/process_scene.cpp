@@ -115,11 +115,6 @@ ProcessOutcome process_scene(const Scene& scene,
           scene.file.string(), "measurement.channels", "(missing)",
           "a list of {\"gauge\", \"column\", \"unit\", ...} to process measured signals");
   }
-  if (options.primary == PrimaryReduction::kOneWave && scene.measurement &&
-      scene.measurement->corrections.inertia)
-    throw input_error(scene.file.string(), "measurement.primary", "\"1-wave\"",
-                      "the inertia correction applies to the 3-wave stress only: use "
-                      "\"primary\": \"3-wave\" with measurement.corrections.inertia, or drop it");
   // What was assumed is said even with --quiet (which silences progress only), and as soon as
   // it is known: before any later error stops the run.
   GaugeSignals& signals = o.signals;

@@ -26,6 +26,7 @@ struct Curve {
   std::vector<double> strain;             // ∫ 3-wave strain rate dt (trapezoid), engineering
   std::vector<double> force_front_N;      // P1 = −E A (ε_I + ε_R), compression positive
   std::vector<double> force_back_N;       // P2 = −E A ε_T
+  std::vector<double> velocity_back_m_s;  // v2 = −c0 ε_T, the transmitted face's, toward the bar
   std::vector<double> stress_1wave_Pa;    // P2 / A_s
   std::vector<double> stress_2wave_Pa;    // P1 / A_s
   std::vector<double> stress_3wave_Pa;    // (P1 + P2) / (2 A_s)

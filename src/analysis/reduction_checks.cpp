@@ -348,16 +348,6 @@ void settle_peak_stress(const ProcessingOptions& options, ProcessingResult& r) {
             r.peak_stress_1wave_Pa / 1e6));
   }
   r.peak_stress_Pa = headline_peak_stress(r).stress_Pa;
-  // The inertia correction acts on the mean (3-wave) stress alone (docs/methods.md §8.3): the
-  // back face's would need that face's own acceleration. A headline read from the transmitted
-  // face does not carry it, which the user who asked for it is told.
-  if (options.corrections.inertia &&
-      headline_peak_stress(r).reduction == PrimaryReduction::kOneWave)
-    r.warnings.push_back(
-        fmt("measurement.corrections.inertia corrects the 3-wave (mean) stress only: the peak "
-            "%.4g MPa is the transmitted face's stress, which it does not reach; the corrected "
-            "3-wave peak is %.4g MPa",
-            r.peak_stress_Pa / 1e6, r.peak_stress_3wave_Pa / 1e6));
 }
 
 Equilibrium judge_equilibrium(const Curve& c, const std::vector<double>& t, std::size_t n,

@@ -24,7 +24,7 @@ inline double friction_factor(double mu, double diameter_m, double length_m) {
 // ε̇ and ε̈ the true (logarithmic) strain rate and its derivative. This is Davies & Hunter's
 // (1963, J. Mech. Phys. Solids 11:155) ρ ν² D² ε̈ / 8 at ν = 1/2 plus the convective ε̇² term of
 // the growing radius. The specimen's axial inertia (their L² terms) is carried by the 1D mesh
-// itself (and, in `process`, by the 3-wave average of the two faces).
+// itself (and, in `process`, by the faces' own axial terms, analysis/specimen_corrections.hpp).
 inline double radial_inertia_stress(double density_kg_m3, double radius_m, double rate_1_s,
                                     double acceleration_1_s2) {
   return density_kg_m3 * radius_m * radius_m * (acceleration_1_s2 / 8 + rate_1_s * rate_1_s / 16);
