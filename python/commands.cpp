@@ -41,10 +41,10 @@ void bind_process_campaign(py::module_& m) {
       [](const std::optional<std::filesystem::path>& campaign,
          const std::vector<std::filesystem::path>& scenes, const std::filesystem::path& output,
          const py::list& flow_stress_at, const py::object& draws, const py::object& seed,
-         const py::object& threads, const std::optional<std::string>& shard, bool merge) {
+         const py::object& threads, const py::object& shard, const py::object& merge) {
         CampaignOptions c = campaign_options(campaign, scenes);
-        c.shard = shard.value_or("");  // --shard K/N, --merge
-        c.merge = merge;
+        c.shard = optional_text(shard, "shard", "\"K/N\", e.g. \"1/4\"").value_or("");  // --shard
+        c.merge = boolean(merge, "merge");                                              // --merge
         for (std::size_t i = 0; i < flow_stress_at.size(); ++i)  // --flow-stress-at
           c.flow_strains.push_back(
               number<double>(flow_stress_at[i], "flow_stress_at[" + std::to_string(i) + "]"));
@@ -61,15 +61,26 @@ void bind_process_campaign(py::module_& m) {
 }
 
 void bind_command_runs(py::module_& m) {
+  // validate: what `shpb validate --json` prints of the scene, as a dict.
+  m.def(
+      "_validate",
+      [](const Scene& scene, const py::object& tolerance, const py::object& contact,
+         const py::object& stepping, const py::object& courant, const py::object& threads) {
+        const RunOverrides o = overrides_of(tolerance, contact, stepping, courant, threads);
+        const std::string text = run_released([&] { return validate_setup(scene, o); });
+        return py::module_::import("json").attr("loads")(text);
+      },
+      py::arg("scene"), py::arg("tolerance"), py::arg("contact"), py::arg("stepping"),
+      py::arg("courant"), py::arg("threads"));
   // compare, study, fit and dispersion: the command's own function, writing its folder (or file)
   // where the Python side reads it back (python/shpb/__init__.py). The exit code is returned: 3
   // is a result written with a numerical failure said in its summary.
   m.def(
       "_compare",
       [](const std::filesystem::path& scene, const std::filesystem::path& output,
-         const py::object& tolerance, const std::optional<std::string>& contact,
-         const std::optional<std::string>& stepping, const py::object& courant,
-         const py::object& threads, bool dispersion, const py::object& striker_velocity) {
+         const py::object& tolerance, const py::object& contact, const py::object& stepping,
+         const py::object& courant, const py::object& threads, const py::object& dispersion,
+         const py::object& striker_velocity) {
         // A velocity as the option takes it ("15 m/s", a bare number in m/s), or a number.
         const std::optional<double> velocity =
             py::isinstance<py::str>(striker_velocity)
@@ -77,7 +88,7 @@ void bind_command_runs(py::module_& m) {
                       "--striker-velocity", message_text(striker_velocity), Dimension::kVelocity))
                 : optional_number<double>(striker_velocity, "striker_velocity");
         CompareArgs a{scene, output, overrides_of(tolerance, contact, stepping, courant, threads),
-                      dispersion, velocity};
+                      boolean(dispersion, "dispersion"), velocity};
         return run_released([&] { return run_compare(a); });
       },
       py::arg("scene"), py::arg("output"), py::arg("tolerance"), py::arg("contact"),
@@ -86,17 +97,17 @@ void bind_command_runs(py::module_& m) {
   m.def(
       "_study",
       [](const std::filesystem::path& scene, const std::filesystem::path& output,
-         const std::string& sweep, const py::object& refine, const py::object& tolerance,
-         const std::optional<std::string>& contact, const std::optional<std::string>& stepping,
-         const py::object& courant, const py::object& threads,
-         const std::optional<std::filesystem::path>& distributions, const py::object& draws,
-         const py::object& seed) {
+         const py::object& sweep_name, const py::object& refine, const py::object& tolerance,
+         const py::object& contact, const py::object& stepping, const py::object& courant,
+         const py::object& threads, const std::optional<std::filesystem::path>& distributions,
+         const py::object& draws, const py::object& seed) {
         StudyArgs a;
         a.scene = scene;
         a.output = output;
         if (distributions) a.distributions = *distributions;
         a.draws = optional_number<std::size_t>(draws, "draws");
         a.seed = optional_number<std::uint64_t>(seed, "seed");
+        const std::string sweep = text_value(sweep_name, "sweep", "the name of a sweep");
         check_choice("--sweep", sweep, enum_names(kSweepNames));  // the command's check
         a.sweep = *enum_value(kSweepNames, sweep);
         a.refine = number<int>(refine, "refine");

@@ -12,8 +12,10 @@
 #include "bindings.hpp"
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
+#include "interrupt.hpp"
 #include "model/input_limits.hpp"
 #include "model/scene_validation.hpp"
+#include "model/scene_writer.hpp"
 #include "model/test_setup.hpp"
 #include "model/wave_travel.hpp"
 #include "values.hpp"
@@ -166,14 +168,16 @@ void bind_scene(py::module_& m) {
   py::class_<Scene>(m, "Scene")
       .def_static(
           "load",
-          [](const std::filesystem::path& file) {
+          [](const py::object& given) {
+            const std::filesystem::path file = path_value(given, "Scene.load: path");
             // An empty path (std::filesystem::absolute throws on it) is the reader's to refuse.
             return read_scene(file.empty() ? file : std::filesystem::absolute(file));
           },
           py::arg("path"))
       .def_static(
           "from_dict",
-          [](const py::object& d, const std::filesystem::path& file) {
+          [](const py::object& d, const py::object& given) {
+            const std::filesystem::path file = path_value(given, "Scene.from_dict: file");
             if (file.empty())
               throw input_error("file", "", "\"\"",
                                 "expected the path the dict's relative paths are written from, "
@@ -181,7 +185,23 @@ void bind_scene(py::module_& m) {
             const std::filesystem::path anchored = std::filesystem::absolute(file);
             return read_scene_text(dict_to_json_text(d, anchored), anchored);
           },
-          py::arg("d"), py::arg("file") = std::filesystem::path("scene.json"))
+          py::arg("d"), py::arg("file") = py::str("scene.json"))
+      .def(
+          "save",
+          [](const Scene& s, const py::object& path, const py::object& overwrite) {
+            const std::filesystem::path file = path_value(path, "Scene.save: path");
+            const bool replace = boolean(overwrite, "Scene.save: overwrite");
+            run_released([&] {
+              save_scene(s, file, replace);
+              return 0;
+            });
+          },
+          py::arg("path"), py::arg("overwrite") = false)
+      .def("to_dict",
+           [](const Scene& s) {
+             // The file save(scene.file) would write, as a dict (json.loads of its text).
+             return py::module_::import("json").attr("loads")(scene_file_text(s, s.file));
+           })
       .def_readwrite("name", &Scene::name)
       .def_property_readonly("file", [](const Scene& s) { return s.file; })
       .def_property_readonly("bars",
@@ -233,7 +253,8 @@ void bind_scene(py::module_& m) {
           "validate",
           [](const Scene& s, const py::object& tolerance) {
             Scene copy = s;
-            apply_overrides(overrides_of(tolerance, {}, {}, py::none(), py::int_(0)), copy);
+            apply_overrides(
+                overrides_of(tolerance, py::none(), py::none(), py::none(), py::int_(0)), copy);
           },
           py::arg("tolerance") = py::none())
       .def("copy", [](const Scene& s) { return Scene(s); })

@@ -82,14 +82,14 @@ void bind_simulate(py::module_& m) {
 
   m.def(
       "_simulate",
-      [](const Scene& scene, const py::object& tolerance, const std::optional<std::string>& contact,
-         const std::optional<std::string>& stepping, const py::object& courant,
-         const py::object& threads, bool full_model) {
+      [](const Scene& scene, const py::object& tolerance, const py::object& contact,
+         const py::object& stepping, const py::object& courant, const py::object& threads,
+         const py::object& full_model) {
         auto s = std::make_shared<Simulation>();
         s->scene = scene;
         const RunOverrides overrides = overrides_of(tolerance, contact, stepping, courant, threads);
         SimulationOptions options;
-        options.full_model = full_model;
+        options.full_model = boolean(full_model, "full_model");
         options.cancel = [] { return interrupted(); };
         // The meshes a tolerance chooses are searched here too (tens of ms): without the GIL.
         s->result = run_released([&] {
@@ -100,7 +100,7 @@ void bind_simulate(py::module_& m) {
       },
       py::arg("scene"), py::arg("tolerance") = py::none(), py::arg("contact") = py::none(),
       py::arg("stepping") = py::none(), py::arg("courant") = py::none(),
-      py::arg("threads") = py::int_(0), py::arg("full_model") = false);
+      py::arg("threads") = py::int_(0), py::arg("full_model") = py::bool_(false));
 }
 
 }  // namespace shpb::python

@@ -1,6 +1,8 @@
 // Python values taken in (python/values.hpp).
 #include "values.hpp"
 
+#include <pybind11/stl/filesystem.h>
+
 #include "app/cli_options.hpp"
 #include "core/json_document.hpp"
 #include "core/json_value.hpp"
@@ -36,6 +38,20 @@ std::optional<py::object> json_value_of(const py::handle& o) {
     if (py::isinstance<py::str>(text)) return text;
   }
   return std::nullopt;
+}
+
+std::filesystem::path path_value(const py::handle& o, const std::string& name) {
+  try {
+    return o.cast<std::filesystem::path>();  // a str, bytes or os.PathLike, as pybind11 takes it
+  } catch (const py::cast_error&) {
+    throw py::type_error(name + ": " + shown(o) + ": expected a path (a str or os.PathLike)");
+  }
+}
+
+std::string text_value(const py::handle& o, const std::string& name, const std::string& expected) {
+  if (!py::isinstance<py::str>(o))
+    throw py::type_error(name + ": " + shown(o) + ": expected " + expected);
+  return o.cast<std::string>();
 }
 
 namespace {
@@ -139,15 +155,16 @@ std::string fields(std::initializer_list<std::pair<const char*, double>> values)
   return text;
 }
 
-RunOverrides overrides_of(const py::object& tolerance, const std::optional<std::string>& contact,
-                          const std::optional<std::string>& stepping, const py::object& courant,
+RunOverrides overrides_of(const py::object& tolerance, const py::object& contact,
+                          const py::object& stepping, const py::object& courant,
                           const py::object& threads) {
   // Text as the command line gives it, read by the command's own function (one check, one
   // message: courant="0.9" is --courant 0.9, a TypeError before); a number as a number.
   RunOverrides o;
   RunOptionText text;
-  text.contact = contact.value_or("");
-  text.stepping = stepping.value_or("");
+  text.contact = optional_text(contact, "contact", "the name of a contact method").value_or("");
+  text.stepping =
+      optional_text(stepping, "stepping", "\"asynchronous\" or \"global\"").value_or("");
   if (py::isinstance<py::str>(tolerance))
     text.tolerance = message_text(tolerance);
   else

@@ -55,6 +55,18 @@ T number(const py::handle& o, const std::string& name,
   }
   throw py::type_error(name + ": " + shown(o) + ": " + expected);
 }
+// A path handed to the module (a str or an os.PathLike, as open() takes it); anything else a
+// TypeError naming `name`, what was given and what is expected, in one line (pybind11's own names
+// every overload on several lines).
+std::filesystem::path path_value(const py::handle& o, const std::string& name);
+// Text (a str); anything else a TypeError naming `name` and `expected`.
+std::string text_value(const py::handle& o, const std::string& name, const std::string& expected);
+inline std::optional<std::string> optional_text(const py::handle& o, const std::string& name,
+                                                const std::string& expected) {
+  if (o.is_none()) return std::nullopt;
+  return text_value(o, name, expected);
+}
+
 // True or False (a numpy bool by its value), as a file's JSON boolean; anything else a TypeError
 // naming `name`.
 bool boolean(const py::handle& o, const std::string& name);
@@ -75,8 +87,8 @@ std::optional<double> tolerance_value(const py::object& t);
 
 // The keyword arguments tolerance, contact, stepping, courant and threads of a run (the commands'
 // options of those names) as the library's overrides, progress output off.
-RunOverrides overrides_of(const py::object& tolerance, const std::optional<std::string>& contact,
-                          const std::optional<std::string>& stepping, const py::object& courant,
+RunOverrides overrides_of(const py::object& tolerance, const py::object& contact,
+                          const py::object& stepping, const py::object& courant,
                           const py::object& threads);
 
 // An edited number meets the range the scene reader gives its JSON key (model/scene_reader.cpp,

@@ -34,7 +34,7 @@ __version__ = _shpb.__version__
 __all__ = ["Scene", "Bar", "Material", "JohnsonCook", "Bilinear", "Viscoelastic", "InputError", "NumericalError",
            "WriteError", "ShpbWarning", "simulate", "process", "compare", "dispersion", "fit",
            "study", "plan", "calibrate", "SimulationResult", "ProcessResult", "BarCheckResult",
-           "FolderResult", "PlanResult", "process_campaign", "CampaignResult"]
+           "FolderResult", "PlanResult", "process_campaign", "CampaignResult", "validate"]
 
 
 class ShpbWarning(UserWarning):
@@ -191,6 +191,27 @@ def _process_result(native):
     return (BarCheckResult if isinstance(native, _shpb._BarCheck) else ProcessResult)._of(native)
 
 
+def _scene_of(scene):
+    """A shpb.Scene, or the scene of the file at path `scene`."""
+    if isinstance(scene, Scene):
+        return scene
+    if not isinstance(scene, (str, _os.PathLike)):
+        raise TypeError(f"scene: {scene!r}: expected a shpb.Scene or the path of a scene file (a "
+                        "str or os.PathLike)")
+    return Scene.load(scene)
+
+
+@_with_help("validate", """validate(scene, tolerance=None, threads=0, contact=None, stepping=None,
+         courant=None) -> dict
+
+Checks `scene` (a shpb.Scene, or the path of a scene file) as `shpb validate` does and returns
+what `shpb validate --json` prints: the resolved set-up (materials, meshes, time steps, Courant
+numbers, gauges, interfaces, warnings and, for a scene with a measurement, what process reads),
+as a dict. Raises shpb.InputError where the command exits 2.""")
+def validate(scene, tolerance=None, threads=0, contact=None, stepping=None, courant=None):
+    return _shpb._validate(_scene_of(scene), tolerance, contact, stepping, courant, threads)
+
+
 @_with_help("simulate", """simulate(scene, tolerance=None, threads=0, contact=None, stepping=None,
          courant=None, full_model=False) -> SimulationResult
 
@@ -203,8 +224,7 @@ thread; run several from Python threads: the GIL is released). Raises shpb.Input
 result.stable False and result.failure saying where and when (the command's exit 3).""")
 def simulate(scene, tolerance=None, threads=0, contact=None, stepping=None, courant=None,
              full_model=False):
-    if not isinstance(scene, Scene):
-        scene = Scene.load(_os.fspath(scene))
+    scene = _scene_of(scene)
     return _warned(SimulationResult._of(_shpb._simulate(scene, tolerance, contact, stepping, courant,
                                                     threads, full_model)))
 
@@ -220,8 +240,7 @@ the command's --draws, --seed, --threads). Nothing is
 written until result.save(dir). Raises shpb.InputError for a bad scene or signal file, and
 shpb.NumericalError when the reduction fails (the command's exit 3).""")
 def process(scene, signals=None, draws=1000, seed=1, threads=0):
-    if not isinstance(scene, Scene):
-        scene = Scene.load(_os.fspath(scene))
+    scene = _scene_of(scene)
     if isinstance(signals, SimulationResult):
         # Read as the command reads a gauges.csv, through a temporary one; named as what it is
         # (summary.json's signals.file, warnings, errors), not as the temporary gone on return.
@@ -296,15 +315,19 @@ def _read_csv(path):
 
 
 def _folder_run(command, run, files, distributions=None, inputs_of=None, kind=None):
-    """Runs `command` on its scene or campaign file (calibrate: its scene files) `files` into a
-    temporary folder; `inputs_of()` the files it read, if not the command's `_inputs`; `kind`
-    the result's class (a FolderResult)."""
+    """Runs `command` on its scene or campaign file (calibrate and process_campaign: its scene
+    files) `files`, each a path or a shpb.Scene (written into the run's temporary folder by
+    Scene.save), into a temporary folder: `run(out, paths)`; `inputs_of(paths)` the files it read,
+    if not the command's `_inputs`; `kind` the result's class (a FolderResult)."""
     import weakref
     tmp = _tempfile.mkdtemp(prefix=f"shpb-{command}-")
     folder = _os.path.join(tmp, "out")
     try:
-        code = run(folder)
-        inputs = inputs_of() if inputs_of else _shpb._inputs(command, files, distributions or "")
+        paths = [_scene_file(f, tmp, k) for k, f in enumerate(files)]
+        with _scenes_named(files, paths):
+            code = run(folder, paths)
+            inputs = (inputs_of(paths) if inputs_of
+                      else _shpb._inputs(command, paths, distributions or ""))
         result = (kind or FolderResult)(command, folder, code, inputs)
     except BaseException:
         _shutil.rmtree(tmp, True)
@@ -316,14 +339,42 @@ def _folder_run(command, run, files, distributions=None, inputs_of=None, kind=No
     # process_campaign
 
 
-def _scene_file(scene):
-    """compare, study, plan, calibrate, fit and process_campaign run a scene or campaign file: its
-    path (a shpb.Scene is refused: one edited in memory is not its file)."""
+def _scene_file(scene, tmp=None, k=0):
+    """The path of a scene or campaign file: `scene` itself, or a shpb.Scene written by
+    Scene.save into `tmp` (scenes/K/ under its own file's name: the name a scene without one takes
+    from its file stays its own) for a command that reads its scene from a file."""
     if isinstance(scene, Scene):
-        raise TypeError("compare, study, plan, calibrate, fit and process_campaign read their scene "
-                        "or campaign from its file, as the commands do: pass the path (a Scene "
-                        "edited in memory is not a file)")
+        if tmp is None:
+            raise TypeError(f"{scene!r}: expected the path of a file here (a campaign file, or the "
+                            "scene files of shard and merge, which part.json names)")
+        folder = _os.path.join(tmp, "scenes", str(k))
+        path = _os.path.join(folder, _os.path.basename(scene.file) or "scene.json")
+        scene.save(path)
+        return path
+    if not isinstance(scene, (str, _os.PathLike)):
+        raise TypeError(f"scene: {scene!r}: expected a shpb.Scene or the path of a scene file (a "
+                        "str or os.PathLike)")
     return _os.fspath(scene)
+
+
+class _scenes_named:
+    """Errors of a run named by what the user gave: a shpb.Scene written to a temporary file is
+    named as 'the Scene of FILE (in memory)', not by the temporary file gone on return."""
+
+    def __init__(self, given, paths):
+        self._names = [(p, f"the Scene of {g.file} (in memory)")
+                       for g, p in zip(given, paths) if isinstance(g, Scene)]
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, kind, error, trace):
+        if self._names and isinstance(error, (InputError, NumericalError, WriteError)):
+            text = str(error)
+            for path, name in self._names:
+                text = text.replace(path, name)
+            raise type(error)(text) from None
+        return False
 
 
 @_with_help("compare", """compare(scene, tolerance=None, threads=0, contact=None, stepping=None,
@@ -333,9 +384,8 @@ Simulates the scene file and lays the simulated gauges over its measured signals
 `shpb compare` does; the command's files are in result.tables and result.json.""")
 def compare(scene, tolerance=None, threads=0, contact=None, stepping=None, courant=None,
             dispersion=True, striker_velocity=None):
-    scene = _scene_file(scene)
-    return _folder_run("compare", lambda out: _shpb._compare(
-        scene, out, tolerance, contact, stepping, courant, threads, dispersion,
+    return _folder_run("compare", lambda out, paths: _shpb._compare(
+        paths[0], out, tolerance, contact, stepping, courant, threads, dispersion,
         striker_velocity), [scene])
 
 
@@ -349,10 +399,9 @@ file of the scene values to draw, draws and seed as --draws and --seed); the com
 are in result.tables and result.json.""")
 def study(scene, sweep="pareto", refine=1, tolerance=None, threads=0, contact=None,
           stepping=None, courant=None, distributions=None, draws=None, seed=None):
-    scene = _scene_file(scene)
-    distributions = None if distributions is None else _os.fspath(distributions)
-    return _folder_run("study", lambda out: _shpb._study(
-        scene, out, sweep, refine, tolerance, contact, stepping, courant, threads,
+    distributions = None if distributions is None else _scene_file(distributions)
+    return _folder_run("study", lambda out, paths: _shpb._study(
+        paths[0], out, sweep, refine, tolerance, contact, stepping, courant, threads,
         distributions, draws, seed), [scene], distributions)
 
 
@@ -363,9 +412,9 @@ Fits the campaign file's free material parameters to its tests, as `shpb fit` do
 refits checking each parameter's interval, 0 for the linearised ones only);
 result.json["fit"] is fit.json (a material file), result.tables the command's CSV files.""")
 def fit(campaign, threads=0, max_iterations=40, relative_step=0.05, bootstrap=30, seed=1):
-    campaign = _scene_file(campaign)
-    return _folder_run("fit", lambda out: _shpb._fit(campaign, out, threads, max_iterations,
-                                                     relative_step, bootstrap, seed), [campaign])
+    campaign = _scene_file(campaign)  # a campaign file: a Scene is none
+    return _folder_run("fit", lambda out, paths: _shpb._fit(
+        paths[0], out, threads, max_iterations, relative_step, bootstrap, seed), [campaign])
 
 
 @_with_help("calibrate", """calibrate(scenes, threads=0) -> FolderResult
@@ -377,8 +426,8 @@ calibration.json (what a scene's "calibration" names), result.tables the shot-K.
 def calibrate(scenes, threads=0):
     if isinstance(scenes, (str, bytes, _os.PathLike, Scene)):
         scenes = [scenes]
-    scenes = [_scene_file(s) for s in scenes]
-    return _folder_run("calibrate", lambda out: _shpb._calibrate(scenes, out, threads), scenes)
+    return _folder_run("calibrate", lambda out, paths: _shpb._calibrate(paths, out, threads),
+                       list(scenes))
 
 
 class CampaignResult(FolderResult):
@@ -417,30 +466,33 @@ shard returns its part DIR/parts/K-of-N as a FolderResult, merge DIR/result.""")
 def process_campaign(campaign, flow_stress_at=(), draws=1000, seed=1, threads=0, shard=None,
                      merge=False, output=None):
     if isinstance(campaign, (str, bytes, _os.PathLike, Scene)):
-        file, scenes = _scene_file(campaign), []
+        file, scenes = _scene_file(campaign), []  # a campaign file: a Scene is none
     else:
-        file, scenes = None, [_scene_file(s) for s in campaign]
+        file, scenes = None, list(campaign)  # paths or Scenes
     if isinstance(flow_stress_at, (str, bytes)):  # not its characters, one by one
         raise TypeError(f"flow_stress_at: {flow_stress_at!r}: expected a list of engineering "
                         "strains, e.g. [0.02, 0.05]")
     if isinstance(flow_stress_at, (int, float)):
         flow_stress_at = [flow_stress_at]
 
-    def run(out):
-        return _shpb._process_campaign(file, scenes, out, list(flow_stress_at), draws, seed,
+    def run(out, paths):
+        return _shpb._process_campaign(file, paths, out, list(flow_stress_at), draws, seed,
                                        threads, shard, merge)
 
-    def inputs():
-        return _shpb._campaign_inputs(file, scenes)
+    def inputs(paths):
+        return _shpb._campaign_inputs(file, paths)
 
     if (shard is None and not merge) != (output is None):
         raise TypeError("output: the folder of shard and merge (their -o DIR), needed with them "
                         "alone: a campaign's result is written by result.save(dir)")
     if output is None:
-        return _folder_run("process", lambda out: [run(out), 0][1], scenes, inputs_of=inputs,
-                           kind=CampaignResult)
-    folder = run(_os.fspath(output))  # the part or DIR/result, the user's: nothing removed
-    return _warned(CampaignResult("process", folder, 0, inputs()))
+        return _folder_run("process", lambda out, paths: [run(out, paths), 0][1], scenes,
+                           inputs_of=inputs, kind=CampaignResult)
+    # The part or DIR/result, the user's: nothing removed; its part.json names the scenes'
+    # files, which a merge reads again (a Scene is run from its file here).
+    paths = [_scene_file(s) for s in scenes]
+    folder = run(_os.fspath(output), paths)
+    return _warned(CampaignResult("process", folder, 0, inputs(paths)))
 
 
 class PlanResult(FolderResult):
@@ -475,10 +527,11 @@ criterion missed most when no set-up within the bounds meets the targets (the co
 nothing written).""")
 def plan(scene, rate, strain=0.15, search_tolerance="3 %", tolerance="0.5 %", threads=0):
     import weakref
-    scene = _scene_file(scene)
-    native = _shpb._plan(scene, rate, strain, search_tolerance, tolerance, threads)
     tmp = _tempfile.mkdtemp(prefix="shpb-plan-")
     try:
+        path = _scene_file(scene, tmp)
+        with _scenes_named([scene], [path]):
+            native = _shpb._plan(path, rate, strain, search_tolerance, tolerance, threads)
         folder = _os.path.join(tmp, "out")
         native.save(folder)
         result = PlanResult._of(native, folder, native.inputs)

@@ -98,6 +98,9 @@ struct ValidateArgs {
   RunOverrides overrides;
 };
 int run_validate(const ValidateArgs& args);
+// What `shpb validate --json` prints of `scene` (read and checked) run with `overrides`: the
+// resolved set-up as JSON text (the Python module's validate returns it as a dict).
+std::string validate_setup(Scene scene, const RunOverrides& overrides);
 
 struct ReportArgs {
   std::filesystem::path folder;

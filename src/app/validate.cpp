@@ -61,8 +61,7 @@ json resolved_setup(const Scene& scene, const ChainDiscretization& d) {
 
 }  // namespace
 
-int run_validate(const ValidateArgs& args) {
-  Scene scene = read_scene(args.scene);  // its plan block too, as every command reads it
+std::string validate_setup(Scene scene, const RunOverrides& overrides) {
   const bool measured = scene.measurement && !scene.measurement->channels.empty();
   const auto no_material = std::find_if(scene.bars.begin(), scene.bars.end(),
                                         [](const BarSpec& b) { return !b.has_material; });
@@ -74,9 +73,9 @@ int run_validate(const ValidateArgs& args) {
     setup["warnings"] = json::array();
   } else {
     Scene automatic = scene;  // for the cost of the tolerance's meshes against today's
-    setup = resolved_setup(scene, apply_overrides(args.overrides, scene));
+    setup = resolved_setup(scene, apply_overrides(overrides, scene));
     if (scene.simulation.tolerance) {
-      RunOverrides o = args.overrides;
+      RunOverrides o = overrides;
       o.tolerance.reset();
       o.default_tolerance = false;
       automatic.simulation.tolerance.reset();
@@ -105,10 +104,16 @@ int run_validate(const ValidateArgs& args) {
     }
   }
   throw_if_interrupted();  // a signal during the checks: exit 130, not a report
+  return setup.dump(2);
+}
+
+int run_validate(const ValidateArgs& args) {
+  // Its plan block too, as every command reads it.
+  const std::string setup = validate_setup(read_scene(args.scene), args.overrides);
   if (args.json)
-    std::printf("%s\n", setup.dump(2).c_str());
+    std::printf("%s\n", setup.c_str());
   else
-    print_setup_table(setup);
+    print_setup_table(json::parse(setup));
   return 0;
 }
 

@@ -201,14 +201,18 @@ json parse_json_object(const std::string& text, const std::string& display) {
   return j;
 }
 
-json read_json_object_file(const std::filesystem::path& file, const std::string& display) {
-  const std::string bytes = read_input_file(file, display, "a JSON file", kMaxJsonBytes);
+std::string read_json_file_text(const std::filesystem::path& file, const std::string& display) {
+  std::string bytes = read_input_file(file, display, "a JSON file", kMaxJsonBytes);
   // UTF-16 (Windows "Unicode" text) is named as such rather than as a syntax error at column 1.
   if (bytes.rfind("\xFF\xFE", 0) == 0 || bytes.rfind("\xFE\xFF", 0) == 0 ||
       bytes.find('\0') != std::string::npos)
     throw input_error(display, "line 1", "UTF-16 or binary data",
                       "expected JSON text in UTF-8; save the file as UTF-8");
-  return parse_json_object(bytes, display);
+  return bytes;
+}
+
+json read_json_object_file(const std::filesystem::path& file, const std::string& display) {
+  return parse_json_object(read_json_file_text(file, display), display);
 }
 
 }  // namespace shpb

@@ -21,6 +21,8 @@ InputError too_deep(const std::string& display, const std::string& path);
 
 // `display` is how the file is named in messages (the path as the user wrote it).
 nlohmann::json read_json_object_file(const std::filesystem::path& file, const std::string& display);
+// Its text, with the same checks of the file (size, UTF-16, binary) before it is parsed.
+std::string read_json_file_text(const std::filesystem::path& file, const std::string& display);
 
 // The same from text already in memory.
 nlohmann::json parse_json_object(const std::string& text, const std::string& display);

@@ -314,6 +314,8 @@ struct Scene {
   // The calibration whose values replaced the nominal ones (top-level "calibration"), or empty.
   std::filesystem::path calibration_file;
   std::optional<PlanSpec> plan;  // the `plan` block, if the scene has one
+  // The JSON text it was read from: what a scene written back starts from (model/scene_writer.hpp).
+  std::string source_text;
 
   // Index of the first bar with a gauge left of the specimen / right of it, if any.
   std::optional<std::size_t> incident_bar() const;

@@ -34,8 +34,6 @@ class SceneReader {
   explicit SceneReader(const fs::path& file)
       : file_(file), display_(file.string()), dir_(file.parent_path()) {}
 
-  Scene read() { return read(read_json_object_file(file_, display_)); }
-
   // The scene; a key refused in one of its objects is refused naming the others it belongs to (a
   // material file's own keys are that file's).
   Scene read(const nlohmann::json& j) {
@@ -391,10 +389,14 @@ class SceneReader {
 
 }  // namespace
 
-Scene read_scene(const std::filesystem::path& file) { return SceneReader(file).read(); }
+Scene read_scene(const std::filesystem::path& file) {
+  return read_scene_text(read_json_file_text(file, file.string()), file);
+}
 
 Scene read_scene_text(const std::string& text, const std::filesystem::path& file) {
-  return SceneReader(file).read(parse_json_object(text, file.string()));
+  Scene scene = SceneReader(file).read(parse_json_object(text, file.string()));
+  scene.source_text = text;
+  return scene;
 }
 
 std::string radial_inertia_problem(const Scene& scene, std::size_t i) {

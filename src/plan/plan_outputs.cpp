@@ -7,6 +7,7 @@
 #include "analysis/reduction.hpp"
 #include "core/checked_write.hpp"
 #include "core/csv_writer.hpp"
+#include "model/scene_writer.hpp"
 #include "output_schema.hpp"
 
 namespace shpb {
@@ -26,7 +27,7 @@ void rebase_material(nlohmann::json& bar, const nlohmann::json& scene, const fs:
   if (!bar.contains("material") || !bar["material"].is_string()) return;
   const std::string s = bar["material"];
   if (scene.contains("materials") && scene["materials"].contains(s)) return;
-  bar["material"] = fs::relative(fs::absolute(from / s), fs::absolute(to)).string();
+  bar["material"] = rebased_path(s, from, to);
 }
 
 // The scene file as given with the plan's values, ready for `simulate` from the output folder.
@@ -36,9 +37,7 @@ nlohmann::json planned_json(const PlanResult& r, const PlanInput& in, const fs::
   j.erase("measurement");  // the record of a shot not yet fired
   const fs::path from = in.scene.file.parent_path();
   if (j.contains("calibration"))
-    j["calibration"] = fs::relative(fs::absolute(from / j["calibration"].get<std::string>()),
-                                    fs::absolute(final_dir))
-                           .string();
+    j["calibration"] = rebased_path(j["calibration"].get<std::string>(), from, final_dir);
   auto& bars = j["bars"];
   const PlanCandidate& c = r.chosen;
   bars[0]["length"] = si_text(c.striker_length_m, "m");
