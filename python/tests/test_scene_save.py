@@ -100,10 +100,16 @@ def test_save_replaces_no_file_it_should_not(tmp_path):
             scene.save(target, overwrite=overwrite)
         assert "\n" not in str(e.value)
     assert record.read_bytes() == before
+    # Files the scene does not read, asked to be replaced: only a scene file is.
     table = tmp_path / "table.csv"
     table.write_text("a,b\n1,2\n")
-    with pytest.raises(shpb.InputError, match="not a JSON object"):
-        scene.save(table, overwrite=True)
+    material = tmp_path / "material.json"
+    material.write_bytes((SOURCE / "specimens" / "al6061-t6.json").read_bytes())
+    for target in (table, material):
+        before = target.read_bytes()
+        with pytest.raises(shpb.InputError, match="is not a scene file"):
+            scene.save(target, overwrite=True)
+        assert target.read_bytes() == before
     scene.striker.velocity_m_s = 20.0
     scene.save(folder / "scene.json", overwrite=True)  # its own file, asked for
     assert shpb.Scene.load(folder / "scene.json").striker.velocity_m_s == 20.0

@@ -38,7 +38,7 @@ std::vector<ShaperMaterial> read_shaper_materials(const JsonValue& v, const nloh
     const bool named = scene.contains("materials") && scene["materials"].is_object() &&
                        scene["materials"].contains(s);
     std::error_code ec;
-    if (!named && !fs::is_regular_file(file.parent_path() / s, ec))
+    if (!named && !fs::is_regular_file((file.parent_path() / s).lexically_normal(), ec))
       throw item.error(
           "neither a name from the scene's materials nor a material file (paths are "
           "relative to the scene)");

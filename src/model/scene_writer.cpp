@@ -243,7 +243,10 @@ std::string first_difference(const Scene& a, const Scene& b) {
 
 std::string rebased_path(const std::string& written, const fs::path& from_dir,
                          const fs::path& to_dir) {
-  return fs::relative(fs::absolute(from_dir / written), fs::absolute(to_dir)).string();
+  // Lexically, as the reader resolves it ((folder / path).lexically_normal()): a symlinked folder
+  // on the way stays as the scene names it.
+  const fs::path target = fs::absolute(from_dir / written).lexically_normal();
+  return target.lexically_relative(fs::absolute(to_dir).lexically_normal()).string();
 }
 
 std::string scene_file_text(const Scene& scene, const fs::path& file) {
@@ -279,9 +282,11 @@ void save_scene(const Scene& scene, const fs::path& file, bool overwrite) {
       if (input != scene.file && fs::equivalent(input, to, ec))
         throw input_error(file.string(), "", "", "is a file the scene reads: not replaced");
     try {
-      read_json_object_file(to, file.string());
-    } catch (const InputError&) {
-      throw input_error(file.string(), "", "", "is not a JSON object (a scene file): not replaced");
+      read_scene(to);
+    } catch (const InputError& e) {  // a record, a table, a material or calibration file, ...
+      throw input_error(
+          file.string(), "", "",
+          "is not a scene file (reading it as one: " + std::string(e.what()) + "): not replaced");
     }
   }
   OutputFile out(

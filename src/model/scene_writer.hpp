@@ -17,8 +17,8 @@ namespace shpb {
 std::string scene_file_text(const Scene& scene, const std::filesystem::path& file);
 
 // Writes it to `file` atomically. An existing file is replaced only with `overwrite`, and then
-// neither a file the scene reads (a material file, a measured record, its calibration; its own
-// scene file may be) nor a file that is not a JSON object (a record, a table).
+// only a file that reads as a scene, and not one the scene reads (its own scene file may be): never
+// a measured record, a table, a material or calibration file.
 void save_scene(const Scene& scene, const std::filesystem::path& file, bool overwrite);
 
 // `written`, a path relative to `from_dir` as a scene gives it, relative to `to_dir` instead.
