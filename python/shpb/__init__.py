@@ -51,6 +51,14 @@ def _warned(result, calls=1):
     return result
 
 
+def _path(value, name):
+    """A path given to the module (a str, bytes or os.PathLike); anything else a one-line TypeError
+    naming the argument, the value and what is expected (os.fspath names the type alone)."""
+    if not isinstance(value, (str, bytes, _os.PathLike)):
+        raise TypeError(f"{name}: {value!r}: expected a path (a str or os.PathLike)")
+    return _os.fspath(value)
+
+
 def _table(columns):
     """A pandas DataFrame of the columns when pandas is installed, else the dict of arrays."""
     if columns is None or _pandas is None:
@@ -121,7 +129,7 @@ class SimulationResult(_Returned):
         """Writes gauges.csv, interfaces.csv, specimen.csv, energy.csv, field.csv and
         summary.json into `dir`, as `shpb simulate -o dir` (replaced atomically; a folder shpb
         did not write is refused)."""
-        self._native.save(_os.fspath(dir))
+        self._native.save(_path(dir, "dir"))
 
     def __repr__(self):
         s = self.summary
@@ -151,7 +159,7 @@ class ProcessResult(_Returned):
     def save(self, dir):
         """Writes raw_signals.csv, pulses.csv, curve.csv and summary.json into `dir`, as
         `shpb process -o dir`."""
-        self._native.save(_os.fspath(dir))
+        self._native.save(_path(dir, "dir"))
 
     def __repr__(self):
         return f"<shpb.ProcessResult {self.summary['scene']}: peak {self.summary['peak_stress_Pa'] / 1e6:.4g} MPa>"
@@ -178,7 +186,7 @@ class BarCheckResult(_Returned):
 
     def save(self, dir):
         """Writes pulses.csv and summary.json into `dir`, as `shpb process -o dir`."""
-        self._native.save(_os.fspath(dir))
+        self._native.save(_path(dir, "dir"))
 
     def __repr__(self):
         s = self.summary
@@ -250,7 +258,7 @@ def process(scene, signals=None, draws=1000, seed=1, threads=0):
             return _warned(_process_result(_shpb._process(
                 scene, _os.path.join(tmp, "run", "gauges.csv"), draws, seed, threads, shown)))
     return _warned(_process_result(_shpb._process(
-        scene, None if signals is None else _os.fspath(signals), draws, seed, threads)))
+        scene, None if signals is None else _path(signals, "signals"), draws, seed, threads)))
 
 
 class FolderResult:
@@ -290,7 +298,7 @@ class FolderResult:
     def save(self, dir):
         """Writes the command's folder into `dir` (replaced atomically; a folder shpb did not
         write is refused)."""
-        _shpb._save_folder(self._folder, _os.fspath(dir), self.command, self._inputs)
+        _shpb._save_folder(self._folder, _path(dir, "dir"), self.command, self._inputs)
 
     def __repr__(self):
         return f"<shpb.FolderResult of {self.command}: {', '.join(self.tables) or 'no tables'}>"
@@ -399,7 +407,7 @@ file of the scene values to draw, draws and seed as --draws and --seed); the com
 are in result.tables and result.json.""")
 def study(scene, sweep="pareto", refine=1, tolerance=None, threads=0, contact=None,
           stepping=None, courant=None, distributions=None, draws=None, seed=None):
-    distributions = None if distributions is None else _scene_file(distributions)
+    distributions = None if distributions is None else _path(distributions, "distributions")
     return _folder_run("study", lambda out, paths: _shpb._study(
         paths[0], out, sweep, refine, tolerance, contact, stepping, courant, threads,
         distributions, draws, seed), [scene], distributions)
@@ -491,7 +499,7 @@ def process_campaign(campaign, flow_stress_at=(), draws=1000, seed=1, threads=0,
     # The part or DIR/result, the user's: nothing removed; its part.json names the scenes'
     # files, which a merge reads again (a Scene is run from its file here).
     paths = [_scene_file(s) for s in scenes]
-    folder = run(_os.fspath(output), paths)
+    folder = run(_path(output, "output"), paths)
     return _warned(CampaignResult("process", folder, 0, inputs(paths)))
 
 
@@ -513,7 +521,7 @@ class PlanResult(FolderResult):
         return result
 
     def save(self, dir):
-        self._native.save(_os.fspath(dir))
+        self._native.save(_path(dir, "dir"))
 
 
 @_with_help("plan", """plan(scene, rate, strain=0.15, search_tolerance="3 %", tolerance="0.5 %",

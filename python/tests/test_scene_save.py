@@ -126,6 +126,8 @@ def test_save_replaces_no_file_it_should_not(tmp_path):
     lambda: shpb.validate([CLASSIC]),
     lambda: shpb.study(CLASSIC, sweep=2),
     lambda: shpb.fit(shpb.Scene.load(CLASSIC)),
+    lambda: shpb.simulate(CLASSIC).save(1),
+    lambda: shpb.process(CLASSIC, signals=2.0),
 ])
 def test_a_wrong_type_is_one_line_naming_what_was_given(call):
     with pytest.raises(TypeError) as e:
