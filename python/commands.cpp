@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "analysis/process_campaign.hpp"
@@ -67,7 +68,8 @@ void bind_command_runs(py::module_& m) {
       [](const Scene& scene, const py::object& tolerance, const py::object& contact,
          const py::object& stepping, const py::object& courant, const py::object& threads) {
         const RunOverrides o = overrides_of(tolerance, contact, stepping, courant, threads);
-        const std::string text = run_released([&] { return validate_setup(scene, o); });
+        Scene copy = scene;  // with the GIL held: another thread may edit it
+        const std::string text = run_released([&] { return validate_setup(std::move(copy), o); });
         return py::module_::import("json").attr("loads")(text);
       },
       py::arg("scene"), py::arg("tolerance"), py::arg("contact"), py::arg("stepping"),

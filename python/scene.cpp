@@ -191,8 +191,9 @@ void bind_scene(py::module_& m) {
           [](const Scene& s, const py::object& path, const py::object& overwrite) {
             const std::filesystem::path file = path_value(path, "Scene.save: path");
             const bool replace = boolean(overwrite, "Scene.save: overwrite");
+            const Scene scene = s;  // copied with the GIL held: another thread may edit it
             run_released([&] {
-              save_scene(s, file, replace);
+              save_scene(scene, file, replace);
               return 0;
             });
           },
