@@ -82,7 +82,9 @@ nlohmann::json calibration_to_json(const Calibration& c) {
           {"provenance", c.provenance}};
 }
 
-Calibration read_calibration_file(const std::filesystem::path& file) {
+namespace {
+
+Calibration read_calibration_objects(const std::filesystem::path& file) {
   const std::string display = file.string();
   const nlohmann::json j = read_json_object_file(file, display);
   const JsonValue root(j, display, "");
@@ -132,6 +134,14 @@ Calibration read_calibration_file(const std::filesystem::path& file) {
   if (auto p = o.get("provenance")) c.provenance = p->json();
   check_reference_gauge(o, c);
   return c;
+}
+
+}  // namespace
+
+// A key refused in one object of the file names the others it belongs to.
+Calibration read_calibration_file(const std::filesystem::path& file) {
+  return read_placing_keys(file.string(), input_keys::kCalibrationPlaces,
+                           [&] { return read_calibration_objects(file); });
 }
 
 void apply_calibration(Scene& scene, const Calibration& c, const std::filesystem::path& file) {

@@ -7,6 +7,7 @@
 #include "core/json_document.hpp"
 #include "core/json_value.hpp"
 #include "model/campaign.hpp"
+#include "model/input_keys.hpp"
 #include "model/law_parameters.hpp"
 #include "model/material_reader.hpp"
 #include "model/scene.hpp"
@@ -75,8 +76,7 @@ FitSpec read_fit_spec(const Campaign& c) {
     spec.material_display = file.string();
     spec.material_file = file;
     spec.material_document = read_json_object_file(file, spec.material_display);
-    spec.material = read_material(JsonValue(spec.material_document, spec.material_display, ""),
-                                  spec.material_display);
+    spec.material = read_material_document(spec.material_document, spec.material_display);
   } else if (material.is_object()) {
     spec.material_display = c.display;
     spec.material_document = material.json();
@@ -92,9 +92,10 @@ FitSpec read_fit_spec(const Campaign& c) {
     for (const auto& [key, value] : free->json().items()) {
       const JsonValue v(value, c.display, json_child_path(free->path(), key));
       if (std::find(names.begin(), names.end(), key) == names.end())
-        throw v.error_with_value(json_quoted(key), "not a parameter of the " +
-                                                       std::string(to_string(spec.material.model)) +
-                                                       " law; " + suggestion_text(key, names));
+        throw v.error_with_value(json_quoted(key),
+                                 "not a parameter of the " +
+                                     std::string(to_string(spec.material.model)) + " law; " +
+                                     key_suggestion_text(key, names, input_keys::kCampaignPlaces));
       FreeParameter p;
       p.name = key;
       p.json_path = v.path();
@@ -112,7 +113,7 @@ FitSpec read_fit_spec(const Campaign& c) {
 
   // Nuisance parameters.
   if (auto nuisance = o.get("nuisance")) {
-    const auto n = nuisance->object(enum_names(kNuisanceNames));
+    const auto n = nuisance->object(input_keys::kNuisance);
     for (const auto& [key, kind] : kNuisanceNames) {
       const auto v = n.get(std::string(key));
       if (!v) continue;

@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "core/closest_match.hpp"
+#include "core/enum_names.hpp"
+#include "model/fit_spec.hpp"
 
 namespace shpb::input_keys {
 
@@ -80,37 +82,49 @@ inline const Keys kPlanStriker = {"length", "velocity"};
 inline const Keys kPlanShaper = {"material", "diameter", "thickness"};
 inline const Keys kPlanSpecimen = {"length"};
 
-// Every object of a scene file, where it is: a key refused in one object is looked for in the
-// others, so that the refusal says where it belongs (core/json_value.hpp, UnknownKeyError).
-inline const std::vector<KeyPlace> kScenePlaces = {
-    {"the top level", &kScene},
-    {"bars[]", &kBar},
-    {"bars[].gauges[]", &kGauge},
+// Every object of a material (scene `materials`, a bar's inline `material`, a material file, a
+// campaign's `material`), where it is: a key refused in one object is looked for in the others, so
+// that the refusal says where it belongs (core/json_value.hpp, UnknownKeyError).
+inline const std::vector<KeyPlace> kMaterialPlaces = {
     {"a material", &kMaterial},
     {"an elastic material", &kElastic},
     {"a bilinear material", &kBilinear},
     {"a johnson-cook material", &kJohnsonCook},
     {"a viscoelastic material", &kViscoelastic},
     {"a viscoelastic material's arms[]", &kMaxwellArm},
-    {"contact", &kContact},
-    {"contact.interfaces[]", &kInterface},
-    {"simulation", &kSimulation},
-    {"measurement", &kMeasurement},
-    {"measurement.time", &kMeasurementTime},
-    {"measurement.channels[]", &kChannel},
-    {"measurement.channels[].bridge", &kBridge},
-    {"measurement.dispersion", &kDispersion},
-    {"measurement.windows", &kWindows},
-    {"measurement.rate_window", &kRateWindow},
-    {"measurement.corrections", &kCorrections},
-    {"measurement.uncertainty", &kUncertainty},
-    {"measurement.uncertainty.bars.<bar>", &kUncertaintyBar},
-    {"measurement.uncertainty.bars.<specimen>", &kUncertaintySpecimen},
-    {"plan", &kPlan},
-    {"plan.striker", &kPlanStriker},
-    {"plan.shaper", &kPlanShaper},
-    {"plan.specimen", &kPlanSpecimen},
     {"a material's uncertainty.<parameter>", &kFitInterval}};
+
+// The places of one file's objects: `own`, then the material's objects after the first `before`.
+inline std::vector<KeyPlace> places_with_material(std::vector<KeyPlace> own, std::size_t before) {
+  own.insert(own.begin() + static_cast<std::ptrdiff_t>(before), kMaterialPlaces.begin(),
+             kMaterialPlaces.end());
+  return own;
+}
+
+// Every object of a scene file, where it is (as kMaterialPlaces).
+inline const std::vector<KeyPlace> kScenePlaces =
+    places_with_material({{"the top level", &kScene},
+                          {"bars[]", &kBar},
+                          {"bars[].gauges[]", &kGauge},
+                          {"contact", &kContact},
+                          {"contact.interfaces[]", &kInterface},
+                          {"simulation", &kSimulation},
+                          {"measurement", &kMeasurement},
+                          {"measurement.time", &kMeasurementTime},
+                          {"measurement.channels[]", &kChannel},
+                          {"measurement.channels[].bridge", &kBridge},
+                          {"measurement.dispersion", &kDispersion},
+                          {"measurement.windows", &kWindows},
+                          {"measurement.rate_window", &kRateWindow},
+                          {"measurement.corrections", &kCorrections},
+                          {"measurement.uncertainty", &kUncertainty},
+                          {"measurement.uncertainty.bars.<bar>", &kUncertaintyBar},
+                          {"measurement.uncertainty.bars.<specimen>", &kUncertaintySpecimen},
+                          {"plan", &kPlan},
+                          {"plan.striker", &kPlanStriker},
+                          {"plan.shaper", &kPlanShaper},
+                          {"plan.specimen", &kPlanSpecimen}},
+                         3);
 
 // A calibration file (`shpb calibrate`'s calibration.json).
 inline const Keys kCalibration = {"format", "reference_gauge", "absolute_gain",
@@ -119,6 +133,12 @@ inline const Keys kCalibrationBar = {"bar", "wave_speed_m_s", "poisson_ratio", "
                                      "youngs_modulus_Pa"};
 inline const Keys kCalibrationGauge = {"gauge", "bar", "position_m", "gain", "delay_s"};
 inline const Keys kCalibratedValue = {"value", "sd"};
+// Its objects, as kScenePlaces.
+inline const std::vector<KeyPlace> kCalibrationPlaces = {{"the top level", &kCalibration},
+                                                         {"bars[]", &kCalibrationBar},
+                                                         {"gauges[]", &kCalibrationGauge},
+                                                         {"bars[].<value>", &kCalibratedValue},
+                                                         {"gauges[].<value>", &kCalibratedValue}};
 
 // A campaign file: its tests, and the fit's keys (model/fit_spec.hpp), so one file serves `process`
 // and `fit`; both read all of them.
@@ -129,12 +149,17 @@ inline const Keys kCampaign = [] {
   return keys;
 }();
 inline const Keys kCampaignTest = {"scene", "name", "weight"};
-// Its objects, as kScenePlaces.
-inline const std::vector<KeyPlace> kCampaignPlaces = {{"the top level", &kCampaign},
-                                                      {"tests[]", &kCampaignTest}};
+// The fit's `nuisance` (kNuisanceNames).
+inline const Keys kNuisance = enum_names(kNuisanceNames);
+// Its objects, as kScenePlaces: an inline `material` is a material.
+inline const std::vector<KeyPlace> kCampaignPlaces = places_with_material(
+    {{"the top level", &kCampaign}, {"tests[]", &kCampaignTest}, {"nuisance", &kNuisance}}, 3);
 
 // A Monte Carlo distributions file (`study --sweep monte-carlo`).
 inline const Keys kDistributions = {"values", "notes"};
 inline const Keys kDistribution = {"normal", "uniform"};
+// Its objects, as kScenePlaces.
+inline const std::vector<KeyPlace> kDistributionsPlaces = {
+    {"the top level", &kDistributions}, {"values.<scene value>", &kDistribution}};
 
 }  // namespace shpb::input_keys

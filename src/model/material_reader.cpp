@@ -196,9 +196,14 @@ MaterialSpec read_material(const JsonValue& value, const std::string& name) {
   return m;
 }
 
+MaterialSpec read_material_document(const nlohmann::json& document, const std::string& display) {
+  return read_placing_keys(display, input_keys::kMaterialPlaces, [&] {
+    return read_material(JsonValue(document, display, ""), display);
+  });
+}
+
 MaterialSpec read_material_file(const std::filesystem::path& file, const std::string& display) {
-  const nlohmann::json j = read_json_object_file(file, display);
-  return read_material(JsonValue(j, display, ""), display);
+  return read_material_document(read_json_object_file(file, display), display);
 }
 
 }  // namespace shpb

@@ -18,7 +18,10 @@ MaterialSpec read_material(const JsonValue& value, const std::string& name);
 // The keys of `model`'s own law, besides the keys of every material (input_keys::kMaterial).
 const std::vector<std::string>& material_model_keys(MaterialModel model);
 
-// A material file; `display` names it in messages.
+// A material file's document; `display` names it in messages, and a key refused in one of its
+// objects is refused naming the others it belongs to (input_keys::kMaterialPlaces).
+MaterialSpec read_material_document(const nlohmann::json& document, const std::string& display);
+// A material file, read as read_material_document.
 MaterialSpec read_material_file(const std::filesystem::path& file, const std::string& display);
 
 }  // namespace shpb

@@ -104,10 +104,8 @@ std::vector<double> doubles_from(const nlohmann::json& j) {
   return v;
 }
 
-}  // namespace
-
-std::vector<Distribution> read_distributions(const std::filesystem::path& file,
-                                             const Scene& scene) {
+std::vector<Distribution> read_distributions_objects(const std::filesystem::path& file,
+                                                     const Scene& scene) {
   // The scene's reader: a folder, a device or a FIFO (which would block), duplicate keys, depth
   // and size beyond the limits are refused naming the file (core/json_document.hpp).
   const nlohmann::json doc = read_json_object_file(file, file.string());
@@ -177,6 +175,15 @@ std::vector<Distribution> read_distributions(const std::filesystem::path& file,
     out.push_back(d);
   }
   return out;
+}
+
+}  // namespace
+
+// A key refused in one object of the file names the other it belongs to.
+std::vector<Distribution> read_distributions(const std::filesystem::path& file,
+                                             const Scene& scene) {
+  return read_placing_keys(file.string(), input_keys::kDistributionsPlaces,
+                           [&] { return read_distributions_objects(file, scene); });
 }
 
 std::vector<MonteCarloJob> monte_carlo_jobs(const std::vector<Distribution>& distributions,

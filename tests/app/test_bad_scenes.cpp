@@ -166,8 +166,11 @@ const std::vector<BadScene>& cases() {
       {"an unknown material model",
        [](json& s, json&) { s["materials"]["steel"]["model"] = "elastc"; },
        "materials.steel.model: \"elastc\": did you mean \"elastic\"?"},
+      // A material file's key of another model is named there, as in a scene (before: the
+      // keys of this model were listed).
       {"a key of another material model", [](json&, json& m) { m["yield_stress"] = "300 MPa"; },
-       "yield_stress: unknown key"},
+       "specimen.json: yield_stress: unknown key: not here; \"yield_stress\" is a key of a "
+       "bilinear material"},
       {"a Johnson-Cook n above 1", [](json&, json& m) { m["n"] = 1.5; }, "specimen.json: n: 1.5"},
       {"a negative Johnson-Cook B", [](json&, json& m) { m["B"] = "-1 MPa"; }, "specimen.json: B"},
       {"a zero Johnson-Cook m", [](json&, json& m) { m["m"] = 0; }, "specimen.json: m"},

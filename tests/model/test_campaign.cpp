@@ -97,6 +97,34 @@ TEST_CASE("Bad campaigns name the file, the JSON path and what was expected", "[
   CHECK(error_of(misplaced) ==
         misplaced.string() +
             ": tests[0].stages: unknown key: not here; \"stages\" is a key of the top level");
+  // The fit's objects are the file's too (before: the keys of the object were listed).
+  const auto nuisance =
+      s.write(R"({"tests": [{"scene": "a/scene.json", "rise_time": ["1 us", "2 us"]}]})");
+  CHECK(error_of(nuisance) ==
+        nuisance.string() +
+            ": tests[0].rise_time: unknown key: not here; \"rise_time\" is a key of nuisance");
+  const auto misspelt =
+      s.write(R"({"tests": [{"scene": "a/scene.json"}], "striker_velocty": "5 %"})");
+  CHECK(
+      error_of(misspelt) ==
+      misspelt.string() +
+          ": striker_velocty: unknown key: did you mean \"striker_velocity\", a key of nuisance?");
+  const auto freed = s.write(R"({"tests": [{"scene": "a/scene.json"}],
+      "material": {"model": "elastic", "density": 2700, "youngs_modulus": "70 GPa",
+                   "poisson_ratio": 0.33},
+      "free": {"striker_velocity": ["5 m/s", "6 m/s"]}})");
+  CHECK(error_of(freed) == freed.string() +
+                               ": free.striker_velocity: \"striker_velocity\": not a parameter of "
+                               "the elastic law; not here; \"striker_velocity\" is a key of "
+                               "nuisance");
+  // A material file the campaign names says where its keys belong, as a scene's materials do.
+  std::ofstream(s.dir / "law.json") << R"({"model": "elastic", "density": 2700,
+      "youngs_modulus": "70 GPa", "poisson_ratio": 0.33, "A": "90 MPa"})";
+  const auto law = s.write(R"({"tests": [{"scene": "a/scene.json"}], "material": "law.json",
+      "free": {"youngs_modulus": ["60 GPa", "80 GPa"]}})");
+  CHECK(error_of(law) == (s.dir / "law.json").string() +
+                             ": A: unknown key: not here; \"A\" is a key of a johnson-cook "
+                             "material");
 }
 
 // A test name names the test's output folder (docs/scene-format.md, campaign files), so it must

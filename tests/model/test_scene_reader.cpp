@@ -258,6 +258,18 @@ TEST_CASE("A calibration file holds exactly the keys shpb calibrate writes", "[m
   } catch (const InputError& e) {
     CHECK(std::string(e.what()).find(file.string() + ": version: unknown key") == 0);
   }
+  // A key of the file's other object is named there (before: the keys of bars[] were listed).
+  nlohmann::json misplaced = written;
+  misplaced["bars"][0]["position_m"] = written["gauges"][0]["position_m"];
+  write(file, misplaced.dump());
+  try {
+    read_calibration_file(file);
+    FAIL("a gauge's key in bars[0] was read");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()) == file.string() +
+                                       ": bars[0].position_m: unknown key: not here; "
+                                       "\"position_m\" is a key of gauges[]");
+  }
   write(file, written.dump());
   CHECK(read_calibration_file(file).bars.at(0).wave_speed_m_s.value == 4975);
 }

@@ -130,6 +130,9 @@ TEST_CASE("A normal striker velocity gives the incident plateau band of eps = v/
           std::pair{R"({"values": {"striker.velocity": {"normal": "12 m/s"}}})", "must stay > 0"},
           std::pair{R"({"values": {"striker.velocity": {"uniform": ["-1 m/s", "20 m/s"]}}})",
                     "must keep its sign"},
+          // A key of the file's other object is named there (before: the top level's were listed).
+          std::pair{R"({"values": {"striker.velocity": {"normal": "1 %"}}, "normal": "1 %"})",
+                    "normal: unknown key: not here; \"normal\" is a key of values.<scene value>"},
           // JSON lets the second "values" silently win; every input of shpb refuses it.
           std::pair{R"({"values": {"striker.velocity": {"normal": "1 %"}}, "values": {}})",
                     "values: duplicate key"}}) {
