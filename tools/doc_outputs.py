@@ -28,12 +28,13 @@ prints) are checked against the table or paragraph that documents them: a line
 
     <!-- shpb-keys: summary.json: simulate experiments/classic-al6061/scene.json -o results/x -q -->
 
-(the file in the command's `-o` folder, or `stdout`, then the command) is followed by that table or
+(the file in the command's `-o` or `--plan` folder, or `stdout`, then the command) is followed by that table or
 paragraph. Every file and folder the command wrote must be named in backquotes in the page's section
 that holds the line, and in the first line of `shpb CMD --help` where that line says what it writes. Every key the file holds must be named there in backquotes (`bars[]`, `quantities.<name>`
 name `bars` and `quantities`), and every key of an object it holds (of every element, for an array
 of objects) named in the key's table row, or in the paragraph; a key a table row names outside its
-parentheses must be in the file unless the row says when it is written ("only ...").
+parentheses must be in the file unless the row says when it is written ("only ..."). Every
+`summary.json` holds `version`, the shpb that wrote it.
 
 Every command a page shows (`shpb CMD ...`, `build/shpb CMD ...`, in code or in prose) is also
 checked for its options: each `-x` or `--name` after the command must be one that `shpb CMD
@@ -47,6 +48,7 @@ import difflib
 import json
 import re
 import shlex
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -159,6 +161,9 @@ def outside_parentheses(text: str) -> str:
 
 
 def written_json(exe: str, what: str, command: str):
+    words = shlex.split(command)
+    if "--plan" in words:  # a plan folder must be new: the one this check made before goes
+        shutil.rmtree(ROOT / words[words.index("--plan") + 1], ignore_errors=True)
     result = subprocess.run([exe, *shlex.split(command)], cwd=ROOT, capture_output=True, text=True,
                             timeout=600, check=False)
     if result.returncode != 0:
@@ -166,7 +171,8 @@ def written_json(exe: str, what: str, command: str):
     if what == "stdout":
         return json.loads(result.stdout), None
     words = shlex.split(command)
-    folder = ROOT / next(words[i + 1] for i, w in enumerate(words) if w in ("-o", "--output"))
+    folder = ROOT / next(words[i + 1] for i, w in enumerate(words)
+                         if w in ("-o", "--output", "--plan"))
     return json.loads((folder / what).read_text(encoding="utf-8")), folder
 
 
@@ -177,18 +183,27 @@ def section(lines: list[str], number: int) -> str:
     return "\n".join(lines[start:end])
 
 
+def names_file(names: list[str], name: str) -> bool:
+    """True if one of names is the file or folder `name`: as written (a folder with or without its
+    `/`), or with a number as a capital K or N (`shot-K.csv` names shot-1.csv)."""
+    patterns = [re.sub(r"(?<![A-Za-z])([KN])(?![A-Za-z])", r"\\d+", re.escape(n.rstrip("/")))
+                for n in names]
+    return any(re.fullmatch(p, name.rstrip("/")) for p in patterns)
+
+
 def file_mismatches(exe: str, where: str, command: str, folder: Path, text: str) -> list[str]:
     """The files of an output folder that its page section, or its command's --help line saying
     what it writes, does not name (a folder with a marker of its own, a campaign's test, aside)."""
     written = sorted(p.name + ("/" if p.is_dir() else "") for p in folder.iterdir()
                      if p.name != ".shpb-output" and not (p / ".shpb-output").exists())
     found = [f"{where}: writes {name}, which its section does not name" for name in written
-             if not re.search(rf"`{re.escape(name.rstrip('/'))}/?`", text)]
+             if not names_file(re.findall(r"`([^`]+)`", text), name)]
     described = subprocess.run([exe, command.split()[0], "--help"], capture_output=True, text=True,
                                check=False).stdout.split("\n")[0]
     if "write" in described:
         found += [f"{where}: writes {name}, which `shpb {command.split()[0]} --help` does not name"
-                  for name in written if name.rstrip("/") not in described]
+                  for name in written
+                  if not names_file(re.findall(r"[\w./-]+", described), name)]
     return found
 
 
@@ -212,6 +227,9 @@ def key_mismatches(exe: str, name: str, lines: list[str]) -> list[str]:
         block = lines[number + 1:end]
         written, folder = written_json(exe, what, command)
         where = f"{name}:{number + 1}: {what} of shpb {command.split()[0]}"
+        if what == "summary.json" and "version" not in written:
+            found.append(f"{where}: holds no `version` (every summary.json names the shpb that "
+                         "wrote it)")
         if folder is not None:
             found += file_mismatches(exe, where, command, folder, section(lines, number))
         rows = {}  # key -> its table row, for the keys a row names outside its parentheses

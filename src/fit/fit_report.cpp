@@ -168,12 +168,15 @@ nlohmann::json fit_summary(const FitRun& run) {
   s["relative_step"] = run.relative_step;
   s["parameters"] = parameters_json(run);
   s["correlation"] = correlation_json(run);
-  s["bootstrap"] = {{"refits", run.bootstrap.draws},
-                    {"finished", run.bootstrap.estimates.size()},
-                    {"failed", run.bootstrap.failed},
-                    {"seed", run.bootstrap.seed},
-                    {"simulations", run.bootstrap.simulations},
-                    {"wall_time_s", run.bootstrap.wall_time_s}};
+  // Null when no refit was drawn (--bootstrap 0): no seed was used.
+  s["bootstrap"] = nullptr;
+  if (run.bootstrap.draws > 0)
+    s["bootstrap"] = {{"refits", run.bootstrap.draws},
+                      {"finished", run.bootstrap.estimates.size()},
+                      {"failed", run.bootstrap.failed},
+                      {"seed", run.bootstrap.seed},
+                      {"simulations", run.bootstrap.simulations},
+                      {"wall_time_s", run.bootstrap.wall_time_s}};
   nlohmann::json stages = nlohmann::json::array();
   double signals_time = 0, signals_cpu = 0;
   long signal_simulations = 0, evaluations = 0;

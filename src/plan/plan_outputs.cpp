@@ -9,6 +9,7 @@
 #include "core/csv_writer.hpp"
 #include "model/scene_writer.hpp"
 #include "output_schema.hpp"
+#include "version.hpp"
 
 namespace shpb {
 namespace {
@@ -222,6 +223,7 @@ void write_plan_outputs(const PlanResult& r, const PlanInput& in, const PlanTarg
   Json gauges = Json::array();
   Json scope = scope_settings(r, s, gauges);
   Json j = {
+      {"version", kVersion},
       {"command", "plan"},
       {"scene", s.file.string()},
       {"targets",

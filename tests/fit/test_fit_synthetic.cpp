@@ -150,6 +150,8 @@ TEST_CASE("A bridge's offset on a test's record moves neither fit's start nor it
   REQUIRE(r.code == 0);
   const json s = json::parse(std::ifstream(dir / "out/summary.json"));
   INFO(s.dump(1));
+  // No refit was drawn: no bootstrap block (before: refits 0 and a seed 0 that drew nothing).
+  CHECK(s["bootstrap"].is_null());
   // V = c0 ε_I (Z_s + Z_b)/Z_s from a plateau flat to ~1 % (docs/methods.md §4).
   constexpr double kInferredVelocity = 0.01;
   CHECK(s["parameters"]["v0:striker_velocity"]["start"].get<double>() ==
