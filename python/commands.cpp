@@ -161,8 +161,8 @@ void bind_command_runs(py::module_& m) {
               number<double>(a_over_lambda[i], "a_over_lambda[" + std::to_string(i) + "]"));
         DispersionArgs a{number<double>(poisson, "poisson"),
                          ratios,
-                         number<double>(max_a_over_lambda, "max_a_over_lambda"),
-                         number<int>(points, "points"),
+                         optional_number<double>(max_a_over_lambda, "max_a_over_lambda"),
+                         optional_number<int>(points, "points"),
                          optional_number<double>(radius_m, "radius_m"),
                          optional_number<double>(c0_m_s, "c0_m_s"),
                          output};

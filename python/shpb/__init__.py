@@ -550,13 +550,14 @@ def plan(scene, rate, strain=0.15, search_tolerance="3 %", tolerance="0.5 %", th
     return _warned(result)
 
 
-@_with_help("dispersion", """dispersion(poisson=0.29, a_over_lambda=None, max_a_over_lambda=1.6,
-           points=321, radius_m=None, c0_m_s=None)
+@_with_help("dispersion", """dispersion(poisson=0.29, a_over_lambda=None, max_a_over_lambda=None,
+           points=None, radius_m=None, c0_m_s=None)
 
 The Pochhammer-Chree table of `shpb dispersion` (columns a_over_lambda, c_over_c0, cg_over_c0,
 f_a_over_c0 and, with radius_m and c0_m_s, frequency_Hz): a DataFrame with pandas, else a
-dict of numpy arrays.""")
-def dispersion(poisson=0.29, a_over_lambda=None, max_a_over_lambda=1.6, points=321,
+dict of numpy arrays. The rows are the list a_over_lambda, or points (default 321) evenly
+spaced values up to max_a_over_lambda (default 1.6): not both.""")
+def dispersion(poisson=0.29, a_over_lambda=None, max_a_over_lambda=None, points=None,
                radius_m=None, c0_m_s=None):
     # A text is iterable too: "12" was read as the two values 1 and 2.
     if isinstance(a_over_lambda, (str, bytes)) or not (a_over_lambda is None

@@ -201,12 +201,15 @@ def test_a_parameter_of_another_law_is_refused(bar, group, attribute, value, law
                         / "distributions.json", draws=0), "--draws"),
     (lambda: shpb.dispersion(max_a_over_lambda=0), "--max-a-over-lambda"),
     (lambda: shpb.dispersion(points=1000001), "--points"),
+    # A list is the table: a size given with it was ignored.
+    (lambda: shpb.dispersion(a_over_lambda=[0.1], points=5), "--points"),
     # --threads is a whole number >= 0 (0: all cores); -1 was taken as all cores, or ignored.
     (lambda: shpb.simulate(SOURCE / "experiments" / "striker-on-bar" / "scene.json", threads=-1),
      "--threads"),
     (lambda: shpb.study(SOURCE / "experiments" / "striker-on-bar" / "scene.json",
                         sweep="stability", threads=-1), "--threads"),
 ], ids=["refine-0", "refine-65", "draws-1", "study-draws-0", "max-a-over-lambda-0", "points-1000001",
+        "list-and-points",
         "simulate-threads--1", "study-threads--1"])
 def test_an_option_outside_the_commands_range_is_an_input_error(call, option):
     # The range the command's option parser gives the option holds from Python too: refused before

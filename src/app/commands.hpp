@@ -78,9 +78,9 @@ int run_compare(const CompareArgs& args);
 
 struct DispersionArgs {
   double poisson = 0.29;
-  std::vector<double> a_over_lambda;  // explicit list, or
-  double max_a_over_lambda = 1.6;
-  int points = 321;
+  std::vector<double> a_over_lambda;  // explicit list, or an evenly spaced table (not both)
+  std::optional<double> max_a_over_lambda;
+  std::optional<int> points;
   std::optional<double> radius_m;
   std::optional<double> c0_m_s;
   std::optional<std::filesystem::path> output;  // CSV file; stdout when absent or "-"

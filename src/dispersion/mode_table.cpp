@@ -16,8 +16,10 @@ constexpr double kMaxAOverLambda = 1000;
 
 std::vector<double> table_points(const ModeTableOptions& o) {
   std::vector<double> xs = o.a_over_lambda;
+  const int n = o.points.value_or(kDefaultTablePoints);
   if (xs.empty())
-    for (int i = 0; i < o.points; ++i) xs.push_back(o.max_a_over_lambda * i / (o.points - 1));
+    for (int i = 0; i < n; ++i)
+      xs.push_back(o.max_a_over_lambda.value_or(kDefaultMaxAOverLambda) * i / (n - 1));
   return xs;
 }
 
@@ -29,14 +31,20 @@ bool ModeTableOptions::IsValid(std::string* error) const {
     e = input_error("--poisson", "", format_double(poisson),
                     "must be in [" + format_double(kMinPoissonRatio) + ", " +
                         format_double(kMaxPoissonRatio) + "]");
-  else if (a_over_lambda.empty() && (points < 2 || points > kMaxTablePoints))
-    e = input_error("--points", "", std::to_string(points),
+  // A list is the table: an evenly spaced table's size given with it was ignored.
+  else if (!a_over_lambda.empty() && points)
+    e = input_error("--points", "", std::to_string(*points),
+                    "not with --a-over-lambda (the list gives the table's a/Λ)");
+  else if (!a_over_lambda.empty() && max_a_over_lambda)
+    e = input_error("--max-a-over-lambda", "", format_double(*max_a_over_lambda),
+                    "not with --a-over-lambda (the list gives the table's a/Λ)");
+  else if (points && (*points < 2 || *points > kMaxTablePoints))
+    e = input_error("--points", "", std::to_string(*points),
                     "must be in [2, " + std::to_string(kMaxTablePoints) + "]");
   // The largest a/Λ under its own name: an infinite one made the table's points NaN, refused
   // as --a-over-lambda (a value nobody gave).
-  else if (a_over_lambda.empty() &&
-           !(max_a_over_lambda > 0 && max_a_over_lambda <= kMaxAOverLambda))
-    e = input_error("--max-a-over-lambda", "", format_double(max_a_over_lambda),
+  else if (max_a_over_lambda && !(*max_a_over_lambda > 0 && *max_a_over_lambda <= kMaxAOverLambda))
+    e = input_error("--max-a-over-lambda", "", format_double(*max_a_over_lambda),
                     "must be in (0, " + format_double(kMaxAOverLambda) + "]");
   for (double x : e ? std::vector<double>{} : table_points(*this))
     if (!e && (!(x >= 0) || x > kMaxAOverLambda))

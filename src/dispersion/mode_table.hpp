@@ -11,12 +11,16 @@ namespace shpb {
 // The largest evenly spaced table: a million rows (about 60 MB of CSV) is far past any plot or
 // interpolation a bar needs, and bounds a mistyped count before it is allocated.
 inline constexpr int kMaxTablePoints = 1000000;
+// The evenly spaced table when no list is given: a/Λ 0 … 1.6 in steps of 0.005.
+inline constexpr double kDefaultMaxAOverLambda = 1.6;
+inline constexpr int kDefaultTablePoints = 321;
 
 struct ModeTableOptions {
   double poisson = 0.29;
   std::vector<double> a_over_lambda;  // explicit list, or
-  double max_a_over_lambda = 1.6;     // an evenly spaced table of `points` from 0
-  int points = 321;
+  // an evenly spaced table of `points` from 0 (1.6 and 321 when not given; not with a list)
+  std::optional<double> max_a_over_lambda;
+  std::optional<int> points;
   std::optional<double> radius_m;  // both, or neither: the frequency_Hz column
   std::optional<double> c0_m_s;
   // Ceres' Solver::Options::IsValid: false with the one-line reason in `error`.

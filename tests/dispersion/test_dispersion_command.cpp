@@ -91,6 +91,24 @@ TEST_CASE("shpb dispersion refuses an empty or non-numeric a/Λ in one line", "[
   }
 }
 
+// A list of a/Λ is the table: a table's size or end given with it was ignored without a word
+// (`--a-over-lambda 0.1 --points 5` printed one row). Refused, naming the option.
+TEST_CASE("shpb dispersion refuses a list of a/Λ with a table's size or end", "[dispersion][app]") {
+  for (const char* option : {"--points", "--max-a-over-lambda"}) {
+    INFO(option);
+    const auto r = shpb_test::run_shpb(
+        {"dispersion", "--poisson", "0.29", "--a-over-lambda", "0.1", option, "5"});
+    CHECK(r.code == 2);
+    CHECK(r.out.empty());
+    CHECK(r.err == std::string("error: ") + option +
+                       ": 5: not with --a-over-lambda (the list gives the table's a/Λ)\n");
+  }
+  // Either alone still sets the table.
+  const auto r = shpb_test::run_shpb({"dispersion", "--poisson", "0.29", "--points", "3"});
+  CHECK(r.code == 0);
+  CHECK(std::count(r.out.begin(), r.out.end(), '\n') == 4);  // the header and 3 rows
+}
+
 // `-o -` is standard output, as the shell convention has it (it wrote a file named "-"): the same
 // table as with no -o, and no file made in the working folder.
 TEST_CASE("shpb dispersion -o - prints the table", "[dispersion][app]") {
