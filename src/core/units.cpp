@@ -282,16 +282,20 @@ std::string_view trim(std::string_view s) {
   return s;
 }
 
-std::string expected_text(Dimension d) {
-  const auto& i = info(d);
-  return "expected " + std::string(i.name) + " such as \"" + std::string(i.example) + "\"" +
-         (i.si.empty() ? "" : " (a bare number is taken in " + std::string(i.si) + ")");
-}
-
 }  // namespace
 
 std::string_view to_string(Dimension d) { return info(d).name; }
 std::string_view si_unit(Dimension d) { return info(d).si; }
+
+std::string quantity_text(Dimension d) {
+  const auto& i = info(d);
+  return std::string(i.name) + " such as \"" + std::string(i.example) + "\"" +
+         (i.si.empty() ? "" : " (a bare number is taken in " + std::string(i.si) + ")");
+}
+
+namespace {
+std::string expected_text(Dimension d) { return "expected " + quantity_text(d); }
+}  // namespace
 
 double parse_quantity(std::string_view text, Dimension expected) {
   std::string_view t = trim(text);

@@ -27,6 +27,9 @@ enum class Dimension {
 
 std::string_view to_string(Dimension d);
 std::string_view si_unit(Dimension d);
+// What a value of `d` looks like, as parse_quantity's messages say it: "a time such as \"600 us\"
+// (a bare number is taken in s)".
+std::string quantity_text(Dimension d);
 
 // Parses "<number> <unit>" (or a bare number, taken as SI) into SI. Throws std::invalid_argument
 // with a message saying what was expected ("a length such as \"20 mm\"") on a bad number, an

@@ -32,10 +32,12 @@ bool nuisance_is_wave_speed(NuisanceKind k) {
 
 namespace {
 
-// [lo, hi] with lo < hi, each a quantity of dimension d.
-std::pair<double, double> read_bounds(const JsonValue& v, Dimension d) {
+// [lo, hi] with lo < hi, each a quantity of dimension d; `alternative` names another form the
+// value may take.
+std::pair<double, double> read_bounds(const JsonValue& v, Dimension d,
+                                      const std::string& alternative = "") {
   if (!v.json().is_array() || v.json().size() != 2)
-    throw v.error("expected bounds [lower, upper], e.g. [\"50 MPa\", \"150 MPa\"]");
+    throw v.error("expected bounds [lower, upper], each " + quantity_text(d) + alternative);
   const auto items = v.array();
   const double lo = items[0].quantity(d), hi = items[1].quantity(d);
   if (!(lo < hi))
@@ -130,7 +132,8 @@ FitSpec read_fit_spec(const Campaign& c) {
           throw v->error("expected \"N %\" with 0 < N < 100 (± N % of each test's start)");
         s.relative = fraction;
       } else {
-        s.bounds = read_bounds(*v, nuisance_dimension(kind));
+        s.bounds = read_bounds(*v, nuisance_dimension(kind),
+                               nuisance_is_offset(kind) ? "" : "; or \"N %\" of each test's start");
         if (nuisance_is_wave_speed(kind) && !(s.bounds->first > 0))
           throw v->array()[0].error("a wave speed must be > 0");
         if (!nuisance_is_offset(kind) && s.bounds->first < 0)

@@ -123,13 +123,21 @@ TEST_CASE("Bad bar nuisances of a fit: exit 2 naming the key, the value and the 
   const std::string head = R"({"tests": [{"scene": "measured.json"}], "material": ")" +
                            (fs::path(SHPB_SOURCE_DIR) / "specimens/ofhc-copper.json").string() +
                            R"(", "nuisance": )";
-  check_rejected(dir,
-                 {{head + R"({"incident_wave_speed": ["0 m/s", "5000 m/s"]}})",
-                   "nuisance.incident_wave_speed[0]: \"0 m/s\": a wave speed must be > 0"},
-                  {head + R"({"transmitter_wave_speed": "120 %"}})",
-                   "nuisance.transmitter_wave_speed: \"120 %\": expected \"N %\" with 0 < N < 100"},
-                  {head + R"({"transmitted_delay": "5 %"}})",
-                   "nuisance.transmitted_delay: \"5 %\": a time shift or delay starts at 0"}});
+  check_rejected(
+      dir, {{head + R"({"incident_wave_speed": ["0 m/s", "5000 m/s"]}})",
+             "nuisance.incident_wave_speed[0]: \"0 m/s\": a wave speed must be > 0"},
+            {head + R"({"transmitter_wave_speed": "120 %"}})",
+             "nuisance.transmitter_wave_speed: \"120 %\": expected \"N %\" with 0 < N < 100"},
+            {head + R"({"transmitted_delay": "5 %"}})",
+             "nuisance.transmitted_delay: \"5 %\": a time shift or delay starts at 0"},
+            // Bounds are asked for in the key's own dimension (before: a stress example,
+            // ["50 MPa", "150 MPa"], for every key), with the relative form where it holds.
+            {head + R"({"rise_time": "6 us"}})",
+             "nuisance.rise_time: \"6 us\": expected bounds [lower, upper], each a time such "
+             "as \"600 us\" (a bare number is taken in s); or \"N %\" of each test's start\n"},
+            {head + R"({"time_shift": "2 us"}})",
+             "nuisance.time_shift: \"2 us\": expected bounds [lower, upper], each a time such "
+             "as \"600 us\" (a bare number is taken in s)\n"}});
   fs::remove_all(dir);
 }
 
