@@ -8,6 +8,7 @@
 #include "core/json_document.hpp"
 #include "core/json_value.hpp"
 #include "model/input_keys.hpp"
+#include "model/input_limits.hpp"
 #include "model/scene.hpp"
 
 namespace shpb {
@@ -98,7 +99,11 @@ Calibration read_calibration_objects(const std::filesystem::path& file) {
   for (const auto& b : o.require("bars", "a list of calibrated bars").array()) {
     const auto bo = b.object(input_keys::kCalibrationBar);
     BarCalibration bc;
-    bc.bar = bo.require("bar", "the bar's name").name();
+    const auto name = bo.require("bar", "the bar's name");
+    bc.bar = name.name();
+    for (std::size_t k = 0; k < c.bars.size(); ++k)
+      if (c.bars[k].bar == bc.bar)
+        throw name.error("calibrated twice (bars[" + std::to_string(k) + "]): one value per bar");
     // Wave speeds of solids lie between about 100 m/s (soft polymers) and 20 km/s.
     bc.wave_speed_m_s = read_value(bo.require("wave_speed_m_s", "{\"value\", \"sd\"}"),
                                    Dimension::kVelocity, 0, 20000);
@@ -122,7 +127,12 @@ Calibration read_calibration_objects(const std::filesystem::path& file) {
   for (const auto& g : o.require("gauges", "a list of calibrated gauges").array()) {
     const auto go = g.object(input_keys::kCalibrationGauge);
     GaugeCalibration gc;
-    gc.gauge = go.require("gauge", "the gauge's name").name();
+    const auto name = go.require("gauge", "the gauge's name");
+    gc.gauge = name.name();
+    for (std::size_t k = 0; k < c.gauges.size(); ++k)
+      if (c.gauges[k].gauge == gc.gauge)
+        throw name.error("calibrated twice (gauges[" + std::to_string(k) +
+                         "]): one value per gauge");
     if (auto b = go.get("bar")) gc.bar = b->string();
     gc.position_m =
         read_value(go.require("position_m", "{\"value\", \"sd\"}"), Dimension::kLength, -1e3, 1e3);
@@ -152,10 +162,9 @@ void apply_calibration(Scene& scene, const Calibration& c, const std::filesystem
     for (auto& s : scene.bars)
       if (s.name == b.bar) bar = &s;
     if (!bar || !bar->has_material)
-      throw input_error(where, "calibration", file.string(),
-                        "calibrates bar \"" + b.bar +
-                            "\", which the scene does not have (with a material): a calibration "
-                            "of other bars");
+      throw input_error(
+          file.string(), "bars[" + std::to_string(i) + "].bar", json_quoted(b.bar),
+          "no such bar (with a material) in " + where + ": a calibration of other bars");
     MaterialSpec& m = bar->material;
     if (b.density_kg_m3 && !same_value(b.density_kg_m3, m.density_kg_m3))
       throw input_error(file.string(), "bars[" + std::to_string(i) + "].density_kg_m3",
@@ -167,20 +176,26 @@ void apply_calibration(Scene& scene, const Calibration& c, const std::filesystem
     set_instantaneous_modulus(m, m.density_kg_m3 * b.wave_speed_m_s.value * b.wave_speed_m_s.value);
     m.poisson_ratio = b.poisson_ratio.value;
   }
-  for (const auto& g : c.gauges) {
+  for (std::size_t i = 0; i < c.gauges.size(); ++i) {
+    const GaugeCalibration& g = c.gauges[i];
+    const std::string path = "gauges[" + std::to_string(i) + "]";
     GaugeSpec* gauge = nullptr;
     BarSpec* on = nullptr;
     for (auto& s : scene.bars)
       for (auto& x : s.gauges)
         if (x.name == g.gauge) gauge = &x, on = &s;
-    if (!gauge || (!g.bar.empty() && on->name != g.bar))
-      throw input_error(where, "calibration", file.string(),
-                        "calibrates gauge \"" + g.gauge + "\" on bar \"" + g.bar +
-                            "\", which the scene does not have: a calibration of other bars");
-    if (!(g.position_m.value >= 0 && g.position_m.value <= on->length_m))
-      throw input_error(where, "calibration", file.string(),
-                        "places gauge \"" + g.gauge + "\" off its bar (at " +
-                            std::to_string(g.position_m.value) + " m)");
+    if (!gauge)
+      throw input_error(file.string(), path + ".gauge", json_quoted(g.gauge),
+                        "no such gauge in " + where + ": a calibration of other bars");
+    if (!g.bar.empty() && on->name != g.bar)
+      throw input_error(file.string(), path + ".bar", json_quoted(g.bar),
+                        "gauge \"" + g.gauge + "\" is on bar \"" + on->name + "\" in " + where +
+                            ": a calibration of other bars");
+    if (const std::string what = gauge_position_problem(g.position_m.value, on->length_m);
+        !what.empty())
+      throw input_error(file.string(), path + ".position_m.value",
+                        JsonValue::format(g.position_m.value, Dimension::kLength),
+                        what + " (bar \"" + on->name + "\" of " + where + ")");
     gauge->position_m = g.position_m.value;
     if (scene.measurement)
       for (ChannelSpec& ch : scene.measurement->channels)

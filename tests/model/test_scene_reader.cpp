@@ -332,6 +332,25 @@ TEST_CASE("A calibration's recorded density modulus and reference gauge are chec
     j["gauges"][0]["gain"]["value"] = 0.97;
   });
   CHECK(e == "(no error)");
+  // A bar or gauge calibrated twice: one entry was used without a word. Refused.
+  e = with([](nlohmann::json& j) { j["bars"].push_back(j["bars"][0]); });
+  CHECK(e == cal + ": bars[1].bar: \"incident\": calibrated twice (bars[0]): one value per bar");
+  e = with([](nlohmann::json& j) { j["gauges"].push_back(j["gauges"][1]); });
+  CHECK(e == cal + ": gauges[2].gauge: \"far\": calibrated twice (gauges[1]): one value per gauge");
+  // What the scene does not have is named where the calibration says it (before: the scene's
+  // `calibration` key, with the gauge's position as "2.500000 m").
+  const std::string scene = (s.dir / "scene.json").string();
+  e = with([](nlohmann::json& j) { j["gauges"][1]["position_m"]["value"] = 2.5; });
+  CHECK(e == cal +
+                 ": gauges[1].position_m.value: 2.5 m: must lie on the bar: within [0, 2 m] from "
+                 "its left end (bar \"incident\" of " +
+                 scene + ")");
+  e = with([](nlohmann::json& j) { j["bars"][0]["bar"] = "transmitter"; });
+  CHECK(e == cal + ": bars[0].bar: \"transmitter\": no such bar (with a material) in " + scene +
+                 ": a calibration of other bars");
+  e = with([](nlohmann::json& j) { j["gauges"][1]["bar"] = "striker"; });
+  CHECK(e == cal + ": gauges[1].bar: \"striker\": gauge \"far\" is on bar \"incident\" in " +
+                 scene + ": a calibration of other bars");
 }
 
 // A material's `uncertainty` is a fit's record of its law parameters' intervals (fit.json): read
