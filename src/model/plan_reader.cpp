@@ -35,6 +35,9 @@ std::vector<ShaperMaterial> read_shaper_materials(const JsonValue& v, const nloh
   std::vector<ShaperMaterial> out;
   for (const auto& item : items) {
     const std::string s = item.string();
+    // Each material once: a second search of the same shapers is no other choice.
+    for (const ShaperMaterial& m : out)
+      if (m.text == s) throw item.error("listed twice: each shaper material once");
     const bool named = scene.contains("materials") && scene["materials"].is_object() &&
                        scene["materials"].contains(s);
     std::error_code ec;

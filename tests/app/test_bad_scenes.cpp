@@ -379,6 +379,13 @@ const std::vector<BadScene>& cases() {
          s["plan"] = {{"striker", {{"velocity", "10 m/s"}}}, {"shaper", {{"material", "brass"}}}};
        },
        "plan.shaper.material: \"brass\": neither a name from the scene's materials nor"},
+      // A material listed twice was searched twice, without a word.
+      {"a plan shaper material listed twice",
+       [](json& s, json&) {
+         s["plan"] = {{"striker", {{"velocity", "10 m/s"}}},
+                      {"shaper", {{"material", {"steel", "steel"}}}}};
+       },
+       "plan.shaper.material[1]: \"steel\": listed twice: each shaper material once"},
   };
   return table;
 }
