@@ -34,7 +34,7 @@ std::function<void(std::size_t, std::size_t)> progress_printer(bool quiet, std::
 }
 
 StudyOptions study_options(const StudyArgs& args) {
-  StudyOptions o{args.sweep, args.overrides.contact, args.overrides.stepping,
+  StudyOptions o{args.chosen_sweep(), args.overrides.contact, args.overrides.stepping,
                  args.overrides.courant, args.refine};
   o.distributions = args.distributions;
   if (args.draws) o.draws = *args.draws;
@@ -125,7 +125,7 @@ int run_study(const StudyArgs& args) {
     for (const auto& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   if (!args.overrides.quiet)
     std::fprintf(stderr, "study %s of %s in %.3g s on %d threads; wrote %s\n",
-                 to_string(args.sweep).c_str(), scene.name.c_str(), wall, threads,
+                 to_string(args.chosen_sweep()).c_str(), scene.name.c_str(), wall, threads,
                  out.final_path().string().c_str());
   return 0;
 }
@@ -148,8 +148,9 @@ Command add_study_command(CLI::App& app) {
   cmd->add_option("-o,--output", study.output,
                   "Output folder (replaced atomically); with --merge default DIR/result");
   const std::vector<std::string> sweeps = enum_names(kSweepNames);
-  cmd->add_option("--sweep", o->sweep,
-                  alternatives(sweeps) + " (default " + to_string(StudyArgs{}.sweep) + ")");
+  cmd->add_option(
+      "--sweep", o->sweep,
+      alternatives(sweeps) + " (default " + to_string(StudyArgs{}.chosen_sweep()) + ")");
   // Its choices (check_choice) and the ranges of --refine and --draws (StudyArgs::IsValid) are
   // checked as the Python module checks them: one message.
   cmd->add_option("--refine", study.refine,

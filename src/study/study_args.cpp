@@ -12,9 +12,21 @@ bool StudyArgs::IsValid(std::string* error) const {
                                    : draws                ? "--draws"
                                    : seed                 ? "--seed"
                                                           : nullptr;
+  // The sweep and its run options given first, if any: a plan holds them.
+  const char* planned_option = sweep                 ? "--sweep"
+                               : overrides.contact   ? "--contact"
+                               : overrides.stepping  ? "--stepping"
+                               : overrides.courant   ? "--courant"
+                               : overrides.tolerance ? "--tolerance"
+                               : refine != 1         ? "--refine"
+                                                     : nullptr;
   std::optional<InputError> e;
   if (modes > 1)
     e = input_error("study", "", "", "--plan, --run and --merge are separate steps: give one");
+  else if ((run || merge) && planned_option)
+    e = input_error(planned_option, "", "",
+                    "not with --run or --merge: the plan holds the sweep and its options "
+                    "(plan again to change them)");
   else if (refine < 1 || refine > kMaxRefine)
     e = input_error("--refine", "", std::to_string(refine),
                     "expected 1 to " + std::to_string(kMaxRefine));
@@ -22,14 +34,14 @@ bool StudyArgs::IsValid(std::string* error) const {
     e = input_error(
         "--draws", "", std::to_string(*draws),
         "expected " + std::to_string(kMinDraws) + " to " + std::to_string(kMaxStudyDraws));
-  else if (refine != 1 && sweep != Sweep::kStability)
+  else if (refine != 1 && chosen_sweep() != Sweep::kStability)
     e = input_error("--refine", "", std::to_string(refine), "only with --sweep stability");
   else if ((run || merge) && monte_carlo_option)
     e = input_error(monte_carlo_option, "", "",
                     "not with --run or --merge: the plan holds the draws");
-  else if (sweep != Sweep::kMonteCarlo && monte_carlo_option)
+  else if (chosen_sweep() != Sweep::kMonteCarlo && monte_carlo_option)
     e = input_error(monte_carlo_option, "", "", "only with --sweep monte-carlo");
-  else if (sweep == Sweep::kMonteCarlo && !run && !merge && distributions.empty())
+  else if (chosen_sweep() == Sweep::kMonteCarlo && !run && !merge && distributions.empty())
     e = input_error("--distributions", "", "",
                     "a file of the values to draw is required with --sweep monte-carlo "
                     "(docs/scene-format.md, \"Monte Carlo distributions\")");

@@ -21,7 +21,7 @@ inline constexpr std::size_t kMaxStudyDraws = 1000000;
 struct StudyArgs {
   std::filesystem::path scene;
   std::filesystem::path output;
-  Sweep sweep = Sweep::kPareto;
+  std::optional<Sweep> sweep;  // as given; none: pareto (chosen_sweep)
   RunOverrides overrides;
   int refine = 1;  // stability grid refinement (study/sweep.hpp)
   // --sweep monte-carlo: the distributions file, draws and seed (study/monte_carlo_sweep.hpp).
@@ -34,6 +34,7 @@ struct StudyArgs {
   std::optional<std::filesystem::path> merge;  // merge DIR's parts into -o (default DIR/result)
   std::string shard;                           // "K/N"
   bool IsValid(std::string* error) const;      // the modes and their options
+  Sweep chosen_sweep() const { return sweep.value_or(Sweep::kPareto); }
 };
 
 }  // namespace shpb

@@ -196,4 +196,28 @@ TEST_CASE("shpb study --plan/--run/--merge equals the in-process sweep apart fro
   fs::remove_all(dir);
 }
 
+// The plan holds the sweep and its options: given again to --run or --merge they were ignored
+// without a word (`--merge PLAN --sweep pareto` merged a stability plan, exit 0). Refused before
+// the plan is read.
+TEST_CASE("study --run and --merge refuse the options a plan holds", "[study][shards][app]") {
+  const std::string plan = (shpb_test::scratch_dir("study_planned_options") / "plan").string();
+  const std::vector<std::vector<std::string>> given = {
+      {"--sweep", "pareto"}, {"--contact", "penalty"}, {"--stepping", "global"},
+      {"--courant", "0.5"},  {"--tolerance", "1 %"},   {"--refine", "2"}};
+  for (const auto& option : given)
+    for (const std::vector<std::string>& step :
+         {std::vector<std::string>{"--run", plan, "--shard", "0/1"},
+          std::vector<std::string>{"--merge", plan}}) {
+      std::vector<std::string> args = {"study"};
+      args.insert(args.end(), step.begin(), step.end());
+      args.insert(args.end(), option.begin(), option.end());
+      const auto r = shpb_test::run_shpb(args);
+      INFO(step[0] << " " << option[0]);
+      CHECK(r.code == 2);
+      CHECK(r.err == "error: " + option[0] +
+                         ": not with --run or --merge: the plan holds the sweep and its options "
+                         "(plan again to change them)\n");
+    }
+}
+
 }  // namespace tests_study_test_shards
