@@ -25,9 +25,15 @@ struct EndState {
   double next_tau = 0;    // its next instant: τ + Δt if stepping, its pending one if ahead
 
   // Full-step velocity at τ (velocity-Verlet): v_{n−1/2} + (kick − Δt/2) f̃/m for a stepping end
-  // (v_0 itself at n = 0); an end that is ahead moves with its step's velocity.
-  double velocity_now() const {
-    return stepping ? v + (kick_s - 0.5 * step_s) * free_force / mass : v;
+  // (v_0 itself at n = 0). An end that is ahead is on its step's straight path, whose velocity
+  // v_{m−1/2} is the full-step one at the step's middle, τ_m − Δt/2: at τ it is
+  // v_{m−1/2} + (τ − τ_m + Δt/2) f̃/m, on the same footing as the stepping end's. Its chord
+  // velocity alone was up to half a step off (Δt/2 · f̃/m): a closing between an end that steps and
+  // one ahead then took the wrong impulse, which fed the ends' top mode where a striker grazes a
+  // bar at a step ratio near 1 (docs/methods.md §3.4, "An end that is ahead at a closing").
+  double velocity_now(double tau) const {
+    return stepping ? v + (kick_s - 0.5 * step_s) * free_force / mass
+                    : v + (tau - next_tau + 0.5 * step_s) * free_force / mass;
   }
 };
 

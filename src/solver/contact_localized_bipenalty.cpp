@@ -58,7 +58,7 @@ ContactResult solve_localized_bipenalty(const InterfaceModel& model, InterfaceSt
   if (!s.active) {
     // Ends that separate stay open (measured: closing on the rest offset's penetration gave
     // 450–800 closings in the asynchronous tail instead of 4).
-    const double v1 = left.velocity_now(), v2 = right.velocity_now();
+    const double v1 = left.velocity_now(tau), v2 = right.velocity_now(tau);
     const bool stays_open = !closes_within(s.gap_m, v1, v2, step_after);
     if (stays_open && !(bonded && s.gap_m <= 0)) {
       s.force_N = 0;

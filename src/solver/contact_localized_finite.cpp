@@ -77,7 +77,7 @@ ContactResult solve_localized_finite(const InterfaceModel& model, InterfaceState
   const double step_after = frame_next_tau - tau;
   double kick = 0.5 * (tau - s.frame_tau + step_after);
   if (!s.active) {
-    const double v1 = left.velocity_now(), v2 = right.velocity_now();
+    const double v1 = left.velocity_now(tau), v2 = right.velocity_now(tau);
     if (!closes_within(s.gap_m, v1, v2, step_after)) {
       open_links(s);
       return r;
