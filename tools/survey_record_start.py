@@ -54,9 +54,10 @@ def simulated(e):
         s = absolutize(json.load(open(REPO / "experiments" / e / "scene.json")), REPO / "experiments" / e)
         s.pop("measurement", None)
         s["simulation"]["sample_rate"] = "100 MHz"
-        d.mkdir(parents=True, exist_ok=True)
-        (d / "scene.json").write_text(json.dumps(s, indent=1))
-        subprocess.run([NEW, "simulate", str(d / "scene.json"), "-o", str(d), "-q"], check=True)
+        d.parent.mkdir(parents=True, exist_ok=True)
+        sc = d.parent / f"{e}.json"  # apart from the output folder, which simulate replaces
+        sc.write_text(json.dumps(s, indent=1))
+        subprocess.run([NEW, "simulate", str(sc), "-o", str(d), "-q"], check=True)
     return np.genfromtxt(d / "gauges.csv", delimiter=",", names=True)
 
 

@@ -143,6 +143,26 @@ Baseline quiet_segment(std::span<const double> x, std::size_t n, double q) {
   return b;
 }
 
+// The level y holds longest: the median of the sorted samples' widest count within ±band of one
+// of them, and that count.
+struct HeldLevel {
+  double level = 0;
+  std::size_t samples = 0;
+};
+HeldLevel held_level(std::span<const double> y, double band) {
+  std::vector<double> sorted(y.begin(), y.end());
+  std::sort(sorted.begin(), sorted.end());
+  std::size_t best = 0, best_lo = 0, lo = 0, hi = 0;
+  for (std::size_t k = 0; k < sorted.size(); ++k) {
+    while (sorted[lo] < sorted[k] - band) ++lo;
+    while (hi < sorted.size() && sorted[hi] <= sorted[k] + band) ++hi;
+    if (hi - lo > best) best = hi - lo, best_lo = lo;
+  }
+  return {median(std::vector<double>(sorted.begin() + static_cast<std::ptrdiff_t>(best_lo),
+                                     sorted.begin() + static_cast<std::ptrdiff_t>(best_lo + best))),
+          best};
+}
+
 }  // namespace
 
 Baseline estimate_baseline(std::span<const double> x, double fraction) {
@@ -233,6 +253,15 @@ RecordStart record_start(std::span<const double> x, double step) {
   // end); a short rest before a slow pulse's foot inside the band only in its last (−0.11 to 0.0:
   // 10 to 12 samples of rest before an 80-sample rise at 2 % noise).
   constexpr double kFrontEvenness = 0.1;
+  // A record cut on its front starts at least as far up it as the rest band's 3 % of the peak
+  // before that band's onset; a rest that drifts away from its pulse by half that, between its
+  // start and after its pulse, is still read as one. The survey's records cut 3 % up a sharp front
+  // rise towards the pulse at 4.8 to 7.1 σ before the onset, its rest records whose start lies
+  // behind their later rest by 1 σ of that difference or more at most 2.4 σ (docs/validation.md,
+  // "Where a record starts"); a trend of white noise beyond 3 σ: 10⁻³ of records, on top of the
+  // start's own 4 σ.
+  constexpr double kBehindFraction = 0.5 * kBandOfPeak;
+  constexpr double kBehindTrendSigmas = 3;
   RecordStart r;
   if (x.size() < kMinRestSamples) return r;
   const std::size_t m = baseline_samples(x.size());
@@ -282,6 +311,21 @@ RecordStart record_start(std::span<const double> x, double step) {
   const double through = std::min(w.sign * (middle - first), w.sign * (last - middle));
   r.on_front = r.change > kFrontTrendSigmas * sd && r.rate_fraction >= kFrontRateFraction &&
                through >= kFrontEvenness * r.change;
+  r.moves_away = -r.change > std::max(band, kFrontTrendSigmas * sd);
+  // Where the record rests after that pulse: the level it holds longest from the pulse's end over
+  // as long again as the pulse (between an incident pulse and its reflection; a later pulse's
+  // plateau, a soft specimen's reflection held longer than the rests, is no rest), from its start
+  // level (the median of kMinRestSamples), towards the pulse: √(π/2) σ √(1/10 + 1/count) for
+  // white noise.
+  const HeldLevel after = held_level(x.subspan(w.end, std::min(w.end - n, x.size() - w.end)), band);
+  if (after.samples == 0) return r;  // the pulse runs to the record's end
+  r.behind = w.sign * (start_level - after.level);
+  const double behind_sd =
+      std::sqrt(std::numbers::pi / 2 *
+                (1.0 / kMinRestSamples + 1.0 / static_cast<double>(after.samples))) *
+      r.noise;
+  r.off_rest = r.behind >= kBehindFraction * w.peak && r.behind > kFrontTrendSigmas * behind_sd &&
+               r.change > std::max(kBehindTrendSigmas * sd, kBehindFraction * w.peak);
   return r;
 }
 
@@ -290,29 +334,18 @@ std::optional<RestElsewhere> rest_elsewhere(std::span<const double> x, const Pul
   if (first.onset >= x.size()) return std::nullopt;
   const std::span<const double> y = x.subspan(first.onset);
   const double band = rest_band(noise, first.peak), far = kRestElsewhereFraction * first.peak;
-  // The level held longest: the sorted samples' widest count within ±band of one of them.
-  std::vector<double> sorted(y.begin(), y.end());
-  std::sort(sorted.begin(), sorted.end());
-  std::size_t best = 0, best_lo = 0, lo = 0, hi = 0;
-  for (std::size_t k = 0; k < sorted.size(); ++k) {
-    while (sorted[lo] < sorted[k] - band) ++lo;
-    while (hi < sorted.size() && sorted[hi] <= sorted[k] + band) ++hi;
-    if (hi - lo > best) best = hi - lo, best_lo = lo;
-  }
-  const double level =
-      median(std::vector<double>(sorted.begin() + static_cast<std::ptrdiff_t>(best_lo),
-                                 sorted.begin() + static_cast<std::ptrdiff_t>(best_lo + best)));
+  const double level = held_level(y, band).level;
   if (!(std::abs(level) >= far)) return std::nullopt;
-  // Reached from the start in one step, not past it by `far` (a pulse's tail settling there, a
-  // polymer bar's creep after its pulse, peaks first); rests there (kMinRestSamples in a row
-  // within the band, not trending through it), left by `far`, rests there again.
+  // Reached from the start in one step, not past it by `far` on its side (a pulse's tail settling
+  // there, a polymer bar's creep after its pulse, peaks first; the pulse the record started on may
+  // go on the other way first, away from that rest: a shaper's ramp); rests there (kMinRestSamples
+  // in a row within the band, not trending through it), left by `far`, rests there again.
+  const double side = level > 0 ? 1.0 : -1.0;
   std::optional<std::size_t> rest;
   bool left = false;
-  double reached = 0;
   for (std::size_t i = 0; i < y.size();) {
     if (std::abs(y[i] - level) > band) {
-      if (!rest && (reached = std::max(reached, std::abs(y[i]))) > std::abs(level) + far)
-        return std::nullopt;
+      if (!rest && side * y[i] > std::abs(level) + far) return std::nullopt;
       left = left || (rest && std::abs(y[i] - level) >= far);
       ++i;
       continue;

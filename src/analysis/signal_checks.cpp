@@ -201,18 +201,42 @@ void require_rest_before_pulse(const GaugeSignals& signals, const std::string& g
             "before it are needed to read its rest level and noise (record with a longer "
             "pre-trigger)",
             static_cast<double>(first->onset), static_cast<double>(kMinRestSamples)));
+  if (s.start.off_rest)
+    throw channel_error(
+        signals, gauge, scene_file,
+        fmt("it starts on its first pulse's front: its first samples lie %.3g (%.1f %% of the "
+            "pulse's peak) from the level it rests at after that pulse's onset, towards the "
+            "pulse, and its %.0f samples before the onset move %.3g further towards it, beyond "
+            "their noise, so no rest level can be read before the pulse (record with a longer "
+            "pre-trigger: the rest level and noise are read from the record only)",
+            s.start.behind, 100 * s.start.behind / s.start.first->peak,
+            static_cast<double>(s.start.first->onset), s.start.change));
+  if (s.start.moves_away)
+    throw channel_error(
+        signals, gauge, scene_file,
+        fmt("it starts inside a pulse: its %.0f samples before the onset of what its first "
+            "samples see as its first pulse move %.3g away from that pulse (%.0f %% of its peak), "
+            "beyond the band a rest stays within, so its first samples lie on another pulse, "
+            "which was read as the rest level (record with a longer pre-trigger: the rest level "
+            "and noise are read from the record before its first pulse only)",
+            static_cast<double>(s.start.first->onset), -s.start.change,
+            -100 * s.start.change / s.start.first->peak));
   // The rests are told within the band of the noise of successive differences where it is the
   // smaller: a record that starts on its front's last samples reads them into its "rest" noise
   // (LANL copper at 1 MS/s starting 1 µs up its 6 µs foot: 2.6 × the noise), and a band that wide
-  // joins its reflected pulse's tail to the rest after it, which then trends and is no rest.
-  if (s.first)
-    if (const auto r = rest_elsewhere(s.x, *s.first, std::min(s.noise, s.start.noise)))
+  // joins its reflected pulse's tail to the rest after it, which then trends and is no rest. A
+  // record whose first samples lie on a long ramp (a pulse shaper's) reads their slope as its
+  // baseline noise, so wide that no pulse rises above it: its first pulse is then the one its
+  // first samples see, with the noise of their successive differences.
+  const std::optional<PulseWindow>& seen = s.first ? s.first : s.start.first;
+  if (seen)
+    if (const auto r = rest_elsewhere(s.x, *seen, std::min(s.noise, s.start.noise)))
       throw channel_error(
           signals, gauge, scene_file,
           fmt("it starts inside a pulse: after its first pulse it rests %.3g from the level it "
               "starts at, not at that level (%.0f %% of the peak, from sample %.0f, and again "
               "from sample %.0f after a later pulse: the level it holds longest)",
-              s.inverted ? -r->level : r->level, 100 * std::abs(r->level) / s.first->peak,
+              s.inverted ? -r->level : r->level, 100 * std::abs(r->level) / seen->peak,
               static_cast<double>(r->first), static_cast<double>(r->again)) +
               ", so its start lies on a pulse of that height, on its plateau or upper front, "
               "which was read as the rest level (record with a longer pre-trigger: the rest "

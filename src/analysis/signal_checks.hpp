@@ -98,12 +98,13 @@ struct RestSignal {
   RecordStart start;  // how the record starts (record_start)
 };
 
-// A record that starts on its first pulse's front (record_start), or holds fewer than
-// kMinRestSamples before its first pulse (a scope's pre-trigger shorter than that; where no pulse
-// rises above the noise of its first samples, the pulse against record_start's), has no rest
-// level to read: its offset, its polarity and every strain read from them would be the pulse's
-// own (a compressive pulse turned over as tensile; on a front, a "noise" so large that no pulse
-// rises above it). Refused, exit 2, before a missing pulse is.
+// A record that starts on its first pulse's front (record_start: on_front, off_rest), or holds
+// fewer than kMinRestSamples before its first pulse (a scope's pre-trigger shorter than that;
+// where no pulse rises above the noise of its first samples, the pulse against record_start's), or
+// starts inside a pulse (record_start's moves_away; rest_elsewhere) has no rest level to read: its
+// offset, its polarity and every strain read from them would be the pulse's own (a compressive
+// pulse turned over as tensile; on a front, a "noise" so large that no pulse rises above it).
+// Refused, exit 2, before a missing pulse is.
 void require_rest_before_pulse(const GaugeSignals& signals, const std::string& gauge,
                                const RestSignal& s, const std::string& scene_file);
 

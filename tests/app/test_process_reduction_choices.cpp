@@ -864,6 +864,147 @@ TEST_CASE("A coarse record that starts on its front's last samples is refused as
   CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
 }
 
+TEST_CASE("A fine record cut a few percent up a rounded front is refused as starting on it",
+          "[app][process][warnings]") {
+  // A 100 MS/s record with 0.1 % noise on an 8-bit scope's grid (a step of 2 % of the incident
+  // plateau: a range of ±2.56 times it) whose incident front has a rounded foot (a normal
+  // distribution's, σ 1 µs: 10 to 90 % in 2.6 µs), the scope triggered where that front has
+  // reached 3 or 10 % of the plateau. The samples before the onset (where the record leaves the
+  // rest band of its first samples' level) cross a few steps of the grid only: too few levels for
+  // the front rule's trend through the thirds, and the record was processed (exit 0) from a level
+  // on its front, warned of a reflected onset off its place. Its first samples lie that 3 or 10 %
+  // from where the record rests after the pulse, towards the pulse, and rise on: refused as
+  // starting on its front. The same record with 20 samples of rest before the front is processed.
+  constexpr double kNoise = 1e-6;      // 0.1 % of the incident plateau
+  constexpr double kFineDt = 1e-8;     // 100 MS/s
+  constexpr int kFineSamples = 80000;  // 800 us
+  constexpr double kFootAt = 4e-6, kFootWidth = 1e-6, kGrid = 2e-5;
+  const auto on_grid = [](double v) { return kGrid * std::round(v / kGrid); };
+  // A unit pulse from t0: the rounded front centred kFootAt in, a plateau, a 10 us fall at 100 us.
+  auto pulse = [=](double t, double t0) {
+    const double u = t - t0;
+    if (u <= 0 || u >= 100e-6) return 0.0;
+    const double front = 0.5 * std::erfc(-(u - kFootAt) / (kFootWidth * std::numbers::sqrt2));
+    return std::min(front, (100e-6 - u) / 10e-6);
+  };
+  // Where the front reaches `fraction` of the plateau: the normal quantile by bisection.
+  auto reaches = [=](double fraction) {
+    double lo = 0, hi = 2 * kFootAt;
+    for (int i = 0; i < 60; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (0.5 * std::erfc(-(mid - kFootAt) / (kFootWidth * std::numbers::sqrt2)) < fraction ? lo
+                                                                                         : hi) =
+          mid;
+    }
+    return 0.5 * (lo + hi);
+  };
+  struct Case {
+    std::string name;
+    double start;  // the incident pulse's start on the record's clock
+    bool refused;
+  };
+  for (const Case& c : {Case{"cut3", -reaches(0.03), true}, Case{"cut10", -reaches(0.10), true},
+                        Case{"rest20", 20 * kFineDt - reaches(1e-3), false}}) {
+    for (unsigned seed = 1; seed <= 3; ++seed) {
+      std::vector<double> noise(2 * kFineSamples);
+      std::mt19937 draw(seed);
+      std::normal_distribution<double> gauss(0.0, kNoise);
+      for (double& v : noise) v = gauss(draw);
+      auto at = [&](double t, int g) {
+        return noise[static_cast<std::size_t>(g * kFineSamples + std::lround(t / kFineDt))];
+      };
+      const double t0 = c.start;
+      const Record rec{
+          [&](double t) {
+            return on_grid(at(t, 0) - 1e-3 * pulse(t, t0) + 0.6e-3 * pulse(t, t0 + 400e-6));
+          },
+          [&](double t) { return on_grid(at(t, 1) - 0.4e-3 * pulse(t, t0 + 300e-6)); }};
+      const fs::path d = scratch_dir("reduction_rounded_" + c.name + "_" + std::to_string(seed));
+      const auto r = run_shpb(
+          {"process", write(d, steel_scene(), csv(rec, 1.0, kFineDt, kFineSamples)).string(), "-o",
+           (d / "out").string(), "-q"});
+      INFO(c.name << ", draw " << seed << ": " << r.err);
+      if (!c.refused) {
+        CHECK(r.code == 0);
+        continue;
+      }
+      CHECK(r.code == 2);
+      CHECK(r.err.find("signals.csv: column \"incident\"") != std::string::npos);
+      CHECK(r.err.find("it starts on its first pulse's front") != std::string::npos);
+      CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+      CHECK(!fs::exists(d / "out" / "curve.csv"));
+    }
+  }
+}
+
+TEST_CASE("A pulse-shaped record cut on its step or ramp is refused as starting inside a pulse",
+          "[app][process][warnings]") {
+  // A pulse shaper's incident pulse: an elastic step to 0.45 of the plateau (a normal
+  // distribution's, centred 0.9 us in, σ 0.3 us), a shoulder there until 5 us, then the shaper's
+  // ramp to the plateau over 100 us, a 10 us fall at 130 us; recorded at 250 kS/s for 470 us (the
+  // record ends while the reflected pulse passes), its scope triggered where the step has reached
+  // 3 % or the ramp 60 %. The first samples lie on the ramp, whose slope the first 5 % read as a
+  // noise so wide that no pulse rose above it, and with no rest after the reflected pulse the
+  // record was refused for another cause: "the window at the specimen faces lies outside the
+  // record" (the survey's shaper records cut so: "never rises above its noise"). Before what its
+  // first samples see as its first pulse (the pulse's end, back through their level) the record
+  // moves on down the ramp, away from that pulse and beyond the band a rest stays within: refused
+  // as starting inside a pulse.
+  constexpr double kNoise = 1e-5;  // 1 % of the incident plateau
+  constexpr double kStep = 0.45, kStepAt = 0.9e-6, kStepWidth = 0.3e-6, kShoulderEnd = 5e-6,
+                   kRamp = 100e-6, kLength = 140e-6;
+  auto step = [=](double u) {
+    return kStep * 0.5 * std::erfc(-(u - kStepAt) / (kStepWidth * std::numbers::sqrt2));
+  };
+  auto shaped = [=](double t, double t0) {
+    const double u = t - t0;
+    if (u <= 0 || u >= kLength) return 0.0;
+    const double rise = u < kShoulderEnd
+                            ? step(u)
+                            : std::min(1.0, kStep + (1 - kStep) * (u - kShoulderEnd) / kRamp);
+    return std::min(rise, (kLength - u) / 10e-6);
+  };
+  // Where the step reaches `fraction` of the plateau (below kStep): by bisection.
+  auto on_step = [=](double fraction) {
+    double lo = 0, hi = kShoulderEnd;
+    for (int i = 0; i < 60; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (step(mid) < fraction ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+  };
+  struct Case {
+    std::string name;
+    double start, dt;  // the incident pulse's start on the record's clock; the sample interval
+  };
+  // Where the ramp reaches 60 % of the plateau.
+  const double ramp60 = kShoulderEnd + kRamp * (0.6 - kStep) / (1 - kStep);
+  for (const Case& c :
+       {Case{"250k_step3", -on_step(0.03), 4e-6}, Case{"250k_ramp60", -ramp60, 4e-6}}) {
+    const int samples = static_cast<int>(std::lround(470e-6 / c.dt));
+    std::vector<double> noise(2 * static_cast<std::size_t>(samples));
+    std::mt19937 draw(3);
+    std::normal_distribution<double> gauss(0.0, kNoise);
+    for (double& v : noise) v = gauss(draw);
+    auto at = [&](double t, int g) {
+      return noise[static_cast<std::size_t>(g * samples + std::lround(t / c.dt))];
+    };
+    const double t0 = c.start;
+    const Record rec{
+        [&](double t) { return at(t, 0) - 1e-3 * shaped(t, t0) + 0.6e-3 * trap(t, t0 + 400e-6); },
+        [&](double t) { return at(t, 1) - 0.4e-3 * trap(t, t0 + 300e-6); }};
+    const fs::path d = scratch_dir("reduction_shaped_cut_" + c.name);
+    const auto r =
+        run_shpb({"process", write(d, steel_scene(), csv(rec, 1.0, c.dt, samples)).string(), "-o",
+                  (d / "out").string(), "-q"});
+    INFO(c.name << ": " << r.err);
+    CHECK(r.code == 2);
+    CHECK(r.err.find("signals.csv: column \"incident\"") != std::string::npos);
+    CHECK(r.err.find("it starts inside a pulse") != std::string::npos);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  }
+}
+
 TEST_CASE("A record drifting and settling within its rest band is still processed",
           "[app][process][warnings]") {
   // The clean record (rise 10 us, 500 samples of rest), its incident gauge drifting by 2 % of the
