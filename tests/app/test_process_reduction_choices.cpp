@@ -131,6 +131,25 @@ json process_as_measured(const fs::path& d, json scene, const json& dispersion,
   return summary(d / out);
 }
 
+// n draws of white noise of standard deviation sigma from a seeded generator.
+std::vector<double> white_noise(std::size_t n, double sigma, unsigned seed) {
+  std::vector<double> noise(n);
+  std::mt19937 draw(seed);
+  std::normal_distribution<double> gauss(0.0, sigma);
+  for (double& v : noise) v = gauss(draw);
+  return noise;
+}
+
+// A run refused (exit 2) in one line naming the incident column and `cause`, no curve written.
+void check_incident_refused(const shpb_test::RunResult& r, const fs::path& out,
+                            const std::string& cause) {
+  CHECK(r.code == 2);
+  CHECK(r.err.find("signals.csv: column \"incident\"") != std::string::npos);
+  CHECK(r.err.find(cause) != std::string::npos);
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  CHECK(!fs::exists(out / "curve.csv"));
+}
+
 }  // namespace
 
 TEST_CASE(
@@ -667,12 +686,8 @@ TEST_CASE("A record that starts on its pulse's front is refused as one",
     const auto r = run_shpb(
         {"process", write(d, steel_scene(), csv(rec)).string(), "-o", (d / "out").string(), "-q"});
     INFO(c.name << ": " << r.err);
-    CHECK(r.code == 2);
-    CHECK(r.err.find("signals.csv: column \"incident\"") != std::string::npos);
-    CHECK(r.err.find("it starts on its first pulse's front") != std::string::npos);
+    check_incident_refused(r, d / "out", "it starts on its first pulse's front");
     CHECK(r.err.find("no rest level can be read before the pulse") != std::string::npos);
-    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
-    CHECK(!fs::exists(d / "out" / "curve.csv"));
   }
 }
 
@@ -747,10 +762,7 @@ TEST_CASE("A fine record that starts a few samples up a sharp front is refused",
   constexpr unsigned kDraws = 12;  // about 1 s of runs
   int processed = 0;
   for (unsigned seed = 1; seed <= kDraws; ++seed) {
-    std::vector<double> noise(2 * kFineSamples);
-    std::mt19937 draw(seed);
-    std::normal_distribution<double> gauss(0.0, kNoise);
-    for (double& v : noise) v = gauss(draw);
+    const std::vector<double> noise = white_noise(2 * kFineSamples, kNoise, seed);
     auto at = [&](double t, int g) {
       return noise[static_cast<std::size_t>(g * kFineSamples + std::lround(t / kFineDt))];
     };
@@ -906,10 +918,7 @@ TEST_CASE("A fine record cut a few percent up a rounded front is refused as star
   for (const Case& c : {Case{"cut3", -reaches(0.03), true}, Case{"cut10", -reaches(0.10), true},
                         Case{"rest20", 20 * kFineDt - reaches(1e-3), false}}) {
     for (unsigned seed = 1; seed <= 3; ++seed) {
-      std::vector<double> noise(2 * kFineSamples);
-      std::mt19937 draw(seed);
-      std::normal_distribution<double> gauss(0.0, kNoise);
-      for (double& v : noise) v = gauss(draw);
+      const std::vector<double> noise = white_noise(2 * kFineSamples, kNoise, seed);
       auto at = [&](double t, int g) {
         return noise[static_cast<std::size_t>(g * kFineSamples + std::lround(t / kFineDt))];
       };
@@ -928,11 +937,7 @@ TEST_CASE("A fine record cut a few percent up a rounded front is refused as star
         CHECK(r.code == 0);
         continue;
       }
-      CHECK(r.code == 2);
-      CHECK(r.err.find("signals.csv: column \"incident\"") != std::string::npos);
-      CHECK(r.err.find("it starts on its first pulse's front") != std::string::npos);
-      CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
-      CHECK(!fs::exists(d / "out" / "curve.csv"));
+      check_incident_refused(r, d / "out", "it starts on its first pulse's front");
     }
   }
 }
@@ -982,10 +987,7 @@ TEST_CASE("A pulse-shaped record cut on its step or ramp is refused as starting 
   for (const Case& c :
        {Case{"250k_step3", -on_step(0.03), 4e-6}, Case{"250k_ramp60", -ramp60, 4e-6}}) {
     const int samples = static_cast<int>(std::lround(470e-6 / c.dt));
-    std::vector<double> noise(2 * static_cast<std::size_t>(samples));
-    std::mt19937 draw(3);
-    std::normal_distribution<double> gauss(0.0, kNoise);
-    for (double& v : noise) v = gauss(draw);
+    const std::vector<double> noise = white_noise(2 * static_cast<std::size_t>(samples), kNoise, 3);
     auto at = [&](double t, int g) {
       return noise[static_cast<std::size_t>(g * samples + std::lround(t / c.dt))];
     };
@@ -998,10 +1000,7 @@ TEST_CASE("A pulse-shaped record cut on its step or ramp is refused as starting 
         run_shpb({"process", write(d, steel_scene(), csv(rec, 1.0, c.dt, samples)).string(), "-o",
                   (d / "out").string(), "-q"});
     INFO(c.name << ": " << r.err);
-    CHECK(r.code == 2);
-    CHECK(r.err.find("signals.csv: column \"incident\"") != std::string::npos);
-    CHECK(r.err.find("it starts inside a pulse") != std::string::npos);
-    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    check_incident_refused(r, d / "out", "it starts inside a pulse");
   }
 }
 
