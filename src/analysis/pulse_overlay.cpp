@@ -93,10 +93,9 @@ std::size_t widen(std::size_t i, double by, bool down, std::size_t n) {
 // (an amplifier settling after the trigger; and its error is an offset common to the hundreds of
 // samples a fit lays over each pulse, docs/validation.md "shpb fit"), and the pulse found anew.
 // Returns that level's standard deviation (rest_level_sd; 0 when the level is not settled so).
-// Twice: first up to the pulse's half-height sample (or its onset, below), as its onset found
-// against the first 5 % of a record that settles after its trigger is not the pulse's; then before
-// the onset less one rise of the pulse found against that level (rest_samples_before: the rise
-// biased the median).
+// Twice: first up to the pulse's half-height sample, as its onset found against the first 5 % of
+// a record that settles after its trigger is not the pulse's; then before the onset less one rise
+// of the pulse found against that level (rest_samples_before: the rise biased the median).
 double settle_rest_level(RestSignal& s) {
   if (!s.first) return 0;
   auto settle = [&s](std::size_t rest) -> std::optional<double> {
@@ -106,13 +105,7 @@ double settle_rest_level(RestSignal& s) {
     if (auto again = find_first_pulse(s.x, {0.0, s.noise})) s.first = again;
     return rest_level_sd(s.noise, rest);
   };
-  // Up to the half-height sample while the rise to it is no longer than the record before the
-  // onset (most of the median's samples then at rest); a pulse shaper's step stops just below half
-  // height, and by the noise draw the half-height sample is on it or on the ramp µs later, after
-  // a shoulder at 0.4–0.5 of the peak that a median up to there took for the rest (compare's
-  // striker velocity from the incident plateau 3.7 against 7.1 m/s): up to the onset then.
-  const std::size_t rise = s.first->half - s.first->onset;
-  const auto first = settle(rise <= s.first->onset ? s.first->half : s.first->onset);
+  const auto first = settle(s.first->half);
   if (!first) return 0;
   return settle(rest_samples_before(*s.first)).value_or(*first);
 }
