@@ -253,15 +253,6 @@ RecordStart record_start(std::span<const double> x, double step) {
   // end); a short rest before a slow pulse's foot inside the band only in its last (−0.11 to 0.0:
   // 10 to 12 samples of rest before an 80-sample rise at 2 % noise).
   constexpr double kFrontEvenness = 0.1;
-  // A record cut on its front starts at least as far up it as the rest band's 3 % of the peak
-  // before that band's onset; a rest that drifts away from its pulse by half that, between its
-  // start and after its pulse, is still read as one. The survey's records cut 3 % up a sharp front
-  // rise towards the pulse at 4.8 to 7.1 σ before the onset, its rest records whose start lies
-  // behind their later rest by 1 σ of that difference or more at most 2.4 σ (docs/validation.md,
-  // "Where a record starts"); a trend of white noise beyond 3 σ: 10⁻³ of records, on top of the
-  // start's own 4 σ.
-  constexpr double kBehindFraction = 0.5 * kBandOfPeak;
-  constexpr double kBehindTrendSigmas = 3;
   RecordStart r;
   if (x.size() < kMinRestSamples) return r;
   const std::size_t m = baseline_samples(x.size());
@@ -312,20 +303,6 @@ RecordStart record_start(std::span<const double> x, double step) {
   r.on_front = r.change > kFrontTrendSigmas * sd && r.rate_fraction >= kFrontRateFraction &&
                through >= kFrontEvenness * r.change;
   r.moves_away = -r.change > std::max(band, kFrontTrendSigmas * sd);
-  // Where the record rests after that pulse: the level it holds longest from the pulse's end over
-  // as long again as the pulse (between an incident pulse and its reflection; a later pulse's
-  // plateau, a soft specimen's reflection held longer than the rests, is no rest), from its start
-  // level (the median of kMinRestSamples), towards the pulse: √(π/2) σ √(1/10 + 1/count) for
-  // white noise.
-  const HeldLevel after = held_level(x.subspan(w.end, std::min(w.end - n, x.size() - w.end)), band);
-  if (after.samples == 0) return r;  // the pulse runs to the record's end
-  r.behind = w.sign * (start_level - after.level);
-  const double behind_sd =
-      std::sqrt(std::numbers::pi / 2 *
-                (1.0 / kMinRestSamples + 1.0 / static_cast<double>(after.samples))) *
-      r.noise;
-  r.off_rest = r.behind >= kBehindFraction * w.peak && r.behind > kFrontTrendSigmas * behind_sd &&
-               r.change > std::max(kBehindTrendSigmas * sd, kBehindFraction * w.peak);
   return r;
 }
 

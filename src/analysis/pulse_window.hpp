@@ -107,15 +107,6 @@ struct RecordStart {
   // coming back through the start level taken for the first pulse). A rest's drift or an
   // amplifier's settling stays within the band.
   bool moves_away = false;
-  // How far the start level lies beyond where the record rests after that onset (the level it
-  // holds longest there), towards the pulse; `off_rest`: beyond 4 σ and half the rest band's
-  // fraction of the peak, with the samples before the onset moving towards the pulse beyond 3 σ.
-  // A record that starts a few percent up a sharp front holds too few samples before the onset
-  // for the front rule's trend and rate, but starts between its rest and its pulse and rises on;
-  // a drift away from the pulse starts there too, but its samples move away from the pulse, and
-  // an amplifier settling towards its rest from the pulse's side moves back too.
-  double behind = 0;
-  bool off_rest = false;
 };
 RecordStart record_start(std::span<const double> x, double step);  // step: quantization_step
 

@@ -201,16 +201,6 @@ void require_rest_before_pulse(const GaugeSignals& signals, const std::string& g
             "before it are needed to read its rest level and noise (record with a longer "
             "pre-trigger)",
             static_cast<double>(first->onset), static_cast<double>(kMinRestSamples)));
-  if (s.start.off_rest)
-    throw channel_error(
-        signals, gauge, scene_file,
-        fmt("it starts on its first pulse's front: its first samples lie %.3g (%.1f %% of the "
-            "pulse's peak) from the level it rests at after that pulse's onset, towards the "
-            "pulse, and its %.0f samples before the onset move %.3g further towards it, beyond "
-            "their noise, so no rest level can be read before the pulse (record with a longer "
-            "pre-trigger: the rest level and noise are read from the record only)",
-            s.start.behind, 100 * s.start.behind / s.start.first->peak,
-            static_cast<double>(s.start.first->onset), s.start.change));
   if (s.start.moves_away)
     throw channel_error(
         signals, gauge, scene_file,

@@ -98,7 +98,7 @@ struct RestSignal {
   RecordStart start;  // how the record starts (record_start)
 };
 
-// A record that starts on its first pulse's front (record_start: on_front, off_rest), or holds
+// A record that starts on its first pulse's front (record_start's on_front), or holds
 // fewer than kMinRestSamples before its first pulse (a scope's pre-trigger shorter than that;
 // where no pulse rises above the noise of its first samples, the pulse against record_start's), or
 // starts inside a pulse (record_start's moves_away; rest_elsewhere) has no rest level to read: its
