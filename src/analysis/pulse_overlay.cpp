@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "core/interpolation.hpp"
+#include "core/median.hpp"
 #include "core/number_format.hpp"
 #include "dispersion/propagation.hpp"
 
@@ -89,13 +90,19 @@ std::size_t widen(std::size_t i, double by, bool down, std::size_t n) {
   return std::min(n, i + d);
 }
 
+// A rise to half height whose median holds this share of the peak is a shoulder (a pulse shaper's
+// step tops at 0.40–0.49 of the peak); a front rising steadily from rest holds 0.25 at most (a
+// straight one), one with a foot less.
+constexpr double kShoulderFraction = 0.35;
+
 // The rest level again, from the whole record before the first pulse rather than its first 5 %
 // (an amplifier settling after the trigger; and its error is an offset common to the hundreds of
 // samples a fit lays over each pulse, docs/validation.md "shpb fit"), and the pulse found anew.
 // Returns that level's standard deviation (rest_level_sd; 0 when the level is not settled so).
-// Twice: first up to the pulse's half-height sample, as its onset found against the first 5 % of
-// a record that settles after its trigger is not the pulse's; then before the onset less one rise
-// of the pulse found against that level (rest_samples_before: the rise biased the median).
+// Twice: first up to the pulse's half-height sample (or its onset, below), as its onset found
+// against the first 5 % of a record that settles after its trigger is not the pulse's; then before
+// the onset less one rise of the pulse found against that level (rest_samples_before: the rise
+// biased the median).
 double settle_rest_level(RestSignal& s) {
   if (!s.first) return 0;
   auto settle = [&s](std::size_t rest) -> std::optional<double> {
@@ -105,7 +112,17 @@ double settle_rest_level(RestSignal& s) {
     if (auto again = find_first_pulse(s.x, {0.0, s.noise})) s.first = again;
     return rest_level_sd(s.noise, rest);
   };
-  const auto first = settle(s.first->half);
+  // Up to the half-height sample, unless the rise to it outlasts the record before the onset and
+  // sits on a shoulder (its median at least kShoulderFraction of the peak): a pulse shaper's step
+  // stops just below half height, and by the noise draw the half-height sample is on it or on the
+  // ramp µs later, after a shoulder at 0.4–0.5 of the peak that a median up to there took for the
+  // rest (compare's striker velocity from the incident plateau 3.7 against 7.1 m/s): up to the
+  // onset then. A record settling after its trigger has its early onset at rest, not on a shoulder.
+  const PulseWindow& w = *s.first;
+  std::vector<double> rise;
+  for (std::size_t i = w.onset; i < w.half && i < s.x.size(); ++i) rise.push_back(w.sign * s.x[i]);
+  const bool shoulder = rise.size() > w.onset && median(rise) >= kShoulderFraction * w.peak;
+  const auto first = settle(shoulder ? w.onset : w.half);
   if (!first) return 0;
   return settle(rest_samples_before(*s.first)).value_or(*first);
 }
