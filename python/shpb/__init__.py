@@ -203,10 +203,7 @@ def _scene_of(scene):
     """A shpb.Scene, or the scene of the file at path `scene`."""
     if isinstance(scene, Scene):
         return scene
-    if not isinstance(scene, (str, _os.PathLike)):
-        raise TypeError(f"scene: {scene!r}: expected a shpb.Scene or the path of a scene file (a "
-                        "str or os.PathLike)")
-    return Scene.load(scene)
+    return Scene.load(_scene_file(scene))
 
 
 @_with_help("validate", """validate(scene, tolerance=None, threads=0, contact=None, stepping=None,

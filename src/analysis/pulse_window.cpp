@@ -144,12 +144,8 @@ Baseline quiet_segment(std::span<const double> x, std::size_t n, double q) {
 }
 
 // The level y holds longest: the median of the sorted samples' widest count within ±band of one
-// of them, and that count.
-struct HeldLevel {
-  double level = 0;
-  std::size_t samples = 0;
-};
-HeldLevel held_level(std::span<const double> y, double band) {
+// of them.
+double held_level(std::span<const double> y, double band) {
   std::vector<double> sorted(y.begin(), y.end());
   std::sort(sorted.begin(), sorted.end());
   std::size_t best = 0, best_lo = 0, lo = 0, hi = 0;
@@ -158,9 +154,8 @@ HeldLevel held_level(std::span<const double> y, double band) {
     while (hi < sorted.size() && sorted[hi] <= sorted[k] + band) ++hi;
     if (hi - lo > best) best = hi - lo, best_lo = lo;
   }
-  return {median(std::vector<double>(sorted.begin() + static_cast<std::ptrdiff_t>(best_lo),
-                                     sorted.begin() + static_cast<std::ptrdiff_t>(best_lo + best))),
-          best};
+  return median(std::vector<double>(sorted.begin() + static_cast<std::ptrdiff_t>(best_lo),
+                                    sorted.begin() + static_cast<std::ptrdiff_t>(best_lo + best)));
 }
 
 }  // namespace
@@ -311,7 +306,7 @@ std::optional<RestElsewhere> rest_elsewhere(std::span<const double> x, const Pul
   if (first.onset >= x.size()) return std::nullopt;
   const std::span<const double> y = x.subspan(first.onset);
   const double band = rest_band(noise, first.peak), far = kRestElsewhereFraction * first.peak;
-  const double level = held_level(y, band).level;
+  const double level = held_level(y, band);
   if (!(std::abs(level) >= far)) return std::nullopt;
   // Reached from the start in one step, not past it by `far` on its side (a pulse's tail settling
   // there, a polymer bar's creep after its pulse, peaks first; the pulse the record started on may

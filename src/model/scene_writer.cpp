@@ -2,6 +2,7 @@
 
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "core/checked_write.hpp"
 #include "core/csv_writer.hpp"  // format_double
@@ -23,6 +24,17 @@ std::string si(double value, const char* unit) { return format_double(value) + "
 template <class T, class Value>
 void patch(Json& o, const char* key, const T& before, const T& after, const Value& value) {
   if (!(before == after)) o[key] = value;
+}
+
+// `key` of `o` set to `text(after)` where an optional value was edited, removed where it is unset.
+template <class T, class Text>
+void patch_optional(Json& o, const char* key, const std::optional<T>& before,
+                    const std::optional<T>& after, const Text& text) {
+  if (before == after) return;
+  if (after)
+    o[key] = text(*after);
+  else
+    o.erase(key);
 }
 
 bool names_material(const Json& scene, const Json& v) {
@@ -80,12 +92,8 @@ void patch_johnson_cook(Json& o, const JohnsonCookParams& a, const JohnsonCookPa
           si(b.specific_heat_J_kgK, "J/(kg K)"));
   patch(o, "taylor_quinney", a.taylor_quinney, b.taylor_quinney, b.taylor_quinney);
   patch(o, "adiabatic", a.adiabatic, b.adiabatic, b.adiabatic);
-  if (a.strain_rate_filter_s != b.strain_rate_filter_s) {
-    if (b.strain_rate_filter_s)
-      o["strain_rate_filter"] = si(*b.strain_rate_filter_s, "s");
-    else
-      o.erase("strain_rate_filter");
-  }
+  patch_optional(o, "strain_rate_filter", a.strain_rate_filter_s, b.strain_rate_filter_s,
+                 [](double v) { return si(v, "s"); });
 }
 
 // The material object `o` (as the scene or its file gives it, read as `a`) edited to `b`.
@@ -170,25 +178,11 @@ void patch_run(Json& j, const Scene& read, const Scene& edited) {
   patch(j, "name", read.name, edited.name, edited.name);
   const SimulationSpec &a = read.simulation, &b = edited.simulation;
   Json& s = j["simulation"];
-  if (a.duration_s != b.duration_s) {
-    if (b.duration_s)
-      s["duration"] = si(*b.duration_s, "s");
-    else
-      s.erase("duration");
-  }
-  if (a.tolerance != b.tolerance) {
-    if (b.tolerance)
-      s["tolerance"] = *b.tolerance;
-    else
-      s.erase("tolerance");
-  }
+  const auto number = [](double v) { return v; };
+  patch_optional(s, "duration", a.duration_s, b.duration_s, [](double v) { return si(v, "s"); });
+  patch_optional(s, "tolerance", a.tolerance, b.tolerance, number);
   patch(s, "stepping", a.stepping, b.stepping, std::string(to_string(b.stepping)));
-  if (a.courant != b.courant) {
-    if (b.courant)
-      s["courant"] = *b.courant;
-    else
-      s.erase("courant");
-  }
+  patch_optional(s, "courant", a.courant, b.courant, number);
   if (s.empty()) j.erase("simulation");
   if (read.contact.method != edited.contact.method)
     j["contact"]["method"] = std::string(to_string(edited.contact.method));
@@ -289,8 +283,8 @@ void save_scene(const Scene& scene, const fs::path& file, bool overwrite) {
           "is not a scene file (reading it as one: " + std::string(e.what()) + "): not replaced");
     }
   }
-  OutputFile out(
-      to);  // its folder made first: the text is read back from there (removed on failure)
+  // Its folder is made first: the text is read back from there (removed on failure).
+  OutputFile out(to);
   write_text_file(out.path(), scene_file_text(scene, to));
   out.commit();
 }
