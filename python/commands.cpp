@@ -50,9 +50,9 @@ void bind_process_campaign(py::module_& m) {
           c.flow_strains.push_back(
               number<double>(flow_stress_at[i], "flow_stress_at[" + std::to_string(i) + "]"));
         c.output = output;
-        c.monte_carlo.draws = number<std::size_t>(draws, "draws");
-        c.monte_carlo.seed = number<std::uint64_t>(seed, "seed");
-        c.monte_carlo.threads = number<int>(threads, "threads");
+        c.draws = optional_number<std::size_t>(draws, "draws");  // None: not given
+        c.seed = optional_number<std::uint64_t>(seed, "seed");
+        c.threads = number<int>(threads, "threads");
         c.print_warnings = false;  // result.warnings, from each test's summary.json
         // Its checks first (CampaignOptions::IsValid), as the command's; the folder written.
         return run_released([&] { return process_campaign(c); });

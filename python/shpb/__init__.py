@@ -458,17 +458,19 @@ class CampaignResult(FolderResult):
         return f"<shpb.CampaignResult of {len(self.tests)} tests: {', '.join(self.tests)}>"
 
 
-@_with_help("process", """process_campaign(campaign, flow_stress_at=(), draws=1000, seed=1,
+@_with_help("process", """process_campaign(campaign, flow_stress_at=(), draws=None, seed=None,
                  threads=0, shard=None, merge=False, output=None) -> CampaignResult
 
 Processes several measured tests as `shpb process --campaign FILE` (campaign: the path of a
 campaign file) or `shpb process SCENE...` (campaign: a list of scene files' paths) does, each
 test as the one-test command, plus campaign.csv (result.tables["campaign"]); flow_stress_at:
 the engineering strains of --flow-stress-at; draws, seed and threads: each test's
-measurement.uncertainty as --draws, --seed and --threads. shard="K/N" and merge=True are
---shard and --merge, writing into `output` (the command's -o DIR, needed with them alone):
-shard returns its part DIR/parts/K-of-N as a FolderResult, merge DIR/result.""")
-def process_campaign(campaign, flow_stress_at=(), draws=1000, seed=1, threads=0, shard=None,
+measurement.uncertainty as --draws, --seed and --threads (None: not given, the command's
+defaults 1000 and 1). shard="K/N" and merge=True are --shard and --merge, writing into `output`
+(the command's -o DIR, needed with them alone): shard returns its part DIR/parts/K-of-N as a
+FolderResult, merge DIR/result; the shards draw, so a merge refuses draws or a seed, and a shard
+flow_stress_at, as the command does.""")
+def process_campaign(campaign, flow_stress_at=(), draws=None, seed=None, threads=0, shard=None,
                      merge=False, output=None):
     if isinstance(campaign, (str, bytes, _os.PathLike, Scene)):
         file, scenes = _scene_file(campaign), []  # a campaign file: a Scene is none

@@ -124,13 +124,25 @@ def test_shards_merged_from_python_are_the_commands_campaign(tmp_path):
     assert [list(p.tests) for p in parts] == [["epoxy-resin", "pmma-mini-kolsky"],
                                               ["cu-ofe-273k"]]
     assert parts[1].json["part"]["shard"] == "1/2"
-    merged = shpb.process_campaign(CAMPAIGN, draws=DRAWS, merge=True, output=tmp_path / "py")
+    merged = shpb.process_campaign(CAMPAIGN, merge=True, output=tmp_path / "py")
     assert list(merged.tests) == ["epoxy-resin", "cu-ofe-273k", "pmma-mini-kolsky"]
     names = files_of(tmp_path / "cmd")
     assert names == files_of(tmp_path / "py" / "result")
     for name in names:
         assert (tmp_path / "cmd" / name).read_bytes() == \
             (tmp_path / "py" / "result" / name).read_bytes(), name
+
+
+def test_a_merge_refuses_draws_as_the_command_does(tmp_path):
+    # The shards draw; the merge copies their tests: draws or a seed given to it are refused
+    # (they changed nothing), with the command's line.
+    code, _, err = run_command("process", "--campaign", CAMPAIGN, "--merge", "--seed", "7", "-o",
+                               tmp_path)
+    assert code == 2
+    with pytest.raises(shpb.InputError) as e:
+        shpb.process_campaign(CAMPAIGN, seed=7, merge=True, output=tmp_path)
+    assert "error: " + str(e.value) == err.strip()
+    assert str(e.value).startswith("--seed: not with --merge")
 
 
 def test_a_merge_with_a_part_missing_is_the_commands_line(tmp_path):

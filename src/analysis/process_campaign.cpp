@@ -198,7 +198,8 @@ void process_test(const CampaignTest& test, const fs::path& folder, std::size_t 
                   const CampaignOptions& options) {
   say(options, "test " + std::to_string(i + 1) + "/" + std::to_string(n) + " \"" + test.name +
                    "\" (" + test.scene.string() + ")");
-  process_into(test.scene, {}, folder, &options.monte_carlo, options.print_warnings);
+  const MonteCarloOptions monte_carlo = options.monte_carlo();
+  process_into(test.scene, {}, folder, &monte_carlo, options.print_warnings);
 }
 
 // The list of tests a part was written for: its check against the merge's own list.
@@ -309,16 +310,32 @@ std::vector<fs::path> process_campaign_inputs(const CampaignOptions& options) {
   return campaign_inputs(options, campaign_of(options));
 }
 
+MonteCarloOptions CampaignOptions::monte_carlo() const {
+  MonteCarloOptions o;
+  o.draws = draws.value_or(o.draws);
+  o.seed = seed.value_or(o.seed);
+  o.threads = threads;
+  return o;
+}
+
 bool CampaignOptions::IsValid(std::string* error) const {
   std::optional<InputError> e;
+  const char* drawn = first_given({{draws.has_value(), "--draws"}, {seed.has_value(), "--seed"}});
   if (!campaign && scenes.empty())
     e = input_error("process", "", "", "a scene, several scenes or --campaign FILE is needed");
   else if (campaign && !scenes.empty())
     e = input_error(campaign->string(), "", "", "give scenes or --campaign, not both");
   else if (merge && !shard.empty())
     e = input_error("--merge", "", "", "the merge comes after the shards: not with --shard");
-  else if (std::string draws; !monte_carlo.IsValid(&draws))
-    e = InputError(draws);
+  else if (merge && drawn)
+    e = not_with_step(drawn, "--merge",
+                      "the shards drew each test's measurement.uncertainty and the merge copies "
+                      "their tests (run the shards again to change the draws)");
+  else if (!shard.empty() && !flow_strains.empty())
+    e = not_with_step("--flow-stress-at", "--shard",
+                      "a shard writes no campaign.csv (give it to --merge, which writes it)");
+  else if (std::string why; !monte_carlo().IsValid(&why))
+    e = InputError(why);
   for (double s : flow_strains)
     if (!e && !(s > 0 && s < 1))
       e = input_error("--flow-stress-at", "", format_double(s),

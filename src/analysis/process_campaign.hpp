@@ -2,6 +2,7 @@
 // `shpb process` over several tests (docs/commands.md): scenes or a campaign file; each test's
 // folder as the one-test command writes it (analysis/process_outputs.hpp process_into), plus
 // campaign.csv; --shard K/N and --merge as for `study` (core/shards.hpp).
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -20,8 +21,12 @@ struct CampaignOptions {
   std::string shard;                 // "K/N"
   bool merge = false;
   // Each test's measurement.uncertainty drawn as the one-test command draws it (--draws, --seed,
-  // --threads); a test without the block is processed as before.
-  MonteCarloOptions monte_carlo;
+  // --threads; none given: its defaults); a test without the block is processed as before. The
+  // shards draw: the merge copies their tests, so draws or a seed given to it are refused.
+  std::optional<std::size_t> draws;
+  std::optional<std::uint64_t> seed;
+  int threads = 0;
+  MonteCarloOptions monte_carlo() const;
   std::function<void(const std::string&)> progress;  // one line at a time; empty: silent
   // Each test's warnings on stderr as the one-test command prints them (`warning: ...`); they
   // are in its folder's summary.json either way (the Python module returns them from there).

@@ -73,16 +73,17 @@ Command add_process_command(CLI::App& app) {
                   "Gauge signals to process instead of the scene's measurement, e.g. a "
                   "gauges.csv written by `shpb simulate`");
   cmd->add_flag("--quiet,-q", o->one.quiet, "No progress output on stderr");
-  cmd->add_option("--draws", o->one.monte_carlo.draws,
-                  "Monte Carlo draws of measurement.uncertainty (default 1000)")
-      ->check(unsigned_text_check());
+  auto* draws = cmd->add_option("--draws", o->one.monte_carlo.draws,
+                                "Monte Carlo draws of measurement.uncertainty (default 1000)")
+                    ->check(unsigned_text_check());
   // Its range: MonteCarloOptions::IsValid, checked before the scene is read (run_process,
   // process_campaign), as the Python module checks it.
-  add_seed_option(cmd, o->one.monte_carlo.seed,
-                  "Seed of the Monte Carlo draws (default 1: the same draws every run)");
+  auto* seed =
+      add_seed_option(cmd, o->one.monte_carlo.seed,
+                      "Seed of the Monte Carlo draws (default 1: the same draws every run)");
   add_threads_option(cmd, o->one.monte_carlo.threads,
                      "Worker threads of the Monte Carlo draws (0 = all cores)");
-  return {cmd, [o] {
+  return {cmd, [o, draws, seed] {
             CampaignOptions& c = o->campaign;
             const bool several = o->scenes.size() != 1 || !o->campaign_file.empty() ||
                                  !c.shard.empty() || c.merge || !c.flow_strains.empty();
@@ -92,7 +93,10 @@ Command add_process_command(CLI::App& app) {
               for (const auto& s : o->scenes) c.scenes.push_back(s);
               if (!o->campaign_file.empty()) c.campaign = o->campaign_file;
               c.output = o->one.output;
-              c.monte_carlo = o->one.monte_carlo;
+              // As given: a merge refuses draws it cannot make (CampaignOptions::IsValid).
+              if (draws->count() > 0) c.draws = o->one.monte_carlo.draws;
+              if (seed->count() > 0) c.seed = o->one.monte_carlo.seed;
+              c.threads = o->one.monte_carlo.threads;
               if (!o->one.quiet)
                 c.progress = [](const std::string& l) {
                   std::fprintf(stderr, "process: %s\n", l.c_str());

@@ -2,31 +2,29 @@
 
 #include "analysis/uncertainty.hpp"
 #include "core/error.hpp"
+#include "core/options_check.hpp"
 
 namespace shpb {
 
 bool StudyArgs::IsValid(std::string* error) const {
   const int modes = (plan ? 1 : 0) + (run ? 1 : 0) + (merge ? 1 : 0);
   // The Monte Carlo option given first, if any (named by the errors below).
-  const char* monte_carlo_option = !distributions.empty() ? "--distributions"
-                                   : draws                ? "--draws"
-                                   : seed                 ? "--seed"
-                                                          : nullptr;
+  const char* monte_carlo_option = first_given({{!distributions.empty(), "--distributions"},
+                                                {draws.has_value(), "--draws"},
+                                                {seed.has_value(), "--seed"}});
   // The sweep and its run options given first, if any: a plan holds them.
-  const char* planned_option = sweep                 ? "--sweep"
-                               : overrides.contact   ? "--contact"
-                               : overrides.stepping  ? "--stepping"
-                               : overrides.courant   ? "--courant"
-                               : overrides.tolerance ? "--tolerance"
-                               : refine != 1         ? "--refine"
-                                                     : nullptr;
+  const char* planned_option = first_given({{sweep.has_value(), "--sweep"},
+                                            {overrides.contact.has_value(), "--contact"},
+                                            {overrides.stepping.has_value(), "--stepping"},
+                                            {overrides.courant.has_value(), "--courant"},
+                                            {overrides.tolerance.has_value(), "--tolerance"},
+                                            {refine != 1, "--refine"}});
   std::optional<InputError> e;
   if (modes > 1)
     e = input_error("study", "", "", "--plan, --run and --merge are separate steps: give one");
   else if ((run || merge) && planned_option)
-    e = input_error(planned_option, "", "",
-                    "not with --run or --merge: the plan holds the sweep and its options "
-                    "(plan again to change them)");
+    e = not_with_step(planned_option, "--run or --merge",
+                      "the plan holds the sweep and its options (plan again to change them)");
   else if (refine < 1 || refine > kMaxRefine)
     e = input_error("--refine", "", std::to_string(refine),
                     "expected 1 to " + std::to_string(kMaxRefine));
@@ -37,8 +35,7 @@ bool StudyArgs::IsValid(std::string* error) const {
   else if (refine != 1 && chosen_sweep() != Sweep::kStability)
     e = input_error("--refine", "", std::to_string(refine), "only with --sweep stability");
   else if ((run || merge) && monte_carlo_option)
-    e = input_error(monte_carlo_option, "", "",
-                    "not with --run or --merge: the plan holds the draws");
+    e = not_with_step(monte_carlo_option, "--run or --merge", "the plan holds the draws");
   else if (chosen_sweep() != Sweep::kMonteCarlo && monte_carlo_option)
     e = input_error(monte_carlo_option, "", "", "only with --sweep monte-carlo");
   else if (chosen_sweep() == Sweep::kMonteCarlo && !run && !merge && distributions.empty())

@@ -202,6 +202,39 @@ TEST_CASE("A campaign's rows equal each test processed alone; flow stress on its
   }
 }
 
+// The shards draw each test's measurement.uncertainty and the merge copies their folders, so
+// --draws and --seed given to --merge changed nothing (exit 0, the shards' bands under the merge's
+// options); a shard writes no campaign.csv, so --flow-stress-at given to it was dropped. Each is
+// refused as `study --merge` refuses what its plan holds: one line, before anything is read.
+TEST_CASE("process --merge refuses draws and --shard a flow stress: they cannot act there",
+          "[app][process][campaign]") {
+  const fs::path dir = shpb_test::scratch_dir("campaign_step_options");
+  const std::string campaign = (kRoot / "experiments/measured-campaign.json").string();
+  const std::string why_merge =
+      ": not with --merge: the shards drew each test's measurement.uncertainty and the merge "
+      "copies their tests (run the shards again to change the draws)\n";
+  for (const auto& [option, value] :
+       std::vector<std::pair<std::string, std::string>>{{"--draws", "20"}, {"--seed", "7"}}) {
+    const auto r = shpb_test::run_shpb(
+        {"process", "--campaign", campaign, "-o", dir.string(), "--merge", option, value, "-q"});
+    CHECK(r.code == 2);
+    CHECK(r.err == "error: " + option + why_merge);
+  }
+  const auto shard = shpb_test::run_shpb({"process", "--campaign", campaign, "-o", dir.string(),
+                                          "--shard", "0/2", "--flow-stress-at", "0.02", "-q"});
+  CHECK(shard.code == 2);
+  CHECK(shard.err ==
+        "error: --flow-stress-at: not with --shard: a shard writes no campaign.csv (give it to "
+        "--merge, which writes it)\n");
+  CHECK(fs::is_empty(dir));  // nothing written
+  // Each option where it acts is taken: --threads with the merge (it draws nothing, and the
+  // result does not depend on it) is not refused by this rule (the parts not made yet are).
+  const auto threads = shpb_test::run_shpb(
+      {"process", "--campaign", campaign, "-o", dir.string(), "--merge", "--threads", "1", "-q"});
+  CHECK(threads.code == 2);
+  CHECK(threads.err.find("no parts (K-of-N) found") != std::string::npos);
+}
+
 TEST_CASE("The three measured experiments as one campaign", "[app][process][campaign][data]") {
   const fs::path dir = shpb_test::scratch_dir("measured_campaign");
   const fs::path campaign = kRoot / "experiments/measured-campaign.json";
