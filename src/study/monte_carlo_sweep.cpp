@@ -280,29 +280,38 @@ nlohmann::ordered_json distribution_json(const Distribution& d) {
   return j;
 }
 
-Distribution distribution_from(const nlohmann::json& j) {
+Distribution distribution_from(const JsonValue& v) {
+  const JsonObject o = v.object({"key", "distribution", "unit", "nominal", "mean",
+                                 "standard_deviation", "range", "path", "dimension"});
+  auto real = [&](const char* key) {
+    return o.require(key, key).quantity(Dimension::kDimensionless);
+  };
+  static constexpr EnumName<DistributionKind> kKinds[] = {{"normal", DistributionKind::kNormal},
+                                                          {"uniform", DistributionKind::kUniform}};
   Distribution d;
-  d.key = j.at("key").get<std::string>();
-  d.path = j.at("path").get<std::string>();
-  const std::string kind = j.at("distribution").get<std::string>();
-  if (kind != "normal" && kind != "uniform")
-    throw std::invalid_argument("unknown distribution " + kind);
-  d.kind = kind == "normal" ? DistributionKind::kNormal : DistributionKind::kUniform;
-  d.nominal = j.at("nominal").get<double>();
-  d.mean = j.at("mean").get<double>();
-  d.standard_deviation = j.at("standard_deviation").get<double>();
+  d.key = o.require("key", "the scene value drawn").string();
+  d.path = o.require("path", "its path in the distributions file").string();
+  d.kind = enum_from(o.require("distribution", "normal or uniform"), kKinds);
+  d.nominal = real("nominal");
+  d.mean = real("mean");
+  d.standard_deviation = real("standard_deviation");
+  if (auto u = o.get("unit")) u->string();
   if (d.kind == DistributionKind::kUniform) {
-    d.low = j.at("range").at(0).get<double>();
-    d.high = j.at("range").at(1).get<double>();
+    const JsonValue range = o.require("range", "[low, high]");
+    const std::vector<JsonValue> ends = range.array();
+    if (ends.size() != 2) throw range.error("expected [low, high]");
+    d.low = ends[0].quantity(Dimension::kDimensionless);
+    d.high = ends[1].quantity(Dimension::kDimensionless);
   }
-  const std::string dim = j.at("dimension").get<std::string>();
+  const JsonValue dim = o.require("dimension", "the value's dimension");
+  const std::string name = dim.string();
   bool found = false;
   for (int k = 0; k <= static_cast<int>(Dimension::kStiffness); ++k)
-    if (to_string(static_cast<Dimension>(k)) == dim) {
+    if (to_string(static_cast<Dimension>(k)) == name) {
       d.dimension = static_cast<Dimension>(k);
       found = true;
     }
-  if (!found) throw std::invalid_argument("unknown dimension " + dim);
+  if (!found) throw dim.error("not a dimension shpb writes");
   return d;
 }
 

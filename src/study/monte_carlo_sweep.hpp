@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/json_value.hpp"
 #include "core/time_series.hpp"
 #include "core/units.hpp"
 #include "model/scene.hpp"
@@ -71,7 +72,8 @@ MonteCarloJobResult run_monte_carlo_job(const Scene& scene,
                                         const std::function<bool()>& cancel = {});
 
 nlohmann::ordered_json distribution_json(const Distribution& d);
-Distribution distribution_from(const nlohmann::json& j);
+// A distribution as distribution_json wrote it (a study plan); InputError naming its JSON path.
+Distribution distribution_from(const JsonValue& v);
 nlohmann::ordered_json job_result_json(const MonteCarloJobResult& r);
 MonteCarloJobResult job_result_from(const nlohmann::json& j);
 

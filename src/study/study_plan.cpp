@@ -7,6 +7,8 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/json_document.hpp"
+#include "core/json_value.hpp"
 #include "study/json_numbers.hpp"
 #include "version.hpp"
 
@@ -48,16 +50,76 @@ TimeSeries series_from(const nlohmann::json& j) {
   return s;
 }
 
-ContactMethod method_from(const nlohmann::json& j) {
-  const auto m = contact_method_from_string(j.get<std::string>());
-  if (!m) throw std::invalid_argument("unknown contact method " + j.dump());
-  return *m;
+// The keys of plan.json and of its options (plan_text writes them).
+const std::vector<std::string> kPlanKeys = {"version",    "command", "plan_id", "sweep", "scene",
+                                            "scene_text", "inputs",  "options", "runs"};
+const std::vector<std::string> kOptionKeys = {"contact", "stepping",      "courant",
+                                              "refine",  "distributions", "seed"};
+
+// A whole number 0 … 2^64 − 1 (a seed: JsonValue::integer stops at 2^63 − 1).
+std::uint64_t unsigned_integer(const JsonValue& v) {
+  if (!v.json().is_number_unsigned()) throw v.error("expected a whole number 0 to 2^64 - 1");
+  return v.json().get<std::uint64_t>();
 }
 
-Stepping stepping_from(const nlohmann::json& j) {
-  const auto s = stepping_from_string(j.get<std::string>());
-  if (!s) throw std::invalid_argument("unknown stepping " + j.dump());
-  return *s;
+double real(const JsonValue& v) { return v.quantity(Dimension::kDimensionless); }
+
+// One of the plan's runs, of a kind its sweep has, appended to the plan.
+void read_run(const JsonValue& v, StudyPlan& plan) {
+  static const std::vector<std::string> kPareto = {
+      "run", "kind", "row", "method", "stepping", "resolution", "finite_links"};
+  static const std::vector<std::string> kStability = {
+      "run", "kind", "method", "stiffness_factor", "mass_ratio", "courant", "tied", "step_ratio"};
+  static const std::vector<std::string> kMonteCarlo = {"run", "kind", "values"};
+  const JsonValue kind_value =
+      v.object({"run", "kind", "row", "method", "stepping", "resolution", "finite_links",
+                "stiffness_factor", "mass_ratio", "courant", "tied", "step_ratio", "values"})
+          .require("kind", "the run's kind");
+  const std::string kind = kind_value.string();
+  const auto run_index = static_cast<std::int64_t>(plan.runs());
+  auto number = [](const JsonObject& o, const char* key) { return real(o.require(key, key)); };
+  if (plan.sweep == Sweep::kPareto && (kind == "case" || kind == "reference")) {
+    const JsonObject o = v.object(kPareto);
+    o.require("run", "the run's index").integer(run_index, run_index);
+    ParetoJob p;
+    p.reference = kind == "reference";
+    if (!p.reference)
+      p.row = static_cast<std::size_t>(o.require("row", "the case's row").integer(0, 1 << 30));
+    p.run = {
+        enum_from(o.require("method", "the contact method"), kContactMethodNames),
+        enum_from(o.require("stepping", "the stepping"), kSteppingNames),
+        o.require("resolution", "the mesh factor").positive_quantity(Dimension::kDimensionless),
+        o.require("finite_links", "true or false").boolean()};
+    plan.pareto.push_back(p);
+  } else if (plan.sweep == Sweep::kStability && (kind == "boundary" || kind == "point")) {
+    const JsonObject o = v.object(kStability);
+    o.require("run", "the run's index").integer(run_index, run_index);
+    StabilityJob s;
+    s.boundary = kind == "boundary";
+    s.point = {enum_from(o.require("method", "the contact method"), kContactMethodNames),
+               number(o, "stiffness_factor"),
+               number(o, "mass_ratio"),
+               number(o, "courant"),
+               o.require("tied", "true or false").boolean(),
+               number(o, "step_ratio")};
+    plan.stability.push_back(s);
+  } else if (plan.sweep == Sweep::kMonteCarlo && (kind == "nominal" || kind == "draw")) {
+    const JsonObject o = v.object(kMonteCarlo);
+    o.require("run", "the run's index").integer(run_index, run_index);
+    MonteCarloJob m;
+    m.nominal = kind == "nominal";
+    if (!m.nominal) {
+      const JsonValue values = o.require("values", "one drawn value per distribution");
+      for (const JsonValue& x : values.array()) m.values.push_back(real(x));
+      if (m.values.size() != plan.distributions.size())
+        throw values.error_with_value(
+            std::to_string(m.values.size()) + " values",
+            "expected one per distribution, " + std::to_string(plan.distributions.size()));
+    }
+    plan.monte_carlo.push_back(m);
+  } else {
+    throw kind_value.error("not a run of a " + to_string(plan.sweep) + " plan");
+  }
 }
 
 InputError damaged(const fs::path& file, const std::string& what) {
@@ -129,67 +191,37 @@ std::string plan_text(const StudyPlan& plan) {
 }
 
 StudyPlan read_study_plan(const fs::path& plan_file) {
-  std::ifstream in(plan_file);
-  if (!in)
+  if (!std::ifstream(plan_file))
     throw input_error(plan_file.string(), "", "",
                       "cannot be read (make the plan first: shpb study SCENE --plan DIR)");
+  // The project's reader and schema checks (core/json_document.hpp, core/json_value.hpp): a
+  // damaged or hand-edited plan is refused with its file, JSON path, value and what is expected.
+  const std::string display = plan_file.string();
+  const nlohmann::json document = read_json_object_file(plan_file, display);
+  const JsonObject o = JsonValue(document, display, "").object(kPlanKeys);
   StudyPlan plan;
-  try {
-    const nlohmann::json j = nlohmann::json::parse(in);
-    if (j.at("command") != "study") throw std::invalid_argument("not a study plan");
-    plan.id = j.at("plan_id").get<std::string>();
-    const auto sweep = enum_value(kSweepNames, j.at("sweep").get<std::string>());
-    if (!sweep) throw std::invalid_argument("unknown sweep " + j.at("sweep").dump());
-    plan.sweep = *sweep;
-    plan.scene = j.at("scene").get<std::string>();
-    plan.scene_text = j.at("scene_text").get<std::string>();
-    plan.inputs = j.at("inputs");
-    if (!plan.inputs.is_array()) throw std::invalid_argument("inputs is not a list");
-    const auto& o = j.at("options");
-    if (o.contains("contact")) plan.contact = method_from(o.at("contact"));
-    if (o.contains("stepping")) plan.stepping = stepping_from(o.at("stepping"));
-    if (o.contains("courant")) plan.courant = o.at("courant").get<double>();
-    if (o.contains("refine")) plan.refine = o.at("refine").get<int>();
-    if (plan.sweep == Sweep::kMonteCarlo) {
-      for (const auto& d : o.at("distributions"))
-        plan.distributions.push_back(distribution_from(d));
-      plan.seed = o.at("seed").get<std::uint64_t>();
-    }
-    for (const auto& r : j.at("runs")) {
-      const std::string kind = r.at("kind").get<std::string>();
-      if (plan.sweep == Sweep::kPareto && (kind == "case" || kind == "reference")) {
-        ParetoJob p;
-        p.reference = kind == "reference";
-        if (!p.reference) p.row = r.at("row").get<std::size_t>();
-        p.run = {method_from(r.at("method")), stepping_from(r.at("stepping")),
-                 r.at("resolution").get<double>(), r.at("finite_links").get<bool>()};
-        plan.pareto.push_back(p);
-      } else if (plan.sweep == Sweep::kStability && (kind == "boundary" || kind == "point")) {
-        StabilityJob s;
-        s.boundary = kind == "boundary";
-        s.point = {method_from(r.at("method")),      r.at("stiffness_factor").get<double>(),
-                   r.at("mass_ratio").get<double>(), r.at("courant").get<double>(),
-                   r.at("tied").get<bool>(),         r.at("step_ratio").get<double>()};
-        plan.stability.push_back(s);
-      } else if (plan.sweep == Sweep::kMonteCarlo && (kind == "nominal" || kind == "draw")) {
-        MonteCarloJob m;
-        m.nominal = kind == "nominal";
-        if (!m.nominal) m.values = r.at("values").get<std::vector<double>>();
-        if (m.values.size() != (m.nominal ? 0 : plan.distributions.size()))
-          throw std::invalid_argument("run " + r.at("run").dump() + " has " +
-                                      std::to_string(m.values.size()) + " values for " +
-                                      std::to_string(plan.distributions.size()) + " distributions");
-        plan.monte_carlo.push_back(m);
-      } else {
-        throw std::invalid_argument("run of kind \"" + kind + "\" in a " + to_string(plan.sweep) +
-                                    " plan");
-      }
-    }
-  } catch (const InputError&) {
-    throw;
-  } catch (const std::exception& e) {
-    throw damaged(plan_file, e.what());
+  if (const auto command = o.require("command", "\"study\""); command.string() != "study")
+    throw command.error("expected \"study\": a plan written by shpb study --plan");
+  if (auto v = o.get("version")) v->string();
+  plan.id = o.require("plan_id", "the plan's id").string();
+  plan.sweep = enum_from(o.require("sweep", "the sweep"), kSweepNames);
+  plan.scene = o.require("scene", "the scene's absolute path").string();
+  plan.scene_text = o.require("scene_text", "the scene file's text").string();
+  const JsonValue inputs = o.require("inputs", "the input files with their digests");
+  inputs.array();  // each entry is checked against its file (check_input_digests)
+  plan.inputs = inputs.json();
+  const JsonObject options = o.require("options", "the sweep's options").object(kOptionKeys);
+  if (auto v = options.get("contact")) plan.contact = enum_from(*v, kContactMethodNames);
+  if (auto v = options.get("stepping")) plan.stepping = enum_from(*v, kSteppingNames);
+  if (auto v = options.get("courant"))
+    plan.courant = v->positive_quantity(Dimension::kDimensionless);
+  if (auto v = options.get("refine")) plan.refine = static_cast<int>(v->integer(1, kMaxRefine));
+  if (plan.sweep == Sweep::kMonteCarlo) {
+    for (const JsonValue& d : options.require("distributions", "the values drawn").array())
+      plan.distributions.push_back(distribution_from(d));
+    plan.seed = unsigned_integer(options.require("seed", "the draws' seed"));
   }
+  for (const JsonValue& r : o.require("runs", "the plan's runs").array()) read_run(r, plan);
   return plan;
 }
 

@@ -181,7 +181,8 @@ TEST_CASE("shpb study --plan/--run/--merge equals the in-process sweep apart fro
     auto j = nlohmann::json::parse(shpb_test::read_text(odd / "plan.json"));
     j["sweep"] = "stabilty";
     std::ofstream(odd / "plan.json") << j.dump();
-    fails({"study", "--run", odd.string(), "--shard", "0/1"}, "unknown sweep \"stabilty\"");
+    fails({"study", "--run", odd.string(), "--shard", "0/1"},
+          (odd / "plan.json").string() + ": sweep: \"stabilty\": ");
     CHECK_FALSE(fs::exists(odd / "parts" / "0-of-1.json"));
   }
   SECTION("A scene changed after planning is refused") {
@@ -194,6 +195,59 @@ TEST_CASE("shpb study --plan/--run/--merge equals the in-process sweep apart fro
     CHECK(r.err.find("changed since the plan") != std::string::npos);
   }
   fs::remove_all(dir);
+}
+
+// plan.json is read by the project's reader and schema checks (core/json_value.hpp): a damaged or
+// hand-edited plan is refused with the file, the JSON path, the value and what was expected, not
+// the JSON library's own text ("[json.exception.type_error.302] type must be number, but is
+// string" inside a generic line). Planning runs nothing: seconds.
+TEST_CASE("study --run refuses a damaged plan.json with its JSON path and value",
+          "[study][shards][app]") {
+  const fs::path dir = shpb_test::scratch_dir("study_damaged_plan");
+  const fs::path plan = dir / "plan";
+  REQUIRE(shpb_test::run_shpb({"study", kScene, "--plan", plan.string(), "-q"}).code == 0);
+  const fs::path file = plan / "plan.json";
+  const std::string good = shpb_test::read_text(file);
+  auto refused = [&](const std::function<void(nlohmann::json&)>& edit) {
+    auto j = nlohmann::json::parse(good);
+    edit(j);
+    std::ofstream(file) << j.dump(1);
+    const auto r = shpb_test::run_shpb({"study", "--run", plan.string(), "--shard", "0/1", "-q"});
+    INFO(r.err);
+    CHECK(r.code == 2);
+    CHECK(r.err.find("json.exception") == std::string::npos);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    CHECK(fs::is_empty(plan / "parts"));  // no part written
+    return r.err;
+  };
+  const std::string at = "error: " + file.string() + ": ";
+  CHECK(refused([](auto& j) {
+          j["runs"][2]["resolution"] = "fine";
+        }).starts_with(at + "runs[2].resolution: \"fine\": "));
+  CHECK(refused([](auto& j) {
+          j["runs"][1]["finite_links"] = 1;
+        }).starts_with(at + "runs[1].finite_links: 1: "));
+  CHECK(refused([](auto& j) {
+          j["runs"][0]["method"] = "penalti";
+        }).starts_with(at + "runs[0].method: \"penalti\": "));
+  CHECK(refused([](auto& j) {
+          j["runs"][0].erase("stepping");
+        }).starts_with(at + "runs[0].stepping: (missing): "));
+  CHECK(
+      refused([](auto& j) { j["options"]["refine"] = 0; }).starts_with(at + "options.refine: 0: "));
+  CHECK(refused([](auto& j) {
+          j["runs"][3]["kind"] = "point";
+        }).starts_with(at + "runs[3].kind: \"point\": not a run of a pareto plan"));
+  CHECK(refused([](auto& j) { j["runs"] = "all"; }).starts_with(at + "runs: \"all\": "));
+  // Text that is not JSON: its line and column, as a scene's.
+  std::ofstream(file) << good.substr(0, good.size() / 2);
+  const auto cut = shpb_test::run_shpb({"study", "--run", plan.string(), "--shard", "0/1", "-q"});
+  CHECK(cut.code == 2);
+  CHECK(cut.err.starts_with(at));
+  CHECK(cut.err.find("line ") != std::string::npos);
+  // The plan as written still runs (the checks refuse nothing shpb writes).
+  std::ofstream(file) << good;
+  CHECK(shpb_test::run_shpb({"study", "--run", plan.string(), "--shard", "5/6", "-q"}).code == 0);
 }
 
 // The plan holds the sweep and its options: given again to --run or --merge they were ignored
