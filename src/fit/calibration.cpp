@@ -844,9 +844,23 @@ void fitted_parameters(const std::vector<LsParameter>& list, const LsResult& r,
   }
   for (std::size_t k = 0; k < p; ++k) {
     FittedParameter fp{list[k].name, list[k].start, r.value[k], std::nullopt};
+    // A parameter held by its bound is not determined by the shots: the Jacobian there measures
+    // the misfit's slope into the bound, not an interval (a record without dispersion, as a 1D
+    // simulation writes, put a Poisson ratio on 0.05 with sd 0.003).
+    const bool bound = at_bound(r.value[k], list[k].lower, list[k].upper);
+    if (bound)
+      fit.undetermined.push_back(
+          list[k].name + " ends at its bound " + format_number(r.value[k]) + " (bounds " +
+          format_number(list[k].lower) + " to " + format_number(list[k].upper) +
+          "): the shots ask for a value beyond it, so they do not determine it and it gets no "
+          "uncertainty" +
+          (list[k].name.ends_with(".poisson_ratio")
+               ? " (a Poisson ratio is read from the pulses' dispersion: a record without it, as a "
+                 "1D simulation writes, holds none)"
+               : ""));
     // A parameter with a tenth of its weight on an undetermined direction is not determined.
     constexpr double kUndeterminedShare = 0.1;
-    if (weak_weight[k] < kUndeterminedShare && r.residuals > p)
+    if (!bound && weak_weight[k] < kUndeterminedShare && r.residuals > p)
       fp.sd = std::sqrt(cov(static_cast<long>(k), static_cast<long>(k))) /
               j.norm(static_cast<long>(k)) * list[k].scale;
     fit.parameters.push_back(fp);

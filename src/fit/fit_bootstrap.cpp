@@ -26,9 +26,6 @@ constexpr double kSpreadSamplingSigmas = 2.0;
 constexpr double kWeakRelativeHalfWidth = 0.25;
 //  - a tenth of the refits end at a bound: the bounds, not the data, hold the parameter.
 constexpr double kAtBoundFraction = 0.1;
-// A value within this fraction of the bounds' span of a bound is at the bound (as
-// check_identifiability in fit_run.cpp judges the fit itself).
-constexpr double kAtBoundSpan = 1e-6;
 
 // The residuals measured − fitted of one gauge over the test's fitted windows, centred.
 std::vector<double> gauge_residuals(const FitCase& c, const Overlay& o, bool transmitted) {
@@ -236,10 +233,7 @@ void set_intervals(FitRun& run) {
       for (const auto& e : est) mean += e[a] / n;
       for (const auto& e : est) {
         var += (e[a] - mean) * (e[a] - mean) / (n - 1);
-        const double span = u.upper - u.lower;
-        at_bound += (std::abs(e[a] - u.lower) < kAtBoundSpan * span ||
-                     std::abs(u.upper - e[a]) < kAtBoundSpan * span) /
-                    n;
+        at_bound += (shpb::at_bound(e[a], u.lower, u.upper) ? 1.0 : 0.0) / n;
       }
       p.has_bootstrap = true;
       p.bootstrap_sd = std::sqrt(var);

@@ -264,9 +264,7 @@ void check_identifiability(FitRun& run) {
             u.name + " and " + run.unknowns[idx[b]].name +
             " are not separately identifiable: correlation " +
             format_number(r.correlation(static_cast<long>(a), static_cast<long>(b))));
-    const double span = u.upper - u.lower;
-    if (std::abs(r.value[a] - u.lower) < 1e-6 * span ||
-        std::abs(u.upper - r.value[a]) < 1e-6 * span)
+    if (at_bound(r.value[a], u.lower, u.upper))
       run.warnings.push_back(u.name + " ends at a bound (" +
                              JsonValue::format(r.value[a], u.dimension) +
                              "): widen the bounds or fix it");

@@ -15,6 +15,7 @@
 //    σ_c² G Gᵀ with G = (JᵀJ)⁻¹ Jᵀ ∂r/∂t_c.
 #include <Eigen/Dense>
 #include <atomic>
+#include <cmath>
 #include <cstddef>
 #include <functional>
 #include <optional>
@@ -79,6 +80,17 @@ struct LsResult {
   Eigen::MatrixXd jacobian;        // ∂r/∂x at the solution (x = θ / scale); empty if it failed
   std::vector<std::string> warnings;
 };
+
+// A value within a millionth of its bounds' span of a bound ends at that bound: the bound, not
+// the data, holds it (the data may ask for a value beyond it), so the Jacobian's interval, which
+// sees one side only, says nothing of it. The one judgement of `fit` (its warning, its bootstrap's
+// refits) and `calibrate` (no uncertainty for such a parameter).
+inline constexpr double kAtBoundSpan = 1e-6;
+inline bool at_bound(double value, double lower, double upper) {
+  const double span = upper - lower;
+  return std::abs(value - lower) < kAtBoundSpan * span ||
+         std::abs(upper - value) < kAtBoundSpan * span;
+}
 
 LsResult solve_least_squares(const std::vector<LsParameter>& parameters,
                              const std::vector<LsGroup>& groups, const LsOptions& options);

@@ -556,6 +556,41 @@ TEST_CASE("calibrate refuses a bars-apart shot that starts inside its pulse as o
   CHECK(!fs::exists(dir / "out"));
 }
 
+// A shot simulated by the 1D chain (tests/data/calibration-shot: `shpb simulate` of a striker on a
+// bar) holds no dispersion, and a Poisson ratio is read from the dispersion alone: the record does
+// not determine it. The fit drove it onto its lower bound 0.05, and the Jacobian there gave it an
+// sd of 0.003 (ci95 0.044-0.056): a narrow interval around a bound, not a measurement.
+TEST_CASE(
+    "calibrate gives no interval to a Poisson ratio a dispersion-free record puts on its bound",
+    "[fit][calibrate]") {
+  const fs::path dir = shpb_test::scratch_dir("calibrate_1d_shot");
+  const auto r = run_shpb({"calibrate",
+                           std::string(SHPB_SOURCE_DIR) + "/tests/data/calibration-shot/scene.json",
+                           "-o", (dir / "out").string(), "-q"});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  const auto s = read_json(dir / "out" / "summary.json");
+  const auto& nu = parameter(s, "bars.bar.poisson_ratio");
+  CHECK(nu["value"].get<double>() == Approx(0.05));  // the bound: no value of the record's
+  CHECK(nu["sd"].is_null());
+  CHECK(nu["ci95"].is_null());
+  bool named = false;
+  for (const std::string line : s["undetermined"])
+    named = named || line.starts_with("bars.bar.poisson_ratio ends at its bound 0.05");
+  CHECK(named);
+  CHECK(r.err.find("warning: bars.bar.poisson_ratio ends at its bound") != std::string::npos);
+  // What a scene then reads from calibration.json carries no uncertainty for it either.
+  const auto cal = read_json(dir / "out" / "calibration.json");
+  CHECK(cal["bars"][0]["poisson_ratio"]["sd"].is_null());
+  // What the record does determine keeps its interval: the travel times fix the wave speed (the
+  // simulated bar's 5047.5 m/s, within the 1 us sampling over 2.25 m of travel: 0.2 %) and the
+  // gauge's place.
+  const auto& c = parameter(s, "bars.bar.wave_speed_m_s");
+  REQUIRE(c["sd"].is_number());
+  CHECK(c["value"].get<double>() == Approx(5047.5).epsilon(2e-3));
+  CHECK(parameter(s, "gauges.gauge.position_m")["sd"].is_number());
+}
+
 TEST_CASE("calibrate names what one bars-together shot cannot determine", "[fit][calibrate]") {
   const fs::path dir = write_shots("calibrate_alone");
   const auto r =
