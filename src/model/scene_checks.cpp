@@ -6,6 +6,8 @@
 #include <filesystem>
 
 #include "core/csv_writer.hpp"  // format_double
+#include "core/number_format.hpp"
+#include "model/test_setup.hpp"
 #include "model/wave_travel.hpp"
 
 namespace shpb {
@@ -17,10 +19,38 @@ std::string micro(double seconds) {
   return buf;
 }
 
+// A pulse shaper wider than a bar face it is pressed by (docs/methods.md §8.4): the 1D chain
+// spreads the shaper's force over its own cross-section, but only the contact, the smaller face,
+// carries it, so the shaper's stress is understated by the area ratio (a metal shaper flows at
+// that many times the force). Warned, not refused: the overhang confines the loaded core, which
+// neither area models. A specimen is not a shaper: its reduction takes its own area as given.
+void wide_shapers(const Scene& s, std::vector<std::string>& w) {
+  for (std::size_t i : test_roles(s).shapers) {
+    if (i == 0 || i + 1 >= s.bars.size()) continue;
+    const BarSpec& shaper = s.bars[i];
+    const BarSpec& face =
+        s.bars[i - 1].area_m2 < s.bars[i + 1].area_m2 ? s.bars[i - 1] : s.bars[i + 1];
+    if (!(shaper.area_m2 > face.area_m2)) continue;
+    const std::string key = shaper.area_given ? "area" : "diameter";
+    auto size = [&](const BarSpec& b) {
+      return b.area_given ? format_number(b.area_m2 * 1e6) + " mm2"
+                          : format_number(b.diameter_m * 1e3) + " mm";
+    };
+    w.push_back("bars[" + std::to_string(i) + "]." + key + ": " + size(shaper) +
+                ": the pulse shaper \"" + shaper.name + "\" is wider than the face of bar \"" +
+                face.name + "\" (" + size(face) +
+                ") it is pressed by, which alone carries its load; the 1D chain spreads the load "
+                "over the shaper's own area, understating its stress " +
+                format_number(shaper.area_m2 / face.area_m2) +
+                " times: give the shaper the contact's size (docs/methods.md §8.4)");
+  }
+}
+
 }  // namespace
 
 std::vector<std::string> scene_warnings(const Scene& s, double duration_s) {
   std::vector<std::string> w;
+  wide_shapers(s, w);
   if (s.measurement) {
     std::error_code ec;
     if (!s.measurement->file.empty() && !std::filesystem::exists(s.measurement->file, ec))

@@ -81,4 +81,42 @@ TEST_CASE("A strain plan with small kinematics is said to do nothing", "[model][
   CHECK(said());
 }
 
+TEST_CASE("A pulse shaper wider than a face it is pressed by is warned about, with its sizes",
+          "[model][scene-checks]") {
+  // The 1D chain spreads the shaper's force over its own area, but only the contact (the smaller
+  // face) carries it: a 25 mm copper disc on 19.05 mm bars shaped nothing (rise 2.4 us for 57 us
+  // at 19.05 mm, docs/methods.md §8.4) without a word.
+  Scene s = far_incident_gauge();
+  s.bars.insert(s.bars.begin() + 1, bar("shaper", 0.003));
+  s.specimen = 3;
+  auto diameter = [&](std::size_t i, double d) {
+    s.bars[i].diameter_m = d;
+    s.bars[i].area_m2 = 0.25 * 3.141592653589793 * d * d;
+  };
+  for (std::size_t i : {0, 2, 4}) diameter(i, 0.01905);
+  auto warning = [&]() -> std::string {
+    for (const auto& w : scene_warnings(s, default_duration_s(s)))
+      if (w.find("pulse shaper") != std::string::npos) return w;
+    return {};
+  };
+  diameter(1, 0.016);  // the usual disc, narrower than the bars
+  CHECK(warning().empty());
+  diameter(1, 0.01905);  // as wide: the contact is the whole disc
+  CHECK(warning().empty());
+  diameter(1, 0.025);
+  // (25 / 19.05)² = 1.72223: the shaper's stress understated that many times.
+  CHECK(warning() ==
+        "bars[1].diameter: 25 mm: the pulse shaper \"shaper\" is wider than the face of bar "
+        "\"incident\" (19.05 mm) it is pressed by, which alone carries its load; the 1D chain "
+        "spreads the load over the shaper's own area, understating its stress 1.72223 times: give "
+        "the shaper the contact's size (docs/methods.md §8.4)");
+  // A narrower striker is the smaller face; a scene giving areas is answered in areas.
+  diameter(1, 0.01905);
+  s.bars[0].area_m2 = 1e-4;
+  s.bars[0].area_given = true;
+  s.bars[1].area_given = true;
+  CHECK(warning().find("bars[1].area: 285.023 mm2: the pulse shaper \"shaper\" is wider than "
+                       "the face of bar \"striker\" (100 mm2)") == 0);
+}
+
 }  // namespace tests_model_test_wave_travel
