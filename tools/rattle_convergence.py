@@ -14,7 +14,8 @@ that the bars' cut-off frequency rises above the specimen's element-scale ringin
 alone coarsened ("spec N": 3, 6 elements, the bars at the default run's) — prints one line per
 specimen face:
   elements per bar (striker/incident/specimen/transmitter), wall time of the full run;
-  t_r, the face's unloading: the first record sample after its force's peak at which it is zero
+  t_r, the face's unloading (summary.json interfaces[].unloading_s: its first opening after its
+  force's peak)
   (each face's windows below are after its own; a face never released says so);
   closings after the first release (summary.json interfaces[].activations - 1), total and per
   window after t_r: before t_r | 0-10 | 10-40 | 40-100 | 100+ us, counted exactly by re-running
@@ -22,7 +23,7 @@ specimen face:
   the face force's RMS over the loading peak in the same windows (%), the specimen's stress
   (specimen.csv stress_Pa) RMS over its peak in the same windows (%: its ringing), the largest gap after t_r;
   the timing of the closings: their count in the record (100 MHz with explicit elements, else the
-  scene's rate), the meetings among them (closings more than the specimen's L/c apart), the
+  scene's rate), the meetings after t_r (summary.json interfaces[].meetings_after_unloading), the
   closings "felt" (the force rising through 0.1 % of the loading peak), the median interval
   between the closings seen; the specimen's fundamental period 2L/c (L deformed, at the end of the
   run; c = Courant x h / step from summary.json), its element transit h/c, and the dominant period
@@ -95,10 +96,8 @@ def record(out, name):
     return rows[:, 0], rows[:, head.index(name + '_force_N')], rows[:, head.index(name + '_gap_m')]
 
 
-def unloading(t, f):
-    peak = int(np.argmax(f))
-    after = np.nonzero(f[peak:] <= 0)[0]
-    return None if after.size == 0 else t[peak + after[0]]
+def face(summary, name):
+    return next(i for i in summary['interfaces'] if i['name'] == name)
 
 
 def measure(experiment, work, elements, options, finite):
@@ -107,7 +106,7 @@ def measure(experiment, work, elements, options, finite):
     summary, wall = run(path, out, options)
     names = faces(summary, specimen)
     recs = {n: record(out, n) for n in names}
-    releases = [unloading(t, f) for t, f, _ in recs.values()]
+    releases = [face(summary, n)['unloading_s'] for n in names]
     bars = {b['name']: b for b in summary['bars']}
     spec = bars[specimen]
     value, unit = next(b for b in json.load(open(path))['bars']
@@ -166,7 +165,7 @@ def measure(experiment, work, elements, options, finite):
         freqs = np.fft.rfftfreq(8 * x.size, ts[1] - ts[0])
         band = freqs > 1 / BAND_PERIOD_S
         dominant = 1 / freqs[band][int(np.argmax(spectrum[band]))] if band.any() else float('nan')
-        meetings = 1 + int(np.sum(gaps > result['L_c'])) if onsets.size else 0
+        meetings = face(summary, n)['meetings_after_unloading']
         result['faces'][n] = {'released': True, 't_r': t_r, 'total': total, 'counts': counts, 'rms': rms,
                               'ringing': ringing,
                               'max_gap': g[m].max(), 'seen': onsets.size, 'meetings': meetings,
@@ -187,7 +186,7 @@ def line(label, stepping, r):
         rms = ' '.join(f'{v:6.3f}' for v in x['rms'])
         ringing = ' '.join(f'{v:6.3f}' for v in x['ringing'])
         out.append(f"{head}  {n:22s} t_r {1e6 * x['t_r']:7.2f} us {x['total']:5d} | {counts} | rms% {rms} | stress% {ringing} | gap "
-                   f"{1e9 * x['max_gap']:7.1f} nm | seen {x['seen']:4d} in {x['meetings']:3d} meetings, "
+                   f"{1e9 * x['max_gap']:7.1f} nm | seen {x['seen']:4d}, {x['meetings']:3d} meetings, "
                    f"{x['felt']:3d} felt, median "
                    f"{1e6 * x['interval']:6.3f} us | 2L/c {2e6 * r['L_c']:5.3f} h/c "
                    f"{1e6 * r['h_c']:5.3f} ringing {1e6 * x['dominant']:6.3f} us")

@@ -1,5 +1,8 @@
 #include "solver/contact.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include "model/interface_name.hpp"
 
 namespace shpb {
@@ -27,9 +30,37 @@ InterfaceModel make_interface_model(std::string name, ContactMethod method,
 }
 
 InterfaceModel interface_model(const Scene& scene, const ChainDiscretization& d, std::size_t k) {
-  return make_interface_model(interface_name(scene, k), interface_method(scene.contact, k),
-                              interface_penalty(scene.contact, k), scene.bars[k].gap_m,
-                              neighbour_info(scene, d, k), neighbour_info(scene, d, k + 1));
+  InterfaceModel m =
+      make_interface_model(interface_name(scene, k), interface_method(scene.contact, k),
+                           interface_penalty(scene.contact, k), scene.bars[k].gap_m,
+                           neighbour_info(scene, d, k), neighbour_info(scene, d, k + 1));
+  // A body's end changes its motion only when a wave has crossed it: faces apart for less than
+  // the shorter neighbour's transit are one meeting (a specimen's ringing, a train of closings
+  // within it), longer a new one.
+  const auto transit = [&](std::size_t i) {
+    return scene.bars[i].length_m / scene.bars[i].material.wave_speed_m_s();
+  };
+  m.meeting_separation_s = std::min(transit(k), transit(k + 1));
+  return m;
+}
+
+void book_unloading(const InterfaceModel& model, InterfaceState& state, double tau) {
+  InterfaceState::Unloading& u = state.unloading;
+  const bool closed = state.activations > state.booked_activations;
+  const bool opened = state.releases > state.booked_releases;
+  state.booked_activations = state.activations;
+  state.booked_releases = state.releases;
+  if (state.force_N > state.peak_force_N) u = {};  // a new loading peak: not unloaded yet
+  if (std::isnan(u.release_s)) {
+    if (opened) u.release_s = u.last_release_s = tau;
+    return;
+  }
+  if (closed) {
+    ++u.closings;
+    if (tau - u.last_release_s > model.meeting_separation_s) ++u.meetings;
+  }
+  u.largest_force_N = std::max(u.largest_force_N, state.force_N);
+  if (opened) u.last_release_s = tau;
 }
 
 ContactResult solve_contact(const InterfaceModel& model, InterfaceState& state, EndState left,

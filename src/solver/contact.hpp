@@ -54,6 +54,10 @@ struct InterfaceModel {
   // links) or the half-frame follows the end (compliant links); contact_localized_finite.cpp.
   bool end_follows_frame[2] = {false, false};
   bool tied = false;  // penalty and node-to-node bipenalty: bilateral link (PenaltyParams::tied)
+  // Closings after the unloading that come more than this after the last opening start a new
+  // meeting (InterfaceState::Unloading): the shorter elastic transit L/c₀ of the two neighbours,
+  // at a specimen's face (shorter than its bars) the specimen's (docs/methods.md §3.7).
+  double meeting_separation_s = 0;
 };
 
 // Mutable state of one interface.
@@ -81,6 +85,20 @@ struct InterfaceState {
   // the last solve, recorded with the interface (it steps at the interface's instants).
   double segment_kinetic_J = 0, segment_strain_J = 0;
   long activations = 0, releases = 0;
+
+  // What follows the interface's unloading, its first release after its loading peak (the
+  // largest force so far: a larger one later starts the count again), booked by every solve
+  // (book_unloading): the closings after it, the meetings among them (closings after the faces
+  // were open longer than the model's meeting separation) and the largest force after it
+  // (summary.json interfaces[], docs/methods.md §3.7).
+  struct Unloading {
+    double release_s = std::numeric_limits<double>::quiet_NaN();  // NaN: not unloaded yet
+    long closings = 0, meetings = 0;
+    double largest_force_N = 0;
+    double last_release_s = std::numeric_limits<double>::quiet_NaN();
+  } unloading;
+  // activations and releases at the last solve booked: a solve may close and open at once
+  long booked_activations = 0, booked_releases = 0;
 
   // A localized interface closes at τ: its frame starts at the left end's position u with the
   // velocity v, and the remaining gap (< |ġ|Δt, or a penetration ≤ |ġ|Δt if the contact was
@@ -113,6 +131,10 @@ struct ContactResult {
   double dv_left = 0, dv_right = 0;  // velocity jumps applied before the forces
   double dissipated_J = 0;
 };
+
+// Books a solve of the interface at τ in state.unloading; called before the state's peak force is
+// updated by the solve's force.
+void book_unloading(const InterfaceModel& model, InterfaceState& state, double tau);
 
 InterfaceModel make_interface_model(std::string name, ContactMethod method,
                                     const PenaltyParams& params, double gap0_m,

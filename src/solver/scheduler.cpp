@@ -99,11 +99,13 @@ std::string describe_failure(const Chain& chain, double t, const char* energy, d
   return out.str();
 }
 
-// What every solve of interface k leaves in the chain: its closing losses, its largest force and
-// the largest interpenetration, also in elements of the smaller neighbouring one.
-void book_solve(Chain& chain, std::size_t k, const ContactResult& res) {
+// What every solve of interface k at τ leaves in the chain: its closing losses, what follows its
+// unloading, its largest force and the largest interpenetration, also in elements of the smaller
+// neighbouring one.
+void book_solve(Chain& chain, std::size_t k, const ContactResult& res, double tau) {
   InterfaceState& is = chain.interface_states[k];
   const double gap = is.gap_m;
+  book_unloading(chain.interfaces[k], is, tau);
   is.peak_force_N = std::max(is.peak_force_N, is.force_N);
   chain.contact_dissipated_J[k] += res.dissipated_J;
   chain.max_penetration_m = std::max(chain.max_penetration_m, -gap);
@@ -175,7 +177,7 @@ void take_instant(Chain& chain, ChainRecorders& recorders, const std::vector<cha
                         seg_left ? res.force_left_N : res.force_right_N);
       apply_end(chain, f, f_node, tau, true, seg_left ? res.dv_right : res.dv_left,
                 seg_left ? res.force_right_N : res.force_left_N);
-      book_solve(chain, k, res);
+      book_solve(chain, k, res, tau);
       chain.states[seg.bar].node_updates += finish_segment(chain, seg, tau, bar_stepping);
       recorders.on_interface_solve(chain, k, tau, next);
       continue;
@@ -196,7 +198,7 @@ void take_instant(Chain& chain, ChainRecorders& recorders, const std::vector<cha
     const ContactResult res = solve_contact(im, is, left, right, tau, next);
     apply_end(chain, l, l_node, tau, stepping[l], res.dv_left, res.force_left_N);
     apply_end(chain, r, 0, tau, stepping[r], res.dv_right, res.force_right_N);
-    book_solve(chain, k, res);
+    book_solve(chain, k, res, tau);
     recorders.on_interface_solve(chain, k, tau, next);
   }
 

@@ -10,6 +10,7 @@
 #include "core/clock.hpp"
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
+#include "core/json_numbers.hpp"
 #include "model/calibration.hpp"
 #include "model/laws/johnson_cook_law.hpp"
 #include "model/mesh_error_model.hpp"
@@ -301,9 +302,20 @@ SimulationResult run_chain(const Scene& scene, const ChainDiscretization& d,
   }
   check_plausibility(scene, chain, result);
   for (std::size_t k = 0; k < chain.interfaces.size(); ++k) {
-    InterfaceStatistics st{
-        chain.interfaces[k].name, std::string(to_string(chain.interfaces[k].method)),
-        chain.interface_states[k].activations, chain.interface_states[k].releases};
+    const InterfaceState& is = chain.interface_states[k];
+    const InterfaceState::Unloading& u = is.unloading;
+    InterfaceStatistics st{chain.interfaces[k].name,
+                           std::string(to_string(chain.interfaces[k].method)),
+                           is.activations,
+                           is.releases,
+                           u.release_s,
+                           u.closings,
+                           u.meetings,
+                           chain.interfaces[k].meeting_separation_s,
+                           is.peak_force_N,
+                           std::isnan(u.release_s) || !(is.peak_force_N > 0)
+                               ? std::numeric_limits<double>::quiet_NaN()
+                               : u.largest_force_N / is.peak_force_N};
     if (const EndSegment* seg = chain.segment_at(k)) {
       st.segment_bar = chain.bars[seg->bar].name;
       st.segment_elements = seg->elements;
@@ -507,6 +519,12 @@ void to_json(nlohmann::ordered_json& j, const InterfaceStatistics& i) {
        {"method", i.method},
        {"activations", i.activations},
        {"releases", i.releases},
+       {"unloading_s", number(i.unloading_s)},
+       {"closings_after_unloading", i.closings_after_unloading},
+       {"meetings_after_unloading", i.meetings_after_unloading},
+       {"meeting_separation_s", i.meeting_separation_s},
+       {"peak_force_N", i.peak_force_N},
+       {"force_after_unloading_share", number(i.force_after_unloading_share)},
        {"end_segment", i.segment_elements > 0
                            ? nlohmann::ordered_json{{"bar", i.segment_bar},
                                                     {"elements", i.segment_elements},

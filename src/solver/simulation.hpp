@@ -55,6 +55,17 @@ struct InterfaceStatistics {
   std::string method;
   long activations = 0;  // contact closings
   long releases = 0;     // contact openings
+  // After the unloading, the first release after the loading peak (docs/methods.md §3.7): its
+  // instant [s] (NaN if the interface never opened after its peak), the closings after it, the
+  // meetings among them (closings after the faces were open longer than meeting_separation_s,
+  // the shorter neighbour's elastic transit L/c₀) and the largest contact force after it over the
+  // loading peak peak_force_N (NaN if never unloaded).
+  double unloading_s = 0;
+  long closings_after_unloading = 0;
+  long meetings_after_unloading = 0;
+  double meeting_separation_s = 0;
+  double peak_force_N = 0;
+  double force_after_unloading_share = 0;
   // An end segment at this tie (solver/end_segment.hpp): the bar whose end elements step on the
   // other bar's clock, and how many; empty and 0 without one.
   std::string segment_bar;

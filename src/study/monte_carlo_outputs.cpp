@@ -10,8 +10,8 @@
 #include "core/checked_write.hpp"
 #include "core/csv_writer.hpp"
 #include "core/error.hpp"
+#include "core/json_numbers.hpp"
 #include "output_schema.hpp"
-#include "study/json_numbers.hpp"
 #include "version.hpp"
 
 namespace shpb {

@@ -10,13 +10,13 @@
 #include "core/closest_match.hpp"
 #include "core/error.hpp"
 #include "core/json_document.hpp"
+#include "core/json_numbers.hpp"
 #include "core/json_value.hpp"
 #include "model/input_keys.hpp"
 #include "model/law_parameters.hpp"
 #include "model/scene_validation.hpp"
 #include "model/uncertainty_reader.hpp"
 #include "solver/simulation.hpp"
-#include "study/json_numbers.hpp"
 
 namespace shpb {
 namespace {

@@ -76,8 +76,13 @@ StabilityVerdict judge_stability(const Scene& probe, const StabilityPoint& point
   if (!total.empty() && total.front() > 0)
     for (double e : total) v.energy_growth = std::max(v.energy_growth, e / total.front());
   v.stable = r.stable && v.energy_growth <= kUnstableEnergyGrowth;
-  for (const InterfaceStatistics& i : r.interface_statistics)
+  for (const InterfaceStatistics& i : r.interface_statistics) {
     v.closings_after_release += std::max(0L, i.activations - 1);
+    v.meetings_after_unloading += i.meetings_after_unloading;
+    const double share = i.force_after_unloading_share;  // NaN: never unloaded
+    if (!std::isnan(share) && !(share <= v.force_after_unloading_share))
+      v.force_after_unloading_share = share;
+  }
   return v;
 }
 

@@ -3,6 +3,8 @@
 // the bar it hits — cut down to two short bars of equal element length, run long enough for the
 // contact to close, hold for 2 L/c and open again. A point is unstable when the total energy
 // grows beyond kUnstableEnergyGrowth × its initial value, or the run stops on a non-finite value.
+#include <limits>
+
 #include "model/scene.hpp"
 #include "study/sweep.hpp"
 
@@ -27,6 +29,13 @@ struct StabilityVerdict {
   // Closings of the probe's contact after its first: every one comes after the striker's first
   // release (unloading), so this counts the contact's rattle (docs/methods.md §3.7).
   long closings_after_release = 0;
+  // What converges where the closings do not (docs/methods.md §3.7): the meetings after the
+  // contact's unloading (its first release after its loading peak) and the largest contact force
+  // after it over that peak (NaN if it never opened after its peak). A probe of bars of one wave
+  // speed ends one transit L/c, the meeting separation, after the striker's release: its meetings
+  // are 0 whatever the method, and the force share weighs its rattle.
+  long meetings_after_unloading = 0;
+  double force_after_unloading_share = std::numeric_limits<double>::quiet_NaN();
 };
 
 // Runs `probe` with the point's method, penalty parameters and Courant number.

@@ -8,8 +8,8 @@
 
 #include "core/error.hpp"
 #include "core/json_document.hpp"
+#include "core/json_numbers.hpp"
 #include "core/json_value.hpp"
-#include "study/json_numbers.hpp"
 #include "version.hpp"
 
 namespace shpb {
@@ -247,6 +247,8 @@ nlohmann::ordered_json part_json(const StudyPlan& plan, const StudyResults& resu
         j["energy_growth"] = number(s.verdict.energy_growth);
         j["stable"] = s.verdict.stable;
         j["closings_after_release"] = s.verdict.closings_after_release;
+        j["meetings_after_unloading"] = s.verdict.meetings_after_unloading;
+        j["force_after_unloading_share"] = number(s.verdict.force_after_unloading_share);
       }
     }
     out.push_back(j);
@@ -291,6 +293,8 @@ void read_part(const nlohmann::json& part, const fs::path& file, const StudyPlan
           s.verdict.energy_growth = number(j.at("energy_growth"));
           s.verdict.stable = j.at("stable").get<bool>();
           s.verdict.closings_after_release = j.at("closings_after_release").get<long>();
+          s.verdict.meetings_after_unloading = j.at("meetings_after_unloading").get<long>();
+          s.verdict.force_after_unloading_share = number(j.at("force_after_unloading_share"));
         }
       }
     }

@@ -141,7 +141,8 @@ void write_stability(const StabilityStudy& study, const Scene& scene, int refine
   namespace k = schema::stability;  // the column names (src/core/output_schema.json)
   CsvWriter points(dir / k::kFile,
                    {k::method, k::stiffness_factor, k::mass_ratio, k::courant, k::energy_growth,
-                    k::stable, k::step_ratio, k::closings_after_release});
+                    k::stable, k::step_ratio, k::closings_after_release,
+                    k::meetings_after_unloading, k::force_after_unloading_share});
   for (const StabilityRow& r : study.rows) {
     const bool penalty = r.point.method == ContactMethod::kPenalty;
     const std::string cells[] = {std::string(to_string(r.point.method)),
@@ -151,7 +152,9 @@ void write_stability(const StabilityStudy& study, const Scene& scene, int refine
                                  field(r.verdict.energy_growth),
                                  flag(r.verdict.stable),
                                  format_double(r.point.step_ratio),
-                                 std::to_string(r.verdict.closings_after_release)};
+                                 std::to_string(r.verdict.closings_after_release),
+                                 std::to_string(r.verdict.meetings_after_unloading),
+                                 field(r.verdict.force_after_unloading_share)};
     points.row(cells);
   }
   points.close();

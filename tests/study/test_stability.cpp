@@ -102,9 +102,14 @@ TEST_CASE(
     ++rigid_rows;
     const StabilityVerdict v = judge_stability(probe, p);
     INFO("step ratio " << p.step_ratio << ", C = " << p.courant << ": energy growth "
-                       << v.energy_growth << ", closings after release "
-                       << v.closings_after_release);
+                       << v.energy_growth << ", closings after release " << v.closings_after_release
+                       << ", force after the unloading " << v.force_after_unloading_share);
     CHECK(v.stable);
+    // Equal bars of one length: the striker stops at 2L/c and the bar leaves at its velocity, so
+    // the probe's contact is unloaded then and neither meets nor presses again (the map's
+    // meetings_after_unloading and force_after_unloading_share).
+    CHECK(v.meetings_after_unloading == 0);
+    CHECK(v.force_after_unloading_share == 0);
   }
   // 0.98, 0.995, 0.9995, 0.9999 and 1 at each of the five step ratios.
   CHECK(rigid_rows == 25);

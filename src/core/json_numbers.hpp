@@ -1,5 +1,5 @@
 #pragma once
-// A number of a study's JSON files (the plan's parts, summary.json), for every file that writes
+// A number of a JSON file (a study plan's parts, summary.json), for every file that writes
 // or reads one.
 #include <cmath>
 #include <limits>
