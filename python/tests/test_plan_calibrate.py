@@ -217,3 +217,15 @@ def test_calibrate_of_scenes_names_their_files(tmp_path):
     assert [s["scene"] for s in shots] == [str(tmp_path / "apart.json"),
                                            f"{tmp_path / 'together.json'} (edited in Python)"]
     assert not any("/shpb-calibrate-" in w for w in result.warnings)
+
+
+def test_plan_of_a_scene_names_its_file(tmp_path):
+    # An edited Scene (its name) planned: summary.json names its file, as read back and as saved.
+    file = classic_with_plan(tmp_path, ("2 m/s", "40 m/s"))
+    scene = shpb.Scene.load(file)
+    scene.name = "edited"
+    result = shpb.plan(scene, rate=2000, search_tolerance=0.1, tolerance=0.1, threads=2)
+    assert result.summary["scene"] == f"{file} (edited in Python)"
+    result.save(tmp_path / "py")
+    saved = json.loads((tmp_path / "py" / "summary.json").read_text())
+    assert saved["scene"] == f"{file} (edited in Python)"

@@ -21,12 +21,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// An unnamed temporary file (removed when closed) that the program's stderr is written to.
+// An unnamed temporary file (removed when closed) that the program's stderr is written to (its
+// descriptor closed in the program, which writes to its copy, fd 2).
 struct ErrorsFile {
   int fd = -1;
   ErrorsFile() {
     std::string name = (fs::temp_directory_path() / "shpb-errors-XXXXXX").string();
-    fd = ::mkstemp(name.data());
+    fd = ::mkostemp(name.data(), O_CLOEXEC);
     if (fd >= 0) ::unlink(name.c_str());
   }
   ~ErrorsFile() {
