@@ -19,6 +19,7 @@
 #include "bindings.hpp"
 #include "core/error.hpp"
 #include "core/output_folder.hpp"
+#include "core/shards.hpp"
 #include "interrupt.hpp"
 #include "values.hpp"
 
@@ -61,6 +62,49 @@ void bind_process_campaign(py::module_& m) {
       py::arg("draws"), py::arg("seed"), py::arg("threads"), py::arg("shard"), py::arg("merge"));
 }
 
+// study, and its steps (--plan DIR, --run DIR --shard K/N, --merge DIR): what the step wrote, the
+// plan's folder, the shard's part file or the study's folder.
+void bind_study(py::module_& m) {
+  m.def(
+      "_study",
+      [](const std::filesystem::path& scene, const std::filesystem::path& output,
+         const py::object& sweep_name, const py::object& refine, const py::object& tolerance,
+         const py::object& contact, const py::object& stepping, const py::object& courant,
+         const py::object& threads, const std::optional<std::filesystem::path>& distributions,
+         const py::object& draws, const py::object& seed,
+         const std::optional<std::filesystem::path>& plan,
+         const std::optional<std::filesystem::path>& run, const py::object& shard,
+         const std::optional<std::filesystem::path>& merge) {
+        StudyArgs a;
+        a.scene = scene;
+        a.output = output;
+        if (distributions) a.distributions = *distributions;
+        a.draws = optional_number<std::size_t>(draws, "draws");
+        a.seed = optional_number<std::uint64_t>(seed, "seed");
+        if (const auto sweep = optional_text(sweep_name, "sweep", "the name of a sweep")) {
+          check_choice("--sweep", *sweep, enum_names(kSweepNames));  // the command's check
+          a.sweep = *enum_value(kSweepNames, *sweep);
+        }
+        a.refine = number<int>(refine, "refine");
+        a.overrides = overrides_of(tolerance, contact, stepping, courant, threads);
+        a.plan = plan;
+        a.run = run;
+        a.shard = optional_text(shard, "shard", "\"K/N\", e.g. \"1/4\"").value_or("");
+        a.merge = merge;
+        const int code = run_released([&] { return run_study(a); });
+        const std::filesystem::path wrote =
+            plan    ? *plan
+            : run   ? *run / "parts" / (part_name(parse_shard("--shard", a.shard)) + ".json")
+            : merge ? (output.empty() ? *merge / "result" : output)
+                    : output;
+        return std::pair(code, wrote);
+      },
+      py::arg("scene"), py::arg("output"), py::arg("sweep"), py::arg("refine"),
+      py::arg("tolerance"), py::arg("contact"), py::arg("stepping"), py::arg("courant"),
+      py::arg("threads"), py::arg("distributions"), py::arg("draws"), py::arg("seed"),
+      py::arg("plan"), py::arg("run"), py::arg("shard"), py::arg("merge"));
+}
+
 void bind_command_runs(py::module_& m) {
   // validate: what `shpb validate --json` prints of the scene, as a dict.
   m.def(
@@ -74,9 +118,9 @@ void bind_command_runs(py::module_& m) {
       },
       py::arg("scene"), py::arg("tolerance"), py::arg("contact"), py::arg("stepping"),
       py::arg("courant"), py::arg("threads"));
-  // compare, study, fit and dispersion: the command's own function, writing its folder (or file)
-  // where the Python side reads it back (python/shpb/__init__.py). The exit code is returned: 3
-  // is a result written with a numerical failure said in its summary.
+  // compare, fit, calibrate and dispersion: the command's own function, writing its folder (or
+  // file) where the Python side reads it back (python/shpb/__init__.py). The exit code is
+  // returned: 3 is a result written with a numerical failure said in its summary.
   m.def(
       "_compare",
       [](const std::filesystem::path& scene, const std::filesystem::path& output,
@@ -96,29 +140,6 @@ void bind_command_runs(py::module_& m) {
       py::arg("scene"), py::arg("output"), py::arg("tolerance"), py::arg("contact"),
       py::arg("stepping"), py::arg("courant"), py::arg("threads"), py::arg("dispersion"),
       py::arg("striker_velocity"));
-  m.def(
-      "_study",
-      [](const std::filesystem::path& scene, const std::filesystem::path& output,
-         const py::object& sweep_name, const py::object& refine, const py::object& tolerance,
-         const py::object& contact, const py::object& stepping, const py::object& courant,
-         const py::object& threads, const std::optional<std::filesystem::path>& distributions,
-         const py::object& draws, const py::object& seed) {
-        StudyArgs a;
-        a.scene = scene;
-        a.output = output;
-        if (distributions) a.distributions = *distributions;
-        a.draws = optional_number<std::size_t>(draws, "draws");
-        a.seed = optional_number<std::uint64_t>(seed, "seed");
-        const std::string sweep = text_value(sweep_name, "sweep", "the name of a sweep");
-        check_choice("--sweep", sweep, enum_names(kSweepNames));  // the command's check
-        a.sweep = *enum_value(kSweepNames, sweep);
-        a.refine = number<int>(refine, "refine");
-        a.overrides = overrides_of(tolerance, contact, stepping, courant, threads);
-        return run_released([&] { return run_study(a); });
-      },
-      py::arg("scene"), py::arg("output"), py::arg("sweep"), py::arg("refine"),
-      py::arg("tolerance"), py::arg("contact"), py::arg("stepping"), py::arg("courant"),
-      py::arg("threads"), py::arg("distributions"), py::arg("draws"), py::arg("seed"));
   m.def(
       "_fit",
       [](const std::filesystem::path& campaign, const std::filesystem::path& output,
@@ -170,12 +191,25 @@ void bind_command_runs(py::module_& m) {
       },
       py::arg("poisson"), py::arg("a_over_lambda"), py::arg("max_a_over_lambda"), py::arg("points"),
       py::arg("radius_m"), py::arg("c0_m_s"), py::arg("output"));
+  // report: the command's run of the report script; its warnings returned, its error raised.
+  m.def(
+      "_report",
+      [](const std::filesystem::path& folder) {
+        std::vector<std::string> warnings;
+        const int code = run_released([&] { return run_report(ReportArgs{folder, &warnings}); });
+        if (code != 0)  // killed (the out-of-memory killer): the command's exit 3
+          throw WriteError(folder.string() + ": the report script stopped (exit " +
+                           std::to_string(code) + "): the report was not finished");
+        return warnings;
+      },
+      py::arg("folder"));
 }
 
 }  // namespace
 
 void bind_commands(py::module_& m) {
   bind_command_runs(m);
+  bind_study(m);
   bind_process_campaign(m);
   // The files a run of compare, study, fit or calibrate read (`files`: the one scene or campaign,
   // calibrate's scenes), as the command declares them to its output folder: result.save(dir)

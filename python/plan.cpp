@@ -51,9 +51,9 @@ void bind_plan(py::module_& m) {
           py::arg("dir"));
   m.def(
       "_plan",
-      [](const std::filesystem::path& scene, const py::object& rate, const py::object& strain,
-         const py::object& search_tolerance, const py::object& tolerance,
-         const py::object& threads) {
+      [](const std::filesystem::path& scene, const std::filesystem::path& shown,
+         const py::object& rate, const py::object& strain, const py::object& search_tolerance,
+         const py::object& tolerance, const py::object& threads) {
         // The options in the command's order: its text read, then its checks (prepare_plan).
         PlanArgs a;
         a.scene = scene;
@@ -66,12 +66,14 @@ void bind_plan(py::module_& m) {
         a.quiet = true;
         return run_released([&] {
           auto p = std::make_shared<PlannedTest>(prepare_plan(a));
+          p->file =
+              shown;  // a Scene's temporary file named as the user knows it (shpb/__init__.py)
           search_plan(*p);
           return p;
         });
       },
-      py::arg("scene"), py::arg("rate"), py::arg("strain"), py::arg("search_tolerance"),
-      py::arg("tolerance"), py::arg("threads"));
+      py::arg("scene"), py::arg("shown"), py::arg("rate"), py::arg("strain"),
+      py::arg("search_tolerance"), py::arg("tolerance"), py::arg("threads"));
 }
 
 }  // namespace shpb::python

@@ -17,6 +17,7 @@
 #include "core/error.hpp"
 #include "core/output_folder.hpp"
 #include "interrupt.hpp"
+#include "values.hpp"
 #include "version.hpp"
 
 namespace shpb::python {
@@ -78,4 +79,7 @@ PYBIND11_MODULE(_shpb, m) {
   bind_process(m);
   bind_plan(m);
   bind_commands(m);
+  // A value as a one-line message shows it (values.hpp), for the package's own TypeErrors.
+  m.def(
+      "_shown", [](const py::handle& o) { return shown(o); }, py::arg("value"));
 }

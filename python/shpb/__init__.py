@@ -33,7 +33,7 @@ except ImportError:
 __version__ = _shpb.__version__
 __all__ = ["Scene", "Bar", "Material", "JohnsonCook", "Bilinear", "Viscoelastic", "InputError", "NumericalError",
            "WriteError", "ShpbWarning", "simulate", "process", "compare", "dispersion", "fit",
-           "study", "plan", "calibrate", "SimulationResult", "ProcessResult", "BarCheckResult",
+           "study", "plan", "calibrate", "report", "SimulationResult", "ProcessResult", "BarCheckResult",
            "FolderResult", "PlanResult", "process_campaign", "CampaignResult", "validate"]
 
 
@@ -55,7 +55,8 @@ def _path(value, name):
     """A path given to the module (a str, bytes or os.PathLike); anything else a one-line TypeError
     naming the argument, the value and what is expected (os.fspath names the type alone)."""
     if not isinstance(value, (str, bytes, _os.PathLike)):
-        raise TypeError(f"{name}: {value!r}: expected a path (a str or os.PathLike)")
+        raise TypeError(f"{name}: {_shpb._shown(value)}: expected a path (a str or "
+                        "os.PathLike)")
     return _os.fspath(value)
 
 
@@ -321,18 +322,19 @@ def _read_csv(path):
 
 def _folder_run(command, run, files, distributions=None, inputs_of=None, kind=None):
     """Runs `command` on its scene or campaign file (calibrate and process_campaign: its scene
-    files) `files`, each a path or a shpb.Scene (written into the run's temporary folder by
-    Scene.save), into a temporary folder: `run(out, paths)`; `inputs_of(paths)` the files it read,
-    if not the command's `_inputs`; `kind` the result's class (a FolderResult)."""
+    files) `files`, each a path or a shpb.Scene (_SceneFiles), into a temporary folder:
+    `run(out, paths)`; `inputs_of(paths)` the files it read, if not the command's `_inputs`;
+    `kind` the result's class (a FolderResult)."""
     import weakref
     tmp = _tempfile.mkdtemp(prefix=f"shpb-{command}-")
     folder = _os.path.join(tmp, "out")
     try:
-        paths = [_scene_file(f, tmp, k) for k, f in enumerate(files)]
-        with _scenes_named(files, paths):
-            code = run(folder, paths)
-            inputs = (inputs_of(paths) if inputs_of
-                      else _shpb._inputs(command, paths, distributions or ""))
+        scenes = _SceneFiles(files, tmp)
+        with scenes:
+            code = run(folder, scenes.paths)
+            inputs = (inputs_of(scenes.paths) if inputs_of
+                      else _shpb._inputs(command, scenes.paths, distributions or ""))
+        scenes.rename_in(folder)
         result = (kind or FolderResult)(command, folder, code, inputs)
     except BaseException:
         _shutil.rmtree(tmp, True)
@@ -344,42 +346,112 @@ def _folder_run(command, run, files, distributions=None, inputs_of=None, kind=No
     # process_campaign
 
 
-def _scene_file(scene, tmp=None, k=0):
-    """The path of a scene or campaign file: `scene` itself, or a shpb.Scene written by
-    Scene.save into `tmp` (scenes/K/ under its own file's name: the name a scene without one takes
-    from its file stays its own) for a command that reads its scene from a file."""
+def _scene_file(scene):
+    """The path of a scene or campaign file given as one; a shpb.Scene is a TypeError (a command
+    that reads a Scene from a file takes it through _SceneFiles)."""
     if isinstance(scene, Scene):
-        if tmp is None:
-            raise TypeError(f"{scene!r}: expected the path of a file here (a campaign file, or the "
-                            "scene files of shard and merge, which part.json names)")
-        folder = _os.path.join(tmp, "scenes", str(k))
-        path = _os.path.join(folder, _os.path.basename(scene.file) or "scene.json")
-        scene.save(path)
-        return path
+        raise TypeError(f"{_shpb._shown(scene)}: expected the path of a file here (a campaign "
+                        "file, or a scene file that a later step reads again: a study plan's, "
+                        "the scene files of shard and merge, which part.json names): "
+                        "scene.save(path) and pass the path")
     if not isinstance(scene, (str, _os.PathLike)):
-        raise TypeError(f"scene: {scene!r}: expected a shpb.Scene or the path of a scene file (a "
-                        "str or os.PathLike)")
+        raise TypeError(f"scene: {_shpb._shown(scene)}: expected a shpb.Scene or the path of "
+                        "a scene file (a str or os.PathLike)")
     return _os.fspath(scene)
 
 
-class _scenes_named:
-    """Errors of a run named by what the user gave: a shpb.Scene written to a temporary file is
-    named as 'the Scene of FILE (in memory)', not by the temporary file gone on return."""
+def _scene_shown(scene):
+    """What a shpb.Scene is named by in a run's outputs and messages: its file, as the user knows
+    it, said to be edited unless the scene is that file's (read and unchanged)."""
+    import json
+    file = _os.fspath(scene.file)
+    try:
+        with open(file, encoding="utf-8") as f:
+            unchanged = json.load(f) == scene.to_dict()
+    except (OSError, ValueError):  # no such file (Scene.from_dict), or not JSON any more
+        unchanged = False
+    return file if unchanged else f"{file} (edited in Python)"
 
-    def __init__(self, given, paths):
-        self._names = [(p, f"the Scene of {g.file} (in memory)")
-                       for g, p in zip(given, paths) if isinstance(g, Scene)]
+
+class _SceneFiles:
+    """The scene files of a run of a command that reads its scenes from files, the one owner of
+    the temporary ones: each path given as is; each shpb.Scene written by Scene.save into the
+    run's temporary folder `tmp` (scenes/K/FOLDER/NAME, its own file's folder and name: a scene
+    or test without a name is named by them, as from its own file), and named as the user knows
+    it (_scene_shown) wherever the run names the temporary file, gone on return: an error raised
+    in the `with` block, and the files of the output folder (rename_in), which summary.json's
+    `scene`, a campaign's campaign.csv and the warnings are read from."""
+
+    def __init__(self, given, tmp):
+        self.paths, self._names = [], []
+        for k, scene in enumerate(given):
+            if not isinstance(scene, Scene):
+                self.paths.append(_scene_file(scene))
+                continue
+            own = _os.path.abspath(scene.file)
+            folder = _os.path.join(tmp, "scenes", str(k),
+                                   _os.path.basename(_os.path.dirname(own)) or "scene")
+            path = _os.path.join(folder, _os.path.basename(own) or "scene.json")
+            self._names.append((path, _scene_shown(scene)))
+            with self:  # an edit no file can hold is refused naming the scene
+                scene.save(path)
+            self.paths.append(path)
+
+    def renamed(self, text, quote=lambda name: name):
+        for path, name in self._names:
+            text = text.replace(quote(path), quote(name))
+        return text
 
     def __enter__(self):
         return self
 
     def __exit__(self, kind, error, trace):
         if self._names and isinstance(error, (InputError, NumericalError, WriteError)):
-            text = str(error)
-            for path, name in self._names:
-                text = text.replace(path, name)
-            raise type(error)(text) from None
+            raise type(error)(self.renamed(str(error))) from None
         return False
+
+    def rename_in(self, folder):
+        """The temporary files' names in the text files under `folder` replaced: as a JSON
+        string's text in .json files, as a cell of the library's CSV files (core/csv_writer.hpp:
+        quoted when it holds a comma, a quote or a line break)."""
+        import json
+        if not self._names:
+            return
+        for root, _, files in _os.walk(folder):
+            for name in files:
+                path = _os.path.join(root, name)
+                try:
+                    with open(path, encoding="utf-8", newline="") as f:
+                        text = f.read()
+                except (UnicodeDecodeError, OSError):
+                    continue  # not text
+                if not any(p in text or json.dumps(p)[1:-1] in text for p, _ in self._names):
+                    continue
+                if name.endswith(".json"):
+                    text = self.renamed(text, lambda s: json.dumps(s, ensure_ascii=False)[1:-1])
+                elif name.endswith(".csv"):
+                    text = _csv_renamed(text, self.renamed)
+                else:
+                    text = self.renamed(text)
+                with open(path, "w", encoding="utf-8", newline="") as f:
+                    f.write(text)
+
+
+def _csv_cell(text):
+    """A cell as the library writes it (quote_cell, core/csv_writer.cpp)."""
+    if not any(c in text for c in ',"\n\r'):
+        return text
+    return '"' + text.replace('"', '""') + '"'
+
+
+def _csv_renamed(text, renamed):
+    """A CSV file of the library with `renamed` applied to each cell."""
+    import csv
+    import io
+    rows = list(csv.reader(io.StringIO(text, newline="")))
+    if "".join(",".join(map(_csv_cell, row)) + "\n" for row in rows) != text:
+        return renamed(text)  # not written cell by cell as the library writes them
+    return "".join(",".join(_csv_cell(renamed(c)) for c in row) + "\n" for row in rows)
 
 
 @_with_help("compare", """compare(scene, tolerance=None, threads=0, contact=None, stepping=None,
@@ -394,20 +466,53 @@ def compare(scene, tolerance=None, threads=0, contact=None, stepping=None, coura
         striker_velocity), [scene])
 
 
-@_with_help("study", """study(scene, sweep="pareto", refine=1, tolerance=None, threads=0,
-      contact=None, stepping=None, courant=None, distributions=None, draws=None,
-      seed=None) -> FolderResult
+@_with_help("study", """study(scene=None, sweep=None, refine=1, tolerance=None, threads=0,
+      contact=None, stepping=None, courant=None, distributions=None, draws=None, seed=None,
+      plan=None, run=None, shard=None, merge=None, output=None) -> FolderResult
 
 Runs the sweep of `shpb study` on the scene file (threads: parallel runs, 0 = all cores):
-"pareto", "stability" (refine: the map's refinement) or "monte-carlo" (distributions: the
-file of the scene values to draw, draws and seed as --draws and --seed); the command's files
-are in result.tables and result.json.""")
-def study(scene, sweep="pareto", refine=1, tolerance=None, threads=0, contact=None,
-          stepping=None, courant=None, distributions=None, draws=None, seed=None):
+"pareto" (sweep None: the command's default), "stability" (refine: the map's refinement) or
+"monte-carlo" (distributions: the file of the scene values to draw, draws and seed as --draws
+and --seed); the command's files are in result.tables and result.json. Its steps, as the
+command's --plan, --run, --shard, --merge and -o: plan=DIR writes DIR/plan.json (the scene a
+path: the runs read it again) and returns DIR read back (json["plan"]); run=DIR with
+shard="K/N" runs that shard into DIR/parts/K-of-N.json and returns it as a dict; merge=DIR
+writes the whole study into `output` (None: DIR/result) and returns it, as study() in one
+call returns its folder.""")
+def study(scene=None, sweep=None, refine=1, tolerance=None, threads=0, contact=None,
+          stepping=None, courant=None, distributions=None, draws=None, seed=None, plan=None,
+          run=None, shard=None, merge=None, output=None):
     distributions = None if distributions is None else _path(distributions, "distributions")
-    return _folder_run("study", lambda out, paths: _shpb._study(
-        paths[0], out, sweep, refine, tolerance, contact, stepping, courant, threads,
-        distributions, draws, seed), [scene], distributions)
+    steps = {"plan": plan, "run": run, "merge": merge}
+    steps = {k: None if v is None else _path(v, k) for k, v in steps.items()}
+
+    def command(scene_path, out):
+        return _shpb._study(scene_path, out, sweep, refine, tolerance, contact, stepping, courant,
+                            threads, distributions, draws, seed, steps["plan"], steps["run"],
+                            shard, steps["merge"])
+
+    if output is not None and steps["merge"] is None:
+        raise TypeError("output: the folder of merge (its -o), given with it alone: a study's "
+                        "result is written by result.save(dir)")
+    if not any(steps.values()):
+        return _folder_run("study", lambda out, paths: command(paths[0], out)[0], [scene],
+                           distributions)
+    # The user's folders: nothing removed. A plan names its scene's file, which each run and the
+    # merge read again: a path (a Scene is one once saved).
+    import json
+    code, wrote = command("" if scene is None else _scene_file(scene),
+                          "" if output is None else _path(output, "output"))
+    wrote = _os.fspath(wrote)
+    if steps["run"] is not None:
+        with open(wrote, encoding="utf-8") as f:
+            return json.load(f)
+    # What save(dir) may not replace: the plan's scene and materials, and a merge's plan and parts.
+    plan_file = _os.path.join(steps["plan"] or steps["merge"], "plan.json")
+    with open(plan_file, encoding="utf-8") as f:
+        inputs = _shpb._inputs("study", [json.load(f)["scene"]], distributions or "")
+    if steps["merge"] is not None:
+        inputs += [plan_file, _os.path.join(steps["merge"], "parts")]
+    return _warned(FolderResult("study", wrote, code, inputs))
 
 
 @_with_help("fit", """fit(campaign, threads=0, max_iterations=40, relative_step=0.05, bootstrap=30,
@@ -477,8 +582,8 @@ def process_campaign(campaign, flow_stress_at=(), draws=None, seed=None, threads
     else:
         file, scenes = None, list(campaign)  # paths or Scenes
     if isinstance(flow_stress_at, (str, bytes)):  # not its characters, one by one
-        raise TypeError(f"flow_stress_at: {flow_stress_at!r}: expected a list of engineering "
-                        "strains, e.g. [0.02, 0.05]")
+        raise TypeError(f"flow_stress_at: {_shpb._shown(flow_stress_at)}: expected a list of "
+                        "engineering strains, e.g. [0.02, 0.05]")
     if isinstance(flow_stress_at, (int, float)):
         flow_stress_at = [flow_stress_at]
 
@@ -536,9 +641,10 @@ def plan(scene, rate, strain=0.15, search_tolerance="3 %", tolerance="0.5 %", th
     import weakref
     tmp = _tempfile.mkdtemp(prefix="shpb-plan-")
     try:
-        path = _scene_file(scene, tmp)
-        with _scenes_named([scene], [path]):
-            native = _shpb._plan(path, rate, strain, search_tolerance, tolerance, threads)
+        scenes = _SceneFiles([scene], tmp)
+        with scenes:  # named in summary.json as the user knows it
+            native = _shpb._plan(scenes.paths[0], scenes.renamed(scenes.paths[0]), rate, strain,
+                                 search_tolerance, tolerance, threads)
         folder = _os.path.join(tmp, "out")
         native.save(folder)
         result = PlanResult._of(native, folder, native.inputs)
@@ -547,6 +653,20 @@ def plan(scene, rate, strain=0.15, search_tolerance="3 %", tolerance="0.5 %", th
         raise
     weakref.finalize(result, _shutil.rmtree, tmp, True)
     return _warned(result)
+
+
+@_with_help("report", """report(folder) -> str
+
+Draws the figures of an output folder (`folder`: a path; a result saved first by
+result.save(dir)) into folder/figures and writes folder/report.html, as `shpb report` does
+(python3 with matplotlib and numpy), and returns the path of report.html. The script's
+warnings are ShpbWarnings; its error is shpb.InputError (exit 2: not an output folder, a
+figures/ or report.html shpb did not write) or shpb.WriteError (exit 3).""")
+def report(folder):
+    folder = _path(folder, "folder")
+    for text in _shpb._report(folder):
+        _warnings.warn(text, ShpbWarning, stacklevel=2)
+    return _os.path.join(_os.path.abspath(folder), "report.html")
 
 
 @_with_help("dispersion", """dispersion(poisson=0.29, a_over_lambda=None, max_a_over_lambda=None,
@@ -561,8 +681,8 @@ def dispersion(poisson=0.29, a_over_lambda=None, max_a_over_lambda=None, points=
     # A text is iterable too: "12" was read as the two values 1 and 2.
     if isinstance(a_over_lambda, (str, bytes)) or not (a_over_lambda is None
                                                        or hasattr(a_over_lambda, "__iter__")):
-        raise TypeError(f"a_over_lambda: {a_over_lambda!r}: expected a list of numbers such as "
-                        "[0.1, 0.5]")
+        raise TypeError(f"a_over_lambda: {_shpb._shown(a_over_lambda)}: expected a list of "
+                        "numbers such as [0.1, 0.5]")
     with _tempfile.TemporaryDirectory(prefix="shpb-dispersion-") as tmp:
         path = _os.path.join(tmp, "dispersion.csv")
         _shpb._dispersion(poisson, [] if a_over_lambda is None else list(a_over_lambda), max_a_over_lambda, points,

@@ -223,3 +223,67 @@ def test_a_study_result_has_the_summarys_warnings(tmp_path):
     distributions = SOURCE / "experiments" / "classic-al6061" / "distributions.json"
     result = shpb.study(scene, sweep="monte-carlo", distributions=distributions, draws=2, seed=7)
     assert result.warnings == result.summary["warnings"]
+
+
+def test_a_study_planned_run_in_shards_and_merged_is_the_commands(tmp_path):
+    # The striker's velocity drawn twice (three runs with the nominal one) on the striker on a
+    # bar: planned, run in two shards and merged from Python, against the command's steps on
+    # the same plan (a plan's runs are fixed when it is written: the merged tables are equal).
+    scene = SOURCE / "experiments" / "striker-on-bar" / "scene.json"
+    (tmp_path / "d.json").write_text('{"values": {"striker.velocity": {"normal": "2 %"}}}')
+    planned = shpb.study(scene, sweep="monte-carlo", distributions=tmp_path / "d.json", draws=2,
+                         plan=tmp_path / "plan")
+    assert planned.json["plan"]["scene"] == str(scene)
+    parts = [shpb.study(run=tmp_path / "plan", shard=f"{k}/2") for k in range(2)]
+    # Every run exactly once over the two parts: runs 0 and 2 in 0/2, run 1 in 1/2.
+    assert [len(p["results"]) for p in parts] == [2, 1]
+    merged = shpb.study(merge=tmp_path / "plan")
+    assert merged.exit_code == 0 and (tmp_path / "plan" / "result" / "draws.csv").is_file()
+    for k in range(2):
+        assert run_command("study", "--run", tmp_path / "plan", "--shard", f"{k}/2", "-q")[0] == 0
+    code, _, err = run_command("study", "--merge", tmp_path / "plan", "-o", tmp_path / "cmd", "-q")
+    assert code == 0, err
+    merged.save(tmp_path / "py")
+    assert "draws.csv" in same_folder(tmp_path / "cmd", tmp_path / "py", merged)
+    # save(dir) refuses the plan's folder, which the merge read, as the command refuses -o there.
+    with pytest.raises(shpb.InputError, match="input"):
+        merged.save(tmp_path / "plan")
+
+
+@pytest.mark.parametrize("call, words", [
+    # A plan names its scene's file, which the runs read again: a Scene is saved first.
+    (lambda t: shpb.study(shpb.Scene.load(SOURCE / "experiments" / "striker-on-bar" / "scene.json"),
+                          plan=t / "p"), "scene.save(path)"),
+    (lambda t: shpb.study(run=t / "p", shard=3), '"K/N"'),
+    (lambda t: shpb.study(SOURCE / "experiments" / "striker-on-bar" / "scene.json",
+                          output=t / "o"), "merge"),
+    (lambda t: shpb.report(shpb.dispersion(points=3)), "expected a path"),
+], ids=["scene-of-a-plan", "shard-3", "output-without-merge", "report-of-a-table"])
+def test_a_wrong_type_of_a_step_is_one_line(call, words, tmp_path):
+    with pytest.raises(TypeError) as e:
+        call(tmp_path)
+    assert "\n" not in str(e.value) and words in str(e.value)
+
+
+def test_a_bad_step_is_the_commands_line(tmp_path):
+    args = ["study", "--merge", tmp_path / "nowhere", "--sweep", "pareto"]
+    code, _, err = run_command(*args)
+    assert code == 2
+    with pytest.raises(shpb.InputError) as e:
+        shpb.study(merge=tmp_path / "nowhere", sweep="pareto")
+    assert "error: " + str(e.value) == err.strip()
+
+
+def test_report_draws_a_saved_folder_as_the_command_does(tmp_path):
+    # The report of a saved simulation: the page and its figures, as `shpb report` writes them;
+    # a folder holding no output is the command's line (exit 2) as an InputError.
+    shpb.simulate(SOURCE / "experiments" / "striker-on-bar" / "scene.json").save(tmp_path / "run")
+    page = shpb.report(tmp_path / "run")
+    assert page == str(tmp_path / "run" / "report.html") and os.path.isfile(page)
+    assert any(p.suffix == ".png" for p in (tmp_path / "run" / "figures").iterdir())
+    (tmp_path / "empty").mkdir()
+    code, _, err = run_command("report", tmp_path / "empty")
+    assert code == 2
+    with pytest.raises(shpb.InputError) as e:
+        shpb.report(tmp_path / "empty")
+    assert "error: " + str(e.value) == err.strip()

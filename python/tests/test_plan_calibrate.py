@@ -202,3 +202,30 @@ def test_calibrate_of_no_shot_is_the_commands_line_not_an_abort(tmp_path):
     assert p.returncode == 0, p.stderr
     assert p.stdout.strip() == err.strip()
     assert not (tmp_path / "cmd").exists()
+
+
+def test_calibrate_of_scenes_names_their_files(tmp_path):
+    # The shots as Scenes, one edited (its striker's length, which the fit does not read): calibration.json's
+    # provenance and the warnings name their files, not the temporary copies they ran from.
+    write_shots(tmp_path)
+    apart, together = (shpb.Scene.load(tmp_path / f"{n}.json") for n in ("apart", "together"))
+    together.bars[0].length_m = 0.3
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", shpb.ShpbWarning)  # the fit's own, said by the test above
+        result = shpb.calibrate([apart, together], threads=2)
+    shots = result.json["calibration"]["provenance"]["shots"]
+    assert [s["scene"] for s in shots] == [str(tmp_path / "apart.json"),
+                                           f"{tmp_path / 'together.json'} (edited in Python)"]
+    assert not any("/shpb-calibrate-" in w for w in result.warnings)
+
+
+def test_plan_of_a_scene_names_its_file(tmp_path):
+    # An edited Scene (its name) planned: summary.json names its file, as read back and as saved.
+    file = classic_with_plan(tmp_path, ("2 m/s", "40 m/s"))
+    scene = shpb.Scene.load(file)
+    scene.name = "edited"
+    result = shpb.plan(scene, rate=2000, search_tolerance=0.1, tolerance=0.1, threads=2)
+    assert result.summary["scene"] == f"{file} (edited in Python)"
+    result.save(tmp_path / "py")
+    saved = json.loads((tmp_path / "py" / "summary.json").read_text())
+    assert saved["scene"] == f"{file} (edited in Python)"

@@ -171,3 +171,28 @@ def test_an_edit_the_calibration_replaces_is_refused(tmp_path, classic_json):
     with pytest.raises(shpb.InputError, match=r"bars\[1\].material: .*calibration"):
         scene.save(tmp_path / "refused" / "scene.json")
     assert not (tmp_path / "refused").exists()
+    # A command that reads its scene from a file refuses it too, naming the scene, not the
+    # temporary file it was being written to.
+    with pytest.raises(shpb.InputError) as e:
+        shpb.compare(scene)
+    assert str(e.value).startswith(f"{tmp_path / 'scene.json'} (edited in Python): bars[1].material: ")
+
+
+def test_save_keeps_the_files_own_text_where_nothing_was_edited(tmp_path):
+    # The classic scene saved beside its file with the striker's velocity edited is the file's
+    # own text with "15 m/s" alone replaced (before, the whole file was re-indented).
+    folder = scene_dir(tmp_path, "classic-al6061")
+    original = (folder / "scene.json").read_text(encoding="utf-8")
+    assert original.count('"velocity": "15 m/s"') == 1
+    scene = shpb.Scene.load(folder / "scene.json")
+    scene.striker.velocity_m_s = 12.0
+    scene.save(folder / "edited.json")
+    assert (folder / "edited.json").read_text(encoding="utf-8") == original.replace(
+        '"velocity": "15 m/s"', '"velocity": "12 m/s"')
+    # An edited value is the shortest text of its double, its exponent plain: "1.9e11 Pa", read
+    # back as 190 GPa (before, "1.9e+11 Pa").
+    scene.bar("specimen").material.youngs_modulus_Pa = 190e9
+    scene.save(folder / "modulus.json")
+    text = (folder / "modulus.json").read_text(encoding="utf-8")
+    assert '"youngs_modulus": "1.9e11 Pa"' in text and "e+" not in text
+    assert shpb.Scene.load(folder / "modulus.json").bar("specimen").material.youngs_modulus_Pa == 190e9

@@ -104,6 +104,10 @@ std::string validate_setup(Scene scene, const RunOverrides& overrides);
 
 struct ReportArgs {
   std::filesystem::path folder;
+  // The script's stderr collected here instead of printed (the Python module's report): its
+  // `warning: ` lines' text, and its `error: ` line thrown as the command's exit code says
+  // (InputError for 2, WriteError for 3).
+  std::vector<std::string>* warnings = nullptr;
 };
 int run_report(const ReportArgs& args);
 
@@ -138,7 +142,7 @@ struct PlanArgs {
 };
 // A plan run: what it read, what it was asked and what it found.
 struct PlannedTest {
-  std::filesystem::path file;  // the scene as given (messages)
+  std::filesystem::path file;  // the scene as given (messages, summary.json's `scene`)
   PlanInput input;
   PlanTargets targets;
   PlanOptions options;

@@ -25,8 +25,8 @@ std::vector<std::filesystem::path> plan_inputs(const PlanInput& input) {
 }
 
 void write_plan(const PlannedTest& plan, OutputFolder& out) {
-  write_plan_outputs(plan.result, plan.input, plan.targets, plan.options, out.path(),
-                     out.final_path());
+  write_plan_outputs(plan.result, plan.input, plan.targets, plan.options, plan.file.string(),
+                     out.path(), out.final_path());
   out.commit();
 }
 

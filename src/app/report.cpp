@@ -4,11 +4,14 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>  // setenv
 #include <filesystem>
 #include <memory>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "app/commands.hpp"
 #include "core/error.hpp"
@@ -16,6 +19,27 @@
 #include "core/interrupt.hpp"  // interrupted()
 
 namespace shpb {
+namespace {
+
+// The report script's stderr, collected: its `warning: ` lines into `warnings`; after its exit
+// code `rc` 2, 3 or 4, its `error: ` line thrown as InputError, WriteError or an internal error
+// (what main prints after `error: `, exit 2, 3 or 4).
+void collected_lines(const std::string& text, std::vector<std::string>& warnings, int rc) {
+  std::string error;
+  std::size_t at = 0;
+  for (std::size_t end; at < text.size(); at = end + 1) {
+    end = std::min(text.find('\n', at), text.size());
+    const std::string line = text.substr(at, end - at);
+    if (line.starts_with("warning: ")) warnings.push_back(line.substr(9));
+    if (line.starts_with("error: ")) error = line.substr(7);
+  }
+  if (error.empty()) return;
+  if (rc == 2) throw InputError(error);
+  if (rc == 3) throw WriteError(error);
+  if (rc == 4) throw std::logic_error(error);
+}
+
+}  // namespace
 
 int run_report(const ReportArgs& args) {
   // Named as every input is (docs/commands.md, Exit codes), not in CLI11's words.
@@ -34,7 +58,10 @@ int run_report(const ReportArgs& args) {
                       "install python3-matplotlib and python3-numpy (bash tools/install-deps.sh)");
   // The script stops if shpb is killed outright; it knows shpb by its pid (tools/report.py).
   ::setenv("SHPB_PARENT_PID", std::to_string(::getpid()).c_str(), 1);
-  const int rc = run_program({*python, script->string(), args.folder.string()}, false);
+  std::string errors;
+  const int rc = run_program({*python, script->string(), args.folder.string()}, false,
+                             args.warnings ? &errors : nullptr);
+  if (args.warnings) collected_lines(errors, *args.warnings, rc);
   // Killed outright (the out-of-memory killer, kill -9; 128 + its signal), the script left its
   // temporaries in DIR, where they kept shpb from replacing DIR until the next report: the script
   // removes those of processes that are gone (docs/outputs.md, Conventions).

@@ -84,7 +84,8 @@ int merge_study(const StudyArgs& args) {
   const StudyPlan plan = read_study_plan(*args.merge / "plan.json");
   const MergedStudy m = merge_study_parts(
       plan, *args.merge, args.output.empty() ? *args.merge / "result" : args.output);
-  for (const auto& w : m.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  if (args.overrides.warnings_on_stderr)  // else returned (the Python module's result.warnings)
+    for (const auto& w : m.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   if (!args.overrides.quiet)
     std::fprintf(stderr, "study %s of %s: merged %zu parts (%zu runs); wrote %s\n",
                  to_string(plan.sweep).c_str(), m.scene_name.c_str(), m.parts, plan.runs(),

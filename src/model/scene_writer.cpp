@@ -1,8 +1,10 @@
 #include "model/scene_writer.hpp"
 
+#include <algorithm>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <string_view>
 
 #include "core/checked_write.hpp"
 #include "core/csv_writer.hpp"  // format_double
@@ -17,8 +19,86 @@ namespace {
 namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;  // the user's keys in the user's order
 
-// A value in SI units as the reader reads it back bit for bit.
-std::string si(double value, const char* unit) { return format_double(value) + " " + unit; }
+// A value in SI units as the reader reads it back bit for bit, its exponent without sign or
+// leading zeros ("1.9e11 Pa", "1e-5 m"; std::to_chars writes "1.9e+11", "1e-05").
+std::string si(double value, const char* unit) {
+  std::string text = format_double(value);
+  if (const auto e = text.find('e'); e != std::string::npos) {
+    std::size_t digits = e + 1 + (text[e + 1] == '-' || text[e + 1] == '+');
+    if (text[e + 1] == '+') text.erase(e + 1, 1), --digits;
+    while (digits + 1 < text.size() && text[digits] == '0') text.erase(digits, 1);
+  }
+  return text + " " + unit;
+}
+
+// The text of a valid JSON document: the end of the value starting at `at` (its first
+// character, no whitespace before it).
+std::size_t value_end(const std::string& text, std::size_t at) {
+  if (text[at] == '"') {
+    std::size_t i = at + 1;
+    while (text[i] != '"') i += text[i] == '\\' ? 2 : 1;
+    return i + 1;
+  }
+  if (text[at] != '{' && text[at] != '[') {
+    std::size_t i = at;
+    while (i < text.size() &&
+           std::string_view(",]} \t\r\n").find(text[i]) == std::string_view::npos)
+      ++i;
+    return i;
+  }
+  int depth = 0;
+  for (std::size_t i = at;; ++i) {
+    if (text[i] == '"')
+      i = value_end(text, i) - 1;
+    else if (text[i] == '{' || text[i] == '[')
+      ++depth;
+    else if ((text[i] == '}' || text[i] == ']') && --depth == 0)
+      return i + 1;
+  }
+}
+
+std::size_t skip_blank(const std::string& text, std::size_t i) {
+  while (i < text.size() && std::string_view(" \t\r\n").find(text[i]) != std::string_view::npos)
+    ++i;
+  return i;
+}
+
+// `now` written where `text` holds `before` at [at, end): the user's own text (indents, number
+// forms, spacing) kept for every value unchanged, down to the members of an object whose keys
+// are the same and the elements of an array of the same length; a changed value, or an object
+// with keys added or removed, written anew, indented as the line it starts on.
+void keep_text(const std::string& text, std::size_t at, std::size_t end, const Json& before,
+               const Json& now, std::string& out) {
+  const bool same_keys =
+      before.is_object() && now.is_object() && before.size() == now.size() &&
+      std::equal(before.items().begin(), before.items().end(), now.items().begin(),
+                 [](const auto& a, const auto& b) { return a.key() == b.key(); });
+  const bool same_length = before.is_array() && now.is_array() && before.size() == now.size();
+  if (before == now) {
+    out.append(text, at, end - at);
+  } else if (same_keys || same_length) {
+    out += text[at];  // the bracket
+    std::size_t i = at + 1;
+    auto member = now.begin();
+    for (const auto& old : before) {
+      std::size_t v = skip_blank(text, i);
+      if (text[v] == ',') v = skip_blank(text, v + 1);
+      if (same_keys) v = skip_blank(text, skip_blank(text, value_end(text, v)) + 1);  // key, ':'
+      const std::size_t e = value_end(text, v);
+      out.append(text, i, v - i);
+      keep_text(text, v, e, old, *member++, out);
+      i = e;
+    }
+    out.append(text, i, end - i);
+  } else {
+    const std::size_t line = text.rfind('\n', at) + 1;  // npos + 1: the first line
+    const std::string indent(skip_blank(text, line) - line, ' ');
+    std::string written = now.dump(2);
+    for (std::size_t n = written.find('\n'); n != std::string::npos; n = written.find('\n', n + 1))
+      written.insert(n + 1, indent);
+    out += written;
+  }
+}
 
 // `key` of `o` set to `value` where the scene read holds `before` and the edited one `after`.
 template <class T, class Value>
@@ -256,7 +336,12 @@ std::string scene_file_text(const Scene& scene, const fs::path& file) {
   const Scene read = read_scene_text(j.dump(), to);
   patch_run(j, read, scene);
   patch_bars(j, read, scene);
-  std::string text = j.dump(2) + "\n";
+  std::string text;
+  const std::size_t start =
+      skip_blank(scene.source_text, scene.source_text.starts_with("\xEF\xBB\xBF") ? 3 : 0);
+  keep_text(scene.source_text, start, value_end(scene.source_text, start),
+            Json::parse(scene.source_text), j, text);
+  text += "\n";
   const Scene back = read_scene_text(text, to);
   if (const Scene mine = compared(scene, back), theirs = compared(back, back); !(mine == theirs))
     throw input_error(shown, first_difference(mine, theirs), "as edited",

@@ -208,8 +208,8 @@ Json predicted_json(const LoadingMetrics& m) {
 }  // namespace
 
 void write_plan_outputs(const PlanResult& r, const PlanInput& in, const PlanTargets& targets,
-                        const PlanOptions& options, const fs::path& dir,
-                        const fs::path& final_dir) {
+                        const PlanOptions& options, const std::string& scene_shown,
+                        const fs::path& dir, const fs::path& final_dir) {
   write_text_file(dir / "scene.json", planned_json(r, in, final_dir).dump(2) + "\n");
   const Scene& s = in.scene;
   PlanCandidate given{
@@ -225,7 +225,7 @@ void write_plan_outputs(const PlanResult& r, const PlanInput& in, const PlanTarg
   Json j = {
       {"version", kVersion},
       {"command", "plan"},
-      {"scene", s.file.string()},
+      {"scene", scene_shown},
       {"targets",
        {{"strain_rate_1_s", targets.rate_1_s},
         {"strain", targets.strain},

@@ -14,9 +14,10 @@ namespace shpb {
 std::vector<std::string> plan_warnings(const PlanResult& result, const PlanTargets& targets);
 
 // Writes into `dir` (the temporary folder of `final_dir`: the planned scene's material paths are
-// made relative to `final_dir`).
+// made relative to `final_dir`); summary.json names the scene `scene_shown` (the file as given).
 void write_plan_outputs(const PlanResult& result, const PlanInput& input,
                         const PlanTargets& targets, const PlanOptions& options,
-                        const std::filesystem::path& dir, const std::filesystem::path& final_dir);
+                        const std::string& scene_shown, const std::filesystem::path& dir,
+                        const std::filesystem::path& final_dir);
 
 }  // namespace shpb
