@@ -166,7 +166,9 @@ nlohmann::json corrections_json(const ProcessOutcome& o) {
     c["inertia"] = {{"form",
                      "3-wave minus flow stress = rho L^2 (eps_dd - eps_d^2)/12 (axial) + radial; "
                      "1-wave minus flow stress = -rho L (v2_d/2 + L (eps_dd - eps_d^2)/6) (axial, "
-                     "v2 the transmitted face's velocity) + radial; radial = rho a^2 (eps_dd/8 + "
+                     "v2 the transmitted face's velocity) + radial; 2-wave minus flow stress = "
+                     "rho L (v1_d/2 - L (eps_dd - eps_d^2)/6) (axial, v1 the incident face's "
+                     "velocity) + radial; radial = rho a^2 (eps_dd/8 + "
                      "eps_d^2/16) (Davies & Hunter 1963, Gorham 1989, Forrestal et al. 2007), true "
                      "rates, L and a current"}};
   nlohmann::json terms = nlohmann::json::object();

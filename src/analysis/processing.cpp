@@ -771,6 +771,7 @@ ProcessingResult process_signals(const GaugeSignals& signals, const KolskySetup&
                                     unloading > ring_down ? unloading - ring_down : 0, ring_down);
   settle_peak_stress(options, r);
   check_one_wave_rate(c, k, r);
+  check_inertia_corrected_faces(c, k, options, r);
   check_one_and_two_wave(c, r.loading_end, r, options, r.warnings);
   check_strain_resolution(c, r.time_s, r.loading_end, k, options, r);
   if (r.equilibrium.holds_from_s)

@@ -38,10 +38,10 @@ Curve reduce_pulses(std::span<const double> ei, std::span<const double> er,
     throw std::invalid_argument("reduce_pulses: pulses of different lengths");
   Curve c;
   auto resize = [n](std::vector<double>& v) { v.assign(n, 0.0); };
-  for (auto* v :
-       {&c.strain_rate_1_s, &c.strain_rate_1wave_1_s, &c.strain_1wave, &c.strain, &c.force_front_N,
-        &c.force_back_N, &c.velocity_back_m_s, &c.stress_1wave_Pa, &c.stress_2wave_Pa,
-        &c.stress_3wave_Pa, &c.true_strain, &c.true_stress_Pa, &c.equilibrium_ratio})
+  for (auto* v : {&c.strain_rate_1_s, &c.strain_rate_1wave_1_s, &c.strain_1wave, &c.strain,
+                  &c.force_front_N, &c.force_back_N, &c.velocity_front_m_s, &c.velocity_back_m_s,
+                  &c.stress_1wave_Pa, &c.stress_2wave_Pa, &c.stress_3wave_Pa, &c.true_strain,
+                  &c.true_stress_Pa, &c.equilibrium_ratio})
     resize(*v);
   // The reflected-pulse strain rate with the incident pulse eliminated by the faces' equilibrium,
   // E_I A_I (ε_I + ε_R) = E_T A_T ε_T: (v1 − v2)/L_s = (2 c_I ε_R + (c_T − k c_I) ε_T)/L_s with
@@ -56,6 +56,7 @@ Curve reduce_pulses(std::span<const double> ei, std::span<const double> er,
     const double v1 = -front.c0_m_s * (ei[i] - er[i]);
     const double v2 = -back.c0_m_s * et[i];
     c.strain_rate_1_s[i] = (v1 - v2) / s.length_m;  // shortening rate, compression positive
+    c.velocity_front_m_s[i] = v1;
     c.velocity_back_m_s[i] = v2;
     c.strain_rate_1wave_1_s[i] =
         (2 * front.c0_m_s * er[i] + transmitted_weight * et[i]) / s.length_m;

@@ -22,10 +22,12 @@ struct SpecimenGeometry {
 struct Curve {
   std::vector<double> strain_rate_1_s;        // 3-wave: (v1 − v2)/L_s
   std::vector<double> strain_rate_1wave_1_s;  // 2 c0 ε_R / L_s (identical bars; reduction.cpp)
-  std::vector<double> strain_1wave;       // ∫ 1-wave strain rate dt: the reflected-pulse strain
-  std::vector<double> strain;             // ∫ 3-wave strain rate dt (trapezoid), engineering
-  std::vector<double> force_front_N;      // P1 = −E A (ε_I + ε_R), compression positive
-  std::vector<double> force_back_N;       // P2 = −E A ε_T
+  std::vector<double> strain_1wave;   // ∫ 1-wave strain rate dt: the reflected-pulse strain
+  std::vector<double> strain;         // ∫ 3-wave strain rate dt (trapezoid), engineering
+  std::vector<double> force_front_N;  // P1 = −E A (ε_I + ε_R), compression positive
+  std::vector<double> force_back_N;   // P2 = −E A ε_T
+  std::vector<double>
+      velocity_front_m_s;  // v1 = −c0 (ε_I − ε_R), the incident face's, the same way
   std::vector<double> velocity_back_m_s;  // v2 = −c0 ε_T, the transmitted face's, toward the bar
   std::vector<double> stress_1wave_Pa;    // P2 / A_s
   std::vector<double> stress_2wave_Pa;    // P1 / A_s

@@ -7,6 +7,7 @@
 #include "analysis/pulse_window.hpp"
 #include "analysis/sample_index.hpp"
 #include "core/interpolation.hpp"
+#include "core/median.hpp"
 #include "core/number_format.hpp"
 #include "dispersion/propagation.hpp"
 
@@ -267,6 +268,43 @@ void check_one_and_two_wave(const Curve& c, std::size_t n, const ProcessingResul
             "faces differ (bar areas or moduli, a channel's scale or bridge factor, which gauge "
             "is which)";
   warnings.push_back(text);
+}
+
+void check_inertia_corrected_faces(const Curve& c, const KolskySetup& k, const ProcessingOptions& o,
+                                   ProcessingResult& r) {
+  if (!o.corrections.inertia || !(o.specimen.density_kg_m3 > 0) || !r.equilibrium.loaded_s) return;
+  const std::size_t first = index_at(r.time_s, r.equilibrium.loaded_s->first);
+  const std::size_t last = index_at(r.time_s, r.equilibrium.loaded_s->second);
+  const std::vector<double> corrected = equilibrium_ratio(c.stress_2wave_Pa, c.stress_1wave_Pa);
+  std::vector<double> apart, stray;
+  for (std::size_t i = first; i <= last && i < corrected.size(); ++i)
+    if (c.equilibrium_ratio[i] <= kEquilibriumThreshold && c.stress_3wave_Pa[i] > 0) {
+      apart.push_back(corrected[i]);
+      stray.push_back(std::abs(c.stress_1wave_Pa[i] / c.stress_3wave_Pa[i] - 1));
+    }
+  const double span_us = static_cast<double>(apart.size()) * (r.time_s[1] - r.time_s[0]) * 1e6;
+  const double median_apart = median(std::move(apart));
+  if (!(median_apart > kEquilibriumThreshold)) return;
+  std::string text =
+      fmt("where the specimen's faces' forces agree (R = 2|P1 - P2|/|P1 + P2| <= %.3g, %.3g us "
+          "of its loading), its inertia correction parts them: the corrected 2-wave and 1-wave "
+          "stresses there have R a median %.3g. The correction takes the specimen to strain "
+          "uniformly (its velocity linear from face to face), its faces' forces then differing by "
+          "its mass times the mean of its faces' accelerations; forces that agree while its faces "
+          "accelerate apart say that its mass does not follow their mean, and its corrected "
+          "1-wave (transmitted face's) and 2-wave (incident face's) stresses stray a median ",
+          kEquilibriumThreshold, span_us, median_apart) +
+      percent(median(std::move(stray))) +
+      " each way from the 3-wave one, the faces' average, which does not depend on the "
+      "specimen's acceleration as a whole and is the one to read. A specimen strains uniformly "
+      "once a strain increment crosses it several times within the rise: ";
+  if (k.specimen_transit_s > 0)
+    text += fmt("elastically in L/c0 = %.3g us here, against the incident rise of %.3g us, ",
+                k.specimen_transit_s * 1e6, r.incident_rise_s * 1e6);
+  text +=
+      "and, where it flows, at sqrt((dsigma/deps)/rho), slow where its stress-strain curve is "
+      "flat (a perfectly plastic specimen's only from its growing area)";
+  r.warnings.push_back(text);
 }
 
 void check_one_wave_rate(const Curve& c, const KolskySetup& k, ProcessingResult& r) {

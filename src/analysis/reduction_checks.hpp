@@ -86,6 +86,18 @@ void check_one_and_two_wave(const Curve& c, std::size_t n, const ProcessingResul
 inline constexpr double kOneWaveRateError = 0.05;
 void check_one_wave_rate(const Curve& c, const KolskySetup& k, ProcessingResult& r);
 
+// The inertia correction (measurement.corrections.inertia, docs/methods.md §8.3) takes the
+// specimen to strain uniformly, its velocity linear from face to face, so that its faces' forces
+// differ by its mass times the mean of its faces' accelerations, m (v̇1 + v̇2)/2, which it removes.
+// Where the uncorrected faces' forces agree (R ≤ kEquilibriumThreshold) and the corrected 1- and
+// 2-wave stresses do not (their R, a median over those loaded samples, above the same criterion),
+// the specimen's mass is not accelerating as its faces' mean: it strains unevenly (a strain
+// increment crosses it slowly against the rise: a long elastic transit, or the slow plastic wave
+// of a flat stress–strain curve) and the corrected face stresses stray from the 3-wave one, the
+// faces' average, which does not depend on the specimen's acceleration as a whole. That is said.
+void check_inertia_corrected_faces(const Curve& c, const KolskySetup& k, const ProcessingOptions& o,
+                                   ProcessingResult& r);
+
 // One gauge sees the incident and the reflected pulse pass in turn. A pulse longer than its round
 // trip 2d/c0 to the specimen and back (a long striker, a gauge near the specimen, a polymer bar's
 // creep tail) still passes when its reflection arrives, and the record holds their sum: the

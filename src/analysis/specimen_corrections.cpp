@@ -45,7 +45,7 @@ void remove_true(double& engineering_Pa, double removed_true_Pa, double e) {
 }  // namespace
 
 InertiaTerms inertia_terms(const SpecimenProperties& s, double e, double rate, double accel,
-                           double back_accel) {
+                           double front_accel, double back_accel) {
   const double stretch = 1 - e;  // L/L0, compression positive e
   const double L = s.length_m * stretch;
   const double a2 = s.area_m2 / (std::numbers::pi * stretch);  // volume-conserving radius²
@@ -53,6 +53,8 @@ InertiaTerms inertia_terms(const SpecimenProperties& s, double e, double rate, d
   InertiaTerms t;
   t.axial_acceleration_Pa = rho * L * L * accel / 12;
   t.axial_convective_Pa = -rho * L * L * rate * rate / 12;
+  t.front_axial_acceleration_Pa = rho * L * (front_accel / 2 - L * accel / 6);
+  t.front_axial_convective_Pa = rho * L * L * rate * rate / 6;
   t.back_axial_acceleration_Pa = -rho * L * (back_accel / 2 + L * accel / 6);
   t.back_axial_convective_Pa = rho * L * L * rate * rate / 6;
   t.radial_acceleration_Pa = rho * a2 * accel / 8;
@@ -69,28 +71,33 @@ CorrectionReport apply_specimen_corrections(Curve& c, double dt, const SpecimenP
   std::vector<char> loaded(n);
   for (std::size_t i = 0; i < n; ++i) loaded[i] = c.stress_3wave_Pa[i] >= kLoadedFraction * peak;
 
-  // True strain rate ε̇ = ė/(1 − e) and its derivative, the back face's acceleration v̇2.
+  // True strain rate ε̇ = ė/(1 − e) and its derivative, the faces' accelerations v̇1 and v̇2.
   std::vector<double> rate(n);
   for (std::size_t i = 0; i < n; ++i) rate[i] = c.strain_rate_1_s[i] / (1 - c.strain[i]);
   const std::vector<double> accel = derivative(rate, dt);
+  const std::vector<double> front_accel = derivative(c.velocity_front_m_s, dt);
   const std::vector<double> back_accel = derivative(c.velocity_back_m_s, dt);
-  std::vector<double> axial_acc(n, 0.0), axial_conv(n, 0.0), back_acc(n, 0.0), back_conv(n, 0.0),
-      radial_acc(n, 0.0), radial_conv(n, 0.0), friction(n, 0.0);
+  std::vector<double> axial_acc(n, 0.0), axial_conv(n, 0.0), front_acc(n, 0.0), front_conv(n, 0.0),
+      back_acc(n, 0.0), back_conv(n, 0.0), radial_acc(n, 0.0), radial_conv(n, 0.0),
+      friction(n, 0.0);
   report.friction_factor_min = std::numeric_limits<double>::infinity();
   report.friction_factor_max = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const double e = c.strain[i];
     double& s3 = c.stress_3wave_Pa[i];
-    if (corrections.inertia) {  // the mean of the two faces' stresses and the back face's
-      const InertiaTerms t = inertia_terms(s, e, rate[i], accel[i], back_accel[i]);
+    if (corrections.inertia) {  // the mean of the two faces' stresses and each face's
+      const InertiaTerms t = inertia_terms(s, e, rate[i], accel[i], front_accel[i], back_accel[i]);
       axial_acc[i] = t.axial_acceleration_Pa;
       axial_conv[i] = t.axial_convective_Pa;
+      front_acc[i] = t.front_axial_acceleration_Pa;
+      front_conv[i] = t.front_axial_convective_Pa;
       back_acc[i] = t.back_axial_acceleration_Pa;
       back_conv[i] = t.back_axial_convective_Pa;
       radial_acc[i] = t.radial_acceleration_Pa;
       radial_conv[i] = t.radial_convective_Pa;
       remove_true(s3, t.face_average(), e);
       remove_true(c.stress_1wave_Pa[i], t.back_face(), e);
+      remove_true(c.stress_2wave_Pa[i], t.front_face(), e);
     }
     if (corrections.friction) {  // each face's stress, the mean of them as well
       const double length = s.length_m * (1 - e);
@@ -112,6 +119,8 @@ CorrectionReport apply_specimen_corrections(Curve& c, double dt, const SpecimenP
     report.terms.push_back(summarise("inertia_axial_convective", axial_conv, loaded));
     report.terms.push_back(summarise("inertia_1wave_axial_acceleration", back_acc, loaded));
     report.terms.push_back(summarise("inertia_1wave_axial_convective", back_conv, loaded));
+    report.terms.push_back(summarise("inertia_2wave_axial_acceleration", front_acc, loaded));
+    report.terms.push_back(summarise("inertia_2wave_axial_convective", front_conv, loaded));
     report.terms.push_back(summarise("inertia_radial_acceleration", radial_acc, loaded));
     report.terms.push_back(summarise("inertia_radial_convective", radial_conv, loaded));
   }
