@@ -56,11 +56,19 @@ double quantization_step(std::span<const double> x) {
   const double span = std::round(range / q);
   if (!(span <= kMaxGridLevels)) return 0;
   q = range / span;
+  // A value's steps from the lowest carry the printed rounding of both (each at most that of the
+  // record's largest magnitude) and that of the step, the range's over the span (through up to
+  // all of it): bounds the same for the record turned over, whose lowest value is this one's
+  // highest. Bounding the lowest value's rounding by its own left an 8-bit grid whose lowest
+  // value lay nearer zero than its highest 10⁻⁴ of a step off: read as none, its rest's noise 0.
+  const double largest = std::max(std::abs(levels.front()), std::abs(levels.back()));
+  const double of_step =
+      kPrintedRounding * (std::abs(levels.front()) + std::abs(levels.back())) / q;
   for (double v : levels) {
     const double steps = (v - levels.front()) / q;
-    const double printed = kPrintedRounding * (std::abs(v) + std::abs(levels.front())) / q;
+    const double printed = kPrintedRounding * (std::abs(v) + largest) / q;
     if (printed > kMaxPrintedRoundingSteps ||
-        std::abs(steps - std::round(steps)) > std::max(kGridTolerance, printed))
+        std::abs(steps - std::round(steps)) > std::max(kGridTolerance, printed + of_step))
       return 0;
   }
   return q;
@@ -109,53 +117,78 @@ double rounded_noise(const std::vector<double>& seg, double level, double mad, d
   return std::sqrt(std::max(0.0, sum2 / static_cast<double>(n) - mean * mean));
 }
 
-// The median of a rest segment `seg` of a record on a grid of step q (quantization_step; 0: on
-// none), whose plain median is `level`. Each sample stands for the values within ±q/2 of its grid
-// level, and the median is interpolated within that interval of the median level (the median of
-// grouped data): noise of about a step spreads the samples over the neighbouring levels in the
-// proportions of where the rest lies between them. The plain median snaps to a level: up to q/2
-// off, an offset of every sample read from it, which the bar/specimen area ratio multiplies in
-// the 2- and 3-wave stresses (an 8-bit record of a ±1.25 × peak range: q/2 is 0.5 % of the peak).
-double grid_median(const std::vector<double>& seg, double q, double level) {
-  if (!(q > 0) || seg.empty()) return level;
+// The median of a rest segment `seg` (not empty) of a record on a grid of step q > 0
+// (quantization_step). Each sample stands for the values within ±q/2 of its grid level, and the
+// median is interpolated within that interval of the median level (the median of grouped data):
+// noise of about a step spreads the samples over the neighbouring levels in the proportions of
+// where the rest lies between them. The plain median snaps to a level: up to q/2 off, an offset of
+// every sample read from it, which the bar/specimen area ratio multiplies in the 2- and 3-wave
+// stresses (an 8-bit record of a ±1.25 × peak range: q/2 is 0.5 % of the peak). An even count
+// whose two middle values lie on different levels is split in half by any value between their
+// intervals: their midpoint (the edge between adjacent levels), which the record turned over gives
+// too (the lower edge of the upper one's interval was its upper edge of the lower one's; a front's
+// middle values can lie levels apart).
+double grid_median(const std::vector<double>& seg, double q) {
+  const double level = median(seg);  // the upper middle value for an even count
   const double low = level - 0.5 * q, high = level + 0.5 * q;
-  const auto below = static_cast<double>(
-      std::count_if(seg.begin(), seg.end(), [low](double v) { return v < low; }));
-  const auto at = static_cast<double>(std::count_if(
-      seg.begin(), seg.end(), [low, high](double v) { return v >= low && v <= high; }));
-  return low + q * (0.5 * static_cast<double>(seg.size()) - below) / at;
+  // B samples below the level's interval, A in it, C above: L − q/2 + q (N/2 − B)/A written as
+  // L + q (C − B)/(2A), whose rounding is the same for the record turned over.
+  double below = 0, above = 0, under = level;
+  for (double v : seg) {
+    if (v < low)
+      ++below, under = below == 1 ? v : std::max(under, v);
+    else if (v > high)
+      ++above;
+  }
+  const auto n = static_cast<double>(seg.size());
+  if (2 * below == n) return 0.5 * (under + level);
+  return level + q * (above - below) / (2 * (n - below - above));
+}
+
+// The level of a rest segment `seg` (not empty) of a record on a grid of step q (0: on none): the
+// median of grouped data on a grid (grid_median: the negation of the record turned over's), else
+// the plain median (of an even count the upper middle value, the record turned over's the lower
+// one: half their gap apart; kept, as the measured records on no grid are read so).
+double segment_level(const std::vector<double>& seg, double q) {
+  return q > 0 ? grid_median(seg, q) : median(seg);
 }
 
 // Level and noise of the record's first n samples (n ≥ 1).
 Baseline quiet_segment(std::span<const double> x, std::size_t n, double q) {
   const std::vector<double> seg(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(n));
   Baseline b;
-  const double level = median(seg);
+  // On a grid, the deviations from a centre the record turned over has too (its noise then the
+  // same for either polarity).
+  const double centre = q > 0 ? symmetric_median(seg) : median(seg);
   std::vector<double> deviations(seg.size());
-  for (std::size_t i = 0; i < seg.size(); ++i) deviations[i] = std::abs(seg[i] - level);
+  for (std::size_t i = 0; i < seg.size(); ++i) deviations[i] = std::abs(seg[i] - centre);
   const double mad = median(deviations);
   if (mad == 0)
     b.noise = one_level_noise(q, deviations);
   else
-    b.noise = q > 0 ? rounded_noise(seg, level, mad, q) : kMadToSigma * mad;
-  b.level = grid_median(seg, q, level);
+    b.noise = q > 0 ? rounded_noise(seg, centre, mad, q) : kMadToSigma * mad;
+  b.level = segment_level(seg, q);
   b.step = q;
   return b;
 }
 
 // The level y holds longest: the median of the sorted samples' widest count within ±band of one
-// of them.
+// of them; of equally wide counts, the one whose median lies nearest y's zero (its start level:
+// the same count for the record turned over, where the first of them in sorted order is the last).
 double held_level(std::span<const double> y, double band) {
   std::vector<double> sorted(y.begin(), y.end());
   std::sort(sorted.begin(), sorted.end());
-  std::size_t best = 0, best_lo = 0, lo = 0, hi = 0;
+  std::size_t best = 0, lo = 0, hi = 0;
+  double level = 0;
   for (std::size_t k = 0; k < sorted.size(); ++k) {
     while (sorted[lo] < sorted[k] - band) ++lo;
     while (hi < sorted.size() && sorted[hi] <= sorted[k] + band) ++hi;
-    if (hi - lo > best) best = hi - lo, best_lo = lo;
+    if (hi - lo < best) continue;
+    // The median of sorted[lo, hi), its two middle values' mean for an even count.
+    const double m = 0.5 * (sorted[(lo + hi - 1) / 2] + sorted[(lo + hi) / 2]);
+    if (hi - lo > best || std::abs(m) < std::abs(level)) best = hi - lo, level = m;
   }
-  return median(std::vector<double>(sorted.begin() + static_cast<std::ptrdiff_t>(best_lo),
-                                    sorted.begin() + static_cast<std::ptrdiff_t>(best_lo + best)));
+  return level;
 }
 
 }  // namespace
@@ -175,13 +208,13 @@ Baseline estimate_baseline(std::span<const double> x, double fraction) {
 
 std::optional<double> rest_level_before(std::span<const double> x, std::size_t samples) {
   if (samples < kMinRestSamples || samples > x.size()) return std::nullopt;
-  const std::vector<double> seg(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(samples));
-  return grid_median(seg, quantization_step(x), median(seg));
+  return segment_level({x.begin(), x.begin() + static_cast<std::ptrdiff_t>(samples)},
+                       quantization_step(x));
 }
 
 std::size_t rest_samples_before(const PulseWindow& w) {
   const std::size_t rise = w.half > w.onset ? w.half - w.onset : 0;
-  return w.onset - std::min(rise, w.onset / 2);
+  return std::max(w.onset - std::min(rise, w.onset / 2), std::min(kMinRestSamples, w.onset));
 }
 
 double rest_band(double noise, double peak) {
@@ -253,18 +286,18 @@ RecordStart record_start(std::span<const double> x, double step) {
   const std::size_t m = baseline_samples(x.size());
   std::vector<double> steps(m - 1);
   for (std::size_t i = 0; i + 1 < m; ++i) steps[i] = x[i + 1] - x[i];
-  const double centre = median(steps);
+  const double centre = symmetric_median(steps);
   for (double& d : steps) d = std::abs(d - centre);
   // A difference of two samples carries √2 σ; on a digitizer's grid, at least the rounding's.
   r.noise = std::max(kMadToSigma * median(steps) / std::numbers::sqrt2, kQuantizationSigma * step);
   const double start_level =
-      median({x.begin(), x.begin() + static_cast<std::ptrdiff_t>(kMinRestSamples)});
+      symmetric_median({x.begin(), x.begin() + static_cast<std::ptrdiff_t>(kMinRestSamples)});
   r.first = find_first_pulse(x, {start_level, r.noise});
   const std::size_t n = r.first ? r.first->onset : 0, third = n / 3;
   if (third == 0) return r;
   auto level = [&](std::size_t from) {
-    return median({x.begin() + static_cast<std::ptrdiff_t>(from),
-                   x.begin() + static_cast<std::ptrdiff_t>(from + third)});
+    return symmetric_median({x.begin() + static_cast<std::ptrdiff_t>(from),
+                             x.begin() + static_cast<std::ptrdiff_t>(from + third)});
   };
   const PulseWindow& w = *r.first;
   const double first = level(0), middle = level((n - third) / 2), last = level(n - third);
@@ -328,8 +361,9 @@ std::optional<RestElsewhere> rest_elsewhere(std::span<const double> x, const Pul
     // the band of each other (a front through the band moves by about 4/3 of it).
     const std::size_t third = (j - i) / 3;
     auto median_from = [&](std::size_t a) {
-      return median(std::vector<double>(y.begin() + static_cast<std::ptrdiff_t>(a),
-                                        y.begin() + static_cast<std::ptrdiff_t>(a + third)));
+      return symmetric_median(
+          std::vector<double>(y.begin() + static_cast<std::ptrdiff_t>(a),
+                              y.begin() + static_cast<std::ptrdiff_t>(a + third)));
     };
     if (j - i >= kMinRestSamples &&
         std::abs(median_from(j - third) - median_from(i)) <= 0.5 * band) {
@@ -357,8 +391,8 @@ std::optional<Onset> find_onset(std::span<const double> x, const Baseline& b, do
   // mostly at rest (a preceding pulse's tail, a staircase's later step), the front's rise is short.
   double level = b.level;
   if (const auto [half, peak, band] = front(b.level); half - from >= kMinRestSamples)
-    level = median(std::vector<double>(x.begin() + static_cast<std::ptrdiff_t>(from),
-                                       x.begin() + static_cast<std::ptrdiff_t>(half)));
+    level = symmetric_median(std::vector<double>(x.begin() + static_cast<std::ptrdiff_t>(from),
+                                                 x.begin() + static_cast<std::ptrdiff_t>(half)));
   const auto [half, peak, band] = front(level);
   if (!(peak > 2 * band) || !(peak > min_peak) || half == to) return std::nullopt;
   Onset o{half, half};

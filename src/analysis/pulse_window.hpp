@@ -55,11 +55,14 @@ struct PulseWindow {
 // The samples before pulse w that are at rest: those before its onset less one rise (onset to
 // half height), at most half of them (a slow transmitted pulse's rise can outlast the rest before
 // it, and the level is read from the whole rest for a record settling after its trigger, as
-// tests/app/test_compare.cpp checks). Up to its half-height sample the median took the rise's
-// samples, all on the pulse's side, and moved the level towards the pulse by about n_rise/(2N)
-// √(2π) σ, an offset common to every sample read from it that a noise-free record does not show
-// (docs/validation.md, "shpb fit": the Al 6061 campaign's B 0.5 % low from the noise before the
-// pulses alone).
+// tests/app/test_compare.cpp checks), and at least kMinRestSamples where the onset leaves that
+// many (a sharp front after a short pre-trigger: 10 to 15 samples of rest before a 16-sample rise
+// at 100 MS/s, whose foot within the band is a sample or two). Never past the onset: up to its
+// half-height sample the median took the rise's samples, all on the pulse's side, and moved the
+// level towards the pulse by about n_rise/(2N) √(2π) σ, an offset common to every sample read
+// from it that a noise-free record does not show (docs/validation.md, "shpb fit": the Al 6061
+// campaign's B 0.5 % low from the noise before the pulses alone), and after a short rest by the
+// rise itself (8 % of the peak after 10 samples of rest).
 std::size_t rest_samples_before(const PulseWindow& w);
 
 // The band within which a record counts as at rest around a pulse of this peak: max(5σ, 3 % of the
