@@ -835,6 +835,29 @@ def test_a_stability_maps_legend_is_one_and_lies_over_no_run(tmp_path):
     assert {t.get_text() for t in legends[0].get_texts()} == {"stable", "unstable"}
 
 
+def test_a_stability_map_marks_the_stable_runs_that_rattle(tmp_path):
+    # The stability map shows where each method rattles (docs/outputs.md, study): a stable run
+    # whose link closes again after its release with a force above the charted share is drawn
+    # apart from the clean stable runs, and one without such a force is not.
+    share = sweeps.RATTLE_SHARE
+    rows = ["localized-bipenalty,1,0.5,0.5,1,1,1,0,0,0",
+            f"localized-bipenalty,1,0.5,0.9,1,1,1,12,3,{3 * share}",
+            f"localized-bipenalty,1,0.5,0.95,1,1,1,40,0,{share / 2}",
+            "localized-bipenalty,1,0.5,1.05,1e3,0,1,0,0,"]
+    write(tmp_path, "stability.csv", "method,stiffness_factor,mass_ratio,courant,energy_growth,"
+          "stable,step_ratio,closings_after_release,meetings_after_unloading,"
+          "force_after_unloading_share\n" + "\n".join(rows) + "\n")
+    kept = Kept()
+    sweeps.fig_stability(Source(str(tmp_path), "."), kept)
+    (fig,) = kept.figures
+    (ax,) = [a for a in fig.axes if a.get_visible()]
+    drawn = {c.get_label(): [tuple(xy) for xy in c.get_offsets()] for c in ax.collections}
+    rattling = [label for label in drawn if label.startswith("stable, closes again")]
+    assert len(rattling) == 1 and drawn[rattling[0]] == [(1.0, 0.9)]
+    assert sorted(drawn["stable"]) == [(1.0, 0.5), (1.0, 0.95)]
+    assert drawn["unstable"] == [(1.0, 1.05)]
+
+
 def test_a_dispersion_table_under_any_name_is_drawn(tmp_path):
     # `shpb dispersion -o FILE` writes one table named as the user chose; a folder holding it
     # was refused ("no gauges.csv, curve.csv, ... or other shpb output", exit 2). It is known by
