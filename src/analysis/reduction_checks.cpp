@@ -324,10 +324,6 @@ void check_one_wave_rate(const Curve& c, const KolskySetup& k, ProcessingResult&
                    (k.front.youngs_modulus_Pa * k.front.area_m2 * k.specimen.length_m * rate));
   }
   if (difference.empty()) return;
-  auto median = [](std::vector<double>& v) {
-    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
-    return v[v.size() / 2];
-  };
   const double mean_rate = sum / static_cast<double>(difference.size());
   const double off = median(difference) / mean_rate;
   if (off <= kOneWaveRateError) return;
