@@ -19,7 +19,6 @@
 #include "core/interrupt.hpp"
 #include "core/options_check.hpp"
 #include "core/parallel_runner.hpp"
-#include "dispersion/propagation.hpp"
 #include "dispersion/real_fft.hpp"
 #include "output_schema.hpp"
 
@@ -56,17 +55,16 @@ std::vector<std::vector<std::size_t>> channels_of_gauges(const MeasurementSpec& 
   return channels_of;
 }
 
-// A gauge's record low-passed at its bar's 1D band limit: the raised cosine of the dispersion
-// correction's low-pass at its default cut-off f·a/c0 = 0.2619 (Propagator::lowpass_gain), above
-// which the bar carries no 1D stress pulse, so what it removes from a record sampled faster is its
-// noise (docs/methods.md §10). The line through the first and last samples is taken out before the
-// transform and put back after (no step where the padded record wraps round). The record as read
-// for a bar of unknown radius or wave speed.
-std::vector<double> band_limited(const std::vector<double>& x, double dt, const BarWaveguide& bar) {
-  if (!(bar.radius_m > 0 && bar.c0_m_s > 0 && dt > 0) || x.size() < 2) return x;
-  PropagationOptions o;
-  o.dispersion = false;
-  const Propagator band(bar, o);
+// A gauge's record kept where it stands above its own noise (docs/methods.md §10): a record of n
+// samples carrying white noise of σ has, in every bin of its (unnormalised) spectrum, a power
+// |X|² of mean n·σ², exponentially distributed, so that of B bins the largest noise bin reaches
+// about n·σ²·ln B. The bins whose power exceeds that are kept, the others (noise, or signal below
+// it) removed: a hard Wiener-like mask read off the record itself, whatever its bar, its pulse or
+// its sampling. The line through the first and last samples is taken out before the transform and
+// put back after (no step where the padded record wraps round). The record as read for a record
+// without noise (σ = 0) or of fewer than two samples.
+std::vector<double> above_noise(const std::vector<double>& x, double sigma) {
+  if (!(sigma > 0) || x.size() < 2) return x;
   const std::size_t n = x.size();
   const double slope = (x.back() - x.front()) / static_cast<double>(n - 1);
   RealFft fft(fast_fft_size(n));
@@ -75,25 +73,23 @@ std::vector<double> band_limited(const std::vector<double>& x, double dt, const 
   for (std::size_t i = 0; i < n; ++i) y[i] = x[i] - x.front() - slope * static_cast<double>(i);
   fft.forward();
   auto spectrum = fft.spectrum();
-  const double df = 1 / (static_cast<double>(fft.size()) * dt);
-  for (std::size_t j = 0; j < spectrum.size(); ++j)
-    spectrum[j] *= band.lowpass_gain(static_cast<double>(j) * df);
+  const double floor = static_cast<double>(n) * sigma * sigma;
+  const double largest_noise = floor * std::log(static_cast<double>(spectrum.size()));
+  for (auto& bin : spectrum)
+    if (!(std::norm(bin) > largest_noise)) bin = 0;
   fft.inverse();
   std::vector<double> out(n);
   for (std::size_t i = 0; i < n; ++i) out[i] = y[i] + x.front() + slope * static_cast<double>(i);
   return out;
 }
 
-// The record the draws move (docs/methods.md §10): the gauges the reduction reads band-limited
-// (band_limited, on their own bars), the others as read.
+// The record the draws move (docs/methods.md §10): the gauges the reduction reads kept above their
+// noise (above_noise, with the σ of each one's rest: estimate_baseline), the others as read.
 GaugeSignals record_estimate(const GaugeSignals& signals, const KolskySetup& setup) {
   GaugeSignals out = signals;
-  for (std::size_t g = 0; g < signals.gauges.size(); ++g) {
-    if (signals.gauges[g] == setup.incident_gauge)
-      out.strain[g] = band_limited(signals.strain[g], signals.dt_s, setup.front_waveguide);
-    else if (signals.gauges[g] == setup.transmitted_gauge)
-      out.strain[g] = band_limited(signals.strain[g], signals.dt_s, setup.back_waveguide);
-  }
+  for (std::size_t g = 0; g < signals.gauges.size(); ++g)
+    if (signals.gauges[g] == setup.incident_gauge || signals.gauges[g] == setup.transmitted_gauge)
+      out.strain[g] = above_noise(signals.strain[g], estimate_baseline(signals.strain[g]).noise);
   return out;
 }
 
@@ -133,7 +129,7 @@ NormalDraws noise_draws(std::uint64_t seed, std::size_t d) {
 }
 
 // What every draw shares: the nominal test, the inputs and their standard normal draws (z, k a
-// draw), the record's band-limited estimate the draws move, the residual every draw adds back
+// draw), the record's estimate the draws move (above_noise), the residual every draw adds back
 // (the nominal reduction's curve and figures less the estimate's: the record's noise where the
 // nominal reading put it), each gauge's record noise σ and the noise seed, the nominal strains the
 // curve is read at (first `rows`) and the headline figures.
@@ -168,8 +164,8 @@ DrawState perturbed_state(const DrawContext& ctx, std::size_t d) {
   return state;
 }
 
-// Each gauge's band-limited record with draw d's noise, scaled by the mean factor of its channels
-// (the noise is the recorded signal's, in the channel's volts).
+// Each gauge's estimate (above_noise) with draw d's noise, scaled by the mean factor of its
+// channels (the noise is the recorded signal's, in the channel's volts).
 void scale_strains(const DrawContext& ctx, std::size_t d, const DrawState& state,
                    GaugeSignals& scaled) {
   const GaugeSignals& signals = ctx.estimate;
@@ -237,7 +233,7 @@ DrawResult reduce_draw(const DrawContext& ctx, const DrawResult& residual, std::
   return res;
 }
 
-// The record split for the draws (docs/methods.md §10): its band-limited estimate, which the draws
+// The record split for the draws (docs/methods.md §10): its estimate (above_noise), which the draws
 // move, and the residual each adds back unmoved, the nominal reading less the estimate's read
 // alike (the nominal's own noise where the nominal reading put it). When the estimate's
 // reduction fails, the record as read and no residual (the draws then move its noise too).
@@ -448,7 +444,7 @@ nlohmann::json uncertainty_summary(const UncertaintyResult& u) {
            "measurement.uncertainty drawn from a normal distribution with its standard "
            "uncertainty, and (measurement.uncertainty.record_noise) each gauge record's own "
            "noise, white with the standard deviation of its rest, drawn anew; each draw reduces "
-           "the record low-passed at its bars' 1D band limit and adds back the nominal "
+           "the record's spectrum where it stands above that noise and adds back the nominal "
            "reduction's residual unmoved; standard uncertainty = standard "
            "deviation of the draws, interval_95 = their 2.5 and 97.5 % quantiles; contributions: "
            "each input's share of the variance (squared correlation of the figure with the "

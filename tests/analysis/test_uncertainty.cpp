@@ -224,7 +224,7 @@ TEST_CASE(
 // probability 0.95 (D − 1)/(D + 1). Where the draws reduced the record as read, the band had no
 // width and held the truth nowhere; where they added the fresh noise to the record as read (its own
 // noise and the fresh one: twice the noise the nominal reduction saw) instead of to its
-// band-limited estimate, 96.4 % of the points (20 records).
+// estimate, 96.4 % of the points (20 records).
 TEST_CASE(
     "The Monte Carlo bands of a record whose only error is its noise hold the noise-free "
     "reduction at their nominal level",
