@@ -23,9 +23,10 @@ struct FirstReach {
       if (at.empty() || x[i] > x[at.back()]) at.push_back(i);
   }
   // y where x first reaches v; beyond x's maximum, y at that maximum (`beyond`: that value, or NaN
-  // for a strain the reduction never reaches).
+  // for a strain the reduction never reaches). Linear between the two samples, or (`nearest`) the
+  // one of them nearer v.
   double operator()(const std::vector<double>& x, const std::vector<double>& y, double v,
-                    bool beyond = true) const {
+                    bool beyond = true, bool nearest = false) const {
     if (at.empty()) return 0;
     if (v <= x[at.front()]) return y[at.front()];
     if (v > x[at.back()]) return beyond ? y[at.back()] : std::numeric_limits<double>::quiet_NaN();
@@ -34,6 +35,7 @@ struct FirstReach {
                                      [&](double value, std::size_t i) { return value < x[i]; });
     const std::size_t b = *hi, a = *(hi - 1);
     const double w = (v - x[a]) / (x[b] - x[a]);
+    if (nearest) return w < 0.5 ? y[a] : y[b];
     return y[a] + w * (y[b] - y[a]);
   }
 };
@@ -116,8 +118,8 @@ void quantile_bands(const std::vector<const std::vector<double>*>& draws, std::s
 
 CurveAtStrains curve_at_strains(const std::vector<double>& x, const std::vector<double>& stress3,
                                 const std::vector<double>& stress1, const std::vector<double>& rate,
-                                std::size_t n, const std::vector<double>& strains,
-                                std::size_t rows) {
+                                std::size_t n, const std::vector<double>& strains, std::size_t rows,
+                                bool nearest) {
   if (n == 0 || !all_finite({x.data(), n}) || !all_finite({stress3.data(), n}) ||
       !all_finite({stress1.data(), n}) || !all_finite({rate.data(), n}))
     throw std::domain_error("the reduction produced a non-finite value");
@@ -127,19 +129,20 @@ CurveAtStrains curve_at_strains(const std::vector<double>& x, const std::vector<
   out.stress1.resize(rows);
   out.rate.resize(rows);
   for (std::size_t j = 0; j < rows; ++j) {
-    out.stress3[j] = reach(x, stress3, strains[j], false);
-    out.stress1[j] = reach(x, stress1, strains[j], false);
-    out.rate[j] = reach(x, rate, strains[j], false);
+    out.stress3[j] = reach(x, stress3, strains[j], false, nearest);
+    out.stress1[j] = reach(x, stress1, strains[j], false, nearest);
+    out.rate[j] = reach(x, rate, strains[j], false, nearest);
   }
   return out;
 }
 
 CurveAtStrains curve_at_strains(const ProcessingResult& r, bool one_wave,
-                                const std::vector<double>& strains, std::size_t rows) {
+                                const std::vector<double>& strains, std::size_t rows,
+                                bool nearest) {
   const Curve& c = r.curve;
   return curve_at_strains(one_wave ? c.strain_1wave : c.strain, c.stress_3wave_Pa,
                           c.stress_1wave_Pa, one_wave ? c.strain_rate_1wave_1_s : c.strain_rate_1_s,
-                          r.loading_end, strains, rows);
+                          r.loading_end, strains, rows, nearest);
 }
 
 double value_at_first_reach(const std::vector<double>& x, const std::vector<double>& y,
@@ -184,7 +187,8 @@ std::optional<FigureUncertainty> figure_statistics(std::string name, std::string
                                                    double nominal,
                                                    const std::vector<double>& values,
                                                    const std::vector<std::size_t>& good,
-                                                   const std::vector<double>& z, std::size_t k) {
+                                                   const std::vector<double>& z, std::size_t k,
+                                                   bool remainder) {
   FigureUncertainty fu;
   fu.name = std::move(name);
   fu.unit = std::move(unit);
@@ -212,6 +216,14 @@ std::optional<FigureUncertainty> figure_statistics(std::string name, std::string
   fu.median = quantile(sorted, kBandQuantiles[1]);
   fu.high95 = quantile(sorted, kBandQuantiles[2]);
   fu.shares = variance_shares(y, from, mean, var, z, k);
+  if (remainder) {
+    double explained = 0;
+    for (const auto& [i, share] : fu.shares) explained += share;
+    const double rest = std::max(0.0, 1 - explained);
+    const auto at = std::find_if(fu.shares.begin(), fu.shares.end(),
+                                 [&](const auto& s) { return s.second < rest; });
+    fu.shares.insert(at, {k, rest});
+  }
   return fu;
 }
 

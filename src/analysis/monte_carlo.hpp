@@ -60,18 +60,22 @@ void quantile_bands(const std::vector<const std::vector<double>*>& draws, std::s
 
 // A reduction's 3-wave stress, 1-wave stress and primary strain rate where its primary strain
 // first reaches each of the first `rows` of `strains` (NaN beyond its largest strain: a draw whose
-// loading ends short of a strain has no state there). Throws std::domain_error when the reduction
-// holds a non-finite value or no loading.
+// loading ends short of a strain has no state there). Linear between the two samples the strain
+// lies between, or (`nearest`) the nearer of them: a draw carrying the record's noise keeps its
+// noise there, as the nominal curve's own samples do, where interpolating would average two
+// samples' noise (by √(w² + (1 − w)²), 0.82 on average: docs/methods.md §10). Throws
+// std::domain_error when the reduction holds a non-finite value or no loading.
 struct CurveAtStrains {
   std::vector<double> stress3, stress1, rate;
 };
 CurveAtStrains curve_at_strains(const ProcessingResult& r, bool one_wave,
-                                const std::vector<double>& strains, std::size_t rows);
+                                const std::vector<double>& strains, std::size_t rows,
+                                bool nearest = false);
 // The same from a curve's columns: strain x, the stresses and the rate over samples [0, n).
 CurveAtStrains curve_at_strains(const std::vector<double>& x, const std::vector<double>& stress3,
                                 const std::vector<double>& stress1, const std::vector<double>& rate,
-                                std::size_t n, const std::vector<double>& strains,
-                                std::size_t rows);
+                                std::size_t n, const std::vector<double>& strains, std::size_t rows,
+                                bool nearest = false);
 
 // The value of `y` where `x` first reaches `at` along the samples [0, n) (linear between the
 // samples where x reaches a new maximum); y at the last of them beyond x's maximum.
@@ -104,9 +108,14 @@ struct FigureUncertainty {
 
 // The statistics of values[d] over the draws `from` where it is finite; none (nullopt) where those
 // do not state an interval (states_interval). The shares against inputs[d * k + i] (input i of
-// draw d, any affine scale).
-std::optional<FigureUncertainty> figure_statistics(
-    std::string name, std::string unit, double nominal, const std::vector<double>& values,
-    const std::vector<std::size_t>& from, const std::vector<double>& inputs, std::size_t k);
+// draw d, any affine scale). With `remainder`, one more input, index k, drawn as no scalar (a
+// record's noise, a whole series per draw): its share is what the k scalar inputs leave,
+// max(0, 1 − Σ shares), for a figure linear in independent inputs the share of that input.
+std::optional<FigureUncertainty> figure_statistics(std::string name, std::string unit,
+                                                   double nominal,
+                                                   const std::vector<double>& values,
+                                                   const std::vector<std::size_t>& from,
+                                                   const std::vector<double>& inputs, std::size_t k,
+                                                   bool remainder = false);
 
 }  // namespace shpb

@@ -5,10 +5,13 @@
 #include <cstdio>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <random>
 #include <set>
 #include <stdexcept>
 
+#include "analysis/message_text.hpp"
+#include "analysis/pulse_window.hpp"
 #include "analysis/test_processing.hpp"
 #include "analysis/uncertainty_inputs.hpp"
 #include "core/csv_writer.hpp"  // format_double
@@ -16,6 +19,7 @@
 #include "core/interrupt.hpp"
 #include "core/options_check.hpp"
 #include "core/parallel_runner.hpp"
+#include "dispersion/real_fft.hpp"
 #include "output_schema.hpp"
 
 namespace shpb {
@@ -51,19 +55,98 @@ std::vector<std::vector<std::size_t>> channels_of_gauges(const MeasurementSpec& 
   return channels_of;
 }
 
+// A gauge's record kept where it stands above its own noise (docs/methods.md §10): a record of n
+// samples carrying white noise of σ has, in every bin of its (unnormalised) spectrum, a power
+// |X|² of mean n·σ², exponentially distributed, so that of B bins the largest noise bin reaches
+// about n·σ²·ln B. The bins whose power exceeds that are kept, the others (noise, or signal below
+// it) removed: a hard Wiener-like mask read off the record itself, whatever its bar, its pulse or
+// its sampling. The line through the first and last samples is taken out before the transform and
+// put back after (no step where the padded record wraps round). The record as read for a record
+// without noise (σ = 0) or of fewer than two samples.
+std::vector<double> above_noise(const std::vector<double>& x, double sigma) {
+  if (!(sigma > 0) || x.size() < 2) return x;
+  const std::size_t n = x.size();
+  const double slope = (x.back() - x.front()) / static_cast<double>(n - 1);
+  RealFft fft(fast_fft_size(n));
+  auto y = fft.samples();
+  std::fill(y.begin(), y.end(), 0.0);
+  for (std::size_t i = 0; i < n; ++i) y[i] = x[i] - x.front() - slope * static_cast<double>(i);
+  fft.forward();
+  auto spectrum = fft.spectrum();
+  const double floor = static_cast<double>(n) * sigma * sigma;
+  const double largest_noise = floor * std::log(static_cast<double>(spectrum.size()));
+  for (auto& bin : spectrum)
+    if (!(std::norm(bin) > largest_noise)) bin = 0;
+  fft.inverse();
+  std::vector<double> out(n);
+  for (std::size_t i = 0; i < n; ++i) out[i] = y[i] + x.front() + slope * static_cast<double>(i);
+  return out;
+}
+
+// The record the draws move (docs/methods.md §10): the gauges the reduction reads kept above their
+// noise (above_noise, with the σ of each one's rest: estimate_baseline), the others as read.
+GaugeSignals record_estimate(const GaugeSignals& signals, const KolskySetup& setup) {
+  GaugeSignals out = signals;
+  for (std::size_t g = 0; g < signals.gauges.size(); ++g)
+    if (signals.gauges[g] == setup.incident_gauge || signals.gauges[g] == setup.transmitted_gauge)
+      out.strain[g] = above_noise(signals.strain[g], estimate_baseline(signals.strain[g]).noise);
+  return out;
+}
+
+// Each gauge's record noise drawn: the σ of its rest (estimate_baseline, the rule of the signal
+// checks: 1.4826 MAD of white Gaussian noise) for the gauges the reduction reads, 0 for the others
+// and for all with measurement.uncertainty.record_noise false.
+std::vector<double> record_noise_sd(const UncertaintySpec& u, const GaugeSignals& signals,
+                                    const KolskySetup& setup) {
+  std::vector<double> sd(signals.gauges.size(), 0.0);
+  if (!u.record_noise) return sd;
+  for (std::size_t g = 0; g < signals.gauges.size(); ++g)
+    if (signals.gauges[g] == setup.incident_gauge || signals.gauges[g] == setup.transmitted_gauge)
+      sd[g] = estimate_baseline(signals.strain[g]).noise;
+  return sd;
+}
+
+// The input the record noise is listed as (its share: what the scalar inputs leave, figure_
+// statistics): one σ of each gauge's own noise, the σs named.
+std::optional<UncertainInput> record_noise_input(const GaugeSignals& signals,
+                                                 const std::vector<double>& sd) {
+  std::string name;
+  for (std::size_t g = 0; g < sd.size(); ++g)
+    if (sd[g] > 0)
+      name += (name.empty() ? "" : ", ") + signals.gauges[g] + " σ " + fmt("%.2g", sd[g]);
+  if (name.empty()) return std::nullopt;
+  return UncertainInput{"record noise (white; " + name + ")",
+                        "measurement.uncertainty.record_noise", 0.0, 1.0, ""};
+}
+
+// Draw d's noise generator: its own seed, mixed from the run's (splitmix64, Steele et al. 2014),
+// so that a draw's noise depends neither on the thread nor on the other draws.
+NormalDraws noise_draws(std::uint64_t seed, std::size_t d) {
+  std::uint64_t x = seed + 0x9e3779b97f4a7c15ULL * (static_cast<std::uint64_t>(d) + 1);
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return NormalDraws(x ^ (x >> 31));
+}
+
 // What every draw shares: the nominal test, the inputs and their standard normal draws (z, k a
-// draw), the nominal strains the curve is read at (first `rows`) and the headline figures.
+// draw), the record's estimate the draws move (above_noise), the residual every draw adds back
+// (the nominal reduction's curve and figures less the estimate's: the record's noise where the
+// nominal reading put it), each gauge's record noise σ and the noise seed, the nominal strains the
+// curve is read at (first `rows`) and the headline figures.
 struct DrawContext {
   const Scene& scene;
   const MeasurementSpec& m;
-  const GaugeSignals& signals;
+  const GaugeSignals& estimate;
   const ProcessingOptions& options;
   const std::vector<Input>& inputs;
   const std::vector<double>& z;
   const std::vector<std::vector<std::size_t>>& channels_of;
+  const std::vector<double>& noise_sd;
+  std::uint64_t seed;
   const std::vector<double>& nominal_strain;
   std::size_t rows;
   bool one_wave;
+  bool noisy;  // a record noise drawn
   const std::vector<FigureSpec>& figures;
 };
 
@@ -81,9 +164,12 @@ DrawState perturbed_state(const DrawContext& ctx, std::size_t d) {
   return state;
 }
 
-// Each gauge's strain scaled by the mean factor of its channels.
-void scale_strains(const DrawContext& ctx, const DrawState& state, GaugeSignals& scaled) {
-  const GaugeSignals& signals = ctx.signals;
+// Each gauge's estimate (above_noise) with draw d's noise, scaled by the mean factor of its
+// channels (the noise is the recorded signal's, in the channel's volts).
+void scale_strains(const DrawContext& ctx, std::size_t d, const DrawState& state,
+                   GaugeSignals& scaled) {
+  const GaugeSignals& signals = ctx.estimate;
+  NormalDraws noise = noise_draws(ctx.seed, d);
   for (std::size_t g = 0; g < signals.gauges.size(); ++g) {
     const auto& channels = ctx.channels_of[g];
     double f = 0;
@@ -91,29 +177,53 @@ void scale_strains(const DrawContext& ctx, const DrawState& state, GaugeSignals&
     f = channels.empty() ? 1.0 : f / static_cast<double>(channels.size());
     const auto& from = signals.strain[g];
     auto& to = scaled.strain[g];
-    for (std::size_t i = 0; i < from.size(); ++i) to[i] = f * from[i];
+    const double sd = ctx.noise_sd[g];
+    if (sd > 0)
+      for (std::size_t i = 0; i < from.size(); ++i) to[i] = f * (from[i] + sd * noise());
+    else
+      for (std::size_t i = 0; i < from.size(); ++i) to[i] = f * from[i];
   }
 }
 
-// Draw d reduced again; its curve read at the nominal strains (where each is first reached) and
-// its figures. A failed reduction or a non-finite value fails the draw with the reason.
-DrawResult reduce_draw(const DrawContext& ctx, std::size_t d, DispersionTableCache& tables,
-                       FftPlans& plans, GaugeSignals& scaled) {
+// A reduction's curve read at the nominal strains (where each is first reached) and its figures.
+// With the record noise drawn, at the sample nearest each strain (curve_at_strains).
+DrawResult read_reduction(const ProcessingResult& r, bool one_wave, bool noisy,
+                          const std::vector<double>& nominal_strain, std::size_t rows,
+                          const std::vector<FigureSpec>& figures) {
+  DrawResult res;
+  CurveAtStrains at = curve_at_strains(r, one_wave, nominal_strain, rows, noisy);
+  res.stress3 = std::move(at.stress3);
+  res.stress1 = std::move(at.stress1);
+  res.rate = std::move(at.rate);
+  for (const FigureSpec& f : figures) res.figures.push_back(f.of(r));
+  res.ok = true;
+  return res;
+}
+
+// to += add, element by element, where add is finite (the residual where the estimate's reduction
+// read a value; elsewhere none is added).
+void add_finite(std::vector<double>& to, const std::vector<double>& add) {
+  for (std::size_t i = 0; i < std::min(to.size(), add.size()); ++i)
+    if (std::isfinite(add[i])) to[i] += add[i];
+}
+
+// Draw d reduced again, the residual added back; its curve read at the nominal strains and its
+// figures. A failed reduction or a non-finite value fails the draw with the reason.
+DrawResult reduce_draw(const DrawContext& ctx, const DrawResult& residual, std::size_t d,
+                       DispersionTableCache& tables, FftPlans& plans, GaugeSignals& scaled) {
   DrawResult res;
   try {
     DrawState state = perturbed_state(ctx, d);
     state.options.tables = &tables;
     state.options.plans = &plans;
-    scale_strains(ctx, state, scaled);
-    const KolskySetup k_draw = resolve_setup(state.scene, ctx.signals.gauges);
-    const ProcessedTest t = process_test(state.scene, scaled, k_draw, state.options);
-    const ProcessingResult& r = t.result;
-    CurveAtStrains at = curve_at_strains(r, ctx.one_wave, ctx.nominal_strain, ctx.rows);
-    res.stress3 = std::move(at.stress3);
-    res.stress1 = std::move(at.stress1);
-    res.rate = std::move(at.rate);
-    for (const FigureSpec& f : ctx.figures) res.figures.push_back(f.of(r));
-    res.ok = true;
+    scale_strains(ctx, d, state, scaled);
+    const KolskySetup k_draw = resolve_setup(state.scene, ctx.estimate.gauges);
+    res = read_reduction(process_test(state.scene, scaled, k_draw, state.options).result,
+                         ctx.one_wave, ctx.noisy, ctx.nominal_strain, ctx.rows, ctx.figures);
+    add_finite(res.stress3, residual.stress3);
+    add_finite(res.stress1, residual.stress1);
+    add_finite(res.rate, residual.rate);
+    add_finite(res.figures, residual.figures);
   } catch (const Interrupted&) {
     throw;  // a signal stops the draws: not a failed draw
   } catch (const std::exception& e) {
@@ -123,9 +233,44 @@ DrawResult reduce_draw(const DrawContext& ctx, std::size_t d, DispersionTableCac
   return res;
 }
 
+// The record split for the draws (docs/methods.md §10): its estimate (above_noise), which the draws
+// move, and the residual each adds back unmoved, the nominal reading less the estimate's read
+// alike (the nominal's own noise where the nominal reading put it). When the estimate's
+// reduction fails, the record as read and no residual (the draws then move its noise too).
+struct RecordSplit {
+  GaugeSignals estimate;
+  DrawResult residual;
+};
+RecordSplit split_record(const Scene& scene, const GaugeSignals& signals, const KolskySetup& setup,
+                         const ProcessingOptions& options, const ProcessingResult& nominal,
+                         const std::vector<double>& nominal_strain, bool one_wave, bool noisy,
+                         const std::vector<FigureSpec>& figures) {
+  RecordSplit split{record_estimate(signals, setup), {}};
+  const std::size_t rows = nominal.loading_end;
+  try {
+    const DrawResult smooth =
+        read_reduction(process_test(scene, split.estimate, setup, options).result, one_wave, noisy,
+                       nominal_strain, rows, figures);
+    split.residual = read_reduction(nominal, one_wave, noisy, nominal_strain, rows, figures);
+    auto less = [](std::vector<double>& to, const std::vector<double>& from) {
+      for (std::size_t i = 0; i < to.size(); ++i) to[i] -= from[i];
+    };
+    less(split.residual.stress3, smooth.stress3);
+    less(split.residual.stress1, smooth.stress1);
+    less(split.residual.rate, smooth.rate);
+    less(split.residual.figures, smooth.figures);
+  } catch (const Interrupted&) {
+    throw;
+  } catch (const std::exception&) {
+    split = {signals, {}};
+  }
+  return split;
+}
+
 // Every draw, spread over the threads (draw d on worker d mod threads); the dispersion tables are
 // shared by all, the FFT plans and the scaled signals by one worker's draws.
-std::vector<DrawResult> run_draws(const DrawContext& ctx, std::size_t n_draws, int thread_option) {
+std::vector<DrawResult> run_draws(const DrawContext& ctx, const DrawResult& residual,
+                                  std::size_t n_draws, int thread_option) {
   DispersionTableCache tables;
   std::vector<DrawResult> results(n_draws);
   const int threads =
@@ -133,10 +278,10 @@ std::vector<DrawResult> run_draws(const DrawContext& ctx, std::size_t n_draws, i
                                 static_cast<int>(std::max<std::size_t>(1, n_draws))));
   run_parallel(static_cast<std::size_t>(threads), threads, [&](std::size_t worker) {
     FftPlans plans;
-    GaugeSignals scaled = ctx.signals;
+    GaugeSignals scaled = ctx.estimate;
     for (std::size_t d = worker; d < n_draws; d += static_cast<std::size_t>(threads)) {
       throw_if_interrupted();  // Ctrl-C stops a long Monte Carlo within a draw (milliseconds)
-      results[d] = reduce_draw(ctx, d, tables, plans, scaled);
+      results[d] = reduce_draw(ctx, residual, d, tables, plans, scaled);
     }
   });
   return results;
@@ -213,27 +358,38 @@ UncertaintyResult propagate_uncertainty(const Scene& scene, const MeasurementSpe
   out.draws = mc.draws;
   out.seed = mc.seed;
   for (const Input& i : inputs) out.inputs.push_back(i.info);
+  const std::vector<double> noise_sd =
+      record_noise_sd(*scene.measurement->uncertainty, signals, setup);
+  const std::optional<UncertainInput> noise_input = record_noise_input(signals, noise_sd);
+  if (noise_input) out.inputs.push_back(*noise_input);
 
   const std::size_t k = inputs.size(), n_draws = mc.draws;
   const std::vector<double> z = standard_normals(n_draws * k, mc.seed);
   const bool one_wave = options.primary == PrimaryReduction::kOneWave;
   const Curve& nc = nominal.curve;
+  const std::vector<double>& nominal_strain = one_wave ? nc.strain_1wave : nc.strain;
   const std::vector<std::vector<std::size_t>> channels_of = channels_of_gauges(m, signals);
   // Each draw reads its peak stress where the nominal did (processing.hpp).
   ProcessingOptions draw_options = options;
   draw_options.peak_in_equilibrium = nominal.peak_in_equilibrium;
+  const RecordSplit split =
+      split_record(scene, signals, setup, draw_options, nominal, nominal_strain, one_wave,
+                   noise_input.has_value(), figures);
   const DrawContext ctx{scene,
                         m,
-                        signals,
+                        split.estimate,
                         draw_options,
                         inputs,
                         z,
                         channels_of,
-                        one_wave ? nc.strain_1wave : nc.strain,
+                        noise_sd,
+                        mc.seed,
+                        nominal_strain,
                         nominal.loading_end,
                         one_wave,
+                        noise_input.has_value(),
                         figures};
-  const std::vector<DrawResult> results = run_draws(ctx, n_draws, mc.threads);
+  const std::vector<DrawResult> results = run_draws(ctx, split.residual, n_draws, mc.threads);
 
   const std::vector<std::size_t> good = good_draws(results, out);
   fill_bands(results, good, nominal.loading_end, out);
@@ -242,7 +398,7 @@ UncertaintyResult propagate_uncertainty(const Scene& scene, const MeasurementSpe
     for (std::size_t d : good) values[d] = results[d].figures[f];
     // A figure too few draws give (a strain 2.5 % of them do not reach) is left out, as its band.
     if (auto fu = figure_statistics(figures[f].name, figures[f].unit, figures[f].of(nominal),
-                                    values, good, z, k))
+                                    values, good, z, k, noise_input.has_value()))
       out.figures.push_back(std::move(*fu));
   }
   return out;
@@ -286,7 +442,10 @@ nlohmann::json uncertainty_summary(const UncertaintyResult& u) {
   return {{"method",
            "Monte Carlo propagation (GUM Supplement 1, JCGM 101:2008): every input of "
            "measurement.uncertainty drawn from a normal distribution with its standard "
-           "uncertainty, the test reduced again per draw; standard uncertainty = standard "
+           "uncertainty, and (measurement.uncertainty.record_noise) each gauge record's own "
+           "noise, white with the standard deviation of its rest, drawn anew; each draw reduces "
+           "the record's spectrum where it stands above that noise and adds back the nominal "
+           "reduction's residual unmoved; standard uncertainty = standard "
            "deviation of the draws, interval_95 = their 2.5 and 97.5 % quantiles; contributions: "
            "each input's share of the variance (squared correlation of the figure with the "
            "input's draws), largest first; curve.csv's band columns: quantiles at each strain"},

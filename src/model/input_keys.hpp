@@ -70,7 +70,7 @@ inline const Keys kRateWindow = {"strain", "time"};
 inline const Keys kCorrections = {"friction", "inertia"};
 inline const Keys kUncertainty = {
     "gauge_factor",      "excitation", "gain", "gauge_position", "trigger_delay", "window_start",
-    "dispersion_cutoff", "friction",   "bars", "shared",         "notes"};
+    "dispersion_cutoff", "friction",   "bars", "shared",         "record_noise",  "notes"};
 // `uncertainty.bars.<name>`: an incident or transmitter bar, or the specimen.
 inline const Keys kUncertaintyBar = {"youngs_modulus", "density", "wave_speed", "poisson_ratio",
                                      "diameter"};

@@ -242,6 +242,9 @@ struct UncertaintySpec {
   std::optional<StandardUncertainty> dispersion_cutoff;
   std::optional<StandardUncertainty> friction;  // μ of measurement.corrections.friction
   std::vector<BarUncertainty> bars;
+  // Each gauge record's own noise, white with the σ of its rest (estimate_baseline), drawn anew
+  // for every draw (docs/methods.md §10); false: the draws reduce the record's samples as read.
+  bool record_noise = true;
   bool operator==(const UncertaintySpec&) const = default;
 };
 

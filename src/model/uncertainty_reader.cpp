@@ -73,6 +73,7 @@ UncertaintySpec read_uncertainty(const JsonValue& value, const std::vector<std::
     u.dispersion_cutoff = read_standard_uncertainty(*v, Dimension::kFrequency);
   if (auto v = o.get("friction"))
     u.friction = read_standard_uncertainty(*v, Dimension::kDimensionless);
+  if (auto v = o.get("record_noise")) u.record_noise = v->boolean();
   if (auto b = o.get("bars")) {
     if (!b->is_object())
       throw b->error("expected {\"<bar name>\": {\"youngs_modulus\": \"1 %\", ...}, ...}");
