@@ -83,27 +83,24 @@ std::vector<double> above_noise(const std::vector<double>& x, double sigma) {
   return out;
 }
 
-// The record the draws move (docs/methods.md §10): the gauges the reduction reads kept above their
-// noise (above_noise, with the σ of each one's rest: estimate_baseline), the others as read.
-GaugeSignals record_estimate(const GaugeSignals& signals, const KolskySetup& setup) {
-  GaugeSignals out = signals;
-  for (std::size_t g = 0; g < signals.gauges.size(); ++g)
-    if (signals.gauges[g] == setup.incident_gauge || signals.gauges[g] == setup.transmitted_gauge)
-      out.strain[g] = above_noise(signals.strain[g], estimate_baseline(signals.strain[g]).noise);
-  return out;
-}
-
-// Each gauge's record noise drawn: the σ of its rest (estimate_baseline, the rule of the signal
-// checks: 1.4826 MAD of white Gaussian noise) for the gauges the reduction reads, 0 for the others
-// and for all with measurement.uncertainty.record_noise false.
-std::vector<double> record_noise_sd(const UncertaintySpec& u, const GaugeSignals& signals,
-                                    const KolskySetup& setup) {
+// The σ of each gauge's rest (estimate_baseline, the rule of the signal checks: 1.4826 MAD of
+// white Gaussian noise) for the gauges the reduction reads, 0 for the others: the noise floor of
+// the record's estimate and, with measurement.uncertainty.record_noise, each draw's noise.
+std::vector<double> rest_noise_sd(const GaugeSignals& signals, const KolskySetup& setup) {
   std::vector<double> sd(signals.gauges.size(), 0.0);
-  if (!u.record_noise) return sd;
   for (std::size_t g = 0; g < signals.gauges.size(); ++g)
     if (signals.gauges[g] == setup.incident_gauge || signals.gauges[g] == setup.transmitted_gauge)
       sd[g] = estimate_baseline(signals.strain[g]).noise;
   return sd;
+}
+
+// The record the draws move (docs/methods.md §10): each gauge kept above its noise (above_noise,
+// with the σ of its rest: rest_noise_sd; a gauge of σ 0 as read).
+GaugeSignals record_estimate(const GaugeSignals& signals, const std::vector<double>& rest_sd) {
+  GaugeSignals out = signals;
+  for (std::size_t g = 0; g < signals.gauges.size(); ++g)
+    out.strain[g] = above_noise(signals.strain[g], rest_sd[g]);
+  return out;
 }
 
 // The input the record noise is listed as (its share: what the scalar inputs leave, figure_
@@ -242,10 +239,10 @@ struct RecordSplit {
   DrawResult residual;
 };
 RecordSplit split_record(const Scene& scene, const GaugeSignals& signals, const KolskySetup& setup,
-                         const ProcessingOptions& options, const ProcessingResult& nominal,
-                         const std::vector<double>& nominal_strain, bool one_wave, bool noisy,
-                         const std::vector<FigureSpec>& figures) {
-  RecordSplit split{record_estimate(signals, setup), {}};
+                         const std::vector<double>& rest_sd, const ProcessingOptions& options,
+                         const ProcessingResult& nominal, const std::vector<double>& nominal_strain,
+                         bool one_wave, bool noisy, const std::vector<FigureSpec>& figures) {
+  RecordSplit split{record_estimate(signals, rest_sd), {}};
   const std::size_t rows = nominal.loading_end;
   try {
     const DrawResult smooth =
@@ -358,8 +355,10 @@ UncertaintyResult propagate_uncertainty(const Scene& scene, const MeasurementSpe
   out.draws = mc.draws;
   out.seed = mc.seed;
   for (const Input& i : inputs) out.inputs.push_back(i.info);
-  const std::vector<double> noise_sd =
-      record_noise_sd(*scene.measurement->uncertainty, signals, setup);
+  const std::vector<double> rest_sd = rest_noise_sd(signals, setup);
+  const std::vector<double> noise_sd = scene.measurement->uncertainty->record_noise
+                                           ? rest_sd
+                                           : std::vector<double>(rest_sd.size(), 0.0);
   const std::optional<UncertainInput> noise_input = record_noise_input(signals, noise_sd);
   if (noise_input) out.inputs.push_back(*noise_input);
 
@@ -373,7 +372,7 @@ UncertaintyResult propagate_uncertainty(const Scene& scene, const MeasurementSpe
   ProcessingOptions draw_options = options;
   draw_options.peak_in_equilibrium = nominal.peak_in_equilibrium;
   const RecordSplit split =
-      split_record(scene, signals, setup, draw_options, nominal, nominal_strain, one_wave,
+      split_record(scene, signals, setup, rest_sd, draw_options, nominal, nominal_strain, one_wave,
                    noise_input.has_value(), figures);
   const DrawContext ctx{scene,
                         m,
